@@ -1,0 +1,59 @@
+"""noiselab: spectral and lattice procedural noise side by side, measured with the same instruments.
+
+The public names are imported lazily (on first use), so ``import noiselab``
+and the command line start fast and a missing optional renderer never blocks
+the rest.
+
+Subpackages, one idea each:
+
+- ``noiselab.spectral``: spectral synthesis on the real-FFT half spectrum and its envelopes
+- ``noiselab.snow``: Langer & Zhang's falling snow (tent model), compositing, tiling
+- ``noiselab.lattice``: Phillips' permutation-table lattice noise and its kernels
+- ``noiselab.fractal``: fractal sums and turbulence over any noise
+- ``noiselab.geometry``: noise-displaced meshes, curves, surfaces, flow fields, rendering
+- ``noiselab.analysis``: spectra, slopes, isotropy, motion and seam measurements
+- ``noiselab.io``: atomic image, video and mesh I/O
+- ``noiselab.cli``: the ``noiselab`` command
+"""
+from __future__ import annotations
+
+import importlib
+
+__version__ = "0.1.0"
+
+# public name -> module that defines it
+_API = {
+    # spectral synthesis
+    "spectral_noise": "noiselab.spectral",
+    "synthesize": "noiselab.spectral",
+    # falling snow
+    "snow": "noiselab.snow",
+    "composite": "noiselab.snow",
+    "parallax_composite": "noiselab.snow",
+    "tile": "noiselab.snow",
+    "iter_tiled_frames": "noiselab.snow",
+    # lattice noise
+    "LatticeNoise": "noiselab.lattice",
+    "fractal_sum": "noiselab.fractal",
+    "turbulence": "noiselab.fractal",
+    # geometry
+    "displace": "noiselab.geometry",
+}
+
+_SUBPACKAGES = ("spectral", "snow", "lattice", "fractal", "geometry", "analysis", "io", "cli")
+
+__all__ = sorted(_API) + list(_SUBPACKAGES)
+
+
+def __getattr__(name):
+    if name in _API:
+        value = getattr(importlib.import_module(_API[name]), name)
+        globals()[name] = value
+        return value
+    if name in _SUBPACKAGES:
+        return importlib.import_module(f"noiselab.{name}")
+    raise AttributeError(f"module 'noiselab' has no attribute {name!r}")
+
+
+def __dir__():
+    return __all__

@@ -1,0 +1,66 @@
+"""Atomic writing and the media helpers shared by every command."""
+import numpy as np
+import pytest
+
+from noiselab.io import atomic_output, read_image, read_video, to_uint8, write_image, write_video
+
+
+def test_atomic_output_leaves_nothing_when_writer_fails(tmp_path):
+    target = tmp_path / "out.npy"
+    with pytest.raises(RuntimeError):
+        with atomic_output(target) as tmp:
+            np.save(tmp, np.zeros(3))
+            raise RuntimeError("boom")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_atomic_output_keeps_previous_file_on_failure(tmp_path):
+    target = tmp_path / "out.npy"
+    np.save(target, np.arange(3))
+    with pytest.raises(RuntimeError):
+        with atomic_output(target) as tmp:
+            np.save(tmp, np.zeros(5))
+            raise RuntimeError("boom")
+    np.testing.assert_array_equal(np.load(target), np.arange(3))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.npy"]
+
+
+def test_failed_video_write_leaves_no_file(tmp_path):
+    def frames():
+        yield np.zeros((8, 8), np.float32)
+        raise RuntimeError("renderer failed mid-way")
+
+    with pytest.raises(RuntimeError):
+        write_video(tmp_path / "v.mp4", frames())
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_to_uint8_maps_unit_interval_and_rejects_nan():
+    out = to_uint8(np.array([0.0, 0.5, 1.0, 1.5, -1.0]))
+    np.testing.assert_array_equal(out, [0, 128, 255, 255, 0])
+    with pytest.raises(ValueError, match="NaN"):
+        to_uint8(np.array([np.nan]))
+    with pytest.raises(ValueError, match=r"\[0, 255\]"):
+        to_uint8(np.array([300]))
+
+
+@pytest.mark.parametrize("suffix", [".gif", ".mp4", ".npy", ""])
+def test_video_round_trip_preserves_shape_and_content(tmp_path, suffix):
+    t = np.linspace(0, 1, 6, dtype=np.float32)[:, None, None]
+    x = np.linspace(0, 1, 24, dtype=np.float32)[None, None, :]
+    video = np.broadcast_to(0.2 + 0.6 * ((x + t) % 1.0), (6, 16, 24)).copy()
+    path = write_video(tmp_path / f"v{suffix}", video, fps=10)
+    back = read_video(path, as_float=True)
+    assert back.shape == video.shape
+    tol = 0.06 if suffix == ".mp4" else 1 / 255 + 1e-6
+    if suffix == ".npy":
+        tol = 0
+    assert np.abs(back - video).max() <= tol
+
+
+def test_image_round_trip_and_bad_suffix(tmp_path):
+    img = (np.arange(12 * 10 * 3) % 256).astype(np.uint8).reshape(12, 10, 3)
+    write_image(tmp_path / "a.png", img)
+    np.testing.assert_array_equal(read_image(tmp_path / "a.png"), img)
+    with pytest.raises(ValueError, match="must end in"):
+        write_image(tmp_path / "a.xyz", img)
