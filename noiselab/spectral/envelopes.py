@@ -1,0 +1,164 @@
+"""Amplitude envelopes on broadcast frequency vectors; they combine by multiplication.
+
+Every function takes angular frequencies in **rad/sample** (as returned by
+:func:`noiselab.spectral.frequency_vectors`: ``wt`` in rad/frame, ``wy`` and
+``wx`` in rad/pixel, each in ``[-pi, pi]``) and returns an array that
+broadcasts against them. Masks are float arrays of 0 and 1, so that
+``annulus(...) * power_law(...) * tent(...)`` is the snow envelope.
+
+Sign convention (numpy's FFT, checked by measuring motion in the tests): a
+pattern translating with image velocity ``v = (vx, vy)`` pixels/frame has its
+energy on the motion plane ``wt = -(vx*wx + vy*wy)`` (Watson & Ahumada, thesis
+Eq. 2.8). The thesis writes its tent (Eq. 3.3) without the minus sign, for
+its own transform convention; here the signs are chosen so that flakes move
+along ``+direction``.
+
+"On a surface" means the frequency cell overlaps it: a cell of temporal
+frequency ``wt`` carries energy when ``|wt - surface| <= tolerance``; pass half
+a temporal bin (``pi / T``) for the thesis's "cells overlapping the surface".
+
+Examples
+--------
+>>> import numpy as np
+>>> from noiselab.spectral import frequency_vectors
+>>> wt, wy, wx = frequency_vectors((64, 128, 128))
+>>> env = annulus(wy, wx, lo=4/128, hi=32/128) * power_law(wy, wx) * tent(wt, wy, wx, c=1.0, tolerance=np.pi/64)
+>>> env.shape
+(64, 128, 65)
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "radial_frequency",
+    "power_law",
+    "annulus",
+    "motion_plane",
+    "optical_snow",
+    "nonparallel_optical_snow",
+    "tent_surface",
+    "tent",
+    "thickened_tent",
+    "sheared_tent",
+    "unit_direction",
+]
+
+
+def unit_direction(direction) -> tuple[float, float]:
+    """``direction = (dx, dy)`` in image coordinates (x right, y down), normalised to unit length.
+
+    Raises ``ValueError`` for a zero, non-finite or wrongly sized vector.
+    """
+    d = np.asarray(direction, dtype=float)
+    if d.shape != (2,):
+        raise ValueError(f"direction must be a pair (dx, dy), got {direction!r}")
+    if not np.all(np.isfinite(d)):
+        raise ValueError(f"direction must be finite, got {direction!r}")
+    n = float(np.hypot(*d))
+    if n == 0:
+        raise ValueError("direction must be a non-zero vector (dx, dy)")
+    return float(d[0] / n), float(d[1] / n)
+
+
+def radial_frequency(*w):
+    """``sqrt(sum(w_i**2))`` of broadcast frequency vectors (same units as the inputs)."""
+    r2 = 0
+    for wi in w:
+        r2 = r2 + wi * wi
+    return np.sqrt(r2)
+
+
+def power_law(*w, exponent=1.0):
+    """Amplitude ``|w|**(-exponent)`` (thesis 3.2.3: ``exponent=1`` is 1/f), 0 at DC.
+
+    With ``exponent=1`` in two dimensions every octave carries the same energy
+    (Field 1987). The radius is taken in the units of ``w`` (rad/sample).
+    """
+    r = radial_frequency(*w)
+    with np.errstate(divide="ignore"):
+        a = np.where(r > 0, r, 1.0) ** (-float(exponent))
+    return np.where(r > 0, a, 0.0)
+
+
+def annulus(*w, lo, hi):
+    """Band limit (thesis 3.2.2): 1 where ``lo <= |w| / (2*pi) <= hi`` (cycles/sample), else 0; DC never."""
+    f = radial_frequency(*w) / (2 * np.pi)
+    eps = 1e-12
+    return ((f >= lo * (1 - eps)) & (f <= hi * (1 + eps)) & (f > 0)).astype(float)
+
+
+def motion_plane(wt, wy, wx, velocity, *, tolerance):
+    """Energy on the motion plane ``wt = -(vx*wx + vy*wy)`` (Eq. 2.8), ``velocity = (vx, vy)`` px/frame."""
+    vx, vy = (float(v) for v in velocity)
+    return (np.abs(wt + vx * wx + vy * wy) <= tolerance).astype(float)
+
+
+def optical_snow(wt, wy, wx, direction, speeds, *, tolerance):
+    """Parallel optical snow (Eq. 2.12): motion planes ``wt = -s*(d . w)`` for ``s`` in ``speeds = (smin, smax)`` px/frame.
+
+    The family of planes fills a wedge around the line ``d . w = 0``; a cell
+    is kept when it lies within ``tolerance`` of one of the planes.
+    """
+    return nonparallel_optical_snow(wt, wy, wx, direction, speeds, pan=(0.0, 0.0), tolerance=tolerance)
+
+
+def nonparallel_optical_snow(wt, wy, wx, direction, speeds, pan, *, tolerance):
+    """Non-parallel optical snow (Eq. 2.14): velocities ``u + s*d``, ``s`` in ``speeds``, ``u = pan`` px/frame."""
+    dx, dy = unit_direction(direction)
+    smin, smax = sorted(float(s) for s in speeds)
+    ux, uy = (float(u) for u in pan)
+    wv = dx * wx + dy * wy
+    base = wt + ux * wx + uy * wy  # = -s * wv on the family
+    lo = -np.maximum(smin * wv, smax * wv)
+    hi = -np.minimum(smin * wv, smax * wv)
+    return ((base >= lo - tolerance) & (base <= hi + tolerance)).astype(float)
+
+
+def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
+    """Temporal frequency (rad/frame) of the (sheared) tent: ``wt = -c*(d . w)/|w| - pan . w``.
+
+    ``c`` is the thesis's tent constant in rad/frame; a flake at spatial
+    frequency ``|w|`` rad/px moves along ``d`` at ``c/|w|`` px/frame, plus the
+    pan velocity. At DC the tent term is taken as 0.
+    """
+    dx, dy = unit_direction(direction)
+    ux, uy = (float(u) for u in pan)
+    r = radial_frequency(wy, wx)
+    wv = dx * wx + dy * wy
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.where(r > 0, wv / np.where(r > 0, r, 1.0), 0.0)
+    return -float(c) * ratio - (ux * wx + uy * wy)
+
+
+def tent(wt, wy, wx, c, direction=(0.0, 1.0), *, tolerance):
+    """The thin tent (Eq. 3.3), cells within ``tolerance`` rad/frame of :func:`tent_surface`."""
+    return (np.abs(wt - tent_surface(wy, wx, c, direction)) <= tolerance).astype(float)
+
+
+def thickened_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, thickness, tolerance):
+    """Thickened (and optionally sheared) tent (thesis 3.2.1): a small range of tent constants.
+
+    The tent is spread over the constants ``c*(1 - thickness) .. c*(1 + thickness)``
+    (the sketch's "a small range of constants c"), i.e. a range of flake speeds
+    at each spatial frequency, so the half-width in ``wt`` is
+    ``thickness*c*|d . w|/|w|``: zero on the ridge ``d . w = 0`` (patterns that
+    do not move), and ``c = 0`` stays frozen snow.
+    """
+    dx, dy = unit_direction(direction)
+    r = radial_frequency(wy, wx)
+    wv = dx * wx + dy * wy
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = np.where(r > 0, np.abs(wv) / np.where(r > 0, r, 1.0), 0.0)
+    half = float(thickness) * float(c) * ratio
+    return (np.abs(wt - tent_surface(wy, wx, c, direction, pan)) <= tolerance + half).astype(float)
+
+
+def sheared_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, tolerance):
+    """Sheared tent for a panning camera (Eq. 4.2/4.3, any pan vector): tent plus the plane ``-pan . w``.
+
+    ``pan = (ux, uy)`` is the image velocity (px/frame) the camera adds to every
+    flake: a camera panning right makes the world, snow included, drift left,
+    ``pan = (-s, 0)``.
+    """
+    return (np.abs(wt - tent_surface(wy, wx, c, direction, pan)) <= tolerance).astype(float)
