@@ -14,6 +14,7 @@ from .media import (
     VIDEO_SUFFIXES,
     IMAGE_SUFFIXES,
 )
+from .mesh import MESH_SUFFIXES, read_mesh, write_mesh
 
 __all__ = [
     "atomic_output",
@@ -24,4 +25,7 @@ __all__ = [
     "write_video",
     "VIDEO_SUFFIXES",
     "IMAGE_SUFFIXES",
+    "MESH_SUFFIXES",
+    "read_mesh",
+    "write_mesh",
 ]

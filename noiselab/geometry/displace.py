@@ -1,0 +1,367 @@
+"""Displacement of meshes along their normals (Phillips 2004, Eq. 11), and the resolution it needs.
+
+``p' = p + amplitude * s(frequency * p + phase) * n_p``: every vertex moves
+along its (area-weighted) vertex normal by a scale ``s`` taken from a field of
+its position (and, optionally, of time: a 4-D input gives a boiling or
+undulating shape).
+
+A mesh samples the field only at its vertices, so a mesh whose edges are long
+compared with the field's finest period aliases: the displacement between
+vertices is made up by the triangles, not by the noise. :func:`resolution_report`
+measures samples per period (counting the highest octave), and
+:func:`subdivide_for_noise` refines a mesh to what the field needs, no further.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+
+import numpy as np
+
+from .._validate import check_finite_array, check_int, check_memory, check_real
+from .fields import evaluate_field, field_max_frequency, octave_field
+
+__all__ = [
+    "AliasingWarning",
+    "ResolutionReport",
+    "displace",
+    "displace_frames",
+    "vertex_normals",
+    "resolution_report",
+    "subdivide_for_noise",
+    "as_trimesh",
+]
+
+
+class AliasingWarning(UserWarning):
+    """The mesh is too coarse for the field's highest frequency."""
+
+
+def as_trimesh(mesh, *, name="mesh"):
+    """Return ``mesh`` as a ``trimesh.Trimesh`` (accepts a Trimesh, a pyvista PolyData, or a one-mesh Scene).
+
+    A point cloud, a mesh without faces or with non-triangle faces that cannot
+    be triangulated is a clear error: displacement needs faces to define normals.
+    """
+    import trimesh
+
+    if isinstance(mesh, trimesh.Trimesh):
+        out = mesh
+    elif isinstance(mesh, trimesh.Scene):
+        geoms = [g for g in mesh.geometry.values() if isinstance(g, trimesh.Trimesh)]
+        if not geoms:
+            raise ValueError(f"{name} is a scene without any triangle mesh (a point cloud or paths only)")
+        out = mesh.to_mesh() if len(geoms) > 1 else geoms[0]
+    elif isinstance(mesh, trimesh.PointCloud):
+        raise ValueError(f"{name} is a point cloud without faces: displacement needs faces to define normals")
+    elif hasattr(mesh, "points") and hasattr(mesh, "faces") and hasattr(mesh, "triangulate"):
+        from .shapes import pyvista_to_trimesh
+
+        out = pyvista_to_trimesh(mesh)
+    else:
+        raise TypeError(f"{name} must be a trimesh.Trimesh or pyvista.PolyData, got {type(mesh).__name__}")
+    if len(out.faces) == 0:
+        raise ValueError(
+            f"{name} has no faces ({len(out.vertices)} vertices): a point cloud has no surface normals to "
+            "displace along; reconstruct a surface first"
+        )
+    check_finite_array(f"{name} vertices", np.asarray(out.vertices))
+    return out
+
+
+def vertex_normals(mesh) -> np.ndarray:
+    """Area-weighted unit vertex normals, float64 ``(n_vertices, 3)``.
+
+    Each face adds its cross product ``(b - a) x (c - a)`` (twice its area
+    times its unit normal) to its three vertices; the sums are normalised.
+    Zero-area faces add nothing. A vertex that no face references, or whose
+    faces cancel (zero sum), gets a zero normal and therefore no displacement.
+    """
+    mesh = as_trimesh(mesh)
+    v = np.asarray(mesh.vertices, dtype=np.float64)
+    f = np.asarray(mesh.faces, dtype=np.int64)
+    a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
+    cross = np.cross(b - a, c - a)
+    idx = f.ravel()
+    n = len(v)
+    normals = np.empty((n, 3))
+    for axis in range(3):
+        normals[:, axis] = np.bincount(idx, weights=np.repeat(cross[:, axis], 3), minlength=n)
+    length = np.sqrt(np.einsum("ij,ij->i", normals, normals))
+    tiny = length <= 1e-300
+    length[tiny] = 1.0
+    normals /= length[:, None]
+    normals[tiny] = 0.0
+    return normals
+
+
+@dataclasses.dataclass(frozen=True)
+class ResolutionReport:
+    """How finely a mesh samples a field of a given highest frequency.
+
+    ``samples_per_period`` is the period of the highest frequency divided by
+    the longest edge (the worst place on the mesh); ``median_samples_per_period``
+    uses the median edge. ``target_edge`` is the longest edge that gives
+    ``required`` samples per period, and ``subdivisions`` the number of
+    midpoint subdivisions (each halves every edge) that reach it.
+    """
+
+    max_frequency: float
+    max_edge: float
+    median_edge: float
+    samples_per_period: float
+    median_samples_per_period: float
+    required: float
+    target_edge: float
+    subdivisions: int
+    ok: bool
+
+    def message(self) -> str:
+        if self.ok:
+            return (f"mesh resolution ok: {self.samples_per_period:.1f} samples per period at the "
+                    f"highest frequency {self.max_frequency:g} cycles/unit (>= {self.required:g} needed)")
+        return (f"mesh too coarse for the field: its longest edge {self.max_edge:.4g} gives "
+                f"{self.samples_per_period:.2f} samples per period at the highest frequency "
+                f"{self.max_frequency:g} cycles/unit ({self.median_samples_per_period:.2f} at the median edge); "
+                f">= {self.required:g} are needed, i.e. edges <= {self.target_edge:.4g}. "
+                f"subdivide_for_noise(...) refines it ({self.subdivisions} midpoint subdivision(s), "
+                f"about {4 ** self.subdivisions}x the faces)")
+
+
+def _highest_frequency(field, frequency, octaves, lacunarity):
+    freq = np.max(np.abs(np.atleast_1d(np.asarray(frequency, dtype=float))))
+    return float(freq * field_max_frequency(field) * lacunarity ** (octaves - 1))
+
+
+def resolution_report(mesh, max_frequency, *, samples_per_period=4.0) -> ResolutionReport:
+    """Measure whether ``mesh`` samples a field of highest frequency ``max_frequency`` without aliasing.
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+    max_frequency : float
+        Highest frequency of the displacement, in cycles per unit of the
+        mesh's coordinates: ``frequency * lacunarity**(octaves - 1)`` for an
+        octave sum of a unit-frequency lattice noise.
+    samples_per_period : float
+        Samples per period required (default 4: a period drawn by four edges).
+
+    Examples
+    --------
+    >>> import trimesh
+    >>> r = resolution_report(trimesh.creation.icosphere(2), 4.0)
+    >>> r.ok, r.subdivisions
+    (False, 3)
+    """
+    mesh = as_trimesh(mesh)
+    max_frequency = check_real("max_frequency", max_frequency, lo=0.0)
+    required = check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
+    lengths = np.asarray(mesh.edges_unique_length)
+    lengths = lengths[lengths > 0]
+    if lengths.size == 0:
+        raise ValueError("mesh has only zero-length edges; its resolution is undefined")
+    max_edge = float(lengths.max())
+    median_edge = float(np.median(lengths))
+    if max_frequency == 0:
+        return ResolutionReport(0.0, max_edge, median_edge, math.inf, math.inf, required, math.inf, 0, True)
+    period = 1.0 / max_frequency
+    spp = period / max_edge
+    target = period / required
+    subdivisions = max(0, math.ceil(math.log2(max_edge / target) - 1e-12))
+    return ResolutionReport(max_frequency, max_edge, median_edge, spp, period / median_edge,
+                            required, target, subdivisions, spp >= required)
+
+
+def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="midpoint", max_faces=50_000_000):
+    """Subdivide ``mesh`` to the resolution a field of highest frequency ``max_frequency`` needs, no further.
+
+    ``method="midpoint"`` splits every triangle into four at its edge
+    midpoints, the fewest times that bring the longest edge under
+    ``1 / (samples_per_period * max_frequency)``: the surface is unchanged,
+    watertightness kept. ``method="loop"`` uses Loop subdivision instead (the
+    same count; smooths the surface, so it changes the shape of a coarse mesh).
+    ``method="adaptive"`` splits only the faces whose edges are too long
+    (trimesh's ``subdivide_to_size``): fewer faces on an uneven mesh, but the
+    result may have T-junctions (cracks) between split and unsplit faces.
+    A mesh that already has the resolution is returned as a copy. The face
+    count is checked against ``max_faces`` and memory before subdividing.
+
+    Examples
+    --------
+    >>> import trimesh
+    >>> fine = subdivide_for_noise(trimesh.creation.icosphere(1), 2.0)
+    >>> resolution_report(fine, 2.0).ok
+    True
+    """
+    import trimesh
+
+    mesh = as_trimesh(mesh)
+    report = resolution_report(mesh, max_frequency, samples_per_period=samples_per_period)
+    if method not in ("midpoint", "loop", "adaptive"):
+        raise ValueError(f"method must be 'midpoint', 'loop' or 'adaptive', got {method!r}")
+    if report.ok:
+        return mesh.copy()
+    faces = len(mesh.faces) * 4 ** report.subdivisions
+    if faces > max_faces:
+        raise ValueError(
+            f"reaching {report.required:g} samples per period at {report.max_frequency:g} cycles/unit needs "
+            f"{report.subdivisions} subdivisions, about {faces:,} faces, more than max_faces={max_faces:,}; "
+            "lower the frequency or the octaves, or raise max_faces"
+        )
+    check_memory(faces * 3 * 8 * 6, "subdividing the mesh")
+    v = np.asarray(mesh.vertices, dtype=np.float64)
+    f = np.asarray(mesh.faces, dtype=np.int64)
+    if method == "adaptive":
+        v, f = trimesh.remesh.subdivide_to_size(v, f, max_edge=report.target_edge, max_iter=report.subdivisions + 2)
+        out = trimesh.Trimesh(v, f, process=False)
+        out.merge_vertices()
+        return out
+    if method == "loop":
+        v, f = trimesh.remesh.subdivide_loop(v, f, iterations=report.subdivisions)
+    else:
+        for _ in range(report.subdivisions):
+            v, f = trimesh.remesh.subdivide(v, f)
+    return trimesh.Trimesh(v, f, process=False)
+
+
+def _check_resolution(mesh, field, frequency, octaves, lacunarity, samples_per_period, on_aliasing):
+    if on_aliasing == "ignore":
+        return None
+    report = resolution_report(mesh, _highest_frequency(field, frequency, octaves, lacunarity),
+                               samples_per_period=samples_per_period)
+    if not report.ok:
+        if on_aliasing == "raise":
+            raise ValueError(report.message())
+        warnings.warn(report.message(), AliasingWarning, stacklevel=3)
+    return report
+
+
+def _as_vector(name, value, size):
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.ndim == 0:
+        arr = np.full(size, float(arr))
+    if arr.shape != (size,):
+        raise ValueError(f"{name} must be a number or a vector of {size} numbers, got shape {arr.shape}")
+    return check_finite_array(name, arr)
+
+
+def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *, octaves=1, kind="fractal",
+             lacunarity=2.0, gain=0.5, normals=None, samples_per_period=4.0, on_aliasing="warn",
+             chunk_size=1 << 20):
+    """Displace every vertex of ``mesh`` along its normal by a field of its position (Eq. 11).
+
+    ``p' = p + amplitude * s(frequency * p + phase [, time]) * n_p`` where
+    ``s`` is ``field`` or, with ``octaves > 1`` or ``kind="turbulence"``, its
+    fractal sum (Eq. 9) or turbulence (Eq. 10). Returns a new mesh; the input
+    is never modified.
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh or pyvista.PolyData
+        Any triangle mesh: watertight or not, with zero-area faces or
+        unreferenced vertices (those get a zero normal and stay put). A mesh
+        without faces (a point cloud) is an error.
+    field : callable
+        Points ``(n, 3)`` (``(n, 4)`` when ``time`` is given) -> values ``(n,)``:
+        a ``noiselab.LatticeNoise(3)``, a fractal sum, a :func:`sampled_field`...
+    amplitude : float
+        Scale of the displacement, in the mesh's units.
+    frequency : float or (3,) array
+        Multiplies the position before the field sees it (per axis if a vector).
+    phase : float or (3,) array
+        Added after the frequency: moves the noise without changing it.
+    time : float, optional
+        A 4th input coordinate: step it for a boiling or undulating shape.
+    octaves, kind, lacunarity, gain
+        Octave sum applied to ``field`` (see :func:`octave_field`).
+    normals : (n, 3) array, optional
+        Displacement directions; default :func:`vertex_normals` (area-weighted),
+        flipped to point outwards for a watertight mesh of negative volume.
+    samples_per_period, on_aliasing
+        Resolution check: "warn" (:class:`AliasingWarning`), "raise" or
+        "ignore" when the longest edge gives fewer than ``samples_per_period``
+        samples per period of the highest octave.
+
+    Returns
+    -------
+    trimesh.Trimesh
+        The displaced mesh (same faces, process=False). Its
+        ``vertex_attributes["displacement"]`` holds the signed distance each
+        vertex moved (``amplitude * s``).
+
+    Examples
+    --------
+    >>> import numpy as np, trimesh
+    >>> sphere = trimesh.creation.icosphere(3)
+    >>> bumpy = displace(sphere, lambda p: np.sin(p[:, 0]), amplitude=0.1)
+    >>> r = np.linalg.norm(bumpy.vertices, axis=1)
+    >>> bool(0.9 <= r.min() and r.max() <= 1.1)
+    True
+    """
+    import trimesh
+
+    mesh = as_trimesh(mesh)
+    amplitude = check_real("amplitude", amplitude)
+    freq = _as_vector("frequency", frequency, 3)
+    if np.any(freq < 0):
+        raise ValueError(f"frequency must be >= 0 (on every axis), got {freq.tolist()}")
+    phase_v = _as_vector("phase", phase, 3)
+    if time is not None:
+        time = check_real("time", time)
+    if on_aliasing not in ("warn", "raise", "ignore"):
+        raise ValueError(f"on_aliasing must be 'warn', 'raise' or 'ignore', got {on_aliasing!r}")
+    source = octave_field(field, octaves, kind, lacunarity=lacunarity, gain=gain)
+    vertices = np.asarray(mesh.vertices, dtype=np.float64)
+    if normals is None:
+        n = vertex_normals(mesh)
+        # Outward normals whatever the winding: a closed mesh wound inside out
+        # has negative volume (checked only when watertight, where it is defined).
+        if mesh.is_watertight and mesh.volume < 0:
+            n = -n
+    else:
+        n = check_finite_array("normals", normals).astype(np.float64)
+        if n.shape != vertices.shape:
+            raise ValueError(f"normals must have shape {vertices.shape}, got {n.shape}")
+    _check_resolution(mesh, field, freq, octaves if kind != "noise" else 1, check_real("lacunarity", lacunarity),
+                      samples_per_period, on_aliasing)
+    points = vertices * freq + phase_v
+    if time is not None:
+        points = np.concatenate([points, np.full((len(points), 1), time)], axis=1)
+    s = evaluate_field(source, points, components=1, chunk_size=chunk_size)
+    s *= amplitude
+    new_vertices = vertices + s[:, None] * n
+    out = trimesh.Trimesh(new_vertices, np.array(mesh.faces, dtype=np.int64), process=False, validate=False)
+    if mesh.visual.kind == "vertex":
+        out.visual = mesh.visual.copy()
+    out.vertex_attributes["displacement"] = s
+    return out
+
+
+def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0, **kwargs):
+    """Yield :func:`displace` of ``mesh`` at each time in ``times``: a boiling or undulating shape.
+
+    ``field`` takes 4-D points (x, y, z, t). The normals and the resolution
+    check are computed once. Extra keyword arguments go to :func:`displace`.
+
+    Examples
+    --------
+    >>> import numpy as np, trimesh
+    >>> f = lambda p: np.sin(p[:, 0] + p[:, 3])
+    >>> frames = list(displace_frames(trimesh.creation.icosphere(2), f, [0.0, 1.0], amplitude=0.1))
+    >>> len(frames)
+    2
+    """
+    mesh = as_trimesh(mesh)
+    times = check_finite_array("times", np.atleast_1d(np.asarray(times, dtype=np.float64)))
+    if times.ndim != 1:
+        raise ValueError(f"times must be a 1-D sequence, got shape {times.shape}")
+    normals = kwargs.pop("normals", None)
+    if normals is None:
+        normals = vertex_normals(mesh)
+        if mesh.is_watertight and mesh.volume < 0:
+            normals = -normals
+    on_aliasing = kwargs.pop("on_aliasing", "warn")
+    for i, t in enumerate(times):
+        yield displace(mesh, field, amplitude, frequency, phase, float(t), normals=normals,
+                       on_aliasing=on_aliasing if i == 0 else "ignore", **kwargs)

@@ -1,0 +1,208 @@
+"""Base shapes: unit (ico)spheres, squashed spheres, pyvista's bundled models, mesh conversions, layouts."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._validate import check_int, check_real
+
+__all__ = [
+    "sphere",
+    "squashed_sphere",
+    "sphere_for_noise",
+    "load_model",
+    "BUNDLED_MODELS",
+    "pyvista_to_trimesh",
+    "trimesh_to_pyvista",
+    "normalize",
+    "arrange",
+]
+
+# pyvista's ``load_*`` examples that ship inside the wheel (``download_*`` ones
+# need the internet) and are surface meshes worth displacing.
+BUNDLED_MODELS = ("ant", "airplane", "nut", "sphere")
+
+# Edge length of a unit icosahedron's (level-0 icosphere) edges; each level halves it.
+_ICOSAHEDRON_EDGE = 4.0 / math.sqrt(10.0 + 2.0 * math.sqrt(5.0))
+
+
+def sphere(subdivisions=4, radius=1.0, center=(0.0, 0.0, 0.0)):
+    """An icosphere: a subdivided icosahedron with every vertex on the sphere (watertight, near-uniform edges).
+
+    ``subdivisions`` levels give ``10 * 4**k + 2`` vertices (level 4: 2562,
+    level 6: 40962, level 8: 655362) and edges about ``1.05 * radius / 2**k``.
+
+    Examples
+    --------
+    >>> s = sphere(3)
+    >>> len(s.vertices), s.is_watertight
+    (642, True)
+    """
+    import trimesh
+
+    subdivisions = check_int("subdivisions", subdivisions, lo=0, hi=10)
+    radius = check_real("radius", radius, lo=0.0, lo_open=True)
+    center = np.asarray(center, dtype=np.float64)
+    if center.shape != (3,) or not np.all(np.isfinite(center)):
+        raise ValueError(f"center must be 3 finite numbers, got {center!r}")
+    mesh = trimesh.creation.icosphere(subdivisions=subdivisions, radius=radius)
+    if np.any(center):
+        mesh.apply_translation(center)
+    return mesh
+
+
+def squashed_sphere(squash=0.05, subdivisions=4, radius=1.0, axis=2):
+    """A sphere squashed by the fraction ``squash`` along ``axis`` (figure 19: 5% vertically).
+
+    The result is an oblate spheroid with semi-axis ``radius * (1 - squash)``
+    along ``axis``.
+
+    Examples
+    --------
+    >>> s = squashed_sphere(0.05)
+    >>> round(float(s.vertices[:, 2].max()), 3)
+    0.95
+    """
+    squash = check_real("squash", squash, lo=0.0, hi=1.0, hi_open=True)
+    axis = check_int("axis", axis, lo=0, hi=2)
+    mesh = sphere(subdivisions, radius)
+    scale = np.ones(3)
+    scale[axis] = 1.0 - squash
+    mesh.apply_transform(np.diag(np.append(scale, 1.0)))
+    return mesh
+
+
+def sphere_for_noise(max_frequency, radius=1.0, *, samples_per_period=4.0, max_subdivisions=9):
+    """The coarsest icosphere that samples a field of highest frequency ``max_frequency`` (cycles/unit) well.
+
+    Picks the fewest subdivisions whose longest edge gives at least
+    ``samples_per_period`` samples per period; rebuilding the icosphere (rather
+    than subdividing a coarse one) keeps every vertex exactly on the sphere.
+
+    Examples
+    --------
+    >>> len(sphere_for_noise(4.0).vertices)   # 4 cycles/unit, 4 samples per period
+    10242
+    """
+    max_frequency = check_real("max_frequency", max_frequency, lo=0.0)
+    radius = check_real("radius", radius, lo=0.0, lo_open=True)
+    samples_per_period = check_real("samples_per_period", samples_per_period, lo=1.0)
+    max_subdivisions = check_int("max_subdivisions", max_subdivisions, lo=0, hi=10)
+    if max_frequency == 0:
+        return sphere(0, radius)
+    from .displace import resolution_report
+
+    for level in range(max_subdivisions + 1):
+        mesh = sphere(level, radius)
+        if resolution_report(mesh, max_frequency, samples_per_period=samples_per_period).ok:
+            return mesh
+    raise ValueError(
+        f"an icosphere of radius {radius:g} needs more than max_subdivisions={max_subdivisions} levels "
+        f"(> {10 * 4 ** max_subdivisions + 2:,} vertices) for {samples_per_period:g} samples per period at "
+        f"{max_frequency:g} cycles/unit; lower the frequency or octaves, or raise max_subdivisions"
+    )
+
+
+def pyvista_to_trimesh(poly):
+    """Convert a pyvista ``PolyData`` (any polygons; triangulated here) to a ``trimesh.Trimesh``."""
+    import trimesh
+
+    if not hasattr(poly, "extract_surface"):
+        raise TypeError(f"expected a pyvista dataset, got {type(poly).__name__}")
+    surf = poly if poly.__class__.__name__ == "PolyData" else poly.extract_surface()
+    surf = surf.triangulate()
+    if surf.n_cells == 0 or surf.faces.size == 0:
+        raise ValueError(f"the pyvista mesh has no polygon faces ({surf.n_points} points): nothing to displace")
+    faces = np.asarray(surf.faces).reshape(-1, 4)[:, 1:]
+    return trimesh.Trimesh(np.asarray(surf.points, dtype=np.float64), faces.astype(np.int64), process=False)
+
+
+def trimesh_to_pyvista(mesh):
+    """Convert a ``trimesh.Trimesh`` to a pyvista ``PolyData`` (vertex colours as ``"rgb"`` point data)."""
+    from .render import _pyvista
+
+    pv = _pyvista()
+    faces = np.asarray(mesh.faces, dtype=np.int64)
+    cells = np.empty((len(faces), 4), dtype=np.int64)
+    cells[:, 0] = 3
+    cells[:, 1:] = faces
+    poly = pv.PolyData(np.asarray(mesh.vertices, dtype=np.float64), cells.ravel())
+    if mesh.visual.kind == "vertex":
+        poly.point_data["rgb"] = np.asarray(mesh.visual.vertex_colors)[:, :3]
+    for key, value in getattr(mesh, "vertex_attributes", {}).items():
+        value = np.asarray(value)
+        if value.shape[:1] == (len(mesh.vertices),) and value.dtype.kind in "fiu":
+            poly.point_data[key] = value
+    return poly
+
+
+def normalize(mesh, size=2.0):
+    """Return a copy of ``mesh`` centred on its bounding-box centre and scaled so its largest extent is ``size``.
+
+    Useful before displacing a model in unknown units (pyvista's ant is 32
+    units long, the airplane 1500): a unit-frequency noise then means the
+    same thing on every model.
+    """
+    from .displace import as_trimesh
+
+    size = check_real("size", size, lo=0.0, lo_open=True)
+    out = as_trimesh(mesh).copy()
+    lo, hi = out.bounds
+    extent = float(np.max(hi - lo))
+    if extent == 0:
+        raise ValueError("mesh has zero extent: it cannot be normalised")
+    out.apply_translation(-(lo + hi) / 2.0)
+    out.apply_scale(size / extent)
+    return out
+
+
+def load_model(name="ant", *, size=2.0):
+    """Load one of pyvista's bundled models (works offline) as a trimesh, normalised to ``size``.
+
+    ``name`` is one of :data:`BUNDLED_MODELS` (``"ant"``, a watertight
+    stand-in for the paper's cow; ``"airplane"``, open; ``"nut"``;
+    ``"sphere"``). ``size=None`` keeps the file's own units.
+
+    Examples
+    --------
+    >>> ant = load_model("ant")
+    >>> ant.is_watertight, round(float(max(ant.extents)), 6)
+    (True, 2.0)
+    """
+    if name not in BUNDLED_MODELS:
+        raise ValueError(f"model must be one of {', '.join(BUNDLED_MODELS)} (pyvista's bundled models), got {name!r}")
+    from .render import _pyvista
+
+    _pyvista()
+    from pyvista import examples
+
+    mesh = pyvista_to_trimesh(getattr(examples, f"load_{name}")())
+    mesh.merge_vertices()
+    return mesh if size is None else normalize(mesh, size)
+
+
+def arrange(meshes, columns=None, spacing=0.25):
+    """Lay meshes out left to right, top to bottom on the x-y plane, like a figure's panels.
+
+    Each mesh is translated (copies; inputs untouched) so that its bounding
+    box centre sits on a grid cell; cells are as wide as the largest mesh plus
+    ``spacing`` (a fraction of that size). Returns the list of moved meshes,
+    ready for :func:`noiselab.geometry.render_mesh`.
+    """
+    from .displace import as_trimesh
+
+    meshes = [as_trimesh(m, name=f"meshes[{i}]") for i, m in enumerate(meshes)]
+    if not meshes:
+        raise ValueError("meshes must hold at least one mesh")
+    columns = len(meshes) if columns is None else check_int("columns", columns, lo=1)
+    spacing = check_real("spacing", spacing, lo=0.0)
+    cell = max(float(np.max(m.extents)) for m in meshes) * (1.0 + spacing)
+    out = []
+    for i, m in enumerate(meshes):
+        row, col = divmod(i, columns)
+        moved = m.copy()
+        lo, hi = moved.bounds
+        moved.apply_translation(np.array([col * cell, -row * cell, 0.0]) - (lo + hi) / 2.0)
+        out.append(moved)
+    return out

@@ -1,0 +1,209 @@
+"""Monge surfaces z = f(x, y) (Phillips 2004, Eq. 8, figures 8, 14, 15) and height + colour surfaces (figure 11).
+
+Grids follow the image convention of noiselab: a ``(height, width)`` array,
+x running right along columns and y along rows (row 0 at ``y0``). ``extent``
+is ``((x0, x1), (y0, y1))`` with the stop excluded, as in ``numpy.arange``:
+column ``j`` is at ``x0 + j * (x1 - x0) / width``.
+"""
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from .._validate import check_int, check_memory, check_real, check_shape
+from .fields import evaluate_field, field_max_frequency, octave_field
+
+__all__ = ["grid_points", "height_map", "monge_surface", "colored_surface", "height_map_image"]
+
+
+def _extent(extent, dims=2):
+    arr = np.asarray(extent, dtype=np.float64)
+    if arr.shape != (dims, 2):
+        raise ValueError(f"extent must be {dims} (start, stop) pairs (x first), got {extent!r}")
+    if not np.all(np.isfinite(arr)) or np.any(arr[:, 1] <= arr[:, 0]):
+        raise ValueError(f"extent must be finite with stop > start on every axis, got {arr.tolist()}")
+    return arr
+
+
+def grid_points(shape, extent):
+    """Sample points of a regular grid: ``shape`` in array order (rows first), ``extent`` in x, y(, z) order.
+
+    Returns ``(*shape, d)`` float64 where the last axis is (x, y[, z]):
+    for 2-D, ``points[i, j] = (x_j, y_i)``.
+
+    Examples
+    --------
+    >>> p = grid_points((2, 4), ((0, 4), (0, 1)))
+    >>> p[1, 3].tolist()
+    [3.0, 0.5]
+    """
+    shape = check_shape("shape", shape, ndim=(2, 3), min_size=1)
+    ext = _extent(extent, len(shape))
+    check_memory(int(np.prod(shape)) * len(shape) * 8 * 3, "the sampling grid")
+    axes = [ext[k, 0] + np.arange(n) * ((ext[k, 1] - ext[k, 0]) / n)
+            for k, n in enumerate(reversed(shape))]           # x, y(, z)
+    mesh = np.meshgrid(*reversed(axes), indexing="ij")       # array order: (z,) y, x
+    return np.stack(list(reversed(mesh)), axis=-1)
+
+
+def _check_grid_resolution(shape, ext, max_frequency, samples_per_period, on_aliasing):
+    if on_aliasing == "ignore" or max_frequency == 0:
+        return
+    from .displace import AliasingWarning
+
+    spacing = float(np.max((ext[:, 1] - ext[:, 0]) / np.asarray(list(reversed(shape)), dtype=float)))
+    spp = 1.0 / (max_frequency * spacing)
+    if spp < samples_per_period:
+        msg = (f"grid too coarse for the field: spacing {spacing:.4g} gives {spp:.2f} samples per period at the "
+               f"highest frequency {max_frequency:g} cycles/unit (>= {samples_per_period:g} needed); use a shape "
+               f"of at least {int(np.ceil(samples_per_period * max_frequency * spacing * max(shape)))} "
+               "samples per axis, or fewer octaves")
+        if on_aliasing == "raise":
+            raise ValueError(msg)
+        warnings.warn(msg, AliasingWarning, stacklevel=3)
+
+
+def _sample(field, shape, extent, amplitude, frequency, phase, octaves, kind, lacunarity, gain,
+            components, samples_per_period, on_aliasing):
+    shape = check_shape("shape", shape, ndim=2, min_size=2)
+    ext = _extent(extent)
+    amplitude = check_real("amplitude", amplitude)
+    frequency = check_real("frequency", frequency, lo=0.0)
+    phase = np.broadcast_to(np.asarray(phase, dtype=np.float64), (2,))
+    if on_aliasing not in ("warn", "raise", "ignore"):
+        raise ValueError(f"on_aliasing must be 'warn', 'raise' or 'ignore', got {on_aliasing!r}")
+    source = octave_field(field, octaves, kind, lacunarity=lacunarity, gain=gain)
+    _check_grid_resolution(shape, ext, frequency * field_max_frequency(source), samples_per_period, on_aliasing)
+    pts = grid_points(shape, ext)
+    values = evaluate_field(source, pts.reshape(-1, 2) * frequency + phase, components=components)
+    return pts, values.reshape(shape + values.shape[1:]) * amplitude
+
+
+def height_map(field, shape=(256, 256), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=1.0, frequency=1.0,
+               phase=0.0, *, octaves=1, kind="fractal", lacunarity=2.0, gain=0.5, samples_per_period=4.0,
+               on_aliasing="warn") -> np.ndarray:
+    """Heights ``amplitude * s(frequency * (x, y) + phase)`` on a grid: a ``(height, width)`` float64 array.
+
+    ``s`` is ``field`` (2-D input, scalar output) or its fractal sum /
+    turbulence over ``octaves`` (figures 14 and 15). A grid too coarse for the
+    highest octave warns (:class:`AliasingWarning`), or raises with
+    ``on_aliasing="raise"``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> h = height_map(lambda p: np.sin(p[:, 0]), (4, 8), ((0, 8), (0, 4)), on_aliasing="ignore")
+    >>> h.shape, bool(np.allclose(h[0], np.sin(np.arange(8))))
+    ((4, 8), True)
+    """
+    return _sample(field, shape, extent, amplitude, frequency, phase, octaves, kind, lacunarity, gain, 1,
+                   samples_per_period, on_aliasing)[1]
+
+
+def _grid_faces(h, w):
+    idx = np.arange(h * w, dtype=np.int64).reshape(h, w)
+    a, b = idx[:-1, :-1].ravel(), idx[:-1, 1:].ravel()
+    c, d = idx[1:, :-1].ravel(), idx[1:, 1:].ravel()
+    # counter-clockwise seen from +z (x right, y up): normals point up
+    return np.concatenate([np.stack([a, b, d], 1), np.stack([a, d, c], 1)])
+
+
+def _grid_mesh(pts, heights):
+    import trimesh
+
+    h, w = heights.shape
+    vertices = np.concatenate([pts.reshape(-1, 2), heights.reshape(-1, 1)], axis=1)
+    mesh = trimesh.Trimesh(vertices, _grid_faces(h, w), process=False, validate=False)
+    mesh.vertex_attributes["height"] = heights.ravel().copy()
+    return mesh
+
+
+def monge_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=0.5, frequency=1.0,
+                  phase=0.0, *, octaves=1, kind="fractal", lacunarity=2.0, gain=0.5, samples_per_period=4.0,
+                  on_aliasing="warn"):
+    """A Monge-form surface z = amplitude * s(x, y) (Eq. 8) as a triangle mesh (figures 8, 14, 15).
+
+    Vertices sit on the grid of :func:`height_map` (x, y, z); two triangles per
+    cell, wound so that normals point up (+z). ``vertex_attributes["height"]``
+    holds z. The mesh is open (a sheet), not watertight.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> m = monge_surface(lambda p: np.sin(p[:, 0]), (8, 8), on_aliasing="ignore")
+    >>> len(m.vertices), len(m.faces), bool(m.face_normals[:, 2].min() > 0)
+    (64, 98, True)
+    """
+    pts, heights = _sample(field, shape, extent, amplitude, frequency, phase, octaves, kind, lacunarity, gain, 1,
+                           samples_per_period, on_aliasing)
+    return _grid_mesh(pts, heights)
+
+
+def _unit(values, value_range):
+    lo, hi = value_range
+    return np.clip((values - lo) / (hi - lo), 0.0, 1.0)
+
+
+def colored_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=0.5, frequency=1.0,
+                    phase=0.0, *, color="hue", value_range=(-1.0, 1.0), saturation=0.85, value=0.95,
+                    samples_per_period=4.0, on_aliasing="warn"):
+    """A surface whose height and colour both come from one vector-valued field (figure 11).
+
+    ``color="hue"``: the field returns 2 components, the first is the height,
+    the second picks a hue (``value_range`` mapped onto the hue circle
+    [0, 1), at the given HSV ``saturation`` and ``value``).
+    ``color="rgb"``: the field returns 4 components, the first is the height
+    and the other three, mapped from ``value_range`` to [0, 1], are R, G, B.
+    Values outside ``value_range`` are clipped. Returns a Monge mesh with
+    vertex colours (kept by PLY/GLB/OBJ export and used by the renderer).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> f = lambda p: np.stack([np.sin(p[:, 0]), np.cos(p[:, 1])], axis=1)
+    >>> m = colored_surface(f, (8, 8), on_aliasing="ignore")
+    >>> m.visual.vertex_colors.shape
+    (64, 4)
+    """
+    from matplotlib.colors import hsv_to_rgb
+
+    if color not in ("hue", "rgb"):
+        raise ValueError(f"color must be 'hue' (2-component field) or 'rgb' (4-component field), got {color!r}")
+    lo, hi = (check_real("value_range[0]", value_range[0]), check_real("value_range[1]", value_range[1]))
+    if not hi > lo:
+        raise ValueError(f"value_range must be (low, high) with high > low, got {value_range!r}")
+    saturation = check_real("saturation", saturation, lo=0.0, hi=1.0)
+    value = check_real("value", value, lo=0.0, hi=1.0)
+    comps = 2 if color == "hue" else 4
+    pts, out = _sample(field, shape, extent, 1.0, frequency, phase, 1, "fractal", 2.0, 0.5, comps,
+                       samples_per_period, on_aliasing)
+    amplitude = check_real("amplitude", amplitude)
+    mesh = _grid_mesh(pts, amplitude * out[..., 0])
+    if color == "hue":
+        hue = _unit(out[..., 1].ravel(), (lo, hi)) % 1.0
+        hsv = np.stack([hue, np.full_like(hue, saturation), np.full_like(hue, value)], axis=1)
+        rgb = hsv_to_rgb(hsv)
+    else:
+        rgb = _unit(out[..., 1:4].reshape(-1, 3), (lo, hi))
+    rgba = np.concatenate([np.rint(rgb * 255), np.full((len(rgb), 1), 255)], axis=1).astype(np.uint8)
+    mesh.visual.vertex_colors = rgba
+    return mesh
+
+
+def height_map_image(heights, path=None, *, vmin=None, vmax=None) -> np.ndarray:
+    """A depth-map image of heights, lighter = higher (figure 8, right): ``(H, W)`` uint8, written if ``path``.
+
+    ``vmin``/``vmax`` default to the array's range.
+    """
+    from ..io import to_uint8
+    from .render import _save_array
+
+    heights = np.asarray(heights, dtype=np.float64)
+    if heights.ndim != 2:
+        raise ValueError(f"heights must be a (height, width) array, got shape {heights.shape}")
+    lo = float(heights.min()) if vmin is None else check_real("vmin", vmin)
+    hi = float(heights.max()) if vmax is None else check_real("vmax", vmax)
+    if hi <= lo:
+        hi = lo + 1.0
+    return _save_array(to_uint8(heights, lo, hi), path)
