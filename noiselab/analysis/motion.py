@@ -1,0 +1,399 @@
+"""Motion in the frequency domain: energy on motion planes and tents, the best velocity, speed per band.
+
+Conventions. A video is ``(frames, height, width)``; x right along columns, y
+*down* along rows; velocities are ``(vx, vy)`` in pixels/frame with sign
+(+vy = down). Angular frequencies: ``w_x = 2 pi k_x / W``, ``w_y = 2 pi k_y / H``
+(rad/px), ``w_t = 2 pi k_t / T`` (rad/frame), with numpy's FFT sign (the
+same ``exp(-i ...)`` on every axis). Under that convention an image translating
+with velocity ``v`` (``I(x, t) = I(x - v t, 0)``) puts all its energy on the
+*motion plane* ``w_t = -v . w`` (Watson & Ahumada; Langer & Zhang Eq. 2.8), and
+a cell's temporal frequency is periodic: energy predicted past the temporal
+Nyquist frequency is found wrapped around, where the sampled video really has
+it. Distances to a surface are therefore measured along ``w_t``, modulo the
+temporal period, in temporal-frequency cells (cycles/video): ``tol=1`` accepts
+the cells within one cell of the surface.
+
+The falling-snow *tent* (Langer & Zhang Eq. 3.3, in this convention): a
+flake layer whose spatial frequency is ``|w|`` rad/px moves at ``c / |w|``
+px/frame along the unit fall direction ``d``, so its energy lies on
+``w_t = -(c / |w|) d . w``, with ``c`` in rad/frame (``0 <= c <= pi``). A panning
+camera adds the image velocity ``pan`` to every layer (the *sheared* tent,
+Eq. 4.2): ``w_t = -((c / |w|) d + pan) . w``.
+
+Velocities come from the lag-one temporal autocorrelation of each spatial
+frequency, read off the power spectrum in one pass:
+``R(k) = sum_kt P(k, kt) exp(2 pi i kt / T)`` equals ``sum_t F_{t+1}(k) conj(F_t(k))``
+(circularly in t; the velocity analysers taper time with a Hann window by
+default, which gives the wrap-around pair zero weight), whose
+phase is ``-w . v`` for a translation. A phase correlation of ``R / |R|``
+gives the integer part of ``v`` (no wrap-around ambiguity up to half the
+frame), and a weighted least-squares fit of the remaining phase gives the
+sub-pixel part; a pure translation, integer or not, is recovered exactly.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft
+
+from .._validate import check_real
+from ._common import check_band, check_tol, check_vector, check_video, frequency_index, half_weight, ref_size
+from .spectrum import PowerSpectrum, power_spectrum
+
+__all__ = [
+    "motion_energy",
+    "tent_energy",
+    "sheared_tent_energy",
+    "best_velocity",
+    "band_speeds",
+    "speed_profile",
+    "SpeedProfile",
+    "octave_bands",
+    "video_spectrum",
+]
+
+
+def video_spectrum(video, *, window=None) -> PowerSpectrum:
+    """The 3-D power spectrum the motion analysers share (``window`` tapers time only).
+
+    Compute it once and pass it to several analysers instead of the video to
+    pay for one FFT.
+    """
+    if isinstance(video, PowerSpectrum):
+        if len(video.shape) != 3 or video.axes != (0, 1, 2):
+            raise ValueError("motion analysers need the 3-D spectrum of a (frames, height, width) video")
+        if video.shape[0] < 2:
+            raise ValueError("motion analysers need at least 2 frames")
+        return video
+    if window not in (None, "hann"):
+        raise ValueError(f"window must be None or 'hann', got {window!r}")
+    arr = check_video("video", video)
+    return power_spectrum(arr, window=window, window_axes=(0,))
+
+
+class _Grid:
+    """Broadcast spatial frequency vectors of the half spectrum of a video (no meshgrids kept)."""
+
+    def __init__(self, shape):
+        t, h, w = shape
+        self.t, self.h, self.w = t, h, w
+        self.n_ref = ref_size((h, w))
+        self.ky = frequency_index(h)[:, None]
+        self.kx = frequency_index(w, half=True)[None, :]
+        self.wy = 2 * np.pi * self.ky / h  # rad/px
+        self.wx = 2 * np.pi * self.kx / w
+        self.r = np.hypot(self.kx * (self.n_ref / w), self.ky * (self.n_ref / h))  # cycles/frame
+        self.weight = np.broadcast_to(half_weight(w)[None, :], (h, w // 2 + 1))
+        self.kt = frequency_index(t)
+
+    def band_mask(self, band):
+        if band is None:
+            return self.r > 0
+        lo, hi = check_band("band", band, self.n_ref / 2.0 * np.sqrt(2))
+        return (self.r >= lo) & (self.r <= hi) & (self.r > 0)
+
+
+def _surface_energy(spec: PowerSpectrum, grid: _Grid, kt_pred: np.ndarray, region: np.ndarray, tol: float) -> float:
+    """Fraction of the total power in ``region`` (spatial cells) within ``tol`` temporal cells of ``kt_pred`` (cycles/video)."""
+    t = grid.t
+    wgt = np.where(region, grid.weight, 0.0)
+    on = 0.0
+    for it in range(t):
+        d = np.abs(np.mod(grid.kt[it] - kt_pred + t / 2.0, t) - t / 2.0)
+        on += float(np.sum(spec.power[it] * np.where(d <= tol + 1e-9, wgt, 0.0), dtype=np.float64))
+    total = spec.total
+    if total <= 0:
+        raise ValueError("the video has no power (constant after removing its mean)")
+    return on / total
+
+
+def motion_energy(video, velocity=(0.0, 0.0), *, tol=1.0, band=None, window=None) -> float:
+    """Fraction of a video's spectral power on the motion plane ``w_t = -v . w`` of ``velocity = (vx, vy)``.
+
+    Parameters
+    ----------
+    video : array_like or PowerSpectrum
+        ``(frames, height, width)``; or its :func:`video_spectrum`.
+    velocity : (vx, vy)
+        Pixels/frame, +y down.
+    tol : float
+        Accepted distance from the plane along ``w_t``, in temporal-frequency
+        cells (cycles/video), modulo the temporal period.
+    band : (lo, hi), optional
+        Count only spatial frequencies in this band (cycles/frame); the
+        fraction is still of the *total* power.
+    window : {None, "hann"}
+        Temporal taper for videos that do not loop (spreads a plane over about
+        two cells: use ``tol >= 1.5``).
+
+    Returns
+    -------
+    float in [0, 1]; 1 for an image translating at ``velocity`` (integer or
+    sub-pixel, when the translation loops over the video).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> img = np.random.default_rng(0).random((32, 32))
+    >>> video = np.stack([np.roll(img, (t, 2 * t), axis=(0, 1)) for t in range(32)])  # loops after 32 frames
+    >>> round(motion_energy(video, (2, 1), tol=0.5), 6)
+    1.0
+    """
+    spec = video_spectrum(video, window=window)
+    v = check_vector("velocity", velocity)
+    tol = check_tol("tol", tol)
+    g = _Grid(spec.shape)
+    kt_pred = -g.t * (v[0] * g.kx / g.w + v[1] * g.ky / g.h)
+    region = np.ones(g.r.shape, dtype=bool) if band is None else g.band_mask(band)
+    return _surface_energy(spec, g, kt_pred, region, tol)
+
+
+def _tent_kt(g: _Grid, c, direction, pan):
+    d = direction / np.hypot(*direction)
+    wmag = np.hypot(g.wx, g.wy)
+    along = d[0] * g.wx + d[1] * g.wy
+    with np.errstate(invalid="ignore", divide="ignore"):
+        wt = -c * np.where(wmag > 0, along / np.where(wmag > 0, wmag, 1.0), 0.0)
+    wt = wt - (pan[0] * g.wx + pan[1] * g.wy)
+    return wt * g.t / (2 * np.pi)
+
+
+def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), tol=1.0, window=None) -> float:
+    """Fraction of a video's power on the falling-snow tent inside ``band``.
+
+    The tent (Langer & Zhang Eq. 3.3, numpy's FFT sign): ``w_t = -(c / |w|) d . w``,
+    i.e. the layer of spatial frequency ``|w|`` rad/px moves at ``c / |w|``
+    px/frame along the unit fall direction ``d`` (default ``(0, 1)``: straight
+    down). With ``pan`` (px/frame) the sheared tent ``w_t = -((c / |w|) d + pan) . w``.
+
+    Parameters
+    ----------
+    video : array_like or PowerSpectrum
+    c : float
+        Tent constant in rad/frame, ``0 <= c <= pi`` (``c = 0``: frozen snow).
+        The speed at a band edge of ``f`` cycles/frame on an ``N``-pixel frame is
+        ``c N / (2 pi f)`` px/frame.
+    band : (lo, hi)
+        Spatial band in cycles/frame; only cells with ``lo <= f <= hi`` count.
+    direction : (dx, dy)
+        Fall direction in image coordinates (+y down), any length.
+    pan : (px, py)
+        Camera pan as an image velocity in px/frame (sheared tent).
+    tol : float
+        Distance along ``w_t`` in temporal-frequency cells.
+    window : {None, "hann"}
+
+    Returns
+    -------
+    float in [0, 1]: power on the tent within the band over the total power.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t, y, x = np.mgrid[:16, :32, :32].astype(float)
+    >>> # one layer at 4 cycles/frame moving down at c / |w| px/frame
+    >>> c = np.pi / 4; w = 2 * np.pi * 4 / 32; v = c / w
+    >>> video = np.cos(2 * np.pi * 4 * (y - v * t) / 32)
+    >>> round(tent_energy(video, c, (2, 8), tol=0.5), 6)
+    1.0
+    """
+    spec = video_spectrum(video, window=window)
+    c = check_real("c", c, lo=0.0, hi=np.pi)
+    d = check_vector("direction", direction, nonzero=True)
+    p = check_vector("pan", pan)
+    tol = check_tol("tol", tol)
+    g = _Grid(spec.shape)
+    check_band("band", band, g.n_ref / 2.0)
+    return _surface_energy(spec, g, _tent_kt(g, c, d, p), g.band_mask(band), tol)
+
+
+def sheared_tent_energy(video, c, band, direction=(0.0, 1.0), pan=(0.0, 0.0), *, tol=1.0, window=None) -> float:
+    """Fraction of the power on the sheared tent of a panning camera (see :func:`tent_energy`)."""
+    return tent_energy(video, c, band, direction, pan=pan, tol=tol, window=window)
+
+
+def _lag_one(spec: PowerSpectrum) -> np.ndarray:
+    """``R(k) = sum_kt P(k, kt) exp(2 pi i kt / T)``: the lag-one temporal autocorrelation of each spatial frequency."""
+    t = spec.shape[0]
+    ang = 2 * np.pi * frequency_index(t) / t
+    p2 = spec.power.reshape(t, -1)
+    re = np.cos(ang).astype(p2.dtype) @ p2
+    im = np.sin(ang).astype(p2.dtype) @ p2
+    return (re.astype(np.float64) + 1j * im.astype(np.float64)).reshape(spec.power.shape[1:])
+
+
+def _fit_velocity(r_lag, g: _Grid, region):
+    """Velocity (vx, vy) and coherence from the lag-one phases in ``region``."""
+    mag = np.abs(r_lag)
+    use = region & (mag > mag.max() * 1e-12) if mag.max() > 0 else region & False
+    if not use.any():
+        return None, 0.0
+    # integer part: phase correlation over the region
+    norm = np.where(use, r_lag / np.where(use, mag, 1.0), 0.0)
+    surface = scipy.fft.irfft2(norm, s=(g.h, g.w))
+    iy, ix = np.unravel_index(np.argmax(surface), surface.shape)
+    v = np.array([ix - g.w if ix >= g.w / 2 else ix, iy - g.h if iy >= g.h / 2 else iy], dtype=np.float64)
+    a = (mag * g.weight)[use]
+    wx = np.broadcast_to(g.wx, use.shape)[use]
+    wy = np.broadcast_to(g.wy, use.shape)[use]
+    rl = r_lag[use]
+    m = np.array([[np.sum(a * wx * wx), np.sum(a * wx * wy)], [np.sum(a * wx * wy), np.sum(a * wy * wy)]])
+    for _ in range(4):
+        phi = np.angle(rl * np.exp(1j * (wx * v[0] + wy * v[1])))
+        b = -np.array([np.sum(a * wx * phi), np.sum(a * wy * phi)])
+        # lstsq: a one-dimensional pattern (aperture problem) gets its normal velocity
+        dv = np.linalg.lstsq(m, b, rcond=1e-10)[0]
+        v = v + dv
+        if np.max(np.abs(dv)) < 1e-12:
+            break
+    coherence = float(np.abs(np.sum(a * rl / np.abs(rl) * np.exp(1j * (wx * v[0] + wy * v[1])))) / np.sum(a))
+    return v, coherence
+
+
+def best_velocity(video, *, band=None, window="hann") -> np.ndarray:
+    """The single velocity ``(vx, vy)`` (px/frame, +y down) that best explains the video's motion.
+
+    Weighted by power over the spatial frequencies in ``band`` (default all);
+    exact for a pure translation (integer or sub-pixel per frame), up to half
+    the frame per frame. For a mixture (falling snow) it is the power-weighted
+    compromise; see :func:`band_speeds` for the speed of each band.
+    The default temporal Hann window gives the wrap-around pair (last frame
+    to first) zero weight, so a video need not loop; every other pair of
+    consecutive frames keeps the exact phase of its step.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> img = np.random.default_rng(0).random((32, 32))
+    >>> video = np.stack([np.roll(img, (3 * t, -t), axis=(0, 1)) for t in range(8)])
+    >>> best_velocity(video).round(6).tolist()
+    [-1.0, 3.0]
+    """
+    spec = video_spectrum(video, window=window)
+    g = _Grid(spec.shape)
+    v, _ = _fit_velocity(_lag_one(spec), g, g.band_mask(band))
+    if v is None:
+        raise ValueError("the video has no moving power in the band: cannot estimate a velocity")
+    return v
+
+
+def octave_bands(lo, hi, per_octave=2):
+    """Log-spaced bands ``[(f0, f1), (f1, f2), ...]`` from ``lo`` to ``hi`` cycles/frame, ``per_octave`` per octave."""
+    lo = check_real("lo", lo, lo=0.0, lo_open=True)
+    hi = check_real("hi", hi, lo=lo, lo_open=True)
+    n = max(int(round(np.log2(hi / lo) * per_octave)), 1)
+    e = np.geomspace(lo, hi, n + 1)
+    return [(float(e[i]), float(e[i + 1])) for i in range(n)]
+
+
+def _check_bands(bands, fmax):
+    if isinstance(bands, np.ndarray):
+        bands = bands.tolist()
+    try:
+        bands = list(bands)
+    except TypeError:
+        raise TypeError("bands must be a sequence of (lo, hi) pairs in cycles/frame") from None
+    if not bands:
+        raise ValueError("bands is empty: give at least one (lo, hi) pair")
+    return [check_band(f"bands[{i}]", b, fmax) for i, b in enumerate(bands)]
+
+
+@dataclass(frozen=True)
+class SpeedProfile:
+    """Speed of each spatial-frequency band (the motion-parallax curve).
+
+    Attributes
+    ----------
+    bands : ndarray, shape (n, 2)
+        Band edges in cycles/frame.
+    centers : ndarray
+        Power-weighted mean radial frequency of each band (cycles/frame).
+    velocity : ndarray, shape (n, 2)
+        ``(vx, vy)`` px/frame per band (+y down).
+    coherence : ndarray
+        How well one velocity explains the band, 1 for a pure translation.
+    energy : ndarray
+        Fraction of the total power in each band.
+    frame_size : int
+    """
+
+    bands: np.ndarray
+    centers: np.ndarray
+    velocity: np.ndarray
+    coherence: np.ndarray
+    energy: np.ndarray
+    frame_size: int
+
+    @property
+    def speed(self) -> np.ndarray:
+        return np.hypot(self.velocity[:, 0], self.velocity[:, 1])
+
+    @property
+    def parallax(self) -> np.ndarray:
+        """``speed x |w|`` with ``|w| = 2 pi f / N`` rad/px at the band centre: constant (= c) on a tent."""
+        return self.speed * 2 * np.pi * self.centers / self.frame_size
+
+
+def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3) -> SpeedProfile:
+    """Velocity per spatial-frequency band, with band centres, coherence and energy.
+
+    ``bands`` default: half-octave bands from 2 cycles/frame to Nyquist,
+    keeping only those holding at least ``min_energy`` of the power. Explicit
+    bands must all hold power (else ``ValueError`` naming the band).
+    """
+    spec = video_spectrum(video, window=window)
+    g = _Grid(spec.shape)
+    explicit = bands is not None
+    if explicit:
+        bands = _check_bands(bands, g.n_ref / 2.0 * np.sqrt(2))
+    else:
+        bands = octave_bands(2.0, g.n_ref / 2.0, 2)
+    r_lag = _lag_one(spec)
+    # power of each spatial cell summed over w_t = R at lag zero
+    p0 = np.sum(spec.power, axis=0, dtype=np.float64) * g.weight
+    total = spec.total
+    out_b, out_c, out_v, out_coh, out_e = [], [], [], [], []
+    for i, (lo, hi) in enumerate(bands):
+        region = (g.r >= lo) & (g.r <= hi) & (g.r > 0)
+        e = float(np.sum(p0[region]) / total) if total > 0 else 0.0
+        if not explicit and e < min_energy:
+            continue
+        v, coh = _fit_velocity(r_lag, g, region)
+        if v is None or e <= 0:
+            raise ValueError(f"band {i} ({lo:g}, {hi:g}) cycles/frame holds no power: cannot estimate its speed")
+        out_b.append((lo, hi))
+        out_c.append(float(np.sum(p0[region] * g.r[region]) / np.sum(p0[region])))
+        out_v.append(v)
+        out_coh.append(coh)
+        out_e.append(e)
+    if not out_b:
+        raise ValueError("no band holds enough power to estimate a speed")
+    return SpeedProfile(
+        bands=np.array(out_b),
+        centers=np.array(out_c),
+        velocity=np.array(out_v),
+        coherence=np.array(out_coh),
+        energy=np.array(out_e),
+        frame_size=g.n_ref,
+    )
+
+
+def band_speeds(video, bands, *, window="hann") -> np.ndarray:
+    """Velocity ``(vx, vy)`` in px/frame of each spatial-frequency band: an array of shape ``(len(bands), 2)``.
+
+    ``bands`` is a sequence of ``(lo, hi)`` pairs in cycles/frame (see
+    :func:`octave_bands`). For falling snow with tent constant ``c`` the
+    speed of a band near ``f`` cycles/frame is ``c N / (2 pi f)``: speed x
+    frequency is constant (motion parallax).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t, y, x = np.mgrid[:32, :64, :64].astype(float)
+    >>> slow = np.cos(2 * np.pi * (16 * x + 16 * y) / 64 - 2 * np.pi * 16 * 0.5 * t / 64)
+    >>> fast = np.cos(2 * np.pi * 4 * y / 64 - 2 * np.pi * 4 * 2.0 * t / 64)
+    >>> band_speeds(slow + fast, [(2, 8), (16, 32)]).round(6).tolist()
+    [[0.0, 2.0], [0.25, 0.25]]
+    """
+    return speed_profile(video, bands, window=window).velocity
