@@ -1,0 +1,172 @@
+"""``snow``: Langer & Zhang's falling snow, an opacity video from one (pruned) inverse 3-D FFT."""
+from __future__ import annotations
+
+import numpy as np
+
+from .._progress import progress
+from .._validate import as_generator, check_finite_array, check_memory, check_real, check_shape, float_dtype
+from ..spectral.envelopes import unit_direction
+from ..spectral.synthesis import AMPLITUDES
+from . import _kernels
+from .tent import assemble, pruned_irfftn, tent_columns, to_half_spectrum
+
+__all__ = ["snow", "snow_spectrum", "rescale_opacity"]
+
+
+def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
+    """Map a field to opacity in place: ``alpha = ((field - min) / (max - min)) ** beta`` (thesis 3.3).
+
+    A constant field (``max == min``) has no structure to show and becomes
+    fully transparent (``alpha = 0``) instead of dividing by zero. ``lo`` and
+    ``hi`` may pass a known minimum and maximum (saves one pass).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rescale_opacity(np.array([-1.0, 0.0, 3.0]), beta=1.0)
+    array([0.  , 0.25, 1.  ])
+    >>> rescale_opacity(np.full(3, 7.0))
+    array([0., 0., 0.])
+    """
+    beta = check_real("beta", beta, lo=0, lo_open=True)
+    field = np.asarray(field)
+    if field.dtype not in (np.float32, np.float64):
+        raise TypeError(f"field must be float32 or float64, got {field.dtype}")
+    if field.size == 0:
+        return field
+    flat = field.reshape(-1)
+    if not flat.flags.c_contiguous:
+        raise ValueError("field must be C-contiguous to be rescaled in place")
+    if lo is None or hi is None:
+        lo, hi = flat.min(), flat.max()
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        check_finite_array("field", field)
+    span = float(hi) - float(lo)
+    if span <= 0:
+        field[...] = 0
+        return field
+    _kernels.rescale_power(flat, float(lo), 1.0 / span, beta)
+    return field
+
+
+def _check_params(shape, c, band, thickness, direction, pan, beta, exponent, amplitude, on_alias):
+    shape = check_shape("shape", shape, ndim=3)
+    T, H, W = shape
+    c = check_real("c (rad/frame)", c, lo=0, hi=np.pi)
+    thickness = check_real("thickness", thickness, lo=0, hi=1)
+    beta = check_real("beta", beta, lo=0, lo_open=True)
+    exponent = check_real("exponent", exponent, lo=-8, hi=8)
+    direction = unit_direction(direction)
+    p = np.asarray(pan, dtype=float)
+    if p.shape != (2,) or not np.all(np.isfinite(p)):
+        raise ValueError(f"pan must be a finite pair (ux, uy) in px/frame, got {pan!r}")
+    if amplitude not in AMPLITUDES:
+        raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
+    if on_alias not in ("raise", "drop"):
+        raise ValueError(f"on_alias must be 'raise' or 'drop', got {on_alias!r}")
+    if band is None:
+        band = (W / 32, W / 4)
+    return shape, c, band, thickness, direction, (float(p[0]), float(p[1])), beta, exponent
+
+
+def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, direction=(0.0, 1.0),
+         pan=(0.0, 0.0), beta=1.5, exponent=1.0, amplitude="uniform", dtype=np.float32,
+         on_alias="raise", rescale=True, show_progress=False):
+    """Falling-snow opacity ``alpha(t, y, x)`` in [0, 1] from the tent model (Langer & Zhang 2003).
+
+    Energy sits on the thickened tent ``wt = -c*(d . w)/|w| - pan . w`` inside
+    an annulus band, with ``1/|w|**exponent`` amplitude and random phase; one
+    inverse 3-D FFT (pruned to the cells that carry energy) gives a periodic
+    video, rescaled to [0, 1] and raised to ``beta``.
+
+    Parameters
+    ----------
+    shape : (T, H, W)
+        Frames, height, width. ``T = 1`` gives a still.
+    seed : int or numpy.random.Generator
+        Same seed, same bits.
+    c : float
+        Tent constant in rad/frame, ``0 <= c <= pi`` (thesis Eq. 3.3). A flake
+        at spatial frequency ``|w|`` rad/px moves at ``c/|w|`` px/frame: with
+        the default band at 512 px (16..128 cycles/frame, ``|w|`` =
+        ``2*pi*16/512 .. 2*pi*128/512``) the nearest flakes move at
+        ``5.09*c`` px/frame and the farthest at ``0.637*c`` (see
+        :func:`noiselab.snow.flake_speeds`). ``c = 0`` freezes the snow.
+    band : (lo, hi), optional
+        Spatial pass band in cycles/frame (cycles per frame *width*),
+        inclusive. Default ``(W/32, W/4)``: 16..128 at 512 px. ``hi`` may reach
+        the Nyquist frequency ``W/2``, not pass it.
+    thickness : float
+        Relative thickness of the tent, in [0, 1]: the tent constant spreads
+        over ``c*(1 - thickness) .. c*(1 + thickness)`` (a range of speeds per
+        spatial frequency, thesis 3.2.1). 0 is the thin tent (one temporal bin
+        per spatial frequency).
+    direction : (dx, dy)
+        Fall direction in image coordinates (x right, y down), any angle;
+        default ``(0, 1)``, straight down.
+    pan : (ux, uy)
+        Image velocity in px/frame that a panning camera adds to every flake
+        (the sheared tent, Eq. 4.2); ``(0, 0)`` for a still camera.
+    beta : float
+        Opacity exponent, ``alpha ** beta`` after rescaling (thesis: 1.5).
+    exponent : float
+        Amplitude ``1/|w|**exponent``; 1 is the thesis's 1/f.
+    amplitude : {"uniform", "rayleigh", "fixed"}
+        Random amplitude law (thesis: uniform).
+    dtype : float32 or float64
+        Output dtype; float32 (default) computes in complex64.
+    on_alias : {"raise", "drop"}
+        Energy past the temporal Nyquist frequency (pi rad/frame) would wrap
+        around and move backwards: by default raise a ``ValueError`` naming
+        the largest allowed ``c`` (and pan); ``"drop"`` leaves those cells out.
+    rescale : bool
+        ``False`` returns the raw zero-mean field (the inverse FFT itself).
+    show_progress : bool or None
+        Progress bar over the frames of the final FFT pass.
+
+    Returns
+    -------
+    ndarray, shape (T, H, W), ``dtype``
+        Opacity in [0, 1] (or the raw field). Periodic in t, y and x: it loops
+        and tiles seamlessly.
+
+    Examples
+    --------
+    >>> a = snow((16, 64, 64), seed=0)
+    >>> a.shape, a.dtype, float(a.min()), float(a.max())
+    ((16, 64, 64), dtype('float32'), 0.0, 1.0)
+    """
+    (T, H, W), c, band, thickness, direction, pan, beta, exponent = _check_params(
+        shape, c, band, thickness, direction, pan, beta, exponent, amplitude, on_alias)
+    dt = float_dtype(dtype)
+    cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
+                        exponent=exponent, on_alias=on_alias)
+    K = int(cols.kx.max()) + 1
+    item = dt.itemsize
+    check_memory(T * H * W * item + 2 * T * cols.ky.size * 2 * item + 3 * (8 << 20) + H * K * 2 * item,
+                 f"snow{(T, H, W)}")
+    rng = as_generator(seed)
+    C = assemble(cols, rng, amplitude, dt)
+    out = np.empty((T, H, W), dtype=dt)
+    with progress(total=T, desc="snow", enabled=show_progress, unit="frame") as bar:
+        lo, hi = pruned_irfftn(C, cols, out, bar=bar)
+    if rescale:
+        rescale_opacity(out, beta, lo=lo, hi=hi)
+    return out
+
+
+def snow_spectrum(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, direction=(0.0, 1.0),
+                  pan=(0.0, 0.0), exponent=1.0, amplitude="uniform", dtype=np.float32, on_alias="raise"):
+    """The half spectrum ``S`` (``(T, H, W//2 + 1)``) that :func:`snow` inverts for the same arguments.
+
+    ``scipy.fft.irfftn(S, s=shape)`` equals ``snow(..., rescale=False)`` to
+    float precision; for analysis and tests (it is dense, so it costs the full
+    spectrum's memory).
+    """
+    (T, H, W), c, band, thickness, direction, pan, _, exponent = _check_params(
+        shape, c, band, thickness, direction, pan, 1.0, exponent, amplitude, on_alias)
+    dt = float_dtype(dtype)
+    cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
+                        exponent=exponent, on_alias=on_alias)
+    C = assemble(cols, as_generator(seed), amplitude, dt)
+    return to_half_spectrum(C, cols)

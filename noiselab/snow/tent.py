@@ -1,0 +1,268 @@
+"""The tent spectrum, built sparsely, and the pruned inverse FFT that turns it into video.
+
+What is exploited
+-----------------
+Only the cells on the (thickened, sheared) tent inside the annulus band carry
+energy. For the default 64 x 512 x 512 scene that is the ~25 000 spatial
+frequencies of the band in the half plane (19 % of the 512 x 257 spatial
+cells), each with one to a few temporal bins: about 1 % of the 8.4 million
+half-spectrum cells. So:
+
+1. **Sparse build.** Loop (vectorised) over the band's spatial cells only; for
+   each, compute the tent's temporal frequency and place energy in the few
+   temporal bins that overlap the thickened surface. Random numbers are drawn
+   for those cells only.
+2. **Pruned inverse FFT.** The inverse 3-D FFT is three passes of 1-D
+   transforms. Along t, only the band's (ky, kx) columns are transformed (a
+   ``(T, n_cells)`` array instead of ``(T, H, W//2+1)``); along y, only the kx
+   columns inside the band (``kx <= hi``: about half); the last pass (``irfft``
+   along x, complex-to-real) is the full one, written straight into the output
+   a few frames at a time. This beats a bare ``irfftn`` of the same output
+   (figures in ``benchmarks/bench_snow.md``).
+
+Units: spatial frequencies in cycles/pixel internally (band limits are given in
+cycles/frame = cycles per frame width); angular frequencies ``w`` in rad/px
+and ``wt`` in rad/frame; ``c`` in rad/frame; speeds in px/frame.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft
+
+from ..spectral.envelopes import tent_surface, unit_direction
+from ..spectral.synthesis import _check_band, _complex_dtype, draw_coefficients, hermitian_plane
+
+__all__ = ["TentColumns", "tent_columns", "largest_c", "pruned_irfftn", "flake_speeds"]
+
+_NP_FFT_OUT = "out" in getattr(np.fft.irfft, "__doc__", "")  # numpy >= 2 writes irfft into a given array
+
+
+@dataclass
+class TentColumns:
+    """The tent spectrum in sparse form: band cells (columns) and their temporal bins."""
+
+    shape: tuple          # (T, H, W) of the video
+    ky: np.ndarray        # row index 0..H-1 of each column
+    kx: np.ndarray        # column index 0..W//2 of each column
+    entry_col: np.ndarray  # column of each energy-carrying cell
+    entry_bin: np.ndarray  # temporal bin index 0..T-1 of each cell
+    weight: np.ndarray     # envelope amplitude of each cell (1/f, split over the column's bins)
+    peak_wt: float         # largest |temporal frequency| (rad/frame) the thickened tent reaches
+    dropped: int           # cells dropped for temporal aliasing (on_alias="drop")
+
+    @property
+    def n_cells(self) -> int:
+        return int(self.entry_col.size)
+
+
+def _band_columns(H, W, lo_cpp, hi_cpp):
+    """(ky index, kx index, fy, fx) of the half-plane spatial cells with lo <= |f| <= hi cycles/px, DC excluded."""
+    fy_all = scipy.fft.fftfreq(H)
+    fx_all = scipy.fft.rfftfreq(W)
+    eps = 1e-12
+    rows = np.flatnonzero(np.abs(fy_all) <= hi_cpp * (1 + eps))
+    cols = np.flatnonzero(fx_all <= hi_cpp * (1 + eps))
+    fy = fy_all[rows][:, None]
+    fx = fx_all[cols][None, :]
+    r = np.hypot(fy, fx)
+    mask = (r >= lo_cpp * (1 - eps)) & (r <= hi_cpp * (1 + eps)) & (r > 0)
+    ri, ci = np.nonzero(mask)
+    return rows[ri], cols[ci], fy_all[rows[ri]], fx_all[cols[ci]]
+
+
+def _surface_terms(fy, fx, direction, pan):
+    """Per column: a = (d . w)/|w| (dimensionless) and b = pan . w (rad/frame); tent wt = -c*a - b."""
+    dx, dy = unit_direction(direction)
+    wy = 2 * np.pi * fy
+    wx = 2 * np.pi * fx
+    r = np.hypot(wy, wx)
+    a = (dx * wx + dy * wy) / r
+    b = float(pan[0]) * wx + float(pan[1]) * wy
+    return a, b, r
+
+
+def largest_c(a, b, thickness):
+    """Largest tent constant c keeping ``|c*a + b| + thickness*c*|a| <= pi`` on every column (None if no c >= 0 works)."""
+    sgn = np.where(a < 0, -1.0, 1.0)
+    a = a * sgn
+    b = b * sgn
+    if np.any(np.abs(b[a == 0]) > np.pi):
+        return None
+    pos = a > 0
+    if not pos.any():
+        return np.pi
+    cmax = float(np.min((np.pi - b[pos]) / (a[pos] * (1 + thickness))))
+    # lower bounds (pan pushing the other way faster than the tent can compensate)
+    if thickness < 1:
+        need = -(np.pi + b[pos]) / ((1 - thickness) * a[pos])
+        cmin = float(np.max(need, initial=0.0))
+    else:
+        cmin = 0.0 if np.all(np.pi + b[pos] >= 0) else np.inf
+    if cmax < max(cmin, 0.0):
+        return None
+    return min(cmax, np.pi)
+
+
+def _peak(c, a, b, thickness):
+    return float(np.max(np.abs(c * a + b) + thickness * c * np.abs(a), initial=0.0))
+
+
+def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alias="raise") -> TentColumns:
+    """Build the sparse tent spectrum's geometry (no random numbers yet); see the module notes.
+
+    A cell ``(kt, ky, kx)`` carries energy when its temporal bin overlaps the
+    thickened tent: ``|kt - x| <= 1/2 + hw`` in bin units, with
+    ``x = wt_tent * T / (2*pi)`` and ``hw`` the thickness half-width. The
+    column's 1/f amplitude is split evenly over its bins so the spatial
+    spectrum does not depend on the thickness.
+    """
+    T, H, W = shape
+    lo, hi = _check_band(band, W)
+    ky, kx, fy, fx = _band_columns(H, W, lo / W, hi / W)
+    if ky.size == 0:
+        raise ValueError(
+            f"band ({lo:g}, {hi:g}) cycles/frame holds no spatial frequency of a {H} x {W} frame "
+            f"(frequency steps are 1 cycle/frame across the width, W/H across the height); widen the band"
+        )
+    a, b, r = _surface_terms(fy, fx, direction, pan)
+    s = -c * a - b                      # tent temporal frequency, rad/frame
+    half = thickness * c * np.abs(a)    # thickened half-width, rad/frame
+    peak = float(np.max(np.abs(s) + half))
+    dropped = 0
+    if T > 1 and peak > np.pi * (1 + 1e-9) and on_alias == "raise":
+        cmax = largest_c(a, b, thickness)
+        msg = (
+            f"temporal aliasing: c={c:g} rad/frame with thickness={thickness:g} and pan={tuple(pan)} puts energy at "
+            f"{peak:.4g} rad/frame, past the temporal Nyquist frequency pi={np.pi:.4f} rad/frame; that motion would "
+            f"wrap around and reverse. "
+        )
+        if cmax is not None:
+            msg += f"Largest allowed c for this band, thickness and pan is {cmax:.6g} rad/frame"
+        else:
+            msg += "No c works with this pan"
+        if any(pan):
+            lam_lo, lam_hi = 0.0, 1.0
+            if _peak(c, a, b * 0, thickness) <= np.pi:
+                for _ in range(60):
+                    mid = 0.5 * (lam_lo + lam_hi)
+                    if _peak(c, a, b * mid, thickness) <= np.pi:
+                        lam_lo = mid
+                    else:
+                        lam_hi = mid
+                msg += f"; largest pan speed along this pan direction for c={c:g} is {lam_lo * float(np.hypot(*pan)):.6g} px/frame"
+        msg += "; or pass on_alias='drop' to drop the wrapped cells."
+        raise ValueError(msg)
+
+    if T == 1:
+        # a still: the single temporal bin (DC) overlaps every surface
+        entry_col = np.arange(ky.size)
+        entry_n = np.zeros(ky.size, dtype=np.int64)
+    else:
+        x = s * (T / (2 * np.pi))
+        hw = half * (T / (2 * np.pi))
+        n_lo = np.ceil(x - 0.5 - hw).astype(np.int64)
+        n_hi = np.floor(x + 0.5 + hw).astype(np.int64)
+        counts = n_hi - n_lo + 1
+        entry_col = np.repeat(np.arange(ky.size), counts)
+        starts = np.cumsum(counts) - counts
+        entry_n = n_lo[entry_col] + (np.arange(entry_col.size) - starts[entry_col])
+        # bins beyond Nyquist: with the surface inside Nyquist these are only
+        # the half-bin overlap at |wt| = pi for odd T; otherwise (on_alias="drop")
+        # they are the cells that would wrap around
+        keep = np.abs(entry_n) * 2 <= T
+        if on_alias == "drop":
+            far = np.abs(entry_n) * 2 > T + 1
+            dropped = int(far.sum())
+        entry_col, entry_n = entry_col[keep], entry_n[keep]
+    # one cell per (column, bin); +T/2 and -T/2 are the same bin for even T
+    key = np.unique(entry_col * T + np.mod(entry_n, T))
+    entry_col = key // T
+    entry_bin = key % T
+    count = np.bincount(entry_col, minlength=ky.size)
+    amp = r ** (-float(exponent))
+    weight = amp[entry_col] / np.sqrt(count[entry_col])
+    return TentColumns((T, H, W), ky, kx, entry_col, entry_bin, weight, peak, dropped)
+
+
+def assemble(cols: TentColumns, rng, amplitude, dtype):
+    """Random coefficients on the tent cells: the ``(T, n_columns)`` spectrum columns, Hermitian on the self-conjugate planes."""
+    T, H, W = cols.shape
+    cdt = _complex_dtype(dtype)
+    coef = draw_coefficients(cols.n_cells, rng, amplitude, dtype)
+    coef *= cols.weight.astype(coef.real.dtype)
+    C = np.zeros((T, cols.ky.size), dtype=cdt)
+    C[cols.entry_bin, cols.entry_col] = coef
+    planes = [0] + ([W // 2] if W % 2 == 0 and W > 1 else [])
+    for j in planes:
+        pc = np.flatnonzero(cols.kx == j)
+        if pc.size == 0:
+            continue
+        P = np.zeros((T, H), dtype=cdt)
+        sup = np.zeros((T, H), dtype=bool)
+        P[:, cols.ky[pc]] = C[:, pc]
+        sup_cols = np.zeros(C.shape, dtype=bool)
+        sup_cols[cols.entry_bin, cols.entry_col] = True
+        sup[:, cols.ky[pc]] = sup_cols[:, pc]
+        P = hermitian_plane(P, sup)
+        C[:, pc] = P[:, cols.ky[pc]]
+    return C
+
+
+def to_half_spectrum(C, cols: TentColumns):
+    """Scatter the spectrum columns into the dense ``rfftn`` half spectrum ``(T, H, W//2 + 1)``."""
+    T, H, W = cols.shape
+    S = np.zeros((T, H, W // 2 + 1), dtype=C.dtype)
+    S[:, cols.ky, cols.kx] = C
+    return S
+
+
+def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 20, bar=None):
+    """``irfftn`` of the sparse columns into ``out`` (T, H, W), transforming only what carries energy.
+
+    Equal to ``scipy.fft.irfftn(to_half_spectrum(C, cols), s=(T, H, W))`` to
+    float precision (tested). ``C`` is overwritten. Returns the output's
+    minimum and maximum, taken chunk by chunk while the chunk is in cache.
+    """
+    lo, hi = np.inf, -np.inf
+    T, H, W = cols.shape
+    C = scipy.fft.ifft(C, axis=0, overwrite_x=True) if T > 1 else C
+    K = int(cols.kx.max()) + 1
+    tc = int(max(1, min(T, chunk_bytes // max(1, H * K * C.itemsize))))
+    for t0 in range(0, T, tc):
+        t1 = min(T, t0 + tc)
+        B = np.zeros((t1 - t0, H, K), dtype=C.dtype)
+        B[:, cols.ky, cols.kx] = C[t0:t1]
+        B = scipy.fft.ifft(B, axis=1, overwrite_x=True)
+        if _NP_FFT_OUT:
+            np.fft.irfft(B, n=W, axis=2, out=out[t0:t1])
+        else:  # pragma: no cover - numpy < 2
+            out[t0:t1] = scipy.fft.irfft(B, n=W, axis=2)
+        chunk = out[t0:t1]
+        lo, hi = min(lo, float(chunk.min())), max(hi, float(chunk.max()))
+        if bar is not None:
+            bar.update(t1 - t0)
+    return lo, hi
+
+
+def flake_speeds(c=1.0, band=None, width=512, height=None):
+    """Image speeds (px/frame) of the nearest and the farthest flakes: ``c / |w|`` at the band's ends.
+
+    A flake at spatial frequency ``f`` cycles/frame (``|w| = 2*pi*f/width``
+    rad/px) moves at ``c/|w| = c*width/(2*pi*f)`` px/frame. The nearest
+    (largest, lowest-frequency) flakes are at ``band[0]``, the farthest at
+    ``band[1]``.
+
+    Examples
+    --------
+    >>> near, far = flake_speeds(1.0, (16, 128), 512)
+    >>> round(near, 3), round(far, 3)
+    (5.093, 0.637)
+    """
+    if band is None:
+        band = (width / 32, width / 4)
+    lo, hi = _check_band(band, width)
+    near = np.inf if lo == 0 else c * width / (2 * np.pi * lo)
+    far = c * width / (2 * np.pi * hi)
+    return float(near), float(far)

@@ -1,0 +1,98 @@
+"""Seamless tiling and looping of periodic videos (thesis 3.4), eagerly or one frame at a time."""
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+
+from .._validate import check_int, check_memory
+
+__all__ = ["tile", "iter_tiled_frames"]
+
+
+def _reps(reps, ndim):
+    if isinstance(reps, numbers.Integral):
+        reps = (reps,) * ndim
+    reps = tuple(reps)
+    if len(reps) != ndim:
+        raise ValueError(f"reps must be an int or {ndim} ints (one per axis of a {ndim}-D array), got {reps!r}")
+    return tuple(check_int(f"reps[{i}]", r, lo=1) for i, r in enumerate(reps))
+
+
+def tile(alpha, reps):
+    """Repeat a periodic video along t, y and x: ``reps = (rt, ry, rx)`` (or one int for all).
+
+    Spectral snow is periodic in all three axes, so the result has no seams
+    and loops: frame ``T - 1`` steps to frame ``0`` like any other frame. A
+    still ``(H, W)`` takes ``reps = (ry, rx)``. For outputs too big to hold,
+    use :func:`iter_tiled_frames`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> tile(np.zeros((4, 8, 8), np.float32), (2, 3, 1)).shape
+    (8, 24, 8)
+    """
+    alpha = np.asarray(alpha)
+    if alpha.ndim not in (2, 3):
+        raise ValueError(f"alpha must have shape (T, H, W) or (H, W), got {alpha.shape}")
+    reps = _reps(reps, alpha.ndim)
+    n = int(np.prod(alpha.shape, dtype=np.int64)) * int(np.prod(reps))
+    check_memory(n * alpha.itemsize, f"tile{reps}")
+    return np.tile(alpha, reps)
+
+
+def iter_tiled_frames(alpha, reps=(1, 1), *, n_frames=None, start=0, crop=None):
+    """Yield the frames of a tiled, looped video one at a time, never holding the whole video.
+
+    Parameters
+    ----------
+    alpha : ndarray (T, H, W)
+        A periodic video (e.g. from :func:`noiselab.snow.snow`).
+    reps : (ry, rx) or (rt, ry, rx)
+        Spatial repetitions; with three entries ``rt`` also sets the number of
+        frames to ``rt * T`` (unless ``n_frames`` is given).
+    n_frames : int, optional
+        Number of frames to yield (default ``rt * T``); frame ``i`` is
+        ``alpha[(start + i) % T]`` tiled, so any length loops seamlessly.
+    start : int
+        First frame index (modulo ``T``).
+    crop : (height, width), optional
+        Cut each tiled frame to this size (at most the tiled size).
+
+    Yields
+    ------
+    ndarray (H*ry, W*rx) or ``crop``
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> a = np.arange(2 * 2 * 2, dtype=np.float32).reshape(2, 2, 2)
+    >>> frames = list(iter_tiled_frames(a, (1, 2), n_frames=3))
+    >>> len(frames), frames[0].shape, bool((frames[2] == frames[0]).all())
+    (3, (2, 4), True)
+    """
+    alpha = np.asarray(alpha)
+    if alpha.ndim != 3:
+        raise ValueError(f"alpha must have shape (T, H, W), got {alpha.shape}")
+    reps = tuple(reps)
+    if len(reps) == 3:
+        rt, ry, rx = _reps(reps, 3)
+    else:
+        ry, rx = _reps(reps, 2)
+        rt = 1
+    T, H, W = alpha.shape
+    n_frames = rt * T if n_frames is None else check_int("n_frames", n_frames, lo=0)
+    start = check_int("start", start)
+    if crop is not None:
+        ch, cw = (check_int("crop[0]", crop[0], lo=1), check_int("crop[1]", crop[1], lo=1))
+        if ch > H * ry or cw > W * rx:
+            raise ValueError(f"crop {(ch, cw)} is larger than the tiled frame {(H * ry, W * rx)}")
+    return _frames(alpha, ry, rx, n_frames, start, None if crop is None else (ch, cw))
+
+
+def _frames(alpha, ry, rx, n_frames, start, crop):
+    T = alpha.shape[0]
+    for i in range(n_frames):
+        frame = np.tile(alpha[(start + i) % T], (ry, rx))
+        yield frame if crop is None else frame[: crop[0], : crop[1]]
