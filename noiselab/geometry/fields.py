@@ -10,7 +10,8 @@ A field may carry a ``max_frequency`` attribute: the highest frequency it
 contains, in cycles (lattice periods) per unit of its input. The resolution
 checks use it to decide whether a mesh samples the field finely enough; a
 field without it is taken to have features one unit across (1 cycle/unit),
-which is what a lattice noise of unit frequency has.
+which is what a lattice noise of unit frequency has (a ``LatticeNoise`` with
+its own ``frequency`` F counts that).
 """
 from __future__ import annotations
 
@@ -24,6 +25,9 @@ __all__ = ["octave_field", "sampled_field", "evaluate_field", "field_max_frequen
 def field_max_frequency(field) -> float:
     """Highest frequency of ``field`` in cycles per input unit (its ``max_frequency``, else 1)."""
     value = getattr(field, "max_frequency", None)
+    if value is None and hasattr(field, "dim_in") and hasattr(field, "table_size"):
+        # a noiselab.LatticeNoise: its own frequency F (lattice cells per input unit, per axis)
+        value = getattr(field, "frequency", None)
     if value is None:
         return 1.0
     value = np.asarray(value, dtype=float)
@@ -72,6 +76,14 @@ def evaluate_field(field, points, *, name="field", components=None, chunk_size=1
     return check_finite_array(f"{name} output", out)
 
 
+def _is_lattice(field):
+    try:
+        from ..lattice import LatticeNoise
+    except ImportError:  # pragma: no cover
+        return False
+    return isinstance(field, LatticeNoise)
+
+
 class _OctaveField:
     """sum_k gain^k * g(lacunarity^k * x), g = field (fractal, Eq. 9) or |field| (turbulence, Eq. 10)."""
 
@@ -88,6 +100,12 @@ class _OctaveField:
 
     def __call__(self, x):
         x = np.asarray(x, dtype=np.float64)
+        if _is_lattice(self.field):
+            # the lattice's own octave sum: the same sum, evaluated by its fused fast path
+            from ..fractal import fractal_sum, turbulence
+
+            sum_ = turbulence if self.kind == "turbulence" else fractal_sum
+            return sum_(self.field, x, self.octaves, lacunarity=self.lacunarity, gain=self.gain)
         total = None
         scale, weight = 1.0, 1.0
         for _ in range(self.octaves):
