@@ -1,0 +1,149 @@
+"""``noiselab snow``: render falling snow (tent model) and composite it over a background."""
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+
+NAME = "snow"
+HELP = "render Langer & Zhang's falling snow by inverse FFT over a background, to MP4, GIF, PNG frames or NPY"
+
+
+def add_arguments(p):
+    g = p.add_argument_group("scene")
+    g.add_argument("--width", type=int, default=None, help="frame width in px (default: the background's, else 512)")
+    g.add_argument("--height", type=int, default=None, help="frame height in px (default: the background's, else 512)")
+    g.add_argument("--frames", type=int, default=64, help="frames in one period of the snow (default 64); it loops seamlessly")
+    g.add_argument("--loops", type=int, default=2, help="how many periods to write (default 2)")
+    g.add_argument("--tile", type=int, default=None, metavar="N",
+                   help="render an N x N tile and repeat it over the frame (thesis 3.4; cheaper, periodic)")
+    g.add_argument("--seed", type=int, default=0, help="random seed (default 0); same seed, same video")
+    t = p.add_argument_group("tent model")
+    t.add_argument("--c", type=float, default=1.0,
+                   help="tent constant in rad/frame, 0..pi (default 1.0): flakes at spatial frequency |w| rad/px "
+                        "fall at c/|w| px/frame (5.09*c px/frame for the nearest, 0.637*c for the farthest of the default band)")
+    t.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
+                   help="spatial band in cycles per frame width (default W/32 W/4: 16 128 at 512 px); HI <= W/2")
+    t.add_argument("--thickness", type=float, default=0.1, help="relative tent thickness 0..1 (spread of c; default 0.1)")
+    t.add_argument("--direction", type=float, nargs=2, default=(0.0, 1.0), metavar=("DX", "DY"),
+                   help="fall direction, x right, y down (default 0 1: straight down)")
+    t.add_argument("--pan", type=float, nargs=2, default=(0.0, 0.0), metavar=("UX", "UY"),
+                   help="image velocity px/frame added by a panning camera (sheared tent; default 0 0)")
+    t.add_argument("--beta", type=float, default=1.5, help="opacity exponent alpha**beta (default 1.5)")
+    t.add_argument("--exponent", type=float, default=1.0, help="amplitude 1/f**exponent (default 1)")
+    t.add_argument("--amplitude", choices=("uniform", "rayleigh", "fixed"), default="uniform",
+                   help="random amplitude law (default uniform, as the thesis)")
+    t.add_argument("--on-alias", choices=("raise", "drop"), default="raise",
+                   help="energy past the temporal Nyquist: error (default) or drop those cells")
+    t.add_argument("--dtype", choices=("float32", "float64"), default="float32", help="precision (default float32)")
+    o = p.add_argument_group("output")
+    o.add_argument("--background", default=None,
+                   help="image or video file (or folder of PNG frames) to snow on; default: a built-in landscape")
+    o.add_argument("--no-background", action="store_true", help="write the opacity alpha itself (grey)")
+    o.add_argument("--intensity", type=float, default=250.0, help="snow intensity 0..255 (default 250)")
+    o.add_argument("--output", "-o", default="out/snow.mp4",
+                   help="file .mp4, .gif or .npy, or a folder (no suffix) for PNG frames (default out/snow.mp4)")
+    o.add_argument("--fps", type=float, default=25.0, help="frames per second (default 25)")
+    pr = o.add_mutually_exclusive_group()
+    pr.add_argument("--progress", dest="progress", action="store_true", default=None, help="always show progress bars")
+    pr.add_argument("--quiet", dest="progress", action="store_false", help="never show progress bars")
+
+
+def _load_background(path):
+    from ..io import read_image, read_video
+
+    p = Path(path)
+    if p.is_dir() or p.suffix.lower() in (".mp4", ".gif"):
+        bg = read_video(p)
+        if bg.shape[0] == 1:
+            bg = bg[0]
+        return bg
+    if p.suffix.lower() == ".npy":
+        if not p.is_file():
+            raise FileNotFoundError(f"no such background file: {str(p)!r}")
+        bg = np.load(p)
+        return bg
+    return read_image(p)
+
+
+def run(args) -> int:
+    from ..io import write_video
+    from ..snow import composite, iter_tiled_frames, snow
+    from ..snow.background import default_background
+    from ..snow.composite import _background_layout
+
+    if args.frames < 1:
+        raise ValueError(f"--frames must be >= 1, got {args.frames}")
+    if args.loops < 1:
+        raise ValueError(f"--loops must be >= 1, got {args.loops}")
+    if args.background and args.no_background:
+        raise ValueError("--background and --no-background exclude each other")
+    background = None
+    if args.background:
+        background = _load_background(args.background)
+        if background.ndim not in (2, 3, 4):
+            raise ValueError(f"background must be an image or a video, got an array of shape {background.shape}")
+    # frame size: from the background, or the options; both must agree
+    if background is not None:
+        is_video = background.ndim == 4 or (background.ndim == 3 and background.shape[-1] != 3)
+        bh, bw = background.shape[1:3] if is_video else background.shape[:2]
+        if (args.width not in (None, bw)) or (args.height not in (None, bh)):
+            raise ValueError(f"background {args.background!r} is {bw} x {bh} px but --width/--height ask for "
+                             f"{args.width} x {args.height}; drop them or resize the background")
+        H, W = bh, bw
+    else:
+        H = 512 if args.height is None else args.height
+        W = 512 if args.width is None else args.width
+        is_video = False
+    if H < 1 or W < 1:
+        raise ValueError(f"--width and --height must be >= 1, got {W} x {H}")
+    T = args.frames
+    n_out = T * args.loops
+    if background is not None and is_video:
+        n_out = background.shape[0]  # the snow loops over the whole background video
+    th, tw = (H, W) if args.tile is None else (args.tile, args.tile)
+    if args.tile is not None and args.tile < 1:
+        raise ValueError(f"--tile must be >= 1, got {args.tile}")
+    band = None if args.band is None else tuple(args.band)
+    if band is not None and args.tile is not None:
+        band = tuple(b * tw / W for b in band)  # keep the flakes' size in pixels
+    t0 = time.perf_counter()
+    alpha = snow((T, th, tw), seed=args.seed, c=args.c, band=band, thickness=args.thickness,
+                 direction=tuple(args.direction), pan=tuple(args.pan), beta=args.beta, exponent=args.exponent,
+                 amplitude=args.amplitude, dtype=args.dtype, on_alias=args.on_alias, show_progress=args.progress)
+    t_render = time.perf_counter() - t0
+    reps = (math.ceil(H / th), math.ceil(W / tw))
+    alpha_frames = iter_tiled_frames(alpha, reps, n_frames=n_out, crop=(H, W))
+
+    if args.no_background:
+        frames = alpha_frames
+    else:
+        if background is None:
+            background = default_background(H, W)
+            is_video = False
+        _background_layout(background.shape, n_out if is_video else None, H, W)
+        bg = background
+        if bg.dtype != np.uint8 and bg.dtype.kind in "iu":
+            bg = bg.astype(np.uint8) if bg.size and bg.min() >= 0 and bg.max() <= 255 else bg
+        frames = (composite(a, bg[i] if is_video else bg, intensity=args.intensity)
+                  for i, a in enumerate(alpha_frames))
+
+    class _Sized:  # lets the writer show a bar with a total
+        def __init__(self, it, n):
+            self.it, self.n = it, n
+
+        def __iter__(self):
+            return iter(self.it)
+
+        def __len__(self):
+            return self.n
+
+    out = Path(args.output)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    write_video(out, _Sized(frames, n_out), fps=args.fps, show_progress=args.progress)
+    what = "opacity" if args.no_background else "snow scene"
+    print(f"wrote {what} to {out} ({n_out} frames of {W} x {H} px at {args.fps:g} fps; "
+          f"period {T} frames, rendered in {t_render:.2f} s)")
+    return 0
