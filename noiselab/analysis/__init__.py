@@ -5,7 +5,7 @@ functions, and they work on any image, video or volume given as a numpy array.
 
 Conventions: a video is ``(frames, height, width)``, x right along columns, y
 down along rows; spatial frequency in cycles/frame (cycles/pixel x frame
-size ``N``, the longest side), temporal frequency in cycles/video; velocities
+width ``N``, as in ``noiselab.spectral`` and ``noiselab.snow``), temporal frequency in cycles/video; velocities
 ``(vx, vy)`` in pixels/frame with sign (+y down). The power spectrum is
 normalised so that its sum is the field's variance (Parseval); see
 :mod:`noiselab.analysis.spectrum`. Pass a precomputed :class:`PowerSpectrum`

@@ -8,9 +8,9 @@ Conventions (the same as the rest of noiselab):
   (cycles/frame for the spatial axes, cycles/video for time); angular
   frequencies ``w = 2 pi k / n`` are in radians per sample (rad/px, rad/frame);
 - radial frequencies are in *cycles/frame*: cycles/pixel times the frame size
-  ``N`` (the longest of the radial axes; for a square frame this is exactly
-  cycles per frame width, and for every shape the circle of radius ``N / 2``
-  is the Nyquist limit of the longest axis).
+  ``N``, the length of the last axis (cycles per frame *width*, as in
+  ``noiselab.spectral`` and ``noiselab.snow``); the circle of radius ``N / 2``
+  (0.5 cycles/pixel) is the Nyquist limit of every axis.
 """
 from __future__ import annotations
 
@@ -72,8 +72,8 @@ def check_video(name, video, *, min_frames=2, min_size=4, allow_constant=False) 
 
 
 def ref_size(shape) -> int:
-    """Frame size ``N`` used to express radial frequencies in cycles/frame (longest radial axis)."""
-    return int(max(shape))
+    """Frame size ``N`` used to express radial frequencies in cycles/frame: the last (width) axis."""
+    return int(shape[-1])
 
 
 def check_band(name, band, fmax, *, allow_none=False):

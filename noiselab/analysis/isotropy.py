@@ -95,7 +95,7 @@ def orientation_energy(image, band=None, *, nbins=36, whiten=True, window=None) 
     if spec.axes != (nd - 2, nd - 1):
         raise ValueError("orientation_energy needs a spectrum over the two spatial axes")
     h, w = spec.shape[-2:]
-    n_ref = max(h, w)
+    n_ref = w
     ky = np.fft.fftfreq(h, 1.0 / h)[:, None] * (n_ref / h)
     kx = np.arange(w // 2 + 1, dtype=np.float64)[None, :] * (n_ref / w)
     r = np.hypot(kx, ky)

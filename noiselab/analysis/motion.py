@@ -335,11 +335,11 @@ class SpeedProfile:
         return self.speed * 2 * np.pi * self.centers / self.frame_size
 
 
-def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3) -> SpeedProfile:
+def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octave=2) -> SpeedProfile:
     """Velocity per spatial-frequency band, with band centres, coherence and energy.
 
-    ``bands`` default: half-octave bands from 2 cycles/frame to Nyquist,
-    keeping only those holding at least ``min_energy`` of the power. Explicit
+    ``bands`` default: ``per_octave`` bands per octave from 2 cycles/frame to
+    Nyquist, keeping only those holding at least ``min_energy`` of the power. Explicit
     bands must all hold power (else ``ValueError`` naming the band).
     """
     spec = video_spectrum(video, window=window)
@@ -348,7 +348,7 @@ def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3) -> Speed
     if explicit:
         bands = _check_bands(bands, g.n_ref / 2.0 * np.sqrt(2))
     else:
-        bands = octave_bands(2.0, g.n_ref / 2.0, 2)
+        bands = octave_bands(2.0, g.n_ref / 2.0, per_octave)
     r_lag = _lag_one(spec)
     # power of each spatial cell summed over w_t = R at lag zero
     p0 = np.sum(spec.power, axis=0, dtype=np.float64) * g.weight

@@ -99,7 +99,7 @@ def spectral_slope(field, band=None, *, bins_per_octave=8, window=None, axes=Non
     """
     bpo = check_int("bins_per_octave", bins_per_octave, lo=1, hi=64)
     spec = as_spectrum(field, window=window, axes=axes)
-    n_ref = max(spec.shape[a] for a in spec.axes)
+    n_ref = spec.shape[spec.axes[-1]]
     if n_ref < 8:
         raise ValueError(f"field of shape {spec.shape} is too small to fit a spectral slope (needs at least 8 samples along an axis)")
     band = default_band(n_ref) if band is None else band
@@ -188,7 +188,7 @@ def octave_energy(field, lo=1.0, hi=None, *, window=None, axes=None) -> OctaveEn
     (4, True)
     """
     spec = as_spectrum(field, window=window, axes=axes)
-    n_ref = max(spec.shape[a] for a in spec.axes)
+    n_ref = spec.shape[spec.axes[-1]]
     lo = check_real("lo", lo, lo=0.0, lo_open=True)
     hi = n_ref / 2.0 if hi is None else check_real("hi", hi, lo=0.0, lo_open=True)
     check_band("(lo, hi)", (lo, hi), n_ref / 2.0)

@@ -1,0 +1,272 @@
+"""``noiselab analyze FILE``: measure an image, video or volume with the analysis instruments.
+
+Prints a short report (contrast, 1/f slope, anisotropy, energy per octave;
+for videos the loop seam, the best single velocity and the speed of each
+spatial-frequency band) and optionally writes a figure (``--plot``) and the
+numbers as JSON (``--json``), both atomically.
+
+Examples::
+
+    noiselab analyze out/snow.mp4 --plot out/snow_analysis.png
+    noiselab analyze photo.png --window hann --band 4 64
+    noiselab analyze field.npy --as volume --json out/field.json
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+NAME = "analyze"
+HELP = "Measure an image, video or volume (PNG, NPY, MP4/GIF): 1/f slope, anisotropy, band energy, velocity and speed per band."
+
+_IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp")
+_VIDEO_SUFFIXES = (".mp4", ".gif")
+
+
+def add_arguments(parser):
+    parser.add_argument("file", help="input: .png/.jpg/.tif image, .mp4/.gif video, .npy array, or a folder of PNG frames")
+    parser.add_argument("--as", dest="kind", default="auto", choices=("auto", "image", "video", "volume", "signal"),
+                        help="how to read a 3-D .npy array: (frames, height, width) video (auto) or a volume; "
+                             "RGB (trailing axis of 3) is turned to grey (default: auto)")
+    parser.add_argument("--band", nargs=2, type=float, metavar=("LO", "HI"), default=None,
+                        help="band of the slope fit in cycles/frame (default: 2 to a quarter of the frame width, "
+                             "narrowed to where the field has power)")
+    parser.add_argument("--window", default="auto", choices=("auto", "none", "hann"),
+                        help="spatial taper before the FFT: auto = Hann when the field does not tile "
+                             "(tile seam above 1.5), else none (default: auto)")
+    parser.add_argument("--bands-per-octave", type=int, default=2,
+                        help="speed-per-band resolution for videos (default: %(default)s)")
+    parser.add_argument("--max-frames", type=int, default=None, help="read at most this many frames of a video")
+    parser.add_argument("--plot", default=None, metavar="PATH",
+                        help="write a figure (radial spectrum; speed per band for videos) to PATH (.png/.pdf/.svg)")
+    parser.add_argument("--json", default=None, metavar="PATH", help="write the measurements as JSON to PATH")
+
+
+def load(path, kind="auto", max_frames=None):
+    """Read ``path`` and return ``(array, kind)`` with kind in image/video/volume/signal; RGB becomes grey."""
+    from ..analysis import to_grey
+    from ..io import read_image, read_video
+
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if path.is_dir() or suffix in _VIDEO_SUFFIXES:
+        data = to_grey(read_video(path, as_float=True, max_frames=max_frames))
+        if data.ndim == 3 and data.shape[0] == 1:
+            data = data[0]
+    elif suffix in _IMAGE_SUFFIXES:
+        data = to_grey(read_image(path, as_float=True))
+    elif suffix == ".npy":
+        if not path.is_file():
+            raise FileNotFoundError(f"no such file: {str(path)!r}")
+        data = np.load(path, allow_pickle=False)
+        if data.dtype == np.uint8:
+            data = data.astype(np.float32) / 255.0
+        if data.ndim in (3, 4) and data.shape[-1] in (3, 4) and kind != "volume":
+            data = to_grey(data)
+        if max_frames is not None and data.ndim == 3 and kind != "volume":
+            data = data[:max_frames]
+    else:
+        raise ValueError(f"cannot analyse {path.name!r}: expected .png/.jpg/.tif, .mp4/.gif, .npy or a folder of PNG frames")
+    data = np.asarray(data)
+    if data.dtype.kind not in "biuf":
+        raise ValueError(f"{path.name} holds {data.dtype} data, not a real numeric array")
+    guess = {1: "signal", 2: "image", 3: "video"}.get(data.ndim)
+    if guess is None:
+        raise ValueError(f"{path.name} holds a {data.ndim}-D array of shape {data.shape}; expected 1-, 2- or 3-D (plus RGB)")
+    if kind == "auto":
+        kind = guess
+    elif {"signal": 1, "image": 2, "video": 3, "volume": 3}[kind] != data.ndim:
+        raise ValueError(f"--as {kind} does not fit a {data.ndim}-D array of shape {data.shape}")
+    if data.dtype.kind != "f":
+        data = data.astype(np.float32)
+    return data, kind
+
+
+def _fit_band(spec, n_ref, band):
+    """The slope band: the one asked for, else the default narrowed to where the field has power."""
+    from ..analysis import radial_spectrum
+    from ..analysis._common import noise_floor
+    from ..analysis.slope import default_band
+
+    if band is not None:
+        return tuple(band)
+    lo, hi = default_band(n_ref)
+    rs = radial_spectrum(spec)
+    live = rs.centers[rs.power > 10 * noise_floor(spec)]
+    if live.size:
+        lo, hi = max(lo, float(live.min())), min(hi, float(live.max()))
+        if hi <= lo * 1.5:  # power confined above N/4: use its own range
+            lo, hi = float(live.min()), float(live.max())
+    return lo, hi
+
+
+def measure(data, kind, *, band=None, window="auto", bands_per_octave=2):
+    """All the measurements of the report, as a dict of plain Python values (and arrays for the figure)."""
+    from .. import analysis as A
+
+    out = {"kind": kind, "shape": list(data.shape), "mean": float(np.mean(data, dtype=np.float64)),
+           "std": float(np.std(data, dtype=np.float64))}
+    if out["std"] == 0:
+        raise ValueError(f"the {kind} is constant (every value is {out['mean']:g}): nothing to measure")
+    if float(np.min(data)) >= 0 and out["mean"] > 0:
+        out["rms_contrast"] = A.rms_contrast(data)
+        out["michelson_contrast"] = A.michelson_contrast(data)
+    spatial = kind in ("image", "video")
+    if window == "auto":
+        seam = A.tile_seam(data) if spatial else None
+        out["tile_seam"] = seam
+        window = "hann" if (seam is not None and seam > 1.5) else None
+    elif window == "none":
+        window = None
+    out["window"] = window or "none"
+    axes = (-2, -1) if kind == "video" else None
+    spec = A.power_spectrum(data, window=window, axes=axes)
+    n_ref = data.shape[-1]
+    lo, hi = _fit_band(spec, n_ref, band)
+    try:
+        fit = A.spectral_slope(spec, (lo, hi))
+        out["slope"] = {"amplitude": float(fit), "error": fit.error, "power": fit.power_slope,
+                        "power_error": fit.power_error, "band": list(fit.band), "intercept": fit.intercept}
+    except ValueError as exc:
+        if band is not None:  # the user's band: tell them what is wrong with it
+            raise
+        out["slope"] = {"error_message": str(exc), "band": [lo, hi]}
+    rs = A.radial_spectrum(spec, log=True)
+    out["radial"] = {"frequency": rs.centers.tolist(), "amplitude": rs.amplitude.tolist()}
+    if n_ref >= 8:
+        oe = A.octave_energy(spec, 1.0, n_ref / 2.0)
+        out["octave_energy"] = {"edges": oe.edges.tolist(), "fraction": oe.energy.tolist(), "spread": oe.spread}
+    if spatial:
+        o = A.orientation_energy(spec)
+        out["anisotropy"] = {"index": o.index, "m2": o.m2, "m4": o.m4, "dominant_deg": o.dominant,
+                             "axis_ratio": o.axis_ratio}
+    del spec
+    if kind == "video" and data.shape[0] >= 3:
+        out["loop_seam"] = A.loop_seam(data)
+        vspec = A.video_spectrum(data, window="hann")  # time tapered: the video need not loop
+        v = A.best_velocity(vspec)
+        out["velocity"] = [float(v[0]), float(v[1])]
+        prof = A.speed_profile(vspec, per_octave=bands_per_octave)
+        out["speed_per_band"] = {
+            "bands": prof.bands.tolist(), "center": prof.centers.tolist(), "velocity": prof.velocity.tolist(),
+            "speed": prof.speed.tolist(), "coherence": prof.coherence.tolist(), "energy": prof.energy.tolist(),
+            "speed_x_w": prof.parallax.tolist(),
+        }
+    return out
+
+
+def report(path, m) -> str:
+    shape = " x ".join(map(str, m["shape"]))
+    names = {"image": "(height x width)", "video": "(frames x height x width)", "volume": "(depth x height x width)",
+             "signal": "(samples)"}
+    lines = [f"{path}", f"  {m['kind']:<14}{shape} {names[m['kind']]}"]
+    contrast = f"  {'mean':<14}{m['mean']:.4g}   std {m['std']:.4g}"
+    if "rms_contrast" in m:
+        contrast += f"   RMS contrast {m['rms_contrast']:.3f}   Michelson {m['michelson_contrast']:.3f}"
+    lines.append(contrast)
+    win = m["window"]
+    if m.get("tile_seam") is not None:
+        win += f" (tile seam {m['tile_seam']:.2f}: {'tiles' if m['tile_seam'] <= 1.5 else 'does not tile'})"
+    lines.append(f"  {'window':<14}{win}")
+    s = m["slope"]
+    if "amplitude" in s:
+        lines.append(f"  {'1/f slope':<14}amplitude {s['amplitude']:+.3f} +- {s['error']:.3f}   "
+                     f"power {s['power']:+.3f} +- {s['power_error']:.3f}   over {s['band'][0]:g}-{s['band'][1]:g} cycles/frame")
+    else:
+        lines.append(f"  {'1/f slope':<14}n/a: {s['error_message']}")
+    if "anisotropy" in m:
+        a = m["anisotropy"]
+        lines.append(f"  {'anisotropy':<14}{a['index']:.3f}   (two-fold {a['m2']:.3f}, four-fold {a['m4']:.3f}, "
+                     f"axis/diagonal energy {a['axis_ratio']:.2f}, dominant wave vector {a['dominant_deg']:.0f} deg)")
+    if "octave_energy" in m:
+        o = m["octave_energy"]
+        cells = "  ".join(f"{lo:g}-{hi:g}: {100 * f:.1f}%" for lo, hi, f in zip(o["edges"][:-1], o["edges"][1:], o["fraction"]))
+        lines.append(f"  {'band energy':<14}{cells}   (spread {o['spread']:.2f})")
+    if "loop_seam" in m:
+        lines.append(f"  {'loop seam':<14}{m['loop_seam']:.3f}   (1 = seamless loop)")
+    if "velocity" in m:
+        vx, vy = m["velocity"]
+        lines.append(f"  {'velocity':<14}vx {vx:+.3f}  vy {vy:+.3f} px/frame (best single velocity, +y down)")
+        sp = m["speed_per_band"]
+        lines.append(f"  speed per band (cycles/frame)      vx       vy    speed  speed*|w|  coherence  energy")
+        for (lo, hi), (bvx, bvy), spd, pw, coh, e in zip(sp["bands"], sp["velocity"], sp["speed"], sp["speed_x_w"],
+                                                         sp["coherence"], sp["energy"]):
+            lines.append(f"  {'':<16}{lo:6.1f}-{hi:<6.1f}  {bvx:+7.3f}  {bvy:+7.3f}  {spd:7.3f}  {pw:9.3f}  {coh:9.3f}  {100 * e:5.1f}%")
+    return "\n".join(lines)
+
+
+def plot(path, m) -> Path:
+    """Write the figure atomically (format from the suffix)."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    from ..io import atomic_output
+
+    path = Path(path)
+    video = "speed_per_band" in m
+    fig, axes = plt.subplots(1, 2 if video else 1, figsize=(10 if video else 5.5, 4.2), squeeze=False)
+    ax = axes[0, 0]
+    f = np.asarray(m["radial"]["frequency"])
+    a = np.asarray(m["radial"]["amplitude"])
+    ok = a > 0
+    ax.loglog(f[ok], a[ok], ".-", lw=1, ms=3, label="radially averaged amplitude")
+    s = m["slope"]
+    if "amplitude" in s:
+        lo, hi = s["band"]
+        ff = np.geomspace(lo, hi, 20)
+        ax.loglog(ff, 10 ** s["intercept"] * ff ** s["amplitude"], "r-", lw=2,
+                  label=f"fit {s['amplitude']:+.2f} +- {s['error']:.2f} ({lo:g}-{hi:g})")
+    ax.set_xlabel("spatial frequency (cycles/frame)")
+    ax.set_ylabel("amplitude")
+    ax.set_title("radial spectrum")
+    ax.legend(fontsize=8)
+    ax.grid(True, which="both", alpha=0.3)
+    if video:
+        sp = m["speed_per_band"]
+        ax = axes[0, 1]
+        c = np.asarray(sp["center"])
+        v = np.asarray(sp["velocity"])
+        ax.loglog(c, np.asarray(sp["speed"]), "o-", label="speed |v|")
+        k = float(np.median(np.asarray(sp["speed"]) * c))
+        ax.loglog(c, k / c, "k--", lw=1, label="speed x f constant (parallax law)")
+        for ci, (vx, vy) in zip(c, v):
+            ax.annotate(f"({vx:+.2f}, {vy:+.2f})", (ci, np.hypot(vx, vy)), fontsize=6, xytext=(3, 3),
+                        textcoords="offset points")
+        ax.set_xlabel("band centre (cycles/frame)")
+        ax.set_ylabel("speed (px/frame)")
+        ax.set_title("speed per band (vx, vy) px/frame")
+        ax.legend(fontsize=8)
+        ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    try:
+        with atomic_output(path) as tmp:
+            fig.savefig(tmp, format=path.suffix.lstrip(".").lower() or "png", dpi=120)
+    finally:
+        plt.close(fig)
+    return path
+
+
+def run(args) -> int:
+    from .._validate import check_int
+    from ..io import atomic_output
+
+    if args.max_frames is not None:
+        check_int("--max-frames", args.max_frames, lo=1)
+    check_int("--bands-per-octave", args.bands_per_octave, lo=1, hi=8)
+    if args.plot is not None and Path(args.plot).suffix.lower() not in (".png", ".pdf", ".svg"):
+        raise ValueError(f"--plot must end in .png, .pdf or .svg, got {args.plot!r}")
+    data, kind = load(args.file, args.kind, args.max_frames)
+    m = measure(data, kind, band=args.band, window=args.window, bands_per_octave=args.bands_per_octave)
+    print(report(args.file, m))
+    if args.plot is not None:
+        plot(args.plot, m)
+        print(f"  figure        {args.plot}")
+    if args.json is not None:
+        with atomic_output(args.json) as tmp:
+            Path(tmp).write_text(json.dumps(m, indent=1))
+        print(f"  numbers       {args.json}")
+    return 0

@@ -1,0 +1,93 @@
+"""``noiselab analyze``: the report's numbers, the figure, the JSON, and clear errors."""
+import json
+import re
+
+import numpy as np
+import pytest
+
+from noiselab.cli import main
+from noiselab.io import write_image, write_video
+
+from test_analysis import band_texture, power_law_field
+
+
+def _run(capsys, *argv):
+    rc = main(["analyze", *map(str, argv)])
+    out = capsys.readouterr()
+    return rc, out.out, out.err
+
+
+def test_report_of_a_1_over_f_image_gives_its_slope_and_isotropy(tmp_path, capsys):
+    path = tmp_path / "pink.npy"
+    np.save(path, power_law_field((256, 256), 1.0, seed=1).astype(np.float32))
+    rc, out, _ = _run(capsys, path, "--band", 4, 64, "--json", tmp_path / "m.json")
+    assert rc == 0
+    slope = float(re.search(r"amplitude ([+-]\d+\.\d+)", out).group(1))
+    assert abs(slope + 1) < 0.05
+    aniso = float(re.search(r"anisotropy\s+(\d+\.\d+)", out).group(1))
+    assert aniso < 0.05
+    m = json.loads((tmp_path / "m.json").read_text())
+    assert m["slope"]["band"] == [4, 64] and m["slope"]["amplitude"] == pytest.approx(slope, abs=1e-3)
+    assert m["kind"] == "image" and "velocity" not in m
+
+
+def test_png_grating_is_anisotropic_and_a_photo_like_crop_gets_a_hann_window(tmp_path, capsys):
+    y, x = np.mgrid[:128, :128]
+    write_image(tmp_path / "g.png", 0.5 + 0.4 * np.cos(2 * np.pi * (8 * x + 8 * y) / 128))
+    rc, out, _ = _run(capsys, tmp_path / "g.png")
+    assert rc == 0
+    assert float(re.search(r"anisotropy\s+(\d+\.\d+)", out).group(1)) > 0.8
+    assert float(re.search(r"Michelson (\d+\.\d+)", out).group(1)) == pytest.approx(0.8, abs=0.01)
+    crop = power_law_field((512, 512), 2.0, seed=2)[:200, :200]
+    np.save(tmp_path / "crop.npy", crop)
+    rc, out, _ = _run(capsys, tmp_path / "crop.npy", "--band", 4, 50)
+    assert "window        hann" in out and "does not tile" in out
+    assert abs(float(re.search(r"amplitude ([+-]\d+\.\d+)", out).group(1)) + 2) < 0.2
+
+
+@pytest.mark.parametrize("suffix", [".gif", ".npy"])
+def test_video_report_gives_velocity_and_speed_per_band_and_plot(tmp_path, capsys, suffix):
+    tex = band_texture(64, (3, 12), 3)
+    tex = (tex - tex.min()) / (tex.max() - tex.min())
+    video = np.stack([np.roll(tex, (t, -2 * t), axis=(0, 1)) for t in range(32)])  # vx = -2, vy = +1: loops
+    path = tmp_path / f"v{suffix}"
+    write_video(path, video, fps=10)
+    plot = tmp_path / "fig.png"
+    rc, out, _ = _run(capsys, path, "--plot", plot)
+    assert rc == 0
+    vx, vy = map(float, re.search(r"vx ([+-]\d+\.\d+)\s+vy ([+-]\d+\.\d+)", out).groups())
+    assert vx == pytest.approx(-2, abs=0.05) and vy == pytest.approx(1, abs=0.05)
+    rows = re.findall(r"^\s+\d+\.\d-\d+\.\d\s+([+-]\d+\.\d+)\s+([+-]\d+\.\d+)", out, re.M)
+    assert len(rows) >= 3
+    np.testing.assert_allclose(np.array(rows, float), [[-2, 1]] * len(rows), atol=0.1)
+    assert float(re.search(r"loop seam\s+(\d+\.\d+)", out).group(1)) < 1.3
+    assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([path.name, "fig.png"])
+
+
+@pytest.mark.parametrize(
+    "content, args, match",
+    [
+        (np.full((32, 32), np.nan), [], "NaN"),
+        (np.ones((32, 32)), [], "constant"),
+        (np.ones((2, 3, 8, 8, 8)), [], "5-D"),
+        (np.random.default_rng(0).random((32, 32)), ["--band", "4", "40"], "Nyquist"),
+        (np.random.default_rng(0).random((32, 32)), ["--as", "video"], "does not fit"),
+        (np.random.default_rng(0).random((32, 32)), ["--plot", "fig.txt"], "--plot must end"),
+    ],
+)
+def test_bad_input_is_a_one_line_error_with_status_2(tmp_path, capsys, content, args, match, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    np.save(tmp_path / "x.npy", content)
+    rc, out, err = _run(capsys, tmp_path / "x.npy", *args)
+    assert rc == 2
+    assert re.search(match, err) and len(err.strip().splitlines()) == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["x.npy"]
+
+
+def test_missing_and_unknown_files(tmp_path, capsys):
+    rc, _, err = _run(capsys, tmp_path / "nope.png")
+    assert rc == 2 and "no such" in err
+    (tmp_path / "x.txt").write_text("hello")
+    rc, _, err = _run(capsys, tmp_path / "x.txt")
+    assert rc == 2 and "cannot analyse" in err
