@@ -46,6 +46,9 @@ __all__ = sorted(_API) + list(_SUBPACKAGES)
 
 
 def __getattr__(name):
+    if name in _SUBPACKAGES and name in _API:
+        # a subpackage sharing its name with a function (``snow``) wins; it is callable
+        return importlib.import_module(f"noiselab.{name}")
     if name in _API:
         value = getattr(importlib.import_module(_API[name]), name)
         globals()[name] = value

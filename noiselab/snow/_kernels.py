@@ -1,11 +1,11 @@
-"""Hot loop of the snow renderer (numba, cached): the in-place opacity map (finite input only: fastmath)."""
+"""Hot loop of the snow renderer (numba, cached): the in-place opacity map."""
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
 
 
-@njit(cache=True, nogil=True, fastmath=True)
+@njit(cache=True, nogil=True)
 def rescale_power(flat, lo, scale, beta):
     """``flat = clip((flat - lo) * scale, 0, 1) ** beta`` in place (beta 1 and 1.5 without ``pow``)."""
     one = flat.dtype.type(1.0)

@@ -41,11 +41,16 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
         lo, hi = flat.min(), flat.max()
     if not (np.isfinite(lo) and np.isfinite(hi)):
         check_finite_array("field", field)
-    span = float(hi) - float(lo)
-    if span <= 0:
+    ft = field.dtype.type
+    span = ft(hi) - ft(lo)
+    if not span > 0:
         field[...] = 0
         return field
-    _kernels.rescale_power(flat, float(lo), 1.0 / span, beta)
+    # round the scale up so that the maximum maps to exactly 1 (then clipped)
+    scale = ft(1) / span
+    while (ft(hi) - ft(lo)) * scale < 1:
+        scale = np.nextafter(scale, ft(np.inf))
+    _kernels.rescale_power(flat, float(lo), float(scale), beta)
     return field
 
 

@@ -1,0 +1,267 @@
+"""Falling snow: spectrum, motion, looping, tiling, hard cases and errors."""
+import inspect
+import itertools
+
+import numpy as np
+import pytest
+import scipy.fft
+
+import noiselab
+from noiselab.snow import flake_speeds, iter_tiled_frames, rescale_opacity, snow, snow_spectrum, tile
+from noiselab.snow.tent import tent_columns
+from noiselab.spectral import envelopes as E
+from noiselab.spectral import frequency_vectors
+
+
+def _displacement(a, b):
+    """Integer shift (dx, dy) taking frame a to frame b (phase correlation)."""
+    X = scipy.fft.rfft2(b) * np.conj(scipy.fft.rfft2(a))
+    X /= np.abs(X) + 1e-30
+    r = scipy.fft.irfft2(X, s=a.shape)
+    iy, ix = np.unravel_index(np.argmax(r), r.shape)
+    H, W = r.shape
+    return int((ix + W // 2) % W - W // 2), int((iy + H // 2) % H - H // 2)
+
+
+def _mean_displacement(v, steps=6):
+    d = np.array([_displacement(v[t], v[t + 1]) for t in range(steps)], float)
+    return d.mean(axis=0)
+
+
+def test_output_is_float32_opacity_in_unit_range():
+    a = snow((8, 32, 48), seed=0)
+    assert a.shape == (8, 32, 48) and a.dtype == np.float32
+    assert a.min() == 0.0 and a.max() == 1.0
+    # the issue's spelling: noiselab.snow(...) (the subpackage is callable)
+    assert noiselab.snow((8, 32, 48), seed=0).tobytes() == a.tobytes()
+    assert noiselab.snow.composite is noiselab.composite
+
+
+@pytest.mark.parametrize("shape", [(8, 32, 32), (7, 33, 31), (5, 9, 7), (1, 8, 8), (4, 8, 8), (6, 16, 10), (3, 1, 16)])
+def test_pruned_inverse_fft_equals_irfftn_of_the_spectrum(shape):
+    kw = dict(seed=4, dtype=np.float64, c=0.8, direction=(1, 2), pan=(0.2, -0.1), band=(1, shape[2] / 2))
+    S = snow_spectrum(shape, **kw)
+    raw = snow(shape, rescale=False, **kw)
+    ref = scipy.fft.irfftn(S, s=shape)
+    np.testing.assert_allclose(raw, ref, rtol=0, atol=1e-14 * max(1.0, np.abs(ref).max()))
+    # and the spectrum is exactly Hermitian where it must be: the round trip
+    np.testing.assert_allclose(scipy.fft.rfftn(raw), S, rtol=0, atol=1e-12 * np.abs(S).max())
+
+
+def test_energy_only_on_the_thickened_tent_inside_the_band():
+    shape = (32, 64, 64)
+    kw = dict(c=1.3, thickness=0.2, direction=(np.cos(0.4), np.sin(0.4)), pan=(0.3, 0.1))
+    S = snow_spectrum(shape, seed=1, band=(6, 20), dtype=np.float64, **kw)
+    wt, wy, wx = frequency_vectors(shape)
+    dense = (E.annulus(wy, wx, lo=6 / 64, hi=20 / 64)
+             * E.thickened_tent(wt, wy, wx, kw["c"], kw["direction"], kw["pan"],
+                                thickness=kw["thickness"], tolerance=np.pi / shape[0]))
+    np.testing.assert_array_equal(S != 0, dense > 0)
+    # about 1 % of the spectrum carries energy at the default band
+    frac = (snow_spectrum((64, 256, 256), seed=0) != 0).mean()
+    assert 0.003 < frac < 0.02, frac
+
+
+def test_spatial_spectrum_is_1_over_f_with_equal_energy_per_octave():
+    S = snow_spectrum((32, 256, 256), seed=3, dtype=np.float64, amplitude="fixed", thickness=0.3)
+    P = (np.abs(S) ** 2).sum(axis=0)                    # spatial power, summed over temporal bins
+    fy = np.fft.fftfreq(256)[:, None] * 256
+    fx = np.fft.rfftfreq(256)[None, :] * 256
+    r = np.hypot(fy, fx)
+    wgt = np.where((fx == 0) | (fx == 128), 1.0, 2.0)   # half spectrum: interior cells count twice
+    octaves = [((r >= lo) & (r < 2 * lo) * 1).astype(bool) for lo in (8, 16, 32)]
+    energy = [float((P * wgt)[m].sum()) for m in octaves]
+    assert np.allclose(energy, np.mean(energy), rtol=0.05), energy
+    # the thickness splits a column's power over its bins: per column power is exactly 1/|w|^2
+    col = P[r > 0]
+    w = 2 * np.pi * r[r > 0] / 256
+    np.testing.assert_allclose(col[col > 0], (1 / w[col > 0]) ** 2, rtol=1e-9)
+
+
+@pytest.mark.parametrize("direction", [(0, 1), (1, 0), (-1, 0), (0, -1), (1, 1), (-1, 2)])
+def test_flakes_move_along_the_fall_direction(direction):
+    # one ring of spatial frequency, speed c/|w| = 3 px/frame
+    f = 8.0
+    c = 3.0 * 2 * np.pi * f / 128
+    v = snow((24, 128, 128), seed=2, c=c, band=(f, f + 0.5), thickness=0, direction=direction,
+             rescale=False, dtype=np.float64)
+    d = np.asarray(direction, float) / np.hypot(*direction)
+    measured = _mean_displacement(v)
+    assert np.allclose(measured, 3.0 * d, atol=0.75), (measured, 3 * d)
+
+
+def test_near_flakes_fall_faster_in_proportion_to_inverse_frequency():
+    speeds = {}
+    c = 1.2
+    for f in (6.0, 24.0):
+        v = snow((32, 128, 128), seed=5, c=c, band=(f, f * 1.05), thickness=0, rescale=False, dtype=np.float64)
+        speeds[f] = _mean_displacement(v, steps=12)[1]
+    expect = {f: c * 128 / (2 * np.pi * f) for f in speeds}
+    assert speeds[6.0] > 2.5 * speeds[24.0]
+    for f in speeds:
+        assert abs(speeds[f] - expect[f]) < 0.6, (speeds, expect)
+
+
+def test_pan_adds_the_camera_velocity_to_every_flake():
+    f = 8.0
+    c = 2.0 * 2 * np.pi * f / 128  # 2 px/frame down
+    v = snow((24, 128, 128), seed=1, c=c, band=(f, f + 0.5), thickness=0, pan=(-2.0, 0.0),
+             rescale=False, dtype=np.float64)
+    assert np.allclose(_mean_displacement(v), (-2.0, 2.0), atol=0.6)
+
+
+def test_flake_speeds_documented_numbers():
+    near, far = flake_speeds(1.0, (16, 128), 512)
+    assert round(near, 3) == 5.093 and round(far, 3) == 0.637
+    assert flake_speeds(2.0) == pytest.approx((2 * near, 2 * far))
+
+
+def test_loop_is_seamless():
+    a = snow((16, 64, 64), seed=7)
+    steps = [np.abs(a[t + 1] - a[t]).mean() for t in range(15)]
+    wrap = np.abs(a[0] - a[-1]).mean()
+    assert min(steps) * 0.8 < wrap < max(steps) * 1.25
+    # a non-periodic splice (two different videos) is a visible jump
+    b = snow((16, 64, 64), seed=8)
+    assert np.abs(b[0] - a[-1]).mean() > 1.5 * max(steps)
+
+
+def test_tile_is_seamless_in_space_and_time():
+    a = snow((8, 32, 32), seed=1)
+    t = tile(a, (2, 2, 3))
+    assert t.shape == (16, 64, 96)
+    np.testing.assert_array_equal(t[8:, 32:, 64:], a)
+    inner = np.abs(np.diff(a, axis=2)).mean()
+    seam = np.abs(t[:, :, 32] - t[:, :, 31]).mean()
+    assert 0.8 * inner < seam < 1.25 * inner
+    with pytest.raises(ValueError, match="reps"):
+        tile(a, (2, 2))
+
+
+def test_iter_tiled_frames_is_lazy_and_matches_tile():
+    a = snow((4, 16, 16), seed=2)
+    it = iter_tiled_frames(a, (3, 2, 2))
+    assert inspect.isgenerator(it)
+    frames = np.stack(list(it))
+    np.testing.assert_array_equal(frames, tile(a, (3, 2, 2)))
+    # a billion frames cost nothing until asked for
+    huge = iter_tiled_frames(a, (100, 100), n_frames=10 ** 9)
+    first = list(itertools.islice(huge, 5))
+    np.testing.assert_array_equal(first[4], first[0])
+    assert first[0].shape == (1600, 1600)
+    cropped = next(iter_tiled_frames(a, (2, 2), crop=(20, 30)))
+    assert cropped.shape == (20, 30)
+
+
+def test_still_frame():
+    S = snow_spectrum((1, 32, 32), seed=0, dtype=np.float64)
+    assert S.shape == (1, 32, 17) and (S != 0).sum() > 0
+    a = snow((1, 32, 32), seed=0)
+    assert a.shape == (1, 32, 32) and a.min() == 0 and a.max() == 1
+
+
+def test_tiny_frames_and_odd_sizes():
+    for shape in [(4, 8, 8), (3, 8, 9), (5, 9, 8)]:
+        a = snow(shape, seed=0)
+        assert a.shape == shape and np.isfinite(a).all() and a.max() == 1
+
+
+def test_c_zero_is_frozen_snow():
+    a = snow((6, 32, 32), seed=0, c=0.0)
+    assert np.array_equal(a[0], a[3]) or np.abs(a - a[0]).max() < 1e-6
+    S = snow_spectrum((6, 32, 32), seed=0, c=0.0)
+    assert np.all(S[1:] == 0)
+
+
+def test_band_touching_nyquist():
+    shape = (8, 32, 32)
+    S = snow_spectrum(shape, seed=1, band=(4, 16), dtype=np.float64)
+    assert np.any(S[:, :, 16] != 0)     # the Nyquist column carries energy
+    raw = snow(shape, seed=1, band=(4, 16), rescale=False, dtype=np.float64)
+    np.testing.assert_allclose(scipy.fft.rfftn(raw), S, atol=1e-12 * np.abs(S).max())
+
+
+def test_band_errors():
+    with pytest.raises(ValueError, match="past the Nyquist frequency 16"):
+        snow((4, 32, 32), band=(4, 17))
+    with pytest.raises(ValueError, match="band is empty"):
+        snow((4, 32, 32), band=(8, 8))
+    with pytest.raises(ValueError, match="holds no spatial frequency"):
+        snow((4, 32, 32), band=(2.1, 2.2))
+    with pytest.raises(ValueError, match="band"):
+        snow((4, 32, 32), band=(1, 2, 3))
+
+
+@pytest.mark.parametrize("kw,match", [
+    (dict(c=float("nan")), "c \\(rad/frame\\) must be finite"),
+    (dict(c=-0.1), "c \\(rad/frame\\) must be in \\[0, 3.14159\\]"),
+    (dict(c=4.0), "c \\(rad/frame\\) must be in"),
+    (dict(thickness=-1), "thickness must be in \\[0, 1\\]"),
+    (dict(beta=0), "beta must be in \\(0, inf\\)"),
+    (dict(beta=float("nan")), "beta must be finite"),
+    (dict(direction=(0, 0)), "non-zero"),
+    (dict(direction=(float("nan"), 1)), "direction must be finite"),
+    (dict(pan=(float("inf"), 0)), "pan must be a finite pair"),
+    (dict(on_alias="wrap"), "on_alias"),
+    (dict(dtype=np.int32), "float32 or float64"),
+])
+def test_bad_parameters_are_named(kw, match):
+    with pytest.raises((ValueError, TypeError), match=match):
+        snow((4, 16, 16), **kw)
+
+
+def test_bad_shapes_and_seed():
+    with pytest.raises(ValueError, match="3 entries"):
+        snow((16, 16))
+    with pytest.raises(ValueError, match=r"shape\[0\]"):
+        snow((0, 16, 16))
+    with pytest.raises(ValueError, match="seed"):
+        snow((2, 8, 8), seed=-1)
+
+
+def test_temporal_aliasing_is_detected_with_the_largest_allowed_c():
+    with pytest.raises(ValueError, match=r"Largest allowed c .* is 2\.85599") as err:
+        snow((8, 32, 32), c=3.0, thickness=0.1)
+    assert "on_alias='drop'" in str(err.value)
+    snow((8, 32, 32), c=np.pi / 1.1, thickness=0.1)  # the limit itself is fine
+    with pytest.raises(ValueError, match="largest pan speed"):
+        snow((8, 32, 32), c=1.0, pan=(20.0, 0.0))
+
+
+def test_drop_mode_leaves_out_the_wrapped_cells():
+    shape = (64, 64, 64)
+    cols = tent_columns(shape, c=3.0, band=(2, 16), thickness=0.1, direction=(0, 1), pan=(0, 0),
+                        exponent=1.0, on_alias="drop")
+    assert cols.dropped > 0
+    S = snow_spectrum(shape, c=3.0, thickness=0.1, on_alias="drop", seed=0, dtype=np.float64)
+    kept = (S != 0).sum()
+    ref = (snow_spectrum(shape, c=np.pi / 1.1, thickness=0.1, seed=0) != 0).sum()
+    assert 0 < kept
+    # every kept cell is within half a bin plus the thickness of the unwrapped tent
+    wt, wy, wx = frequency_vectors(shape)
+    near = E.thickened_tent(wt, wy, wx, 3.0, (0, 1), thickness=0.1, tolerance=np.pi / 64 + 1e-9)
+    # (the Nyquist bin, +pi and -pi at once, is left out of the comparison)
+    carrying = S != 0
+    carrying[32] = False
+    assert np.all(near[carrying] > 0)
+    assert 0 < kept < ref
+
+
+def test_same_seed_same_bits_float32_close_to_float64():
+    a = snow((8, 32, 32), seed=9)
+    b = snow((8, 32, 32), seed=9)
+    g = snow((8, 32, 32), seed=np.random.default_rng(9))
+    assert a.tobytes() == b.tobytes() == g.tobytes()
+    assert not np.array_equal(a, snow((8, 32, 32), seed=10))
+    d = snow((8, 32, 32), seed=9, dtype=np.float64)
+    assert d.dtype == np.float64 and np.abs(d - a).max() < 1e-4
+
+
+def test_rescale_opacity_constant_field_and_nan():
+    z = np.full((2, 3, 3), 4.0, np.float32)
+    assert np.all(rescale_opacity(z) == 0)
+    x = np.array([0.0, 1.0, 4.0])
+    np.testing.assert_allclose(rescale_opacity(x.copy(), beta=1.5), [0, 0.125, 1.0])
+    np.testing.assert_allclose(rescale_opacity(x.copy(), beta=2.0), [0, 1 / 16, 1.0])
+    with pytest.raises(ValueError, match="NaN"):
+        rescale_opacity(np.array([0.0, np.nan]))

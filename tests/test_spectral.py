@@ -1,0 +1,182 @@
+"""The spectral engine: exact conjugacy, expected power, envelopes, spectral_noise."""
+import numpy as np
+import pytest
+import scipy.fft
+
+from noiselab.spectral import envelopes as E
+from noiselab.spectral import frequency_vectors, hermitian_plane, spectral_noise, synthesize
+
+SHAPES = [(7,), (8,), (1,), (2,), (5, 6), (6, 7), (8, 8), (1, 8), (4, 6, 8), (5, 7, 9), (1, 8, 8), (3, 1, 4), (2, 2, 2)]
+
+
+def _ones(*w):
+    return np.ones(np.broadcast_shapes(*(x.shape for x in w)))
+
+
+@pytest.mark.parametrize("shape", SHAPES)
+def test_round_trip_reproduces_the_prescribed_spectrum(shape):
+    field, S = synthesize(shape, _ones, seed=3, dtype=np.float64, amplitude="fixed", return_spectrum=True)
+    assert field.shape == shape and field.dtype == np.float64
+    # the FFT of the output is the spectrum we built, to float precision
+    np.testing.assert_allclose(scipy.fft.rfftn(field), S, rtol=0, atol=1e-12)
+    # and no cell lost or gained magnitude on the self-conjugate planes
+    np.testing.assert_allclose(np.abs(S), 1.0, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("shape", [(6, 8), (5, 7), (4, 6, 8)])
+def test_round_trip_float32(shape):
+    field, S = synthesize(shape, _ones, seed=1, dtype=np.float32, amplitude="fixed", return_spectrum=True)
+    assert field.dtype == np.float32 and S.dtype == np.complex64
+    np.testing.assert_allclose(scipy.fft.rfftn(field.astype(np.float64)), S, rtol=0, atol=2e-5)
+
+
+def test_plane_power_is_neither_lost_nor_doubled():
+    # Parseval on the full spectrum: the field's sum of squares equals the
+    # prescribed power, counting interior half-spectrum cells twice
+    shape = (6, 8)
+    field, S = synthesize(shape, _ones, seed=5, dtype=np.float64, amplitude="fixed", return_spectrum=True)
+    weight = np.full(S.shape, 2.0)
+    weight[:, 0] = 1
+    weight[:, -1] = 1  # Nyquist column of an even width
+    prescribed = float((weight * np.abs(S) ** 2).sum()) / np.prod(shape)
+    assert np.isclose((field ** 2).sum(), prescribed, rtol=1e-12)
+    # all 48 full-spectrum cells have |S| = 1, so sum(x**2) = 48 / 48; halving the
+    # planes (kx = 0 and kx = 4: 12 of the 48 cells) would give 0.875
+    assert np.isclose((field ** 2).sum(), 1.0, rtol=1e-12)
+
+
+@pytest.mark.parametrize("amplitude", ["uniform", "rayleigh"])
+def test_expected_power_equals_envelope_squared_on_every_cell(amplitude):
+    shape = (4, 6)
+    env = lambda wy, wx: 1.0 + np.abs(wy) + 0 * wx  # noqa: E731 - non-constant, symmetric
+    target = env(*frequency_vectors(shape)) ** 2
+    target = np.broadcast_to(target, (4, 4))
+    acc = np.zeros((4, 4))
+    n = 3000
+    rng = np.random.default_rng(0)
+    for _ in range(n):
+        _, S = synthesize(shape, env, seed=rng, dtype=np.float64, amplitude=amplitude, return_spectrum=True)
+        acc += np.abs(S) ** 2
+    ratio = acc / n / target
+    # planes (kx = 0 and kx = 3, Nyquist) included: no cell at half or double power
+    assert np.all(np.abs(ratio - 1) < 0.12), ratio
+
+
+def test_hermitian_plane_union_of_asymmetric_support_keeps_magnitudes():
+    p = np.zeros((4, 4), complex)
+    p[1, 2] = 3 * np.exp(0.7j)       # non-canonical cell, its mirror (3, 2) is empty
+    p[2, 2] = 2 * np.exp(2.0j)       # self-conjugate cell
+    q = hermitian_plane(p)
+    assert np.isclose(q[3, 2], np.conj(q[1, 2]))
+    assert np.isclose(abs(q[1, 2]), 3) and np.isclose(abs(q[3, 2]), 3)
+    assert q[2, 2].imag == 0 and np.isclose(abs(q[2, 2]), 2)
+    mirror = np.roll(np.flip(q), 1, axis=(0, 1))
+    np.testing.assert_allclose(mirror, np.conj(q))
+
+
+def test_frequency_vectors_are_broadcast_not_meshgrids():
+    wt, wy, wx = frequency_vectors((64, 512, 512))
+    assert wt.shape == (64, 1, 1) and wy.shape == (1, 512, 1) and wx.shape == (1, 1, 257)
+    assert wx.max() == np.pi and wy.min() == -np.pi and wt.min() == -np.pi
+
+
+def test_same_seed_bit_identical_and_generator_accepted():
+    env = lambda wy, wx: E.annulus(wy, wx, lo=0.05, hi=0.4)  # noqa: E731
+    a = synthesize((16, 16), env, seed=11)
+    b = synthesize((16, 16), env, seed=11)
+    c = synthesize((16, 16), env, seed=np.random.default_rng(11))
+    d = synthesize((16, 16), env, seed=12)
+    assert a.tobytes() == b.tobytes() == c.tobytes()
+    assert not np.array_equal(a, d)
+
+
+def test_synthesize_rejects_bad_envelopes():
+    with pytest.raises(ValueError, match="finite"):
+        synthesize((8, 8), lambda wy, wx: E.power_law(wy, wx) * 0 + np.inf)
+    with pytest.raises(ValueError, match="non-negative"):
+        synthesize((8, 8), lambda wy, wx: -np.ones((8, 5)))
+    with pytest.raises(ValueError, match="amplitude"):
+        synthesize((8, 8), _ones, amplitude="gaussian")
+    with pytest.raises(ValueError, match=r"shape\[1\]"):
+        synthesize((8, 0), _ones)
+
+
+def _radial_power_slope(field, lo, hi):
+    P = np.abs(np.fft.fft2(field)) ** 2
+    fy = np.fft.fftfreq(field.shape[0])[:, None]
+    fx = np.fft.fftfreq(field.shape[1])[None, :]
+    r = np.hypot(fy, fx)
+    edges = np.geomspace(lo, hi, 9)
+    centres, power = [], []
+    for a, b in zip(edges[:-1], edges[1:]):
+        m = (r >= a) & (r < b)
+        centres.append(np.sqrt(a * b))
+        power.append(P[m].mean())
+    return np.polyfit(np.log(centres), np.log(power), 1)[0]
+
+
+@pytest.mark.parametrize("exponent", [0.5, 1.0, 2.0])
+def test_spectral_noise_power_slope(exponent):
+    x = spectral_noise((256, 256), exponent=exponent, seed=2)
+    slope = _radial_power_slope(x, 4 / 256, 100 / 256)
+    assert abs(slope + 2 * exponent) < 0.15, slope
+    assert abs(float(x.std()) - 1) < 1e-5 and abs(float(x.mean())) < 1e-5
+
+
+def test_spectral_noise_band_and_dimensions():
+    x = spectral_noise((128, 128), band=(8, 16), seed=0, dtype=np.float64)
+    P = np.abs(np.fft.fft2(x)) ** 2
+    r = np.hypot(np.fft.fftfreq(128)[:, None], np.fft.fftfreq(128)[None, :]) * 128
+    inside = (r >= 8) & (r <= 16)
+    assert P[~inside].max() < 1e-18 * P[inside].max()
+    for shape in [(100,), (9, 10, 11)]:
+        y = spectral_noise(shape, seed=1)
+        assert y.shape == shape and y.dtype == np.float32
+
+
+def test_spectral_noise_bad_input():
+    with pytest.raises(ValueError, match="past the Nyquist"):
+        spectral_noise((64, 64), band=(4, 40))
+    with pytest.raises(ValueError, match="empty"):
+        spectral_noise((64, 64), band=(10, 10))
+    with pytest.raises(ValueError, match="exponent must be finite"):
+        spectral_noise((64, 64), exponent=float("nan"))
+    with pytest.raises(ValueError, match="entries"):
+        spectral_noise((4, 4, 4, 4))
+
+
+def _displacement(a, b):
+    X = scipy.fft.rfft2(b) * np.conj(scipy.fft.rfft2(a))
+    X /= np.abs(X) + 1e-30
+    r = scipy.fft.irfft2(X, s=a.shape)
+    iy, ix = np.unravel_index(np.argmax(r), r.shape)
+    H, W = r.shape
+    return (ix + W // 2) % W - W // 2, (iy + H // 2) % H - H // 2
+
+
+def test_motion_plane_envelope_translates_with_its_velocity():
+    T = 16
+    env = lambda wt, wy, wx: (E.motion_plane(wt, wy, wx, (2.0, -1.0), tolerance=np.pi / T)  # noqa: E731
+                              * E.annulus(wy, wx, lo=0.05, hi=0.3))
+    v = synthesize((T, 64, 64), env, seed=0, dtype=np.float64)
+    assert _displacement(v[0], v[1]) == (2, -1)
+
+
+def test_optical_snow_wedge_holds_its_planes_only():
+    wt, wy, wx = frequency_vectors((32, 32, 32))
+    m = E.optical_snow(wt, wy, wx, (0, 1), (0.5, 2.0), tolerance=1e-9)
+    # a cell on the s = 1 plane is inside, one on s = 4 is outside
+    ky, kt_in, kt_out = 3, -3, -12  # wt = -s * wy at wy = 2*pi*3/32
+    assert m[kt_in % 32, ky, 0] == 1 and m[kt_out % 32, ky, 0] == 0
+    n = E.nonparallel_optical_snow(wt, wy, wx, (0, 1), (1.0, 1.0), pan=(1.0, 0.0), tolerance=1e-9)
+    # velocity (1, 1): wt = -(wx + wy)
+    assert n[(-(2 + 3)) % 32, 3, 2] == 1 and n[(-3) % 32, 3, 2] == 0
+
+
+def test_power_law_and_annulus():
+    w = np.array([0.0, 0.5, 1.0])
+    np.testing.assert_allclose(E.power_law(w, exponent=1.0), [0.0, 2.0, 1.0])
+    f = np.array([0.0, 0.1, 0.2, 0.3]) * 2 * np.pi
+    np.testing.assert_array_equal(E.annulus(f, lo=0.1, hi=0.2), [0, 1, 1, 0])
+    with pytest.raises(ValueError, match="non-zero"):
+        E.unit_direction((0, 0))
