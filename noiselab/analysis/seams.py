@@ -60,6 +60,10 @@ def _axis_seam(arr, axis, tile):
         seam = np.take(arr, [0], axis=axis).astype(np.float64) - np.take(arr, [n - 1], axis=axis)
         ordinary = np.take(diffs, [0, n - 2], axis=axis)
     o = _rms(ordinary)
+    if o == 0:  # flat beside the seams (piecewise-constant texture): compare with every ordinary step
+        keep = np.ones(n - 1, dtype=bool)
+        keep[seams] = False
+        o = _rms(np.compress(keep, diffs, axis=axis)) if seams else _rms(diffs)
     if o == 0:
         raise ValueError(f"image does not change beside its seams along axis {axis}: the tile seam is undefined")
     return _rms(seam) / o

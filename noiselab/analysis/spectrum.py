@@ -434,7 +434,7 @@ def spatiotemporal_spectrum(video, *, bins=None, log=False, window=None) -> Spat
 
 
 def band_energy(field, band, *, window=None, axes=None) -> float:
-    """Fraction of the field's power whose radial frequency lies in ``band = (lo, hi)`` cycles/frame (lo <= f < hi).
+    """Fraction of the field's power whose radial frequency lies in ``band = (lo, hi)`` cycles/frame (lo <= f <= hi).
 
     For a video pass ``axes=(-2, -1)`` to band-limit the spatial frequency only.
 
@@ -448,7 +448,7 @@ def band_energy(field, band, *, window=None, axes=None) -> float:
     spec = as_spectrum(field, window=window, axes=axes)
     r, n_ref = _radial_frequency(spec, spec.axes)
     lo, hi = check_band("band", band, n_ref / 2.0 * np.sqrt(len(spec.axes)))
-    inside = (r >= lo) & (r < hi)
+    inside = (r >= lo) & (r <= hi)
     num = float(np.sum(np.where(inside, spec.power * spec.weight, 0), dtype=np.float64))
     total = spec.total
     return num / total if total > 0 else 0.0
