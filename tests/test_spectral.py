@@ -180,3 +180,16 @@ def test_power_law_and_annulus():
     np.testing.assert_array_equal(E.annulus(f, lo=0.1, hi=0.2), [0, 1, 1, 0])
     with pytest.raises(ValueError, match="non-zero"):
         E.unit_direction((0, 0))
+
+
+@pytest.mark.parametrize("modname", [
+    "noiselab.spectral.frequencies", "noiselab.spectral.envelopes", "noiselab.spectral.synthesis",
+    "noiselab.snow.render", "noiselab.snow.tent", "noiselab.snow.composite", "noiselab.snow.tiling",
+    "noiselab.snow.background",
+])
+def test_docstring_examples_hold(modname):
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(modname), optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0

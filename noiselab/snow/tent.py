@@ -164,22 +164,22 @@ def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alia
         hw = half * (T / (2 * np.pi))
         n_lo = np.ceil(x - 0.5 - hw).astype(np.int64)
         n_hi = np.floor(x + 0.5 + hw).astype(np.int64)
-        counts = n_hi - n_lo + 1
+        total = int((n_hi - n_lo + 1).sum())
+        # bins beyond Nyquist (|n| > T/2): with the surface inside Nyquist these
+        # are only the half-bin overlap at |wt| = pi for odd T; otherwise
+        # (on_alias="drop") they are the cells that would wrap around
+        n_lo = np.maximum(n_lo, -(T // 2))
+        n_hi = np.minimum(n_hi, T // 2)
+        if on_alias == "drop":
+            dropped = total - int(np.maximum(n_hi - n_lo + 1, 0).sum())
+        if T % 2 == 0:
+            # +T/2 and -T/2 are one bin: keep it once
+            n_hi = np.where((n_lo == -(T // 2)) & (n_hi == T // 2), n_hi - 1, n_hi)
+        counts = np.maximum(n_hi - n_lo + 1, 0)
         entry_col = np.repeat(np.arange(ky.size), counts)
         starts = np.cumsum(counts) - counts
         entry_n = n_lo[entry_col] + (np.arange(entry_col.size) - starts[entry_col])
-        # bins beyond Nyquist: with the surface inside Nyquist these are only
-        # the half-bin overlap at |wt| = pi for odd T; otherwise (on_alias="drop")
-        # they are the cells that would wrap around
-        keep = np.abs(entry_n) * 2 <= T
-        if on_alias == "drop":
-            far = np.abs(entry_n) * 2 > T + 1
-            dropped = int(far.sum())
-        entry_col, entry_n = entry_col[keep], entry_n[keep]
-    # one cell per (column, bin); +T/2 and -T/2 are the same bin for even T
-    key = np.unique(entry_col * T + np.mod(entry_n, T))
-    entry_col = key // T
-    entry_bin = key % T
+    entry_bin = np.mod(entry_n, T)
     count = np.bincount(entry_col, minlength=ky.size)
     amp = r ** (-float(exponent))
     weight = amp[entry_col] / np.sqrt(count[entry_col])
