@@ -13,7 +13,7 @@ from noiselab import analysis as A
 def power_law_field(shape, alpha, seed=0, random_amplitude=True):
     """Real field whose radially averaged amplitude falls as f**-alpha (f in cycles/frame), random phase."""
     rng = np.random.default_rng(seed)
-    n = max(shape)
+    n = shape[-1]  # cycles/frame = cycles per frame width, as in noiselab
     grids = [np.fft.fftfreq(s, 1.0 / s) * (n / s) for s in shape[:-1]]
     grids.append(np.arange(shape[-1] // 2 + 1) * (n / shape[-1]))
     r2 = 0.0
@@ -446,3 +446,16 @@ def test_one_spectrum_serves_several_analysers():
     assert A.motion_energy(spec, (0, 1)) == A.motion_energy(video, (0, 1))
     with pytest.raises(ValueError, match="3-D spectrum"):
         A.best_velocity(A.power_spectrum(video[0]))
+
+
+def test_input_is_left_alone_and_a_large_mean_is_removed_before_the_fft():
+    x = np.random.default_rng(12).standard_normal((64, 64)).astype(np.float32)
+    x0 = x.copy()
+    A.power_spectrum(x)
+    A.power_spectrum(x, window="hann")
+    A.video_spectrum(x[None].repeat(3, axis=0), window="hann")
+    np.testing.assert_array_equal(x, x0)
+    # a float32 field whose mean is 1e5 times its fluctuation keeps its variance
+    big = (np.float32(1e4) + np.float32(1e-1) * x).astype(np.float32)
+    assert A.power_spectrum(big).total == pytest.approx(float(big.astype(np.float64).var()), rel=1e-3)
+    assert abs(A.spectral_slope(big, (2, 16))) < 0.15  # still white

@@ -90,7 +90,10 @@ class PowerSpectrum:
     @property
     def total(self) -> float:
         """Sum of the power over the full spectrum: the variance of the (windowed) field."""
-        return float(np.sum(self.power * self.weight, dtype=np.float64))
+        half = self.axes[-1]
+        others = tuple(a for a in range(self.power.ndim) if a != half)
+        per_column = np.sum(self.power, axis=others, dtype=np.float64)  # no full-size temporary
+        return float(per_column @ half_weight(self.shape[half]))
 
     def full(self) -> np.ndarray:
         """The full power spectrum in ``fftn`` layout (a new array; for small fields and tests)."""
@@ -159,8 +162,15 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None) -> PowerS
     spec_cells = arr.size // arr.shape[axes[-1]] * (arr.shape[axes[-1]] // 2 + 1)
     check_memory(arr.nbytes * 2 + spec_cells * np.dtype(cdt).itemsize, "power_spectrum")
     mean = float(np.mean(arr, dtype=np.float64))
-    work = arr - arr.dtype.type(mean)
     scale = 1.0
+    # Without a window, removing the mean only zeroes the DC cell, so the field is transformed as
+    # is (no working copy) unless its mean dwarfs its range, where subtracting first keeps the
+    # FFT's rounding (relative to the whole signal) off the fluctuations.
+    span = float(arr.max()) - float(arr.min())
+    if window is None and abs(mean) <= 10 * span:
+        work, zero_dc = arr, True
+    else:
+        work, zero_dc = arr - arr.dtype.type(mean), False
     if window == "hann":
         for ax in window_axes:
             w = _hann(arr.shape[ax], arr.dtype)
@@ -168,13 +178,19 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None) -> PowerS
             shape[ax] = w.size
             work *= w.reshape(shape)
             scale *= float(np.mean(w.astype(np.float64) ** 2))
-    spec = scipy.fft.rfftn(work, axes=axes, overwrite_x=True)
+    spec = scipy.fft.rfftn(work, axes=axes, overwrite_x=work is not arr)
     del work
+    if zero_dc:
+        spec[tuple(0 if a in axes else slice(None) for a in range(nd))] = 0
     n = int(np.prod([arr.shape[a] for a in axes]))
-    power = np.square(spec.real)
-    power += np.square(spec.imag)
+    norm = 1.0 / (float(n) ** 2 * scale)
+    power = np.empty(spec.shape, dtype=arr.dtype)
+    for i in range(spec.shape[0]) if spec.ndim > 1 else [slice(None)]:
+        # |X|^2 one slab at a time: slab-sized temporaries only
+        power[i] = np.square(spec[i].real)
+        power[i] += np.square(spec[i].imag)
+        power[i] *= power.dtype.type(norm)
     del spec
-    power *= power.dtype.type(1.0 / (float(n) ** 2 * scale))
     return PowerSpectrum(power=power, shape=arr.shape, axes=axes, window=window, window_axes=window_axes if window else (), mean=mean)
 
 
@@ -190,13 +206,25 @@ def as_spectrum(field, *, window=None, axes=None, window_axes=None) -> PowerSpec
     return power_spectrum(field, window=window, axes=axes, window_axes=window_axes)
 
 
-def _radial_frequency(spec: PowerSpectrum, radial_axes) -> tuple[np.ndarray, int]:
-    """Radial frequency (cycles/frame) over ``radial_axes``, broadcastable against the power; and the frame size N."""
+def _radial_frequency(spec: PowerSpectrum, radial_axes) -> tuple[list, int]:
+    """Per-axis frequency components (cycles/frame, broadcastable against the power) and the frame size N."""
     n_ref = ref_size([spec.shape[a] for a in radial_axes])
+    return [spec.frequency(a) * (n_ref / spec.shape[a]) for a in radial_axes], n_ref
+
+
+def _slabs(shape):
+    """Slices of the leading axis of a 3-D spectrum (one at a time bounds the temporaries), else everything."""
+    return [(i,) for i in range(shape[0])] if len(shape) == 3 and shape[0] > 1 else [()]
+
+
+def _slab_radius(comps, sl, shape):
+    """Radial frequency of the slab ``sl`` (a tuple indexing the leading axis, or ``()``), broadcast to its shape."""
     r2 = 0.0
-    for a in radial_axes:
-        r2 = r2 + (spec.frequency(a) * (n_ref / spec.shape[a])) ** 2
-    return np.sqrt(r2), n_ref
+    for c in comps:
+        part = c[sl] if not sl or c.shape[0] > 1 else c[0]
+        r2 = r2 + part**2
+    sub = shape[len(sl):]
+    return np.broadcast_to(np.sqrt(r2), sub)
 
 
 @dataclass(frozen=True)
@@ -314,7 +342,7 @@ def radial_spectrum(field, *, bins=None, log=False, window=None, axes=None, fmax
     """
     spec = as_spectrum(field, window=window, axes=axes)
     radial_axes = spec.axes
-    r, n_ref = _radial_frequency(spec, radial_axes)
+    comps, n_ref = _radial_frequency(spec, radial_axes)
     nyq = n_ref / 2.0
     fmax = nyq if fmax is None else check_real("fmax", fmax, lo=1.0, hi=nyq * np.sqrt(len(radial_axes)) + 1e-9)
     edges = _edges(bins, log, fmax)
@@ -325,24 +353,32 @@ def radial_spectrum(field, *, bins=None, log=False, window=None, axes=None, fmax
     if other:
         n_other = int(np.prod([spec.shape[a] for a in other]))
         p = np.sum(p, axis=other, dtype=np.float64, keepdims=True) / n_other
-    r_full = np.ascontiguousarray(np.broadcast_to(r, p.shape))
-    idx = _bin_index(r_full, edges)
-    weight = np.broadcast_to(spec.weight, p.shape)
-    keep = idx >= 0
-    i = idx[keep]
-    w = weight[keep].astype(np.float64)
-    pv = p[keep].astype(np.float64)
-    counts = np.bincount(i, weights=w, minlength=nb)
-    s1 = np.bincount(i, weights=w * pv, minlength=nb)
-    s2 = np.bincount(i, weights=w * pv * pv, minlength=nb)
-    sf = np.bincount(i, weights=w * r_full[keep], minlength=nb)
+    w_b = np.broadcast_to(spec.weight, p.shape)  # a view: nothing full-size is allocated
+    counts = np.zeros(nb)
+    s1 = np.zeros(nb)
+    s2 = np.zeros(nb)
+    sf = np.zeros(nb)
+    total = 0.0
+    # one slab of the leading axis at a time: a few slab-sized temporaries, never a full-size index array
+    for sl in _slabs(p.shape):
+        ps, ws = p[sl], w_b[sl]
+        rs = _slab_radius(comps, sl, p.shape)
+        idx = _bin_index(np.ascontiguousarray(rs), edges)
+        keep = idx >= 0
+        i = idx[keep]
+        w = ws[keep].astype(np.float64)
+        pv = ps[keep].astype(np.float64)
+        counts += np.bincount(i, weights=w, minlength=nb)
+        s1 += np.bincount(i, weights=w * pv, minlength=nb)
+        s2 += np.bincount(i, weights=w * pv * pv, minlength=nb)
+        sf += np.bincount(i, weights=w * rs[keep], minlength=nb)
+        total += float(np.sum(ps * ws, dtype=np.float64))
     ok = counts > 0
     counts, s1, s2, sf = counts[ok], s1[ok], s2[ok], sf[ok]
     mean = s1 / counts
     var = np.maximum(s2 / counts - mean**2, 0.0)
     lo, hi = edges[:-1][ok], edges[1:][ok]
     centers = np.sqrt(lo * hi) if log else 0.5 * (lo + hi)
-    total = float(np.sum(p * weight, dtype=np.float64))
     return RadialSpectrum(
         centers=centers,
         edges=edges,
@@ -446,9 +482,13 @@ def band_energy(field, band, *, window=None, axes=None) -> float:
     1.0
     """
     spec = as_spectrum(field, window=window, axes=axes)
-    r, n_ref = _radial_frequency(spec, spec.axes)
+    comps, n_ref = _radial_frequency(spec, spec.axes)
     lo, hi = check_band("band", band, n_ref / 2.0 * np.sqrt(len(spec.axes)))
-    inside = (r >= lo) & (r <= hi)
-    num = float(np.sum(np.where(inside, spec.power * spec.weight, 0), dtype=np.float64))
+    w_b = np.broadcast_to(spec.weight, spec.power.shape)
+    num = 0.0
+    for sl in _slabs(spec.power.shape):
+        rs = _slab_radius(comps, sl, spec.power.shape)
+        inside = (rs >= lo) & (rs <= hi)
+        num += float(np.sum(spec.power[sl] * np.where(inside, w_b[sl], 0), dtype=np.float64))
     total = spec.total
     return num / total if total > 0 else 0.0
