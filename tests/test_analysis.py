@@ -431,6 +431,8 @@ def test_bad_motion_arguments():
         A.motion_energy(video[0], (1, 0))
     with pytest.raises(ValueError, match="at least 2"):
         A.best_velocity(video[:1])
+    with pytest.raises(ValueError, match="at least 4 frames"):
+        A.band_speeds(video[:3], [(2, 6)])
     with pytest.raises(ValueError, match="velocity"):
         A.motion_energy(video, (1, np.nan))
     with pytest.raises(ValueError, match="at least 3"):

@@ -69,7 +69,7 @@ def video_spectrum(video, *, window=None) -> PowerSpectrum:
     if window not in (None, "hann"):
         raise ValueError(f"window must be None or 'hann', got {window!r}")
     arr = check_video("video", video)
-    return power_spectrum(arr, window=window, window_axes=(0,))
+    return power_spectrum(arr, window=window, window_axes=(0,), min_size=1)
 
 
 class _Grid:
@@ -216,6 +216,9 @@ def sheared_tent_energy(video, c, band, direction=(0.0, 1.0), pan=(0.0, 0.0), *,
 def _lag_one(spec: PowerSpectrum) -> np.ndarray:
     """``R(k) = sum_kt P(k, kt) exp(2 pi i kt / T)``: the lag-one temporal autocorrelation of each spatial frequency."""
     t = spec.shape[0]
+    if t < 4:
+        # two frames give +-pi phases (no sign); a Hann taper leaves a 3-frame video two weighted frames
+        raise ValueError(f"a velocity needs a video of at least 4 frames, got {t}")
     ang = 2 * np.pi * frequency_index(t) / t
     p2 = spec.power.reshape(t, -1)
     re = np.cos(ang).astype(p2.dtype) @ p2

@@ -118,7 +118,7 @@ def _hann(n: int, dtype) -> np.ndarray:
     return (0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(n) / n)).astype(dtype)
 
 
-def power_spectrum(field, *, window=None, axes=None, window_axes=None) -> PowerSpectrum:
+def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=4) -> PowerSpectrum:
     """Power spectrum of a 1-, 2- or 3-D real field, normalised so that Parseval holds.
 
     Parameters
@@ -134,6 +134,9 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None) -> PowerS
         for per-frame spectra of a video).
     window_axes : tuple of int, optional
         Axes the window is applied along (default: the transformed axes).
+    min_size : int
+        Fewest samples accepted along any axis (a video's time axis may
+        have 2: :func:`noiselab.analysis.video_spectrum` checks it).
 
     Returns
     -------
@@ -149,7 +152,7 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None) -> PowerS
     >>> bool(np.isclose(spec.total, x.var()))
     True
     """
-    arr = check_field("field", field)
+    arr = check_field("field", field, min_size=min_size)
     if window not in _WINDOWS:
         raise ValueError(f"window must be None or 'hann', got {window!r}")
     nd = arr.ndim

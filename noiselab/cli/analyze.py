@@ -138,13 +138,17 @@ def measure(data, kind, *, band=None, window="auto", bands_per_octave=2):
     if n_ref >= 8:
         oe = A.octave_energy(spec, 1.0, n_ref / 2.0)
         out["octave_energy"] = {"edges": oe.edges.tolist(), "fraction": oe.energy.tolist(), "spread": oe.spread}
-    if spatial:
+    if spatial and min(data.shape[-2:]) >= 8:
         o = A.orientation_energy(spec)
         out["anisotropy"] = {"index": o.index, "m2": o.m2, "m4": o.m4, "dominant_deg": o.dominant,
                              "axis_ratio": o.axis_ratio}
     del spec
     if kind == "video" and data.shape[0] >= 3:
-        out["loop_seam"] = A.loop_seam(data)
+        try:
+            out["loop_seam"] = A.loop_seam(data)
+        except ValueError:  # frames all equal: a still
+            out["loop_seam"] = None
+    if kind == "video" and data.shape[0] >= 4:
         vspec = A.video_spectrum(data, window="hann")  # time tapered: the video need not loop
         v = A.best_velocity(vspec)
         out["velocity"] = [float(v[0]), float(v[1])]
@@ -184,7 +188,9 @@ def report(path, m) -> str:
         o = m["octave_energy"]
         cells = "  ".join(f"{lo:g}-{hi:g}: {100 * f:.1f}%" for lo, hi, f in zip(o["edges"][:-1], o["edges"][1:], o["fraction"]))
         lines.append(f"  {'band energy':<14}{cells}   (spread {o['spread']:.2f})")
-    if "loop_seam" in m:
+    if m.get("loop_seam") is None and "loop_seam" in m:
+        lines.append(f"  {'loop seam':<14}n/a (the frames do not change)")
+    elif "loop_seam" in m:
         lines.append(f"  {'loop seam':<14}{m['loop_seam']:.3f}   (1 = seamless loop)")
     if "velocity" in m:
         vx, vy = m["velocity"]
