@@ -13,7 +13,10 @@ it. Distances to a surface are therefore measured along ``w_t``, modulo the
 temporal period, in temporal-frequency cells (cycles/video): ``tol=1`` accepts
 the cells within one cell of the surface.
 
-The falling-snow *tent* (Langer & Zhang Eq. 3.3, in this convention): a
+The falling-snow *tent* (Langer & Zhang Eq. 3.3, written there as
+``w_t = C w_v / |w|``; with numpy's sign and ``w_v`` measured along the fall
+direction, the surface of snow that falls *along* ``d`` is the negative one,
+as the motion plane says and the tests check on translating patterns): a
 flake layer whose spatial frequency is ``|w|`` rad/px moves at ``c / |w|``
 px/frame along the unit fall direction ``d``, so its energy lies on
 ``w_t = -(c / |w|) d . w``, with ``c`` in rad/frame (``0 <= c <= pi``). A panning
@@ -95,16 +98,31 @@ class _Grid:
 
 
 def _surface_energy(spec: PowerSpectrum, grid: _Grid, kt_pred: np.ndarray, region: np.ndarray, tol: float) -> float:
-    """Fraction of the total power in ``region`` (spatial cells) within ``tol`` temporal cells of ``kt_pred`` (cycles/video)."""
+    """Fraction of the total power in ``region`` (spatial cells) within ``tol`` temporal cells of ``kt_pred`` (cycles/video).
+
+    The temporal bins within ``tol`` of a cell's surface point are the
+    integers ``b`` with ``|b - kt_pred| <= tol`` (read at ``b mod T``: the
+    temporal axis is periodic), at most ``2 tol + 1`` of them: the power is
+    gathered there directly instead of testing every bin of every cell.
+    """
     t = grid.t
-    wgt = np.where(region, grid.weight, 0.0)
-    on = 0.0
-    for it in range(t):
-        d = np.abs(np.mod(grid.kt[it] - kt_pred + t / 2.0, t) - t / 2.0)
-        on += float(np.sum(spec.power[it] * np.where(d <= tol + 1e-9, wgt, 0.0), dtype=np.float64))
     total = spec.total
     if total <= 0:
         raise ValueError("the video has no power (constant after removing its mean)")
+    shape = region.shape
+    cells = np.flatnonzero(region)
+    p2 = spec.power.reshape(t, -1)
+    wgt = np.broadcast_to(grid.weight, shape).ravel()[cells]
+    if 2 * tol + 1 >= t:  # every temporal bin is within tol
+        return float(np.sum(p2[:, cells], dtype=np.float64, axis=0) @ wgt) / total
+    kp = np.broadcast_to(kt_pred, shape).ravel()[cells]
+    base = np.floor(kp - tol - 1e-9).astype(np.int64)
+    on = 0.0
+    for j in range(int(np.ceil(2 * tol)) + 2):
+        b = base + j
+        ok = np.abs(b - kp) <= tol + 1e-9
+        if ok.any():
+            on += float(np.sum(p2[np.mod(b[ok], t), cells[ok]] * wgt[ok], dtype=np.float64))
     return on / total
 
 
