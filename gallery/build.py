@@ -1,0 +1,190 @@
+"""Build the noiselab gallery: the seed papers' figures, reproduced and measured.
+
+Usage (both do the same thing)::
+
+    python3 gallery/build.py [--out out/gallery] [--only GROUP] [--quick] [--force]
+    python3 -m noiselab gallery [same options]
+
+Every registered figure is built into ``OUT/<group>/<name>/`` together with a
+``manifest.json`` that records its content hash (figure function source +
+parameters + noiselab version and source of the modules it uses). A figure
+whose hash matches and whose files are all there is not rebuilt. Each figure
+folder is written atomically (temporary folder, then rename), and so is
+``OUT/index.html``, which shows every figure and plays every video. Nothing is
+downloaded: everything drawn is computed or ships with a package.
+"""
+if __name__ == "__main__" and not __package__:
+    # run as a script: load this folder as a package and hand over to it
+    import sys as _sys
+    from pathlib import Path as _Path
+
+    _sys.path.insert(0, str(_Path(__file__).resolve().parents[1]))
+    from noiselab.cli.gallery import load_builder as _load
+
+    _sys.exit(_load().main())
+
+import argparse
+import json
+import os
+import sys
+import time
+import traceback
+from pathlib import Path
+
+from noiselab._progress import progress
+from noiselab.io import atomic_output
+
+from .html import render_index
+from .registry import content_hash, specs
+
+DEFAULT_OUT = Path("out") / "gallery"
+MANIFEST = "manifest.json"
+
+
+def _manifest_path(out: Path, spec) -> Path:
+    return out / spec.group / spec.name / MANIFEST
+
+
+def read_manifest(out: Path, spec):
+    """The manifest of a built figure, or None."""
+    try:
+        return json.loads(_manifest_path(out, spec).read_text())
+    except (OSError, ValueError):
+        return None
+
+
+def is_up_to_date(out: Path, spec, quick: bool) -> bool:
+    man = read_manifest(out, spec)
+    if not man or man.get("error") or man.get("hash") != content_hash(spec, quick):
+        return False
+    return all((out / f).is_file() for f in man["files"])
+
+
+def build_figure(out: Path, spec, quick: bool) -> dict:
+    """Build one figure into ``out/group/name`` (atomically) and return its manifest."""
+    folder = out / spec.group / spec.name
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    params = spec.parameters(quick)
+    man = {"key": spec.key, "seed": spec.seed, "title": spec.title, "params": params,
+           "quick": quick, "hash": content_hash(spec, quick)}
+    t0 = time.perf_counter()
+    try:
+        with atomic_output(folder, directory=True) as tmp:
+            result = spec.func(Path(tmp), **params)
+            files = []
+            for f in result.files:
+                f = Path(f)
+                f = f if f.is_absolute() else Path(tmp) / f
+                if not f.is_file():
+                    raise FileNotFoundError(f"figure {spec.key} says it wrote {f.name} but did not")
+                files.append((folder / f.relative_to(tmp)).relative_to(out).as_posix())
+            if not files:
+                raise ValueError(f"figure {spec.key} wrote no files")
+            man.update(files=files, caption=result.caption, measured=_plain(result.measured),
+                       seconds=time.perf_counter() - t0)
+            (Path(tmp) / MANIFEST).write_text(json.dumps(man, indent=1))
+    except Exception as exc:  # one broken figure must not stop the gallery
+        man.update(files=[], caption="", measured={}, seconds=time.perf_counter() - t0,
+                   error=f"{type(exc).__name__}: {exc}", traceback=traceback.format_exc())
+        folder.mkdir(parents=True, exist_ok=True)
+        with atomic_output(folder / MANIFEST) as tmp:
+            Path(tmp).write_text(json.dumps(man, indent=1))
+    return man
+
+
+def _plain(measured):
+    """Measured values as JSON-friendly Python numbers/strings/lists."""
+    def conv(v):
+        if hasattr(v, "tolist"):
+            return v.tolist()
+        if isinstance(v, (list, tuple)):
+            return [conv(x) for x in v]
+        return v
+    return {str(k): conv(v) for k, v in measured.items()}
+
+
+def write_index(out: Path, *, summary="") -> Path:
+    """Write ``out/index.html`` (atomically) from every registered figure's manifest."""
+    entries = []
+    for spec in specs():
+        man = read_manifest(out, spec)
+        if man and not man.get("error") and not all((out / f).is_file() for f in man["files"]):
+            man = None
+        entries.append((spec, man))
+    page = render_index(out, entries, summary=summary)
+    index = out / "index.html"
+    with atomic_output(index) as tmp:
+        Path(tmp).write_text(page, encoding="utf-8")
+    return index
+
+
+def build(out=DEFAULT_OUT, *, only=None, quick=False, force=False, show_progress=None, log=None):
+    """Build the gallery (or the group ``only``) into ``out`` and write ``out/index.html``.
+
+    Returns a dict with ``index`` (path), ``built``, ``skipped`` and ``failed``
+    (lists of figure keys) and ``seconds``.
+    """
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    chosen = specs(only)
+    t0 = time.perf_counter()
+    built, skipped, failed = [], [], []
+    bar = progress(chosen, total=len(chosen), desc="gallery", enabled=show_progress, unit="figure")
+    for spec in bar:
+        if hasattr(bar, "set_postfix_str"):
+            bar.set_postfix_str(spec.key)
+        if not force and is_up_to_date(out, spec, quick):
+            skipped.append(spec.key)
+            continue
+        man = build_figure(out, spec, quick)
+        if man.get("error"):
+            failed.append(spec.key)
+            if log:
+                log(f"gallery: {spec.key} failed: {man['error']}")
+        else:
+            built.append(spec.key)
+    seconds = time.perf_counter() - t0
+    mode = "quick" if quick else "full"
+    summary = (f"Reproductions of the figures of the seed documents (Langer & Zhang's falling snow, "
+               f"Phillips' noisy stimuli) with noiselab, each with what the analysers measured on it. "
+               f"Last build ({mode}): {len(built)} built, {len(skipped)} up to date, {len(failed)} failed, "
+               f"{seconds:.1f} s.")
+    index = write_index(out, summary=summary)
+    return {"index": index, "built": built, "skipped": skipped, "failed": failed, "seconds": seconds}
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--out", "-o", default=str(DEFAULT_OUT), help="output folder (default: %(default)s)")
+    parser.add_argument("--only", action="append", metavar="NAME",
+                        help="build only this figure group (or one figure, GROUP/NAME); repeatable")
+    parser.add_argument("--quick", action="store_true", help="small, fast versions of every figure (for tests)")
+    parser.add_argument("--force", action="store_true", help="rebuild figures even if they are up to date")
+    parser.add_argument("--list", action="store_true", help="list the figure groups and figures, then exit")
+    parser.add_argument("--progress", dest="show_progress", action="store_true", default=None,
+                        help="always show the progress bar (default: only on a terminal)")
+    parser.add_argument("--no-progress", dest="show_progress", action="store_false", help="never show the progress bar")
+
+
+def run(args) -> int:
+    if args.list:
+        for spec in specs(args.only):
+            print(f"{spec.key:32s} {spec.seed}: {spec.title}")
+        return 0
+    report = build(args.out, only=args.only, quick=args.quick, force=args.force,
+                   show_progress=args.show_progress, log=lambda m: print(m, file=sys.stderr))
+    index = Path(report["index"]).resolve()
+    print(f"gallery: {len(report['built'])} built, {len(report['skipped'])} up to date, "
+          f"{len(report['failed'])} failed in {report['seconds']:.1f} s")
+    print(f"gallery: open {index}")
+    return 1 if report["failed"] else 0
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="gallery/build.py", description=__doc__.split("\n\n")[0])
+    add_arguments(parser)
+    args = parser.parse_args(argv)
+    try:
+        return run(args)
+    except (ValueError, TypeError, FileNotFoundError, MemoryError) as exc:
+        print(f"gallery: error: {exc}", file=sys.stderr)
+        return 2

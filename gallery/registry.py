@@ -1,0 +1,160 @@
+"""The one place figures are registered, and what a figure function returns.
+
+A figure function draws one figure (or video) of the gallery::
+
+    @figure("snow", "fig3_2", seed="Zhang 2003, Fig. 3.2", title="The tent surface",
+            params=dict(c=1.0, n=48), quick=dict(n=16), uses=("noiselab.spectral",))
+    def tent(out, *, c, n):
+        path = out / "tent.png"
+        ...                                   # write files into the folder ``out``
+        return Result([path], "the tent w_t = c w_y / |w|", measured={"energy on tent": 0.97})
+
+It receives the folder to write into and its parameters as keywords (the
+``quick`` values replace ``params`` for the fast test build), and returns a
+:class:`Result`: the files it wrote and a caption. The builder adds the seed
+figure it reproduces, the parameters, and the measured analyser figures to the
+caption, so every caption carries all three.
+
+Adding a figure is adding one decorated function to one of the modules listed
+in :data:`gallery.figures.GROUP_MODULES`.
+"""
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import inspect
+import json
+from pathlib import Path
+from typing import Callable
+
+__all__ = ["Result", "FigureSpec", "figure", "REGISTRY", "specs", "content_hash", "module_version"]
+
+
+@dataclasses.dataclass
+class Result:
+    """What a figure function returns.
+
+    Parameters
+    ----------
+    files : list of path-like
+        The files it wrote, inside the folder it was given. PNG/GIF/JPEG are
+        shown as images, MP4 as videos (with the GIF of the same stem as its
+        preview), anything else (PLY, NPY) as a download link.
+    caption : str
+        What the figure shows. The builder prefixes the seed figure and appends
+        the parameters and ``measured``.
+    measured : dict
+        Analyser figures measured on the output, name -> value (a number or a
+        short string), shown in the caption.
+    """
+
+    files: list
+    caption: str
+    measured: dict = dataclasses.field(default_factory=dict)
+
+
+@dataclasses.dataclass(frozen=True)
+class FigureSpec:
+    """A registered figure: its group, id, seed figure, title, parameters and function."""
+
+    group: str
+    name: str
+    seed: str
+    title: str
+    params: dict
+    quick: dict
+    uses: tuple
+    func: Callable
+
+    @property
+    def key(self) -> str:
+        return f"{self.group}/{self.name}"
+
+    def parameters(self, quick: bool = False) -> dict:
+        p = dict(self.params)
+        if quick:
+            p.update(self.quick)
+        return p
+
+
+REGISTRY: dict[str, FigureSpec] = {}
+
+
+def figure(group, name, *, seed, title, params=None, quick=None, uses=()):
+    """Register a figure function under ``group/name``.
+
+    ``seed`` names the figure of a seed document it reproduces (for example
+    ``"Phillips 2004, Fig. 12"``) or says it is the lab's own; ``params`` are
+    passed to the function as keywords; ``quick`` overrides some of them for a
+    fast build; ``uses`` lists the noiselab modules it calls (their source is
+    part of the content hash, so a change there rebuilds the figure).
+    """
+    params = dict(params or {})
+    quick = dict(quick or {})
+    unknown = set(quick) - set(params)
+    if unknown:
+        raise ValueError(f"figure {group}/{name}: quick overrides unknown parameters {sorted(unknown)}")
+
+    def register(func):
+        spec = FigureSpec(group, name, seed, title, params, quick, tuple(uses), func)
+        if spec.key in REGISTRY:
+            raise ValueError(f"figure {spec.key} is registered twice")
+        REGISTRY[spec.key] = spec
+        return func
+
+    return register
+
+
+def specs(only=None) -> list[FigureSpec]:
+    """Registered figures in registration order; ``only`` keeps a group name or one ``group/name``."""
+    from . import figures  # noqa: F401  (importing registers every figure)
+
+    all_specs = list(REGISTRY.values())
+    if not only:
+        return all_specs
+    wanted = [only] if isinstance(only, str) else list(only)
+    groups = sorted({s.group for s in all_specs})
+    chosen = []
+    for w in wanted:
+        hit = [s for s in all_specs if s.group == w or s.key == w]
+        if not hit:
+            raise ValueError(f"--only: no figure group or figure named {w!r}; groups are {', '.join(groups)}")
+        chosen += [s for s in hit if s not in chosen]
+    return chosen
+
+
+_ROOT = Path(__file__).resolve().parents[1]
+
+
+def module_version(module: str) -> str:
+    """A short hash of a module's source (every ``.py`` of a package), plus noiselab's version.
+
+    Reads files only (never imports), so an unfinished module does not break
+    the hash. A module that does not exist hashes to ``"missing"``.
+    """
+    rel = Path(*module.split("."))
+    pkg = _ROOT / rel
+    files = sorted(pkg.rglob("*.py")) if pkg.is_dir() else [pkg.with_suffix(".py")]
+    h = hashlib.sha256()
+    found = False
+    for f in files:
+        if f.is_file():
+            found = True
+            h.update(str(f.relative_to(_ROOT)).encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()[:16] if found else "missing"
+
+
+def content_hash(spec: FigureSpec, quick: bool = False) -> str:
+    """Hash of (function source, parameters, noiselab version and source of the modules it uses)."""
+    from noiselab import __version__
+
+    modules = sorted(set(spec.uses) | {"gallery._common"})
+    payload = {
+        "key": spec.key,
+        "source": inspect.getsource(spec.func),
+        "params": spec.parameters(quick),
+        "noiselab": __version__,
+        "modules": {m: module_version(m) for m in modules},
+    }
+    return hashlib.sha256(json.dumps(payload, sort_keys=True, default=repr).encode()).hexdigest()

@@ -1,0 +1,47 @@
+"""``noiselab gallery``: build the gallery of the seed papers' figures (same as ``python3 gallery/build.py``).
+
+The builder lives in the repository's ``gallery/`` folder (beside this
+package); this command loads that folder as the package ``noiselab_gallery``
+by path and runs its ``build.py``, so both entry points share one code path.
+"""
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import sys
+from pathlib import Path
+
+NAME = "gallery"
+HELP = "build the gallery (the seed papers' figures, reproduced and measured) and print where index.html is"
+
+PACKAGE = "noiselab_gallery"
+GALLERY_DIR = Path(__file__).resolve().parents[2] / "gallery"
+
+
+def load_builder():
+    """Import ``gallery/`` as the package ``noiselab_gallery`` and return its ``build`` module."""
+    if PACKAGE not in sys.modules:
+        init = GALLERY_DIR / "__init__.py"
+        if not init.is_file():
+            raise FileNotFoundError(f"the gallery builder is not at {str(GALLERY_DIR)!r} "
+                                    "(noiselab must be installed editable from its repository: ./install.sh)")
+        spec = importlib.util.spec_from_file_location(PACKAGE, init, submodule_search_locations=[str(GALLERY_DIR)])
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[PACKAGE] = module
+        try:
+            spec.loader.exec_module(module)
+        except BaseException:
+            del sys.modules[PACKAGE]
+            raise
+    return importlib.import_module(f"{PACKAGE}.build")
+
+
+def add_arguments(parser):
+    try:
+        load_builder().add_arguments(parser)
+    except FileNotFoundError:
+        pass
+
+
+def run(args) -> int:
+    return load_builder().run(args)
