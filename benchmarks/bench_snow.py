@@ -178,7 +178,7 @@ for _ in range(rounds):
     r.append((t2 - t1) / (t1 - t0))
 import resource
 print(json.dumps({"ratio": float(np.median(r)), "maxrss_mib": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
-                  "version": getattr(mc, "__version__", "?")}))
+                  "version": __import__("importlib.metadata").metadata.version("MotionClouds")}))
 """
 
 
