@@ -265,3 +265,29 @@ def test_rescale_opacity_constant_field_and_nan():
     np.testing.assert_allclose(rescale_opacity(x.copy(), beta=2.0), [0, 1 / 16, 1.0])
     with pytest.raises(ValueError, match="NaN"):
         rescale_opacity(np.array([0.0, np.nan]))
+
+
+def test_peak_memory_stays_within_two_and_a_half_outputs():
+    import tracemalloc
+
+    shape = (32, 256, 256)
+    snow((2, 16, 16), seed=0)
+    tracemalloc.start()
+    a = snow(shape, seed=0)
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    assert peak <= 2.5 * a.nbytes, peak / a.nbytes
+
+
+def test_default_snow_falls_down_in_its_spectrum_and_images():
+    shape = (16, 128, 128)
+    a = snow(shape, seed=3).astype(np.float64)
+    F = np.abs(np.fft.fftn(a - a.mean())) ** 2
+    wt = np.fft.fftfreq(16)[:, None, None]
+    wy = np.fft.fftfreq(128)[None, :, None]
+    # downward motion: energy where wt and wy have opposite signs (wt = -v*wy)
+    prod = np.broadcast_to(wt * wy, F.shape)
+    down, up = F[prod < 0].sum(), F[prod > 0].sum()
+    assert down > 20 * up
+    dx, dy = _mean_displacement(a, steps=8)
+    assert dy > 0.5 and abs(dx) < 0.5

@@ -135,6 +135,15 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
         Opacity in [0, 1] (or the raw field). Periodic in t, y and x: it loops
         and tiles seamlessly.
 
+    Notes
+    -----
+    A video of ``T`` frames holds temporal frequencies in steps of
+    ``2*pi/T`` rad/frame, so each spatial frequency's speed is quantised to
+    that grid (a cell gets the temporal bins its thickened surface overlaps);
+    the thickness and a longer ``T`` smooth the range of speeds. Its 1/f
+    amplitude is split evenly over those bins, so the spatial spectrum does
+    not depend on the thickness.
+
     Examples
     --------
     >>> a = snow((16, 64, 64), seed=0)
