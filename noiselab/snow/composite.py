@@ -162,7 +162,7 @@ def parallax_composite(foreground, mask, *, transmittance=0.3, veil=255.0, veile
     >>> m = np.zeros((4, 4), bool); m[:, 2:] = True
     >>> video, contrast = parallax_composite(fg, m)
     >>> {k: round(v, 3) for k, v in contrast.items()}
-    {'veiled': 0.167, 'clear': 1.0}
+    {'veiled': 0.149, 'clear': 1.0}
     """
     fg = _check_alpha(foreground, "foreground")
     transmittance = check_real("transmittance", transmittance, lo=0, hi=1)
