@@ -329,3 +329,19 @@ def test_mesh_writing_errors_leave_nothing(tmp_path):
         read_mesh(tmp_path / "cloud.ply")
     with pytest.raises(FileNotFoundError):
         read_mesh(tmp_path / "missing.ply")
+
+
+def test_numba_face_pass_matches_the_numpy_reference():
+    import importlib
+
+    D = importlib.import_module("noiselab.geometry.displace")
+    mesh = displace(load_model("ant"), waves, 0.05, on_aliasing="ignore")
+    v, f = D._arrays(mesh)
+    unit, volume, lengths = D.face_pass(v, f, True)
+    a, ab, bc, ca, cross = D._face_geometry(v, f)
+    np.testing.assert_allclose(unit, D._area_weighted_normals(cross, f, len(v)), atol=1e-12)
+    np.testing.assert_allclose(np.sort(lengths), np.sort(D._edge_lengths(ab, bc, ca)), rtol=1e-12)
+    assert volume == pytest.approx(mesh.volume, rel=1e-9)
+    bad = trimesh.Trimesh(v, np.vstack([f, [[0, 1, len(v) + 5]]]), process=False, validate=False)
+    with pytest.raises(ValueError, match="index vertices outside"):
+        displace(bad, waves)

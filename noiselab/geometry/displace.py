@@ -20,6 +20,7 @@ import warnings
 import numpy as np
 
 from .._validate import check_finite_array, check_int, check_memory, check_real
+from ._kernels import face_pass
 from .fields import evaluate_field, field_max_frequency, octave_field
 
 __all__ = [
@@ -70,21 +71,15 @@ def as_trimesh(mesh, *, name="mesh"):
     return out
 
 
-def vertex_normals(mesh) -> np.ndarray:
-    """Area-weighted unit vertex normals, float64 ``(n_vertices, 3)``.
+def _face_geometry(vertices, faces):
+    """Per-face corner differences and cross products, shared by the normals, volume and edge lengths."""
+    a, b, c = vertices[faces[:, 0]], vertices[faces[:, 1]], vertices[faces[:, 2]]
+    ab, bc, ca = b - a, c - b, a - c
+    return a, ab, bc, ca, np.cross(ab, -ca)
 
-    Each face adds its cross product ``(b - a) x (c - a)`` (twice its area
-    times its unit normal) to its three vertices; the sums are normalised.
-    Zero-area faces add nothing. A vertex that no face references, or whose
-    faces cancel (zero sum), gets a zero normal and therefore no displacement.
-    """
-    mesh = as_trimesh(mesh)
-    v = np.asarray(mesh.vertices, dtype=np.float64)
-    f = np.asarray(mesh.faces, dtype=np.int64)
-    a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
-    cross = np.cross(b - a, c - a)
-    idx = f.ravel()
-    n = len(v)
+
+def _area_weighted_normals(cross, faces, n):
+    idx = faces.ravel()
     normals = np.empty((n, 3))
     for axis in range(3):
         normals[:, axis] = np.bincount(idx, weights=np.repeat(cross[:, axis], 3), minlength=n)
@@ -96,13 +91,61 @@ def vertex_normals(mesh) -> np.ndarray:
     return normals
 
 
+def _edge_lengths(ab, bc, ca):
+    """Lengths of every face's three edges (an interior edge appears once per face: twice)."""
+    return np.sqrt(np.concatenate([np.einsum("ij,ij->i", e, e) for e in (ab, bc, ca)]))
+
+
+def _closed_and_consistent(faces, n):
+    """True when every directed edge a->b has its reverse b->a: a closed surface wound consistently.
+
+    Exactly the condition under which the signed volume tells inside from
+    outside. One sort of 3F int64 keys (trimesh's ``is_watertight`` hashes
+    rows instead and is several times slower on large meshes).
+    """
+    src = faces.ravel()
+    dst = np.roll(faces, -1, axis=1).ravel()
+    n = np.int64(n)
+    forward = np.sort(src * n + dst)
+    backward = np.sort(dst * n + src)
+    return bool(np.array_equal(forward, backward))
+
+
+def vertex_normals(mesh) -> np.ndarray:
+    """Area-weighted unit vertex normals, float64 ``(n_vertices, 3)``.
+
+    Each face adds its cross product ``(b - a) x (c - a)`` (twice its area
+    times its unit normal) to its three vertices; the sums are normalised.
+    Zero-area faces add nothing. A vertex that no face references, or whose
+    faces cancel (zero sum), gets a zero normal and therefore no displacement.
+
+    Examples
+    --------
+    >>> import trimesh
+    >>> n = vertex_normals(trimesh.creation.box())
+    >>> bool(abs(n[0] @ n[0] - 1) < 1e-12)
+    True
+    """
+    mesh = as_trimesh(mesh)
+    v, f = _arrays(mesh)
+    return face_pass(v, f, False)[0]
+
+
+def _arrays(mesh):
+    v = np.ascontiguousarray(mesh.vertices, dtype=np.float64)
+    f = np.ascontiguousarray(mesh.faces, dtype=np.int64)
+    if f.size and (f.min() < 0 or f.max() >= len(v)):
+        raise ValueError(f"mesh faces index vertices outside [0, {len(v) - 1}]")
+    return v, f
+
+
 @dataclasses.dataclass(frozen=True)
 class ResolutionReport:
     """How finely a mesh samples a field of a given highest frequency.
 
     ``samples_per_period`` is the period of the highest frequency divided by
     the longest edge (the worst place on the mesh); ``median_samples_per_period``
-    uses the median edge. ``target_edge`` is the longest edge that gives
+    uses the median edge (over the faces' edges, so shared edges count twice). ``target_edge`` is the longest edge that gives
     ``required`` samples per period, and ``subdivisions`` the number of
     midpoint subdivisions (each halves every edge) that reach it.
     """
@@ -157,7 +200,11 @@ def resolution_report(mesh, max_frequency, *, samples_per_period=4.0) -> Resolut
     mesh = as_trimesh(mesh)
     max_frequency = check_real("max_frequency", max_frequency, lo=0.0)
     required = check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
-    lengths = np.asarray(mesh.edges_unique_length)
+    v, f = _arrays(mesh)
+    return _report(face_pass(v, f, True)[2], max_frequency, required)
+
+
+def _report(lengths, max_frequency, required):
     lengths = lengths[lengths > 0]
     if lengths.size == 0:
         raise ValueError("mesh has only zero-length edges; its resolution is undefined")
@@ -277,11 +324,11 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
     return trimesh.Trimesh(v, f, process=False)
 
 
-def _check_resolution(mesh, field, frequency, octaves, lacunarity, samples_per_period, on_aliasing):
+def _check_resolution(lengths, field, frequency, octaves, lacunarity, samples_per_period, on_aliasing):
     if on_aliasing == "ignore":
         return None
-    report = resolution_report(mesh, _highest_frequency(field, frequency, octaves, lacunarity),
-                               samples_per_period=samples_per_period)
+    report = _report(lengths, _highest_frequency(field, frequency, octaves, lacunarity),
+                     check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6))
     if not report.ok:
         if on_aliasing == "raise":
             raise ValueError(report.message())
@@ -296,6 +343,14 @@ def _as_vector(name, value, size):
     if arr.shape != (size,):
         raise ValueError(f"{name} must be a number or a vector of {size} numbers, got shape {arr.shape}")
     return check_finite_array(name, arr)
+
+
+def _outward(normals, volume, faces):
+    # Outward whatever the winding: a closed, consistently wound mesh that is
+    # inside out has a negative signed volume (only then is the sign defined).
+    if volume < 0 and _closed_and_consistent(faces, len(normals)):
+        return -normals
+    return normals
 
 
 def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *, octaves=1, kind="fractal",
@@ -329,7 +384,8 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
         Octave sum applied to ``field`` (see :func:`octave_field`).
     normals : (n, 3) array, optional
         Displacement directions; default :func:`vertex_normals` (area-weighted),
-        flipped to point outwards for a watertight mesh of negative volume.
+        flipped to point outwards for a closed, consistently wound mesh of
+        negative signed volume (an inside-out mesh).
     samples_per_period, on_aliasing
         Resolution check: "warn" (:class:`AliasingWarning`), "raise" or
         "ignore" when the longest edge gives fewer than ``samples_per_period``
@@ -364,26 +420,25 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
     if on_aliasing not in ("warn", "raise", "ignore"):
         raise ValueError(f"on_aliasing must be 'warn', 'raise' or 'ignore', got {on_aliasing!r}")
     source = octave_field(field, octaves, kind, lacunarity=lacunarity, gain=gain)
-    vertices = np.asarray(mesh.vertices, dtype=np.float64)
+    vertices, faces = _arrays(mesh)
+    unit, volume, lengths = face_pass(vertices, faces, on_aliasing != "ignore")
     if normals is None:
-        n = vertex_normals(mesh)
-        # Outward normals whatever the winding: a closed mesh wound inside out
-        # has negative volume (checked only when watertight, where it is defined).
-        if mesh.is_watertight and mesh.volume < 0:
-            n = -n
+        n = _outward(unit, volume, faces)
     else:
         n = check_finite_array("normals", normals).astype(np.float64)
         if n.shape != vertices.shape:
             raise ValueError(f"normals must have shape {vertices.shape}, got {n.shape}")
-    _check_resolution(mesh, field, freq, octaves if kind != "noise" else 1, check_real("lacunarity", lacunarity),
-                      samples_per_period, on_aliasing)
+    if on_aliasing != "ignore":
+        _check_resolution(lengths, field, freq, octaves if kind != "noise" else 1,
+                          check_real("lacunarity", lacunarity), samples_per_period, on_aliasing)
+    del lengths
     points = vertices * freq + phase_v
     if time is not None:
         points = np.concatenate([points, np.full((len(points), 1), time)], axis=1)
     s = evaluate_field(source, points, components=1, chunk_size=chunk_size)
     s *= amplitude
     new_vertices = vertices + s[:, None] * n
-    out = trimesh.Trimesh(new_vertices, np.array(mesh.faces, dtype=np.int64), process=False, validate=False)
+    out = trimesh.Trimesh(new_vertices, faces.copy(), process=False, validate=False)
     if mesh.visual.kind == "vertex":
         out.visual = mesh.visual.copy()
     out.vertex_attributes["displacement"] = s
@@ -410,9 +465,9 @@ def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0,
         raise ValueError(f"times must be a 1-D sequence, got shape {times.shape}")
     normals = kwargs.pop("normals", None)
     if normals is None:
-        normals = vertex_normals(mesh)
-        if mesh.is_watertight and mesh.volume < 0:
-            normals = -normals
+        v, f = _arrays(mesh)
+        unit, volume, _ = face_pass(v, f, False)
+        normals = _outward(unit, volume, f)
     on_aliasing = kwargs.pop("on_aliasing", "warn")
     for i, t in enumerate(times):
         yield displace(mesh, field, amplitude, frequency, phase, float(t), normals=normals,
