@@ -121,6 +121,13 @@ def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
     ``c`` is the thesis's tent constant in rad/frame; a flake at spatial
     frequency ``|w|`` rad/px moves along ``d`` at ``c/|w|`` px/frame, plus the
     pan velocity. At DC the tent term is taken as 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> w = 2 * np.pi * 16 / 512          # 16 cycles/frame at 512 px, straight down the image
+    >>> float(tent_surface(w, 0.0, c=1.0))  # wt = -c: the flake moves at c/|w| = 5.09 px/frame
+    -1.0
     """
     dx, dy = unit_direction(direction)
     ux, uy = (float(u) for u in pan)

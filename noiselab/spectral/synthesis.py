@@ -43,6 +43,13 @@ def draw_coefficients(n, rng, amplitude="uniform", dtype=np.float32) -> np.ndarr
 
     The draws happen in one fixed order (all amplitudes, then all phases), so
     the same generator state always gives the same values.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> z = draw_coefficients(100000, np.random.default_rng(0), "rayleigh")
+    >>> z.dtype, round(float(np.mean(np.abs(z) ** 2)), 2)
+    (dtype('complex64'), 1.0)
     """
     if amplitude not in AMPLITUDES:
         raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
