@@ -109,12 +109,45 @@ def accuracy(n, seeds):
     for alpha in (0.5, 1.0, 1.5, 2.0):
         errs, ses = [], []
         for s in range(seeds):
-            fit = A.spectral_slope(power_law_field(n, alpha, 1000 + s), (4, n / 4))
+            fit = A.spectral_slope(power_law_field(n, alpha, 1000 * int(10 * alpha) + s), (4, n / 4))
             errs.append(float(fit) + alpha)
             ses.append(fit.error)
         errs = np.array(errs)
         out.append((alpha, float(np.mean(errs)), float(np.std(errs)), float(np.max(np.abs(errs))), float(np.mean(ses))))
     return out
+
+
+def generator_figures():
+    """The figures the spectral checks assert on, measured on noiselab's own generators."""
+    from noiselab.lattice import Grid
+
+    rows = []
+    T, H, W = 32, 128, 128
+    band = (W / 32, W / 4)
+    tol = 0.5 + 0.1 * 1.0 * T / (2 * np.pi)
+    raw = noiselab.snow((T, H, W), seed=1, c=1.0, thickness=0.1, rescale=False)
+    alpha = noiselab.snow((T, H, W), seed=1, c=1.0, thickness=0.1)
+    rows.append(("snow raw field: power on the tent (c=1, thickness 0.1), 32x128x128", f"{A.tent_energy(raw, 1.0, band, tol=tol):.12f}"))
+    rows.append(("snow opacity (beta 1.5): power on the tent", f"{A.tent_energy(alpha, 1.0, band, tol=tol):.4f}"))
+    rows.append(("snow opacity: power inside the band 4..32 cycles/frame", f"{A.band_energy(alpha, band, axes=(-2, -1)):.4f}"))
+    prof = A.speed_profile(raw, A.octave_bands(*band, per_octave=2))
+    rows.append(("snow: speed x w (w = 2 pi f / W rad/px) per half-octave band, c = 1 rad/frame", ", ".join(f"{x:.3f}" for x in prof.parallax)))
+    rows.append(("snow: best single velocity (px/frame)", "({:+.3f}, {:+.3f})".format(*A.best_velocity(raw))))
+    rows.append(("snow opacity: loop seam / tile seam", f"{A.loop_seam(alpha):.3f} / {A.tile_seam(alpha):.3f}"))
+    for e in (0.5, 1.0, 2.0):
+        img = noiselab.spectral_noise((512, 512), exponent=e, seed=int(10 * e))
+        rows.append((f"spectral_noise exponent {e:g}: amplitude slope 4..128 at 512x512", f"{float(A.spectral_slope(img, (4, 128))):+.4f}"))
+    rows.append(("spectral_noise 512x512: anisotropy", f"{A.anisotropy(noiselab.spectral_noise((512, 512), seed=9)):.4f}"))
+    for k in ("box", "linear", "quadratic", "cubic", "catmull-rom", "quintic"):
+        img = noiselab.LatticeNoise(2, seed=3, kernel=k, period=8).grid((256, 256), [(0, 8), (0, 8)])
+        o = A.orientation_energy(img)
+        rows.append((f"lattice value noise, {k}: power beyond the lattice frequency / anisotropy (m2, m4)",
+                     f"{A.band_energy(img, (8, 128 * np.sqrt(2))):.2e} / {o.index:.3f} ({o.m2:.3f}, {o.m4:.3f})"))
+    for g in (0.5, 2**-0.5, 1.0):
+        img = noiselab.fractal_sum(noiselab.LatticeNoise(2, seed=4, kernel="cubic"), Grid((256, 256), [(0, 4), (0, 4)]), 8, gain=g)
+        rows.append((f"fractal_sum (cubic) gain {g:.3f}: slope 8..64, Hann (expected {np.log2(g) - 1:+.2f})",
+                     f"{float(A.spectral_slope(img, (8, 64), window='hann')):+.3f}"))
+    return rows
 
 
 def main():
@@ -127,6 +160,7 @@ def main():
     n = 256 if args.quick else 512
     rows, mem, nbytes = timing(shape, rounds)
     acc = accuracy(n, seeds)
+    gens = generator_figures()
     cmd = "python3 benchmarks/bench_analysis.py" + (" --quick" if args.quick else "")
     lines = [
         "# noiselab.analysis: speed, memory and slope accuracy",
@@ -160,6 +194,14 @@ def main():
         "| ---: | ---: | ---: | ---: | ---: |",
     ]
     lines += [f"| {a:g} | {m:+.4f} | {s:.4f} | {mx:.4f} | {se:.4f} |" for a, m, s, mx, se in acc]
+    lines += [
+        "",
+        "## The generators measured (the figures behind tests/test_spectral_checks.py)",
+        "",
+        "| measurement | value |",
+        "| --- | --- |",
+    ]
+    lines += [f"| {k} | {v} |" for k, v in gens]
     text = "\n".join(lines) + "\n"
     print(text)
     if not args.quick:
