@@ -16,7 +16,8 @@ def add_arguments(p):
     g.add_argument("--width", type=int, default=None, help="frame width in px (default: the background's, else 512)")
     g.add_argument("--height", type=int, default=None, help="frame height in px (default: the background's, else 512)")
     g.add_argument("--frames", type=int, default=64, help="frames in one period of the snow (default 64); it loops seamlessly")
-    g.add_argument("--loops", type=int, default=2, help="how many periods to write (default 2)")
+    g.add_argument("--loops", type=int, default=2,
+                   help="how many periods to write (default 2; a video background sets the length instead)")
     g.add_argument("--tile", type=int, default=None, metavar="N",
                    help="render an N x N tile and repeat it over the frame (thesis 3.4; cheaper, periodic)")
     g.add_argument("--seed", type=int, default=0, help="random seed (default 0); same seed, same video")
