@@ -8,8 +8,8 @@ would point at any other image or video (their closed-form tests are in
 Units: ``c`` in rad/frame, bands in cycles/frame (cycles per frame width),
 velocities in px/frame with +y down. The snow generator thickens the tent
 by spreading ``c`` over ``c (1 +- thickness)`` and fills every temporal bin
-that overlaps it, so its energy lies within ``1/2 + thickness c T / (2 pi)``
-temporal bins of the thin tent: that is the tolerance used here.
+that overlaps it; ``tent_energy(..., thickness=...)`` with its default
+``tol=0.5`` accepts exactly those bins.
 """
 import numpy as np
 import pytest
@@ -22,10 +22,6 @@ T, H, W = 32, 128, 128
 BAND = (W / 32, W / 4)  # snow's default band: 4..32 cycles/frame at 128 px (16..128 at 512)
 CORNER = 128 * np.sqrt(2)  # the corner of a 256 x 256 spectrum, cycles/frame
 KERNELS = ["box", "linear", "quadratic", "cubic", "catmull-rom", "quintic"]
-
-
-def tent_tol(c, thickness, frames=T):
-    return 0.5 + thickness * c * frames / (2 * np.pi) + 1e-9
 
 
 @pytest.fixture(scope="module")
@@ -41,22 +37,21 @@ def alpha_snow():
 # ---------------------------------------------------------------- falling snow
 def test_snow_energy_lies_on_the_tent_and_inside_the_band(raw_snow, alpha_snow):
     spec = A.video_spectrum(raw_snow)
-    tol = tent_tol(1.0, 0.1)
-    assert A.tent_energy(spec, 1.0, BAND, tol=tol) > 0.999999
+    assert A.tent_energy(spec, 1.0, BAND, thickness=0.1) > 0.999999
     assert A.band_energy(raw_snow, BAND, axes=(-2, -1)) > 0.99999
     # the instruments can tell: falling up, sideways, or at another c is off the tent
-    assert A.tent_energy(spec, 1.0, BAND, direction=(0, -1), tol=tol) < 0.2
-    assert A.tent_energy(spec, 1.0, BAND, direction=(1, 0), tol=tol) < 0.5
-    assert A.tent_energy(spec, 0.3, BAND, tol=tent_tol(0.3, 0.1)) < 0.5
+    assert A.tent_energy(spec, 1.0, BAND, direction=(0, -1), thickness=0.1) < 0.2
+    assert A.tent_energy(spec, 1.0, BAND, direction=(1, 0), thickness=0.1) < 0.5
+    assert A.tent_energy(spec, 0.3, BAND, thickness=0.1) < 0.5
     # the opacity alpha = rescaled ** 1.5 is a nonlinear map of the field: most energy stays on the tent
-    assert A.tent_energy(alpha_snow, 1.0, BAND, tol=tol) > 0.98
+    assert A.tent_energy(alpha_snow, 1.0, BAND, thickness=0.1) > 0.98
     assert A.band_energy(alpha_snow, BAND, axes=(-2, -1)) > 0.99
 
 
 @pytest.mark.parametrize("c, thickness", [(0.5, 0.3), (2.0, 0.0)])
 def test_thin_and_thick_tents_at_other_c(c, thickness):
     raw = noiselab.snow((T, H, W), seed=2, c=c, thickness=thickness, rescale=False)
-    assert A.tent_energy(raw, c, BAND, tol=tent_tol(c, thickness)) > 0.999999
+    assert A.tent_energy(raw, c, BAND, thickness=thickness) > 0.999999
 
 
 def test_parallax_law_speed_times_frequency_is_constant(raw_snow):
@@ -81,8 +76,8 @@ def test_snow_falls_down_by_default(raw_snow):
 def test_snow_falls_in_a_rotated_direction(angle):
     d = (np.cos(np.deg2rad(angle)), np.sin(np.deg2rad(angle)))
     raw = noiselab.snow((T, H, W), seed=3, c=1.0, direction=d, rescale=False)
-    assert A.tent_energy(raw, 1.0, BAND, direction=d, tol=tent_tol(1.0, 0.1)) > 0.999999
-    assert A.tent_energy(raw, 1.0, BAND, tol=tent_tol(1.0, 0.1)) < 0.5
+    assert A.tent_energy(raw, 1.0, BAND, direction=d, thickness=0.1) > 0.999999
+    assert A.tent_energy(raw, 1.0, BAND, thickness=0.1) < 0.5
     for vx, vy in A.band_speeds(raw, A.octave_bands(*BAND, per_octave=1)):
         err = (np.rad2deg(np.arctan2(vy, vx)) - angle + 180) % 360 - 180
         assert abs(err) < 4, (angle, vx, vy)
@@ -91,8 +86,8 @@ def test_snow_falls_in_a_rotated_direction(angle):
 def test_panning_camera_gives_the_sheared_tent():
     pan = (0.5, 0.0)
     raw = noiselab.snow((T, H, W), seed=4, c=1.0, pan=pan, rescale=False)
-    assert A.sheared_tent_energy(raw, 1.0, BAND, pan=pan, tol=tent_tol(1.0, 0.1)) > 0.999999
-    assert A.tent_energy(raw, 1.0, BAND, tol=tent_tol(1.0, 0.1)) < 0.7
+    assert A.sheared_tent_energy(raw, 1.0, BAND, pan=pan, thickness=0.1) > 0.999999
+    assert A.tent_energy(raw, 1.0, BAND, thickness=0.1) < 0.7
     prof = A.speed_profile(raw, A.octave_bands(*BAND, per_octave=1))
     # every layer carries the pan, to within the velocity resolution of a band: one temporal bin
     # (2 pi / T rad/frame) over the band's |w| (the tent is quantised to whole bins)
@@ -103,7 +98,7 @@ def test_panning_camera_gives_the_sheared_tent():
 
 def test_aliased_cells_dropped_leave_no_backward_motion():
     raw = noiselab.snow((T, H, W), seed=5, c=3.0, thickness=0.1, on_alias="drop", rescale=False)
-    assert A.tent_energy(raw, 3.0, BAND, tol=tent_tol(3.0, 0.1)) > 0.999999
+    assert A.tent_energy(raw, 3.0, BAND, thickness=0.1) > 0.999999
     speeds = A.band_speeds(raw, A.octave_bands(*BAND, per_octave=2))
     assert np.all(speeds[:, 1] > 0)
 

@@ -113,16 +113,20 @@ def _surface_energy(spec: PowerSpectrum, grid: _Grid, kt_pred: np.ndarray, regio
     cells = np.flatnonzero(region)
     p2 = spec.power.reshape(t, -1)
     wgt = np.broadcast_to(grid.weight, shape).ravel()[cells]
-    if 2 * tol + 1 >= t:  # every temporal bin is within tol
-        return float(np.sum(p2[:, cells], dtype=np.float64, axis=0) @ wgt) / total
-    kp = np.broadcast_to(kt_pred, shape).ravel()[cells]
-    base = np.floor(kp - tol - 1e-9).astype(np.int64)
+    tolc = np.broadcast_to(np.asarray(tol, dtype=np.float64), shape).ravel()[cells]
     on = 0.0
-    for j in range(int(np.ceil(2 * tol)) + 2):
-        b = base + j
-        ok = np.abs(b - kp) <= tol + 1e-9
-        if ok.any():
-            on += float(np.sum(p2[np.mod(b[ok], t), cells[ok]] * wgt[ok], dtype=np.float64))
+    full = 2 * tolc + 1 >= t  # every temporal bin of these cells is within tol
+    if full.any():
+        on += float(np.sum(p2[:, cells[full]], dtype=np.float64, axis=0) @ wgt[full])
+        cells, wgt, tolc = cells[~full], wgt[~full], tolc[~full]
+    if cells.size:
+        kp = np.broadcast_to(kt_pred, shape).ravel()[np.flatnonzero(region)][~full]
+        base = np.floor(kp - tolc - 1e-9).astype(np.int64)
+        for j in range(int(np.ceil(2 * tolc.max())) + 2):
+            b = base + j
+            ok = np.abs(b - kp) <= tolc + 1e-9
+            if ok.any():
+                on += float(np.sum(p2[np.mod(b[ok], t), cells[ok]] * wgt[ok], dtype=np.float64))
     return on / total
 
 
@@ -177,7 +181,7 @@ def _tent_kt(g: _Grid, c, direction, pan):
     return wt * g.t / (2 * np.pi)
 
 
-def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), tol=1.0, window=None) -> float:
+def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), thickness=0.1, tol=0.5, window=None) -> float:
     """Fraction of a video's power on the falling-snow tent inside ``band``.
 
     The tent (Langer & Zhang Eq. 3.3, numpy's FFT sign): ``w_t = -(c / |w|) d . w``,
@@ -198,8 +202,14 @@ def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), tol=1.0
         Fall direction in image coordinates (+y down), any length.
     pan : (px, py)
         Camera pan as an image velocity in px/frame (sheared tent).
+    thickness : float
+        Relative thickness of the tent (thesis 3.2.1), in [0, 1]: ``c`` spread over
+        ``c (1 +- thickness)``, i.e. a half-width of ``thickness c |d . w| / |w|``
+        rad/frame added to ``tol``. The default 0.1 is ``noiselab.snow``'s.
     tol : float
-        Distance along ``w_t`` in temporal-frequency cells.
+        Distance along ``w_t`` in temporal-frequency cells beyond the
+        thickness. The default 1/2 accepts the bins that overlap the
+        (thickened) surface, exactly the cells ``noiselab.snow`` fills.
     window : {None, "hann"}
 
     Returns
@@ -213,22 +223,28 @@ def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), tol=1.0
     >>> # one layer at 4 cycles/frame moving down at c / |w| px/frame
     >>> c = np.pi / 4; w = 2 * np.pi * 4 / 32; v = c / w
     >>> video = np.cos(2 * np.pi * 4 * (y - v * t) / 32)
-    >>> round(tent_energy(video, c, (2, 8), tol=0.5), 6)
+    >>> round(tent_energy(video, c, (2, 8), thickness=0), 6)
     1.0
     """
     spec = video_spectrum(video, window=window)
     c = check_real("c", c, lo=0.0, hi=np.pi)
     d = check_vector("direction", direction, nonzero=True)
     p = check_vector("pan", pan)
+    thickness = check_real("thickness", thickness, lo=0.0, hi=1.0)
     tol = check_tol("tol", tol)
     g = _Grid(spec.shape)
     check_band("band", band, g.n_ref / 2.0)
-    return _surface_energy(spec, g, _tent_kt(g, c, d, p), g.band_mask(band), tol)
+    dh = d / np.hypot(*d)
+    wmag = np.hypot(g.wx, g.wy)
+    along = np.abs(dh[0] * g.wx + dh[1] * g.wy) / np.where(wmag > 0, wmag, 1.0)
+    tol_cells = tol + thickness * c * along * g.t / (2 * np.pi)
+    return _surface_energy(spec, g, _tent_kt(g, c, d, p), g.band_mask(band), tol_cells)
 
 
-def sheared_tent_energy(video, c, band, direction=(0.0, 1.0), pan=(0.0, 0.0), *, tol=1.0, window=None) -> float:
+def sheared_tent_energy(video, c, band, direction=(0.0, 1.0), pan=(0.0, 0.0), *, thickness=0.1, tol=0.5,
+                        window=None) -> float:
     """Fraction of the power on the sheared tent of a panning camera (see :func:`tent_energy`)."""
-    return tent_energy(video, c, band, direction, pan=pan, tol=tol, window=window)
+    return tent_energy(video, c, band, direction, pan=pan, thickness=thickness, tol=tol, window=window)
 
 
 def _lag_one(spec: PowerSpectrum) -> np.ndarray:
