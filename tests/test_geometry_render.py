@@ -148,3 +148,26 @@ def test_cli_bad_input_is_a_one_line_error(argv, match, capsys, tmp_path, monkey
     err = capsys.readouterr().err
     assert match in err and "Traceback" not in err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_stereo_pair_views_differ_by_the_separation():
+    from noiselab.geometry import render_stereo_pair
+
+    ant = load_model("ant")
+    pair = render_stereo_pair(ant, size=64, separation=6.0, gap=4)
+    assert pair.shape == (64, 132, 3)
+    right_eye, left_eye = pair[:, :64].astype(int), pair[:, 68:].astype(int)
+    assert np.abs(right_eye - left_eye).mean() > 0.5          # two viewpoints ...
+    assert abs(foreground(right_eye).mean() - foreground(left_eye).mean()) < 0.05   # ... of the same object
+    np.testing.assert_array_equal(pair[:, 64:68], 255)
+
+
+def test_pyvista_meshes_are_accepted_and_converted():
+    from noiselab.geometry.render import _pyvista
+
+    pv = _pyvista()
+    out = displace(pv.Sphere(radius=1.0, theta_resolution=40, phi_resolution=40), lambda p: np.ones(len(p)), 0.1)
+    r = np.linalg.norm(out.vertices, axis=1)
+    np.testing.assert_allclose(r, 1.1, atol=0.01)
+    with pytest.raises(ValueError, match="no polygon faces"):
+        displace(pv.PolyData(np.random.default_rng(0).normal(size=(20, 3))), lambda p: np.ones(len(p)))

@@ -11,7 +11,7 @@ a sampled spectral volume, a numpy function).
 - :mod:`.curves`: ``noisy_arc``, ``noisy_circle``, ``trajectory``, ``plot_curves``, ``trajectory_frames``
 - :mod:`.surfaces`: ``height_map``, ``monge_surface``, ``colored_surface``
 - :mod:`.flow`: ``flow_field``, ``streamlines``, ``quiver_image``, ``flow_glyphs``
-- :mod:`.render`: ``render_mesh``, ``render_turntable``, ``render_sequence``
+- :mod:`.render`: ``render_mesh``, ``render_stereo_pair``, ``render_turntable``, ``render_sequence``
 """
 from .fields import evaluate_field, field_max_frequency, octave_field, sampled_field
 from .displace import (
@@ -35,7 +35,7 @@ from .shapes import (
     squashed_sphere,
     trimesh_to_pyvista,
 )
-from .render import figure_to_array, render_mesh, render_sequence, render_turntable
+from .render import figure_to_array, render_mesh, render_sequence, render_stereo_pair, render_turntable
 from .curves import noisy_arc, noisy_circle, plot_curves, trajectory, trajectory_frames
 from .surfaces import colored_surface, grid_points, height_map, height_map_image, monge_surface
 from .flow import flow_field, flow_glyphs, quiver_image, streamline_image, streamlines
@@ -45,7 +45,7 @@ __all__ = [
     "arrange", "as_trimesh", "colored_surface", "displace", "displace_frames", "evaluate_field",
     "field_max_frequency", "figure_to_array", "flow_field", "flow_glyphs", "grid_points", "height_map",
     "height_map_image", "load_model", "monge_surface", "noisy_arc", "noisy_circle", "normalize",
-    "octave_field", "plot_curves", "pyvista_to_trimesh", "quiver_image", "render_mesh", "render_sequence",
+    "octave_field", "plot_curves", "pyvista_to_trimesh", "quiver_image", "render_mesh", "render_sequence", "render_stereo_pair",
     "render_turntable", "resolution_report", "sampled_field", "sphere", "sphere_for_noise",
     "squashed_sphere", "streamline_image", "streamlines", "subdivide_for_noise", "trajectory",
     "trajectory_frames", "trimesh_to_pyvista", "vertex_normals",

@@ -128,7 +128,7 @@ def vertex_normals(mesh) -> np.ndarray:
     """
     mesh = as_trimesh(mesh)
     v, f = _arrays(mesh)
-    return face_pass(v, f, False)[0]
+    return face_pass(v, f, 0)[0]
 
 
 def _arrays(mesh):
@@ -145,7 +145,8 @@ class ResolutionReport:
 
     ``samples_per_period`` is the period of the highest frequency divided by
     the longest edge (the worst place on the mesh); ``median_samples_per_period``
-    uses the median edge (over the faces' edges, so shared edges count twice). ``target_edge`` is the longest edge that gives
+    uses the median edge (over the faces' edges, so shared edges count twice;
+    on meshes of more than 2**18 faces, over the edges of evenly strided faces). ``target_edge`` is the longest edge that gives
     ``required`` samples per period, and ``subdivisions`` the number of
     midpoint subdivisions (each halves every edge) that reach it.
     """
@@ -201,14 +202,23 @@ def resolution_report(mesh, max_frequency, *, samples_per_period=4.0) -> Resolut
     max_frequency = check_real("max_frequency", max_frequency, lo=0.0)
     required = check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
     v, f = _arrays(mesh)
-    return _report(face_pass(v, f, True)[2], max_frequency, required)
+    return _report(*face_pass(v, f, _stride(len(f)))[2:], max_frequency, required)
 
 
-def _report(lengths, max_frequency, required):
+# The median edge is taken over the edges of every k-th face, at most about 2**18 faces (exact below that):
+# it is informative only, and sorting millions of edges would cost more than the whole face pass.
+_MEDIAN_FACES = 1 << 18
+
+
+def _stride(n_faces):
+    return max(1, -(-n_faces // _MEDIAN_FACES))
+
+
+def _report(max_edge, lengths, max_frequency, required):
     lengths = lengths[lengths > 0]
-    if lengths.size == 0:
+    if max_edge <= 0 or lengths.size == 0:
         raise ValueError("mesh has only zero-length edges; its resolution is undefined")
-    max_edge = float(lengths.max())
+    max_edge = float(max_edge)
     median_edge = float(np.median(lengths))
     if max_frequency == 0:
         return ResolutionReport(0.0, max_edge, median_edge, math.inf, math.inf, required, math.inf, 0, True)
@@ -324,10 +334,10 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
     return trimesh.Trimesh(v, f, process=False)
 
 
-def _check_resolution(lengths, field, frequency, octaves, lacunarity, samples_per_period, on_aliasing):
+def _check_resolution(max_edge, lengths, field, frequency, octaves, lacunarity, samples_per_period, on_aliasing):
     if on_aliasing == "ignore":
         return None
-    report = _report(lengths, _highest_frequency(field, frequency, octaves, lacunarity),
+    report = _report(max_edge, lengths, _highest_frequency(field, frequency, octaves, lacunarity),
                      check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6))
     if not report.ok:
         if on_aliasing == "raise":
@@ -421,7 +431,9 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
         raise ValueError(f"on_aliasing must be 'warn', 'raise' or 'ignore', got {on_aliasing!r}")
     source = octave_field(field, octaves, kind, lacunarity=lacunarity, gain=gain)
     vertices, faces = _arrays(mesh)
-    unit, volume, lengths = face_pass(vertices, faces, on_aliasing != "ignore")
+    # peak: normals, points, field output and new vertices (n x 3 float64 each), 3 edge lengths per face
+    check_memory(len(vertices) * 8 * 3 * 5 + len(faces) * 8 * 4, "displacing the mesh")
+    unit, volume, max_edge, lengths = face_pass(vertices, faces, 0 if on_aliasing == "ignore" else _stride(len(faces)))
     if normals is None:
         n = _outward(unit, volume, faces)
     else:
@@ -429,7 +441,7 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
         if n.shape != vertices.shape:
             raise ValueError(f"normals must have shape {vertices.shape}, got {n.shape}")
     if on_aliasing != "ignore":
-        _check_resolution(lengths, field, freq, octaves if kind != "noise" else 1,
+        _check_resolution(max_edge, lengths, field, freq, octaves if kind != "noise" else 1,
                           check_real("lacunarity", lacunarity), samples_per_period, on_aliasing)
     del lengths
     points = vertices * freq + phase_v
@@ -466,7 +478,7 @@ def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0,
     normals = kwargs.pop("normals", None)
     if normals is None:
         v, f = _arrays(mesh)
-        unit, volume, _ = face_pass(v, f, False)
+        unit, volume = face_pass(v, f, 0)[:2]
         normals = _outward(unit, volume, f)
     on_aliasing = kwargs.pop("on_aliasing", "warn")
     for i, t in enumerate(times):

@@ -15,7 +15,7 @@ import numpy as np
 
 from .._validate import check_int, check_real
 
-__all__ = ["render_mesh", "render_turntable", "render_sequence", "figure_to_array"]
+__all__ = ["render_mesh", "render_stereo_pair", "render_turntable", "render_sequence", "figure_to_array"]
 
 _VIEWS = ("iso", "xy", "xz", "yz", "yx", "zx", "zy")
 DEFAULT_COLOR = "#c8d2e6"
@@ -217,6 +217,24 @@ def render_mesh(meshes, path=None, *, size=512, view="iso", azimuth=0.0, elevati
         Path(path).parent.mkdir(parents=True, exist_ok=True)
         write_image(path, image)
     return image
+
+
+def render_stereo_pair(meshes, path=None, *, separation=5.0, cross=True, size=384, view="iso", elevation=0.0,
+                       gap=8, **kwargs) -> np.ndarray:
+    """A stereo pair side by side (figure 10): two renders ``separation`` degrees of azimuth apart.
+
+    ``cross=True`` puts the right eye's view on the left (cross-fused, as in
+    the paper); ``cross=False`` is for parallel (wall-eyed) viewing. ``gap``
+    background pixels separate the halves. Other keywords go to
+    :func:`render_mesh`. Returns ``(height, 2 * width + gap, 3)`` uint8.
+    """
+    separation = check_real("separation", separation, lo=0.0, hi=30.0)
+    gap = check_int("gap", gap, lo=0, hi=4096)
+    left = render_mesh(meshes, size=size, view=view, azimuth=-separation / 2, elevation=elevation, **kwargs)
+    right = render_mesh(meshes, size=size, view=view, azimuth=separation / 2, elevation=elevation, **kwargs)
+    spacer = np.full((left.shape[0], gap, 3), left[0, 0], dtype=np.uint8)
+    image = np.concatenate([right, spacer, left] if cross else [left, spacer, right], axis=1)
+    return _save_array(image, path)
 
 
 def render_turntable(meshes, path=None, *, frames=36, fps=12.0, degrees=360.0, size=512, view="iso",
