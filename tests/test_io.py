@@ -64,3 +64,17 @@ def test_image_round_trip_and_bad_suffix(tmp_path):
     np.testing.assert_array_equal(read_image(tmp_path / "a.png"), img)
     with pytest.raises(ValueError, match="must end in"):
         write_image(tmp_path / "a.xyz", img)
+
+
+def test_atomic_output_gives_ordinary_permissions(tmp_path):
+    import os
+    import stat
+
+    umask = os.umask(0o022)
+    try:
+        with atomic_output(tmp_path / "a.npy") as tmp:
+            np.save(tmp, np.zeros(2))
+        mode = stat.S_IMODE(os.stat(tmp_path / "a.npy").st_mode)
+    finally:
+        os.umask(umask)
+    assert mode == 0o644
