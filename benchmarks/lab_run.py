@@ -1,0 +1,16 @@
+"""Regenerate ``benchmarks/RESULTS.md`` (the laboratory): same as ``python3 -m noiselab bench``.
+
+Run from the repository root::
+
+    python3 benchmarks/lab_run.py            # full run (~10 min on 2 cores), writes benchmarks/RESULTS.md
+    python3 benchmarks/lab_run.py --quick --output /tmp/lab
+"""
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from noiselab.cli import main  # noqa: E402
+
+if __name__ == "__main__":
+    sys.exit(main(["bench", *sys.argv[1:]]))

@@ -1,0 +1,15 @@
+"""The laboratory: spectral against lattice on the same scenes, speed against error, and the peers.
+
+- :mod:`noiselab.lab.snowgen`: the alternative snow generators,
+  :func:`layered_lattice_snow` (depth layers of lattice noise) and
+  :func:`particle_snow` (Reeves-style particles).
+- :mod:`noiselab.lab.measure`: timing (interleaved rounds, medians, ratios to
+  a floor), peak memory, machine description, scaling fits.
+- :mod:`noiselab.lab.experiments`: the experiments, each returning rows of a
+  results table.
+- :mod:`noiselab.lab.run`: runs them all and writes ``benchmarks/RESULTS.md``
+  and its plots (``noiselab bench`` or ``python benchmarks/lab_run.py``).
+"""
+from .snowgen import layer_plan, lattice_peak, layered_lattice_snow, particle_snow
+
+__all__ = ["layered_lattice_snow", "particle_snow", "layer_plan", "lattice_peak"]

@@ -1,0 +1,281 @@
+"""Two alternatives to the tent IFFT for falling snow, for the laboratory's comparisons.
+
+- :func:`layered_lattice_snow`: depth layers of band-pass lattice (gradient)
+  noise, each translated rigidly at the speed its depth implies; a layer
+  centred on ``f`` cycles/frame moves at ``c / |w| = c W / (2 pi f)``
+  px/frame, the tent's parallax law sampled at a few depths.
+- :func:`particle_snow`: a particle system in the manner of Reeves (1983),
+  the method Langer & Zhang argue against: flakes with a depth, a size and a
+  speed (both ``1/depth``), splatted as anti-aliased discs.
+
+Both take the same ``shape``, ``band`` (cycles/frame), ``c`` (rad/frame) and
+``direction`` as :func:`noiselab.snow.snow`, so the three methods render the
+same scene and the analysers (:mod:`noiselab.analysis`) can compare them.
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import numba
+import numpy as np
+
+from .._validate import as_generator, check_int, check_memory, check_real, check_shape, float_dtype
+from ..lattice import LatticeNoise
+from ..snow import rescale_opacity
+from ..spectral.envelopes import unit_direction
+
+__all__ = ["layered_lattice_snow", "particle_snow", "layer_plan", "lattice_peak"]
+
+
+def _check_scene(shape, c, band, direction):
+    shape = check_shape("shape", shape, ndim=3)
+    T, H, W = shape
+    c = check_real("c (rad/frame)", c, lo=0.0, hi=math.pi)
+    if band is None:
+        band = (W / 32, W / 4)
+    try:
+        lo, hi = band
+    except (TypeError, ValueError):
+        raise ValueError(f"band must be a pair (lo, hi) in cycles/frame, got {band!r}") from None
+    lo = check_real("band[0] (cycles/frame)", lo, lo=0.0, lo_open=True)
+    hi = check_real("band[1] (cycles/frame)", hi, lo=0.0, lo_open=True, hi=W / 2)
+    if not lo < hi:
+        raise ValueError(f"band is empty: need 0 < lo < hi <= {W / 2:g} cycles/frame, got ({lo:g}, {hi:g})")
+    return shape, c, (lo, hi), unit_direction(direction)
+
+
+@functools.lru_cache(maxsize=None)
+def lattice_peak(kernel="catmull-rom", basis="gradient") -> float:
+    """Power-weighted mean radial frequency of one lattice-noise octave, in cycles per lattice cell.
+
+    Measured once (and cached) on a 512 x 512 grid of 64 x 64 cells with
+    :func:`noiselab.analysis.radial_spectrum`; it maps a wanted centre
+    frequency to a lattice density. Gradient noise is band-pass (no DC); with
+    the Catmull-Rom kernel 80 % of its power lies within a factor 1.9 of
+    frequency (the narrowest of the kernels; cubic B-spline: 2.6).
+
+    Examples
+    --------
+    >>> 0.4 < lattice_peak("catmull-rom", "gradient") < 0.7
+    True
+    """
+    from ..analysis import radial_spectrum
+
+    img = LatticeNoise(2, seed=12345, kernel=kernel, basis=basis, period=64).grid((512, 512), [(0, 64), (0, 64)])
+    rs = radial_spectrum(img)
+    p = rs.power * rs.counts
+    return float(np.sum(p * rs.mean_frequency) / np.sum(p) / 64.0)
+
+
+def layer_plan(shape=(64, 512, 512), *, c=1.0, band=None, layers=8, kernel="catmull-rom", exponent=1.0):
+    """The depth layers of :func:`layered_lattice_snow`: centre frequency, lattice cells, speed, amplitude.
+
+    Layers are spaced evenly in log frequency across ``band``; layer ``k`` has
+    ``cells_x`` lattice cells across the frame width (a whole number, so that
+    it tiles the frame exactly like the periodic IFFT snow), its actual centre
+    is ``f_k = cells_x * lattice_peak`` cycles/frame, its speed
+    ``c W / (2 pi f_k)`` px/frame and its amplitude ``f_k**(1 - exponent)``
+    (equal energy per octave for the 1/f amplitude of the thesis).
+
+    Returns
+    -------
+    dict of arrays: ``frequency`` (cycles/frame), ``cells_x``, ``cells_y``, ``speed`` (px/frame), ``amplitude``.
+
+    Examples
+    --------
+    >>> plan = layer_plan((16, 128, 128), c=1.0, layers=4)
+    >>> bool(np.all(np.diff(plan["speed"]) < 0))   # deeper (finer) layers are slower
+    True
+    """
+    (T, H, W), c, (lo, hi), _ = _check_scene(shape, c, band, (0.0, 1.0))
+    layers = check_int("layers", layers, lo=1, hi=256)
+    exponent = check_real("exponent", exponent, lo=-8, hi=8)
+    rho = lattice_peak(kernel, "gradient")
+    target = np.geomspace(lo, hi, layers) if layers > 1 else np.array([math.sqrt(lo * hi)])
+    cells_x = np.maximum(np.rint(target / rho), 2).astype(np.int64)
+    cells_y = np.maximum(np.rint(cells_x * H / W), 2).astype(np.int64)
+    freq = cells_x * rho
+    with np.errstate(divide="ignore"):
+        speed = c * W / (2 * np.pi * freq)
+    amp = freq ** (1.0 - exponent)
+    return {"frequency": freq, "cells_x": cells_x, "cells_y": cells_y, "speed": speed, "amplitude": amp}
+
+
+def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, layers=8, direction=(0.0, 1.0),
+                         kernel="catmull-rom", exponent=1.0, beta=1.5, dtype=np.float32, rescale=True):
+    """Falling snow from depth layers of band-pass lattice noise, each translating at its own speed.
+
+    The lattice alternative to the tent IFFT (Langer & Zhang 2003) for the same
+    scene: ``layers`` layers of gradient (Perlin) noise, each tiling the frame
+    (whole lattice periods across it), centred at frequencies spaced evenly in
+    log frequency across ``band``; layer ``k`` translates rigidly along
+    ``direction`` at ``c / |w_k|`` px/frame (``|w_k| = 2 pi f_k / W``): speed
+    inversely proportional to its spatial frequency, the tent's law sampled at
+    ``layers`` depths. Amplitude ``f_k**(1 - exponent)`` per layer gives the
+    1/f amplitude spectrum of the thesis for ``exponent=1``. The sum is
+    rescaled to [0, 1] and raised to ``beta`` as :func:`noiselab.snow.snow` does.
+
+    What it cannot do (measured in ``benchmarks/RESULTS.md``): each layer's
+    spectrum is about an octave wide, so frequencies between layer centres
+    move at a blend of speeds, and energy leaks past the band edges; and it
+    does not loop in time (a layer returns to its start only after
+    ``W / speed`` frames).
+
+    Parameters
+    ----------
+    shape : (T, H, W)
+        Frames, height, width.
+    seed : int or numpy.random.Generator
+        Same seed, same bits.
+    c : float
+        Tent constant in rad/frame, ``0 <= c <= pi``.
+    band : (lo, hi), optional
+        Band in cycles/frame (per frame width), ``0 < lo < hi <= W/2``;
+        default ``(W/32, W/4)`` as for :func:`noiselab.snow.snow`.
+    layers : int
+        Depth layers, 1..256 (more layers: a closer approximation, linear cost).
+    direction : (dx, dy)
+        Fall direction in image coordinates (x right, y down).
+    kernel : str
+        Lattice kernel (see :mod:`noiselab.lattice.kernels`); Catmull-Rom gives
+        the narrowest layer spectrum.
+    exponent, beta, dtype, rescale
+        As for :func:`noiselab.snow.snow`.
+
+    Returns
+    -------
+    ndarray, shape (T, H, W), ``dtype``; in [0, 1] unless ``rescale=False``.
+
+    Examples
+    --------
+    >>> a = layered_lattice_snow((4, 64, 64), seed=0, layers=3)
+    >>> a.shape, a.dtype, float(a.min()), float(a.max())
+    ((4, 64, 64), dtype('float32'), 0.0, 1.0)
+    """
+    (T, H, W), c, band, (dx, dy) = _check_scene(shape, c, band, direction)
+    beta = check_real("beta", beta, lo=0.0, lo_open=True)
+    dt = float_dtype(dtype)
+    plan = layer_plan((T, H, W), c=c, band=band, layers=layers, kernel=kernel, exponent=exponent)
+    check_memory(T * H * W * (dt.itemsize + 8) + 3 * H * W * 8, f"layered_lattice_snow{(T, H, W)}")
+    rng = as_generator(seed)
+    layer_seeds = rng.integers(0, 2**63 - 1, size=len(plan["speed"]))
+    acc = np.zeros((T, H, W), dtype=np.float64)
+    for k in range(len(plan["speed"])):
+        nx, ny = int(plan["cells_x"][k]), int(plan["cells_y"][k])
+        # axis 0 is y, axis 1 is x; period = cells across the frame: each layer tiles the frame
+        noise = LatticeNoise(2, seed=int(layer_seeds[k]), kernel=kernel, basis="gradient", period=(ny, nx))
+        v = float(plan["speed"][k])
+        amp = float(plan["amplitude"][k])
+        phase = rng.random(2)  # random sub-cell offset per layer, so that layers do not share lattice lines
+        for t in range(T):
+            # content moves by +v*t along d: sample at (x - d v t)
+            y0 = (phase[0] - dy * v * t) * ny / H
+            x0 = (phase[1] - dx * v * t) * nx / W
+            # reduce to one period so coordinates stay small (exact: the layer is periodic)
+            y0 -= math.floor(y0 / ny) * ny
+            x0 -= math.floor(x0 / nx) * nx
+            acc[t] += amp * noise.grid((H, W), [(y0, y0 + ny), (x0, x0 + nx)])
+    out = acc.astype(dt)
+    del acc
+    if rescale:
+        rescale_opacity(out, beta)
+    return out
+
+
+@numba.njit(parallel=True, cache=True)
+def _splat(x0, y0, vx, vy, radius, opacity, T, H, W, trans):
+    n = x0.shape[0]
+    for t in numba.prange(T):
+        for i in range(n):
+            cx = (x0[i] + vx[i] * t) % W
+            cy = (y0[i] + vy[i] * t) % H
+            r = radius[i]
+            ext = r + 0.5
+            ylo = int(math.floor(cy - ext))
+            yhi = int(math.ceil(cy + ext))
+            xlo = int(math.floor(cx - ext))
+            xhi = int(math.ceil(cx + ext))
+            for iy in range(ylo, yhi + 1):
+                ddy = iy - cy
+                yy = iy % H
+                for ix in range(xlo, xhi + 1):
+                    ddx = ix - cx
+                    # coverage of the pixel by the disc: a one-pixel linear ramp at the edge
+                    cov = r + 0.5 - math.sqrt(ddx * ddx + ddy * ddy)
+                    if cov > 0.0:
+                        if cov > 1.0:
+                            cov = 1.0
+                        trans[t, yy, ix % W] *= 1.0 - opacity * cov
+    return trans
+
+
+def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=None, direction=(0.0, 1.0),
+                  opacity=0.9, dtype=np.float32, return_flakes=False):
+    """Falling snow as a particle system (Reeves 1983): flakes with depth, size and speed, splatted as discs.
+
+    Each flake has a depth ``z`` in ``[1, hi/lo]`` drawn for a uniform density
+    in the viewing volume (``p(z) ~ z**2``: far flakes outnumber near ones),
+    a diameter ``D = W / (2 lo z)`` px (a disc of diameter ``D`` is matched to
+    the frequency ``f = W / (2 D)`` cycles/frame, so ``band`` maps to
+    diameters ``W/(2 hi) .. W/(2 lo)``) and a speed ``c W / (2 pi f) = c D / pi``
+    px/frame along ``direction``: the tent's parallax law, flake by flake.
+    Flakes wrap around the frame (a torus, like the periodic IFFT snow) and
+    are splatted as anti-aliased discs; white flakes of opacity ``opacity``
+    composite by the over operator, ``alpha = 1 - prod(1 - opacity * coverage)``,
+    whose result does not depend on the drawing order. Not motion-blurred.
+
+    Parameters
+    ----------
+    shape : (T, H, W)
+        Frames, height, width.
+    seed : int or numpy.random.Generator
+        Same seed, same bits (frames are rendered in parallel, each by one thread).
+    c : float
+        Tent constant in rad/frame, ``0 <= c <= pi``.
+    band : (lo, hi), optional
+        Band in cycles/frame, ``0 < lo < hi <= W/2``; default ``(W/32, W/4)``.
+    flakes : int, optional
+        Number of flakes, 1..10**8; default ``H * W / 128`` (2048 at 512 x 512).
+    direction : (dx, dy)
+        Fall direction in image coordinates (x right, y down).
+    opacity : float
+        Opacity of a flake's core, in (0, 1].
+    dtype : float32 or float64
+    return_flakes : bool
+        Also return the flakes: a dict of arrays ``x``, ``y`` (px at frame 0),
+        ``depth``, ``diameter`` (px) and ``speed`` (px/frame).
+
+    Returns
+    -------
+    ndarray (T, H, W) in [0, 1], or (ndarray, dict) with ``return_flakes``.
+
+    Examples
+    --------
+    >>> a, fl = particle_snow((4, 64, 64), seed=0, flakes=50, return_flakes=True)
+    >>> a.shape, bool(0 <= a.min() and a.max() <= 1), len(fl["speed"])
+    ((4, 64, 64), True, 50)
+    """
+    (T, H, W), c, (lo, hi), (dx, dy) = _check_scene(shape, c, band, direction)
+    opacity = check_real("opacity", opacity, lo=0.0, hi=1.0, lo_open=True)
+    if flakes is None:
+        flakes = max(1, H * W // 128)
+    n = check_int("flakes", flakes, lo=1, hi=10**8)
+    dt = float_dtype(dtype)
+    check_memory(T * H * W * (dt.itemsize + 8) + n * 64, f"particle_snow{(T, H, W)} with {n} flakes")
+    rng = as_generator(seed)
+    zmax = hi / lo
+    u = rng.random(n)
+    depth = (1.0 + u * (zmax**3 - 1.0)) ** (1.0 / 3.0)  # inverse CDF of p(z) ~ z**2 on [1, zmax]
+    x = rng.random(n) * W
+    y = rng.random(n) * H
+    diameter = W / (2.0 * lo * depth)
+    speed = c * diameter / math.pi
+    trans = np.ones((T, H, W), dtype=np.float64)
+    _splat(x, y, speed * dx, speed * dy, diameter / 2.0, opacity, T, H, W, trans)
+    out = np.subtract(1.0, trans, out=trans).astype(dt)
+    del trans
+    np.clip(out, 0.0, 1.0, out=out)
+    if return_flakes:
+        return out, {"x": x, "y": y, "depth": depth, "diameter": diameter, "speed": speed}
+    return out
