@@ -461,3 +461,18 @@ def test_input_is_left_alone_and_a_large_mean_is_removed_before_the_fft():
     big = (np.float32(1e4) + np.float32(1e-1) * x).astype(np.float32)
     assert A.power_spectrum(big).total == pytest.approx(float(big.astype(np.float64).var()), rel=1e-3)
     assert abs(A.spectral_slope(big, (2, 16))) < 0.15  # still white
+
+
+def test_removing_the_static_part_frees_the_band_speeds_from_a_still_background():
+    c, band = 1.0, (4, 16)
+    snow_like = tent_video((32, 64, 64), c, band, seed=7)
+    still = 3 * snow_like.std() * band_texture(64, (2, 16), 8) / band_texture(64, (2, 16), 8).std()
+    video = snow_like + still[None]
+    bands = A.octave_bands(*band, per_octave=1)
+    clean = A.speed_profile(snow_like, bands).speed
+    mixed = A.speed_profile(video, bands).speed
+    freed = A.speed_profile(video, bands, remove_static=True).speed
+    assert np.all(mixed < 0.5 * clean)  # the still background drags every band towards zero
+    np.testing.assert_allclose(freed, clean, rtol=0.05)
+    with pytest.raises(ValueError, match="does not change in time"):
+        A.best_velocity(np.stack([still] * 8), remove_static=True)

@@ -57,11 +57,15 @@ __all__ = [
 ]
 
 
-def video_spectrum(video, *, window=None) -> PowerSpectrum:
+def video_spectrum(video, *, window=None, remove_static=False) -> PowerSpectrum:
     """The 3-D power spectrum the motion analysers share (``window`` tapers time only).
 
     Compute it once and pass it to several analysers instead of the video to
-    pay for one FFT.
+    pay for one FFT. ``remove_static=True`` subtracts each pixel's temporal
+    mean first (one more copy of the video): a still background composited
+    under moving snow then no longer pulls every band's velocity towards
+    zero. (The kt = 0 plane alone would not do with a window: a tapered
+    still leaks into the neighbouring temporal bins.)
     """
     if isinstance(video, PowerSpectrum):
         if len(video.shape) != 3 or video.axes != (0, 1, 2):
@@ -72,6 +76,11 @@ def video_spectrum(video, *, window=None) -> PowerSpectrum:
     if window not in (None, "hann"):
         raise ValueError(f"window must be None or 'hann', got {window!r}")
     arr = check_video("video", video)
+    if remove_static:
+        scale = float(np.max(np.abs(arr)))
+        arr = arr - np.mean(arr, axis=0, dtype=np.float64).astype(arr.dtype)
+        if float(np.max(np.abs(arr))) <= 64 * np.finfo(arr.dtype).eps * scale:  # rounding only
+            raise ValueError("the video does not change in time: nothing is left once its static part is removed")
     return power_spectrum(arr, window=window, window_axes=(0,), min_size=1)
 
 
@@ -288,7 +297,7 @@ def _fit_velocity(r_lag, g: _Grid, region):
     return v, coherence
 
 
-def best_velocity(video, *, band=None, window="hann") -> np.ndarray:
+def best_velocity(video, *, band=None, window="hann", remove_static=False) -> np.ndarray:
     """The single velocity ``(vx, vy)`` (px/frame, +y down) that best explains the video's motion.
 
     Weighted by power over the spatial frequencies in ``band`` (default all);
@@ -297,7 +306,8 @@ def best_velocity(video, *, band=None, window="hann") -> np.ndarray:
     compromise; see :func:`band_speeds` for the speed of each band.
     The default temporal Hann window gives the wrap-around pair (last frame
     to first) zero weight, so a video need not loop; every other pair of
-    consecutive frames keeps the exact phase of its step.
+    consecutive frames keeps the exact phase of its step. ``remove_static``:
+    see :func:`video_spectrum`.
 
     Examples
     --------
@@ -307,7 +317,7 @@ def best_velocity(video, *, band=None, window="hann") -> np.ndarray:
     >>> best_velocity(video).round(6).tolist()
     [-1.0, 3.0]
     """
-    spec = video_spectrum(video, window=window)
+    spec = video_spectrum(video, window=window, remove_static=remove_static)
     g = _Grid(spec.shape)
     v, _ = _fit_velocity(_lag_one(spec), g, g.band_mask(band))
     if v is None:
@@ -372,14 +382,15 @@ class SpeedProfile:
         return self.speed * 2 * np.pi * self.centers / self.frame_size
 
 
-def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octave=2) -> SpeedProfile:
+def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octave=2,
+                  remove_static=False) -> SpeedProfile:
     """Velocity per spatial-frequency band, with band centres, coherence and energy.
 
     ``bands`` default: ``per_octave`` bands per octave from 2 cycles/frame to
     Nyquist, keeping only those holding at least ``min_energy`` of the power. Explicit
     bands must all hold power (else ``ValueError`` naming the band).
     """
-    spec = video_spectrum(video, window=window)
+    spec = video_spectrum(video, window=window, remove_static=remove_static)
     g = _Grid(spec.shape)
     explicit = bands is not None
     if explicit:
@@ -416,7 +427,7 @@ def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octa
     )
 
 
-def band_speeds(video, bands, *, window="hann") -> np.ndarray:
+def band_speeds(video, bands, *, window="hann", remove_static=False) -> np.ndarray:
     """Velocity ``(vx, vy)`` in px/frame of each spatial-frequency band: an array of shape ``(len(bands), 2)``.
 
     ``bands`` is a sequence of ``(lo, hi)`` pairs in cycles/frame (see
@@ -433,4 +444,4 @@ def band_speeds(video, bands, *, window="hann") -> np.ndarray:
     >>> band_speeds(slow + fast, [(2, 8), (16, 32)]).round(6).tolist()
     [[0.0, 2.0], [0.25, 0.25]]
     """
-    return speed_profile(video, bands, window=window).velocity
+    return speed_profile(video, bands, window=window, remove_static=remove_static).velocity

@@ -148,8 +148,12 @@ def measure(data, kind, *, band=None, window="auto", bands_per_octave=2):
             out["loop_seam"] = A.loop_seam(data)
         except ValueError:  # frames all equal: a still
             out["loop_seam"] = None
-    if kind == "video" and data.shape[0] >= 4:
-        vspec = A.video_spectrum(data, window="hann")  # time tapered: the video need not loop
+    if kind == "video" and data.shape[0] >= 4 and out.get("loop_seam", 1) is None:
+        out["velocity"] = None  # a still: no motion to measure
+    elif kind == "video" and data.shape[0] >= 4:
+        # time tapered (the video need not loop); each pixel's temporal mean removed, so a still
+        # background under moving snow does not drag every band's velocity towards zero
+        vspec = A.video_spectrum(data, window="hann", remove_static=True)
         v = A.best_velocity(vspec)
         out["velocity"] = [float(v[0]), float(v[1])]
         prof = A.speed_profile(vspec, per_octave=bands_per_octave)
@@ -192,9 +196,12 @@ def report(path, m) -> str:
         lines.append(f"  {'loop seam':<14}n/a (the frames do not change)")
     elif "loop_seam" in m:
         lines.append(f"  {'loop seam':<14}{m['loop_seam']:.3f}   (1 = seamless loop)")
-    if "velocity" in m:
+    if "velocity" in m and m["velocity"] is None:
+        lines.append(f"  {'velocity':<14}n/a (the frames do not change)")
+    elif "velocity" in m:
         vx, vy = m["velocity"]
-        lines.append(f"  {'velocity':<14}vx {vx:+.3f}  vy {vy:+.3f} px/frame (best single velocity, +y down)")
+        lines.append(f"  {'velocity':<14}vx {vx:+.3f}  vy {vy:+.3f} px/frame (best single velocity, +y down; "
+                     "still part removed)")
         sp = m["speed_per_band"]
         lines.append(f"  speed per band (cycles/frame)      vx       vy    speed  speed*|w|  coherence  energy")
         for (lo, hi), (bvx, bvy), spd, pw, coh, e in zip(sp["bands"], sp["velocity"], sp["speed"], sp["speed_x_w"],
