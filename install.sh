@@ -9,6 +9,8 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 system_packages=(libegl1 libgl1-mesa-dri)
+# the gallery test opens index.html in real headless Chromium
+[ "${1:-}" = test ] && system_packages+=(chromium)
 missing=()
 for pkg in "${system_packages[@]}"; do
     dpkg -s "$pkg" >/dev/null 2>&1 || missing+=("$pkg")

@@ -4,3 +4,83 @@ from __future__ import annotations
 import numpy as np
 
 from ..registry import Result, figure
+
+USES = ("noiselab.spectral", "noiselab.lattice", "noiselab.fractal", "noiselab.analysis", "noiselab.io")
+
+
+@figure("lab", "one_over_f", seed="The lab's own comparison (no seed figure)",
+        title="1/f texture: spectral synthesis beside a lattice fractal sum, with radial spectra and anisotropy",
+        params=dict(size=512, octaves=8, cells=4.0, seed=21), quick=dict(size=64, octaves=4), uses=USES)
+def one_over_f(out, *, size, octaves, cells, seed):
+    from noiselab import LatticeNoise, analysis, fractal_sum, spectral_noise
+    from noiselab.lattice import Grid
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    band = (1.0, size / 2)
+    spectral = spectral_noise((size, size), exponent=1.0, seed=seed, dtype=np.float64)
+    lattice, used = fractal_sum(LatticeNoise(2, seed=seed), Grid((size, size), [(0, cells), (0, cells)]), octaves,
+                                normalize=True, return_octaves=True)
+    fit_band = (2 * cells, min(size / 4, cells * 2 ** (used - 1)))
+    fields = {"spectral (spectral_noise, 1/f)": spectral, f"lattice (fractal_sum, {used} octaves)": lattice}
+    fig, axes = plt.subplots(1, 4, figsize=(17, 4.2))
+    measured = {}
+    for ax, (name, f) in zip(axes[:2], fields.items()):
+        ax.imshow(f, cmap="gray"), ax.set_title(name, fontsize=9), ax.axis("off")
+    for k, (name, f) in enumerate(fields.items()):
+        short = name.split()[0]
+        rad = analysis.radial_spectrum(f, log=True)
+        keep = rad.counts > 0
+        axes[2].loglog(rad.centers[keep], np.sqrt(rad.power[keep]), label=short, color=f"C{k}")
+        slope = analysis.spectral_slope(f, fit_band)
+        ori = analysis.orientation_energy(f, fit_band)
+        theta = np.concatenate([ori.angles, ori.angles + np.pi])
+        axes[3].plot(np.degrees(theta), np.concatenate([ori.energy, ori.energy]) / ori.energy.mean(), label=short, color=f"C{k}")
+        measured[f"{short}: range"] = [float(f.min()), float(f.max())]
+        measured[f"{short}: amplitude slope over {fit_band[0]:g}-{fit_band[1]:g} cycles/frame (1/f: -1)"] = float(slope)
+        measured[f"{short}: anisotropy (0 = isotropic)"] = analysis.anisotropy(f, fit_band)
+    axes[2].axvspan(*fit_band, color="0.92", zorder=0)
+    f0 = np.geomspace(*fit_band, 10)
+    axes[2].loglog(f0, np.sqrt(rad.power[keep]).max() * 0.3 * f0[0] / f0, "k--", lw=1, label="1/f")
+    axes[2].set_xlabel("cycles/frame"), axes[2].set_ylabel("radial amplitude"), axes[2].legend(fontsize=8)
+    axes[2].set_title("radially averaged amplitude spectra", fontsize=9)
+    axes[3].set_xlabel("orientation (degrees)"), axes[3].set_ylabel("energy / mean"), axes[3].legend(fontsize=8)
+    axes[3].set_title("energy against orientation (whitened)", fontsize=9)
+    return Result([save_figure(fig, out / "one_over_f.png")],
+                  f"Two {size} x {size} textures with 1/f amplitude spectra: one shaped in the Fourier domain and inverted "
+                  f"(noiselab.spectral_noise), one a fractal sum of {used} octaves of cubic value noise over {cells:g} "
+                  "lattice cells (lacunarity 2, gain 1/2). Right: their radial amplitude spectra and energy against "
+                  "orientation; the lattice sum shows its axes, the spectral field does not.", measured)
+
+
+@figure("lab", "kernels", seed="The lab's own comparison (Phillips 2004, Sec. 2.1.1 smoothing filters)",
+        title="Value and gradient noise for every smoothing kernel: images and radial spectra",
+        params=dict(size=256, cells=8.0, seed=22), quick=dict(size=64), uses=USES)
+def kernels(out, *, size, cells, seed):
+    from noiselab import LatticeNoise, analysis
+    from noiselab.lattice import kernel_names
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    names = kernel_names()
+    fig, axes = plt.subplots(2, len(names) + 1, figsize=(2.6 * (len(names) + 1), 5.4))
+    measured = {}
+    for r, basis in enumerate(("value", "gradient")):
+        for c, k in enumerate(names):
+            img = LatticeNoise(2, seed=seed, kernel=k, basis=basis).grid((size, size), [(0, cells), (0, cells)])
+            axes[r, c].imshow(img, cmap="gray", vmin=-1, vmax=1)
+            axes[r, c].set_title(f"{basis} / {k}", fontsize=8), axes[r, c].axis("off")
+            rad = analysis.radial_spectrum(img, log=True)
+            keep = rad.counts > 0
+            axes[r, -1].loglog(rad.centers[keep] / cells, rad.power[keep], label=k, lw=1)
+            measured[f"{basis}/{k}: range"] = [float(img.min()), float(img.max())]
+            measured[f"{basis}/{k}: anisotropy"] = analysis.anisotropy(img, (cells / 2, min(2 * cells, size / 2 - 1)))
+        axes[r, -1].set_title(f"{basis} noise: radial power", fontsize=8)
+        axes[r, -1].set_xlabel("cycles per lattice cell", fontsize=8), axes[r, -1].legend(fontsize=6)
+    return Result([save_figure(fig, out / "kernels.png")],
+                  f"LatticeNoise over {cells:g} x {cells:g} lattice cells, {size} x {size} pixels, for each kernel, with value "
+                  "(Phillips) and gradient (Perlin) bases; right: radial power spectra against frequency in cycles per "
+                  "lattice cell. Smoother kernels roll off faster above 1 cycle per cell (the lattice band limit).",
+                  measured)

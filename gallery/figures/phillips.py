@@ -4,3 +4,459 @@ from __future__ import annotations
 import numpy as np
 
 from ..registry import Result, figure
+
+NOISE = ("noiselab.lattice", "noiselab.fractal", "noiselab.analysis")
+GEOM = NOISE + ("noiselab.geometry", "noiselab.io")
+
+
+def _range(a):
+    a = np.asarray(a)
+    return [float(a.min()), float(a.max())]
+
+
+@figure("phillips", "fig01", seed="Phillips 2004, Fig. 1", title="Smooth random functions from one alternating random basis",
+        params=dict(length=100, samples=2000, freqs=(1 / 20, 1 / 10, 1 / 5), kernel="cubic", seed=1),
+        quick=dict(samples=400), uses=NOISE)
+def fig01(out, *, length, samples, freqs, kernel, seed):
+    from noiselab import LatticeNoise, analysis
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    basis = LatticeNoise(1, seed=seed, kernel="box", alternation="lattice")
+    xi = np.arange(length + 1, dtype=float)
+    fig, axes = plt.subplots(len(freqs) + 1, 1, figsize=(8, 1.6 * (len(freqs) + 1)), sharex=True)
+    axes[0].vlines(xi, 0, basis(xi[:, None]), color="k", lw=1)
+    axes[0].axhline(0, color="0.6", lw=0.5)
+    axes[0].set_title("(a) random values at the integers, alternating above and below zero", fontsize=9, loc="left")
+    x = np.linspace(0, length, samples, endpoint=False)
+    measured = {}
+    for ax, F, tag in zip(axes[1:], freqs, "bcdefg"):
+        noise = LatticeNoise(1, seed=seed, kernel=kernel, frequency=F)
+        y = noise(x[:, None])
+        ax.plot(x, y, "k", lw=1)
+        ax.axhline(0, color="0.6", lw=0.5)
+        ax.set_ylim(-1.05, 1.05)
+        ax.set_title(f"({tag}) {kernel} B-spline filtered noise at {F:g} lattice cells per unit", fontsize=9, loc="left")
+        # band limit: power below 1.5 F cycles/unit (1.5 F length cycles per plotted length; DC excluded)
+        measured[f"({tag}) range"] = _range(y)
+        measured[f"({tag}) power below {1.5 * F:g} cycles/unit"] = analysis.band_energy(y, (1, 1.5 * F * length))
+    axes[-1].set_xlabel("x (units)")
+    return Result([save_figure(fig, out / "fig01.png")],
+                  "(a) Phillips' basis: random values alternating above and below zero at every integer. (b)-(d) the "
+                  "smooth noise a*noise(F x) filtered at F = 1/20, 1/10 and 1/5 cycles per unit (kernel "
+                  f"'{kernel}'); lower F means smoother. The output stays in [-1, 1] without clipping.", measured)
+
+
+@figure("phillips", "fig02", seed="Phillips 2004, Fig. 2", title="Diagram: random-number tables, permutation table, basis function",
+        params=dict(entries=16, table_size=256, seed=1), quick=dict(entries=8), uses=NOISE)
+def fig02(out, *, entries, table_size, seed):
+    from noiselab import LatticeNoise
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    noise = LatticeNoise(1, seed=seed, kernel="box", alternation="lattice", table_size=table_size)
+    perm = noise.perms[0][:entries]
+    idx = np.arange(entries, dtype=float)
+    basis = noise(idx[:, None])
+    from_tables = np.where(np.arange(entries) % 2 == 0, noise.positive[perm], noise.negative[perm])
+    agree = bool(np.allclose(basis, from_tables, atol=1e-9))
+    fig = plt.figure(figsize=(12, 6.5))
+    ax_p = fig.add_axes([0.05, 0.78, 0.55, 0.12])
+    ax_p.set_xlim(0, entries), ax_p.set_ylim(0, 1), ax_p.axis("off")
+    for i, p in enumerate(perm):
+        ax_p.add_patch(plt.Rectangle((i, 0), 1, 1, fill=True, fc="#dde7f5" if i % 2 else "#f5e3dd", ec="k"))
+        ax_p.text(i + 0.5, 0.5, str(int(p)), ha="center", va="center", fontsize=8)
+        ax_p.text(i + 0.5, 1.15, str(i), ha="center", va="bottom", fontsize=7, color="0.4")
+    ax_p.set_title(f"permutation table (first {entries} of {table_size} entries): lattice point i -> table index", fontsize=9)
+    ax_t = fig.add_axes([0.66, 0.45, 0.31, 0.45])
+    j = np.arange(table_size)
+    ax_t.bar(j, noise.positive, width=1.0, color="#c0504d")
+    ax_t.bar(j, noise.negative, width=1.0, color="#4f81bd")
+    ax_t.scatter(perm[::2], noise.positive[perm[::2]], color="k", s=12, zorder=3)
+    ax_t.scatter(perm[1::2], noise.negative[perm[1::2]], color="k", s=12, zorder=3)
+    ax_t.set_title("random-number tables: (0, 1] (red) and [-1, 0) (blue)", fontsize=9)
+    ax_t.set_xlabel("table index"), ax_t.set_ylim(-1.05, 1.05)
+    ax_b = fig.add_axes([0.05, 0.08, 0.55, 0.5])
+    ax_b.vlines(idx, 0, basis, color="k", lw=2)
+    ax_b.plot(idx, basis, "ko", ms=4)
+    smooth = LatticeNoise(1, seed=seed, kernel="catmull-rom", alternation="lattice", table_size=table_size)
+    xs = np.linspace(0, entries - 1, 400)
+    ax_b.plot(xs, smooth(xs[:, None]), color="C2", lw=1.5, label="interpolated (catmull-rom), rescaled into [-1, 1]")
+    ax_b.axhline(0, color="0.6", lw=0.5)
+    ax_b.set_title("basis function: value at lattice point i = table[sign of i][perm[i]], signs alternating", fontsize=9)
+    ax_b.set_xlabel("lattice point i"), ax_b.legend(fontsize=8, loc="lower right")
+    return Result([save_figure(fig, out / "fig02.png")],
+                  "How noiselab.LatticeNoise builds Phillips' basis: two tables of random numbers (one on (0, 1], one on "
+                  "[-1, 0)), a shuffled permutation table that maps each lattice point to a table entry, alternating "
+                  "between the positive and negative table, and the resulting basis function, then smoothed.",
+                  {"basis at the lattice points equals the table entries the permutation points to": agree,
+                   "basis range": _range(basis)})
+
+
+@figure("phillips", "fig03", seed="Phillips 2004, Fig. 3", title="A 5 degree arc with increasing noise amplitude (Eq. 3)",
+        params=dict(arc_deg=5.0, cycles_per_degree=2.0, amplitudes=(0.0, 0.0005, 0.001, 0.002, 0.004), points=800, seed=2),
+        quick=dict(points=200), uses=GEOM)
+def fig03(out, *, arc_deg, cycles_per_degree, amplitudes, points, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import noisy_arc
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    field = LatticeNoise(1, seed=seed)
+    half = np.radians(arc_deg) / 2
+    theta = np.linspace(-half, half, points)
+    fig, ax = plt.subplots(figsize=(7, 1.2 * len(amplitudes)))
+    measured = {}
+    for k, a in enumerate(amplitudes):
+        pts = noisy_arc(field, theta, radius=1.0, amplitude=a, frequency=cycles_per_degree * 180 / np.pi, phase=0.0)
+        dy = -0.012 * k
+        ax.plot(pts[:, 0], pts[:, 1] + dy, "k", lw=1.2)
+        ax.text(-np.sin(half) * 1.08, np.cos(half) + dy, f"{a / max(amplitudes):.2f}" if max(amplitudes) else "0",
+                ha="right", va="center", fontsize=9)
+        if a:
+            dev = np.linalg.norm(pts, axis=1) - 1.0
+            measured[f"radial deviation / amplitude, amplitude {a:g}"] = _range(dev / a)
+    ax.set_aspect("equal"), ax.axis("off")
+    return Result([save_figure(fig, out / "fig03.png")],
+                  f"f(theta) = noise(theta) + r (sin theta, cos theta) over a {arc_deg:g} degree arc (r = 1), noise at "
+                  f"{cycles_per_degree:g} cycles per degree and phase 0; the amplitude (relative, left) grows downwards. "
+                  "The peaks and troughs stay in place; only their size changes.", measured)
+
+
+@figure("phillips", "fig04", seed="Phillips 2004, Fig. 4", title="A random trajectory: 1-D input (time), 2-D output (x, y)",
+        params=dict(seconds=2.0, fps=50, cycles_per_second=1.5, tail_seconds=1.0, size=256, seed=3),
+        quick=dict(fps=10, size=96), uses=GEOM)
+def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import trajectory, trajectory_frames
+
+    from .._common import save_image, save_video
+
+    t = np.arange(int(seconds * fps)) / fps
+    pts = trajectory(LatticeNoise(1, 2, seed=seed), t, frequency=cycles_per_second)
+    frames = trajectory_frames(pts, tail=int(tail_seconds * fps), size=size, limits=((-1, 1), (-1, 1)))
+    picks = np.linspace(len(frames) // 4, len(frames) - 1, 4).astype(int)
+    strip = np.concatenate([frames[i] for i in picks], axis=1)
+    files = [save_image(out / "frames.png", strip)] + save_video(out, "trajectory", frames, fps=fps)
+    return Result(files, f"A point whose (x, y) is noise of time: {seconds:g} s at {fps} frames/s, noise at "
+                         f"{cycles_per_second:g} cycles/s, drawn with a {tail_seconds:g} s tail; four frames of the video.",
+                  {"x range": _range(pts[:, 0]), "y range": _range(pts[:, 1]),
+                   "x-y correlation (independent permutations: near 0)": float(np.corrcoef(pts[:, 0], pts[:, 1])[0, 1])})
+
+
+@figure("phillips", "fig05", seed="Phillips 2004, Fig. 5", title="Circles distorted in x and y by 2-D noise output",
+        params=dict(amplitudes=(0.05, 0.1, 0.2), frequencies=(0.5, 1.0, 2.0), points=720, seed=4),
+        quick=dict(points=180), uses=GEOM)
+def fig05(out, *, amplitudes, frequencies, points, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import noisy_circle
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    field = LatticeNoise(2, 2, seed=seed)
+    fig, axes = plt.subplots(len(amplitudes), len(frequencies), figsize=(2.6 * len(frequencies), 2.6 * len(amplitudes)))
+    gaps = []
+    for r, a in enumerate(amplitudes):
+        for c, f in enumerate(frequencies):
+            pts = noisy_circle(field, points, radius=1.0, amplitude=a, frequency=f, mode="xy", closed=True)
+            ax = axes[r, c]
+            ax.fill(pts[:, 0], pts[:, 1], color="k")
+            ax.set_xlim(-1.5, 1.5), ax.set_ylim(-1.5, 1.5), ax.set_aspect("equal"), ax.axis("off")
+            ax.set_title(f"a = {a:g}, F = {f:g}", fontsize=8)
+            step = np.linalg.norm(np.diff(pts, axis=0), axis=1).mean()
+            gaps.append(np.linalg.norm(pts[0] - pts[-1]) / step)
+    return Result([save_figure(fig, out / "fig05.png")],
+                  "Parametric circles, each point moved in x and y by a 2-output noise of the angle; amplitude grows "
+                  "downwards, frequency to the right. The noise is read on a circle in its 2-D input space, so the curves close.",
+                  {"closing step / mean step (1 = no seam)": [float(min(gaps)), float(max(gaps))]})
+
+
+@figure("phillips", "fig07", seed="Phillips 2004, Fig. 7", title="2-D noise varying over time (3-D input, scalar output)",
+        params=dict(frames=48, size=256, cells=4.0, cells_per_frame=0.05, seed=5), quick=dict(frames=8, size=64), uses=NOISE)
+def fig07(out, *, frames, size, cells, cells_per_frame, seed):
+    from noiselab import LatticeNoise, analysis
+
+    from .._common import save_image, save_video
+
+    noise = LatticeNoise(3, seed=seed)
+    vol = noise.grid((frames, size, size), [(0, frames * cells_per_frame), (0, cells), (0, cells)])
+    video = (vol + 1) / 2
+    picks = np.linspace(0, frames - 1, 4).astype(int)
+    strip = np.concatenate([np.pad(video[i], 2, constant_values=1) for i in picks], axis=1)
+    files = [save_image(out / "frames.png", strip)] + save_video(out, "solid_noise", video)
+    return Result(files, f"noise(x, y, t) as grey level: {size} x {size} pixels over {cells:g} lattice cells, time moving "
+                         f"{cells_per_frame:g} cells per frame; four frames and the video. The time axis could as well be "
+                         "a third spatial axis (solid noise).",
+                  {"range": _range(vol), "anisotropy of frame 0": analysis.anisotropy(vol[0]),
+                   "roll-off slope above the lattice frequency": float(analysis.spectral_slope(vol[0], (2 * cells, 8 * cells)))})
+
+
+def _render(meshes, path, size, **kw):
+    from noiselab.geometry import render_mesh
+
+    render_mesh(meshes, path, size=size, **kw)
+    return path
+
+
+@figure("phillips", "fig08", seed="Phillips 2004, Fig. 8", title="A Monge surface z = noise(x, y) and its depth map",
+        params=dict(grid=128, cells=4.0, amplitude=0.6, size=480, seed=6), quick=dict(grid=32, size=160), uses=GEOM)
+def fig08(out, *, grid, cells, amplitude, size, seed):
+    from noiselab import LatticeNoise, analysis
+    from noiselab.geometry import height_map, height_map_image, monge_surface
+
+    noise = LatticeNoise(2, seed=seed)
+    ext = ((0.0, cells), (0.0, cells))
+    surf = monge_surface(noise, (grid, grid), ext, amplitude=amplitude)
+    h = height_map(noise, (grid, grid), ext)
+    files = [_render(surf, out / "surface.png", size, elevation=10), out / "depth.png"]
+    height_map_image(h, files[1])
+    return Result(files, f"Left: perspective view of z = {amplitude:g} noise(x, y) over {cells:g} x {cells:g} lattice cells "
+                         f"({grid} x {grid} vertices); right: the depth map, lighter = higher.",
+                  {"range": _range(h), "anisotropy": analysis.anisotropy(h),
+                   "roll-off slope above the lattice frequency": float(analysis.spectral_slope(h, (2 * cells, grid / 2 - 1)))})
+
+
+@figure("phillips", "fig09", seed="Phillips 2004, Fig. 9", title="A 2-D flow field: 2-D input, 2-D output",
+        params=dict(arrows=20, cells=4.0, size=512, streamlines=60, seed=7), quick=dict(arrows=10, size=200, streamlines=10),
+        uses=GEOM)
+def fig09(out, *, arrows, cells, size, streamlines, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import flow_field, quiver_image
+
+    field = LatticeNoise(2, 2, seed=seed)
+    ext = ((0.0, cells), (0.0, cells))
+    quiver_image(field, out / "fig09.png", shape=(arrows, arrows), extent=ext, size=size, streamline_seeds=streamlines, seed=seed)
+    _, vec = flow_field(field, (64, 64), ext)
+    ang = np.arctan2(vec[..., 1], vec[..., 0])
+    return Result([out / "fig09.png"], f"At each (x, y) a 2-vector from 2-output noise, over {cells:g} x {cells:g} cells; "
+                                       "grey: streamlines through the field.",
+                  {"vx range": _range(vec[..., 0]), "vy range": _range(vec[..., 1]),
+                   "mean resultant length of directions (0 = no preferred direction)": float(np.hypot(np.cos(ang).mean(), np.sin(ang).mean()))})
+
+
+@figure("phillips", "fig10", seed="Phillips 2004, Fig. 10", title="A 3-D vector field, as a cross-fusible stereo pair",
+        params=dict(glyphs=6, cells=3.0, size=360, eye_deg=4.0, seed=8), quick=dict(glyphs=3, size=120), uses=GEOM)
+def fig10(out, *, glyphs, cells, size, eye_deg, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import flow_field, flow_glyphs, render_mesh
+
+    from .._common import save_image
+
+    field = LatticeNoise(3, 3, seed=seed)
+    ext = ((0.0, cells),) * 3
+    arrows = flow_glyphs(field, (glyphs,) * 3, ext)
+    # cross-fused viewing: the left image is the right eye's view
+    left = render_mesh(arrows, size=size, azimuth=eye_deg / 2)
+    right = render_mesh(arrows, size=size, azimuth=-eye_deg / 2)
+    pair = np.concatenate([left, np.full((left.shape[0], 12, 3), 255, np.uint8), right], axis=1)
+    _, vec = flow_field(field, (glyphs,) * 3, ext)
+    return Result([save_image(out / "stereo.png", pair)],
+                  f"{glyphs}^3 arrows of 3-output noise of (x, y, z); the two views differ by {eye_deg:g} degrees of azimuth "
+                  "(left image = right eye, for cross-fusing).",
+                  {f"v{c} range": _range(vec[..., i]) for i, c in enumerate("xyz")})
+
+
+@figure("phillips", "fig11", seed="Phillips 2004, Fig. 11", title="Height and colour from one vector-valued noise",
+        params=dict(grid=96, cells=3.0, size=400, seed=9), quick=dict(grid=24, size=140), uses=GEOM)
+def fig11(out, *, grid, cells, size, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import colored_surface, render_mesh
+
+    from .._common import save_image
+
+    ext = ((0.0, cells), (0.0, cells))
+    hue = colored_surface(LatticeNoise(2, 2, seed=seed), (grid, grid), ext, color="hue")
+    rgb = colored_surface(LatticeNoise(2, 4, seed=seed + 1), (grid, grid), ext, color="rgb")
+    imgs = [render_mesh(m, size=size, elevation=15) for m in (hue, rgb)]
+    pair = np.concatenate([imgs[0], np.full((imgs[0].shape[0], 12, 3), 255, np.uint8), imgs[1]], axis=1)
+    cols = np.asarray(rgb.visual.vertex_colors)[:, :3]
+    return Result([save_image(out / "fig11.png", pair)],
+                  "Left: 2-output noise, component 1 = height, component 2 = hue. Right: 4-output noise, component 1 = "
+                  "height, components 2-4 = R, G, B.",
+                  {"RGB channel correlations (independent outputs: near 0)":
+                       [float(np.corrcoef(cols[:, 0], cols[:, 1])[0, 1]), float(np.corrcoef(cols[:, 0], cols[:, 2])[0, 1]),
+                        float(np.corrcoef(cols[:, 1], cols[:, 2])[0, 1])]})
+
+
+def _octave_plots(out, name, kind, octaves, length, samples, cells, seed):
+    from noiselab import LatticeNoise, analysis, fractal_sum, turbulence
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    noise = LatticeNoise(1, seed=seed, frequency=cells / length)
+    x = np.linspace(0, length, samples, endpoint=False)[:, None]
+    fn = fractal_sum if kind == "fractal" else turbulence
+    ns = list(range(1, octaves + 1)) if kind == "fractal" else [octaves]
+    fig, axes = plt.subplots(len(ns), 1, figsize=(8, 1.5 * len(ns) + 0.6), sharex=True, squeeze=False)
+    measured = {}
+    for ax, n in zip(axes[:, 0], ns):
+        y = fn(noise, x, n)
+        ax.plot(x[:, 0], y, "k", lw=0.9)
+        ax.axhline(0, color="0.7", lw=0.5)
+        ax.set_title(f"n = {n} octave{'s' if n > 1 else ''}", fontsize=9, loc="left")
+        measured[f"n = {n}: range"] = _range(y)
+    ylast = y
+    if kind == "fractal":
+        measured[f"n = {octaves}: amplitude slope over the octaves (1/f: -1)"] = float(
+            analysis.spectral_slope(ylast, (cells * 1.5, cells * 2 ** (octaves - 1))))
+    axes[-1, 0].set_xlabel("x")
+    return [save_figure(fig, out / f"{name}.png")], measured
+
+
+@figure("phillips", "fig12", seed="Phillips 2004, Fig. 12", title="Fractal sums of n = 1..5 octaves (Eq. 9)",
+        params=dict(octaves=5, length=10.0, samples=4096, cells=8.0, seed=10), quick=dict(samples=1024), uses=NOISE)
+def fig12(out, *, octaves, length, samples, cells, seed):
+    files, measured = _octave_plots(out, "fig12", "fractal", octaves, length, samples, cells, seed)
+    return Result(files, f"fracsum(x, n) = sum_F noise(2^F x) / 2^F for n = 1..{octaves}; the low-frequency carrier stays "
+                         f"while each octave adds detail ({cells:g} lattice cells over the plot).", measured)
+
+
+@figure("phillips", "fig13", seed="Phillips 2004, Fig. 13", title="Turbulence: 5 octaves of |noise| (Eq. 10)",
+        params=dict(octaves=5, length=10.0, samples=4096, cells=8.0, seed=10), quick=dict(samples=1024), uses=NOISE)
+def fig13(out, *, octaves, length, samples, cells, seed):
+    files, measured = _octave_plots(out, "fig13", "turbulence", octaves, length, samples, cells, seed)
+    return Result(files, f"turb(x, {octaves}) = sum_F |noise(2^F x)| / 2^F: the same octaves as the last panel of Fig. 12, "
+                         "rectified, so creases appear at every scale.", measured)
+
+
+def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed):
+    from noiselab import LatticeNoise, analysis
+    from noiselab.geometry import arrange, height_map, monge_surface, render_mesh
+
+    noise = LatticeNoise(2, seed=seed)
+    ext = ((0.0, cells), (0.0, cells))
+    meshes = [monge_surface(noise, (grid, grid), ext, amplitude=amplitude, octaves=n, kind=kind, on_aliasing="ignore")
+              for n in range(1, octaves + 1)]
+    render_mesh(arrange(meshes, columns=3), out / "surfaces.png", size=(int(size * 0.75), size), elevation=25,
+                scalars="height", cmap="gist_earth")
+    h = height_map(noise, (grid, grid), ext, octaves=octaves, kind=kind, on_aliasing="ignore")
+    measured = {f"n = {octaves}: range": _range(h), "anisotropy": analysis.anisotropy(h),
+                f"n = {octaves}: amplitude slope over the octaves (1/f: -1)":
+                    float(analysis.spectral_slope(h, (cells * 1.5, min(grid / 2 - 1, cells * 2 ** (octaves - 1)))))}
+    return [out / "surfaces.png"], measured
+
+
+@figure("phillips", "fig14", seed="Phillips 2004, Fig. 14", title="Fractal-sum surfaces, n = 1..5 octaves",
+        params=dict(octaves=5, grid=128, cells=3.0, amplitude=0.5, size=900, seed=11), quick=dict(grid=32, size=300), uses=GEOM)
+def fig14(out, *, octaves, grid, cells, amplitude, size, seed):
+    files, measured = _octave_surfaces(out, "fractal", octaves, grid, cells, amplitude, size, seed)
+    return Result(files, f"Monge surfaces z = {amplitude:g} fracsum(x, y, n), n = 1..{octaves} from the top left, "
+                         f"{grid} x {grid} vertices over {cells:g} x {cells:g} cells; colour = height.", measured)
+
+
+@figure("phillips", "fig15", seed="Phillips 2004, Fig. 15", title="Turbulence surfaces, n = 1..5 octaves",
+        params=dict(octaves=5, grid=128, cells=3.0, amplitude=0.5, size=900, seed=11), quick=dict(grid=32, size=300), uses=GEOM)
+def fig15(out, *, octaves, grid, cells, amplitude, size, seed):
+    files, measured = _octave_surfaces(out, "turbulence", octaves, grid, cells, amplitude, size, seed)
+    return Result(files, f"The same octaves summed as magnitudes (Eq. 10): z = {amplitude:g} turb(x, y, n), n = 1..{octaves}. "
+                         "Creases make mountain-like ridges.", measured)
+
+
+def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0):
+    """Displace a sphere (or ``base``) per (amplitude, frequency, octaves, kind); return meshes and radial ranges."""
+    from noiselab.geometry import displace, sphere_for_noise
+
+    meshes, ranges = [], []
+    for a, f, n, kind in specs:
+        top = f * 2 ** (n - 1)
+        mesh = base if base is not None else sphere_for_noise(top, radius, samples_per_period=samples_per_period, max_subdivisions=6)
+        d = displace(mesh, field, amplitude=a, frequency=f, octaves=n, kind=kind, on_aliasing="ignore")
+        meshes.append(d)
+        if a:
+            ranges.append(np.asarray(d.vertex_attributes["displacement"]) / a)
+    return meshes, ranges
+
+
+@figure("phillips", "fig16", seed="Phillips 2004, Fig. 16", title="Unit spheres displaced by noise (Eq. 11): amplitude, then frequency",
+        params=dict(amplitudes=(0.05, 0.1, 0.2, 0.3), frequency=2.0, frequencies=(1.0, 2.0, 4.0, 8.0), amplitude=0.1, size=640, seed=12),
+        quick=dict(frequencies=(1.0, 2.0, 3.0, 4.0), size=240), uses=GEOM)
+def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import arrange
+
+    field = LatticeNoise(3, seed=seed)
+    left, r1 = _spheres(field, [(a, frequency, 1, "fractal") for a in amplitudes])
+    right, r2 = _spheres(field, [(amplitude, f, 1, "fractal") for f in frequencies])
+    files = [_render(arrange(left, columns=2), out / "amplitude.png", size),
+             _render(arrange(right, columns=2), out / "frequency.png", size)]
+    allr = np.concatenate(r1 + r2)
+    return Result(files, f"p' = p + s n_p with s = a noise(F p). Left: F = {frequency:g}, a = "
+                         f"{', '.join(f'{a:g}' for a in amplitudes)} (left to right, top to bottom). Right: a = {amplitude:g}, "
+                         f"F = {', '.join(f'{f:g}' for f in frequencies)}. Each sphere is subdivided to the resolution its "
+                         "noise needs (4 vertices per period).",
+                  {"displacement / amplitude range (within [-1, 1])": _range(allr),
+                   "vertices per sphere": [len(m.vertices) for m in left + right]})
+
+
+@figure("phillips", "fig17", seed="Phillips 2004, Fig. 17", title="Spheres displaced by fractal (left) and turbulent (right) sums, n = 1..6",
+        params=dict(octaves=6, frequency=1.5, amplitude=0.15, size=640, seed=13), quick=dict(octaves=3, size=240), uses=GEOM)
+def fig17(out, *, octaves, frequency, amplitude, size, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import arrange
+
+    field = LatticeNoise(3, seed=seed)
+    frac, rf = _spheres(field, [(amplitude, frequency, n, "fractal") for n in range(1, octaves + 1)], samples_per_period=2.0)
+    turb, rt = _spheres(field, [(amplitude, frequency, n, "turbulence") for n in range(1, octaves + 1)], samples_per_period=2.0)
+    files = [_render(arrange(frac, columns=3), out / "fractal.png", size),
+             _render(arrange(turb, columns=3), out / "turbulence.png", size)]
+    return Result(files, f"s = a fracsum(F p, n) (left) and a turb(F p, n) (right), a = {amplitude:g}, F = {frequency:g}, "
+                         f"n = 1..{octaves} from the top left; meshes subdivided for the highest octave (2 vertices per "
+                         "period, at most 6 subdivisions).",
+                  {"fractal: displacement / amplitude range": _range(np.concatenate(rf)),
+                   "turbulence: displacement / amplitude range (>= 0)": _range(np.concatenate(rt))})
+
+
+@figure("phillips", "fig18", seed="Phillips 2004, Fig. 18", title="Any mesh: a bundled model displaced with s = 0 to 0.5",
+        params=dict(model="ant", amplitudes=(0.0, 0.1, 0.2, 0.3, 0.4, 0.5), frequency=1.5, size=720, seed=14),
+        quick=dict(amplitudes=(0.0, 0.25, 0.5), size=240), uses=GEOM)
+def fig18(out, *, model, amplitudes, frequency, size, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import arrange, load_model, subdivide_for_noise
+
+    base = subdivide_for_noise(load_model(model, size=2.0), frequency)
+    field = LatticeNoise(3, seed=seed)
+    meshes, ranges = _spheres(field, [(0.1 * a / max(amplitudes), frequency, 1, "fractal") for a in amplitudes], base=base)
+    files = [_render(arrange(meshes, columns=3), out / "fig18.png", size, view="iso")]
+    return Result(files, f"The paper's cow is not available offline; pyvista's bundled '{model}' model stands in, scaled to "
+                         f"size 2 and subdivided for noise of frequency {frequency:g} ({len(base.vertices)} vertices), "
+                         f"displaced with s = {', '.join(f'{a:g}' for a in amplitudes)} (in units of 1/10 of the model's "
+                         "half-size: s = 0.5 is a displacement of up to 0.1).",
+                  {"displacement / amplitude range": _range(np.concatenate(ranges)) if ranges else "n/a",
+                   "vertices": len(base.vertices)})
+
+
+@figure("phillips", "fig19", seed="Phillips 2004, Fig. 19", title="Squashed spheres (5%) with noise from 0 to 10% of the radius",
+        params=dict(squash=0.05, amplitudes=(0.0, 0.05, 0.1), frequency=2.0, size=600, seed=15), quick=dict(size=240), uses=GEOM)
+def fig19(out, *, squash, amplitudes, frequency, size, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import arrange, squashed_sphere
+
+    base = squashed_sphere(squash, subdivisions=5)
+    meshes, ranges = _spheres(LatticeNoise(3, seed=seed), [(a, frequency, 1, "fractal") for a in amplitudes], base=base)
+    z = [float(np.ptp(m.vertices[:, 2]) / np.ptp(m.vertices[:, 0])) for m in meshes]
+    files = [_render(arrange(meshes, columns=3), out / "fig19.png", (size // 3, size), view="xz")]
+    return Result(files, f"Three spheres squashed by {100 * squash:g}% vertically, noise amplitude "
+                         f"{', '.join(f'{a:g}' for a in amplitudes)} of the radius, left to right, seen from the side.",
+                  {"height / width of each shape": z})
+
+
+@figure("phillips", "fig20", seed="Phillips 2004, Fig. 20", title="Stimuli: constant amplitude, frequency increasing",
+        params=dict(frequencies=(0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0), amplitude=0.08, size=720, seed=16),
+        quick=dict(frequencies=(1.0, 2.0, 3.0), size=240), uses=GEOM)
+def fig20(out, *, frequencies, amplitude, size, seed):
+    from noiselab import LatticeNoise
+    from noiselab.geometry import arrange
+
+    meshes, ranges = _spheres(LatticeNoise(3, seed=seed, kernel="quintic"),
+                              [(amplitude, f, 1, "fractal") for f in frequencies], samples_per_period=8.0)
+    files = [_render(arrange(meshes, columns=3), out / "fig20.png", size, colors=["#d8d2c4"] * len(meshes))]
+    return Result(files, f"Spheres with a = {amplitude:g} and F = {', '.join(f'{f:g}' for f in frequencies)} (left to right, "
+                         "top to bottom), finely subdivided (8 vertices per period) and smooth-shaded in place of "
+                         "RenderMan's analytic spheres.",
+                  {"displacement / amplitude range": _range(np.concatenate(ranges)),
+                   "vertices per sphere": [len(m.vertices) for m in meshes]})

@@ -1,0 +1,233 @@
+"""The gallery: every figure builds (quick sizes), index.html opens in real headless Chromium with
+no missing file and no console error, up-to-date figures are not rebuilt, --only builds one group."""
+import html.parser
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from noiselab.cli.gallery import load_builder  # noqa: E402
+
+build_mod = load_builder()
+registry = sys.modules["noiselab_gallery.registry"]
+browser = sys.modules.get("noiselab_gallery.browser") or __import__("importlib").import_module("noiselab_gallery.browser")
+
+
+class _Refs(html.parser.HTMLParser):
+    """Collect every src/href, the figures and their captions from index.html."""
+
+    def __init__(self):
+        super().__init__()
+        self.refs, self.figures, self.videos, self._fig, self._in_caption = [], [], [], None, False
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        for key in ("src", "href", "poster"):
+            if a.get(key) and not a[key].startswith(("data:", "#")):
+                self.refs.append(a[key])
+        if tag == "figure":
+            self._fig = {"id": a.get("id"), "class": a.get("class", ""), "caption": "", "srcs": []}
+            self.figures.append(self._fig)
+        if tag in ("img", "source") and self._fig is not None:
+            self._fig["srcs"].append(a.get("src"))
+        if tag == "source":
+            self.videos.append(a.get("src"))
+        if tag == "figcaption":
+            self._in_caption = True
+
+    def handle_endtag(self, tag):
+        if tag == "figcaption":
+            self._in_caption = False
+        if tag == "figure":
+            self._fig = None
+
+    def handle_data(self, data):
+        if self._in_caption and self._fig is not None:
+            self._fig["caption"] += data
+
+
+def _parse(index):
+    p = _Refs()
+    p.feed(Path(index).read_text(encoding="utf-8"))
+    return p
+
+
+@pytest.fixture(scope="module")
+def quick_gallery(tmp_path_factory):
+    """The whole gallery at quick sizes, built once through the command line."""
+    out = tmp_path_factory.mktemp("gallery")
+    proc = subprocess.run([sys.executable, "-m", "noiselab", "gallery", "--quick", "--no-progress", "--out", str(out)],
+                          capture_output=True, text=True, cwd=ROOT, timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return out, proc.stdout
+
+
+def test_build_prints_where_index_is(quick_gallery):
+    out, stdout = quick_gallery
+    index = (out / "index.html").resolve()
+    assert index.is_file()
+    assert f"open {index}" in stdout
+    assert "0 failed" in stdout
+
+
+def test_every_figure_is_on_the_page_and_every_referenced_file_exists(quick_gallery):
+    out, _ = quick_gallery
+    page = _parse(out / "index.html")
+    specs = registry.specs()
+    ids = [f["id"] for f in page.figures]
+    assert ids == [s.key.replace("/", "-") for s in specs]
+    assert not [f["id"] for f in page.figures if "failed" in f["class"]]
+    assert all(f["srcs"] for f in page.figures), "a figure without an image or a video"
+    assert page.refs
+    missing = [r for r in page.refs if not (out / r).is_file()]
+    assert not missing, missing
+    # every video is an MP4 with a GIF preview beside it
+    assert page.videos and all(v.endswith(".mp4") for v in page.videos)
+    assert all((out / v).with_suffix(".gif").is_file() for v in page.videos)
+    # nothing escapes the output folder (no absolute paths, no ..)
+    assert all(not r.startswith("/") and ".." not in Path(r).parts for r in page.refs)
+
+
+SEED_FIGURES = (["Zhang 2003, Fig. " + f for f in ("3.1", "3.2", "3.4", "3.5", "4.1", "6.2", "6.3")]
+                + [f"Phillips 2004, Fig. {n}." for n in (1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20)])
+
+
+def test_captions_carry_seed_figure_parameters_and_measurements(quick_gallery):
+    out, _ = quick_gallery
+    page = _parse(out / "index.html")
+    captions = {f["id"]: " ".join(f["caption"].split()) for f in page.figures}
+    every = " | ".join(captions.values())
+    for seed in SEED_FIGURES:   # every seed figure the issue lists is reproduced, named in a caption
+        assert seed in every, seed
+    for spec in registry.specs():
+        cap = captions[spec.key.replace("/", "-")]
+        assert cap.startswith(spec.seed), (spec.key, cap[:80])
+        assert "Parameters: " in cap and "Measured: " in cap, spec.key
+        for name in spec.params:
+            assert f"{name}=" in cap, (spec.key, name)
+    # the snow captions carry the snow measurements, the noise captions the noise ones
+    snow = " ".join(c for k, c in captions.items() if k.startswith("snow-"))
+    assert "energy on the tent" in snow and "speed per band" in snow and "loop seam" in snow
+    noise = " ".join(c for k, c in captions.items() if not k.startswith("snow-"))
+    assert "range" in noise and "slope" in noise and "anisotropy" in noise
+
+
+def test_measured_values_are_sane(quick_gallery):
+    out, _ = quick_gallery
+    man = {s.key: build_mod.read_manifest(out, s) for s in registry.specs()}
+    assert man["snow/opacity"]["measured"]["energy on the tent"] > 0.5
+    assert 0.8 < man["snow/opacity"]["measured"]["loop seam (1 = seamless)"] < 1.25
+    contrast = man["snow/fig6_2"]["measured"]["disc: Michelson contrast veiled / clear"]
+    assert 0.8 < contrast[1] <= 1.0 and 0.1 < contrast[0] < 0.2 < contrast[1]
+    assert man["phillips/fig02"]["measured"]["basis at the lattice points equals the table entries the permutation points to"] is True
+    lo, hi = man["phillips/fig16"]["measured"]["displacement / amplitude range (within [-1, 1])"]
+    assert -1 <= lo < 0 < hi <= 1
+
+
+def test_index_opens_in_headless_chromium_without_errors(quick_gallery):
+    out, _ = quick_gallery
+    report = browser.check_page(out / "index.html", timeout=90)
+    assert report["console_errors"] == [], report["console_errors"]
+    assert report["images"] and all(i["ok"] for i in report["images"]), [i for i in report["images"] if not i["ok"]]
+    assert report["videos"] and all(v["error"] is None and v["ready"] >= 2 and v["w"] > 0 for v in report["videos"]), \
+        report["videos"]
+    check = json.loads(report["check"])   # the page's own verdict
+    assert check["bad"] == [] and check["images"] == len(report["images"]) and check["videos"] == len(report["videos"])
+
+
+def test_chromium_check_catches_a_missing_file_and_a_console_error(tmp_path):
+    (tmp_path / "page.html").write_text('<!DOCTYPE html><html><head><link rel="icon" href="data:,"></head><body>'
+                                        '<img src="nowhere.png"><script>console.error("broken")</script></body></html>')
+    report = browser.check_page(tmp_path / "page.html", timeout=60)
+    assert any("broken" in e for e in report["console_errors"])
+    assert any("nowhere.png" in e or "ERR_FILE_NOT_FOUND" in e for e in report["console_errors"])
+    assert report["images"] == [{"src": "nowhere.png", "ok": False, "w": 0}]
+
+
+def _mtimes(folder):
+    return {p: p.stat().st_mtime_ns for p in Path(folder).rglob("*") if p.is_file()}
+
+
+def test_up_to_date_figures_are_not_rebuilt(tmp_path):
+    first = build_mod.build(tmp_path, only="lab", quick=True, show_progress=False)
+    lab = [s.key for s in registry.specs("lab")]
+    assert first["built"] == lab and not first["failed"]
+    before = _mtimes(tmp_path / "lab")
+    time.sleep(0.05)
+    second = build_mod.build(tmp_path, only="lab", quick=True, show_progress=False)
+    assert second["built"] == [] and second["skipped"] == lab
+    assert _mtimes(tmp_path / "lab") == before
+    # a changed parameter set (full instead of quick) changes the hash, so it rebuilds
+    spec = registry.specs("lab/one_over_f")[0]
+    assert registry.content_hash(spec, quick=True) != registry.content_hash(spec, quick=False)
+    # a deleted output file, or a manifest from another version, rebuilds that figure only
+    man = build_mod.read_manifest(tmp_path, spec)
+    (tmp_path / man["files"][0]).unlink()
+    third = build_mod.build(tmp_path, only="lab", quick=True, show_progress=False)
+    assert third["built"] == ["lab/one_over_f"] and third["skipped"] == ["lab/kernels"]
+    mpath = tmp_path / "lab" / "kernels" / "manifest.json"
+    m = json.loads(mpath.read_text())
+    m["hash"] = "0" * 64
+    mpath.write_text(json.dumps(m))
+    fourth = build_mod.build(tmp_path, only="lab", quick=True, show_progress=False)
+    assert fourth["built"] == ["lab/kernels"]
+    forced = build_mod.build(tmp_path, only="lab/kernels", quick=True, force=True, show_progress=False)
+    assert forced["built"] == ["lab/kernels"]
+
+
+def test_hash_follows_the_modules_a_figure_uses():
+    spec = registry.specs("snow/opacity")[0]
+    assert "noiselab.snow" in spec.uses
+    v = registry.module_version("noiselab.snow")
+    assert v != "missing" and v != registry.module_version("noiselab.lattice")
+    assert registry.module_version("noiselab.no_such_module") == "missing"
+
+
+def test_only_builds_only_that_group(tmp_path):
+    report = build_mod.build(tmp_path, only="lab", quick=True, show_progress=False)
+    assert set(report["built"]) == {s.key for s in registry.specs("lab")}
+    assert sorted(p.name for p in tmp_path.iterdir() if p.is_dir()) == ["lab"]
+    page = _parse(tmp_path / "index.html")
+    assert not [r for r in page.refs if not (tmp_path / r).is_file()]
+    built = [f for f in page.figures if f["srcs"]]
+    assert {f["id"] for f in built} == {k.replace("/", "-") for k in report["built"]}
+    assert all("Not built yet" in f["caption"] for f in page.figures if not f["srcs"])
+
+
+def test_only_unknown_group_is_a_clear_error(tmp_path):
+    proc = subprocess.run([sys.executable, "-m", "noiselab", "gallery", "--only", "nope", "--out", str(tmp_path)],
+                          capture_output=True, text=True, cwd=ROOT)
+    assert proc.returncode == 2
+    assert "nope" in proc.stderr and "snow" in proc.stderr and "phillips" in proc.stderr
+    assert not (tmp_path / "index.html").exists()
+
+
+def test_build_py_and_the_command_do_the_same_thing():
+    a = subprocess.run([sys.executable, str(ROOT / "gallery" / "build.py"), "--list"], capture_output=True, text=True)
+    b = subprocess.run([sys.executable, "-m", "noiselab", "gallery", "--list"], capture_output=True, text=True)
+    assert a.returncode == b.returncode == 0, a.stderr + b.stderr
+    assert a.stdout == b.stdout
+    assert len(a.stdout.splitlines()) == len(registry.specs())
+
+
+def test_a_failing_figure_is_reported_and_leaves_no_half_written_folder(tmp_path):
+    @registry.figure("zz_broken", "boom", seed="Test, Fig. 0", title="broken", params=dict(n=1))
+    def boom(out, *, n):
+        (out / "partial.png").write_bytes(b"not a png")
+        raise ValueError("deliberate failure")
+
+    try:
+        report = build_mod.build(tmp_path, only="zz_broken", show_progress=False)
+    finally:
+        del registry.REGISTRY["zz_broken/boom"]
+    assert report["failed"] == ["zz_broken/boom"]
+    folder = tmp_path / "zz_broken" / "boom"
+    assert sorted(p.name for p in folder.iterdir()) == ["manifest.json"]
+    assert "deliberate failure" in json.loads((folder / "manifest.json").read_text())["error"]
