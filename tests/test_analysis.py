@@ -476,3 +476,13 @@ def test_removing_the_static_part_frees_the_band_speeds_from_a_still_background(
     np.testing.assert_allclose(freed, clean, rtol=0.05)
     with pytest.raises(ValueError, match="does not change in time"):
         A.best_velocity(np.stack([still] * 8), remove_static=True)
+
+
+@pytest.mark.parametrize("module", ["", ".spectrum", ".slope", ".isotropy", ".motion", ".seams", ".contrast"])
+def test_docstring_examples_hold(module):
+    import doctest
+    import importlib
+
+    mod = importlib.import_module("noiselab.analysis" + module)
+    result = doctest.testmod(mod, optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0

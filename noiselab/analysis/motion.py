@@ -355,7 +355,10 @@ class SpeedProfile:
     bands : ndarray, shape (n, 2)
         Band edges in cycles/frame.
     centers : ndarray
-        Power-weighted mean radial frequency of each band (cycles/frame).
+        Radial frequency each band's velocity refers to (cycles/frame):
+        ``sum P f**2 / sum P f`` over the band, the frequency the weighted
+        fit effectively measures (for speeds ``c / |w|`` it returns exactly
+        ``c / |w|`` at this centre when the band's power is isotropic).
     velocity : ndarray, shape (n, 2)
         ``(vx, vy)`` px/frame per band (+y down).
     coherence : ndarray
@@ -411,7 +414,10 @@ def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octa
         if v is None or e <= 0:
             raise ValueError(f"band {i} ({lo:g}, {hi:g}) cycles/frame holds no power: cannot estimate its speed")
         out_b.append((lo, hi))
-        out_c.append(float(np.sum(p0[region] * g.r[region]) / np.sum(p0[region])))
+        # the frequency the fit measures: it weighs each cell's phase -w.v by P |w|^2, so for speeds
+        # that vary as 1/|w| it returns c / (sum P |w|^2 / sum P |w|)
+        rr = g.r[region]
+        out_c.append(float(np.sum(p0[region] * rr**2) / np.sum(p0[region] * rr)))
         out_v.append(v)
         out_coh.append(coh)
         out_e.append(e)
