@@ -139,9 +139,9 @@ def main(argv=None):
         t.append(time.perf_counter())
         render._set_normals(poly)
         t.append(time.perf_counter())
-        plotter, _ = render._plotter(poly, size=args.size, colors=None, scalars=None, cmap=None, clim=None,
+        plotter, polys = render._plotter(poly, size=args.size, colors=None, scalars=None, cmap=None, clim=None,
                                      background="white", smooth_shading=True, show_edges=False)
-        render._set_camera(plotter, "iso", 0, 0, 1.0, fit=True)
+        render._set_camera(plotter, "iso", 0, 0, 1.0, fit=polys)
         t.append(time.perf_counter())
         render._snap(plotter)
         t.append(time.perf_counter())

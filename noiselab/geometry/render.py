@@ -111,7 +111,7 @@ def _set_normals(poly):
     poly.point_data.active_normals_name = "Normals"
 
 
-def _set_camera(plotter, view, azimuth, elevation, zoom, fit=False):
+def _set_camera(plotter, view, azimuth, elevation, zoom, fit=None):
     if isinstance(view, str):
         if view not in _VIEWS:
             raise ValueError(f"view must be one of {', '.join(_VIEWS)} or a pyvista camera position, got {view!r}")
@@ -125,35 +125,42 @@ def _set_camera(plotter, view, azimuth, elevation, zoom, fit=False):
         plotter.camera.Elevation(check_real("elevation", elevation))
         plotter.camera.OrthogonalizeViewUp()
     if fit:
-        _fit(plotter)
+        _fit(plotter, fit)
     zoom = check_real("zoom", zoom, lo=0.0, lo_open=True, hi=100.0)
     if zoom != 1.0:
         plotter.camera.Zoom(zoom)
     plotter.reset_camera_clipping_range()
 
 
-def _fit(plotter, margin=0.04, passes=3):
-    """Zoom so that the scene's bounding box fills the frame up to ``margin`` (reset_camera fits a bounding
-    sphere into the height only, which leaves wide images mostly empty)."""
-    lo = np.asarray(plotter.bounds, dtype=float)[0::2]
-    hi = np.asarray(plotter.bounds, dtype=float)[1::2]
-    corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
-    ren = plotter.renderer
+def _fit(plotter, polys, margin=0.04, passes=2, max_points=20000):
+    """Zoom so that the scene fills the frame up to ``margin``.
+
+    pyvista's reset_camera fits a bounding *sphere* into the image height,
+    which leaves wide images, and any object seen along a diagonal, mostly
+    empty. Here an even subsample of the vertices is projected with the
+    camera's composite projection matrix and the zoom set so that the
+    farthest one lands ``margin`` inside the border.
+    """
+    pts = []
+    total = sum(p.n_points for p in polys)
+    stride = max(1, total // max_points)
+    for p in polys:
+        pts.append(np.asarray(p.points, dtype=np.float64)[::stride])
+    pts = np.concatenate(pts)
+    if len(pts) == 0:
+        return
+    homog = np.concatenate([pts, np.ones((len(pts), 1))], axis=1)
     w, h = plotter.window_size
     for _ in range(passes):
-        xy = []
-        for c in corners:
-            ren.SetWorldPoint(*c, 1.0)
-            ren.WorldToDisplay()
-            xy.append(ren.GetDisplayPoint()[:2])
-        xy = np.asarray(xy)
-        cx, cy = w / 2.0, h / 2.0
-        # the frame is centred on the focal point: the farthest corner sets the zoom
-        reach = max(np.max(np.abs(xy[:, 0] - cx)) / (w / 2.0), np.max(np.abs(xy[:, 1] - cy)) / (h / 2.0))
+        m = plotter.camera.GetCompositeProjectionTransformMatrix(w / h, -1, 1)
+        mat = np.array([[m.GetElement(i, j) for j in range(4)] for i in range(4)])
+        clip = homog @ mat.T
+        ndc = clip[:, :2] / clip[:, 3:4]
+        reach = float(np.max(np.abs(ndc)))
         if not np.isfinite(reach) or reach <= 0:
             return
         factor = (1.0 - margin) / reach
-        if abs(factor - 1.0) < 0.01:
+        if abs(factor - 1.0) < 0.005:
             return
         plotter.camera.Zoom(factor)
         plotter.reset_camera_clipping_range()
@@ -185,8 +192,9 @@ def render_mesh(meshes, path=None, *, size=512, view="iso", azimuth=0.0, elevati
         Camera turns (degrees) about the view-up and the horizontal axis, and
         zoom (applied after the fit).
     fit : bool
-        Zoom so that the scene's bounding box fills the image (4% margin);
-        otherwise pyvista's fit of the bounding sphere to the height.
+        Zoom so that the scene fills the image (4% margin; from a subsample
+        of up to 20,000 vertices); otherwise pyvista's fit of the bounding
+        sphere to the height.
     colors : colour or list of colours
         One per mesh (matplotlib names or RGB); default a pale blue-grey.
         Meshes with vertex colours are drawn in them.
@@ -204,10 +212,10 @@ def render_mesh(meshes, path=None, *, size=512, view="iso", azimuth=0.0, elevati
     >>> img.shape, bool((img != 255).any())
     ((64, 64, 3), True)
     """
-    plotter, _ = _plotter(meshes, size=size, colors=colors, scalars=scalars, cmap=cmap, clim=clim,
-                          background=background, smooth_shading=smooth_shading, show_edges=show_edges)
+    plotter, polys = _plotter(meshes, size=size, colors=colors, scalars=scalars, cmap=cmap, clim=clim,
+                              background=background, smooth_shading=smooth_shading, show_edges=show_edges)
     try:
-        _set_camera(plotter, view, azimuth, elevation, zoom, fit=fit)
+        _set_camera(plotter, view, azimuth, elevation, zoom, fit=polys if fit else None)
         image = _snap(plotter)
     finally:
         plotter.close()
