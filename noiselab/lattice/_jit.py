@@ -29,20 +29,54 @@ _INT_SAFE = 4.0e15
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _reduce(fi, left, period):
-    """(floor index - left) mod period, exact for any finite float ``fi``."""
+def _reduce(fi, left, period, mask):
+    """(fi - left) mod period for a float lattice index ``fi``, exact for any finite ``fi``.
+
+    ``mask`` is ``period - 1`` when the period is a power of two (a bit mask
+    then replaces the modulo), else -1. Past 2**52 (no fractional bits left)
+    Python's float modulo, which is exact, reduces first.
+    """
     if fi < _INT_SAFE and fi > -_INT_SAFE:
-        b = np.int64(fi) - left
+        i = np.int64(fi) - left
+        if mask >= 0:
+            return i & mask
+        b = i % period
     else:
         b = np.int64(fi % float(period)) - left
-    b = b % period
+        if mask >= 0:
+            return b & mask
+        b = b % period
     if b < 0:
         b += period
     return b
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _wrap(j, period, mask):
+    """j mod period for 0 <= j < period + taps."""
+    if mask >= 0:
+        return j & mask
+    if j >= period:
+        j -= period
+        if j >= period:
+            j = j % period
+    return j
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _hash(h, j, n, nmask):
+    s = h + j
+    if nmask >= 0:
+        return s & nmask
+    if s >= n:
+        s -= n
+        if s >= n:
+            s = s % n
+    return s
+
+
 @nb.njit(cache=True, nogil=True)
-def eval_points(pts, out, freqs, amps, phase, shift, left, taps, coef, period,
+def eval_points(pts, out, freqs, amps, phase, shift, left, taps, coef, period, pmask,
                 perms, values, grads, basis, absval):
     """Evaluate (fractal sums of) lattice noise at scattered points.
 
@@ -55,78 +89,127 @@ def eval_points(pts, out, freqs, amps, phase, shift, left, taps, coef, period,
     phase : (d,) float64
     shift, left, taps, coef : the kernel (see ``kernels.Kernel``)
     period : (d,) int64, lattice period per axis
+    pmask : (d,) int64, period - 1 for powers of two, else -1
     perms : (C, n) int64, one permutation per output component
     values : (2, n) float64, value table by lattice parity (both rows equal
         unless the sign alternates with the lattice position)
     grads : (n, d) float64 unit gradients (gradient basis only)
     basis : 0 value noise, 1 gradient noise
     absval : sum |octave| (turbulence) instead of octave
+
+    Dimensions 1 to 3 have unrolled neighbour loops; higher dimensions walk
+    the ``taps**d`` neighbours with an odometer that re-hashes only the
+    levels whose tap changed.
     """
     npts, d = pts.shape
     ncomp = perms.shape[0]
     n = perms.shape[1]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
     noct = freqs.shape[0]
     w = np.empty((d, 4))
     r = np.empty((d, 4))
-    base = np.empty(d, np.int64)
+    jj = np.empty((d, 4), np.int64)
     cnt = np.zeros(d, np.int64)
     hs = np.zeros(d + 1, np.int64)
     par = np.zeros(d + 1, np.int64)
     prod = np.ones(d + 1)
     acc = np.zeros(ncomp)
+    vals0 = values[0]
+    vals1 = values[1]
     for p in range(npts):
         for c in range(ncomp):
             acc[c] = 0.0
         for o in range(noct):
             for a in range(d):
                 u = pts[p, a] * freqs[o, a] + phase[a] + shift
-                fi = math.floor(u)
+                fi = np.floor(u)
                 t = u - fi
+                per = period[a]
+                msk = pmask[a]
+                b = _reduce(fi, left, per, msk)
+                # powers first: independent products instead of a serial Horner chain
+                t2 = t * t
+                t3 = t2 * t
+                t4 = t2 * t2
+                t5 = t4 * t
                 for k in range(taps):
-                    s = coef[k, 5]
-                    for q in range(4, -1, -1):
-                        s = s * t + coef[k, q]
-                    w[a, k] = s
+                    w[a, k] = ((coef[k, 0] + coef[k, 1] * t) + (coef[k, 2] * t2 + coef[k, 3] * t3)
+                               + (coef[k, 4] * t4 + coef[k, 5] * t5))
                     r[a, k] = t - shift + (left - k)
-                base[a] = _reduce(fi, left, period[a])
+                    jj[a, k] = _wrap(b + k, per, msk)
             for c in range(ncomp):
-                # odometer over the taps**d neighbours, re-hashing only the
-                # levels whose tap changed
-                for a in range(d):
-                    cnt[a] = 0
-                level = 0
+                perm = perms[c]
                 total = 0.0
-                while True:
-                    for a in range(level, d):
-                        j = base[a] + cnt[a]
-                        if j >= period[a]:
-                            j -= period[a]
-                            if j >= period[a]:
-                                j = j % period[a]
-                        s_ = hs[a] + j
-                        if s_ >= n:
-                            s_ = s_ % n
-                        hs[a + 1] = perms[c, s_]
-                        par[a + 1] = par[a] + j
-                        prod[a + 1] = prod[a] * w[a, cnt[a]]
-                    h = hs[d]
-                    if basis == 0:
-                        total += prod[d] * values[par[d] & 1, h]
-                    else:
-                        dot = 0.0
-                        for a in range(d):
-                            dot += grads[h, a] * r[a, cnt[a]]
-                        total += prod[d] * dot
-                    a = d - 1
-                    while a >= 0:
-                        cnt[a] += 1
-                        if cnt[a] < taps:
-                            break
+                if d == 1:
+                    for k0 in range(taps):
+                        j0 = jj[0, k0]
+                        h = perm[_hash(0, j0, n, nmask)]
+                        if basis == 0:
+                            v = vals0[h] if (j0 & 1) == 0 else vals1[h]
+                        else:
+                            v = grads[h, 0] * r[0, k0]
+                        total += w[0, k0] * v
+                elif d == 2:
+                    for k0 in range(taps):
+                        j0 = jj[0, k0]
+                        h1 = perm[_hash(0, j0, n, nmask)]
+                        s1 = 0.0
+                        for k1 in range(taps):
+                            j1 = jj[1, k1]
+                            h = perm[_hash(h1, j1, n, nmask)]
+                            if basis == 0:
+                                v = vals0[h] if ((j0 + j1) & 1) == 0 else vals1[h]
+                            else:
+                                v = grads[h, 0] * r[0, k0] + grads[h, 1] * r[1, k1]
+                            s1 += w[1, k1] * v
+                        total += w[0, k0] * s1
+                elif d == 3:
+                    for k0 in range(taps):
+                        j0 = jj[0, k0]
+                        h1 = perm[_hash(0, j0, n, nmask)]
+                        s1 = 0.0
+                        for k1 in range(taps):
+                            j1 = jj[1, k1]
+                            h2 = perm[_hash(h1, j1, n, nmask)]
+                            s2 = 0.0
+                            for k2 in range(taps):
+                                j2 = jj[2, k2]
+                                h = perm[_hash(h2, j2, n, nmask)]
+                                if basis == 0:
+                                    v = vals0[h] if ((j0 + j1 + j2) & 1) == 0 else vals1[h]
+                                else:
+                                    v = grads[h, 0] * r[0, k0] + grads[h, 1] * r[1, k1] + grads[h, 2] * r[2, k2]
+                                s2 += w[2, k2] * v
+                            s1 += w[1, k1] * s2
+                        total += w[0, k0] * s1
+                else:
+                    for a in range(d):
                         cnt[a] = 0
-                        a -= 1
-                    if a < 0:
-                        break
-                    level = a
+                    level = 0
+                    while True:
+                        for a in range(level, d):
+                            j = jj[a, cnt[a]]
+                            hs[a + 1] = perm[_hash(hs[a], j, n, nmask)]
+                            par[a + 1] = par[a] + j
+                            prod[a + 1] = prod[a] * w[a, cnt[a]]
+                        h = hs[d]
+                        if basis == 0:
+                            v = vals0[h] if (par[d] & 1) == 0 else vals1[h]
+                        else:
+                            v = 0.0
+                            for a in range(d):
+                                v += grads[h, a] * r[a, cnt[a]]
+                        total += prod[d] * v
+                        a = d - 1
+                        while a >= 0:
+                            cnt[a] += 1
+                            if cnt[a] < taps:
+                                break
+                            cnt[a] = 0
+                            a -= 1
+                        if a < 0:
+                            break
+                        level = a
                 if absval:
                     acc[c] += amps[o] * abs(total)
                 else:
@@ -137,6 +220,7 @@ def eval_points(pts, out, freqs, amps, phase, shift, left, taps, coef, period,
 
 @nb.njit(cache=True, nogil=True)
 def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
+    mask = period - 1 if (period & (period - 1)) == 0 else -1
     """Per-sample tap weights and reduced first-tap indices along one grid axis.
 
     Returns ``fi`` (float floor index), ``base`` ((floor - left) mod period),
@@ -149,14 +233,17 @@ def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
     rw = np.empty((nn, taps))
     for j in range(nn):
         u = coords[j] * freq + phase + shift
-        fi = math.floor(u)
+        fi = np.floor(u)
         t = u - fi
         fis[j] = fi
-        base[j] = _reduce(fi, left, period)
+        base[j] = _reduce(fi, left, period, mask)
+        t2 = t * t
+        t3 = t2 * t
+        t4 = t2 * t2
+        t5 = t4 * t
         for k in range(taps):
-            s = coef[k, 5]
-            for q in range(4, -1, -1):
-                s = s * t + coef[k, q]
+            s = ((coef[k, 0] + coef[k, 1] * t) + (coef[k, 2] * t2 + coef[k, 3] * t3)
+                 + (coef[k, 4] * t4 + coef[k, 5] * t5))
             w[j, k] = s
             if grad:
                 rw[j, k] = s * (t - shift + (left - k))
@@ -164,33 +251,75 @@ def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
 
 
 @nb.njit(cache=True, nogil=True)
-def contract(inp, pos, w, out, scale, mode):
-    """One separable pass: ``out[p, j, q] (=, +=, += |.|) scale * sum_k w[j, k] inp[p, pos[j, k], q]``.
-
-    ``mode`` 0 writes, 1 adds, 2 adds the absolute value. The sum over k runs
-    in a fixed order, so any subset of rows j gives bit-identical results.
-    """
+def contract_mid(inp, pos, w, out):
+    """One separable pass on a middle axis: ``out[p, j, q] = sum_k w[j, k] * inp[p, pos[j, k], q]``."""
     npre, _, npost = inp.shape
     nj, taps = w.shape
-    tmp = np.empty(npost)
     for p in range(npre):
         for j in range(nj):
-            w0 = w[j, 0] * scale
-            r0 = inp[p, pos[j, 0]]
-            for q in range(npost):
-                tmp[q] = w0 * r0[q]
-            for k in range(1, taps):
-                wk = w[j, k] * scale
-                rk = inp[p, pos[j, k]]
-                for q in range(npost):
-                    tmp[q] += wk * rk[q]
             o = out[p, j]
-            if mode == 0:
+            r0 = inp[p, pos[j, 0]]
+            w0 = w[j, 0]
+            for q in range(npost):
+                o[q] = w0 * r0[q]
+            for k in range(1, taps):
+                rk = inp[p, pos[j, k]]
+                wk = w[j, k]
                 for q in range(npost):
-                    o[q] = tmp[q]
-            elif mode == 1:
+                    o[q] += wk * rk[q]
+
+
+@nb.njit(cache=True, nogil=True)
+def contract_last(inp, pos, w, out):
+    """The separable pass on the last (contiguous) axis: ``out[p, j] = sum_k w[j, k] * inp[p, pos[j, k]]``."""
+    npre = inp.shape[0]
+    nj, taps = w.shape
+    for p in range(npre):
+        row = inp[p]
+        o = out[p]
+        for j in range(nj):
+            s = w[j, 0] * row[pos[j, 0]]
+            for k in range(1, taps):
+                s += w[j, k] * row[pos[j, k]]
+            o[j] = s
+
+
+@nb.njit(cache=True, nogil=True)
+def final_pass(inter, pos, w, scales, group_start, out, mode):
+    """The last separable pass (axis 0), fused over terms (octaves, gradient components).
+
+    ``out[j, q] (=, +=) sum_g F(sum_{t in g} scales[t] sum_k w[t, j, k] inter[pos[t, j, k], q])``
+    with ``F`` the identity (mode 0 writes, 1 adds) or ``|.|`` (mode 2 adds).
+    ``inter`` holds the rows of every term's partially contracted block;
+    ``pos`` indexes them. Rows j are independent and every sum runs in a
+    fixed order, so any subset of rows or columns is bit-identical.
+    """
+    nterm, nj, taps = w.shape
+    npost = inter.shape[1]
+    ngroup = group_start.shape[0] - 1
+    acc = np.empty(npost)
+    tmp = np.empty(npost)
+    for j in range(nj):
+        for q in range(npost):
+            acc[q] = 0.0
+        for g in range(ngroup):
+            buf = tmp if mode == 2 else acc
+            if mode == 2:
                 for q in range(npost):
-                    o[q] += tmp[q]
-            else:
+                    buf[q] = 0.0
+            for t in range(group_start[g], group_start[g + 1]):
+                for k in range(taps):
+                    wk = w[t, j, k] * scales[t]
+                    rk = inter[pos[t, j, k]]
+                    for q in range(npost):
+                        buf[q] += wk * rk[q]
+            if mode == 2:
                 for q in range(npost):
-                    o[q] += abs(tmp[q])
+                    acc[q] += abs(tmp[q])
+        o = out[j]
+        if mode == 0:
+            for q in range(npost):
+                o[q] = acc[q]
+        else:
+            for q in range(npost):
+                o[q] += acc[q]

@@ -17,7 +17,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .._validate import as_generator, check_finite_array, check_int, check_memory, check_real, float_dtype
-from . import _jit
+from . import _jit, _points
 from .kernels import Kernel, get_kernel
 
 __all__ = ["LatticeNoise", "Grid", "grid_coordinates"]
@@ -183,6 +183,7 @@ class LatticeNoise:
             self.tileable = True
             if alternation == "lattice" and (self.period % 2).any():
                 raise ValueError(f"period must be even with alternation='lattice', got {self.period.tolist()}")
+        self._pmask = np.where((self.period & (self.period - 1)) == 0, self.period - 1, -1).astype(np.int64)
         self.frequency = _per_axis("frequency", frequency, d, lo=0.0, lo_open=True)
         self.phase = _per_axis("phase", phase, d)
         self.amplitude = check_real("amplitude", amplitude, lo=0.0, lo_open=True)
@@ -239,10 +240,16 @@ class LatticeNoise:
         out = np.empty((flat.shape[0], self.dim_out), dtype=dtype)
         if flat.shape[0]:
             k = self.kernel
-            _jit.eval_points(flat, out, np.ascontiguousarray(freqs, dtype=np.float64),
-                             np.ascontiguousarray(amps, dtype=np.float64), self.phase, k.shift, k.left,
-                             k.taps, k.coef, self.period, self.perms, self.values, self.gradients,
-                             0 if self.basis == "value" else 1, bool(absval))
+            freqs = np.ascontiguousarray(freqs, dtype=np.float64)
+            amps = np.ascontiguousarray(amps, dtype=np.float64)
+            basis = 0 if self.basis == "value" else 1
+            unrolled = _points.KERNELS.get((self.dim_in, k.taps))
+            if unrolled is not None and (self.period >= k.taps).all():
+                unrolled(flat, out, freqs, amps, self.phase, k.shift, k.left, k.coef, self.period, self._pmask,
+                         self.perms, self.values, self.gradients, basis, bool(absval))
+            else:
+                _jit.eval_points(flat, out, freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, self.period,
+                                 self._pmask, self.perms, self.values, self.gradients, basis, bool(absval))
         return out
 
     def __call__(self, points, *, dtype=None):
@@ -321,17 +328,18 @@ class LatticeNoise:
         out = np.zeros((self.dim_out,) + out_shape, dtype=dtype)
         if size == 0:
             return self._finish_grid(out)
+        full = list(coords)
+        sub = [coords[a][lo:hi] for a, (lo, hi) in enumerate(sl)]
+        separable, sparse = [], []
         for o in range(octaves):
             freq = self.frequency * lacunarity ** o
             amp = self.scale * gain ** o
-            full = [coords[a] for a in range(self.dim_in)]
-            sub = [coords[a][lo:hi] for a, (lo, hi) in enumerate(sl)]
-            # out starts at zero: octave 0 may write, later ones add
-            mode = 2 if absval else (1 if o else 0)
-            if self._separable(full, freq):
-                self._grid_separable(sub, freq, amp, out, mode)
-            else:
-                self._grid_scattered(sub, freq, amp, out, absval)
+            (separable if self._separable(full, freq) else sparse).append((freq, amp))
+        if separable:
+            self._grid_separable(sub, full, separable, out, absval)
+        for freq, amp in sparse:
+            # grids sparser than this octave's lattice: per-point path, added
+            self._grid_scattered(sub, freq, amp, out, absval)
         return self._finish_grid(out)
 
     def _finish_grid(self, out):
@@ -365,63 +373,90 @@ class LatticeNoise:
             for c in range(self.dim_out):
                 flat_out[c, j] += vals[:, c].astype(out.dtype)
 
-    def _grid_separable(self, sub, freq, amp, out, mode):
+    def _axis_taps(self, coords_a, freq_a, a, grad):
+        """Weights, tap positions and the reduced lattice indices of the distinct taps along one axis."""
         k = self.kernel
+        fis, base, w, rw = _jit.axis_weights(coords_a, freq_a, self.phase[a], k.shift, k.left, k.taps,
+                                             k.coef, int(self.period[a]), grad)
+        # distinct lattice taps along this axis, relative to the smallest
+        j0 = int(np.argmin(fis))
+        rel = (fis - fis[j0]).astype(np.int64)[:, None] + np.arange(k.taps)
+        uniq, inv = np.unique(rel, return_inverse=True)
+        pos = inv.reshape(rel.shape).astype(np.int64)
+        lattice = (base[j0] + uniq) % self.period[a]
+        return lattice, pos, w, rw
+
+    def _block(self, c, lattices):
+        """Hash the block of lattice points: ``h_{a+1} = P[(h_a + j_a) mod n]`` and the index parity."""
+        n = self.table_size
+        perm = self.perms[c]
+        h = perm[lattices[0] % n]
+        parity = lattices[0]
+        for a in range(1, len(lattices)):
+            lat = lattices[a].reshape((1,) * a + (-1,))
+            h = perm[(h[..., None] + lat) % n]
+            parity = parity[..., None] + lat
+        return h, parity
+
+    def _grid_separable(self, sub, full, octaves, out, absval):
+        """Separable grid path: per octave and term, contract axes d-1..1; then one fused pass on axis 0."""
         d = self.dim_in
         grad = self.basis == "gradient"
-        axes = []
-        for a in range(d):
-            fis, base, w, rw = _jit.axis_weights(sub[a], freq[a], self.phase[a], k.shift, k.left, k.taps,
-                                                 k.coef, int(self.period[a]), grad)
-            # distinct lattice taps along this axis (relative to the smallest)
-            lo = fis.min()
-            rel = (fis - lo).astype(np.int64)[:, None] + np.arange(k.taps)
-            uniq, inv = np.unique(rel, return_inverse=True)
-            pos = inv.reshape(rel.shape).astype(np.int64)
-            # reduced lattice index of each distinct tap: base of the first
-            # sample + offset, modulo the period
-            j0 = int(np.argmin(fis))
-            lattice = (base[j0] + uniq) % self.period[a]
-            axes.append((lattice, pos, w, rw))
-        n = self.table_size
-        scale = amp
-        for c in range(self.dim_out):
-            # nested hash over the block: h_{a+1} = P[(h_a + j_a) mod n]
-            h = np.zeros((), dtype=np.int64)
-            parity = np.zeros((), dtype=np.int64)
-            perm = self.perms[c]
-            for a in range(d):
-                lat = axes[a][0].reshape((1,) * a + (-1,))
-                h = perm[(h[..., None] + lat) % n] if a else perm[lat % n]
-                parity = parity[..., None] + lat if a else lat
-            target = out[c]
-            if grad:
-                # sum over b of the separable terms g_b(i) * (x_b - i_b) K(x - i);
-                # turbulence needs the whole sum before |.|, hence a float64 buffer
-                buf = np.zeros(target.shape) if mode == 2 else target
-                for b in range(d):
-                    block = self.gradients[h, b]
-                    self._contract_all(block, axes, buf, scale, (0 if mode == 0 else 1) if b == 0 else 1, use_r=b)
-                if mode == 2:
-                    target += np.abs(buf).astype(target.dtype)
-            else:
-                block = self.values[parity & 1, h]
-                self._contract_all(block, axes, target, scale, mode, use_r=-1)
+        nterm = d if grad else 1
+        # Batches of octaves whose partially contracted blocks fit a memory
+        # budget, decided on the full grid so that windows batch identically.
+        post_full = int(np.prod([c.shape[0] for c in full[1:]], dtype=np.int64))
+        budget = max(64 << 20, 2 * 8 * full[0].shape[0] * post_full)
+        batches, cur, used = [], [], 0
+        for freq, amp in octaves:
+            span = abs(full[0][-1] - full[0][0]) * freq[0] if full[0].shape[0] > 1 else 0.0
+            rows = min(full[0].shape[0] * self.kernel.taps, span + self.kernel.taps + 1)
+            need = 8 * rows * post_full * nterm
+            if cur and used + need > budget:
+                batches.append(cur)
+                cur, used = [], 0
+            cur.append((freq, amp))
+            used += need
+        batches.append(cur)
+        post = int(np.prod([c.shape[0] for c in sub[1:]], dtype=np.int64))
+        nj = sub[0].shape[0]
+        for bi, batch in enumerate(batches):
+            axes_per_octave = [[self._axis_taps(sub[a], freq[a], a, grad) for a in range(d)] for freq, _ in batch]
+            for c in range(self.dim_out):
+                inters, poss, ws, scales = [], [], [], []
+                row0 = 0
+                for (freq, amp), axes in zip(batch, axes_per_octave):
+                    h, parity = self._block(c, [ax[0] for ax in axes])
+                    for b in range(nterm):
+                        block = self.gradients[h, b] if grad else self.values[parity & 1, h]
+                        inter = self._contract_rest(block, axes, b if grad else -1)
+                        inters.append(inter.reshape(inter.shape[0], -1))
+                        lat0, pos0, w0, rw0 = axes[0]
+                        poss.append(pos0 + row0)
+                        ws.append(rw0 if (grad and b == 0) else w0)
+                        scales.append(amp)
+                        row0 += inter.shape[0]
+                inter_all = inters[0] if len(inters) == 1 else np.concatenate(inters, axis=0)
+                group_start = (np.arange(len(batch) + 1) * nterm if absval else np.array([0, len(ws)])).astype(np.int64)
+                mode = 2 if absval else (0 if bi == 0 else 1)
+                _jit.final_pass(np.ascontiguousarray(inter_all), np.ascontiguousarray(np.stack(poss)),
+                                np.ascontiguousarray(np.stack(ws)), np.asarray(scales, dtype=np.float64),
+                                group_start, out[c].reshape(nj, post), mode)
 
     @staticmethod
-    def _contract_all(block, axes, target, scale, mode, use_r):
-        """Apply the kernel along every axis, last axis first; the final pass (axis 0) writes ``target``."""
+    def _contract_rest(block, axes, use_r):
+        """Contract axes d-1 .. 1 of a lattice block (axis ``use_r`` with the gradient ramp weights)."""
         cur = np.ascontiguousarray(block, dtype=np.float64)
         d = cur.ndim
-        for a in range(d - 1, -1, -1):
-            lattice, pos, w, rw = axes[a]
+        for a in range(d - 1, 0, -1):
+            _, pos, w, rw = axes[a]
             weights = rw if a == use_r else w
             pre = int(np.prod(cur.shape[:a], dtype=np.int64))
             post = int(np.prod(cur.shape[a + 1:], dtype=np.int64))
-            inp = cur.reshape(pre, cur.shape[a], post)
-            if a == 0:
-                _jit.contract(inp, pos, weights, target.reshape(1, pos.shape[0], post), scale, mode)
+            nxt = np.empty((pre, pos.shape[0], post))
+            if post == 1:
+                _jit.contract_last(cur.reshape(pre, cur.shape[a]), pos, weights, nxt.reshape(pre, pos.shape[0]))
             else:
-                nxt = np.empty((pre, pos.shape[0], post))
-                _jit.contract(inp, pos, weights, nxt, 1.0, 0)
-                cur = nxt.reshape(cur.shape[:a] + (pos.shape[0],) + cur.shape[a + 1:])
+                _jit.contract_mid(cur.reshape(pre, cur.shape[a], post), pos, weights, nxt)
+            cur = nxt.reshape(cur.shape[:a] + (pos.shape[0],) + cur.shape[a + 1:])
+        return cur
