@@ -141,7 +141,8 @@ def measure(data, kind, *, band=None, window="auto", bands_per_octave=2):
     if spatial and min(data.shape[-2:]) >= 8:
         o = A.orientation_energy(spec)
         out["anisotropy"] = {"index": o.index, "m2": o.m2, "m4": o.m4, "dominant_deg": o.dominant,
-                             "axis_ratio": o.axis_ratio}
+                             "axis_ratio": o.axis_ratio, "angles_deg": o.angles.tolist(),
+                             "energy": o.energy.tolist()}
     del spec
     if kind == "video" and data.shape[0] >= 3:
         try:
@@ -220,8 +221,8 @@ def plot(path, m) -> Path:
     from ..io import atomic_output
 
     path = Path(path)
-    video = "speed_per_band" in m
-    fig, axes = plt.subplots(1, 2 if video else 1, figsize=(10 if video else 5.5, 4.2), squeeze=False)
+    panels = ["radial"] + (["orientation"] if "anisotropy" in m else []) + (["speed"] if "speed_per_band" in m else [])
+    fig, axes = plt.subplots(1, len(panels), figsize=(4.6 * len(panels) + 0.6, 4.2), squeeze=False)
     ax = axes[0, 0]
     f = np.asarray(m["radial"]["frequency"])
     a = np.asarray(m["radial"]["amplitude"])
@@ -238,9 +239,20 @@ def plot(path, m) -> Path:
     ax.set_title("radial spectrum")
     ax.legend(fontsize=8)
     ax.grid(True, which="both", alpha=0.3)
-    if video:
+    if "orientation" in panels:
+        an = m["anisotropy"]
+        ax = axes[0, panels.index("orientation")]
+        ax.plot(an["angles_deg"], an["energy"], "o-", ms=3)
+        ax.axhline(1.0, color="k", lw=0.8, ls="--")
+        ax.set_xlim(0, 180)
+        ax.set_xticks(range(0, 181, 45))
+        ax.set_xlabel("wave-vector orientation (deg, y down)")
+        ax.set_ylabel("energy / mean (radially whitened)")
+        ax.set_title(f"orientation: anisotropy {an['index']:.3f}")
+        ax.grid(True, alpha=0.3)
+    if "speed" in panels:
         sp = m["speed_per_band"]
-        ax = axes[0, 1]
+        ax = axes[0, panels.index("speed")]
         c = np.asarray(sp["center"])
         v = np.asarray(sp["velocity"])
         ax.loglog(c, np.asarray(sp["speed"]), "o-", label="speed |v|")
