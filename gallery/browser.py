@@ -86,6 +86,7 @@ _STATUS_JS = """
   const vids = [...document.querySelectorAll('video')];
   return JSON.stringify({
     ready: document.readyState,
+    wantsCheck: !!document.getElementById('status'),
     check: document.body ? document.body.getAttribute('data-check') : null,
     images: imgs.map(i => ({src: i.getAttribute('src'), ok: i.complete && i.naturalWidth > 0, w: i.naturalWidth})),
     videos: vids.map(v => ({src: (v.querySelector('source') || v).getAttribute('src'), ready: v.readyState,
@@ -138,7 +139,8 @@ def check_page(path, *, timeout=60.0, chromium=None):
             pipe.pump(0.5)
             res = pipe.call("Runtime.evaluate", {"expression": _STATUS_JS, "returnByValue": True}, session=session)
             status = json.loads(res["result"]["value"])
-            if status["ready"] == "complete" and status["check"] is not None:
+            settled = all(v["ready"] >= 2 or v["error"] is not None for v in status["videos"])
+            if status["ready"] == "complete" and settled and (status["check"] is not None or not status["wantsCheck"]):
                 break
         pipe.pump(0.5)
         errors = []
