@@ -38,8 +38,8 @@ def _function(d: int, taps: int) -> str:
     a_(f"{ind}ncomp = perms.shape[0]")
     a_(f"{ind}n = perms.shape[1]")
     a_(f"{ind}noct = freqs.shape[0]")
-    a_(f"{ind}vals0 = values[0]")
-    a_(f"{ind}vals1 = values[1]")
+    if d == 3 and taps >= 3:
+        a_(f"{ind}w0a = np.empty({taps}); r0a = np.empty({taps}); q0a = np.empty({taps}, np.int64)")
     a_(f"{ind}acc = np.zeros(ncomp)")
     for k in range(taps):
         a_(f"{ind}" + "; ".join(f"c{k}{q} = coef[{k}, {q}]" for q in range(6)))
@@ -70,19 +70,32 @@ def _function(d: int, taps: int) -> str:
                 a_(f"{i3}j{a}_{k} = b{a}")
             a_(f"{i3}q{a}_{k} = j{a}_{k} if j{a}_{k} < n else j{a}_{k} % n")
     a_(f"{i3}par = (" + " + ".join(f"b{a}" for a in range(d)) + ") & 1")
-    a_(f"{i3}va = vals0 if par == 0 else vals1")
-    a_(f"{i3}vb = vals1 if par == 0 else vals0")
+    # 3-D kernels with 3 or 4 taps keep a loop over the first axis (the
+    # fully unrolled 64-corner body takes too long to compile)
+    loop0 = d == 3 and taps >= 3
+    if loop0:
+        for k in range(taps):
+            a_(f"{i3}w0a[{k}] = w0_{k}; r0a[{k}] = r0_{k}; q0a[{k}] = q0_{k}")
     a_(f"{i3}for c in range(ncomp):")
+    first = 1 if loop0 else 0
+    i5 = i4 + (ind if loop0 else "")
+    if loop0:
+        a_(f"{i4}total = 0.0")
+        a_(f"{i4}for k0 in range(TAPS):".replace("TAPS", str(taps)))
+        a_(f"{i5}hk = perms[c, q0a[k0]]")
+        a_(f"{i5}pk = par ^ (k0 & 1)")
     # hash tree
-    for level in range(d):
-        for ks in itertools.product(range(taps), repeat=level + 1):
+    for level in range(first, d):
+        for ks in itertools.product(range(taps), repeat=level + 1 - first):
             name = "h" + "".join(map(str, ks))
-            prev = "0" if level == 0 else "h" + "".join(map(str, ks[:-1]))
             if level == 0:
-                a_(f"{i4}{name} = perms[c, q0_{ks[-1]}]")
+                a_(f"{i5}{name} = perms[c, q0_{ks[-1]}]")
             else:
-                a_(f"{i4}s = {prev} + q{level}_{ks[-1]}")
-                a_(f"{i4}{name} = perms[c, s - n if s >= n else s]")
+                prev = ("hk" if loop0 else "h") + "".join(map(str, ks[:-1])) if (level - first) else "hk"
+                if not loop0 or level - first:
+                    prev = ("hk" if (loop0 and level - first == 0) else "h" + "".join(map(str, ks[:-1])))
+                a_(f"{i5}s = {prev} + q{level}_{ks[-1]}")
+                a_(f"{i5}{name} = perms[c, s - n if s >= n else s]")
 
     def nested(prefix, level, leaf):
         # sum_k w{level}_k * (inner)
@@ -93,18 +106,32 @@ def _function(d: int, taps: int) -> str:
             terms.append(f"w{level}_{k} * ({inner})")
         return " + ".join(terms)
 
+    parity0 = "pk" if loop0 else "par"
+
     def value_leaf(ks):
-        table = "va" if sum(ks) % 2 == 0 else "vb"
-        return f"{table}[h{''.join(map(str, ks))}]"
+        odd = sum(ks) % 2
+        return f"values[{parity0}{' ^ 1' if odd else ''}, h{''.join(map(str, ks))}]"
 
     def grad_leaf(ks):
         h = "h" + "".join(map(str, ks))
-        return " + ".join(f"grads[{h}, {a}] * r{a}_{ks[a]}" for a in range(d))
+        terms = []
+        if loop0:
+            terms.append(f"grads[{h}, 0] * r0a[k0]")
+        for a in range(first, d):
+            terms.append(f"grads[{h}, {a}] * r{a}_{ks[a - first]}")
+        return " + ".join(terms)
 
-    a_(f"{i4}if basis == 0:")
-    a_(f"{i4}    total = {nested((), 0, value_leaf)}")
-    a_(f"{i4}else:")
-    a_(f"{i4}    total = {nested((), 0, grad_leaf)}")
+    if loop0:
+        a_(f"{i5}if basis == 0:")
+        a_(f"{i5}    inner = {nested((), first, value_leaf)}")
+        a_(f"{i5}else:")
+        a_(f"{i5}    inner = {nested((), first, grad_leaf)}")
+        a_(f"{i5}total += w0a[k0] * inner")
+    else:
+        a_(f"{i4}if basis == 0:")
+        a_(f"{i4}    total = {nested((), 0, value_leaf)}")
+        a_(f"{i4}else:")
+        a_(f"{i4}    total = {nested((), 0, grad_leaf)}")
     a_(f"{i4}if absval:")
     a_(f"{i4}    acc[c] += amps[o] * abs(total)")
     a_(f"{i4}else:")

@@ -19,8 +19,6 @@ def points_d1_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     per0 = period[0]; msk0 = pmask[0]
@@ -38,12 +36,10 @@ def points_d1_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j0_0 = b0
             q0_0 = j0_0 if j0_0 < n else j0_0 % n
             par = (b0) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
             for c in range(ncomp):
                 h0 = perms[c, q0_0]
                 if basis == 0:
-                    total = w0_0 * (va[h0])
+                    total = w0_0 * (values[par, h0])
                 else:
                     total = w0_0 * (grads[h0, 0] * r0_0)
                 if absval:
@@ -62,8 +58,6 @@ def points_d1_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -87,13 +81,11 @@ def points_d1_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j0_1 = j0_1 - per0 if j0_1 >= per0 else j0_1
             q0_1 = j0_1 if j0_1 < n else j0_1 % n
             par = (b0) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
             for c in range(ncomp):
                 h0 = perms[c, q0_0]
                 h1 = perms[c, q0_1]
                 if basis == 0:
-                    total = w0_0 * (va[h0]) + w0_1 * (vb[h1])
+                    total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1])
                 else:
                     total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1)
                 if absval:
@@ -112,8 +104,6 @@ def points_d1_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -143,14 +133,12 @@ def points_d1_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j0_2 = j0_2 - per0 if j0_2 >= per0 else j0_2
             q0_2 = j0_2 if j0_2 < n else j0_2 % n
             par = (b0) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
             for c in range(ncomp):
                 h0 = perms[c, q0_0]
                 h1 = perms[c, q0_1]
                 h2 = perms[c, q0_2]
                 if basis == 0:
-                    total = w0_0 * (va[h0]) + w0_1 * (vb[h1]) + w0_2 * (va[h2])
+                    total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1]) + w0_2 * (values[par, h2])
                 else:
                     total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1) + w0_2 * (grads[h2, 0] * r0_2)
                 if absval:
@@ -169,8 +157,6 @@ def points_d1_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -206,15 +192,13 @@ def points_d1_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j0_3 = j0_3 - per0 if j0_3 >= per0 else j0_3
             q0_3 = j0_3 if j0_3 < n else j0_3 % n
             par = (b0) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
             for c in range(ncomp):
                 h0 = perms[c, q0_0]
                 h1 = perms[c, q0_1]
                 h2 = perms[c, q0_2]
                 h3 = perms[c, q0_3]
                 if basis == 0:
-                    total = w0_0 * (va[h0]) + w0_1 * (vb[h1]) + w0_2 * (va[h2]) + w0_3 * (vb[h3])
+                    total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1]) + w0_2 * (values[par, h2]) + w0_3 * (values[par ^ 1, h3])
                 else:
                     total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1) + w0_2 * (grads[h2, 0] * r0_2) + w0_3 * (grads[h3, 0] * r0_3)
                 if absval:
@@ -233,8 +217,6 @@ def points_d2_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     per0 = period[0]; msk0 = pmask[0]
@@ -262,14 +244,12 @@ def points_d2_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j1_0 = b1
             q1_0 = j1_0 if j1_0 < n else j1_0 % n
             par = (b0 + b1) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
             for c in range(ncomp):
                 h0 = perms[c, q0_0]
                 s = h0 + q1_0
                 h00 = perms[c, s - n if s >= n else s]
                 if basis == 0:
-                    total = w0_0 * (w1_0 * (va[h00]))
+                    total = w0_0 * (w1_0 * (values[par, h00]))
                 else:
                     total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0))
                 if absval:
@@ -288,8 +268,6 @@ def points_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -328,8 +306,6 @@ def points_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j1_1 = j1_1 - per1 if j1_1 >= per1 else j1_1
             q1_1 = j1_1 if j1_1 < n else j1_1 % n
             par = (b0 + b1) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
             for c in range(ncomp):
                 h0 = perms[c, q0_0]
                 h1 = perms[c, q0_1]
@@ -342,7 +318,7 @@ def points_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 s = h1 + q1_1
                 h11 = perms[c, s - n if s >= n else s]
                 if basis == 0:
-                    total = w0_0 * (w1_0 * (va[h00]) + w1_1 * (vb[h01])) + w0_1 * (w1_0 * (vb[h10]) + w1_1 * (va[h11]))
+                    total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]))
                 else:
                     total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1))
                 if absval:
@@ -361,8 +337,6 @@ def points_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -412,8 +386,6 @@ def points_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j1_2 = j1_2 - per1 if j1_2 >= per1 else j1_2
             q1_2 = j1_2 if j1_2 < n else j1_2 % n
             par = (b0 + b1) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
             for c in range(ncomp):
                 h0 = perms[c, q0_0]
                 h1 = perms[c, q0_1]
@@ -437,7 +409,7 @@ def points_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 s = h2 + q1_2
                 h22 = perms[c, s - n if s >= n else s]
                 if basis == 0:
-                    total = w0_0 * (w1_0 * (va[h00]) + w1_1 * (vb[h01]) + w1_2 * (va[h02])) + w0_1 * (w1_0 * (vb[h10]) + w1_1 * (va[h11]) + w1_2 * (vb[h12])) + w0_2 * (w1_0 * (va[h20]) + w1_1 * (vb[h21]) + w1_2 * (va[h22]))
+                    total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01]) + w1_2 * (values[par, h02])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]) + w1_2 * (values[par ^ 1, h12])) + w0_2 * (w1_0 * (values[par, h20]) + w1_1 * (values[par ^ 1, h21]) + w1_2 * (values[par, h22]))
                 else:
                     total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1) + w1_2 * (grads[h02, 0] * r0_0 + grads[h02, 1] * r1_2)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1) + w1_2 * (grads[h12, 0] * r0_1 + grads[h12, 1] * r1_2)) + w0_2 * (w1_0 * (grads[h20, 0] * r0_2 + grads[h20, 1] * r1_0) + w1_1 * (grads[h21, 0] * r0_2 + grads[h21, 1] * r1_1) + w1_2 * (grads[h22, 0] * r0_2 + grads[h22, 1] * r1_2))
                 if absval:
@@ -456,8 +428,6 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -518,8 +488,6 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j1_3 = j1_3 - per1 if j1_3 >= per1 else j1_3
             q1_3 = j1_3 if j1_3 < n else j1_3 % n
             par = (b0 + b1) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
             for c in range(ncomp):
                 h0 = perms[c, q0_0]
                 h1 = perms[c, q0_1]
@@ -558,7 +526,7 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 s = h3 + q1_3
                 h33 = perms[c, s - n if s >= n else s]
                 if basis == 0:
-                    total = w0_0 * (w1_0 * (va[h00]) + w1_1 * (vb[h01]) + w1_2 * (va[h02]) + w1_3 * (vb[h03])) + w0_1 * (w1_0 * (vb[h10]) + w1_1 * (va[h11]) + w1_2 * (vb[h12]) + w1_3 * (va[h13])) + w0_2 * (w1_0 * (va[h20]) + w1_1 * (vb[h21]) + w1_2 * (va[h22]) + w1_3 * (vb[h23])) + w0_3 * (w1_0 * (vb[h30]) + w1_1 * (va[h31]) + w1_2 * (vb[h32]) + w1_3 * (va[h33]))
+                    total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01]) + w1_2 * (values[par, h02]) + w1_3 * (values[par ^ 1, h03])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]) + w1_2 * (values[par ^ 1, h12]) + w1_3 * (values[par, h13])) + w0_2 * (w1_0 * (values[par, h20]) + w1_1 * (values[par ^ 1, h21]) + w1_2 * (values[par, h22]) + w1_3 * (values[par ^ 1, h23])) + w0_3 * (w1_0 * (values[par ^ 1, h30]) + w1_1 * (values[par, h31]) + w1_2 * (values[par ^ 1, h32]) + w1_3 * (values[par, h33]))
                 else:
                     total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1) + w1_2 * (grads[h02, 0] * r0_0 + grads[h02, 1] * r1_2) + w1_3 * (grads[h03, 0] * r0_0 + grads[h03, 1] * r1_3)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1) + w1_2 * (grads[h12, 0] * r0_1 + grads[h12, 1] * r1_2) + w1_3 * (grads[h13, 0] * r0_1 + grads[h13, 1] * r1_3)) + w0_2 * (w1_0 * (grads[h20, 0] * r0_2 + grads[h20, 1] * r1_0) + w1_1 * (grads[h21, 0] * r0_2 + grads[h21, 1] * r1_1) + w1_2 * (grads[h22, 0] * r0_2 + grads[h22, 1] * r1_2) + w1_3 * (grads[h23, 0] * r0_2 + grads[h23, 1] * r1_3)) + w0_3 * (w1_0 * (grads[h30, 0] * r0_3 + grads[h30, 1] * r1_0) + w1_1 * (grads[h31, 0] * r0_3 + grads[h31, 1] * r1_1) + w1_2 * (grads[h32, 0] * r0_3 + grads[h32, 1] * r1_2) + w1_3 * (grads[h33, 0] * r0_3 + grads[h33, 1] * r1_3))
                 if absval:
@@ -577,8 +545,6 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     per0 = period[0]; msk0 = pmask[0]
@@ -616,8 +582,6 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j2_0 = b2
             q2_0 = j2_0 if j2_0 < n else j2_0 % n
             par = (b0 + b1 + b2) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
             for c in range(ncomp):
                 h0 = perms[c, q0_0]
                 s = h0 + q1_0
@@ -625,7 +589,7 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 s = h00 + q2_0
                 h000 = perms[c, s - n if s >= n else s]
                 if basis == 0:
-                    total = w0_0 * (w1_0 * (w2_0 * (va[h000])))
+                    total = w0_0 * (w1_0 * (w2_0 * (values[par, h000])))
                 else:
                     total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * r0_0 + grads[h000, 1] * r1_0 + grads[h000, 2] * r2_0)))
                 if absval:
@@ -644,8 +608,6 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -699,8 +661,6 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j2_1 = j2_1 - per2 if j2_1 >= per2 else j2_1
             q2_1 = j2_1 if j2_1 < n else j2_1 % n
             par = (b0 + b1 + b2) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
             for c in range(ncomp):
                 h0 = perms[c, q0_0]
                 h1 = perms[c, q0_1]
@@ -729,7 +689,7 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 s = h11 + q2_1
                 h111 = perms[c, s - n if s >= n else s]
                 if basis == 0:
-                    total = w0_0 * (w1_0 * (w2_0 * (va[h000]) + w2_1 * (vb[h001])) + w1_1 * (w2_0 * (vb[h010]) + w2_1 * (va[h011]))) + w0_1 * (w1_0 * (w2_0 * (vb[h100]) + w2_1 * (va[h101])) + w1_1 * (w2_0 * (va[h110]) + w2_1 * (vb[h111])))
+                    total = w0_0 * (w1_0 * (w2_0 * (values[par, h000]) + w2_1 * (values[par ^ 1, h001])) + w1_1 * (w2_0 * (values[par ^ 1, h010]) + w2_1 * (values[par, h011]))) + w0_1 * (w1_0 * (w2_0 * (values[par ^ 1, h100]) + w2_1 * (values[par, h101])) + w1_1 * (w2_0 * (values[par, h110]) + w2_1 * (values[par ^ 1, h111])))
                 else:
                     total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * r0_0 + grads[h000, 1] * r1_0 + grads[h000, 2] * r2_0) + w2_1 * (grads[h001, 0] * r0_0 + grads[h001, 1] * r1_0 + grads[h001, 2] * r2_1)) + w1_1 * (w2_0 * (grads[h010, 0] * r0_0 + grads[h010, 1] * r1_1 + grads[h010, 2] * r2_0) + w2_1 * (grads[h011, 0] * r0_0 + grads[h011, 1] * r1_1 + grads[h011, 2] * r2_1))) + w0_1 * (w1_0 * (w2_0 * (grads[h100, 0] * r0_1 + grads[h100, 1] * r1_0 + grads[h100, 2] * r2_0) + w2_1 * (grads[h101, 0] * r0_1 + grads[h101, 1] * r1_0 + grads[h101, 2] * r2_1)) + w1_1 * (w2_0 * (grads[h110, 0] * r0_1 + grads[h110, 1] * r1_1 + grads[h110, 2] * r2_0) + w2_1 * (grads[h111, 0] * r0_1 + grads[h111, 1] * r1_1 + grads[h111, 2] * r2_1)))
                 if absval:
@@ -748,8 +708,7 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
+    w0a = np.empty(3); r0a = np.empty(3); q0a = np.empty(3, np.int64)
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -819,88 +778,43 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j2_2 = j2_2 - per2 if j2_2 >= per2 else j2_2
             q2_2 = j2_2 if j2_2 < n else j2_2 % n
             par = (b0 + b1 + b2) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
+            w0a[0] = w0_0; r0a[0] = r0_0; q0a[0] = q0_0
+            w0a[1] = w0_1; r0a[1] = r0_1; q0a[1] = q0_1
+            w0a[2] = w0_2; r0a[2] = r0_2; q0a[2] = q0_2
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                h1 = perms[c, q0_1]
-                h2 = perms[c, q0_2]
-                s = h0 + q1_0
-                h00 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_1
-                h01 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_2
-                h02 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_0
-                h10 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_1
-                h11 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_2
-                h12 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_0
-                h20 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_1
-                h21 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_2
-                h22 = perms[c, s - n if s >= n else s]
-                s = h00 + q2_0
-                h000 = perms[c, s - n if s >= n else s]
-                s = h00 + q2_1
-                h001 = perms[c, s - n if s >= n else s]
-                s = h00 + q2_2
-                h002 = perms[c, s - n if s >= n else s]
-                s = h01 + q2_0
-                h010 = perms[c, s - n if s >= n else s]
-                s = h01 + q2_1
-                h011 = perms[c, s - n if s >= n else s]
-                s = h01 + q2_2
-                h012 = perms[c, s - n if s >= n else s]
-                s = h02 + q2_0
-                h020 = perms[c, s - n if s >= n else s]
-                s = h02 + q2_1
-                h021 = perms[c, s - n if s >= n else s]
-                s = h02 + q2_2
-                h022 = perms[c, s - n if s >= n else s]
-                s = h10 + q2_0
-                h100 = perms[c, s - n if s >= n else s]
-                s = h10 + q2_1
-                h101 = perms[c, s - n if s >= n else s]
-                s = h10 + q2_2
-                h102 = perms[c, s - n if s >= n else s]
-                s = h11 + q2_0
-                h110 = perms[c, s - n if s >= n else s]
-                s = h11 + q2_1
-                h111 = perms[c, s - n if s >= n else s]
-                s = h11 + q2_2
-                h112 = perms[c, s - n if s >= n else s]
-                s = h12 + q2_0
-                h120 = perms[c, s - n if s >= n else s]
-                s = h12 + q2_1
-                h121 = perms[c, s - n if s >= n else s]
-                s = h12 + q2_2
-                h122 = perms[c, s - n if s >= n else s]
-                s = h20 + q2_0
-                h200 = perms[c, s - n if s >= n else s]
-                s = h20 + q2_1
-                h201 = perms[c, s - n if s >= n else s]
-                s = h20 + q2_2
-                h202 = perms[c, s - n if s >= n else s]
-                s = h21 + q2_0
-                h210 = perms[c, s - n if s >= n else s]
-                s = h21 + q2_1
-                h211 = perms[c, s - n if s >= n else s]
-                s = h21 + q2_2
-                h212 = perms[c, s - n if s >= n else s]
-                s = h22 + q2_0
-                h220 = perms[c, s - n if s >= n else s]
-                s = h22 + q2_1
-                h221 = perms[c, s - n if s >= n else s]
-                s = h22 + q2_2
-                h222 = perms[c, s - n if s >= n else s]
-                if basis == 0:
-                    total = w0_0 * (w1_0 * (w2_0 * (va[h000]) + w2_1 * (vb[h001]) + w2_2 * (va[h002])) + w1_1 * (w2_0 * (vb[h010]) + w2_1 * (va[h011]) + w2_2 * (vb[h012])) + w1_2 * (w2_0 * (va[h020]) + w2_1 * (vb[h021]) + w2_2 * (va[h022]))) + w0_1 * (w1_0 * (w2_0 * (vb[h100]) + w2_1 * (va[h101]) + w2_2 * (vb[h102])) + w1_1 * (w2_0 * (va[h110]) + w2_1 * (vb[h111]) + w2_2 * (va[h112])) + w1_2 * (w2_0 * (vb[h120]) + w2_1 * (va[h121]) + w2_2 * (vb[h122]))) + w0_2 * (w1_0 * (w2_0 * (va[h200]) + w2_1 * (vb[h201]) + w2_2 * (va[h202])) + w1_1 * (w2_0 * (vb[h210]) + w2_1 * (va[h211]) + w2_2 * (vb[h212])) + w1_2 * (w2_0 * (va[h220]) + w2_1 * (vb[h221]) + w2_2 * (va[h222])))
-                else:
-                    total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * r0_0 + grads[h000, 1] * r1_0 + grads[h000, 2] * r2_0) + w2_1 * (grads[h001, 0] * r0_0 + grads[h001, 1] * r1_0 + grads[h001, 2] * r2_1) + w2_2 * (grads[h002, 0] * r0_0 + grads[h002, 1] * r1_0 + grads[h002, 2] * r2_2)) + w1_1 * (w2_0 * (grads[h010, 0] * r0_0 + grads[h010, 1] * r1_1 + grads[h010, 2] * r2_0) + w2_1 * (grads[h011, 0] * r0_0 + grads[h011, 1] * r1_1 + grads[h011, 2] * r2_1) + w2_2 * (grads[h012, 0] * r0_0 + grads[h012, 1] * r1_1 + grads[h012, 2] * r2_2)) + w1_2 * (w2_0 * (grads[h020, 0] * r0_0 + grads[h020, 1] * r1_2 + grads[h020, 2] * r2_0) + w2_1 * (grads[h021, 0] * r0_0 + grads[h021, 1] * r1_2 + grads[h021, 2] * r2_1) + w2_2 * (grads[h022, 0] * r0_0 + grads[h022, 1] * r1_2 + grads[h022, 2] * r2_2))) + w0_1 * (w1_0 * (w2_0 * (grads[h100, 0] * r0_1 + grads[h100, 1] * r1_0 + grads[h100, 2] * r2_0) + w2_1 * (grads[h101, 0] * r0_1 + grads[h101, 1] * r1_0 + grads[h101, 2] * r2_1) + w2_2 * (grads[h102, 0] * r0_1 + grads[h102, 1] * r1_0 + grads[h102, 2] * r2_2)) + w1_1 * (w2_0 * (grads[h110, 0] * r0_1 + grads[h110, 1] * r1_1 + grads[h110, 2] * r2_0) + w2_1 * (grads[h111, 0] * r0_1 + grads[h111, 1] * r1_1 + grads[h111, 2] * r2_1) + w2_2 * (grads[h112, 0] * r0_1 + grads[h112, 1] * r1_1 + grads[h112, 2] * r2_2)) + w1_2 * (w2_0 * (grads[h120, 0] * r0_1 + grads[h120, 1] * r1_2 + grads[h120, 2] * r2_0) + w2_1 * (grads[h121, 0] * r0_1 + grads[h121, 1] * r1_2 + grads[h121, 2] * r2_1) + w2_2 * (grads[h122, 0] * r0_1 + grads[h122, 1] * r1_2 + grads[h122, 2] * r2_2))) + w0_2 * (w1_0 * (w2_0 * (grads[h200, 0] * r0_2 + grads[h200, 1] * r1_0 + grads[h200, 2] * r2_0) + w2_1 * (grads[h201, 0] * r0_2 + grads[h201, 1] * r1_0 + grads[h201, 2] * r2_1) + w2_2 * (grads[h202, 0] * r0_2 + grads[h202, 1] * r1_0 + grads[h202, 2] * r2_2)) + w1_1 * (w2_0 * (grads[h210, 0] * r0_2 + grads[h210, 1] * r1_1 + grads[h210, 2] * r2_0) + w2_1 * (grads[h211, 0] * r0_2 + grads[h211, 1] * r1_1 + grads[h211, 2] * r2_1) + w2_2 * (grads[h212, 0] * r0_2 + grads[h212, 1] * r1_1 + grads[h212, 2] * r2_2)) + w1_2 * (w2_0 * (grads[h220, 0] * r0_2 + grads[h220, 1] * r1_2 + grads[h220, 2] * r2_0) + w2_1 * (grads[h221, 0] * r0_2 + grads[h221, 1] * r1_2 + grads[h221, 2] * r2_1) + w2_2 * (grads[h222, 0] * r0_2 + grads[h222, 1] * r1_2 + grads[h222, 2] * r2_2)))
+                total = 0.0
+                for k0 in range(3):
+                    hk = perms[c, q0a[k0]]
+                    pk = par ^ (k0 & 1)
+                    s = hk + q1_0
+                    h0 = perms[c, s - n if s >= n else s]
+                    s = hk + q1_1
+                    h1 = perms[c, s - n if s >= n else s]
+                    s = hk + q1_2
+                    h2 = perms[c, s - n if s >= n else s]
+                    s = h0 + q2_0
+                    h00 = perms[c, s - n if s >= n else s]
+                    s = h0 + q2_1
+                    h01 = perms[c, s - n if s >= n else s]
+                    s = h0 + q2_2
+                    h02 = perms[c, s - n if s >= n else s]
+                    s = h1 + q2_0
+                    h10 = perms[c, s - n if s >= n else s]
+                    s = h1 + q2_1
+                    h11 = perms[c, s - n if s >= n else s]
+                    s = h1 + q2_2
+                    h12 = perms[c, s - n if s >= n else s]
+                    s = h2 + q2_0
+                    h20 = perms[c, s - n if s >= n else s]
+                    s = h2 + q2_1
+                    h21 = perms[c, s - n if s >= n else s]
+                    s = h2 + q2_2
+                    h22 = perms[c, s - n if s >= n else s]
+                    if basis == 0:
+                        inner = w1_0 * (w2_0 * (values[pk, h00]) + w2_1 * (values[pk ^ 1, h01]) + w2_2 * (values[pk, h02])) + w1_1 * (w2_0 * (values[pk ^ 1, h10]) + w2_1 * (values[pk, h11]) + w2_2 * (values[pk ^ 1, h12])) + w1_2 * (w2_0 * (values[pk, h20]) + w2_1 * (values[pk ^ 1, h21]) + w2_2 * (values[pk, h22]))
+                    else:
+                        inner = w1_0 * (w2_0 * (grads[h00, 0] * r0a[k0] + grads[h00, 1] * r1_0 + grads[h00, 2] * r2_0) + w2_1 * (grads[h01, 0] * r0a[k0] + grads[h01, 1] * r1_0 + grads[h01, 2] * r2_1) + w2_2 * (grads[h02, 0] * r0a[k0] + grads[h02, 1] * r1_0 + grads[h02, 2] * r2_2)) + w1_1 * (w2_0 * (grads[h10, 0] * r0a[k0] + grads[h10, 1] * r1_1 + grads[h10, 2] * r2_0) + w2_1 * (grads[h11, 0] * r0a[k0] + grads[h11, 1] * r1_1 + grads[h11, 2] * r2_1) + w2_2 * (grads[h12, 0] * r0a[k0] + grads[h12, 1] * r1_1 + grads[h12, 2] * r2_2)) + w1_2 * (w2_0 * (grads[h20, 0] * r0a[k0] + grads[h20, 1] * r1_2 + grads[h20, 2] * r2_0) + w2_1 * (grads[h21, 0] * r0a[k0] + grads[h21, 1] * r1_2 + grads[h21, 2] * r2_1) + w2_2 * (grads[h22, 0] * r0a[k0] + grads[h22, 1] * r1_2 + grads[h22, 2] * r2_2))
+                    total += w0a[k0] * inner
                 if absval:
                     acc[c] += amps[o] * abs(total)
                 else:
@@ -917,8 +831,7 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    vals0 = values[0]
-    vals1 = values[1]
+    w0a = np.empty(4); r0a = np.empty(4); q0a = np.empty(4, np.int64)
     acc = np.zeros(ncomp)
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -1004,177 +917,60 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
             j2_3 = j2_3 - per2 if j2_3 >= per2 else j2_3
             q2_3 = j2_3 if j2_3 < n else j2_3 % n
             par = (b0 + b1 + b2) & 1
-            va = vals0 if par == 0 else vals1
-            vb = vals1 if par == 0 else vals0
+            w0a[0] = w0_0; r0a[0] = r0_0; q0a[0] = q0_0
+            w0a[1] = w0_1; r0a[1] = r0_1; q0a[1] = q0_1
+            w0a[2] = w0_2; r0a[2] = r0_2; q0a[2] = q0_2
+            w0a[3] = w0_3; r0a[3] = r0_3; q0a[3] = q0_3
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                h1 = perms[c, q0_1]
-                h2 = perms[c, q0_2]
-                h3 = perms[c, q0_3]
-                s = h0 + q1_0
-                h00 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_1
-                h01 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_2
-                h02 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_3
-                h03 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_0
-                h10 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_1
-                h11 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_2
-                h12 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_3
-                h13 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_0
-                h20 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_1
-                h21 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_2
-                h22 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_3
-                h23 = perms[c, s - n if s >= n else s]
-                s = h3 + q1_0
-                h30 = perms[c, s - n if s >= n else s]
-                s = h3 + q1_1
-                h31 = perms[c, s - n if s >= n else s]
-                s = h3 + q1_2
-                h32 = perms[c, s - n if s >= n else s]
-                s = h3 + q1_3
-                h33 = perms[c, s - n if s >= n else s]
-                s = h00 + q2_0
-                h000 = perms[c, s - n if s >= n else s]
-                s = h00 + q2_1
-                h001 = perms[c, s - n if s >= n else s]
-                s = h00 + q2_2
-                h002 = perms[c, s - n if s >= n else s]
-                s = h00 + q2_3
-                h003 = perms[c, s - n if s >= n else s]
-                s = h01 + q2_0
-                h010 = perms[c, s - n if s >= n else s]
-                s = h01 + q2_1
-                h011 = perms[c, s - n if s >= n else s]
-                s = h01 + q2_2
-                h012 = perms[c, s - n if s >= n else s]
-                s = h01 + q2_3
-                h013 = perms[c, s - n if s >= n else s]
-                s = h02 + q2_0
-                h020 = perms[c, s - n if s >= n else s]
-                s = h02 + q2_1
-                h021 = perms[c, s - n if s >= n else s]
-                s = h02 + q2_2
-                h022 = perms[c, s - n if s >= n else s]
-                s = h02 + q2_3
-                h023 = perms[c, s - n if s >= n else s]
-                s = h03 + q2_0
-                h030 = perms[c, s - n if s >= n else s]
-                s = h03 + q2_1
-                h031 = perms[c, s - n if s >= n else s]
-                s = h03 + q2_2
-                h032 = perms[c, s - n if s >= n else s]
-                s = h03 + q2_3
-                h033 = perms[c, s - n if s >= n else s]
-                s = h10 + q2_0
-                h100 = perms[c, s - n if s >= n else s]
-                s = h10 + q2_1
-                h101 = perms[c, s - n if s >= n else s]
-                s = h10 + q2_2
-                h102 = perms[c, s - n if s >= n else s]
-                s = h10 + q2_3
-                h103 = perms[c, s - n if s >= n else s]
-                s = h11 + q2_0
-                h110 = perms[c, s - n if s >= n else s]
-                s = h11 + q2_1
-                h111 = perms[c, s - n if s >= n else s]
-                s = h11 + q2_2
-                h112 = perms[c, s - n if s >= n else s]
-                s = h11 + q2_3
-                h113 = perms[c, s - n if s >= n else s]
-                s = h12 + q2_0
-                h120 = perms[c, s - n if s >= n else s]
-                s = h12 + q2_1
-                h121 = perms[c, s - n if s >= n else s]
-                s = h12 + q2_2
-                h122 = perms[c, s - n if s >= n else s]
-                s = h12 + q2_3
-                h123 = perms[c, s - n if s >= n else s]
-                s = h13 + q2_0
-                h130 = perms[c, s - n if s >= n else s]
-                s = h13 + q2_1
-                h131 = perms[c, s - n if s >= n else s]
-                s = h13 + q2_2
-                h132 = perms[c, s - n if s >= n else s]
-                s = h13 + q2_3
-                h133 = perms[c, s - n if s >= n else s]
-                s = h20 + q2_0
-                h200 = perms[c, s - n if s >= n else s]
-                s = h20 + q2_1
-                h201 = perms[c, s - n if s >= n else s]
-                s = h20 + q2_2
-                h202 = perms[c, s - n if s >= n else s]
-                s = h20 + q2_3
-                h203 = perms[c, s - n if s >= n else s]
-                s = h21 + q2_0
-                h210 = perms[c, s - n if s >= n else s]
-                s = h21 + q2_1
-                h211 = perms[c, s - n if s >= n else s]
-                s = h21 + q2_2
-                h212 = perms[c, s - n if s >= n else s]
-                s = h21 + q2_3
-                h213 = perms[c, s - n if s >= n else s]
-                s = h22 + q2_0
-                h220 = perms[c, s - n if s >= n else s]
-                s = h22 + q2_1
-                h221 = perms[c, s - n if s >= n else s]
-                s = h22 + q2_2
-                h222 = perms[c, s - n if s >= n else s]
-                s = h22 + q2_3
-                h223 = perms[c, s - n if s >= n else s]
-                s = h23 + q2_0
-                h230 = perms[c, s - n if s >= n else s]
-                s = h23 + q2_1
-                h231 = perms[c, s - n if s >= n else s]
-                s = h23 + q2_2
-                h232 = perms[c, s - n if s >= n else s]
-                s = h23 + q2_3
-                h233 = perms[c, s - n if s >= n else s]
-                s = h30 + q2_0
-                h300 = perms[c, s - n if s >= n else s]
-                s = h30 + q2_1
-                h301 = perms[c, s - n if s >= n else s]
-                s = h30 + q2_2
-                h302 = perms[c, s - n if s >= n else s]
-                s = h30 + q2_3
-                h303 = perms[c, s - n if s >= n else s]
-                s = h31 + q2_0
-                h310 = perms[c, s - n if s >= n else s]
-                s = h31 + q2_1
-                h311 = perms[c, s - n if s >= n else s]
-                s = h31 + q2_2
-                h312 = perms[c, s - n if s >= n else s]
-                s = h31 + q2_3
-                h313 = perms[c, s - n if s >= n else s]
-                s = h32 + q2_0
-                h320 = perms[c, s - n if s >= n else s]
-                s = h32 + q2_1
-                h321 = perms[c, s - n if s >= n else s]
-                s = h32 + q2_2
-                h322 = perms[c, s - n if s >= n else s]
-                s = h32 + q2_3
-                h323 = perms[c, s - n if s >= n else s]
-                s = h33 + q2_0
-                h330 = perms[c, s - n if s >= n else s]
-                s = h33 + q2_1
-                h331 = perms[c, s - n if s >= n else s]
-                s = h33 + q2_2
-                h332 = perms[c, s - n if s >= n else s]
-                s = h33 + q2_3
-                h333 = perms[c, s - n if s >= n else s]
-                if basis == 0:
-                    total = w0_0 * (w1_0 * (w2_0 * (va[h000]) + w2_1 * (vb[h001]) + w2_2 * (va[h002]) + w2_3 * (vb[h003])) + w1_1 * (w2_0 * (vb[h010]) + w2_1 * (va[h011]) + w2_2 * (vb[h012]) + w2_3 * (va[h013])) + w1_2 * (w2_0 * (va[h020]) + w2_1 * (vb[h021]) + w2_2 * (va[h022]) + w2_3 * (vb[h023])) + w1_3 * (w2_0 * (vb[h030]) + w2_1 * (va[h031]) + w2_2 * (vb[h032]) + w2_3 * (va[h033]))) + w0_1 * (w1_0 * (w2_0 * (vb[h100]) + w2_1 * (va[h101]) + w2_2 * (vb[h102]) + w2_3 * (va[h103])) + w1_1 * (w2_0 * (va[h110]) + w2_1 * (vb[h111]) + w2_2 * (va[h112]) + w2_3 * (vb[h113])) + w1_2 * (w2_0 * (vb[h120]) + w2_1 * (va[h121]) + w2_2 * (vb[h122]) + w2_3 * (va[h123])) + w1_3 * (w2_0 * (va[h130]) + w2_1 * (vb[h131]) + w2_2 * (va[h132]) + w2_3 * (vb[h133]))) + w0_2 * (w1_0 * (w2_0 * (va[h200]) + w2_1 * (vb[h201]) + w2_2 * (va[h202]) + w2_3 * (vb[h203])) + w1_1 * (w2_0 * (vb[h210]) + w2_1 * (va[h211]) + w2_2 * (vb[h212]) + w2_3 * (va[h213])) + w1_2 * (w2_0 * (va[h220]) + w2_1 * (vb[h221]) + w2_2 * (va[h222]) + w2_3 * (vb[h223])) + w1_3 * (w2_0 * (vb[h230]) + w2_1 * (va[h231]) + w2_2 * (vb[h232]) + w2_3 * (va[h233]))) + w0_3 * (w1_0 * (w2_0 * (vb[h300]) + w2_1 * (va[h301]) + w2_2 * (vb[h302]) + w2_3 * (va[h303])) + w1_1 * (w2_0 * (va[h310]) + w2_1 * (vb[h311]) + w2_2 * (va[h312]) + w2_3 * (vb[h313])) + w1_2 * (w2_0 * (vb[h320]) + w2_1 * (va[h321]) + w2_2 * (vb[h322]) + w2_3 * (va[h323])) + w1_3 * (w2_0 * (va[h330]) + w2_1 * (vb[h331]) + w2_2 * (va[h332]) + w2_3 * (vb[h333])))
-                else:
-                    total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * r0_0 + grads[h000, 1] * r1_0 + grads[h000, 2] * r2_0) + w2_1 * (grads[h001, 0] * r0_0 + grads[h001, 1] * r1_0 + grads[h001, 2] * r2_1) + w2_2 * (grads[h002, 0] * r0_0 + grads[h002, 1] * r1_0 + grads[h002, 2] * r2_2) + w2_3 * (grads[h003, 0] * r0_0 + grads[h003, 1] * r1_0 + grads[h003, 2] * r2_3)) + w1_1 * (w2_0 * (grads[h010, 0] * r0_0 + grads[h010, 1] * r1_1 + grads[h010, 2] * r2_0) + w2_1 * (grads[h011, 0] * r0_0 + grads[h011, 1] * r1_1 + grads[h011, 2] * r2_1) + w2_2 * (grads[h012, 0] * r0_0 + grads[h012, 1] * r1_1 + grads[h012, 2] * r2_2) + w2_3 * (grads[h013, 0] * r0_0 + grads[h013, 1] * r1_1 + grads[h013, 2] * r2_3)) + w1_2 * (w2_0 * (grads[h020, 0] * r0_0 + grads[h020, 1] * r1_2 + grads[h020, 2] * r2_0) + w2_1 * (grads[h021, 0] * r0_0 + grads[h021, 1] * r1_2 + grads[h021, 2] * r2_1) + w2_2 * (grads[h022, 0] * r0_0 + grads[h022, 1] * r1_2 + grads[h022, 2] * r2_2) + w2_3 * (grads[h023, 0] * r0_0 + grads[h023, 1] * r1_2 + grads[h023, 2] * r2_3)) + w1_3 * (w2_0 * (grads[h030, 0] * r0_0 + grads[h030, 1] * r1_3 + grads[h030, 2] * r2_0) + w2_1 * (grads[h031, 0] * r0_0 + grads[h031, 1] * r1_3 + grads[h031, 2] * r2_1) + w2_2 * (grads[h032, 0] * r0_0 + grads[h032, 1] * r1_3 + grads[h032, 2] * r2_2) + w2_3 * (grads[h033, 0] * r0_0 + grads[h033, 1] * r1_3 + grads[h033, 2] * r2_3))) + w0_1 * (w1_0 * (w2_0 * (grads[h100, 0] * r0_1 + grads[h100, 1] * r1_0 + grads[h100, 2] * r2_0) + w2_1 * (grads[h101, 0] * r0_1 + grads[h101, 1] * r1_0 + grads[h101, 2] * r2_1) + w2_2 * (grads[h102, 0] * r0_1 + grads[h102, 1] * r1_0 + grads[h102, 2] * r2_2) + w2_3 * (grads[h103, 0] * r0_1 + grads[h103, 1] * r1_0 + grads[h103, 2] * r2_3)) + w1_1 * (w2_0 * (grads[h110, 0] * r0_1 + grads[h110, 1] * r1_1 + grads[h110, 2] * r2_0) + w2_1 * (grads[h111, 0] * r0_1 + grads[h111, 1] * r1_1 + grads[h111, 2] * r2_1) + w2_2 * (grads[h112, 0] * r0_1 + grads[h112, 1] * r1_1 + grads[h112, 2] * r2_2) + w2_3 * (grads[h113, 0] * r0_1 + grads[h113, 1] * r1_1 + grads[h113, 2] * r2_3)) + w1_2 * (w2_0 * (grads[h120, 0] * r0_1 + grads[h120, 1] * r1_2 + grads[h120, 2] * r2_0) + w2_1 * (grads[h121, 0] * r0_1 + grads[h121, 1] * r1_2 + grads[h121, 2] * r2_1) + w2_2 * (grads[h122, 0] * r0_1 + grads[h122, 1] * r1_2 + grads[h122, 2] * r2_2) + w2_3 * (grads[h123, 0] * r0_1 + grads[h123, 1] * r1_2 + grads[h123, 2] * r2_3)) + w1_3 * (w2_0 * (grads[h130, 0] * r0_1 + grads[h130, 1] * r1_3 + grads[h130, 2] * r2_0) + w2_1 * (grads[h131, 0] * r0_1 + grads[h131, 1] * r1_3 + grads[h131, 2] * r2_1) + w2_2 * (grads[h132, 0] * r0_1 + grads[h132, 1] * r1_3 + grads[h132, 2] * r2_2) + w2_3 * (grads[h133, 0] * r0_1 + grads[h133, 1] * r1_3 + grads[h133, 2] * r2_3))) + w0_2 * (w1_0 * (w2_0 * (grads[h200, 0] * r0_2 + grads[h200, 1] * r1_0 + grads[h200, 2] * r2_0) + w2_1 * (grads[h201, 0] * r0_2 + grads[h201, 1] * r1_0 + grads[h201, 2] * r2_1) + w2_2 * (grads[h202, 0] * r0_2 + grads[h202, 1] * r1_0 + grads[h202, 2] * r2_2) + w2_3 * (grads[h203, 0] * r0_2 + grads[h203, 1] * r1_0 + grads[h203, 2] * r2_3)) + w1_1 * (w2_0 * (grads[h210, 0] * r0_2 + grads[h210, 1] * r1_1 + grads[h210, 2] * r2_0) + w2_1 * (grads[h211, 0] * r0_2 + grads[h211, 1] * r1_1 + grads[h211, 2] * r2_1) + w2_2 * (grads[h212, 0] * r0_2 + grads[h212, 1] * r1_1 + grads[h212, 2] * r2_2) + w2_3 * (grads[h213, 0] * r0_2 + grads[h213, 1] * r1_1 + grads[h213, 2] * r2_3)) + w1_2 * (w2_0 * (grads[h220, 0] * r0_2 + grads[h220, 1] * r1_2 + grads[h220, 2] * r2_0) + w2_1 * (grads[h221, 0] * r0_2 + grads[h221, 1] * r1_2 + grads[h221, 2] * r2_1) + w2_2 * (grads[h222, 0] * r0_2 + grads[h222, 1] * r1_2 + grads[h222, 2] * r2_2) + w2_3 * (grads[h223, 0] * r0_2 + grads[h223, 1] * r1_2 + grads[h223, 2] * r2_3)) + w1_3 * (w2_0 * (grads[h230, 0] * r0_2 + grads[h230, 1] * r1_3 + grads[h230, 2] * r2_0) + w2_1 * (grads[h231, 0] * r0_2 + grads[h231, 1] * r1_3 + grads[h231, 2] * r2_1) + w2_2 * (grads[h232, 0] * r0_2 + grads[h232, 1] * r1_3 + grads[h232, 2] * r2_2) + w2_3 * (grads[h233, 0] * r0_2 + grads[h233, 1] * r1_3 + grads[h233, 2] * r2_3))) + w0_3 * (w1_0 * (w2_0 * (grads[h300, 0] * r0_3 + grads[h300, 1] * r1_0 + grads[h300, 2] * r2_0) + w2_1 * (grads[h301, 0] * r0_3 + grads[h301, 1] * r1_0 + grads[h301, 2] * r2_1) + w2_2 * (grads[h302, 0] * r0_3 + grads[h302, 1] * r1_0 + grads[h302, 2] * r2_2) + w2_3 * (grads[h303, 0] * r0_3 + grads[h303, 1] * r1_0 + grads[h303, 2] * r2_3)) + w1_1 * (w2_0 * (grads[h310, 0] * r0_3 + grads[h310, 1] * r1_1 + grads[h310, 2] * r2_0) + w2_1 * (grads[h311, 0] * r0_3 + grads[h311, 1] * r1_1 + grads[h311, 2] * r2_1) + w2_2 * (grads[h312, 0] * r0_3 + grads[h312, 1] * r1_1 + grads[h312, 2] * r2_2) + w2_3 * (grads[h313, 0] * r0_3 + grads[h313, 1] * r1_1 + grads[h313, 2] * r2_3)) + w1_2 * (w2_0 * (grads[h320, 0] * r0_3 + grads[h320, 1] * r1_2 + grads[h320, 2] * r2_0) + w2_1 * (grads[h321, 0] * r0_3 + grads[h321, 1] * r1_2 + grads[h321, 2] * r2_1) + w2_2 * (grads[h322, 0] * r0_3 + grads[h322, 1] * r1_2 + grads[h322, 2] * r2_2) + w2_3 * (grads[h323, 0] * r0_3 + grads[h323, 1] * r1_2 + grads[h323, 2] * r2_3)) + w1_3 * (w2_0 * (grads[h330, 0] * r0_3 + grads[h330, 1] * r1_3 + grads[h330, 2] * r2_0) + w2_1 * (grads[h331, 0] * r0_3 + grads[h331, 1] * r1_3 + grads[h331, 2] * r2_1) + w2_2 * (grads[h332, 0] * r0_3 + grads[h332, 1] * r1_3 + grads[h332, 2] * r2_2) + w2_3 * (grads[h333, 0] * r0_3 + grads[h333, 1] * r1_3 + grads[h333, 2] * r2_3)))
+                total = 0.0
+                for k0 in range(4):
+                    hk = perms[c, q0a[k0]]
+                    pk = par ^ (k0 & 1)
+                    s = hk + q1_0
+                    h0 = perms[c, s - n if s >= n else s]
+                    s = hk + q1_1
+                    h1 = perms[c, s - n if s >= n else s]
+                    s = hk + q1_2
+                    h2 = perms[c, s - n if s >= n else s]
+                    s = hk + q1_3
+                    h3 = perms[c, s - n if s >= n else s]
+                    s = h0 + q2_0
+                    h00 = perms[c, s - n if s >= n else s]
+                    s = h0 + q2_1
+                    h01 = perms[c, s - n if s >= n else s]
+                    s = h0 + q2_2
+                    h02 = perms[c, s - n if s >= n else s]
+                    s = h0 + q2_3
+                    h03 = perms[c, s - n if s >= n else s]
+                    s = h1 + q2_0
+                    h10 = perms[c, s - n if s >= n else s]
+                    s = h1 + q2_1
+                    h11 = perms[c, s - n if s >= n else s]
+                    s = h1 + q2_2
+                    h12 = perms[c, s - n if s >= n else s]
+                    s = h1 + q2_3
+                    h13 = perms[c, s - n if s >= n else s]
+                    s = h2 + q2_0
+                    h20 = perms[c, s - n if s >= n else s]
+                    s = h2 + q2_1
+                    h21 = perms[c, s - n if s >= n else s]
+                    s = h2 + q2_2
+                    h22 = perms[c, s - n if s >= n else s]
+                    s = h2 + q2_3
+                    h23 = perms[c, s - n if s >= n else s]
+                    s = h3 + q2_0
+                    h30 = perms[c, s - n if s >= n else s]
+                    s = h3 + q2_1
+                    h31 = perms[c, s - n if s >= n else s]
+                    s = h3 + q2_2
+                    h32 = perms[c, s - n if s >= n else s]
+                    s = h3 + q2_3
+                    h33 = perms[c, s - n if s >= n else s]
+                    if basis == 0:
+                        inner = w1_0 * (w2_0 * (values[pk, h00]) + w2_1 * (values[pk ^ 1, h01]) + w2_2 * (values[pk, h02]) + w2_3 * (values[pk ^ 1, h03])) + w1_1 * (w2_0 * (values[pk ^ 1, h10]) + w2_1 * (values[pk, h11]) + w2_2 * (values[pk ^ 1, h12]) + w2_3 * (values[pk, h13])) + w1_2 * (w2_0 * (values[pk, h20]) + w2_1 * (values[pk ^ 1, h21]) + w2_2 * (values[pk, h22]) + w2_3 * (values[pk ^ 1, h23])) + w1_3 * (w2_0 * (values[pk ^ 1, h30]) + w2_1 * (values[pk, h31]) + w2_2 * (values[pk ^ 1, h32]) + w2_3 * (values[pk, h33]))
+                    else:
+                        inner = w1_0 * (w2_0 * (grads[h00, 0] * r0a[k0] + grads[h00, 1] * r1_0 + grads[h00, 2] * r2_0) + w2_1 * (grads[h01, 0] * r0a[k0] + grads[h01, 1] * r1_0 + grads[h01, 2] * r2_1) + w2_2 * (grads[h02, 0] * r0a[k0] + grads[h02, 1] * r1_0 + grads[h02, 2] * r2_2) + w2_3 * (grads[h03, 0] * r0a[k0] + grads[h03, 1] * r1_0 + grads[h03, 2] * r2_3)) + w1_1 * (w2_0 * (grads[h10, 0] * r0a[k0] + grads[h10, 1] * r1_1 + grads[h10, 2] * r2_0) + w2_1 * (grads[h11, 0] * r0a[k0] + grads[h11, 1] * r1_1 + grads[h11, 2] * r2_1) + w2_2 * (grads[h12, 0] * r0a[k0] + grads[h12, 1] * r1_1 + grads[h12, 2] * r2_2) + w2_3 * (grads[h13, 0] * r0a[k0] + grads[h13, 1] * r1_1 + grads[h13, 2] * r2_3)) + w1_2 * (w2_0 * (grads[h20, 0] * r0a[k0] + grads[h20, 1] * r1_2 + grads[h20, 2] * r2_0) + w2_1 * (grads[h21, 0] * r0a[k0] + grads[h21, 1] * r1_2 + grads[h21, 2] * r2_1) + w2_2 * (grads[h22, 0] * r0a[k0] + grads[h22, 1] * r1_2 + grads[h22, 2] * r2_2) + w2_3 * (grads[h23, 0] * r0a[k0] + grads[h23, 1] * r1_2 + grads[h23, 2] * r2_3)) + w1_3 * (w2_0 * (grads[h30, 0] * r0a[k0] + grads[h30, 1] * r1_3 + grads[h30, 2] * r2_0) + w2_1 * (grads[h31, 0] * r0a[k0] + grads[h31, 1] * r1_3 + grads[h31, 2] * r2_1) + w2_2 * (grads[h32, 0] * r0a[k0] + grads[h32, 1] * r1_3 + grads[h32, 2] * r2_2) + w2_3 * (grads[h33, 0] * r0a[k0] + grads[h33, 1] * r1_3 + grads[h33, 2] * r2_3))
+                    total += w0a[k0] * inner
                 if absval:
                     acc[c] += amps[o] * abs(total)
                 else:

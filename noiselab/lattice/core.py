@@ -237,7 +237,9 @@ class LatticeNoise:
         return np.dtype(np.float32) if points_dtype == np.float32 else np.dtype(np.float64)
 
     def _evaluate(self, flat, freqs, amps, absval, dtype):
-        out = np.empty((flat.shape[0], self.dim_out), dtype=dtype)
+        # the kernels write float64 only (one compiled specialisation each);
+        # float32 is a rounding of the float64 result
+        out = np.empty((flat.shape[0], self.dim_out), dtype=np.float64)
         if flat.shape[0]:
             k = self.kernel
             freqs = np.ascontiguousarray(freqs, dtype=np.float64)
@@ -250,7 +252,7 @@ class LatticeNoise:
             else:
                 _jit.eval_points(flat, out, freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, self.period,
                                  self._pmask, self.perms, self.values, self.gradients, basis, bool(absval))
-        return out
+        return out if dtype == np.float64 else out.astype(dtype)
 
     def __call__(self, points, *, dtype=None):
         """Evaluate at points of shape ``(..., dim_in)``; returns ``(...)`` or ``(..., dim_out)``.

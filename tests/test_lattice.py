@@ -1,0 +1,355 @@
+"""LatticeNoise: Phillips' basis, the properties the paper promises, both evaluation paths, hard cases."""
+import numpy as np
+import pytest
+
+from noiselab import LatticeNoise
+from noiselab.lattice import KERNELS, Grid, get_kernel, grid_coordinates
+
+RNG = np.random.default_rng(12345)
+ALL_KERNELS = list(KERNELS)
+
+
+# --------------------------------------------------------------- kernels
+@pytest.mark.parametrize("name", ALL_KERNELS)
+def test_kernel_weights_partition_unity_and_keep_one_sign(name):
+    k = get_kernel(name)
+    t = np.linspace(0, 1, 2001)[:-1]
+    w = k.weights(t)
+    np.testing.assert_allclose(w.sum(axis=1), 1.0, atol=1e-13)
+    # every tap keeps one sign on [0, 1): the range bound's proof relies on it
+    for tap in range(k.taps):
+        col = w[:, tap]
+        assert (col >= -1e-15).all() or (col <= 1e-15).all(), (name, tap)
+    # the bound S = sup sum |w| is attained (up to sampling) and never exceeded
+    s = np.abs(w).sum(axis=1)
+    assert s.max() <= k.abs_sum_max and s.max() > k.abs_sum_max - 1e-6
+
+
+def test_kernel_family_and_aliases():
+    assert get_kernel("bspline4") is KERNELS["cubic"]
+    assert get_kernel("Catmull-Rom") is KERNELS["catmull-rom"]
+    assert KERNELS["catmull-rom"].abs_sum_max == pytest.approx(1.25, abs=1e-9)
+    # B-splines of order m are m box filters: the order-4 B-spline equals the
+    # order-2 one convolved with itself (tent * tent), sampled
+    x = np.linspace(-3, 3, 6001)
+    dx = x[1] - x[0]
+    tent = KERNELS["linear"](x)
+    conv = np.convolve(tent, tent, mode="same") * dx
+    np.testing.assert_allclose(conv, KERNELS["cubic"](x), atol=2e-3)
+    with pytest.raises(ValueError, match="kernel must be one of"):
+        get_kernel("gaussian")
+
+
+@pytest.mark.parametrize("name", ["linear", "catmull-rom", "quintic"])
+def test_interpolating_kernels_pass_through_the_hashed_lattice_values(name):
+    # value at the integer lattice point (ix, iy) is the table value reached by
+    # the nested permutation P[(P[ix] + iy) mod n] (Phillips 2.4.1), / bound
+    noise = LatticeNoise(2, 2, seed=7, kernel=name)
+    ij = RNG.integers(-600, 600, size=(200, 2))
+    got = noise(ij.astype(float))
+    n = noise.table_size
+    for c in range(2):
+        p = noise.perms[c]
+        h = p[(p[ij[:, 0] % n] + ij[:, 1] % n) % n]
+        expected = noise.values[0, h] * noise.scale
+        np.testing.assert_allclose(got[:, c], expected, rtol=0, atol=1e-15)
+
+
+# ----------------------------------------------------------------- basis
+def test_tables_permutations_and_alternation():
+    noise = LatticeNoise(3, 4, seed=1)
+    n = noise.table_size
+    assert ((noise.positive > 0) & (noise.positive <= 1)).all()
+    assert ((noise.negative >= -1) & (noise.negative < 0)).all()
+    for p in noise.perms:
+        assert sorted(p.tolist()) == list(range(n))
+    # a different permutation for every output component
+    assert len({tuple(p) for p in noise.perms}) == 4
+    # "table": the alternated table holds exactly n/2 positive and n/2 negative values
+    table = noise.values[0]
+    assert (table[0::2] > 0).all() and (table[1::2] < 0).all()
+
+
+def test_lattice_alternation_follows_lattice_parity():
+    noise = LatticeNoise(2, seed=3, kernel="quintic", alternation="lattice")
+    ij = RNG.integers(-300, 300, size=(500, 2))
+    v = noise(ij.astype(float))
+    sign = np.where((ij.sum(axis=1) % 2) == 0, 1.0, -1.0)
+    assert (v * sign > 0).all()
+    # the table alternation has no such checkerboard: signs agree with parity about half the time
+    w = LatticeNoise(2, seed=3, kernel="quintic")(ij.astype(float))
+    assert 0.35 < np.mean(w * sign > 0) < 0.65
+    with pytest.raises(ValueError, match="period must be even"):
+        LatticeNoise(2, alternation="lattice", period=5)
+
+
+def test_first_components_do_not_depend_on_dim_out():
+    x = RNG.uniform(-20, 20, (300, 2))
+    one = LatticeNoise(2, 1, seed=9)(x)
+    three = LatticeNoise(2, 3, seed=9)(x)
+    np.testing.assert_array_equal(one, three[:, 0])
+    assert np.corrcoef(three[:, 0], three[:, 1])[0, 1] < 0.3
+
+
+# ------------------------------------------------------------ properties
+@pytest.mark.parametrize("basis", ["value", "gradient"])
+@pytest.mark.parametrize("name", ALL_KERNELS)
+def test_range_within_minus_one_one_and_not_vacuous(name, basis):
+    noise = LatticeNoise(2, 2, seed=4, kernel=name, basis=basis)
+    v = noise.grid((300, 300), [(0.0, 40.0), (-7.0, 33.0)])
+    assert np.abs(v).max() <= 1.0
+    assert np.abs(v).max() > 0.35 and v.std() > 0.08
+
+
+def test_gradient_bound_is_tight():
+    # at a cell centre, with every corner gradient pointing away from the
+    # corner, quintic gradient noise reaches exactly the proved bound: output 1
+    noise = LatticeNoise(2, seed=0, kernel="quintic", basis="gradient")
+    p = noise.perms[0]
+    n = noise.table_size
+    for ix in (0, 1):
+        for iy in (0, 1):
+            r = np.array([0.5 - ix, 0.5 - iy])
+            noise.gradients[p[(p[ix] + iy) % n]] = r / np.linalg.norm(r)
+    v = noise(np.array([0.5, 0.5]))
+    assert 1 - 1e-11 < v <= 1
+
+
+def test_catmull_rom_overshoot_is_absorbed_by_the_bound():
+    # adversarial table: values +-1 with the signs of the Catmull-Rom weights
+    # at t = 1/2 make the raw sum reach S**2 = 1.5625; the output is exactly 1
+    noise = LatticeNoise(2, seed=0, kernel="catmull-rom")
+    p = noise.perms[0]
+    n = noise.table_size
+    sign = np.array([-1.0, 1.0, 1.0, -1.0])
+    table = np.zeros(n)
+    for a, ix in enumerate(range(-1, 3)):
+        for b, iy in enumerate(range(-1, 3)):
+            table[p[(p[ix % n] + iy % n) % n]] = sign[a] * sign[b]
+    noise.values[:] = table
+    v = noise(np.array([0.5, 0.5]))
+    assert 1 - 1e-11 < v <= 1
+
+
+def test_repeatable_and_seeded():
+    x = RNG.uniform(-50, 50, (400, 3))
+    a = LatticeNoise(3, seed=11)(x)
+    b = LatticeNoise(3, seed=11)(x)
+    c = LatticeNoise(3, seed=np.random.default_rng(11))(x)
+    np.testing.assert_array_equal(a, b)
+    np.testing.assert_array_equal(a, c)
+    assert np.abs(a - LatticeNoise(3, seed=12)(x)).max() > 0.1
+    with pytest.raises(ValueError, match="seed"):
+        LatticeNoise(3, seed=-1)
+
+
+def _power_spectrum_1d(values, cells):
+    spec = np.abs(np.fft.rfft(values - values.mean())) ** 2
+    freq = np.fft.rfftfreq(values.size, d=cells / values.size)  # cycles per lattice cell
+    return freq, spec
+
+
+def test_band_limited_spectrum_falls_off_above_lattice_frequency():
+    noise = LatticeNoise(1, seed=2, kernel="cubic")
+    cells = 4096
+    v = noise.grid((cells * 16,), [(0, cells)])
+    f, s = _power_spectrum_1d(v, cells)
+    total = s.sum()
+    assert s[f > 1].sum() / total < 5e-3
+    bands = [s[(f >= lo) & (f < lo + 1)].sum() for lo in (1, 2, 3)]
+    assert bands[0] > 10 * bands[1] > 0 and bands[1] > bands[2]
+    # the box filter (order 1) is not band-limited: far more power above 1
+    box = LatticeNoise(1, seed=2, kernel="box").grid((cells * 16,), [(0, cells)])
+    fb, sb = _power_spectrum_1d(box, cells)
+    assert sb[fb > 1].sum() / sb.sum() > 10 * s[f > 1].sum() / total
+
+
+def test_stationary_statistics_across_the_plane():
+    noise = LatticeNoise(2, seed=8)
+    img = noise.grid((512, 512), [(0, 64), (0, 64)])
+    blocks = img.reshape(4, 128, 4, 128).transpose(0, 2, 1, 3).reshape(16, -1)
+    assert np.abs(blocks.mean(axis=1)).max() < 0.1
+    stds = blocks.std(axis=1)
+    assert stds.max() / stds.min() < 1.3
+    # far away (1e9 cells) the statistics are the same
+    far = noise.grid((512, 512), [(1e9, 1e9 + 64), (-1e9, -1e9 + 64)])
+    assert abs(far.std() / img.std() - 1) < 0.15
+
+
+def _anisotropy(img, cells):
+    n = img.shape[0]
+    spec = np.abs(np.fft.fft2(img - img.mean())) ** 2
+    f = np.fft.fftfreq(n, d=cells / n)
+    fy, fx = np.meshgrid(f, f, indexing="ij")
+    r = np.hypot(fx, fy)
+    ang = np.mod(np.arctan2(fy, fx), np.pi / 2)
+    ring = (r > 0.05) & (r < 0.5)
+    axis = ring & ((ang < np.pi / 16) | (ang > np.pi / 2 - np.pi / 16))
+    diag = ring & (np.abs(ang - np.pi / 4) < np.pi / 16)
+    return (spec[axis].mean()) / (spec[diag].mean())
+
+
+@pytest.mark.parametrize("name,basis", [("cubic", "value"), ("quintic", "value"), ("quintic", "gradient")])
+def test_nearly_isotropic(name, basis):
+    # power along the lattice axes vs along the diagonals, in the main band
+    ratios = [_anisotropy(LatticeNoise(2, seed=s, kernel=name, basis=basis).grid((256, 256), [(0, 32), (0, 32)]), 32)
+              for s in range(3)]
+    assert abs(np.mean(ratios) - 1) < 0.2, ratios
+
+
+def test_pseudo_periodic_with_table_period_and_exact_period():
+    noise = LatticeNoise(2, seed=5, table_size=64)
+    x = RNG.uniform(-100, 100, (500, 2))
+    for axis in range(2):
+        shift = np.zeros(2)
+        shift[axis] = 64
+        np.testing.assert_allclose(noise(x + shift), noise(x), atol=1e-12)
+    # no shorter period: values half a table away are unrelated
+    assert np.corrcoef(noise(x), noise(x + [32, 0]))[0, 1] < 0.3
+    # an exact period tiles: the grid over two periods is the one-period grid twice
+    tile = LatticeNoise(2, seed=5, period=(3, 5), frequency=(1.0, 2.0))
+    one = tile.grid((30, 50), [(0, 3), (0, 2.5)])
+    two = tile.grid((60, 100), [(0, 6), (0, 5)])
+    np.testing.assert_allclose(two[:30, :50], one, atol=1e-12)
+    np.testing.assert_allclose(two[30:, 50:], one, atol=1e-12)
+
+
+def test_eq2_amplitude_frequency_phase():
+    base = LatticeNoise(2, seed=3)
+    scaled = LatticeNoise(2, seed=3, amplitude=0.25, frequency=(2.0, 0.5), phase=(0.3, -1.7))
+    x = RNG.uniform(-10, 10, (300, 2))
+    expected = 0.25 * base(x * [2.0, 0.5] + [0.3, -1.7])
+    np.testing.assert_allclose(scaled(x), expected, atol=1e-14)
+
+
+# ------------------------------------------------------- evaluation paths
+@pytest.mark.parametrize("dim", [1, 2, 3, 4, 5])
+def test_grid_and_scattered_paths_agree(dim):
+    shape = (23, 17, 9, 5, 4)[:dim]
+    extent = [(-3.3, 5.1), (0.2, 7.7), (1e6, 1e6 + 4), (-20, -17), (0, 2)][:dim]
+    for name, basis in [("cubic", "value"), ("quintic", "gradient"), ("catmull-rom", "value")]:
+        noise = LatticeNoise(dim, 2, seed=6, kernel=name, basis=basis)
+        grid = noise.grid(shape, extent)
+        pts = noise(noise.grid_points(shape, extent))
+        assert grid.shape == tuple(shape) + (2,)
+        np.testing.assert_allclose(grid, pts, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("name", ALL_KERNELS)
+def test_grid_and_scattered_agree_for_every_kernel_1d_2d(name):
+    for basis in ("value", "gradient"):
+        noise = LatticeNoise(2, seed=6, kernel=name, basis=basis)
+        ext = [(-2.5, 6.0), (1e3, 1e3 + 9)]
+        np.testing.assert_allclose(noise.grid((41, 37), ext), noise(noise.grid_points((41, 37), ext)), atol=1e-12)
+
+
+def test_sparse_grid_falls_back_and_still_agrees():
+    noise = LatticeNoise(2, seed=1)
+    ext = [(0, 5000), (0, 3000)]  # 100 cells per sample
+    np.testing.assert_allclose(noise.grid((50, 30), ext), noise(noise.grid_points((50, 30), ext)), atol=1e-12)
+
+
+def test_chunkings_are_bit_identical():
+    noise = LatticeNoise(3, 2, seed=2, kernel="quintic")
+    pts = RNG.uniform(-30, 30, (1000, 3))
+    whole = noise(pts)
+    parts = np.concatenate([noise(pts[i:i + 137]) for i in range(0, 1000, 137)])
+    np.testing.assert_array_equal(whole, parts)
+    shape, ext = (40, 30, 20), [(0, 5), (2, 9), (-1, 1)]
+    full = noise.grid(shape, ext)
+    win = noise.grid(shape, ext, window=[(13, 29), (0, 30), (5, 20)])
+    np.testing.assert_array_equal(win, full[13:29, :, 5:20])
+
+
+def test_float32_output_and_input():
+    noise = LatticeNoise(2, seed=3)
+    x64 = RNG.uniform(-100, 100, (1000, 2))
+    x32 = x64.astype(np.float32)
+    v32 = noise(x32)
+    assert v32.dtype == np.float32
+    np.testing.assert_allclose(v32, noise(x32.astype(np.float64)), atol=1e-7)
+    g32 = noise.grid((64, 64), [(0, 8), (0, 8)], dtype=np.float32)
+    assert g32.dtype == np.float32
+    np.testing.assert_allclose(g32, noise.grid((64, 64), [(0, 8), (0, 8)]), atol=1e-7)
+
+
+# ------------------------------------------------------------ hard cases
+@pytest.mark.parametrize("origin", [1e6, 1e9, 2.2e9, 1e12, -1e12])
+def test_huge_coordinates_stay_smooth_in_range_and_non_degenerate(origin):
+    noise = LatticeNoise(2, seed=4)
+    # 2000 samples along a diagonal over 20 cells
+    t = np.linspace(0, 20, 2000)
+    x = np.stack([origin + t, -0.5 * origin + 0.7 * t], axis=-1)
+    v = noise(x)
+    assert np.abs(v).max() <= 1
+    assert v.std() > 0.1                               # not constant
+    steps = np.abs(np.diff(v))
+    # smooth: no step larger than the kernel's slope bound times the step
+    # (plus float64 coordinate quantisation at 1e12: ulp ~ 1.2e-4 cells)
+    assert steps.max() < 0.05
+    assert np.unique(np.round(v, 12)).size > 1900      # no stair-steps
+    # and it is the same function as near the origin, shifted by whole table periods
+    n = noise.table_size
+    near = noise(x - np.round(x[0] / n) * n)
+    np.testing.assert_allclose(near, v, atol=1e-3 if abs(origin) >= 1e12 else 1e-6)
+
+
+def test_negative_coordinates_and_exact_integers_are_continuous():
+    noise = LatticeNoise(1, seed=2, kernel="cubic")
+    eps = 1e-12
+    for x0 in (-3.0, -1.0, 0.0, 2.0):
+        assert abs(noise(x0 - eps) - noise(x0)) < 1e-10
+        assert abs(noise(x0 + eps) - noise(x0)) < 1e-10
+
+
+def test_nan_and_inf_are_clear_errors():
+    noise = LatticeNoise(2)
+    with pytest.raises(ValueError, match="points must be finite"):
+        noise(np.array([[0.0, np.nan]]))
+    with pytest.raises(ValueError, match="NaN or inf"):
+        noise(np.array([[np.inf, 0.0]]))
+    with pytest.raises(ValueError, match="extent must be finite"):
+        noise.grid((4, 4), [(0, np.inf), (0, 1)])
+
+
+@pytest.mark.parametrize("dim", [1, 2, 3, 4, 5])
+def test_any_input_dimension_and_empty_arrays(dim):
+    noise = LatticeNoise(dim, 3, seed=1, kernel="quintic")
+    x = RNG.uniform(-9, 9, (7, 5, dim))
+    v = noise(x)
+    assert v.shape == (7, 5, 3)
+    assert np.abs(v).max() <= 1 and v.std() > 0.05
+    assert noise(np.zeros((0, dim))).shape == (0, 3)
+    assert noise.grid((0,) * dim, [(0, 1)] * dim).shape == (0,) * dim + (3,)
+
+
+def test_scalar_input_for_one_dimension():
+    noise = LatticeNoise(1, seed=3)
+    t = np.linspace(0, 10, 50)
+    assert noise(t).shape == (50,)
+    assert np.ndim(noise(2.5)) == 0
+    np.testing.assert_array_equal(noise(t), noise(t[:, None]))
+
+
+def test_bad_parameters_name_the_parameter():
+    with pytest.raises(ValueError, match="dim_in"):
+        LatticeNoise(0)
+    with pytest.raises(ValueError, match="table_size must be even"):
+        LatticeNoise(2, table_size=255)
+    with pytest.raises(ValueError, match="basis"):
+        LatticeNoise(2, basis="simplex")
+    with pytest.raises(ValueError, match="frequency"):
+        LatticeNoise(2, frequency=0)
+    with pytest.raises(ValueError, match=r"shape \(\.\.\., dim_in=3\)"):
+        LatticeNoise(3)(np.zeros((4, 2)))
+    with pytest.raises(ValueError, match="extent"):
+        LatticeNoise(2).grid((4, 4), [(0, 1)])
+    with pytest.raises(ValueError, match="window"):
+        LatticeNoise(2).grid((4, 4), [(0, 1), (0, 1)], window=[(0, 5), (0, 4)])
+
+
+def test_grid_coordinates_follow_arange_convention():
+    (c,) = grid_coordinates((5,), [(1.0, 2.0)])
+    np.testing.assert_allclose(c, [1.0, 1.2, 1.4, 1.6, 1.8])
+    g = Grid((5,), [(1.0, 2.0)])
+    assert g.shape == (5,)
