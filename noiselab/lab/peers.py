@@ -273,7 +273,7 @@ def main(argv=None):
     rows += run_group(f"spectral video {args.frames}x{n // 2}x{n // 2}", video_cases(n, args.frames),
                       (args.frames, n // 2, n // 2), "fft", args.repeats, video_quality)
     rows += run_group(f"lattice 1 octave {n}x{n} ({CELLS_1} cells)", lattice_cases(n, 1), (n, n), "write",
-                      args.repeats, lambda a: image_quality(a, float("nan"), (4.0, n / 4)))
+                      args.repeats, lambda a: image_quality(a, float("nan"), (CELLS_1 / 2, 2.0 * CELLS_1)))
     rows += run_group(f"lattice 6 octaves {n}x{n} ({CELLS_6} base cells, gain 1/2)", lattice_cases(n, 6), (n, n),
                       "write", args.repeats, lambda a: image_quality(a, -2.0, (2 * CELLS_6, n / 4)))
     info = {"python": sys.version.split()[0], "versions": {p: _version(p) for p in PACKAGES}}

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from .experiments import (CAPABILITIES, Config, flake_scaling, pareto_sweeps, scaling_fits, snow_experiment,
-                          snow_scaling, texture_experiment)
+                          snow_scaling, texture_experiment, texture_scaling)
 from .measure import fit_exponent, machine_info
 
 __all__ = ["run_all", "md_table", "ROOT", "PEER_PYTHON"]
@@ -132,9 +132,16 @@ def plot_snow(rows, path):
     _save(fig, path)
 
 
-def plot_scaling(srows, frows, path):
+def plot_scaling(srows, frows, path, texture_rows=None):
     plt = _plt()
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
+    for m in dict.fromkeys(r["method"] for r in texture_rows or []):
+        rs = [r for r in texture_rows if r["method"] == m]
+        axes[2].loglog([r["voxels"] for r in rs], [r["time_s"] for r in rs], "o-", label=m)
+    axes[2].set_xlabel("pixels (N x N)")
+    axes[2].set_ylabel("median time (s)")
+    axes[2].set_title("2-D 1/f texture: time against size")
+    axes[2].legend(fontsize=7)
     for m in dict.fromkeys(r["method"] for r in srows):
         rs = [r for r in srows if r["method"] == m]
         axes[0].loglog([r["voxels"] for r in rs], [r["time_s"] for r in rs], "o-", label=m)
@@ -247,7 +254,8 @@ def run_all(*, quick=False, output=None, peers=True, log=print):
     t_start = time.perf_counter()
     info = machine_info()
     results = {"info": info, "config": cfg.__dict__}
-    steps = [("texture", lambda: texture_experiment(cfg)), ("snow", lambda: snow_experiment(cfg)),
+    steps = [("texture", lambda: texture_experiment(cfg)), ("texture_scaling", lambda: texture_scaling(cfg)),
+             ("snow", lambda: snow_experiment(cfg)),
              ("scaling", lambda: snow_scaling(cfg)), ("flakes", lambda: flake_scaling(cfg)),
              ("sweeps", lambda: pareto_sweeps(cfg))]
     for name, fn in steps:
@@ -255,6 +263,7 @@ def run_all(*, quick=False, output=None, peers=True, log=print):
         results[name] = fn()
         log(f"lab: {name} done in {time.perf_counter() - t0:.1f} s")
     results["fits"] = scaling_fits(results["scaling"])
+    results["texture_fits"] = scaling_fits(results["texture_scaling"])
     fr = results["flakes"]
     results["flake_exponent"] = fit_exponent([r["flakes"] for r in fr], [r["time_s"] for r in fr])
     if peers:
@@ -268,7 +277,8 @@ def run_all(*, quick=False, output=None, peers=True, log=print):
     results["elapsed_s"] = time.perf_counter() - t_start
     plot_texture(results["texture"], res_dir / "texture_spectra.png")
     plot_snow(results["snow"], res_dir / "snow_parallax.png")
-    plot_scaling(results["scaling"], results["flakes"], res_dir / "snow_scaling.png")
+    plot_scaling(results["scaling"], results["flakes"], res_dir / "snow_scaling.png",
+                 texture_rows=results["texture_scaling"])
     plot_pareto(results["sweeps"], res_dir / "pareto.png")
     if isinstance(results["peers"], list):
         plot_peers(results["peers"], res_dir / "peers.png")
@@ -318,6 +328,7 @@ def render_markdown(res, *, quick=False):
     if pi:
         L.append("Peer environment (`benchmarks/.venv-peers`, Python " + pi["python"] + "): " +
                  ", ".join(f"{k} {v}" for k, v in pi["versions"].items()) + ".\n")
+    L.append(_headline(res))
     L.append("**How to read the times.** Each case is timed in the same process as its floor, in interleaved "
              "rounds (floor, case, floor, case, ...), median of "
              f"{res['config']['repeats']} rounds after one warm-up; `x floor` is the median of the per-round ratios "
@@ -349,14 +360,24 @@ def render_markdown(res, *, quick=False):
         sp = next(r for r in rs if r["family"] == "spectral")
         if not lat:
             continue
-        bl = min(lat, key=lambda r: abs(r["slope_error"]))
+        bs = min(lat, key=lambda r: abs(r["slope_error"]))
+        ba = min(lat, key=lambda r: r["anisotropy"])
+        bl = min(lat, key=lambda r: r["band_leakage"])
+        br = min(lat, key=lambda r: r["octave_ripple_db"])
         fl = min(lat, key=lambda r: r["time_s"])
-        L.append(f"- {dim}-D: the spectral field has slope error {sp['slope_error']:+.3f}, ripple "
-                 f"{sp['octave_ripple_db']:.2f} dB, anisotropy {sp['anisotropy']:.3f}, leakage "
-                 f"{sp['band_leakage']:.3f} at {sp['x_fft_floor']:.1f}x the FFT floor. The best lattice slope is "
-                 f"{bl['method']} ({bl['slope_error']:+.3f}, ripple {bl['octave_ripple_db']:.2f} dB, leakage "
-                 f"{bl['band_leakage']:.3f}); the fastest lattice sum is {fl['method']} "
-                 f"({fl['time_s'] / sp['time_s']:.2f}x the spectral time).")
+        L.append(f"- {dim}-D: spectral: slope error {sp['slope_error']:+.3f}, ripple {sp['octave_ripple_db']:.2f} dB, "
+                 f"anisotropy {sp['anisotropy']:.3f}, leakage {sp['band_leakage']:.1e}, {sp['x_fft_floor']:.1f}x the "
+                 f"FFT floor. Best lattice on each figure: slope {bs['method']} ({bs['slope_error']:+.3f}); ripple "
+                 f"{br['method']} ({br['octave_ripple_db']:.2f} dB); anisotropy {ba['method']} ({ba['anisotropy']:.3f}, "
+                 f"{ba['anisotropy'] / max(sp['anisotropy'], 1e-9):.0f}x the spectral field's); leakage {bl['method']} "
+                 f"({bl['band_leakage']:.3f}); time {fl['method']} ({fl['time_s'] / sp['time_s']:.2f}x the spectral "
+                 "time). No lattice sum matches the spectral field on all figures at once.")
+    L.append("\nScaling of 2-D textures with the image size (N x N):\n")
+    L.append(md_table(res["texture_scaling"], [("method", "method"), ("size", "N"), ("time_s", "time s"),
+                                               ("x_fft_floor", "x FFT floor"), ("peak_mib", "peak MiB")]) + "\n")
+    L.append(md_table(res["texture_fits"], [("method", "method"), ("time_exponent", "time k (time ~ pixels**k)"),
+                                            ("time_exponent_nlogn", "k of time / log2(pixels)"),
+                                            ("memory_exponent", "memory k")]) + "\n")
     L.append("\n![texture spectra](results/texture_spectra.png)\n")
     L.append("What each can do that the other cannot:\n")
     L.append(md_table([{"c": c, "s": s, "l": l} for c, s, l in CAPABILITIES],
@@ -441,6 +462,53 @@ def render_markdown(res, *, quick=False):
     L.append("- Raw numbers of this run: [results/results.json](results/results.json).")
     L.append("- pyfftw is measured when installed (it is not a dependency; the FFT sweep says when it was absent).")
     return "\n".join(L) + "\n"
+
+
+def _headline(res):
+    """The key figures of this run, computed from the tables below."""
+    H = ["## Headline (this run)\n"]
+    snow = {r["method"].split(" (")[0]: r for r in res["snow"]}
+    t, lay, par = snow["tent IFFT"], snow["layered lattice"], snow["particles"]
+    scene = res["snow"][0]["scene"]
+    H.append(f"- {scene[0].upper() + scene[1:]}: tent IFFT {t['x_fft_floor']:.2f}x a bare inverse FFT, "
+             f"{t['peak_mib']:.1f} MiB, tent energy {t['tent_energy']:.3f}, parallax error "
+             f"{t['parallax_rms_error']:.3f}, loop seam {t['loop_seam']:.2f}; layered lattice "
+             f"{lay['time_s'] / t['time_s']:.1f}x its time, tent energy {lay['tent_energy']:.3f}, parallax "
+             f"{lay['parallax_rms_error']:.3f}, seam {lay['loop_seam']:.2f}; particles {par['time_s'] / t['time_s']:.1f}x, "
+             f"tent energy {par['tent_energy']:.3f}, parallax {par['parallax_rms_error']:.3f}, seam {par['loop_seam']:.2f}.")
+    for dim in (2, 3):
+        rs = [r for r in res["texture"] if r["dim"] == dim]
+        if not rs:
+            continue
+        sp = next(r for r in rs if r["family"] == "spectral")
+        lat = [r for r in rs if r["family"] == "lattice"]
+        H.append(f"- 1/f texture {dim}-D ({sp['n']}^{dim}): spectral slope error {sp['slope_error']:+.3f}, "
+                 f"anisotropy {sp['anisotropy']:.3f}, leakage {sp['band_leakage']:.0e}; lattice sums: slope error "
+                 f"{min(r['slope_error'] for r in lat):+.3f}..{max(r['slope_error'] for r in lat):+.3f}, anisotropy "
+                 f"{min(r['anisotropy'] for r in lat):.3f}..{max(r['anisotropy'] for r in lat):.3f}, leakage "
+                 f"{min(r['band_leakage'] for r in lat):.3f}..{max(r['band_leakage'] for r in lat):.3f}; time "
+                 f"{min(r['time_s'] for r in lat) / sp['time_s']:.2f}..{max(r['time_s'] for r in lat) / sp['time_s']:.2f}x "
+                 "the spectral field's.")
+    pr = res.get("peers")
+    if isinstance(pr, list):
+        mc = next((r for r in pr if r["case"] == "MotionClouds" and r["status"] == "ok"), None)
+        ns = next((r for r in pr if r["case"] == "noiselab snow" and r["status"] == "ok"), None)
+        if mc and ns:
+            H.append(f"- Spectral video against MotionClouds ({mc['group'].split()[-1]}): noiselab snow "
+                     f"{ns['x_floor']:.2f}x the FFT floor and {ns['peak_mib']:.1f} MiB; MotionClouds "
+                     f"{mc['x_floor']:.1f}x and {mc['peak_mib']:.1f} MiB.")
+        for g in dict.fromkeys(r["group"] for r in pr if r["group"].startswith("lattice")):
+            ok = [r for r in pr if r["group"] == g and r["status"] == "ok"]
+            ours = [r for r in ok if r["case"].startswith("noiselab")]
+            peers = [r for r in ok if not r["case"].startswith("noiselab")]
+            if ours and peers:
+                bo = max(ours, key=lambda r: r["points_per_s"])
+                bp = max(peers, key=lambda r: r["points_per_s"])
+                H.append(f"- {g}: fastest noiselab case, {bo['case']}, {bo['points_per_s']:.2e} points/s; fastest peer "
+                         f"{bp['case']} {bp['points_per_s']:.2e} ({bo['points_per_s'] / bp['points_per_s']:.2f}x).")
+    knees = "; ".join(f"{s['name']}: {s['knee'] or 'none'}" for s in res["sweeps"])
+    H.append(f"- Knees (cheapest setting under the visibility threshold): {knees}.\n")
+    return "\n".join(H)
 
 
 def _snow_verdict(res):

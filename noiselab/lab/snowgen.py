@@ -236,7 +236,9 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
     band : (lo, hi), optional
         Band in cycles/frame, ``0 < lo < hi <= W/2``; default ``(W/32, W/4)``.
     flakes : int, optional
-        Number of flakes, 1..10**8; default ``H * W / 128`` (2048 at 512 x 512).
+        Number of flakes, 1..10**8; default ``H * W / 16`` (16384 at 512 x
+        512), which gives a mean opacity near that of :func:`noiselab.snow.snow`
+        with the default band (about 0.35; see ``benchmarks/RESULTS.md``).
     direction : (dx, dy)
         Fall direction in image coordinates (x right, y down).
     opacity : float
@@ -259,7 +261,7 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
     (T, H, W), c, (lo, hi), (dx, dy) = _check_scene(shape, c, band, direction)
     opacity = check_real("opacity", opacity, lo=0.0, hi=1.0, lo_open=True)
     if flakes is None:
-        flakes = max(1, H * W // 128)
+        flakes = max(1, H * W // 16)
     n = check_int("flakes", flakes, lo=1, hi=10**8)
     dt = float_dtype(dtype)
     check_memory(T * H * W * (dt.itemsize + 8) + n * 64, f"particle_snow{(T, H, W)} with {n} flakes")
