@@ -38,6 +38,9 @@ _API = {
     "turbulence": "noiselab.fractal",
     # geometry
     "displace": "noiselab.geometry",
+    # the laboratory's alternative snow generators
+    "layered_lattice_snow": "noiselab.lab",
+    "particle_snow": "noiselab.lab",
 }
 
 _SUBPACKAGES = ("spectral", "snow", "lattice", "fractal", "geometry", "analysis", "io", "cli")
