@@ -193,3 +193,16 @@ def test_fractal_sum_slope_follows_the_gain(kernel, gain):
     assert used >= 6
     fit = A.spectral_slope(img, (8, 64), window="hann")
     assert abs(fit - (np.log2(gain) - 1)) < 0.12, (kernel, gain, fit)
+
+
+def test_the_thesis_scene_at_full_size():
+    # Langer & Zhang's own configuration: 64 frames of 512 x 512, band 16..128 cycles/frame
+    alpha = noiselab.snow((64, 512, 512), seed=11, c=1.0)
+    spec = A.video_spectrum(alpha)
+    assert A.tent_energy(spec, 1.0, (16, 128), thickness=0.1) > 0.98
+    assert A.band_energy(A.power_spectrum(alpha, axes=(-2, -1)), (16, 128)) > 0.99
+    prof = A.speed_profile(alpha, A.octave_bands(16, 128, per_octave=1))
+    # nearest flakes 512 / (2 pi 16) = 5.1 px/frame, farthest 0.64 px/frame (c = 1)
+    np.testing.assert_allclose(prof.parallax, 1.0, rtol=0.04)
+    assert np.all(prof.velocity[:, 1] > 0)
+    assert A.loop_seam(alpha) == pytest.approx(1.0, abs=0.05)
