@@ -145,14 +145,41 @@ def module_version(module: str) -> str:
     return h.hexdigest()[:16] if found else "missing"
 
 
+def _code_names(code):
+    names = set(code.co_names)
+    for const in code.co_consts:
+        if inspect.iscode(const):
+            names |= _code_names(const)
+    return names
+
+
+def function_sources(func) -> dict:
+    """Source of ``func`` and of every function of its own module that it calls, transitively.
+
+    So a figure is rebuilt when a helper it shares with other figures changes,
+    and only the figures that use that helper are.
+    """
+    seen, todo = {}, [func]
+    while todo:
+        f = todo.pop()
+        if f.__qualname__ in seen:
+            continue
+        seen[f.__qualname__] = inspect.getsource(f)
+        for name in _code_names(f.__code__):
+            g = f.__globals__.get(name)
+            if inspect.isfunction(g) and g.__module__ == func.__module__ and g.__qualname__ not in seen:
+                todo.append(g)
+    return dict(sorted(seen.items()))
+
+
 def content_hash(spec: FigureSpec, quick: bool = False) -> str:
-    """Hash of (function source, parameters, noiselab version and source of the modules it uses)."""
+    """Hash of (function source and its module-local helpers, parameters, noiselab version and source of the modules it uses)."""
     from noiselab import __version__
 
     modules = sorted(set(spec.uses) | {"gallery._common"})
     payload = {
         "key": spec.key,
-        "source": inspect.getsource(spec.func),
+        "source": function_sources(spec.func),
         "params": spec.parameters(quick),
         "noiselab": __version__,
         "modules": {m: module_version(m) for m in modules},

@@ -202,6 +202,24 @@ def _render(meshes, path, size, **kw):
     return path
 
 
+def _render_tiles(meshes, path, labels, columns=3, cell=300, **kw):
+    """Render each mesh on its own (same view) and lay the images out as labelled panels."""
+    from noiselab.geometry import render_mesh
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    rows = -(-len(meshes) // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(3.2 * columns, 3.2 * rows), squeeze=False)
+    for ax in axes.ravel():
+        ax.axis("off")
+    for ax, mesh, label in zip(axes.ravel(), meshes, labels):
+        ax.imshow(render_mesh(mesh, size=cell, **kw))
+        ax.set_title(label, fontsize=10)
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
 @figure("phillips", "fig08", seed="Phillips 2004, Fig. 8", title="A Monge surface z = noise(x, y) and its depth map",
         params=dict(grid=128, cells=4.0, amplitude=0.6, size=480, seed=6), quick=dict(grid=32, size=160), uses=GEOM)
 def fig08(out, *, grid, cells, amplitude, size, seed):
@@ -326,14 +344,14 @@ def fig13(out, *, octaves, length, samples, cells, seed):
 
 def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed):
     from noiselab import LatticeNoise, analysis
-    from noiselab.geometry import arrange, height_map, monge_surface, render_mesh
+    from noiselab.geometry import height_map, monge_surface
 
     noise = LatticeNoise(2, seed=seed)
     ext = ((0.0, cells), (0.0, cells))
     meshes = [monge_surface(noise, (grid, grid), ext, amplitude=amplitude, octaves=n, kind=kind, on_aliasing="ignore")
               for n in range(1, octaves + 1)]
-    render_mesh(arrange(meshes, columns=3), out / "surfaces.png", size=(int(size * 0.75), size), elevation=25,
-                scalars="height", cmap="gist_earth")
+    _render_tiles(meshes, out / "surfaces.png", [f"n = {n}" for n in range(1, octaves + 1)], cell=size // 3,
+                  elevation=10, scalars="height", cmap="gist_earth", clim=(-amplitude * 1.2, amplitude * 1.2))
     h = height_map(noise, (grid, grid), ext, octaves=octaves, kind=kind, on_aliasing="ignore")
     measured = {f"n = {octaves}: range": _range(h), "anisotropy": analysis.anisotropy(h),
                 f"n = {octaves}: amplitude slope over the octaves (1/f: -1)":
@@ -357,13 +375,16 @@ def fig15(out, *, octaves, grid, cells, amplitude, size, seed):
                          "Creases make mountain-like ridges.", measured)
 
 
-def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0):
-    """Displace a sphere (or ``base``) per (amplitude, frequency, octaves, kind); return meshes and radial ranges."""
+def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_frequency=np.inf):
+    """Displace a sphere (or ``base``) per (amplitude, frequency, octaves, kind); return meshes and radial ranges.
+
+    Each sphere is subdivided for its highest octave, but not for more than ``max_frequency``.
+    """
     from noiselab.geometry import displace, sphere_for_noise
 
     meshes, ranges = [], []
     for a, f, n, kind in specs:
-        top = f * 2 ** (n - 1)
+        top = min(f * 2 ** (n - 1), max_frequency)
         mesh = base if base is not None else sphere_for_noise(top, radius, samples_per_period=samples_per_period, max_subdivisions=6)
         d = displace(mesh, field, amplitude=a, frequency=f, octaves=n, kind=kind, on_aliasing="ignore")
         meshes.append(d)
@@ -382,8 +403,8 @@ def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
     field = LatticeNoise(3, seed=seed)
     left, r1 = _spheres(field, [(a, frequency, 1, "fractal") for a in amplitudes])
     right, r2 = _spheres(field, [(amplitude, f, 1, "fractal") for f in frequencies])
-    files = [_render(arrange(left, columns=2), out / "amplitude.png", size),
-             _render(arrange(right, columns=2), out / "frequency.png", size)]
+    files = [_render(arrange(left, columns=2), out / "amplitude.png", size, view="xy"),
+             _render(arrange(right, columns=2), out / "frequency.png", size, view="xy")]
     allr = np.concatenate(r1 + r2)
     return Result(files, f"p' = p + s n_p with s = a noise(F p). Left: F = {frequency:g}, a = "
                          f"{', '.join(f'{a:g}' for a in amplitudes)} (left to right, top to bottom). Right: a = {amplitude:g}, "
@@ -394,38 +415,40 @@ def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
 
 
 @figure("phillips", "fig17", seed="Phillips 2004, Fig. 17", title="Spheres displaced by fractal (left) and turbulent (right) sums, n = 1..6",
-        params=dict(octaves=6, frequency=1.5, amplitude=0.15, size=640, seed=13), quick=dict(octaves=3, size=240), uses=GEOM)
-def fig17(out, *, octaves, frequency, amplitude, size, seed):
+        params=dict(octaves=6, frequency=1.5, amplitude=0.15, max_frequency=12.0, size=640, seed=13),
+        quick=dict(octaves=3, size=240), uses=GEOM)
+def fig17(out, *, octaves, frequency, amplitude, max_frequency, size, seed):
     from noiselab import LatticeNoise
     from noiselab.geometry import arrange
 
     field = LatticeNoise(3, seed=seed)
-    frac, rf = _spheres(field, [(amplitude, frequency, n, "fractal") for n in range(1, octaves + 1)], samples_per_period=2.0)
-    turb, rt = _spheres(field, [(amplitude, frequency, n, "turbulence") for n in range(1, octaves + 1)], samples_per_period=2.0)
-    files = [_render(arrange(frac, columns=3), out / "fractal.png", size),
-             _render(arrange(turb, columns=3), out / "turbulence.png", size)]
+    kw = dict(samples_per_period=2.0, max_frequency=max_frequency)
+    frac, rf = _spheres(field, [(amplitude, frequency, n, "fractal") for n in range(1, octaves + 1)], **kw)
+    turb, rt = _spheres(field, [(amplitude, frequency, n, "turbulence") for n in range(1, octaves + 1)], **kw)
+    files = [_render(arrange(frac, columns=3), out / "fractal.png", (size * 2 // 3, size), view="xy"),
+             _render(arrange(turb, columns=3), out / "turbulence.png", (size * 2 // 3, size), view="xy")]
     return Result(files, f"s = a fracsum(F p, n) (left) and a turb(F p, n) (right), a = {amplitude:g}, F = {frequency:g}, "
                          f"n = 1..{octaves} from the top left; meshes subdivided for the highest octave (2 vertices per "
-                         "period, at most 6 subdivisions).",
+                         f"period) up to {max_frequency:g} cycles/unit; octaves above that (amplitude <= 1/16) are sampled coarsely.",
                   {"fractal: displacement / amplitude range": _range(np.concatenate(rf)),
                    "turbulence: displacement / amplitude range (>= 0)": _range(np.concatenate(rt))})
 
 
 @figure("phillips", "fig18", seed="Phillips 2004, Fig. 18", title="Any mesh: a bundled model displaced with s = 0 to 0.5",
-        params=dict(model="ant", amplitudes=(0.0, 0.1, 0.2, 0.3, 0.4, 0.5), frequency=1.5, size=720, seed=14),
+        params=dict(model="ant", amplitudes=(0.0, 0.1, 0.2, 0.3, 0.4, 0.5), scale=0.4, frequency=3.0, size=720, seed=14),
         quick=dict(amplitudes=(0.0, 0.25, 0.5), size=240), uses=GEOM)
-def fig18(out, *, model, amplitudes, frequency, size, seed):
+def fig18(out, *, model, amplitudes, scale, frequency, size, seed):
     from noiselab import LatticeNoise
-    from noiselab.geometry import arrange, load_model, subdivide_for_noise
+    from noiselab.geometry import load_model, subdivide_for_noise
 
     base = subdivide_for_noise(load_model(model, size=2.0), frequency)
     field = LatticeNoise(3, seed=seed)
-    meshes, ranges = _spheres(field, [(0.1 * a / max(amplitudes), frequency, 1, "fractal") for a in amplitudes], base=base)
-    files = [_render(arrange(meshes, columns=3), out / "fig18.png", size, view="iso")]
+    meshes, ranges = _spheres(field, [(scale * a, frequency, 1, "fractal") for a in amplitudes], base=base)
+    files = [_render_tiles(meshes, out / "fig18.png", [f"s = {a:g}" for a in amplitudes], cell=size // 3, view="xz")]
     return Result(files, f"The paper's cow is not available offline; pyvista's bundled '{model}' model stands in, scaled to "
                          f"size 2 and subdivided for noise of frequency {frequency:g} ({len(base.vertices)} vertices), "
-                         f"displaced with s = {', '.join(f'{a:g}' for a in amplitudes)} (in units of 1/10 of the model's "
-                         "half-size: s = 0.5 is a displacement of up to 0.1).",
+                         f"displaced with s = {', '.join(f'{a:g}' for a in amplitudes)} times {scale:g} (the model is 2 units "
+                         f"long, so s = 0.5 moves a vertex by up to {0.5 * scale:g}); seen from above.",
                   {"displacement / amplitude range": _range(np.concatenate(ranges)) if ranges else "n/a",
                    "vertices": len(base.vertices)})
 
@@ -454,7 +477,7 @@ def fig20(out, *, frequencies, amplitude, size, seed):
 
     meshes, ranges = _spheres(LatticeNoise(3, seed=seed, kernel="quintic"),
                               [(amplitude, f, 1, "fractal") for f in frequencies], samples_per_period=8.0)
-    files = [_render(arrange(meshes, columns=3), out / "fig20.png", size, colors=["#d8d2c4"] * len(meshes))]
+    files = [_render(arrange(meshes, columns=3), out / "fig20.png", size, view="xy", colors=["#d8d2c4"] * len(meshes))]
     return Result(files, f"Spheres with a = {amplitude:g} and F = {', '.join(f'{f:g}' for f in frequencies)} (left to right, "
                          "top to bottom), finely subdivided (8 vertices per period) and smooth-shaded in place of "
                          "RenderMan's analytic spheres.",

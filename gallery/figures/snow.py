@@ -41,7 +41,7 @@ def opacity(out, *, frames, size, c, thickness, beta, seed):
     inside = (prof.centers >= band[0]) & (prof.centers <= band[1])
     return Result(files, f"The rendered opacity alpha = (rescaled inverse FFT of the thickened tent)^beta, "
                          f"{frames} frames of {size} x {size}, band {band[0]:g}..{band[1]:g} cycles/frame; "
-                         f"right: the speed of each spatial-frequency band against the tent's prediction. "
+                         f"below: the speed of each spatial-frequency band against the tent's prediction. "
                          f"Nearest flakes {near:.2f} px/frame, farthest {far:.2f} px/frame (flake_speeds).",
                   measured={"energy on the tent": on_tent,
                             "speed per band (cycles/frame: px/frame)": ", ".join(
