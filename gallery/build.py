@@ -160,6 +160,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--quick", action="store_true", help="small, fast versions of every figure (for tests)")
     parser.add_argument("--force", action="store_true", help="rebuild figures even if they are up to date")
     parser.add_argument("--list", action="store_true", help="list the figure groups and figures, then exit")
+    parser.add_argument("--check", action="store_true",
+                        help="then open index.html in headless Chromium and report missing files and console errors")
     parser.add_argument("--progress", dest="show_progress", action="store_true", default=None,
                         help="always show the progress bar (default: only on a terminal)")
     parser.add_argument("--no-progress", dest="show_progress", action="store_false", help="never show the progress bar")
@@ -176,7 +178,19 @@ def run(args) -> int:
     print(f"gallery: {len(report['built'])} built, {len(report['skipped'])} up to date, "
           f"{len(report['failed'])} failed in {report['seconds']:.1f} s")
     print(f"gallery: open {index}")
-    return 1 if report["failed"] else 0
+    status = 1 if report["failed"] else 0
+    if getattr(args, "check", False):
+        from .browser import check_page
+
+        page = check_page(index)
+        bad = ([e for e in page["console_errors"]] + [f"image {i['src']} did not load" for i in page["images"] if not i["ok"]]
+               + [f"video {v['src']} cannot play" for v in page["videos"] if v["error"] is not None or v["ready"] < 2])
+        for line in bad:
+            print(f"gallery: check: {line}", file=sys.stderr)
+        print(f"gallery: check in {page['browser']}: {len(page['images'])} images, {len(page['videos'])} videos, "
+              f"{len(bad)} problems")
+        status = status or (1 if bad else 0)
+    return status
 
 
 def main(argv=None) -> int:

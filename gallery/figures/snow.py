@@ -63,11 +63,16 @@ def winter_scene(out, *, frames, size, c, beta, intensity, seed):
     video = alpha_to_rgb_composite(alpha, bg, intensity)
     files = [save_image(out / "a_background.png", bg), save_image(out / "b_frame.png", video[0])]
     files += save_video(out, "house", video)
+    prof = analysis.speed_profile(alpha)
+    speed = np.hypot(*prof.velocity.T)
+    inside = (prof.centers >= size / 32) & (prof.centers <= size / 4)
     return Result(files, "(a) The background: the painting of the thesis is not available, so noiselab draws a "
                          "winter landscape with lattice noise (ridges: 1-D fractal sums; rock and clouds: turbulence). "
                          f"(b) One frame of falling snow composited over it with Eq. 3.6, I = {intensity} alpha + (1 - alpha) I_bg; "
                          "the video loops seamlessly.",
                   measured={"energy on the tent": analysis.tent_energy(alpha, c, (size / 32, size / 4)),
+                            "speed per band of alpha (cycles/frame: px/frame)": ", ".join(
+                                f"{fc:.0f}: {s:.2f}" for fc, s in zip(prof.centers[inside], speed[inside])),
                             "loop seam of the composite (1 = seamless)": analysis.loop_seam(analysis.to_grey(video.astype(np.float32))),
                             "background RMS contrast": analysis.rms_contrast(bg)})
 
