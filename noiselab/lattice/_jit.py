@@ -271,17 +271,73 @@ def contract_mid(inp, pos, w, out):
 
 @nb.njit(cache=True, nogil=True)
 def contract_last(inp, pos, w, out):
-    """The separable pass on the last (contiguous) axis: ``out[p, j] = sum_k w[j, k] * inp[p, pos[j, k]]``."""
+    """The separable pass on the last (contiguous) axis: ``out[p, j] = sum_k w[j, k] * inp[p, pos[j, k]]``.
+
+    Rows are taken eight at a time so that each sample's weights and tap
+    positions are loaded once per eight rows.
+    """
     npre = inp.shape[0]
     nj, taps = w.shape
-    for p in range(npre):
-        row = inp[p]
-        o = out[p]
+    p0 = 0
+    while p0 < npre:
+        p1 = min(p0 + 8, npre)
         for j in range(nj):
-            s = w[j, 0] * row[pos[j, 0]]
-            for k in range(1, taps):
-                s += w[j, k] * row[pos[j, k]]
-            o[j] = s
+            if taps == 4:
+                a0 = pos[j, 0]; a1 = pos[j, 1]; a2 = pos[j, 2]; a3 = pos[j, 3]
+                w0 = w[j, 0]; w1 = w[j, 1]; w2 = w[j, 2]; w3 = w[j, 3]
+                for p in range(p0, p1):
+                    out[p, j] = w0 * inp[p, a0] + w1 * inp[p, a1] + w2 * inp[p, a2] + w3 * inp[p, a3]
+            elif taps == 2:
+                a0 = pos[j, 0]; a1 = pos[j, 1]
+                w0 = w[j, 0]; w1 = w[j, 1]
+                for p in range(p0, p1):
+                    out[p, j] = w0 * inp[p, a0] + w1 * inp[p, a1]
+            else:
+                for p in range(p0, p1):
+                    s = w[j, 0] * inp[p, pos[j, 0]]
+                    for k in range(1, taps):
+                        s += w[j, k] * inp[p, pos[j, k]]
+                    out[p, j] = s
+        p0 = p1
+
+
+@nb.njit(cache=True, nogil=True)
+def hash_expand(h, par, lat, perm, n, first):
+    """One level of the nested hash over a block: ``h'[m, l] = P[(h[m] + lat[l]) mod n]``, flattened.
+
+    ``first``: the first level, ``h' = P[lat mod n]`` (``h`` is ignored).
+    Also carries the lattice parity ``par'[m, l] = par[m] + lat[l]`` (low bit).
+    """
+    nl = lat.shape[0]
+    m = 1 if first else h.shape[0]
+    hn = np.empty(m * nl, np.int64)
+    pn = np.empty(m * nl, np.int64)
+    for i in range(m):
+        hb = 0 if first else h[i]
+        pb = 0 if first else par[i]
+        for l in range(nl):
+            s = hb + lat[l]
+            if s >= n:
+                s -= n
+                if s >= n:
+                    s = s % n
+            hn[i * nl + l] = perm[s]
+            pn[i * nl + l] = (pb + lat[l]) & 1
+    return hn, pn
+
+
+@nb.njit(cache=True, nogil=True)
+def gather_values(h, par, values, out):
+    """``out[m] = values[par[m], h[m]]`` (the value block)."""
+    for i in range(h.shape[0]):
+        out[i] = values[par[i], h[i]]
+
+
+@nb.njit(cache=True, nogil=True)
+def gather_gradients(h, grads, b, out):
+    """``out[m] = grads[h[m], b]`` (component b of the gradient block)."""
+    for i in range(h.shape[0]):
+        out[i] = grads[h[i], b]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -300,22 +356,47 @@ def final_pass(inter, pos, w, scales, group_start, out, mode):
     acc = np.empty(npost)
     tmp = np.empty(npost)
     for j in range(nj):
-        for q in range(npost):
-            acc[q] = 0.0
         for g in range(ngroup):
-            buf = tmp if mode == 2 else acc
-            if mode == 2:
-                for q in range(npost):
-                    buf[q] = 0.0
+            buf = tmp if (mode == 2 and g > 0) else acc
             for t in range(group_start[g], group_start[g + 1]):
-                for k in range(taps):
-                    wk = w[t, j, k] * scales[t]
-                    rk = inter[pos[t, j, k]]
-                    for q in range(npost):
-                        buf[q] += wk * rk[q]
+                first = t == group_start[g]
+                sc = scales[t]
+                if taps == 4:
+                    w0 = w[t, j, 0] * sc; w1 = w[t, j, 1] * sc; w2 = w[t, j, 2] * sc; w3 = w[t, j, 3] * sc
+                    r0 = inter[pos[t, j, 0]]; r1 = inter[pos[t, j, 1]]
+                    r2 = inter[pos[t, j, 2]]; r3 = inter[pos[t, j, 3]]
+                    if first:
+                        for q in range(npost):
+                            buf[q] = w0 * r0[q] + w1 * r1[q] + w2 * r2[q] + w3 * r3[q]
+                    else:
+                        for q in range(npost):
+                            buf[q] += w0 * r0[q] + w1 * r1[q] + w2 * r2[q] + w3 * r3[q]
+                elif taps == 2:
+                    w0 = w[t, j, 0] * sc; w1 = w[t, j, 1] * sc
+                    r0 = inter[pos[t, j, 0]]; r1 = inter[pos[t, j, 1]]
+                    if first:
+                        for q in range(npost):
+                            buf[q] = w0 * r0[q] + w1 * r1[q]
+                    else:
+                        for q in range(npost):
+                            buf[q] += w0 * r0[q] + w1 * r1[q]
+                else:
+                    for k in range(taps):
+                        wk = w[t, j, k] * sc
+                        rk = inter[pos[t, j, k]]
+                        if first and k == 0:
+                            for q in range(npost):
+                                buf[q] = wk * rk[q]
+                        else:
+                            for q in range(npost):
+                                buf[q] += wk * rk[q]
             if mode == 2:
-                for q in range(npost):
-                    acc[q] += abs(tmp[q])
+                if g == 0:
+                    for q in range(npost):
+                        acc[q] = abs(acc[q])
+                else:
+                    for q in range(npost):
+                        acc[q] += abs(tmp[q])
         o = out[j]
         if mode == 0:
             for q in range(npost):
@@ -323,3 +404,47 @@ def final_pass(inter, pos, w, scales, group_start, out, mode):
         else:
             for q in range(npost):
                 o[q] += acc[q]
+
+
+@nb.njit(cache=True, nogil=True)
+def final_pass_direct(inter, pos, w, scales, out):
+    """:func:`final_pass` for float64 output written directly (mode 0, one group): no buffer, no copy.
+
+    The arithmetic, term by term and tap by tap, is the same as in
+    :func:`final_pass`, so both give the same bits.
+    """
+    nterm, nj, taps = w.shape
+    npost = inter.shape[1]
+    for j in range(nj):
+        o = out[j]
+        for t in range(nterm):
+            sc = scales[t]
+            if taps == 4:
+                w0 = w[t, j, 0] * sc; w1 = w[t, j, 1] * sc; w2 = w[t, j, 2] * sc; w3 = w[t, j, 3] * sc
+                r0 = inter[pos[t, j, 0]]; r1 = inter[pos[t, j, 1]]
+                r2 = inter[pos[t, j, 2]]; r3 = inter[pos[t, j, 3]]
+                if t == 0:
+                    for q in range(npost):
+                        o[q] = w0 * r0[q] + w1 * r1[q] + w2 * r2[q] + w3 * r3[q]
+                else:
+                    for q in range(npost):
+                        o[q] += w0 * r0[q] + w1 * r1[q] + w2 * r2[q] + w3 * r3[q]
+            elif taps == 2:
+                w0 = w[t, j, 0] * sc; w1 = w[t, j, 1] * sc
+                r0 = inter[pos[t, j, 0]]; r1 = inter[pos[t, j, 1]]
+                if t == 0:
+                    for q in range(npost):
+                        o[q] = w0 * r0[q] + w1 * r1[q]
+                else:
+                    for q in range(npost):
+                        o[q] += w0 * r0[q] + w1 * r1[q]
+            else:
+                for k in range(taps):
+                    wk = w[t, j, k] * sc
+                    rk = inter[pos[t, j, k]]
+                    if t == 0 and k == 0:
+                        for q in range(npost):
+                            o[q] = wk * rk[q]
+                    else:
+                        for q in range(npost):
+                            o[q] += wk * rk[q]

@@ -388,17 +388,14 @@ class LatticeNoise:
         lattice = (base[j0] + uniq) % self.period[a]
         return lattice, pos, w, rw
 
-    def _block(self, c, lattices):
-        """Hash the block of lattice points: ``h_{a+1} = P[(h_a + j_a) mod n]`` and the index parity."""
+    def _block_hash(self, c, lattices):
+        """Hash the block of lattice points: ``h_{a+1} = P[(h_a + j_a) mod n]``, and the index parity (flat)."""
         n = self.table_size
         perm = self.perms[c]
-        h = perm[lattices[0] % n]
-        parity = lattices[0]
-        for a in range(1, len(lattices)):
-            lat = lattices[a].reshape((1,) * a + (-1,))
-            h = perm[(h[..., None] + lat) % n]
-            parity = parity[..., None] + lat
-        return h, parity
+        h = par = np.zeros(1, np.int64)
+        for a, lat in enumerate(lattices):
+            h, par = _jit.hash_expand(h, par, np.ascontiguousarray(lat, dtype=np.int64), perm, n, a == 0)
+        return h, par
 
     def _grid_separable(self, sub, full, octaves, out, absval):
         """Separable grid path: per octave and term, contract axes d-1..1; then one fused pass on axis 0."""
@@ -424,41 +421,61 @@ class LatticeNoise:
         nj = sub[0].shape[0]
         for bi, batch in enumerate(batches):
             axes_per_octave = [[self._axis_taps(sub[a], freq[a], a, grad) for a in range(d)] for freq, _ in batch]
+            rows = sum(len(axes[0][0]) for axes in axes_per_octave) * nterm
             for c in range(self.dim_out):
-                inters, poss, ws, scales = [], [], [], []
+                inter_all = np.empty((rows, post))
+                poss, ws, scales = [], [], []
                 row0 = 0
                 for (freq, amp), axes in zip(batch, axes_per_octave):
-                    h, parity = self._block(c, [ax[0] for ax in axes])
+                    lattices = [ax[0] for ax in axes]
+                    bshape = tuple(len(lat) for lat in lattices)
+                    h, par = self._block_hash(c, lattices)
+                    block = np.empty(h.shape[0])
                     for b in range(nterm):
-                        block = self.gradients[h, b] if grad else self.values[parity & 1, h]
-                        inter = self._contract_rest(block, axes, b if grad else -1)
-                        inters.append(inter.reshape(inter.shape[0], -1))
-                        lat0, pos0, w0, rw0 = axes[0]
+                        if grad:
+                            _jit.gather_gradients(h, self.gradients, b, block)
+                        else:
+                            _jit.gather_values(h, par, self.values, block)
+                        target = inter_all[row0:row0 + bshape[0]]
+                        self._contract_rest(block.reshape(bshape), axes, b if grad else -1, target)
+                        _, pos0, w0, rw0 = axes[0]
                         poss.append(pos0 + row0)
                         ws.append(rw0 if (grad and b == 0) else w0)
                         scales.append(amp)
-                        row0 += inter.shape[0]
-                inter_all = inters[0] if len(inters) == 1 else np.concatenate(inters, axis=0)
+                        row0 += bshape[0]
                 group_start = (np.arange(len(batch) + 1) * nterm if absval else np.array([0, len(ws)])).astype(np.int64)
                 mode = 2 if absval else (0 if bi == 0 else 1)
-                _jit.final_pass(np.ascontiguousarray(inter_all), np.ascontiguousarray(np.stack(poss)),
-                                np.ascontiguousarray(np.stack(ws)), np.asarray(scales, dtype=np.float64),
-                                group_start, out[c].reshape(nj, post), mode)
+                poss = np.ascontiguousarray(np.stack(poss))
+                ws = np.ascontiguousarray(np.stack(ws))
+                scales = np.asarray(scales, dtype=np.float64)
+                target = out[c].reshape(nj, post)
+                if mode == 0 and target.dtype == np.float64:
+                    _jit.final_pass_direct(inter_all, poss, ws, scales, target)
+                else:
+                    _jit.final_pass(inter_all, poss, ws, scales, group_start, target, mode)
 
     @staticmethod
-    def _contract_rest(block, axes, use_r):
-        """Contract axes d-1 .. 1 of a lattice block (axis ``use_r`` with the gradient ramp weights)."""
-        cur = np.ascontiguousarray(block, dtype=np.float64)
+    def _contract_rest(block, axes, use_r, target):
+        """Contract axes d-1 .. 1 of a lattice block into ``target`` (rows of axis 0 x the other grid axes).
+
+        Axis ``use_r`` takes the gradient ramp weights.
+        """
+        cur = block
         d = cur.ndim
+        if d == 1:
+            target[:, 0] = cur
+            return
         for a in range(d - 1, 0, -1):
             _, pos, w, rw = axes[a]
             weights = rw if a == use_r else w
             pre = int(np.prod(cur.shape[:a], dtype=np.int64))
             post = int(np.prod(cur.shape[a + 1:], dtype=np.int64))
-            nxt = np.empty((pre, pos.shape[0], post))
+            if a == 1:
+                nxt = target.reshape(pre, pos.shape[0], post)
+            else:
+                nxt = np.empty((pre, pos.shape[0], post))
             if post == 1:
                 _jit.contract_last(cur.reshape(pre, cur.shape[a]), pos, weights, nxt.reshape(pre, pos.shape[0]))
             else:
                 _jit.contract_mid(cur.reshape(pre, cur.shape[a], post), pos, weights, nxt)
             cur = nxt.reshape(cur.shape[:a] + (pos.shape[0],) + cur.shape[a + 1:])
-        return cur

@@ -1,0 +1,371 @@
+"""Lattice noise: speed against the floor and the installed peers, and precision at large coordinates.
+
+Run with the peers' environment (see DEVELOPERS.md)::
+
+    benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py [--quick]
+
+Writes ``benchmarks/bench_lattice.md`` beside this script. Every timing is
+the median of ``--repeats`` (>= 5) runs, the candidates of one table
+interleaved in the same process, one thread. The floor is writing a float64
+array of the output's size (``np.full``); "x floor" is floor time / our time
+(1.0 would be as fast as merely writing the output).
+"""
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import importlib.metadata as _md
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+import numpy as np  # noqa: E402
+
+if not hasattr(np, "product"):  # pyfastnoisesimd 0.4.2 still calls np.product (removed in NumPy 2)
+    np.product = np.prod
+
+from noiselab import LatticeNoise, fractal_sum  # noqa: E402
+from noiselab.lattice import Grid, kernel_names  # noqa: E402
+
+
+def _peer(name):
+    try:
+        if name == "fnl":
+            import pyfastnoiselite.pyfastnoiselite as mod
+        elif name == "fns":
+            import pyfastnoisesimd as mod
+        elif name == "noise":
+            import noise as mod
+        elif name == "opensimplex":
+            import opensimplex as mod
+        elif name == "vnoise":
+            import vnoise as mod
+        elif name == "perlin_numpy":
+            import perlin_numpy as mod
+        elif name == "vtk":
+            import vtk as mod
+        else:
+            raise ImportError(name)
+        return mod
+    except Exception as exc:  # a missing peer is reported, not fatal
+        print(f"peer {name} unavailable: {exc}", file=sys.stderr)
+        return None
+
+
+def bench(cands: dict, repeats: int) -> dict:
+    """Median seconds per candidate; candidates interleaved, one warm-up each."""
+    for f in cands.values():
+        f()
+    times = {k: [] for k in cands}
+    for _ in range(repeats):
+        for k, f in cands.items():
+            t0 = time.perf_counter()
+            f()
+            times[k].append(time.perf_counter() - t0)
+    return {k: float(np.median(v)) for k, v in times.items()}
+
+
+def _version(dist):
+    try:
+        return _md.version(dist)
+    except _md.PackageNotFoundError:
+        return "not installed"
+
+
+# --------------------------------------------------------------------------- grids
+def grid_section(repeats, quick, lines):
+    shape = (1024, 1024)
+    cells = 16.0
+    npts = shape[0] * shape[1]
+    grid = Grid(shape, [(0.0, cells), (0.0, cells)])
+    fns = _peer("fns")
+    lines.append("## 2-D grid, 1024 x 1024, 16 lattice cells per side\n")
+    lines.append("Points per second (median); `x floor` = time of `np.full((1024, 1024), 0.5)` (float64) / time; "
+                 "`x FNS` = pyfastnoisesimd value noise (float32, 1 worker) time / time, same octaves.\n")
+    lines.append("| kernel | basis | octaves | float64 pts/s | x floor | x FNS | float32 pts/s | x floor | x FNS |")
+    lines.append("|---|---|---|---|---|---|---|---|---|")
+    summary = {}
+    kernels = ["cubic", "quintic"] if quick else kernel_names()
+    for kname in kernels:
+        for basis in ("value", "gradient"):
+            noise = LatticeNoise(2, seed=1, kernel=kname, basis=basis)
+            cands = {"floor": lambda: np.full(shape, 0.5)}
+            if fns is not None:
+                f1 = fns.Noise(seed=1, numWorkers=1)
+                f1.noiseType = fns.NoiseType.Value
+                f1.frequency = cells / shape[0]
+                f6 = fns.Noise(seed=1, numWorkers=1)
+                f6.noiseType = fns.NoiseType.ValueFractal
+                f6.frequency = cells / shape[0]
+                f6.fractal.octaves = 6
+                f6.fractal.lacunarity = 2.0
+                f6.fractal.gain = 0.5
+                cands["fns1"] = lambda f1=f1: f1.genAsGrid([1, *shape])
+                cands["fns6"] = lambda f6=f6: f6.genAsGrid([1, *shape])
+            for dt in ("float64", "float32"):
+                cands[f"one_{dt}"] = lambda dt=dt, noise=noise: noise.grid(shape, grid.extent, dtype=dt)
+                cands[f"six_{dt}"] = lambda dt=dt, noise=noise: fractal_sum(noise, grid, 6, dtype=dt)
+            t = bench(cands, repeats)
+            _, used = fractal_sum(noise, grid, 6, return_octaves=True)
+            for label, key, fkey in (("1", "one", "fns1"), (f"6 (used {used})", "six", "fns6")):
+                row = [kname, basis, label]
+                for dt in ("float64", "float32"):
+                    tt = t[f"{key}_{dt}"]
+                    row += [f"{npts / tt:.3g}", f"{t['floor'] / tt:.2f}",
+                            f"{t[fkey] / tt:.2f}" if fkey in t else "n/a"]
+                    summary[(kname, basis, key, dt)] = (npts / tt, t["floor"] / tt, t[fkey] / tt if fkey in t else None)
+                lines.append("| " + " | ".join(row) + " |")
+            if "fns1" in t:
+                summary["fns"] = (npts / t["fns1"], npts / t["fns6"])
+            summary["floor"] = npts / t["floor"]
+    if "fns" in summary:
+        lines.append(f"\npyfastnoisesimd value noise (float32, 1 worker), last group: {summary['fns'][0]:.3g} pts/s one octave, "
+                     f"{summary['fns'][1]:.3g} pts/s six octaves; floor {summary['floor']:.3g} pts/s.\n")
+
+    # other grid peers, one octave, measured once side by side
+    lines.append("### Other peers on the same 1024 x 1024 grid (one octave)\n")
+    lines.append("| implementation | precision | pts/s | x floor | note |")
+    lines.append("|---|---|---|---|---|")
+    cands = {"floor": lambda: np.full(shape, 0.5)}
+    notes = {}
+    noise = LatticeNoise(2, seed=1, kernel="quintic")
+    cands["noiselab value quintic (float64)"] = lambda: noise.grid(shape, grid.extent)
+    xs = np.arange(shape[1]) * (cells / shape[1])
+    fnl = _peer("fnl")
+    if fnl is not None:
+        coords = np.ascontiguousarray(np.stack(np.meshgrid(xs, xs, indexing="ij")[::-1]).reshape(2, -1).astype(np.float32))
+        lite = fnl.FastNoiseLite(1)
+        lite.noise_type = fnl.NoiseType.NoiseType_Value
+        lite.frequency = 1.0
+        cands["pyfastnoiselite value (gen_from_coords)"] = lambda: lite.gen_from_coords(coords)
+        notes["pyfastnoiselite value (gen_from_coords)"] = ("float32", "coordinates prepared outside the timing")
+    osx = _peer("opensimplex")
+    if osx is not None:
+        osx.seed(1)
+        cands["opensimplex noise2array"] = lambda: osx.noise2array(xs, xs)
+        notes["opensimplex noise2array"] = ("float64", "OpenSimplex2 (not lattice value noise), numba")
+    vn = _peer("vnoise")
+    if vn is not None:
+        vobj = vn.Noise(1)
+        cands["vnoise noise2 (grid_mode)"] = lambda: vobj.noise2(xs, xs, grid_mode=True)
+        notes["vnoise noise2 (grid_mode)"] = ("float64", "Perlin gradient noise in NumPy")
+    pn = _peer("perlin_numpy")
+    if pn is not None:
+        cands["perlin-numpy generate_perlin_noise_2d"] = lambda: pn.generate_perlin_noise_2d(shape, (16, 16), rng=np.random.default_rng(1))
+        notes["perlin-numpy generate_perlin_noise_2d"] = ("float64", "gradient noise, whole-grid NumPy")
+    t = bench(cands, repeats)
+    for k, v in t.items():
+        if k == "floor":
+            continue
+        prec, note = notes.get(k, ("float64", ""))
+        lines.append(f"| {k} | {prec} | {npts / v:.3g} | {t['floor'] / v:.2f} | {note} |")
+    # per-point Python-loop peers: measured on a subset, rate extrapolated
+    sub = 128
+    slow = {}
+    nz = _peer("noise")
+    if nz is not None:
+        slow["noise.pnoise2 (Python loop, 128x128)"] = lambda: [nz.pnoise2(x, y) for x in xs[:sub] for y in xs[:sub]]
+    vtk = _peer("vtk")
+    if vtk is not None:
+        pv = vtk.vtkPerlinNoise()
+        slow["VTK vtkPerlinNoise.EvaluateFunction (Python loop, 128x128)"] = \
+            lambda: [pv.EvaluateFunction(x, y, 0.0) for x in xs[:sub] for y in xs[:sub]]
+    if slow:
+        ts = bench(slow, max(3, repeats // 2))
+        for k, v in ts.items():
+            lines.append(f"| {k} | float32 inside | {sub * sub / v:.3g} | {t['floor'] / (v * npts / (sub * sub)):.4f} | "
+                         "one call per point |")
+    lines.append("")
+    return summary
+
+
+# ----------------------------------------------------------------------- scattered
+def scattered_section(repeats, quick, lines):
+    npts = 1_000_000
+    rng = np.random.default_rng(0)
+    pts = rng.uniform(0.0, 100.0, (npts, 3))
+    pts32 = pts.astype(np.float32)
+    lines.append("## Scattered points: 1,000,000 random 3-D points in [0, 100)^3\n")
+    lines.append("Computation in float64; the float32 column returns float32 (from float32 input). "
+                 "`x floor` = time of `np.full(1_000_000, 0.5)` / time; `x FNL` = pyfastnoiselite value noise "
+                 "(float32) time / time.\n")
+    lines.append("| kernel (taps) | basis | float64 pts/s | x floor | x FNL | float32 pts/s | x FNL |")
+    lines.append("|---|---|---|---|---|---|---|")
+    fnl = _peer("fnl")
+    coords = np.ascontiguousarray(pts32.T)
+    summary = {}
+    kernels = ["cubic", "quintic"] if quick else kernel_names()
+    for kname in kernels:
+        for basis in ("value", "gradient"):
+            noise = LatticeNoise(3, seed=1, kernel=kname, basis=basis)
+            cands = {"floor": lambda: np.full(npts, 0.5),
+                     "f64": lambda noise=noise: noise(pts),
+                     "f32": lambda noise=noise: noise(pts32)}
+            if fnl is not None:
+                lite = fnl.FastNoiseLite(1)
+                lite.noise_type = fnl.NoiseType.NoiseType_Value
+                lite.frequency = 1.0
+                cands["fnl"] = lambda lite=lite: lite.gen_from_coords(coords)
+            t = bench(cands, repeats)
+            xf = lambda k: f"{t['fnl'] / t[k]:.2f}" if "fnl" in t else "n/a"  # noqa: E731
+            lines.append(f"| {kname} ({noise.kernel.taps}) | {basis} | {npts / t['f64']:.3g} | {t['floor'] / t['f64']:.3f} | "
+                         f"{xf('f64')} | {npts / t['f32']:.3g} | {xf('f32')} |")
+            summary[(kname, basis)] = (npts / t["f64"], t["fnl"] / t["f64"] if "fnl" in t else None)
+            if "fnl" in t:
+                summary["fnl"] = npts / t["fnl"]
+    # peers
+    lines.append("\n### Peers on the same points\n")
+    lines.append("| implementation | precision | pts/s |")
+    lines.append("|---|---|---|")
+    cands = {}
+    if fnl is not None:
+        for label, nt in (("value", fnl.NoiseType.NoiseType_Value), ("perlin", fnl.NoiseType.NoiseType_Perlin)):
+            lite = fnl.FastNoiseLite(1)
+            lite.noise_type = nt
+            lite.frequency = 1.0
+            cands[f"pyfastnoiselite {label}"] = lambda lite=lite: lite.gen_from_coords(coords)
+    fns = _peer("fns")
+    if fns is not None:
+        aligned = fns.empty_coords(npts)
+        aligned[:] = pts32.T
+        for label, nt in (("value", fns.NoiseType.Value), ("perlin", fns.NoiseType.Perlin)):
+            f = fns.Noise(seed=1, numWorkers=1)
+            f.noiseType = nt
+            f.frequency = 1.0
+            cands[f"pyfastnoisesimd {label} (1 worker)"] = lambda f=f: f.genFromCoords(aligned)
+    vn = _peer("vnoise")
+    if vn is not None:
+        vobj = vn.Noise(1)
+        cands["vnoise noise3 (points)"] = lambda: vobj.noise3(pts[:, 0], pts[:, 1], pts[:, 2], grid_mode=False)
+    t = bench(cands, repeats) if cands else {}
+    for k, v in t.items():
+        lines.append(f"| {k} | {'float64' if 'vnoise' in k else 'float32'} | {npts / v:.3g} |")
+        summary[k] = npts / v
+    nz = _peer("noise")
+    if nz is not None:
+        sub = pts[:20000]
+        ts = bench({"noise": lambda: [nz.pnoise3(*p) for p in sub]}, max(3, repeats // 2))
+        lines.append(f"| noise.pnoise3 (Python loop) | float32 | {sub.shape[0] / ts['noise']:.3g} |")
+    lines.append("")
+    return summary
+
+
+# ----------------------------------------------------------------------- precision
+def precision_section(lines):
+    origins = [0.0, 1e6, 1e9, 2.2e9, 1e12]
+    nsamp = 4001
+    steps = np.linspace(0.0, 4.0, nsamp)  # 4 lattice cells, 0.001-cell steps
+    lines.append("## Precision far from the origin\n")
+    lines.append("4001 samples along x from the origin over 4 lattice cells (steps of 0.001 cell), y = 0.3, "
+                 "z = 0.7 (frequency 1 everywhere). `distinct` = number of distinct output values (4001 for a smooth "
+                 "function; few = stair-steps; 1 = constant), `max|v|` = largest magnitude, `max step` = largest "
+                 "change between neighbouring samples.\n")
+    lines.append("| implementation | " + " | ".join(f"x0 = {o:g}" for o in origins) + " |")
+    lines.append("|---|" + "---|" * len(origins))
+
+    def evaluate(fn):
+        cells = []
+        for o in origins:
+            x = o + steps
+            try:
+                v = np.asarray(fn(x), dtype=np.float64)
+                cells.append(f"{np.unique(v).size} / {np.abs(v).max():.3g} / {np.abs(np.diff(v)).max():.2g}")
+            except Exception as exc:  # noqa: BLE001
+                cells.append(f"error: {type(exc).__name__}")
+        return cells
+
+    rows = {}
+    for kname, basis in (("cubic", "value"), ("quintic", "value"), ("quintic", "gradient")):
+        noise = LatticeNoise(3, seed=1, kernel=kname, basis=basis)
+        rows[f"noiselab {basis} {kname} (float64)"] = \
+            lambda x, noise=noise: noise(np.stack([x, np.full_like(x, 0.3), np.full_like(x, 0.7)], axis=-1))
+    nz = _peer("noise")
+    if nz is not None:
+        rows["noise.pnoise3"] = lambda x: [nz.pnoise3(float(v), 0.3, 0.7) for v in x]
+    fnl = _peer("fnl")
+    if fnl is not None:
+        for label, nt in (("value", fnl.NoiseType.NoiseType_Value), ("perlin", fnl.NoiseType.NoiseType_Perlin)):
+            lite = fnl.FastNoiseLite(1)
+            lite.noise_type = nt
+            lite.frequency = 1.0
+            rows[f"pyfastnoiselite {label}"] = lambda x, lite=lite: lite.gen_from_coords(
+                np.ascontiguousarray(np.stack([x, np.full_like(x, 0.3), np.full_like(x, 0.7)]).astype(np.float32)))
+    fns = _peer("fns")
+    if fns is not None:
+        for label, nt in (("value", fns.NoiseType.Value), ("perlin", fns.NoiseType.Perlin)):
+            f = fns.Noise(seed=1, numWorkers=1)
+            f.noiseType = nt
+            f.frequency = 1.0
+
+            def run(x, f=f):
+                c = fns.empty_coords(x.size)
+                c[0] = x
+                c[1] = 0.3
+                c[2] = 0.7
+                return f.genFromCoords(c)[: x.size]
+            rows[f"pyfastnoisesimd {label}"] = run
+    vtk = _peer("vtk")
+    if vtk is not None:
+        pv = vtk.vtkPerlinNoise()
+        rows["VTK vtkPerlinNoise (documented range about +-1)"] = lambda x: [pv.EvaluateFunction(float(v), 0.3, 0.7) for v in x]
+    osx = _peer("opensimplex")
+    if osx is not None:
+        osx.seed(1)
+        rows["opensimplex noise3"] = lambda x: [osx.noise3(float(v), 0.3, 0.7) for v in x]
+    vn = _peer("vnoise")
+    if vn is not None:
+        vobj = vn.Noise(1)
+        rows["vnoise noise3"] = lambda x: vobj.noise3(x, np.full_like(x, 0.3), np.full_like(x, 0.7), grid_mode=False)
+    results = {}
+    for name, fn in rows.items():
+        cells = evaluate(fn)
+        results[name] = cells
+        lines.append(f"| {name} | " + " | ".join(cells) + " |")
+    lines.append("\nEach cell: distinct / max|v| / max step.\n")
+    return results
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--quick", action="store_true", help="cubic and quintic only")
+    ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
+    args = ap.parse_args()
+    repeats = max(5, args.repeats)
+    cmd = "benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py" + (" --quick" if args.quick else "")
+    lines = ["# Lattice noise benchmark\n",
+             f"- date: {_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M UTC}",
+             f"- command: `{cmd}`",
+             f"- machine: {platform.machine()}, {os.cpu_count()} cores ({_cpu()}), shared with other jobs; "
+             f"one thread; load average at start {os.getloadavg()[0]:.1f}",
+             f"- python {platform.python_version()}, numpy {np.__version__}, numba {_version('numba')}, "
+             + ", ".join(f"{d} {_version(d)}" for d in ("noise", "pyfastnoiselite", "pyfastnoisesimd", "opensimplex",
+                                                         "vnoise", "perlin-numpy", "vtk")),
+             f"- timings: median of {repeats} interleaved runs per table\n"]
+    grid_section(repeats, args.quick, lines)
+    scattered_section(repeats, args.quick, lines)
+    precision_section(lines)
+    Path(args.output).write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+def _cpu():
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown cpu"
+
+
+if __name__ == "__main__":
+    main()
