@@ -243,3 +243,13 @@ def test_bench_cli_rejects_a_file_as_output(tmp_path, capsys):
     f.write_text("x")
     assert main(["bench", "--quick", "--output", str(f)]) == 2
     assert "--output" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("modname", ["noiselab.lab.snowgen", "noiselab.lab.measure", "noiselab.lab.experiments",
+                                     "noiselab.lab.run"])
+def test_docstring_examples_run(modname):
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(modname), optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0
