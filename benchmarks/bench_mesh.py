@@ -100,8 +100,10 @@ def main(argv=None):
         # displace, stage by stage: exactly the steps noiselab.displace takes (its private helpers)
         mesh = run("  displace stage: fresh trimesh", fresh)
         verts, faces = D._arrays(mesh)
-        unit, volume, longest, lengths = run("  displace stage: face pass (numba): normals, volume, longest edge",
-                                             lambda: D.face_pass(verts, faces, D._stride(len(faces))))
+        unit, volume, longest, lengths, welded = run(
+            "  displace stage: face pass (numba): normals, volume, longest edge",
+            lambda: D._normals(verts, faces, D._stride(len(faces)), False))
+        run("  displace stage: seam welding (find coincident vertices)", lambda: D._weld_groups(verts))
         nrm = run("  displace stage: orientation + aliasing report",
                   lambda: (D._outward(unit, volume, faces),
                            D._report(longest, lengths, frequency * 2 ** (args.octaves - 1), 4.0))[0])

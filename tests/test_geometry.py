@@ -337,7 +337,8 @@ def test_numba_face_pass_matches_the_numpy_reference():
     D = importlib.import_module("noiselab.geometry.displace")
     mesh = displace(load_model("ant"), waves, 0.05, on_aliasing="ignore")
     v, f = D._arrays(mesh)
-    unit, volume, longest, lengths = D.face_pass(v, f, 1)
+    sums, volume, longest, lengths = D.face_pass(v, f, 1)
+    unit = D.unit_rows(sums.copy())
     a, ab, bc, ca, cross = D._face_geometry(v, f)
     np.testing.assert_allclose(unit, D._area_weighted_normals(cross, f, len(v)), atol=1e-12)
     reference = D._edge_lengths(ab, bc, ca)
@@ -349,3 +350,32 @@ def test_numba_face_pass_matches_the_numpy_reference():
     bad = trimesh.Trimesh(v, np.vstack([f, [[0, 1, len(v) + 5]]]), process=False, validate=False)
     with pytest.raises(ValueError, match="index vertices outside"):
         displace(bad, waves)
+
+
+def test_seams_are_welded_so_the_surface_does_not_crack():
+    soup = sphere(3)
+    soup.unmerge_vertices()                      # every face has its own corners, like an STL or a UV seam
+    assert len(soup.vertices) == 3 * len(soup.faces)
+    welded = displace(soup, waves, 0.1, on_aliasing="ignore")
+    cracked = displace(soup, waves, 0.1, weld=False, on_aliasing="ignore")
+    merged = welded.copy()
+    merged.merge_vertices()
+    assert len(merged.vertices) == len(sphere(3).vertices) and merged.is_watertight
+    np.testing.assert_allclose(np.sort(merged.vertices, axis=0),
+                               np.sort(displace(sphere(3), waves, 0.1).vertices, axis=0), atol=1e-12)
+    gaps = np.linalg.norm(cracked.vertices - welded.vertices, axis=1)
+    assert gaps.max() > 1e-3                     # without welding the copies move apart
+    inverted = soup.copy()
+    inverted.invert()
+    out = displace(inverted, constant(1.0), 0.1, on_aliasing="ignore")
+    np.testing.assert_allclose(np.linalg.norm(out.vertices, axis=1), 1.1, atol=0.02)   # still outwards
+
+
+def test_results_do_not_depend_on_chunking_or_per_axis_frequency_is_used():
+    mesh = sphere(4)
+    a = displace(mesh, waves, 0.1, frequency=[1.0, 2.0, 0.5], phase=[0.1, 0.2, 0.3])
+    b = displace(mesh, waves, 0.1, frequency=[1.0, 2.0, 0.5], phase=[0.1, 0.2, 0.3], chunk_size=1000)
+    np.testing.assert_array_equal(a.vertices, b.vertices)
+    p = np.asarray(mesh.vertices)
+    expected = 0.1 * waves(p * [1.0, 2.0, 0.5] + [0.1, 0.2, 0.3])
+    np.testing.assert_allclose(a.vertex_attributes["displacement"], expected, atol=1e-15)

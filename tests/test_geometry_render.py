@@ -127,6 +127,20 @@ def test_cli_refines_a_coarse_input_file_and_can_refuse_it(tmp_path, capsys):
     assert "too coarse" in capsys.readouterr().err
 
 
+def test_cli_plane_becomes_a_monge_surface_fine_enough_for_the_noise(tmp_path):
+    out = tmp_path / "p.obj"
+    assert main(["mesh", "--shape", "plane", "--field", "turbulence", "--octaves", "3", "-f", "1", "-a", "0.2",
+                 "-o", str(out)]) == 0
+    m = read_mesh(out)
+    assert len(m.vertices) == 47 ** 2                # ceil(2 sqrt(2) * 4 * 4) + 1 per side: no refinement needed
+    assert m.vertices[:, 2].min() >= -1e-12 and m.vertices[:, 2].max() > 0.01     # turbulence pushes up only
+    from noiselab.geometry import resolution_report
+
+    flat = m.copy()
+    flat.vertices[:, 2] = 0
+    assert resolution_report(flat, 4.0).ok                                         # 4 samples per top-octave period
+
+
 def test_cli_turntable_video(tmp_path):
     out = tmp_path / "v" / "t.gif"
     assert main(["mesh", "--shape", "sphere", "--subdivisions", "3", "-f", "1", "--render", str(out),

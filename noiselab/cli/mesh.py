@@ -6,7 +6,7 @@ from pathlib import Path
 NAME = "mesh"
 HELP = "displace a mesh or built-in shape along its normals by noise (Eq. 11); write PLY/OBJ/STL/GLB, render PNG/MP4/GIF"
 
-SHAPES = ("sphere", "squashed", "ant", "airplane", "nut")
+SHAPES = ("sphere", "squashed", "plane", "ant", "airplane", "nut")
 
 
 def add_arguments(parser):
@@ -15,9 +15,11 @@ def add_arguments(parser):
     g.add_argument("--input", "-i", metavar="FILE", help="mesh file to displace (PLY, OBJ, STL, GLB, OFF ...)")
     g.add_argument("--shape", choices=SHAPES, default=None,
                    help="built-in shape (default sphere): unit icosphere, sphere squashed by --squash "
-                        "(figure 19), or one of pyvista's bundled models scaled to size 2")
+                        "(figure 19), a flat 2 x 2 sheet (a Monge surface once displaced), or one of pyvista's "
+                        "bundled models scaled to size 2")
     src.add_argument("--subdivisions", type=int, default=None,
-                     help="icosphere level for sphere/squashed (default: the coarsest level the noise needs)")
+                     help="icosphere level for sphere/squashed, or samples per side for plane "
+                          "(default: the coarsest the noise needs)")
     src.add_argument("--squash", type=float, default=0.05, help="vertical squash of 'squashed' (default 0.05 = 5%%)")
     src.add_argument("--normalize", type=float, default=None, metavar="SIZE",
                      help="centre an input file's mesh and scale its largest extent to SIZE")
@@ -63,6 +65,8 @@ def _lattice(dim, args):
 
 
 def _load(args):
+    import numpy as np
+
     from .. import geometry as geo
     from ..io import read_mesh
 
@@ -81,6 +85,17 @@ def _load(args):
             squash = check_real("--squash", args.squash, lo=0.0, hi=1.0, hi_open=True)
             base.apply_scale([1.0, 1.0, 1.0 - squash])
         return base
+    if shape == "plane":
+        from .._validate import check_int
+
+        if args.subdivisions is not None:
+            n = check_int("--subdivisions", args.subdivisions, lo=2, hi=20_000)
+        else:   # longest edge, the cells' diagonal sqrt(2) * 2 / (n - 1), <= 1 / (samples_per_period * max_frequency)
+            n = max(2, int(np.ceil(2.0 * np.sqrt(2.0) * args.samples_per_period * args._max_frequency)) + 1)
+            if n > 4096:
+                raise ValueError(f"a plane fine enough for {args._max_frequency:g} cycles/unit needs {n} x {n} "
+                                 "vertices; lower the frequency or octaves, or give --subdivisions")
+        return geo.plane(n)
     return geo.load_model(shape)
 
 

@@ -1,7 +1,7 @@
 """numba kernel for the per-face geometry of a mesh: one pass instead of numpy's gathers and temporaries.
 
-:func:`face_pass` walks the faces once and returns the unit area-weighted
-vertex normals, the signed volume, the longest edge and a strided sample of
+:func:`face_pass` walks the faces once and returns the area-weighted
+vertex normal sums, the signed volume, the longest edge and a strided sample of
 edge lengths (for the median). numpy
 needs three fancy-indexed gathers of the corners, a cross product, three
 bincounts and their temporaries for the same (about 10x slower on a 1M-vertex
@@ -18,8 +18,9 @@ import numpy as np
 
 @nb.njit(cache=True, nogil=True)
 def face_pass(vertices, faces, stride):
-    """Unit area-weighted vertex normals, signed volume, longest edge, and the edge lengths of every
-    ``stride``-th face (``stride = 0``: none) for a median that need not sort millions of edges."""
+    """Area-weighted vertex normal sums (not yet unit: see :func:`unit_rows`), signed volume, longest
+    edge, and the edge lengths of every ``stride``-th face (``stride = 0``: none) for a median that
+    need not sort millions of edges."""
     n = vertices.shape[0]
     m = faces.shape[0]
     sums = np.zeros((n, 3))
@@ -62,7 +63,13 @@ def face_pass(vertices, faces, stride):
                 lengths[3 * j] = math.sqrt(l0)
                 lengths[3 * j + 1] = math.sqrt(l1)
                 lengths[3 * j + 2] = math.sqrt(l2)
-    for i in range(n):
+    return sums, volume / 6.0, math.sqrt(longest), lengths
+
+
+@nb.njit(cache=True, nogil=True)
+def unit_rows(sums):
+    """Normalise (n, 3) rows in place; rows of (near) zero length become zero."""
+    for i in range(sums.shape[0]):
         s = math.sqrt(sums[i, 0] ** 2 + sums[i, 1] ** 2 + sums[i, 2] ** 2)
         if s > 1e-300:
             sums[i, 0] /= s
@@ -72,4 +79,4 @@ def face_pass(vertices, faces, stride):
             sums[i, 0] = 0.0
             sums[i, 1] = 0.0
             sums[i, 2] = 0.0
-    return sums, volume / 6.0, math.sqrt(longest), lengths
+    return sums

@@ -20,7 +20,7 @@ import warnings
 import numpy as np
 
 from .._validate import check_finite_array, check_int, check_memory, check_real
-from ._kernels import face_pass
+from ._kernels import face_pass, unit_rows
 from .fields import evaluate_field, field_max_frequency, octave_field
 
 __all__ = [
@@ -111,13 +111,54 @@ def _closed_and_consistent(faces, n):
     return bool(np.array_equal(forward, backward))
 
 
-def vertex_normals(mesh) -> np.ndarray:
+def _weld_groups(vertices):
+    """Group vertices that sit at exactly the same position: ``(group of each vertex, count)`` or None.
+
+    Meshes split vertices at UV or crease seams (OBJ, glTF) and STL stores a
+    triangle soup: copies of one point that must move together, or the
+    displaced surface cracks open along the seam. One argsort of a scalar key
+    (not a sort of rows) finds them.
+    """
+    if len(vertices) < 2:
+        return None
+    key = vertices @ np.array([1.0, 0.7548776662466927, 0.5698402909980532])
+    order = np.argsort(key, kind="stable")
+    ordered = vertices[order]
+    same = np.all(ordered[1:] == ordered[:-1], axis=1)
+    if not same.any():
+        return None
+    sorted_groups = np.concatenate([[0], np.cumsum(~same)])
+    groups = np.empty(len(vertices), dtype=np.int64)
+    groups[order] = sorted_groups
+    return groups, int(sorted_groups[-1]) + 1
+
+
+def _normals(vertices, faces, stride, weld):
+    """Unit area-weighted normals (welded across coincident vertices), signed volume, longest edge,
+    sampled edge lengths, and the faces re-indexed by weld group (for the closed-surface test)."""
+    sums, volume, longest, lengths = face_pass(vertices, faces, stride)
+    welded_faces = faces
+    if weld:
+        found = _weld_groups(vertices)
+        if found is not None:
+            groups, count = found
+            total = np.empty((count, 3))
+            for axis in range(3):
+                total[:, axis] = np.bincount(groups, weights=sums[:, axis], minlength=count)
+            sums = total[groups]
+            welded_faces = groups[faces]
+    return unit_rows(sums), volume, longest, lengths, welded_faces
+
+
+def vertex_normals(mesh, *, weld=False) -> np.ndarray:
     """Area-weighted unit vertex normals, float64 ``(n_vertices, 3)``.
 
     Each face adds its cross product ``(b - a) x (c - a)`` (twice its area
     times its unit normal) to its three vertices; the sums are normalised.
     Zero-area faces add nothing. A vertex that no face references, or whose
     faces cancel (zero sum), gets a zero normal and therefore no displacement.
+    ``weld=True`` gives vertices at exactly the same position (copies split
+    at a seam) their common normal.
 
     Examples
     --------
@@ -128,7 +169,7 @@ def vertex_normals(mesh) -> np.ndarray:
     """
     mesh = as_trimesh(mesh)
     v, f = _arrays(mesh)
-    return face_pass(v, f, 0)[0]
+    return _normals(v, f, 0, weld)[0]
 
 
 def _arrays(mesh):
@@ -358,13 +399,13 @@ def _as_vector(name, value, size):
 def _outward(normals, volume, faces):
     # Outward whatever the winding: a closed, consistently wound mesh that is
     # inside out has a negative signed volume (only then is the sign defined).
-    if volume < 0 and _closed_and_consistent(faces, len(normals)):
+    if volume < 0 and _closed_and_consistent(faces, int(faces.max()) + 1):
         return -normals
     return normals
 
 
 def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *, octaves=1, kind="fractal",
-             lacunarity=2.0, gain=0.5, normals=None, samples_per_period=4.0, on_aliasing="warn",
+             lacunarity=2.0, gain=0.5, normals=None, weld=True, samples_per_period=4.0, on_aliasing="warn",
              chunk_size=1 << 20):
     """Displace every vertex of ``mesh`` along its normal by a field of its position (Eq. 11).
 
@@ -396,6 +437,10 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
         Displacement directions; default :func:`vertex_normals` (area-weighted),
         flipped to point outwards for a closed, consistently wound mesh of
         negative signed volume (an inside-out mesh).
+    weld : bool
+        Give vertices at exactly the same position (split at UV or crease
+        seams, or an unmerged STL soup) one common normal, so that the
+        displaced surface does not crack open along seams (default True).
     samples_per_period, on_aliasing
         Resolution check: "warn" (:class:`AliasingWarning`), "raise" or
         "ignore" when the longest edge gives fewer than ``samples_per_period``
@@ -433,9 +478,10 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
     vertices, faces = _arrays(mesh)
     # peak: normals, points, field output and new vertices (n x 3 float64 each), 3 edge lengths per face
     check_memory(len(vertices) * 8 * 3 * 5 + len(faces) * 8 * 4, "displacing the mesh")
-    unit, volume, max_edge, lengths = face_pass(vertices, faces, 0 if on_aliasing == "ignore" else _stride(len(faces)))
+    unit, volume, max_edge, lengths, welded = _normals(
+        vertices, faces, 0 if on_aliasing == "ignore" else _stride(len(faces)), weld and normals is None)
     if normals is None:
-        n = _outward(unit, volume, faces)
+        n = _outward(unit, volume, welded)
     else:
         n = check_finite_array("normals", normals).astype(np.float64)
         if n.shape != vertices.shape:
@@ -478,8 +524,8 @@ def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0,
     normals = kwargs.pop("normals", None)
     if normals is None:
         v, f = _arrays(mesh)
-        unit, volume = face_pass(v, f, 0)[:2]
-        normals = _outward(unit, volume, f)
+        unit, volume, _, _, welded = _normals(v, f, 0, kwargs.get("weld", True))
+        normals = _outward(unit, volume, welded)
     on_aliasing = kwargs.pop("on_aliasing", "warn")
     for i, t in enumerate(times):
         yield displace(mesh, field, amplitude, frequency, phase, float(t), normals=normals,

@@ -10,6 +10,7 @@ from .._validate import check_int, check_real
 __all__ = [
     "sphere",
     "squashed_sphere",
+    "plane",
     "sphere_for_noise",
     "load_model",
     "BUNDLED_MODELS",
@@ -71,6 +72,29 @@ def squashed_sphere(squash=0.05, subdivisions=4, radius=1.0, axis=2):
     scale[axis] = 1.0 - squash
     mesh.apply_transform(np.diag(np.append(scale, 1.0)))
     return mesh
+
+
+def plane(resolution=64, size=2.0):
+    """A flat square sheet on z = 0, centred on the origin, ``resolution`` x ``resolution`` vertices.
+
+    Normals point up (+z), so :func:`displace` turns it into a Monge surface
+    z = s(x, y, 0) (figures 8, 14, 15) of 3-D noise.
+
+    Examples
+    --------
+    >>> p = plane(3)
+    >>> len(p.vertices), len(p.faces), bool(p.face_normals[:, 2].min() > 0)
+    (9, 8, True)
+    """
+    from .surfaces import _grid_mesh, grid_points
+
+    resolution = check_int("resolution", resolution, lo=2, hi=20_000)
+    size = check_real("size", size, lo=0.0, lo_open=True)
+    half = size / 2.0
+    step = size / (resolution - 1)
+    # stop excluded: one step past +half so that the last sample lands on it
+    pts = grid_points((resolution, resolution), ((-half, half + step), (-half, half + step)))
+    return _grid_mesh(pts, np.zeros((resolution, resolution)))
 
 
 def sphere_for_noise(max_frequency, radius=1.0, *, samples_per_period=4.0, max_subdivisions=9):
