@@ -253,3 +253,20 @@ def test_docstring_examples_run(modname):
 
     result = doctest.testmod(importlib.import_module(modname), optionflags=doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_peak_rss_sees_a_known_allocation():
+    from noiselab.lab.measure import peak_rss
+
+    mib = peak_rss("import numpy as np", "np.ones((64, 1024, 1024), dtype=np.uint8)")
+    assert mib is not None and 60 < mib < 80  # 64 MiB, plus little
+
+
+def test_spectral_deviation_tells_1_over_f_from_white():
+    from noiselab.lab.experiments import _spectral_deviation
+    from noiselab.spectral import spectral_noise
+
+    pink = spectral_noise((256, 256), exponent=1.0, band=(8, 64), seed=0, amplitude="fixed")
+    white = np.random.default_rng(0).standard_normal((256, 256))
+    assert _spectral_deviation(pink, (8, 64)) < 0.3
+    assert _spectral_deviation(white, (8, 64)) > 3.0

@@ -23,7 +23,7 @@ import numpy as np
 
 from .._validate import check_int
 
-__all__ = ["time_against_floor", "peak_memory", "machine_info", "fit_exponent", "fit_nlogn",
+__all__ = ["time_against_floor", "peak_memory", "peak_rss", "machine_info", "fit_exponent", "fit_nlogn",
            "fft_floor", "write_floor"]
 
 
@@ -116,6 +116,50 @@ def peak_memory(fn):
         tracemalloc.stop()
     del r
     return int(peak)
+
+
+_RSS_SNIPPET = """
+import json, sys
+{setup}
+def _kb(key):
+    with open("/proc/self/status") as fh:
+        for line in fh:
+            if line.startswith(key + ":"):
+                return int(line.split()[1])
+    return 0
+_warm = ({call})  # compile and import everything first
+del _warm
+try:
+    with open("/proc/self/clear_refs", "w") as fh:
+        fh.write("5")  # reset the high-water mark to the current RSS
+    _reset = True
+except OSError:
+    _reset = False
+_base = _kb("VmRSS")
+_out = ({call})
+print(json.dumps({{"rss_peak_mib": (_kb("VmHWM") - _base) / 1024, "hwm_reset": _reset}}))
+"""
+
+
+def peak_rss(setup, call, *, timeout=600):
+    """Peak resident memory (MiB) of one ``call`` above the process's baseline, in a fresh subprocess.
+
+    Unlike :func:`peak_memory` it sees every allocation (the FFT library's and
+    numba's scratch included). ``setup`` is Python source run first (imports),
+    ``call`` an expression; it is evaluated once untraced (warm-up), then the
+    high-water mark is reset (``/proc/self/clear_refs``, Linux) and it is
+    evaluated again. Returns ``None`` where the reset is not allowed.
+    """
+    import json
+    import subprocess
+    import sys
+
+    code = _RSS_SNIPPET.format(setup=setup, call=call)
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=timeout)
+    if proc.returncode != 0:
+        raise RuntimeError(f"peak_rss failed: {proc.stderr.strip().splitlines()[-1:]}")
+    r = json.loads(proc.stdout.strip().splitlines()[-1])
+    return r["rss_peak_mib"] if r["hwm_reset"] else None
 
 
 def _cpu_model():

@@ -396,7 +396,10 @@ def render_markdown(res, *, quick=False):
     L.append(md_table(res["snow"], [("method", "method"), ("tent_energy", "tent energy"),
                                     ("parallax_rms_error", "parallax err"), ("loop_seam", "loop seam"),
                                     ("mean_alpha", "mean alpha"), ("time_s", "time s"),
-                                    ("x_fft_floor", "x FFT floor"), ("peak_mib", "peak MiB")]) + "\n")
+                                    ("x_fft_floor", "x FFT floor"), ("peak_mib", "peak MiB (traced)"),
+                                    ("rss_peak_mib", "peak RSS MiB"), ("output_mib", "output MiB")]) + "\n")
+    L.append("Peak RSS: resident-set high-water mark of one call above the process's baseline, in a fresh "
+             "subprocess after a warm-up call (sees the FFT library's and numba's scratch too).\n")
     L.append("![speed per band](results/snow_parallax.png)\n")
     L.append("Scaling with the frame size (" + str(res["config"]["scaling_frames"]) + " frames; W x W frames):\n")
     L.append(md_table(res["scaling"], [("method", "method"), ("size", "W"), ("voxels", "voxels"),
@@ -423,7 +426,7 @@ def render_markdown(res, *, quick=False):
     L.append("Each sweep: time (median) against an error a user could see, log-log; the knee is the cheapest "
              "setting whose error is at or below the stated threshold (red star in the plot).\n")
     for s in res["sweeps"]:
-        extra = [k for k in ("tent_energy", "slope_error", "anisotropy", "octave_ripple_db", "peak_mib")
+        extra = [k for k in ("parallax_error", "tent_energy", "slope_error", "anisotropy", "octave_ripple_db", "peak_mib")
                  if k in s["points"][0]]
         cols = [("setting", "setting"), ("time_s", "time s"), ("x_floor", "x floor"), ("error", "error")] + \
                [(k, k) for k in extra]
