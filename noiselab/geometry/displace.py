@@ -122,9 +122,15 @@ def _weld_groups(vertices):
     if len(vertices) < 2:
         return None
     key = vertices @ np.array([1.0, 0.7548776662466927, 0.5698402909980532])
-    order = np.argsort(key, kind="stable")
-    ordered = vertices[order]
-    same = np.all(ordered[1:] == ordered[:-1], axis=1)
+    order = np.argsort(key)
+    sorted_key = key[order]
+    # equal positions have equal keys: compare rows only where neighbouring keys tie (the common
+    # case, a mesh without copies, stops here)
+    tie = np.flatnonzero(sorted_key[1:] == sorted_key[:-1])
+    if tie.size == 0:
+        return None
+    same = np.zeros(len(vertices) - 1, dtype=bool)
+    same[tie] = np.all(vertices[order[tie + 1]] == vertices[order[tie]], axis=1)
     if not same.any():
         return None
     sorted_groups = np.concatenate([[0], np.cumsum(~same)])
