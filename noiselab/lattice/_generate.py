@@ -23,13 +23,23 @@ import numpy as np
 
 from ._jit import _reduce
 
+CHUNK = 256
+
 '''
 
 
 def _function(d: int, taps: int) -> str:
+    """Source of ``points_d{d}_t{taps}``.
+
+    Two phases per chunk of points: (1) per axis, a loop over the chunk that
+    splits coordinates and evaluates the tap weights (straight-line float
+    code that vectorises); (2) per point, the nested permutation hash and the
+    weighted sum, unrolled over the ``taps**d`` neighbours.
+    """
     ind = "    "
     L = []
     a_ = L.append
+    lvl = lambda k: ind * k  # noqa: E731
     a_("@nb.njit(cache=True, nogil=True)")
     a_(f"def points_d{d}_t{taps}(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,")
     a_("        perms, values, grads, basis, absval):")
@@ -38,67 +48,71 @@ def _function(d: int, taps: int) -> str:
     a_(f"{ind}ncomp = perms.shape[0]")
     a_(f"{ind}n = perms.shape[1]")
     a_(f"{ind}noct = freqs.shape[0]")
-    if d == 3 and taps >= 3:
-        a_(f"{ind}w0a = np.empty({taps}); r0a = np.empty({taps}); q0a = np.empty({taps}, np.int64)")
-    a_(f"{ind}acc = np.zeros(ncomp)")
+    a_(f"{ind}W = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}R = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}Q = np.empty(({d}, {taps}, CHUNK), np.int64)")
+    a_(f"{ind}PAR = np.empty(CHUNK, np.int64)")
+    a_(f"{ind}ACC = np.empty((ncomp, CHUNK))")
     for k in range(taps):
         a_(f"{ind}" + "; ".join(f"c{k}{q} = coef[{k}, {q}]" for q in range(6)))
+    a_(f"{ind}for p0 in range(0, npts, CHUNK):")
+    a_(f"{lvl(2)}m = min(CHUNK, npts - p0)")
+    a_(f"{lvl(2)}for o in range(noct):")
+    # phase 1
     for a in range(d):
-        a_(f"{ind}per{a} = period[{a}]; msk{a} = pmask[{a}]")
-    a_(f"{ind}for p in range(npts):")
-    i2 = ind * 2
-    i3 = ind * 3
-    i4 = ind * 4
-    a_(f"{i2}for c in range(ncomp):")
-    a_(f"{i3}acc[c] = 0.0")
-    a_(f"{i2}for o in range(noct):")
-    for a in range(d):
-        a_(f"{i3}u = pts[p, {a}] * freqs[o, {a}] + phase[{a}] + shift")
-        a_(f"{i3}fi = np.floor(u)")
-        a_(f"{i3}t = u - fi")
-        a_(f"{i3}t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t")
-        a_(f"{i3}b{a} = _reduce(fi, left, per{a}, msk{a})")
+        a_(f"{lvl(3)}f = freqs[o, {a}]; ph = phase[{a}]; per = period[{a}]; msk = pmask[{a}]")
+        a_(f"{lvl(3)}for i in range(m):")
+        b4 = lvl(4)
+        a_(f"{b4}u = pts[p0 + i, {a}] * f + ph + shift  # same rounding as the grid path")
+        a_(f"{b4}fi = np.floor(u)")
+        a_(f"{b4}t = u - fi")
+        a_(f"{b4}t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t")
+        a_(f"{b4}b = _reduce(fi, left, per, msk)")
+        if a == 0:
+            a_(f"{b4}PAR[i] = b & 1")
+        else:
+            a_(f"{b4}PAR[i] = (PAR[i] + b) & 1")
         for k in range(taps):
-            a_(f"{i3}w{a}_{k} = (c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)")
-            a_(f"{i3}r{a}_{k} = t - shift + (left - {k})")
+            a_(f"{b4}W[{a}, {k}, i] = (c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)")
+            a_(f"{b4}R[{a}, {k}, i] = t - shift + (left - {k})")
             # reduced index (period >= taps is guaranteed by the caller), then
-            # its residue mod n for the hash: branch-free selects
+            # its residue mod n for the hash
             if k:
-                a_(f"{i3}j{a}_{k} = b{a} + {k}")
-                a_(f"{i3}j{a}_{k} = j{a}_{k} - per{a} if j{a}_{k} >= per{a} else j{a}_{k}")
+                a_(f"{b4}j = b + {k}")
+                a_(f"{b4}j = j - per if j >= per else j")
             else:
-                a_(f"{i3}j{a}_{k} = b{a}")
-            a_(f"{i3}q{a}_{k} = j{a}_{k} if j{a}_{k} < n else j{a}_{k} % n")
-    a_(f"{i3}par = (" + " + ".join(f"b{a}" for a in range(d)) + ") & 1")
-    # 3-D kernels with 3 or 4 taps keep a loop over the first axis (the
-    # fully unrolled 64-corner body takes too long to compile)
-    loop0 = d == 3 and taps >= 3
-    if loop0:
-        for k in range(taps):
-            a_(f"{i3}w0a[{k}] = w0_{k}; r0a[{k}] = r0_{k}; q0a[{k}] = q0_{k}")
-    a_(f"{i3}for c in range(ncomp):")
+                a_(f"{b4}j = b")
+            a_(f"{b4}Q[{a}, {k}, i] = j if j < n else j % n")
+    # phase 2
+    a_(f"{lvl(3)}for i in range(m):")
+    b4 = lvl(4)
+    loop0 = d == 3 and taps >= 3  # keep a loop over the first axis: a 64-corner body compiles too slowly
     first = 1 if loop0 else 0
-    i5 = i4 + (ind if loop0 else "")
+    a_(f"{b4}par = PAR[i]")
+    for a in range(first, d):
+        for k in range(taps):
+            a_(f"{b4}w{a}_{k} = W[{a}, {k}, i]; r{a}_{k} = R[{a}, {k}, i]; q{a}_{k} = Q[{a}, {k}, i]")
+    if not loop0:
+        pass
+    a_(f"{b4}for c in range(ncomp):")
+    b5 = lvl(5)
+    b6 = lvl(6) if loop0 else b5
     if loop0:
-        a_(f"{i4}total = 0.0")
-        a_(f"{i4}for k0 in range(TAPS):".replace("TAPS", str(taps)))
-        a_(f"{i5}hk = perms[c, q0a[k0]]")
-        a_(f"{i5}pk = par ^ (k0 & 1)")
-    # hash tree
+        a_(f"{b5}total = 0.0")
+        a_(f"{b5}for k0 in range({taps}):")
+        a_(f"{b6}hk = perms[c, Q[0, k0, i]]")
+        a_(f"{b6}pk = par ^ (k0 & 1)")
     for level in range(first, d):
         for ks in itertools.product(range(taps), repeat=level + 1 - first):
             name = "h" + "".join(map(str, ks))
             if level == 0:
-                a_(f"{i5}{name} = perms[c, q0_{ks[-1]}]")
+                a_(f"{b6}{name} = perms[c, q0_{ks[-1]}]")
             else:
-                prev = ("hk" if loop0 else "h") + "".join(map(str, ks[:-1])) if (level - first) else "hk"
-                if not loop0 or level - first:
-                    prev = ("hk" if (loop0 and level - first == 0) else "h" + "".join(map(str, ks[:-1])))
-                a_(f"{i5}s = {prev} + q{level}_{ks[-1]}")
-                a_(f"{i5}{name} = perms[c, s - n if s >= n else s]")
+                prev = "hk" if (loop0 and level == first) else "h" + "".join(map(str, ks[:-1]))
+                a_(f"{b6}s = {prev} + q{level}_{ks[-1]}")
+                a_(f"{b6}{name} = perms[c, s - n if s >= n else s]")
 
     def nested(prefix, level, leaf):
-        # sum_k w{level}_k * (inner)
         terms = []
         for k in range(taps):
             ks = prefix + (k,)
@@ -114,30 +128,30 @@ def _function(d: int, taps: int) -> str:
 
     def grad_leaf(ks):
         h = "h" + "".join(map(str, ks))
-        terms = []
-        if loop0:
-            terms.append(f"grads[{h}, 0] * r0a[k0]")
-        for a in range(first, d):
-            terms.append(f"grads[{h}, {a}] * r{a}_{ks[a - first]}")
+        terms = [f"grads[{h}, 0] * R[0, k0, i]"] if loop0 else []
+        terms += [f"grads[{h}, {a}] * r{a}_{ks[a - first]}" for a in range(first, d)]
         return " + ".join(terms)
 
     if loop0:
-        a_(f"{i5}if basis == 0:")
-        a_(f"{i5}    inner = {nested((), first, value_leaf)}")
-        a_(f"{i5}else:")
-        a_(f"{i5}    inner = {nested((), first, grad_leaf)}")
-        a_(f"{i5}total += w0a[k0] * inner")
+        a_(f"{b6}if basis == 0:")
+        a_(f"{b6}    inner = {nested((), first, value_leaf)}")
+        a_(f"{b6}else:")
+        a_(f"{b6}    inner = {nested((), first, grad_leaf)}")
+        a_(f"{b6}total += W[0, k0, i] * inner")
     else:
-        a_(f"{i4}if basis == 0:")
-        a_(f"{i4}    total = {nested((), 0, value_leaf)}")
-        a_(f"{i4}else:")
-        a_(f"{i4}    total = {nested((), 0, grad_leaf)}")
-    a_(f"{i4}if absval:")
-    a_(f"{i4}    acc[c] += amps[o] * abs(total)")
-    a_(f"{i4}else:")
-    a_(f"{i4}    acc[c] += amps[o] * total")
-    a_(f"{i2}for c in range(ncomp):")
-    a_(f"{i3}out[p, c] = acc[c]")
+        a_(f"{b5}if basis == 0:")
+        a_(f"{b5}    total = {nested((), 0, value_leaf)}")
+        a_(f"{b5}else:")
+        a_(f"{b5}    total = {nested((), 0, grad_leaf)}")
+    a_(f"{b5}if absval:")
+    a_(f"{b5}    total = abs(total)")
+    a_(f"{b5}if o == 0:")
+    a_(f"{b5}    ACC[c, i] = amps[o] * total")
+    a_(f"{b5}else:")
+    a_(f"{b5}    ACC[c, i] += amps[o] * total")
+    a_(f"{lvl(2)}for i in range(m):")
+    a_(f"{lvl(3)}for c in range(ncomp):")
+    a_(f"{lvl(4)}out[p0 + i, c] = ACC[c, i]")
     return "\n".join(L) + "\n"
 
 

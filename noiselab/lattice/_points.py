@@ -10,6 +10,8 @@ import numpy as np
 
 from ._jit import _reduce
 
+CHUNK = 256
+
 
 @nb.njit(cache=True, nogil=True)
 def points_d1_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
@@ -19,35 +21,45 @@ def points_d1_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    acc = np.zeros(ncomp)
+    W = np.empty((1, 1, CHUNK))
+    R = np.empty((1, 1, CHUNK))
+    Q = np.empty((1, 1, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            par = (b0) & 1
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    if basis == 0:
+                        total = w0_0 * (values[par, h0])
+                    else:
+                        total = w0_0 * (grads[h0, 0] * r0_0)
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
+                    else:
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                if basis == 0:
-                    total = w0_0 * (values[par, h0])
-                else:
-                    total = w0_0 * (grads[h0, 0] * r0_0)
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -58,42 +70,53 @@ def points_d1_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    acc = np.zeros(ncomp)
+    W = np.empty((1, 2, CHUNK))
+    R = np.empty((1, 2, CHUNK))
+    Q = np.empty((1, 2, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            w0_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r0_1 = t - shift + (left - 1)
-            j0_1 = b0 + 1
-            j0_1 = j0_1 - per0 if j0_1 >= per0 else j0_1
-            q0_1 = j0_1 if j0_1 < n else j0_1 % n
-            par = (b0) & 1
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[0, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[0, 1, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    if basis == 0:
+                        total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1])
+                    else:
+                        total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1)
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
+                    else:
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                h1 = perms[c, q0_1]
-                if basis == 0:
-                    total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1])
-                else:
-                    total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1)
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -104,49 +127,61 @@ def points_d1_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    acc = np.zeros(ncomp)
+    W = np.empty((1, 3, CHUNK))
+    R = np.empty((1, 3, CHUNK))
+    Q = np.empty((1, 3, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            w0_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r0_1 = t - shift + (left - 1)
-            j0_1 = b0 + 1
-            j0_1 = j0_1 - per0 if j0_1 >= per0 else j0_1
-            q0_1 = j0_1 if j0_1 < n else j0_1 % n
-            w0_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r0_2 = t - shift + (left - 2)
-            j0_2 = b0 + 2
-            j0_2 = j0_2 - per0 if j0_2 >= per0 else j0_2
-            q0_2 = j0_2 if j0_2 < n else j0_2 % n
-            par = (b0) & 1
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[0, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[0, 1, i] = j if j < n else j % n
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[0, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[0, 2, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; r0_2 = R[0, 2, i]; q0_2 = Q[0, 2, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    h2 = perms[c, q0_2]
+                    if basis == 0:
+                        total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1]) + w0_2 * (values[par, h2])
+                    else:
+                        total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1) + w0_2 * (grads[h2, 0] * r0_2)
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
+                    else:
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                h1 = perms[c, q0_1]
-                h2 = perms[c, q0_2]
-                if basis == 0:
-                    total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1]) + w0_2 * (values[par, h2])
-                else:
-                    total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1) + w0_2 * (grads[h2, 0] * r0_2)
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -157,56 +192,69 @@ def points_d1_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    acc = np.zeros(ncomp)
+    W = np.empty((1, 4, CHUNK))
+    R = np.empty((1, 4, CHUNK))
+    Q = np.empty((1, 4, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
     c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            w0_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r0_1 = t - shift + (left - 1)
-            j0_1 = b0 + 1
-            j0_1 = j0_1 - per0 if j0_1 >= per0 else j0_1
-            q0_1 = j0_1 if j0_1 < n else j0_1 % n
-            w0_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r0_2 = t - shift + (left - 2)
-            j0_2 = b0 + 2
-            j0_2 = j0_2 - per0 if j0_2 >= per0 else j0_2
-            q0_2 = j0_2 if j0_2 < n else j0_2 % n
-            w0_3 = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-            r0_3 = t - shift + (left - 3)
-            j0_3 = b0 + 3
-            j0_3 = j0_3 - per0 if j0_3 >= per0 else j0_3
-            q0_3 = j0_3 if j0_3 < n else j0_3 % n
-            par = (b0) & 1
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[0, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[0, 1, i] = j if j < n else j % n
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[0, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[0, 2, i] = j if j < n else j % n
+                W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                R[0, 3, i] = t - shift + (left - 3)
+                j = b + 3
+                j = j - per if j >= per else j
+                Q[0, 3, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; r0_2 = R[0, 2, i]; q0_2 = Q[0, 2, i]
+                w0_3 = W[0, 3, i]; r0_3 = R[0, 3, i]; q0_3 = Q[0, 3, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    h2 = perms[c, q0_2]
+                    h3 = perms[c, q0_3]
+                    if basis == 0:
+                        total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1]) + w0_2 * (values[par, h2]) + w0_3 * (values[par ^ 1, h3])
+                    else:
+                        total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1) + w0_2 * (grads[h2, 0] * r0_2) + w0_3 * (grads[h3, 0] * r0_3)
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
+                    else:
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                h1 = perms[c, q0_1]
-                h2 = perms[c, q0_2]
-                h3 = perms[c, q0_3]
-                if basis == 0:
-                    total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1]) + w0_2 * (values[par, h2]) + w0_3 * (values[par ^ 1, h3])
-                else:
-                    total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1) + w0_2 * (grads[h2, 0] * r0_2) + w0_3 * (grads[h3, 0] * r0_3)
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -217,47 +265,60 @@ def points_d2_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    acc = np.zeros(ncomp)
+    W = np.empty((2, 1, CHUNK))
+    R = np.empty((2, 1, CHUNK))
+    Q = np.empty((2, 1, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    per1 = period[1]; msk1 = pmask[1]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            u = pts[p, 1] * freqs[o, 1] + phase[1] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b1 = _reduce(fi, left, per1, msk1)
-            w1_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r1_0 = t - shift + (left - 0)
-            j1_0 = b1
-            q1_0 = j1_0 if j1_0 < n else j1_0 % n
-            par = (b0 + b1) & 1
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[1, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[1, 0, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    s = h0 + q1_0
+                    h00 = perms[c, s - n if s >= n else s]
+                    if basis == 0:
+                        total = w0_0 * (w1_0 * (values[par, h00]))
+                    else:
+                        total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0))
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
+                    else:
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                s = h0 + q1_0
-                h00 = perms[c, s - n if s >= n else s]
-                if basis == 0:
-                    total = w0_0 * (w1_0 * (values[par, h00]))
-                else:
-                    total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0))
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -268,65 +329,80 @@ def points_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    acc = np.zeros(ncomp)
+    W = np.empty((2, 2, CHUNK))
+    R = np.empty((2, 2, CHUNK))
+    Q = np.empty((2, 2, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    per1 = period[1]; msk1 = pmask[1]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            w0_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r0_1 = t - shift + (left - 1)
-            j0_1 = b0 + 1
-            j0_1 = j0_1 - per0 if j0_1 >= per0 else j0_1
-            q0_1 = j0_1 if j0_1 < n else j0_1 % n
-            u = pts[p, 1] * freqs[o, 1] + phase[1] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b1 = _reduce(fi, left, per1, msk1)
-            w1_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r1_0 = t - shift + (left - 0)
-            j1_0 = b1
-            q1_0 = j1_0 if j1_0 < n else j1_0 % n
-            w1_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r1_1 = t - shift + (left - 1)
-            j1_1 = b1 + 1
-            j1_1 = j1_1 - per1 if j1_1 >= per1 else j1_1
-            q1_1 = j1_1 if j1_1 < n else j1_1 % n
-            par = (b0 + b1) & 1
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[0, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[0, 1, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[1, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[1, 0, i] = j if j < n else j % n
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[1, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[1, 1, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
+                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    s = h0 + q1_0
+                    h00 = perms[c, s - n if s >= n else s]
+                    s = h0 + q1_1
+                    h01 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_0
+                    h10 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_1
+                    h11 = perms[c, s - n if s >= n else s]
+                    if basis == 0:
+                        total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]))
+                    else:
+                        total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1))
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
+                    else:
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                h1 = perms[c, q0_1]
-                s = h0 + q1_0
-                h00 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_1
-                h01 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_0
-                h10 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_1
-                h11 = perms[c, s - n if s >= n else s]
-                if basis == 0:
-                    total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]))
-                else:
-                    total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1))
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -337,87 +413,104 @@ def points_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    acc = np.zeros(ncomp)
+    W = np.empty((2, 3, CHUNK))
+    R = np.empty((2, 3, CHUNK))
+    Q = np.empty((2, 3, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    per1 = period[1]; msk1 = pmask[1]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            w0_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r0_1 = t - shift + (left - 1)
-            j0_1 = b0 + 1
-            j0_1 = j0_1 - per0 if j0_1 >= per0 else j0_1
-            q0_1 = j0_1 if j0_1 < n else j0_1 % n
-            w0_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r0_2 = t - shift + (left - 2)
-            j0_2 = b0 + 2
-            j0_2 = j0_2 - per0 if j0_2 >= per0 else j0_2
-            q0_2 = j0_2 if j0_2 < n else j0_2 % n
-            u = pts[p, 1] * freqs[o, 1] + phase[1] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b1 = _reduce(fi, left, per1, msk1)
-            w1_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r1_0 = t - shift + (left - 0)
-            j1_0 = b1
-            q1_0 = j1_0 if j1_0 < n else j1_0 % n
-            w1_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r1_1 = t - shift + (left - 1)
-            j1_1 = b1 + 1
-            j1_1 = j1_1 - per1 if j1_1 >= per1 else j1_1
-            q1_1 = j1_1 if j1_1 < n else j1_1 % n
-            w1_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r1_2 = t - shift + (left - 2)
-            j1_2 = b1 + 2
-            j1_2 = j1_2 - per1 if j1_2 >= per1 else j1_2
-            q1_2 = j1_2 if j1_2 < n else j1_2 % n
-            par = (b0 + b1) & 1
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[0, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[0, 1, i] = j if j < n else j % n
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[0, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[0, 2, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[1, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[1, 0, i] = j if j < n else j % n
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[1, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[1, 1, i] = j if j < n else j % n
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[1, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[1, 2, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; r0_2 = R[0, 2, i]; q0_2 = Q[0, 2, i]
+                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; r1_2 = R[1, 2, i]; q1_2 = Q[1, 2, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    h2 = perms[c, q0_2]
+                    s = h0 + q1_0
+                    h00 = perms[c, s - n if s >= n else s]
+                    s = h0 + q1_1
+                    h01 = perms[c, s - n if s >= n else s]
+                    s = h0 + q1_2
+                    h02 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_0
+                    h10 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_1
+                    h11 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_2
+                    h12 = perms[c, s - n if s >= n else s]
+                    s = h2 + q1_0
+                    h20 = perms[c, s - n if s >= n else s]
+                    s = h2 + q1_1
+                    h21 = perms[c, s - n if s >= n else s]
+                    s = h2 + q1_2
+                    h22 = perms[c, s - n if s >= n else s]
+                    if basis == 0:
+                        total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01]) + w1_2 * (values[par, h02])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]) + w1_2 * (values[par ^ 1, h12])) + w0_2 * (w1_0 * (values[par, h20]) + w1_1 * (values[par ^ 1, h21]) + w1_2 * (values[par, h22]))
+                    else:
+                        total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1) + w1_2 * (grads[h02, 0] * r0_0 + grads[h02, 1] * r1_2)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1) + w1_2 * (grads[h12, 0] * r0_1 + grads[h12, 1] * r1_2)) + w0_2 * (w1_0 * (grads[h20, 0] * r0_2 + grads[h20, 1] * r1_0) + w1_1 * (grads[h21, 0] * r0_2 + grads[h21, 1] * r1_1) + w1_2 * (grads[h22, 0] * r0_2 + grads[h22, 1] * r1_2))
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
+                    else:
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                h1 = perms[c, q0_1]
-                h2 = perms[c, q0_2]
-                s = h0 + q1_0
-                h00 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_1
-                h01 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_2
-                h02 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_0
-                h10 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_1
-                h11 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_2
-                h12 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_0
-                h20 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_1
-                h21 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_2
-                h22 = perms[c, s - n if s >= n else s]
-                if basis == 0:
-                    total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01]) + w1_2 * (values[par, h02])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]) + w1_2 * (values[par ^ 1, h12])) + w0_2 * (w1_0 * (values[par, h20]) + w1_1 * (values[par ^ 1, h21]) + w1_2 * (values[par, h22]))
-                else:
-                    total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1) + w1_2 * (grads[h02, 0] * r0_0 + grads[h02, 1] * r1_2)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1) + w1_2 * (grads[h12, 0] * r0_1 + grads[h12, 1] * r1_2)) + w0_2 * (w1_0 * (grads[h20, 0] * r0_2 + grads[h20, 1] * r1_0) + w1_1 * (grads[h21, 0] * r0_2 + grads[h21, 1] * r1_1) + w1_2 * (grads[h22, 0] * r0_2 + grads[h22, 1] * r1_2))
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -428,113 +521,132 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    acc = np.zeros(ncomp)
+    W = np.empty((2, 4, CHUNK))
+    R = np.empty((2, 4, CHUNK))
+    Q = np.empty((2, 4, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
     c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    per1 = period[1]; msk1 = pmask[1]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            w0_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r0_1 = t - shift + (left - 1)
-            j0_1 = b0 + 1
-            j0_1 = j0_1 - per0 if j0_1 >= per0 else j0_1
-            q0_1 = j0_1 if j0_1 < n else j0_1 % n
-            w0_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r0_2 = t - shift + (left - 2)
-            j0_2 = b0 + 2
-            j0_2 = j0_2 - per0 if j0_2 >= per0 else j0_2
-            q0_2 = j0_2 if j0_2 < n else j0_2 % n
-            w0_3 = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-            r0_3 = t - shift + (left - 3)
-            j0_3 = b0 + 3
-            j0_3 = j0_3 - per0 if j0_3 >= per0 else j0_3
-            q0_3 = j0_3 if j0_3 < n else j0_3 % n
-            u = pts[p, 1] * freqs[o, 1] + phase[1] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b1 = _reduce(fi, left, per1, msk1)
-            w1_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r1_0 = t - shift + (left - 0)
-            j1_0 = b1
-            q1_0 = j1_0 if j1_0 < n else j1_0 % n
-            w1_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r1_1 = t - shift + (left - 1)
-            j1_1 = b1 + 1
-            j1_1 = j1_1 - per1 if j1_1 >= per1 else j1_1
-            q1_1 = j1_1 if j1_1 < n else j1_1 % n
-            w1_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r1_2 = t - shift + (left - 2)
-            j1_2 = b1 + 2
-            j1_2 = j1_2 - per1 if j1_2 >= per1 else j1_2
-            q1_2 = j1_2 if j1_2 < n else j1_2 % n
-            w1_3 = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-            r1_3 = t - shift + (left - 3)
-            j1_3 = b1 + 3
-            j1_3 = j1_3 - per1 if j1_3 >= per1 else j1_3
-            q1_3 = j1_3 if j1_3 < n else j1_3 % n
-            par = (b0 + b1) & 1
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[0, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[0, 1, i] = j if j < n else j % n
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[0, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[0, 2, i] = j if j < n else j % n
+                W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                R[0, 3, i] = t - shift + (left - 3)
+                j = b + 3
+                j = j - per if j >= per else j
+                Q[0, 3, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[1, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[1, 0, i] = j if j < n else j % n
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[1, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[1, 1, i] = j if j < n else j % n
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[1, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[1, 2, i] = j if j < n else j % n
+                W[1, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                R[1, 3, i] = t - shift + (left - 3)
+                j = b + 3
+                j = j - per if j >= per else j
+                Q[1, 3, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; r0_2 = R[0, 2, i]; q0_2 = Q[0, 2, i]
+                w0_3 = W[0, 3, i]; r0_3 = R[0, 3, i]; q0_3 = Q[0, 3, i]
+                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; r1_2 = R[1, 2, i]; q1_2 = Q[1, 2, i]
+                w1_3 = W[1, 3, i]; r1_3 = R[1, 3, i]; q1_3 = Q[1, 3, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    h2 = perms[c, q0_2]
+                    h3 = perms[c, q0_3]
+                    s = h0 + q1_0
+                    h00 = perms[c, s - n if s >= n else s]
+                    s = h0 + q1_1
+                    h01 = perms[c, s - n if s >= n else s]
+                    s = h0 + q1_2
+                    h02 = perms[c, s - n if s >= n else s]
+                    s = h0 + q1_3
+                    h03 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_0
+                    h10 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_1
+                    h11 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_2
+                    h12 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_3
+                    h13 = perms[c, s - n if s >= n else s]
+                    s = h2 + q1_0
+                    h20 = perms[c, s - n if s >= n else s]
+                    s = h2 + q1_1
+                    h21 = perms[c, s - n if s >= n else s]
+                    s = h2 + q1_2
+                    h22 = perms[c, s - n if s >= n else s]
+                    s = h2 + q1_3
+                    h23 = perms[c, s - n if s >= n else s]
+                    s = h3 + q1_0
+                    h30 = perms[c, s - n if s >= n else s]
+                    s = h3 + q1_1
+                    h31 = perms[c, s - n if s >= n else s]
+                    s = h3 + q1_2
+                    h32 = perms[c, s - n if s >= n else s]
+                    s = h3 + q1_3
+                    h33 = perms[c, s - n if s >= n else s]
+                    if basis == 0:
+                        total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01]) + w1_2 * (values[par, h02]) + w1_3 * (values[par ^ 1, h03])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]) + w1_2 * (values[par ^ 1, h12]) + w1_3 * (values[par, h13])) + w0_2 * (w1_0 * (values[par, h20]) + w1_1 * (values[par ^ 1, h21]) + w1_2 * (values[par, h22]) + w1_3 * (values[par ^ 1, h23])) + w0_3 * (w1_0 * (values[par ^ 1, h30]) + w1_1 * (values[par, h31]) + w1_2 * (values[par ^ 1, h32]) + w1_3 * (values[par, h33]))
+                    else:
+                        total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1) + w1_2 * (grads[h02, 0] * r0_0 + grads[h02, 1] * r1_2) + w1_3 * (grads[h03, 0] * r0_0 + grads[h03, 1] * r1_3)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1) + w1_2 * (grads[h12, 0] * r0_1 + grads[h12, 1] * r1_2) + w1_3 * (grads[h13, 0] * r0_1 + grads[h13, 1] * r1_3)) + w0_2 * (w1_0 * (grads[h20, 0] * r0_2 + grads[h20, 1] * r1_0) + w1_1 * (grads[h21, 0] * r0_2 + grads[h21, 1] * r1_1) + w1_2 * (grads[h22, 0] * r0_2 + grads[h22, 1] * r1_2) + w1_3 * (grads[h23, 0] * r0_2 + grads[h23, 1] * r1_3)) + w0_3 * (w1_0 * (grads[h30, 0] * r0_3 + grads[h30, 1] * r1_0) + w1_1 * (grads[h31, 0] * r0_3 + grads[h31, 1] * r1_1) + w1_2 * (grads[h32, 0] * r0_3 + grads[h32, 1] * r1_2) + w1_3 * (grads[h33, 0] * r0_3 + grads[h33, 1] * r1_3))
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
+                    else:
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                h1 = perms[c, q0_1]
-                h2 = perms[c, q0_2]
-                h3 = perms[c, q0_3]
-                s = h0 + q1_0
-                h00 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_1
-                h01 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_2
-                h02 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_3
-                h03 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_0
-                h10 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_1
-                h11 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_2
-                h12 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_3
-                h13 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_0
-                h20 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_1
-                h21 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_2
-                h22 = perms[c, s - n if s >= n else s]
-                s = h2 + q1_3
-                h23 = perms[c, s - n if s >= n else s]
-                s = h3 + q1_0
-                h30 = perms[c, s - n if s >= n else s]
-                s = h3 + q1_1
-                h31 = perms[c, s - n if s >= n else s]
-                s = h3 + q1_2
-                h32 = perms[c, s - n if s >= n else s]
-                s = h3 + q1_3
-                h33 = perms[c, s - n if s >= n else s]
-                if basis == 0:
-                    total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01]) + w1_2 * (values[par, h02]) + w1_3 * (values[par ^ 1, h03])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]) + w1_2 * (values[par ^ 1, h12]) + w1_3 * (values[par, h13])) + w0_2 * (w1_0 * (values[par, h20]) + w1_1 * (values[par ^ 1, h21]) + w1_2 * (values[par, h22]) + w1_3 * (values[par ^ 1, h23])) + w0_3 * (w1_0 * (values[par ^ 1, h30]) + w1_1 * (values[par, h31]) + w1_2 * (values[par ^ 1, h32]) + w1_3 * (values[par, h33]))
-                else:
-                    total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1) + w1_2 * (grads[h02, 0] * r0_0 + grads[h02, 1] * r1_2) + w1_3 * (grads[h03, 0] * r0_0 + grads[h03, 1] * r1_3)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1) + w1_2 * (grads[h12, 0] * r0_1 + grads[h12, 1] * r1_2) + w1_3 * (grads[h13, 0] * r0_1 + grads[h13, 1] * r1_3)) + w0_2 * (w1_0 * (grads[h20, 0] * r0_2 + grads[h20, 1] * r1_0) + w1_1 * (grads[h21, 0] * r0_2 + grads[h21, 1] * r1_1) + w1_2 * (grads[h22, 0] * r0_2 + grads[h22, 1] * r1_2) + w1_3 * (grads[h23, 0] * r0_2 + grads[h23, 1] * r1_3)) + w0_3 * (w1_0 * (grads[h30, 0] * r0_3 + grads[h30, 1] * r1_0) + w1_1 * (grads[h31, 0] * r0_3 + grads[h31, 1] * r1_1) + w1_2 * (grads[h32, 0] * r0_3 + grads[h32, 1] * r1_2) + w1_3 * (grads[h33, 0] * r0_3 + grads[h33, 1] * r1_3))
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -545,59 +657,75 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    acc = np.zeros(ncomp)
+    W = np.empty((3, 1, CHUNK))
+    R = np.empty((3, 1, CHUNK))
+    Q = np.empty((3, 1, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    per1 = period[1]; msk1 = pmask[1]
-    per2 = period[2]; msk2 = pmask[2]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            u = pts[p, 1] * freqs[o, 1] + phase[1] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b1 = _reduce(fi, left, per1, msk1)
-            w1_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r1_0 = t - shift + (left - 0)
-            j1_0 = b1
-            q1_0 = j1_0 if j1_0 < n else j1_0 % n
-            u = pts[p, 2] * freqs[o, 2] + phase[2] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b2 = _reduce(fi, left, per2, msk2)
-            w2_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r2_0 = t - shift + (left - 0)
-            j2_0 = b2
-            q2_0 = j2_0 if j2_0 < n else j2_0 % n
-            par = (b0 + b1 + b2) & 1
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[1, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[1, 0, i] = j if j < n else j % n
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            for i in range(m):
+                u = pts[p0 + i, 2] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[2, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[2, 0, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
+                w2_0 = W[2, 0, i]; r2_0 = R[2, 0, i]; q2_0 = Q[2, 0, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    s = h0 + q1_0
+                    h00 = perms[c, s - n if s >= n else s]
+                    s = h00 + q2_0
+                    h000 = perms[c, s - n if s >= n else s]
+                    if basis == 0:
+                        total = w0_0 * (w1_0 * (w2_0 * (values[par, h000])))
+                    else:
+                        total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * r0_0 + grads[h000, 1] * r1_0 + grads[h000, 2] * r2_0)))
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
+                    else:
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                s = h0 + q1_0
-                h00 = perms[c, s - n if s >= n else s]
-                s = h00 + q2_0
-                h000 = perms[c, s - n if s >= n else s]
-                if basis == 0:
-                    total = w0_0 * (w1_0 * (w2_0 * (values[par, h000])))
-                else:
-                    total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * r0_0 + grads[h000, 1] * r1_0 + grads[h000, 2] * r2_0)))
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -608,96 +736,115 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    acc = np.zeros(ncomp)
+    W = np.empty((3, 2, CHUNK))
+    R = np.empty((3, 2, CHUNK))
+    Q = np.empty((3, 2, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    per1 = period[1]; msk1 = pmask[1]
-    per2 = period[2]; msk2 = pmask[2]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            w0_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r0_1 = t - shift + (left - 1)
-            j0_1 = b0 + 1
-            j0_1 = j0_1 - per0 if j0_1 >= per0 else j0_1
-            q0_1 = j0_1 if j0_1 < n else j0_1 % n
-            u = pts[p, 1] * freqs[o, 1] + phase[1] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b1 = _reduce(fi, left, per1, msk1)
-            w1_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r1_0 = t - shift + (left - 0)
-            j1_0 = b1
-            q1_0 = j1_0 if j1_0 < n else j1_0 % n
-            w1_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r1_1 = t - shift + (left - 1)
-            j1_1 = b1 + 1
-            j1_1 = j1_1 - per1 if j1_1 >= per1 else j1_1
-            q1_1 = j1_1 if j1_1 < n else j1_1 % n
-            u = pts[p, 2] * freqs[o, 2] + phase[2] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b2 = _reduce(fi, left, per2, msk2)
-            w2_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r2_0 = t - shift + (left - 0)
-            j2_0 = b2
-            q2_0 = j2_0 if j2_0 < n else j2_0 % n
-            w2_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r2_1 = t - shift + (left - 1)
-            j2_1 = b2 + 1
-            j2_1 = j2_1 - per2 if j2_1 >= per2 else j2_1
-            q2_1 = j2_1 if j2_1 < n else j2_1 % n
-            par = (b0 + b1 + b2) & 1
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[0, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[0, 1, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[1, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[1, 0, i] = j if j < n else j % n
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[1, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[1, 1, i] = j if j < n else j % n
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            for i in range(m):
+                u = pts[p0 + i, 2] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[2, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[2, 0, i] = j if j < n else j % n
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[2, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[2, 1, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
+                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
+                w2_0 = W[2, 0, i]; r2_0 = R[2, 0, i]; q2_0 = Q[2, 0, i]
+                w2_1 = W[2, 1, i]; r2_1 = R[2, 1, i]; q2_1 = Q[2, 1, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    s = h0 + q1_0
+                    h00 = perms[c, s - n if s >= n else s]
+                    s = h0 + q1_1
+                    h01 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_0
+                    h10 = perms[c, s - n if s >= n else s]
+                    s = h1 + q1_1
+                    h11 = perms[c, s - n if s >= n else s]
+                    s = h00 + q2_0
+                    h000 = perms[c, s - n if s >= n else s]
+                    s = h00 + q2_1
+                    h001 = perms[c, s - n if s >= n else s]
+                    s = h01 + q2_0
+                    h010 = perms[c, s - n if s >= n else s]
+                    s = h01 + q2_1
+                    h011 = perms[c, s - n if s >= n else s]
+                    s = h10 + q2_0
+                    h100 = perms[c, s - n if s >= n else s]
+                    s = h10 + q2_1
+                    h101 = perms[c, s - n if s >= n else s]
+                    s = h11 + q2_0
+                    h110 = perms[c, s - n if s >= n else s]
+                    s = h11 + q2_1
+                    h111 = perms[c, s - n if s >= n else s]
+                    if basis == 0:
+                        total = w0_0 * (w1_0 * (w2_0 * (values[par, h000]) + w2_1 * (values[par ^ 1, h001])) + w1_1 * (w2_0 * (values[par ^ 1, h010]) + w2_1 * (values[par, h011]))) + w0_1 * (w1_0 * (w2_0 * (values[par ^ 1, h100]) + w2_1 * (values[par, h101])) + w1_1 * (w2_0 * (values[par, h110]) + w2_1 * (values[par ^ 1, h111])))
+                    else:
+                        total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * r0_0 + grads[h000, 1] * r1_0 + grads[h000, 2] * r2_0) + w2_1 * (grads[h001, 0] * r0_0 + grads[h001, 1] * r1_0 + grads[h001, 2] * r2_1)) + w1_1 * (w2_0 * (grads[h010, 0] * r0_0 + grads[h010, 1] * r1_1 + grads[h010, 2] * r2_0) + w2_1 * (grads[h011, 0] * r0_0 + grads[h011, 1] * r1_1 + grads[h011, 2] * r2_1))) + w0_1 * (w1_0 * (w2_0 * (grads[h100, 0] * r0_1 + grads[h100, 1] * r1_0 + grads[h100, 2] * r2_0) + w2_1 * (grads[h101, 0] * r0_1 + grads[h101, 1] * r1_0 + grads[h101, 2] * r2_1)) + w1_1 * (w2_0 * (grads[h110, 0] * r0_1 + grads[h110, 1] * r1_1 + grads[h110, 2] * r2_0) + w2_1 * (grads[h111, 0] * r0_1 + grads[h111, 1] * r1_1 + grads[h111, 2] * r2_1)))
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
+                    else:
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
             for c in range(ncomp):
-                h0 = perms[c, q0_0]
-                h1 = perms[c, q0_1]
-                s = h0 + q1_0
-                h00 = perms[c, s - n if s >= n else s]
-                s = h0 + q1_1
-                h01 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_0
-                h10 = perms[c, s - n if s >= n else s]
-                s = h1 + q1_1
-                h11 = perms[c, s - n if s >= n else s]
-                s = h00 + q2_0
-                h000 = perms[c, s - n if s >= n else s]
-                s = h00 + q2_1
-                h001 = perms[c, s - n if s >= n else s]
-                s = h01 + q2_0
-                h010 = perms[c, s - n if s >= n else s]
-                s = h01 + q2_1
-                h011 = perms[c, s - n if s >= n else s]
-                s = h10 + q2_0
-                h100 = perms[c, s - n if s >= n else s]
-                s = h10 + q2_1
-                h101 = perms[c, s - n if s >= n else s]
-                s = h11 + q2_0
-                h110 = perms[c, s - n if s >= n else s]
-                s = h11 + q2_1
-                h111 = perms[c, s - n if s >= n else s]
-                if basis == 0:
-                    total = w0_0 * (w1_0 * (w2_0 * (values[par, h000]) + w2_1 * (values[par ^ 1, h001])) + w1_1 * (w2_0 * (values[par ^ 1, h010]) + w2_1 * (values[par, h011]))) + w0_1 * (w1_0 * (w2_0 * (values[par ^ 1, h100]) + w2_1 * (values[par, h101])) + w1_1 * (w2_0 * (values[par, h110]) + w2_1 * (values[par ^ 1, h111])))
-                else:
-                    total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * r0_0 + grads[h000, 1] * r1_0 + grads[h000, 2] * r2_0) + w2_1 * (grads[h001, 0] * r0_0 + grads[h001, 1] * r1_0 + grads[h001, 2] * r2_1)) + w1_1 * (w2_0 * (grads[h010, 0] * r0_0 + grads[h010, 1] * r1_1 + grads[h010, 2] * r2_0) + w2_1 * (grads[h011, 0] * r0_0 + grads[h011, 1] * r1_1 + grads[h011, 2] * r2_1))) + w0_1 * (w1_0 * (w2_0 * (grads[h100, 0] * r0_1 + grads[h100, 1] * r1_0 + grads[h100, 2] * r2_0) + w2_1 * (grads[h101, 0] * r0_1 + grads[h101, 1] * r1_0 + grads[h101, 2] * r2_1)) + w1_1 * (w2_0 * (grads[h110, 0] * r0_1 + grads[h110, 1] * r1_1 + grads[h110, 2] * r2_0) + w2_1 * (grads[h111, 0] * r0_1 + grads[h111, 1] * r1_1 + grads[h111, 2] * r2_1)))
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -708,119 +855,134 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    w0a = np.empty(3); r0a = np.empty(3); q0a = np.empty(3, np.int64)
-    acc = np.zeros(ncomp)
+    W = np.empty((3, 3, CHUNK))
+    R = np.empty((3, 3, CHUNK))
+    Q = np.empty((3, 3, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    per1 = period[1]; msk1 = pmask[1]
-    per2 = period[2]; msk2 = pmask[2]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            w0_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r0_1 = t - shift + (left - 1)
-            j0_1 = b0 + 1
-            j0_1 = j0_1 - per0 if j0_1 >= per0 else j0_1
-            q0_1 = j0_1 if j0_1 < n else j0_1 % n
-            w0_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r0_2 = t - shift + (left - 2)
-            j0_2 = b0 + 2
-            j0_2 = j0_2 - per0 if j0_2 >= per0 else j0_2
-            q0_2 = j0_2 if j0_2 < n else j0_2 % n
-            u = pts[p, 1] * freqs[o, 1] + phase[1] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b1 = _reduce(fi, left, per1, msk1)
-            w1_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r1_0 = t - shift + (left - 0)
-            j1_0 = b1
-            q1_0 = j1_0 if j1_0 < n else j1_0 % n
-            w1_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r1_1 = t - shift + (left - 1)
-            j1_1 = b1 + 1
-            j1_1 = j1_1 - per1 if j1_1 >= per1 else j1_1
-            q1_1 = j1_1 if j1_1 < n else j1_1 % n
-            w1_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r1_2 = t - shift + (left - 2)
-            j1_2 = b1 + 2
-            j1_2 = j1_2 - per1 if j1_2 >= per1 else j1_2
-            q1_2 = j1_2 if j1_2 < n else j1_2 % n
-            u = pts[p, 2] * freqs[o, 2] + phase[2] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b2 = _reduce(fi, left, per2, msk2)
-            w2_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r2_0 = t - shift + (left - 0)
-            j2_0 = b2
-            q2_0 = j2_0 if j2_0 < n else j2_0 % n
-            w2_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r2_1 = t - shift + (left - 1)
-            j2_1 = b2 + 1
-            j2_1 = j2_1 - per2 if j2_1 >= per2 else j2_1
-            q2_1 = j2_1 if j2_1 < n else j2_1 % n
-            w2_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r2_2 = t - shift + (left - 2)
-            j2_2 = b2 + 2
-            j2_2 = j2_2 - per2 if j2_2 >= per2 else j2_2
-            q2_2 = j2_2 if j2_2 < n else j2_2 % n
-            par = (b0 + b1 + b2) & 1
-            w0a[0] = w0_0; r0a[0] = r0_0; q0a[0] = q0_0
-            w0a[1] = w0_1; r0a[1] = r0_1; q0a[1] = q0_1
-            w0a[2] = w0_2; r0a[2] = r0_2; q0a[2] = q0_2
-            for c in range(ncomp):
-                total = 0.0
-                for k0 in range(3):
-                    hk = perms[c, q0a[k0]]
-                    pk = par ^ (k0 & 1)
-                    s = hk + q1_0
-                    h0 = perms[c, s - n if s >= n else s]
-                    s = hk + q1_1
-                    h1 = perms[c, s - n if s >= n else s]
-                    s = hk + q1_2
-                    h2 = perms[c, s - n if s >= n else s]
-                    s = h0 + q2_0
-                    h00 = perms[c, s - n if s >= n else s]
-                    s = h0 + q2_1
-                    h01 = perms[c, s - n if s >= n else s]
-                    s = h0 + q2_2
-                    h02 = perms[c, s - n if s >= n else s]
-                    s = h1 + q2_0
-                    h10 = perms[c, s - n if s >= n else s]
-                    s = h1 + q2_1
-                    h11 = perms[c, s - n if s >= n else s]
-                    s = h1 + q2_2
-                    h12 = perms[c, s - n if s >= n else s]
-                    s = h2 + q2_0
-                    h20 = perms[c, s - n if s >= n else s]
-                    s = h2 + q2_1
-                    h21 = perms[c, s - n if s >= n else s]
-                    s = h2 + q2_2
-                    h22 = perms[c, s - n if s >= n else s]
-                    if basis == 0:
-                        inner = w1_0 * (w2_0 * (values[pk, h00]) + w2_1 * (values[pk ^ 1, h01]) + w2_2 * (values[pk, h02])) + w1_1 * (w2_0 * (values[pk ^ 1, h10]) + w2_1 * (values[pk, h11]) + w2_2 * (values[pk ^ 1, h12])) + w1_2 * (w2_0 * (values[pk, h20]) + w2_1 * (values[pk ^ 1, h21]) + w2_2 * (values[pk, h22]))
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[0, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[0, 1, i] = j if j < n else j % n
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[0, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[0, 2, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[1, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[1, 0, i] = j if j < n else j % n
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[1, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[1, 1, i] = j if j < n else j % n
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[1, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[1, 2, i] = j if j < n else j % n
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            for i in range(m):
+                u = pts[p0 + i, 2] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[2, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[2, 0, i] = j if j < n else j % n
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[2, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[2, 1, i] = j if j < n else j % n
+                W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[2, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[2, 2, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; r1_2 = R[1, 2, i]; q1_2 = Q[1, 2, i]
+                w2_0 = W[2, 0, i]; r2_0 = R[2, 0, i]; q2_0 = Q[2, 0, i]
+                w2_1 = W[2, 1, i]; r2_1 = R[2, 1, i]; q2_1 = Q[2, 1, i]
+                w2_2 = W[2, 2, i]; r2_2 = R[2, 2, i]; q2_2 = Q[2, 2, i]
+                for c in range(ncomp):
+                    total = 0.0
+                    for k0 in range(3):
+                        hk = perms[c, Q[0, k0, i]]
+                        pk = par ^ (k0 & 1)
+                        s = hk + q1_0
+                        h0 = perms[c, s - n if s >= n else s]
+                        s = hk + q1_1
+                        h1 = perms[c, s - n if s >= n else s]
+                        s = hk + q1_2
+                        h2 = perms[c, s - n if s >= n else s]
+                        s = h0 + q2_0
+                        h00 = perms[c, s - n if s >= n else s]
+                        s = h0 + q2_1
+                        h01 = perms[c, s - n if s >= n else s]
+                        s = h0 + q2_2
+                        h02 = perms[c, s - n if s >= n else s]
+                        s = h1 + q2_0
+                        h10 = perms[c, s - n if s >= n else s]
+                        s = h1 + q2_1
+                        h11 = perms[c, s - n if s >= n else s]
+                        s = h1 + q2_2
+                        h12 = perms[c, s - n if s >= n else s]
+                        s = h2 + q2_0
+                        h20 = perms[c, s - n if s >= n else s]
+                        s = h2 + q2_1
+                        h21 = perms[c, s - n if s >= n else s]
+                        s = h2 + q2_2
+                        h22 = perms[c, s - n if s >= n else s]
+                        if basis == 0:
+                            inner = w1_0 * (w2_0 * (values[pk, h00]) + w2_1 * (values[pk ^ 1, h01]) + w2_2 * (values[pk, h02])) + w1_1 * (w2_0 * (values[pk ^ 1, h10]) + w2_1 * (values[pk, h11]) + w2_2 * (values[pk ^ 1, h12])) + w1_2 * (w2_0 * (values[pk, h20]) + w2_1 * (values[pk ^ 1, h21]) + w2_2 * (values[pk, h22]))
+                        else:
+                            inner = w1_0 * (w2_0 * (grads[h00, 0] * R[0, k0, i] + grads[h00, 1] * r1_0 + grads[h00, 2] * r2_0) + w2_1 * (grads[h01, 0] * R[0, k0, i] + grads[h01, 1] * r1_0 + grads[h01, 2] * r2_1) + w2_2 * (grads[h02, 0] * R[0, k0, i] + grads[h02, 1] * r1_0 + grads[h02, 2] * r2_2)) + w1_1 * (w2_0 * (grads[h10, 0] * R[0, k0, i] + grads[h10, 1] * r1_1 + grads[h10, 2] * r2_0) + w2_1 * (grads[h11, 0] * R[0, k0, i] + grads[h11, 1] * r1_1 + grads[h11, 2] * r2_1) + w2_2 * (grads[h12, 0] * R[0, k0, i] + grads[h12, 1] * r1_1 + grads[h12, 2] * r2_2)) + w1_2 * (w2_0 * (grads[h20, 0] * R[0, k0, i] + grads[h20, 1] * r1_2 + grads[h20, 2] * r2_0) + w2_1 * (grads[h21, 0] * R[0, k0, i] + grads[h21, 1] * r1_2 + grads[h21, 2] * r2_1) + w2_2 * (grads[h22, 0] * R[0, k0, i] + grads[h22, 1] * r1_2 + grads[h22, 2] * r2_2))
+                        total += W[0, k0, i] * inner
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
                     else:
-                        inner = w1_0 * (w2_0 * (grads[h00, 0] * r0a[k0] + grads[h00, 1] * r1_0 + grads[h00, 2] * r2_0) + w2_1 * (grads[h01, 0] * r0a[k0] + grads[h01, 1] * r1_0 + grads[h01, 2] * r2_1) + w2_2 * (grads[h02, 0] * r0a[k0] + grads[h02, 1] * r1_0 + grads[h02, 2] * r2_2)) + w1_1 * (w2_0 * (grads[h10, 0] * r0a[k0] + grads[h10, 1] * r1_1 + grads[h10, 2] * r2_0) + w2_1 * (grads[h11, 0] * r0a[k0] + grads[h11, 1] * r1_1 + grads[h11, 2] * r2_1) + w2_2 * (grads[h12, 0] * r0a[k0] + grads[h12, 1] * r1_1 + grads[h12, 2] * r2_2)) + w1_2 * (w2_0 * (grads[h20, 0] * r0a[k0] + grads[h20, 1] * r1_2 + grads[h20, 2] * r2_0) + w2_1 * (grads[h21, 0] * r0a[k0] + grads[h21, 1] * r1_2 + grads[h21, 2] * r2_1) + w2_2 * (grads[h22, 0] * r0a[k0] + grads[h22, 1] * r1_2 + grads[h22, 2] * r2_2))
-                    total += w0a[k0] * inner
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -831,152 +993,168 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     ncomp = perms.shape[0]
     n = perms.shape[1]
     noct = freqs.shape[0]
-    w0a = np.empty(4); r0a = np.empty(4); q0a = np.empty(4, np.int64)
-    acc = np.zeros(ncomp)
+    W = np.empty((3, 4, CHUNK))
+    R = np.empty((3, 4, CHUNK))
+    Q = np.empty((3, 4, CHUNK), np.int64)
+    PAR = np.empty(CHUNK, np.int64)
+    ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
     c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
-    per0 = period[0]; msk0 = pmask[0]
-    per1 = period[1]; msk1 = pmask[1]
-    per2 = period[2]; msk2 = pmask[2]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
         for o in range(noct):
-            u = pts[p, 0] * freqs[o, 0] + phase[0] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b0 = _reduce(fi, left, per0, msk0)
-            w0_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r0_0 = t - shift + (left - 0)
-            j0_0 = b0
-            q0_0 = j0_0 if j0_0 < n else j0_0 % n
-            w0_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r0_1 = t - shift + (left - 1)
-            j0_1 = b0 + 1
-            j0_1 = j0_1 - per0 if j0_1 >= per0 else j0_1
-            q0_1 = j0_1 if j0_1 < n else j0_1 % n
-            w0_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r0_2 = t - shift + (left - 2)
-            j0_2 = b0 + 2
-            j0_2 = j0_2 - per0 if j0_2 >= per0 else j0_2
-            q0_2 = j0_2 if j0_2 < n else j0_2 % n
-            w0_3 = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-            r0_3 = t - shift + (left - 3)
-            j0_3 = b0 + 3
-            j0_3 = j0_3 - per0 if j0_3 >= per0 else j0_3
-            q0_3 = j0_3 if j0_3 < n else j0_3 % n
-            u = pts[p, 1] * freqs[o, 1] + phase[1] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b1 = _reduce(fi, left, per1, msk1)
-            w1_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r1_0 = t - shift + (left - 0)
-            j1_0 = b1
-            q1_0 = j1_0 if j1_0 < n else j1_0 % n
-            w1_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r1_1 = t - shift + (left - 1)
-            j1_1 = b1 + 1
-            j1_1 = j1_1 - per1 if j1_1 >= per1 else j1_1
-            q1_1 = j1_1 if j1_1 < n else j1_1 % n
-            w1_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r1_2 = t - shift + (left - 2)
-            j1_2 = b1 + 2
-            j1_2 = j1_2 - per1 if j1_2 >= per1 else j1_2
-            q1_2 = j1_2 if j1_2 < n else j1_2 % n
-            w1_3 = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-            r1_3 = t - shift + (left - 3)
-            j1_3 = b1 + 3
-            j1_3 = j1_3 - per1 if j1_3 >= per1 else j1_3
-            q1_3 = j1_3 if j1_3 < n else j1_3 % n
-            u = pts[p, 2] * freqs[o, 2] + phase[2] + shift
-            fi = np.floor(u)
-            t = u - fi
-            t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
-            b2 = _reduce(fi, left, per2, msk2)
-            w2_0 = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-            r2_0 = t - shift + (left - 0)
-            j2_0 = b2
-            q2_0 = j2_0 if j2_0 < n else j2_0 % n
-            w2_1 = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-            r2_1 = t - shift + (left - 1)
-            j2_1 = b2 + 1
-            j2_1 = j2_1 - per2 if j2_1 >= per2 else j2_1
-            q2_1 = j2_1 if j2_1 < n else j2_1 % n
-            w2_2 = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-            r2_2 = t - shift + (left - 2)
-            j2_2 = b2 + 2
-            j2_2 = j2_2 - per2 if j2_2 >= per2 else j2_2
-            q2_2 = j2_2 if j2_2 < n else j2_2 % n
-            w2_3 = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-            r2_3 = t - shift + (left - 3)
-            j2_3 = b2 + 3
-            j2_3 = j2_3 - per2 if j2_3 >= per2 else j2_3
-            q2_3 = j2_3 if j2_3 < n else j2_3 % n
-            par = (b0 + b1 + b2) & 1
-            w0a[0] = w0_0; r0a[0] = r0_0; q0a[0] = q0_0
-            w0a[1] = w0_1; r0a[1] = r0_1; q0a[1] = q0_1
-            w0a[2] = w0_2; r0a[2] = r0_2; q0a[2] = q0_2
-            w0a[3] = w0_3; r0a[3] = r0_3; q0a[3] = q0_3
-            for c in range(ncomp):
-                total = 0.0
-                for k0 in range(4):
-                    hk = perms[c, q0a[k0]]
-                    pk = par ^ (k0 & 1)
-                    s = hk + q1_0
-                    h0 = perms[c, s - n if s >= n else s]
-                    s = hk + q1_1
-                    h1 = perms[c, s - n if s >= n else s]
-                    s = hk + q1_2
-                    h2 = perms[c, s - n if s >= n else s]
-                    s = hk + q1_3
-                    h3 = perms[c, s - n if s >= n else s]
-                    s = h0 + q2_0
-                    h00 = perms[c, s - n if s >= n else s]
-                    s = h0 + q2_1
-                    h01 = perms[c, s - n if s >= n else s]
-                    s = h0 + q2_2
-                    h02 = perms[c, s - n if s >= n else s]
-                    s = h0 + q2_3
-                    h03 = perms[c, s - n if s >= n else s]
-                    s = h1 + q2_0
-                    h10 = perms[c, s - n if s >= n else s]
-                    s = h1 + q2_1
-                    h11 = perms[c, s - n if s >= n else s]
-                    s = h1 + q2_2
-                    h12 = perms[c, s - n if s >= n else s]
-                    s = h1 + q2_3
-                    h13 = perms[c, s - n if s >= n else s]
-                    s = h2 + q2_0
-                    h20 = perms[c, s - n if s >= n else s]
-                    s = h2 + q2_1
-                    h21 = perms[c, s - n if s >= n else s]
-                    s = h2 + q2_2
-                    h22 = perms[c, s - n if s >= n else s]
-                    s = h2 + q2_3
-                    h23 = perms[c, s - n if s >= n else s]
-                    s = h3 + q2_0
-                    h30 = perms[c, s - n if s >= n else s]
-                    s = h3 + q2_1
-                    h31 = perms[c, s - n if s >= n else s]
-                    s = h3 + q2_2
-                    h32 = perms[c, s - n if s >= n else s]
-                    s = h3 + q2_3
-                    h33 = perms[c, s - n if s >= n else s]
-                    if basis == 0:
-                        inner = w1_0 * (w2_0 * (values[pk, h00]) + w2_1 * (values[pk ^ 1, h01]) + w2_2 * (values[pk, h02]) + w2_3 * (values[pk ^ 1, h03])) + w1_1 * (w2_0 * (values[pk ^ 1, h10]) + w2_1 * (values[pk, h11]) + w2_2 * (values[pk ^ 1, h12]) + w2_3 * (values[pk, h13])) + w1_2 * (w2_0 * (values[pk, h20]) + w2_1 * (values[pk ^ 1, h21]) + w2_2 * (values[pk, h22]) + w2_3 * (values[pk ^ 1, h23])) + w1_3 * (w2_0 * (values[pk ^ 1, h30]) + w2_1 * (values[pk, h31]) + w2_2 * (values[pk ^ 1, h32]) + w2_3 * (values[pk, h33]))
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = b & 1
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[0, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[0, 0, i] = j if j < n else j % n
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[0, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[0, 1, i] = j if j < n else j % n
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[0, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[0, 2, i] = j if j < n else j % n
+                W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                R[0, 3, i] = t - shift + (left - 3)
+                j = b + 3
+                j = j - per if j >= per else j
+                Q[0, 3, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[1, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[1, 0, i] = j if j < n else j % n
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[1, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[1, 1, i] = j if j < n else j % n
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[1, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[1, 2, i] = j if j < n else j % n
+                W[1, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                R[1, 3, i] = t - shift + (left - 3)
+                j = b + 3
+                j = j - per if j >= per else j
+                Q[1, 3, i] = j if j < n else j % n
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            for i in range(m):
+                u = pts[p0 + i, 2] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                b = _reduce(fi, left, per, msk)
+                PAR[i] = (PAR[i] + b) & 1
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                R[2, 0, i] = t - shift + (left - 0)
+                j = b
+                Q[2, 0, i] = j if j < n else j % n
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                R[2, 1, i] = t - shift + (left - 1)
+                j = b + 1
+                j = j - per if j >= per else j
+                Q[2, 1, i] = j if j < n else j % n
+                W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                R[2, 2, i] = t - shift + (left - 2)
+                j = b + 2
+                j = j - per if j >= per else j
+                Q[2, 2, i] = j if j < n else j % n
+                W[2, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                R[2, 3, i] = t - shift + (left - 3)
+                j = b + 3
+                j = j - per if j >= per else j
+                Q[2, 3, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; r1_2 = R[1, 2, i]; q1_2 = Q[1, 2, i]
+                w1_3 = W[1, 3, i]; r1_3 = R[1, 3, i]; q1_3 = Q[1, 3, i]
+                w2_0 = W[2, 0, i]; r2_0 = R[2, 0, i]; q2_0 = Q[2, 0, i]
+                w2_1 = W[2, 1, i]; r2_1 = R[2, 1, i]; q2_1 = Q[2, 1, i]
+                w2_2 = W[2, 2, i]; r2_2 = R[2, 2, i]; q2_2 = Q[2, 2, i]
+                w2_3 = W[2, 3, i]; r2_3 = R[2, 3, i]; q2_3 = Q[2, 3, i]
+                for c in range(ncomp):
+                    total = 0.0
+                    for k0 in range(4):
+                        hk = perms[c, Q[0, k0, i]]
+                        pk = par ^ (k0 & 1)
+                        s = hk + q1_0
+                        h0 = perms[c, s - n if s >= n else s]
+                        s = hk + q1_1
+                        h1 = perms[c, s - n if s >= n else s]
+                        s = hk + q1_2
+                        h2 = perms[c, s - n if s >= n else s]
+                        s = hk + q1_3
+                        h3 = perms[c, s - n if s >= n else s]
+                        s = h0 + q2_0
+                        h00 = perms[c, s - n if s >= n else s]
+                        s = h0 + q2_1
+                        h01 = perms[c, s - n if s >= n else s]
+                        s = h0 + q2_2
+                        h02 = perms[c, s - n if s >= n else s]
+                        s = h0 + q2_3
+                        h03 = perms[c, s - n if s >= n else s]
+                        s = h1 + q2_0
+                        h10 = perms[c, s - n if s >= n else s]
+                        s = h1 + q2_1
+                        h11 = perms[c, s - n if s >= n else s]
+                        s = h1 + q2_2
+                        h12 = perms[c, s - n if s >= n else s]
+                        s = h1 + q2_3
+                        h13 = perms[c, s - n if s >= n else s]
+                        s = h2 + q2_0
+                        h20 = perms[c, s - n if s >= n else s]
+                        s = h2 + q2_1
+                        h21 = perms[c, s - n if s >= n else s]
+                        s = h2 + q2_2
+                        h22 = perms[c, s - n if s >= n else s]
+                        s = h2 + q2_3
+                        h23 = perms[c, s - n if s >= n else s]
+                        s = h3 + q2_0
+                        h30 = perms[c, s - n if s >= n else s]
+                        s = h3 + q2_1
+                        h31 = perms[c, s - n if s >= n else s]
+                        s = h3 + q2_2
+                        h32 = perms[c, s - n if s >= n else s]
+                        s = h3 + q2_3
+                        h33 = perms[c, s - n if s >= n else s]
+                        if basis == 0:
+                            inner = w1_0 * (w2_0 * (values[pk, h00]) + w2_1 * (values[pk ^ 1, h01]) + w2_2 * (values[pk, h02]) + w2_3 * (values[pk ^ 1, h03])) + w1_1 * (w2_0 * (values[pk ^ 1, h10]) + w2_1 * (values[pk, h11]) + w2_2 * (values[pk ^ 1, h12]) + w2_3 * (values[pk, h13])) + w1_2 * (w2_0 * (values[pk, h20]) + w2_1 * (values[pk ^ 1, h21]) + w2_2 * (values[pk, h22]) + w2_3 * (values[pk ^ 1, h23])) + w1_3 * (w2_0 * (values[pk ^ 1, h30]) + w2_1 * (values[pk, h31]) + w2_2 * (values[pk ^ 1, h32]) + w2_3 * (values[pk, h33]))
+                        else:
+                            inner = w1_0 * (w2_0 * (grads[h00, 0] * R[0, k0, i] + grads[h00, 1] * r1_0 + grads[h00, 2] * r2_0) + w2_1 * (grads[h01, 0] * R[0, k0, i] + grads[h01, 1] * r1_0 + grads[h01, 2] * r2_1) + w2_2 * (grads[h02, 0] * R[0, k0, i] + grads[h02, 1] * r1_0 + grads[h02, 2] * r2_2) + w2_3 * (grads[h03, 0] * R[0, k0, i] + grads[h03, 1] * r1_0 + grads[h03, 2] * r2_3)) + w1_1 * (w2_0 * (grads[h10, 0] * R[0, k0, i] + grads[h10, 1] * r1_1 + grads[h10, 2] * r2_0) + w2_1 * (grads[h11, 0] * R[0, k0, i] + grads[h11, 1] * r1_1 + grads[h11, 2] * r2_1) + w2_2 * (grads[h12, 0] * R[0, k0, i] + grads[h12, 1] * r1_1 + grads[h12, 2] * r2_2) + w2_3 * (grads[h13, 0] * R[0, k0, i] + grads[h13, 1] * r1_1 + grads[h13, 2] * r2_3)) + w1_2 * (w2_0 * (grads[h20, 0] * R[0, k0, i] + grads[h20, 1] * r1_2 + grads[h20, 2] * r2_0) + w2_1 * (grads[h21, 0] * R[0, k0, i] + grads[h21, 1] * r1_2 + grads[h21, 2] * r2_1) + w2_2 * (grads[h22, 0] * R[0, k0, i] + grads[h22, 1] * r1_2 + grads[h22, 2] * r2_2) + w2_3 * (grads[h23, 0] * R[0, k0, i] + grads[h23, 1] * r1_2 + grads[h23, 2] * r2_3)) + w1_3 * (w2_0 * (grads[h30, 0] * R[0, k0, i] + grads[h30, 1] * r1_3 + grads[h30, 2] * r2_0) + w2_1 * (grads[h31, 0] * R[0, k0, i] + grads[h31, 1] * r1_3 + grads[h31, 2] * r2_1) + w2_2 * (grads[h32, 0] * R[0, k0, i] + grads[h32, 1] * r1_3 + grads[h32, 2] * r2_2) + w2_3 * (grads[h33, 0] * R[0, k0, i] + grads[h33, 1] * r1_3 + grads[h33, 2] * r2_3))
+                        total += W[0, k0, i] * inner
+                    if absval:
+                        total = abs(total)
+                    if o == 0:
+                        ACC[c, i] = amps[o] * total
                     else:
-                        inner = w1_0 * (w2_0 * (grads[h00, 0] * r0a[k0] + grads[h00, 1] * r1_0 + grads[h00, 2] * r2_0) + w2_1 * (grads[h01, 0] * r0a[k0] + grads[h01, 1] * r1_0 + grads[h01, 2] * r2_1) + w2_2 * (grads[h02, 0] * r0a[k0] + grads[h02, 1] * r1_0 + grads[h02, 2] * r2_2) + w2_3 * (grads[h03, 0] * r0a[k0] + grads[h03, 1] * r1_0 + grads[h03, 2] * r2_3)) + w1_1 * (w2_0 * (grads[h10, 0] * r0a[k0] + grads[h10, 1] * r1_1 + grads[h10, 2] * r2_0) + w2_1 * (grads[h11, 0] * r0a[k0] + grads[h11, 1] * r1_1 + grads[h11, 2] * r2_1) + w2_2 * (grads[h12, 0] * r0a[k0] + grads[h12, 1] * r1_1 + grads[h12, 2] * r2_2) + w2_3 * (grads[h13, 0] * r0a[k0] + grads[h13, 1] * r1_1 + grads[h13, 2] * r2_3)) + w1_2 * (w2_0 * (grads[h20, 0] * r0a[k0] + grads[h20, 1] * r1_2 + grads[h20, 2] * r2_0) + w2_1 * (grads[h21, 0] * r0a[k0] + grads[h21, 1] * r1_2 + grads[h21, 2] * r2_1) + w2_2 * (grads[h22, 0] * r0a[k0] + grads[h22, 1] * r1_2 + grads[h22, 2] * r2_2) + w2_3 * (grads[h23, 0] * r0a[k0] + grads[h23, 1] * r1_2 + grads[h23, 2] * r2_3)) + w1_3 * (w2_0 * (grads[h30, 0] * r0a[k0] + grads[h30, 1] * r1_3 + grads[h30, 2] * r2_0) + w2_1 * (grads[h31, 0] * r0a[k0] + grads[h31, 1] * r1_3 + grads[h31, 2] * r2_1) + w2_2 * (grads[h32, 0] * r0a[k0] + grads[h32, 1] * r1_3 + grads[h32, 2] * r2_2) + w2_3 * (grads[h33, 0] * r0a[k0] + grads[h33, 1] * r1_3 + grads[h33, 2] * r2_3))
-                    total += w0a[k0] * inner
-                if absval:
-                    acc[c] += amps[o] * abs(total)
-                else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                        ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
 
 
 KERNELS = {
