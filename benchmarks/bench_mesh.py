@@ -186,7 +186,7 @@ def main(argv=None):
         "",
         f"- `displace` takes {d_total:.2f} s, {d_ratio:.2f}x the floor (trimesh's vertex normals alone). "
         f"Its stages (medians, shares of their sum {d_sum:.2f} s): {share}.",
-        f"- The geometry work of `displace` (normals, orientation, aliasing check, output mesh) takes "
+        f"- The geometry work of `displace` (normals, seam welding, orientation, aliasing check, output mesh) takes "
         f"{geo:.2f} s, about {geo / floor:.2f}x the floor: "
         "noiselab computes normals, signed volume and edge lengths in one numba pass over the faces, and tests "
         "for a closed, consistently wound surface with one sort (only when the volume is negative) instead of "
