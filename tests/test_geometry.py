@@ -379,3 +379,27 @@ def test_results_do_not_depend_on_chunking_or_per_axis_frequency_is_used():
     p = np.asarray(mesh.vertices)
     expected = 0.1 * waves(p * [1.0, 2.0, 0.5] + [0.1, 0.2, 0.3])
     np.testing.assert_allclose(a.vertex_attributes["displacement"], expected, atol=1e-15)
+
+
+def test_spectral_noise_volume_displaces_a_sphere_smoothly():
+    vol = noiselab.spectral_noise((32, 32, 32), exponent=1.0, band=(1, 4), seed=0, dtype=np.float64)
+    # band 1..4 cycles per 3 units: 4/3 cycles/unit at most, which an icosphere of level 4 samples well
+    field = sampled_field(vol / np.abs(vol).max(), extent=[(-1.5, 1.5)] * 3, max_frequency=4 / 3)
+    mesh = sphere(4)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        out = displace(mesh, field, 0.1)
+    with pytest.warns(AliasingWarning):       # without the band, the grid's Nyquist (5.3 cycles/unit) is assumed
+        displace(mesh, sampled_field(vol, extent=[(-1.5, 1.5)] * 3), 0.1)
+    s = out.vertex_attributes["displacement"]
+    assert out.is_watertight and np.ptp(s) > 0.05
+    # band-limited (<= 4 cycles over 3 units): neighbouring vertices (edges ~0.076) move alike
+    e = mesh.edges_unique
+    assert np.abs(s[e[:, 0]] - s[e[:, 1]]).max() < 0.25 * np.ptp(s)
+
+
+def test_nan_vertices_are_a_clear_error():
+    bad = sphere(1)
+    bad.vertices[0] = np.nan
+    with pytest.raises(ValueError, match="vertices must be finite"):
+        displace(bad, waves)

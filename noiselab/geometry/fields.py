@@ -167,15 +167,15 @@ def octave_field(field, octaves, kind="fractal", *, lacunarity=2.0, gain=0.5):
 
 
 class _SampledField:
-    def __init__(self, values, origin, spacing, periodic, order):
+    def __init__(self, values, origin, spacing, periodic, order, max_frequency=None):
         self.values = values
         self.origin = origin
         self.spacing = spacing
         self.periodic = periodic
         self.order = order
         self.dim_in = len(origin)
-        # Nyquist of the grid: features cannot be finer than two samples.
-        self.max_frequency = float(0.5 / spacing.min())
+        # Nyquist of the grid unless told the band: features cannot be finer than two samples.
+        self.max_frequency = float(0.5 / spacing.min()) if max_frequency is None else max_frequency
 
     def __call__(self, x):
         from scipy import ndimage
@@ -191,7 +191,7 @@ class _SampledField:
                          for c in range(self.values.shape[-1])], axis=-1)
 
 
-def sampled_field(values, extent=None, *, periodic=True, order=3, vector=False):
+def sampled_field(values, extent=None, *, periodic=True, order=3, vector=False, max_frequency=None):
     """Turn a sampled array (a spectral-noise volume, an image) into a field by spline interpolation.
 
     ``values`` has one axis per input dimension (axis ``i`` is input
@@ -200,7 +200,10 @@ def sampled_field(values, extent=None, *, periodic=True, order=3, vector=False):
     as in ``numpy.arange``; default ``(0, n)``: one unit per sample).
     ``periodic`` wraps the grid (right for inverse-FFT output, which is
     periodic); otherwise points outside are clamped to the edge. ``order`` is
-    the spline order (1 linear, 3 cubic).
+    the spline order (1 linear, 3 cubic). ``max_frequency`` (cycles per input
+    unit) tells the resolution checks the field's band, e.g. a spectral noise
+    of band ``(lo, hi)`` cycles per frame over an extent of width ``w`` has
+    ``hi / w``; by default the grid's Nyquist frequency is assumed.
 
     Examples
     --------
@@ -226,4 +229,6 @@ def sampled_field(values, extent=None, *, periodic=True, order=3, vector=False):
     if not np.all(np.isfinite(extent)) or np.any(extent[:, 1] <= extent[:, 0]):
         raise ValueError(f"extent must be finite with stop > start on every axis, got {extent.tolist()}")
     spacing = (extent[:, 1] - extent[:, 0]) / np.asarray(shape, dtype=np.float64)
-    return _SampledField(values, extent[:, 0].copy(), spacing, bool(periodic), order)
+    if max_frequency is not None:
+        max_frequency = check_real("max_frequency", max_frequency, lo=0.0)
+    return _SampledField(values, extent[:, 0].copy(), spacing, bool(periodic), order, max_frequency)
