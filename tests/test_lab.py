@@ -270,3 +270,11 @@ def test_spectral_deviation_tells_1_over_f_from_white():
     white = np.random.default_rng(0).standard_normal((256, 256))
     assert _spectral_deviation(pink, (8, 64)) < 0.3
     assert _spectral_deviation(white, (8, 64)) > 3.0
+
+
+def test_layered_frames_render_in_pieces():
+    full = layered_lattice_snow((8, 32, 48), seed=4, layers=3, rescale=False, dtype=np.float64)
+    piece = layered_lattice_snow((3, 32, 48), seed=4, layers=3, rescale=False, dtype=np.float64, start=5)
+    assert np.array_equal(full[5:8], piece)
+    with pytest.raises(ValueError, match="start"):
+        layered_lattice_snow((2, 32, 32), start=-1)

@@ -103,7 +103,7 @@ def layer_plan(shape=(64, 512, 512), *, c=1.0, band=None, layers=8, kernel="catm
 
 
 def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, layers=8, direction=(0.0, 1.0),
-                         kernel="catmull-rom", exponent=1.0, beta=1.5, dtype=np.float32, rescale=True):
+                         kernel="catmull-rom", exponent=1.0, beta=1.5, dtype=np.float32, rescale=True, start=0):
     """Falling snow from depth layers of band-pass lattice noise, each translating at its own speed.
 
     The lattice alternative to the tent IFFT (Langer & Zhang 2003) for the same
@@ -142,6 +142,12 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
         the narrowest layer spectrum.
     exponent, beta, dtype, rescale
         As for :func:`noiselab.snow.snow`.
+    start : int
+        Index of the first frame (>= 0). Every frame is computed on its own,
+        so with ``rescale=False`` frames ``start .. start+T-1`` are
+        bit-identical to the same frames of a longer render: a long video can
+        be rendered in pieces of bounded memory (rescale them with one shared
+        range, e.g. :func:`noiselab.snow.rescale_opacity` with ``lo``/``hi``).
 
     Returns
     -------
@@ -155,29 +161,33 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
     """
     (T, H, W), c, band, (dx, dy) = _check_scene(shape, c, band, direction)
     beta = check_real("beta", beta, lo=0.0, lo_open=True)
+    start = check_int("start", start, lo=0)
     dt = float_dtype(dtype)
     plan = layer_plan((T, H, W), c=c, band=band, layers=layers, kernel=kernel, exponent=exponent)
-    check_memory(T * H * W * (dt.itemsize + 8) + 3 * H * W * 8, f"layered_lattice_snow{(T, H, W)}")
+    check_memory(T * H * W * dt.itemsize + 4 * H * W * 8, f"layered_lattice_snow{(T, H, W)}")
     rng = as_generator(seed)
     layer_seeds = rng.integers(0, 2**63 - 1, size=len(plan["speed"]))
-    acc = np.zeros((T, H, W), dtype=np.float64)
+    layers_ = []
     for k in range(len(plan["speed"])):
         nx, ny = int(plan["cells_x"][k]), int(plan["cells_y"][k])
         # axis 0 is y, axis 1 is x; period = cells across the frame: each layer tiles the frame
         noise = LatticeNoise(2, seed=int(layer_seeds[k]), kernel=kernel, basis="gradient", period=(ny, nx))
-        v = float(plan["speed"][k])
-        amp = float(plan["amplitude"][k])
-        phase = rng.random(2)  # random sub-cell offset per layer, so that layers do not share lattice lines
-        for t in range(T):
+        # random sub-cell offset per layer, so that layers do not share lattice lines
+        layers_.append((noise, nx, ny, float(plan["speed"][k]), float(plan["amplitude"][k]), rng.random(2)))
+    out = np.empty((T, H, W), dtype=dt)
+    acc = np.empty((H, W), dtype=np.float64)
+    # frame by frame: every frame is independent, so memory is the output plus one float64 frame
+    for i, t in enumerate(range(start, start + T)):
+        acc.fill(0.0)
+        for noise, nx, ny, v, amp, phase in layers_:
             # content moves by +v*t along d: sample at (x - d v t)
             y0 = (phase[0] - dy * v * t) * ny / H
             x0 = (phase[1] - dx * v * t) * nx / W
             # reduce to one period so coordinates stay small (exact: the layer is periodic)
             y0 -= math.floor(y0 / ny) * ny
             x0 -= math.floor(x0 / nx) * nx
-            acc[t] += amp * noise.grid((H, W), [(y0, y0 + ny), (x0, x0 + nx)])
-    out = acc.astype(dt)
-    del acc
+            acc += amp * noise.grid((H, W), [(y0, y0 + ny), (x0, x0 + nx)])
+        out[i] = acc
     if rescale:
         rescale_opacity(out, beta)
     return out
@@ -264,7 +274,7 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
         flakes = max(1, H * W // 16)
     n = check_int("flakes", flakes, lo=1, hi=10**8)
     dt = float_dtype(dtype)
-    check_memory(T * H * W * (dt.itemsize + 8) + n * 64, f"particle_snow{(T, H, W)} with {n} flakes")
+    check_memory(T * H * W * dt.itemsize + n * 64, f"particle_snow{(T, H, W)} with {n} flakes")
     rng = as_generator(seed)
     zmax = hi / lo
     u = rng.random(n)
@@ -273,10 +283,10 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
     y = rng.random(n) * H
     diameter = W / (2.0 * lo * depth)
     speed = c * diameter / math.pi
-    trans = np.ones((T, H, W), dtype=np.float64)
+    # transmittance, in the output's dtype and in place: memory is the output itself
+    trans = np.ones((T, H, W), dtype=dt)
     _splat(x, y, speed * dx, speed * dy, diameter / 2.0, opacity, T, H, W, trans)
-    out = np.subtract(1.0, trans, out=trans).astype(dt)
-    del trans
+    out = np.subtract(dt.type(1), trans, out=trans)
     np.clip(out, 0.0, 1.0, out=out)
     if return_flakes:
         return out, {"x": x, "y": y, "depth": depth, "diameter": diameter, "speed": speed}
