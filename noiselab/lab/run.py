@@ -545,8 +545,9 @@ def _snow_verdict(res):
                  f"{lay['parallax_rms_error']:.3f} (each layer is one rigid speed; its ~1-octave spectrum blends "
                  f"neighbouring speeds), loop seam {lay['loop_seam']:.2f} (no loop), {lay['time_s'] / tent['time_s']:.1f}x "
                  f"the tent's time here and {t_big.get('layered lattice', float('nan')) / t_big['tent IFFT']:.1f}x at "
-                 f"{max(x['size'] for x in res['scaling'])} px. Its reason to exist: every frame is independent, so it "
-                 "can be rendered frame by frame in O(H x W) memory for any length, and at any point (not only a grid).")
+                 f"{max(x['size'] for x in res['scaling'])} px. Its reason to exist: every frame is independent "
+                 "(`start=` renders any piece bit-identically), so a video of any length streams in pieces of bounded "
+                 "memory, and the noise can be evaluated at any point, not only on a grid.")
     fr = res["flakes"]
     cheaper = [r["flakes"] for r in fr if r["x_tent_snow"] < 1.0]
     cross = (f"in the flake sweep particles beat the tent IFFT's time up to {max(cheaper):,} flakes per "
