@@ -403,3 +403,15 @@ def test_nan_vertices_are_a_clear_error():
     bad.vertices[0] = np.nan
     with pytest.raises(ValueError, match="vertices must be finite"):
         displace(bad, waves)
+
+
+@pytest.mark.parametrize("module", ["fields", "displace", "shapes", "curves", "surfaces", "flow", "render"])
+def test_docstring_examples_run(module):
+    import doctest
+    import importlib
+
+    mod = importlib.import_module(f"noiselab.geometry.{module}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", AliasingWarning)
+        result = doctest.testmod(mod, optionflags=doctest.ELLIPSIS)
+    assert result.attempted > 0 and result.failed == 0

@@ -30,11 +30,13 @@ def add_arguments(parser):
     f.add_argument("--amplitude", "-a", type=float, default=0.1, help="displacement scale in mesh units (default 0.1)")
     f.add_argument("--frequency", "-f", type=float, default=2.0, help="noise cycles per mesh unit (default 2)")
     f.add_argument("--phase", type=float, default=0.0, help="offset added to the noise input (default 0)")
-    f.add_argument("--lacunarity", type=float, default=2.0)
-    f.add_argument("--gain", type=float, default=0.5)
-    f.add_argument("--seed", type=int, default=0)
-    f.add_argument("--kernel", default="cubic", help="lattice smoothing kernel (default cubic)")
-    f.add_argument("--basis", choices=("value", "gradient"), default="value")
+    f.add_argument("--lacunarity", type=float, default=2.0, help="frequency ratio between octaves (default 2)")
+    f.add_argument("--gain", type=float, default=0.5, help="amplitude ratio between octaves (default 1/2)")
+    f.add_argument("--seed", type=int, default=0, help="seed of the lattice noise's tables (default 0)")
+    f.add_argument("--kernel", default="cubic",
+                   help="lattice smoothing kernel: box, linear, quadratic, cubic (default), catmull-rom, quintic")
+    f.add_argument("--basis", choices=("value", "gradient"), default="value",
+                   help="Phillips' value noise (default) or Perlin's gradient noise")
     f.add_argument("--time", type=float, default=None, help="time coordinate: use 4-D noise (x, y, z, t)")
     r = parser.add_argument_group("resolution")
     r.add_argument("--resolution", choices=("auto", "warn", "raise", "ignore"), default="auto",

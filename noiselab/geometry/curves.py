@@ -149,6 +149,13 @@ def plot_curves(curves, path=None, *, size=512, closed=False, colors="black", li
 
     ``closed`` joins each curve's end to its start. ``limits`` is
     ``((xmin, xmax), (ymin, ymax))``; default fits all curves with a margin.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> img = plot_curves(np.stack([np.linspace(0, 1, 9), np.linspace(0, 1, 9) ** 2], 1), size=64)
+    >>> img.shape, bool((img < 128).any())
+    ((64, 64, 3), True)
     """
     from .render import _new_figure, _save_array, figure_to_array
 
@@ -187,6 +194,12 @@ def trajectory_frames(points, *, tail=25, size=256, marker_size=60.0, limits=Non
     """Animate a 2-D trajectory (figure 4): one frame per sample, the point plus a ``tail`` of earlier samples.
 
     Returns ``(frames, height, width, 3)`` uint8; writes a GIF/MP4 when ``path`` is given.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> trajectory_frames(np.random.default_rng(0).random((4, 2)), size=32).shape
+    (4, 32, 32, 3)
     """
     from .render import _new_figure, figure_to_array
 

@@ -124,6 +124,13 @@ def quiver_image(field, path=None, *, shape=(20, 20), extent=((0.0, 4.0), (0.0, 
     ``step``) from seeded uniform positions in the extent, drawn in grey
     under the arrows. y points up in the plot (mathematical axes).
     Returns the RGB image; writes it when ``path`` is given.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> swirl = lambda p: np.stack([np.sin(p[:, 1]), np.cos(p[:, 0])], axis=1)
+    >>> quiver_image(swirl, shape=(6, 6), size=64).shape
+    (64, 64, 3)
     """
     from .._validate import as_generator
     from .render import _new_figure, _save_array, figure_to_array
@@ -152,7 +159,15 @@ def quiver_image(field, path=None, *, shape=(20, 20), extent=((0.0, 4.0), (0.0, 
 
 
 def streamline_image(lines, path=None, *, size=512, color="black", linewidth=1.0, limits=None) -> np.ndarray:
-    """Draw 2-D streamlines ``(m, n, 2)`` (from :func:`streamlines`) with matplotlib; return the image."""
+    """Draw 2-D streamlines ``(m, n, 2)`` (from :func:`streamlines`) with matplotlib; return the image.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rot = lambda p: np.stack([-p[:, 1], p[:, 0]], axis=1)
+    >>> streamline_image(streamlines(rot, [[1.0, 0.0]], step=0.1, n_steps=60), size=48).shape
+    (48, 48, 3)
+    """
     from .curves import plot_curves
 
     lines = np.asarray(lines, dtype=np.float64)
@@ -167,8 +182,14 @@ def flow_glyphs(field, shape=(6, 6, 6), extent=((0.0, 4.0), (0.0, 4.0), (0.0, 4.
 
     Arrows start at the grid points; their length is ``scale`` times the
     vector's (default: the longest arrow is 0.9 grid cells). Render a
-    cross-fusible stereo pair with two :func:`render_mesh` calls a few degrees
-    of ``azimuth`` apart.
+    cross-fusible stereo pair with :func:`render_stereo_pair`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> arrows = flow_glyphs(lambda p: p[:, ::-1] - 1.0, (2, 2, 2), ((0, 2), (0, 2), (0, 2)))
+    >>> arrows.n_points > 8
+    True
     """
     from .render import _pyvista
 

@@ -235,6 +235,12 @@ def render_stereo_pair(meshes, path=None, *, separation=5.0, cross=True, size=38
     the paper); ``cross=False`` is for parallel (wall-eyed) viewing. ``gap``
     background pixels separate the halves. Other keywords go to
     :func:`render_mesh`. Returns ``(height, 2 * width + gap, 3)`` uint8.
+
+    Examples
+    --------
+    >>> from noiselab.geometry import sphere
+    >>> render_stereo_pair(sphere(2), size=32, gap=4).shape
+    (32, 68, 3)
     """
     separation = check_real("separation", separation, lo=0.0, hi=30.0)
     gap = check_int("gap", gap, lo=0, hi=4096)
@@ -253,6 +259,12 @@ def render_turntable(meshes, path=None, *, frames=36, fps=12.0, degrees=360.0, s
     Returns the frames ``(frames, height, width, 3)`` uint8 and writes them to
     ``path`` (MP4, GIF, NPY or a folder of PNGs) when given. The last frame
     stops one step short of a full turn so that the loop is seamless.
+
+    Examples
+    --------
+    >>> from noiselab.geometry import load_model
+    >>> render_turntable(load_model("ant"), frames=3, size=32).shape
+    (3, 32, 32, 3)
     """
     from .._progress import progress
 
@@ -290,6 +302,14 @@ def render_sequence(meshes, path=None, *, fps=12.0, size=512, view="iso", azimut
     shape's own. Frames are rendered by updating the vertex positions of one
     actor. Returns ``(frames, height, width, 3)`` uint8 and writes to ``path``
     (MP4/GIF/NPY/folder) when given.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from noiselab.geometry import displace_frames, sphere
+    >>> boil = displace_frames(sphere(3), lambda p: np.sin(3 * p[:, 0] + p[:, 3]), [0.0, 0.5], amplitude=0.1)
+    >>> render_sequence(boil, size=32).shape
+    (2, 32, 32, 3)
     """
     from .._progress import progress
     from .displace import as_trimesh
@@ -335,13 +355,27 @@ def render_sequence(meshes, path=None, *, fps=12.0, size=512, view="iso", azimut
 
 
 def figure_to_array(fig, *, close=True) -> np.ndarray:
-    """Draw a matplotlib figure (Agg) and return it as a ``(height, width, 3)`` uint8 array."""
+    """Draw a matplotlib figure (Agg) and return it as a ``(height, width, 3)`` uint8 array.
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> fig = Figure(figsize=(2, 1), dpi=50)
+    >>> figure_to_array(fig, close=False).shape
+    (50, 100, 3)
+    """
+    if not hasattr(fig.canvas, "buffer_rgba"):
+        # a bare Figure (not made by pyplot) has no raster canvas yet: give it Agg's
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+        FigureCanvasAgg(fig)
     fig.canvas.draw()
     image = np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
     if close:
-        import matplotlib.pyplot as plt
+        import sys
 
-        plt.close(fig)
+        if "matplotlib.pyplot" in sys.modules:      # only pyplot keeps figures alive
+            sys.modules["matplotlib.pyplot"].close(fig)
     return image
 
 

@@ -129,7 +129,15 @@ def sphere_for_noise(max_frequency, radius=1.0, *, samples_per_period=4.0, max_s
 
 
 def pyvista_to_trimesh(poly):
-    """Convert a pyvista ``PolyData`` (any polygons; triangulated here) to a ``trimesh.Trimesh``."""
+    """Convert a pyvista ``PolyData`` (any polygons; triangulated here) to a ``trimesh.Trimesh``.
+
+    Examples
+    --------
+    >>> from noiselab.geometry.render import _pyvista
+    >>> pv = _pyvista()
+    >>> len(pyvista_to_trimesh(pv.Cube()).faces)      # 6 quads -> 12 triangles
+    12
+    """
     import trimesh
 
     if not hasattr(poly, "extract_surface"):
@@ -143,7 +151,14 @@ def pyvista_to_trimesh(poly):
 
 
 def trimesh_to_pyvista(mesh):
-    """Convert a ``trimesh.Trimesh`` to a pyvista ``PolyData`` (vertex colours as ``"rgb"`` point data)."""
+    """Convert a ``trimesh.Trimesh`` to a pyvista ``PolyData`` (vertex colours as ``"rgb"`` point data).
+
+    Examples
+    --------
+    >>> poly = trimesh_to_pyvista(sphere(1))
+    >>> poly.n_points, poly.n_cells
+    (42, 80)
+    """
     from .render import _pyvista
 
     pv = _pyvista()
@@ -167,6 +182,13 @@ def normalize(mesh, size=2.0):
     Useful before displacing a model in unknown units (pyvista's ant is 32
     units long, the airplane 1500): a unit-frequency noise then means the
     same thing on every model.
+
+    Examples
+    --------
+    >>> import trimesh
+    >>> box = normalize(trimesh.creation.box((4.0, 2.0, 1.0)))
+    >>> box.extents.tolist()
+    [2.0, 1.0, 0.5]
     """
     from .displace import as_trimesh
 
@@ -213,6 +235,12 @@ def arrange(meshes, columns=None, spacing=0.25):
     box centre sits on a grid cell; cells are as wide as the largest mesh plus
     ``spacing`` (a fraction of that size). Returns the list of moved meshes,
     ready for :func:`noiselab.geometry.render_mesh`.
+
+    Examples
+    --------
+    >>> row = arrange([sphere(1), sphere(1)], spacing=0.5)
+    >>> [round(float(m.bounds.mean(axis=0)[0]), 6) for m in row]
+    [0.0, 3.0]
     """
     from .displace import as_trimesh
 

@@ -195,6 +195,12 @@ def height_map_image(heights, path=None, *, vmin=None, vmax=None) -> np.ndarray:
     """A depth-map image of heights, lighter = higher (figure 8, right): ``(H, W)`` uint8, written if ``path``.
 
     ``vmin``/``vmax`` default to the array's range.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> height_map_image(np.array([[0.0, 0.5, 1.0]])).tolist()
+    [[0, 128, 255]]
     """
     from ..io import to_uint8
     from .render import _save_array

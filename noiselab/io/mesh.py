@@ -52,6 +52,13 @@ def read_mesh(path):
     """Read a mesh file (any format trimesh reads) as one ``trimesh.Trimesh`` (a scene's meshes are joined).
 
     A file holding no faces (a point cloud) is a ``ValueError``.
+
+    Examples
+    --------
+    >>> import trimesh, tempfile, os
+    >>> p = write_mesh(os.path.join(tempfile.mkdtemp(), "box.stl"), trimesh.creation.box())
+    >>> len(read_mesh(p).vertices)          # STL's triangle soup is merged again
+    8
     """
     import trimesh
 
