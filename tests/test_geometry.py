@@ -415,3 +415,18 @@ def test_docstring_examples_run(module):
         warnings.simplefilter("ignore", AliasingWarning)
         result = doctest.testmod(mod, optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_vector_displacement_moves_vertices_by_the_3d_field():
+    noise = noiselab.LatticeNoise(3, 3, seed=5)
+    mesh = sphere(3)
+    out = displace(mesh, noise, 0.1, 1.0, direction="vector")
+    p = np.asarray(mesh.vertices)
+    np.testing.assert_allclose(out.vertices - p, 0.1 * noise(p), atol=1e-12)
+    n = p / np.linalg.norm(p, axis=1, keepdims=True)
+    np.testing.assert_allclose(out.vertex_attributes["displacement"],
+                               np.einsum("ij,ij->i", out.vertices - p, n), atol=1e-3)
+    with pytest.raises(ValueError, match="at least 3 components"):
+        displace(mesh, waves, direction="vector")
+    with pytest.raises(ValueError, match="direction must be"):
+        displace(mesh, waves, direction="tangent")

@@ -411,8 +411,8 @@ def _outward(normals, volume, faces):
 
 
 def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *, octaves=1, kind="fractal",
-             lacunarity=2.0, gain=0.5, normals=None, weld=True, samples_per_period=4.0, on_aliasing="warn",
-             chunk_size=1 << 20):
+             lacunarity=2.0, gain=0.5, normals=None, weld=True, direction="normal", samples_per_period=4.0,
+             on_aliasing="warn", chunk_size=1 << 20):
     """Displace every vertex of ``mesh`` along its normal by a field of its position (Eq. 11).
 
     ``p' = p + amplitude * s(frequency * p + phase [, time]) * n_p`` where
@@ -443,6 +443,11 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
         Displacement directions; default :func:`vertex_normals` (area-weighted),
         flipped to point outwards for a closed, consistently wound mesh of
         negative signed volume (an inside-out mesh).
+    direction : {"normal", "vector"}
+        ``"normal"`` (default) is Eq. 11. ``"vector"`` moves each vertex by
+        ``amplitude`` times a 3-component field instead (``LatticeNoise(3, 3)``):
+        displacement that is not restricted to the normal, as the paper
+        allows ("typically (but not necessarily) along the normal").
     weld : bool
         Give vertices at exactly the same position (split at UV or crease
         seams, or an unmerged STL soup) one common normal, so that the
@@ -457,7 +462,8 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
     trimesh.Trimesh
         The displaced mesh (same faces, process=False). Its
         ``vertex_attributes["displacement"]`` holds the signed distance each
-        vertex moved (``amplitude * s``).
+        vertex moved (``amplitude * s``; for ``direction="vector"``, the
+        displacement's component along the normal).
 
     Examples
     --------
@@ -480,6 +486,8 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
         time = check_real("time", time)
     if on_aliasing not in ("warn", "raise", "ignore"):
         raise ValueError(f"on_aliasing must be 'warn', 'raise' or 'ignore', got {on_aliasing!r}")
+    if direction not in ("normal", "vector"):
+        raise ValueError(f"direction must be 'normal' (Eq. 11) or 'vector' (3-component field), got {direction!r}")
     source = octave_field(field, octaves, kind, lacunarity=lacunarity, gain=gain)
     vertices, faces = _arrays(mesh)
     # peak: normals, points, field output and new vertices (n x 3 float64 each), 3 edge lengths per face
@@ -499,9 +507,14 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
     points = vertices * freq + phase_v
     if time is not None:
         points = np.concatenate([points, np.full((len(points), 1), time)], axis=1)
-    s = evaluate_field(source, points, components=1, chunk_size=chunk_size)
-    s *= amplitude
-    new_vertices = vertices + s[:, None] * n
+    if direction == "vector":
+        vec = amplitude * evaluate_field(source, points, components=3, chunk_size=chunk_size)
+        new_vertices = vertices + vec
+        s = np.einsum("ij,ij->i", vec, n)          # the normal component, for colouring
+    else:
+        s = evaluate_field(source, points, components=1, chunk_size=chunk_size)
+        s *= amplitude
+        new_vertices = vertices + s[:, None] * n
     out = trimesh.Trimesh(new_vertices, faces.copy(), process=False, validate=False)
     if mesh.visual.kind == "vertex":
         out.visual = mesh.visual.copy()
