@@ -185,3 +185,17 @@ def test_pyvista_meshes_are_accepted_and_converted():
     np.testing.assert_allclose(r, 1.1, atol=0.01)
     with pytest.raises(ValueError, match="no polygon faces"):
         displace(pv.PolyData(np.random.default_rng(0).normal(size=(20, 3))), lambda p: np.ones(len(p)))
+
+
+def test_wireframe_draws_thin_dark_lines_not_a_filled_disc():
+    surface = render_mesh(sphere(2), size=96, colors="black")
+    wire = render_mesh(sphere(2), size=96, colors="black", style="wireframe")
+    def white_inside(img):          # background showing through the middle of the object
+        return float((img[32:64, 32:64].min(axis=2) > 240).mean())
+    assert white_inside(surface) < 0.02
+    assert white_inside(wire) > 0.2
+    assert (wire.max(axis=2) < 100).mean() > 0.05              # and the lines are there, dark
+    rows, cols = np.nonzero(foreground(wire))
+    assert abs(rows.mean() - 48) < 8 and abs(cols.mean() - 48) < 8
+    with pytest.raises(ValueError, match="style must be"):
+        render_mesh(sphere(1), size=32, style="toon")

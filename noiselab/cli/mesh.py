@@ -54,6 +54,8 @@ def add_arguments(parser):
     o.add_argument("--duration", type=float, default=2.0, help="noise time spanned by a 'boil' animation (default 2)")
     o.add_argument("--size", type=int, default=512, help="rendered image size in pixels (square, default 512)")
     o.add_argument("--view", default="iso", help="camera view: iso, xy, xz, yz (default iso)")
+    o.add_argument("--style", choices=("surface", "wireframe", "points"), default="surface",
+                   help="shaded surface (default) or wire frame, as in the paper's figures")
     o.add_argument("--color-by", choices=("none", "displacement"), default="none",
                    help="colour the render by the displacement (viridis) instead of a flat colour")
 
@@ -153,13 +155,14 @@ def run(args) -> int:
         clim = (-abs(args.amplitude), abs(args.amplitude)) if scalars else None
         size = check_int("--size", args.size, lo=16, hi=8192)
         if not video:
-            geo.render_mesh(displaced, args.render, size=size, view=args.view, scalars=scalars, clim=clim)
+            geo.render_mesh(displaced, args.render, size=size, view=args.view, scalars=scalars, clim=clim,
+                            style=args.style)
         elif boil:
             times = t0 + np.arange(frames) * (duration / frames)
             seq = geo.displace_frames(mesh, field, times, **common)
             geo.render_sequence(seq, args.render, fps=args.fps, size=size, view=args.view, scalars=scalars, clim=clim)
         else:
             geo.render_turntable(displaced, args.render, frames=frames, fps=args.fps, size=size, view=args.view,
-                                 scalars=scalars, clim=clim)
+                                 scalars=scalars, clim=clim, style=args.style)
         print(f"noiselab mesh: wrote {args.render}")
     return 0

@@ -62,7 +62,10 @@ def _to_poly(mesh, name):
     return trimesh_to_pyvista(as_trimesh(mesh, name=name))
 
 
-def _plotter(meshes, *, size, colors, scalars, cmap, clim, background, smooth_shading, show_edges):
+_STYLES = ("surface", "wireframe", "points")
+
+
+def _plotter(meshes, *, size, colors, scalars, cmap, clim, background, smooth_shading, show_edges, style="surface"):
     pv = _pyvista()
     h, w = _size(size)
     meshes = _as_list(meshes)
@@ -79,7 +82,9 @@ def _plotter(meshes, *, size, colors, scalars, cmap, clim, background, smooth_sh
         polys.append(poly)
         if smooth_shading and "Normals" not in poly.point_data:
             _set_normals(poly)
-        kw = dict(smooth_shading=False, show_edges=show_edges, lighting=True)
+        if style not in _STYLES:
+            raise ValueError(f"style must be one of {', '.join(_STYLES)}, got {style!r}")
+        kw = dict(smooth_shading=False, show_edges=show_edges, lighting=style == "surface", style=style)
         if scalars is not None:
             if scalars not in poly.point_data:
                 raise ValueError(f"scalars {scalars!r} is not a vertex attribute of meshes[{i}] "
@@ -173,7 +178,7 @@ def _snap(plotter):
 
 def render_mesh(meshes, path=None, *, size=512, view="iso", azimuth=0.0, elevation=0.0, zoom=1.0,
                 colors=None, scalars=None, cmap="viridis", clim=None, background="white",
-                smooth_shading=True, show_edges=False, fit=True) -> np.ndarray:
+                smooth_shading=True, show_edges=False, style="surface", fit=True) -> np.ndarray:
     """Render one mesh or a scene of meshes off screen; return the image and optionally write it.
 
     Parameters
@@ -200,6 +205,8 @@ def render_mesh(meshes, path=None, *, size=512, view="iso", azimuth=0.0, elevati
         Meshes with vertex colours are drawn in them.
     scalars : str, optional
         Colour by a vertex attribute instead (e.g. ``"displacement"``) through ``cmap``/``clim``.
+    style : {"surface", "wireframe", "points"}
+        Shaded surface (default), or the paper's wire-frame look (unlit lines).
 
     Returns
     -------
@@ -213,7 +220,8 @@ def render_mesh(meshes, path=None, *, size=512, view="iso", azimuth=0.0, elevati
     ((64, 64, 3), True)
     """
     plotter, polys = _plotter(meshes, size=size, colors=colors, scalars=scalars, cmap=cmap, clim=clim,
-                              background=background, smooth_shading=smooth_shading, show_edges=show_edges)
+                              background=background, smooth_shading=smooth_shading, show_edges=show_edges,
+                              style=style)
     try:
         _set_camera(plotter, view, azimuth, elevation, zoom, fit=polys if fit else None)
         image = _snap(plotter)
@@ -253,7 +261,8 @@ def render_stereo_pair(meshes, path=None, *, separation=5.0, cross=True, size=38
 
 def render_turntable(meshes, path=None, *, frames=36, fps=12.0, degrees=360.0, size=512, view="iso",
                      elevation=0.0, zoom=1.0, colors=None, scalars=None, cmap="viridis", clim=None,
-                     background="white", smooth_shading=True, show_edges=False, show_progress=None) -> np.ndarray:
+                     background="white", smooth_shading=True, show_edges=False, style="surface",
+                     show_progress=None) -> np.ndarray:
     """Render a turntable: the camera turns ``degrees`` about the view-up axis over ``frames`` frames.
 
     Returns the frames ``(frames, height, width, 3)`` uint8 and writes them to
@@ -271,7 +280,7 @@ def render_turntable(meshes, path=None, *, frames=36, fps=12.0, degrees=360.0, s
     frames = check_int("frames", frames, lo=1, hi=100_000)
     degrees = check_real("degrees", degrees, lo=-3600.0, hi=3600.0)
     plotter, _ = _plotter(meshes, size=size, colors=colors, scalars=scalars, cmap=cmap, clim=clim,
-                          background=background, smooth_shading=smooth_shading, show_edges=show_edges)
+                          background=background, smooth_shading=smooth_shading, show_edges=show_edges, style=style)
     out = []
     try:
         _set_camera(plotter, view, 0.0, elevation, zoom)
