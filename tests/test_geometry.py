@@ -430,3 +430,15 @@ def test_vector_displacement_moves_vertices_by_the_3d_field():
         displace(mesh, waves, direction="vector")
     with pytest.raises(ValueError, match="direction must be"):
         displace(mesh, waves, direction="tangent")
+
+
+def test_texture_coordinates_and_colours_are_kept():
+    mesh = sphere(2)
+    uv = np.random.default_rng(0).random((len(mesh.vertices), 2))
+    mesh.visual = trimesh.visual.TextureVisuals(uv=uv)
+    out = displace(mesh, waves, 0.1, on_aliasing="ignore")
+    np.testing.assert_array_equal(out.visual.uv, uv)
+    painted = sphere(2)
+    painted.visual.face_colors = [255, 0, 0, 255]
+    out = displace(painted, waves, 0.1, on_aliasing="ignore")
+    np.testing.assert_array_equal(out.visual.face_colors[:, :3], np.tile([255, 0, 0], (len(out.faces), 1)))

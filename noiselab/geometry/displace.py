@@ -340,6 +340,8 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
     number of times (smooths, so it changes the shape of a coarse mesh).
     A mesh that already has the resolution is returned as a copy. The face
     count is checked against ``max_faces`` and memory before subdividing.
+    The refined mesh carries geometry only (colours and texture coordinates
+    are not interpolated onto the new vertices).
 
     Examples
     --------
@@ -516,7 +518,8 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
         s *= amplitude
         new_vertices = vertices + s[:, None] * n
     out = trimesh.Trimesh(new_vertices, faces.copy(), process=False, validate=False)
-    if mesh.visual.kind == "vertex":
+    if mesh.visual.defined:
+        # vertices and faces keep their order, so colours and texture coordinates still fit
         out.visual = mesh.visual.copy()
     out.vertex_attributes["displacement"] = s
     return out
