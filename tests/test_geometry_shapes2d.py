@@ -45,6 +45,14 @@ def test_radial_arc_keeps_angles_and_stays_within_amplitude():
     np.testing.assert_allclose(np.hypot(clean[:, 0], clean[:, 1]), 2.0)
 
 
+def test_arc_in_the_papers_units_degrees():
+    theta_deg = np.linspace(-2.5, 2.5, 101)                  # figure 3: a 5-degree arc, 2 cycles per degree
+    deg = noisy_arc(wave1, theta_deg, amplitude=0.01, frequency=2.0, degrees=True)
+    rad = noisy_arc(wave1, np.radians(theta_deg), amplitude=0.01, frequency=2.0 * 180 / np.pi)
+    np.testing.assert_allclose(deg, rad, atol=1e-12)
+    np.testing.assert_allclose(np.degrees(np.arctan2(deg[:, 0], deg[:, 1])), theta_deg, atol=1e-9)
+
+
 def test_xy_arc_moves_points_by_the_2d_output():
     theta = np.linspace(0, 1, 50)
     pts = noisy_arc(wave1_2, theta, radius=1.0, amplitude=0.2, frequency=3.0, mode="xy")

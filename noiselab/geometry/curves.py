@@ -27,7 +27,8 @@ def _unit_circle(theta):
     return np.stack([np.sin(theta), np.cos(theta)], axis=-1)
 
 
-def noisy_arc(field, theta, radius=1.0, amplitude=0.1, frequency=1.0, phase=0.0, *, mode="radial"):
+def noisy_arc(field, theta, radius=1.0, amplitude=0.1, frequency=1.0, phase=0.0, *, mode="radial",
+              degrees=False):
     """Points of an arc of radius ``radius`` distorted by a 1-D-input field of the angle (Eq. 3).
 
     Parameters
@@ -47,6 +48,9 @@ def noisy_arc(field, theta, radius=1.0, amplitude=0.1, frequency=1.0, phase=0.0,
         Offset of the noise input.
     mode : {"radial", "xy"}
         Distort the radius (figure 3) or x and y independently (figure 5).
+    degrees : bool
+        ``theta`` in degrees and ``frequency`` in cycles per degree (the
+        paper's units: figure 3 is a 5-degree arc at 2 cycles per degree).
 
     Returns
     -------
@@ -70,7 +74,7 @@ def noisy_arc(field, theta, radius=1.0, amplitude=0.1, frequency=1.0, phase=0.0,
     frequency = check_real("frequency", frequency, lo=0.0)
     phase = check_real("phase", phase)
     u = (frequency * theta + phase)[:, None]
-    circle = _unit_circle(theta)
+    circle = _unit_circle(np.radians(theta) if degrees else theta)
     if mode == "radial":
         s = evaluate_field(field, u, components=1)
         return (radius + amplitude * s)[:, None] * circle
