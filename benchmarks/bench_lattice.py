@@ -306,10 +306,11 @@ def precision_section(lines):
             f.frequency = 1.0
 
             def run(x, f=f):
-                c = fns.empty_coords(x.size)
-                c[0] = x
-                c[1] = 0.3
-                c[2] = 0.7
+                c = fns.empty_coords(x.size)  # padded to the SIMD width
+                c[:] = 0.0
+                c[0, : x.size] = x
+                c[1, : x.size] = 0.3
+                c[2, : x.size] = 0.7
                 return f.genFromCoords(c)[: x.size]
             rows[f"pyfastnoisesimd {label}"] = run
     vtk = _peer("vtk")

@@ -448,3 +448,45 @@ def final_pass_direct(inter, pos, w, scales, out):
                     else:
                         for q in range(npost):
                             o[q] += wk * rk[q]
+
+
+@nb.njit(cache=True, nogil=True)
+def dense_taps(fis, base, taps, period):
+    """Distinct lattice taps of one grid axis, by marking offsets from the smallest floor index.
+
+    Returns ``lattice`` (reduced index of each distinct tap, in increasing
+    raw order) and ``pos`` (N, taps): the position of each sample's taps in it.
+    Used when the taps span few cells (dense grids); equivalent to ``np.unique``.
+    """
+    nn = fis.shape[0]
+    j0 = 0
+    for j in range(nn):
+        if fis[j] < fis[j0]:
+            j0 = j
+    lo = fis[j0]
+    span = 0
+    for j in range(nn):
+        r = np.int64(fis[j] - lo)
+        if r > span:
+            span = r
+    span += taps
+    index = np.full(span, -1, np.int64)
+    for j in range(nn):
+        r = np.int64(fis[j] - lo)
+        for k in range(taps):
+            index[r + k] = 0
+    count = 0
+    for r in range(span):
+        if index[r] == 0:
+            index[r] = count
+            count += 1
+    lattice = np.empty(count, np.int64)
+    for r in range(span):
+        if index[r] >= 0:
+            lattice[index[r]] = (base[j0] + r) % period
+    pos = np.empty((nn, taps), np.int64)
+    for j in range(nn):
+        r = np.int64(fis[j] - lo)
+        for k in range(taps):
+            pos[j, k] = index[r + k]
+    return lattice, pos

@@ -77,6 +77,12 @@ def grid_coordinates(shape, extent):
             for a, n in enumerate(shape)]
 
 
+def _check_large(nbytes, what):
+    """``check_memory`` for allocations past 64 MiB (reading /proc costs more than a small grid)."""
+    if nbytes > (64 << 20):
+        check_memory(nbytes, what)
+
+
 def _per_axis(name, value, dim, *, lo=None, lo_open=False, integer=False):
     arr = np.atleast_1d(np.asarray(value, dtype=object if integer else np.float64))
     if arr.ndim != 1 or arr.size not in (1, dim):
@@ -264,7 +270,7 @@ class LatticeNoise:
         raw = np.asarray(points)
         lead, flat = self._prepare_points(raw)
         dtype = self._out_dtype(raw.dtype, dtype)
-        check_memory(flat.shape[0] * (self.dim_out * dtype.itemsize + 8 * self.dim_in), "lattice noise")
+        _check_large(flat.shape[0] * (self.dim_out * dtype.itemsize + 8 * self.dim_in), "lattice noise")
         out = self._evaluate(flat, self.frequency[None], np.array([self.scale]), False, dtype)
         return self._shape_out(out, lead)
 
@@ -326,7 +332,7 @@ class LatticeNoise:
             sl = [(0, s) for s in shape]
         out_shape = tuple(hi - lo for lo, hi in sl)
         size = int(np.prod(out_shape, dtype=np.int64))
-        check_memory(size * self.dim_out * dtype.itemsize * 2 + size * 8, "lattice noise grid")
+        _check_large(size * self.dim_out * dtype.itemsize * 2 + size * 8, "lattice noise grid")
         out = np.zeros((self.dim_out,) + out_shape, dtype=dtype)
         if size == 0:
             return self._finish_grid(out)
@@ -381,6 +387,10 @@ class LatticeNoise:
         fis, base, w, rw = _jit.axis_weights(coords_a, freq_a, self.phase[a], k.shift, k.left, k.taps,
                                              k.coef, int(self.period[a]), grad)
         # distinct lattice taps along this axis, relative to the smallest
+        span = fis.max() - fis.min() if fis.size else 0.0
+        if span <= 4 * k.taps * fis.size + 64:
+            lattice, pos = _jit.dense_taps(fis, base, k.taps, int(self.period[a]))
+            return lattice, pos, w, rw
         j0 = int(np.argmin(fis))
         rel = (fis - fis[j0]).astype(np.int64)[:, None] + np.arange(k.taps)
         uniq, inv = np.unique(rel, return_inverse=True)
