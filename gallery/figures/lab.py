@@ -9,49 +9,55 @@ USES = ("noiselab.spectral", "noiselab.lattice", "noiselab.fractal", "noiselab.a
 
 
 @figure("lab", "one_over_f", seed="The lab's own comparison (no seed figure)",
-        title="1/f texture: spectral synthesis beside a lattice fractal sum, with radial spectra and anisotropy",
-        params=dict(size=512, octaves=8, cells=4.0, seed=21), quick=dict(size=64, octaves=4), uses=USES)
-def one_over_f(out, *, size, octaves, cells, seed):
+        title="1/f texture: spectral synthesis beside lattice fractal sums, with radial spectra and anisotropy",
+        params=dict(size=512, octaves=8, cells=4.0, gains=(1.0, 0.5), seed=21), quick=dict(size=64, octaves=4), uses=USES)
+def one_over_f(out, *, size, octaves, cells, gains, seed):
     from noiselab import LatticeNoise, analysis, fractal_sum, spectral_noise
     from noiselab.lattice import Grid
 
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    band = (1.0, size / 2)
-    spectral = spectral_noise((size, size), exponent=1.0, seed=seed, dtype=np.float64)
-    lattice, used = fractal_sum(LatticeNoise(2, seed=seed), Grid((size, size), [(0, cells), (0, cells)]), octaves,
-                                normalize=True, return_octaves=True)
+    fields = {"spectral: spectral_noise, 1/f": spectral_noise((size, size), exponent=1.0, seed=seed, dtype=np.float64)}
+    for g in gains:
+        f, used = fractal_sum(LatticeNoise(2, seed=seed), Grid((size, size), [(0, cells), (0, cells)]), octaves,
+                              gain=g, normalize=True, return_octaves=True)
+        fields[f"lattice: fractal_sum, gain {g:g}, {used} octaves"] = f
     fit_band = (2 * cells, min(size / 4, cells * 2 ** (used - 1)))
-    fields = {"spectral (spectral_noise, 1/f)": spectral, f"lattice (fractal_sum, {used} octaves)": lattice}
-    fig, axes = plt.subplots(1, 4, figsize=(17, 4.2))
+    n = len(fields)
+    fig, axes = plt.subplots(1, n + 2, figsize=(4.2 * (n + 2), 4.2))
     measured = {}
-    for ax, (name, f) in zip(axes[:2], fields.items()):
+    for ax, (name, f) in zip(axes[:n], fields.items()):
         ax.imshow(f, cmap="gray"), ax.set_title(name, fontsize=9), ax.axis("off")
     for k, (name, f) in enumerate(fields.items()):
-        short = name.split()[0]
-        rad = analysis.radial_spectrum(f, log=True)
+        short = name.split(",")[0] + ("" if k == 0 else f" g={gains[k - 1]:g}")
+        # the lattice sums do not tile the frame: every field is measured through a Hann window, so no
+        # wrap-around edge puts a false cross on the axes of the spectrum
+        rad = analysis.radial_spectrum(f, log=True, window="hann")
         keep = rad.counts > 0
-        axes[2].loglog(rad.centers[keep], np.sqrt(rad.power[keep]), label=short, color=f"C{k}")
-        slope = analysis.spectral_slope(f, fit_band)
-        ori = analysis.orientation_energy(f, fit_band)
-        theta = np.concatenate([ori.angles, ori.angles + np.pi])
-        axes[3].plot(np.degrees(theta), np.concatenate([ori.energy, ori.energy]) / ori.energy.mean(), label=short, color=f"C{k}")
+        axes[n].loglog(rad.centers[keep], np.sqrt(rad.power[keep]), label=short, color=f"C{k}")
+        slope = analysis.spectral_slope(f, fit_band, window="hann")
+        ori = analysis.orientation_energy(f, fit_band, window="hann")
+        theta = np.concatenate([ori.angles, ori.angles + 180.0])   # degrees, wave-vector orientation
+        axes[n + 1].plot(theta, np.concatenate([ori.energy, ori.energy]) / ori.energy.mean(), label=short, color=f"C{k}")
         measured[f"{short}: range"] = [float(f.min()), float(f.max())]
-        measured[f"{short}: amplitude slope over {fit_band[0]:g}-{fit_band[1]:g} cycles/frame (1/f: -1)"] = float(slope)
-        measured[f"{short}: anisotropy (0 = isotropic)"] = analysis.anisotropy(f, fit_band)
-    axes[2].axvspan(*fit_band, color="0.92", zorder=0)
+        measured[f"{short}: amplitude slope over {fit_band[0]:g}-{fit_band[1]:g} cycles/frame"] = float(slope)
+        measured[f"{short}: anisotropy (0 = isotropic)"] = analysis.anisotropy(f, fit_band, window="hann")
+    axes[n].axvspan(*fit_band, color="0.92", zorder=0)
     f0 = np.geomspace(*fit_band, 10)
-    axes[2].loglog(f0, np.sqrt(rad.power[keep]).max() * 0.3 * f0[0] / f0, "k--", lw=1, label="1/f")
-    axes[2].set_xlabel("cycles/frame"), axes[2].set_ylabel("radial amplitude"), axes[2].legend(fontsize=8)
-    axes[2].set_title("radially averaged amplitude spectra", fontsize=9)
-    axes[3].set_xlabel("orientation (degrees)"), axes[3].set_ylabel("energy / mean"), axes[3].legend(fontsize=8)
-    axes[3].set_title("energy against orientation (whitened)", fontsize=9)
+    axes[n].loglog(f0, 0.3 * np.sqrt(rad.power[keep]).max() * f0[0] / f0, "k--", lw=1, label="1/f")
+    axes[n].set_xlabel("cycles/frame"), axes[n].set_ylabel("radial amplitude"), axes[n].legend(fontsize=8)
+    axes[n].set_title("radially averaged amplitude spectra (Hann window)", fontsize=9)
+    axes[n + 1].set_xlabel("wave-vector orientation (degrees)"), axes[n + 1].set_ylabel("energy / mean")
+    axes[n + 1].set_xticks(range(0, 361, 90)), axes[n + 1].legend(fontsize=8)
+    axes[n + 1].set_title("energy against orientation (whitened)", fontsize=9)
     return Result([save_figure(fig, out / "one_over_f.png")],
-                  f"Two {size} x {size} textures with 1/f amplitude spectra: one shaped in the Fourier domain and inverted "
-                  f"(noiselab.spectral_noise), one a fractal sum of {used} octaves of cubic value noise over {cells:g} "
-                  "lattice cells (lacunarity 2, gain 1/2). Right: their radial amplitude spectra and energy against "
-                  "orientation; the lattice sum shows its axes, the spectral field does not.", measured)
+                  f"{size} x {size} textures: one with a 1/f amplitude spectrum shaped in the Fourier domain and inverted "
+                  f"(noiselab.spectral_noise), and fractal sums of cubic value noise over {cells:g} lattice cells "
+                  f"(lacunarity 2) with gains {', '.join(f'{g:g}' for g in gains)}. A gain g per octave gives an amplitude "
+                  "spectral density slope of log2(g) - d/2 in d dimensions: in 2-D, gain 1 is the 1/f texture and "
+                  "Phillips' gain 1/2 (Eq. 9) is 1/f^2 (Brownian). Right: radial amplitude spectra and energy against "
+                  "orientation, all measured through a Hann window.", measured)
 
 
 @figure("lab", "kernels", seed="The lab's own comparison (Phillips 2004, Sec. 2.1.1 smoothing filters)",
