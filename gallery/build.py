@@ -110,6 +110,8 @@ def write_index(out: Path, *, summary="") -> Path:
         man = read_manifest(out, spec)
         if man and not man.get("error") and not all((out / f).is_file() for f in man["files"]):
             man = None
+        if man and not man.get("error"):
+            man["stale"] = man.get("hash") != content_hash(spec, bool(man.get("quick")))
         entries.append((spec, man))
     page = render_index(out, entries, summary=summary)
     index = out / "index.html"

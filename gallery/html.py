@@ -147,7 +147,11 @@ def render_index(root: Path, entries, *, title="noiselab gallery", summary="") -
             cap.append(f'<br><span class="params">Parameters: {html.escape(format_params(man["params"]))}</span>')
             if man.get("measured"):
                 cap.append(f'<br><span class="measured">Measured: {html.escape(format_measured(man["measured"]))}</span>')
-            cap.append(f'<br><span class="params">Built in {man.get("seconds", 0):.1f} s.</span>')
+            cap.append(f'<br><span class="params">Built in {man.get("seconds", 0):.1f} s'
+                       f'{" (quick sizes)" if man.get("quick") else ""}.</span>')
+            if man.get("stale"):
+                cap.append('<br><span class="missing">Out of date: its code, parameters or the noiselab modules it '
+                           'uses changed since; build again to refresh it.</span>')
             body.append(f'<figure id="{anchor}">{head}{_media(files, root)}<figcaption>{"".join(cap)}</figcaption></figure>')
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             f"<title>{html.escape(title)}</title>"

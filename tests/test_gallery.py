@@ -231,3 +231,18 @@ def test_a_failing_figure_is_reported_and_leaves_no_half_written_folder(tmp_path
     folder = tmp_path / "zz_broken" / "boom"
     assert sorted(p.name for p in folder.iterdir()) == ["manifest.json"]
     assert "deliberate failure" in json.loads((folder / "manifest.json").read_text())["error"]
+
+
+def test_index_marks_a_figure_whose_code_changed_as_out_of_date(tmp_path):
+    build_mod.build(tmp_path, only="lab/kernels", quick=True, show_progress=False)
+    assert "Out of date" not in (tmp_path / "index.html").read_text()
+    mpath = tmp_path / "lab" / "kernels" / "manifest.json"
+    m = json.loads(mpath.read_text())
+    m["hash"] = "f" * 64   # as if built by another version of the figure's code
+    mpath.write_text(json.dumps(m))
+    build_mod.build(tmp_path, only="lab/one_over_f", quick=True, show_progress=False)
+    page = _parse(tmp_path / "index.html")
+    kernels = [f for f in page.figures if f["id"] == "lab-kernels"][0]
+    assert "Out of date" in kernels["caption"] and kernels["srcs"]
+    fresh = [f for f in page.figures if f["id"] == "lab-one_over_f"][0]
+    assert "Out of date" not in fresh["caption"]
