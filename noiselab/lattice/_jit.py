@@ -490,3 +490,20 @@ def dense_taps(fis, base, taps, period):
         for k in range(taps):
             pos[j, k] = index[r + k]
     return lattice, pos
+
+
+@nb.njit(cache=True, nogil=True)
+def hash_expand_values(h, par, lat, perm, n, first, values, out):
+    """The last level of :func:`hash_expand` fused with the value lookup: ``out[m, l] = values[parity, h']``."""
+    nl = lat.shape[0]
+    m = 1 if first else h.shape[0]
+    for i in range(m):
+        hb = 0 if first else h[i]
+        pb = 0 if first else par[i]
+        for l in range(nl):
+            s = hb + lat[l]
+            if s >= n:
+                s -= n
+                if s >= n:
+                    s = s % n
+            out[i * nl + l] = values[(pb + lat[l]) & 1, perm[s]]

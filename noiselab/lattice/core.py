@@ -403,7 +403,7 @@ class LatticeNoise:
         n = self.table_size
         perm = self.perms[c]
         h = par = np.zeros(1, np.int64)
-        for a, lat in enumerate(lattices):
+        for a, lat in enumerate(lattices):  # no lattices: the single empty prefix
             h, par = _jit.hash_expand(h, par, np.ascontiguousarray(lat, dtype=np.int64), perm, n, a == 0)
         return h, par
 
@@ -439,13 +439,17 @@ class LatticeNoise:
                 for (freq, amp), axes in zip(batch, axes_per_octave):
                     lattices = [ax[0] for ax in axes]
                     bshape = tuple(len(lat) for lat in lattices)
-                    h, par = self._block_hash(c, lattices)
-                    block = np.empty(h.shape[0])
+                    block = np.empty(int(np.prod(bshape, dtype=np.int64)))
+                    if grad:
+                        h, par = self._block_hash(c, lattices)
+                    else:
+                        # hash all but the last level, then hash and look up in one pass
+                        h, par = self._block_hash(c, lattices[:-1])
+                        _jit.hash_expand_values(h, par, np.ascontiguousarray(lattices[-1], dtype=np.int64),
+                                                self.perms[c], self.table_size, d == 1, self.values, block)
                     for b in range(nterm):
                         if grad:
                             _jit.gather_gradients(h, self.gradients, b, block)
-                        else:
-                            _jit.gather_values(h, par, self.values, block)
                         target = inter_all[row0:row0 + bshape[0]]
                         self._contract_rest(block.reshape(bshape), axes, b if grad else -1, target)
                         _, pos0, w0, rw0 = axes[0]
