@@ -141,6 +141,16 @@ def test_cli_plane_becomes_a_monge_surface_fine_enough_for_the_noise(tmp_path):
     assert resolution_report(flat, 4.0).ok                                         # 4 samples per top-octave period
 
 
+def test_cli_vector_displacement_moves_vertices_off_the_normal(tmp_path):
+    out = tmp_path / "v.ply"
+    assert main(["mesh", "--shape", "sphere", "--subdivisions", "3", "-f", "1", "-a", "0.2",
+                 "--direction", "vector", "-o", str(out)]) == 0
+    moved = read_mesh(out).vertices - sphere(3).vertices
+    n = sphere(3).vertices / np.linalg.norm(sphere(3).vertices, axis=1, keepdims=True)
+    tangential = np.linalg.norm(moved - np.einsum("ij,ij->i", moved, n)[:, None] * n, axis=1)
+    assert tangential.max() > 0.02
+
+
 def test_cli_turntable_video(tmp_path):
     out = tmp_path / "v" / "t.gif"
     assert main(["mesh", "--shape", "sphere", "--subdivisions", "3", "-f", "1", "--render", str(out),

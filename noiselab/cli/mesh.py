@@ -38,6 +38,8 @@ def add_arguments(parser):
     f.add_argument("--basis", choices=("value", "gradient"), default="value",
                    help="Phillips' value noise (default) or Perlin's gradient noise")
     f.add_argument("--time", type=float, default=None, help="time coordinate: use 4-D noise (x, y, z, t)")
+    f.add_argument("--direction", choices=("normal", "vector"), default="normal",
+                   help="move vertices along their normals (Eq. 11, default) or by a 3-component noise vector")
     r = parser.add_argument_group("resolution")
     r.add_argument("--resolution", choices=("auto", "warn", "raise", "ignore"), default="auto",
                    help="mesh too coarse for the highest octave: refine to what it needs (auto, default), "
@@ -65,7 +67,8 @@ def _lattice(dim, args):
         from ..lattice import LatticeNoise
     except ImportError as exc:  # pragma: no cover - the lattice package is part of noiselab
         raise ValueError(f"the lattice noise is not available: {exc}") from None
-    return LatticeNoise(dim, seed=args.seed, kernel=args.kernel, basis=args.basis)
+    dim_out = 3 if args.direction == "vector" else 1
+    return LatticeNoise(dim, dim_out, seed=args.seed, kernel=args.kernel, basis=args.basis)
 
 
 def _load(args):
@@ -140,7 +143,7 @@ def run(args) -> int:
     kind = "fractal" if args.field == "noise" else args.field
     common = dict(amplitude=args.amplitude, frequency=frequency, phase=args.phase, octaves=octaves, kind=kind,
                   lacunarity=lacunarity, gain=args.gain, samples_per_period=args.samples_per_period,
-                  on_aliasing=on_aliasing)
+                  on_aliasing=on_aliasing, direction=args.direction)
     t0 = 0.0 if args.time is None else args.time
     displaced = geo.displace(mesh, field, time=t0 if use_time else None, **common)
     s = displaced.vertex_attributes["displacement"]
