@@ -21,7 +21,7 @@ def add_arguments(parser):
     parser.add_argument("--quick", action="store_true", help="CI-size run: tiny sizes, seconds (numbers not meaningful)")
     parser.add_argument("--output", default=None, metavar="DIR",
                         help="folder for RESULTS.md (plots and JSON go to DIR/results/); default: benchmarks/ of "
-                             "this checkout")
+                             "this checkout, or out/bench-quick/ with --quick (never the published results)")
     parser.add_argument("--no-peers", action="store_true",
                         help="skip the peers (they need benchmarks/.venv-peers: bash benchmarks/setup_peers.sh)")
 

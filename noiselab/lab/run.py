@@ -28,7 +28,11 @@ from .measure import fit_exponent, machine_info
 
 __all__ = ["run_all", "md_table", "ROOT", "PEER_PYTHON"]
 
+# the checkout this package runs from (an editable install, as install.sh makes); the current
+# folder when noiselab was installed elsewhere
 ROOT = Path(__file__).resolve().parents[2]
+if not (ROOT / "benchmarks").is_dir():  # pragma: no cover - non-editable installs
+    ROOT = Path.cwd()
 PEER_PYTHON = ROOT / "benchmarks" / ".venv-peers" / "bin" / "python"
 
 
@@ -240,7 +244,8 @@ def run_all(*, quick=False, output=None, peers=True, log=print):
         CI-size run (seconds, tiny sizes); the numbers are not meaningful.
     output : path, optional
         Folder for ``RESULTS.md``; plots and JSON go to ``output/results/``.
-        Default ``benchmarks/`` of this checkout (the published results).
+        Default ``benchmarks/`` of this checkout (the published results), or
+        ``out/bench-quick/`` for a quick run.
     peers : bool
         Also run the peers (needs ``benchmarks/.venv-peers``).
 
@@ -250,7 +255,11 @@ def run_all(*, quick=False, output=None, peers=True, log=print):
     ``sweeps``, ``peers``), ``info`` and the written ``path``.
     """
     cfg = Config.quick_config() if quick else Config.full()
-    out_dir = Path(output) if output is not None else ROOT / "benchmarks"
+    if output is not None:
+        out_dir = Path(output)
+    else:
+        # a quick run never overwrites the published results
+        out_dir = ROOT / "out" / "bench-quick" if quick else ROOT / "benchmarks"
     res_dir = out_dir / "results"
     res_dir.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
