@@ -6,7 +6,9 @@ Run with the peers' environment (see DEVELOPERS.md)::
 
 Writes ``benchmarks/bench_lattice.md`` beside this script. Every timing is
 the median of ``--repeats`` (>= 5) runs, the candidates of one table
-interleaved in the same process, one thread. The floor is writing a float64
+interleaved in the same process, one thread; every ratio is the median of
+the ratios of back-to-back runs (robust to the load drifting on a shared
+machine). The floor is writing a float64
 array of the output's size (``np.full``); "x floor" is floor time / our time
 (1.0 would be as fast as merely writing the output).
 """
@@ -60,8 +62,24 @@ def _peer(name):
         return None
 
 
-def bench(cands: dict, repeats: int) -> dict:
-    """Median seconds per candidate; candidates interleaved, one warm-up each."""
+class Times(dict):
+    """Median seconds per candidate (the dict), plus :meth:`ratio` from paired runs."""
+
+    def __init__(self, raw):
+        super().__init__({k: float(np.median(v)) for k, v in raw.items()})
+        self.raw = {k: np.asarray(v) for k, v in raw.items()}
+
+    def ratio(self, ref, key):
+        """Median over repeats of time(ref) / time(key), each pair measured back to back.
+
+        On a shared machine the load drifts between repeats; a ratio of two
+        neighbouring runs cancels most of that drift.
+        """
+        return float(np.median(self.raw[ref] / self.raw[key]))
+
+
+def bench(cands: dict, repeats: int) -> Times:
+    """Time candidates interleaved (one warm-up each), ``repeats`` rounds."""
     for f in cands.values():
         f()
     times = {k: [] for k in cands}
@@ -70,7 +88,7 @@ def bench(cands: dict, repeats: int) -> dict:
             t0 = time.perf_counter()
             f()
             times[k].append(time.perf_counter() - t0)
-    return {k: float(np.median(v)) for k, v in times.items()}
+    return Times(times)
 
 
 def _version(dist):
@@ -119,9 +137,11 @@ def grid_section(repeats, quick, lines):
                 row = [kname, basis, label]
                 for dt in ("float64", "float32"):
                     tt = t[f"{key}_{dt}"]
-                    row += [f"{npts / tt:.3g}", f"{t['floor'] / tt:.2f}",
-                            f"{t[fkey] / tt:.2f}" if fkey in t else "n/a"]
-                    summary[(kname, basis, key, dt)] = (npts / tt, t["floor"] / tt, t[fkey] / tt if fkey in t else None)
+                    k_ = f"{key}_{dt}"
+                    row += [f"{npts / tt:.3g}", f"{t.ratio('floor', k_):.2f}",
+                            f"{t.ratio(fkey, k_):.2f}" if fkey in t else "n/a"]
+                    summary[(kname, basis, key, dt)] = (npts / tt, t.ratio("floor", k_),
+                                                        t.ratio(fkey, k_) if fkey in t else None)
                 lines.append("| " + " | ".join(row) + " |")
             if "fns1" in t:
                 summary["fns"] = (npts / t["fns1"], npts / t["fns6"])
@@ -166,7 +186,7 @@ def grid_section(repeats, quick, lines):
         if k == "floor":
             continue
         prec, note = notes.get(k, ("float64", ""))
-        lines.append(f"| {k} | {prec} | {npts / v:.3g} | {t['floor'] / v:.2f} | {note} |")
+        lines.append(f"| {k} | {prec} | {npts / v:.3g} | {t.ratio('floor', k):.2f} | {note} |")
     # per-point Python-loop peers: measured on a subset, rate extrapolated
     sub = 128
     slow = {}
@@ -215,10 +235,10 @@ def scattered_section(repeats, quick, lines):
                 lite.frequency = 1.0
                 cands["fnl"] = lambda lite=lite: lite.gen_from_coords(coords)
             t = bench(cands, repeats)
-            xf = lambda k: f"{t['fnl'] / t[k]:.2f}" if "fnl" in t else "n/a"  # noqa: E731
-            lines.append(f"| {kname} ({noise.kernel.taps}) | {basis} | {npts / t['f64']:.3g} | {t['floor'] / t['f64']:.3f} | "
+            xf = lambda k: f"{t.ratio('fnl', k):.2f}" if "fnl" in t else "n/a"  # noqa: E731
+            lines.append(f"| {kname} ({noise.kernel.taps}) | {basis} | {npts / t['f64']:.3g} | {t.ratio('floor', 'f64'):.3f} | "
                          f"{xf('f64')} | {npts / t['f32']:.3g} | {xf('f32')} |")
-            summary[(kname, basis)] = (npts / t["f64"], t["fnl"] / t["f64"] if "fnl" in t else None)
+            summary[(kname, basis)] = (npts / t["f64"], t.ratio("fnl", "f64") if "fnl" in t else None)
             if "fnl" in t:
                 summary["fnl"] = npts / t["fnl"]
     # peers
@@ -350,10 +370,28 @@ def main():
              f"- python {platform.python_version()}, numpy {np.__version__}, numba {_version('numba')}, "
              + ", ".join(f"{d} {_version(d)}" for d in ("noise", "pyfastnoiselite", "pyfastnoisesimd", "opensimplex",
                                                          "vnoise", "perlin-numpy", "vtk")),
-             f"- timings: median of {repeats} interleaved runs per table\n"]
-    grid_section(repeats, args.quick, lines)
-    scattered_section(repeats, args.quick, lines)
-    precision_section(lines)
+             f"- timings: median of {repeats} interleaved runs per table; ratios: median of the {repeats} "
+             "ratios of back-to-back runs\n"]
+    body = []
+    gsum = grid_section(repeats, args.quick, body)
+    ssum = scattered_section(repeats, args.quick, body)
+    precision_section(body)
+    lines.append("## Summary (float64 unless stated; ratios > 1 mean noiselab is faster)\n")
+    for kname in ("cubic", "quintic"):
+        for key, label in (("one", "one octave"), ("six", "6-octave fractal sum")):
+            r = gsum.get((kname, "value", key, "float64"))
+            r32 = gsum.get((kname, "value", key, "float32"))
+            if r:
+                fns_txt = f", {r[2]:.2f}x pyfastnoisesimd value noise (float32)" if r[2] else ""
+                lines.append(f"- 2-D grid 1024^2, value noise, {kname} kernel, {label}: {r[0]:.3g} pts/s "
+                             f"({r[1]:.2f}x the float64 write floor{fns_txt}); float32 output {r32[0]:.3g} pts/s")
+    for kname in ("quintic", "cubic"):
+        r = ssum.get((kname, "value"))
+        if r:
+            fnl_txt = f", {r[1]:.2f}x pyfastnoiselite value noise (float32)" if r[1] else ""
+            lines.append(f"- 1e6 scattered 3-D points, value noise, {kname} kernel: {r[0]:.3g} pts/s{fnl_txt}")
+    lines.append("")
+    lines += body
     Path(args.output).write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
