@@ -107,6 +107,19 @@ def test_single_flake_moves_by_its_speed():
     assert ys[1] - ys[0] == pytest.approx(fl["speed"][0], abs=0.15) or fl["y"][0] > 64 - 12
 
 
+def test_motion_blur_spreads_a_flake_along_its_motion_and_keeps_its_coverage():
+    kw = dict(seed=5, band=(4, 8), flakes=1, opacity=0.5, return_flakes=True)
+    sharp, fl = particle_snow((6, 64, 64), **kw)
+    blurred, _ = particle_snow((6, 64, 64), motion_blur=True, **kw)
+    assert fl["speed"][0] > 1.0  # moves more than a pixel per frame
+    assert blurred.sum() == pytest.approx(sharp.sum(), rel=0.02)  # the same total coverage
+    rows_sharp = (sharp[2] > 0).any(axis=1).sum()
+    rows_blur = (blurred[2] > 0).any(axis=1).sum()
+    cols_sharp = (sharp[2] > 0).any(axis=0).sum()
+    cols_blur = (blurred[2] > 0).any(axis=0).sum()
+    assert rows_blur > rows_sharp and cols_blur == cols_sharp  # longer along y (the fall), not across
+
+
 def test_particles_same_seed_same_bits():
     a = particle_snow((3, 40, 48), seed=11, flakes=80)
     b = particle_snow((3, 40, 48), seed=11, flakes=80)
@@ -215,11 +228,13 @@ def test_quick_experiments_make_well_formed_tables():
     assert spectral["band_leakage"] < 1e-6  # an exact spectrum has nothing outside its band
     assert all(r["band_leakage"] > 0.01 for r in rows if r["family"] == "lattice")
     snow_rows = snow_experiment(cfg)
-    assert [r["method"].split(" (")[0] for r in snow_rows] == ["tent IFFT", "layered lattice", "particles"]
-    tent, lay, par = snow_rows
+    assert [r["method"].split(" (")[0] for r in snow_rows] == ["tent IFFT", "layered lattice", "particles",
+                                                                "particles, motion-blurred"]
+    tent, lay, par, blur = snow_rows
     assert tent["loop_seam"] == pytest.approx(1.0, abs=0.05)  # the IFFT loops exactly
-    assert lay["loop_seam"] > 1.2 and par["loop_seam"] > 1.2  # the others do not
-    assert tent["tent_energy"] > max(lay["tent_energy"], par["tent_energy"])
+    assert min(lay["loop_seam"], par["loop_seam"], blur["loop_seam"]) > 1.2  # the others do not
+    assert tent["tent_energy"] > max(lay["tent_energy"], par["tent_energy"], blur["tent_energy"])
+    assert blur["mean_alpha"] == pytest.approx(par["mean_alpha"], rel=0.1)  # blur spreads coverage, keeps it
 
 
 def test_failing_peer_is_reported_not_dropped():

@@ -170,17 +170,22 @@ def snow_band(W):
     return (W / 32, W / 4)
 
 
-def snow_methods(shape, *, layers=8, flakes=None):
+def snow_methods(shape, *, layers=8, flakes=None, blur=False):
+    """name -> callable(seed) for the snow scene; ``blur`` adds motion-blurred particles."""
     from ..snow import snow
     from .snowgen import layered_lattice_snow, particle_snow
 
     band = snow_band(shape[2])
-    return {
+    methods = {
         "tent IFFT (noiselab.snow)": lambda s: snow(shape, seed=s, band=band, c=1.0),
         f"layered lattice ({layers} layers)": lambda s: layered_lattice_snow(shape, seed=s, band=band, c=1.0,
                                                                              layers=layers),
         "particles (Reeves)": lambda s: particle_snow(shape, seed=s, band=band, c=1.0, flakes=flakes),
     }
+    if blur:
+        methods["particles, motion-blurred (Reeves)"] = lambda s: particle_snow(shape, seed=s, band=band, c=1.0,
+                                                                                flakes=flakes, motion_blur=True)
+    return methods
 
 
 def parallax_error(video, c, band, *, per_octave=2):
@@ -222,13 +227,13 @@ def snow_quality(video, c, band):
 def snow_experiment(cfg: Config):
     """Falling snow, three methods on one scene: tent energy, parallax, loop seam, time, memory."""
     shape = tuple(cfg.snow_shape)
-    methods = snow_methods(shape)
+    methods = snow_methods(shape, blur=True)
     timing = time_against_floor({k: (lambda fn=fn: fn(0)) for k, fn in methods.items()},
                                 fft_floor(shape, np.float32), repeats=cfg.repeats)
     rows = []
     band = snow_band(shape[2])
     setup = "import numpy as np\nfrom noiselab.lab.experiments import snow_methods\n" \
-            f"fns = list(snow_methods({shape!r}).values())"
+            f"fns = list(snow_methods({shape!r}, blur=True).values())"
     for i, (name, fn) in enumerate(methods.items()):
         q = snow_quality(fn(1), 1.0, band)
         rows.append({"scene": f"falling snow {'x'.join(map(str, shape))}, band {band[0]:g}-{band[1]:g} c/frame, c=1",

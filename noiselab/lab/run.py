@@ -109,6 +109,14 @@ def plot_texture(rows, path):
                 continue
             sp = r["_spectrum"]
             ax.loglog(sp["f"], sp["power"], label=r["method"], lw=2 if r["family"] == "spectral" else 1)
+            if r["family"] == "spectral":
+                f = np.asarray(sp["f"])
+                p = np.asarray(sp["power"])
+                inband = p > p.max() * 1e-9
+                f_in, p_in = f[inband], p[inband]
+                ref = np.exp(np.mean(np.log(p_in * f_in ** dim)))
+                ax.loglog(f_in, ref * f_in ** -dim, "k--", lw=1, label=f"target: power ~ f^-{dim}")
+                ax.set_ylim(bottom=p_in.min() * 1e-2)
         ax.set_title(f"1/f texture {dim}-D: radial power spectrum")
         ax.set_xlabel("cycles/frame")
         ax.set_ylabel("power per cell")
@@ -563,6 +571,13 @@ def _snow_verdict(res):
              f"{'x'.join(map(str, res['config']['flake_shape']))} (mean alpha "
              f"{next(r['mean_alpha'] for r in fr if r['flakes'] == max(cheaper)):.2f})") if cheaper else \
         "in the flake sweep particles never beat the tent IFFT's time"
+    blur = next((r for r in rows if r["method"].startswith("particles, motion")), None)
+    if blur is not None:
+        cross += (f"; motion blur (each flake averaged over the shutter) changes tent energy to "
+                  f"{blur['tent_energy']:.3f} and parallax error to {blur['parallax_rms_error']:.3f} at "
+                  f"{blur['time_s'] / par['time_s']:.1f}x the unblurred time")
+        if abs(blur["tent_energy"] - par["tent_energy"]) < 0.1:
+            cross += ": the particles' shortfall is their broadband spatial spectrum, not temporal aliasing"
     lines.append(f"- Particles: tent energy {par['tent_energy']:.3f}, parallax error {par['parallax_rms_error']:.3f} "
                  "(a disc's spectrum is broadband, so every band mixes flake speeds), loop seam "
                  f"{par['loop_seam']:.2f}, {par['time_s'] / tent['time_s']:.1f}x the tent's time at the default "
