@@ -126,9 +126,9 @@ def build(out=DEFAULT_OUT, *, only=None, quick=False, force=False, show_progress
     Returns a dict with ``index`` (path), ``built``, ``skipped`` and ``failed``
     (lists of figure keys) and ``seconds``.
     """
-    out = Path(out)
+    chosen = specs(only)   # first, so a bad --only creates nothing
+    out = Path(out).resolve()   # figure functions get absolute folders, whatever the working directory
     out.mkdir(parents=True, exist_ok=True)
-    chosen = specs(only)
     t0 = time.perf_counter()
     built, skipped, failed = [], [], []
     bar = progress(chosen, total=len(chosen), desc="gallery", enabled=show_progress, unit="figure")

@@ -62,11 +62,12 @@ def _parse(index):
 @pytest.fixture(scope="module")
 def quick_gallery(tmp_path_factory):
     """The whole gallery at quick sizes, built once through the command line."""
-    out = tmp_path_factory.mktemp("gallery")
-    proc = subprocess.run([sys.executable, "-m", "noiselab", "gallery", "--quick", "--no-progress", "--out", str(out)],
-                          capture_output=True, text=True, cwd=ROOT, timeout=600)
+    work = tmp_path_factory.mktemp("work")
+    # a relative --out, from another working directory, as a user types it
+    proc = subprocess.run([sys.executable, "-m", "noiselab", "gallery", "--quick", "--no-progress", "--out", "out/gallery"],
+                          capture_output=True, text=True, cwd=work, timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
-    return out, proc.stdout
+    return work / "out" / "gallery", proc.stdout
 
 
 def test_build_prints_where_index_is(quick_gallery):
