@@ -189,6 +189,10 @@ def test_hash_follows_the_modules_a_figure_uses():
     v = registry.module_version("noiselab.snow")
     assert v != "missing" and v != registry.module_version("noiselab.lattice")
     assert registry.module_version("noiselab.no_such_module") == "missing"
+    # a helper shared by several figures is part of each one's hash (so changing it rebuilds them)
+    fig14 = registry.specs("phillips/fig14")[0]
+    assert "_octave_surfaces" in registry.function_sources(fig14.func)
+    assert "_tiling" in registry.function_sources(registry.specs("snow/fig3_4")[0].func)
 
 
 def test_only_builds_only_that_group(tmp_path):
