@@ -22,7 +22,6 @@ Falling snow
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
