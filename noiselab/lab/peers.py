@@ -22,7 +22,9 @@ Cases (every one an ``n x n`` image unless said):
   ``LatticeNoise.grid``/``fractal_sum`` (gradient, quintic), noise
   (``pnoise2``, a Python loop per point), pyfastnoiselite, opensimplex,
   vnoise, perlin-numpy, VTK's ``vtkPerlinNoise`` via pyvista (one octave only),
-  pyfastnoisesimd (needs ``numpy.product``, removed in NumPy 2: shimmed here).
+  pyfastnoisesimd (needs ``numpy.product``, removed in NumPy 2: shimmed here);
+  pyfastnoiselite and pyfastnoisesimd also with their value noise, beside
+  noiselab's value noise (float32 output).
 """
 from __future__ import annotations
 
@@ -122,11 +124,11 @@ def lattice_cases(n, octaves):
             out[i] = [p(xv, yv, octaves) for xv in xs]
         return out
 
-    def fastnoiselite():
+    def fastnoiselite(kind="NoiseType_Perlin"):
         from pyfastnoiselite.pyfastnoiselite import FastNoiseLite, FractalType, NoiseType
 
         f = FastNoiseLite(0)
-        f.noise_type = NoiseType.NoiseType_Perlin
+        f.noise_type = getattr(NoiseType, kind)
         f.frequency = 1.0
         if octaves > 1:
             f.fractal_type = FractalType.FractalType_FBm
@@ -166,16 +168,16 @@ def lattice_cases(n, octaves):
         g = pv.sample_function(f, bounds=(0, n - 1, 0, n - 1, 0, 0), dim=(n, n, 1))
         return np.asarray(g.active_scalars).reshape(n, n)
 
-    def fastnoisesimd():
+    def fastnoisesimd(kind="Perlin"):
         if not hasattr(np, "product"):
             np.product = np.prod  # shim: removed in NumPy 2, still used by pyfastnoisesimd 0.4.2
         import pyfastnoisesimd as fns
 
         f = fns.Noise(seed=0, numWorkers=1)
-        f.noiseType = fns.NoiseType.Perlin
+        f.noiseType = getattr(fns.NoiseType, kind)
         f.frequency = cells / n
         if octaves > 1:
-            f.noiseType = fns.NoiseType.PerlinFractal
+            f.noiseType = getattr(fns.NoiseType, kind + "Fractal")
             f.fractal.octaves = octaves
             f.fractal.fractalType = fns.FractalType.FBM
         return f.genAsGrid([1, n, n])[0]
@@ -183,8 +185,10 @@ def lattice_cases(n, octaves):
     return {"noiselab (gradient, quintic, float64)": noiselab_lattice,
             "noiselab (value, cubic, float32)": noiselab_value32,
             "noise (pnoise2, per point)": noise_pkg, "pyfastnoiselite (Perlin)": fastnoiselite,
+            "pyfastnoiselite (value)": lambda: fastnoiselite("NoiseType_Value"),
             "opensimplex": opensimplex, "vnoise": vnoise, "perlin-numpy": perlin_numpy,
-            "VTK vtkPerlinNoise (pyvista)": vtk_perlin, "pyfastnoisesimd (Perlin, np.product shim)": fastnoisesimd}
+            "VTK vtkPerlinNoise (pyvista)": vtk_perlin, "pyfastnoisesimd (Perlin, np.product shim)": fastnoisesimd,
+            "pyfastnoisesimd (value, np.product shim)": lambda: fastnoisesimd("Value")}
 
 
 # ----------------------------------------------------------------------- measurement
