@@ -204,6 +204,7 @@ class LatticeNoise:
         norms = np.linalg.norm(gradients, axis=1, keepdims=True)
         gradients /= np.where(norms > 0, norms, 1.0)
         self.perms = np.stack([rng.permutation(n) for _ in range(self.dim_out)]).astype(np.int64)
+        self._perms2 = np.ascontiguousarray(np.concatenate([self.perms, self.perms], axis=1), dtype=np.uint64)
         if alternation == "table":
             interleaved = np.where(np.arange(n) % 2 == 0, positive, negative)
             self.values = np.stack([interleaved, interleaved])
@@ -254,7 +255,7 @@ class LatticeNoise:
             unrolled = _points.KERNELS.get((self.dim_in, k.taps))
             if unrolled is not None and (self.period >= k.taps).all():
                 unrolled(flat, out, freqs, amps, self.phase, k.shift, k.left, k.coef, self.period, self._pmask,
-                         self.perms, self.values, self.gradients, basis, bool(absval))
+                         self._perms2, self.values, self.gradients, basis, bool(absval))
             else:
                 _jit.eval_points(flat, out, freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, self.period,
                                  self._pmask, self.perms, self.values, self.gradients, basis, bool(absval))
