@@ -56,11 +56,16 @@ def _function(d: int, taps: int) -> str:
     a_(f"{ind}Q = np.empty(({d}, {taps}, CHUNK), np.uint64)")
     a_(f"{ind}PAR = np.empty(CHUNK, np.int64)")
     a_(f"{ind}FI = np.empty(CHUNK)")
+    a_(f"{ind}X = np.empty(({d}, CHUNK))")
     a_(f"{ind}ACC = np.empty((ncomp, CHUNK))")
     for k in range(taps):
         a_(f"{ind}" + "; ".join(f"c{k}{q} = coef[{k}, {q}]" for q in range(6)))
     a_(f"{ind}for p0 in range(0, npts, CHUNK):")
     a_(f"{lvl(2)}m = min(CHUNK, npts - p0)")
+    # the chunk's coordinates axis by axis: contiguous loads let the weight loops vectorise
+    a_(f"{lvl(2)}for i in range(m):")
+    for a in range(d):
+        a_(f"{lvl(3)}X[{a}, i] = pts[p0 + i, {a}]")
     a_(f"{lvl(2)}for o in range(noct):")
     # phase 1: a float loop (vectorisable), then an integer loop; the
     # integer fast path (power-of-two period <= n, |index| < 2**52) is
@@ -69,7 +74,7 @@ def _function(d: int, taps: int) -> str:
         a_(f"{lvl(3)}f = freqs[o, {a}]; ph = phase[{a}]; per = period[{a}]; msk = pmask[{a}]")
         a_(f"{lvl(3)}for i in range(m):")
         b4 = lvl(4)
-        a_(f"{b4}u = pts[p0 + i, {a}] * f + ph + shift  # same rounding as the grid path")
+        a_(f"{b4}u = X[{a}, i] * f + ph + shift  # same rounding as the grid path")
         a_(f"{b4}fi = np.floor(u)")
         a_(f"{b4}t = u - fi")
         a_(f"{b4}FI[i] = fi")

@@ -28,14 +28,17 @@ def points_d1_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((1, 1, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((1, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -91,15 +94,18 @@ def points_d1_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((1, 2, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((1, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -163,16 +169,19 @@ def points_d1_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((1, 3, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((1, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -244,6 +253,7 @@ def points_d1_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((1, 4, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((1, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -251,10 +261,12 @@ def points_d1_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -334,14 +346,18 @@ def points_d2_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((2, 1, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((2, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -366,7 +382,7 @@ def points_d2_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 0, i] = j if j < n else j % n
             f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
             for i in range(m):
-                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -424,15 +440,19 @@ def points_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((2, 2, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((2, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -463,7 +483,7 @@ def points_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 1, i] = j if j < n else j % n
             f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
             for i in range(m):
-                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -533,16 +553,20 @@ def points_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((2, 3, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((2, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -579,7 +603,7 @@ def points_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 2, i] = j if j < n else j % n
             f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
             for i in range(m):
-                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -663,6 +687,7 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((2, 4, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((2, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -670,10 +695,13 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -716,7 +744,7 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 3, i] = j if j < n else j % n
             f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
             for i in range(m):
-                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -816,14 +844,19 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((3, 1, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((3, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -848,7 +881,7 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 0, i] = j if j < n else j % n
             f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
             for i in range(m):
-                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -873,7 +906,7 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[1, 0, i] = j if j < n else j % n
             f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
             for i in range(m):
-                u = pts[p0 + i, 2] * f + ph + shift  # same rounding as the grid path
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -933,15 +966,20 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((3, 2, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((3, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -972,7 +1010,7 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 1, i] = j if j < n else j % n
             f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
             for i in range(m):
-                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -1003,7 +1041,7 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[1, 1, i] = j if j < n else j % n
             f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
             for i in range(m):
-                u = pts[p0 + i, 2] * f + ph + shift  # same rounding as the grid path
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -1083,16 +1121,21 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((3, 3, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((3, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
     c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -1129,7 +1172,7 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 2, i] = j if j < n else j % n
             f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
             for i in range(m):
-                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -1166,7 +1209,7 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[1, 2, i] = j if j < n else j % n
             f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
             for i in range(m):
-                u = pts[p0 + i, 2] * f + ph + shift  # same rounding as the grid path
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -1255,6 +1298,7 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     Q = np.empty((3, 4, CHUNK), np.uint64)
     PAR = np.empty(CHUNK, np.int64)
     FI = np.empty(CHUNK)
+    X = np.empty((3, CHUNK))
     ACC = np.empty((ncomp, CHUNK))
     c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
     c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
@@ -1262,10 +1306,14 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
     for p0 in range(0, npts, CHUNK):
         m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
         for o in range(noct):
             f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
             for i in range(m):
-                u = pts[p0 + i, 0] * f + ph + shift  # same rounding as the grid path
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -1308,7 +1356,7 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 3, i] = j if j < n else j % n
             f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
             for i in range(m):
-                u = pts[p0 + i, 1] * f + ph + shift  # same rounding as the grid path
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
@@ -1351,7 +1399,7 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[1, 3, i] = j if j < n else j % n
             f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
             for i in range(m):
-                u = pts[p0 + i, 2] * f + ph + shift  # same rounding as the grid path
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
                 fi = np.floor(u)
                 t = u - fi
                 FI[i] = fi
