@@ -1,8 +1,9 @@
 """Generate ``_points.py``: scattered-point kernels unrolled for 1-3 input dimensions and 1-4 taps.
 
 A generic loop over ``taps**d`` neighbours keeps weights and indices in small
-arrays and cannot unroll; written out with scalars, the 3-D quintic kernel
-runs about 3x faster (measured side by side, see ``benchmarks/bench_lattice.md``).
+arrays and cannot unroll or vectorise; these written-out kernels are what the
+scattered-point figures in ``benchmarks/bench_lattice.md`` measure (the
+generic ``_jit.eval_points`` still serves 4 and more dimensions).
 Run ``python -m noiselab.lattice._generate`` after changing the template; the
 output is committed so that numba can cache it (``cache=True`` needs a file).
 """

@@ -1,19 +1,20 @@
 """numba kernels for lattice noise (compiled once, cached on disk).
 
-Two hot loops:
-
-- :func:`eval_points`: scattered points. Every point splits each coordinate
-  into a lattice index and a fraction, evaluates the tap weights, and walks
-  the ``taps**d`` lattice neighbours with the nested permutation hash
-  ``h_{a+1} = P[(h_a + j_a) mod n]`` (Phillips 2.4.1), summing weight x value.
-  Several octaves (fractal sums) are fused into one pass over the points.
-- :func:`contract`: one separable pass of the grid path,
-  ``out[p, j, q] (+)= scale * sum_k w[j, k] * inp[p, pos[j, k], q]``, which
-  applies one axis of the tensor-product kernel to a block of lattice values.
+- :func:`eval_points`: scattered points, any dimension. Every point splits
+  each coordinate into a lattice index and a fraction, evaluates the tap
+  weights, and walks the ``taps**d`` lattice neighbours with the nested
+  permutation hash ``h_{a+1} = P[(h_a + j_a) mod n]`` (Phillips 2.4.1),
+  summing weight x value. Several octaves (fractal sums) are fused into one
+  pass over the points. Dimensions 1-3 use the unrolled kernels of
+  ``_points.py`` instead.
+- the grid path: :func:`axis_weights` and :func:`dense_taps` (per-axis
+  weights and distinct taps), :func:`hash_expand` / :func:`hash_expand_values`
+  (the hashed block of lattice values), :func:`contract_last` /
+  :func:`contract_mid` (one separable pass per axis), and :func:`final_pass` /
+  :func:`final_pass_direct` (the last pass, fused over octaves).
 
 All arithmetic is float64; only the final store may round to float32. The
-specialisations are kept few (float32 / float64 output) so that a cold cache
-compiles quickly.
+specialisations are kept few so that a cold cache compiles quickly.
 """
 from __future__ import annotations
 
@@ -324,13 +325,6 @@ def hash_expand(h, par, lat, perm, n, first):
             hn[i * nl + l] = perm[s]
             pn[i * nl + l] = (pb + lat[l]) & 1
     return hn, pn
-
-
-@nb.njit(cache=True, nogil=True)
-def gather_values(h, par, values, out):
-    """``out[m] = values[par[m], h[m]]`` (the value block)."""
-    for i in range(h.shape[0]):
-        out[i] = values[par[i], h[i]]
 
 
 @nb.njit(cache=True, nogil=True)
