@@ -334,9 +334,8 @@ class LatticeNoise:
         out_shape = tuple(hi - lo for lo, hi in sl)
         size = int(np.prod(out_shape, dtype=np.int64))
         _check_large(size * self.dim_out * dtype.itemsize * 2 + size * 8, "lattice noise grid")
-        out = np.zeros((self.dim_out,) + out_shape, dtype=dtype)
         if size == 0:
-            return self._finish_grid(out)
+            return self._finish_grid(np.zeros((self.dim_out,) + out_shape, dtype=dtype))
         full = list(coords)
         sub = [coords[a][lo:hi] for a, (lo, hi) in enumerate(sl)]
         separable, sparse = [], []
@@ -344,6 +343,9 @@ class LatticeNoise:
             freq = self.frequency * lacunarity ** o
             amp = self.scale * gain ** o
             (separable if self._separable(full, freq) else sparse).append((freq, amp))
+        # the separable pass writes every sample unless it accumulates |.| (turbulence)
+        writes_all = bool(separable) and not absval
+        out = (np.empty if writes_all else np.zeros)((self.dim_out,) + out_shape, dtype=dtype)
         if separable:
             self._grid_separable(sub, full, separable, out, absval)
         for freq, amp in sparse:
