@@ -193,3 +193,87 @@ def test_docstring_examples_hold(modname):
 
     result = doctest.testmod(importlib.import_module(modname), optionflags=doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0
+
+
+# --- the fast paths: spectrum-side normalisation, the fused power-law fill, the pruned FFT, the draws ---
+
+NOISE_CASES = [((256, 256), (1, 8)), ((16, 24), (1, 6)), ((9, 10, 12), (1, 5)), ((64,), (2, 20)), ((8, 8, 8), None),
+               ((7, 9), None), ((12, 10, 8), (2, 4)), ((33, 32), (0, 16))]
+
+
+@pytest.mark.parametrize("shape,band", NOISE_CASES)
+def test_spectral_noise_is_synthesize_with_annulus_times_power_law(shape, band):
+    # the fused kernel (band and 1/f evaluated per cell, pruned block, spectrum-side scaling) builds the
+    # spectrum synthesize builds from the float64 envelope: same cells, same draws, same planes
+    n = shape[-1]
+    lo, hi = (band[0] / n, band[1] / n) if band else (0.0, 0.5 * np.sqrt(len(shape)) + 1.0)
+    env = lambda *w: E.annulus(*w, lo=lo, hi=hi) * E.power_law(*w, exponent=1.5)  # noqa: E731
+    _, S = synthesize(shape, env, seed=7, amplitude="rayleigh", dtype=np.float64, return_spectrum=True)
+    x = spectral_noise(shape, exponent=1.5, band=band, seed=7, dtype=np.float64)
+    X = scipy.fft.rfftn(x)
+    scale = np.sqrt(np.sum(np.abs(X) ** 2) / np.sum(np.abs(S) ** 2))
+    np.testing.assert_allclose(X, S * scale, rtol=0, atol=1e-12 * np.abs(X).max())
+    assert np.count_nonzero(S) > 0
+
+
+@pytest.mark.parametrize("shape,band", NOISE_CASES)
+def test_spectrum_side_normalisation_gives_zero_mean_unit_variance_exactly(shape, band):
+    # the spectrum is scaled by N / sqrt(sum |S|^2) before the FFT (Parseval, DC = 0): no pass after it
+    x = spectral_noise(shape, band=band, seed=3, dtype=np.float64)
+    assert abs(float(x.mean())) < 1e-14
+    assert abs(float(x.std()) - 1.0) < 1e-13
+    y = spectral_noise(shape, band=band, seed=3, dtype=np.float32)
+    assert abs(float(y.mean(dtype=np.float64))) < 1e-6
+    assert abs(float(y.std(dtype=np.float64)) - 1.0) < 2e-6
+    # float32 and float64 share their draws: the same field to float32 precision
+    np.testing.assert_allclose(y, x, rtol=0, atol=1e-5)
+
+
+def test_pruned_inverse_fft_equals_irfftn_of_the_full_spectrum():
+    from noiselab.spectral.synthesis import _noise_spectrum, _pruned_irfftn
+
+    for shape, band in [((64, 96), (2, 9)), ((20, 24, 30), (1, 4)), ((50,), (1, 6))]:
+        block, index, _ = _noise_spectrum(shape, 1.0, band, 5, "rayleigh", np.dtype(np.float64))
+        assert block.shape[-1] < shape[-1] // 2 + 1  # something was pruned
+        full = np.zeros(shape[:-1] + (shape[-1] // 2 + 1,), dtype=block.dtype)
+        full[np.ix_(*index, np.arange(block.shape[-1]))] = block
+        np.testing.assert_allclose(_pruned_irfftn(block.copy(), index, shape), scipy.fft.irfftn(full, s=shape),
+                                   rtol=0, atol=1e-15)
+
+
+def test_spectral_noise_same_seed_same_bits_and_band_edges():
+    a = spectral_noise((48, 40), band=(3, 12), seed=21)
+    b = spectral_noise((48, 40), band=(3, 12), seed=np.random.default_rng(21))
+    c = spectral_noise((48, 40), band=(3, 12), seed=22)
+    assert a.tobytes() == b.tobytes() and not np.array_equal(a, c)
+    # return_spectrum and the in-place FFT path give the same bits
+    env = lambda wy, wx: E.annulus(wy, wx, lo=0.05, hi=0.4)  # noqa: E731
+    f1 = synthesize((16, 18), env, seed=4)
+    f2, _ = synthesize((16, 18), env, seed=4, return_spectrum=True)
+    assert f1.tobytes() == f2.tobytes()
+    # the band edges are inclusive, as the annulus says: 12 cycles/frame exactly is kept
+    x = spectral_noise((64, 64), band=(4, 12), seed=0, dtype=np.float64)
+    P = np.abs(np.fft.fft2(x)) ** 2
+    assert P[0, 12] > 0 and P[12, 0] > 0 and P[0, 4] > 0 and P[0, 13] < 1e-20 and P[0, 3] < 1e-20
+
+
+def test_coefficient_draws_are_complex_gaussian_and_uniform_in_phase():
+    from noiselab.spectral.synthesis import _MODES, _draws
+
+    n = 1 << 18
+    a2, c, s = _draws(np.uint64(12345), 0, n, _MODES["rayleigh"])
+    z = np.sqrt(a2.astype(np.float64)) * (c + 1j * s)
+    se = 4 / np.sqrt(n)
+    assert abs(np.mean(np.abs(z) ** 2) - 1) < 4 * se and abs(np.mean(z)) < se and abs(np.mean(z * z)) < 2 * se
+    assert abs(np.mean(z.real ** 4) / np.var(z.real) ** 2 - 3) < 40 * se  # Gaussian kurtosis
+    np.testing.assert_allclose(c * c + s * s, 1, atol=1e-6)
+    # the phase is uniform: equal counts in 16 sectors (chi-square, 15 dof, p < 1e-6 would need > 50)
+    counts = np.histogram(np.arctan2(s, c), 16, range=(-np.pi, np.pi))[0]
+    assert ((counts - n / 16) ** 2 / (n / 16)).sum() < 50
+    # |z|^2 is exponential: P(|z|^2 > 3) = e^-3
+    assert abs(np.mean(a2 > 3) - np.exp(-3)) < 4 * np.sqrt(np.exp(-3) / n)
+    # counter-based: any chunking of the stream gives the same coefficients
+    a2b, cb, sb = _draws(np.uint64(12345), 1000, 500, _MODES["rayleigh"])
+    assert a2b.tobytes() == a2[1000:1500].tobytes() and cb.tobytes() == c[1000:1500].tobytes()
+    u2, _, _ = _draws(np.uint64(1), 0, n, _MODES["uniform"])
+    assert abs(np.mean(u2) - 1) < 4 * se and u2.max() <= 3.0

@@ -168,8 +168,10 @@ def test_lattice_band_limits_follow_the_kernel(lattice_images):
 
 
 def test_lattice_noise_shows_its_axes_where_spectral_noise_does_not(lattice_images):
-    spectral = noiselab.spectral_noise((256, 256), exponent=2.0, band=(1, 8), seed=10)
-    assert A.anisotropy(spectral, (2, 8)) < 0.1
+    # about 190 cells in this band: one isotropic field measures 0.17 +- 0.06 (300 seeds, before and after
+    # the spectral rewrite alike: 0.170 and 0.174), so average eight seeds (0.17 +- 0.02)
+    spectral = [noiselab.spectral_noise((256, 256), exponent=2.0, band=(1, 8), seed=s) for s in range(10, 18)]
+    assert np.mean([A.anisotropy(x, (2, 8)) for x in spectral]) < 0.25
     for k, img in lattice_images.items():
         o = A.orientation_energy(img)
         assert o.index > 0.5 and o.m4 > 3 * o.m2, (k, o.m2, o.m4)

@@ -26,12 +26,15 @@ import numpy as np
 import scipy.fft
 
 from .._validate import as_generator, check_memory, check_real, check_shape, float_dtype
-from .envelopes import annulus, power_law
+from . import _kernels
+from .envelopes import annulus
 from .frequencies import frequency_vectors, half_spectrum_shape
 
 __all__ = ["synthesize", "spectral_noise", "draw_coefficients", "hermitian_plane", "AMPLITUDES"]
 
 AMPLITUDES = ("uniform", "rayleigh", "fixed")
+_MODES = {"uniform": 0, "rayleigh": 1, "fixed": 2}  # amplitude law -> kernel mode
+_CHUNK = 1 << 16  # coefficients drawn per chunk of rows (their float32 scratch stays in cache)
 
 
 def _complex_dtype(dtype):
@@ -121,14 +124,52 @@ def hermitian_plane(plane, support=None):
     return out
 
 
-def _hermitian_half_spectrum(spec, support, last_n):
-    """Apply :func:`hermitian_plane` to the kx = 0 (and, for even ``last_n``, Nyquist) planes in place."""
-    planes = [0] + ([last_n // 2] if last_n % 2 == 0 and last_n > 1 else [])
-    if last_n == 1:
-        planes = [0]
-    for j in planes:
-        spec[..., j] = hermitian_plane(spec[..., j], support[..., j])
-    return spec
+def _draws(key, start, n, mode, dtype=np.float32):
+    """Coefficients ``start .. start+n-1`` of the stream ``key`` as ``(a**2, cos th, sin th)`` arrays.
+
+    Word ``i`` of a counter-based SplitMix64 stream keyed by one 64-bit word
+    of the caller's generator gives coefficient ``i``: ``u`` uniform on
+    ``(0, 1]`` (high 32 bits) and the phase ``th`` uniform on ``[0, 2*pi)``
+    (low 32 bits). The amplitude ``a`` is ``sqrt(3) * u`` ("uniform"),
+    ``sqrt(-log u)`` ("rayleigh": with the phase a complex Gaussian,
+    Box-Muller) or 1 ("fixed"); ``E[a**2] = 1``. float32 throughout (the
+    float64 path casts the same values), so one seed gives the same
+    coefficients in both precisions and in any chunking.
+    """
+    u = np.empty(n, dtype=np.float32)
+    c = np.empty(n, dtype=np.float32)
+    s = np.empty(n, dtype=np.float32)
+    _kernels.coefficient_parts(key, start, u, c, s)
+    if mode == _MODES["rayleigh"]:
+        np.log(u, out=u)
+        np.negative(u, out=u)
+    elif mode == _MODES["uniform"]:
+        np.square(u, out=u)
+        u *= np.float32(3.0)
+    else:
+        u[...] = 1
+    if dtype != np.float32:
+        return u.astype(dtype), c.astype(dtype), s.astype(dtype)
+    return u, c, s
+
+
+def _stream_key(rng):
+    """The 64-bit key of a field's coefficient stream: one word of the caller's generator."""
+    return np.uint64(rng.integers(0, 2 ** 64, dtype=np.uint64))
+
+
+def _row_groups(counts, chunk=_CHUNK):
+    """Split rows into consecutive groups holding about ``chunk`` coefficients each (at least one row)."""
+    cum = np.cumsum(counts)
+    R = counts.size
+    bounds = [0]
+    while bounds[-1] < R:
+        start = bounds[-1]
+        base = int(cum[start - 1]) if start else 0
+        end = int(np.searchsorted(cum, base + chunk, side="right"))
+        bounds.append(min(R, max(end, start + 1)))
+    return [(bounds[i], bounds[i + 1], int(cum[bounds[i + 1] - 1]) - (int(cum[bounds[i] - 1]) if bounds[i] else 0))
+            for i in range(len(bounds) - 1)]
 
 
 def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.float32, return_spectrum=False):
@@ -144,11 +185,14 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
         amplitude, broadcastable to the half spectrum ``(..., W//2 + 1)``; or
         that amplitude array itself. Must be finite and non-negative.
     seed : int or numpy.random.Generator
-        Random phases and amplitudes (drawn only on the envelope's support).
+        Random phases and amplitudes, drawn only on the envelope's support,
+        one 64-bit word of the generator per supported cell, in C order.
     amplitude : {"uniform", "rayleigh", "fixed"}
         Distribution of the random amplitude (``E[a**2] = 1``).
     dtype : float32 or float64
-        Output dtype (the spectrum is complex64 or complex128).
+        Output dtype (the spectrum is complex64 or complex128). The random
+        coefficients are the same float32 draws for both, so the two fields of
+        one seed agree to float32 precision.
     return_spectrum : bool
         Also return the half spectrum ``S`` with ``rfftn(field) == S``.
 
@@ -157,6 +201,14 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     field : ndarray
         ``irfftn(S, shape)``, zero mean when the envelope is 0 at DC.
     spectrum : ndarray, only with ``return_spectrum``.
+
+    Notes
+    -----
+    One pass counts and checks the envelope row by row, one pass per chunk of
+    rows draws the coefficients and writes them into the spectrum (zeros
+    elsewhere), in C order, without an index array; the self-conjugate planes
+    are then made Hermitian and ``irfftn`` runs on the spectrum in place.
+    Timings against a bare ``irfftn``: ``benchmarks/bench_spectral.md``.
 
     Examples
     --------
@@ -170,29 +222,144 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     shape = check_shape("shape", shape)
     dt = float_dtype(dtype)
     cdt = _complex_dtype(dt)
+    if amplitude not in AMPLITUDES:
+        raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
     hshape = half_spectrum_shape(shape)
     n_out = int(np.prod(shape))
-    check_memory(n_out * dt.itemsize + 3 * int(np.prod(hshape)) * cdt.itemsize, f"synthesize{shape}")
+    n_half = int(np.prod(hshape))
+    check_memory(n_out * dt.itemsize + n_half * cdt.itemsize + 20 * _CHUNK, f"synthesize{shape}")
     if callable(envelope):
         env = envelope(*frequency_vectors(shape))
     else:
         env = envelope
-    env = np.broadcast_to(np.asarray(env, dtype=float), hshape)
-    if not np.all(np.isfinite(env)):
-        raise ValueError("envelope must be finite everywhere (an infinite amplitude at DC? multiply by an annulus)")
-    if np.any(env < 0):
+    env = np.broadcast_to(np.asarray(env, dtype=np.float64), hshape)
+    K = hshape[-1]
+    R = n_half // K
+    env2 = env.reshape(R, K)
+    counts = np.zeros(R, dtype=np.int64)
+    if _kernels.count_envelope_rows(env2, counts) != 0:
+        if not np.all(np.isfinite(env)):
+            raise ValueError("envelope must be finite everywhere (an infinite amplitude at DC? multiply by an annulus)")
         raise ValueError("envelope must be non-negative (it is an amplitude)")
     rng = as_generator(seed)
-    support = env > 0
-    spec = np.zeros(hshape, dtype=cdt)
-    idx = np.flatnonzero(support)
-    coef = draw_coefficients(idx.size, rng, amplitude, dt)
-    spec.reshape(-1)[idx] = coef * env.reshape(-1)[idx].astype(dt)
-    _hermitian_half_spectrum(spec, support, shape[-1])
-    field = scipy.fft.irfftn(spec, s=shape)
+    mode = _MODES[amplitude]
+    spec = np.empty(hshape, dtype=cdt)
+    spec2 = spec.reshape(R, K)
+    key, start = _stream_key(rng), 0
+    for r0, r1, n in _row_groups(counts):
+        u, c, s = _draws(key, start, n, mode)
+        _kernels.fill_envelope(spec2, env2, r0, r1, u, c, s)
+        start += n
+    for j in _self_conjugate_columns(shape[-1]):
+        spec[..., j] = hermitian_plane(spec[..., j], env[..., j] > 0)
+    field = scipy.fft.irfftn(spec, s=shape, overwrite_x=not return_spectrum)
     if field.dtype != dt:
         field = field.astype(dt)
     return (field, spec) if return_spectrum else field
+
+
+def _self_conjugate_columns(last_n):
+    """kx indices of the self-conjugate planes: 0, and W/2 for an even width W > 1."""
+    return [0] + ([last_n // 2] if last_n % 2 == 0 and last_n > 1 else [])
+
+
+def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype):
+    """The unnormalised half spectrum of :func:`spectral_noise`, on the block of cells the band can reach.
+
+    Returns ``(block, index, power)``: ``block`` has shape
+    ``(len(index[0]), ..., K)`` with ``index[i]`` the kept indices (increasing)
+    of leading axis ``i`` and ``K`` the kept kx columns ``0..K-1``; every cell
+    outside the block is 0. ``power`` is the sum of ``|S|**2`` over the full
+    spectrum (``sum(field**2) * N`` for ``N`` samples). The coefficients are
+    the ones :func:`synthesize` draws for the envelope
+    ``annulus(lo, hi) * power_law(exponent)`` with the same seed: the same
+    cells, the same order, the same words.
+    """
+    dt = float_dtype(dtype)
+    cdt = _complex_dtype(dt)
+    d = len(shape)
+    n = shape[-1]
+    if band is None:
+        lo, hi = 0.0, 0.5 * np.sqrt(d) + 1.0  # everything, corners included
+    else:
+        lo, hi = _check_band(band, n)
+        lo, hi = lo / n, hi / n
+    eps = 1e-12  # the tolerance of envelopes.annulus
+    lo_e, hi_e = lo * (1 - eps), hi * (1 + eps)
+    w = frequency_vectors(shape)
+    wsq = [wi.reshape(-1) * wi.reshape(-1) for wi in w]
+    # a cell can be in the band only if each of its own axis frequencies is (with a margin for rounding)
+    reach = hi_e * (1 + 1e-9)
+    index = [np.flatnonzero(np.abs(wi.reshape(-1)) / (2 * np.pi) <= reach) for wi in w[:-1]]
+    K = int(np.count_nonzero(np.abs(w[-1].reshape(-1)) / (2 * np.pi) <= reach))
+    lead = [wsq[i][index[i]] for i in range(d - 1)]
+    lead = [np.zeros(1)] * (2 - len(lead)) + lead
+    q0, q1 = lead
+    bshape = tuple(ix.size for ix in index) + (K,)
+    check_memory(int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * _CHUNK,
+                 f"spectral_noise{shape}")
+    R = q0.size * q1.size
+    kbeg = np.empty(R, dtype=np.int64)
+    kend = np.empty(R, dtype=np.int64)
+    wxsq = np.ascontiguousarray(wsq[-1][:K])
+    _kernels.band_rows(q0, q1, wxsq, lo_e, hi_e, kbeg, kend)
+    counts = kend - kbeg
+    rng = as_generator(seed)
+    mode = _MODES[amplitude]
+    block = np.empty(bshape, dtype=cdt)
+    b2 = block.reshape(R, K).view(dt)  # (R, 2K): real and imaginary parts
+    kint0, kint1 = 1, (n // 2 if n % 2 == 0 else n // 2 + 1)
+    interior = 0.0
+    key, start = _stream_key(rng), 0
+    for r0, r1, m in _row_groups(counts):
+        u, c, s = _draws(key, start, m, mode, dt)
+        start += m
+        pw = np.empty(m, dtype=dt)
+        _kernels.fill_power_law(b2, q0, q1, wxsq, kbeg, kend, r0, r1, u, c, s, float(exponent), kint0, kint1, pw)
+        interior += float(np.sum(pw))  # pairwise in the output precision, repeatable
+    power = 2.0 * interior
+    sel = np.ix_(*index) if d > 1 else ()
+    for j in _self_conjugate_columns(n):
+        if j >= K:
+            continue
+        if d == 1:
+            sup = annulus(w[0][j:j + 1], lo=lo, hi=hi) > 0
+            block[j:j + 1] = hermitian_plane(block[j:j + 1], sup)
+            power += float(np.sum(np.abs(block[j].astype(np.complex128)) ** 2))
+            continue
+        full = np.zeros(shape[:-1], dtype=cdt)
+        full[sel] = block[..., j]
+        sup = annulus(*[wi[..., 0] for wi in w[:-1]], w[-1][..., j], lo=lo, hi=hi) > 0
+        full = hermitian_plane(full, sup)
+        block[..., j] = full[sel]
+        power += float(np.sum(full.real.astype(np.float64) ** 2 + full.imag.astype(np.float64) ** 2))
+    return block, index, power
+
+
+def _pruned_irfftn(block, index, shape):
+    """``irfftn`` of a half spectrum that is 0 outside ``block`` (see :func:`_noise_spectrum`), ``block`` overwritten.
+
+    Along each leading axis only the kept kx columns are transformed (after
+    putting the kept rows back at their indices); the last pass ``irfft``
+    zero-pads kx to ``W//2 + 1``. With nothing pruned it is ``irfftn`` itself.
+    """
+    d = len(shape)
+    if all(ix.size == n for ix, n in zip(index, shape[:-1])) and block.shape[-1] == shape[-1] // 2 + 1:
+        return scipy.fft.irfftn(block, s=shape, overwrite_x=True)
+    B = block
+    for ax in range(d - 1):
+        n = shape[ax]
+        ix = index[ax]
+        if ix.size < n:
+            full_shape = list(B.shape)
+            full_shape[ax] = n
+            F = np.zeros(full_shape, dtype=B.dtype)
+            sl = [slice(None)] * B.ndim
+            sl[ax] = ix
+            F[tuple(sl)] = B
+            B = F
+        B = scipy.fft.ifft(B, axis=ax, overwrite_x=True)
+    return scipy.fft.irfft(B, n=shape[-1], axis=-1, overwrite_x=True)
 
 
 def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayleigh", dtype=np.float32):
@@ -214,6 +381,19 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         Default: complex Gaussian coefficients, i.e. a Gaussian field.
     dtype : float32 or float64
 
+    Notes
+    -----
+    The same field as ``synthesize(shape, annulus * power_law, ...)`` rescaled,
+    built without the float64 envelope: the band and the power law are
+    evaluated cell by cell while the coefficients are written, each row's band
+    is one kx interval, and only the block of rows and columns the band can
+    reach is stored and transformed (a pruned inverse FFT, as in
+    :mod:`noiselab.snow`). Mean and variance are set on the spectrum: DC is 0,
+    and Parseval gives the variance, so the spectrum is scaled by
+    ``N / sqrt(sum |S|**2)`` before the FFT and the field needs no pass after
+    it. Timings (ratio to a bare ``irfftn`` of the output, and peak memory):
+    ``benchmarks/bench_spectral.md``.
+
     Examples
     --------
     >>> x = spectral_noise((64, 64), exponent=1.0, band=(2, 16), seed=0)
@@ -222,21 +402,16 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
     """
     shape = check_shape("shape", shape, ndim={1, 2, 3})
     exponent = check_real("exponent", exponent, lo=-8, hi=8)
-    n = shape[-1]
-    if band is None:
-        lo, hi = 0.0, 0.5 * np.sqrt(len(shape)) + 1.0  # everything, corners included
-    else:
-        lo, hi = _check_band(band, n)
-        lo, hi = lo / n, hi / n
-
-    def envelope(*w):
-        return annulus(*w, lo=lo, hi=hi) * power_law(*w, exponent=exponent)
-
-    field = synthesize(shape, envelope, seed=seed, amplitude=amplitude, dtype=dtype)
-    field -= field.mean(dtype=np.float64)
-    sd = float(field.std(dtype=np.float64))
-    if sd > 0:
-        field *= field.dtype.type(1.0 / sd)
+    if amplitude not in AMPLITUDES:
+        raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
+    dt = float_dtype(dtype)
+    block, index, power = _noise_spectrum(shape, exponent, band, seed, amplitude, dt)
+    if power > 0:
+        # var(field) = sum over the full spectrum of |S|**2 (DC is 0) / N**2
+        block.view(dt)[...] *= dt.type(np.prod(shape) / np.sqrt(power))
+    field = _pruned_irfftn(block, index, shape)
+    if field.dtype != dt:
+        field = field.astype(dt)
     return field
 
 
