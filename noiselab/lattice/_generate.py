@@ -82,7 +82,11 @@ def _function(d: int, taps: int) -> str:
         a_(f"{b4}t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t")
         for k in range(taps):
             a_(f"{b4}W[{a}, {k}, i] = (c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)")
-            a_(f"{b4}R[{a}, {k}, i] = t - shift + (left - {k})")
+        a_(f"{lvl(3)}if basis == 1:  # signed distances to the taps, for the gradient dot products")
+        a_(f"{lvl(4)}for i in range(m):")
+        a_(f"{lvl(5)}t = X[{a}, i] * f + ph + shift - FI[i]")
+        for k in range(taps):
+            a_(f"{lvl(5)}R[{a}, {k}, i] = t - shift + (left - {k})")
         a_(f"{lvl(3)}exact = msk < 0 or per > n")
         a_(f"{lvl(3)}if not exact:")
         a_(f"{lvl(4)}inside = 0")
@@ -116,7 +120,7 @@ def _function(d: int, taps: int) -> str:
     a_(f"{b4}par = PAR[i]")
     for a in range(first, d):
         for k in range(taps):
-            a_(f"{b4}w{a}_{k} = W[{a}, {k}, i]; r{a}_{k} = R[{a}, {k}, i]; q{a}_{k} = Q[{a}, {k}, i]")
+            a_(f"{b4}w{a}_{k} = W[{a}, {k}, i]; q{a}_{k} = Q[{a}, {k}, i]")
     if not loop0:
         pass
     a_(f"{b4}for c in range(ncomp):")
@@ -153,7 +157,7 @@ def _function(d: int, taps: int) -> str:
     def grad_leaf(ks):
         h = "h" + "".join(map(str, ks))
         terms = [f"grads[{h}, 0] * R[0, k0, i]"] if loop0 else []
-        terms += [f"grads[{h}, {a}] * r{a}_{ks[a - first]}" for a in range(first, d)]
+        terms += [f"grads[{h}, {a}] * R[{a}, {ks[a - first]}, i]" for a in range(first, d)]
         return " + ".join(terms)
 
     if loop0:

@@ -44,7 +44,10 @@ def points_d1_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -63,13 +66,13 @@ def points_d1_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 0, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
                 for c in range(ncomp):
                     h0 = perms[c, q0_0]
                     if basis == 0:
                         total = w0_0 * (values[par, h0])
                     else:
-                        total = w0_0 * (grads[h0, 0] * r0_0)
+                        total = w0_0 * (grads[h0, 0] * R[0, 0, i])
                     if absval:
                         total = abs(total)
                     if o == 0:
@@ -111,9 +114,12 @@ def points_d1_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[0, 1, i] = t - shift + (left - 1)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -136,15 +142,15 @@ def points_d1_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 1, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
-                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
                 for c in range(ncomp):
                     h0 = perms[c, q0_0]
                     h1 = perms[c, q0_1]
                     if basis == 0:
                         total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1])
                     else:
-                        total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1)
+                        total = w0_0 * (grads[h0, 0] * R[0, 0, i]) + w0_1 * (grads[h1, 0] * R[0, 1, i])
                     if absval:
                         total = abs(total)
                     if o == 0:
@@ -187,11 +193,14 @@ def points_d1_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[0, 1, i] = t - shift + (left - 1)
                 W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[0, 2, i] = t - shift + (left - 2)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -218,9 +227,9 @@ def points_d1_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 2, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
-                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
-                w0_2 = W[0, 2, i]; r0_2 = R[0, 2, i]; q0_2 = Q[0, 2, i]
+                w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
                 for c in range(ncomp):
                     h0 = perms[c, q0_0]
                     h1 = perms[c, q0_1]
@@ -228,7 +237,7 @@ def points_d1_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     if basis == 0:
                         total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1]) + w0_2 * (values[par, h2])
                     else:
-                        total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1) + w0_2 * (grads[h2, 0] * r0_2)
+                        total = w0_0 * (grads[h0, 0] * R[0, 0, i]) + w0_1 * (grads[h1, 0] * R[0, 1, i]) + w0_2 * (grads[h2, 0] * R[0, 2, i])
                     if absval:
                         total = abs(total)
                     if o == 0:
@@ -272,13 +281,16 @@ def points_d1_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[0, 1, i] = t - shift + (left - 1)
                 W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[0, 2, i] = t - shift + (left - 2)
                 W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-                R[0, 3, i] = t - shift + (left - 3)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -309,10 +321,10 @@ def points_d1_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[0, 3, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
-                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
-                w0_2 = W[0, 2, i]; r0_2 = R[0, 2, i]; q0_2 = Q[0, 2, i]
-                w0_3 = W[0, 3, i]; r0_3 = R[0, 3, i]; q0_3 = Q[0, 3, i]
+                w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                w0_3 = W[0, 3, i]; q0_3 = Q[0, 3, i]
                 for c in range(ncomp):
                     h0 = perms[c, q0_0]
                     h1 = perms[c, q0_1]
@@ -321,7 +333,7 @@ def points_d1_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     if basis == 0:
                         total = w0_0 * (values[par, h0]) + w0_1 * (values[par ^ 1, h1]) + w0_2 * (values[par, h2]) + w0_3 * (values[par ^ 1, h3])
                     else:
-                        total = w0_0 * (grads[h0, 0] * r0_0) + w0_1 * (grads[h1, 0] * r0_1) + w0_2 * (grads[h2, 0] * r0_2) + w0_3 * (grads[h3, 0] * r0_3)
+                        total = w0_0 * (grads[h0, 0] * R[0, 0, i]) + w0_1 * (grads[h1, 0] * R[0, 1, i]) + w0_2 * (grads[h2, 0] * R[0, 2, i]) + w0_3 * (grads[h3, 0] * R[0, 3, i])
                     if absval:
                         total = abs(total)
                     if o == 0:
@@ -363,7 +375,10 @@ def points_d2_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -388,7 +403,10 @@ def points_d2_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[1, 0, i] = t - shift + (left - 0)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -407,15 +425,15 @@ def points_d2_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[1, 0, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
-                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
+                w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
                 for c in range(ncomp):
                     h0 = perms[c, q0_0]
                     h00 = perms[c, h0 + q1_0]
                     if basis == 0:
                         total = w0_0 * (w1_0 * (values[par, h00]))
                     else:
-                        total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0))
+                        total = w0_0 * (w1_0 * (grads[h00, 0] * R[0, 0, i] + grads[h00, 1] * R[1, 0, i]))
                     if absval:
                         total = abs(total)
                     if o == 0:
@@ -458,9 +476,12 @@ def points_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[0, 1, i] = t - shift + (left - 1)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -489,9 +510,12 @@ def points_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[1, 0, i] = t - shift + (left - 0)
                 W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[1, 1, i] = t - shift + (left - 1)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -514,10 +538,10 @@ def points_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[1, 1, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
-                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
-                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
-                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
+                w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
                 for c in range(ncomp):
                     h0 = perms[c, q0_0]
                     h1 = perms[c, q0_1]
@@ -528,7 +552,7 @@ def points_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     if basis == 0:
                         total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]))
                     else:
-                        total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1))
+                        total = w0_0 * (w1_0 * (grads[h00, 0] * R[0, 0, i] + grads[h00, 1] * R[1, 0, i]) + w1_1 * (grads[h01, 0] * R[0, 0, i] + grads[h01, 1] * R[1, 1, i])) + w0_1 * (w1_0 * (grads[h10, 0] * R[0, 1, i] + grads[h10, 1] * R[1, 0, i]) + w1_1 * (grads[h11, 0] * R[0, 1, i] + grads[h11, 1] * R[1, 1, i]))
                     if absval:
                         total = abs(total)
                     if o == 0:
@@ -572,11 +596,14 @@ def points_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[0, 1, i] = t - shift + (left - 1)
                 W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[0, 2, i] = t - shift + (left - 2)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -609,11 +636,14 @@ def points_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[1, 0, i] = t - shift + (left - 0)
                 W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[1, 1, i] = t - shift + (left - 1)
                 W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[1, 2, i] = t - shift + (left - 2)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -640,12 +670,12 @@ def points_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[1, 2, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
-                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
-                w0_2 = W[0, 2, i]; r0_2 = R[0, 2, i]; q0_2 = Q[0, 2, i]
-                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
-                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
-                w1_2 = W[1, 2, i]; r1_2 = R[1, 2, i]; q1_2 = Q[1, 2, i]
+                w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
                 for c in range(ncomp):
                     h0 = perms[c, q0_0]
                     h1 = perms[c, q0_1]
@@ -662,7 +692,7 @@ def points_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     if basis == 0:
                         total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01]) + w1_2 * (values[par, h02])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]) + w1_2 * (values[par ^ 1, h12])) + w0_2 * (w1_0 * (values[par, h20]) + w1_1 * (values[par ^ 1, h21]) + w1_2 * (values[par, h22]))
                     else:
-                        total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1) + w1_2 * (grads[h02, 0] * r0_0 + grads[h02, 1] * r1_2)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1) + w1_2 * (grads[h12, 0] * r0_1 + grads[h12, 1] * r1_2)) + w0_2 * (w1_0 * (grads[h20, 0] * r0_2 + grads[h20, 1] * r1_0) + w1_1 * (grads[h21, 0] * r0_2 + grads[h21, 1] * r1_1) + w1_2 * (grads[h22, 0] * r0_2 + grads[h22, 1] * r1_2))
+                        total = w0_0 * (w1_0 * (grads[h00, 0] * R[0, 0, i] + grads[h00, 1] * R[1, 0, i]) + w1_1 * (grads[h01, 0] * R[0, 0, i] + grads[h01, 1] * R[1, 1, i]) + w1_2 * (grads[h02, 0] * R[0, 0, i] + grads[h02, 1] * R[1, 2, i])) + w0_1 * (w1_0 * (grads[h10, 0] * R[0, 1, i] + grads[h10, 1] * R[1, 0, i]) + w1_1 * (grads[h11, 0] * R[0, 1, i] + grads[h11, 1] * R[1, 1, i]) + w1_2 * (grads[h12, 0] * R[0, 1, i] + grads[h12, 1] * R[1, 2, i])) + w0_2 * (w1_0 * (grads[h20, 0] * R[0, 2, i] + grads[h20, 1] * R[1, 0, i]) + w1_1 * (grads[h21, 0] * R[0, 2, i] + grads[h21, 1] * R[1, 1, i]) + w1_2 * (grads[h22, 0] * R[0, 2, i] + grads[h22, 1] * R[1, 2, i]))
                     if absval:
                         total = abs(total)
                     if o == 0:
@@ -707,13 +737,16 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[0, 1, i] = t - shift + (left - 1)
                 W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[0, 2, i] = t - shift + (left - 2)
                 W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-                R[0, 3, i] = t - shift + (left - 3)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -750,13 +783,16 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[1, 0, i] = t - shift + (left - 0)
                 W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[1, 1, i] = t - shift + (left - 1)
                 W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[1, 2, i] = t - shift + (left - 2)
                 W[1, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-                R[1, 3, i] = t - shift + (left - 3)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -787,14 +823,14 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[1, 3, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
-                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
-                w0_2 = W[0, 2, i]; r0_2 = R[0, 2, i]; q0_2 = Q[0, 2, i]
-                w0_3 = W[0, 3, i]; r0_3 = R[0, 3, i]; q0_3 = Q[0, 3, i]
-                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
-                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
-                w1_2 = W[1, 2, i]; r1_2 = R[1, 2, i]; q1_2 = Q[1, 2, i]
-                w1_3 = W[1, 3, i]; r1_3 = R[1, 3, i]; q1_3 = Q[1, 3, i]
+                w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                w0_3 = W[0, 3, i]; q0_3 = Q[0, 3, i]
+                w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                w1_3 = W[1, 3, i]; q1_3 = Q[1, 3, i]
                 for c in range(ncomp):
                     h0 = perms[c, q0_0]
                     h1 = perms[c, q0_1]
@@ -819,7 +855,7 @@ def points_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     if basis == 0:
                         total = w0_0 * (w1_0 * (values[par, h00]) + w1_1 * (values[par ^ 1, h01]) + w1_2 * (values[par, h02]) + w1_3 * (values[par ^ 1, h03])) + w0_1 * (w1_0 * (values[par ^ 1, h10]) + w1_1 * (values[par, h11]) + w1_2 * (values[par ^ 1, h12]) + w1_3 * (values[par, h13])) + w0_2 * (w1_0 * (values[par, h20]) + w1_1 * (values[par ^ 1, h21]) + w1_2 * (values[par, h22]) + w1_3 * (values[par ^ 1, h23])) + w0_3 * (w1_0 * (values[par ^ 1, h30]) + w1_1 * (values[par, h31]) + w1_2 * (values[par ^ 1, h32]) + w1_3 * (values[par, h33]))
                     else:
-                        total = w0_0 * (w1_0 * (grads[h00, 0] * r0_0 + grads[h00, 1] * r1_0) + w1_1 * (grads[h01, 0] * r0_0 + grads[h01, 1] * r1_1) + w1_2 * (grads[h02, 0] * r0_0 + grads[h02, 1] * r1_2) + w1_3 * (grads[h03, 0] * r0_0 + grads[h03, 1] * r1_3)) + w0_1 * (w1_0 * (grads[h10, 0] * r0_1 + grads[h10, 1] * r1_0) + w1_1 * (grads[h11, 0] * r0_1 + grads[h11, 1] * r1_1) + w1_2 * (grads[h12, 0] * r0_1 + grads[h12, 1] * r1_2) + w1_3 * (grads[h13, 0] * r0_1 + grads[h13, 1] * r1_3)) + w0_2 * (w1_0 * (grads[h20, 0] * r0_2 + grads[h20, 1] * r1_0) + w1_1 * (grads[h21, 0] * r0_2 + grads[h21, 1] * r1_1) + w1_2 * (grads[h22, 0] * r0_2 + grads[h22, 1] * r1_2) + w1_3 * (grads[h23, 0] * r0_2 + grads[h23, 1] * r1_3)) + w0_3 * (w1_0 * (grads[h30, 0] * r0_3 + grads[h30, 1] * r1_0) + w1_1 * (grads[h31, 0] * r0_3 + grads[h31, 1] * r1_1) + w1_2 * (grads[h32, 0] * r0_3 + grads[h32, 1] * r1_2) + w1_3 * (grads[h33, 0] * r0_3 + grads[h33, 1] * r1_3))
+                        total = w0_0 * (w1_0 * (grads[h00, 0] * R[0, 0, i] + grads[h00, 1] * R[1, 0, i]) + w1_1 * (grads[h01, 0] * R[0, 0, i] + grads[h01, 1] * R[1, 1, i]) + w1_2 * (grads[h02, 0] * R[0, 0, i] + grads[h02, 1] * R[1, 2, i]) + w1_3 * (grads[h03, 0] * R[0, 0, i] + grads[h03, 1] * R[1, 3, i])) + w0_1 * (w1_0 * (grads[h10, 0] * R[0, 1, i] + grads[h10, 1] * R[1, 0, i]) + w1_1 * (grads[h11, 0] * R[0, 1, i] + grads[h11, 1] * R[1, 1, i]) + w1_2 * (grads[h12, 0] * R[0, 1, i] + grads[h12, 1] * R[1, 2, i]) + w1_3 * (grads[h13, 0] * R[0, 1, i] + grads[h13, 1] * R[1, 3, i])) + w0_2 * (w1_0 * (grads[h20, 0] * R[0, 2, i] + grads[h20, 1] * R[1, 0, i]) + w1_1 * (grads[h21, 0] * R[0, 2, i] + grads[h21, 1] * R[1, 1, i]) + w1_2 * (grads[h22, 0] * R[0, 2, i] + grads[h22, 1] * R[1, 2, i]) + w1_3 * (grads[h23, 0] * R[0, 2, i] + grads[h23, 1] * R[1, 3, i])) + w0_3 * (w1_0 * (grads[h30, 0] * R[0, 3, i] + grads[h30, 1] * R[1, 0, i]) + w1_1 * (grads[h31, 0] * R[0, 3, i] + grads[h31, 1] * R[1, 1, i]) + w1_2 * (grads[h32, 0] * R[0, 3, i] + grads[h32, 1] * R[1, 2, i]) + w1_3 * (grads[h33, 0] * R[0, 3, i] + grads[h33, 1] * R[1, 3, i]))
                     if absval:
                         total = abs(total)
                     if o == 0:
@@ -862,7 +898,10 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -887,7 +926,10 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[1, 0, i] = t - shift + (left - 0)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -912,7 +954,10 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[2, 0, i] = t - shift + (left - 0)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[2, i] * f + ph + shift - FI[i]
+                    R[2, 0, i] = t - shift + (left - 0)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -931,9 +976,9 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[2, 0, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
-                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
-                w2_0 = W[2, 0, i]; r2_0 = R[2, 0, i]; q2_0 = Q[2, 0, i]
+                w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
                 for c in range(ncomp):
                     h0 = perms[c, q0_0]
                     h00 = perms[c, h0 + q1_0]
@@ -941,7 +986,7 @@ def points_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     if basis == 0:
                         total = w0_0 * (w1_0 * (w2_0 * (values[par, h000])))
                     else:
-                        total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * r0_0 + grads[h000, 1] * r1_0 + grads[h000, 2] * r2_0)))
+                        total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * R[0, 0, i] + grads[h000, 1] * R[1, 0, i] + grads[h000, 2] * R[2, 0, i])))
                     if absval:
                         total = abs(total)
                     if o == 0:
@@ -985,9 +1030,12 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[0, 1, i] = t - shift + (left - 1)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -1016,9 +1064,12 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[1, 0, i] = t - shift + (left - 0)
                 W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[1, 1, i] = t - shift + (left - 1)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -1047,9 +1098,12 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[2, 0, i] = t - shift + (left - 0)
                 W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[2, 1, i] = t - shift + (left - 1)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[2, i] * f + ph + shift - FI[i]
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -1072,12 +1126,12 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[2, 1, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w0_0 = W[0, 0, i]; r0_0 = R[0, 0, i]; q0_0 = Q[0, 0, i]
-                w0_1 = W[0, 1, i]; r0_1 = R[0, 1, i]; q0_1 = Q[0, 1, i]
-                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
-                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
-                w2_0 = W[2, 0, i]; r2_0 = R[2, 0, i]; q2_0 = Q[2, 0, i]
-                w2_1 = W[2, 1, i]; r2_1 = R[2, 1, i]; q2_1 = Q[2, 1, i]
+                w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
                 for c in range(ncomp):
                     h0 = perms[c, q0_0]
                     h1 = perms[c, q0_1]
@@ -1096,7 +1150,7 @@ def points_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     if basis == 0:
                         total = w0_0 * (w1_0 * (w2_0 * (values[par, h000]) + w2_1 * (values[par ^ 1, h001])) + w1_1 * (w2_0 * (values[par ^ 1, h010]) + w2_1 * (values[par, h011]))) + w0_1 * (w1_0 * (w2_0 * (values[par ^ 1, h100]) + w2_1 * (values[par, h101])) + w1_1 * (w2_0 * (values[par, h110]) + w2_1 * (values[par ^ 1, h111])))
                     else:
-                        total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * r0_0 + grads[h000, 1] * r1_0 + grads[h000, 2] * r2_0) + w2_1 * (grads[h001, 0] * r0_0 + grads[h001, 1] * r1_0 + grads[h001, 2] * r2_1)) + w1_1 * (w2_0 * (grads[h010, 0] * r0_0 + grads[h010, 1] * r1_1 + grads[h010, 2] * r2_0) + w2_1 * (grads[h011, 0] * r0_0 + grads[h011, 1] * r1_1 + grads[h011, 2] * r2_1))) + w0_1 * (w1_0 * (w2_0 * (grads[h100, 0] * r0_1 + grads[h100, 1] * r1_0 + grads[h100, 2] * r2_0) + w2_1 * (grads[h101, 0] * r0_1 + grads[h101, 1] * r1_0 + grads[h101, 2] * r2_1)) + w1_1 * (w2_0 * (grads[h110, 0] * r0_1 + grads[h110, 1] * r1_1 + grads[h110, 2] * r2_0) + w2_1 * (grads[h111, 0] * r0_1 + grads[h111, 1] * r1_1 + grads[h111, 2] * r2_1)))
+                        total = w0_0 * (w1_0 * (w2_0 * (grads[h000, 0] * R[0, 0, i] + grads[h000, 1] * R[1, 0, i] + grads[h000, 2] * R[2, 0, i]) + w2_1 * (grads[h001, 0] * R[0, 0, i] + grads[h001, 1] * R[1, 0, i] + grads[h001, 2] * R[2, 1, i])) + w1_1 * (w2_0 * (grads[h010, 0] * R[0, 0, i] + grads[h010, 1] * R[1, 1, i] + grads[h010, 2] * R[2, 0, i]) + w2_1 * (grads[h011, 0] * R[0, 0, i] + grads[h011, 1] * R[1, 1, i] + grads[h011, 2] * R[2, 1, i]))) + w0_1 * (w1_0 * (w2_0 * (grads[h100, 0] * R[0, 1, i] + grads[h100, 1] * R[1, 0, i] + grads[h100, 2] * R[2, 0, i]) + w2_1 * (grads[h101, 0] * R[0, 1, i] + grads[h101, 1] * R[1, 0, i] + grads[h101, 2] * R[2, 1, i])) + w1_1 * (w2_0 * (grads[h110, 0] * R[0, 1, i] + grads[h110, 1] * R[1, 1, i] + grads[h110, 2] * R[2, 0, i]) + w2_1 * (grads[h111, 0] * R[0, 1, i] + grads[h111, 1] * R[1, 1, i] + grads[h111, 2] * R[2, 1, i])))
                     if absval:
                         total = abs(total)
                     if o == 0:
@@ -1141,11 +1195,14 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[0, 1, i] = t - shift + (left - 1)
                 W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[0, 2, i] = t - shift + (left - 2)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -1178,11 +1235,14 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[1, 0, i] = t - shift + (left - 0)
                 W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[1, 1, i] = t - shift + (left - 1)
                 W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[1, 2, i] = t - shift + (left - 2)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -1215,11 +1275,14 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[2, 0, i] = t - shift + (left - 0)
                 W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[2, 1, i] = t - shift + (left - 1)
                 W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[2, 2, i] = t - shift + (left - 2)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[2, i] * f + ph + shift - FI[i]
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -1246,12 +1309,12 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[2, 2, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
-                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
-                w1_2 = W[1, 2, i]; r1_2 = R[1, 2, i]; q1_2 = Q[1, 2, i]
-                w2_0 = W[2, 0, i]; r2_0 = R[2, 0, i]; q2_0 = Q[2, 0, i]
-                w2_1 = W[2, 1, i]; r2_1 = R[2, 1, i]; q2_1 = Q[2, 1, i]
-                w2_2 = W[2, 2, i]; r2_2 = R[2, 2, i]; q2_2 = Q[2, 2, i]
+                w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
+                w2_2 = W[2, 2, i]; q2_2 = Q[2, 2, i]
                 for c in range(ncomp):
                     total = 0.0
                     for k0 in range(3):
@@ -1272,7 +1335,7 @@ def points_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                         if basis == 0:
                             inner = w1_0 * (w2_0 * (values[pk, h00]) + w2_1 * (values[pk ^ 1, h01]) + w2_2 * (values[pk, h02])) + w1_1 * (w2_0 * (values[pk ^ 1, h10]) + w2_1 * (values[pk, h11]) + w2_2 * (values[pk ^ 1, h12])) + w1_2 * (w2_0 * (values[pk, h20]) + w2_1 * (values[pk ^ 1, h21]) + w2_2 * (values[pk, h22]))
                         else:
-                            inner = w1_0 * (w2_0 * (grads[h00, 0] * R[0, k0, i] + grads[h00, 1] * r1_0 + grads[h00, 2] * r2_0) + w2_1 * (grads[h01, 0] * R[0, k0, i] + grads[h01, 1] * r1_0 + grads[h01, 2] * r2_1) + w2_2 * (grads[h02, 0] * R[0, k0, i] + grads[h02, 1] * r1_0 + grads[h02, 2] * r2_2)) + w1_1 * (w2_0 * (grads[h10, 0] * R[0, k0, i] + grads[h10, 1] * r1_1 + grads[h10, 2] * r2_0) + w2_1 * (grads[h11, 0] * R[0, k0, i] + grads[h11, 1] * r1_1 + grads[h11, 2] * r2_1) + w2_2 * (grads[h12, 0] * R[0, k0, i] + grads[h12, 1] * r1_1 + grads[h12, 2] * r2_2)) + w1_2 * (w2_0 * (grads[h20, 0] * R[0, k0, i] + grads[h20, 1] * r1_2 + grads[h20, 2] * r2_0) + w2_1 * (grads[h21, 0] * R[0, k0, i] + grads[h21, 1] * r1_2 + grads[h21, 2] * r2_1) + w2_2 * (grads[h22, 0] * R[0, k0, i] + grads[h22, 1] * r1_2 + grads[h22, 2] * r2_2))
+                            inner = w1_0 * (w2_0 * (grads[h00, 0] * R[0, k0, i] + grads[h00, 1] * R[1, 0, i] + grads[h00, 2] * R[2, 0, i]) + w2_1 * (grads[h01, 0] * R[0, k0, i] + grads[h01, 1] * R[1, 0, i] + grads[h01, 2] * R[2, 1, i]) + w2_2 * (grads[h02, 0] * R[0, k0, i] + grads[h02, 1] * R[1, 0, i] + grads[h02, 2] * R[2, 2, i])) + w1_1 * (w2_0 * (grads[h10, 0] * R[0, k0, i] + grads[h10, 1] * R[1, 1, i] + grads[h10, 2] * R[2, 0, i]) + w2_1 * (grads[h11, 0] * R[0, k0, i] + grads[h11, 1] * R[1, 1, i] + grads[h11, 2] * R[2, 1, i]) + w2_2 * (grads[h12, 0] * R[0, k0, i] + grads[h12, 1] * R[1, 1, i] + grads[h12, 2] * R[2, 2, i])) + w1_2 * (w2_0 * (grads[h20, 0] * R[0, k0, i] + grads[h20, 1] * R[1, 2, i] + grads[h20, 2] * R[2, 0, i]) + w2_1 * (grads[h21, 0] * R[0, k0, i] + grads[h21, 1] * R[1, 2, i] + grads[h21, 2] * R[2, 1, i]) + w2_2 * (grads[h22, 0] * R[0, k0, i] + grads[h22, 1] * R[1, 2, i] + grads[h22, 2] * R[2, 2, i]))
                         total += W[0, k0, i] * inner
                     if absval:
                         total = abs(total)
@@ -1319,13 +1382,16 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[0, 0, i] = t - shift + (left - 0)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[0, 1, i] = t - shift + (left - 1)
                 W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[0, 2, i] = t - shift + (left - 2)
                 W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-                R[0, 3, i] = t - shift + (left - 3)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -1362,13 +1428,16 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[1, 0, i] = t - shift + (left - 0)
                 W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[1, 1, i] = t - shift + (left - 1)
                 W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[1, 2, i] = t - shift + (left - 2)
                 W[1, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-                R[1, 3, i] = t - shift + (left - 3)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -1405,13 +1474,16 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 FI[i] = fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                R[2, 0, i] = t - shift + (left - 0)
                 W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                R[2, 1, i] = t - shift + (left - 1)
                 W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                R[2, 2, i] = t - shift + (left - 2)
                 W[2, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-                R[2, 3, i] = t - shift + (left - 3)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[2, i] * f + ph + shift - FI[i]
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+                    R[2, 3, i] = t - shift + (left - 3)
             exact = msk < 0 or per > n
             if not exact:
                 inside = 0
@@ -1442,14 +1514,14 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     Q[2, 3, i] = j if j < n else j % n
             for i in range(m):
                 par = PAR[i]
-                w1_0 = W[1, 0, i]; r1_0 = R[1, 0, i]; q1_0 = Q[1, 0, i]
-                w1_1 = W[1, 1, i]; r1_1 = R[1, 1, i]; q1_1 = Q[1, 1, i]
-                w1_2 = W[1, 2, i]; r1_2 = R[1, 2, i]; q1_2 = Q[1, 2, i]
-                w1_3 = W[1, 3, i]; r1_3 = R[1, 3, i]; q1_3 = Q[1, 3, i]
-                w2_0 = W[2, 0, i]; r2_0 = R[2, 0, i]; q2_0 = Q[2, 0, i]
-                w2_1 = W[2, 1, i]; r2_1 = R[2, 1, i]; q2_1 = Q[2, 1, i]
-                w2_2 = W[2, 2, i]; r2_2 = R[2, 2, i]; q2_2 = Q[2, 2, i]
-                w2_3 = W[2, 3, i]; r2_3 = R[2, 3, i]; q2_3 = Q[2, 3, i]
+                w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                w1_3 = W[1, 3, i]; q1_3 = Q[1, 3, i]
+                w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
+                w2_2 = W[2, 2, i]; q2_2 = Q[2, 2, i]
+                w2_3 = W[2, 3, i]; q2_3 = Q[2, 3, i]
                 for c in range(ncomp):
                     total = 0.0
                     for k0 in range(4):
@@ -1478,7 +1550,7 @@ def points_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                         if basis == 0:
                             inner = w1_0 * (w2_0 * (values[pk, h00]) + w2_1 * (values[pk ^ 1, h01]) + w2_2 * (values[pk, h02]) + w2_3 * (values[pk ^ 1, h03])) + w1_1 * (w2_0 * (values[pk ^ 1, h10]) + w2_1 * (values[pk, h11]) + w2_2 * (values[pk ^ 1, h12]) + w2_3 * (values[pk, h13])) + w1_2 * (w2_0 * (values[pk, h20]) + w2_1 * (values[pk ^ 1, h21]) + w2_2 * (values[pk, h22]) + w2_3 * (values[pk ^ 1, h23])) + w1_3 * (w2_0 * (values[pk ^ 1, h30]) + w2_1 * (values[pk, h31]) + w2_2 * (values[pk ^ 1, h32]) + w2_3 * (values[pk, h33]))
                         else:
-                            inner = w1_0 * (w2_0 * (grads[h00, 0] * R[0, k0, i] + grads[h00, 1] * r1_0 + grads[h00, 2] * r2_0) + w2_1 * (grads[h01, 0] * R[0, k0, i] + grads[h01, 1] * r1_0 + grads[h01, 2] * r2_1) + w2_2 * (grads[h02, 0] * R[0, k0, i] + grads[h02, 1] * r1_0 + grads[h02, 2] * r2_2) + w2_3 * (grads[h03, 0] * R[0, k0, i] + grads[h03, 1] * r1_0 + grads[h03, 2] * r2_3)) + w1_1 * (w2_0 * (grads[h10, 0] * R[0, k0, i] + grads[h10, 1] * r1_1 + grads[h10, 2] * r2_0) + w2_1 * (grads[h11, 0] * R[0, k0, i] + grads[h11, 1] * r1_1 + grads[h11, 2] * r2_1) + w2_2 * (grads[h12, 0] * R[0, k0, i] + grads[h12, 1] * r1_1 + grads[h12, 2] * r2_2) + w2_3 * (grads[h13, 0] * R[0, k0, i] + grads[h13, 1] * r1_1 + grads[h13, 2] * r2_3)) + w1_2 * (w2_0 * (grads[h20, 0] * R[0, k0, i] + grads[h20, 1] * r1_2 + grads[h20, 2] * r2_0) + w2_1 * (grads[h21, 0] * R[0, k0, i] + grads[h21, 1] * r1_2 + grads[h21, 2] * r2_1) + w2_2 * (grads[h22, 0] * R[0, k0, i] + grads[h22, 1] * r1_2 + grads[h22, 2] * r2_2) + w2_3 * (grads[h23, 0] * R[0, k0, i] + grads[h23, 1] * r1_2 + grads[h23, 2] * r2_3)) + w1_3 * (w2_0 * (grads[h30, 0] * R[0, k0, i] + grads[h30, 1] * r1_3 + grads[h30, 2] * r2_0) + w2_1 * (grads[h31, 0] * R[0, k0, i] + grads[h31, 1] * r1_3 + grads[h31, 2] * r2_1) + w2_2 * (grads[h32, 0] * R[0, k0, i] + grads[h32, 1] * r1_3 + grads[h32, 2] * r2_2) + w2_3 * (grads[h33, 0] * R[0, k0, i] + grads[h33, 1] * r1_3 + grads[h33, 2] * r2_3))
+                            inner = w1_0 * (w2_0 * (grads[h00, 0] * R[0, k0, i] + grads[h00, 1] * R[1, 0, i] + grads[h00, 2] * R[2, 0, i]) + w2_1 * (grads[h01, 0] * R[0, k0, i] + grads[h01, 1] * R[1, 0, i] + grads[h01, 2] * R[2, 1, i]) + w2_2 * (grads[h02, 0] * R[0, k0, i] + grads[h02, 1] * R[1, 0, i] + grads[h02, 2] * R[2, 2, i]) + w2_3 * (grads[h03, 0] * R[0, k0, i] + grads[h03, 1] * R[1, 0, i] + grads[h03, 2] * R[2, 3, i])) + w1_1 * (w2_0 * (grads[h10, 0] * R[0, k0, i] + grads[h10, 1] * R[1, 1, i] + grads[h10, 2] * R[2, 0, i]) + w2_1 * (grads[h11, 0] * R[0, k0, i] + grads[h11, 1] * R[1, 1, i] + grads[h11, 2] * R[2, 1, i]) + w2_2 * (grads[h12, 0] * R[0, k0, i] + grads[h12, 1] * R[1, 1, i] + grads[h12, 2] * R[2, 2, i]) + w2_3 * (grads[h13, 0] * R[0, k0, i] + grads[h13, 1] * R[1, 1, i] + grads[h13, 2] * R[2, 3, i])) + w1_2 * (w2_0 * (grads[h20, 0] * R[0, k0, i] + grads[h20, 1] * R[1, 2, i] + grads[h20, 2] * R[2, 0, i]) + w2_1 * (grads[h21, 0] * R[0, k0, i] + grads[h21, 1] * R[1, 2, i] + grads[h21, 2] * R[2, 1, i]) + w2_2 * (grads[h22, 0] * R[0, k0, i] + grads[h22, 1] * R[1, 2, i] + grads[h22, 2] * R[2, 2, i]) + w2_3 * (grads[h23, 0] * R[0, k0, i] + grads[h23, 1] * R[1, 2, i] + grads[h23, 2] * R[2, 3, i])) + w1_3 * (w2_0 * (grads[h30, 0] * R[0, k0, i] + grads[h30, 1] * R[1, 3, i] + grads[h30, 2] * R[2, 0, i]) + w2_1 * (grads[h31, 0] * R[0, k0, i] + grads[h31, 1] * R[1, 3, i] + grads[h31, 2] * R[2, 1, i]) + w2_2 * (grads[h32, 0] * R[0, k0, i] + grads[h32, 1] * R[1, 3, i] + grads[h32, 2] * R[2, 2, i]) + w2_3 * (grads[h33, 0] * R[0, k0, i] + grads[h33, 1] * R[1, 3, i] + grads[h33, 2] * R[2, 3, i]))
                         total += W[0, k0, i] * inner
                     if absval:
                         total = abs(total)
