@@ -129,28 +129,20 @@ def _draws(key, start, n, mode, dtype=np.float32):
 
     Word ``i`` of a counter-based SplitMix64 stream keyed by one 64-bit word
     of the caller's generator gives coefficient ``i``: ``u`` uniform on
-    ``(0, 1]`` (high 32 bits) and the phase ``th`` uniform on ``[0, 2*pi)``
+    ``(0, 1)`` (high 32 bits) and the phase ``th`` uniform on ``[0, 2*pi)``
     (low 32 bits). The amplitude ``a`` is ``sqrt(3) * u`` ("uniform"),
     ``sqrt(-log u)`` ("rayleigh": with the phase a complex Gaussian,
-    Box-Muller) or 1 ("fixed"); ``E[a**2] = 1``. float32 throughout (the
-    float64 path casts the same values), so one seed gives the same
-    coefficients in both precisions and in any chunking.
+    Box-Muller) or 1 ("fixed"); ``E[a**2] = 1``. Computed in float64 and
+    stored in float32 (the float64 path casts the same values), so one seed
+    gives the same coefficients in both precisions and in any chunking.
     """
-    u = np.empty(n, dtype=np.float32)
+    a2 = np.empty(n, dtype=np.float32)
     c = np.empty(n, dtype=np.float32)
     s = np.empty(n, dtype=np.float32)
-    _kernels.coefficient_parts(key, start, u, c, s)
-    if mode == _MODES["rayleigh"]:
-        np.log(u, out=u)
-        np.negative(u, out=u)
-    elif mode == _MODES["uniform"]:
-        np.square(u, out=u)
-        u *= np.float32(3.0)
-    else:
-        u[...] = 1
+    _kernels.coefficient_parts(key, start, mode, a2, c, s)
     if dtype != np.float32:
-        return u.astype(dtype), c.astype(dtype), s.astype(dtype)
-    return u, c, s
+        return a2.astype(dtype), c.astype(dtype), s.astype(dtype)
+    return a2, c, s
 
 
 def _stream_key(rng):
@@ -252,7 +244,7 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
         start += n
     for j in _self_conjugate_columns(shape[-1]):
         spec[..., j] = hermitian_plane(spec[..., j], env[..., j] > 0)
-    field = scipy.fft.irfftn(spec, s=shape, overwrite_x=not return_spectrum)
+    field = scipy.fft.irfftn(spec, s=shape)  # (overwrite_x=True measured slower: in-place strided passes)
     if field.dtype != dt:
         field = field.astype(dt)
     return (field, spec) if return_spectrum else field
@@ -308,16 +300,17 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype):
     mode = _MODES[amplitude]
     block = np.empty(bshape, dtype=cdt)
     b2 = block.reshape(R, K).view(dt)  # (R, 2K): real and imaginary parts
-    kint0, kint1 = 1, (n // 2 if n % 2 == 0 else n // 2 + 1)
-    interior = 0.0
+    interior = np.zeros(K, dtype=dt)  # 1 where a half-spectrum cell stands for two full-spectrum cells
+    interior[1:n // 2 if n % 2 == 0 else n // 2 + 1] = 1
+    inner_power = 0.0
     key, start = _stream_key(rng), 0
     for r0, r1, m in _row_groups(counts):
-        u, c, s = _draws(key, start, m, mode, dt)
-        start += m
+        a2, c, s = _draws(key, start, m, mode, dt)
         pw = np.empty(m, dtype=dt)
-        _kernels.fill_power_law(b2, q0, q1, wxsq, kbeg, kend, r0, r1, u, c, s, float(exponent), kint0, kint1, pw)
-        interior += float(np.sum(pw))  # pairwise in the output precision, repeatable
-    power = 2.0 * interior
+        _kernels.fill_power_law(b2, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, float(exponent), interior, pw)
+        inner_power += float(np.sum(pw))  # pairwise in the output precision, repeatable
+        start += m
+    power = 2.0 * inner_power
     sel = np.ix_(*index) if d > 1 else ()
     for j in _self_conjugate_columns(n):
         if j >= K:
@@ -345,7 +338,7 @@ def _pruned_irfftn(block, index, shape):
     """
     d = len(shape)
     if all(ix.size == n for ix, n in zip(index, shape[:-1])) and block.shape[-1] == shape[-1] // 2 + 1:
-        return scipy.fft.irfftn(block, s=shape, overwrite_x=True)
+        return scipy.fft.irfftn(block, s=shape)
     B = block
     for ax in range(d - 1):
         n = shape[ax]

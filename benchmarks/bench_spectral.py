@@ -1,0 +1,218 @@
+"""Benchmark: ``noiselab.spectral_noise`` and ``synthesize`` against their floor, a bare ``scipy.fft.irfftn``.
+
+Run from the repository root::
+
+    python3 benchmarks/bench_spectral.py                      # writes benchmarks/bench_spectral.md
+    python3 benchmarks/bench_spectral.py --before c3cdeef     # adds the version at that commit, side by side
+    python3 benchmarks/bench_spectral.py --quick              # smaller, for a smoke test
+
+The floor is ``scipy.fft.irfftn`` of a ready-made half spectrum producing the
+same output (shape and dtype): the one transform any spectral synthesis must
+do. Everything runs in one process, interleaved round by round (floor, then
+each contender, for every case, in every round), and is reported as the
+median of the per-round ratios to the floor, because the machine is shared.
+Single-threaded throughout (scipy's default ``workers=1``; noiselab's kernels
+are serial). Peak memory is the ``tracemalloc`` peak of one call (numpy
+arrays; numba's scratch and the FFT library's buffers are not traced),
+given beside the output's own size.
+"""
+from __future__ import annotations
+
+import argparse
+import datetime
+import importlib.util
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+import tracemalloc
+from pathlib import Path
+
+import numpy as np
+import scipy
+import scipy.fft
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+import numba  # noqa: E402
+
+import noiselab  # noqa: E402
+from noiselab.spectral import envelopes as E  # noqa: E402
+from noiselab.spectral import spectral_noise, synthesize  # noqa: E402
+
+
+def _before_module(rev):
+    """``noiselab/spectral/synthesis.py`` as it was at git revision ``rev``, imported as a module."""
+    src = subprocess.run(["git", "show", f"{rev}:noiselab/spectral/synthesis.py"], cwd=ROOT, check=True,
+                         capture_output=True, text=True).stdout
+    src = (src.replace("from .._validate", "from noiselab._validate")
+           .replace("from .envelopes", "from noiselab.spectral.envelopes")
+           .replace("from .frequencies", "from noiselab.spectral.frequencies")
+           .replace("from . import _kernels", "from noiselab.spectral import _kernels"))
+    path = Path(tempfile.mkdtemp()) / "spectral_before.py"
+    path.write_text(src)
+    spec = importlib.util.spec_from_file_location("spectral_before", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _half_spectrum(shape, dtype):
+    rng = np.random.default_rng(0)
+    h = shape[:-1] + (shape[-1] // 2 + 1,)
+    S = np.empty(h, np.complex64 if dtype == np.float32 else np.complex128)
+    S.real = rng.standard_normal(h, dtype=np.float32)
+    S.imag = rng.standard_normal(h, dtype=np.float32)
+    return S
+
+
+def _cases(quick):
+    n2, n3 = (256, 32) if quick else (1024, 128)
+    out = []
+    for dt in (np.float32, np.float64):
+        out += [
+            ((n2, n2), None, dt),
+            ((n2, n2), (4, n2 // 16), dt),
+            ((n3, n3, n3), None, dt),
+            ((n3, n3, n3), (4, n3 // 2), dt),
+            ((n3, n3, n3), (2, n3 // 8), dt),
+        ]
+    return out
+
+
+def _label(shape, band, dt):
+    b = "full band" if band is None else f"band ({band[0]:g}, {band[1]:g})"
+    return f"{' x '.join(map(str, shape))} {b} {np.dtype(dt).name}"
+
+
+def _synth_env(shape, band):
+    n = shape[-1]
+    lo, hi = (0.0, 0.5 * np.sqrt(len(shape)) + 1.0) if band is None else (band[0] / n, band[1] / n)
+    return lambda *w: E.annulus(*w, lo=lo, hi=hi) * E.power_law(*w, exponent=1.0)
+
+
+def _peak(f):
+    tracemalloc.start()
+    tracemalloc.reset_peak()
+    out = f()
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    del out
+    return peak
+
+
+def run(rounds, quick, before_rev):
+    before = _before_module(before_rev) if before_rev else None
+    cases = _cases(quick)
+    spectral_noise((8, 8), seed=0)  # numba warm-up (cached kernels load)
+    synthesize((8, 8), lambda wy, wx: 1.0 + 0 * wy * wx, seed=0)
+    contenders = {
+        "spectral_noise": lambda shape, band, dt, r: spectral_noise(shape, band=band, seed=r, dtype=dt),
+        "synthesize": lambda shape, band, dt, r: synthesize(shape, _synth_env(shape, band), seed=r,
+                                                            amplitude="rayleigh", dtype=dt),
+    }
+    if before is not None:
+        contenders["spectral_noise before"] = lambda shape, band, dt, r: before.spectral_noise(
+            shape, band=band, seed=r, dtype=dt)
+    floors = {c: _half_spectrum(c[0], c[2]) for c in cases}
+    times = {(c, k): [] for c in cases for k in ["floor", *contenders]}
+    for c in cases:  # warm every path once
+        shape, band, dt = c
+        scipy.fft.irfftn(floors[c], s=shape)
+        for f in contenders.values():
+            f(shape, band, dt, 0)
+    for r in range(rounds):
+        for c in cases:
+            shape, band, dt = c
+            t0 = time.perf_counter()
+            y = scipy.fft.irfftn(floors[c], s=shape)
+            times[(c, "floor")].append(time.perf_counter() - t0)
+            assert y.dtype == dt and y.shape == shape
+            del y
+            for k, f in contenders.items():
+                t0 = time.perf_counter()
+                y = f(shape, band, dt, r)
+                times[(c, k)].append(time.perf_counter() - t0)
+                assert y.dtype == dt and y.shape == shape
+                del y
+    rows = []
+    for c in cases:
+        shape, band, dt = c
+        fl = np.array(times[(c, "floor")])
+        row = {"case": _label(*c), "floor_ms": 1e3 * float(np.median(fl)),
+               "out_mib": np.prod(shape) * np.dtype(dt).itemsize / 2**20}
+        for k in contenders:
+            t = np.array(times[(c, k)])
+            row[k] = (float(np.median(t / fl)), 1e3 * float(np.median(t)))
+        row["peak_mib"] = _peak(lambda: spectral_noise(shape, band=band, seed=0, dtype=dt)) / 2**20
+        row["peak_floor_mib"] = _peak(lambda: scipy.fft.irfftn(floors[c], s=shape)) / 2**20
+        if before is not None:
+            row["peak_before_mib"] = _peak(lambda: before.spectral_noise(shape, band=band, seed=0, dtype=dt)) / 2**20
+        rows.append(row)
+    return rows, list(contenders)
+
+
+def _cpu():
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def write_md(rows, names, rounds, argv, path):
+    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    lines = [
+        "# spectral_noise / synthesize against a bare irfftn",
+        "",
+        f"Command: `python3 benchmarks/bench_spectral.py {' '.join(argv)}`".replace(" `", " `").rstrip(),
+        "",
+        f"Date: {now}. Machine: {platform.node()}, {_cpu()}, {os.cpu_count()} cores (shared with other jobs: "
+        "ratios are what hold, the milliseconds move with the load). "
+        f"Python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}, "
+        f"numba {numba.__version__}, noiselab {getattr(noiselab, '__version__', '?')}.",
+        "",
+        f"Ratio = median over {rounds} interleaved rounds of (time / floor time in the same round); floor = "
+        "`scipy.fft.irfftn` of a ready half spectrum to the same output shape and dtype (one thread). "
+        "`synthesize` gets the float64 envelope `annulus * power_law` as a callable (the general path). "
+        "Peak = `tracemalloc` peak of one `spectral_noise` call (numpy arrays only), floor's for comparison.",
+        "",
+    ]
+    head = "| case | floor ms | " + " | ".join(f"{n} (x floor, ms)" for n in names) + \
+        " | peak MiB (floor; output) |" + (" before peak MiB |" if "spectral_noise before" in names else "")
+    lines.append(head)
+    lines.append("|" + "---|" * (head.count("|") - 1))
+    for r in rows:
+        cells = [r["case"], f"{r['floor_ms']:.1f}"]
+        cells += [f"**{r[n][0]:.2f}** ({r[n][1]:.1f})" if n == "spectral_noise" else f"{r[n][0]:.2f} ({r[n][1]:.1f})"
+                  for n in names]
+        cells.append(f"{r['peak_mib']:.1f} ({r['peak_floor_mib']:.1f}; {r['out_mib']:.1f})")
+        if "peak_before_mib" in r:
+            cells.append(f"{r['peak_before_mib']:.1f}")
+        lines.append("| " + " | ".join(cells) + " |")
+    lines.append("")
+    path.write_text("\n".join(lines))
+    print("\n".join(lines))
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--rounds", type=int, default=7)
+    p.add_argument("--quick", action="store_true")
+    p.add_argument("--before", default=None, help="git revision whose spectral_noise to time beside (e.g. c3cdeef)")
+    p.add_argument("--output", default=str(ROOT / "benchmarks" / "bench_spectral.md"))
+    argv = sys.argv[1:] if argv is None else argv
+    a = p.parse_args(argv)
+    if a.rounds < 5:
+        p.error("--rounds must be at least 5 (medians of fewer are not reported)")
+    rows, names = run(a.rounds, a.quick, a.before)
+    write_md(rows, names, a.rounds, argv, Path(a.output))
+
+
+if __name__ == "__main__":
+    main()
