@@ -9,7 +9,12 @@ cd "$(dirname "$0")"
 [ -x .venv-peers/bin/python ] || python3 -m venv --system-site-packages .venv-peers
 export PIP_DISABLE_PIP_VERSION_CHECK=1
 .venv-peers/bin/python -m pip install -q -r requirements-peers.txt
-# Packages that may fail to build on a given Python/NumPy: installed one by one, failures reported, not fatal.
-for optional in pyfastnoisesimd; do
-    .venv-peers/bin/python -m pip install -q "$optional" || echo "setup_peers.sh: could not install $optional (skipped)"
-done
+# pyfastnoisesimd ships no wheel for this Python: it builds from source and
+# needs wheel plus numpy's headers, without build isolation (so it compiles
+# against the numpy the venv runs). At run time it calls np.product, removed in
+# NumPy 2: the benchmarks add the shim `np.product = np.prod` before importing it.
+# Failures are reported and not fatal: the benchmarks list the peer as missing.
+.venv-peers/bin/python -m pip install -q wheel
+numpy_include=$(.venv-peers/bin/python -c "import numpy; print(numpy.get_include())")
+CFLAGS="-I$numpy_include" .venv-peers/bin/python -m pip install -q --no-build-isolation pyfastnoisesimd \
+    || echo "setup_peers.sh: could not install pyfastnoisesimd (skipped)"
