@@ -19,6 +19,18 @@ every cell equals the envelope squared:
 - ``"uniform"``: ``a`` uniform on ``[0, sqrt(3)]`` (the thesis's ``rand([0,1])``, rescaled),
 - ``"rayleigh"``: complex Gaussian coefficients (a Gaussian random field),
 - ``"fixed"``: ``a = 1``, random phase only (``|S|`` equals the envelope exactly).
+
+Random numbers. :func:`synthesize` and :func:`spectral_noise` take one 64-bit
+word from the caller's generator as the key of a counter-based SplitMix64
+stream; coefficient ``i`` (the ``i``-th supported cell in C order) is word
+``i`` of that stream, turned into an amplitude and a phase by vectorised
+float32 polynomials (``log`` for the Rayleigh amplitude, ``sin`` and ``cos``;
+errors below 1e-9 before float32 rounding), so drawing costs about what
+writing the spectrum does, any chunking gives the same values, and float32
+and float64 fields of one seed share them (they agree to float32 precision).
+Same seed, same bits on one machine; the bits changed from the earlier
+``rng.random`` + ``cos``/``sin`` draws. :func:`draw_coefficients` keeps that
+earlier scheme (``noiselab.snow`` uses it for its few cells).
 """
 from __future__ import annotations
 
@@ -294,7 +306,12 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype):
     kbeg = np.empty(R, dtype=np.int64)
     kend = np.empty(R, dtype=np.int64)
     wxsq = np.ascontiguousarray(wsq[-1][:K])
-    _kernels.band_rows(q0, q1, wxsq, lo_e, hi_e, kbeg, kend)
+    if band is None:  # every cell but DC (the first row holds DC: index[i][0] == 0)
+        kbeg[:] = 0
+        kend[:] = K
+        kbeg[0] = 1
+    else:
+        _kernels.band_rows(q0, q1, wxsq, lo_e, hi_e, kbeg, kend)
     counts = kend - kbeg
     rng = as_generator(seed)
     mode = _MODES[amplitude]
@@ -311,6 +328,7 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype):
         inner_power += float(np.sum(pw))  # pairwise in the output precision, repeatable
         start += m
     power = 2.0 * inner_power
+    pruned = any(ix.size < m for ix, m in zip(index, shape[:-1]))
     sel = np.ix_(*index) if d > 1 else ()
     for j in _self_conjugate_columns(n):
         if j >= K:
@@ -320,11 +338,14 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype):
             block[j:j + 1] = hermitian_plane(block[j:j + 1], sup)
             power += float(np.sum(np.abs(block[j].astype(np.complex128)) ** 2))
             continue
-        full = np.zeros(shape[:-1], dtype=cdt)
-        full[sel] = block[..., j]
+        if pruned:
+            full = np.zeros(shape[:-1], dtype=cdt)
+            full[sel] = block[..., j]
+        else:
+            full = block[..., j]
         sup = annulus(*[wi[..., 0] for wi in w[:-1]], w[-1][..., j], lo=lo, hi=hi) > 0
         full = hermitian_plane(full, sup)
-        block[..., j] = full[sel]
+        block[..., j] = full[sel] if pruned else full
         power += float(np.sum(full.real.astype(np.float64) ** 2 + full.imag.astype(np.float64) ** 2))
     return block, index, power
 
