@@ -253,3 +253,33 @@ def fill_power_law(spec2f, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, exponent,
         for k in range(2 * b1, K2):
             row[k] = 0
         j += n
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def hermitian_symmetric_plane(P, map0, map1):
+    """Make a self-conjugate plane ``P`` (2-D view) Hermitian in place, for a support symmetric under ``k -> -k``.
+
+    ``map0[i]``, ``map1[i]`` are the positions of the mirrors ``-k`` along each
+    axis. As :func:`noiselab.spectral.hermitian_plane` does when the support
+    is symmetric: the first cell of each mirror pair in C order keeps its
+    value, the other gets its conjugate, a self-conjugate cell ``v`` becomes
+    ``|v| * sign(Re v)``. Returns the plane's ``sum |P|**2`` (float64).
+    """
+    m0, m1 = P.shape
+    power = 0.0
+    for i in range(m0):
+        a = map0[i]
+        for k in range(m1):
+            b = map1[k]
+            own = i * m1 + k
+            mir = a * m1 + b
+            v = P[i, k]
+            if mir < own:
+                w = P[a, b]
+                v = complex(w.real, -w.imag)
+            elif mir == own:
+                mag = np.sqrt(np.float64(v.real) * np.float64(v.real) + np.float64(v.imag) * np.float64(v.imag))
+                v = complex(mag if v.real >= 0 else -mag, 0.0)
+            P[i, k] = v
+            power += np.float64(v.real) * np.float64(v.real) + np.float64(v.imag) * np.float64(v.imag)
+    return power

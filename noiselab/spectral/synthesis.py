@@ -302,23 +302,34 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype):
     bshape = tuple(ix.size for ix in index) + (K,)
     check_memory(int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * _CHUNK,
                  f"spectral_noise{shape}")
-    R = q0.size * q1.size
-    kbeg = np.empty(R, dtype=np.int64)
-    kend = np.empty(R, dtype=np.int64)
     wxsq = np.ascontiguousarray(wsq[-1][:K])
-    if band is None:  # every cell but DC (the first row holds DC: index[i][0] == 0)
-        kbeg[:] = 0
-        kend[:] = K
+    interior = np.zeros(K, dtype=dt)  # 1 where a half-spectrum cell stands for two full-spectrum cells
+    interior[1:n // 2 if n % 2 == 0 else n // 2 + 1] = 1
+    block = np.empty(bshape, dtype=cdt)
+    if band is None and d == 3:
+        # every cell but DC: fill whole (ky, kx) planes as single rows (|w|**2 = wt**2 + (wy**2 + wx**2)),
+        # long loops instead of many short ones (measured 2x faster at 128**3); the first row starts after DC
+        wxsq = np.ascontiguousarray((q1[:, None] + wxsq[None, :]).reshape(-1))
+        interior = np.tile(interior, q1.size)
+        q1 = np.zeros(1)
+        R, Kr = q0.size, wxsq.size
+        kbeg = np.zeros(R, dtype=np.int64)
+        kend = np.full(R, Kr, dtype=np.int64)
         kbeg[0] = 1
     else:
-        _kernels.band_rows(q0, q1, wxsq, lo_e, hi_e, kbeg, kend)
+        R, Kr = q0.size * q1.size, K
+        kbeg = np.empty(R, dtype=np.int64)
+        kend = np.empty(R, dtype=np.int64)
+        if band is None:  # every cell but DC (the first row holds DC: index[i][0] == 0)
+            kbeg[:] = 0
+            kend[:] = K
+            kbeg[0] = 1
+        else:
+            _kernels.band_rows(q0, q1, wxsq, lo_e, hi_e, kbeg, kend)
     counts = kend - kbeg
     rng = as_generator(seed)
     mode = _MODES[amplitude]
-    block = np.empty(bshape, dtype=cdt)
-    b2 = block.reshape(R, K).view(dt)  # (R, 2K): real and imaginary parts
-    interior = np.zeros(K, dtype=dt)  # 1 where a half-spectrum cell stands for two full-spectrum cells
-    interior[1:n // 2 if n % 2 == 0 else n // 2 + 1] = 1
+    b2 = block.reshape(R, Kr).view(dt)  # (R, 2 Kr): real and imaginary parts
     inner_power = 0.0
     key, start = _stream_key(rng), 0
     for r0, r1, m in _row_groups(counts):
@@ -328,25 +339,13 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype):
         inner_power += float(np.sum(pw))  # pairwise in the output precision, repeatable
         start += m
     power = 2.0 * inner_power
-    pruned = any(ix.size < m for ix, m in zip(index, shape[:-1]))
-    sel = np.ix_(*index) if d > 1 else ()
+    # the self-conjugate planes: the annulus is symmetric under k -> -k, and so is the kept block
+    maps = [np.searchsorted(ix, (-ix) % m) for ix, m in zip(index, shape[:-1])]
+    maps = [np.zeros(1, dtype=np.int64)] * (2 - len(maps)) + maps
     for j in _self_conjugate_columns(n):
-        if j >= K:
-            continue
-        if d == 1:
-            sup = annulus(w[0][j:j + 1], lo=lo, hi=hi) > 0
-            block[j:j + 1] = hermitian_plane(block[j:j + 1], sup)
-            power += float(np.sum(np.abs(block[j].astype(np.complex128)) ** 2))
-            continue
-        if pruned:
-            full = np.zeros(shape[:-1], dtype=cdt)
-            full[sel] = block[..., j]
-        else:
-            full = block[..., j]
-        sup = annulus(*[wi[..., 0] for wi in w[:-1]], w[-1][..., j], lo=lo, hi=hi) > 0
-        full = hermitian_plane(full, sup)
-        block[..., j] = full[sel] if pruned else full
-        power += float(np.sum(full.real.astype(np.float64) ** 2 + full.imag.astype(np.float64) ** 2))
+        if j < K:
+            plane = block[..., j].reshape(maps[0].size, maps[1].size)
+            power += _kernels.hermitian_symmetric_plane(plane, maps[0], maps[1])
     return block, index, power
 
 
