@@ -146,11 +146,27 @@ def count_envelope_rows(env2, counts):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def fill_envelope(spec2, env2, r0, r1, a2, c, s):
-    """Rows ``r0..r1-1`` of ``spec2``: ``env * sqrt(a2) * exp(i*th)`` on ``env > 0`` (coefficients in C order), 0 elsewhere."""
+def fill_envelope(spec2, env2, counts, r0, r1, a2, c, s):
+    """Rows ``r0..r1-1`` of ``spec2``: ``env * sqrt(a2) * exp(i*th)`` on ``env > 0`` (coefficients in C order), 0 elsewhere.
+
+    ``counts[r]`` is the number of cells with ``env > 0`` in row ``r``: a row
+    with all of them takes a branch-free loop (unsigned offsets, so it
+    vectorises) computing exactly the same values as the general one.
+    """
     K = spec2.shape[1]
     j = 0
     for r in range(r0, r1):
+        if counts[r] == K:
+            uj = np.uint64(j)
+            for i in range(K):
+                t = np.uint64(i)
+                e = env2[r, t]
+                cj = np.float64(c[uj + t])
+                sj = np.float64(s[uj + t])
+                m = e * np.sqrt(np.float64(a2[uj + t]) / (cj * cj + sj * sj))
+                spec2[r, t] = complex(m * cj, m * sj)
+            j += K
+            continue
         for k in range(K):
             e = env2[r, k]
             if e > 0:
@@ -201,57 +217,62 @@ def band_rows(q0, q1, wxsq, lo, hi, kbeg, kend):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def fill_power_law(spec2f, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, exponent, interior, pw):
+def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, exponent, interior, pw):
     """Rows ``r0..r1-1`` of a ``(m0*m1, K)`` block: ``|w|**-exponent * a * exp(i*th)`` inside each row's band.
 
-    ``spec2f`` is the block's float view ``(m0*m1, 2*K)`` (real and imaginary
-    parts interleaved), written in its own precision. ``a2`` is the squared
-    random amplitude of each coefficient, ``c, s`` its phase's cosine and sine
-    (the magnitude is taken as ``sqrt(a2 / (c**2 + s**2))``, so that
+    ``specf`` is the block's flat float view (real and imaginary parts
+    interleaved, ``2*K`` per row), written in its own precision. ``a2`` is the
+    squared random amplitude of each coefficient, ``c, s`` its phase's cosine
+    and sine (the magnitude is taken as ``sqrt(a2 / (c**2 + s**2))``, so that
     ``|exp(i*th)| = 1`` to the output's precision). Writes into ``pw`` (one
     entry per coefficient) ``|S|**2 * interior[kx]``: ``interior`` is 1 where a
     half-spectrum cell stands for two cells of the full spectrum, 0 on the
     self-conjugate planes (whose power the caller adds once they are Hermitian).
-    (Drawing the coefficients inside this loop instead was measured slower:
-    the fused loop no longer vectorises.)
+
+    Indices are unsigned offsets rather than slices: no negative-index
+    wrap-around, so the loops vectorise, and no per-row array views (whose
+    reference counting cost more than a short row's arithmetic).
     """
     m1 = q1.size
-    K2 = spec2f.shape[1]
-    T = spec2f.dtype.type
+    T = specf.dtype.type
     ex = T(-0.5 * exponent)
+    zero = T(0)
+    one = np.uint64(1)
+    two = np.uint64(2)
     j = 0
     for r in range(r0, r1):
         q = q0[r // m1] + q1[r % m1]
         b0 = kbeg[r]
         b1 = kend[r]
-        row = spec2f[r]
-        for k in range(0, 2 * b0):
-            row[k] = 0
+        base = np.uint64(r * 2 * K)
+        for k in range(2 * b0):
+            specf[base + np.uint64(k)] = zero
         n = b1 - b0
-        # slices, so that every index below is provably in range and the loops vectorise
-        cc = c[j:j + n]
-        ss = s[j:j + n]
-        aa = a2[j:j + n]
-        wx = wxsq[b0:b1]
-        inn = interior[b0:b1]
-        pp = pw[j:j + n]
-        out = row[2 * b0:2 * b1]
+        ob = base + np.uint64(2 * b0)
+        uj = np.uint64(j)
+        ub = np.uint64(b0)
         if exponent == 1.0:
-            for t in range(n):
-                den = cc[t] * cc[t] + ss[t] * ss[t]
-                m = np.sqrt(aa[t] / (T(q + wx[t]) * den))
-                out[2 * t] = m * cc[t]
-                out[2 * t + 1] = m * ss[t]
-                pp[t] = m * m * den * inn[t]
+            for i in range(n):
+                t = np.uint64(i)
+                cc = c[uj + t]
+                ss = s[uj + t]
+                den = cc * cc + ss * ss
+                m = np.sqrt(a2[uj + t] / (T(q + wxsq[ub + t]) * den))
+                specf[ob + two * t] = m * cc
+                specf[ob + two * t + one] = m * ss
+                pw[uj + t] = m * m * den * interior[ub + t]
         else:
-            for t in range(n):
-                den = cc[t] * cc[t] + ss[t] * ss[t]
-                m = T(q + wx[t]) ** ex * np.sqrt(aa[t] / den)
-                out[2 * t] = m * cc[t]
-                out[2 * t + 1] = m * ss[t]
-                pp[t] = m * m * den * inn[t]
-        for k in range(2 * b1, K2):
-            row[k] = 0
+            for i in range(n):
+                t = np.uint64(i)
+                cc = c[uj + t]
+                ss = s[uj + t]
+                den = cc * cc + ss * ss
+                m = T(q + wxsq[ub + t]) ** ex * np.sqrt(a2[uj + t] / den)
+                specf[ob + two * t] = m * cc
+                specf[ob + two * t + one] = m * ss
+                pw[uj + t] = m * m * den * interior[ub + t]
+        for k in range(2 * b1, 2 * K):
+            specf[base + np.uint64(k)] = zero
         j += n
 
 
