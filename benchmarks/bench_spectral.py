@@ -8,9 +8,10 @@ Run from the repository root::
 
 The floor is ``scipy.fft.irfftn`` of a ready-made half spectrum producing the
 same output (shape and dtype): the one transform any spectral synthesis must
-do. Everything runs in one process, interleaved round by round (floor, then
-each contender, for every case, in every round), and is reported as the
-median of the per-round ratios to the floor, because the machine is shared.
+do. Everything runs in one process, interleaved round by round (the floor and
+each contender, for every case, in every round, in an order rotated from
+round to round), and is reported as the median of the per-round ratios to
+the floor, because the machine is shared.
 Single-threaded throughout (scipy's default ``workers=1``; noiselab's kernels
 are serial). Peak memory is the ``tracemalloc`` peak of one call (numpy
 arrays; numba's scratch and the FFT library's buffers are not traced),
@@ -124,17 +125,16 @@ def run(rounds, quick, before_rev):
         scipy.fft.irfftn(floors[c], s=shape)
         for f in contenders.values():
             f(shape, band, dt, 0)
+    names = ["floor", *contenders]
     for r in range(rounds):
+        # each round runs the contenders in a rotated order, so that none always follows the same
+        # (memory-hungry) neighbour: the allocator's and the caches' state favour whoever comes first
+        order = names[r % len(names):] + names[:r % len(names)]
         for c in cases:
             shape, band, dt = c
-            t0 = time.perf_counter()
-            y = scipy.fft.irfftn(floors[c], s=shape)
-            times[(c, "floor")].append(time.perf_counter() - t0)
-            assert y.dtype == dt and y.shape == shape
-            del y
-            for k, f in contenders.items():
+            for k in order:
                 t0 = time.perf_counter()
-                y = f(shape, band, dt, r)
+                y = scipy.fft.irfftn(floors[c], s=shape) if k == "floor" else contenders[k](shape, band, dt, r)
                 times[(c, k)].append(time.perf_counter() - t0)
                 assert y.dtype == dt and y.shape == shape
                 del y
@@ -165,7 +165,7 @@ def _cpu():
     return platform.processor() or "unknown"
 
 
-def write_md(rows, names, rounds, argv, path):
+def write_md(rows, names, rounds, argv, path, before_rev=None):
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     lines = [
         "# spectral_noise / synthesize against a bare irfftn",
@@ -177,12 +177,17 @@ def write_md(rows, names, rounds, argv, path):
         f"Python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}, "
         f"numba {numba.__version__}, noiselab {getattr(noiselab, '__version__', '?')}.",
         "",
-        f"Ratio = median over {rounds} interleaved rounds of (time / floor time in the same round); floor = "
+        f"Ratio = median over {rounds} interleaved rounds (order rotated each round) of (time / floor time in the "
+        "same round); floor = "
         "`scipy.fft.irfftn` of a ready half spectrum to the same output shape and dtype (one thread). "
         "`synthesize` gets the float64 envelope `annulus * power_law` as a callable (the general path). "
         "Peak = `tracemalloc` peak of one `spectral_noise` call (numpy arrays only), floor's for comparison.",
         "",
     ]
+    if before_rev:
+        lines[-1:-1] = ["", f"`spectral_noise before` = `noiselab/spectral/synthesis.py` at `{before_rev}` (float64 "
+                        "envelope over the whole half spectrum, float64 uniforms + log/cos/sin per cell, flatnonzero "
+                        "scatter, mean/std passes on the field), timed in the same rounds."]
     head = "| case | floor ms | " + " | ".join(f"{n} (x floor, ms)" for n in names) + \
         " | peak MiB (floor; output) |" + (" before peak MiB |" if "spectral_noise before" in names else "")
     lines.append(head)
@@ -211,7 +216,7 @@ def main(argv=None):
     if a.rounds < 5:
         p.error("--rounds must be at least 5 (medians of fewer are not reported)")
     rows, names = run(a.rounds, a.quick, a.before)
-    write_md(rows, names, a.rounds, argv, Path(a.output))
+    write_md(rows, names, a.rounds, argv, Path(a.output), a.before)
 
 
 if __name__ == "__main__":
