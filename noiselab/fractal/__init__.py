@@ -109,7 +109,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
             lead, flat = noise._prepare_points(raw, "x")
             freqs = noise.frequency[None, :] * (lacunarity ** np.arange(used))[:, None]
             amps = noise.scale * gain ** np.arange(used)
-            result = noise._shape_out(noise._evaluate(flat, freqs, amps, absval, out_dtype), lead)
+            result = noise._shape_out(noise._evaluate(flat, freqs, amps, absval, out_dtype, "x"), lead)
         if normalize:
             result /= np.asarray(norm, dtype=result.dtype)
     else:

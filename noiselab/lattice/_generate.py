@@ -183,6 +183,132 @@ def _function(d: int, taps: int) -> str:
     return "\n".join(L) + "\n"
 
 
+def _function_tables(d: int, taps: int) -> str:
+    """Source of ``tables_d{d}_t{taps}``: the scattered kernel over precombined hash tables (d >= 2).
+
+    The first two levels of the nested hash come from one table,
+    ``H2[q0 * n + q1] = P[(P[q0] + q1) mod n]`` (one load instead of two
+    dependent ones), and the last permutation is folded into the value
+    table: ``VL[r * 2n + x] = values[(r + x) & 1, P[x mod n]]`` (``x < 2n``,
+    no wrap). ``H2`` also carries the lattice parity as a row offset
+    ``2n * ((q0 + q1 + h) & 1)``, so the parity costs nothing at run time.
+    Gradients are likewise folded: ``G[x] = grads[P[x mod n]]``, with a plain
+    ``H2``. Indices are unsigned (numba then skips the negative-index wrap).
+    The sum over the last axis is taken last: per (k0, k1) tap pair the
+    ``taps`` values along the last axis are accumulated with the pair's
+    weight ``w0 * w1``, then weighted by ``w2`` (every point's arithmetic is
+    the same fixed sequence, so results do not depend on chunking).
+    """
+    assert d == 3
+    ind = "    "
+    L = []
+    a_ = L.append
+    lvl = lambda k: ind * k  # noqa: E731
+    a_("@nb.njit(cache=True, nogil=True)")
+    a_(f"def tables_d{d}_t{taps}(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,")
+    a_("        H2, VL, G, basis, absval):")
+    a_(f'{ind}"""Lattice noise at scattered points, {d}-D input, {taps}-tap kernel, hash tables (generated)."""')
+    a_(f"{ind}npts = pts.shape[0]")
+    a_(f"{ind}ncomp = H2.shape[0]")
+    a_(f"{ind}n = VL.shape[1] // 4  # VL: two parity rows of 2n entries")
+    a_(f"{ind}nu = np.uint64(n)")
+    a_(f"{ind}one = np.uint64(1); two = np.uint64(2); three = np.uint64(3)")
+    a_(f"{ind}noct = freqs.shape[0]")
+    a_(f"{ind}W = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}R = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}Q = np.empty(({d}, {taps}, CHUNK), np.uint64)")
+    a_(f"{ind}X = np.empty(({d}, CHUNK))")
+    a_(f"{ind}ACC = np.empty((ncomp, CHUNK))")
+    a_(f"{ind}bad = 0")
+    for k in range(taps):
+        a_(f"{ind}" + "; ".join(f"c{k}{q} = coef[{k}, {q}]" for q in range(6)))
+    a_(f"{ind}for p0 in range(0, npts, CHUNK):")
+    a_(f"{lvl(2)}m = min(CHUNK, npts - p0)")
+    a_(f"{lvl(2)}for i in range(m):")
+    for a in range(d):
+        a_(f"{lvl(3)}X[{a}, i] = pts[p0 + i, {a}]")
+    a_(f"{lvl(2)}for o in range(noct):")
+    for a in range(d):
+        mul = " * nu" if a == 0 else ""
+        a_(f"{lvl(3)}f = freqs[o, {a}]; ph = phase[{a}]; per = period[{a}]; msk = pmask[{a}]")
+        # one pass: weights and the branch-free integer fast path (power-of-two
+        # period <= n, |index| < 2**52); a chunk that leaves it is redone on
+        # the exact path, which also counts non-finite coordinates
+        a_(f"{lvl(3)}inside = 0")
+        a_(f"{lvl(3)}for i in range(m):")
+        b4 = lvl(4)
+        a_(f"{b4}u = X[{a}, i] * f + ph + shift  # same rounding as the grid path")
+        a_(f"{b4}fi = np.floor(u)")
+        a_(f"{b4}t = u - fi")
+        a_(f"{b4}t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t")
+        for k in range(taps):
+            a_(f"{b4}W[{a}, {k}, i] = (c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)")
+        a_(f"{b4}inside += (fi < 4.0e15) & (fi > -4.0e15)")
+        a_(f"{b4}b = (np.int64(fi) - left) & msk")
+        for k in range(taps):
+            j = f"((b + {k}) & msk)" if k else "b"
+            a_(f"{b4}Q[{a}, {k}, i] = np.uint64({j}){mul}")
+        a_(f"{lvl(3)}if basis == 1:  # signed distances to the taps, for the gradient dot products")
+        a_(f"{lvl(4)}for i in range(m):")
+        a_(f"{lvl(5)}u = X[{a}, i] * f + ph + shift")
+        a_(f"{lvl(5)}t = u - np.floor(u)")
+        for k in range(taps):
+            a_(f"{lvl(5)}R[{a}, {k}, i] = t - shift + (left - {k})")
+        a_(f"{lvl(3)}if msk < 0 or per > n or inside != m:")
+        a_(f"{lvl(4)}for i in range(m):")
+        b5 = lvl(5)
+        a_(f"{b5}fi = np.floor(X[{a}, i] * f + ph + shift)")
+        a_(f"{b5}if fi - fi != 0.0:  # NaN or inf")
+        a_(f"{b5}    bad += 1")
+        a_(f"{b5}    fi = 0.0")
+        a_(f"{b5}b = _reduce(fi, left, per, msk)")
+        for k in range(taps):
+            if k:
+                a_(f"{b5}j = b + {k}")
+                a_(f"{b5}j = j - per if j >= per else j")
+            else:
+                a_(f"{b5}j = b")
+            a_(f"{b5}Q[{a}, {k}, i] = np.uint64(j if j < n else j % n){mul}")
+    # phase 2: one loop per basis (a branch inside the loop gets if-converted,
+    # computing both bases)
+    for basis in (0, 1):
+        a_(f"{lvl(3)}{'if basis == 0' if basis == 0 else 'else'}:")
+        a_(f"{lvl(4)}for i in range(m):")
+        b5 = lvl(5)
+        for a in range(d):
+            for k in range(taps):
+                a_(f"{b5}w{a}_{k} = W[{a}, {k}, i]; q{a}_{k} = Q[{a}, {k}, i]")
+                if basis:
+                    a_(f"{b5}r{a}_{k} = R[{a}, {k}, i]")
+        a_(f"{b5}for c in range(ncomp):")
+        b6 = lvl(6)
+        first = True
+        for k0 in range(taps):
+            for k1 in range(taps):
+                a_(f"{b6}h = np.uint64(H2[c, q0_{k0} + q1_{k1}])")
+                a_(f"{b6}w = w0_{k0} * w1_{k1}")
+                for k2 in range(taps):
+                    if basis == 0:
+                        term = f"VL[c, h + q2_{k2}]"
+                    else:
+                        a_(f"{b6}x = (h + q2_{k2}) * three")
+                        term = (f"(G[c, x] * r0_{k0} + G[c, x + one] * r1_{k1} + G[c, x + two] * r2_{k2})")
+                    a_(f"{b6}a{k2} {'=' if first else '+='} w * {term}")
+                first = False
+        a_(f"{b6}total = " + " + ".join(f"w2_{k} * a{k}" for k in range(taps)))
+        a_(f"{b6}if absval:")
+        a_(f"{b6}    total = abs(total)")
+        a_(f"{b6}if o == 0:")
+        a_(f"{b6}    ACC[c, i] = amps[o] * total")
+        a_(f"{b6}else:")
+        a_(f"{b6}    ACC[c, i] += amps[o] * total")
+    a_(f"{lvl(2)}for i in range(m):")
+    a_(f"{lvl(3)}for c in range(ncomp):")
+    a_(f"{lvl(4)}out[p0 + i, c] = ACC[c, i]")
+    a_(f"{ind}return bad")
+    return "\n".join(L) + "\n"
+
+
 def generate() -> str:
     parts = [HEADER]
     names = []
@@ -192,6 +318,10 @@ def generate() -> str:
             names.append((d, taps, f"points_d{d}_t{taps}"))
     table = ",\n".join(f"    ({d}, {t}): points_d{d}_t{t}" for d, t, _ in names)
     parts.append(f"\nKERNELS = {{\n{table},\n}}\n")
+    for taps in (1, 2, 3, 4):
+        parts.append("\n" + _function_tables(3, taps) + "\n")
+    table = ",\n".join(f"    (3, {t}): tables_d3_t{t}" for t in (1, 2, 3, 4))
+    parts.append(f"\nTABLE_KERNELS = {{\n{table},\n}}\n")
     return "".join(parts)
 
 

@@ -1577,3 +1577,1134 @@ KERNELS = {
     (3, 3): points_d3_t3,
     (3, 4): points_d3_t4,
 }
+
+@nb.njit(cache=True, nogil=True)
+def tables_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise at scattered points, 3-D input, 1-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    n = VL.shape[1] // 4  # VL: two parity rows of 2n entries
+    nu = np.uint64(n)
+    one = np.uint64(1); two = np.uint64(2); three = np.uint64(3)
+    noct = freqs.shape[0]
+    W = np.empty((3, 1, CHUNK))
+    R = np.empty((3, 1, CHUNK))
+    Q = np.empty((3, 1, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, CHUNK))
+    bad = 0
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                    for c in range(ncomp):
+                        h = np.uint64(H2[c, q0_0 + q1_0])
+                        w = w0_0 * w1_0
+                        a0 = w * VL[c, h + q2_0]
+                        total = w2_0 * a0
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                    r2_0 = R[2, 0, i]
+                    for c in range(ncomp):
+                        h = np.uint64(H2[c, q0_0 + q1_0])
+                        w = w0_0 * w1_0
+                        x = (h + q2_0) * three
+                        a0 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
+                        total = w2_0 * a0
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+    return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def tables_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise at scattered points, 3-D input, 2-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    n = VL.shape[1] // 4  # VL: two parity rows of 2n entries
+    nu = np.uint64(n)
+    one = np.uint64(1); two = np.uint64(2); three = np.uint64(3)
+    noct = freqs.shape[0]
+    W = np.empty((3, 2, CHUNK))
+    R = np.empty((3, 2, CHUNK))
+    Q = np.empty((3, 2, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, CHUNK))
+    bad = 0
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+                Q[2, 1, i] = np.uint64(((b + 1) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[2, 1, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
+                    for c in range(ncomp):
+                        h = np.uint64(H2[c, q0_0 + q1_0])
+                        w = w0_0 * w1_0
+                        a0 = w * VL[c, h + q2_0]
+                        a1 = w * VL[c, h + q2_1]
+                        h = np.uint64(H2[c, q0_0 + q1_1])
+                        w = w0_0 * w1_1
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        h = np.uint64(H2[c, q0_1 + q1_0])
+                        w = w0_1 * w1_0
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        h = np.uint64(H2[c, q0_1 + q1_1])
+                        w = w0_1 * w1_1
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        total = w2_0 * a0 + w2_1 * a1
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                    r2_0 = R[2, 0, i]
+                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
+                    r2_1 = R[2, 1, i]
+                    for c in range(ncomp):
+                        h = np.uint64(H2[c, q0_0 + q1_0])
+                        w = w0_0 * w1_0
+                        x = (h + q2_0) * three
+                        a0 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
+                        h = np.uint64(H2[c, q0_0 + q1_1])
+                        w = w0_0 * w1_1
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
+                        h = np.uint64(H2[c, q0_1 + q1_0])
+                        w = w0_1 * w1_0
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
+                        h = np.uint64(H2[c, q0_1 + q1_1])
+                        w = w0_1 * w1_1
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
+                        total = w2_0 * a0 + w2_1 * a1
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+    return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def tables_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise at scattered points, 3-D input, 3-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    n = VL.shape[1] // 4  # VL: two parity rows of 2n entries
+    nu = np.uint64(n)
+    one = np.uint64(1); two = np.uint64(2); three = np.uint64(3)
+    noct = freqs.shape[0]
+    W = np.empty((3, 3, CHUNK))
+    R = np.empty((3, 3, CHUNK))
+    Q = np.empty((3, 3, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, CHUNK))
+    bad = 0
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+                Q[0, 2, i] = np.uint64(((b + 2) & msk)) * nu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+                Q[1, 2, i] = np.uint64(((b + 2) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+                Q[2, 1, i] = np.uint64(((b + 1) & msk))
+                Q[2, 2, i] = np.uint64(((b + 2) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[2, 1, i] = np.uint64(j if j < n else j % n)
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[2, 2, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
+                    w2_2 = W[2, 2, i]; q2_2 = Q[2, 2, i]
+                    for c in range(ncomp):
+                        h = np.uint64(H2[c, q0_0 + q1_0])
+                        w = w0_0 * w1_0
+                        a0 = w * VL[c, h + q2_0]
+                        a1 = w * VL[c, h + q2_1]
+                        a2 = w * VL[c, h + q2_2]
+                        h = np.uint64(H2[c, q0_0 + q1_1])
+                        w = w0_0 * w1_1
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        h = np.uint64(H2[c, q0_0 + q1_2])
+                        w = w0_0 * w1_2
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        h = np.uint64(H2[c, q0_1 + q1_0])
+                        w = w0_1 * w1_0
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        h = np.uint64(H2[c, q0_1 + q1_1])
+                        w = w0_1 * w1_1
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        h = np.uint64(H2[c, q0_1 + q1_2])
+                        w = w0_1 * w1_2
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        h = np.uint64(H2[c, q0_2 + q1_0])
+                        w = w0_2 * w1_0
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        h = np.uint64(H2[c, q0_2 + q1_1])
+                        w = w0_2 * w1_1
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        h = np.uint64(H2[c, q0_2 + q1_2])
+                        w = w0_2 * w1_2
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        total = w2_0 * a0 + w2_1 * a1 + w2_2 * a2
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                    r0_2 = R[0, 2, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                    r1_2 = R[1, 2, i]
+                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                    r2_0 = R[2, 0, i]
+                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
+                    r2_1 = R[2, 1, i]
+                    w2_2 = W[2, 2, i]; q2_2 = Q[2, 2, i]
+                    r2_2 = R[2, 2, i]
+                    for c in range(ncomp):
+                        h = np.uint64(H2[c, q0_0 + q1_0])
+                        w = w0_0 * w1_0
+                        x = (h + q2_0) * three
+                        a0 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
+                        h = np.uint64(H2[c, q0_0 + q1_1])
+                        w = w0_0 * w1_1
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
+                        h = np.uint64(H2[c, q0_0 + q1_2])
+                        w = w0_0 * w1_2
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
+                        h = np.uint64(H2[c, q0_1 + q1_0])
+                        w = w0_1 * w1_0
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
+                        h = np.uint64(H2[c, q0_1 + q1_1])
+                        w = w0_1 * w1_1
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
+                        h = np.uint64(H2[c, q0_1 + q1_2])
+                        w = w0_1 * w1_2
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
+                        h = np.uint64(H2[c, q0_2 + q1_0])
+                        w = w0_2 * w1_0
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
+                        h = np.uint64(H2[c, q0_2 + q1_1])
+                        w = w0_2 * w1_1
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
+                        h = np.uint64(H2[c, q0_2 + q1_2])
+                        w = w0_2 * w1_2
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
+                        total = w2_0 * a0 + w2_1 * a1 + w2_2 * a2
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+    return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def tables_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise at scattered points, 3-D input, 4-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    n = VL.shape[1] // 4  # VL: two parity rows of 2n entries
+    nu = np.uint64(n)
+    one = np.uint64(1); two = np.uint64(2); three = np.uint64(3)
+    noct = freqs.shape[0]
+    W = np.empty((3, 4, CHUNK))
+    R = np.empty((3, 4, CHUNK))
+    Q = np.empty((3, 4, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, CHUNK))
+    bad = 0
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
+    c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+                Q[0, 2, i] = np.uint64(((b + 2) & msk)) * nu
+                Q[0, 3, i] = np.uint64(((b + 3) & msk)) * nu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[0, 3, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                W[1, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+                Q[1, 2, i] = np.uint64(((b + 2) & msk))
+                Q[1, 3, i] = np.uint64(((b + 3) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = np.uint64(j if j < n else j % n)
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[1, 3, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                W[2, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+                Q[2, 1, i] = np.uint64(((b + 1) & msk))
+                Q[2, 2, i] = np.uint64(((b + 2) & msk))
+                Q[2, 3, i] = np.uint64(((b + 3) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+                    R[2, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[2, 1, i] = np.uint64(j if j < n else j % n)
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[2, 2, i] = np.uint64(j if j < n else j % n)
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[2, 3, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                    w0_3 = W[0, 3, i]; q0_3 = Q[0, 3, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                    w1_3 = W[1, 3, i]; q1_3 = Q[1, 3, i]
+                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
+                    w2_2 = W[2, 2, i]; q2_2 = Q[2, 2, i]
+                    w2_3 = W[2, 3, i]; q2_3 = Q[2, 3, i]
+                    for c in range(ncomp):
+                        h = np.uint64(H2[c, q0_0 + q1_0])
+                        w = w0_0 * w1_0
+                        a0 = w * VL[c, h + q2_0]
+                        a1 = w * VL[c, h + q2_1]
+                        a2 = w * VL[c, h + q2_2]
+                        a3 = w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_0 + q1_1])
+                        w = w0_0 * w1_1
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_0 + q1_2])
+                        w = w0_0 * w1_2
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_0 + q1_3])
+                        w = w0_0 * w1_3
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_1 + q1_0])
+                        w = w0_1 * w1_0
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_1 + q1_1])
+                        w = w0_1 * w1_1
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_1 + q1_2])
+                        w = w0_1 * w1_2
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_1 + q1_3])
+                        w = w0_1 * w1_3
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_2 + q1_0])
+                        w = w0_2 * w1_0
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_2 + q1_1])
+                        w = w0_2 * w1_1
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_2 + q1_2])
+                        w = w0_2 * w1_2
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_2 + q1_3])
+                        w = w0_2 * w1_3
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_3 + q1_0])
+                        w = w0_3 * w1_0
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_3 + q1_1])
+                        w = w0_3 * w1_1
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_3 + q1_2])
+                        w = w0_3 * w1_2
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        h = np.uint64(H2[c, q0_3 + q1_3])
+                        w = w0_3 * w1_3
+                        a0 += w * VL[c, h + q2_0]
+                        a1 += w * VL[c, h + q2_1]
+                        a2 += w * VL[c, h + q2_2]
+                        a3 += w * VL[c, h + q2_3]
+                        total = w2_0 * a0 + w2_1 * a1 + w2_2 * a2 + w2_3 * a3
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                    r0_2 = R[0, 2, i]
+                    w0_3 = W[0, 3, i]; q0_3 = Q[0, 3, i]
+                    r0_3 = R[0, 3, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                    r1_2 = R[1, 2, i]
+                    w1_3 = W[1, 3, i]; q1_3 = Q[1, 3, i]
+                    r1_3 = R[1, 3, i]
+                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                    r2_0 = R[2, 0, i]
+                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
+                    r2_1 = R[2, 1, i]
+                    w2_2 = W[2, 2, i]; q2_2 = Q[2, 2, i]
+                    r2_2 = R[2, 2, i]
+                    w2_3 = W[2, 3, i]; q2_3 = Q[2, 3, i]
+                    r2_3 = R[2, 3, i]
+                    for c in range(ncomp):
+                        h = np.uint64(H2[c, q0_0 + q1_0])
+                        w = w0_0 * w1_0
+                        x = (h + q2_0) * three
+                        a0 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_0 + q1_1])
+                        w = w0_0 * w1_1
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_0 + q1_2])
+                        w = w0_0 * w1_2
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_0 + q1_3])
+                        w = w0_0 * w1_3
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_3 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_3 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_3 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_3 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_1 + q1_0])
+                        w = w0_1 * w1_0
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_1 + q1_1])
+                        w = w0_1 * w1_1
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_1 + q1_2])
+                        w = w0_1 * w1_2
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_1 + q1_3])
+                        w = w0_1 * w1_3
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_3 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_3 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_3 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_3 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_2 + q1_0])
+                        w = w0_2 * w1_0
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_2 + q1_1])
+                        w = w0_2 * w1_1
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_2 + q1_2])
+                        w = w0_2 * w1_2
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_2 + q1_3])
+                        w = w0_2 * w1_3
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_3 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_3 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_3 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_3 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_3 + q1_0])
+                        w = w0_3 * w1_0
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_0 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_3 + q1_1])
+                        w = w0_3 * w1_1
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_1 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_3 + q1_2])
+                        w = w0_3 * w1_2
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_2 + G[c, x + two] * r2_3)
+                        h = np.uint64(H2[c, q0_3 + q1_3])
+                        w = w0_3 * w1_3
+                        x = (h + q2_0) * three
+                        a0 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_3 + G[c, x + two] * r2_0)
+                        x = (h + q2_1) * three
+                        a1 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_3 + G[c, x + two] * r2_1)
+                        x = (h + q2_2) * three
+                        a2 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_3 + G[c, x + two] * r2_2)
+                        x = (h + q2_3) * three
+                        a3 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_3 + G[c, x + two] * r2_3)
+                        total = w2_0 * a0 + w2_1 * a1 + w2_2 * a2 + w2_3 * a3
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+    return bad
+
+
+TABLE_KERNELS = {
+    (3, 1): tables_d3_t1,
+    (3, 2): tables_d3_t2,
+    (3, 3): tables_d3_t3,
+    (3, 4): tables_d3_t4,
+}

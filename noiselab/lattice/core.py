@@ -24,6 +24,9 @@ __all__ = ["LatticeNoise", "Grid", "grid_coordinates"]
 
 _BASES = ("value", "gradient")
 _ALTERNATIONS = ("table", "lattice")
+# the 3-D scattered kernels' two-level hash table (uint16, n * n entries per
+# output component) is used up to this size (n = 1024 for one component: 2 MiB)
+_MAX_H2_ENTRIES = 1 << 20
 
 
 class Grid(NamedTuple):
@@ -225,8 +228,16 @@ class LatticeNoise:
                 f"kernel={self.kernel.name!r}, basis={self.basis!r}, table_size={self.table_size})")
 
     # ------------------------------------------------------------- scattered
+    def _checks_finite(self):
+        """Whether the scattered kernel itself reports non-finite input (the 3-D table kernels do,
+        in the pass that splits coordinates, which saves a full pass over the points)."""
+        return (self.dim_in, self.kernel.taps) in _points.TABLE_KERNELS and (self.period >= self.kernel.taps).all() \
+            and self.table_size ** 2 * self.dim_out <= _MAX_H2_ENTRIES
+
     def _prepare_points(self, points, name="points"):
-        points = check_finite_array(name, points)
+        points = np.asarray(points)
+        if not (points.dtype.kind == "f" and self._checks_finite()):
+            points = check_finite_array(name, points)
         d = self.dim_in
         if d == 1 and (points.ndim == 0 or points.shape[-1] != 1):
             lead = points.shape
@@ -243,7 +254,7 @@ class LatticeNoise:
             return float_dtype(dtype)
         return np.dtype(np.float32) if points_dtype == np.float32 else np.dtype(np.float64)
 
-    def _evaluate(self, flat, freqs, amps, absval, dtype):
+    def _evaluate(self, flat, freqs, amps, absval, dtype, name="points"):
         # the kernels write float64 only (one compiled specialisation each);
         # float32 is a rounding of the float64 result
         out = np.empty((flat.shape[0], self.dim_out), dtype=np.float64)
@@ -252,14 +263,59 @@ class LatticeNoise:
             freqs = np.ascontiguousarray(freqs, dtype=np.float64)
             amps = np.ascontiguousarray(amps, dtype=np.float64)
             basis = 0 if self.basis == "value" else 1
+            tabled = _points.TABLE_KERNELS.get((self.dim_in, k.taps))
             unrolled = _points.KERNELS.get((self.dim_in, k.taps))
-            if unrolled is not None and (self.period >= k.taps).all():
+            tables = self._hash_tables(basis) if tabled is not None and (self.period >= k.taps).all() else None
+            if tables is not None:
+                bad = tabled(flat, out, freqs, amps, self.phase, k.shift, k.left, k.coef, self.period, self._pmask,
+                             *tables, basis, bool(absval))
+                if bad:
+                    check_finite_array(name, flat)  # raises for NaN or inf input
+                    raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
+            elif unrolled is not None and (self.period >= k.taps).all():
                 unrolled(flat, out, freqs, amps, self.phase, k.shift, k.left, k.coef, self.period, self._pmask,
                          self._perms2, self.values, self.gradients, basis, bool(absval))
             else:
                 _jit.eval_points(flat, out, freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, self.period,
                                  self._pmask, self.perms, self.values, self.gradients, basis, bool(absval))
         return out if dtype == np.float64 else out.astype(dtype)
+
+    def _hash_tables(self, basis):
+        """Precombined hash tables for the 3-D scattered kernels, or None where they would be too large.
+
+        ``H2[c, q0 * n + q1] = P_c[(P_c[q0] + q1) mod n]`` (the first two
+        nested levels in one load), plus, for value noise, the parity row
+        offset ``2n * ((q0 + q1 + h) & 1)``; ``VL[c, r * 2n + x] =
+        values[(r + x) & 1, P_c[x mod n]]`` (the last level folded into the
+        values, ``x < 2n``); ``G[c, x] = gradients[P_c[x mod n]]``. Rebuilt
+        whenever the permutations, values or gradients change (they are
+        public attributes), so the tables never go stale.
+        """
+        n = self.table_size
+        if n * n * self.dim_out > _MAX_H2_ENTRIES:
+            return None
+        src = self.values if basis == 0 else self.gradients
+        key = (basis, self.perms.tobytes(), src.tobytes())
+        cache = getattr(self, "_tables_cache", None)
+        if cache is not None and cache[0] == key:
+            return cache[1]
+        q = np.arange(n)
+        x = np.arange(2 * n)
+        H2 = np.empty((self.dim_out, n * n), dtype=np.uint16)
+        VL = np.zeros((self.dim_out, 4 * n))
+        G = np.zeros((self.dim_out, 2 * n * self.dim_in))
+        for c, P in enumerate(self.perms):
+            h = P[(P[q][:, None] + q[None, :]) % n]
+            if basis == 0:
+                h = h + 2 * n * ((q[:, None] + q[None, :] + h) & 1)
+                for r in range(2):
+                    VL[c, r * 2 * n:(r + 1) * 2 * n] = self.values[(r + x) & 1, P[x % n]]
+            else:
+                G[c] = self.gradients[P[x % n]].ravel()
+            H2[c] = h.ravel()
+        tables = (H2, VL, G)
+        self._tables_cache = (key, tables)
+        return tables
 
     def __call__(self, points, *, dtype=None):
         """Evaluate at points of shape ``(..., dim_in)``; returns ``(...)`` or ``(..., dim_out)``.
