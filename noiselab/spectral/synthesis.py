@@ -211,7 +211,7 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     One pass counts and checks the envelope row by row, one pass per chunk of
     rows draws the coefficients and writes them into the spectrum (zeros
     elsewhere), in C order, without an index array; the self-conjugate planes
-    are then made Hermitian and ``irfftn`` runs on the spectrum in place.
+    are then made Hermitian and ``irfftn`` runs (not in place: measured slower).
     Timings against a bare ``irfftn``: ``benchmarks/bench_spectral.md``.
 
     Examples
