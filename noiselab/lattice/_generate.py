@@ -24,7 +24,7 @@ The generic ``_jit.eval_points`` covers every other case.
 import numba as nb
 import numpy as np
 
-from ._jit import _reduce
+from ._jit import _reduce, axpy_lanes, grad_axpy_lanes
 
 CHUNK = 256
 
@@ -210,9 +210,9 @@ def _function_tables(d: int, taps: int) -> str:
     a_(f'{ind}"""Lattice noise at scattered points, {d}-D input, {taps}-tap kernel, hash tables (generated)."""')
     a_(f"{ind}npts = pts.shape[0]")
     a_(f"{ind}ncomp = H2.shape[0]")
-    a_(f"{ind}n = VL.shape[1] // 4  # VL: two parity rows of 2n entries")
+    a_(f"{ind}stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries")
+    a_(f"{ind}n = (VL.shape[1] // 2 - 4) // 2")
     a_(f"{ind}nu = np.uint64(n)")
-    a_(f"{ind}one = np.uint64(1); two = np.uint64(2); three = np.uint64(3)")
     a_(f"{ind}noct = freqs.shape[0]")
     a_(f"{ind}W = np.empty(({d}, {taps}, CHUNK))")
     a_(f"{ind}R = np.empty(({d}, {taps}, CHUNK))")
@@ -245,7 +245,7 @@ def _function_tables(d: int, taps: int) -> str:
             a_(f"{b4}W[{a}, {k}, i] = (c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)")
         a_(f"{b4}inside += (fi < 4.0e15) & (fi > -4.0e15)")
         a_(f"{b4}b = (np.int64(fi) - left) & msk")
-        for k in range(taps):
+        for k in range(taps if a < d - 1 else 1):
             j = f"((b + {k}) & msk)" if k else "b"
             a_(f"{b4}Q[{a}, {k}, i] = np.uint64({j}){mul}")
         a_(f"{lvl(3)}if basis == 1:  # signed distances to the taps, for the gradient dot products")
@@ -262,7 +262,7 @@ def _function_tables(d: int, taps: int) -> str:
         a_(f"{b5}    bad += 1")
         a_(f"{b5}    fi = 0.0")
         a_(f"{b5}b = _reduce(fi, left, per, msk)")
-        for k in range(taps):
+        for k in range(taps if a < d - 1 else 1):
             if k:
                 a_(f"{b5}j = b + {k}")
                 a_(f"{b5}j = j - per if j >= per else j")
@@ -270,32 +270,35 @@ def _function_tables(d: int, taps: int) -> str:
                 a_(f"{b5}j = b")
             a_(f"{b5}Q[{a}, {k}, i] = np.uint64(j if j < n else j % n){mul}")
     # phase 2: one loop per basis (a branch inside the loop gets if-converted,
-    # computing both bases)
+    # computing both bases). The last axis's taps are contiguous table
+    # entries (its period is n and the tables run past 2n), summed as lanes
+    # of one short vector per (k0, k1) tap pair.
+    zero = "(" + ", ".join(["0.0"] * taps) + ("," if taps == 1 else "") + ")"
     for basis in (0, 1):
         a_(f"{lvl(3)}{'if basis == 0' if basis == 0 else 'else'}:")
         a_(f"{lvl(4)}for i in range(m):")
         b5 = lvl(5)
-        for a in range(d):
+        for a in range(d - 1):
             for k in range(taps):
                 a_(f"{b5}w{a}_{k} = W[{a}, {k}, i]; q{a}_{k} = Q[{a}, {k}, i]")
                 if basis:
                     a_(f"{b5}r{a}_{k} = R[{a}, {k}, i]")
+        a_(f"{b5}q2 = Q[2, 0, i]")
+        a_(f"{b5}" + "; ".join(f"w2_{k} = W[2, {k}, i]" for k in range(taps)))
+        if basis:
+            a_(f"{b5}r2 = (" + ", ".join(f"R[2, {k}, i]" for k in range(taps)) + ("," if taps == 1 else "") + ")")
         a_(f"{b5}for c in range(ncomp):")
         b6 = lvl(6)
-        first = True
+        a_(f"{b6}tab = VL[c]" if basis == 0 else f"{b6}tab = G[c]")
+        a_(f"{b6}acc = {zero}")
         for k0 in range(taps):
             for k1 in range(taps):
-                a_(f"{b6}h = np.uint64(H2[c, q0_{k0} + q1_{k1}])")
-                a_(f"{b6}w = w0_{k0} * w1_{k1}")
-                for k2 in range(taps):
-                    if basis == 0:
-                        term = f"VL[c, h + q2_{k2}]"
-                    else:
-                        a_(f"{b6}x = (h + q2_{k2}) * three")
-                        term = (f"(G[c, x] * r0_{k0} + G[c, x + one] * r1_{k1} + G[c, x + two] * r2_{k2})")
-                    a_(f"{b6}a{k2} {'=' if first else '+='} w * {term}")
-                first = False
-        a_(f"{b6}total = " + " + ".join(f"w2_{k} * a{k}" for k in range(taps)))
+                a_(f"{b6}h = np.uint64(H2[c, q0_{k0} + q1_{k1}]) + q2")
+                if basis == 0:
+                    a_(f"{b6}acc = axpy_lanes(acc, w0_{k0} * w1_{k1}, tab, h)")
+                else:
+                    a_(f"{b6}acc = grad_axpy_lanes(acc, w0_{k0} * w1_{k1}, r0_{k0}, r1_{k1}, r2, tab, h, stride)")
+        a_(f"{b6}total = " + " + ".join(f"w2_{k} * acc[{k}]" for k in range(taps)))
         a_(f"{b6}if absval:")
         a_(f"{b6}    total = abs(total)")
         a_(f"{b6}if o == 0:")

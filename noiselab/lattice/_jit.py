@@ -22,6 +22,9 @@ import math
 
 import numba as nb
 import numpy as np
+from llvmlite import ir
+from numba import types
+from numba.extending import intrinsic
 
 # Beyond 2**52 a float64 has no fractional bits; beyond 2**62 it no longer
 # fits an int64. Lattice indices are reduced modulo the period with fmod
@@ -501,3 +504,78 @@ def hash_expand_values(h, par, lat, perm, n, first, values, out):
                 if s >= n:
                     s = s % n
             out[i * nl + l] = values[(pb + lat[l]) & 1, perm[s]]
+
+
+# ---------------------------------------------------------------- vector helpers
+# numba leaves LLVM's SLP vectoriser off, so the straight-line sum over the
+# last axis's taps (contiguous table entries) stays scalar; these intrinsics
+# write it as one short vector operation. Every lane does the same IEEE
+# multiply and add as the scalar code would (no reassociation, no FMA), so
+# the results are bit-identical to the scalar expressions.
+
+def _vector(builder, vty, values):
+    v = ir.Constant(vty, ir.Undefined)
+    for k, x in enumerate(values):
+        v = builder.insert_element(v, x, ir.Constant(ir.IntType(32), k))
+    return v
+
+
+def _lanes(builder, v, width):
+    return [builder.extract_element(v, ir.Constant(ir.IntType(32), k)) for k in range(width)]
+
+
+def _load(context, builder, aryty, ary_v, idx, vty):
+    ary = context.make_array(aryty)(context, builder, ary_v)
+    ptr = builder.gep(ary.data, [idx])
+    return builder.load(builder.bitcast(ptr, vty.as_pointer()), align=8)
+
+
+@intrinsic
+def axpy_lanes(typingctx, acc, w, arr, idx):
+    """``acc[k] + w * arr[idx + k]`` for every lane k of the float64 tuple ``acc`` (1-D contiguous ``arr``)."""
+    if not (isinstance(acc, types.UniTuple) and acc.dtype == types.float64):
+        return None
+    width = acc.count
+    sig = acc(acc, w, arr, idx)
+
+    def codegen(context, builder, signature, args):
+        acc_v, w_v, arr_v, idx_v = args
+        vty = ir.VectorType(ir.DoubleType(), width)
+        v = _load(context, builder, signature.args[2], arr_v, idx_v, vty)
+        a = _vector(builder, vty, [builder.extract_value(acc_v, k) for k in range(width)])
+        wv = _vector(builder, vty, [w_v] * width)
+        r = builder.fadd(a, builder.fmul(wv, v))
+        return context.make_tuple(builder, signature.return_type, _lanes(builder, r, width))
+
+    return sig, codegen
+
+
+@intrinsic
+def grad_axpy_lanes(typingctx, acc, w, r0, r1, r2, arr, idx, stride):
+    """``acc[k] + w * ((g0 * r0 + g1 * r1) + g2 * r2[k])`` with ``g_a = arr[a * stride + idx + k]``.
+
+    The gradient dot product of the scalar kernels, lane k being tap k of the
+    last axis; ``r2`` is a float64 tuple of the last axis's signed distances.
+    """
+    if not (isinstance(acc, types.UniTuple) and acc.dtype == types.float64):
+        return None
+    width = acc.count
+    sig = acc(acc, w, r0, r1, r2, arr, idx, stride)
+
+    def codegen(context, builder, signature, args):
+        acc_v, w_v, r0_v, r1_v, r2_v, arr_v, idx_v, stride_v = args
+        vty = ir.VectorType(ir.DoubleType(), width)
+        aryty = signature.args[5]
+        g0 = _load(context, builder, aryty, arr_v, idx_v, vty)
+        i1 = builder.add(idx_v, stride_v)
+        g1 = _load(context, builder, aryty, arr_v, i1, vty)
+        g2 = _load(context, builder, aryty, arr_v, builder.add(i1, stride_v), vty)
+        dot = builder.fadd(builder.fmul(g0, _vector(builder, vty, [r0_v] * width)),
+                           builder.fmul(g1, _vector(builder, vty, [r1_v] * width)))
+        dot = builder.fadd(dot, builder.fmul(g2, _vector(builder, vty, [builder.extract_value(r2_v, k)
+                                                                        for k in range(width)])))
+        a = _vector(builder, vty, [builder.extract_value(acc_v, k) for k in range(width)])
+        r = builder.fadd(a, builder.fmul(_vector(builder, vty, [w_v] * width), dot))
+        return context.make_tuple(builder, signature.return_type, _lanes(builder, r, width))
+
+    return sig, codegen

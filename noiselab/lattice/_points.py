@@ -10,7 +10,7 @@ The generic ``_jit.eval_points`` covers every other case.
 import numba as nb
 import numpy as np
 
-from ._jit import _reduce
+from ._jit import _reduce, axpy_lanes, grad_axpy_lanes
 
 CHUNK = 256
 
@@ -1584,9 +1584,9 @@ def tables_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     """Lattice noise at scattered points, 3-D input, 1-tap kernel, hash tables (generated)."""
     npts = pts.shape[0]
     ncomp = H2.shape[0]
-    n = VL.shape[1] // 4  # VL: two parity rows of 2n entries
+    stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries
+    n = (VL.shape[1] // 2 - 4) // 2
     nu = np.uint64(n)
-    one = np.uint64(1); two = np.uint64(2); three = np.uint64(3)
     noct = freqs.shape[0]
     W = np.empty((3, 1, CHUNK))
     R = np.empty((3, 1, CHUNK))
@@ -1681,12 +1681,14 @@ def tables_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 for i in range(m):
                     w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
                     w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
-                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]
                     for c in range(ncomp):
-                        h = np.uint64(H2[c, q0_0 + q1_0])
-                        w = w0_0 * w1_0
-                        a0 = w * VL[c, h + q2_0]
-                        total = w2_0 * a0
+                        tab = VL[c]
+                        acc = (0.0,)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_0, tab, h)
+                        total = w2_0 * acc[0]
                         if absval:
                             total = abs(total)
                         if o == 0:
@@ -1699,14 +1701,15 @@ def tables_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     r0_0 = R[0, 0, i]
                     w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
                     r1_0 = R[1, 0, i]
-                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
-                    r2_0 = R[2, 0, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]
+                    r2 = (R[2, 0, i],)
                     for c in range(ncomp):
-                        h = np.uint64(H2[c, q0_0 + q1_0])
-                        w = w0_0 * w1_0
-                        x = (h + q2_0) * three
-                        a0 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
-                        total = w2_0 * a0
+                        tab = G[c]
+                        acc = (0.0,)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_0, r0_0, r1_0, r2, tab, h, stride)
+                        total = w2_0 * acc[0]
                         if absval:
                             total = abs(total)
                         if o == 0:
@@ -1725,9 +1728,9 @@ def tables_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     """Lattice noise at scattered points, 3-D input, 2-tap kernel, hash tables (generated)."""
     npts = pts.shape[0]
     ncomp = H2.shape[0]
-    n = VL.shape[1] // 4  # VL: two parity rows of 2n entries
+    stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries
+    n = (VL.shape[1] // 2 - 4) // 2
     nu = np.uint64(n)
-    one = np.uint64(1); two = np.uint64(2); three = np.uint64(3)
     noct = freqs.shape[0]
     W = np.empty((3, 2, CHUNK))
     R = np.empty((3, 2, CHUNK))
@@ -1818,7 +1821,6 @@ def tables_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 inside += (fi < 4.0e15) & (fi > -4.0e15)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
-                Q[2, 1, i] = np.uint64(((b + 1) & msk))
             if basis == 1:  # signed distances to the taps, for the gradient dot products
                 for i in range(m):
                     u = X[2, i] * f + ph + shift
@@ -1834,35 +1836,26 @@ def tables_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     b = _reduce(fi, left, per, msk)
                     j = b
                     Q[2, 0, i] = np.uint64(j if j < n else j % n)
-                    j = b + 1
-                    j = j - per if j >= per else j
-                    Q[2, 1, i] = np.uint64(j if j < n else j % n)
             if basis == 0:
                 for i in range(m):
                     w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
                     w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
                     w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
                     w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
-                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
-                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]
                     for c in range(ncomp):
-                        h = np.uint64(H2[c, q0_0 + q1_0])
-                        w = w0_0 * w1_0
-                        a0 = w * VL[c, h + q2_0]
-                        a1 = w * VL[c, h + q2_1]
-                        h = np.uint64(H2[c, q0_0 + q1_1])
-                        w = w0_0 * w1_1
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        h = np.uint64(H2[c, q0_1 + q1_0])
-                        w = w0_1 * w1_0
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        h = np.uint64(H2[c, q0_1 + q1_1])
-                        w = w0_1 * w1_1
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        total = w2_0 * a0 + w2_1 * a1
+                        tab = VL[c]
+                        acc = (0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_1, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1]
                         if absval:
                             total = abs(total)
                         if o == 0:
@@ -1879,36 +1872,21 @@ def tables_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     r1_0 = R[1, 0, i]
                     w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
                     r1_1 = R[1, 1, i]
-                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
-                    r2_0 = R[2, 0, i]
-                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
-                    r2_1 = R[2, 1, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]
+                    r2 = (R[2, 0, i], R[2, 1, i])
                     for c in range(ncomp):
-                        h = np.uint64(H2[c, q0_0 + q1_0])
-                        w = w0_0 * w1_0
-                        x = (h + q2_0) * three
-                        a0 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
-                        h = np.uint64(H2[c, q0_0 + q1_1])
-                        w = w0_0 * w1_1
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
-                        h = np.uint64(H2[c, q0_1 + q1_0])
-                        w = w0_1 * w1_0
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
-                        h = np.uint64(H2[c, q0_1 + q1_1])
-                        w = w0_1 * w1_1
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
-                        total = w2_0 * a0 + w2_1 * a1
+                        tab = G[c]
+                        acc = (0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_0, r0_0, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_1, r0_0, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_0, r0_1, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_1, r0_1, r1_1, r2, tab, h, stride)
+                        total = w2_0 * acc[0] + w2_1 * acc[1]
                         if absval:
                             total = abs(total)
                         if o == 0:
@@ -1927,9 +1905,9 @@ def tables_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     """Lattice noise at scattered points, 3-D input, 3-tap kernel, hash tables (generated)."""
     npts = pts.shape[0]
     ncomp = H2.shape[0]
-    n = VL.shape[1] // 4  # VL: two parity rows of 2n entries
+    stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries
+    n = (VL.shape[1] // 2 - 4) // 2
     nu = np.uint64(n)
-    one = np.uint64(1); two = np.uint64(2); three = np.uint64(3)
     noct = freqs.shape[0]
     W = np.empty((3, 3, CHUNK))
     R = np.empty((3, 3, CHUNK))
@@ -2034,8 +2012,6 @@ def tables_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 inside += (fi < 4.0e15) & (fi > -4.0e15)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
-                Q[2, 1, i] = np.uint64(((b + 1) & msk))
-                Q[2, 2, i] = np.uint64(((b + 2) & msk))
             if basis == 1:  # signed distances to the taps, for the gradient dot products
                 for i in range(m):
                     u = X[2, i] * f + ph + shift
@@ -2052,12 +2028,6 @@ def tables_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     b = _reduce(fi, left, per, msk)
                     j = b
                     Q[2, 0, i] = np.uint64(j if j < n else j % n)
-                    j = b + 1
-                    j = j - per if j >= per else j
-                    Q[2, 1, i] = np.uint64(j if j < n else j % n)
-                    j = b + 2
-                    j = j - per if j >= per else j
-                    Q[2, 2, i] = np.uint64(j if j < n else j % n)
             if basis == 0:
                 for i in range(m):
                     w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
@@ -2066,56 +2036,30 @@ def tables_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
                     w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
                     w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
-                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
-                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
-                    w2_2 = W[2, 2, i]; q2_2 = Q[2, 2, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]; w2_2 = W[2, 2, i]
                     for c in range(ncomp):
-                        h = np.uint64(H2[c, q0_0 + q1_0])
-                        w = w0_0 * w1_0
-                        a0 = w * VL[c, h + q2_0]
-                        a1 = w * VL[c, h + q2_1]
-                        a2 = w * VL[c, h + q2_2]
-                        h = np.uint64(H2[c, q0_0 + q1_1])
-                        w = w0_0 * w1_1
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        h = np.uint64(H2[c, q0_0 + q1_2])
-                        w = w0_0 * w1_2
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        h = np.uint64(H2[c, q0_1 + q1_0])
-                        w = w0_1 * w1_0
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        h = np.uint64(H2[c, q0_1 + q1_1])
-                        w = w0_1 * w1_1
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        h = np.uint64(H2[c, q0_1 + q1_2])
-                        w = w0_1 * w1_2
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        h = np.uint64(H2[c, q0_2 + q1_0])
-                        w = w0_2 * w1_0
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        h = np.uint64(H2[c, q0_2 + q1_1])
-                        w = w0_2 * w1_1
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        h = np.uint64(H2[c, q0_2 + q1_2])
-                        w = w0_2 * w1_2
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        total = w2_0 * a0 + w2_1 * a1 + w2_2 * a2
+                        tab = VL[c]
+                        acc = (0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_2, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2]
                         if absval:
                             total = abs(total)
                         if o == 0:
@@ -2136,86 +2080,31 @@ def tables_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     r1_1 = R[1, 1, i]
                     w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
                     r1_2 = R[1, 2, i]
-                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
-                    r2_0 = R[2, 0, i]
-                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
-                    r2_1 = R[2, 1, i]
-                    w2_2 = W[2, 2, i]; q2_2 = Q[2, 2, i]
-                    r2_2 = R[2, 2, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]; w2_2 = W[2, 2, i]
+                    r2 = (R[2, 0, i], R[2, 1, i], R[2, 2, i])
                     for c in range(ncomp):
-                        h = np.uint64(H2[c, q0_0 + q1_0])
-                        w = w0_0 * w1_0
-                        x = (h + q2_0) * three
-                        a0 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
-                        h = np.uint64(H2[c, q0_0 + q1_1])
-                        w = w0_0 * w1_1
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
-                        h = np.uint64(H2[c, q0_0 + q1_2])
-                        w = w0_0 * w1_2
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
-                        h = np.uint64(H2[c, q0_1 + q1_0])
-                        w = w0_1 * w1_0
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
-                        h = np.uint64(H2[c, q0_1 + q1_1])
-                        w = w0_1 * w1_1
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
-                        h = np.uint64(H2[c, q0_1 + q1_2])
-                        w = w0_1 * w1_2
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
-                        h = np.uint64(H2[c, q0_2 + q1_0])
-                        w = w0_2 * w1_0
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
-                        h = np.uint64(H2[c, q0_2 + q1_1])
-                        w = w0_2 * w1_1
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
-                        h = np.uint64(H2[c, q0_2 + q1_2])
-                        w = w0_2 * w1_2
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
-                        total = w2_0 * a0 + w2_1 * a1 + w2_2 * a2
+                        tab = G[c]
+                        acc = (0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_0, r0_0, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_1, r0_0, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_2, r0_0, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_0, r0_1, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_1, r0_1, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_2, r0_1, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_0, r0_2, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_1, r0_2, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_2, r0_2, r1_2, r2, tab, h, stride)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2]
                         if absval:
                             total = abs(total)
                         if o == 0:
@@ -2234,9 +2123,9 @@ def tables_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     """Lattice noise at scattered points, 3-D input, 4-tap kernel, hash tables (generated)."""
     npts = pts.shape[0]
     ncomp = H2.shape[0]
-    n = VL.shape[1] // 4  # VL: two parity rows of 2n entries
+    stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries
+    n = (VL.shape[1] // 2 - 4) // 2
     nu = np.uint64(n)
-    one = np.uint64(1); two = np.uint64(2); three = np.uint64(3)
     noct = freqs.shape[0]
     W = np.empty((3, 4, CHUNK))
     R = np.empty((3, 4, CHUNK))
@@ -2355,9 +2244,6 @@ def tables_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 inside += (fi < 4.0e15) & (fi > -4.0e15)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
-                Q[2, 1, i] = np.uint64(((b + 1) & msk))
-                Q[2, 2, i] = np.uint64(((b + 2) & msk))
-                Q[2, 3, i] = np.uint64(((b + 3) & msk))
             if basis == 1:  # signed distances to the taps, for the gradient dot products
                 for i in range(m):
                     u = X[2, i] * f + ph + shift
@@ -2375,15 +2261,6 @@ def tables_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     b = _reduce(fi, left, per, msk)
                     j = b
                     Q[2, 0, i] = np.uint64(j if j < n else j % n)
-                    j = b + 1
-                    j = j - per if j >= per else j
-                    Q[2, 1, i] = np.uint64(j if j < n else j % n)
-                    j = b + 2
-                    j = j - per if j >= per else j
-                    Q[2, 2, i] = np.uint64(j if j < n else j % n)
-                    j = b + 3
-                    j = j - per if j >= per else j
-                    Q[2, 3, i] = np.uint64(j if j < n else j % n)
             if basis == 0:
                 for i in range(m):
                     w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
@@ -2394,108 +2271,44 @@ def tables_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
                     w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
                     w1_3 = W[1, 3, i]; q1_3 = Q[1, 3, i]
-                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
-                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
-                    w2_2 = W[2, 2, i]; q2_2 = Q[2, 2, i]
-                    w2_3 = W[2, 3, i]; q2_3 = Q[2, 3, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]; w2_2 = W[2, 2, i]; w2_3 = W[2, 3, i]
                     for c in range(ncomp):
-                        h = np.uint64(H2[c, q0_0 + q1_0])
-                        w = w0_0 * w1_0
-                        a0 = w * VL[c, h + q2_0]
-                        a1 = w * VL[c, h + q2_1]
-                        a2 = w * VL[c, h + q2_2]
-                        a3 = w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_0 + q1_1])
-                        w = w0_0 * w1_1
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_0 + q1_2])
-                        w = w0_0 * w1_2
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_0 + q1_3])
-                        w = w0_0 * w1_3
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_1 + q1_0])
-                        w = w0_1 * w1_0
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_1 + q1_1])
-                        w = w0_1 * w1_1
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_1 + q1_2])
-                        w = w0_1 * w1_2
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_1 + q1_3])
-                        w = w0_1 * w1_3
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_2 + q1_0])
-                        w = w0_2 * w1_0
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_2 + q1_1])
-                        w = w0_2 * w1_1
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_2 + q1_2])
-                        w = w0_2 * w1_2
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_2 + q1_3])
-                        w = w0_2 * w1_3
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_3 + q1_0])
-                        w = w0_3 * w1_0
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_3 + q1_1])
-                        w = w0_3 * w1_1
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_3 + q1_2])
-                        w = w0_3 * w1_2
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        h = np.uint64(H2[c, q0_3 + q1_3])
-                        w = w0_3 * w1_3
-                        a0 += w * VL[c, h + q2_0]
-                        a1 += w * VL[c, h + q2_1]
-                        a2 += w * VL[c, h + q2_2]
-                        a3 += w * VL[c, h + q2_3]
-                        total = w2_0 * a0 + w2_1 * a1 + w2_2 * a2 + w2_3 * a3
+                        tab = VL[c]
+                        acc = (0.0, 0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_3, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_3, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_3, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_3, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2] + w2_3 * acc[3]
                         if absval:
                             total = abs(total)
                         if o == 0:
@@ -2520,176 +2333,45 @@ def tables_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                     r1_2 = R[1, 2, i]
                     w1_3 = W[1, 3, i]; q1_3 = Q[1, 3, i]
                     r1_3 = R[1, 3, i]
-                    w2_0 = W[2, 0, i]; q2_0 = Q[2, 0, i]
-                    r2_0 = R[2, 0, i]
-                    w2_1 = W[2, 1, i]; q2_1 = Q[2, 1, i]
-                    r2_1 = R[2, 1, i]
-                    w2_2 = W[2, 2, i]; q2_2 = Q[2, 2, i]
-                    r2_2 = R[2, 2, i]
-                    w2_3 = W[2, 3, i]; q2_3 = Q[2, 3, i]
-                    r2_3 = R[2, 3, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]; w2_2 = W[2, 2, i]; w2_3 = W[2, 3, i]
+                    r2 = (R[2, 0, i], R[2, 1, i], R[2, 2, i], R[2, 3, i])
                     for c in range(ncomp):
-                        h = np.uint64(H2[c, q0_0 + q1_0])
-                        w = w0_0 * w1_0
-                        x = (h + q2_0) * three
-                        a0 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 = w * (G[c, x] * r0_0 + G[c, x + one] * r1_0 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_0 + q1_1])
-                        w = w0_0 * w1_1
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_1 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_0 + q1_2])
-                        w = w0_0 * w1_2
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_2 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_0 + q1_3])
-                        w = w0_0 * w1_3
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_3 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_3 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_3 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_0 + G[c, x + one] * r1_3 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_1 + q1_0])
-                        w = w0_1 * w1_0
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_0 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_1 + q1_1])
-                        w = w0_1 * w1_1
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_1 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_1 + q1_2])
-                        w = w0_1 * w1_2
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_2 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_1 + q1_3])
-                        w = w0_1 * w1_3
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_3 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_3 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_3 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_1 + G[c, x + one] * r1_3 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_2 + q1_0])
-                        w = w0_2 * w1_0
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_0 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_2 + q1_1])
-                        w = w0_2 * w1_1
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_1 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_2 + q1_2])
-                        w = w0_2 * w1_2
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_2 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_2 + q1_3])
-                        w = w0_2 * w1_3
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_3 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_3 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_3 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_2 + G[c, x + one] * r1_3 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_3 + q1_0])
-                        w = w0_3 * w1_0
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_0 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_0 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_0 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_0 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_3 + q1_1])
-                        w = w0_3 * w1_1
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_1 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_1 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_1 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_1 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_3 + q1_2])
-                        w = w0_3 * w1_2
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_2 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_2 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_2 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_2 + G[c, x + two] * r2_3)
-                        h = np.uint64(H2[c, q0_3 + q1_3])
-                        w = w0_3 * w1_3
-                        x = (h + q2_0) * three
-                        a0 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_3 + G[c, x + two] * r2_0)
-                        x = (h + q2_1) * three
-                        a1 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_3 + G[c, x + two] * r2_1)
-                        x = (h + q2_2) * three
-                        a2 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_3 + G[c, x + two] * r2_2)
-                        x = (h + q2_3) * three
-                        a3 += w * (G[c, x] * r0_3 + G[c, x + one] * r1_3 + G[c, x + two] * r2_3)
-                        total = w2_0 * a0 + w2_1 * a1 + w2_2 * a2 + w2_3 * a3
+                        tab = G[c]
+                        acc = (0.0, 0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_0, r0_0, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_1, r0_0, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_2, r0_0, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_3, r0_0, r1_3, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_0, r0_1, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_1, r0_1, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_2, r0_1, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_3, r0_1, r1_3, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_0, r0_2, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_1, r0_2, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_2, r0_2, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_3, r0_2, r1_3, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_0, r0_3, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_1, r0_3, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_2, r0_3, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_3, r0_3, r1_3, r2, tab, h, stride)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2] + w2_3 * acc[3]
                         if absval:
                             total = abs(total)
                         if o == 0:

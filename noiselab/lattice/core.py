@@ -25,7 +25,8 @@ __all__ = ["LatticeNoise", "Grid", "grid_coordinates"]
 _BASES = ("value", "gradient")
 _ALTERNATIONS = ("table", "lattice")
 # the 3-D scattered kernels' two-level hash table (uint16, n * n entries per
-# output component) is used up to this size (n = 1024 for one component: 2 MiB)
+# output component; its entries reach 3n + 4 < 2**16) is used up to this
+# size (n = 1024 for one component: 2 MiB)
 _MAX_H2_ENTRIES = 1 << 20
 
 
@@ -228,15 +229,9 @@ class LatticeNoise:
                 f"kernel={self.kernel.name!r}, basis={self.basis!r}, table_size={self.table_size})")
 
     # ------------------------------------------------------------- scattered
-    def _checks_finite(self):
-        """Whether the scattered kernel itself reports non-finite input (the 3-D table kernels do,
-        in the pass that splits coordinates, which saves a full pass over the points)."""
-        return (self.dim_in, self.kernel.taps) in _points.TABLE_KERNELS and (self.period >= self.kernel.taps).all() \
-            and self.table_size ** 2 * self.dim_out <= _MAX_H2_ENTRIES
-
     def _prepare_points(self, points, name="points"):
         points = np.asarray(points)
-        if not (points.dtype.kind == "f" and self._checks_finite()):
+        if not (points.dtype.kind == "f" and self._uses_tables()):  # the table kernels check
             points = check_finite_array(name, points)
         d = self.dim_in
         if d == 1 and (points.ndim == 0 or points.shape[-1] != 1):
@@ -265,7 +260,7 @@ class LatticeNoise:
             basis = 0 if self.basis == "value" else 1
             tabled = _points.TABLE_KERNELS.get((self.dim_in, k.taps))
             unrolled = _points.KERNELS.get((self.dim_in, k.taps))
-            tables = self._hash_tables(basis) if tabled is not None and (self.period >= k.taps).all() else None
+            tables = self._hash_tables(basis) if self._uses_tables() else None
             if tables is not None:
                 bad = tabled(flat, out, freqs, amps, self.phase, k.shift, k.left, k.coef, self.period, self._pmask,
                              *tables, basis, bool(absval))
@@ -280,38 +275,45 @@ class LatticeNoise:
                                  self._pmask, self.perms, self.values, self.gradients, basis, bool(absval))
         return out if dtype == np.float64 else out.astype(dtype)
 
+    def _uses_tables(self):
+        """Whether the scattered kernel over precombined hash tables applies (3-D input; last period n)."""
+        k = self.kernel
+        return ((self.dim_in, k.taps) in _points.TABLE_KERNELS and (self.period >= k.taps).all()
+                and self.period[-1] == self.table_size and self.table_size ** 2 * self.dim_out <= _MAX_H2_ENTRIES)
+
     def _hash_tables(self, basis):
-        """Precombined hash tables for the 3-D scattered kernels, or None where they would be too large.
+        """Precombined hash tables for the 3-D scattered kernels.
 
         ``H2[c, q0 * n + q1] = P_c[(P_c[q0] + q1) mod n]`` (the first two
         nested levels in one load), plus, for value noise, the parity row
-        offset ``2n * ((q0 + q1 + h) & 1)``; ``VL[c, r * 2n + x] =
-        values[(r + x) & 1, P_c[x mod n]]`` (the last level folded into the
-        values, ``x < 2n``); ``G[c, x] = gradients[P_c[x mod n]]``. Rebuilt
-        whenever the permutations, values or gradients change (they are
-        public attributes), so the tables never go stale.
+        offset ``S * ((q0 + q1 + h) & 1)``; ``VL[c, r * S + x] =
+        values[(r + x) & 1, P_c[x mod n]]`` for ``x < S = 2n + 4``: the last
+        level folded into the values, and run on past 2n so that the last
+        axis's taps ``x, x + 1, ...`` are contiguous without a wrap (the last
+        axis's period must be n). ``G[c, a * S + x] = gradients[P_c[x mod n], a]``
+        likewise. Rebuilt whenever the permutations, values or gradients
+        change (they are public attributes), so the tables never go stale.
         """
         n = self.table_size
-        if n * n * self.dim_out > _MAX_H2_ENTRIES:
-            return None
         src = self.values if basis == 0 else self.gradients
         key = (basis, self.perms.tobytes(), src.tobytes())
         cache = getattr(self, "_tables_cache", None)
         if cache is not None and cache[0] == key:
             return cache[1]
+        S = 2 * n + 4
         q = np.arange(n)
-        x = np.arange(2 * n)
+        x = np.arange(S)
         H2 = np.empty((self.dim_out, n * n), dtype=np.uint16)
-        VL = np.zeros((self.dim_out, 4 * n))
-        G = np.zeros((self.dim_out, 2 * n * self.dim_in))
+        VL = np.zeros((self.dim_out, 2 * S))
+        G = np.zeros((self.dim_out, self.dim_in * S))
         for c, P in enumerate(self.perms):
             h = P[(P[q][:, None] + q[None, :]) % n]
             if basis == 0:
-                h = h + 2 * n * ((q[:, None] + q[None, :] + h) & 1)
+                h = h + S * ((q[:, None] + q[None, :] + h) & 1)
                 for r in range(2):
-                    VL[c, r * 2 * n:(r + 1) * 2 * n] = self.values[(r + x) & 1, P[x % n]]
+                    VL[c, r * S:(r + 1) * S] = self.values[(r + x) & 1, P[x % n]]
             else:
-                G[c] = self.gradients[P[x % n]].ravel()
+                G[c] = self.gradients[P[x % n]].T.ravel()
             H2[c] = h.ravel()
         tables = (H2, VL, G)
         self._tables_cache = (key, tables)
