@@ -55,6 +55,35 @@ def test_interpolating_kernels_pass_through_the_hashed_lattice_values(name):
         np.testing.assert_allclose(got[:, c], expected, rtol=0, atol=1e-15)
 
 
+@pytest.mark.parametrize("alternation", ["table", "lattice"])
+@pytest.mark.parametrize("name", ["linear", "catmull-rom", "quintic"])
+def test_3d_values_at_lattice_points_are_the_nested_permutation(name, alternation):
+    # the 3-D scattered kernels read precombined tables (two hash levels in
+    # one, the last permutation folded into the values): they must give
+    # P[(P[(P[ix] + iy) mod n] + iz) mod n] exactly, with the lattice parity
+    noise = LatticeNoise(3, 2, seed=8, kernel=name, alternation=alternation)
+    ijk = RNG.integers(-700, 700, size=(300, 3))
+    n = noise.table_size
+    par = ijk.sum(axis=1) & 1
+    for trial in range(2):
+        got = noise(ijk.astype(float))
+        for c in range(2):
+            p = noise.perms[c]
+            h = p[(p[(p[ijk[:, 0] % n] + ijk[:, 1] % n) % n] + ijk[:, 2] % n) % n]
+            np.testing.assert_allclose(got[:, c], noise.values[par, h] * noise.scale, rtol=0, atol=1e-15)
+        # the tables follow changes to the public tables
+        noise.values[:] = -noise.values[:, ::-1]
+        noise.perms[1] = noise.perms[1][::-1]
+
+
+def test_3d_gradient_tables_follow_changed_gradients():
+    noise = LatticeNoise(3, seed=3, kernel="quintic", basis="gradient")
+    x = RNG.uniform(-20, 20, (500, 3))
+    before = noise(x)
+    noise.gradients[:] = -noise.gradients
+    np.testing.assert_allclose(noise(x), -before, rtol=0, atol=1e-15)
+
+
 # ----------------------------------------------------------------- basis
 def test_tables_permutations_and_alternation():
     noise = LatticeNoise(3, 4, seed=1)
@@ -206,6 +235,16 @@ def test_pseudo_periodic_with_table_period_and_exact_period():
         np.testing.assert_allclose(noise(x + shift), noise(x), atol=1e-12)
     # no shorter period: values half a table away are unrelated
     assert np.corrcoef(noise(x), noise(x + [32, 0]))[0, 1] < 0.3
+    # 3-D scattered points with exact periods, on both kernel families (the
+    # table kernels need the last period to be the table size)
+    for period in ((3, 5, 64), (3, 5, 6)):
+        tile3 = LatticeNoise(3, seed=5, table_size=64, period=period, kernel="catmull-rom")
+        x3 = RNG.uniform(-50, 50, (500, 3))
+        for axis in range(3):
+            step = np.zeros(3)
+            step[axis] = period[axis]
+            np.testing.assert_allclose(tile3(x3 + step), tile3(x3), atol=1e-12)
+        assert np.corrcoef(tile3(x3), tile3(x3 + [0, 0, 1.5]))[0, 1] < 0.5
     # an exact period tiles: the grid over two periods is the one-period grid twice
     tile = LatticeNoise(2, seed=5, period=(3, 5), frequency=(1.0, 2.0))
     one = tile.grid((30, 50), [(0, 3), (0, 2.5)])
@@ -251,12 +290,20 @@ def test_sparse_grid_falls_back_and_still_agrees():
     np.testing.assert_allclose(noise.grid((50, 30), ext), noise(noise.grid_points((50, 30), ext)), atol=1e-12)
 
 
-def test_chunkings_are_bit_identical():
-    noise = LatticeNoise(3, 2, seed=2, kernel="quintic")
-    pts = RNG.uniform(-30, 30, (1000, 3))
+@pytest.mark.parametrize("name,basis", [("quintic", "value"), ("cubic", "gradient")])
+def test_chunkings_are_bit_identical(name, basis):
+    noise = LatticeNoise(3, 2, seed=2, kernel=name, basis=basis)
+    pts = RNG.uniform(-30, 30, (20000, 3))
+    pts[::5] += 1e13  # some chunks on the exact (large-coordinate) path
     whole = noise(pts)
-    parts = np.concatenate([noise(pts[i:i + 137]) for i in range(0, 1000, 137)])
+    parts = np.concatenate([noise(pts[i:i + 137]) for i in range(0, 20000, 137)])
     np.testing.assert_array_equal(whole, parts)
+    # threads split the points into blocks: the same bits
+    np.testing.assert_array_equal(noise(pts, workers=3), whole)
+    # every point alone, for a sample
+    np.testing.assert_array_equal(np.array([noise(p) for p in pts[:50]]), whole[:50])
+    if name != "quintic":
+        return
     shape, ext = (40, 30, 20), [(0, 5), (2, 9), (-1, 1)]
     full = noise.grid(shape, ext)
     win = noise.grid(shape, ext, window=[(13, 29), (0, 30), (5, 20)])
@@ -304,14 +351,23 @@ def test_negative_coordinates_and_exact_integers_are_continuous():
         assert abs(noise(x0 + eps) - noise(x0)) < 1e-10
 
 
-def test_nan_and_inf_are_clear_errors():
-    noise = LatticeNoise(2)
-    with pytest.raises(ValueError, match="points must be finite"):
-        noise(np.array([[0.0, np.nan]]))
-    with pytest.raises(ValueError, match="NaN or inf"):
-        noise(np.array([[np.inf, 0.0]]))
+@pytest.mark.parametrize("dim", [2, 3])
+def test_nan_and_inf_are_clear_errors(dim):
+    noise = LatticeNoise(dim)
+    bad = np.zeros((5000, dim))
+    bad[4321, -1] = np.nan
+    with pytest.raises(ValueError, match="points must be finite; it holds 1 NaN"):
+        noise(bad)
+    bad[17, 0] = -np.inf
+    with pytest.raises(ValueError, match="holds 2 NaN or inf"):
+        noise(bad, workers=2)
+    with pytest.raises(ValueError, match="workers"):
+        noise(np.zeros((3, dim)), workers=0)
+    # finite points whose scaled coordinates overflow are an error too, not garbage
+    with pytest.raises(ValueError, match="overflows float64"):
+        LatticeNoise(3, frequency=4.0)(np.array([[1e308, 0.0, 0.0]]))
     with pytest.raises(ValueError, match="extent must be finite"):
-        noise.grid((4, 4), [(0, np.inf), (0, 1)])
+        noise.grid((4,) * dim, [(0, np.inf)] + [(0, 1)] * (dim - 1))
 
 
 @pytest.mark.parametrize("dim", [1, 2, 3, 4, 5])

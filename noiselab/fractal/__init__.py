@@ -77,13 +77,14 @@ def octaves_used(octaves, *, lacunarity=2.0, gain=0.5, spacing=None, frequency=1
     return used
 
 
-def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, absval):
+def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, absval, workers=1):
     from ..lattice import Grid, LatticeNoise
     from ..lattice.core import _check_grid, grid_coordinates
 
     octaves = check_int("octaves", octaves, lo=1, hi=10_000)
     lacunarity = check_real("lacunarity", lacunarity, lo=1.0, lo_open=True)
     gain = check_real("gain", gain, lo=0.0, lo_open=True)
+    workers = check_int("workers", workers, lo=1, hi=1024)
     is_grid = isinstance(x, Grid)
     if is_grid:
         dim = noise.dim_in if isinstance(noise, LatticeNoise) else len(tuple(np.atleast_1d(x.shape)))
@@ -109,7 +110,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
             lead, flat = noise._prepare_points(raw, "x")
             freqs = noise.frequency[None, :] * (lacunarity ** np.arange(used))[:, None]
             amps = noise.scale * gain ** np.arange(used)
-            result = noise._shape_out(noise._evaluate(flat, freqs, amps, absval, out_dtype, "x"), lead)
+            result = noise._shape_out(noise._evaluate(flat, freqs, amps, absval, out_dtype, "x", workers), lead)
         if normalize:
             result /= np.asarray(norm, dtype=result.dtype)
     else:
@@ -126,7 +127,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
 
 
 def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False, dtype=None,
-                return_octaves=False, spacing=None):
+                return_octaves=False, spacing=None, workers=1):
     """Fractal sum of octaves (Phillips Eq. 9): ``sum_o gain**o * noise(lacunarity**o * x)``.
 
     Parameters
@@ -151,6 +152,9 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
     spacing : float, optional
         Sample spacing of scattered points (e.g. mesh edge length) to skip
         octaves past their Nyquist as on a grid.
+    workers : int, default 1
+        Threads for scattered points (``LatticeNoise`` only; bit-identical to
+        one worker); grids are evaluated on one thread.
 
     Returns
     -------
@@ -164,11 +168,11 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
     >>> img.shape, used
     ((256, 256), 7)
     """
-    return _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, False)
+    return _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, False, workers)
 
 
 def turbulence(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False, dtype=None,
-               return_octaves=False, spacing=None):
+               return_octaves=False, spacing=None, workers=1):
     """Turbulence (Phillips Eq. 10): ``sum_o gain**o * |noise(lacunarity**o * x)|``.
 
     Same parameters as :func:`fractal_sum`; the result is >= 0 (in [0, 1] with
@@ -182,4 +186,4 @@ def turbulence(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False
     >>> bool(t.min() >= 0)
     True
     """
-    return _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, True)
+    return _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, True, workers)

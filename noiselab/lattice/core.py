@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from concurrent.futures import ThreadPoolExecutor
 from typing import NamedTuple
 
 import numpy as np
@@ -28,6 +29,22 @@ _ALTERNATIONS = ("table", "lattice")
 # output component; its entries reach 3n + 4 < 2**16) is used up to this
 # size (n = 1024 for one component: 2 MiB)
 _MAX_H2_ENTRIES = 1 << 20
+
+
+def _run_split(kernel, flat, out, rest, workers):
+    """``kernel(flat, out, *rest)``, on ``workers`` threads over contiguous blocks of points.
+
+    Returns the sum of what the kernel returns (the table kernels count
+    non-finite coordinates; the others return None).
+    """
+    npts = flat.shape[0]
+    workers = min(workers, max(1, npts // 4096))  # a thread per few thousand points at least
+    if workers <= 1:
+        return kernel(flat, out, *rest) or 0
+    bounds = np.linspace(0, npts, workers + 1).astype(np.int64)
+    with ThreadPoolExecutor(workers) as pool:
+        futures = [pool.submit(kernel, flat[a:b], out[a:b], *rest) for a, b in zip(bounds[:-1], bounds[1:])]
+        return sum(f.result() or 0 for f in futures)
 
 
 class Grid(NamedTuple):
@@ -249,7 +266,7 @@ class LatticeNoise:
             return float_dtype(dtype)
         return np.dtype(np.float32) if points_dtype == np.float32 else np.dtype(np.float64)
 
-    def _evaluate(self, flat, freqs, amps, absval, dtype, name="points"):
+    def _evaluate(self, flat, freqs, amps, absval, dtype, name="points", workers=1):
         # the kernels write float64 only (one compiled specialisation each);
         # float32 is a rounding of the float64 result
         out = np.empty((flat.shape[0], self.dim_out), dtype=np.float64)
@@ -262,17 +279,19 @@ class LatticeNoise:
             unrolled = _points.KERNELS.get((self.dim_in, k.taps))
             tables = self._hash_tables(basis) if self._uses_tables() else None
             if tables is not None:
-                bad = tabled(flat, out, freqs, amps, self.phase, k.shift, k.left, k.coef, self.period, self._pmask,
-                             *tables, basis, bool(absval))
+                bad = _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
+                                                     self._pmask, *tables, basis, bool(absval)), workers)
                 if bad:
                     check_finite_array(name, flat)  # raises for NaN or inf input
                     raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
             elif unrolled is not None and (self.period >= k.taps).all():
-                unrolled(flat, out, freqs, amps, self.phase, k.shift, k.left, k.coef, self.period, self._pmask,
-                         self._perms2, self.values, self.gradients, basis, bool(absval))
+                _run_split(unrolled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
+                                                 self._pmask, self._perms2, self.values, self.gradients, basis,
+                                                 bool(absval)), workers)
             else:
-                _jit.eval_points(flat, out, freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, self.period,
-                                 self._pmask, self.perms, self.values, self.gradients, basis, bool(absval))
+                _run_split(_jit.eval_points, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef,
+                                                         self.period, self._pmask, self.perms, self.values,
+                                                         self.gradients, basis, bool(absval)), workers)
         return out if dtype == np.float64 else out.astype(dtype)
 
     def _uses_tables(self):
@@ -319,18 +338,22 @@ class LatticeNoise:
         self._tables_cache = (key, tables)
         return tables
 
-    def __call__(self, points, *, dtype=None):
+    def __call__(self, points, *, dtype=None, workers=1):
         """Evaluate at points of shape ``(..., dim_in)``; returns ``(...)`` or ``(..., dim_out)``.
 
         For ``dim_in == 1`` an array whose last axis is not 1 (or a scalar) is
         taken as that many scalar inputs. ``dtype`` (float32 or float64) picks
         the output precision; the computation is float64 either way.
+        ``workers`` > 1 splits the points into that many contiguous blocks
+        evaluated on threads (the kernels release the GIL); every point's
+        arithmetic is the same, so the result is bit-identical to one worker.
         """
+        workers = check_int("workers", workers, lo=1, hi=1024)
         raw = np.asarray(points)
         lead, flat = self._prepare_points(raw)
         dtype = self._out_dtype(raw.dtype, dtype)
         _check_large(flat.shape[0] * (self.dim_out * dtype.itemsize + 8 * self.dim_in), "lattice noise")
-        out = self._evaluate(flat, self.frequency[None], np.array([self.scale]), False, dtype)
+        out = self._evaluate(flat, self.frequency[None], np.array([self.scale]), False, dtype, workers=workers)
         return self._shape_out(out, lead)
 
     def _shape_out(self, out, lead):
