@@ -183,7 +183,30 @@ def _function(d: int, taps: int) -> str:
     return "\n".join(L) + "\n"
 
 
-def _function_tables(d: int, taps: int) -> str:
+def _poly(a: int, k: int, coef) -> str:
+    """Tap weight ``k`` of axis ``a``: the generic expression, or with the kernel's coefficients written in.
+
+    Written-in coefficients drop the zero terms and the unit factors; with
+    ``t >= 0`` that changes no value (``0 * t**p`` is +0, and ``x + 0 == x``),
+    only work (numba cannot drop ``0.0 * t`` itself: IEEE semantics).
+    """
+    if coef is None:
+        return f"(c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)"
+    groups = []
+    for grp in ((0, 1), (2, 3), (4, 5)):
+        terms = []
+        for q in grp:
+            c = float(coef[k][q])
+            if c == 0.0:
+                continue
+            power = {1: "t", 2: "t2", 3: "t3", 4: "t4", 5: "t5"}.get(q)
+            terms.append(repr(c) if q == 0 else (power if c == 1.0 else f"{c!r} * {power}"))
+        if terms:
+            groups.append("(" + " + ".join(terms) + ")")
+    return " + ".join(groups) if groups else "0.0"
+
+
+def _function_tables(d: int, taps: int, kernel=None) -> str:
     """Source of ``tables_d{d}_t{taps}``: the scattered kernel over precombined hash tables (d >= 2).
 
     The first two levels of the nested hash come from one table,
@@ -198,14 +221,19 @@ def _function_tables(d: int, taps: int) -> str:
     ``taps`` values along the last axis are accumulated with the pair's
     weight ``w0 * w1``, then weighted by ``w2`` (every point's arithmetic is
     the same fixed sequence, so results do not depend on chunking).
+    ``kernel``: a kernel of ``kernels.KERNELS`` whose coefficients are
+    written into the code (``tables_d3_<name>``); None: coefficients from
+    the ``coef`` argument (``tables_d3_t<taps>``, for any kernel).
     """
     assert d == 3
+    coef = None if kernel is None else kernel.coef.tolist()
+    fname = f"tables_d{d}_t{taps}" if kernel is None else f"tables_d{d}_{kernel.name.replace('-', '_')}"
     ind = "    "
     L = []
     a_ = L.append
     lvl = lambda k: ind * k  # noqa: E731
     a_("@nb.njit(cache=True, nogil=True)")
-    a_(f"def tables_d{d}_t{taps}(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,")
+    a_(f"def {fname}(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,")
     a_("        H2, VL, G, basis, absval):")
     a_(f'{ind}"""Lattice noise at scattered points, {d}-D input, {taps}-tap kernel, hash tables (generated)."""')
     a_(f"{ind}npts = pts.shape[0]")
@@ -220,7 +248,7 @@ def _function_tables(d: int, taps: int) -> str:
     a_(f"{ind}X = np.empty(({d}, CHUNK))")
     a_(f"{ind}ACC = np.empty((ncomp, CHUNK))")
     a_(f"{ind}bad = 0")
-    for k in range(taps):
+    for k in range(taps if coef is None else 0):
         a_(f"{ind}" + "; ".join(f"c{k}{q} = coef[{k}, {q}]" for q in range(6)))
     a_(f"{ind}for p0 in range(0, npts, CHUNK):")
     a_(f"{lvl(2)}m = min(CHUNK, npts - p0)")
@@ -242,7 +270,7 @@ def _function_tables(d: int, taps: int) -> str:
         a_(f"{b4}t = u - fi")
         a_(f"{b4}t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t")
         for k in range(taps):
-            a_(f"{b4}W[{a}, {k}, i] = (c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)")
+            a_(f"{b4}W[{a}, {k}, i] = {_poly(a, k, coef)}")
         a_(f"{b4}inside += (fi < 4.0e15) & (fi > -4.0e15)")
         a_(f"{b4}b = (np.int64(fi) - left) & msk")
         for k in range(taps if a < d - 1 else 1):
@@ -321,10 +349,17 @@ def generate() -> str:
             names.append((d, taps, f"points_d{d}_t{taps}"))
     table = ",\n".join(f"    ({d}, {t}): points_d{d}_t{t}" for d, t, _ in names)
     parts.append(f"\nKERNELS = {{\n{table},\n}}\n")
+    from .kernels import KERNELS as _KERNELS
+    entries = []
     for taps in (1, 2, 3, 4):
         parts.append("\n" + _function_tables(3, taps) + "\n")
-    table = ",\n".join(f"    (3, {t}): tables_d3_t{t}" for t in (1, 2, 3, 4))
-    parts.append(f"\nTABLE_KERNELS = {{\n{table},\n}}\n")
+        entries.append(f"    (3, {taps}): tables_d3_t{taps}")
+    for name, kernel in _KERNELS.items():
+        parts.append("\n" + _function_tables(3, kernel.taps, kernel) + "\n")
+        entries.append(f"    (3, {name!r}): tables_d3_{name.replace('-', '_')}")
+    table = ",\n".join(entries)
+    parts.append("\n# keyed by (dim_in, taps) with coefficients as arguments, or (dim_in, kernel name) with them written in"
+                 f"\nTABLE_KERNELS = {{\n{table},\n}}\n")
     return "".join(parts)
 
 

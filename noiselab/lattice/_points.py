@@ -2384,9 +2384,1250 @@ def tables_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
     return bad
 
 
+@nb.njit(cache=True, nogil=True)
+def tables_d3_box(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise at scattered points, 3-D input, 1-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries
+    n = (VL.shape[1] // 2 - 4) // 2
+    nu = np.uint64(n)
+    noct = freqs.shape[0]
+    W = np.empty((3, 1, CHUNK))
+    R = np.empty((3, 1, CHUNK))
+    Q = np.empty((3, 1, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, CHUNK))
+    bad = 0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (1.0)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (1.0)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (1.0)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]
+                    for c in range(ncomp):
+                        tab = VL[c]
+                        acc = (0.0,)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_0, tab, h)
+                        total = w2_0 * acc[0]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]
+                    r2 = (R[2, 0, i],)
+                    for c in range(ncomp):
+                        tab = G[c]
+                        acc = (0.0,)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_0, r0_0, r1_0, r2, tab, h, stride)
+                        total = w2_0 * acc[0]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+    return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def tables_d3_linear(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise at scattered points, 3-D input, 2-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries
+    n = (VL.shape[1] // 2 - 4) // 2
+    nu = np.uint64(n)
+    noct = freqs.shape[0]
+    W = np.empty((3, 2, CHUNK))
+    R = np.empty((3, 2, CHUNK))
+    Q = np.empty((3, 2, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, CHUNK))
+    bad = 0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (1.0 + -1.0 * t)
+                W[0, 1, i] = (t)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (1.0 + -1.0 * t)
+                W[1, 1, i] = (t)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (1.0 + -1.0 * t)
+                W[2, 1, i] = (t)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]
+                    for c in range(ncomp):
+                        tab = VL[c]
+                        acc = (0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_1, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]
+                    r2 = (R[2, 0, i], R[2, 1, i])
+                    for c in range(ncomp):
+                        tab = G[c]
+                        acc = (0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_0, r0_0, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_1, r0_0, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_0, r0_1, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_1, r0_1, r1_1, r2, tab, h, stride)
+                        total = w2_0 * acc[0] + w2_1 * acc[1]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+    return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def tables_d3_quadratic(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise at scattered points, 3-D input, 3-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries
+    n = (VL.shape[1] // 2 - 4) // 2
+    nu = np.uint64(n)
+    noct = freqs.shape[0]
+    W = np.empty((3, 3, CHUNK))
+    R = np.empty((3, 3, CHUNK))
+    Q = np.empty((3, 3, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, CHUNK))
+    bad = 0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
+                W[0, 1, i] = (0.5 + t) + (-1.0 * t2)
+                W[0, 2, i] = (0.5 * t2)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+                Q[0, 2, i] = np.uint64(((b + 2) & msk)) * nu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
+                W[1, 1, i] = (0.5 + t) + (-1.0 * t2)
+                W[1, 2, i] = (0.5 * t2)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+                Q[1, 2, i] = np.uint64(((b + 2) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
+                W[2, 1, i] = (0.5 + t) + (-1.0 * t2)
+                W[2, 2, i] = (0.5 * t2)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]; w2_2 = W[2, 2, i]
+                    for c in range(ncomp):
+                        tab = VL[c]
+                        acc = (0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_2, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                    r0_2 = R[0, 2, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                    r1_2 = R[1, 2, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]; w2_2 = W[2, 2, i]
+                    r2 = (R[2, 0, i], R[2, 1, i], R[2, 2, i])
+                    for c in range(ncomp):
+                        tab = G[c]
+                        acc = (0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_0, r0_0, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_1, r0_0, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_2, r0_0, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_0, r0_1, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_1, r0_1, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_2, r0_1, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_0, r0_2, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_1, r0_2, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_2, r0_2, r1_2, r2, tab, h, stride)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+    return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def tables_d3_cubic(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise at scattered points, 3-D input, 4-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries
+    n = (VL.shape[1] // 2 - 4) // 2
+    nu = np.uint64(n)
+    noct = freqs.shape[0]
+    W = np.empty((3, 4, CHUNK))
+    R = np.empty((3, 4, CHUNK))
+    Q = np.empty((3, 4, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, CHUNK))
+    bad = 0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (0.16666666666666666 + -0.5 * t) + (0.5 * t2 + -0.16666666666666666 * t3)
+                W[0, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
+                W[0, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
+                W[0, 3, i] = (0.16666666666666666 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+                Q[0, 2, i] = np.uint64(((b + 2) & msk)) * nu
+                Q[0, 3, i] = np.uint64(((b + 3) & msk)) * nu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[0, 3, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (0.16666666666666666 + -0.5 * t) + (0.5 * t2 + -0.16666666666666666 * t3)
+                W[1, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
+                W[1, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
+                W[1, 3, i] = (0.16666666666666666 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+                Q[1, 2, i] = np.uint64(((b + 2) & msk))
+                Q[1, 3, i] = np.uint64(((b + 3) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = np.uint64(j if j < n else j % n)
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[1, 3, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (0.16666666666666666 + -0.5 * t) + (0.5 * t2 + -0.16666666666666666 * t3)
+                W[2, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
+                W[2, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
+                W[2, 3, i] = (0.16666666666666666 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+                    R[2, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                    w0_3 = W[0, 3, i]; q0_3 = Q[0, 3, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                    w1_3 = W[1, 3, i]; q1_3 = Q[1, 3, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]; w2_2 = W[2, 2, i]; w2_3 = W[2, 3, i]
+                    for c in range(ncomp):
+                        tab = VL[c]
+                        acc = (0.0, 0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_3, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_3, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_3, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_3, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2] + w2_3 * acc[3]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                    r0_2 = R[0, 2, i]
+                    w0_3 = W[0, 3, i]; q0_3 = Q[0, 3, i]
+                    r0_3 = R[0, 3, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                    r1_2 = R[1, 2, i]
+                    w1_3 = W[1, 3, i]; q1_3 = Q[1, 3, i]
+                    r1_3 = R[1, 3, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]; w2_2 = W[2, 2, i]; w2_3 = W[2, 3, i]
+                    r2 = (R[2, 0, i], R[2, 1, i], R[2, 2, i], R[2, 3, i])
+                    for c in range(ncomp):
+                        tab = G[c]
+                        acc = (0.0, 0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_0, r0_0, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_1, r0_0, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_2, r0_0, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_3, r0_0, r1_3, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_0, r0_1, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_1, r0_1, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_2, r0_1, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_3, r0_1, r1_3, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_0, r0_2, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_1, r0_2, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_2, r0_2, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_3, r0_2, r1_3, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_0, r0_3, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_1, r0_3, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_2, r0_3, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_3, r0_3, r1_3, r2, tab, h, stride)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2] + w2_3 * acc[3]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+    return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def tables_d3_catmull_rom(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise at scattered points, 3-D input, 4-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries
+    n = (VL.shape[1] // 2 - 4) // 2
+    nu = np.uint64(n)
+    noct = freqs.shape[0]
+    W = np.empty((3, 4, CHUNK))
+    R = np.empty((3, 4, CHUNK))
+    Q = np.empty((3, 4, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, CHUNK))
+    bad = 0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (-0.5 * t) + (t2 + -0.5 * t3)
+                W[0, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
+                W[0, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
+                W[0, 3, i] = (-0.5 * t2 + 0.5 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+                Q[0, 2, i] = np.uint64(((b + 2) & msk)) * nu
+                Q[0, 3, i] = np.uint64(((b + 3) & msk)) * nu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[0, 3, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (-0.5 * t) + (t2 + -0.5 * t3)
+                W[1, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
+                W[1, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
+                W[1, 3, i] = (-0.5 * t2 + 0.5 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+                Q[1, 2, i] = np.uint64(((b + 2) & msk))
+                Q[1, 3, i] = np.uint64(((b + 3) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = np.uint64(j if j < n else j % n)
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[1, 3, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (-0.5 * t) + (t2 + -0.5 * t3)
+                W[2, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
+                W[2, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
+                W[2, 3, i] = (-0.5 * t2 + 0.5 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+                    R[2, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                    w0_3 = W[0, 3, i]; q0_3 = Q[0, 3, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                    w1_3 = W[1, 3, i]; q1_3 = Q[1, 3, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]; w2_2 = W[2, 2, i]; w2_3 = W[2, 3, i]
+                    for c in range(ncomp):
+                        tab = VL[c]
+                        acc = (0.0, 0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_3, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_3, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_2 * w1_3, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_2]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_2, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_3]) + q2
+                        acc = axpy_lanes(acc, w0_3 * w1_3, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2] + w2_3 * acc[3]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w0_2 = W[0, 2, i]; q0_2 = Q[0, 2, i]
+                    r0_2 = R[0, 2, i]
+                    w0_3 = W[0, 3, i]; q0_3 = Q[0, 3, i]
+                    r0_3 = R[0, 3, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    w1_2 = W[1, 2, i]; q1_2 = Q[1, 2, i]
+                    r1_2 = R[1, 2, i]
+                    w1_3 = W[1, 3, i]; q1_3 = Q[1, 3, i]
+                    r1_3 = R[1, 3, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]; w2_2 = W[2, 2, i]; w2_3 = W[2, 3, i]
+                    r2 = (R[2, 0, i], R[2, 1, i], R[2, 2, i], R[2, 3, i])
+                    for c in range(ncomp):
+                        tab = G[c]
+                        acc = (0.0, 0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_0, r0_0, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_1, r0_0, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_2, r0_0, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_3, r0_0, r1_3, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_0, r0_1, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_1, r0_1, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_2, r0_1, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_3, r0_1, r1_3, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_0, r0_2, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_1, r0_2, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_2, r0_2, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_2 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_2 * w1_3, r0_2, r1_3, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_0, r0_3, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_1, r0_3, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_2]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_2, r0_3, r1_2, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_3 + q1_3]) + q2
+                        acc = grad_axpy_lanes(acc, w0_3 * w1_3, r0_3, r1_3, r2, tab, h, stride)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2] + w2_3 * acc[3]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+    return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def tables_d3_quintic(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise at scattered points, 3-D input, 2-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    stride = np.uint64(VL.shape[1] // 2)  # VL: two parity rows of 2n + 4 entries
+    n = (VL.shape[1] // 2 - 4) // 2
+    nu = np.uint64(n)
+    noct = freqs.shape[0]
+    W = np.empty((3, 2, CHUNK))
+    R = np.empty((3, 2, CHUNK))
+    Q = np.empty((3, 2, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, CHUNK))
+    bad = 0
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
+                W[0, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
+                W[1, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
+                W[2, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]
+                    for c in range(ncomp):
+                        tab = VL[c]
+                        acc = (0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_0 * w1_1, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_0, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = axpy_lanes(acc, w0_1 * w1_1, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w1_0 = W[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; w2_1 = W[2, 1, i]
+                    r2 = (R[2, 0, i], R[2, 1, i])
+                    for c in range(ncomp):
+                        tab = G[c]
+                        acc = (0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_0, r0_0, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_0 * w1_1, r0_0, r1_1, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_0, r0_1, r1_0, r2, tab, h, stride)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        acc = grad_axpy_lanes(acc, w0_1 * w1_1, r0_1, r1_1, r2, tab, h, stride)
+                        total = w2_0 * acc[0] + w2_1 * acc[1]
+                        if absval:
+                            total = abs(total)
+                        if o == 0:
+                            ACC[c, i] = amps[o] * total
+                        else:
+                            ACC[c, i] += amps[o] * total
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+    return bad
+
+
+# keyed by (dim_in, taps) with coefficients as arguments, or (dim_in, kernel name) with them written in
 TABLE_KERNELS = {
     (3, 1): tables_d3_t1,
     (3, 2): tables_d3_t2,
     (3, 3): tables_d3_t3,
     (3, 4): tables_d3_t4,
+    (3, 'box'): tables_d3_box,
+    (3, 'linear'): tables_d3_linear,
+    (3, 'quadratic'): tables_d3_quadratic,
+    (3, 'cubic'): tables_d3_cubic,
+    (3, 'catmull-rom'): tables_d3_catmull_rom,
+    (3, 'quintic'): tables_d3_quintic,
 }

@@ -19,7 +19,7 @@ import numpy as np
 
 from .._validate import as_generator, check_finite_array, check_int, check_memory, check_real, float_dtype
 from . import _jit, _points
-from .kernels import Kernel, get_kernel
+from .kernels import KERNELS, Kernel, get_kernel
 
 __all__ = ["LatticeNoise", "Grid", "grid_coordinates"]
 
@@ -275,7 +275,7 @@ class LatticeNoise:
             freqs = np.ascontiguousarray(freqs, dtype=np.float64)
             amps = np.ascontiguousarray(amps, dtype=np.float64)
             basis = 0 if self.basis == "value" else 1
-            tabled = _points.TABLE_KERNELS.get((self.dim_in, k.taps))
+            tabled = self._table_kernel()
             unrolled = _points.KERNELS.get((self.dim_in, k.taps))
             tables = self._hash_tables(basis) if self._uses_tables() else None
             if tables is not None:
@@ -293,6 +293,14 @@ class LatticeNoise:
                                                          self.period, self._pmask, self.perms, self.values,
                                                          self.gradients, basis, bool(absval)), workers)
         return out if dtype == np.float64 else out.astype(dtype)
+
+    def _table_kernel(self):
+        """The 3-D table kernel: with this kernel's coefficients written in if it is a stock kernel."""
+        k = self.kernel
+        stock = KERNELS.get(k.name)
+        if stock is not None and np.array_equal(stock.coef, k.coef) and (self.dim_in, k.name) in _points.TABLE_KERNELS:
+            return _points.TABLE_KERNELS[(self.dim_in, k.name)]
+        return _points.TABLE_KERNELS.get((self.dim_in, k.taps))
 
     def _uses_tables(self):
         """Whether the scattered kernel over precombined hash tables applies (3-D input; last period n)."""
