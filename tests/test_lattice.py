@@ -294,7 +294,8 @@ def test_sparse_grid_falls_back_and_still_agrees():
 def test_chunkings_are_bit_identical(name, basis):
     noise = LatticeNoise(3, 2, seed=2, kernel=name, basis=basis)
     pts = RNG.uniform(-30, 30, (20000, 3))
-    pts[::5] += 1e13  # some chunks on the exact (large-coordinate) path
+    pts[::5] += 1e13  # past 2**52: no fractional bits
+    pts[::11] *= 1e18  # past 2**63: some chunks on the exact (fmod) path
     whole = noise(pts)
     parts = np.concatenate([noise(pts[i:i + 137]) for i in range(0, 20000, 137)])
     np.testing.assert_array_equal(whole, parts)

@@ -260,8 +260,11 @@ def _function_tables(d: int, taps: int, kernel=None) -> str:
         mul = " * nu" if a == 0 else ""
         a_(f"{lvl(3)}f = freqs[o, {a}]; ph = phase[{a}]; per = period[{a}]; msk = pmask[{a}]")
         # one pass: weights and the branch-free integer fast path (power-of-two
-        # period <= n, |index| < 2**52); a chunk that leaves it is redone on
-        # the exact path, which also counts non-finite coordinates
+        # period <= n; the floor is an integer-valued float, exact in int64
+        # below 2**63, and a power-of-two mask reduces it like the exact
+        # path's fmod: same index, far fewer chunks on the slow path in deep
+        # fractal octaves); a chunk that leaves it is redone on the exact
+        # path, which also counts non-finite coordinates
         a_(f"{lvl(3)}inside = 0")
         a_(f"{lvl(3)}for i in range(m):")
         b4 = lvl(4)
@@ -271,7 +274,7 @@ def _function_tables(d: int, taps: int, kernel=None) -> str:
         a_(f"{b4}t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t")
         for k in range(taps):
             a_(f"{b4}W[{a}, {k}, i] = {_poly(a, k, coef)}")
-        a_(f"{b4}inside += (fi < 4.0e15) & (fi > -4.0e15)")
+        a_(f"{b4}inside += (fi < 9.0e18) & (fi > -9.0e18)")
         a_(f"{b4}b = (np.int64(fi) - left) & msk")
         for k in range(taps if a < d - 1 else 1):
             j = f"((b + {k}) & msk)" if k else "b"

@@ -1610,7 +1610,7 @@ def tables_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 t = u - fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[0, 0, i] = np.uint64(b) * nu
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -1635,7 +1635,7 @@ def tables_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 t = u - fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[1, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -1660,7 +1660,7 @@ def tables_d3_t1(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 t = u - fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -1756,7 +1756,7 @@ def tables_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[0, 0, i] = np.uint64(b) * nu
                 Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
@@ -1787,7 +1787,7 @@ def tables_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
                 W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[1, 0, i] = np.uint64(b)
                 Q[1, 1, i] = np.uint64(((b + 1) & msk))
@@ -1818,7 +1818,7 @@ def tables_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
                 W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -1935,7 +1935,7 @@ def tables_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
                 W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[0, 0, i] = np.uint64(b) * nu
                 Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
@@ -1972,7 +1972,7 @@ def tables_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
                 W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
                 W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[1, 0, i] = np.uint64(b)
                 Q[1, 1, i] = np.uint64(((b + 1) & msk))
@@ -2009,7 +2009,7 @@ def tables_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
                 W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
                 W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -2155,7 +2155,7 @@ def tables_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
                 W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
                 W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[0, 0, i] = np.uint64(b) * nu
                 Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
@@ -2198,7 +2198,7 @@ def tables_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
                 W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
                 W[1, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[1, 0, i] = np.uint64(b)
                 Q[1, 1, i] = np.uint64(((b + 1) & msk))
@@ -2241,7 +2241,7 @@ def tables_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
                 W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
                 W[2, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -2415,7 +2415,7 @@ def tables_d3_box(pts, out, freqs, amps, phase, shift, left, coef, period, pmask
                 t = u - fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (1.0)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[0, 0, i] = np.uint64(b) * nu
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -2440,7 +2440,7 @@ def tables_d3_box(pts, out, freqs, amps, phase, shift, left, coef, period, pmask
                 t = u - fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (1.0)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[1, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -2465,7 +2465,7 @@ def tables_d3_box(pts, out, freqs, amps, phase, shift, left, coef, period, pmask
                 t = u - fi
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[2, 0, i] = (1.0)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -2559,7 +2559,7 @@ def tables_d3_linear(pts, out, freqs, amps, phase, shift, left, coef, period, pm
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (1.0 + -1.0 * t)
                 W[0, 1, i] = (t)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[0, 0, i] = np.uint64(b) * nu
                 Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
@@ -2590,7 +2590,7 @@ def tables_d3_linear(pts, out, freqs, amps, phase, shift, left, coef, period, pm
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (1.0 + -1.0 * t)
                 W[1, 1, i] = (t)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[1, 0, i] = np.uint64(b)
                 Q[1, 1, i] = np.uint64(((b + 1) & msk))
@@ -2621,7 +2621,7 @@ def tables_d3_linear(pts, out, freqs, amps, phase, shift, left, coef, period, pm
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[2, 0, i] = (1.0 + -1.0 * t)
                 W[2, 1, i] = (t)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -2735,7 +2735,7 @@ def tables_d3_quadratic(pts, out, freqs, amps, phase, shift, left, coef, period,
                 W[0, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
                 W[0, 1, i] = (0.5 + t) + (-1.0 * t2)
                 W[0, 2, i] = (0.5 * t2)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[0, 0, i] = np.uint64(b) * nu
                 Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
@@ -2772,7 +2772,7 @@ def tables_d3_quadratic(pts, out, freqs, amps, phase, shift, left, coef, period,
                 W[1, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
                 W[1, 1, i] = (0.5 + t) + (-1.0 * t2)
                 W[1, 2, i] = (0.5 * t2)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[1, 0, i] = np.uint64(b)
                 Q[1, 1, i] = np.uint64(((b + 1) & msk))
@@ -2809,7 +2809,7 @@ def tables_d3_quadratic(pts, out, freqs, amps, phase, shift, left, coef, period,
                 W[2, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
                 W[2, 1, i] = (0.5 + t) + (-1.0 * t2)
                 W[2, 2, i] = (0.5 * t2)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -2951,7 +2951,7 @@ def tables_d3_cubic(pts, out, freqs, amps, phase, shift, left, coef, period, pma
                 W[0, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
                 W[0, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
                 W[0, 3, i] = (0.16666666666666666 * t3)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[0, 0, i] = np.uint64(b) * nu
                 Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
@@ -2994,7 +2994,7 @@ def tables_d3_cubic(pts, out, freqs, amps, phase, shift, left, coef, period, pma
                 W[1, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
                 W[1, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
                 W[1, 3, i] = (0.16666666666666666 * t3)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[1, 0, i] = np.uint64(b)
                 Q[1, 1, i] = np.uint64(((b + 1) & msk))
@@ -3037,7 +3037,7 @@ def tables_d3_cubic(pts, out, freqs, amps, phase, shift, left, coef, period, pma
                 W[2, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
                 W[2, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
                 W[2, 3, i] = (0.16666666666666666 * t3)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -3214,7 +3214,7 @@ def tables_d3_catmull_rom(pts, out, freqs, amps, phase, shift, left, coef, perio
                 W[0, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
                 W[0, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
                 W[0, 3, i] = (-0.5 * t2 + 0.5 * t3)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[0, 0, i] = np.uint64(b) * nu
                 Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
@@ -3257,7 +3257,7 @@ def tables_d3_catmull_rom(pts, out, freqs, amps, phase, shift, left, coef, perio
                 W[1, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
                 W[1, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
                 W[1, 3, i] = (-0.5 * t2 + 0.5 * t3)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[1, 0, i] = np.uint64(b)
                 Q[1, 1, i] = np.uint64(((b + 1) & msk))
@@ -3300,7 +3300,7 @@ def tables_d3_catmull_rom(pts, out, freqs, amps, phase, shift, left, coef, perio
                 W[2, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
                 W[2, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
                 W[2, 3, i] = (-0.5 * t2 + 0.5 * t3)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
@@ -3475,7 +3475,7 @@ def tables_d3_quintic(pts, out, freqs, amps, phase, shift, left, coef, period, p
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[0, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
                 W[0, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[0, 0, i] = np.uint64(b) * nu
                 Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
@@ -3506,7 +3506,7 @@ def tables_d3_quintic(pts, out, freqs, amps, phase, shift, left, coef, period, p
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[1, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
                 W[1, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[1, 0, i] = np.uint64(b)
                 Q[1, 1, i] = np.uint64(((b + 1) & msk))
@@ -3537,7 +3537,7 @@ def tables_d3_quintic(pts, out, freqs, amps, phase, shift, left, coef, period, p
                 t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
                 W[2, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
                 W[2, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
-                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
                 b = (np.int64(fi) - left) & msk
                 Q[2, 0, i] = np.uint64(b)
             if basis == 1:  # signed distances to the taps, for the gradient dot products
