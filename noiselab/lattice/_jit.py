@@ -6,7 +6,8 @@
   permutation hash ``h_{a+1} = P[(h_a + j_a) mod n]`` (Phillips 2.4.1),
   summing weight x value. Several octaves (fractal sums) are fused into one
   pass over the points. Dimensions 1-3 use the unrolled kernels of
-  ``_points.py`` instead.
+  ``_points.py`` instead (3-D: over precombined hash tables, with the
+  last axis's taps summed by :func:`axpy_lanes` / :func:`grad_axpy_lanes`).
 - the grid path: :func:`axis_weights` and :func:`dense_taps` (per-axis
   weights and distinct taps), :func:`hash_expand` / :func:`hash_expand_values`
   (the hashed block of lattice values), :func:`contract_last` /
