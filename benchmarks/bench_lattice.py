@@ -389,7 +389,8 @@ def main():
     ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
     args = ap.parse_args()
     repeats = max(5, args.repeats)
-    cmd = "benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py" + (" --quick" if args.quick else "")
+    cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py" + (" --quick" if args.quick else "")
+           + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
     lines = ["# Lattice noise benchmark\n",
              f"- date: {_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M UTC}",
              f"- command: `{cmd}`",
