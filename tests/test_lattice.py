@@ -318,6 +318,14 @@ def test_float32_output_and_input():
     v32 = noise(x32)
     assert v32.dtype == np.float32
     np.testing.assert_allclose(v32, noise(x32.astype(np.float64)), atol=1e-7)
+    # 3-D: the table kernels read float32 points and write float32 output
+    # themselves: exactly the rounded float64 evaluation of the widened points
+    noise3 = LatticeNoise(3, 2, seed=3, kernel="quintic")
+    p32 = RNG.uniform(-100, 100, (3000, 3)).astype(np.float32)
+    v3 = noise3(p32)
+    assert v3.dtype == np.float32
+    np.testing.assert_array_equal(v3, noise3(p32.astype(np.float64)).astype(np.float32))
+    np.testing.assert_array_equal(noise3(p32, dtype=np.float64), noise3(p32.astype(np.float64)))
     g32 = noise.grid((64, 64), [(0, 8), (0, 8)], dtype=np.float32)
     assert g32.dtype == np.float32
     np.testing.assert_allclose(g32, noise.grid((64, 64), [(0, 8), (0, 8)]), atol=1e-7)

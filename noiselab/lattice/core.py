@@ -248,7 +248,8 @@ class LatticeNoise:
     # ------------------------------------------------------------- scattered
     def _prepare_points(self, points, name="points"):
         points = np.asarray(points)
-        if not (points.dtype.kind == "f" and self._uses_tables()):  # the table kernels check
+        tables = self._uses_tables()
+        if not (points.dtype.kind == "f" and tables):  # the table kernels check
             points = check_finite_array(name, points)
         d = self.dim_in
         if d == 1 and (points.ndim == 0 or points.shape[-1] != 1):
@@ -259,7 +260,9 @@ class LatticeNoise:
                 raise ValueError(f"{name} must have shape (..., dim_in={d}), got {points.shape}")
             lead = points.shape[:-1]
             flat = points.reshape(-1, d)
-        return lead, np.ascontiguousarray(flat, dtype=np.float64)
+        # the table kernels read float32 points themselves (exact widening), saving a converted copy
+        keep = tables and points.dtype == np.float32
+        return lead, np.ascontiguousarray(flat, dtype=np.float32 if keep else np.float64)
 
     def _out_dtype(self, points_dtype, dtype):
         if dtype is not None:
@@ -267,9 +270,13 @@ class LatticeNoise:
         return np.dtype(np.float32) if points_dtype == np.float32 else np.dtype(np.float64)
 
     def _evaluate(self, flat, freqs, amps, absval, dtype, name="points", workers=1):
-        # the kernels write float64 only (one compiled specialisation each);
-        # float32 is a rounding of the float64 result
-        out = np.empty((flat.shape[0], self.dim_out), dtype=np.float64)
+        # the computation is float64; float32 output is a rounding of the
+        # float64 result (the table kernels round as they store; the others
+        # write float64, one compiled specialisation each)
+        use_tables = self._uses_tables()
+        out = np.empty((flat.shape[0], self.dim_out), dtype=dtype if use_tables else np.float64)
+        if not use_tables:
+            flat = np.ascontiguousarray(flat, dtype=np.float64)
         if flat.shape[0]:
             k = self.kernel
             freqs = np.ascontiguousarray(freqs, dtype=np.float64)
@@ -277,7 +284,7 @@ class LatticeNoise:
             basis = 0 if self.basis == "value" else 1
             tabled = self._table_kernel()
             unrolled = _points.KERNELS.get((self.dim_in, k.taps))
-            tables = self._hash_tables(basis) if self._uses_tables() else None
+            tables = self._hash_tables(basis) if use_tables else None
             if tables is not None:
                 bad = _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
                                                      self._pmask, *tables, basis, bool(absval)), workers)
@@ -292,7 +299,7 @@ class LatticeNoise:
                 _run_split(_jit.eval_points, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef,
                                                          self.period, self._pmask, self.perms, self.values,
                                                          self.gradients, basis, bool(absval)), workers)
-        return out if dtype == np.float64 else out.astype(dtype)
+        return out if out.dtype == dtype else out.astype(dtype)
 
     def _table_kernel(self):
         """The 3-D table kernel: with this kernel's coefficients written in if it is a stock kernel."""
