@@ -420,3 +420,13 @@ def test_grid_coordinates_follow_arange_convention():
     np.testing.assert_allclose(c, [1.0, 1.2, 1.4, 1.6, 1.8])
     g = Grid((5,), [(1.0, 2.0)])
     assert g.shape == (5,)
+
+
+def test_generated_kernels_match_their_generator():
+    """``_points.py`` is generated and committed (numba caches need a file): it must be what the generator writes today."""
+    from pathlib import Path
+
+    from noiselab.lattice import _generate
+
+    committed = (Path(_generate.__file__).with_name("_points.py")).read_text()
+    assert committed == _generate.generate(), "run `python -m noiselab.lattice._generate` and commit _points.py"

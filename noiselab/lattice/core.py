@@ -11,13 +11,12 @@ Classic gradient (Perlin) noise is offered as a second basis.
 from __future__ import annotations
 
 import math
-import numbers
 from concurrent.futures import ThreadPoolExecutor
 from typing import NamedTuple
 
 import numpy as np
 
-from .._validate import as_generator, check_finite_array, check_int, check_memory, check_real, float_dtype
+from .._validate import as_generator, check_finite_array, check_int, check_memory, check_real, check_shape, float_dtype
 from . import _jit, _points
 from .kernels import KERNELS, Kernel, get_kernel
 
@@ -60,15 +59,7 @@ class Grid(NamedTuple):
 
 
 def _check_grid(shape, extent, dim):
-    if isinstance(shape, numbers.Integral):
-        shape = (shape,)
-    try:
-        shape = tuple(shape)
-    except TypeError:
-        raise TypeError(f"shape must be a tuple of ints, got {type(shape).__name__}") from None
-    if len(shape) != dim:
-        raise ValueError(f"shape must have dim_in={dim} entries, got {len(shape)}: {shape}")
-    shape = tuple(check_int(f"shape[{i}]", s, lo=0) for i, s in enumerate(shape))
+    shape = check_shape("shape", shape, ndim=dim, min_size=0)
     try:
         ext = np.asarray(extent, dtype=np.float64)
     except (TypeError, ValueError):
