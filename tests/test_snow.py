@@ -11,16 +11,10 @@ from noiselab.snow import flake_speeds, iter_tiled_frames, rescale_opacity, snow
 from noiselab.snow.tent import tent_columns
 from noiselab.spectral import envelopes as E
 from noiselab.spectral import frequency_vectors
+from _helpers import phase_correlation_shift
 
 
-def _displacement(a, b):
-    """Integer shift (dx, dy) taking frame a to frame b (phase correlation)."""
-    X = scipy.fft.rfft2(b) * np.conj(scipy.fft.rfft2(a))
-    X /= np.abs(X) + 1e-30
-    r = scipy.fft.irfft2(X, s=a.shape)
-    iy, ix = np.unravel_index(np.argmax(r), r.shape)
-    H, W = r.shape
-    return int((ix + W // 2) % W - W // 2), int((iy + H // 2) % H - H // 2)
+_displacement = phase_correlation_shift
 
 
 def _mean_displacement(v, steps=6):

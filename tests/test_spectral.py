@@ -5,6 +5,7 @@ import scipy.fft
 
 from noiselab.spectral import envelopes as E
 from noiselab.spectral import frequency_vectors, hermitian_plane, spectral_noise, synthesize
+from _helpers import phase_correlation_shift
 
 SHAPES = [(7,), (8,), (1,), (2,), (5, 6), (6, 7), (8, 8), (1, 8), (4, 6, 8), (5, 7, 9), (1, 8, 8), (3, 1, 4), (2, 2, 2)]
 
@@ -145,13 +146,7 @@ def test_spectral_noise_bad_input():
         spectral_noise((4, 4, 4, 4))
 
 
-def _displacement(a, b):
-    X = scipy.fft.rfft2(b) * np.conj(scipy.fft.rfft2(a))
-    X /= np.abs(X) + 1e-30
-    r = scipy.fft.irfft2(X, s=a.shape)
-    iy, ix = np.unravel_index(np.argmax(r), r.shape)
-    H, W = r.shape
-    return (ix + W // 2) % W - W // 2, (iy + H // 2) % H - H // 2
+_displacement = phase_correlation_shift
 
 
 def test_motion_plane_envelope_translates_with_its_velocity():

@@ -1,0 +1,13 @@
+"""Small measuring helpers shared by several test modules (not tests themselves)."""
+import numpy as np
+import scipy.fft
+
+
+def phase_correlation_shift(a, b):
+    """Integer shift (dx, dy) taking image ``a`` to image ``b``, by phase correlation (x right, y down)."""
+    X = scipy.fft.rfft2(b) * np.conj(scipy.fft.rfft2(a))
+    X /= np.abs(X) + 1e-30
+    r = scipy.fft.irfft2(X, s=a.shape)
+    iy, ix = np.unravel_index(np.argmax(r), r.shape)
+    H, W = r.shape
+    return int((ix + W // 2) % W - W // 2), int((iy + H // 2) % H - H // 2)
