@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import check_finite_array, check_memory, check_real
+from ..analysis.contrast import michelson_contrast  # one definition, re-exported here for the Eq. 6.1 reports
 
 __all__ = ["composite", "parallax_composite", "michelson_contrast"]
 
@@ -106,21 +107,13 @@ def composite(alpha, background, intensity=250):
     return out
 
 
-def michelson_contrast(values) -> float:
-    """Michelson contrast ``(Lmax - Lmin) / (Lmax + Lmin)`` of luminances (0 for an all-black region).
-
-    Examples
-    --------
-    >>> round(michelson_contrast([255 * 0.7, 255.0]), 3)   # thesis 6.1.1: the veiled region
-    0.176
-    """
-    v = np.asarray(values, dtype=np.float64)
-    if v.size == 0:
-        raise ValueError("michelson_contrast needs at least one value")
-    lo, hi = float(v.min()), float(v.max())
-    if lo < 0:
-        raise ValueError(f"luminances must be non-negative, got a minimum of {lo:g}")
-    return 0.0 if hi + lo == 0 else (hi - lo) / (hi + lo)
+def _region_contrast(out, region):
+    """Michelson contrast of ``out`` over ``region``: NaN for an empty region, 0 for an all-black one."""
+    if not region.any():
+        return float("nan")
+    if not np.any(out, where=region):
+        return 0.0
+    return michelson_contrast(out, region)
 
 
 def parallax_composite(foreground, mask, *, transmittance=0.3, veil=255.0, veiled_foreground=None):
@@ -183,8 +176,8 @@ def parallax_composite(foreground, mask, *, transmittance=0.3, veil=255.0, veile
     veiled = np.float32(veil * (1 - transmittance)) + np.float32(transmittance) * (255.0 * fg2.astype(np.float32))
     out = np.where(m, veiled, lum)
     contrast = {
-        "veiled": michelson_contrast(out[m]) if m.any() else float("nan"),
-        "clear": michelson_contrast(out[~m]) if (~m).any() else float("nan"),
+        "veiled": _region_contrast(out, m),
+        "clear": _region_contrast(out, ~m),
     }
     video = np.clip(np.rint(out), 0, 255).astype(np.uint8)
     return video, contrast
