@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from noiselab import analysis as A
+import noiselab
 
 
 # ---------------------------------------------------------------- helpers
@@ -233,6 +234,52 @@ def oriented_noise(n, angle_deg, width_deg=8.0, seed=0):
 def test_isotropic_noise_has_near_zero_anisotropy():
     assert A.anisotropy(power_law_field((512, 512), 1.0, seed=8)) < 0.03
     assert A.anisotropy(np.random.default_rng(9).standard_normal((256, 256))) < 0.03
+
+
+def test_stripes_with_one_percent_noise_read_anisotropic_whatever_the_noise_floor():
+    rng = np.random.default_rng(12)
+    y, x = np.mgrid[:256, :256]
+    for noise in (0.01, 0.1):
+        stripes = np.sin(2 * np.pi * x / 16) + noise * rng.standard_normal((256, 256))
+        o = A.orientation_energy(stripes)
+        assert o.index > 0.9 and abs((o.dominant + 90) % 180 - 90) < 1, (noise, o.index, o.dominant)
+        # whitened ring by ring, the one striped ring is outvoted by the rings of noise (the old index)
+        assert A.orientation_energy(stripes, whiten="ring").index < 0.05
+
+
+def test_a_band_of_oriented_energy_over_a_noise_floor_reads_anisotropic():
+    # one octave (16-32 cycles/frame) of energy within 3 degrees of one orientation, plus 1 % white noise
+    n, rng = 256, np.random.default_rng(13)
+    ky, kx = np.fft.fftfreq(n, 1.0 / n)[:, None], np.fft.rfftfreq(n, 1.0 / n)[None, :]
+    r, theta = np.hypot(kx, ky), np.arctan2(ky, kx)
+    env = (r >= 16) & (r < 32) & (np.abs(np.angle(np.exp(2j * (theta - 0.5)))) / 2 < 0.05)
+    img = np.fft.irfft2(env * (rng.standard_normal(env.shape) + 1j * rng.standard_normal(env.shape)), s=(n, n))
+    img = img / img.std() + 0.01 * rng.standard_normal((n, n))
+    o = A.orientation_energy(img)
+    assert o.index > 0.9 and abs(o.dominant - np.rad2deg(0.5)) < 2
+
+
+@pytest.mark.parametrize("exponent", [1.0, 2.0, 3.0])
+def test_isotropic_power_law_fields_read_isotropic_not_judged_by_their_lowest_cells(exponent):
+    img = noiselab.spectral_noise((256, 256), exponent=exponent, seed=14)
+    assert A.anisotropy(img) < 0.1
+    if exponent >= 2:  # unwhitened, the few lowest rings decide (and their handful of cells is far from isotropic)
+        assert A.orientation_energy(img, whiten=False).index > 2 * A.anisotropy(img)
+
+
+def test_ring_anisotropy_reads_the_periodogram_floor_and_the_striped_ring():
+    rng = np.random.default_rng(15)
+    for k in (1, 4, 16):  # K averaged white-noise periodograms: var / mean**2 = 1 / K
+        ra = A.ring_anisotropy(rng.standard_normal((k, 128, 128) if k > 1 else (128, 128)))
+        assert ra.periodograms == k and ra.floor_db == pytest.approx(-10 * np.log10(k))
+        assert abs(ra.mean_db - ra.floor_db) < 0.6, (k, ra.mean_db)
+    y, x = np.mgrid[:128, :128]
+    ra = A.ring_anisotropy(np.sin(2 * np.pi * 8 * x / 128) + 0.01 * rng.standard_normal((128, 128)))
+    striped = ra.db[ra.centers == 8][0]
+    # two cells of the ring's 2 pi 8 ~ 50 hold everything: var / mean**2 ~ 50 / 2 - 1, about 14 dB
+    assert 12 < striped < 16 and np.median(ra.db) < 1
+    with pytest.raises(ValueError, match="min_cells"):
+        A.ring_anisotropy(x, min_cells=1)
 
 
 @pytest.mark.parametrize("angle", [0.0, 30.0, 75.0, 120.0])

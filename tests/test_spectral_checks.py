@@ -173,9 +173,12 @@ def test_lattice_noise_shows_its_axes_where_spectral_noise_does_not(lattice_imag
     spectral = [noiselab.spectral_noise((256, 256), exponent=2.0, band=(1, 8), seed=s) for s in range(10, 18)]
     assert np.mean([A.anisotropy(x, (2, 8)) for x in spectral]) < 0.25
     for k, img in lattice_images.items():
+        # the default whitening weights the rings that stand above the radial trend (here the main lobe, where
+        # Catmull-Rom is least anisotropic: 0.52, the B-splines 0.85-0.98): the cross still dominates
         o = A.orientation_energy(img)
-        assert o.index > 0.5 and o.m4 > 3 * o.m2, (k, o.m2, o.m4)
-        assert o.axis_ratio > 10, k  # the energy past the pass band runs along the lattice axes
+        assert o.index > 0.4 and o.m4 > 3 * o.m2 and o.axis_ratio > 3, (k, o.m2, o.m4, o.axis_ratio)
+        ring = A.orientation_energy(img, whiten="ring")  # every radius alike: the tails past the pass band
+        assert ring.axis_ratio > 10, k  # the energy past the pass band runs along the lattice axes
 
 
 def test_non_periodic_lattice_noise_needs_the_window():

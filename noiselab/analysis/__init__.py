@@ -26,7 +26,7 @@ Examples
 True
 """
 from .contrast import michelson_contrast, rms_contrast, to_grey
-from .isotropy import Orientation, anisotropy, orientation_energy
+from .isotropy import Orientation, RingAnisotropy, anisotropy, orientation_energy, ring_anisotropy
 from .motion import (
     SpeedProfile,
     band_speeds,
@@ -65,6 +65,8 @@ __all__ = [
     "Orientation",
     "orientation_energy",
     "anisotropy",
+    "RingAnisotropy",
+    "ring_anisotropy",
     "motion_energy",
     "tent_energy",
     "sheared_tent_energy",
