@@ -14,8 +14,11 @@ to pay for one FFT.
 
 Modules: ``spectrum`` (power, radial, spatio-temporal spectra, band energy),
 ``slope`` (1/f slope, octave energy), ``isotropy`` (orientation energy,
-anisotropy), ``motion`` (motion plane, tent, best velocity, speed per band),
-``seams`` (loop and tile seams), ``contrast`` (Michelson, RMS).
+anisotropy, Ulichney's ring anisotropy), ``motion`` (motion plane, tent, best velocity, speed per band),
+``seams`` (loop and tile seams), ``contrast`` (Michelson, RMS), ``quality`` (the
+measures a noise is judged by: band leakage and aliasing per octave, slices of
+volumes, envelope error, variance and range, periods, lattice-axis artefacts,
+motion per band).
 
 Examples
 --------
@@ -37,6 +40,24 @@ from .motion import (
     speed_profile,
     tent_energy,
     video_spectrum,
+)
+from .quality import (
+    AxisArtefacts,
+    BandLeakage,
+    BandMotion,
+    EnvelopeError,
+    Period,
+    SliceLeakage,
+    ValueStatistics,
+    axis_artefacts,
+    band_leakage,
+    detect_period,
+    envelope_error,
+    shell_slice_below,
+    slice_leakage,
+    tent_energy_per_band,
+    value_statistics,
+    variance_striping,
 )
 from .seams import loop_seam, tile_seam
 from .slope import OctaveEnergy, Slope, octave_energy, spectral_slope
@@ -77,6 +98,22 @@ __all__ = [
     "octave_bands",
     "video_spectrum",
     "loop_seam",
+    "BandLeakage",
+    "band_leakage",
+    "SliceLeakage",
+    "slice_leakage",
+    "shell_slice_below",
+    "EnvelopeError",
+    "envelope_error",
+    "ValueStatistics",
+    "value_statistics",
+    "Period",
+    "detect_period",
+    "AxisArtefacts",
+    "axis_artefacts",
+    "variance_striping",
+    "BandMotion",
+    "tent_energy_per_band",
     "tile_seam",
     "michelson_contrast",
     "rms_contrast",
