@@ -221,6 +221,11 @@ def image_quality(img, target_slope, band):
     s = float(spectral_slope(x, band=band))
     q.update({"slope": s, "slope_error": s - target_slope, "anisotropy": float(anisotropy(x, band=band)),
               "octave_ripple_db": octave_energy(x, lo=band[0], hi=band[1]).db_range})
+    from noiselab.analysis import axis_artefacts, band_leakage
+
+    art = axis_artefacts(x, band, window="hann")  # peers' fields do not tile: the window keeps the edge off the axes
+    q.update({"outside_band": band_leakage(x, band, window="hann").outside, "axis_excess": art.axis_excess,
+              "mean_spread": max(art.row_mean_spread, art.column_mean_spread)})
     return q
 
 

@@ -24,6 +24,7 @@ import numpy as np
 from .experiments import (CAPABILITIES, Config, flake_scaling, pareto_sweeps, scaling_fits, snow_experiment,
                           snow_scaling, texture_experiment, texture_scaling)
 from .measure import fit_exponent, machine_info
+from .quality import quality_experiment, quality_section
 
 __all__ = ["run_all", "md_table", "ROOT", "PEER_PYTHON"]
 
@@ -275,7 +276,7 @@ def run_all(*, quick=False, output=None, peers=True, log=print):
     steps = [("texture", lambda: texture_experiment(cfg)), ("texture_scaling", lambda: texture_scaling(cfg)),
              ("snow", lambda: snow_experiment(cfg)),
              ("scaling", lambda: snow_scaling(cfg)), ("flakes", lambda: flake_scaling(cfg)),
-             ("sweeps", lambda: pareto_sweeps(cfg))]
+             ("sweeps", lambda: pareto_sweeps(cfg)), ("quality", lambda: quality_experiment(cfg))]
     for name, fn in steps:
         t0 = time.perf_counter()
         results[name] = fn()
@@ -474,13 +475,15 @@ def render_markdown(res, *, quick=False):
             else:
                 cols = [("case", "case"), ("dtype", "dtype"), ("time_s", "time s"), ("x_floor", "x floor"),
                         ("points_per_s", "points/s"), ("peak_mib", "peak MiB"), ("slope", "slope"),
-                        ("anisotropy", "aniso"), ("octave_ripple_db", "ripple dB"), ("min", "min"), ("max", "max")]
+                        ("anisotropy", "aniso"), ("octave_ripple_db", "ripple dB"), ("outside_band", "outside band"),
+                        ("axis_excess", "axis excess"), ("mean_spread", "mean spread"), ("min", "min"), ("max", "max")]
             L.append(md_table(ok, cols) + "\n")
             for r in rs:
                 if r["status"] != "ok":
                     L.append(f"- **{r['case']}: failed** - `{r['error']}`")
             L.append("")
         L.append("![peers](results/peers.png)\n")
+    L.append(quality_section(res))
     L.append("## Notes\n")
     L.append("- Other benchmark reports: [bench_snow.md](bench_snow.md) (snow against its floor, MotionClouds), "
              "[bench_lattice.md](bench_lattice.md) (lattice peers, precision), [bench_mesh.md](bench_mesh.md).")
