@@ -102,3 +102,25 @@ def test_a_still_video_and_a_tiny_image_are_reported_not_refused(tmp_path, capsy
     np.save(tmp_path / "tiny.npy", np.random.default_rng(0).random((6, 6)))
     rc, out, _ = _run(capsys, tmp_path / "tiny.npy")
     assert rc == 0 and "1/f slope     n/a" in out
+
+
+def test_report_gives_the_literature_measures(tmp_path, capsys):
+    import noiselab
+
+    # a tiled FFT field with stripes added: the period, the axis excess and Ulichney's dB must all show it
+    field = noiselab.spectral_noise((64, 64), seed=3, dtype=np.float64)
+    striped = np.tile(field, (1, 3)) + 2.0 * np.sin(2 * np.pi * np.arange(192) / 12)[None, :]
+    np.save(tmp_path / "s.npy", striped)
+    rc, out, _ = _run(capsys, tmp_path / "s.npy", "--json", tmp_path / "s.json")
+    assert rc == 0
+    assert "repeats every 64 samples" in out
+    assert float(re.search(r"axis excess (\d+\.\d+)", out).group(1)) > 10
+    assert float(re.search(r"Ulichney\s+([+-]\d+\.\d+) dB", out).group(1)) > 3
+    q = json.loads((tmp_path / "s.json").read_text())["quality"]
+    assert q["period_x"] == 64 and q["range"]["max"] == pytest.approx(float(striped.max()))
+    # a band-limited volume: nothing outside its band, a quarter of its slices' power under it (Cook & DeRose)
+    np.save(tmp_path / "v.npy", noiselab.spectral_noise((48, 48, 48), exponent=0.0, band=(6, 12), seed=4))
+    rc, out, _ = _run(capsys, tmp_path / "v.npy", "--as", "volume", "--band", 6, 12, "--json", tmp_path / "v.json")
+    sl = json.loads((tmp_path / "v.json").read_text())["quality"]["slice_leakage"]
+    assert rc == 0 and sl["volume_outside"] < 1e-9 and 0.2 < sl["slice_outside"] < 0.3
+    assert "2-D slices" in out

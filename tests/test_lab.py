@@ -293,3 +293,59 @@ def test_layered_frames_render_in_pieces():
     assert np.array_equal(full[5:8], piece)
     with pytest.raises(ValueError, match="start"):
         layered_lattice_snow((2, 32, 32), start=-1)
+
+
+# ----------------------------------------------------------------------------- the literature's measures
+
+@pytest.mark.parametrize("kernel,basis", [("linear", "value"), ("catmull-rom", "value"), ("quintic", "gradient")])
+def test_lattice_spectrum_is_the_mean_periodogram_of_periodic_lattice_noise(kernel, basis):
+    from noiselab import LatticeNoise
+    from noiselab.analysis import PowerSpectrum, envelope_error, power_spectrum
+    from noiselab.lab.quality import lattice_spectrum
+
+    n, cells = 96, 13  # 7.4 px per cell: every lattice point at another sampling phase
+    mean = np.mean([power_spectrum(LatticeNoise(2, seed=s, kernel=kernel, basis=basis, period=cells)
+                                   .grid((n, n), [(0, cells)] * 2)).power for s in range(24)], axis=0)
+    spec = PowerSpectrum(power=mean, shape=(n, n), axes=(0, 1))
+    err = envelope_error(spec, lattice_spectrum(kernel, basis, n, cells), groups=8, support=1e-4)
+    # 24 realisations of 169 lattice values: each group's mean holds a few hundred independent draws
+    assert err.rms_db < 0.6 and err.outside < 1e-3, (err.rms_db, err.outside)
+    # the same field against the other basis' spectrum is visibly wrong
+    other = "gradient" if basis == "value" else "value"
+    assert envelope_error(spec, lattice_spectrum(kernel, other, n, cells), groups=8, support=1e-4).rms_db > 2 * err.rms_db
+
+
+@pytest.mark.parametrize("kernel,basis", [("linear", "value"), ("cubic", "value"), ("quintic", "gradient")])
+def test_lattice_variance_is_the_empirical_variance(kernel, basis):
+    from noiselab import LatticeNoise
+    from noiselab.lab.quality import lattice_variance
+
+    noise = LatticeNoise(1, seed=4, kernel=kernel, basis=basis, table_size=1 << 16)
+    line = noise.grid((1 << 18,), [(0, 1 << 14)])
+    assert line.var() == pytest.approx(lattice_variance(noise), rel=0.03)
+
+
+def test_quality_experiment_quick_reports_every_generator():
+    from noiselab.lab.quality import quality_experiment, quality_section
+    from noiselab.lattice import kernel_names
+
+    q = quality_experiment(Config.quick_config())
+    names = {r["method"] for r in q["image"]}
+    assert names == {"spectral_noise (flat octave)"} | {f"{b} noise, {k}" for b in ("value", "gradient")
+                                                         for k in kernel_names()}
+    spectral = next(r for r in q["image"] if r["family"] == "spectral")
+    assert spectral["outside"] < 1e-20 and spectral["period"] == 64 and spectral["variance_ratio"] == pytest.approx(1)
+    for r in q["image"]:
+        if r["family"] == "lattice":
+            assert r["period"] == 64 and r["within_bounds"] and r["outside"] > 0.05 and r["aliased"] > 0
+            assert r["anisotropy"] > spectral["anisotropy"]
+        assert all(np.isfinite(r[k]) for k in ("envelope_rms_db", "ulichney_db", "axis_excess", "striping"))
+    # Cook & DeRose: slicing the band-limited spectral volume puts power under its band
+    sv = next(r for r in q["volume"] if r["family"] == "spectral")
+    assert sv["volume_below"] < 1e-20 and sv["slice_below"] > 0.1
+    tent = next(r for r in q["motion"] if r["method"].startswith("tent IFFT, linear"))
+    assert min(tent["tent_mean"]) > 0.999 and tent["off_envelope"] < 1e-9
+    particles = next(r for r in q["motion"] if r["method"].startswith("particles"))
+    assert max(particles["tent_mean"]) < 0.9
+    md = quality_section({"quality": q})
+    assert all(name in md for name in names) and "Cook & DeRose" in md

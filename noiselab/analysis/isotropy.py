@@ -338,4 +338,4 @@ def ring_anisotropy(image, band=None, *, window=None, min_cells=8) -> RingAnisot
     finite = np.isfinite(db)
     return RingAnisotropy(centers=np.nonzero(ok)[0].astype(np.float64), ratio=ratio, db=db, counts=cnt[ok],
                           periodograms=k, mean_db=float(np.mean(db[finite])) if finite.any() else float("-inf"),
-                          floor_db=-10 * np.log10(k))
+                          floor_db=-10 * np.log10(k) + 0.0)  # + 0.0: no "-0.0" for one periodogram

@@ -19,7 +19,8 @@ from pathlib import Path
 import numpy as np
 
 NAME = "analyze"
-HELP = "Measure an image, video or volume (PNG, NPY, MP4/GIF): 1/f slope, anisotropy, band energy, velocity and speed per band."
+HELP = ("Measure an image, video or volume (PNG, NPY, MP4/GIF): 1/f slope, anisotropy, band energy and leakage, "
+        "lattice artefacts, period, velocity and speed per band.")
 
 _IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp")
 _VIDEO_SUFFIXES = (".mp4", ".gif")
@@ -143,6 +144,7 @@ def measure(data, kind, *, band=None, window="auto", bands_per_octave=2):
         out["anisotropy"] = {"index": o.index, "m2": o.m2, "m4": o.m4, "dominant_deg": o.dominant,
                              "axis_ratio": o.axis_ratio, "angles_deg": o.angles.tolist(),
                              "energy": o.energy.tolist()}
+    out["quality"] = _quality(data, kind, spec, (lo, hi), window)
     del spec
     if kind == "video" and data.shape[0] >= 3:
         try:
@@ -193,6 +195,7 @@ def report(path, m) -> str:
         o = m["octave_energy"]
         cells = "  ".join(f"{lo:g}-{hi:g}: {100 * f:.1f}%" for lo, hi, f in zip(o["edges"][:-1], o["edges"][1:], o["fraction"]))
         lines.append(f"  {'band energy':<14}{cells}   (spread {o['spread']:.2f})")
+    lines += _quality_lines(m.get("quality", {}))
     if m.get("loop_seam") is None and "loop_seam" in m:
         lines.append(f"  {'loop seam':<14}n/a (the frames do not change)")
     elif "loop_seam" in m:
@@ -295,3 +298,59 @@ def run(args) -> int:
             Path(tmp).write_text(json.dumps(m, indent=1))
         print(f"  numbers       {args.json}")
     return 0
+
+
+def _quality(data, kind, spec, band, window):
+    """The literature's measures (noiselab.analysis.quality) that apply to one array without its generator."""
+    from .. import analysis as A
+
+    q = {}
+    st = A.value_statistics(data)
+    q["range"] = {"min": st.min, "max": st.max, "range_sd": st.range_sd}
+    try:
+        leak = A.band_leakage(spec, band)
+        q["band_leakage"] = {"band": list(leak.band), "below": leak.below, "inside": leak.inside, "above": leak.above,
+                             "octave_edges": leak.edges.tolist(), "octave_fraction": leak.octaves.tolist()}
+    except ValueError:
+        pass
+    if kind in ("image", "video") and min(data.shape[-2:]) >= 8:
+        ra = A.ring_anisotropy(spec)
+        q["ulichney"] = {"mean_db": ra.mean_db, "floor_db": ra.floor_db, "periodograms": ra.periodograms}
+    if kind == "image" and min(data.shape) >= 8:
+        art = A.axis_artefacts(data, window=window)
+        q["axis_artefacts"] = {"axis_excess": art.axis_excess, "axis_power": art.axis_power,
+                               "row_mean_spread": art.row_mean_spread, "column_mean_spread": art.column_mean_spread}
+    if kind in ("image", "signal", "volume") and data.shape[-1] >= 8:
+        q["period_x"] = A.detect_period(data, axis=-1).period
+    if kind == "volume" and min(data.shape) >= 8:
+        sl = A.slice_leakage(data, band, window=window)
+        q["slice_leakage"] = {"band": list(sl.band), "volume_outside": sl.volume.outside,
+                              "slice_outside": sl.slices.outside, "added_below": sl.added_below}
+    return q
+
+
+def _quality_lines(q):
+    lines = []
+    if "band_leakage" in q:
+        b = q["band_leakage"]
+        lines.append(f"  {'band leakage':<14}{100 * b['below']:.2f}% below, {100 * b['above']:.2f}% above "
+                     f"{b['band'][0]:g}-{b['band'][1]:g} cycles/frame")
+    if "ulichney" in q:
+        u = q["ulichney"]
+        lines.append(f"  {'Ulichney':<14}{u['mean_db']:+.1f} dB   (isotropic Gaussian field: {u['floor_db']:+.1f} dB "
+                     f"for {u['periodograms']} periodogram(s))")
+    if "axis_artefacts" in q:
+        a = q["axis_artefacts"]
+        lines.append(f"  {'lattice axes':<14}axis excess {a['axis_excess']:.2f} (1 = isotropic)   row/column-mean "
+                     f"spread {a['row_mean_spread']:.3f} / {a['column_mean_spread']:.3f} sd")
+    if "period_x" in q:
+        p = q["period_x"]
+        lines.append(f"  {'period (x)':<14}" + ("none within half the width" if p is None else f"repeats every {p} samples"))
+    if "slice_leakage" in q:
+        s = q["slice_leakage"]
+        lines.append(f"  {'slices':<14}outside {s['band'][0]:g}-{s['band'][1]:g}: volume {100 * s['volume_outside']:.2f}%, "
+                     f"2-D slices {100 * s['slice_outside']:.2f}% (+{100 * s['added_below']:.2f}% below)")
+    if "range" in q:
+        r = q["range"]
+        lines.append(f"  {'range':<14}{r['min']:.4g} .. {r['max']:.4g}   ({r['range_sd']:.2f} sd)")
+    return lines
