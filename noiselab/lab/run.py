@@ -475,7 +475,7 @@ def render_markdown(res, *, quick=False):
             else:
                 cols = [("case", "case"), ("dtype", "dtype"), ("time_s", "time s"), ("x_floor", "x floor"),
                         ("points_per_s", "points/s"), ("peak_mib", "peak MiB"), ("slope", "slope"),
-                        ("anisotropy", "aniso"), ("octave_ripple_db", "ripple dB"), ("outside_band", "outside band"),
+                        ("anisotropy", "aniso"), ("octave_ripple_db", "ripple dB"), ("outside_band", "outside fit band"),
                         ("axis_excess", "axis excess"), ("mean_spread", "mean spread"), ("min", "min"), ("max", "max")]
             L.append(md_table(ok, cols) + "\n")
             for r in rs:
