@@ -90,3 +90,45 @@ def kernels(out, *, size, cells, seed):
                   "(Phillips) and gradient (Perlin) bases; right: radial power spectra against frequency in cycles per "
                   "lattice cell. Smoother kernels roll off faster above 1 cycle per cell (the lattice band limit).",
                   measured)
+
+
+@figure("lab", "measures", seed="Lagae et al. 2010 (band-limitedness, anisotropy); Cook & DeRose 2005; Ulichney 1987",
+        title="One octave asked of every generator: leakage, aliasing, anisotropy and Ulichney's dB",
+        params=dict(size=256), quick=dict(size=64), uses=USES + ("noiselab.lab",))
+def measures(out, *, size):
+    from noiselab.lab.quality import generator_measures, octave_generators
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    rows = [generator_measures(name, fam, make, info, size)
+            for name, (fam, make, info) in octave_generators(size, 2).items()]
+    names = [r["method"].replace(" noise, ", " ").replace("spectral_noise (flat octave)", "spectral") for r in rows]
+    panels = [("outside", "power outside the octave (aliasing included)", True),
+              ("aliased", "power past the output's Nyquist (2x render)", True),
+              ("anisotropy", "anisotropy (0 isotropic)", False),
+              ("ulichney_db", "Ulichney anisotropy (dB; isotropic: -9 dB)", False)]
+    fig, axes = plt.subplots(1, len(panels), figsize=(4.2 * len(panels), 4.6))
+    measured = {}
+    for ax, (key, title, log) in zip(axes, panels):
+        vals = np.array([r[key] for r in rows], dtype=float)
+        shown = np.maximum(vals, 1e-12) if log else vals
+        ax.barh(range(len(rows)), shown, color=["C3" if r["family"] == "spectral" else "C0" for r in rows])
+        if log:
+            ax.set_xscale("log")
+        if key == "ulichney_db":  # what an isotropic Gaussian field reads with this many periodograms
+            ax.axvline(rows[0]["ulichney_floor_db"], color="k", ls=":", lw=1)
+        ax.set_yticks(range(len(rows)))
+        ax.set_yticklabels(names if ax is axes[0] else [], fontsize=7)
+        ax.set_title(title, fontsize=8)
+        ax.invert_yaxis()
+        for r, v in zip(rows, vals):
+            measured[f"{r['method']}: {key}"] = float(v)
+    fig.tight_layout()
+    return Result([save_figure(fig, out / "measures.png")],
+                  f"Every generator asked for one octave around {size / 16:g} cycles/frame of a {size} x {size} frame "
+                  "(noiselab.lab.quality: a flat spectral octave; lattice noise of each kernel and basis at the density "
+                  "that puts its mean frequency there). Left to right: power outside the octave, power past the output's "
+                  "Nyquist when the noise is rendered twice as densely (what sampling folds back; the spectral field "
+                  "has none, drawn at 1e-12), the anisotropy index and Ulichney's anisotropy over 8 seeds. The "
+                  "numbers for 512 x 512 are in benchmarks/RESULTS.md, section 5.", measured)
