@@ -109,7 +109,7 @@ def test_report_gives_the_literature_measures(tmp_path, capsys):
 
     # a tiled FFT field with stripes added: the period, the axis excess and Ulichney's dB must all show it
     field = noiselab.spectral_noise((64, 64), seed=3, dtype=np.float64)
-    striped = np.tile(field, (1, 3)) + 2.0 * np.sin(2 * np.pi * np.arange(192) / 12)[None, :]
+    striped = np.tile(field, (1, 3)) + 2.0 * np.sin(2 * np.pi * np.arange(192) / 16)[None, :]
     np.save(tmp_path / "s.npy", striped)
     rc, out, _ = _run(capsys, tmp_path / "s.npy", "--json", tmp_path / "s.json")
     assert rc == 0

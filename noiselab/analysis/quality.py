@@ -16,7 +16,7 @@ import numpy as np
 import scipy.fft
 
 from .._validate import check_int, check_real
-from ._common import check_band, check_field, half_weight
+from ._common import check_band, check_field, half_weight, noise_floor
 from .spectrum import PowerSpectrum, _radial_frequency, _slabs, as_spectrum, power_spectrum
 
 __all__ = [
@@ -655,17 +655,18 @@ def axis_artefacts(image, band=None, *, window=None) -> AxisArtefacts:
     band_total = float(e[inband].sum())
     if band_total <= 0:
         raise ValueError(f"the image has no power in band ({lo:g}, {hi:g}) cycles/frame")
-    sel = on_axis & inband & (expected > 0)
+    # rings with no power off the axes (at the rounding floor) give no reference: left out
+    sel = on_axis & inband & (expected > noise_floor(spec))
     # each axis cell against its own ring (whitened), so the few lowest rings of a steep spectrum do not decide
     excess = float(np.sum((weight * p / np.where(expected > 0, expected, 1.0))[sel]) / np.sum(weight[sel])) \
         if sel.any() else float("nan")
-    exp_all = float((weight * expected)[on_axis].sum())
+    exp_all = float((weight * expected)[on_axis & (expected > noise_floor(spec))].sum())
     sd = float(np.std(arr, dtype=np.float64))
     rows = np.mean(arr, axis=1, dtype=np.float64)
     cols = np.mean(arr, axis=0, dtype=np.float64)
     return AxisArtefacts(axis_power=float(e[on_axis & inband].sum()) / band_total, axis_excess=excess,
                          row_mean_spread=float(rows.std()) / sd, column_mean_spread=float(cols.std()) / sd,
-                         mean_spread_excess=float(e[on_axis].sum()) / exp_all if exp_all > 0 else float("inf"))
+                         mean_spread_excess=float(e[on_axis & (expected > noise_floor(spec))].sum()) / exp_all if exp_all > 0 else float("inf"))
 
 
 def variance_striping(field, period, *, axis=-1, phases=None) -> float:
