@@ -399,7 +399,7 @@ def sweep_kernels(cfg):
     Score ``max(|slope error| / 0.05, anisotropy / 0.1)``: at most 1 when the
     slope is within the analysers' resolution (0.05 at 512 x 512) and the
     lattice axes are not visible (anisotropy 0.1; the spectral field measures
-    ~0.003).
+    0.006 in ``benchmarks/RESULTS.md`` of 2026-11-23).
     """
     n, f0 = cfg.texture_n2, cfg.texture_f0
     methods = {k: fn for k, (fam, fn) in texture_methods(n, 2, f0).items() if fam == "lattice"}
