@@ -14,38 +14,67 @@ def _range(a):
     return [float(a.min()), float(a.max())]
 
 
-@figure("phillips", "fig01", seed="Phillips 2004, Fig. 1", title="Smooth random functions from one alternating random basis",
-        params=dict(length=100, samples=2000, freqs=(1 / 20, 1 / 10, 1 / 5), kernel="cubic", seed=1),
-        quick=dict(samples=400), uses=NOISE)
-def fig01(out, *, length, samples, freqs, kernel, seed):
+@figure("phillips", "fig01", seed="Phillips 2004, Fig. 1", title="One alternating random basis (a), box-filtered and renormalised (b)-(d)",
+        params=dict(length=100, per_unit=20, freqs=(1 / 20, 1 / 10, 1 / 5), passes=3, measure_length=4000, seed=1),
+        quick=dict(per_unit=8, measure_length=800), uses=NOISE)
+def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
+    from scipy.ndimage import uniform_filter1d
+
     from noiselab import LatticeNoise, analysis
 
     from .._common import pyplot, save_figure
 
     plt = pyplot()
+    # (a): Phillips' basis, one random value per integer, alternating above and below zero
     basis = LatticeNoise(1, seed=seed, kernel="box", alternation="lattice")
-    xi = np.arange(length + 1, dtype=float)
-    fig, axes = plt.subplots(len(freqs) + 1, 1, figsize=(8, 1.6 * (len(freqs) + 1)), sharex=True)
-    axes[0].vlines(xi, 0, basis(xi[:, None]), color="k", lw=1)
-    axes[0].axhline(0, color="0.6", lw=0.5)
-    axes[0].set_title("(a) random values at the integers, alternating above and below zero", fontsize=9, loc="left")
-    x = np.linspace(0, length, samples, endpoint=False)
-    measured = {}
+    xi = np.arange(measure_length + 1)
+    v = basis(xi.astype(float)[:, None])
+    alternates = bool(np.all(v[xi % 2 == 0] > 0) and np.all(v[xi % 2 == 1] < 0))
+    # (a) as the step function it is between the integers, sampled per_unit times per unit
+    x = (np.arange(len(xi) * per_unit) + 0.5) / per_unit - 0.5
+    step = np.repeat(v, per_unit)
+    lo = measure_length / 2 - length / 2                       # plot a stretch from the middle: no filter edge
+    shown = (x >= lo) & (x <= lo + length)
+    fig, axes = plt.subplots(len(freqs) + 1, 1, figsize=(9, 1.75 * (len(freqs) + 1)), sharex=True, layout="constrained")
+    a_in = (xi >= lo) & (xi <= lo + length)
+    axes[0].vlines(xi[a_in] - lo, 0, v[a_in], color="k", lw=1)
+    axes[0].plot(xi[a_in] - lo, v[a_in], "k.", ms=3)
+    axes[0].set_title("(a) one random value per integer x, alternating above and below zero", fontsize=9, loc="left")
+
+    def below(y, F):   # fraction of the power of y (over the whole measured stretch) below F cycle/unit
+        return analysis.band_energy(y - y.mean(), (0.5, F * len(y) / per_unit), window="hann")
+
+    measured = {"(a) alternates in sign at every integer": alternates,
+                f"(a) fraction of power below {min(freqs):g} cycle/unit": below(step, min(freqs))}
+    fractions = []
     for ax, F, tag in zip(axes[1:], freqs, "bcdefg"):
-        noise = LatticeNoise(1, seed=seed, kernel=kernel, frequency=F)
-        y = noise(x[:, None])
-        ax.plot(x, y, "k", lw=1)
+        width = int(round(per_unit / F))                   # a box of 1/F units: its first spectral zero is at F
+        y = step.copy()
+        for _ in range(passes):
+            y = uniform_filter1d(y, width, mode="wrap")
+        fractions.append(below(y, F))
+        y = y[shown]
+        y = y / np.abs(y).max()                            # renormalised to [-1, 1]
+        ax.plot(x[shown] - lo, y, "k", lw=1)
+        ax.set_title(f"({tag}) (a) box-filtered at {F:g} cycle/unit (box of {1 / F:g} units, {passes} passes), "
+                     "renormalised", fontsize=9, loc="left")
+        measured[f"({tag}) fraction of power below {F:g} cycle/unit"] = fractions[-1]
+    for ax in axes:
         ax.axhline(0, color="0.6", lw=0.5)
-        ax.set_ylim(-1.05, 1.05)
-        ax.set_title(f"({tag}) {kernel} B-spline filtered noise at {F:g} lattice cells per unit", fontsize=9, loc="left")
-        # band limit: power below 1.5 F cycles/unit (1.5 F length cycles per plotted length; DC excluded)
-        measured[f"({tag}) range"] = _range(y)
-        measured[f"({tag}) power below {1.5 * F:g} cycles/unit"] = analysis.band_energy(y, (1, 1.5 * F * length))
+        ax.set_ylim(-1.12, 1.12)
+        ax.set_yticks([-1, 0, 1])
     axes[-1].set_xlabel("x (units)")
+    axes[-1].set_xlim(-1, length + 1)
+    most = "almost all (>= 99%)" if min(fractions) >= 0.99 else "not all (some < 99%)"
     return Result([save_figure(fig, out / "fig01.png")],
-                  "(a) Phillips' basis: random values alternating above and below zero at every integer. (b)-(d) the "
-                  "smooth noise a*noise(F x) filtered at F = 1/20, 1/10 and 1/5 cycles per unit (kernel "
-                  f"'{kernel}'); lower F means smoother. The output stays in [-1, 1] without clipping.", measured)
+                  "(a) Phillips' basis: one random value per integer, alternating above (0, 1] and below [-1, 0) zero "
+                  "(noiselab.LatticeNoise with kernel 'box' and alternation 'lattice'). (b)-(d) the same values (a), "
+                  f"as a step function, filtered by a box of width 1/F ({passes} passes; the box's first spectral zero "
+                  f"is at F) for F = {', '.join(f'{F:g}' for F in freqs)} cycle/unit, then renormalised to [-1, 1] "
+                  f"(the stretch shown is x = {lo:g}..{lo + length:g}, relabelled 0..{length}). Measured over "
+                  f"{measure_length} units (Hann window): (a) holds {measured[f'(a) fraction of power below {min(freqs):g} cycle/unit']:.1%} "
+                  f"of its power below {min(freqs):g} cycle/unit (the alternation puts it near 1/2); each filtered curve "
+                  f"holds {most} of its power below its F: {', '.join(f'{f:.2%}' for f in fractions)}.", measured)
 
 
 @figure("phillips", "fig02", seed="Phillips 2004, Fig. 2", title="Diagram: random-number tables, permutation table, basis function",
