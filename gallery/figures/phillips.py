@@ -155,25 +155,58 @@ def fig03(out, *, arc_deg, cycles_per_degree, amplitudes, points, seed):
                   "The peaks and troughs stay in place; only their size changes.", measured)
 
 
+def _independence(values, what, unit="seeds"):
+    """Sentence and numbers for correlations that independent outputs should make 0 on average."""
+    values = np.asarray(values, dtype=float)
+    m, sd = float(values.mean()), float(values.std(ddof=1))
+    se = sd / np.sqrt(len(values))
+    word = ("consistent with independent outputs (|mean| < 2 standard errors)" if abs(m) < 2 * se
+            else "not consistent with independent outputs (|mean| >= 2 standard errors)")
+    return (f"{what} over {len(values)} {unit}: mean {m:+.3f}, sd {sd:.2f}, standard error {se:.3f}: {word}; a single "
+            f"short sample scatters by the sd", [m, sd])
+
+
 @figure("phillips", "fig04", seed="Phillips 2004, Fig. 4", title="A random trajectory: 1-D input (time), 2-D output (x, y)",
-        params=dict(seconds=2.0, fps=50, cycles_per_second=1.5, tail_seconds=1.0, size=256, seed=3),
-        quick=dict(fps=10, size=96), uses=GEOM)
-def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, seed):
+        params=dict(seconds=2.0, fps=50, cycles_per_second=1.5, tail_seconds=1.0, size=320, panels=4, seeds=64, seed=3),
+        quick=dict(fps=10, size=96, seeds=16), uses=GEOM)
+def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, seeds, seed):
     from noiselab import LatticeNoise
     from noiselab.geometry import trajectory, trajectory_frames
 
-    from .._common import save_image, save_video
+    from .._common import pyplot, save_figure, save_video
 
-    t = np.arange(int(seconds * fps)) / fps
+    plt = pyplot()
+    t = np.arange(int(round(seconds * fps)) + 1) / fps
     pts = trajectory(LatticeNoise(1, 2, seed=seed), t, frequency=cycles_per_second)
-    frames = trajectory_frames(pts, tail=int(tail_seconds * fps), size=size, limits=((-1, 1), (-1, 1)))
-    picks = np.linspace(len(frames) // 4, len(frames) - 1, 4).astype(int)
-    strip = np.concatenate([frames[i] for i in picks], axis=1)
-    files = [save_image(out / "frames.png", strip)] + save_video(out, "trajectory", frames, fps=fps)
-    return Result(files, f"A point whose (x, y) is noise of time: {seconds:g} s at {fps} frames/s, noise at "
-                         f"{cycles_per_second:g} cycles/s, drawn with a {tail_seconds:g} s tail; four frames of the video.",
-                  {"x range": _range(pts[:, 0]), "y range": _range(pts[:, 1]),
-                   "x-y correlation (independent permutations: near 0)": float(np.corrcoef(pts[:, 0], pts[:, 1])[0, 1])})
+    tail = int(round(tail_seconds * fps))
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    pad = 0.08 * float(np.max(hi - lo))
+    lim = ((lo[0] - pad, hi[0] + pad), (lo[1] - pad, hi[1] + pad))
+    frames = trajectory_frames(pts, tail=tail, size=size, limits=lim)
+    picks = np.linspace(tail, len(t) - 1, panels).astype(int)
+    fig, axes = plt.subplots(1, panels, figsize=(3.2 * panels, 3.4), layout="constrained")
+    for ax, i in zip(axes, picks):
+        seg = pts[max(0, i - tail):i + 1]
+        ax.plot(pts[:, 0], pts[:, 1], color="0.88", lw=1)              # the whole 2 s path, faint
+        ax.plot(seg[:, 0], seg[:, 1], color="0.35", lw=1.8)             # the 1 s tail
+        ax.plot(*pts[i], "ko", ms=8)
+        ax.set_xlim(*lim[0]), ax.set_ylim(*lim[1]), ax.set_aspect("equal")
+        ax.set_xticks([]), ax.set_yticks([])
+        ax.set_title(f"t = {t[i]:.2f} s (tail from {t[max(0, i - tail)]:.2f} s)", fontsize=10)
+    files = [save_figure(fig, out / "frames.png")] + save_video(out, "trajectory", frames, fps=fps)
+    r = float(np.corrcoef(pts[:, 0], pts[:, 1])[0, 1])
+    rs = [np.corrcoef(*trajectory(LatticeNoise(1, 2, seed=seed + 1 + k), t, frequency=cycles_per_second).T)[0, 1]
+          for k in range(seeds)]
+    sentence, stats = _independence(rs, f"x-y correlation of a {seconds:g} s trajectory")
+    long_t = np.arange(0, 2000.0, 0.1)
+    long = trajectory(LatticeNoise(1, 2, seed=seed), long_t, frequency=cycles_per_second)
+    r_long = float(np.corrcoef(long[:, 0], long[:, 1])[0, 1])
+    return Result(files, f"A point whose (x, y) is 2-output noise of time: {seconds:g} s at {fps} frames/s, noise at "
+                         f"{cycles_per_second:g} cycles/s; {panels} frames of the video, each with a {tail_seconds:g} s tail "
+                         f"(dark) over the whole path (faint), time stamped. This trajectory's x-y correlation is {r:+.2f}: "
+                         f"{sentence}; over 2000 s of the same seed it is {r_long:+.3f}.",
+                  {"x range": _range(pts[:, 0]), "y range": _range(pts[:, 1]), "x-y correlation, this trajectory": r,
+                   f"x-y correlation over {seeds} seeds (mean, sd)": stats, "x-y correlation over 2000 s": r_long})
 
 
 @figure("phillips", "fig05", seed="Phillips 2004, Fig. 5", title="Circles distorted in x and y by 2-D noise output",
@@ -317,24 +350,44 @@ def fig06(out, *, point, planes, xrange, kernel, checks, seed):
                    "lattice values table[P[P[y] + x]] equal linear-kernel noise at the integers (to 1e-12)": table_ok})
 
 
+def _anisotropy_words(value):
+    """The word for an anisotropy index, by thresholds stated in the caption."""
+    if value < 0.05:
+        return f"{value:.2f}: isotropic (< 0.05; white and 1/f noise give 0.004-0.01)"
+    if value < 0.5:
+        return f"{value:.2f}: mildly anisotropic (0.05-0.5)"
+    return (f"{value:.2f}: strongly anisotropic (>= 0.5): the axis-aligned four-fold cross that every single-octave "
+            "lattice noise shows (see lab/kernels)")
+
+
 @figure("phillips", "fig07", seed="Phillips 2004, Fig. 7", title="2-D noise varying over time (3-D input, scalar output)",
-        params=dict(frames=48, size=256, cells=4.0, cells_per_frame=0.05, seed=5), quick=dict(frames=8, size=64), uses=NOISE)
-def fig07(out, *, frames, size, cells, cells_per_frame, seed):
+        params=dict(frames=48, size=256, cells=4.0, cells_per_frame=0.05, panels=4, seed=5),
+        quick=dict(frames=8, size=64), uses=NOISE)
+def fig07(out, *, frames, size, cells, cells_per_frame, panels, seed):
     from noiselab import LatticeNoise, analysis
 
-    from .._common import save_image, save_video
+    from .._common import pyplot, save_figure, save_video
 
+    plt = pyplot()
     noise = LatticeNoise(3, seed=seed)
     vol = noise.grid((frames, size, size), [(0, frames * cells_per_frame), (0, cells), (0, cells)])
-    video = (vol + 1) / 2
-    picks = np.linspace(0, frames - 1, 4).astype(int)
-    strip = np.concatenate([np.pad(video[i], 2, constant_values=1) for i in picks], axis=1)
-    files = [save_image(out / "frames.png", strip)] + save_video(out, "solid_noise", video)
+    lo, hi = float(vol.min()), float(vol.max())
+    video = (vol - lo) / (hi - lo)          # grey levels stretched over the measured range
+    picks = np.linspace(0, frames - 1, panels).astype(int)
+    fig, axes = plt.subplots(1, panels, figsize=(3.2 * panels, 3.5), layout="constrained")
+    for ax, i in zip(axes, picks):
+        ax.imshow(video[i], cmap="gray", vmin=0, vmax=1)
+        ax.set_xticks([]), ax.set_yticks([])
+        ax.set_title(f"frame {i}: t = {i * cells_per_frame:.2f} cells", fontsize=10)
+    files = [save_figure(fig, out / "frames.png")] + save_video(out, "solid_noise", video)
+    aniso = analysis.anisotropy(vol[0], window="hann")
     return Result(files, f"noise(x, y, t) as grey level: {size} x {size} pixels over {cells:g} lattice cells, time moving "
-                         f"{cells_per_frame:g} cells per frame; four frames and the video. The time axis could as well be "
-                         "a third spatial axis (solid noise).",
-                  {"range": _range(vol), "anisotropy of frame 0": analysis.anisotropy(vol[0]),
-                   "roll-off slope above the lattice frequency": float(analysis.spectral_slope(vol[0], (2 * cells, 8 * cells)))})
+                         f"{cells_per_frame:g} cells per frame; {panels} frames and the video. Grey levels stretch the "
+                         f"measured range [{lo:.2f}, {hi:.2f}] to black..white. The time axis could as well be a third "
+                         f"spatial axis (solid noise). Anisotropy of frame 0 (Hann window) {_anisotropy_words(aniso)}.",
+                  {"range": _range(vol), "anisotropy of frame 0 (Hann window)": aniso,
+                   "roll-off slope above the lattice frequency": float(analysis.spectral_slope(vol[0], (2 * cells, 8 * cells),
+                                                                                            window="hann"))})
 
 
 def _render(meshes, path, size, **kw):
@@ -421,8 +474,8 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
 
 
 @figure("phillips", "fig11", seed="Phillips 2004, Fig. 11", title="Height and colour from one vector-valued noise",
-        params=dict(grid=96, cells=3.0, size=400, seed=9), quick=dict(grid=24, size=140), uses=GEOM)
-def fig11(out, *, grid, cells, size, seed):
+        params=dict(grid=96, cells=3.0, size=400, seeds=32, seed=9), quick=dict(grid=24, size=140, seeds=8), uses=GEOM)
+def fig11(out, *, grid, cells, size, seeds, seed):
     from noiselab import LatticeNoise
     from noiselab.geometry import colored_surface, render_mesh
 
@@ -433,16 +486,35 @@ def fig11(out, *, grid, cells, size, seed):
     rgb = colored_surface(LatticeNoise(2, 4, seed=seed + 1), (grid, grid), ext, color="rgb")
     imgs = [render_mesh(m, size=size, elevation=15) for m in (hue, rgb)]
     pair = np.concatenate([imgs[0], np.full((imgs[0].shape[0], 12, 3), 255, np.uint8), imgs[1]], axis=1)
-    cols = np.asarray(rgb.visual.vertex_colors)[:, :3]
+    cols = np.asarray(rgb.visual.vertex_colors)[:, :3].astype(float)
+    here = [float(np.corrcoef(cols[:, i], cols[:, j])[0, 1]) for i, j in ((0, 1), (0, 2), (1, 2))]
+    # over only 3 x 3 lattice cells two independent smooth fields correlate by chance: the spread over seeds says how much
+    pooled = []
+    for k in range(seeds):
+        c = LatticeNoise(2, 4, seed=seed + 100 + k).grid((grid, grid), ext)[..., 1:].reshape(-1, 3)
+        pooled += [np.corrcoef(c[:, i], c[:, j])[0, 1] for i, j in ((0, 1), (0, 2), (1, 2))]
+    sentence, stats = _independence(pooled, f"the R-G, R-B, G-B correlations of 3 x 3-cell surfaces (3 pairs x {seeds} seeds)",
+                                    unit="values")
     return Result([save_image(out / "fig11.png", pair)],
                   "Left: 2-output noise, component 1 = height, component 2 = hue. Right: 4-output noise, component 1 = "
-                  "height, components 2-4 = R, G, B.",
-                  {"RGB channel correlations (independent outputs: near 0)":
-                       [float(np.corrcoef(cols[:, 0], cols[:, 1])[0, 1]), float(np.corrcoef(cols[:, 0], cols[:, 2])[0, 1]),
-                        float(np.corrcoef(cols[:, 1], cols[:, 2])[0, 1])]})
+                  f"height, components 2-4 = R, G, B. Here the RGB channels correlate by {', '.join(f'{r:+.2f}' for r in here)}; "
+                  f"{sentence}.",
+                  {"RGB channel correlations, this surface (R-G, R-B, G-B)": here,
+                   f"channel correlations over {seeds} seeds (mean, sd)": stats})
 
 
-def _octave_plots(out, name, kind, octaves, length, samples, cells, seed):
+def _slope_sentence(slopes, dim, gain=0.5, tolerance=0.25):
+    """Compare fractal-sum amplitude slopes (over seeds) with the target log2(gain) - dim/2."""
+    slopes = np.asarray(slopes, dtype=float)
+    target = np.log2(gain) - dim / 2
+    m, sd = float(slopes.mean()), float(slopes.std(ddof=1))
+    word = "matches" if abs(m - target) <= tolerance else "misses"
+    return (f"the amplitude spectrum's slope over the octaves, {m:.2f} +- {sd:.2f} (mean, sd over {len(slopes)} seeds), "
+            f"{word} the target log2(gain) - d/2 = {target:g} for gain {gain:g} in {dim}-D (within {tolerance:g}: "
+            f"{'yes' if word == 'matches' else 'no'}); 1/f (-1) would need gain {2 ** (dim / 2 - 1):.3g}"), [m, sd], target
+
+
+def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=1, zoom=None):
     from noiselab import LatticeNoise, analysis, fractal_sum, turbulence
 
     from .._common import pyplot, save_figure
@@ -452,39 +524,62 @@ def _octave_plots(out, name, kind, octaves, length, samples, cells, seed):
     x = np.linspace(0, length, samples, endpoint=False)[:, None]
     fn = fractal_sum if kind == "fractal" else turbulence
     ns = list(range(1, octaves + 1)) if kind == "fractal" else [octaves]
-    fig, axes = plt.subplots(len(ns), 1, figsize=(8, 1.5 * len(ns) + 0.6), sharex=True, squeeze=False)
+    rows = len(ns) + (1 if zoom else 0)
+    fig, axes = plt.subplots(rows, 1, figsize=(9, 1.6 * rows + 0.5), squeeze=False, layout="constrained")
     measured = {}
     for ax, n in zip(axes[:, 0], ns):
         y = fn(noise, x, n)
         ax.plot(x[:, 0], y, "k", lw=0.9)
         ax.axhline(0, color="0.7", lw=0.5)
+        ax.set_xlim(0, length)
         ax.set_title(f"n = {n} octave{'s' if n > 1 else ''}", fontsize=9, loc="left")
         measured[f"n = {n}: range"] = _range(y)
-    ylast = y
-    if kind == "fractal":
-        measured[f"n = {octaves}: amplitude slope over the octaves (1/f: -1)"] = float(
-            analysis.spectral_slope(ylast, (cells * 1.5, cells * 2 ** (octaves - 1))))
+    if zoom:
+        ax = axes[-1, 0]
+        keep = (x[:, 0] >= zoom[0]) & (x[:, 0] <= zoom[1])
+        ax.plot(x[keep, 0], y[keep], "k", lw=1.1)
+        for n in range(1, octaves + 1):   # the creases: where an octave's noise crosses zero, |noise| folds
+            o = noise(x[keep] * 2 ** (n - 1))
+            z = np.nonzero(np.diff(np.sign(o)))[0]
+            ax.plot(x[keep, 0][z], y[keep][z], "v", ms=4 + 1.2 * (octaves - n), color=f"C{n - 1}",
+                    label=f"octave {n}", ls="none")
+        ax.set_xlim(*zoom)
+        ax.legend(fontsize=8, loc="upper right", ncol=octaves, title="creases of", title_fontsize=8)
+        ax.set_title(f"zoom on x = {zoom[0]:g}..{zoom[1]:g}: each marker is a crease (one octave's noise crosses zero)",
+                     fontsize=9, loc="left")
+        axes[-2, 0].axvspan(*zoom, color="C1", alpha=0.15)
     axes[-1, 0].set_xlabel("x")
-    return [save_figure(fig, out / f"{name}.png")], measured
+    sentence = ""
+    if kind == "fractal":
+        band = (cells / 2, cells * 2 ** (octaves - 1) / 4)   # value noise holds its power below half its lattice rate
+        slopes = [analysis.spectral_slope(fn(LatticeNoise(1, seed=seed + k, frequency=cells / length), x, octaves), band,
+                                          window="hann") for k in range(seeds)]
+        sentence, stats, target = _slope_sentence(slopes, 1)
+        measured[f"n = {octaves}: amplitude slope over {band[0]:g}-{band[1]:g} cycles/plot, {seeds} seeds (mean, sd; target {target:g})"] = stats
+    return [save_figure(fig, out / f"{name}.png")], measured, sentence
 
 
 @figure("phillips", "fig12", seed="Phillips 2004, Fig. 12", title="Fractal sums of n = 1..5 octaves (Eq. 9)",
-        params=dict(octaves=5, length=10.0, samples=4096, cells=8.0, seed=10), quick=dict(samples=1024), uses=NOISE)
-def fig12(out, *, octaves, length, samples, cells, seed):
-    files, measured = _octave_plots(out, "fig12", "fractal", octaves, length, samples, cells, seed)
+        params=dict(octaves=5, length=10.0, samples=4096, cells=8.0, seeds=16, seed=10), quick=dict(samples=1024, seeds=4),
+        uses=NOISE)
+def fig12(out, *, octaves, length, samples, cells, seeds, seed):
+    files, measured, sentence = _octave_plots(out, "fig12", "fractal", octaves, length, samples, cells, seed, seeds)
     return Result(files, f"fracsum(x, n) = sum_F noise(2^F x) / 2^F for n = 1..{octaves}; the low-frequency carrier stays "
-                         f"while each octave adds detail ({cells:g} lattice cells over the plot).", measured)
+                         f"while each octave adds detail ({cells:g} lattice cells over the plot). Measured: {sentence}.",
+                  measured)
 
 
 @figure("phillips", "fig13", seed="Phillips 2004, Fig. 13", title="Turbulence: 5 octaves of |noise| (Eq. 10)",
-        params=dict(octaves=5, length=10.0, samples=4096, cells=8.0, seed=10), quick=dict(samples=1024), uses=NOISE)
-def fig13(out, *, octaves, length, samples, cells, seed):
-    files, measured = _octave_plots(out, "fig13", "turbulence", octaves, length, samples, cells, seed)
-    return Result(files, f"turb(x, {octaves}) = sum_F |noise(2^F x)| / 2^F: the same octaves as the last panel of Fig. 12, "
-                         "rectified, so creases appear at every scale.", measured)
+        params=dict(octaves=5, length=10.0, samples=8192, cells=4.0, zoom=(2.0, 4.5), seed=10), quick=dict(samples=2048),
+        uses=NOISE)
+def fig13(out, *, octaves, length, samples, cells, zoom, seed):
+    files, measured, _ = _octave_plots(out, "fig13", "turbulence", octaves, length, samples, cells, seed, zoom=zoom)
+    return Result(files, f"turb(x, {octaves}) = sum_F |noise(2^F x)| / 2^F over {cells:g} lattice cells; below, a zoom "
+                         "with every crease marked: wherever one octave's noise crosses zero its magnitude folds, so the "
+                         "sum has a kink there, at every scale.", measured)
 
 
-def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed):
+def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed, seeds=1):
     from noiselab import LatticeNoise, analysis
     from noiselab.geometry import height_map, monge_surface
 
@@ -492,29 +587,38 @@ def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed):
     ext = ((0.0, cells), (0.0, cells))
     meshes = [monge_surface(noise, (grid, grid), ext, amplitude=amplitude, octaves=n, kind=kind, on_aliasing="ignore")
               for n in range(1, octaves + 1)]
-    _render_tiles(meshes, out / "surfaces.png", [f"n = {n}" for n in range(1, octaves + 1)], cell=size // 3,
-                  elevation=10, scalars="height", cmap="gist_earth", clim=(-amplitude * 1.2, amplitude * 1.2))
+    _render_tiles(meshes, out / "surfaces.png", [f"({'abcdefgh'[n - 1]}) n = {n}" for n in range(1, octaves + 1)],
+                  cell=size // 3, elevation=10, scalars="height", cmap="gist_earth", clim=(-amplitude * 1.2, amplitude * 1.2))
     h = height_map(noise, (grid, grid), ext, octaves=octaves, kind=kind, on_aliasing="ignore")
-    measured = {f"n = {octaves}: range": _range(h), "anisotropy": analysis.anisotropy(h),
-                f"n = {octaves}: amplitude slope over the octaves (1/f: -1)":
-                    float(analysis.spectral_slope(h, (cells * 1.5, min(grid / 2 - 1, cells * 2 ** (octaves - 1)))))}
-    return [out / "surfaces.png"], measured
+    aniso = analysis.anisotropy(h, window="hann")
+    measured = {f"n = {octaves}: range": _range(h), "anisotropy (Hann window)": aniso}
+    sentence = f"Anisotropy of the n = {octaves} height map {_anisotropy_words(aniso)}."
+    if kind == "fractal":
+        band = (cells / 2, min(grid / 4, cells * 2 ** (octaves - 1) / 4))
+        slopes = [analysis.spectral_slope(height_map(LatticeNoise(2, seed=seed + k), (grid, grid), ext, octaves=octaves,
+                                                     kind=kind, on_aliasing="ignore"), band, window="hann")
+                  for k in range(seeds)]
+        s2, stats, target = _slope_sentence(slopes, 2)
+        sentence += f" Spectrum: {s2}."
+        measured[f"n = {octaves}: amplitude slope over {band[0]:g}-{band[1]:g} cycles/frame, {seeds} seeds (mean, sd; target {target:g})"] = stats
+    return [out / "surfaces.png"], measured, sentence
 
 
 @figure("phillips", "fig14", seed="Phillips 2004, Fig. 14", title="Fractal-sum surfaces, n = 1..5 octaves",
-        params=dict(octaves=5, grid=128, cells=3.0, amplitude=0.5, size=900, seed=11), quick=dict(grid=32, size=300), uses=GEOM)
-def fig14(out, *, octaves, grid, cells, amplitude, size, seed):
-    files, measured = _octave_surfaces(out, "fractal", octaves, grid, cells, amplitude, size, seed)
-    return Result(files, f"Monge surfaces z = {amplitude:g} fracsum(x, y, n), n = 1..{octaves} from the top left, "
-                         f"{grid} x {grid} vertices over {cells:g} x {cells:g} cells; colour = height.", measured)
+        params=dict(octaves=5, grid=128, cells=3.0, amplitude=0.5, size=900, seeds=8, seed=11),
+        quick=dict(grid=32, size=300, seeds=3), uses=GEOM)
+def fig14(out, *, octaves, grid, cells, amplitude, size, seeds, seed):
+    files, measured, sentence = _octave_surfaces(out, "fractal", octaves, grid, cells, amplitude, size, seed, seeds)
+    return Result(files, f"Monge surfaces z = {amplitude:g} fracsum(x, y, n), (a)-(e): n = 1..{octaves} from the top left, "
+                         f"{grid} x {grid} vertices over {cells:g} x {cells:g} cells; colour = height. {sentence}", measured)
 
 
 @figure("phillips", "fig15", seed="Phillips 2004, Fig. 15", title="Turbulence surfaces, n = 1..5 octaves",
         params=dict(octaves=5, grid=128, cells=3.0, amplitude=0.5, size=900, seed=11), quick=dict(grid=32, size=300), uses=GEOM)
 def fig15(out, *, octaves, grid, cells, amplitude, size, seed):
-    files, measured = _octave_surfaces(out, "turbulence", octaves, grid, cells, amplitude, size, seed)
-    return Result(files, f"The same octaves summed as magnitudes (Eq. 10): z = {amplitude:g} turb(x, y, n), n = 1..{octaves}. "
-                         "Creases make mountain-like ridges.", measured)
+    files, measured, sentence = _octave_surfaces(out, "turbulence", octaves, grid, cells, amplitude, size, seed)
+    return Result(files, f"The same octaves summed as magnitudes (Eq. 10): z = {amplitude:g} turb(x, y, n), (a)-(e): "
+                         f"n = 1..{octaves}. The folds of |noise| make crease lines along the valleys. {sentence}", measured)
 
 
 def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_frequency=np.inf):
