@@ -35,21 +35,20 @@ def save_image(path, image, vmin=None, vmax=None) -> Path:
     return write_image(path, image, vmin=vmin, vmax=vmax)
 
 
-def save_video(out, stem, frames, *, fps=25.0, vmin=None, vmax=None, gif_frames=32, gif_width=192):
-    """Write ``stem.mp4`` and a small ``stem.gif`` preview (subsampled frames, at most ``gif_width`` px wide).
+def save_video(out, stem, frames, *, fps=25.0, vmin=None, vmax=None, poster_frame=0):
+    """Write ``stem.mp4`` and ``stem_poster.png``, a full-resolution still of frame ``poster_frame``.
 
-    Returns the two paths, MP4 first (the gallery shows the GIF as the MP4's preview).
+    Returns the two paths, MP4 first. The page shows the MP4 itself (never a
+    subsampled GIF, which aliases fine detail such as the smallest flakes) with
+    the poster as the still shown before it plays.
     """
     from noiselab.io import to_uint8, write_video
 
     out = Path(out)
     frames = np.asarray(frames)
     mp4 = write_video(out / f"{stem}.mp4", frames, fps=fps, vmin=vmin, vmax=vmax, show_progress=False)
-    step_t = max(1, int(np.ceil(frames.shape[0] / gif_frames)))
-    step_x = max(1, int(np.ceil(frames.shape[2] / gif_width)))
-    small = to_uint8(frames[::step_t, ::step_x, ::step_x], vmin, vmax)
-    gif = write_video(out / f"{stem}.gif", small, fps=fps / step_t, show_progress=False)
-    return [mp4, gif]
+    poster = save_image(out / f"{stem}_poster.png", to_uint8(frames[poster_frame], vmin, vmax))
+    return [mp4, poster]
 
 
 def grey_to_rgb(image):
