@@ -91,37 +91,45 @@ def fig02(out, *, entries, table_size, seed):
     basis = noise(idx[:, None])
     from_tables = np.where(np.arange(entries) % 2 == 0, noise.positive[perm], noise.negative[perm])
     agree = bool(np.allclose(basis, from_tables, atol=1e-9))
-    fig = plt.figure(figsize=(12, 6.5))
-    ax_p = fig.add_axes([0.05, 0.78, 0.55, 0.12])
+    fig = plt.figure(figsize=(12, 6.2))
+    ax_p = fig.add_axes([0.05, 0.80, 0.55, 0.09])
     ax_p.set_xlim(0, entries), ax_p.set_ylim(0, 1), ax_p.axis("off")
     for i, p in enumerate(perm):
         ax_p.add_patch(plt.Rectangle((i, 0), 1, 1, fill=True, fc="#dde7f5" if i % 2 else "#f5e3dd", ec="k"))
         ax_p.text(i + 0.5, 0.5, str(int(p)), ha="center", va="center", fontsize=8)
-        ax_p.text(i + 0.5, 1.15, str(i), ha="center", va="bottom", fontsize=7, color="0.4")
-    ax_p.set_title(f"permutation table (first {entries} of {table_size} entries): lattice point i -> table index", fontsize=9)
-    ax_t = fig.add_axes([0.66, 0.45, 0.31, 0.45])
+        ax_p.text(i + 0.5, -0.12, str(i), ha="center", va="top", fontsize=7, color="0.4")
+    ax_p.set_title(f"(a) permutation table, first {entries} of {table_size} entries: lattice point i (grey) -> table "
+                   "index (in the box)", fontsize=9, pad=6)
+    ax_t = fig.add_axes([0.67, 0.42, 0.30, 0.47])
     j = np.arange(table_size)
     ax_t.bar(j, noise.positive, width=1.0, color="#c0504d")
     ax_t.bar(j, noise.negative, width=1.0, color="#4f81bd")
     ax_t.scatter(perm[::2], noise.positive[perm[::2]], color="k", s=12, zorder=3)
     ax_t.scatter(perm[1::2], noise.negative[perm[1::2]], color="k", s=12, zorder=3)
-    ax_t.set_title("random-number tables: (0, 1] (red) and [-1, 0) (blue)", fontsize=9)
+    ax_t.set_title("(b) random-number tables: (0, 1] (red), [-1, 0) (blue);\nblack: the entries the permutation picks",
+                   fontsize=9)
     ax_t.set_xlabel("table index"), ax_t.set_ylim(-1.05, 1.05)
-    ax_b = fig.add_axes([0.05, 0.08, 0.55, 0.5])
-    ax_b.vlines(idx, 0, basis, color="k", lw=2)
+    ax_b = fig.add_axes([0.05, 0.08, 0.55, 0.58])
+    ax_b.vlines(idx, 0, basis, color="k", lw=2, label="basis: table[sign of i][perm[i]]")
     ax_b.plot(idx, basis, "ko", ms=4)
     smooth = LatticeNoise(1, seed=seed, kernel="catmull-rom", alternation="lattice", table_size=table_size)
     xs = np.linspace(0, entries - 1, 400)
-    ax_b.plot(xs, smooth(xs[:, None]), color="C2", lw=1.5, label="interpolated (catmull-rom), rescaled into [-1, 1]")
+    through = smooth(xs[:, None]) * smooth.bound      # undo the range normalisation: the curve through the stems
+    ax_b.plot(xs, through, color="C2", lw=1.5, label="Catmull-Rom interpolation (passes through every stem)")
     ax_b.axhline(0, color="0.6", lw=0.5)
-    ax_b.set_title("basis function: value at lattice point i = table[sign of i][perm[i]], signs alternating", fontsize=9)
-    ax_b.set_xlabel("lattice point i"), ax_b.legend(fontsize=8, loc="lower right")
+    ax_b.set_ylim(-1.1, 1.1)
+    ax_b.set_title("(c) the basis function: signs alternate with i", fontsize=9, loc="left")
+    ax_b.set_xlabel("lattice point i")
+    ax_b.legend(fontsize=8, loc="lower left", bbox_to_anchor=(0.0, 1.06), ncol=2, frameon=False)
+    miss = float(np.max(np.abs(smooth(idx[:, None]) * smooth.bound - basis)))
     return Result([save_figure(fig, out / "fig02.png")],
                   "How noiselab.LatticeNoise builds Phillips' basis: two tables of random numbers (one on (0, 1], one on "
-                  "[-1, 0)), a shuffled permutation table that maps each lattice point to a table entry, alternating "
-                  "between the positive and negative table, and the resulting basis function, then smoothed.",
+                  "[-1, 0)) (b), a shuffled permutation table that maps each lattice point to a table entry (a), "
+                  "alternating between the positive and negative table, and the resulting basis function (c), with the "
+                  "Catmull-Rom curve through it (LatticeNoise divides that curve by its overshoot bound 1.25 to keep "
+                  "[-1, 1]; drawn here without the division, so it meets the stems).",
                   {"basis at the lattice points equals the table entries the permutation points to": agree,
-                   "basis range": _range(basis)})
+                   "basis range": _range(basis), "largest |curve - stem| at the lattice points": miss})
 
 
 @figure("phillips", "fig03", seed="Phillips 2004, Fig. 3", title="A 5 degree arc with increasing noise amplitude (Eq. 3)",
@@ -210,8 +218,8 @@ def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, s
 
 
 @figure("phillips", "fig05", seed="Phillips 2004, Fig. 5", title="Circles distorted in x and y by 2-D noise output",
-        params=dict(amplitudes=(0.05, 0.1, 0.2), frequencies=(0.5, 1.0, 2.0), points=720, seed=4),
-        quick=dict(points=180), uses=GEOM)
+        params=dict(amplitudes=(0.1, 0.2, 0.4), frequencies=(1.0, 2.0, 4.0), points=1440, seed=4),
+        quick=dict(points=360), uses=GEOM)
 def fig05(out, *, amplitudes, frequencies, points, seed):
     from noiselab import LatticeNoise
     from noiselab.geometry import noisy_circle
@@ -220,21 +228,43 @@ def fig05(out, *, amplitudes, frequencies, points, seed):
 
     plt = pyplot()
     field = LatticeNoise(2, 2, seed=seed)
-    fig, axes = plt.subplots(len(amplitudes), len(frequencies), figsize=(2.6 * len(frequencies), 2.6 * len(amplitudes)))
-    gaps = []
+    fig, axes = plt.subplots(len(amplitudes), len(frequencies), figsize=(3.0 * len(frequencies), 3.1 * len(amplitudes)),
+                             layout="constrained")
+    theta = np.linspace(0, 2 * np.pi, 200)
+    gaps, bumps, rms = [], {}, {}
     for r, a in enumerate(amplitudes):
         for c, f in enumerate(frequencies):
             pts = noisy_circle(field, points, radius=1.0, amplitude=a, frequency=f, mode="xy", closed=True)
             ax = axes[r, c]
-            ax.fill(pts[:, 0], pts[:, 1], color="k")
-            ax.set_xlim(-1.5, 1.5), ax.set_ylim(-1.5, 1.5), ax.set_aspect("equal"), ax.axis("off")
-            ax.set_title(f"a = {a:g}, F = {f:g}", fontsize=8)
+            ax.plot(np.cos(theta), np.sin(theta), color="0.8", lw=0.8, ls="--")
+            loop = np.vstack([pts, pts[:1]])
+            ax.plot(loop[:, 0], loop[:, 1], color="k", lw=1.6)
+            ax.set_xlim(-1.6, 1.6), ax.set_ylim(-1.6, 1.6), ax.set_aspect("equal")
+            ax.set_xticks([]), ax.set_yticks([])
+            rad = np.hypot(pts[:, 0], pts[:, 1])
+            # bumps: local maxima of the distance from the centre, counted around the closed curve
+            nb = int(np.sum((rad > np.roll(rad, 1)) & (rad >= np.roll(rad, -1))))
+            bumps[(a, f)] = nb
+            base = noisy_circle(field, points, radius=1.0, amplitude=0.0, frequency=f, mode="xy", closed=True)
+            rms[(a, f)] = float(np.sqrt(np.mean(np.sum((pts - base) ** 2, axis=1))))
+            ax.set_title(f"({'abcdefghijkl'[r * len(frequencies) + c]}) a = {a:g}, F = {f:g}\n"
+                         f"{nb} bumps, RMS shift {rms[(a, f)]:.3f}", fontsize=9)
             step = np.linalg.norm(np.diff(pts, axis=0), axis=1).mean()
             gaps.append(np.linalg.norm(pts[0] - pts[-1]) / step)
+    by_f = [float(np.mean([bumps[(a, f)] for a in amplitudes])) for f in frequencies]
+    rel = [float(np.mean([rms[(a, f)] / a for f in frequencies])) for a in amplitudes]
+    grows = all(rms[(a1, f)] < rms[(a2, f)] for f in frequencies for a1, a2 in zip(amplitudes, amplitudes[1:]))
     return Result([save_figure(fig, out / "fig05.png")],
-                  "Parametric circles, each point moved in x and y by a 2-output noise of the angle; amplitude grows "
-                  "downwards, frequency to the right. The noise is read on a circle in its 2-D input space, so the curves close.",
-                  {"closing step / mean step (1 = no seam)": [float(min(gaps)), float(max(gaps))]})
+                  "Parametric circles (dashed: the undistorted unit circle), each point moved in x and y by a 2-output "
+                  "noise of the angle; amplitude a grows downwards, frequency F (noise cells per radian) to the right. "
+                  "The noise is read on a circle in its 2-D input space, so the curves close. The bump count (local "
+                  f"maxima of the distance from the centre) {'grows' if all(np.diff(by_f) > 0) else 'does not grow'} with F: "
+                  + ", ".join(f"{b:.3g} at F = {f:g}" for b, f in zip(by_f, frequencies))
+                  + f" (mean over the rows). The RMS shift {'grows' if grows else 'does not always grow'} with a in "
+                  f"every column, in proportion: RMS shift / a = {', '.join(f'{x:.3f}' for x in rel)} by row.",
+                  {"closing step / mean step (1 = no seam)": [float(min(gaps)), float(max(gaps))],
+                   "bumps per circle, rows a, columns F": [[bumps[(a, f)] for f in frequencies] for a in amplitudes],
+                   "RMS shift per circle, rows a, columns F": [[rms[(a, f)] for f in frequencies] for a in amplitudes]})
 
 
 def _taps_1d(kernel, x):
