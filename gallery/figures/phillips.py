@@ -446,7 +446,7 @@ def _render_tiles(meshes, path, labels, columns=3, cell=300, **kw):
 
 
 @figure("phillips", "fig08", seed="Phillips 2004, Fig. 8", title="A Monge surface z = noise(x, y) and its depth map",
-        params=dict(grid=128, cells=4.0, amplitude=0.6, size=480, seed=6), quick=dict(grid=32, size=160), uses=GEOM)
+        params=dict(grid=160, cells=4.0, amplitude=1.6, size=480, seed=6), quick=dict(grid=32, size=160), uses=GEOM)
 def fig08(out, *, grid, cells, amplitude, size, seed):
     from noiselab import LatticeNoise, analysis
     from noiselab.geometry import height_map, height_map_image, monge_surface
@@ -454,13 +454,19 @@ def fig08(out, *, grid, cells, amplitude, size, seed):
     noise = LatticeNoise(2, seed=seed)
     ext = ((0.0, cells), (0.0, cells))
     surf = monge_surface(noise, (grid, grid), ext, amplitude=amplitude)
-    h = height_map(noise, (grid, grid), ext)
-    files = [_render(surf, out / "surface.png", size, elevation=10), out / "depth.png"]
+    h = height_map(noise, (size, size), ext)           # the depth map at the render's pixel size
+    lim = float(np.abs(h).max()) * amplitude
+    files = [_render(surf, out / "surface.png", size, elevation=-12, scalars="height", cmap="gist_earth",
+                     clim=(-1.15 * lim, 1.15 * lim)), out / "depth.png"]
     height_map_image(h, files[1])
+    aniso = analysis.anisotropy(h, window="hann")
     return Result(files, f"Left: perspective view of z = {amplitude:g} noise(x, y) over {cells:g} x {cells:g} lattice cells "
-                         f"({grid} x {grid} vertices); right: the depth map, lighter = higher.",
-                  {"range": _range(h), "anisotropy": analysis.anisotropy(h),
-                   "roll-off slope above the lattice frequency": float(analysis.spectral_slope(h, (2 * cells, grid / 2 - 1)))})
+                         f"({grid} x {grid} vertices), coloured by height (gist_earth: low blue-green to high white); right: "
+                         f"the depth map, {size} x {size} pixels like the render, lighter = higher. Anisotropy "
+                         f"{_anisotropy_words(aniso)}.",
+                  {"range": _range(h), "anisotropy (Hann window)": aniso,
+                   "roll-off slope above the lattice frequency": float(analysis.spectral_slope(h, (2 * cells, size / 4),
+                                                                                            window="hann"))})
 
 
 @figure("phillips", "fig09", seed="Phillips 2004, Fig. 9", title="A 2-D flow field: 2-D input, 2-D output",
