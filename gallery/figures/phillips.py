@@ -676,24 +676,32 @@ def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_fr
 
 
 @figure("phillips", "fig16", seed="Phillips 2004, Fig. 16", title="Unit spheres displaced by noise (Eq. 11): amplitude, then frequency",
-        params=dict(amplitudes=(0.05, 0.1, 0.2, 0.3), frequency=2.0, frequencies=(1.0, 2.0, 4.0, 8.0), amplitude=0.1, size=640, seed=12),
-        quick=dict(frequencies=(1.0, 2.0, 3.0, 4.0), size=240), uses=GEOM)
+        params=dict(amplitudes=(0.1, 0.2, 0.3, 0.4), frequency=2.0, frequencies=(1.0, 2.0, 4.0, 8.0), amplitude=0.25,
+                    size=1000, seed=12),
+        quick=dict(frequencies=(1.0, 2.0, 3.0, 4.0), size=400), uses=GEOM)
 def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
     from noiselab import LatticeNoise
-    from noiselab.geometry import arrange
 
     field = LatticeNoise(3, seed=seed)
-    left, r1 = _spheres(field, [(a, frequency, 1, "fractal") for a in amplitudes])
-    right, r2 = _spheres(field, [(amplitude, f, 1, "fractal") for f in frequencies])
-    files = [_render(arrange(left, columns=2), out / "amplitude.png", size, view="xy"),
-             _render(arrange(right, columns=2), out / "frequency.png", size, view="xy")]
+    first, r1 = _spheres(field, [(a, frequency, 1, "fractal") for a in amplitudes])
+    second, r2 = _spheres(field, [(amplitude, f, 1, "fractal") for f in frequencies])
+    cell = size // 4
+    lim = 0.5 * max(max(amplitudes), amplitude)
+    kw = dict(view="xy", scalars="displacement", cmap="RdBu_r", clim=(-lim, lim))
+    files = [_render_tiles(first, out / "amplitude.png", [f"({t}) a = {a:g}, F = {frequency:g}" for t, a in zip("abcd", amplitudes)],
+                           columns=4, cell=cell, **kw),
+             _render_tiles(second, out / "frequency.png", [f"({t}) a = {amplitude:g}, F = {f:g}" for t, f in zip("efgh", frequencies)],
+                           columns=4, cell=cell, **kw)]
     allr = np.concatenate(r1 + r2)
-    return Result(files, f"p' = p + s n_p with s = a noise(F p). Left: F = {frequency:g}, a = "
-                         f"{', '.join(f'{a:g}' for a in amplitudes)} (left to right, top to bottom). Right: a = {amplitude:g}, "
-                         f"F = {', '.join(f'{f:g}' for f in frequencies)}. Each sphere is subdivided to the resolution its "
-                         "noise needs (4 vertices per period).",
+    rms = [float(np.sqrt(np.mean(r ** 2))) for r in r1 + r2]
+    return Result(files, f"p' = p + s n_p with s = a noise(F p), seen along z. Top row (a)-(d): F = {frequency:g}, a = "
+                         f"{', '.join(f'{a:g}' for a in amplitudes)}. Bottom row (e)-(h): a = {amplitude:g}, "
+                         f"F = {', '.join(f'{f:g}' for f in frequencies)}. Colour: the displacement s, red outwards, blue "
+                         f"inwards, on one scale (+-{lim:g}) for every sphere, so small low-frequency bumps show too. Each sphere "
+                         "is subdivided to the resolution its noise needs (4 vertices per period).",
                   {"displacement / amplitude range (within [-1, 1])": _range(allr),
-                   "vertices per sphere": [len(m.vertices) for m in left + right]})
+                   "RMS displacement / amplitude per sphere, (a)-(h)": rms,
+                   "vertices per sphere": [len(m.vertices) for m in first + second]})
 
 
 @figure("phillips", "fig17", seed="Phillips 2004, Fig. 17", title="Spheres displaced by fractal (left) and turbulent (right) sums, n = 1..6",
