@@ -657,7 +657,8 @@ def fig15(out, *, octaves, grid, cells, amplitude, size, seed):
                          f"n = 1..{octaves}. The folds of |noise| make crease lines along the valleys. {sentence}", measured)
 
 
-def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_frequency=np.inf):
+def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_frequency=np.inf, max_subdivisions=6,
+             min_frequency=0.0):
     """Displace a sphere (or ``base``) per (amplitude, frequency, octaves, kind); return meshes and radial ranges.
 
     Each sphere is subdivided for its highest octave, but not for more than ``max_frequency``.
@@ -666,8 +667,9 @@ def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_fr
 
     meshes, ranges = [], []
     for a, f, n, kind in specs:
-        top = min(f * 2 ** (n - 1), max_frequency)
-        mesh = base if base is not None else sphere_for_noise(top, radius, samples_per_period=samples_per_period, max_subdivisions=6)
+        top = max(min(f * 2 ** (n - 1), max_frequency), min_frequency)   # min_frequency: a smooth silhouette
+        mesh = base if base is not None else sphere_for_noise(top, radius, samples_per_period=samples_per_period,
+                                                                        max_subdivisions=max_subdivisions)
         d = displace(mesh, field, amplitude=a, frequency=f, octaves=n, kind=kind, on_aliasing="ignore")
         meshes.append(d)
         if a:
@@ -705,23 +707,36 @@ def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
 
 
 @figure("phillips", "fig17", seed="Phillips 2004, Fig. 17", title="Spheres displaced by fractal (left) and turbulent (right) sums, n = 1..6",
-        params=dict(octaves=6, frequency=1.5, amplitude=0.15, max_frequency=12.0, size=640, seed=13),
-        quick=dict(octaves=3, size=240), uses=GEOM)
-def fig17(out, *, octaves, frequency, amplitude, max_frequency, size, seed):
+        params=dict(octaves=6, frequency=1.0, amplitude=0.3, samples_per_period=3.0, size=900, seed=13),
+        quick=dict(octaves=3, size=360), uses=GEOM)
+def fig17(out, *, octaves, frequency, amplitude, samples_per_period, size, seed):
     from noiselab import LatticeNoise
-    from noiselab.geometry import arrange
+    from noiselab.geometry import resolution_report
 
     field = LatticeNoise(3, seed=seed)
-    kw = dict(samples_per_period=2.0, max_frequency=max_frequency)
+    kw = dict(samples_per_period=samples_per_period, max_subdivisions=8, min_frequency=4.0)
     frac, rf = _spheres(field, [(amplitude, frequency, n, "fractal") for n in range(1, octaves + 1)], **kw)
     turb, rt = _spheres(field, [(amplitude, frequency, n, "turbulence") for n in range(1, octaves + 1)], **kw)
-    files = [_render(arrange(frac, columns=3), out / "fractal.png", (size * 2 // 3, size), view="xy"),
-             _render(arrange(turb, columns=3), out / "turbulence.png", (size * 2 // 3, size), view="xy")]
-    return Result(files, f"s = a fracsum(F p, n) (left) and a turb(F p, n) (right), a = {amplitude:g}, F = {frequency:g}, "
-                         f"n = 1..{octaves} from the top left; meshes subdivided for the highest octave (2 vertices per "
-                         f"period) up to {max_frequency:g} cycles/unit; octaves above that (amplitude <= 1/16) are sampled coarsely.",
+    spp = [resolution_report(m, frequency * 2 ** (n - 1)).samples_per_period for n, m in zip(range(1, octaves + 1), frac)]
+    labels = "abcdefghijklmnop"
+    cell = size // 3
+    files = [_render_tiles(frac, out / "fractal.png", [f"({labels[n - 1]}) fractal, n = {n}" for n in range(1, octaves + 1)],
+                           columns=3, cell=cell, view="xy"),
+             _render_tiles(turb, out / "turbulence.png",
+                           [f"({labels[octaves + n - 1]}) turbulence, n = {n}" for n in range(1, octaves + 1)],
+                           columns=3, cell=cell, view="xy")]
+    ok = min(spp) >= 2.0     # Nyquist: at least two vertices per period along the longest edge
+    return Result(files, f"s = a fracsum(F p, n) ({labels[0]})-({labels[octaves - 1]}) and a turb(F p, n) "
+                         f"({labels[octaves]})-({labels[2 * octaves - 1]}), a = {amplitude:g}, F = {frequency:g}, n = 1..{octaves} "
+                         "from the top left. Every sphere is an icosphere subdivided until its longest edge gives "
+                         f"{samples_per_period:g} vertices per period of its finest octave (F 2^(n-1) cycles/unit); measured "
+                         f"along the longest edge of the displaced mesh: {min(spp):.2f} to {max(spp):.2f} "
+                         f"({'every octave resolved: >= 2, Nyquist' if ok else 'NOT every octave resolved: < 2, Nyquist'}), "
+                         f"{len(frac[0].vertices):,} to {len(frac[-1].vertices):,} vertices.",
                   {"fractal: displacement / amplitude range": _range(np.concatenate(rf)),
-                   "turbulence: displacement / amplitude range (>= 0)": _range(np.concatenate(rt))})
+                   "turbulence: displacement / amplitude range (>= 0)": _range(np.concatenate(rt)),
+                   "samples per period of the finest octave (longest edge), n = 1..": spp,
+                   "vertices per sphere, n = 1..": [len(m.vertices) for m in frac]})
 
 
 @figure("phillips", "fig18", seed="Phillips 2004, Fig. 18", title="Any mesh: a bundled model displaced with s = 0 to 0.5",
