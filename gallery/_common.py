@@ -124,3 +124,59 @@ def alpha_to_rgb_composite(alpha, background, intensity=250):
     out = composite(alpha, background, intensity=intensity)
     out = np.asarray(out)
     return out if out.dtype == np.uint8 else np.clip(np.rint(out), 0, 255).astype(np.uint8)
+
+
+def _ellipsoid_distance(points, centre, radii):
+    """An approximate signed distance to an axis-aligned ellipsoid (exact on the axes), negative inside."""
+    q = (points - np.asarray(centre, dtype=float)) / np.asarray(radii, dtype=float)
+    return (np.linalg.norm(q, axis=-1) - 1.0) * float(min(radii))
+
+
+def _smooth_min(a, b, k):
+    """Polynomial smooth minimum (a smooth union of two solids), blending over a width ``k``."""
+    h = np.clip(0.5 + 0.5 * (b - a) / k, 0.0, 1.0)
+    return b * (1 - h) + a * h - k * h * (1 - h)
+
+
+def cow(resolution=96, size=2.0):
+    """A closed, single-part stylised cow, built in code (no file): a smooth union of ellipsoids, contoured.
+
+    Body, neck, head, muzzle, four legs and two ears blended with a smooth
+    minimum and turned into a triangle mesh by VTK's contour filter (marching
+    cubes) on a ``resolution``-cell grid along the body. Returns a watertight
+    ``trimesh.Trimesh`` normalised so its longest extent is ``size``.
+    """
+    import trimesh
+
+    from noiselab.geometry import normalize
+    from noiselab.geometry._mesh import _pyvista, pyvista_to_trimesh
+
+    pv = _pyvista()
+    parts = [((0.0, 0.0, 0.0), (0.95, 0.42, 0.42)),            # body
+             ((0.85, 0.0, 0.25), (0.35, 0.2, 0.25)),            # neck
+             ((1.2, 0.0, 0.35), (0.3, 0.2, 0.22)),             # head
+             ((1.45, 0.0, 0.22), (0.17, 0.17, 0.15)),          # muzzle
+             ((1.1, 0.24, 0.5), (0.1, 0.15, 0.09)),            # ears
+             ((1.1, -0.24, 0.5), (0.1, 0.15, 0.09))]
+    parts += [((x, y, -0.55), (0.14, 0.14, 0.45)) for x in (-0.6, 0.6) for y in (-0.22, 0.22)]   # legs
+    lo, hi = np.array([-1.15, -0.6, -1.1]), np.array([1.75, 0.6, 0.75])
+    step = float((hi - lo)[0] / resolution)
+    dims = np.ceil((hi - lo) / step).astype(int) + 1
+    grid = pv.ImageData(dimensions=tuple(int(d) for d in dims), spacing=(step,) * 3, origin=tuple(lo))
+    pts = np.asarray(grid.points)
+    d = _ellipsoid_distance(pts, *parts[0])
+    for c, r in parts[1:]:
+        d = _smooth_min(d, _ellipsoid_distance(pts, c, r), 0.12)
+    # keep the surface at least a fifth of a cell from every grid point: marching cubes then cuts no edge
+    # near its end, which is what leaves sliver triangles (they are the first faces to flip when displaced)
+    eps = 0.1 * step
+    d = np.where(np.abs(d) < eps, np.where(d < 0, -eps, eps), d)
+    grid.point_data["d"] = d
+    surf = grid.contour([0.0], scalars="d").triangulate().clean().smooth_taubin(n_iter=40, pass_band=0.05)
+    mesh = pyvista_to_trimesh(surf)
+    mesh.merge_vertices()
+    parts_found = len(mesh.split(only_watertight=False))
+    if not mesh.is_watertight or parts_found != 1:
+        raise ValueError(f"the cow mesh should be closed and in one part: watertight={mesh.is_watertight}, parts={parts_found}")
+    trimesh.repair.fix_normals(mesh)
+    return normalize(mesh, size)
