@@ -788,17 +788,46 @@ def fig19(out, *, squash, amplitudes, frequency, size, seed):
 
 
 @figure("phillips", "fig20", seed="Phillips 2004, Fig. 20", title="Stimuli: constant amplitude, frequency increasing",
-        params=dict(frequencies=(0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0), amplitude=0.08, size=720, seed=16),
-        quick=dict(frequencies=(1.0, 2.0, 3.0), size=240), uses=GEOM)
-def fig20(out, *, frequencies, amplitude, size, seed):
-    from noiselab import LatticeNoise
-    from noiselab.geometry import arrange
+        params=dict(frequencies=(0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0), amplitude=0.12,
+                    candidates=(("value", "cubic"), ("value", "quintic"), ("gradient", "cubic"), ("gradient", "catmull-rom"),
+                                ("gradient", "quintic")),
+                    trial_size=256, trial_seeds=3, size=900, seed=16),
+        quick=dict(frequencies=(1.0, 2.0, 3.0), trial_size=64, trial_seeds=2, size=360), uses=GEOM)
+def fig20(out, *, frequencies, amplitude, candidates, trial_size, trial_seeds, size, seed):
+    from noiselab import LatticeNoise, analysis
 
-    meshes, ranges = _spheres(LatticeNoise(3, seed=seed, kernel="quintic"),
-                              [(amplitude, f, 1, "fractal") for f in frequencies], samples_per_period=8.0)
-    files = [_render(arrange(meshes, columns=3), out / "fig20.png", size, view="xy", colors=["#d8d2c4"] * len(meshes))]
+    # choose the basis and kernel that give the most isotropic blobs: anisotropy of 2-D slices in the blobs' band
+    # (half to twice the lattice rate), mean over seeds; also the plateau fraction (pixels whose gradient is below
+    # a tenth of its RMS), which shows the flat squares that value noise with the quintic fade makes at lattice points
+    cells = 8.0
+    scores, plateaus = {}, {}
+    for basis, kernel in candidates:
+        a, p = [], []
+        for k in range(trial_seeds):
+            img = LatticeNoise(2, seed=seed + k, basis=basis, kernel=kernel).grid((trial_size, trial_size),
+                                                                                [(0, cells), (0, cells)])
+            a.append(analysis.anisotropy(img, (cells / 2, min(2 * cells, trial_size / 2 - 1)), window="hann"))
+            gy, gx = np.gradient(img)
+            g = np.hypot(gx, gy)
+            p.append(np.mean(g < 0.1 * np.sqrt(np.mean(g ** 2))))
+        scores[f"{basis}/{kernel}"] = float(np.mean(a))
+        plateaus[f"{basis}/{kernel}"] = float(np.mean(p))
+    best = min(scores, key=scores.get)
+    basis, kernel = best.split("/")
+    meshes, ranges = _spheres(LatticeNoise(3, seed=seed, basis=basis, kernel=kernel),
+                              [(amplitude, f, 1, "fractal") for f in frequencies], samples_per_period=8.0, min_frequency=4.0)
+    labels = [f"({t}) F = {f:g}" for t, f in zip("abcdefghijkl", frequencies)]
+    files = [_render_tiles(meshes, out / "fig20.png", labels, columns=3, cell=size // 3, view="xy",
+                           colors="#d8d2c4")]
     return Result(files, f"Spheres with a = {amplitude:g} and F = {', '.join(f'{f:g}' for f in frequencies)} (left to right, "
                          "top to bottom), finely subdivided (8 vertices per period) and smooth-shaded in place of "
-                         "RenderMan's analytic spheres.",
+                         f"RenderMan's analytic spheres. The noise is {basis} noise with the {kernel} kernel, chosen as the "
+                         f"most isotropic of {', '.join(scores)} by the anisotropy of {trial_size} x {trial_size} slices over "
+                         f"{cells:g} cells in the blobs' band, {cells / 2:g}-{2 * cells:g} cycles/frame (Hann window, mean of "
+                         f"{trial_seeds} seeds; 0 = isotropic): " + ", ".join(f"{k} {v:.3f}" for k, v in scores.items())
+                         + ". Plateau fraction (gradient below a tenth of its RMS): "
+                         + ", ".join(f"{k} {100 * v:.1f}%" for k, v in plateaus.items()) + ".",
                   {"displacement / amplitude range": _range(np.concatenate(ranges)),
+                   "anisotropy of the candidates (mean over seeds)": ", ".join(f"{k}: {v:.3f}" for k, v in scores.items()),
+                   "plateau fraction of the candidates": ", ".join(f"{k}: {v:.3f}" for k, v in plateaus.items()),
                    "vertices per sphere": [len(m.vertices) for m in meshes]})
