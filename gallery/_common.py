@@ -180,3 +180,68 @@ def cow(resolution=96, size=2.0):
         raise ValueError(f"the cow mesh should be closed and in one part: watertight={mesh.is_watertight}, parts={parts_found}")
     trimesh.repair.fix_normals(mesh)
     return normalize(mesh, size)
+
+
+def terrain(height, width, *, seed=3, grid=384, extent=24.0, octaves=6, relief=3.2, haze=14.0):
+    """A winter mountain scene rendered with pyvista from noiselab's own fractal-sum Monge surface: RGB uint8 ``(height, width, 3)``.
+
+    The terrain is ``z = relief * g(fracsum(x, y, octaves))`` (Phillips Eq. 9 through
+    :func:`noiselab.geometry.height_map`, ``g`` a power that sharpens the peaks) over
+    ``extent`` x ``extent`` units, coloured by height and slope (meadow, rock,
+    snow where it is high and flat enough to hold it), lit by a low sun, seen in
+    perspective from a low camera, and blended into the sky colour with distance
+    (haze: ``1 - exp(-d / haze)``), so the spectral snow of Fig. 3.1 falls over a
+    landscape of the lattice family.
+    """
+    from noiselab import LatticeNoise
+    from noiselab.geometry import height_map
+    from noiselab.geometry._mesh import _pyvista
+
+    pv = _pyvista()
+    ext = ((0.0, 5.0), (0.0, 5.0))
+    h = height_map(LatticeNoise(2, seed=seed), (grid, grid), ext, octaves=octaves, kind="fractal", on_aliasing="ignore")
+    h = (h - h.min()) / max(float(np.ptp(h)), 1e-12)
+    z = relief * h ** 1.8
+    ys, xs = np.meshgrid(np.linspace(0, extent, grid), np.linspace(0, extent, grid), indexing="ij")
+    surf = pv.StructuredGrid(xs, ys, z).extract_surface(algorithm="dataset_surface").triangulate()
+    surf = surf.compute_normals(cell_normals=False, point_normals=True, auto_orient_normals=True)
+    nz = np.abs(np.asarray(surf.point_data["Normals"])[:, 2])
+    zz = np.asarray(surf.points)[:, 2] / relief
+    # a smooth noise (another fractal sum) breaks the snow line up into drifts
+    tex = 0.08 * (height_map(LatticeNoise(2, seed=seed + 1), (grid, grid), ((0.0, 20.0), (0.0, 20.0)), octaves=3,
+                             kind="fractal", on_aliasing="ignore").T.ravel())
+    meadow, rock, snow = np.array([70, 92, 62.0]), np.array([112, 104, 98.0]), np.array([236, 240, 246.0])
+    steep = np.clip((0.82 - nz) / 0.2, 0, 1)[:, None]
+    colour = meadow * (1 - steep) + rock * steep
+    tree_line, snow_line = np.quantile(zz, [0.35, 0.62])     # meadows below, rock above, snow on the top part
+    rocky = np.clip((zz - tree_line) / 0.08, 0, 1)[:, None]
+    colour = colour * (1 - rocky) + rock * rocky
+    snowy = (np.clip((zz + tex - snow_line) / 0.06, 0, 1) * np.clip((nz - 0.5) / 0.15, 0, 1))[:, None]
+    colour = colour * (1 - snowy) + snow * snowy
+    # the camera stands inside the terrain's near edge, above the ground there, looking slightly down
+    ci = int(0.04 * grid)
+    ground = float(z[ci, grid // 2 - grid // 8:grid // 2 + grid // 8].max())
+    camera = np.array([extent / 2, ys[ci, 0], ground + 0.35 * relief])
+    focus = np.array([extent / 2, extent * 0.6, ground - 0.1 * relief])
+    dist = np.linalg.norm(np.asarray(surf.points) - camera, axis=1)
+    sky = np.array([196, 206, 220.0])
+    fog = (1 - np.exp(-dist / haze))[:, None]
+    surf.point_data["rgb"] = np.clip(colour * (1 - fog) + sky * fog, 0, 255).astype(np.uint8)
+    plotter = pv.Plotter(off_screen=True, window_size=(int(width), int(height)), lighting="none")
+    plotter.set_background([c / 255 for c in sky], top=[0.36, 0.46, 0.62])
+    actor = plotter.add_mesh(surf, scalars="rgb", rgb=True, ambient=0.45, diffuse=0.8, specular=0.0)
+    actor.prop.interpolation = "gouraud"
+    sun = pv.Light(position=(-extent * 0.6, -extent * 0.2, relief * 2.5), focal_point=(extent / 2, extent / 2, 0.0),
+                   light_type="scene light", intensity=1.1)
+    sun.positional = False
+    plotter.add_light(sun)
+    plotter.camera.position = tuple(camera)
+    plotter.camera.focal_point = tuple(focus)
+    plotter.camera.up = (0.0, 0.0, 1.0)
+    plotter.camera.view_angle = 50.0
+    plotter.reset_camera_clipping_range()
+    try:
+        image = np.asarray(plotter.screenshot(return_img=True))[..., :3]
+    finally:
+        plotter.close()
+    return np.ascontiguousarray(image, dtype=np.uint8)

@@ -52,13 +52,13 @@ def opacity(out, *, frames, size, c, thickness, beta, seed):
 
 @figure("snow", "fig3_1", seed="Zhang 2003, Fig. 3.1", title="Falling snow composited over a winter scene",
         params=dict(frames=64, size=512, c=1.0, beta=1.5, intensity=250, seed=2),
-        quick=dict(frames=8, size=64), uses=SNOW + LAND)
+        quick=dict(frames=8, size=64), uses=SNOW + LAND + ("noiselab.geometry",))
 def winter_scene(out, *, frames, size, c, beta, intensity, seed):
     from noiselab import analysis, snow
 
-    from .._common import alpha_to_rgb_composite, landscape, save_image, save_video
+    from .._common import alpha_to_rgb_composite, save_image, save_video, terrain
 
-    bg = landscape(size, size)
+    bg = terrain(size, size, grid=max(64, min(384, size * 3 // 4)))
     alpha = snow((frames, size, size), seed=seed, c=c, beta=beta)
     video = alpha_to_rgb_composite(alpha, bg, intensity)
     files = [save_image(out / "a_background.png", bg), save_image(out / "b_frame.png", video[0])]
@@ -66,8 +66,10 @@ def winter_scene(out, *, frames, size, c, beta, intensity, seed):
     prof = analysis.speed_profile(alpha)
     speed = np.hypot(*prof.velocity.T)
     inside = (prof.centers >= size / 32) & (prof.centers <= size / 4)
-    return Result(files, "(a) The background: the painting of the thesis is not available, so noiselab draws a "
-                         "winter landscape with lattice noise (ridges: 1-D fractal sums; rock and clouds: turbulence). "
+    return Result(files, "(a) The background: the painting of the thesis is not available, so the scene is noiselab's "
+                         "own: a fractal-sum Monge surface (Phillips Eq. 9, 6 octaves of lattice noise) rendered with "
+                         "pyvista, coloured by height and slope (meadow, rock, snow), lit by a low sun, with distance "
+                         "haze, so the lab's two families meet in one picture. "
                          f"(b) One frame of falling snow composited over it with Eq. 3.6, I = {intensity} alpha + (1 - alpha) I_bg; "
                          "the video loops seamlessly.",
                   measured={"energy on the tent": analysis.tent_energy(alpha, c, (size / 32, size / 4)),
