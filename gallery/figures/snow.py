@@ -92,24 +92,25 @@ def tent_plot(out, *, C, grid, frames, size, seed):
     wx, wy = np.meshgrid(w, w)
     r = np.hypot(wx, wy)
     wt = np.divide(C * wy, r, out=np.zeros_like(r), where=r > 0)
-    fig = plt.figure(figsize=(10, 4.2))
-    ax = fig.add_subplot(1, 2, 1, projection="3d")
+    fig = plt.figure(figsize=(11.5, 4.6))
+    ax = fig.add_axes([0.0, 0.05, 0.46, 0.86], projection="3d")
     ax.plot_surface(wx, wy, wt, cmap="viridis", linewidth=0, antialiased=True)
-    ax.set_xlabel("w_x"), ax.set_ylabel("w_y"), ax.set_zlabel("w_t")
-    ax.set_title("Eq. 3.3, C = 1")
+    ax.set_xlabel("w_x"), ax.set_ylabel("w_y"), ax.set_zlabel("w_t", labelpad=6), ax.set_zticks([-1, 0, 1])
+    ax.set_box_aspect(None, zoom=0.85)
+    ax.set_title(f"(a) the tent, Eq. 3.3, C = {C:g}")
     # what a rendered video actually holds: its power in the (w_y, w_t) plane at w_x = 0
     alpha = snow((frames, size, size), seed=seed, c=C, thickness=0.0, band=(size / 16, size / 2.5), beta=1.0)
     P = np.abs(np.fft.fftn(alpha - alpha.mean())) ** 2
     sl = np.fft.fftshift(P[:, :, 0], axes=(0, 1))
-    ax2 = fig.add_subplot(1, 2, 2)
+    ax2 = fig.add_axes([0.58, 0.13, 0.38, 0.76])
     fy = np.fft.fftshift(np.fft.fftfreq(size)) * 2 * np.pi
     ft = np.fft.fftshift(np.fft.fftfreq(frames)) * 2 * np.pi
     ax2.pcolormesh(fy, ft, np.log10(sl + sl.max() * 1e-6), shading="nearest", cmap="magma")
     ax2.set_xlabel("w_y (rad/px)"), ax2.set_ylabel("w_t (rad/frame)")
-    ax2.set_title("power of a rendered video at w_x = 0 (log)")
+    ax2.set_title("(b) power of a rendered video at w_x = 0 (log)")
     tent = analysis.tent_energy(alpha, C, (size / 16, size / 2.5))
     return Result([save_figure(fig, out / "tent.png")],
-                  "Left: the tent surface of Eq. 3.3 plotted over w_x, w_y in [-pi, pi]. Right: the power spectrum "
+                  "(a) The tent surface of Eq. 3.3 plotted over w_x, w_y in [-pi, pi]. (b) The power spectrum "
                   f"of a {frames} x {size} x {size} snow video (thin tent, beta = 1) in the w_x = 0 plane: the energy "
                   "lies on two horizontal lines w_t = -+C (numpy's sign convention: w_t = -C w_y/|w|), the tent's "
                   "section at w_x = 0.",
