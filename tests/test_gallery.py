@@ -167,6 +167,11 @@ def test_measured_values_are_sane(quick_gallery):
     fig06 = man["phillips/fig06"]["measured"]
     assert fig06["derived value at {14, 1}"] == fig06["noiselab's value there"]
     assert [v for k, v in fig06.items() if k.startswith("largest |construction")][0] < 1e-12
+    # Fig. 17: every sphere resolves its finest octave (>= 2 vertices per period along the longest edge)
+    assert min(man["phillips/fig17"]["measured"]["samples per period of the finest octave (longest edge), n = 1.."]) >= 2
+    # Fig. 18: the stand-in cow is closed, and the undisplaced one has no flipped face
+    fig18 = man["phillips/fig18"]["measured"]
+    assert fig18["watertight"] is True and fig18["flipped faces per s"][0] == 0
     assert man["phillips/fig02"]["measured"]["basis at the lattice points equals the table entries the permutation points to"] is True
     lo, hi = man["phillips/fig16"]["measured"]["displacement / amplitude range (within [-1, 1])"]
     assert -1 <= lo < 0 < hi <= 1
