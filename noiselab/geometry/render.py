@@ -8,7 +8,6 @@ imported. Images are ``(height, width, 3)`` uint8 arrays, videos
 """
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import numpy as np
