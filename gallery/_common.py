@@ -73,50 +73,6 @@ def moon(n):
     return np.clip(disc(n, 0.32) - disc(n, 0.28, centre=(0.62, 0.42)), 0, 1).astype(np.float32)
 
 
-def landscape(height, width, seed=3):
-    """A winter landscape drawn by lattice noise (no image files): RGB uint8 ``(height, width, 3)``.
-
-    Sky: a vertical gradient with turbulence clouds. Three mountain ranges:
-    ridge lines from 1-D fractal sums of ``LatticeNoise`` (Phillips Eq. 9),
-    nearer ranges darker and rougher; their rock texture is a 2-D turbulence
-    (Eq. 10), their snow caps start above a noisy snow line. The ground is
-    snow-covered (bright) with a faint fractal texture.
-    """
-    from noiselab import LatticeNoise, fractal_sum, turbulence
-    from noiselab.lattice import Grid
-
-    H, W = int(height), int(width)
-    y = (np.arange(H) / max(H - 1, 1))[:, None]
-    x = np.arange(W) / max(W, 1)
-    top, horizon = np.array([62, 78, 104.0]), np.array([182, 190, 200.0])
-    img = top + (horizon - top) * np.clip(y / 0.6, 0, 1)[..., None]
-    img = np.broadcast_to(img, (H, W, 3)).copy()
-    clouds = turbulence(LatticeNoise(2, seed=seed), Grid((H, W), [(0, 3 * H / W), (0, 6)]), 5, normalize=True)
-    img += (40 * np.clip(clouds - 0.25, 0, 1) * np.clip(1 - y / 0.5, 0, 1))[..., None]
-    ranges = [  # (base height as a fraction of H, relief, roughness scale, rock colour, seed offset)
-        (0.50, 0.34, 2.0, np.array([132, 140, 156.0]), 1),
-        (0.64, 0.30, 2.5, np.array([96, 100, 112.0]), 2),
-        (0.78, 0.22, 3.0, np.array([58, 60, 66.0]), 3),
-    ]
-    rows = np.arange(H)[:, None] / max(H - 1, 1)
-    for base, relief, scale, rock, k in ranges:
-        ridge = fractal_sum(LatticeNoise(1, seed=seed + 10 * k), Grid((W,), [(0, scale)]), 6, normalize=True)
-        ridge = (ridge - ridge.min()) / max(float(np.ptp(ridge)), 1e-9)   # 0 (low) .. 1 (highest peak)
-        top_y = base - relief * ridge[None, :]
-        inside = rows >= top_y
-        tex = turbulence(LatticeNoise(2, seed=seed + 10 * k + 1), Grid((H, W), [(0, 4 * scale * H / W), (0, 4 * scale)]),
-                         5, normalize=True)
-        snowline = base - relief * (0.55 - 0.25 * tex)   # snow caps on the peaks only
-        capped = rows < snowline
-        colour = rock[None, None, :] * (0.75 + 0.5 * tex)[..., None]
-        colour = np.where(capped[..., None], np.array([228, 232, 238.0]) * (0.9 + 0.1 * tex)[..., None], colour)
-        img = np.where(inside[..., None], colour, img)
-    ground = rows >= 0.86 + 0.02 * fractal_sum(LatticeNoise(1, seed=seed + 99), Grid((W,), [(0, 5)]), 4)[None, :]
-    gtex = fractal_sum(LatticeNoise(2, seed=seed + 98), Grid((H, W), [(0, 8 * H / W), (0, 8)]), 5, normalize=True)
-    img = np.where(ground[..., None], (np.array([214, 220, 230.0]) + 18 * gtex[..., None]), img)
-    return np.clip(np.rint(img), 0, 255).astype(np.uint8)
-
-
 def alpha_to_rgb_composite(alpha, background, intensity=250):
     """Eq. 3.6 over an RGB background, as uint8."""
     from noiselab import composite

@@ -121,12 +121,12 @@ def _tiling(out, tile, frames, size, c, seed, seeds):
     from noiselab import analysis, snow
     from noiselab.snow import iter_tiled_frames
 
-    from .._common import alpha_to_rgb_composite, landscape, save_image, save_video
+    from .._common import alpha_to_rgb_composite, save_image, save_video, terrain
 
     reps = size // tile
     alpha = snow((frames, tile, tile), seed=seed, c=c)
     tiled = np.stack(list(iter_tiled_frames(alpha, (reps, reps))))
-    bg = landscape(size, size, seed=5)
+    bg = terrain(size, size, seed=5, grid=max(64, min(384, size * 3 // 4)))
     video = alpha_to_rgb_composite(tiled, bg)
     files = [save_image(out / f"a_tile{tile}.png", alpha[0]), save_image(out / "b_frame.png", video[0])]
     files += save_video(out, f"tiled{tile}", video)
@@ -152,17 +152,17 @@ def _tiling(out, tile, frames, size, c, seed, seeds):
 
 @figure("snow", "fig3_4", seed="Zhang 2003, Fig. 3.4", title="Tiling XYT: 128 x 128 tiles, 4 x 4 of them",
         params=dict(tile=128, frames=64, size=512, c=1.0, seeds=4, seed=4), quick=dict(tile=32, frames=8, size=128, seeds=2),
-        uses=SNOW + LAND)
+        uses=SNOW + LAND + ("noiselab.geometry",))
 def tiling_128(out, *, tile, frames, size, c, seeds, seed):
     files, measured, verdict = _tiling(out, tile, frames, size, c, seed, seeds)
     return Result(files, f"(a) One frame of a {tile} x {tile} snow tile; (b) the {size} x {size} scene composited with "
-                         f"{size // tile} x {size // tile} copies of it (the thesis's 'sydney' over a lattice-noise landscape). "
+                         f"{size // tile} x {size // tile} copies of it (the thesis's 'sydney' over noiselab's fractal-sum terrain, as in Fig. 3.1). "
                          f"The tiles are periodic in x, y and t; seams measured on the alpha: {verdict}.", measured)
 
 
 @figure("snow", "fig3_5", seed="Zhang 2003, Fig. 3.5", title="Tiling failure: 64 x 64 tiles, 8 x 8 of them",
         params=dict(tile=64, frames=64, size=512, c=1.0, seeds=4, seed=4), quick=dict(tile=16, frames=8, size=128, seeds=2),
-        uses=SNOW + LAND)
+        uses=SNOW + LAND + ("noiselab.geometry",))
 def tiling_64(out, *, tile, frames, size, c, seeds, seed):
     files, measured, verdict = _tiling(out, tile, frames, size, c, seed, seeds)
     return Result(files, f"(a) One frame of a {tile} x {tile} tile; (b) {size // tile} x {size // tile} = {(size // tile) ** 2} "
@@ -173,11 +173,11 @@ def tiling_64(out, *, tile, frames, size, c, seeds, seed):
 
 @figure("snow", "fig4_1", seed="Zhang 2003, Fig. 4.1", title="The sheared tent for a panning camera, and the panning video",
         params=dict(C=1.0, s=0.3, grid=61, frames=64, size=384, pan=1.0, seed=6),
-        quick=dict(grid=21, frames=8, size=64), uses=SNOW + LAND)
+        quick=dict(grid=21, frames=8, size=64), uses=SNOW + LAND + ("noiselab.geometry",))
 def sheared_tent(out, *, C, s, grid, frames, size, pan, seed):
     from noiselab import analysis, snow
 
-    from .._common import alpha_to_rgb_composite, landscape, pyplot, save_figure, save_video
+    from .._common import alpha_to_rgb_composite, pyplot, save_figure, save_video, terrain
 
     plt = pyplot()
     w = np.linspace(-np.pi, np.pi, grid)
@@ -191,7 +191,7 @@ def sheared_tent(out, *, C, s, grid, frames, size, pan, seed):
     ax.set_title(f"Eq. 4.3: C = {C:g}, s_l = {s:g}")
     files = [save_figure(fig, out / "sheared_tent.png")]
     alpha = snow((frames, size, size), seed=seed, c=C, pan=(pan, 0.0))
-    wide = landscape(size, size + int(np.ceil(abs(pan) * frames)) + 1, seed=8)
+    wide = terrain(size, size + int(np.ceil(abs(pan) * frames)) + 1, seed=8, grid=max(64, min(384, size * 3 // 4)))
     # the background pans with the same image velocity as the camera's pan adds to the snow
     bg = np.stack([wide[:, int(round(len(wide[0]) - size - 1 - pan * t)):][:, :size] for t in range(frames)])
     video = alpha_to_rgb_composite(alpha, bg)
@@ -201,7 +201,7 @@ def sheared_tent(out, *, C, s, grid, frames, size, pan, seed):
     on_sheared = analysis.sheared_tent_energy(alpha, C, band, (0, 1), (pan, 0.0))
     on_plain = analysis.tent_energy(alpha, C, band)
     return Result(files, f"The sheared tent of Eq. 4.3 (C = {C:g}, s_l = {s:g}); the video renders snow with the sheared tent "
-                         f"for a camera pan adding {pan:g} px/frame to the right, composited over a landscape that pans "
+                         f"for a camera pan adding {pan:g} px/frame to the right, composited over noiselab's fractal-sum terrain (as in Fig. 3.1), panning "
                          f"at the same image velocity (the thesis's 'panningsnowscene'). {on_sheared:.1%} of the energy lies "
                          f"on the sheared tent against {on_plain:.1%} on the unsheared one; the best single velocity has "
                          f"vx = {v[0]:.2f} px/frame for a pan of {pan:g}.",
