@@ -35,21 +35,20 @@ def save_image(path, image, vmin=None, vmax=None) -> Path:
     return write_image(path, image, vmin=vmin, vmax=vmax)
 
 
-def save_video(out, stem, frames, *, fps=25.0, vmin=None, vmax=None, gif_frames=32, gif_width=192):
-    """Write ``stem.mp4`` and a small ``stem.gif`` preview (subsampled frames, at most ``gif_width`` px wide).
+def save_video(out, stem, frames, *, fps=25.0, vmin=None, vmax=None, poster_frame=0):
+    """Write ``stem.mp4`` and ``stem_poster.png``, a full-resolution still of frame ``poster_frame``.
 
-    Returns the two paths, MP4 first (the gallery shows the GIF as the MP4's preview).
+    Returns the two paths, MP4 first. The page shows the MP4 itself (never a
+    subsampled GIF, which aliases fine detail such as the smallest flakes) with
+    the poster as the still shown before it plays.
     """
     from noiselab.io import to_uint8, write_video
 
     out = Path(out)
     frames = np.asarray(frames)
     mp4 = write_video(out / f"{stem}.mp4", frames, fps=fps, vmin=vmin, vmax=vmax, show_progress=False)
-    step_t = max(1, int(np.ceil(frames.shape[0] / gif_frames)))
-    step_x = max(1, int(np.ceil(frames.shape[2] / gif_width)))
-    small = to_uint8(frames[::step_t, ::step_x, ::step_x], vmin, vmax)
-    gif = write_video(out / f"{stem}.gif", small, fps=fps / step_t, show_progress=False)
-    return [mp4, gif]
+    poster = save_image(out / f"{stem}_poster.png", to_uint8(frames[poster_frame], vmin, vmax))
+    return [mp4, poster]
 
 
 def grey_to_rgb(image):
@@ -74,50 +73,6 @@ def moon(n):
     return np.clip(disc(n, 0.32) - disc(n, 0.28, centre=(0.62, 0.42)), 0, 1).astype(np.float32)
 
 
-def landscape(height, width, seed=3):
-    """A winter landscape drawn by lattice noise (no image files): RGB uint8 ``(height, width, 3)``.
-
-    Sky: a vertical gradient with turbulence clouds. Three mountain ranges:
-    ridge lines from 1-D fractal sums of ``LatticeNoise`` (Phillips Eq. 9),
-    nearer ranges darker and rougher; their rock texture is a 2-D turbulence
-    (Eq. 10), their snow caps start above a noisy snow line. The ground is
-    snow-covered (bright) with a faint fractal texture.
-    """
-    from noiselab import LatticeNoise, fractal_sum, turbulence
-    from noiselab.lattice import Grid
-
-    H, W = int(height), int(width)
-    y = (np.arange(H) / max(H - 1, 1))[:, None]
-    x = np.arange(W) / max(W, 1)
-    top, horizon = np.array([62, 78, 104.0]), np.array([182, 190, 200.0])
-    img = top + (horizon - top) * np.clip(y / 0.6, 0, 1)[..., None]
-    img = np.broadcast_to(img, (H, W, 3)).copy()
-    clouds = turbulence(LatticeNoise(2, seed=seed), Grid((H, W), [(0, 3 * H / W), (0, 6)]), 5, normalize=True)
-    img += (40 * np.clip(clouds - 0.25, 0, 1) * np.clip(1 - y / 0.5, 0, 1))[..., None]
-    ranges = [  # (base height as a fraction of H, relief, roughness scale, rock colour, seed offset)
-        (0.50, 0.34, 2.0, np.array([132, 140, 156.0]), 1),
-        (0.64, 0.30, 2.5, np.array([96, 100, 112.0]), 2),
-        (0.78, 0.22, 3.0, np.array([58, 60, 66.0]), 3),
-    ]
-    rows = np.arange(H)[:, None] / max(H - 1, 1)
-    for base, relief, scale, rock, k in ranges:
-        ridge = fractal_sum(LatticeNoise(1, seed=seed + 10 * k), Grid((W,), [(0, scale)]), 6, normalize=True)
-        ridge = (ridge - ridge.min()) / max(float(np.ptp(ridge)), 1e-9)   # 0 (low) .. 1 (highest peak)
-        top_y = base - relief * ridge[None, :]
-        inside = rows >= top_y
-        tex = turbulence(LatticeNoise(2, seed=seed + 10 * k + 1), Grid((H, W), [(0, 4 * scale * H / W), (0, 4 * scale)]),
-                         5, normalize=True)
-        snowline = base - relief * (0.55 - 0.25 * tex)   # snow caps on the peaks only
-        capped = rows < snowline
-        colour = rock[None, None, :] * (0.75 + 0.5 * tex)[..., None]
-        colour = np.where(capped[..., None], np.array([228, 232, 238.0]) * (0.9 + 0.1 * tex)[..., None], colour)
-        img = np.where(inside[..., None], colour, img)
-    ground = rows >= 0.86 + 0.02 * fractal_sum(LatticeNoise(1, seed=seed + 99), Grid((W,), [(0, 5)]), 4)[None, :]
-    gtex = fractal_sum(LatticeNoise(2, seed=seed + 98), Grid((H, W), [(0, 8 * H / W), (0, 8)]), 5, normalize=True)
-    img = np.where(ground[..., None], (np.array([214, 220, 230.0]) + 18 * gtex[..., None]), img)
-    return np.clip(np.rint(img), 0, 255).astype(np.uint8)
-
-
 def alpha_to_rgb_composite(alpha, background, intensity=250):
     """Eq. 3.6 over an RGB background, as uint8."""
     from noiselab import composite
@@ -125,3 +80,124 @@ def alpha_to_rgb_composite(alpha, background, intensity=250):
     out = composite(alpha, background, intensity=intensity)
     out = np.asarray(out)
     return out if out.dtype == np.uint8 else np.clip(np.rint(out), 0, 255).astype(np.uint8)
+
+
+def _ellipsoid_distance(points, centre, radii):
+    """An approximate signed distance to an axis-aligned ellipsoid (exact on the axes), negative inside."""
+    q = (points - np.asarray(centre, dtype=float)) / np.asarray(radii, dtype=float)
+    return (np.linalg.norm(q, axis=-1) - 1.0) * float(min(radii))
+
+
+def _smooth_min(a, b, k):
+    """Polynomial smooth minimum (a smooth union of two solids), blending over a width ``k``."""
+    h = np.clip(0.5 + 0.5 * (b - a) / k, 0.0, 1.0)
+    return b * (1 - h) + a * h - k * h * (1 - h)
+
+
+def cow(resolution=96, size=2.0):
+    """A closed, single-part stylised cow, built in code (no file): a smooth union of ellipsoids, contoured.
+
+    Body, neck, head, muzzle, four legs and two ears blended with a smooth
+    minimum and turned into a triangle mesh by VTK's contour filter (marching
+    cubes) on a ``resolution``-cell grid along the body. Returns a watertight
+    ``trimesh.Trimesh`` normalised so its longest extent is ``size``.
+    """
+    import trimesh
+
+    from noiselab.geometry import normalize
+    from noiselab.geometry._mesh import _pyvista, pyvista_to_trimesh
+
+    pv = _pyvista()
+    parts = [((0.0, 0.0, 0.0), (0.95, 0.42, 0.42)),            # body
+             ((0.85, 0.0, 0.25), (0.35, 0.2, 0.25)),            # neck
+             ((1.2, 0.0, 0.35), (0.3, 0.2, 0.22)),             # head
+             ((1.45, 0.0, 0.22), (0.17, 0.17, 0.15)),          # muzzle
+             ((1.1, 0.24, 0.5), (0.1, 0.15, 0.09)),            # ears
+             ((1.1, -0.24, 0.5), (0.1, 0.15, 0.09))]
+    parts += [((x, y, -0.55), (0.14, 0.14, 0.45)) for x in (-0.6, 0.6) for y in (-0.22, 0.22)]   # legs
+    lo, hi = np.array([-1.15, -0.6, -1.1]), np.array([1.75, 0.6, 0.75])
+    step = float((hi - lo)[0] / resolution)
+    dims = np.ceil((hi - lo) / step).astype(int) + 1
+    grid = pv.ImageData(dimensions=tuple(int(d) for d in dims), spacing=(step,) * 3, origin=tuple(lo))
+    pts = np.asarray(grid.points)
+    d = _ellipsoid_distance(pts, *parts[0])
+    for c, r in parts[1:]:
+        d = _smooth_min(d, _ellipsoid_distance(pts, c, r), 0.12)
+    # keep the surface at least a fifth of a cell from every grid point: marching cubes then cuts no edge
+    # near its end, which is what leaves sliver triangles (they are the first faces to flip when displaced)
+    eps = 0.1 * step
+    d = np.where(np.abs(d) < eps, np.where(d < 0, -eps, eps), d)
+    grid.point_data["d"] = d
+    surf = grid.contour([0.0], scalars="d").triangulate().clean().smooth_taubin(n_iter=40, pass_band=0.05)
+    mesh = pyvista_to_trimesh(surf)
+    mesh.merge_vertices()
+    parts_found = len(mesh.split(only_watertight=False))
+    if not mesh.is_watertight or parts_found != 1:
+        raise ValueError(f"the cow mesh should be closed and in one part: watertight={mesh.is_watertight}, parts={parts_found}")
+    trimesh.repair.fix_normals(mesh)
+    return normalize(mesh, size)
+
+
+def terrain(height, width, *, seed=3, grid=384, extent=24.0, octaves=6, relief=3.2, haze=14.0):
+    """A winter mountain scene rendered with pyvista from noiselab's own fractal-sum Monge surface: RGB uint8 ``(height, width, 3)``.
+
+    The terrain is ``z = relief * g(fracsum(x, y, octaves))`` (Phillips Eq. 9 through
+    :func:`noiselab.geometry.height_map`, ``g`` a power that sharpens the peaks) over
+    ``extent`` x ``extent`` units, coloured by height and slope (meadow, rock,
+    snow where it is high and flat enough to hold it), lit by a low sun, seen in
+    perspective from a low camera, and blended into the sky colour with distance
+    (haze: ``1 - exp(-d / haze)``), so the spectral snow of Fig. 3.1 falls over a
+    landscape of the lattice family.
+    """
+    from noiselab import LatticeNoise
+    from noiselab.geometry import height_map
+    from noiselab.geometry._mesh import _pyvista
+
+    pv = _pyvista()
+    ext = ((0.0, 5.0), (0.0, 5.0))
+    h = height_map(LatticeNoise(2, seed=seed), (grid, grid), ext, octaves=octaves, kind="fractal", on_aliasing="ignore")
+    h = (h - h.min()) / max(float(np.ptp(h)), 1e-12)
+    z = relief * h ** 1.8
+    ys, xs = np.meshgrid(np.linspace(0, extent, grid), np.linspace(0, extent, grid), indexing="ij")
+    surf = pv.StructuredGrid(xs, ys, z).extract_surface(algorithm="dataset_surface").triangulate()
+    surf = surf.compute_normals(cell_normals=False, point_normals=True, auto_orient_normals=True)
+    nz = np.abs(np.asarray(surf.point_data["Normals"])[:, 2])
+    zz = np.asarray(surf.points)[:, 2] / relief
+    # a smooth noise (another fractal sum) breaks the snow line up into drifts
+    tex = 0.08 * (height_map(LatticeNoise(2, seed=seed + 1), (grid, grid), ((0.0, 20.0), (0.0, 20.0)), octaves=3,
+                             kind="fractal", on_aliasing="ignore").T.ravel())
+    meadow, rock, snow = np.array([70, 92, 62.0]), np.array([112, 104, 98.0]), np.array([236, 240, 246.0])
+    steep = np.clip((0.82 - nz) / 0.2, 0, 1)[:, None]
+    colour = meadow * (1 - steep) + rock * steep
+    tree_line, snow_line = np.quantile(zz, [0.35, 0.62])     # meadows below, rock above, snow on the top part
+    rocky = np.clip((zz - tree_line) / 0.08, 0, 1)[:, None]
+    colour = colour * (1 - rocky) + rock * rocky
+    snowy = (np.clip((zz + tex - snow_line) / 0.06, 0, 1) * np.clip((nz - 0.5) / 0.15, 0, 1))[:, None]
+    colour = colour * (1 - snowy) + snow * snowy
+    # the camera stands inside the terrain's near edge, above the ground there, looking slightly down
+    ci = int(0.04 * grid)
+    ground = float(z[ci, grid // 2 - grid // 8:grid // 2 + grid // 8].max())
+    camera = np.array([extent / 2, ys[ci, 0], ground + 0.35 * relief])
+    focus = np.array([extent / 2, extent * 0.6, ground - 0.1 * relief])
+    dist = np.linalg.norm(np.asarray(surf.points) - camera, axis=1)
+    sky = np.array([196, 206, 220.0])
+    fog = (1 - np.exp(-dist / haze))[:, None]
+    surf.point_data["rgb"] = np.clip(colour * (1 - fog) + sky * fog, 0, 255).astype(np.uint8)
+    plotter = pv.Plotter(off_screen=True, window_size=(int(width), int(height)), lighting="none")
+    plotter.set_background([c / 255 for c in sky], top=[0.36, 0.46, 0.62])
+    actor = plotter.add_mesh(surf, scalars="rgb", rgb=True, ambient=0.45, diffuse=0.8, specular=0.0)
+    actor.prop.interpolation = "gouraud"
+    sun = pv.Light(position=(-extent * 0.6, -extent * 0.2, relief * 2.5), focal_point=(extent / 2, extent / 2, 0.0),
+                   light_type="scene light", intensity=1.1)
+    sun.positional = False
+    plotter.add_light(sun)
+    plotter.camera.position = tuple(camera)
+    plotter.camera.focal_point = tuple(focus)
+    plotter.camera.up = (0.0, 0.0, 1.0)
+    plotter.camera.view_angle = 50.0
+    plotter.reset_camera_clipping_range()
+    try:
+        image = np.asarray(plotter.screenshot(return_img=True))[..., :3]
+    finally:
+        plotter.close()
+    return np.ascontiguousarray(image, dtype=np.uint8)

@@ -26,12 +26,25 @@ class _Refs(html.parser.HTMLParser):
     def __init__(self):
         super().__init__()
         self.refs, self.figures, self.videos, self._fig, self._in_caption = [], [], [], None, False
+        self.posters, self.images, self.links, self.toc, self._href, self._in_toc = [], [], {}, [], None, False
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
         for key in ("src", "href", "poster"):
             if a.get(key) and not a[key].startswith(("data:", "#")):
                 self.refs.append(a[key])
+        if tag == "nav" and a.get("id") == "contents":
+            self._in_toc = True
+        if tag == "a":
+            self._href = a.get("href")
+            if self._in_toc and self._href and self._href.startswith("#"):
+                self.toc.append(self._href[1:])
+        if tag == "img":
+            self.images.append(a.get("src"))
+            if self._href:
+                self.links[a.get("src")] = self._href
+        if tag == "video" and a.get("poster"):
+            self.posters.append(a["poster"])
         if tag == "figure":
             self._fig = {"id": a.get("id"), "class": a.get("class", ""), "caption": "", "srcs": []}
             self.figures.append(self._fig)
@@ -43,6 +56,10 @@ class _Refs(html.parser.HTMLParser):
             self._in_caption = True
 
     def handle_endtag(self, tag):
+        if tag == "a":
+            self._href = None
+        if tag == "nav":
+            self._in_toc = False
         if tag == "figcaption":
             self._in_caption = False
         if tag == "figure":
@@ -89,15 +106,19 @@ def test_every_figure_is_on_the_page_and_every_referenced_file_exists(quick_gall
     assert page.refs
     missing = [r for r in page.refs if not (out / r).is_file()]
     assert not missing, missing
-    # every video is an MP4 with a GIF preview beside it
+    # every video is an MP4 shown with a full-resolution poster still (no subsampled GIF preview, which aliases)
     assert page.videos and all(v.endswith(".mp4") for v in page.videos)
-    assert all((out / v).with_suffix(".gif").is_file() for v in page.videos)
+    assert len(page.posters) == len(page.videos)
+    assert all(p == v[:-4] + "_poster.png" for p, v in zip(page.posters, page.videos))
+    assert not [r for r in page.refs if r.endswith(".gif")]
+    # every image is a link to itself (click to open it at full size)
+    assert page.images and all(page.links.get(i) == i for i in page.images), page.images[:3]
     # nothing escapes the output folder (no absolute paths, no ..)
     assert all(not r.startswith("/") and ".." not in Path(r).parts for r in page.refs)
 
 
 SEED_FIGURES = (["Zhang 2003, Fig. " + f for f in ("3.1", "3.2", "3.4", "3.5", "4.1", "6.2", "6.3")]
-                + [f"Phillips 2004, Fig. {n}." for n in (1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20)])
+                + [f"Phillips 2004, Fig. {n}." for n in range(1, 21)])
 
 
 def test_captions_carry_seed_figure_parameters_and_measurements(quick_gallery):
@@ -113,11 +134,21 @@ def test_captions_carry_seed_figure_parameters_and_measurements(quick_gallery):
         assert "Parameters: " in cap and "Measured: " in cap, spec.key
         for name in spec.params:
             assert f"{name}=" in cap, (spec.key, name)
+        assert f"Rebuild alone: python3 -m noiselab gallery --only {spec.key}" in cap, spec.key
     # the snow captions carry the snow measurements, the noise captions the noise ones
     snow = " ".join(c for k, c in captions.items() if k.startswith("snow-"))
     assert "energy on the tent" in snow and "speed per band" in snow and "loop seam" in snow
     noise = " ".join(c for k, c in captions.items() if not k.startswith("snow-"))
     assert "range" in noise and "slope" in noise and "anisotropy" in noise
+
+
+def test_table_of_contents_links_every_figure(quick_gallery):
+    out, _ = quick_gallery
+    page = _parse(out / "index.html")
+    ids = [f["id"] for f in page.figures]
+    groups = sorted({s.group for s in registry.specs()})
+    assert [t for t in page.toc if t not in groups] == ids
+    assert set(groups) <= set(page.toc)
 
 
 def test_measured_values_are_sane(quick_gallery):
@@ -127,6 +158,20 @@ def test_measured_values_are_sane(quick_gallery):
     assert 0.8 < man["snow/opacity"]["measured"]["loop seam (1 = seamless)"] < 1.25
     contrast = man["snow/fig6_2"]["measured"]["disc: Michelson contrast veiled / clear"]
     assert 0.8 < contrast[1] <= 1.0 and 0.1 < contrast[0] < 0.2 < contrast[1]
+    # Fig. 1: (a) alternates, and (b)-(d), the same basis filtered at F, hold their power below F
+    fig01 = man["phillips/fig01"]["measured"]
+    assert fig01["(a) alternates in sign at every integer"] is True
+    assert fig01["(a) fraction of power below 0.05 cycle/unit"] < 0.1
+    assert all(fig01[f"({t}) fraction of power below {F:g} cycle/unit"] > 0.99 for t, F in zip("bcd", (0.05, 0.1, 0.2)))
+    # Fig. 6: the construction from planes of 1-D basis functions is noiselab's evaluator
+    fig06 = man["phillips/fig06"]["measured"]
+    assert fig06["derived value at {14, 1}"] == fig06["noiselab's value there"]
+    assert [v for k, v in fig06.items() if k.startswith("largest |construction")][0] < 1e-12
+    # Fig. 17: every sphere resolves its finest octave (>= 2 vertices per period along the longest edge)
+    assert min(man["phillips/fig17"]["measured"]["samples per period of the finest octave (longest edge), n = 1.."]) >= 2
+    # Fig. 18: the stand-in cow is closed, and the undisplaced one has no flipped face
+    fig18 = man["phillips/fig18"]["measured"]
+    assert fig18["watertight"] is True and fig18["flipped faces per s"][0] == 0
     assert man["phillips/fig02"]["measured"]["basis at the lattice points equals the table entries the permutation points to"] is True
     lo, hi = man["phillips/fig16"]["measured"]["displacement / amplitude range (within [-1, 1])"]
     assert -1 <= lo < 0 < hi <= 1

@@ -71,25 +71,30 @@ def kernels(out, *, size, cells, seed):
 
     plt = pyplot()
     names = kernel_names()
-    fig, axes = plt.subplots(2, len(names) + 1, figsize=(2.6 * (len(names) + 1), 5.4))
-    measured = {}
+    fig, axes = plt.subplots(2, len(names) + 1, figsize=(2.6 * (len(names) + 1) + 1.5, 6.0), layout="constrained",
+                             gridspec_kw=dict(width_ratios=[1] * len(names) + [1.7]))
+    measured, rolloff = {}, {}
     for r, basis in enumerate(("value", "gradient")):
         for c, k in enumerate(names):
             img = LatticeNoise(2, seed=seed, kernel=k, basis=basis).grid((size, size), [(0, cells), (0, cells)])
             axes[r, c].imshow(img, cmap="gray", vmin=-1, vmax=1)
             axes[r, c].set_title(f"{basis} / {k}", fontsize=8), axes[r, c].axis("off")
-            rad = analysis.radial_spectrum(img, log=True)
+            rad = analysis.radial_spectrum(img, log=True, window="hann")
             keep = rad.counts > 0
             axes[r, -1].loglog(rad.centers[keep] / cells, rad.power[keep], label=k, lw=1)
             measured[f"{basis}/{k}: range"] = [float(img.min()), float(img.max())]
             measured[f"{basis}/{k}: anisotropy"] = analysis.anisotropy(img, (cells / 2, min(2 * cells, size / 2 - 1)))
-        axes[r, -1].set_title(f"{basis} noise: radial power", fontsize=8)
+            band = (cells, min(4 * cells, size / 2 - 1))     # 1 to 4 cycles per lattice cell
+            rolloff[f"{basis}/{k}"] = float(2 * analysis.spectral_slope(img, band, window="hann"))
+        measured[f"{basis}: power slope 1-4 cycles/cell"] = ", ".join(
+            f"{k}: {rolloff[f'{basis}/{k}']:.1f}" for k in names)
+        axes[r, -1].set_title(f"{basis} noise: radial power (Hann window)", fontsize=9)
         axes[r, -1].set_xlabel("cycles per lattice cell", fontsize=8), axes[r, -1].legend(fontsize=6)
     return Result([save_figure(fig, out / "kernels.png")],
                   f"LatticeNoise over {cells:g} x {cells:g} lattice cells, {size} x {size} pixels, for each kernel, with value "
                   "(Phillips) and gradient (Perlin) bases; right: radial power spectra against frequency in cycles per "
-                  "lattice cell. Smoother kernels roll off faster above 1 cycle per cell (the lattice band limit).",
-                  measured)
+                  "lattice cell. Power slopes from 1 to 4 cycles per cell, Hann window (the lattice band limit and above; steeper = "
+                  "smoother): " + "; ".join(f"{k} {v:.1f}" for k, v in rolloff.items()) + ".", measured)
 
 
 @figure("lab", "measures", seed="Lagae et al. 2010 (band-limitedness, anisotropy); Cook & DeRose 2005; Ulichney 1987",

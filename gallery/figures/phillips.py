@@ -1,4 +1,4 @@
-"""Phillips, "Creating noisy stimuli" (Perception 2004): figures 1-5 and 7-20."""
+"""Phillips, "Creating noisy stimuli" (Perception 2004): figures 1-20."""
 from __future__ import annotations
 
 import numpy as np
@@ -14,38 +14,67 @@ def _range(a):
     return [float(a.min()), float(a.max())]
 
 
-@figure("phillips", "fig01", seed="Phillips 2004, Fig. 1", title="Smooth random functions from one alternating random basis",
-        params=dict(length=100, samples=2000, freqs=(1 / 20, 1 / 10, 1 / 5), kernel="cubic", seed=1),
-        quick=dict(samples=400), uses=NOISE)
-def fig01(out, *, length, samples, freqs, kernel, seed):
+@figure("phillips", "fig01", seed="Phillips 2004, Fig. 1", title="One alternating random basis (a), box-filtered and renormalised (b)-(d)",
+        params=dict(length=100, per_unit=20, freqs=(1 / 20, 1 / 10, 1 / 5), passes=3, measure_length=4000, seed=1),
+        quick=dict(per_unit=8, measure_length=800), uses=NOISE)
+def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
+    from scipy.ndimage import uniform_filter1d
+
     from noiselab import LatticeNoise, analysis
 
     from .._common import pyplot, save_figure
 
     plt = pyplot()
+    # (a): Phillips' basis, one random value per integer, alternating above and below zero
     basis = LatticeNoise(1, seed=seed, kernel="box", alternation="lattice")
-    xi = np.arange(length + 1, dtype=float)
-    fig, axes = plt.subplots(len(freqs) + 1, 1, figsize=(8, 1.6 * (len(freqs) + 1)), sharex=True)
-    axes[0].vlines(xi, 0, basis(xi[:, None]), color="k", lw=1)
-    axes[0].axhline(0, color="0.6", lw=0.5)
-    axes[0].set_title("(a) random values at the integers, alternating above and below zero", fontsize=9, loc="left")
-    x = np.linspace(0, length, samples, endpoint=False)
-    measured = {}
+    xi = np.arange(measure_length + 1)
+    v = basis(xi.astype(float)[:, None])
+    alternates = bool(np.all(v[xi % 2 == 0] > 0) and np.all(v[xi % 2 == 1] < 0))
+    # (a) as the step function it is between the integers, sampled per_unit times per unit
+    x = (np.arange(len(xi) * per_unit) + 0.5) / per_unit - 0.5
+    step = np.repeat(v, per_unit)
+    lo = measure_length / 2 - length / 2                       # plot a stretch from the middle: no filter edge
+    shown = (x >= lo) & (x <= lo + length)
+    fig, axes = plt.subplots(len(freqs) + 1, 1, figsize=(9, 1.75 * (len(freqs) + 1)), sharex=True, layout="constrained")
+    a_in = (xi >= lo) & (xi <= lo + length)
+    axes[0].vlines(xi[a_in] - lo, 0, v[a_in], color="k", lw=1)
+    axes[0].plot(xi[a_in] - lo, v[a_in], "k.", ms=3)
+    axes[0].set_title("(a) one random value per integer x, alternating above and below zero", fontsize=9, loc="left")
+
+    def below(y, F):   # fraction of the power of y (over the whole measured stretch) below F cycle/unit
+        return analysis.band_energy(y - y.mean(), (0.5, F * len(y) / per_unit), window="hann")
+
+    measured = {"(a) alternates in sign at every integer": alternates,
+                f"(a) fraction of power below {min(freqs):g} cycle/unit": below(step, min(freqs))}
+    fractions = []
     for ax, F, tag in zip(axes[1:], freqs, "bcdefg"):
-        noise = LatticeNoise(1, seed=seed, kernel=kernel, frequency=F)
-        y = noise(x[:, None])
-        ax.plot(x, y, "k", lw=1)
+        width = int(round(per_unit / F))                   # a box of 1/F units: its first spectral zero is at F
+        y = step.copy()
+        for _ in range(passes):
+            y = uniform_filter1d(y, width, mode="wrap")
+        fractions.append(below(y, F))
+        y = y[shown]
+        y = y / np.abs(y).max()                            # renormalised to [-1, 1]
+        ax.plot(x[shown] - lo, y, "k", lw=1)
+        ax.set_title(f"({tag}) (a) box-filtered at {F:g} cycle/unit (box of {1 / F:g} units, {passes} passes), "
+                     "renormalised", fontsize=9, loc="left")
+        measured[f"({tag}) fraction of power below {F:g} cycle/unit"] = fractions[-1]
+    for ax in axes:
         ax.axhline(0, color="0.6", lw=0.5)
-        ax.set_ylim(-1.05, 1.05)
-        ax.set_title(f"({tag}) {kernel} B-spline filtered noise at {F:g} lattice cells per unit", fontsize=9, loc="left")
-        # band limit: power below 1.5 F cycles/unit (1.5 F length cycles per plotted length; DC excluded)
-        measured[f"({tag}) range"] = _range(y)
-        measured[f"({tag}) power below {1.5 * F:g} cycles/unit"] = analysis.band_energy(y, (1, 1.5 * F * length))
+        ax.set_ylim(-1.12, 1.12)
+        ax.set_yticks([-1, 0, 1])
     axes[-1].set_xlabel("x (units)")
+    axes[-1].set_xlim(-1, length + 1)
+    most = "almost all (>= 99%)" if min(fractions) >= 0.99 else "not all (some < 99%)"
     return Result([save_figure(fig, out / "fig01.png")],
-                  "(a) Phillips' basis: random values alternating above and below zero at every integer. (b)-(d) the "
-                  "smooth noise a*noise(F x) filtered at F = 1/20, 1/10 and 1/5 cycles per unit (kernel "
-                  f"'{kernel}'); lower F means smoother. The output stays in [-1, 1] without clipping.", measured)
+                  "(a) Phillips' basis: one random value per integer, alternating above (0, 1] and below [-1, 0) zero "
+                  "(noiselab.LatticeNoise with kernel 'box' and alternation 'lattice'). (b)-(d) the same values (a), "
+                  f"as a step function, filtered by a box of width 1/F ({passes} passes; the box's first spectral zero "
+                  f"is at F) for F = {', '.join(f'{F:g}' for F in freqs)} cycle/unit, then renormalised to [-1, 1] "
+                  f"(the stretch shown is x = {lo:g}..{lo + length:g}, relabelled 0..{length}). Measured over "
+                  f"{measure_length} units (Hann window): (a) holds {measured[f'(a) fraction of power below {min(freqs):g} cycle/unit']:.1%} "
+                  f"of its power below {min(freqs):g} cycle/unit (the alternation puts it near 1/2); each filtered curve "
+                  f"holds {most} of its power below its F: {', '.join(f'{f:.2%}' for f in fractions)}.", measured)
 
 
 @figure("phillips", "fig02", seed="Phillips 2004, Fig. 2", title="Diagram: random-number tables, permutation table, basis function",
@@ -62,37 +91,45 @@ def fig02(out, *, entries, table_size, seed):
     basis = noise(idx[:, None])
     from_tables = np.where(np.arange(entries) % 2 == 0, noise.positive[perm], noise.negative[perm])
     agree = bool(np.allclose(basis, from_tables, atol=1e-9))
-    fig = plt.figure(figsize=(12, 6.5))
-    ax_p = fig.add_axes([0.05, 0.78, 0.55, 0.12])
+    fig = plt.figure(figsize=(12, 6.2))
+    ax_p = fig.add_axes([0.05, 0.80, 0.55, 0.09])
     ax_p.set_xlim(0, entries), ax_p.set_ylim(0, 1), ax_p.axis("off")
     for i, p in enumerate(perm):
         ax_p.add_patch(plt.Rectangle((i, 0), 1, 1, fill=True, fc="#dde7f5" if i % 2 else "#f5e3dd", ec="k"))
         ax_p.text(i + 0.5, 0.5, str(int(p)), ha="center", va="center", fontsize=8)
-        ax_p.text(i + 0.5, 1.15, str(i), ha="center", va="bottom", fontsize=7, color="0.4")
-    ax_p.set_title(f"permutation table (first {entries} of {table_size} entries): lattice point i -> table index", fontsize=9)
-    ax_t = fig.add_axes([0.66, 0.45, 0.31, 0.45])
+        ax_p.text(i + 0.5, -0.12, str(i), ha="center", va="top", fontsize=7, color="0.4")
+    ax_p.set_title(f"(a) permutation table, first {entries} of {table_size} entries: lattice point i (grey) -> table "
+                   "index (in the box)", fontsize=9, pad=6)
+    ax_t = fig.add_axes([0.67, 0.42, 0.30, 0.47])
     j = np.arange(table_size)
     ax_t.bar(j, noise.positive, width=1.0, color="#c0504d")
     ax_t.bar(j, noise.negative, width=1.0, color="#4f81bd")
     ax_t.scatter(perm[::2], noise.positive[perm[::2]], color="k", s=12, zorder=3)
     ax_t.scatter(perm[1::2], noise.negative[perm[1::2]], color="k", s=12, zorder=3)
-    ax_t.set_title("random-number tables: (0, 1] (red) and [-1, 0) (blue)", fontsize=9)
+    ax_t.set_title("(b) random-number tables: (0, 1] (red), [-1, 0) (blue);\nblack: the entries the permutation picks",
+                   fontsize=9)
     ax_t.set_xlabel("table index"), ax_t.set_ylim(-1.05, 1.05)
-    ax_b = fig.add_axes([0.05, 0.08, 0.55, 0.5])
-    ax_b.vlines(idx, 0, basis, color="k", lw=2)
+    ax_b = fig.add_axes([0.05, 0.08, 0.55, 0.58])
+    ax_b.vlines(idx, 0, basis, color="k", lw=2, label="basis: table[sign of i][perm[i]]")
     ax_b.plot(idx, basis, "ko", ms=4)
     smooth = LatticeNoise(1, seed=seed, kernel="catmull-rom", alternation="lattice", table_size=table_size)
     xs = np.linspace(0, entries - 1, 400)
-    ax_b.plot(xs, smooth(xs[:, None]), color="C2", lw=1.5, label="interpolated (catmull-rom), rescaled into [-1, 1]")
+    through = smooth(xs[:, None]) * smooth.bound      # undo the range normalisation: the curve through the stems
+    ax_b.plot(xs, through, color="C2", lw=1.5, label="Catmull-Rom interpolation (passes through every stem)")
     ax_b.axhline(0, color="0.6", lw=0.5)
-    ax_b.set_title("basis function: value at lattice point i = table[sign of i][perm[i]], signs alternating", fontsize=9)
-    ax_b.set_xlabel("lattice point i"), ax_b.legend(fontsize=8, loc="lower right")
+    ax_b.set_ylim(-1.1, 1.1)
+    ax_b.set_title("(c) the basis function: signs alternate with i", fontsize=9, loc="left")
+    ax_b.set_xlabel("lattice point i")
+    ax_b.legend(fontsize=8, loc="lower left", bbox_to_anchor=(0.0, 1.06), ncol=2, frameon=False)
+    miss = float(np.max(np.abs(smooth(idx[:, None]) * smooth.bound - basis)))
     return Result([save_figure(fig, out / "fig02.png")],
                   "How noiselab.LatticeNoise builds Phillips' basis: two tables of random numbers (one on (0, 1], one on "
-                  "[-1, 0)), a shuffled permutation table that maps each lattice point to a table entry, alternating "
-                  "between the positive and negative table, and the resulting basis function, then smoothed.",
+                  "[-1, 0)) (b), a shuffled permutation table that maps each lattice point to a table entry (a), "
+                  "alternating between the positive and negative table, and the resulting basis function (c), with the "
+                  "Catmull-Rom curve through it (LatticeNoise divides that curve by its overshoot bound 1.25 to keep "
+                  "[-1, 1]; drawn here without the division, so it meets the stems).",
                   {"basis at the lattice points equals the table entries the permutation points to": agree,
-                   "basis range": _range(basis)})
+                   "basis range": _range(basis), "largest |curve - stem| at the lattice points": miss})
 
 
 @figure("phillips", "fig03", seed="Phillips 2004, Fig. 3", title="A 5 degree arc with increasing noise amplitude (Eq. 3)",
@@ -126,30 +163,63 @@ def fig03(out, *, arc_deg, cycles_per_degree, amplitudes, points, seed):
                   "The peaks and troughs stay in place; only their size changes.", measured)
 
 
+def _independence(values, what, unit="seeds"):
+    """Sentence and numbers for correlations that independent outputs should make 0 on average."""
+    values = np.asarray(values, dtype=float)
+    m, sd = float(values.mean()), float(values.std(ddof=1))
+    se = sd / np.sqrt(len(values))
+    word = ("consistent with independent outputs (|mean| < 2 standard errors)" if abs(m) < 2 * se
+            else "not consistent with independent outputs (|mean| >= 2 standard errors)")
+    return (f"{what} over {len(values)} {unit}: mean {m:+.3f}, sd {sd:.2f}, standard error {se:.3f}: {word}; a single "
+            f"short sample scatters by the sd", [m, sd])
+
+
 @figure("phillips", "fig04", seed="Phillips 2004, Fig. 4", title="A random trajectory: 1-D input (time), 2-D output (x, y)",
-        params=dict(seconds=2.0, fps=50, cycles_per_second=1.5, tail_seconds=1.0, size=256, seed=3),
-        quick=dict(fps=10, size=96), uses=GEOM)
-def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, seed):
+        params=dict(seconds=2.0, fps=50, cycles_per_second=1.5, tail_seconds=1.0, size=320, panels=4, seeds=64, seed=3),
+        quick=dict(fps=10, size=96, seeds=16), uses=GEOM)
+def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, seeds, seed):
     from noiselab import LatticeNoise
     from noiselab.geometry import trajectory, trajectory_frames
 
-    from .._common import save_image, save_video
+    from .._common import pyplot, save_figure, save_video
 
-    t = np.arange(int(seconds * fps)) / fps
+    plt = pyplot()
+    t = np.arange(int(round(seconds * fps)) + 1) / fps
     pts = trajectory(LatticeNoise(1, 2, seed=seed), t, frequency=cycles_per_second)
-    frames = trajectory_frames(pts, tail=int(tail_seconds * fps), size=size, limits=((-1, 1), (-1, 1)))
-    picks = np.linspace(len(frames) // 4, len(frames) - 1, 4).astype(int)
-    strip = np.concatenate([frames[i] for i in picks], axis=1)
-    files = [save_image(out / "frames.png", strip)] + save_video(out, "trajectory", frames, fps=fps)
-    return Result(files, f"A point whose (x, y) is noise of time: {seconds:g} s at {fps} frames/s, noise at "
-                         f"{cycles_per_second:g} cycles/s, drawn with a {tail_seconds:g} s tail; four frames of the video.",
-                  {"x range": _range(pts[:, 0]), "y range": _range(pts[:, 1]),
-                   "x-y correlation (independent permutations: near 0)": float(np.corrcoef(pts[:, 0], pts[:, 1])[0, 1])})
+    tail = int(round(tail_seconds * fps))
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    pad = 0.08 * float(np.max(hi - lo))
+    lim = ((lo[0] - pad, hi[0] + pad), (lo[1] - pad, hi[1] + pad))
+    frames = trajectory_frames(pts, tail=tail, size=size, limits=lim)
+    picks = np.linspace(tail, len(t) - 1, panels).astype(int)
+    fig, axes = plt.subplots(1, panels, figsize=(3.2 * panels, 3.4), layout="constrained")
+    for ax, i in zip(axes, picks):
+        seg = pts[max(0, i - tail):i + 1]
+        ax.plot(pts[:, 0], pts[:, 1], color="0.88", lw=1)              # the whole 2 s path, faint
+        ax.plot(seg[:, 0], seg[:, 1], color="0.35", lw=1.8)             # the 1 s tail
+        ax.plot(*pts[i], "ko", ms=8)
+        ax.set_xlim(*lim[0]), ax.set_ylim(*lim[1]), ax.set_aspect("equal")
+        ax.set_xticks([]), ax.set_yticks([])
+        ax.set_title(f"t = {t[i]:.2f} s (tail from {t[max(0, i - tail)]:.2f} s)", fontsize=10)
+    files = [save_figure(fig, out / "frames.png")] + save_video(out, "trajectory", frames, fps=fps)
+    r = float(np.corrcoef(pts[:, 0], pts[:, 1])[0, 1])
+    rs = [np.corrcoef(*trajectory(LatticeNoise(1, 2, seed=seed + 1 + k), t, frequency=cycles_per_second).T)[0, 1]
+          for k in range(seeds)]
+    sentence, stats = _independence(rs, f"x-y correlation of a {seconds:g} s trajectory")
+    long_t = np.arange(0, 2000.0, 0.1)
+    long = trajectory(LatticeNoise(1, 2, seed=seed), long_t, frequency=cycles_per_second)
+    r_long = float(np.corrcoef(long[:, 0], long[:, 1])[0, 1])
+    return Result(files, f"A point whose (x, y) is 2-output noise of time: {seconds:g} s at {fps} frames/s, noise at "
+                         f"{cycles_per_second:g} cycles/s; {panels} frames of the video, each with a {tail_seconds:g} s tail "
+                         f"(dark) over the whole path (faint), time stamped. This trajectory's x-y correlation is {r:+.2f}: "
+                         f"{sentence}; over 2000 s of the same seed it is {r_long:+.3f}.",
+                  {"x range": _range(pts[:, 0]), "y range": _range(pts[:, 1]), "x-y correlation, this trajectory": r,
+                   f"x-y correlation over {seeds} seeds (mean, sd)": stats, "x-y correlation over 2000 s": r_long})
 
 
 @figure("phillips", "fig05", seed="Phillips 2004, Fig. 5", title="Circles distorted in x and y by 2-D noise output",
-        params=dict(amplitudes=(0.05, 0.1, 0.2), frequencies=(0.5, 1.0, 2.0), points=720, seed=4),
-        quick=dict(points=180), uses=GEOM)
+        params=dict(amplitudes=(0.1, 0.2, 0.4), frequencies=(1.0, 2.0, 4.0), points=1440, seed=4),
+        quick=dict(points=360), uses=GEOM)
 def fig05(out, *, amplitudes, frequencies, points, seed):
     from noiselab import LatticeNoise
     from noiselab.geometry import noisy_circle
@@ -158,41 +228,196 @@ def fig05(out, *, amplitudes, frequencies, points, seed):
 
     plt = pyplot()
     field = LatticeNoise(2, 2, seed=seed)
-    fig, axes = plt.subplots(len(amplitudes), len(frequencies), figsize=(2.6 * len(frequencies), 2.6 * len(amplitudes)))
-    gaps = []
+    fig, axes = plt.subplots(len(amplitudes), len(frequencies), figsize=(3.0 * len(frequencies), 3.1 * len(amplitudes)),
+                             layout="constrained")
+    theta = np.linspace(0, 2 * np.pi, 200)
+    gaps, bumps, rms = [], {}, {}
     for r, a in enumerate(amplitudes):
         for c, f in enumerate(frequencies):
             pts = noisy_circle(field, points, radius=1.0, amplitude=a, frequency=f, mode="xy", closed=True)
             ax = axes[r, c]
-            ax.fill(pts[:, 0], pts[:, 1], color="k")
-            ax.set_xlim(-1.5, 1.5), ax.set_ylim(-1.5, 1.5), ax.set_aspect("equal"), ax.axis("off")
-            ax.set_title(f"a = {a:g}, F = {f:g}", fontsize=8)
+            ax.plot(np.cos(theta), np.sin(theta), color="0.8", lw=0.8, ls="--")
+            loop = np.vstack([pts, pts[:1]])
+            ax.plot(loop[:, 0], loop[:, 1], color="k", lw=1.6)
+            ax.set_xlim(-1.6, 1.6), ax.set_ylim(-1.6, 1.6), ax.set_aspect("equal")
+            ax.set_xticks([]), ax.set_yticks([])
+            rad = np.hypot(pts[:, 0], pts[:, 1])
+            # bumps: local maxima of the distance from the centre, counted around the closed curve
+            nb = int(np.sum((rad > np.roll(rad, 1)) & (rad >= np.roll(rad, -1))))
+            bumps[(a, f)] = nb
+            base = noisy_circle(field, points, radius=1.0, amplitude=0.0, frequency=f, mode="xy", closed=True)
+            rms[(a, f)] = float(np.sqrt(np.mean(np.sum((pts - base) ** 2, axis=1))))
+            ax.set_title(f"({'abcdefghijkl'[r * len(frequencies) + c]}) a = {a:g}, F = {f:g}\n"
+                         f"{nb} bumps, RMS shift {rms[(a, f)]:.3f}", fontsize=9)
             step = np.linalg.norm(np.diff(pts, axis=0), axis=1).mean()
             gaps.append(np.linalg.norm(pts[0] - pts[-1]) / step)
+    by_f = [float(np.mean([bumps[(a, f)] for a in amplitudes])) for f in frequencies]
+    rel = [float(np.mean([rms[(a, f)] / a for f in frequencies])) for a in amplitudes]
+    grows = all(rms[(a1, f)] < rms[(a2, f)] for f in frequencies for a1, a2 in zip(amplitudes, amplitudes[1:]))
     return Result([save_figure(fig, out / "fig05.png")],
-                  "Parametric circles, each point moved in x and y by a 2-output noise of the angle; amplitude grows "
-                  "downwards, frequency to the right. The noise is read on a circle in its 2-D input space, so the curves close.",
-                  {"closing step / mean step (1 = no seam)": [float(min(gaps)), float(max(gaps))]})
+                  "Parametric circles (dashed: the undistorted unit circle), each point moved in x and y by a 2-output "
+                  "noise of the angle; amplitude a grows downwards, frequency F (noise cells per radian) to the right. "
+                  "The noise is read on a circle in its 2-D input space, so the curves close. The bump count (local "
+                  f"maxima of the distance from the centre) {'grows' if all(np.diff(by_f) > 0) else 'does not grow'} with F: "
+                  + ", ".join(f"{b:.3g} at F = {f:g}" for b, f in zip(by_f, frequencies))
+                  + f" (mean over the rows). The RMS shift {'grows' if grows else 'does not always grow'} with a in "
+                  f"every column, in proportion: RMS shift / a = {', '.join(f'{x:.3f}' for x in rel)} by row.",
+                  {"closing step / mean step (1 = no seam)": [float(min(gaps)), float(max(gaps))],
+                   "bumps per circle, rows a, columns F": [[bumps[(a, f)] for f in frequencies] for a in amplitudes],
+                   "RMS shift per circle, rows a, columns F": [[rms[(a, f)] for f in frequencies] for a in amplitudes]})
+
+
+def _taps_1d(kernel, x):
+    """Lattice points and weights of a noiselab kernel at the points ``x`` (1-D): ``(points, weights)``, shape (len(x), taps)."""
+    x = np.asarray(x, dtype=float)
+    u = x + kernel.shift
+    i0 = np.floor(u)
+    t = u - i0
+    k = np.arange(kernel.taps)
+    pts = (i0[:, None] - kernel.left + k[None, :]).astype(np.int64)
+    powers = t[:, None] ** np.arange(kernel.coef.shape[1])[None, :]
+    return pts, powers @ kernel.coef[:kernel.taps].T
+
+
+@figure("phillips", "fig06", seed="Phillips 2004, Fig. 6", title="2-D noise from planes of 1-D basis functions, one per integer y",
+        params=dict(point=(14.0, 1.0), planes=(-1, 4), xrange=(9, 20), kernel="cubic", checks=200, seed=6),
+        quick=dict(checks=20), uses=NOISE)
+def fig06(out, *, point, planes, xrange, kernel, checks, seed):
+    from noiselab import LatticeNoise
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    noise = LatticeNoise(2, seed=seed, kernel=kernel)
+    K = noise.kernel
+    n = noise.table_size
+    P = noise.perms[0]
+
+    def lattice(iy, ix):
+        """Value at the lattice point (y, x): the nested permutation of section 2.4.1, table[P[P[y] + x]]."""
+        iy, ix = np.broadcast_arrays(np.asarray(iy) % n, np.asarray(ix) % n)
+        return noise.values[(iy + ix) & 1, P[(P[iy] + ix) % n]]
+
+    def plane(iy, x):
+        """The 1-D basis function of plane y = iy (a row of lattice values), smoothed along x by the kernel."""
+        pts, w = _taps_1d(K, x)
+        return np.sum(w * lattice(iy, pts), axis=1)
+
+    def derived(y, x):
+        """Filter across the planes: f(y) = sum_j w(y - j) plane_j(x), then noiselab's range normalisation."""
+        pts, w = _taps_1d(K, np.atleast_1d(y))
+        rows = np.array([[plane(j, np.atleast_1d(xx))[0] for j, xx in zip(row, [x] * len(row))] for row in pts])
+        return np.sum(w * rows, axis=1) / noise.bound
+
+    px, py = point
+    # the construction agrees with noiselab's evaluator (which takes (y, x): axis 0 is the plane index)
+    rng = np.random.default_rng(seed)
+    test = rng.uniform(-40, 40, (checks, 2))
+    ours = np.array([derived(yy, xx)[0] for yy, xx in test])
+    err = float(np.max(np.abs(ours - noise(test))))
+    linear = LatticeNoise(2, seed=seed, kernel="linear")
+    grid_y, grid_x = np.meshgrid(np.arange(*planes), np.arange(*xrange), indexing="ij")
+    at_integers = linear(np.stack([grid_y.ravel(), grid_x.ravel()], 1).astype(float)).reshape(grid_y.shape) * linear.bound
+    table_ok = bool(np.max(np.abs(lattice(grid_y, grid_x) - at_integers)) < 1e-12)
+    value = float(derived(py, px)[0])
+    direct = float(noise(np.array([[py, px]]))[0])
+
+    xs = np.linspace(xrange[0], xrange[1] - 1, 400)
+    ix = np.arange(xrange[0], xrange[1])
+    ys = np.arange(*planes)
+    fig = plt.figure(figsize=(16, 4.8), layout="constrained")
+    gs = fig.add_gridspec(1, 3, width_ratios=[1, 1.3, 0.8])
+    # (a) one plane
+    ax = fig.add_subplot(gs[0])
+    iy = int(np.floor(py))
+    ax.vlines(ix, 0, lattice(iy, ix), color="k", lw=1)
+    ax.plot(ix, lattice(iy, ix), "ko", ms=3, label="lattice values table[P[P[y] + x]]")
+    ax.plot(xs, plane(iy, xs), color="C0", lw=1.5, label=f"smoothed ({kernel})")
+    ax.axvline(px, color="C3", lw=0.8, ls="--")
+    ax.axhline(0, color="0.6", lw=0.5)
+    ax.set_ylim(-1.15, 1.45), ax.set_xlabel("x"), ax.legend(fontsize=8, loc="upper left", ncol=1)
+    ax.set_title(f"(a) the 1-D basis function of plane y = {iy}", fontsize=10, loc="left")
+    # (b) the planes, one per integer y, and the values at x = px across them
+    ax3 = fig.add_subplot(gs[1], projection="3d")
+    at_px = np.array([plane(j, np.array([px]))[0] for j in ys])
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    for j, vj in zip(ys, at_px):
+        corners = [(xrange[0], j, -1), (xrange[1] - 1, j, -1), (xrange[1] - 1, j, 1), (xrange[0], j, 1)]
+        ax3.add_collection3d(Poly3DCollection([corners], facecolor=(0.55, 0.7, 0.9, 0.12), edgecolor="0.6", lw=0.5))
+        ax3.plot(xs, np.full_like(xs, j), plane(j, xs), color="C0", lw=1.2)
+        ax3.plot([px, px], [j, j], [0, vj], color="C3", lw=0.8)
+        ax3.scatter([px], [j], [vj], color="C3", s=16, depthshade=False)
+    yy = np.linspace(ys[0], ys[-1], 200)
+    across = np.array([derived(t, px)[0] for t in yy]) * noise.bound
+    ax3.plot(np.full_like(yy, px), yy, across, color="C3", lw=2)
+    ax3.scatter([px], [py], [value * noise.bound], color="k", s=40, depthshade=False)
+    ax3.set_xlabel("x"), ax3.set_ylabel("y (plane)"), ax3.set_zlabel("value")
+    ax3.set_zlim(-1, 1), ax3.set_ylim(ys[0] - 0.3, ys[-1] + 0.3), ax3.set_yticks(ys), ax3.view_init(elev=18, azim=-38)
+    ax3.set_title(f"(b) planes y = {ys[0]}..{ys[-1]}; red: their values at x = {px:g} and the curve across them",
+                  fontsize=10, loc="left")
+    # (c) the function across the planes, sampled at y = py
+    axc = fig.add_subplot(gs[2])
+    axc.plot(ys, at_px, "o", color="C3", ms=5, label=f"plane values at x = {px:g}")
+    axc.plot(yy, across, color="C3", lw=1.5, label="filtered across y")
+    axc.plot([py], [value * noise.bound], "ko", ms=7)
+    axc.annotate(f"noise({{{px:g}, {py:g}}}) = {value:.4f}", (py, value * noise.bound), xytext=(12, 28),
+                 textcoords="offset points", fontsize=9, arrowprops=dict(arrowstyle="->", lw=0.8))
+    axc.axhline(0, color="0.6", lw=0.5), axc.set_xlabel("y"), axc.set_ylim(-1.15, 1.45), axc.set_xticks(ys)
+    axc.legend(fontsize=8, loc="upper left")
+    axc.set_title(f"(c) across the planes at x = {px:g}, sampled at y = {py:g}", fontsize=10, loc="left")
+    agree = "equal" if err < 1e-12 else "differ"
+    return Result([save_figure(fig, out / "fig06.png")],
+                  "How noiselab.LatticeNoise extends 1-D noise to a 2-D input (section 2.4.1). Every integer y has its own "
+                  "1-D basis function along x: the lattice values table[P[P[y] + x]] (the nested permutation, alternating "
+                  f"table, {n} entries) smoothed by the {kernel} B-spline; (a) shows the one at y = {int(np.floor(py))}. (b) The "
+                  f"planes side by side: for the input {{x, y}} = {{{px:g}, {py:g}}} each plane gives its value at x = {px:g} "
+                  f"(red dots), and those values, filtered across y by the same kernel and sampled at y = {py:g} (c), are "
+                  f"noise({{{px:g}, {py:g}}}). This construction and noiselab's evaluator {agree} (largest difference "
+                  f"{err:.1e} over {checks} random points; 'equal' means below 1e-12).",
+                  {f"derived value at {{{px:g}, {py:g}}}": value, "noiselab's value there": direct,
+                   f"largest |construction - noiselab| over {checks} random points": err,
+                   "lattice values table[P[P[y] + x]] equal linear-kernel noise at the integers (to 1e-12)": table_ok})
+
+
+def _anisotropy_words(value):
+    """The word for an anisotropy index, by thresholds stated in the caption."""
+    if value < 0.05:
+        return f"{value:.2f}: isotropic (< 0.05; white and 1/f noise give 0.004-0.01)"
+    if value < 0.5:
+        return f"{value:.2f}: mildly anisotropic (0.05-0.5)"
+    return (f"{value:.2f}: strongly anisotropic (>= 0.5): the axis-aligned four-fold cross that every single-octave "
+            "lattice noise shows (see lab/kernels)")
 
 
 @figure("phillips", "fig07", seed="Phillips 2004, Fig. 7", title="2-D noise varying over time (3-D input, scalar output)",
-        params=dict(frames=48, size=256, cells=4.0, cells_per_frame=0.05, seed=5), quick=dict(frames=8, size=64), uses=NOISE)
-def fig07(out, *, frames, size, cells, cells_per_frame, seed):
+        params=dict(frames=48, size=256, cells=4.0, cells_per_frame=0.05, panels=4, seed=5),
+        quick=dict(frames=8, size=64), uses=NOISE)
+def fig07(out, *, frames, size, cells, cells_per_frame, panels, seed):
     from noiselab import LatticeNoise, analysis
 
-    from .._common import save_image, save_video
+    from .._common import pyplot, save_figure, save_video
 
+    plt = pyplot()
     noise = LatticeNoise(3, seed=seed)
     vol = noise.grid((frames, size, size), [(0, frames * cells_per_frame), (0, cells), (0, cells)])
-    video = (vol + 1) / 2
-    picks = np.linspace(0, frames - 1, 4).astype(int)
-    strip = np.concatenate([np.pad(video[i], 2, constant_values=1) for i in picks], axis=1)
-    files = [save_image(out / "frames.png", strip)] + save_video(out, "solid_noise", video)
+    lo, hi = float(vol.min()), float(vol.max())
+    video = (vol - lo) / (hi - lo)          # grey levels stretched over the measured range
+    picks = np.linspace(0, frames - 1, panels).astype(int)
+    fig, axes = plt.subplots(1, panels, figsize=(3.2 * panels, 3.5), layout="constrained")
+    for ax, i in zip(axes, picks):
+        ax.imshow(video[i], cmap="gray", vmin=0, vmax=1)
+        ax.set_xticks([]), ax.set_yticks([])
+        ax.set_title(f"frame {i}: t = {i * cells_per_frame:.2f} cells", fontsize=10)
+    files = [save_figure(fig, out / "frames.png")] + save_video(out, "solid_noise", video)
+    aniso = analysis.anisotropy(vol[0], window="hann")
     return Result(files, f"noise(x, y, t) as grey level: {size} x {size} pixels over {cells:g} lattice cells, time moving "
-                         f"{cells_per_frame:g} cells per frame; four frames and the video. The time axis could as well be "
-                         "a third spatial axis (solid noise).",
-                  {"range": _range(vol), "anisotropy of frame 0": analysis.anisotropy(vol[0]),
-                   "roll-off slope above the lattice frequency": float(analysis.spectral_slope(vol[0], (2 * cells, 8 * cells)))})
+                         f"{cells_per_frame:g} cells per frame; {panels} frames and the video. Grey levels stretch the "
+                         f"measured range [{lo:.2f}, {hi:.2f}] to black..white. The time axis could as well be a third "
+                         f"spatial axis (solid noise). Anisotropy of frame 0 (Hann window) {_anisotropy_words(aniso)}.",
+                  {"range": _range(vol), "anisotropy of frame 0 (Hann window)": aniso,
+                   "roll-off slope above the lattice frequency": float(analysis.spectral_slope(vol[0], (2 * cells, 8 * cells),
+                                                                                            window="hann"))})
 
 
 def _render(meshes, path, size, **kw):
@@ -221,7 +446,7 @@ def _render_tiles(meshes, path, labels, columns=3, cell=300, **kw):
 
 
 @figure("phillips", "fig08", seed="Phillips 2004, Fig. 8", title="A Monge surface z = noise(x, y) and its depth map",
-        params=dict(grid=128, cells=4.0, amplitude=0.6, size=480, seed=6), quick=dict(grid=32, size=160), uses=GEOM)
+        params=dict(grid=160, cells=4.0, amplitude=1.6, size=480, seed=6), quick=dict(grid=32, size=160), uses=GEOM)
 def fig08(out, *, grid, cells, amplitude, size, seed):
     from noiselab import LatticeNoise, analysis
     from noiselab.geometry import height_map, height_map_image, monge_surface
@@ -229,13 +454,19 @@ def fig08(out, *, grid, cells, amplitude, size, seed):
     noise = LatticeNoise(2, seed=seed)
     ext = ((0.0, cells), (0.0, cells))
     surf = monge_surface(noise, (grid, grid), ext, amplitude=amplitude)
-    h = height_map(noise, (grid, grid), ext)
-    files = [_render(surf, out / "surface.png", size, elevation=10), out / "depth.png"]
+    h = height_map(noise, (size, size), ext)           # the depth map at the render's pixel size
+    lim = float(np.abs(h).max()) * amplitude
+    files = [_render(surf, out / "surface.png", size, elevation=-12, scalars="height", cmap="gist_earth",
+                     clim=(-1.15 * lim, 1.15 * lim)), out / "depth.png"]
     height_map_image(h, files[1])
+    aniso = analysis.anisotropy(h, window="hann")
     return Result(files, f"Left: perspective view of z = {amplitude:g} noise(x, y) over {cells:g} x {cells:g} lattice cells "
-                         f"({grid} x {grid} vertices); right: the depth map, lighter = higher.",
-                  {"range": _range(h), "anisotropy": analysis.anisotropy(h),
-                   "roll-off slope above the lattice frequency": float(analysis.spectral_slope(h, (2 * cells, grid / 2 - 1)))})
+                         f"({grid} x {grid} vertices), coloured by height (gist_earth: low blue-green to high white); right: "
+                         f"the depth map, {size} x {size} pixels like the render, lighter = higher. Anisotropy "
+                         f"{_anisotropy_words(aniso)}.",
+                  {"range": _range(h), "anisotropy (Hann window)": aniso,
+                   "roll-off slope above the lattice frequency": float(analysis.spectral_slope(h, (2 * cells, size / 4),
+                                                                                            window="hann"))})
 
 
 @figure("phillips", "fig09", seed="Phillips 2004, Fig. 9", title="A 2-D flow field: 2-D input, 2-D output",
@@ -279,8 +510,8 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
 
 
 @figure("phillips", "fig11", seed="Phillips 2004, Fig. 11", title="Height and colour from one vector-valued noise",
-        params=dict(grid=96, cells=3.0, size=400, seed=9), quick=dict(grid=24, size=140), uses=GEOM)
-def fig11(out, *, grid, cells, size, seed):
+        params=dict(grid=96, cells=3.0, size=400, seeds=32, seed=9), quick=dict(grid=24, size=140, seeds=8), uses=GEOM)
+def fig11(out, *, grid, cells, size, seeds, seed):
     from noiselab import LatticeNoise
     from noiselab.geometry import colored_surface, render_mesh
 
@@ -291,16 +522,35 @@ def fig11(out, *, grid, cells, size, seed):
     rgb = colored_surface(LatticeNoise(2, 4, seed=seed + 1), (grid, grid), ext, color="rgb")
     imgs = [render_mesh(m, size=size, elevation=15) for m in (hue, rgb)]
     pair = np.concatenate([imgs[0], np.full((imgs[0].shape[0], 12, 3), 255, np.uint8), imgs[1]], axis=1)
-    cols = np.asarray(rgb.visual.vertex_colors)[:, :3]
+    cols = np.asarray(rgb.visual.vertex_colors)[:, :3].astype(float)
+    here = [float(np.corrcoef(cols[:, i], cols[:, j])[0, 1]) for i, j in ((0, 1), (0, 2), (1, 2))]
+    # over only 3 x 3 lattice cells two independent smooth fields correlate by chance: the spread over seeds says how much
+    pooled = []
+    for k in range(seeds):
+        c = LatticeNoise(2, 4, seed=seed + 100 + k).grid((grid, grid), ext)[..., 1:].reshape(-1, 3)
+        pooled += [np.corrcoef(c[:, i], c[:, j])[0, 1] for i, j in ((0, 1), (0, 2), (1, 2))]
+    sentence, stats = _independence(pooled, f"the R-G, R-B, G-B correlations of 3 x 3-cell surfaces (3 pairs x {seeds} seeds)",
+                                    unit="values")
     return Result([save_image(out / "fig11.png", pair)],
                   "Left: 2-output noise, component 1 = height, component 2 = hue. Right: 4-output noise, component 1 = "
-                  "height, components 2-4 = R, G, B.",
-                  {"RGB channel correlations (independent outputs: near 0)":
-                       [float(np.corrcoef(cols[:, 0], cols[:, 1])[0, 1]), float(np.corrcoef(cols[:, 0], cols[:, 2])[0, 1]),
-                        float(np.corrcoef(cols[:, 1], cols[:, 2])[0, 1])]})
+                  f"height, components 2-4 = R, G, B. Here the RGB channels correlate by {', '.join(f'{r:+.2f}' for r in here)}; "
+                  f"{sentence}.",
+                  {"RGB channel correlations, this surface (R-G, R-B, G-B)": here,
+                   f"channel correlations over {seeds} seeds (mean, sd)": stats})
 
 
-def _octave_plots(out, name, kind, octaves, length, samples, cells, seed):
+def _slope_sentence(slopes, dim, gain=0.5, tolerance=0.25):
+    """Compare fractal-sum amplitude slopes (over seeds) with the target log2(gain) - dim/2."""
+    slopes = np.asarray(slopes, dtype=float)
+    target = np.log2(gain) - dim / 2
+    m, sd = float(slopes.mean()), float(slopes.std(ddof=1))
+    word = "matches" if abs(m - target) <= tolerance else "misses"
+    return (f"the amplitude spectrum's slope over the octaves, {m:.2f} +- {sd:.2f} (mean, sd over {len(slopes)} seeds), "
+            f"{word} the target log2(gain) - d/2 = {target:g} for gain {gain:g} in {dim}-D (within {tolerance:g}: "
+            f"{'yes' if word == 'matches' else 'no'}); 1/f (-1) would need gain {2 ** (dim / 2 - 1):.3g}"), [m, sd], target
+
+
+def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=1, zoom=None):
     from noiselab import LatticeNoise, analysis, fractal_sum, turbulence
 
     from .._common import pyplot, save_figure
@@ -310,39 +560,62 @@ def _octave_plots(out, name, kind, octaves, length, samples, cells, seed):
     x = np.linspace(0, length, samples, endpoint=False)[:, None]
     fn = fractal_sum if kind == "fractal" else turbulence
     ns = list(range(1, octaves + 1)) if kind == "fractal" else [octaves]
-    fig, axes = plt.subplots(len(ns), 1, figsize=(8, 1.5 * len(ns) + 0.6), sharex=True, squeeze=False)
+    rows = len(ns) + (1 if zoom else 0)
+    fig, axes = plt.subplots(rows, 1, figsize=(9, 1.6 * rows + 0.5), squeeze=False, layout="constrained")
     measured = {}
     for ax, n in zip(axes[:, 0], ns):
         y = fn(noise, x, n)
         ax.plot(x[:, 0], y, "k", lw=0.9)
         ax.axhline(0, color="0.7", lw=0.5)
+        ax.set_xlim(0, length)
         ax.set_title(f"n = {n} octave{'s' if n > 1 else ''}", fontsize=9, loc="left")
         measured[f"n = {n}: range"] = _range(y)
-    ylast = y
-    if kind == "fractal":
-        measured[f"n = {octaves}: amplitude slope over the octaves (1/f: -1)"] = float(
-            analysis.spectral_slope(ylast, (cells * 1.5, cells * 2 ** (octaves - 1))))
+    if zoom:
+        ax = axes[-1, 0]
+        keep = (x[:, 0] >= zoom[0]) & (x[:, 0] <= zoom[1])
+        ax.plot(x[keep, 0], y[keep], "k", lw=1.1)
+        for n in range(1, octaves + 1):   # the creases: where an octave's noise crosses zero, |noise| folds
+            o = noise(x[keep] * 2 ** (n - 1))
+            z = np.nonzero(np.diff(np.sign(o)))[0]
+            ax.plot(x[keep, 0][z], y[keep][z], "v", ms=4 + 1.2 * (octaves - n), color=f"C{n - 1}",
+                    label=f"octave {n}", ls="none")
+        ax.set_xlim(*zoom)
+        ax.legend(fontsize=8, loc="upper right", ncol=octaves, title="creases of", title_fontsize=8)
+        ax.set_title(f"zoom on x = {zoom[0]:g}..{zoom[1]:g}: each marker is a crease (one octave's noise crosses zero)",
+                     fontsize=9, loc="left")
+        axes[-2, 0].axvspan(*zoom, color="C1", alpha=0.15)
     axes[-1, 0].set_xlabel("x")
-    return [save_figure(fig, out / f"{name}.png")], measured
+    sentence = ""
+    if kind == "fractal":
+        band = (cells / 2, cells * 2 ** (octaves - 1) / 4)   # value noise holds its power below half its lattice rate
+        slopes = [analysis.spectral_slope(fn(LatticeNoise(1, seed=seed + k, frequency=cells / length), x, octaves), band,
+                                          window="hann") for k in range(seeds)]
+        sentence, stats, target = _slope_sentence(slopes, 1)
+        measured[f"n = {octaves}: amplitude slope over {band[0]:g}-{band[1]:g} cycles/plot, {seeds} seeds (mean, sd; target {target:g})"] = stats
+    return [save_figure(fig, out / f"{name}.png")], measured, sentence
 
 
 @figure("phillips", "fig12", seed="Phillips 2004, Fig. 12", title="Fractal sums of n = 1..5 octaves (Eq. 9)",
-        params=dict(octaves=5, length=10.0, samples=4096, cells=8.0, seed=10), quick=dict(samples=1024), uses=NOISE)
-def fig12(out, *, octaves, length, samples, cells, seed):
-    files, measured = _octave_plots(out, "fig12", "fractal", octaves, length, samples, cells, seed)
+        params=dict(octaves=5, length=10.0, samples=4096, cells=8.0, seeds=16, seed=10), quick=dict(samples=1024, seeds=4),
+        uses=NOISE)
+def fig12(out, *, octaves, length, samples, cells, seeds, seed):
+    files, measured, sentence = _octave_plots(out, "fig12", "fractal", octaves, length, samples, cells, seed, seeds)
     return Result(files, f"fracsum(x, n) = sum_F noise(2^F x) / 2^F for n = 1..{octaves}; the low-frequency carrier stays "
-                         f"while each octave adds detail ({cells:g} lattice cells over the plot).", measured)
+                         f"while each octave adds detail ({cells:g} lattice cells over the plot). Measured: {sentence}.",
+                  measured)
 
 
 @figure("phillips", "fig13", seed="Phillips 2004, Fig. 13", title="Turbulence: 5 octaves of |noise| (Eq. 10)",
-        params=dict(octaves=5, length=10.0, samples=4096, cells=8.0, seed=10), quick=dict(samples=1024), uses=NOISE)
-def fig13(out, *, octaves, length, samples, cells, seed):
-    files, measured = _octave_plots(out, "fig13", "turbulence", octaves, length, samples, cells, seed)
-    return Result(files, f"turb(x, {octaves}) = sum_F |noise(2^F x)| / 2^F: the same octaves as the last panel of Fig. 12, "
-                         "rectified, so creases appear at every scale.", measured)
+        params=dict(octaves=5, length=10.0, samples=8192, cells=4.0, zoom=(2.0, 4.5), seed=10), quick=dict(samples=2048),
+        uses=NOISE)
+def fig13(out, *, octaves, length, samples, cells, zoom, seed):
+    files, measured, _ = _octave_plots(out, "fig13", "turbulence", octaves, length, samples, cells, seed, zoom=zoom)
+    return Result(files, f"turb(x, {octaves}) = sum_F |noise(2^F x)| / 2^F over {cells:g} lattice cells; below, a zoom "
+                         "with every crease marked: wherever one octave's noise crosses zero its magnitude folds, so the "
+                         "sum has a kink there, at every scale.", measured)
 
 
-def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed):
+def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed, seeds=1):
     from noiselab import LatticeNoise, analysis
     from noiselab.geometry import height_map, monge_surface
 
@@ -350,32 +623,42 @@ def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed):
     ext = ((0.0, cells), (0.0, cells))
     meshes = [monge_surface(noise, (grid, grid), ext, amplitude=amplitude, octaves=n, kind=kind, on_aliasing="ignore")
               for n in range(1, octaves + 1)]
-    _render_tiles(meshes, out / "surfaces.png", [f"n = {n}" for n in range(1, octaves + 1)], cell=size // 3,
-                  elevation=10, scalars="height", cmap="gist_earth", clim=(-amplitude * 1.2, amplitude * 1.2))
+    _render_tiles(meshes, out / "surfaces.png", [f"({'abcdefgh'[n - 1]}) n = {n}" for n in range(1, octaves + 1)],
+                  cell=size // 3, elevation=10, scalars="height", cmap="gist_earth", clim=(-amplitude * 1.2, amplitude * 1.2))
     h = height_map(noise, (grid, grid), ext, octaves=octaves, kind=kind, on_aliasing="ignore")
-    measured = {f"n = {octaves}: range": _range(h), "anisotropy": analysis.anisotropy(h),
-                f"n = {octaves}: amplitude slope over the octaves (1/f: -1)":
-                    float(analysis.spectral_slope(h, (cells * 1.5, min(grid / 2 - 1, cells * 2 ** (octaves - 1)))))}
-    return [out / "surfaces.png"], measured
+    aniso = analysis.anisotropy(h, window="hann")
+    measured = {f"n = {octaves}: range": _range(h), "anisotropy (Hann window)": aniso}
+    sentence = f"Anisotropy of the n = {octaves} height map {_anisotropy_words(aniso)}."
+    if kind == "fractal":
+        band = (cells / 2, min(grid / 4, cells * 2 ** (octaves - 1) / 4))
+        slopes = [analysis.spectral_slope(height_map(LatticeNoise(2, seed=seed + k), (grid, grid), ext, octaves=octaves,
+                                                     kind=kind, on_aliasing="ignore"), band, window="hann")
+                  for k in range(seeds)]
+        s2, stats, target = _slope_sentence(slopes, 2)
+        sentence += f" Spectrum: {s2}."
+        measured[f"n = {octaves}: amplitude slope over {band[0]:g}-{band[1]:g} cycles/frame, {seeds} seeds (mean, sd; target {target:g})"] = stats
+    return [out / "surfaces.png"], measured, sentence
 
 
 @figure("phillips", "fig14", seed="Phillips 2004, Fig. 14", title="Fractal-sum surfaces, n = 1..5 octaves",
-        params=dict(octaves=5, grid=128, cells=3.0, amplitude=0.5, size=900, seed=11), quick=dict(grid=32, size=300), uses=GEOM)
-def fig14(out, *, octaves, grid, cells, amplitude, size, seed):
-    files, measured = _octave_surfaces(out, "fractal", octaves, grid, cells, amplitude, size, seed)
-    return Result(files, f"Monge surfaces z = {amplitude:g} fracsum(x, y, n), n = 1..{octaves} from the top left, "
-                         f"{grid} x {grid} vertices over {cells:g} x {cells:g} cells; colour = height.", measured)
+        params=dict(octaves=5, grid=128, cells=3.0, amplitude=0.5, size=900, seeds=8, seed=11),
+        quick=dict(grid=32, size=300, seeds=3), uses=GEOM)
+def fig14(out, *, octaves, grid, cells, amplitude, size, seeds, seed):
+    files, measured, sentence = _octave_surfaces(out, "fractal", octaves, grid, cells, amplitude, size, seed, seeds)
+    return Result(files, f"Monge surfaces z = {amplitude:g} fracsum(x, y, n), (a)-(e): n = 1..{octaves} from the top left, "
+                         f"{grid} x {grid} vertices over {cells:g} x {cells:g} cells; colour = height. {sentence}", measured)
 
 
 @figure("phillips", "fig15", seed="Phillips 2004, Fig. 15", title="Turbulence surfaces, n = 1..5 octaves",
         params=dict(octaves=5, grid=128, cells=3.0, amplitude=0.5, size=900, seed=11), quick=dict(grid=32, size=300), uses=GEOM)
 def fig15(out, *, octaves, grid, cells, amplitude, size, seed):
-    files, measured = _octave_surfaces(out, "turbulence", octaves, grid, cells, amplitude, size, seed)
-    return Result(files, f"The same octaves summed as magnitudes (Eq. 10): z = {amplitude:g} turb(x, y, n), n = 1..{octaves}. "
-                         "Creases make mountain-like ridges.", measured)
+    files, measured, sentence = _octave_surfaces(out, "turbulence", octaves, grid, cells, amplitude, size, seed)
+    return Result(files, f"The same octaves summed as magnitudes (Eq. 10): z = {amplitude:g} turb(x, y, n), (a)-(e): "
+                         f"n = 1..{octaves}. The folds of |noise| make crease lines along the valleys. {sentence}", measured)
 
 
-def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_frequency=np.inf):
+def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_frequency=np.inf, max_subdivisions=6,
+             min_frequency=0.0):
     """Displace a sphere (or ``base``) per (amplitude, frequency, octaves, kind); return meshes and radial ranges.
 
     Each sphere is subdivided for its highest octave, but not for more than ``max_frequency``.
@@ -384,8 +667,9 @@ def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_fr
 
     meshes, ranges = [], []
     for a, f, n, kind in specs:
-        top = min(f * 2 ** (n - 1), max_frequency)
-        mesh = base if base is not None else sphere_for_noise(top, radius, samples_per_period=samples_per_period, max_subdivisions=6)
+        top = max(min(f * 2 ** (n - 1), max_frequency), min_frequency)   # min_frequency: a smooth silhouette
+        mesh = base if base is not None else sphere_for_noise(top, radius, samples_per_period=samples_per_period,
+                                                                        max_subdivisions=max_subdivisions)
         d = displace(mesh, field, amplitude=a, frequency=f, octaves=n, kind=kind, on_aliasing="ignore")
         meshes.append(d)
         if a:
@@ -394,63 +678,98 @@ def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_fr
 
 
 @figure("phillips", "fig16", seed="Phillips 2004, Fig. 16", title="Unit spheres displaced by noise (Eq. 11): amplitude, then frequency",
-        params=dict(amplitudes=(0.05, 0.1, 0.2, 0.3), frequency=2.0, frequencies=(1.0, 2.0, 4.0, 8.0), amplitude=0.1, size=640, seed=12),
-        quick=dict(frequencies=(1.0, 2.0, 3.0, 4.0), size=240), uses=GEOM)
+        params=dict(amplitudes=(0.1, 0.2, 0.3, 0.4), frequency=2.0, frequencies=(1.0, 2.0, 4.0, 8.0), amplitude=0.25,
+                    size=1000, seed=12),
+        quick=dict(frequencies=(1.0, 2.0, 3.0, 4.0), size=400), uses=GEOM)
 def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
     from noiselab import LatticeNoise
-    from noiselab.geometry import arrange
 
     field = LatticeNoise(3, seed=seed)
-    left, r1 = _spheres(field, [(a, frequency, 1, "fractal") for a in amplitudes])
-    right, r2 = _spheres(field, [(amplitude, f, 1, "fractal") for f in frequencies])
-    files = [_render(arrange(left, columns=2), out / "amplitude.png", size, view="xy"),
-             _render(arrange(right, columns=2), out / "frequency.png", size, view="xy")]
+    first, r1 = _spheres(field, [(a, frequency, 1, "fractal") for a in amplitudes])
+    second, r2 = _spheres(field, [(amplitude, f, 1, "fractal") for f in frequencies])
+    cell = size // 4
+    lim = 0.5 * max(max(amplitudes), amplitude)
+    kw = dict(view="xy", scalars="displacement", cmap="RdBu_r", clim=(-lim, lim))
+    files = [_render_tiles(first, out / "amplitude.png", [f"({t}) a = {a:g}, F = {frequency:g}" for t, a in zip("abcd", amplitudes)],
+                           columns=4, cell=cell, **kw),
+             _render_tiles(second, out / "frequency.png", [f"({t}) a = {amplitude:g}, F = {f:g}" for t, f in zip("efgh", frequencies)],
+                           columns=4, cell=cell, **kw)]
     allr = np.concatenate(r1 + r2)
-    return Result(files, f"p' = p + s n_p with s = a noise(F p). Left: F = {frequency:g}, a = "
-                         f"{', '.join(f'{a:g}' for a in amplitudes)} (left to right, top to bottom). Right: a = {amplitude:g}, "
-                         f"F = {', '.join(f'{f:g}' for f in frequencies)}. Each sphere is subdivided to the resolution its "
-                         "noise needs (4 vertices per period).",
+    rms = [float(np.sqrt(np.mean(r ** 2))) for r in r1 + r2]
+    return Result(files, f"p' = p + s n_p with s = a noise(F p), seen along z. Top row (a)-(d): F = {frequency:g}, a = "
+                         f"{', '.join(f'{a:g}' for a in amplitudes)}. Bottom row (e)-(h): a = {amplitude:g}, "
+                         f"F = {', '.join(f'{f:g}' for f in frequencies)}. Colour: the displacement s, red outwards, blue "
+                         f"inwards, on one scale (+-{lim:g}) for every sphere, so small low-frequency bumps show too. Each sphere "
+                         "is subdivided to the resolution its noise needs (4 vertices per period).",
                   {"displacement / amplitude range (within [-1, 1])": _range(allr),
-                   "vertices per sphere": [len(m.vertices) for m in left + right]})
+                   "RMS displacement / amplitude per sphere, (a)-(h)": rms,
+                   "vertices per sphere": [len(m.vertices) for m in first + second]})
 
 
 @figure("phillips", "fig17", seed="Phillips 2004, Fig. 17", title="Spheres displaced by fractal (left) and turbulent (right) sums, n = 1..6",
-        params=dict(octaves=6, frequency=1.5, amplitude=0.15, max_frequency=12.0, size=640, seed=13),
-        quick=dict(octaves=3, size=240), uses=GEOM)
-def fig17(out, *, octaves, frequency, amplitude, max_frequency, size, seed):
+        params=dict(octaves=6, frequency=1.0, amplitude=0.3, samples_per_period=3.0, size=900, seed=13),
+        quick=dict(octaves=3, size=360), uses=GEOM)
+def fig17(out, *, octaves, frequency, amplitude, samples_per_period, size, seed):
     from noiselab import LatticeNoise
-    from noiselab.geometry import arrange
+    from noiselab.geometry import resolution_report
 
     field = LatticeNoise(3, seed=seed)
-    kw = dict(samples_per_period=2.0, max_frequency=max_frequency)
+    kw = dict(samples_per_period=samples_per_period, max_subdivisions=8, min_frequency=4.0)
     frac, rf = _spheres(field, [(amplitude, frequency, n, "fractal") for n in range(1, octaves + 1)], **kw)
     turb, rt = _spheres(field, [(amplitude, frequency, n, "turbulence") for n in range(1, octaves + 1)], **kw)
-    files = [_render(arrange(frac, columns=3), out / "fractal.png", (size * 2 // 3, size), view="xy"),
-             _render(arrange(turb, columns=3), out / "turbulence.png", (size * 2 // 3, size), view="xy")]
-    return Result(files, f"s = a fracsum(F p, n) (left) and a turb(F p, n) (right), a = {amplitude:g}, F = {frequency:g}, "
-                         f"n = 1..{octaves} from the top left; meshes subdivided for the highest octave (2 vertices per "
-                         f"period) up to {max_frequency:g} cycles/unit; octaves above that (amplitude <= 1/16) are sampled coarsely.",
+    spp = [resolution_report(m, frequency * 2 ** (n - 1)).samples_per_period for n, m in zip(range(1, octaves + 1), frac)]
+    labels = "abcdefghijklmnop"
+    cell = size // 3
+    files = [_render_tiles(frac, out / "fractal.png", [f"({labels[n - 1]}) fractal, n = {n}" for n in range(1, octaves + 1)],
+                           columns=3, cell=cell, view="xy"),
+             _render_tiles(turb, out / "turbulence.png",
+                           [f"({labels[octaves + n - 1]}) turbulence, n = {n}" for n in range(1, octaves + 1)],
+                           columns=3, cell=cell, view="xy")]
+    ok = min(spp) >= 2.0     # Nyquist: at least two vertices per period along the longest edge
+    return Result(files, f"s = a fracsum(F p, n) ({labels[0]})-({labels[octaves - 1]}) and a turb(F p, n) "
+                         f"({labels[octaves]})-({labels[2 * octaves - 1]}), a = {amplitude:g}, F = {frequency:g}, n = 1..{octaves} "
+                         "from the top left. Every sphere is an icosphere subdivided until its longest edge gives "
+                         f"{samples_per_period:g} vertices per period of its finest octave (F 2^(n-1) cycles/unit); measured "
+                         f"along the longest edge of the displaced mesh: {min(spp):.2f} to {max(spp):.2f} "
+                         f"({'every octave resolved: >= 2, Nyquist' if ok else 'NOT every octave resolved: < 2, Nyquist'}), "
+                         f"{len(frac[0].vertices):,} to {len(frac[-1].vertices):,} vertices.",
                   {"fractal: displacement / amplitude range": _range(np.concatenate(rf)),
-                   "turbulence: displacement / amplitude range (>= 0)": _range(np.concatenate(rt))})
+                   "turbulence: displacement / amplitude range (>= 0)": _range(np.concatenate(rt)),
+                   "samples per period of the finest octave (longest edge), n = 1..": spp,
+                   "vertices per sphere, n = 1..": [len(m.vertices) for m in frac]})
 
 
-@figure("phillips", "fig18", seed="Phillips 2004, Fig. 18", title="Any mesh: a bundled model displaced with s = 0 to 0.5",
-        params=dict(model="ant", amplitudes=(0.0, 0.1, 0.2, 0.3, 0.4, 0.5), scale=0.4, frequency=3.0, size=720, seed=14),
-        quick=dict(amplitudes=(0.0, 0.25, 0.5), size=240), uses=GEOM)
-def fig18(out, *, model, amplitudes, scale, frequency, size, seed):
+@figure("phillips", "fig18", seed="Phillips 2004, Fig. 18", title="Any mesh: a cow displaced with s = 0 to 0.5 in steps of 0.1",
+        params=dict(amplitudes=(0.0, 0.1, 0.2, 0.3, 0.4, 0.5), scale=0.6, frequency=2.0, resolution=96, size=900, seed=14),
+        quick=dict(amplitudes=(0.0, 0.25, 0.5), resolution=48, size=360), uses=GEOM)
+def fig18(out, *, amplitudes, scale, frequency, resolution, size, seed):
     from noiselab import LatticeNoise
-    from noiselab.geometry import load_model, subdivide_for_noise
+    from noiselab.geometry import resolution_report, subdivide_for_noise
 
-    base = subdivide_for_noise(load_model(model, size=2.0), frequency)
+    from .._common import cow
+
+    base = subdivide_for_noise(cow(resolution, size=2.0), frequency)
     field = LatticeNoise(3, seed=seed)
     meshes, ranges = _spheres(field, [(scale * a, frequency, 1, "fractal") for a in amplitudes], base=base)
-    files = [_render_tiles(meshes, out / "fig18.png", [f"s = {a:g}" for a in amplitudes], cell=size // 3, view="xz")]
-    return Result(files, f"The paper's cow is not available offline; pyvista's bundled '{model}' model stands in, scaled to "
-                         f"size 2 and subdivided for noise of frequency {frequency:g} ({len(base.vertices)} vertices), "
-                         f"displaced with s = {', '.join(f'{a:g}' for a in amplitudes)} times {scale:g} (the model is 2 units "
-                         f"long, so s = 0.5 moves a vertex by up to {0.5 * scale:g}); seen from above.",
+    n0 = base.face_normals
+    flipped = [np.einsum("ij,ij->i", n0, m.face_normals) < 0 for m in meshes]
+    flips = [int(f.sum()) for f in flipped]
+    area = [float(base.area_faces[f].sum() / base.area) for f in flipped]
+    labels = [f"({t}) s = {a:g}: {f:,} flipped" for t, a, f in zip("abcdefgh", amplitudes, flips)]
+    files = [_render_tiles(meshes, out / "fig18.png", labels, columns=3, cell=size // 3, view="xz", azimuth=35,
+                           elevation=15)]
+    rep = resolution_report(base, frequency)
+    return Result(files, "The paper's cow, built in code as a stand-in (no model file ships offline): a smooth union of "
+                         "ellipsoids contoured by VTK's marching cubes, closed and in one part, 2 units long, subdivided "
+                         f"for noise of frequency {frequency:g} ({len(base.vertices):,} vertices, {rep.samples_per_period:.1f} "
+                         f"vertices per period along the longest edge), displaced along its normals by s = "
+                         f"{', '.join(f'{a:g}' for a in amplitudes)} times {scale:g} units, so s = 0.5 moves a vertex by up "
+                         f"to {0.5 * scale:g} (measured: {0.5 * scale * np.abs(np.concatenate(ranges)).max():.3g}). Each panel counts the faces whose normal turned by more than 90 degrees "
+                         f"(self-folding) out of {len(base.faces):,}: {', '.join(f'{f:,}' for f in flips)}, i.e. "
+                         f"{', '.join(f'{100 * x:.2g}%' for x in area)} of the surface area.",
                   {"displacement / amplitude range": _range(np.concatenate(ranges)) if ranges else "n/a",
-                   "vertices": len(base.vertices)})
+                   "vertices": len(base.vertices), "watertight": bool(base.is_watertight),
+                   "flipped faces per s": flips, "flipped fraction of the area per s": area, "faces": len(base.faces)})
 
 
 @figure("phillips", "fig19", seed="Phillips 2004, Fig. 19", title="Squashed spheres (5%) with noise from 0 to 10% of the radius",
@@ -469,17 +788,46 @@ def fig19(out, *, squash, amplitudes, frequency, size, seed):
 
 
 @figure("phillips", "fig20", seed="Phillips 2004, Fig. 20", title="Stimuli: constant amplitude, frequency increasing",
-        params=dict(frequencies=(0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0), amplitude=0.08, size=720, seed=16),
-        quick=dict(frequencies=(1.0, 2.0, 3.0), size=240), uses=GEOM)
-def fig20(out, *, frequencies, amplitude, size, seed):
-    from noiselab import LatticeNoise
-    from noiselab.geometry import arrange
+        params=dict(frequencies=(0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0), amplitude=0.12,
+                    candidates=(("value", "cubic"), ("value", "quintic"), ("gradient", "cubic"), ("gradient", "catmull-rom"),
+                                ("gradient", "quintic")),
+                    trial_size=256, trial_seeds=3, size=900, seed=16),
+        quick=dict(frequencies=(1.0, 2.0, 3.0), trial_size=64, trial_seeds=2, size=360), uses=GEOM)
+def fig20(out, *, frequencies, amplitude, candidates, trial_size, trial_seeds, size, seed):
+    from noiselab import LatticeNoise, analysis
 
-    meshes, ranges = _spheres(LatticeNoise(3, seed=seed, kernel="quintic"),
-                              [(amplitude, f, 1, "fractal") for f in frequencies], samples_per_period=8.0)
-    files = [_render(arrange(meshes, columns=3), out / "fig20.png", size, view="xy", colors=["#d8d2c4"] * len(meshes))]
+    # choose the basis and kernel that give the most isotropic blobs: anisotropy of 2-D slices in the blobs' band
+    # (half to twice the lattice rate), mean over seeds; also the plateau fraction (pixels whose gradient is below
+    # a tenth of its RMS), which shows the flat squares that value noise with the quintic fade makes at lattice points
+    cells = 8.0
+    scores, plateaus = {}, {}
+    for basis, kernel in candidates:
+        a, p = [], []
+        for k in range(trial_seeds):
+            img = LatticeNoise(2, seed=seed + k, basis=basis, kernel=kernel).grid((trial_size, trial_size),
+                                                                                [(0, cells), (0, cells)])
+            a.append(analysis.anisotropy(img, (cells / 2, min(2 * cells, trial_size / 2 - 1)), window="hann"))
+            gy, gx = np.gradient(img)
+            g = np.hypot(gx, gy)
+            p.append(np.mean(g < 0.1 * np.sqrt(np.mean(g ** 2))))
+        scores[f"{basis}/{kernel}"] = float(np.mean(a))
+        plateaus[f"{basis}/{kernel}"] = float(np.mean(p))
+    best = min(scores, key=scores.get)
+    basis, kernel = best.split("/")
+    meshes, ranges = _spheres(LatticeNoise(3, seed=seed, basis=basis, kernel=kernel),
+                              [(amplitude, f, 1, "fractal") for f in frequencies], samples_per_period=8.0, min_frequency=4.0)
+    labels = [f"({t}) F = {f:g}" for t, f in zip("abcdefghijkl", frequencies)]
+    files = [_render_tiles(meshes, out / "fig20.png", labels, columns=3, cell=size // 3, view="xy",
+                           colors="#d8d2c4")]
     return Result(files, f"Spheres with a = {amplitude:g} and F = {', '.join(f'{f:g}' for f in frequencies)} (left to right, "
                          "top to bottom), finely subdivided (8 vertices per period) and smooth-shaded in place of "
-                         "RenderMan's analytic spheres.",
+                         f"RenderMan's analytic spheres. The noise is {basis} noise with the {kernel} kernel, chosen as the "
+                         f"most isotropic of {', '.join(scores)} by the anisotropy of {trial_size} x {trial_size} slices over "
+                         f"{cells:g} cells in the blobs' band, {cells / 2:g}-{2 * cells:g} cycles/frame (Hann window, mean of "
+                         f"{trial_seeds} seeds; 0 = isotropic): " + ", ".join(f"{k} {v:.3f}" for k, v in scores.items())
+                         + ". Plateau fraction (gradient below a tenth of its RMS): "
+                         + ", ".join(f"{k} {100 * v:.1f}%" for k, v in plateaus.items()) + ".",
                   {"displacement / amplitude range": _range(np.concatenate(ranges)),
+                   "anisotropy of the candidates (mean over seeds)": ", ".join(f"{k}: {v:.3f}" for k, v in scores.items()),
+                   "plateau fraction of the candidates": ", ".join(f"{k}: {v:.3f}" for k, v in plateaus.items()),
                    "vertices per sphere": [len(m.vertices) for m in meshes]})

@@ -21,6 +21,7 @@ import numpy as np
 
 from .._validate import check_finite_array, check_int, check_memory, check_real
 from ._kernels import face_pass, unit_rows
+from ._mesh import AliasingWarning, as_trimesh  # noqa: F401  (defined in the leaf module _mesh; re-exported here)
 from .fields import evaluate_field, field_max_frequency, octave_field
 
 __all__ = [
@@ -33,42 +34,6 @@ __all__ = [
     "subdivide_for_noise",
     "as_trimesh",
 ]
-
-
-class AliasingWarning(UserWarning):
-    """The mesh is too coarse for the field's highest frequency."""
-
-
-def as_trimesh(mesh, *, name="mesh"):
-    """Return ``mesh`` as a ``trimesh.Trimesh`` (accepts a Trimesh, a pyvista PolyData, or a one-mesh Scene).
-
-    A point cloud, a mesh without faces or with non-triangle faces that cannot
-    be triangulated is a clear error: displacement needs faces to define normals.
-    """
-    import trimesh
-
-    if isinstance(mesh, trimesh.Trimesh):
-        out = mesh
-    elif isinstance(mesh, trimesh.Scene):
-        geoms = [g for g in mesh.geometry.values() if isinstance(g, trimesh.Trimesh)]
-        if not geoms:
-            raise ValueError(f"{name} is a scene without any triangle mesh (a point cloud or paths only)")
-        out = mesh.to_mesh() if len(geoms) > 1 else geoms[0]
-    elif isinstance(mesh, trimesh.PointCloud):
-        raise ValueError(f"{name} is a point cloud without faces: displacement needs faces to define normals")
-    elif hasattr(mesh, "points") and hasattr(mesh, "faces") and hasattr(mesh, "triangulate"):
-        from .shapes import pyvista_to_trimesh
-
-        out = pyvista_to_trimesh(mesh)
-    else:
-        raise TypeError(f"{name} must be a trimesh.Trimesh or pyvista.PolyData, got {type(mesh).__name__}")
-    if len(out.faces) == 0:
-        raise ValueError(
-            f"{name} has no faces ({len(out.vertices)} vertices): a point cloud has no surface normals to "
-            "displace along; reconstruct a surface first"
-        )
-    check_finite_array(f"{name} vertices", np.asarray(out.vertices))
-    return out
 
 
 def _face_geometry(vertices, faces):

@@ -8,26 +8,18 @@ imported. Images are ``(height, width, 3)`` uint8 arrays, videos
 """
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import numpy as np
 
 from .._validate import check_int, check_real
+from ._mesh import _pyvista, as_trimesh, pyvista_to_trimesh, trimesh_to_pyvista
+from .displace import vertex_normals
 
 __all__ = ["render_mesh", "render_stereo_pair", "render_turntable", "render_sequence", "figure_to_array"]
 
 _VIEWS = ("iso", "xy", "xz", "yz", "yx", "zx", "zy")
 DEFAULT_COLOR = "#c8d2e6"
-
-
-def _pyvista():
-    """Import pyvista for off-screen rendering (EGL window selected before the first import)."""
-    os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
-    import pyvista as pv
-
-    pv.OFF_SCREEN = True
-    return pv
 
 
 def _size(size):
@@ -53,8 +45,6 @@ def _as_list(meshes):
 
 
 def _to_poly(mesh, name):
-    from .displace import as_trimesh
-    from .shapes import trimesh_to_pyvista
 
     if hasattr(mesh, "n_points") and hasattr(mesh, "faces"):
         surf = mesh if mesh.__class__.__name__ == "PolyData" else mesh.extract_surface()
@@ -102,8 +92,6 @@ def _plotter(meshes, *, size, colors, scalars, cmap, clim, background, smooth_sh
 
 
 def _set_normals(poly):
-    from .displace import vertex_normals
-    from .shapes import pyvista_to_trimesh
 
     if poly.is_all_triangles:
         faces = np.asarray(poly.faces).reshape(-1, 4)[:, 1:]
@@ -321,7 +309,6 @@ def render_sequence(meshes, path=None, *, fps=12.0, size=512, view="iso", azimut
     (2, 32, 32, 3)
     """
     from .._progress import progress
-    from .displace import as_trimesh
 
     spin = check_real("spin", spin)
     out = []

@@ -6,6 +6,9 @@ import math
 import numpy as np
 
 from .._validate import check_int, check_real
+from ._mesh import _pyvista, as_trimesh, pyvista_to_trimesh, trimesh_to_pyvista  # noqa: F401  (re-exported)
+from .displace import resolution_report
+from .surfaces import _grid_mesh, grid_points
 
 __all__ = [
     "sphere",
@@ -86,7 +89,6 @@ def plane(resolution=64, size=2.0):
     >>> len(p.vertices), len(p.faces), bool(p.face_normals[:, 2].min() > 0)
     (9, 8, True)
     """
-    from .surfaces import _grid_mesh, grid_points
 
     resolution = check_int("resolution", resolution, lo=2, hi=20_000)
     size = check_real("size", size, lo=0.0, lo_open=True)
@@ -115,7 +117,6 @@ def sphere_for_noise(max_frequency, radius=1.0, *, samples_per_period=4.0, max_s
     max_subdivisions = check_int("max_subdivisions", max_subdivisions, lo=0, hi=10)
     if max_frequency == 0:
         return sphere(0, radius)
-    from .displace import resolution_report
 
     for level in range(max_subdivisions + 1):
         mesh = sphere(level, radius)
@@ -126,54 +127,6 @@ def sphere_for_noise(max_frequency, radius=1.0, *, samples_per_period=4.0, max_s
         f"(> {10 * 4 ** max_subdivisions + 2:,} vertices) for {samples_per_period:g} samples per period at "
         f"{max_frequency:g} cycles/unit; lower the frequency or octaves, or raise max_subdivisions"
     )
-
-
-def pyvista_to_trimesh(poly):
-    """Convert a pyvista ``PolyData`` (any polygons; triangulated here) to a ``trimesh.Trimesh``.
-
-    Examples
-    --------
-    >>> from noiselab.geometry.render import _pyvista
-    >>> pv = _pyvista()
-    >>> len(pyvista_to_trimesh(pv.Cube()).faces)      # 6 quads -> 12 triangles
-    12
-    """
-    import trimesh
-
-    if not hasattr(poly, "extract_surface"):
-        raise TypeError(f"expected a pyvista dataset, got {type(poly).__name__}")
-    surf = poly if poly.__class__.__name__ == "PolyData" else poly.extract_surface()
-    surf = surf.triangulate()
-    if surf.n_cells == 0 or surf.faces.size == 0:
-        raise ValueError(f"the pyvista mesh has no polygon faces ({surf.n_points} points): nothing to displace")
-    faces = np.asarray(surf.faces).reshape(-1, 4)[:, 1:]
-    return trimesh.Trimesh(np.asarray(surf.points, dtype=np.float64), faces.astype(np.int64), process=False)
-
-
-def trimesh_to_pyvista(mesh):
-    """Convert a ``trimesh.Trimesh`` to a pyvista ``PolyData`` (vertex colours as ``"rgb"`` point data).
-
-    Examples
-    --------
-    >>> poly = trimesh_to_pyvista(sphere(1))
-    >>> poly.n_points, poly.n_cells
-    (42, 80)
-    """
-    from .render import _pyvista
-
-    pv = _pyvista()
-    faces = np.asarray(mesh.faces, dtype=np.int64)
-    cells = np.empty((len(faces), 4), dtype=np.int64)
-    cells[:, 0] = 3
-    cells[:, 1:] = faces
-    poly = pv.PolyData(np.asarray(mesh.vertices, dtype=np.float64), cells.ravel())
-    if mesh.visual.kind == "vertex":
-        poly.point_data["rgb"] = np.asarray(mesh.visual.vertex_colors)[:, :3]
-    for key, value in getattr(mesh, "vertex_attributes", {}).items():
-        value = np.asarray(value)
-        if value.shape[:1] == (len(mesh.vertices),) and value.dtype.kind in "fiu":
-            poly.point_data[key] = value
-    return poly
 
 
 def normalize(mesh, size=2.0):
@@ -190,7 +143,6 @@ def normalize(mesh, size=2.0):
     >>> box.extents.tolist()
     [2.0, 1.0, 0.5]
     """
-    from .displace import as_trimesh
 
     size = check_real("size", size, lo=0.0, lo_open=True)
     out = as_trimesh(mesh).copy()
@@ -218,7 +170,6 @@ def load_model(name="ant", *, size=2.0):
     """
     if name not in BUNDLED_MODELS:
         raise ValueError(f"model must be one of {', '.join(BUNDLED_MODELS)} (pyvista's bundled models), got {name!r}")
-    from .render import _pyvista
 
     _pyvista()
     from pyvista import examples
@@ -242,7 +193,6 @@ def arrange(meshes, columns=None, spacing=0.25):
     >>> [round(float(m.bounds.mean(axis=0)[0]), 6) for m in row]
     [0.0, 3.0]
     """
-    from .displace import as_trimesh
 
     meshes = [as_trimesh(m, name=f"meshes[{i}]") for i, m in enumerate(meshes)]
     if not meshes:

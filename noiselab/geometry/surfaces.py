@@ -50,7 +50,7 @@ def grid_points(shape, extent):
 def _check_grid_resolution(shape, ext, max_frequency, samples_per_period, on_aliasing):
     if on_aliasing == "ignore" or max_frequency == 0:
         return
-    from .displace import AliasingWarning
+    from ._mesh import AliasingWarning
 
     spacing = float(np.max((ext[:, 1] - ext[:, 0]) / np.asarray(list(reversed(shape)), dtype=float)))
     spp = 1.0 / (max_frequency * spacing)
