@@ -83,7 +83,7 @@ def compute(*objs, scheduler=None, progress=None):
         import distributed
 
         try:
-            client = distributed.Client(scheduler, timeout="10s")
+            client = distributed.Client(scheduler, timeout="10s", set_as_default=False)
         except OSError as exc:
             raise ValueError(f"scheduler: cannot connect to the dask scheduler at {scheduler!r}: {exc}") from None
         with client:
