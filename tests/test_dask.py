@@ -269,3 +269,48 @@ def test_cli_errors_for_chunks_without_zarr_and_an_unreachable_scheduler(tmp_pat
     assert main(["noise", "--size", "16", "--scheduler", "nonsense", "-o", str(tmp_path / "a.zarr")]) == 2
     assert "scheduler must be one of" in capsys.readouterr().err
     assert os.listdir(tmp_path) == []
+
+
+def _partition(draw, n, st):
+    """A random partition of n into positive block sizes."""
+    cuts = sorted(draw(st.sets(st.integers(1, max(n - 1, 1)), max_size=min(n - 1, 4))) if n > 1 else [])
+    edges = [0] + cuts + [n]
+    return tuple(b - a for a, b in zip(edges[:-1], edges[1:]))
+
+
+def test_any_chunking_is_bit_identical_property():
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    @st.composite
+    def cases(draw):
+        d = draw(st.integers(1, 4))
+        shape = tuple(draw(st.integers(1, {1: 40, 2: 14, 3: 9, 4: 6}[d])) for _ in range(d))
+        chunks = tuple(_partition(draw, n, st) for n in shape)
+        extent = [(draw(st.floats(-50, 50)), draw(st.floats(-50, 50))) for _ in range(d)]
+        kernel = draw(st.sampled_from(["box", "linear", "quadratic", "cubic", "catmull-rom", "quintic"]))
+        basis = draw(st.sampled_from(["value", "gradient"]))
+        return d, shape, chunks, extent, kernel, basis, draw(st.integers(1, 5)), draw(st.booleans())
+
+    @settings(max_examples=30, deadline=None, derandomize=True)
+    @given(cases())
+    def check(case):
+        d, shape, chunks, extent, kernel, basis, octaves, turb = case
+        noise = LatticeNoise(d, seed=d, kernel=kernel, basis=basis)
+        grid = Grid(shape, extent)
+        summer = turbulence if turb else fractal_sum
+        lazy = summer(noise, grid, octaves, dtype="float32", chunks=chunks)
+        assert lazy.chunks == chunks
+        assert np.array_equal(lazy.compute(scheduler="synchronous"), summer(noise, grid, octaves, dtype="float32"))
+
+    check()
+
+
+def test_progress_bars_go_to_stderr_locally_and_on_the_cluster(client, capsys):
+    x = LatticeNoise(2, seed=1).grid((32, 32), [(0, 2), (0, 2)], chunks=8).sum()
+    compute(x, scheduler="threads", progress=True)
+    err = capsys.readouterr()
+    assert "100% Completed" in err.err and err.out == ""
+    compute(x, progress=True)  # the active distributed client
+    err = capsys.readouterr()
+    assert "100% Completed" in err.err and err.out == ""
