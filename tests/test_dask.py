@@ -314,3 +314,21 @@ def test_progress_bars_go_to_stderr_locally_and_on_the_cluster(client, capsys):
     compute(x, progress=True)  # the active distributed client
     err = capsys.readouterr()
     assert "100% Completed" in err.err and err.out == ""
+
+
+def test_read_zarr_opens_stores_written_by_other_tools(tmp_path):
+    import zarr
+
+    g = zarr.open_group(str(tmp_path / "g.zarr"), mode="w")  # no consolidated metadata, no noiselab attrs
+    g.create_array("v", shape=(3, 2), dtype="f4", dimension_names=("y", "x"))[:] = np.arange(6).reshape(3, 2)
+    assert np.array_equal(read_zarr(tmp_path / "g.zarr").compute(), np.arange(6).reshape(3, 2))
+    assert read_zarr(tmp_path / "g.zarr", as_xarray=True).dims == ("y", "x")
+    g.create_array("w", shape=(2,), dtype="f4")
+    with pytest.raises(ValueError, match=r"holds arrays \['v', 'w'\]; say which"):
+        read_zarr(tmp_path / "g.zarr")
+    assert read_zarr(tmp_path / "g.zarr", name="w").shape == (2,)
+    a = zarr.open_array(str(tmp_path / "a.zarr"), mode="w", shape=(4,), dtype="i2")
+    a[:] = [1, 2, 3, 4]
+    assert read_zarr(tmp_path / "a.zarr").sum().compute() == 10
+    with pytest.raises(FileNotFoundError, match="no zarr store"):
+        read_zarr(tmp_path / "missing.zarr")

@@ -218,5 +218,8 @@ def read_zarr(path, *, name=None, as_xarray=False):
     if as_xarray:
         import xarray
 
-        return xarray.open_zarr(str(path), consolidated=True)[name]
+        try:
+            return xarray.open_zarr(str(path), consolidated=True)[name]
+        except (KeyError, ValueError):  # a store without consolidated metadata (not written by write_zarr)
+            return xarray.open_zarr(str(path), consolidated=False)[name]
     return dask_array.from_zarr(node[name])

@@ -89,7 +89,7 @@ def compute(*objs, scheduler=None, progress=None):
         with client:
             return _on_client(client, objs, progress)
     elif not isinstance(scheduler, str):
-        if type(scheduler).__name__ == "Client" and hasattr(scheduler, "compute"):
+        if "distributed" in sys.modules and isinstance(scheduler, sys.modules["distributed"].Client):
             return _on_client(scheduler, objs, progress)
         raise TypeError(f"scheduler must be None, a scheduler name, an address or a distributed.Client, "
                         f"got {type(scheduler).__name__}")
