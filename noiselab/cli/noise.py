@@ -65,7 +65,7 @@ def add_arguments(parser):
                         help="grey mapping for images and videos: the guaranteed bound ([-1, 1] for one octave) "
                              "or the data's min..max (default: bound)")
     parser.add_argument("--dtype", default="float32", choices=("float32", "float64"),
-                        help="precision of .npy output (default: float32)")
+                        help="precision of .npy and .zarr output (default: float32)")
     parser.add_argument("--fps", type=float, default=24.0, help="frames per second of a video (default: 24)")
     parser.add_argument("--chunks", default=None,
                         help="with .zarr output: chunk shape, e.g. 64 or 32x64x64, or auto (default: auto)")

@@ -170,7 +170,7 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
 
     Returns
     -------
-    ndarray, or (ndarray, int) with ``return_octaves``
+    ndarray (a lazy dask array with ``chunks``), or (array, int) with ``return_octaves``
 
     Examples
     --------
