@@ -5,6 +5,8 @@ import importlib
 
 EXTRA_HINT = "pip install 'noiselab[dask]'"
 
+_import = importlib.import_module  # one seam, so a test can make the extra look absent
+
 
 def require_dask(what="chunks=", *modules):
     """Import ``dask.array`` (and ``modules``) or raise an ImportError naming the extra.
@@ -29,7 +31,7 @@ def require_dask(what="chunks=", *modules):
     loaded = []
     for name in ("dask.array",) + tuple(modules):
         try:
-            loaded.append(importlib.import_module(name))
+            loaded.append(_import(name))
         except ImportError as exc:
             raise ImportError(f"{what} needs the optional package {name.split('.')[0]!r}, "
                               f"which is not installed: {EXTRA_HINT}") from exc
