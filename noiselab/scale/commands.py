@@ -58,7 +58,7 @@ def write_noise_zarr(args, noise, grid, summer, dtype, path):
     except (ImportError, FileExistsError) as exc:
         raise ValueError(str(exc)) from None
     chunk_shape = tuple(max(c) for c in field.chunks)
-    print(f"noiselab noise: wrote {path} shape={field.shape} chunks={chunk_shape} ({field.npartitions} tasks) "
+    print(f"noiselab noise: wrote {path} shape={field.shape} chunks={chunk_shape} ({field.npartitions} task{'s' if field.npartitions != 1 else ''}) "
           f"kernel={noise.kernel.name} basis={noise.basis} {args.kind} octaves used {used}/{args.octaves} "
           f"bound [{lo:.4f}, {hi:.4f}]")
     return 0
