@@ -345,3 +345,13 @@ def test_read_zarr_opens_stores_written_by_other_tools(tmp_path):
     assert read_zarr(tmp_path / "a.zarr").sum().compute() == 10
     with pytest.raises(FileNotFoundError, match="no zarr store"):
         read_zarr(tmp_path / "missing.zarr")
+
+
+@pytest.mark.parametrize("module", ["noiselab.scale._deps", "noiselab.scale.run", "noiselab.scale.lattice",
+                                    "noiselab.io.zarr"])
+def test_docstring_examples_run(module):
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(module), optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0
