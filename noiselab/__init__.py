@@ -12,7 +12,8 @@ Subpackages, one idea each:
 - ``noiselab.fractal``: fractal sums and turbulence over any noise
 - ``noiselab.geometry``: noise-displaced meshes, curves, surfaces, flow fields, rendering
 - ``noiselab.analysis``: spectra, slopes, isotropy, motion and seam measurements
-- ``noiselab.io``: atomic image, video and mesh I/O
+- ``noiselab.io``: atomic image, video, mesh and zarr I/O
+- ``noiselab.scale``: chunked evaluation on dask (the ``noiselab[dask]`` extra)
 - ``noiselab.cli``: the ``noiselab`` command
 """
 from __future__ import annotations
@@ -43,7 +44,7 @@ _API = {
     "particle_snow": "noiselab.lab",
 }
 
-_SUBPACKAGES = ("spectral", "snow", "lattice", "fractal", "geometry", "analysis", "io", "cli")
+_SUBPACKAGES = ("spectral", "snow", "lattice", "fractal", "geometry", "analysis", "io", "cli", "scale")
 
 __all__ = sorted(_API) + list(_SUBPACKAGES)
 

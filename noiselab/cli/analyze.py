@@ -27,7 +27,8 @@ _VIDEO_SUFFIXES = (".mp4", ".gif")
 
 
 def add_arguments(parser):
-    parser.add_argument("file", help="input: .png/.jpg/.tif image, .mp4/.gif video, .npy array, or a folder of PNG frames")
+    parser.add_argument("file", help="input: .png/.jpg/.tif image, .mp4/.gif video, .npy array, .zarr store, "
+                                     "or a folder of PNG frames")
     parser.add_argument("--as", dest="kind", default="auto", choices=("auto", "image", "video", "volume", "signal"),
                         help="how to read a 3-D .npy array: (frames, height, width) video (auto) or a volume; "
                              "RGB (trailing axis of 3) is turned to grey (default: auto)")
@@ -52,7 +53,11 @@ def load(path, kind="auto", max_frames=None):
 
     path = Path(path)
     suffix = path.suffix.lower()
-    if path.is_dir() or suffix in _VIDEO_SUFFIXES:
+    if suffix == ".zarr":  # a store written by noiselab noise/write_zarr: read whole (the analysers work in memory)
+        from ..io.zarr import read_zarr
+        data = read_zarr(path)
+        data = (data[:max_frames] if max_frames is not None and data.ndim == 3 and kind != "volume" else data).compute()
+    elif path.is_dir() or suffix in _VIDEO_SUFFIXES:
         data = to_grey(read_video(path, as_float=True, max_frames=max_frames))
         if data.ndim == 3 and data.shape[0] == 1:
             data = data[0]

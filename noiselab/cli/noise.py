@@ -7,6 +7,7 @@ Examples::
     noiselab noise --dims 3 --size 48x128x128 --cells 3x6x6 --sum turbulence -o out/turb.mp4
     noiselab noise --dims 3 --size 64 --output out/volume.npy --dtype float32
     noiselab noise --dims 1 --size 2000 --cells 20 --octaves 5 -o out/curve.png
+    noiselab noise --dims 3 --size 512 --chunks 128 --octaves 6 -o out/volume.zarr   # bigger than memory
 """
 from __future__ import annotations
 
@@ -38,7 +39,8 @@ def add_arguments(parser):
 
     parser.add_argument("-o", "--output", default="out/noise.png",
                         help="output file: .png (1-D plot or 2-D image), .mp4/.gif (3-D video over axis 0), "
-                             ".npy (raw array, any dimension); missing folders are created (default: %(default)s)")
+                             ".npy (raw array, any dimension), .zarr (chunked store, computed on dask: see --chunks); "
+                             "missing folders are created (default: %(default)s)")
     parser.add_argument("--dims", type=int, default=2, choices=(1, 2, 3), help="field dimension (default: 2)")
     parser.add_argument("--size", default=None,
                         help="samples per axis, e.g. 512 or 480x640 or 48x128x128 (frames x height x width); "
@@ -63,8 +65,13 @@ def add_arguments(parser):
                         help="grey mapping for images and videos: the guaranteed bound ([-1, 1] for one octave) "
                              "or the data's min..max (default: bound)")
     parser.add_argument("--dtype", default="float32", choices=("float32", "float64"),
-                        help="precision of .npy output (default: float32)")
+                        help="precision of .npy and .zarr output (default: float32)")
     parser.add_argument("--fps", type=float, default=24.0, help="frames per second of a video (default: 24)")
+    parser.add_argument("--chunks", default=None,
+                        help="with .zarr output: chunk shape, e.g. 64 or 32x64x64, or auto (default: auto)")
+    parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                        help="with .zarr output: dask scheduler, threads (default), processes, synchronous, "
+                             "or the address of a running dask.distributed scheduler, e.g. tcp://host:8786")
 
 
 def run(args) -> int:
@@ -83,7 +90,7 @@ def run(args) -> int:
         raise ValueError(f"--octaves must be >= 1, got {args.octaves}")
     path = Path(args.output)
     suffix = path.suffix.lower()
-    allowed = {1: (".png", ".npy"), 2: (".png", ".npy"), 3: (".mp4", ".gif", ".npy")}[dims]
+    allowed = {1: (".png", ".npy"), 2: (".png", ".npy"), 3: (".mp4", ".gif", ".npy")}[dims] + (".zarr",)
     if suffix not in allowed:
         raise ValueError(f"--output for a {dims}-D field must end in {' or '.join(allowed)}, got {path.name!r}")
     period = None
@@ -93,9 +100,12 @@ def run(args) -> int:
         period = [int(round(c)) for c in cells]
     noise = LatticeNoise(dims, seed=args.seed, kernel=args.kernel, basis=args.basis, table_size=args.table_size,
                          period=period, alternation=args.alternation)
-    dtype = np.float32 if (suffix != ".npy" or args.dtype == "float32") else np.float64
+    dtype = np.float32 if (suffix not in (".npy", ".zarr") or args.dtype == "float32") else np.float64
     grid = Grid(shape, [(0.0, c) for c in cells])
     summer = turbulence if args.kind == "turbulence" else fractal_sum
+    if suffix == ".zarr" or args.chunks is not None or args.scheduler is not None:
+        from ..scale.commands import write_noise_zarr  # chunked on dask, streamed to zarr
+        return write_noise_zarr(args, noise, grid, summer, dtype, path)
     field, used = summer(noise, grid, args.octaves, lacunarity=args.lacunarity, gain=args.gain,
                          dtype=dtype, return_octaves=True)
     bound = sum(args.gain ** o for o in range(used))

@@ -77,7 +77,8 @@ def octaves_used(octaves, *, lacunarity=2.0, gain=0.5, spacing=None, frequency=1
     return used
 
 
-def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, absval, workers=1):
+def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, absval, workers=1,
+         chunks=None):
     from ..lattice import Grid, LatticeNoise
     from ..lattice.core import _check_grid, grid_coordinates
 
@@ -101,6 +102,13 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
     freq = noise.frequency if isinstance(noise, LatticeNoise) else 1.0
     used = octaves_used(octaves, lacunarity=lacunarity, gain=gain, spacing=spacing, frequency=freq, dtype=out_dtype)
     norm = sum(gain ** o for o in range(used)) if normalize else 1.0
+    if chunks is not None:
+        if not is_grid:
+            raise ValueError("chunks= needs x to be a Grid (chunked points: wrap them in dask.array.map_blocks)")
+        from ..scale.lattice import chunked_sum
+        result = chunked_sum(noise, shape, ext, chunks, dtype=out_dtype, used=used, lacunarity=lacunarity,
+                             gain=gain, absval=absval, norm=norm if normalize else None)
+        return (result, used) if return_octaves else result
 
     if isinstance(noise, LatticeNoise):
         if is_grid:
@@ -127,7 +135,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
 
 
 def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False, dtype=None,
-                return_octaves=False, spacing=None, workers=1):
+                return_octaves=False, spacing=None, workers=1, chunks=None):
     """Fractal sum of octaves (Phillips Eq. 9): ``sum_o gain**o * noise(lacunarity**o * x)``.
 
     Parameters
@@ -155,10 +163,14 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
     workers : int, default 1
         Threads for scattered points (``LatticeNoise`` only; bit-identical to
         one worker); grids are evaluated on one thread.
+    chunks : int, "auto" or one entry per axis, optional
+        With a Grid: return a lazy ``dask.array.Array`` in these chunks,
+        bit-identical to the in-memory result for any chunking (see
+        :meth:`noiselab.lattice.LatticeNoise.grid`; needs ``noiselab[dask]``).
 
     Returns
     -------
-    ndarray, or (ndarray, int) with ``return_octaves``
+    ndarray (a lazy dask array with ``chunks``), or (array, int) with ``return_octaves``
 
     Examples
     --------
@@ -168,11 +180,11 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
     >>> img.shape, used
     ((256, 256), 7)
     """
-    return _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, False, workers)
+    return _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, False, workers, chunks)
 
 
 def turbulence(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False, dtype=None,
-               return_octaves=False, spacing=None, workers=1):
+               return_octaves=False, spacing=None, workers=1, chunks=None):
     """Turbulence (Phillips Eq. 10): ``sum_o gain**o * |noise(lacunarity**o * x)|``.
 
     Same parameters as :func:`fractal_sum`; the result is >= 0 (in [0, 1] with
@@ -186,4 +198,4 @@ def turbulence(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False
     >>> bool(t.min() >= 0)
     True
     """
-    return _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, True, workers)
+    return _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, True, workers, chunks)

@@ -15,6 +15,7 @@ from .media import (
     IMAGE_SUFFIXES,
 )
 from .mesh import MESH_SUFFIXES, read_mesh, write_mesh
+from .zarr import read_zarr, write_zarr  # zarr and dask are imported on use (the noiselab[dask] extra)
 
 __all__ = [
     "atomic_output",
@@ -28,4 +29,6 @@ __all__ = [
     "MESH_SUFFIXES",
     "read_mesh",
     "write_mesh",
+    "read_zarr",
+    "write_zarr",
 ]

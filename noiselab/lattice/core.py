@@ -373,7 +373,7 @@ class LatticeNoise:
         coords = grid_coordinates(*_check_grid(shape, extent, self.dim_in))
         return np.stack(np.meshgrid(*coords, indexing="ij"), axis=-1) if coords else np.zeros((0,))
 
-    def grid(self, shape, extent, *, dtype=np.float64, window=None):
+    def grid(self, shape, extent, *, dtype=np.float64, window=None, chunks=None):
         """Evaluate on a regular grid by separability.
 
         Parameters
@@ -388,10 +388,16 @@ class LatticeNoise:
             Evaluate only samples ``lo <= j < hi`` of each axis of the full grid;
             the result is bit-identical to the same slice of the full grid, so a
             huge grid can be rendered in tiles.
+        chunks : int, "auto" or one entry per axis, optional
+            Return a lazy ``dask.array.Array`` in these chunks (dask's chunk
+            syntax; uneven chunks allowed), each chunk rendered by the
+            ``window=`` path: bit-identical to the in-memory grid for any
+            chunking, and a chunk needs only its own memory. Needs the extra
+            ``pip install noiselab[dask]``; see :mod:`noiselab.scale`.
 
         Returns
         -------
-        ndarray, shape ``shape`` (or ``shape + (dim_out,)``)
+        ndarray, shape ``shape`` (or ``shape + (dim_out,)``); a dask array with ``chunks``
 
         Notes
         -----
@@ -401,6 +407,9 @@ class LatticeNoise:
         ``taps**d`` hashed lookups. Grids sparser than the lattice fall back
         to the scattered path. Both paths agree to 1e-12 (tested).
         """
+        if chunks is not None:
+            from ..scale.lattice import chunked_grid
+            return chunked_grid(self, shape, extent, dtype=dtype, chunks=chunks, window=window)
         return self._grid(shape, extent, dtype=dtype, window=window, octaves=1)
 
     def _grid(self, shape, extent, *, dtype, window, octaves, lacunarity=2.0, gain=0.5, absval=False):
