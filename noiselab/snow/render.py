@@ -18,7 +18,9 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
 
     A constant field (``max == min``) has no structure to show and becomes
     fully transparent (``alpha = 0``) instead of dividing by zero. ``lo`` and
-    ``hi`` may pass a known minimum and maximum (saves one pass).
+    ``hi`` may pass a known minimum and maximum (saves one pass): both or
+    neither, finite, ``lo <= hi`` (else ``ValueError``); the field is then
+    trusted to be finite.
 
     Examples
     --------
@@ -37,10 +39,15 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
     flat = field.reshape(-1)
     if not flat.flags.c_contiguous:
         raise ValueError("field must be C-contiguous to be rescaled in place")
-    if lo is None or hi is None:
+    if (lo is None) != (hi is None):
+        raise ValueError("lo and hi must be given together (the field's known minimum and maximum) or not at all")
+    if lo is None:
         lo, hi = flat.min(), flat.max()
-    if not (np.isfinite(lo) and np.isfinite(hi)):
-        check_finite_array("field", field)
+        if not (np.isfinite(lo) and np.isfinite(hi)):
+            check_finite_array("field", field)
+    else:
+        lo = check_real("lo", lo)
+        hi = check_real("hi", hi, lo=lo)
     ft = field.dtype.type
     span = ft(hi) - ft(lo)
     if not span > 0:
