@@ -82,7 +82,9 @@ def check_band(name, band, fmax, *, allow_none=False):
         if allow_none:
             return None
         raise ValueError(f"{name} must be a (lo, hi) pair in cycles/frame, got None")
-    if isinstance(band, (str, bytes)) or not hasattr(band, "__len__") or len(band) != 2:
+    if isinstance(band, (str, bytes, set, frozenset, dict)):
+        raise TypeError(f"{name} must be an ordered (lo, hi) pair in cycles/frame, got a {type(band).__name__}")
+    if not hasattr(band, "__len__") or len(band) != 2:
         raise ValueError(f"{name} must be a (lo, hi) pair in cycles/frame, got {band!r}")
     lo = check_real(f"{name}[0]", band[0], lo=0.0, lo_open=True)
     hi = check_real(f"{name}[1]", band[1], lo=0.0, lo_open=True)
@@ -95,7 +97,9 @@ def check_band(name, band, fmax, *, allow_none=False):
 
 def check_vector(name, value, *, nonzero=False) -> np.ndarray:
     """Validate a 2-vector ``(x, y)`` of finite reals."""
-    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+    if isinstance(value, (str, bytes, set, frozenset, dict)):
+        raise TypeError(f"{name} must be an ordered (x, y) pair, got a {type(value).__name__}")
+    if not hasattr(value, "__len__") or len(value) != 2:
         raise ValueError(f"{name} must be an (x, y) pair, got {value!r}")
     vec = np.array([check_real(f"{name}[{i}]", v) for i, v in enumerate(value)], dtype=np.float64)
     if nonzero and not np.any(vec):

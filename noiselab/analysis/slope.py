@@ -192,10 +192,10 @@ def octave_energy(field, lo=1.0, hi=None, *, window=None, axes=None) -> OctaveEn
     lo = check_real("lo", lo, lo=0.0, lo_open=True)
     hi = n_ref / 2.0 if hi is None else check_real("hi", hi, lo=0.0, lo_open=True)
     check_band("(lo, hi)", (lo, hi), n_ref / 2.0)
-    n_oct = int(np.floor(np.log2(hi / lo) + 1e-9))
+    n_oct = int(np.floor(np.log2(hi) - np.log2(lo) + 1e-9))  # logs apart: hi / lo overflows for tiny lo
     if n_oct < 1:
         raise ValueError(f"(lo, hi) = ({lo:g}, {hi:g}) cycles/frame spans less than one octave")
-    edges = lo * 2.0 ** np.arange(n_oct + 1)
+    edges = np.ldexp(lo, np.arange(n_oct + 1))  # lo * 2**k exactly, without overflowing 2**k
     bins = edges.copy()
     bins[-1] *= 1 + 1e-12
     rs = radial_spectrum(spec, bins=bins, log=True)

@@ -231,12 +231,17 @@ def resolution_report(mesh, max_frequency, *, samples_per_period=4.0) -> Resolut
     Parameters
     ----------
     mesh : trimesh.Trimesh
-    max_frequency : float
+    max_frequency : float in (0, 1e300]
         Highest frequency of the displacement, in cycles per unit of the
         mesh's coordinates: ``frequency * lacunarity**(octaves - 1)`` for an
         octave sum of a unit-frequency lattice noise.
     samples_per_period : float
         Samples per period required (default 4: a period drawn by four edges).
+
+    Returns
+    -------
+    ResolutionReport
+        Every field finite.
 
     Examples
     --------
@@ -246,7 +251,8 @@ def resolution_report(mesh, max_frequency, *, samples_per_period=4.0) -> Resolut
     (False, 3)
     """
     mesh = as_trimesh(mesh)
-    max_frequency = check_real("max_frequency", max_frequency, lo=0.0)
+    # > 0: a field of frequency 0 is constant, any mesh samples it (its samples per period would be inf)
+    max_frequency = check_real("max_frequency (cycles/unit)", max_frequency, lo=0.0, lo_open=True, hi=1e300)
     required = check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
     v, f = _arrays(mesh)
     return _report(*face_pass(v, f, _stride(len(f)))[2:], max_frequency, required)
@@ -272,7 +278,8 @@ def _report(max_edge, lengths, max_frequency, required):
     period = 1.0 / max_frequency
     spp = period / max_edge
     target = period / required
-    subdivisions = max(0, math.ceil(math.log2(max_edge / target) - 1e-12))
+    # logs apart: max_edge / target overflows for frequencies near float64's limit
+    subdivisions = max(0, math.ceil(math.log2(max_edge) - math.log2(target) - 1e-12))
     return ResolutionReport(max_frequency, max_edge, median_edge, spp, period / median_edge,
                             required, target, subdivisions, spp >= required)
 
@@ -353,6 +360,12 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
     import trimesh
 
     mesh = as_trimesh(mesh)
+    if method not in ("midpoint", "loop", "adaptive"):
+        raise ValueError(f"method must be 'adaptive', 'midpoint' or 'loop', got {method!r}")
+    max_faces = check_int("max_faces", max_faces, lo=1)
+    if check_real("max_frequency (cycles/unit)", max_frequency, lo=0.0, hi=1e300) == 0:
+        check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
+        return mesh.copy()  # a constant field: any mesh samples it
     report = resolution_report(mesh, max_frequency, samples_per_period=samples_per_period)
     if method not in ("midpoint", "loop", "adaptive"):
         raise ValueError(f"method must be 'adaptive', 'midpoint' or 'loop', got {method!r}")
@@ -362,8 +375,10 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
     if method == "adaptive":
         # estimate from the edges that must be split: an edge of length L ends as ~L/target pieces
         lengths = np.asarray(mesh.edges_unique_length)
-        pieces = np.maximum(1.0, 2.0 ** np.ceil(np.log2(np.maximum(lengths / report.target_edge, 1.0))))
-        faces = int(len(mesh.faces) * min(float(np.mean(pieces ** 2)) * 1.5, 4.0 ** report.subdivisions))
+        with np.errstate(over="ignore"):
+            pieces = np.maximum(1.0, 2.0 ** np.ceil(np.log2(np.maximum(lengths / report.target_edge, 1.0))))
+            ratio = min(float(np.mean(pieces ** 2)) * 1.5, 4.0 ** min(report.subdivisions, 500))
+        faces = int(len(mesh.faces) * ratio) if math.isfinite(ratio) else faces
     if faces > max_faces:
         raise ValueError(
             f"reaching {report.required:g} samples per period at {report.max_frequency:g} cycles/unit needs "

@@ -43,9 +43,15 @@ def evaluate_field(field, points, *, name="field", components=None, chunk_size=1
     the field's temporaries; pointwise fields give the same values for any
     chunking.
     """
-    points = np.ascontiguousarray(points, dtype=np.float64)
     if not callable(field):
         raise TypeError(f"{name} must be callable on points of shape (n, k), got {type(field).__name__}")
+    points = check_finite_array("points", points)
+    if points.ndim != 2:
+        raise ValueError(f"points must have shape (n, k), got {points.shape}")
+    chunk_size = check_int("chunk_size", chunk_size, lo=1)
+    if components is not None:
+        components = check_int("components", components, lo=1)
+    points = np.ascontiguousarray(points, dtype=np.float64)
     dim_in = getattr(field, "dim_in", None)
     if isinstance(dim_in, (int, np.integer)) and dim_in != points.shape[1]:
         raise ValueError(

@@ -109,9 +109,9 @@ def sphere_for_noise(max_frequency, radius=1.0, *, samples_per_period=4.0, max_s
     >>> len(sphere_for_noise(4.0).vertices)   # 4 cycles/unit, 4 samples per period
     10242
     """
-    max_frequency = check_real("max_frequency", max_frequency, lo=0.0)
-    radius = check_real("radius", radius, lo=0.0, lo_open=True)
-    samples_per_period = check_real("samples_per_period", samples_per_period, lo=1.0)
+    max_frequency = check_real("max_frequency (cycles/unit)", max_frequency, lo=0.0, hi=1e300)
+    radius = check_real("radius", radius, lo=0.0, lo_open=True, hi=1e300)
+    samples_per_period = check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
     max_subdivisions = check_int("max_subdivisions", max_subdivisions, lo=0, hi=10)
     if max_frequency == 0:
         return sphere(0, radius)

@@ -11,7 +11,7 @@ import warnings
 
 import numpy as np
 
-from .._validate import check_int, check_memory, check_real, check_shape
+from .._validate import check_int, check_memory, check_real, check_shape, check_real_sequence
 from .fields import evaluate_field, field_max_frequency, octave_field
 
 __all__ = ["grid_points", "height_map", "monge_surface", "colored_surface", "height_map_image"]
@@ -170,7 +170,7 @@ def colored_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), am
 
     if color not in ("hue", "rgb"):
         raise ValueError(f"color must be 'hue' (2-component field) or 'rgb' (4-component field), got {color!r}")
-    lo, hi = (check_real("value_range[0]", value_range[0]), check_real("value_range[1]", value_range[1]))
+    lo, hi = check_real_sequence("value_range", value_range, length=2)
     if not hi > lo:
         raise ValueError(f"value_range must be (low, high) with high > low, got {value_range!r}")
     saturation = check_real("saturation", saturation, lo=0.0, hi=1.0)
