@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import warnings
 
 import numpy as np
 
@@ -24,6 +25,7 @@ __all__ = [
     "check_axes",
     "check_real_array",
     "check_real_sequence",
+    "check_real_vector",
 ]
 
 # numpy cannot index an array of more than 2**63 - 1 bytes; shapes past this many
@@ -138,7 +140,8 @@ def check_axes(name, axes, ndim) -> tuple[int, ...]:
 def check_real_sequence(name, value, *, length=None, lo=None, hi=None, lo_open=False, hi_open=False) -> tuple:
     """Check a sequence of finite reals (``length`` of them, if given), each in ``[lo, hi]``; return floats."""
     if isinstance(value, (str, bytes, set, frozenset, dict)) or not hasattr(value, "__len__"):
-        raise TypeError(f"{name} must be a sequence of {length or ''} real numbers, got {type(value).__name__}")
+        what = f"{length} real numbers" if length else "real numbers"
+        raise TypeError(f"{name} must be a sequence of {what}, got {type(value).__name__}")
     if isinstance(value, np.ndarray) and value.ndim != 1:
         raise ValueError(f"{name} must be a flat sequence of real numbers, got an array of shape {value.shape}")
     if length is not None and len(value) != length:
@@ -147,15 +150,23 @@ def check_real_sequence(name, value, *, length=None, lo=None, hi=None, lo_open=F
                  for i, v in enumerate(value))
 
 
+def check_real_vector(name, value, size, *, lo=None, hi=None, lo_open=False) -> np.ndarray:
+    """A number (broadcast) or a sequence of ``size`` finite reals in ``[lo, hi]``, as float64 ``(size,)``."""
+    if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)) or (
+            isinstance(value, np.ndarray) and value.ndim == 0):
+        v = check_real(name, value.item() if isinstance(value, np.ndarray) else value, lo=lo, hi=hi, lo_open=lo_open)
+        return np.full(size, v)
+    if isinstance(value, np.ndarray) and value.ndim != 1:
+        raise ValueError(f"{name} must be a number or a sequence of {size} numbers, got an array of shape {value.shape}")
+    vals = check_real_sequence(name, value, lo=lo, hi=hi, lo_open=lo_open)
+    if len(vals) != size:
+        raise ValueError(f"{name} must be a number or a sequence of {size} numbers, got {len(vals)}")
+    return np.array(vals, dtype=np.float64)
+
+
 def check_real_array(name, array, *, ndim=None, allow_empty=True) -> np.ndarray:
     """Return ``array`` as a finite real ndarray (bool/int/float), ``ndim``-D if given (an int or allowed counts)."""
-    if isinstance(array, (str, bytes)) or array is None:
-        raise TypeError(f"{name} must be a real numeric array, got {type(array).__name__}")
-    try:
-        arr = np.asarray(array)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be a real numeric array ({exc})") from None
-    arr = check_finite_array(name, arr)
+    arr = check_finite_array(name, array)
     if ndim is not None:
         allowed = (ndim,) if isinstance(ndim, int) else tuple(ndim)
         if arr.ndim not in allowed:
@@ -165,9 +176,23 @@ def check_real_array(name, array, *, ndim=None, allow_empty=True) -> np.ndarray:
     return arr
 
 
+def _asarray(name, value) -> np.ndarray:
+    """``np.asarray(value)``, with numpy's conversion errors (ragged lists, huge ints) turned into ones naming ``name``."""
+    if isinstance(value, np.ndarray):
+        return value
+    if isinstance(value, (str, bytes, dict, set, frozenset)) or value is None:
+        raise TypeError(f"{name} must be a real numeric array, got {type(value).__name__}")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", np.exceptions.VisibleDeprecationWarning)
+            return np.asarray(value)
+    except (ValueError, TypeError, OverflowError, np.exceptions.VisibleDeprecationWarning) as exc:
+        raise TypeError(f"{name} must be a real numeric array (a regular nest of numbers): {exc}") from None
+
+
 def check_finite_array(name, array) -> np.ndarray:
     """Return ``array`` as an ndarray; raise if it holds NaN or inf (naming how many)."""
-    array = np.asarray(array)
+    array = _asarray(name, array)
     if array.dtype.kind not in "biuf":
         kind = "complex" if array.dtype.kind == "c" else "real numeric"
         raise TypeError(f"{name} must be a real numeric array, got dtype {array.dtype}"

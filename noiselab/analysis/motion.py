@@ -37,6 +37,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import math
+
 import numpy as np
 import scipy.fft
 
@@ -330,7 +332,7 @@ def octave_bands(lo, hi, per_octave=2):
     lo = check_real("lo", lo, lo=0.0, lo_open=True)
     hi = check_real("hi", hi, lo=lo, lo_open=True)
     per_octave = check_real("per_octave", per_octave, lo=0.0, lo_open=True)
-    count = (np.log2(hi) - np.log2(lo)) * per_octave  # logs apart: hi / lo overflows for tiny lo
+    count = (math.log2(hi) - math.log2(lo)) * per_octave  # logs apart: hi / lo overflows for tiny lo
     check_memory(count * 200, f"octave_bands with {count:.3g} bands")  # a list of tuples of two floats
     n = max(int(round(count)), 1)
     e = np.geomspace(lo, hi, n + 1)
@@ -397,6 +399,7 @@ def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octa
     bands must all hold power (else ``ValueError`` naming the band).
     """
     spec = video_spectrum(video, window=window, remove_static=remove_static)
+    min_energy = check_real("min_energy", min_energy, lo=0.0, hi=1.0)
     g = _Grid(spec.shape)
     explicit = bands is not None
     if explicit:

@@ -112,6 +112,8 @@ def tile_seam(image, tile=None) -> float:
     elif isinstance(tile, numbers.Integral):
         th = tw = check_int("tile", tile, lo=2)
     else:
+        if isinstance(tile, (str, bytes, set, frozenset, dict)) or not hasattr(tile, "__len__"):
+            raise TypeError(f"tile must be an int or an ordered (height, width) pair, got {type(tile).__name__}")
         if len(tile) != 2:
             raise ValueError(f"tile must be an int or a (height, width) pair, got {tile!r}")
         th, tw = check_int("tile[0]", tile[0], lo=2), check_int("tile[1]", tile[1], lo=2)

@@ -104,6 +104,9 @@ def spectral_slope(field, band=None, *, bins_per_octave=8, window=None, axes=Non
         raise ValueError(f"field of shape {spec.shape} is too small to fit a spectral slope (needs at least 8 samples along an axis)")
     band = default_band(n_ref) if band is None else band
     lo, hi = check_band("band", band, n_ref / 2.0)
+    if lo < 1e-3:
+        raise ValueError(f"band lower edge {lo:g} cycles/frame is below 1e-3: the lowest frequency a field "
+                         "holds is 1 cycle/frame")
     n_bins = max(int(np.ceil(np.log2(hi / lo) * bpo)), 1)
     edges = np.geomspace(lo, hi, n_bins + 1)
     edges[-1] *= 1 + 1e-12  # make the upper edge inclusive

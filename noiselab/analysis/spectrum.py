@@ -164,7 +164,10 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=
     if biggest > 1e150:
         raise ValueError(f"field values reach {biggest:.3g}: their power (value squared) would overflow float64; "
                          "|field| must stay below 1e150 (rescale it)")
-    if arr.dtype == np.float32 and biggest * np.sqrt(arr.size) > 1e18:
+    if biggest < 1e-150:
+        raise ValueError(f"field values are at most {biggest:.3g} in magnitude: their power (value squared) would "
+                         "underflow float64; |field| must reach 1e-150 (rescale it)")
+    if arr.dtype == np.float32 and (biggest * np.sqrt(arr.size) > 1e18 or biggest < 1e-15):
         arr = arr.astype(np.float64)  # |FFT|**2 would overflow float32: transform these values in float64
     cdt = np.complex64 if arr.dtype == np.float32 else np.complex128
     # peak: the working copy, the complex half spectrum and the power

@@ -27,7 +27,7 @@ import numbers
 
 import numpy as np
 
-from .._validate import check_int, check_real, check_real_array, float_dtype
+from .._validate import _asarray, check_int, check_real, check_real_array, float_dtype
 
 __all__ = ["fractal_sum", "turbulence", "octaves_used"]
 
@@ -69,7 +69,7 @@ def octaves_used(octaves, *, lacunarity=2.0, gain=0.5, spacing=None, frequency=1
     if spacing is not None:
         try:
             sp = np.asarray(spacing, dtype=np.float64)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise TypeError(f"spacing must be a real number or a sequence of them, got {spacing!r}") from None
         if sp.ndim > 1 or np.isinf(sp).any() or (sp <= 0).any():
             raise ValueError(f"spacing must be > 0 and finite per axis (NaN: an axis with one sample), got {spacing!r}")
@@ -120,7 +120,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
         spacing = np.abs(steps)
         out_dtype = float_dtype(np.float64 if dtype is None else dtype)
     else:
-        raw = np.asarray(x)
+        raw = _asarray("x", x)
         out_dtype = float_dtype(dtype) if dtype is not None else (
             np.dtype(np.float32) if raw.dtype == np.float32 else np.dtype(np.float64))
         if spacing is not None:
@@ -148,11 +148,15 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
             raise TypeError(f"noise must be a LatticeNoise or a callable on points, got {type(noise).__name__}")
         pts = np.stack(np.meshgrid(*grid_coordinates(shape, ext), indexing="ij"), axis=-1) if is_grid else raw
         result = None
-        for o in range(used):
-            v = np.asarray(noise(pts * lacunarity ** o), dtype=np.float64)
-            term = gain ** o * (np.abs(v) if absval else v)
-            result = term if result is None else result + term
-        result = (result / norm).astype(out_dtype)
+        with np.errstate(over="ignore", invalid="ignore"):
+            for o in range(used):
+                v = np.asarray(noise(pts * lacunarity ** o), dtype=np.float64)
+                term = gain ** o * (np.abs(v) if absval else v)
+                result = term if result is None else result + term
+            result = (result / norm).astype(out_dtype)
+        if not np.isfinite(result).all():
+            raise ValueError(f"noise returned NaN or inf (or the octave sum overflowed {out_dtype.name}) at "
+                             f"{int((~np.isfinite(result)).sum())} point(s); noise must return finite values")
     return (result, used) if return_octaves else result
 
 

@@ -19,7 +19,7 @@ import warnings
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_memory, check_real
+from .._validate import check_finite_array, check_int, check_memory, check_real, check_real_vector
 from ._kernels import face_pass, unit_rows
 from .fields import evaluate_field, field_max_frequency, octave_field
 
@@ -252,7 +252,7 @@ def resolution_report(mesh, max_frequency, *, samples_per_period=4.0) -> Resolut
     """
     mesh = as_trimesh(mesh)
     # > 0: a field of frequency 0 is constant, any mesh samples it (its samples per period would be inf)
-    max_frequency = check_real("max_frequency (cycles/unit)", max_frequency, lo=0.0, lo_open=True, hi=1e300)
+    max_frequency = check_real("max_frequency (cycles/unit)", max_frequency, lo=1e-300, hi=1e300)
     required = check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
     v, f = _arrays(mesh)
     return _report(*face_pass(v, f, _stride(len(f)))[2:], max_frequency, required)
@@ -411,12 +411,7 @@ def _check_resolution(max_edge, lengths, field, frequency, octaves, lacunarity, 
 
 
 def _as_vector(name, value, size):
-    arr = np.asarray(value, dtype=np.float64)
-    if arr.ndim == 0:
-        arr = np.full(size, float(arr))
-    if arr.shape != (size,):
-        raise ValueError(f"{name} must be a number or a vector of {size} numbers, got shape {arr.shape}")
-    return check_finite_array(name, arr)
+    return check_real_vector(name, value, size)
 
 
 def _outward(normals, volume, faces):
@@ -555,7 +550,7 @@ def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0,
     2
     """
     mesh = as_trimesh(mesh)
-    times = check_finite_array("times", np.atleast_1d(np.asarray(times, dtype=np.float64)))
+    times = np.atleast_1d(check_finite_array("times", times).astype(np.float64))
     if times.ndim != 1:
         raise ValueError(f"times must be a 1-D sequence, got shape {times.shape}")
     normals = kwargs.pop("normals", None)

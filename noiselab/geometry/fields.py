@@ -105,7 +105,7 @@ class _OctaveField:
             self.dim_in = dim_in
 
     def __call__(self, x):
-        x = np.asarray(x, dtype=np.float64)
+        x = check_finite_array("points", x).astype(np.float64)
         if _is_lattice(self.field):
             # the lattice's own octave sum: the same sum, evaluated by its fused fast path
             from ..fractal import fractal_sum, turbulence
@@ -115,12 +115,16 @@ class _OctaveField:
         total = None
         scale, weight = 1.0, 1.0
         for _ in range(self.octaves):
-            value = np.asarray(self.field(x * scale), dtype=np.float64)
-            if self.kind == "turbulence":
-                value = np.abs(value)
-            total = weight * value if total is None else total + weight * value
+            with np.errstate(over="ignore", invalid="ignore"):
+                value = np.asarray(self.field(x * scale), dtype=np.float64)
+                if self.kind == "turbulence":
+                    value = np.abs(value)
+                total = weight * value if total is None else total + weight * value
             scale *= self.lacunarity
             weight *= self.gain
+        if total is not None and not np.isfinite(total).all():
+            raise ValueError(f"field returned NaN or inf (or its octave sum overflowed) at {int((~np.isfinite(total)).sum())} "
+                             "point(s); a field must return finite values")
         return total
 
     def __repr__(self):
@@ -186,7 +190,7 @@ class _SampledField:
     def __call__(self, x):
         from scipy import ndimage
 
-        x = np.asarray(x, dtype=np.float64)
+        x = check_finite_array("points", x).astype(np.float64)
         if x.ndim != 2 or x.shape[1] != self.dim_in:
             raise ValueError(f"sampled field takes points of shape (n, {self.dim_in}), got {x.shape}")
         coords = ((x - self.origin) / self.spacing).T
@@ -229,7 +233,7 @@ def sampled_field(values, extent=None, *, periodic=True, order=3, vector=False, 
         raise ValueError(f"values needs at least 2 samples per axis, got shape {shape}")
     if extent is None:
         extent = [(0.0, float(n)) for n in shape]
-    extent = np.asarray(extent, dtype=np.float64)
+    extent = check_finite_array("extent", extent).astype(np.float64)
     if extent.shape != (dims, 2):
         raise ValueError(f"extent must hold one (start, stop) pair per axis ({dims}), got shape {extent.shape}")
     if not np.all(np.isfinite(extent)) or np.any(extent[:, 1] <= extent[:, 0]):

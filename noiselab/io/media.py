@@ -44,10 +44,14 @@ def to_uint8(array, vmin=None, vmax=None) -> np.ndarray:
     if not np.isfinite(hi - lo):
         raise ValueError(f"vmax - vmin must be finite (below 1.8e308), got vmin={lo:g}, vmax={hi:g}")
     # float32 unless the range or the values need float64's exponent
-    big = max(abs(lo), abs(hi)) > 1e37 or (array.dtype == np.float64 and array.size
-                                           and max(abs(float(array.min())), abs(float(array.max()))) > 1e37)
+    scale = 255.0 / (hi - lo)
+    if not np.isfinite(scale):
+        raise ValueError(f"vmax - vmin = {hi - lo:.3g} is too small: 255 / (vmax - vmin) overflows")
+    big = max(abs(lo), abs(hi), scale) > 1e30 or (array.size and max(abs(float(array.min())),
+                                                                  abs(float(array.max()))) > 1e30)
     array = array.astype(np.float64 if big else np.float32, copy=False)
-    scaled = (array - lo) * (255.0 / (hi - lo))
+    with np.errstate(over="ignore"):  # overflow past vmax is clipped to 255 below
+        scaled = (array - lo) * scale
     return np.clip(np.rint(scaled), 0, 255).astype(np.uint8)
 
 

@@ -16,7 +16,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .._validate import as_generator, check_finite_array, check_int, check_memory, check_real, check_shape, float_dtype
+from .._validate import as_generator, _asarray, check_finite_array, check_int, check_memory, check_real, check_shape, float_dtype
 from . import _jit, _points
 from .kernels import KERNELS, Kernel, get_kernel
 
@@ -61,9 +61,9 @@ class Grid(NamedTuple):
 def _check_grid(shape, extent, dim):
     shape = check_shape("shape", shape, ndim=dim, min_size=0)
     try:
-        ext = np.asarray(extent, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError("extent must be one (start, stop) pair per input axis") from None
+        ext = check_finite_array("extent", extent).astype(np.float64)
+    except TypeError as exc:
+        raise TypeError(f"extent must be one (start, stop) pair of reals per input axis: {exc}") from None
     if dim == 1 and ext.shape == (2,):
         ext = ext[None]
     if ext.shape != (dim, 2):
@@ -84,7 +84,8 @@ def grid_coordinates(shape, extent):
     >>> [c.tolist() for c in grid_coordinates((4,), [(0, 2)])]
     [[0.0, 0.5, 1.0, 1.5]]
     """
-    shape, ext = _check_grid(shape, extent, len(tuple(np.atleast_1d(shape))))
+    shape, ext = _check_grid(shape, extent, len(check_shape("shape", shape, min_size=0)))
+    _check_large(8 * sum(shape), f"grid coordinates for shape {shape}")
     return [ext[a, 0] + np.arange(n, dtype=np.float64) * ((ext[a, 1] - ext[a, 0]) / max(n, 1))
             for a, n in enumerate(shape)]
 
@@ -131,13 +132,18 @@ def _check_amplitude(amplitude, dtype, what="amplitude"):
 
 
 def _per_axis(name, value, dim, *, lo=None, lo_open=False, integer=False):
-    arr = np.atleast_1d(np.asarray(value, dtype=object if integer else np.float64))
+    if isinstance(value, (str, bytes, set, frozenset, dict)) or value is None:
+        raise TypeError(f"{name} must be a number or a sequence of dim_in={dim} numbers, got {type(value).__name__}")
+    try:
+        arr = np.atleast_1d(np.asarray(value, dtype=object))
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a number or a sequence of dim_in={dim} numbers, got {value!r}") from None
     if arr.ndim != 1 or arr.size not in (1, dim):
         raise ValueError(f"{name} must be a number or a sequence of dim_in={dim} numbers, got {value!r}")
     arr = np.broadcast_to(arr, (dim,))
     if integer:
         return np.array([check_int(f"{name}", v, lo=1, hi=1 << 62) for v in arr], dtype=np.int64)
-    return np.array([check_real(name, float(v), lo=lo, lo_open=lo_open) for v in arr], dtype=np.float64)
+    return np.array([check_real(name, v, lo=lo, lo_open=lo_open) for v in arr], dtype=np.float64)
 
 
 class LatticeNoise:
@@ -276,7 +282,7 @@ class LatticeNoise:
 
     # ------------------------------------------------------------- scattered
     def _prepare_points(self, points, name="points"):
-        points = np.asarray(points)
+        points = _asarray(name, points)
         tables = self._uses_tables()
         if not (points.dtype.kind == "f" and tables):  # the table kernels check
             points = check_finite_array(name, points)
@@ -395,7 +401,7 @@ class LatticeNoise:
         arithmetic is the same, so the result is bit-identical to one worker.
         """
         workers = check_int("workers", workers, lo=1, hi=1024)
-        raw = np.asarray(points)
+        raw = _asarray("points", points)
         lead, flat = self._prepare_points(raw)
         dtype = self._out_dtype(raw.dtype, dtype)
         _check_amplitude(self.amplitude, dtype)

@@ -26,6 +26,7 @@ and ``wt`` in rad/frame; ``c`` in rad/frame; speeds in px/frame.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -273,4 +274,7 @@ def flake_speeds(c=1.0, band=None, width=512, height=None):
     lo, hi = _check_band(band, width)
     near = np.inf if lo == 0 else c * width / (2 * np.pi * lo)
     far = c * width / (2 * np.pi * hi)
+    if lo > 0 and not math.isfinite(near) or not math.isfinite(far):
+        raise ValueError(f"band ({lo:g}, {hi:g}) cycles/frame is so low that the speed c * width / (2 pi f) "
+                         "overflows float64")
     return float(near), float(far)

@@ -56,7 +56,7 @@ def unit_direction(direction) -> tuple[float, float]:
         raise TypeError(f"direction must be a pair (dx, dy) of real numbers, got {type(direction).__name__}")
     try:
         d = np.asarray(direction, dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise TypeError(f"direction must be a pair (dx, dy) of real numbers, got {direction!r}") from None
     if d.shape != (2,):
         raise ValueError(f"direction must be a pair (dx, dy), got {direction!r}")
@@ -79,7 +79,13 @@ def _frequencies(w, names=None):
             arr = np.asarray(wi)
         except (TypeError, ValueError):
             raise TypeError(f"{name} must be a real array of angular frequencies (rad/sample)") from None
-        out.append(check_finite_array(name, arr))
+        arr = check_finite_array(name, arr)
+        if arr.dtype.kind in "biu" or arr.dtype.itemsize < 8:
+            arr = arr.astype(np.float64)  # integer products wrap, float32/16 squares overflow at 1.8e19
+        if arr.size and max(abs(float(arr.max())), abs(float(arr.min()))) > _BOUND:
+            raise ValueError(f"{name} must hold angular frequencies within +-1e100 rad/sample (they lie in "
+                             f"[-pi, pi]); got values up to {max(abs(float(arr.max())), abs(float(arr.min()))):.3g}")
+        out.append(arr)
     try:
         np.broadcast_shapes(*(a.shape for a in out))
     except ValueError:
@@ -88,12 +94,16 @@ def _frequencies(w, names=None):
     return out
 
 
+# parameters and frequencies stay within +-1e100 so that their products and sums cannot overflow
+_BOUND = 1e100
+
+
 def _tolerance(tolerance):
-    return check_real("tolerance (rad/frame)", tolerance, lo=0.0)
+    return check_real("tolerance (rad/frame)", tolerance, lo=0.0, hi=_BOUND)
 
 
 def _pair(name, value):
-    return check_real_sequence(name, value, length=2)
+    return check_real_sequence(name, value, length=2, lo=-_BOUND, hi=_BOUND)
 
 
 def radial_frequency(*w):
@@ -137,8 +147,8 @@ def power_law(*w, exponent=1.0):
 
 def annulus(*w, lo, hi):
     """Band limit (thesis 3.2.2): 1 where ``lo <= |w| / (2*pi) <= hi`` (cycles/sample), else 0; DC never."""
-    lo = check_real("lo (cycles/sample)", lo, lo=0.0)
-    hi = check_real("hi (cycles/sample)", hi, lo=0.0)
+    lo = check_real("lo (cycles/sample)", lo, lo=0.0, hi=_BOUND)
+    hi = check_real("hi (cycles/sample)", hi, lo=0.0, hi=_BOUND)
     if lo > hi:
         raise ValueError(f"annulus needs lo <= hi (cycles/sample), got lo={lo:g} > hi={hi:g}")
     f = radial_frequency(*w) / (2 * np.pi)
@@ -192,7 +202,7 @@ def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
     -1.0
     """
     wy, wx = _frequencies((wy, wx), ("wy", "wx"))
-    c = check_real("c (rad/frame)", c)
+    c = check_real("c (rad/frame)", c, lo=-_BOUND, hi=_BOUND)
     dx, dy = unit_direction(direction)
     ux, uy = _pair("pan (px/frame)", pan)
     r = radial_frequency(wy, wx)
@@ -204,7 +214,7 @@ def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
 
 def tent(wt, wy, wx, c, direction=(0.0, 1.0), *, tolerance):
     """The thin tent (Eq. 3.3), cells within ``tolerance`` rad/frame of :func:`tent_surface`."""
-    (wt,) = _frequencies((wt,), ("wt",))
+    wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
     tolerance = _tolerance(tolerance)
     return (np.abs(wt - tent_surface(wy, wx, c, direction)) <= tolerance).astype(float)
 
@@ -218,9 +228,8 @@ def thickened_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, thick
     ``thickness*c*|d . w|/|w|``: zero on the ridge ``d . w = 0`` (patterns that
     do not move), and ``c = 0`` stays frozen snow.
     """
-    (wt,) = _frequencies((wt,), ("wt",))
-    wy, wx = _frequencies((wy, wx), ("wy", "wx"))
-    c = check_real("c (rad/frame)", c)
+    wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
+    c = check_real("c (rad/frame)", c, lo=-_BOUND, hi=_BOUND)
     thickness = check_real("thickness", thickness, lo=0.0, hi=1.0)
     tolerance = _tolerance(tolerance)
     dx, dy = unit_direction(direction)
@@ -239,6 +248,6 @@ def sheared_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, toleran
     flake: a camera panning right makes the world, snow included, drift left,
     ``pan = (-s, 0)``.
     """
-    (wt,) = _frequencies((wt,), ("wt",))
+    wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
     tolerance = _tolerance(tolerance)
     return (np.abs(wt - tent_surface(wy, wx, c, direction, pan)) <= tolerance).astype(float)
