@@ -65,6 +65,9 @@ def rms_contrast(x, mask=None) -> float:
     0.5
     """
     v = _values(x, mask)
+    big = float(np.max(np.abs(v)))
+    if big > 1e100 or 0 < big < 1e-100:
+        v = v / big  # the contrast is scale-free: scaled, the squares neither overflow nor underflow
     mean = float(v.mean())
     if mean <= 0:
         raise ValueError(f"x: RMS contrast needs a positive mean intensity, got {mean:g}")

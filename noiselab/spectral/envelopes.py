@@ -62,9 +62,11 @@ def unit_direction(direction) -> tuple[float, float]:
         raise ValueError(f"direction must be a pair (dx, dy), got {direction!r}")
     if not np.all(np.isfinite(d)):
         raise ValueError(f"direction must be finite, got {direction!r}")
-    n = float(np.hypot(*d))
-    if n == 0:
+    m = float(np.max(np.abs(d)))
+    if m == 0:
         raise ValueError("direction must be a non-zero vector (dx, dy)")
+    d = d / m  # scaled first: hypot of (1e308, 1e308) overflows, of (5e-324, 0) loses the direction
+    n = float(np.hypot(*d))
     return float(d[0] / n), float(d[1] / n)
 
 
