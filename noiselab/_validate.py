@@ -157,11 +157,12 @@ def check_real_vector(name, value, size, *, lo=None, hi=None, lo_open=False) -> 
         v = check_real(name, value.item() if isinstance(value, np.ndarray) else value, lo=lo, hi=hi, lo_open=lo_open)
         return np.full(size, v)
     if isinstance(value, np.ndarray) and value.ndim != 1:
-        raise ValueError(f"{name} must be a number or a sequence of {size} numbers, got an array of shape {value.shape}")
-    vals = check_real_sequence(name, value, lo=lo, hi=hi, lo_open=lo_open)
-    if len(vals) != size:
-        raise ValueError(f"{name} must be a number or a sequence of {size} numbers, got {len(vals)}")
-    return np.array(vals, dtype=np.float64)
+        raise ValueError(f"{name} must be a number or a vector of {size} numbers, got an array of shape {value.shape}")
+    if isinstance(value, (str, bytes, set, frozenset, dict)) or not hasattr(value, "__len__"):
+        raise TypeError(f"{name} must be a number or a vector of {size} numbers, got {type(value).__name__}")
+    if len(value) != size:
+        raise ValueError(f"{name} must be a number or a vector of {size} numbers, got {len(value)}: {value!r}")
+    return np.array([check_real(name, v, lo=lo, hi=hi, lo_open=lo_open) for v in value], dtype=np.float64)
 
 
 def check_real_array(name, array, *, ndim=None, allow_empty=True) -> np.ndarray:

@@ -76,7 +76,10 @@ def _check_params(shape, c, band, thickness, direction, pan, beta, exponent, amp
     beta = check_real("beta", beta, lo=0, lo_open=True)
     exponent = check_real("exponent", exponent, lo=-8, hi=8)
     direction = unit_direction(direction)
-    p = check_real_sequence("pan (px/frame)", pan, length=2, lo=-1e100, hi=1e100)
+    try:
+        p = check_real_sequence("pan", pan, length=2, lo=-1e100, hi=1e100)
+    except (TypeError, ValueError) as exc:
+        raise type(exc)(f"pan must be a finite pair (ux, uy) in px/frame: {exc}") from None
     if amplitude not in AMPLITUDES:
         raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
     if on_alias not in ("raise", "drop"):
