@@ -462,6 +462,7 @@ class LatticeNoise:
     def _grid(self, shape, extent, *, dtype, window, octaves, lacunarity=2.0, gain=0.5, absval=False):
         dtype = float_dtype(dtype)
         shape, ext = _check_grid(shape, extent, self.dim_in)
+        coords = grid_coordinates(shape, ext)
         if window is not None:
             win = np.asarray(window, dtype=object)
             if win.shape != (self.dim_in, 2):
@@ -475,8 +476,7 @@ class LatticeNoise:
             sl = [(0, s) for s in shape]
         out_shape = tuple(hi - lo for lo, hi in sl)
         size = math.prod(out_shape)
-        _check_large(size * self.dim_out * dtype.itemsize * 2 + size * 8 + 8 * sum(shape), f"lattice noise grid {shape}")
-        coords = grid_coordinates(shape, ext)
+        _check_large(size * self.dim_out * dtype.itemsize * 2 + size * 8, f"lattice noise grid {shape}")
         total_gain = sum(gain ** o for o in range(octaves)) if gain <= 1 else octaves * gain ** (octaves - 1)
         _check_amplitude(self.amplitude * total_gain, dtype, "amplitude (times the sum of the octaves' gains)")
         if size == 0:
