@@ -399,9 +399,9 @@ def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octa
     bands must all hold power (else ``ValueError`` naming the band).
     """
     spec = video_spectrum(video, window=window, remove_static=remove_static)
-    min_energy = check_real("min_energy", min_energy, lo=0.0, hi=1.0)
     g = _Grid(spec.shape)
     explicit = bands is not None
+    min_energy = check_real("min_energy", min_energy, lo=0.0, hi=1.0)
     if explicit:
         bands = _check_bands(bands, g.n_ref / 2.0 * np.sqrt(2))
     else:

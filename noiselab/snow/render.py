@@ -20,9 +20,7 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
 
     A constant field (``max == min``) has no structure to show and becomes
     fully transparent (``alpha = 0``) instead of dividing by zero. ``lo`` and
-    ``hi`` may pass a known minimum and maximum (saves one pass): both or
-    neither, finite, ``lo <= hi`` (else ``ValueError``); the field is then
-    trusted to be finite.
+    ``hi`` may pass a known minimum and maximum (saves one pass).
 
     Examples
     --------
