@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import warnings
 
 import numpy as np
 
@@ -21,7 +22,15 @@ __all__ = [
     "check_memory",
     "available_memory",
     "float_dtype",
+    "check_axes",
+    "check_real_array",
+    "check_real_sequence",
+    "check_real_vector",
 ]
+
+# numpy cannot index an array of more than 2**63 - 1 bytes; shapes past this many
+# elements are refused by check_shape before anything is sized from them
+MAX_ELEMENTS = 1 << 60
 
 
 def as_generator(seed) -> np.random.Generator:
@@ -55,7 +64,11 @@ def check_real(name, value, *, lo=None, hi=None, lo_open=False, hi_open=False) -
     """
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
-    value = float(value)
+    try:
+        value = float(value)
+    except OverflowError:  # a Python int past float64's range (10**400)
+        raise ValueError(f"{name} must be finite (within float64's range, |x| < 1.8e308), got an int of "
+                         f"{len(str(abs(int(value))))} digits") from None
     if not math.isfinite(value):
         raise ValueError(f"{name} must be finite, got {value}")
     bad_lo = lo is not None and (value <= lo if lo_open else value < lo)
@@ -82,7 +95,15 @@ def check_int(name, value, *, lo=None, hi=None) -> int:
 
 
 def check_shape(name, shape, *, ndim=None, min_size=1) -> tuple[int, ...]:
-    """Check a shape tuple: ``ndim`` entries (an int or a set of allowed counts), each >= ``min_size``."""
+    """Check a shape tuple: ``ndim`` entries (an int or a set of allowed counts), each >= ``min_size``.
+
+    Without ``ndim`` at least one entry is required. The number of elements
+    must stay below ``2**60`` (numpy's arrays hold at most ``2**63 - 1``
+    bytes): larger shapes are a ``ValueError`` naming ``name``, before any
+    size computed from them can overflow.
+    """
+    if isinstance(shape, (str, bytes)):
+        raise TypeError(f"{name} must be a tuple of ints, got {type(shape).__name__}")
     if isinstance(shape, numbers.Integral):
         shape = (shape,)
     try:
@@ -93,14 +114,90 @@ def check_shape(name, shape, *, ndim=None, min_size=1) -> tuple[int, ...]:
         allowed = (ndim,) if isinstance(ndim, int) else tuple(ndim)
         if len(shape) not in allowed:
             raise ValueError(f"{name} must have {' or '.join(map(str, allowed))} entries, got {len(shape)}: {shape}")
-    return tuple(check_int(f"{name}[{i}]", s, lo=min_size) for i, s in enumerate(shape))
+    elif not shape:
+        raise ValueError(f"{name} must have at least one entry, got ()")
+    shape = tuple(check_int(f"{name}[{i}]", s, lo=min_size) for i, s in enumerate(shape))
+    if math.prod(shape) >= MAX_ELEMENTS or any(s >= MAX_ELEMENTS for s in shape):
+        raise ValueError(f"{name} {shape} has more elements than an array can hold (at most 2**60 in noiselab)")
+    return shape
+
+
+def check_axes(name, axes, ndim) -> tuple[int, ...]:
+    """Check distinct integer axes of an ``ndim``-D array (negative ones count from the end); return them sorted, >= 0."""
+    if isinstance(axes, numbers.Integral) and not isinstance(axes, (bool, np.bool_)):
+        axes = (axes,)
+    if isinstance(axes, (str, bytes)) or not hasattr(axes, "__iter__"):
+        raise TypeError(f"{name} must be a tuple of ints, got {type(axes).__name__}")
+    out = []
+    for i, a in enumerate(axes):
+        a = check_int(f"{name}[{i}]", a, lo=-ndim, hi=ndim - 1)
+        out.append(a % ndim)
+    if not out or len(set(out)) != len(out):
+        raise ValueError(f"{name} must be distinct axes in [-{ndim}, {ndim - 1}], got {tuple(axes)!r}")
+    return tuple(sorted(out))
+
+
+def check_real_sequence(name, value, *, length=None, lo=None, hi=None, lo_open=False, hi_open=False) -> tuple:
+    """Check a sequence of finite reals (``length`` of them, if given), each in ``[lo, hi]``; return floats."""
+    if isinstance(value, (str, bytes, set, frozenset, dict)) or not hasattr(value, "__len__"):
+        what = f"{length} real numbers" if length else "real numbers"
+        raise TypeError(f"{name} must be a sequence of {what}, got {type(value).__name__}")
+    if isinstance(value, np.ndarray) and value.ndim != 1:
+        raise ValueError(f"{name} must be a flat sequence of real numbers, got an array of shape {value.shape}")
+    if length is not None and len(value) != length:
+        raise ValueError(f"{name} must hold {length} real numbers, got {len(value)}: {value!r}")
+    return tuple(check_real(f"{name}[{i}]", v, lo=lo, hi=hi, lo_open=lo_open, hi_open=hi_open)
+                 for i, v in enumerate(value))
+
+
+def check_real_vector(name, value, size, *, lo=None, hi=None, lo_open=False) -> np.ndarray:
+    """A number (broadcast) or a sequence of ``size`` finite reals in ``[lo, hi]``, as float64 ``(size,)``."""
+    if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)) or (
+            isinstance(value, np.ndarray) and value.ndim == 0):
+        v = check_real(name, value.item() if isinstance(value, np.ndarray) else value, lo=lo, hi=hi, lo_open=lo_open)
+        return np.full(size, v)
+    if isinstance(value, np.ndarray) and value.ndim != 1:
+        raise ValueError(f"{name} must be a number or a vector of {size} numbers, got an array of shape {value.shape}")
+    if isinstance(value, (str, bytes, set, frozenset, dict)) or not hasattr(value, "__len__"):
+        raise TypeError(f"{name} must be a number or a vector of {size} numbers, got {type(value).__name__}")
+    if len(value) != size:
+        raise ValueError(f"{name} must be a number or a vector of {size} numbers, got {len(value)}: {value!r}")
+    return np.array([check_real(name, v, lo=lo, hi=hi, lo_open=lo_open) for v in value], dtype=np.float64)
+
+
+def check_real_array(name, array, *, ndim=None, allow_empty=True) -> np.ndarray:
+    """Return ``array`` as a finite real ndarray (bool/int/float), ``ndim``-D if given (an int or allowed counts)."""
+    arr = check_finite_array(name, array)
+    if ndim is not None:
+        allowed = (ndim,) if isinstance(ndim, int) else tuple(ndim)
+        if arr.ndim not in allowed:
+            raise ValueError(f"{name} must be {' or '.join(f'{d}-D' for d in allowed)}, got shape {arr.shape}")
+    if not allow_empty and arr.size == 0:
+        raise ValueError(f"{name} is empty (shape {arr.shape})")
+    return arr
+
+
+def _asarray(name, value) -> np.ndarray:
+    """``np.asarray(value)``, with numpy's conversion errors (ragged lists, huge ints) turned into ones naming ``name``."""
+    if isinstance(value, np.ndarray):
+        return value
+    if isinstance(value, (str, bytes, dict, set, frozenset)) or value is None:
+        raise TypeError(f"{name} must be a real numeric array, got {type(value).__name__}")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", np.exceptions.VisibleDeprecationWarning)
+            return np.asarray(value)
+    except (ValueError, TypeError, OverflowError, np.exceptions.VisibleDeprecationWarning) as exc:
+        raise TypeError(f"{name} must be a real numeric array (a regular nest of numbers): {exc}") from None
 
 
 def check_finite_array(name, array) -> np.ndarray:
     """Return ``array`` as an ndarray; raise if it holds NaN or inf (naming how many)."""
-    array = np.asarray(array)
+    array = _asarray(name, array)
     if array.dtype.kind not in "biuf":
-        raise TypeError(f"{name} must be a real numeric array, got dtype {array.dtype}")
+        kind = "complex" if array.dtype.kind == "c" else "real numeric"
+        raise TypeError(f"{name} must be a real numeric array, got dtype {array.dtype}"
+                        + (" (pass its real part or magnitude)" if kind == "complex" else ""))
     if array.dtype.kind == "f":
         bad = ~np.isfinite(array)
         if bad.any():
@@ -119,34 +216,124 @@ def float_dtype(dtype) -> np.dtype:
     return dt
 
 
-def available_memory() -> int:
-    """Bytes of memory this process can still allocate (MemAvailable, or a cgroup limit if lower)."""
-    avail = None
+def _meminfo_available() -> int | None:
     try:
         with open("/proc/meminfo") as fh:
             for line in fh:
                 if line.startswith("MemAvailable:"):
-                    avail = int(line.split()[1]) * 1024
-                    break
-    except OSError:
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
         pass
-    for path in ("/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"):
-        try:
-            with open(path) as fh:
-                raw = fh.read().strip()
-            if raw != "max":
-                limit = int(raw)
-                used = 0
-                for upath in ("/sys/fs/cgroup/memory.current", "/sys/fs/cgroup/memory/memory.usage_in_bytes"):
-                    if os.path.exists(upath):
-                        with open(upath) as fh:
-                            used = int(fh.read().strip())
-                        break
-                room = max(limit - used, 0)
-                avail = room if avail is None else min(avail, room)
-        except (OSError, ValueError):
+    return None
+
+
+def _read_int(path):
+    try:
+        with open(path) as fh:
+            raw = fh.read().strip()
+    except OSError:
+        return None
+    if raw == "max":
+        return None
+    try:
+        return int(raw)
+    except ValueError:
+        return None
+
+
+def _cgroup_room(cgroup_text: str, mount: str = "/sys/fs/cgroup") -> int | None:
+    """Bytes left under this process's cgroup memory limits (v2 ``memory.max``, v1 ``memory.limit_in_bytes``).
+
+    ``cgroup_text`` is the content of ``/proc/self/cgroup``. Every level from
+    the process's own cgroup up to the root is checked (a parent's limit binds
+    its children), both at the path the kernel names and at the mount's root
+    (inside a container's cgroup namespace the own cgroup is the root);
+    returns the least ``limit - usage``, or None when no limit is set.
+    """
+    v2, v1 = None, None
+    for line in cgroup_text.splitlines():
+        parts = line.split(":", 2)
+        if len(parts) != 3:
             continue
-    return avail if avail is not None else 1 << 62
+        hid, controllers, path = parts
+        if hid == "0" and controllers == "":
+            v2 = path
+        elif "memory" in controllers.split(","):
+            v1 = path
+    candidates = []
+    for base, path, limit_name, usage_name in (
+            (mount, v2, "memory.max", "memory.current"),
+            (os.path.join(mount, "unified"), v2, "memory.max", "memory.current"),
+            (os.path.join(mount, "memory"), v1, "memory.limit_in_bytes", "memory.usage_in_bytes")):
+        if path is None:
+            continue
+        rel = path.strip("/")
+        levels = [rel]
+        while rel:
+            rel = os.path.dirname(rel)
+            levels.append(rel)
+        for level in levels:
+            candidates.append((os.path.join(base, level, limit_name), os.path.join(base, level, usage_name)))
+    room = None
+    for limit_path, usage_path in dict.fromkeys(candidates):
+        limit = _read_int(limit_path)
+        if limit is None or limit >= (1 << 62):  # v1 writes "no limit" as a huge number
+            continue
+        used = _read_int(usage_path) or 0
+        left = max(limit - used, 0)
+        room = left if room is None else min(room, left)
+    return room
+
+
+def _address_space_room() -> int | None:
+    """Bytes of address space left under ``RLIMIT_AS`` (``ulimit -v``), or None when unlimited."""
+    try:
+        import resource
+    except ImportError:  # not on POSIX
+        return None
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    if soft == resource.RLIM_INFINITY or soft < 0:
+        return None
+    used = 0
+    try:
+        with open("/proc/self/status") as fh:
+            for line in fh:
+                if line.startswith("VmSize:"):
+                    used = int(line.split()[1]) * 1024
+                    break
+    except (OSError, ValueError, IndexError):
+        pass
+    return max(soft - used, 0)
+
+
+def memory_limits() -> dict:
+    """What bounds an allocation now, in bytes: ``{"free RAM": ..., "cgroup limit": ..., "address-space limit": ...}``.
+
+    Only the limits that apply are present: ``MemAvailable`` from
+    ``/proc/meminfo``, the room under the cgroup (v2 or v1) memory limit of
+    this process and its parents, and the room under ``RLIMIT_AS``.
+    """
+    limits = {}
+    ram = _meminfo_available()
+    if ram is not None:
+        limits["free RAM"] = ram
+    try:
+        with open("/proc/self/cgroup") as fh:
+            cg = _cgroup_room(fh.read())
+    except OSError:
+        cg = None
+    if cg is not None:
+        limits["cgroup limit"] = cg
+    aspace = _address_space_room()
+    if aspace is not None:
+        limits["address-space limit"] = aspace
+    return limits
+
+
+def available_memory() -> int:
+    """Bytes of memory this process can still allocate: the least of free RAM, the cgroup room and the RLIMIT_AS room."""
+    limits = memory_limits()
+    return min(limits.values()) if limits else 1 << 62
 
 
 def check_memory(nbytes: int, what: str) -> None:
@@ -154,11 +341,20 @@ def check_memory(nbytes: int, what: str) -> None:
 
     Called before large allocations with an estimate of the *peak* the
     operation needs, so that an impossible request fails at once instead of
-    swapping or being killed half-way through.
+    swapping or being killed half-way through. The bound is the least of the
+    free RAM, the room under this process's cgroup memory limit and the room
+    under its address-space limit (``ulimit -v``); the message says which.
     """
-    avail = available_memory()
+    nbytes = float(nbytes)
+    if nbytes <= (1 << 20):  # a MiB always fits; skip reading /proc
+        return
+    limits = memory_limits()
+    if not limits:
+        return
+    which = min(limits, key=limits.get)
+    avail = limits[which]
     if nbytes > avail:
         raise MemoryError(
-            f"{what} needs about {nbytes / 2**30:.2f} GiB but only {avail / 2**30:.2f} GiB is available; "
-            "use a smaller size, float32, or a tiled/chunked path"
+            f"{what} needs about {nbytes / 2**30:.3g} GiB but only {avail / 2**30:.2f} GiB is available "
+            f"({which}); use a smaller size, float32, or a tiled/chunked path"
         )

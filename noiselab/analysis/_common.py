@@ -18,7 +18,7 @@ import numbers
 
 import numpy as np
 
-from .._validate import check_finite_array, check_real
+from .._validate import _asarray, check_finite_array, check_real
 
 __all__ = ["check_field", "check_video", "check_band", "frequency_index", "ref_size"]
 
@@ -32,7 +32,7 @@ def check_field(name, field, *, ndim=(1, 2, 3), min_size=4, allow_constant=False
     """
     if isinstance(field, (str, bytes)) or field is None:
         raise TypeError(f"{name} must be a numeric array, got {type(field).__name__}")
-    arr = np.asarray(field)
+    arr = _asarray(name, field)
     if arr.dtype.kind == "c":
         raise TypeError(f"{name} must be real; got a complex array (pass its real part, abs or power)")
     if arr.dtype.kind not in "biuf":
@@ -82,7 +82,9 @@ def check_band(name, band, fmax, *, allow_none=False):
         if allow_none:
             return None
         raise ValueError(f"{name} must be a (lo, hi) pair in cycles/frame, got None")
-    if isinstance(band, (str, bytes)) or not hasattr(band, "__len__") or len(band) != 2:
+    if isinstance(band, (str, bytes, set, frozenset, dict)):
+        raise TypeError(f"{name} must be an ordered (lo, hi) pair in cycles/frame, got a {type(band).__name__}")
+    if not hasattr(band, "__len__") or len(band) != 2:
         raise ValueError(f"{name} must be a (lo, hi) pair in cycles/frame, got {band!r}")
     lo = check_real(f"{name}[0]", band[0], lo=0.0, lo_open=True)
     hi = check_real(f"{name}[1]", band[1], lo=0.0, lo_open=True)
@@ -95,9 +97,12 @@ def check_band(name, band, fmax, *, allow_none=False):
 
 def check_vector(name, value, *, nonzero=False) -> np.ndarray:
     """Validate a 2-vector ``(x, y)`` of finite reals."""
-    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+    if isinstance(value, (str, bytes, set, frozenset, dict)):
+        raise TypeError(f"{name} must be an ordered (x, y) pair, got a {type(value).__name__}")
+    if not hasattr(value, "__len__") or len(value) != 2:
         raise ValueError(f"{name} must be an (x, y) pair, got {value!r}")
-    vec = np.array([check_real(f"{name}[{i}]", v) for i, v in enumerate(value)], dtype=np.float64)
+    # within +-1e100 so that products with frequencies cannot overflow
+    vec = np.array([check_real(f"{name}[{i}]", v, lo=-1e100, hi=1e100) for i, v in enumerate(value)], dtype=np.float64)
     if nonzero and not np.any(vec):
         raise ValueError(f"{name} must not be (0, 0)")
     return vec
@@ -136,7 +141,7 @@ def noise_floor(spec) -> float:
 
 
 def check_tol(name, tol) -> float:
-    return check_real(name, tol, lo=0.0)
+    return check_real(name, tol, lo=0.0, hi=1e100)
 
 
 def is_int(value) -> bool:

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite_array
+from .._validate import _asarray, check_finite_array
 
 __all__ = ["michelson_contrast", "rms_contrast", "to_grey"]
 
@@ -14,7 +14,7 @@ def _values(x, mask):
         raise ValueError("x is empty")
     if mask is None:
         return arr.astype(np.float64, copy=False).ravel()
-    m = np.asarray(mask)
+    m = _asarray("mask", mask)
     if m.dtype != np.bool_:
         raise TypeError(f"mask must be a boolean array, got dtype {m.dtype}")
     try:
@@ -47,9 +47,9 @@ def michelson_contrast(x, mask=None) -> float:
     v = _values(x, mask)
     lo, hi = float(v.min()), float(v.max())
     if lo < 0:
-        raise ValueError(f"Michelson contrast needs non-negative intensities, got a minimum of {lo:g}")
+        raise ValueError(f"x: Michelson contrast needs non-negative intensities, got a minimum of {lo:g}")
     if hi == 0:
-        raise ValueError("Michelson contrast is undefined for an all-zero region")
+        raise ValueError("x: Michelson contrast is undefined for an all-zero region")
     return (hi - lo) / (hi + lo)
 
 
@@ -65,15 +65,18 @@ def rms_contrast(x, mask=None) -> float:
     0.5
     """
     v = _values(x, mask)
+    big = float(np.max(np.abs(v)))
+    if big > 1e100 or 0 < big < 1e-100:
+        v = v / big  # the contrast is scale-free: scaled, the squares neither overflow nor underflow
     mean = float(v.mean())
     if mean <= 0:
-        raise ValueError(f"RMS contrast needs a positive mean intensity, got {mean:g}")
+        raise ValueError(f"x: RMS contrast needs a positive mean intensity, got {mean:g}")
     return float(v.std() / mean)
 
 
 def to_grey(x) -> np.ndarray:
     """Grey level of an RGB image or video (trailing axis of 3 or 4) with Rec. 709 luma weights; grey input passes through."""
-    arr = np.asarray(x)
+    arr = check_finite_array("x", x)
     if arr.ndim >= 3 and arr.shape[-1] in (3, 4):
         arr = arr[..., :3].astype(np.float32) @ np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)
     return arr

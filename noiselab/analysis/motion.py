@@ -37,10 +37,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import math
+
 import numpy as np
 import scipy.fft
 
-from .._validate import check_real
+from .._validate import check_memory, check_real
 from ._common import check_band, check_tol, check_vector, check_video, frequency_index, half_weight, ref_size
 from .spectrum import PowerSpectrum, power_spectrum
 
@@ -329,7 +331,10 @@ def octave_bands(lo, hi, per_octave=2):
     """Log-spaced bands ``[(f0, f1), (f1, f2), ...]`` from ``lo`` to ``hi`` cycles/frame, ``per_octave`` per octave."""
     lo = check_real("lo", lo, lo=0.0, lo_open=True)
     hi = check_real("hi", hi, lo=lo, lo_open=True)
-    n = max(int(round(np.log2(hi / lo) * per_octave)), 1)
+    per_octave = check_real("per_octave", per_octave, lo=0.0, lo_open=True)
+    count = (math.log2(hi) - math.log2(lo)) * per_octave  # logs apart: hi / lo overflows for tiny lo
+    check_memory(count * 200, f"octave_bands with {count:.3g} bands")  # a list of tuples of two floats
+    n = max(int(round(count)), 1)
     e = np.geomspace(lo, hi, n + 1)
     return [(float(e[i]), float(e[i + 1])) for i in range(n)]
 
@@ -396,6 +401,7 @@ def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octa
     spec = video_spectrum(video, window=window, remove_static=remove_static)
     g = _Grid(spec.shape)
     explicit = bands is not None
+    min_energy = check_real("min_energy", min_energy, lo=0.0, hi=1.0)
     if explicit:
         bands = _check_bands(bands, g.n_ref / 2.0 * np.sqrt(2))
     else:

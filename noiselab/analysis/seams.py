@@ -37,12 +37,20 @@ def loop_seam(video) -> float:
     >>> loop_seam(loop[:12]) > 3
     True
     """
-    arr = check_video("video", video, min_frames=3, min_size=1, allow_constant=True)
+    arr = _scale_free(check_video("video", video, min_frames=3, min_size=1, allow_constant=True))
     steps = [_rms(arr[t + 1].astype(np.float64) - arr[t]) for t in range(arr.shape[0] - 1)]
     ordinary = float(np.mean(steps))
     if ordinary == 0:
         raise ValueError("video does not change from frame to frame: the loop seam is undefined")
     return _rms(arr[0].astype(np.float64) - arr[-1]) / ordinary
+
+
+def _scale_free(arr):
+    """The seam costs are ratios of RMS steps: divide huge or tiny values by their magnitude so squares stay finite."""
+    big = max(abs(float(arr.max())), abs(float(arr.min())))
+    if big > 1e100 or 0 < big < 1e-100:
+        return arr.astype(np.float64) / big
+    return arr
 
 
 def _axis_seam(arr, axis, tile):
@@ -105,13 +113,15 @@ def tile_seam(image, tile=None) -> float:
     >>> tile_seam(x + y + 0.0) > 10
     True
     """
-    arr = check_field("image", image, ndim=(2, 3), min_size=2, allow_constant=True)
+    arr = _scale_free(check_field("image", image, ndim=(2, 3), min_size=2, allow_constant=True))
     h, w = arr.shape[-2:]
     if tile is None:
         th, tw = h, w
     elif isinstance(tile, numbers.Integral):
         th = tw = check_int("tile", tile, lo=2)
     else:
+        if isinstance(tile, (str, bytes, set, frozenset, dict)) or not hasattr(tile, "__len__"):
+            raise TypeError(f"tile must be an int or an ordered (height, width) pair, got {type(tile).__name__}")
         if len(tile) != 2:
             raise ValueError(f"tile must be an int or a (height, width) pair, got {tile!r}")
         th, tw = check_int("tile[0]", tile[0], lo=2), check_int("tile[1]", tile[1], lo=2)

@@ -104,6 +104,9 @@ def spectral_slope(field, band=None, *, bins_per_octave=8, window=None, axes=Non
         raise ValueError(f"field of shape {spec.shape} is too small to fit a spectral slope (needs at least 8 samples along an axis)")
     band = default_band(n_ref) if band is None else band
     lo, hi = check_band("band", band, n_ref / 2.0)
+    if lo < 1e-3:
+        raise ValueError(f"band lower edge {lo:g} cycles/frame is below 1e-3: the lowest frequency a field "
+                         "holds is 1 cycle/frame")
     n_bins = max(int(np.ceil(np.log2(hi / lo) * bpo)), 1)
     edges = np.geomspace(lo, hi, n_bins + 1)
     edges[-1] *= 1 + 1e-12  # make the upper edge inclusive
@@ -192,10 +195,10 @@ def octave_energy(field, lo=1.0, hi=None, *, window=None, axes=None) -> OctaveEn
     lo = check_real("lo", lo, lo=0.0, lo_open=True)
     hi = n_ref / 2.0 if hi is None else check_real("hi", hi, lo=0.0, lo_open=True)
     check_band("(lo, hi)", (lo, hi), n_ref / 2.0)
-    n_oct = int(np.floor(np.log2(hi / lo) + 1e-9))
+    n_oct = int(np.floor(np.log2(hi) - np.log2(lo) + 1e-9))  # logs apart: hi / lo overflows for tiny lo
     if n_oct < 1:
         raise ValueError(f"(lo, hi) = ({lo:g}, {hi:g}) cycles/frame spans less than one octave")
-    edges = lo * 2.0 ** np.arange(n_oct + 1)
+    edges = np.ldexp(lo, np.arange(n_oct + 1))  # lo * 2**k exactly, without overflowing 2**k
     bins = edges.copy()
     bins[-1] *= 1 + 1e-12
     rs = radial_spectrum(spec, bins=bins, log=True)

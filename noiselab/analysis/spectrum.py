@@ -25,7 +25,7 @@ from dataclasses import dataclass, field as dc_field
 import numpy as np
 import scipy.fft
 
-from .._validate import check_int, check_memory, check_real
+from .._validate import check_axes, check_int, check_memory, check_real
 from ._common import check_band, check_field, frequency_index, half_weight, ref_size
 
 __all__ = [
@@ -152,14 +152,23 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=
     >>> bool(np.isclose(spec.total, x.var()))
     True
     """
+    min_size = check_int("min_size", min_size, lo=1)
     arr = check_field("field", field, min_size=min_size)
-    if window not in _WINDOWS:
+    if not (window is None or (isinstance(window, str) and window in _WINDOWS)):
         raise ValueError(f"window must be None or 'hann', got {window!r}")
     nd = arr.ndim
-    axes = tuple(range(nd)) if axes is None else tuple(sorted(int(a) % nd for a in axes))
-    if len(set(axes)) != len(axes) or not axes:
-        raise ValueError(f"axes must be distinct axes of the field, got {axes}")
-    window_axes = axes if window_axes is None else tuple(sorted(int(a) % nd for a in window_axes))
+    axes = tuple(range(nd)) if axes is None else check_axes("axes", axes, nd)
+    window_axes = axes if window_axes is None else check_axes("window_axes", window_axes, nd)
+    lo_val, hi_val = float(arr.min()), float(arr.max())
+    biggest = max(abs(lo_val), abs(hi_val))
+    if biggest > 1e150:
+        raise ValueError(f"field values reach {biggest:.3g}: their power (value squared) would overflow float64; "
+                         "|field| must stay below 1e150 (rescale it)")
+    if biggest < 1e-150:
+        raise ValueError(f"field values are at most {biggest:.3g} in magnitude: their power (value squared) would "
+                         "underflow float64; |field| must reach 1e-150 (rescale it)")
+    if arr.dtype == np.float32 and (biggest * np.sqrt(arr.size) > 1e18 or biggest < 1e-15):
+        arr = arr.astype(np.float64)  # |FFT|**2 would overflow float32: transform these values in float64
     cdt = np.complex64 if arr.dtype == np.float32 else np.complex128
     # peak: the working copy, the complex half spectrum and the power
     spec_cells = arr.size // arr.shape[axes[-1]] * (arr.shape[axes[-1]] // 2 + 1)
@@ -169,7 +178,7 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=
     # Without a window, removing the mean only zeroes the DC cell, so the field is transformed as
     # is (no working copy) unless its mean dwarfs its range, where subtracting first keeps the
     # FFT's rounding (relative to the whole signal) off the fluctuations.
-    span = float(arr.max()) - float(arr.min())
+    span = hi_val - lo_val
     if window is None and abs(mean) <= 10 * span:
         work, zero_dc = arr, True
     else:
@@ -187,12 +196,18 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=
         spec[tuple(0 if a in axes else slice(None) for a in range(nd))] = 0
     n = int(np.prod([arr.shape[a] for a in axes]))
     norm = 1.0 / (float(n) ** 2 * scale)
+    # |X| <= n * max|field|: square after scaling by 1/n when n * max|field| could overflow the square
+    prescale = biggest * n > 1e150 if arr.dtype == np.float64 else False
+    root = spec.real.dtype.type(np.sqrt(norm))
     power = np.empty(spec.shape, dtype=arr.dtype)
     for i in range(spec.shape[0]) if spec.ndim > 1 else [slice(None)]:
         # |X|^2 one slab at a time: slab-sized temporaries only
+        if prescale:
+            spec[i] *= root
         power[i] = np.square(spec[i].real)
         power[i] += np.square(spec[i].imag)
-        power[i] *= power.dtype.type(norm)
+        if not prescale:
+            power[i] *= power.dtype.type(norm)
     del spec
     return PowerSpectrum(power=power, shape=arr.shape, axes=axes, window=window, window_axes=window_axes if window else (), mean=mean)
 
@@ -291,10 +306,16 @@ def _edges(bins, log, fmax, fmin=1.0):
         return np.arange(0.5, np.floor(fmax) + 0.5 + 1e-9, 1.0)
     if np.ndim(bins) == 0:
         nb = check_int("bins", bins, lo=1)
+        check_memory(nb * 8 * 8, f"radial_spectrum with bins={nb}")  # edges and the per-bin sums
         if log:
             return np.geomspace(fmin * (1 - 1e-9), fmax * (1 + 1e-9), nb + 1)
         return np.linspace(0.5, fmax, nb + 1)
-    edges = np.asarray(bins, dtype=np.float64)
+    if isinstance(bins, (str, bytes, set, frozenset, dict)):
+        raise TypeError(f"bins must be an int count or a 1-D array of edges, got {type(bins).__name__}")
+    try:
+        edges = np.asarray(bins, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"bins must be an int count or a 1-D array of edges, got {bins!r}") from None
     if edges.ndim != 1 or edges.size < 2 or not np.all(np.isfinite(edges)) or np.any(np.diff(edges) <= 0):
         raise ValueError("bins must be an int count or an increasing 1-D array of at least 2 finite edges")
     if edges[0] < 0:

@@ -22,13 +22,18 @@ how many were used:
 """
 from __future__ import annotations
 
+import math
 import numbers
 
 import numpy as np
 
-from .._validate import check_int, check_real, float_dtype
+from .._validate import _asarray, check_int, check_real, check_real_array, float_dtype
 
 __all__ = ["fractal_sum", "turbulence", "octaves_used"]
+
+# frequencies and amplitude sums are kept below this (well inside float64's 1.8e308,
+# so that points, phases and kernel sums scaled by them stay finite)
+_LOG_LIMIT = math.log(1e300)
 
 
 def octaves_used(octaves, *, lacunarity=2.0, gain=0.5, spacing=None, frequency=1.0, dtype=np.float64) -> int:
@@ -58,6 +63,20 @@ def octaves_used(octaves, *, lacunarity=2.0, gain=0.5, spacing=None, frequency=1
     lacunarity = check_real("lacunarity", lacunarity, lo=1.0, lo_open=True)
     gain = check_real("gain", gain, lo=0.0, lo_open=True)
     eps = np.finfo(float_dtype(dtype)).eps / 2
+    freq_arr = check_real_array("frequency", frequency, ndim=(0, 1), allow_empty=False)
+    if not (freq_arr > 0).all():
+        raise ValueError(f"frequency must be > 0 (lattice cells per unit), got {frequency!r}")
+    if spacing is not None:
+        try:
+            sp = np.asarray(spacing, dtype=np.float64)
+        except (TypeError, ValueError, OverflowError):
+            raise TypeError(f"spacing must be a real number or a sequence of them, got {spacing!r}") from None
+        if sp.ndim > 1 or np.isinf(sp).any() or (sp <= 0).any():
+            raise ValueError(f"spacing must be > 0 and finite per axis (NaN: an axis with one sample), got {spacing!r}")
+    if gain > 1 and octaves > 1 and (octaves - 1) * math.log(gain) + math.log(octaves) > _LOG_LIMIT:
+        most = int((_LOG_LIMIT - math.log(octaves)) / math.log(gain)) + 1
+        raise ValueError(f"gain={gain:g} over octaves={octaves} overflows: the sum of gain**o passes 1e300; "
+                         f"use at most {most} octaves with this gain (or gain <= 1)")
     total = sum(gain ** k for k in range(octaves)) if gain != 1 else float(octaves)
     used = 0
     partial = 0.0
@@ -67,13 +86,21 @@ def octaves_used(octaves, *, lacunarity=2.0, gain=0.5, spacing=None, frequency=1
         if o > 0 and remaining <= eps * partial:
             break
         if spacing is not None:
-            cells = np.asarray(spacing, dtype=np.float64) * np.asarray(frequency, dtype=np.float64) * lacunarity ** o
+            step = lacunarity ** o if o * math.log(lacunarity) < _LOG_LIMIT else math.inf
+            with np.errstate(over="ignore", invalid="ignore"):
+                cells = np.asarray(spacing, dtype=np.float64) * np.asarray(frequency, dtype=np.float64) * step
             cells = np.atleast_1d(cells)
-            cells = cells[np.isfinite(cells)]
+            cells = cells[~np.isnan(cells)]  # NaN: an axis with one sample (no spacing)
             if o > 0 and cells.size and (cells > 1.0).all():
                 break
         partial += gain ** o
         used += 1
+    top = float(np.max(freq_arr))
+    if used > 1 and math.log(top) + (used - 1) * math.log(lacunarity) > _LOG_LIMIT:
+        most = int((_LOG_LIMIT - math.log(top)) / math.log(lacunarity)) + 1
+        raise ValueError(f"lacunarity={lacunarity:g} over {used} visible octaves overflows: frequency * "
+                         f"lacunarity**(octaves-1) passes 1e300 lattice cells per unit; use at most {most} octaves "
+                         "(octaves), a smaller lacunarity, or a gain that lets the fine octaves fall below resolution")
     return used
 
 
@@ -94,7 +121,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
         spacing = np.abs(steps)
         out_dtype = float_dtype(np.float64 if dtype is None else dtype)
     else:
-        raw = np.asarray(x)
+        raw = _asarray("x", x)
         out_dtype = float_dtype(dtype) if dtype is not None else (
             np.dtype(np.float32) if raw.dtype == np.float32 else np.dtype(np.float64))
         if spacing is not None:
@@ -115,6 +142,9 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
             result = noise._grid(shape, ext, dtype=out_dtype, window=None, octaves=used,
                                  lacunarity=lacunarity, gain=gain, absval=absval)
         else:
+            from ..lattice.core import _check_amplitude
+            _check_amplitude(noise.amplitude * (sum(gain ** o for o in range(used)) if gain <= 1 else used * gain ** (used - 1)),
+                             out_dtype, "amplitude (times the sum of the octaves' gains)")
             lead, flat = noise._prepare_points(raw, "x")
             freqs = noise.frequency[None, :] * (lacunarity ** np.arange(used))[:, None]
             amps = noise.scale * gain ** np.arange(used)
@@ -126,11 +156,15 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
             raise TypeError(f"noise must be a LatticeNoise or a callable on points, got {type(noise).__name__}")
         pts = np.stack(np.meshgrid(*grid_coordinates(shape, ext), indexing="ij"), axis=-1) if is_grid else raw
         result = None
-        for o in range(used):
-            v = np.asarray(noise(pts * lacunarity ** o), dtype=np.float64)
-            term = gain ** o * (np.abs(v) if absval else v)
-            result = term if result is None else result + term
-        result = (result / norm).astype(out_dtype)
+        with np.errstate(over="ignore", invalid="ignore"):
+            for o in range(used):
+                v = np.asarray(noise(pts * lacunarity ** o), dtype=np.float64)
+                term = gain ** o * (np.abs(v) if absval else v)
+                result = term if result is None else result + term
+            result = (result / norm).astype(out_dtype)
+        if not np.isfinite(result).all():
+            raise ValueError(f"noise returned NaN or inf (or the octave sum overflowed {out_dtype.name}) at "
+                             f"{int((~np.isfinite(result)).sum())} point(s); noise must return finite values")
     return (result, used) if return_octaves else result
 
 

@@ -66,7 +66,7 @@ def noisy_arc(field, theta, radius=1.0, amplitude=0.1, frequency=1.0, phase=0.0,
     True
     """
     mode = _mode(mode)
-    theta = check_finite_array("theta", np.asarray(theta, dtype=np.float64))
+    theta = check_finite_array("theta", theta).astype(np.float64)
     if theta.ndim != 1:
         raise ValueError(f"theta must be a 1-D array of angles, got shape {theta.shape}")
     radius = check_real("radius", radius, lo=0.0)
@@ -133,7 +133,7 @@ def trajectory(field, t, amplitude=1.0, frequency=1.0, phase=0.0, *, dims=None):
     >>> trajectory(f, np.linspace(0, 1, 5)).shape
     (5, 2)
     """
-    t = check_finite_array("t", np.asarray(t, dtype=np.float64))
+    t = check_finite_array("t", t).astype(np.float64)
     if t.ndim != 1:
         raise ValueError(f"t must be a 1-D array, got shape {t.shape}")
     amplitude = check_real("amplitude", amplitude)
@@ -207,7 +207,7 @@ def trajectory_frames(points, *, tail=25, size=256, marker_size=60.0, limits=Non
     """
     from .render import _new_figure, figure_to_array
 
-    points = check_finite_array("points", np.asarray(points, dtype=np.float64))
+    points = check_finite_array("points", points).astype(np.float64)
     if points.ndim != 2 or points.shape[1] < 2 or len(points) < 1:
         raise ValueError(f"points must have shape (n, 2), got {points.shape}")
     tail = check_int("tail", tail, lo=0)

@@ -19,7 +19,7 @@ import warnings
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_memory, check_real
+from .._validate import check_finite_array, check_int, check_memory, check_real, check_real_vector
 from ._kernels import face_pass, unit_rows
 from ._mesh import AliasingWarning, as_trimesh  # noqa: F401  (defined in the leaf module _mesh; re-exported here)
 from .fields import evaluate_field, field_max_frequency, octave_field
@@ -196,12 +196,17 @@ def resolution_report(mesh, max_frequency, *, samples_per_period=4.0) -> Resolut
     Parameters
     ----------
     mesh : trimesh.Trimesh
-    max_frequency : float
+    max_frequency : float in (0, 1e300]
         Highest frequency of the displacement, in cycles per unit of the
         mesh's coordinates: ``frequency * lacunarity**(octaves - 1)`` for an
         octave sum of a unit-frequency lattice noise.
     samples_per_period : float
         Samples per period required (default 4: a period drawn by four edges).
+
+    Returns
+    -------
+    ResolutionReport
+        Every field finite.
 
     Examples
     --------
@@ -211,7 +216,8 @@ def resolution_report(mesh, max_frequency, *, samples_per_period=4.0) -> Resolut
     (False, 3)
     """
     mesh = as_trimesh(mesh)
-    max_frequency = check_real("max_frequency", max_frequency, lo=0.0)
+    # > 0: a field of frequency 0 is constant, any mesh samples it (its samples per period would be inf)
+    max_frequency = check_real("max_frequency (cycles/unit)", max_frequency, lo=1e-300, hi=1e300)
     required = check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
     v, f = _arrays(mesh)
     return _report(*face_pass(v, f, _stride(len(f)))[2:], max_frequency, required)
@@ -237,7 +243,8 @@ def _report(max_edge, lengths, max_frequency, required):
     period = 1.0 / max_frequency
     spp = period / max_edge
     target = period / required
-    subdivisions = max(0, math.ceil(math.log2(max_edge / target) - 1e-12))
+    # logs apart: max_edge / target overflows for frequencies near float64's limit
+    subdivisions = max(0, math.ceil(math.log2(max_edge) - math.log2(target) - 1e-12))
     return ResolutionReport(max_frequency, max_edge, median_edge, spp, period / median_edge,
                             required, target, subdivisions, spp >= required)
 
@@ -318,6 +325,12 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
     import trimesh
 
     mesh = as_trimesh(mesh)
+    if method not in ("midpoint", "loop", "adaptive"):
+        raise ValueError(f"method must be 'adaptive', 'midpoint' or 'loop', got {method!r}")
+    max_faces = check_int("max_faces", max_faces, lo=1)
+    if check_real("max_frequency (cycles/unit)", max_frequency, lo=0.0, hi=1e300) == 0:
+        check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
+        return mesh.copy()  # a constant field: any mesh samples it
     report = resolution_report(mesh, max_frequency, samples_per_period=samples_per_period)
     if method not in ("midpoint", "loop", "adaptive"):
         raise ValueError(f"method must be 'adaptive', 'midpoint' or 'loop', got {method!r}")
@@ -327,8 +340,10 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
     if method == "adaptive":
         # estimate from the edges that must be split: an edge of length L ends as ~L/target pieces
         lengths = np.asarray(mesh.edges_unique_length)
-        pieces = np.maximum(1.0, 2.0 ** np.ceil(np.log2(np.maximum(lengths / report.target_edge, 1.0))))
-        faces = int(len(mesh.faces) * min(float(np.mean(pieces ** 2)) * 1.5, 4.0 ** report.subdivisions))
+        with np.errstate(over="ignore"):
+            pieces = np.maximum(1.0, 2.0 ** np.ceil(np.log2(np.maximum(lengths / report.target_edge, 1.0))))
+            ratio = min(float(np.mean(pieces ** 2)) * 1.5, 4.0 ** min(report.subdivisions, 500))
+        faces = int(len(mesh.faces) * ratio) if math.isfinite(ratio) else faces
     if faces > max_faces:
         raise ValueError(
             f"reaching {report.required:g} samples per period at {report.max_frequency:g} cycles/unit needs "
@@ -361,12 +376,7 @@ def _check_resolution(max_edge, lengths, field, frequency, octaves, lacunarity, 
 
 
 def _as_vector(name, value, size):
-    arr = np.asarray(value, dtype=np.float64)
-    if arr.ndim == 0:
-        arr = np.full(size, float(arr))
-    if arr.shape != (size,):
-        raise ValueError(f"{name} must be a number or a vector of {size} numbers, got shape {arr.shape}")
-    return check_finite_array(name, arr)
+    return check_real_vector(name, value, size)
 
 
 def _outward(normals, volume, faces):
@@ -505,7 +515,7 @@ def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0,
     2
     """
     mesh = as_trimesh(mesh)
-    times = check_finite_array("times", np.atleast_1d(np.asarray(times, dtype=np.float64)))
+    times = np.atleast_1d(check_finite_array("times", times).astype(np.float64))
     if times.ndim != 1:
         raise ValueError(f"times must be a 1-D sequence, got shape {times.shape}")
     normals = kwargs.pop("normals", None)

@@ -43,9 +43,15 @@ def evaluate_field(field, points, *, name="field", components=None, chunk_size=1
     the field's temporaries; pointwise fields give the same values for any
     chunking.
     """
-    points = np.ascontiguousarray(points, dtype=np.float64)
     if not callable(field):
         raise TypeError(f"{name} must be callable on points of shape (n, k), got {type(field).__name__}")
+    points = check_finite_array("points", points)
+    if points.ndim != 2:
+        raise ValueError(f"points must have shape (n, k), got {points.shape}")
+    chunk_size = check_int("chunk_size", chunk_size, lo=1)
+    if components is not None:
+        components = check_int("components", components, lo=1)
+    points = np.ascontiguousarray(points, dtype=np.float64)
     dim_in = getattr(field, "dim_in", None)
     if isinstance(dim_in, (int, np.integer)) and dim_in != points.shape[1]:
         raise ValueError(
@@ -99,7 +105,7 @@ class _OctaveField:
             self.dim_in = dim_in
 
     def __call__(self, x):
-        x = np.asarray(x, dtype=np.float64)
+        x = check_finite_array("points", x).astype(np.float64)
         if _is_lattice(self.field):
             # the lattice's own octave sum: the same sum, evaluated by its fused fast path
             from ..fractal import fractal_sum, turbulence
@@ -109,12 +115,16 @@ class _OctaveField:
         total = None
         scale, weight = 1.0, 1.0
         for _ in range(self.octaves):
-            value = np.asarray(self.field(x * scale), dtype=np.float64)
-            if self.kind == "turbulence":
-                value = np.abs(value)
-            total = weight * value if total is None else total + weight * value
+            with np.errstate(over="ignore", invalid="ignore"):
+                value = np.asarray(self.field(x * scale), dtype=np.float64)
+                if self.kind == "turbulence":
+                    value = np.abs(value)
+                total = weight * value if total is None else total + weight * value
             scale *= self.lacunarity
             weight *= self.gain
+        if total is not None and not np.isfinite(total).all():
+            raise ValueError(f"field returned NaN or inf (or its octave sum overflowed) at {int((~np.isfinite(total)).sum())} "
+                             "point(s); a field must return finite values")
         return total
 
     def __repr__(self):
@@ -180,7 +190,7 @@ class _SampledField:
     def __call__(self, x):
         from scipy import ndimage
 
-        x = np.asarray(x, dtype=np.float64)
+        x = check_finite_array("points", x).astype(np.float64)
         if x.ndim != 2 or x.shape[1] != self.dim_in:
             raise ValueError(f"sampled field takes points of shape (n, {self.dim_in}), got {x.shape}")
         coords = ((x - self.origin) / self.spacing).T
@@ -223,7 +233,7 @@ def sampled_field(values, extent=None, *, periodic=True, order=3, vector=False, 
         raise ValueError(f"values needs at least 2 samples per axis, got shape {shape}")
     if extent is None:
         extent = [(0.0, float(n)) for n in shape]
-    extent = np.asarray(extent, dtype=np.float64)
+    extent = check_finite_array("extent", extent).astype(np.float64)
     if extent.shape != (dims, 2):
         raise ValueError(f"extent must hold one (start, stop) pair per axis ({dims}), got shape {extent.shape}")
     if not np.all(np.isfinite(extent)) or np.any(extent[:, 1] <= extent[:, 0]):

@@ -10,18 +10,21 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_real
+from .._validate import check_finite_array, check_int, check_real, check_real_vector
 from .fields import evaluate_field
-from .surfaces import _extent, grid_points
+from .surfaces import _amplified, _extent, _scaled, grid_points
 
 __all__ = ["flow_field", "streamlines", "quiver_image", "streamline_image", "flow_glyphs"]
 
 
 def _velocity(field, d, amplitude, frequency, phase):
-    phase = np.broadcast_to(np.asarray(phase, dtype=np.float64), (d,))
+    phase = check_real_vector("phase", phase, d)
+    amplitude = check_real("amplitude", amplitude, lo=-1e100, hi=1e100)  # arrow lengths are squared
+    frequency = check_real("frequency", frequency, lo=0.0)
 
     def v(p):
-        return amplitude * evaluate_field(field, p * frequency + phase, name="field", components=d)
+        return _amplified(evaluate_field(field, _scaled("the points", p, frequency, phase), name="field",
+                                         components=d), amplitude)
 
     return v
 
@@ -71,7 +74,7 @@ def streamlines(field, seeds, *, step=0.01, n_steps=200, amplitude=1.0, frequenc
     >>> bool(np.allclose(path[0, -1], [-1.0, 0.0], atol=1e-6))
     True
     """
-    seeds = check_finite_array("seeds", np.atleast_2d(np.asarray(seeds, dtype=np.float64)))
+    seeds = np.atleast_2d(check_finite_array("seeds", seeds).astype(np.float64))
     if seeds.ndim != 2 or seeds.shape[1] not in (2, 3):
         raise ValueError(f"seeds must have shape (m, 2) or (m, 3), got {seeds.shape}")
     step = check_real("step", step, lo=0.0, lo_open=True)

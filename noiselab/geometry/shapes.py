@@ -46,8 +46,10 @@ def sphere(subdivisions=4, radius=1.0, center=(0.0, 0.0, 0.0)):
     import trimesh
 
     subdivisions = check_int("subdivisions", subdivisions, lo=0, hi=10)
-    radius = check_real("radius", radius, lo=0.0, lo_open=True)
-    center = np.asarray(center, dtype=np.float64)
+    radius = check_real("radius", radius, lo=1e-100, hi=1e100)
+    from .._validate import check_finite_array
+
+    center = check_finite_array("center", center).astype(np.float64)
     if center.shape != (3,) or not np.all(np.isfinite(center)):
         raise ValueError(f"center must be 3 finite numbers, got {center!r}")
     mesh = trimesh.creation.icosphere(subdivisions=subdivisions, radius=radius)
@@ -91,7 +93,7 @@ def plane(resolution=64, size=2.0):
     """
 
     resolution = check_int("resolution", resolution, lo=2, hi=20_000)
-    size = check_real("size", size, lo=0.0, lo_open=True)
+    size = check_real("size", size, lo=1e-300, hi=1e300)
     half = size / 2.0
     step = size / (resolution - 1)
     # stop excluded: one step past +half so that the last sample lands on it
@@ -111,9 +113,9 @@ def sphere_for_noise(max_frequency, radius=1.0, *, samples_per_period=4.0, max_s
     >>> len(sphere_for_noise(4.0).vertices)   # 4 cycles/unit, 4 samples per period
     10242
     """
-    max_frequency = check_real("max_frequency", max_frequency, lo=0.0)
-    radius = check_real("radius", radius, lo=0.0, lo_open=True)
-    samples_per_period = check_real("samples_per_period", samples_per_period, lo=1.0)
+    max_frequency = check_real("max_frequency (cycles/unit)", max_frequency, lo=0.0, hi=1e300)
+    radius = check_real("radius", radius, lo=1e-100, hi=1e100)
+    samples_per_period = check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
     max_subdivisions = check_int("max_subdivisions", max_subdivisions, lo=0, hi=10)
     if max_frequency == 0:
         return sphere(0, radius)
@@ -144,7 +146,7 @@ def normalize(mesh, size=2.0):
     [2.0, 1.0, 0.5]
     """
 
-    size = check_real("size", size, lo=0.0, lo_open=True)
+    size = check_real("size", size, lo=1e-100, hi=1e100)
     out = as_trimesh(mesh).copy()
     lo, hi = out.bounds
     extent = float(np.max(hi - lo))
@@ -194,11 +196,13 @@ def arrange(meshes, columns=None, spacing=0.25):
     [0.0, 3.0]
     """
 
+    if isinstance(meshes, (str, bytes)) or not hasattr(meshes, "__iter__") or hasattr(meshes, "vertices"):
+        raise TypeError(f"meshes must be a sequence of meshes, got {type(meshes).__name__}")
     meshes = [as_trimesh(m, name=f"meshes[{i}]") for i, m in enumerate(meshes)]
     if not meshes:
         raise ValueError("meshes must hold at least one mesh")
     columns = len(meshes) if columns is None else check_int("columns", columns, lo=1)
-    spacing = check_real("spacing", spacing, lo=0.0)
+    spacing = check_real("spacing", spacing, lo=0.0, hi=1e6)
     cell = max(float(np.max(m.extents)) for m in meshes) * (1.0 + spacing)
     out = []
     for i, m in enumerate(meshes):

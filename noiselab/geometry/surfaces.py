@@ -11,14 +11,17 @@ import warnings
 
 import numpy as np
 
-from .._validate import check_int, check_memory, check_real, check_shape
+from .._validate import check_finite_array, check_int, check_memory, check_real, check_real_sequence, check_real_vector, check_shape
 from .fields import evaluate_field, field_max_frequency, octave_field
 
 __all__ = ["grid_points", "height_map", "monge_surface", "colored_surface", "height_map_image"]
 
 
 def _extent(extent, dims=2):
-    arr = np.asarray(extent, dtype=np.float64)
+    arr = check_finite_array("extent", extent)
+    if arr.dtype.kind == "b":
+        raise TypeError(f"extent must hold numbers, got booleans: {extent!r}")
+    arr = arr.astype(np.float64)
     if arr.shape != (dims, 2):
         raise ValueError(f"extent must be {dims} (start, stop) pairs (x first), got {extent!r}")
     if not np.all(np.isfinite(arr)) or np.any(arr[:, 1] <= arr[:, 0]):
@@ -70,14 +73,34 @@ def _sample(field, shape, extent, amplitude, frequency, phase, octaves, kind, la
     ext = _extent(extent)
     amplitude = check_real("amplitude", amplitude)
     frequency = check_real("frequency", frequency, lo=0.0)
-    phase = np.broadcast_to(np.asarray(phase, dtype=np.float64), (2,))
+    phase = check_real_vector("phase", phase, 2)
     if on_aliasing not in ("warn", "raise", "ignore"):
         raise ValueError(f"on_aliasing must be 'warn', 'raise' or 'ignore', got {on_aliasing!r}")
     source = octave_field(field, octaves, kind, lacunarity=lacunarity, gain=gain)
     _check_grid_resolution(shape, ext, frequency * field_max_frequency(source), samples_per_period, on_aliasing)
     pts = grid_points(shape, ext)
-    values = evaluate_field(source, pts.reshape(-1, 2) * frequency + phase, components=components)
-    return pts, values.reshape(shape + values.shape[1:]) * amplitude
+    scaled = _scaled("extent", pts.reshape(-1, 2), frequency, phase)
+    values = evaluate_field(source, scaled, components=components)
+    return pts, _amplified(values.reshape(shape + values.shape[1:]), amplitude)
+
+
+def _scaled(name, pts, frequency, phase):
+    """``pts * frequency + phase``, refusing an overflow with a message naming the inputs."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = pts * frequency + phase
+    if not np.isfinite(out).all():
+        raise ValueError(f"{name} times frequency plus phase overflows float64 (frequency={np.max(frequency):.3g}); "
+                         "use smaller coordinates or frequency")
+    return out
+
+
+def _amplified(values, amplitude):
+    """``amplitude * values``, refusing an overflow with a message naming amplitude."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = values * amplitude
+    if not np.isfinite(out).all():
+        raise ValueError(f"amplitude {amplitude:.3g} times the field's values overflows float64")
+    return out
 
 
 def height_map(field, shape=(256, 256), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=1.0, frequency=1.0,
@@ -170,7 +193,7 @@ def colored_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), am
 
     if color not in ("hue", "rgb"):
         raise ValueError(f"color must be 'hue' (2-component field) or 'rgb' (4-component field), got {color!r}")
-    lo, hi = (check_real("value_range[0]", value_range[0]), check_real("value_range[1]", value_range[1]))
+    lo, hi = check_real_sequence("value_range", value_range, length=2)
     if not hi > lo:
         raise ValueError(f"value_range must be (low, high) with high > low, got {value_range!r}")
     saturation = check_real("saturation", saturation, lo=0.0, hi=1.0)
@@ -205,9 +228,9 @@ def height_map_image(heights, path=None, *, vmin=None, vmax=None) -> np.ndarray:
     from ..io import to_uint8
     from .render import _save_array
 
-    heights = np.asarray(heights, dtype=np.float64)
-    if heights.ndim != 2:
-        raise ValueError(f"heights must be a (height, width) array, got shape {heights.shape}")
+    heights = check_finite_array("heights", heights).astype(np.float64)
+    if heights.ndim != 2 or heights.size == 0:
+        raise ValueError(f"heights must be a non-empty (height, width) array, got shape {heights.shape}")
     lo = float(heights.min()) if vmin is None else check_real("vmin", vmin)
     hi = float(heights.max()) if vmax is None else check_real("vmax", vmax)
     if hi <= lo:

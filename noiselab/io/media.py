@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from .._progress import progress
+from .._validate import check_finite_array, check_real
 from .atomic import atomic_output
 
 VIDEO_SUFFIXES = (".mp4", ".gif", ".npy")
@@ -21,23 +22,36 @@ IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".npy")
 def to_uint8(array, vmin=None, vmax=None) -> np.ndarray:
     """Map an array to uint8: ints in [0, 255] pass through, floats map [vmin, vmax] (default [0, 1]) to [0, 255].
 
-    Values outside the range are clipped (after the mapping), and NaN is an error.
+    Values outside the range are clipped (after the mapping); NaN or inf in
+    ``array`` and a non-finite ``vmin``/``vmax`` are a ``ValueError``, complex
+    or text arrays a ``TypeError``.
     """
+    if isinstance(array, (str, bytes)) or array is None:
+        raise TypeError(f"array must be a real numeric array, got {type(array).__name__}")
     array = np.asarray(array)
     if array.dtype == np.uint8:
         return array
+    # NaN and inf are errors (inf has no place on a 0..255 scale); complex and str are TypeErrors
+    array = check_finite_array("array", array)
     if array.dtype.kind in "iu" and vmin is None and vmax is None:
         if array.size and (array.min() < 0 or array.max() > 255):
             raise ValueError("integer image values must be in [0, 255]; pass vmin/vmax to rescale")
         return array.astype(np.uint8)
-    array = array.astype(np.float32, copy=False)
-    if np.isnan(array).any():
-        raise ValueError("cannot convert an array holding NaN to uint8")
-    lo = 0.0 if vmin is None else float(vmin)
-    hi = 1.0 if vmax is None else float(vmax)
+    lo = 0.0 if vmin is None else check_real("vmin", vmin)
+    hi = 1.0 if vmax is None else check_real("vmax", vmax)
     if not hi > lo:
         raise ValueError(f"vmax must be greater than vmin, got vmin={lo}, vmax={hi}")
-    scaled = (array - lo) * (255.0 / (hi - lo))
+    if not np.isfinite(hi - lo):
+        raise ValueError(f"vmax - vmin must be finite (below 1.8e308), got vmin={lo:g}, vmax={hi:g}")
+    # float32 unless the range or the values need float64's exponent
+    scale = 255.0 / (hi - lo)
+    if not np.isfinite(scale):
+        raise ValueError(f"vmax - vmin = {hi - lo:.3g} is too small: 255 / (vmax - vmin) overflows")
+    big = max(abs(lo), abs(hi), scale) > 1e30 or (array.size and max(abs(float(array.min())),
+                                                                  abs(float(array.max()))) > 1e30)
+    array = array.astype(np.float64 if big else np.float32, copy=False)
+    with np.errstate(over="ignore"):  # overflow past vmax is clipped to 255 below
+        scaled = (array - lo) * scale
     return np.clip(np.rint(scaled), 0, 255).astype(np.uint8)
 
 

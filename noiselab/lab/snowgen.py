@@ -45,7 +45,6 @@ def _check_scene(shape, c, band, direction):
     return shape, c, (lo, hi), unit_direction(direction)
 
 
-@functools.lru_cache(maxsize=None)
 def lattice_peak(kernel="catmull-rom", basis="gradient") -> float:
     """Power-weighted mean radial frequency of one lattice-noise octave, in cycles per lattice cell.
 
@@ -60,6 +59,16 @@ def lattice_peak(kernel="catmull-rom", basis="gradient") -> float:
     >>> 0.4 < lattice_peak("catmull-rom", "gradient") < 0.7
     True
     """
+    for name, value in (("kernel", kernel), ("basis", basis)):
+        try:
+            hash(value)
+        except TypeError:
+            raise TypeError(f"{name} must be a name (str), got {type(value).__name__}") from None
+    return _lattice_peak(kernel, basis)
+
+
+@functools.lru_cache(maxsize=None)
+def _lattice_peak(kernel, basis) -> float:
     from ..analysis import radial_spectrum
 
     img = LatticeNoise(2, seed=12345, kernel=kernel, basis=basis, period=64).grid((512, 512), [(0, 64), (0, 64)])

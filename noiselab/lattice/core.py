@@ -16,7 +16,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .._validate import as_generator, check_finite_array, check_int, check_memory, check_real, check_shape, float_dtype
+from .._validate import as_generator, _asarray, check_finite_array, check_int, check_memory, check_real, check_shape, float_dtype
 from . import _jit, _points
 from .kernels import KERNELS, Kernel, get_kernel
 
@@ -61,9 +61,9 @@ class Grid(NamedTuple):
 def _check_grid(shape, extent, dim):
     shape = check_shape("shape", shape, ndim=dim, min_size=0)
     try:
-        ext = np.asarray(extent, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError("extent must be one (start, stop) pair per input axis") from None
+        ext = check_finite_array("extent", extent).astype(np.float64)
+    except TypeError as exc:
+        raise TypeError(f"extent must be one (start, stop) pair of reals per input axis: {exc}") from None
     if dim == 1 and ext.shape == (2,):
         ext = ext[None]
     if ext.shape != (dim, 2):
@@ -84,7 +84,8 @@ def grid_coordinates(shape, extent):
     >>> [c.tolist() for c in grid_coordinates((4,), [(0, 2)])]
     [[0.0, 0.5, 1.0, 1.5]]
     """
-    shape, ext = _check_grid(shape, extent, len(tuple(np.atleast_1d(shape))))
+    shape, ext = _check_grid(shape, extent, len(check_shape("shape", shape, min_size=0)))
+    _check_large(8 * sum(shape), f"grid coordinates for shape {shape}")
     return [ext[a, 0] + np.arange(n, dtype=np.float64) * ((ext[a, 1] - ext[a, 0]) / max(n, 1))
             for a, n in enumerate(shape)]
 
@@ -95,14 +96,61 @@ def _check_large(nbytes, what):
         check_memory(nbytes, what)
 
 
+# Past 2**52 lattice cells a float64 coordinate has no fractional bits: the
+# separable grid pass (which works with lattice indices relative to the
+# grid's first tap) is then replaced by the per-point path, which reduces
+# every index exactly (fmod), so both paths give the same samples.
+_SEPARABLE_LIMIT = float(2 ** 52)
+
+
+def _check_reach(flat, freqs, phase, name):
+    """Refuse points whose lattice coordinate ``x * frequency + phase`` (any octave) overflows float64.
+
+    ``flat`` is ``(n, dim)``, ``freqs`` ``(octaves, dim)``. Two passes over the
+    contiguous points (their max and min over every axis at once: reductions
+    along axis 0 of a narrow array are several times slower); NaN propagates
+    into both, so NaN and inf are caught here too, with check_finite_array's
+    message. The bound mixes the axes (largest |x| times largest frequency), so
+    only when it fails are the axes looked at one by one.
+    """
+    if flat.shape[0] == 0:
+        return
+    hi, lo = float(flat.max()), float(flat.min())
+    if not (math.isfinite(hi) and math.isfinite(lo)):
+        check_finite_array(name, flat)
+    reach = max(abs(hi), abs(lo)) * float(np.max(freqs)) + float(np.max(np.abs(phase))) + 8.0
+    if math.isfinite(reach):
+        return
+    top = np.maximum(np.abs(flat.max(axis=0)), np.abs(flat.min(axis=0)))
+    with np.errstate(over="ignore", invalid="ignore"):
+        reach = top * np.max(freqs, axis=0) + np.abs(phase) + 8.0
+    if not np.isfinite(reach).all():
+        raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64: |{name}| up to "
+                         f"{float(top.max()):.3g} at {float(np.max(freqs)):.3g} "
+                         "lattice cells per unit; keep |x * frequency| below 1.7e308")
+
+
+def _check_amplitude(amplitude, dtype, what="amplitude"):
+    """The output bound ``amplitude`` (times the octaves' gains) must fit the output dtype."""
+    top = float(np.finfo(dtype).max)
+    if not amplitude <= top:
+        raise ValueError(f"{what} {amplitude:.3g} exceeds the range of {np.dtype(dtype).name} ({top:.3g}): "
+                         "the output would overflow; use dtype=float64 or a smaller amplitude")
+
+
 def _per_axis(name, value, dim, *, lo=None, lo_open=False, integer=False):
-    arr = np.atleast_1d(np.asarray(value, dtype=object if integer else np.float64))
+    if isinstance(value, (str, bytes, set, frozenset, dict)) or value is None:
+        raise TypeError(f"{name} must be a number or a sequence of dim_in={dim} numbers, got {type(value).__name__}")
+    try:
+        arr = np.atleast_1d(np.asarray(value, dtype=object))
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a number or a sequence of dim_in={dim} numbers, got {value!r}") from None
     if arr.ndim != 1 or arr.size not in (1, dim):
         raise ValueError(f"{name} must be a number or a sequence of dim_in={dim} numbers, got {value!r}")
     arr = np.broadcast_to(arr, (dim,))
     if integer:
-        return np.array([check_int(f"{name}", v, lo=1) for v in arr], dtype=np.int64)
-    return np.array([check_real(name, float(v), lo=lo, lo_open=lo_open) for v in arr], dtype=np.float64)
+        return np.array([check_int(f"{name}", v, lo=1, hi=1 << 62) for v in arr], dtype=np.int64)
+    return np.array([check_real(name, v, lo=lo, lo_open=lo_open) for v in arr], dtype=np.float64)
 
 
 class LatticeNoise:
@@ -192,6 +240,9 @@ class LatticeNoise:
         if n % 2:
             raise ValueError(f"table_size must be even (equal positive and negative tables), got {n}")
         self.table_size = n
+        # permutations (int64 and the doubled uint64 copy) and the 3-D hash tables, per component
+        _check_large(self.dim_out * n * (8 * 3 + 2 * min(n, 1024) + 64) + n * self.dim_in * 8,
+                     f"LatticeNoise(dim_out={self.dim_out}, table_size={n})")
         d = self.dim_in
         if period is None:
             self.period = np.full(d, n, dtype=np.int64)
@@ -238,7 +289,7 @@ class LatticeNoise:
 
     # ------------------------------------------------------------- scattered
     def _prepare_points(self, points, name="points"):
-        points = np.asarray(points)
+        points = _asarray(name, points)
         tables = self._uses_tables()
         if not (points.dtype.kind == "f" and tables):  # the table kernels check
             points = check_finite_array(name, points)
@@ -276,6 +327,8 @@ class LatticeNoise:
             tabled = self._table_kernel()
             unrolled = _points.KERNELS.get((self.dim_in, k.taps))
             tables = self._hash_tables(basis) if use_tables else None
+            if tables is None:
+                _check_reach(flat, freqs, self.phase, name)  # the table kernels count overflows themselves
             if tables is not None:
                 bad = _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
                                                      self._pmask, *tables, basis, bool(absval)), workers)
@@ -355,9 +408,10 @@ class LatticeNoise:
         arithmetic is the same, so the result is bit-identical to one worker.
         """
         workers = check_int("workers", workers, lo=1, hi=1024)
-        raw = np.asarray(points)
+        raw = _asarray("points", points)
         lead, flat = self._prepare_points(raw)
         dtype = self._out_dtype(raw.dtype, dtype)
+        _check_amplitude(self.amplitude, dtype)
         _check_large(flat.shape[0] * (self.dim_out * dtype.itemsize + 8 * self.dim_in), "lattice noise")
         out = self._evaluate(flat, self.frequency[None], np.array([self.scale]), False, dtype, workers=workers)
         return self._shape_out(out, lead)
@@ -370,7 +424,9 @@ class LatticeNoise:
     # ------------------------------------------------------------------ grid
     def grid_points(self, shape, extent):
         """The points ``(*shape, dim_in)`` that :meth:`grid` samples (for the scattered path)."""
-        coords = grid_coordinates(*_check_grid(shape, extent, self.dim_in))
+        shape, extent = _check_grid(shape, extent, self.dim_in)
+        _check_large(math.prod(shape) * self.dim_in * 8 * 2, f"grid_points{shape}")
+        coords = grid_coordinates(shape, extent)
         return np.stack(np.meshgrid(*coords, indexing="ij"), axis=-1) if coords else np.zeros((0,))
 
     def grid(self, shape, extent, *, dtype=np.float64, window=None, chunks=None):
@@ -428,8 +484,10 @@ class LatticeNoise:
         else:
             sl = [(0, s) for s in shape]
         out_shape = tuple(hi - lo for lo, hi in sl)
-        size = int(np.prod(out_shape, dtype=np.int64))
-        _check_large(size * self.dim_out * dtype.itemsize * 2 + size * 8, "lattice noise grid")
+        size = math.prod(out_shape)
+        _check_large(size * self.dim_out * dtype.itemsize * 2 + size * 8, f"lattice noise grid {shape}")
+        total_gain = sum(gain ** o for o in range(octaves)) if gain <= 1 else octaves * gain ** (octaves - 1)
+        _check_amplitude(self.amplitude * total_gain, dtype, "amplitude (times the sum of the octaves' gains)")
         if size == 0:
             return self._finish_grid(np.zeros((self.dim_out,) + out_shape, dtype=dtype))
         full = list(coords)
@@ -438,7 +496,14 @@ class LatticeNoise:
         for o in range(octaves):
             freq = self.frequency * lacunarity ** o
             amp = self.scale * gain ** o
-            (separable if self._separable(full, freq) else sparse).append((freq, amp))
+            with np.errstate(over="ignore"):
+                reach = max((max(abs(c[0]), abs(c[-1])) * freq[a] if c.size else 0.0) + abs(self.phase[a])
+                            for a, c in enumerate(full))
+            if not np.isfinite(reach):
+                raise ValueError(f"extent times the frequency (and lacunarity**octave) overflows float64 "
+                                 f"({freq.max():.3g} lattice cells per unit); keep |x * frequency| below 1.7e308")
+            exact = reach < _SEPARABLE_LIMIT
+            (separable if exact and self._separable(full, freq) else sparse).append((freq, amp))
         # the separable pass writes every sample unless it accumulates |.| (turbulence)
         writes_all = bool(separable) and not absval
         out = (np.empty if writes_all else np.zeros)((self.dim_out,) + out_shape, dtype=dtype)

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite_array, check_memory, check_real
+from .._validate import _asarray, check_finite_array, check_memory, check_real
 from ..analysis.contrast import michelson_contrast  # one definition, re-exported here for the Eq. 6.1 reports
 
 __all__ = ["composite", "parallax_composite", "michelson_contrast"]
@@ -108,9 +108,7 @@ def composite(alpha, background, intensity=250):
 
 
 def _region_contrast(out, region):
-    """Michelson contrast of ``out`` over ``region``: NaN for an empty region, 0 for an all-black one."""
-    if not region.any():
-        return float("nan")
+    """Michelson contrast of ``out`` over a non-empty ``region``: 0 for an all-black one."""
     if not np.any(out, where=region):
         return 0.0
     return michelson_contrast(out, region)
@@ -132,7 +130,8 @@ def parallax_composite(foreground, mask, *, transmittance=0.3, veil=255.0, veile
         thesis rescales the inverse FFT to [0, 255] without the exponent).
     mask : ndarray (H, W) or (T, H, W)
         The geometric pattern: bool, or a background image whose bright half
-        (above the middle of its range) is the veiled region.
+        (above the middle of its range) is the veiled region. Both regions
+        must be non-empty (else ``ValueError``: a contrast of no pixels is undefined).
     transmittance : float in [0, 1]
         Fraction of the foreground seen through the veil.
     veil : float in [0, 255]
@@ -163,7 +162,7 @@ def parallax_composite(foreground, mask, *, transmittance=0.3, veil=255.0, veile
     fg2 = fg if veiled_foreground is None else _check_alpha(veiled_foreground, "veiled_foreground")
     if fg2.shape != fg.shape:
         raise ValueError(f"veiled_foreground shape {fg2.shape} does not match foreground shape {fg.shape}")
-    m = np.asarray(mask)
+    m = _asarray("mask", mask)
     if m.dtype != bool:
         m = check_finite_array("mask", m)
         lo, hi = (float(m.min()), float(m.max())) if m.size else (0.0, 0.0)
@@ -172,6 +171,10 @@ def parallax_composite(foreground, mask, *, transmittance=0.3, veil=255.0, veile
     if m.shape not in ((H, W), fg.shape):
         raise ValueError(f"mask shape {m.shape} does not match the foreground: expected {(H, W)} or {fg.shape}")
     m = np.broadcast_to(m, fg.shape)
+    if fg.size and (m.all() or not m.any()):
+        which = "veiled" if m.all() else "clear"
+        raise ValueError(f"mask must mark some pixels veiled and leave some clear; it makes every pixel {which}, "
+                         "so the other region's contrast is undefined")
     lum = 255.0 * fg.astype(np.float32)
     veiled = np.float32(veil * (1 - transmittance)) + np.float32(transmittance) * (255.0 * fg2.astype(np.float32))
     out = np.where(m, veiled, lum)

@@ -1,10 +1,12 @@
 """``snow``: Langer & Zhang's falling snow, an opacity video from one (pruned) inverse 3-D FFT."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .._progress import progress
-from .._validate import as_generator, check_finite_array, check_memory, check_real, check_shape, float_dtype
+from .._validate import as_generator, _asarray, check_finite_array, check_memory, check_real, check_real_sequence, check_shape, float_dtype
 from ..spectral.envelopes import unit_direction
 from ..spectral.synthesis import AMPLITUDES
 from . import _kernels
@@ -29,7 +31,7 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
     array([0., 0., 0.])
     """
     beta = check_real("beta", beta, lo=0, lo_open=True)
-    field = np.asarray(field)
+    field = _asarray("field", field)
     if field.dtype not in (np.float32, np.float64):
         raise TypeError(f"field must be float32 or float64, got {field.dtype}")
     if field.size == 0:
@@ -37,15 +39,25 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
     flat = field.reshape(-1)
     if not flat.flags.c_contiguous:
         raise ValueError("field must be C-contiguous to be rescaled in place")
-    if lo is None or hi is None:
+    if (lo is None) != (hi is None):
+        raise ValueError("lo and hi must be given together (the field's known minimum and maximum) or not at all")
+    if lo is None:
         lo, hi = flat.min(), flat.max()
-    if not (np.isfinite(lo) and np.isfinite(hi)):
-        check_finite_array("field", field)
+        if not (np.isfinite(lo) and np.isfinite(hi)):
+            check_finite_array("field", field)
+    else:
+        lo = check_real("lo", lo)
+        hi = check_real("hi", hi, lo=lo)
     ft = field.dtype.type
+    span64 = float(hi) - float(lo)
+    if not math.isfinite(span64) or span64 > float(np.finfo(field.dtype).max):
+        raise ValueError(f"field spans [{float(lo):g}, {float(hi):g}]: the range overflows {field.dtype}; rescale it")
     span = ft(hi) - ft(lo)
     if not span > 0:
         field[...] = 0
         return field
+    if not math.isfinite(1.0 / span64):
+        raise ValueError(f"field spans only {span64:.3g}: 1 / (max - min) overflows; rescale it")
     # round the scale up so that the maximum maps to exactly 1 (then clipped)
     scale = ft(1) / span
     while (ft(hi) - ft(lo)) * scale < 1:
@@ -62,9 +74,10 @@ def _check_params(shape, c, band, thickness, direction, pan, beta, exponent, amp
     beta = check_real("beta", beta, lo=0, lo_open=True)
     exponent = check_real("exponent", exponent, lo=-8, hi=8)
     direction = unit_direction(direction)
-    p = np.asarray(pan, dtype=float)
-    if p.shape != (2,) or not np.all(np.isfinite(p)):
-        raise ValueError(f"pan must be a finite pair (ux, uy) in px/frame, got {pan!r}")
+    try:
+        p = check_real_sequence("pan", pan, length=2, lo=-1e100, hi=1e100)
+    except (TypeError, ValueError) as exc:
+        raise type(exc)(f"pan must be a finite pair (ux, uy) in px/frame: {exc}") from None
     if amplitude not in AMPLITUDES:
         raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
     if on_alias not in ("raise", "drop"):

@@ -26,11 +26,13 @@ and ``wt`` in rad/frame; ``c`` in rad/frame; speeds in px/frame.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.fft
 
+from .._validate import check_int, check_real
 from ..spectral.envelopes import tent_surface, unit_direction
 from ..spectral.synthesis import _check_band, _complex_dtype, draw_coefficients, hermitian_plane
 
@@ -252,7 +254,10 @@ def flake_speeds(c=1.0, band=None, width=512, height=None):
     A flake at spatial frequency ``f`` cycles/frame (``|w| = 2*pi*f/width``
     rad/px) moves at ``c/|w| = c*width/(2*pi*f)`` px/frame. The nearest
     (largest, lowest-frequency) flakes are at ``band[0]``, the farthest at
-    ``band[1]``.
+    ``band[1]``. ``c`` is in ``[0, pi]`` rad/frame as for
+    :func:`noiselab.snow.snow`, ``width`` (px) an int >= 1; ``height`` (an int
+    >= 1 or None) is accepted for symmetry with ``snow``'s shape and does not
+    change the speeds.
 
     Examples
     --------
@@ -260,9 +265,16 @@ def flake_speeds(c=1.0, band=None, width=512, height=None):
     >>> round(near, 3), round(far, 3)
     (5.093, 0.637)
     """
+    c = check_real("c (rad/frame)", c, lo=0, hi=np.pi)
+    width = check_int("width", width, lo=1)
+    if height is not None:
+        check_int("height", height, lo=1)
     if band is None:
         band = (width / 32, width / 4)
     lo, hi = _check_band(band, width)
     near = np.inf if lo == 0 else c * width / (2 * np.pi * lo)
     far = c * width / (2 * np.pi * hi)
+    if lo > 0 and not math.isfinite(near) or not math.isfinite(far):
+        raise ValueError(f"band ({lo:g}, {hi:g}) cycles/frame is so low that the speed c * width / (2 pi f) "
+                         "overflows float64")
     return float(near), float(far)

@@ -1,18 +1,36 @@
 """Seamless tiling and looping of periodic videos (thesis 3.4), eagerly or one frame at a time."""
 from __future__ import annotations
 
+import math
 import numbers
 
 import numpy as np
 
-from .._validate import check_int, check_memory
+from .._validate import check_finite_array, check_int, check_memory
 
 __all__ = ["tile", "iter_tiled_frames"]
 
 
+def _check_video(alpha, ndims):
+    """A finite real array of one of ``ndims`` dimensions, non-empty (NaN, complex and str are refused)."""
+    if isinstance(alpha, (str, bytes)) or alpha is None:
+        raise TypeError(f"alpha must be a real numeric array, got {type(alpha).__name__}")
+    alpha = check_finite_array("alpha", alpha)
+    if alpha.ndim not in ndims:
+        shapes = " or ".join(("(T, H, W)", "(H, W)")[3 - d] for d in ndims)
+        raise ValueError(f"alpha must have shape {shapes}, got {alpha.shape}")
+    if alpha.size == 0:
+        raise ValueError(f"alpha is empty (shape {alpha.shape}); every axis needs at least one sample")
+    return alpha
+
+
 def _reps(reps, ndim):
+    if isinstance(reps, (bool, np.bool_)):
+        raise TypeError(f"reps must be an int or {ndim} ints, got bool")
     if isinstance(reps, numbers.Integral):
         reps = (reps,) * ndim
+    if isinstance(reps, (str, bytes, set, frozenset, dict)) or not hasattr(reps, "__iter__"):
+        raise TypeError(f"reps must be an int or {ndim} ints, got {type(reps).__name__}")
     reps = tuple(reps)
     if len(reps) != ndim:
         raise ValueError(f"reps must be an int or {ndim} ints (one per axis of a {ndim}-D array), got {reps!r}")
@@ -33,11 +51,9 @@ def tile(alpha, reps):
     >>> tile(np.zeros((4, 8, 8), np.float32), (2, 3, 1)).shape
     (8, 24, 8)
     """
-    alpha = np.asarray(alpha)
-    if alpha.ndim not in (2, 3):
-        raise ValueError(f"alpha must have shape (T, H, W) or (H, W), got {alpha.shape}")
+    alpha = _check_video(alpha, (3, 2))
     reps = _reps(reps, alpha.ndim)
-    n = int(np.prod(alpha.shape, dtype=np.int64)) * int(np.prod(reps))
+    n = math.prod(alpha.shape) * math.prod(reps)
     check_memory(n * alpha.itemsize, f"tile{reps}")
     return np.tile(alpha, reps)
 
@@ -49,8 +65,9 @@ def iter_tiled_frames(alpha, reps=(1, 1), *, n_frames=None, start=0, crop=None):
     ----------
     alpha : ndarray (T, H, W)
         A periodic video (e.g. from :func:`noiselab.snow.snow`).
-    reps : (ry, rx) or (rt, ry, rx)
-        Spatial repetitions; with three entries ``rt`` also sets the number of
+    reps : int, (ry, rx) or (rt, ry, rx)
+        Spatial repetitions (one int: the same along y and x, as in
+        :func:`tile`); with three entries ``rt`` also sets the number of
         frames to ``rt * T`` (unless ``n_frames`` is given).
     n_frames : int, optional
         Number of frames to yield (default ``rt * T``); frame ``i`` is
@@ -72,10 +89,11 @@ def iter_tiled_frames(alpha, reps=(1, 1), *, n_frames=None, start=0, crop=None):
     >>> len(frames), frames[0].shape, bool((frames[2] == frames[0]).all())
     (3, (2, 4), True)
     """
-    alpha = np.asarray(alpha)
-    if alpha.ndim != 3:
-        raise ValueError(f"alpha must have shape (T, H, W), got {alpha.shape}")
-    reps = tuple(reps)
+    alpha = _check_video(alpha, (3,))
+    if isinstance(reps, numbers.Integral) and not isinstance(reps, (bool, np.bool_)):
+        reps = (reps, reps)
+    if isinstance(reps, (str, bytes, set, frozenset, dict)) or not hasattr(reps, "__len__"):
+        raise TypeError(f"reps must be an int, (ry, rx) or (rt, ry, rx), got {type(reps).__name__}")
     if len(reps) == 3:
         rt, ry, rx = _reps(reps, 3)
     else:
@@ -84,7 +102,10 @@ def iter_tiled_frames(alpha, reps=(1, 1), *, n_frames=None, start=0, crop=None):
     T, H, W = alpha.shape
     n_frames = rt * T if n_frames is None else check_int("n_frames", n_frames, lo=0)
     start = check_int("start", start)
+    check_memory(H * ry * W * rx * alpha.itemsize * 2, f"tiled frames of {H * ry} x {W * rx}")
     if crop is not None:
+        if isinstance(crop, (str, bytes, set, frozenset, dict)) or not hasattr(crop, "__len__") or len(crop) != 2:
+            raise ValueError(f"crop must be a pair (height, width) of ints, got {crop!r}")
         ch, cw = (check_int("crop[0]", crop[0], lo=1), check_int("crop[1]", crop[1], lo=1))
         if ch > H * ry or cw > W * rx:
             raise ValueError(f"crop {(ch, cw)} is larger than the tiled frame {(H * ry, W * rx)}")

@@ -30,6 +30,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._validate import check_finite_array, check_real, check_real_sequence
+
 __all__ = [
     "radial_frequency",
     "power_law",
@@ -50,19 +52,71 @@ def unit_direction(direction) -> tuple[float, float]:
 
     Raises ``ValueError`` for a zero, non-finite or wrongly sized vector.
     """
-    d = np.asarray(direction, dtype=float)
+    if isinstance(direction, (str, bytes, set, frozenset, dict)):
+        raise TypeError(f"direction must be a pair (dx, dy) of real numbers, got {type(direction).__name__}")
+    try:
+        d = np.asarray(direction, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise TypeError(f"direction must be a pair (dx, dy) of real numbers, got {direction!r}") from None
     if d.shape != (2,):
         raise ValueError(f"direction must be a pair (dx, dy), got {direction!r}")
     if not np.all(np.isfinite(d)):
         raise ValueError(f"direction must be finite, got {direction!r}")
-    n = float(np.hypot(*d))
-    if n == 0:
+    m = float(np.max(np.abs(d)))
+    if m == 0:
         raise ValueError("direction must be a non-zero vector (dx, dy)")
+    d = d / m  # scaled first: hypot of (1e308, 1e308) overflows, of (5e-324, 0) loses the direction
+    n = float(np.hypot(*d))
     return float(d[0] / n), float(d[1] / n)
 
 
+def _frequencies(w, names=None):
+    """Check that each frequency array is real and finite (naming it) and that they broadcast together."""
+    out = []
+    for i, wi in enumerate(w):
+        name = names[i] if names else f"w[{i}]"
+        if isinstance(wi, (str, bytes)) or wi is None:
+            raise TypeError(f"{name} must be a real array of angular frequencies (rad/sample), got {type(wi).__name__}")
+        try:
+            arr = np.asarray(wi)
+        except (TypeError, ValueError):
+            raise TypeError(f"{name} must be a real array of angular frequencies (rad/sample)") from None
+        arr = check_finite_array(name, arr)
+        if arr.dtype.kind in "biu" or arr.dtype.itemsize < 8:
+            arr = arr.astype(np.float64)  # integer products wrap, float32/16 squares overflow at 1.8e19
+        if arr.size and max(abs(float(arr.max())), abs(float(arr.min()))) > _BOUND:
+            raise ValueError(f"{name} must hold angular frequencies within +-1e100 rad/sample (they lie in "
+                             f"[-pi, pi]); got values up to {max(abs(float(arr.max())), abs(float(arr.min()))):.3g}")
+        out.append(arr)
+    try:
+        np.broadcast_shapes(*(a.shape for a in out))
+    except ValueError:
+        shapes = ", ".join(str(a.shape) for a in out)
+        raise ValueError(f"the frequency arrays must broadcast together, got shapes {shapes}") from None
+    return out
+
+
+# parameters and frequencies stay within +-1e100 so that their products and sums cannot overflow
+_BOUND = 1e100
+
+
+def _tolerance(tolerance):
+    return check_real("tolerance (rad/frame)", tolerance, lo=0.0, hi=_BOUND)
+
+
+def _pair(name, value):
+    return check_real_sequence(name, value, length=2, lo=-_BOUND, hi=_BOUND)
+
+
 def radial_frequency(*w):
-    """``sqrt(sum(w_i**2))`` of broadcast frequency vectors (same units as the inputs)."""
+    """``sqrt(sum(w_i**2))`` of broadcast frequency vectors (same units as the inputs).
+
+    Every ``w_i`` must be a finite real array (or number); a ``ValueError``
+    or ``TypeError`` names the one that is not.
+    """
+    if not w:
+        raise ValueError("radial_frequency needs at least one frequency array w")
+    w = _frequencies(w)
     r2 = 0
     for wi in w:
         r2 = r2 + wi * wi
@@ -74,19 +128,31 @@ def power_law(*w, exponent=1.0):
 
     With ``exponent=1`` in two dimensions every octave carries the same energy
     (Field 1987). The radius is taken in the units of ``w`` (rad/sample).
+    ``exponent`` is any finite real; a ``ValueError`` says so when
+    ``|w|**(-exponent)`` leaves float64's range for the given frequencies.
     """
+    exponent = check_real("exponent", exponent)
     r = radial_frequency(*w)
     pos = r > 0
-    with np.errstate(divide="ignore"):
-        a = np.where(pos, r, 1.0) ** (-float(exponent))
+    with np.errstate(divide="ignore", over="ignore", under="ignore"):
+        a = np.where(pos, r, 1.0) ** (-exponent)
     if np.ndim(a) == 0:
-        return np.where(pos, a, 0.0)
-    a[~pos] = 0.0  # DC (in place: one pass less than a second np.where)
+        a = np.where(pos, a, 0.0)
+    else:
+        a[~pos] = 0.0  # DC (in place: one pass less than a second np.where)
+    if not np.isfinite(a).all():
+        rmin = float(np.min(r[pos])) if np.any(pos) else 0.0
+        raise ValueError(f"exponent={exponent:g} makes |w|**(-exponent) overflow float64 at |w| = {rmin:g} rad/sample; "
+                         "use a smaller exponent (or drop the lowest frequencies)")
     return a
 
 
 def annulus(*w, lo, hi):
     """Band limit (thesis 3.2.2): 1 where ``lo <= |w| / (2*pi) <= hi`` (cycles/sample), else 0; DC never."""
+    lo = check_real("lo (cycles/sample)", lo, lo=0.0, hi=_BOUND)
+    hi = check_real("hi (cycles/sample)", hi, lo=0.0, hi=_BOUND)
+    if lo > hi:
+        raise ValueError(f"annulus needs lo <= hi (cycles/sample), got lo={lo:g} > hi={hi:g}")
     f = radial_frequency(*w) / (2 * np.pi)
     eps = 1e-12
     return ((f >= lo * (1 - eps)) & (f <= hi * (1 + eps)) & (f > 0)).astype(float)
@@ -94,7 +160,9 @@ def annulus(*w, lo, hi):
 
 def motion_plane(wt, wy, wx, velocity, *, tolerance):
     """Energy on the motion plane ``wt = -(vx*wx + vy*wy)`` (Eq. 2.8), ``velocity = (vx, vy)`` px/frame."""
-    vx, vy = (float(v) for v in velocity)
+    wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
+    vx, vy = _pair("velocity (px/frame)", velocity)
+    tolerance = _tolerance(tolerance)
     return (np.abs(wt + vx * wx + vy * wy) <= tolerance).astype(float)
 
 
@@ -109,9 +177,11 @@ def optical_snow(wt, wy, wx, direction, speeds, *, tolerance):
 
 def nonparallel_optical_snow(wt, wy, wx, direction, speeds, pan, *, tolerance):
     """Non-parallel optical snow (Eq. 2.14): velocities ``u + s*d``, ``s`` in ``speeds``, ``u = pan`` px/frame."""
+    wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
     dx, dy = unit_direction(direction)
-    smin, smax = sorted(float(s) for s in speeds)
-    ux, uy = (float(u) for u in pan)
+    smin, smax = sorted(_pair("speeds (px/frame)", speeds))
+    ux, uy = _pair("pan (px/frame)", pan)
+    tolerance = _tolerance(tolerance)
     wv = dx * wx + dy * wy
     base = wt + ux * wx + uy * wy  # = -s * wv on the family
     lo = -np.maximum(smin * wv, smax * wv)
@@ -133,17 +203,21 @@ def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
     >>> float(tent_surface(w, 0.0, c=1.0))  # wt = -c: the flake moves at c/|w| = 5.09 px/frame
     -1.0
     """
+    wy, wx = _frequencies((wy, wx), ("wy", "wx"))
+    c = check_real("c (rad/frame)", c, lo=-_BOUND, hi=_BOUND)
     dx, dy = unit_direction(direction)
-    ux, uy = (float(u) for u in pan)
+    ux, uy = _pair("pan (px/frame)", pan)
     r = radial_frequency(wy, wx)
     wv = dx * wx + dy * wy
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where(r > 0, wv / np.where(r > 0, r, 1.0), 0.0)
-    return -float(c) * ratio - (ux * wx + uy * wy)
+    return -c * ratio - (ux * wx + uy * wy)
 
 
 def tent(wt, wy, wx, c, direction=(0.0, 1.0), *, tolerance):
     """The thin tent (Eq. 3.3), cells within ``tolerance`` rad/frame of :func:`tent_surface`."""
+    wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
+    tolerance = _tolerance(tolerance)
     return (np.abs(wt - tent_surface(wy, wx, c, direction)) <= tolerance).astype(float)
 
 
@@ -156,12 +230,16 @@ def thickened_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, thick
     ``thickness*c*|d . w|/|w|``: zero on the ridge ``d . w = 0`` (patterns that
     do not move), and ``c = 0`` stays frozen snow.
     """
+    wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
+    c = check_real("c (rad/frame)", c, lo=-_BOUND, hi=_BOUND)
+    thickness = check_real("thickness", thickness, lo=0.0, hi=1.0)
+    tolerance = _tolerance(tolerance)
     dx, dy = unit_direction(direction)
     r = radial_frequency(wy, wx)
     wv = dx * wx + dy * wy
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio = np.where(r > 0, np.abs(wv) / np.where(r > 0, r, 1.0), 0.0)
-    half = float(thickness) * float(c) * ratio
+    half = thickness * abs(c) * ratio
     return (np.abs(wt - tent_surface(wy, wx, c, direction, pan)) <= tolerance + half).astype(float)
 
 
@@ -172,4 +250,6 @@ def sheared_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, toleran
     flake: a camera panning right makes the world, snow included, drift left,
     ``pan = (-s, 0)``.
     """
+    wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
+    tolerance = _tolerance(tolerance)
     return (np.abs(wt - tent_surface(wy, wx, c, direction, pan)) <= tolerance).astype(float)

@@ -17,6 +17,8 @@ from __future__ import annotations
 import numpy as np
 import scipy.fft
 
+from .._validate import check_memory, check_shape, float_dtype
+
 __all__ = ["frequency_vectors", "half_spectrum_shape"]
 
 
@@ -28,7 +30,7 @@ def half_spectrum_shape(shape) -> tuple[int, ...]:
     >>> half_spectrum_shape((64, 512, 512))
     (64, 512, 257)
     """
-    shape = tuple(int(n) for n in shape)
+    shape = check_shape("shape", shape)
     return shape[:-1] + (shape[-1] // 2 + 1,)
 
 
@@ -39,7 +41,7 @@ def frequency_vectors(shape, *, dtype=np.float64) -> tuple[np.ndarray, ...]:
     ----------
     shape : tuple of int
         Shape of the real array (e.g. ``(T, H, W)``).
-    dtype : dtype, optional
+    dtype : float32 or float64, optional
         Float dtype of the vectors.
 
     Returns
@@ -56,7 +58,9 @@ def frequency_vectors(shape, *, dtype=np.float64) -> tuple[np.ndarray, ...]:
     >>> float(wx[0, 0, -1])  # the Nyquist frequency, pi rad/px
     3.141592653589793
     """
-    shape = tuple(int(n) for n in shape)
+    shape = check_shape("shape", shape)
+    dtype = float_dtype(dtype)
+    check_memory(sum(shape) * 8 * 3, f"frequency_vectors{shape}")  # fftfreq's float64 and its product
     d = len(shape)
     out = []
     for i, n in enumerate(shape):

@@ -1,0 +1,115 @@
+"""What the bad-input checks of issue 11 cost on the hot paths.
+
+    python3 benchmarks/bench_contract.py [--repeats 7]
+
+Writes ``benchmarks/bench_contract.md`` beside this script. For each case the
+checked call and the same call with the new check replaced by a no-op are
+timed back to back in one process, one thread, interleaved; the reported
+ratio is the median over ``--repeats`` (>= 5) of checked time / unchecked
+time (1.00: free). The checks measured:
+
+- ``_check_reach``: the overflow check of ``x * frequency`` that scattered
+  lattice points now get in every dimension (min and max over the points);
+- envelope validation: finiteness and range of the frequency vectors;
+- ``power_spectrum``'s range check of the field (max and min).
+"""
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+import numpy as np  # noqa: E402
+
+import noiselab.lattice.core as core  # noqa: E402
+import noiselab.spectral.envelopes as env  # noqa: E402
+from noiselab import LatticeNoise  # noqa: E402
+from noiselab.analysis import power_spectrum  # noqa: E402
+from noiselab.spectral import frequency_vectors  # noqa: E402
+
+
+def _timed(fn):
+    t0 = time.perf_counter()
+    fn()
+    return time.perf_counter() - t0
+
+
+def ratio(fn, patch, repeats):
+    """Median of checked / unchecked time, back to back; ``patch()`` returns an undo callable."""
+    fn()
+    ratios, checked = [], []
+    for _ in range(repeats):
+        a = _timed(fn)
+        undo = patch()
+        try:
+            b = _timed(fn)
+        finally:
+            undo()
+        ratios.append(a / b)
+        checked.append(a)
+    return float(np.median(ratios)), float(np.median(checked))
+
+
+def no_reach():
+    old = core._check_reach
+    core._check_reach = lambda *a, **k: None
+    return lambda: setattr(core, "_check_reach", old)
+
+
+def no_env_checks():
+    old = env._frequencies
+    env._frequencies = lambda w, names=None: [np.asarray(x) for x in w]
+    return lambda: setattr(env, "_frequencies", old)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--repeats", type=int, default=7)
+    args = ap.parse_args()
+    repeats = max(5, args.repeats)
+    rng = np.random.default_rng(0)
+    rows = []
+    for dim, kernel in [(1, "linear"), (2, "linear"), (2, "cubic"), (4, "cubic")]:
+        noise = LatticeNoise(dim, kernel=kernel, seed=1)
+        pts = rng.uniform(-100, 100, (1_000_000 // dim, dim))
+        r, t = ratio(lambda: noise(pts), no_reach, repeats)
+        rows.append((f"LatticeNoise({dim}, kernel={kernel!r}) on {len(pts):,} points", r, t))
+    wt, wy, wx = frequency_vectors((64, 256, 256))
+    r, t = ratio(lambda: env.tent(wt, wy, wx, c=1.0, tolerance=np.pi / 64), no_env_checks, repeats)
+    rows.append(("envelopes.tent on a (64, 256, 129) half spectrum", r, t))
+    field = rng.standard_normal((1024, 1024))
+    # the range check's two passes, against the whole spectrum
+    t_ps = float(np.median([_timed(lambda: power_spectrum(field)) for _ in range(repeats)]))
+    t_mm = float(np.median([_timed(lambda: (field.min(), field.max())) for _ in range(repeats)]))
+    rows.append(("power_spectrum 1024 x 1024: min+max / whole call", 1 + t_mm / t_ps, t_ps))
+
+    lines = [
+        "# Cost of the bad-input checks (issue 11)",
+        "",
+        f"{_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M} UTC, {platform.machine()}, {os.cpu_count()} cores "
+        "(shared with other jobs while measured), numpy " + np.__version__ + ", one thread.",
+        "",
+        f"Command: `python3 benchmarks/bench_contract.py --repeats {repeats}`",
+        "",
+        "Ratio = checked time / time with the check replaced by a no-op, median of the back-to-back ratios.",
+        "",
+        "| case | checked / unchecked | checked time (s) |",
+        "| --- | ---: | ---: |",
+    ]
+    lines += [f"| {name} | {r:.3f} | {t:.4f} |" for name, r, t in rows]
+    out = Path(__file__).with_suffix(".md")
+    out.write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,349 @@
+"""The bad-input contract (issue 11): every reproducer of the fuzzing run, kept as a plain regression test.
+
+Each case gives a ValueError/TypeError that names the parameter, a
+MemoryError that states the size (refused *before* allocating), or the
+right answer. The spectral_noise/synthesize cases of the issue live with the
+spectral synthesis tests.
+"""
+import contextlib
+import resource
+
+import numpy as np
+import pytest
+
+import noiselab as nl
+from noiselab import _validate as V
+from noiselab import analysis as A
+from noiselab import geometry as G
+from noiselab import io as IO
+from noiselab import snow as S
+from noiselab.fractal import octaves_used
+from noiselab.lattice import Grid
+from noiselab.spectral import envelopes as E
+
+RNG = np.random.default_rng(11)
+
+
+def image(n=32):
+    return RNG.random((n, n))
+
+
+@contextlib.contextmanager
+def address_space(extra_gib=3):
+    """Lower this process's RLIMIT_AS (soft) to its current size + ``extra_gib``: a missed estimate fails fast.
+
+    A refusal by ``check_memory`` says "needs about ... GiB"; numpy's own
+    "Unable to allocate" would mean the estimate came too late.
+    """
+    soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    with open("/proc/self/status") as fh:
+        vm = next(int(line.split()[1]) * 1024 for line in fh if line.startswith("VmSize:"))
+    limit = vm + (extra_gib << 30)
+    if hard != resource.RLIM_INFINITY:
+        limit = min(limit, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
+    try:
+        yield
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+
+
+# --------------------------------------------------------------- _validate
+def test_check_real_turns_huge_ints_into_a_value_error_naming_the_parameter():
+    with pytest.raises(ValueError, match=r"^c must be finite .*401 digits"):
+        V.check_real("c", 10**400)
+    with pytest.raises(ValueError, match=r"c \(rad/frame\) must be finite"):
+        nl.snow((4, 16, 16), c=10**400)
+    assert V.check_real("x", 10**300) == 1e300
+
+
+def test_check_shape_refuses_empty_and_unindexable_shapes():
+    with pytest.raises(ValueError, match="shape must have at least one entry"):
+        V.check_shape("shape", ())
+    with pytest.raises(ValueError, match=r"shape \(9223372036854775808, 16, 16\) has more elements"):
+        nl.snow((2**63, 16, 16))
+    with pytest.raises(ValueError, match="shape must have at least one entry"):
+        nl.synthesize((), lambda *w: 1.0)
+    with pytest.raises(TypeError, match="shape must be a tuple of ints"):
+        V.check_shape("shape", "64")
+
+
+def test_check_memory_respects_the_address_space_limit():
+    with address_space(2):
+        limits = V.memory_limits()
+        assert limits["address-space limit"] < (3 << 30)
+        with pytest.raises(MemoryError, match=r"needs about 4 GiB .*\(address-space limit\)"):
+            V.check_memory(4 << 30, "a test allocation")
+    assert "address-space limit" not in V.memory_limits() or V.memory_limits()["address-space limit"] > (3 << 30)
+
+
+@pytest.mark.parametrize("version", ["v2", "v1"])
+def test_check_memory_respects_cgroup_limits(tmp_path, version):
+    # a cgroup hierarchy in a temporary folder: the parent's limit binds the child's
+    if version == "v2":
+        text = "0::/jobs/me\n"
+        child, parent = tmp_path / "jobs" / "me", tmp_path / "jobs"
+        names = ("memory.max", "memory.current")
+    else:
+        text = "12:cpu:/\n4:memory:/jobs/me\n"
+        child, parent = tmp_path / "memory" / "jobs" / "me", tmp_path / "memory" / "jobs"
+        names = ("memory.limit_in_bytes", "memory.usage_in_bytes")
+    child.mkdir(parents=True)
+    (child / names[0]).write_text("max\n" if version == "v2" else "9223372036854771712\n")  # no limit here
+    (child / names[1]).write_text(str(1 << 30))
+    (parent / names[0]).write_text(str(5 << 30))
+    (parent / names[1]).write_text(str(2 << 30))
+    assert V._cgroup_room(text, str(tmp_path)) == 3 << 30
+    (child / names[0]).write_text(str(1536 << 20))   # the child's own, tighter limit
+    assert V._cgroup_room(text, str(tmp_path)) == 512 << 20
+    assert V._cgroup_room("0::/\n", str(tmp_path / "nothing")) is None
+
+
+def test_check_axes_and_sequences():
+    assert V.check_axes("axes", (-1, 0), 3) == (0, 2)
+    with pytest.raises(ValueError, match=r"axes\[0\] must be an int in \[-2, 1\], got 5"):
+        V.check_axes("axes", (5,), 2)
+    with pytest.raises(TypeError, match=r"axes\[0\] must be an int, got float"):
+        V.check_axes("axes", (1.7,), 2)
+    with pytest.raises(ValueError, match="distinct"):
+        V.check_axes("axes", (1, -1), 2)
+    with pytest.raises(TypeError, match="pan must be a sequence"):
+        V.check_real_sequence("pan", {1, 2}, length=2)
+
+
+# ---------------------------------------------------------- silent outputs
+@pytest.mark.parametrize("dim", [1, 2, 3, 4])
+def test_lattice_overflow_is_an_error_in_every_dimension(dim):
+    noise = nl.LatticeNoise(dim, frequency=1e300)
+    with pytest.raises(ValueError, match="points times the frequency .* overflows float64"):
+        noise(np.full((1, dim), 1e10))
+    # the same points at a sane frequency are fine, and stay in range
+    v = nl.LatticeNoise(dim)(np.full((1, dim), 1e10))
+    assert np.isfinite(v).all() and np.abs(v).max() <= 1
+
+
+@pytest.mark.parametrize("kind", [nl.fractal_sum, nl.turbulence])
+def test_fractal_octave_overflow_is_an_error_on_points_and_grids(kind):
+    noise = nl.LatticeNoise(2)
+    with pytest.raises(ValueError, match=r"lacunarity=2 over 1100 visible octaves overflows.*at most 997 octaves"):
+        kind(noise, np.ones((2, 2)), 1100, gain=1.0)
+    with pytest.raises(ValueError, match=r"lacunarity=10 .* overflows"):
+        kind(noise, np.ones((2, 2)), 400, lacunarity=10, gain=0.9)
+    # on a grid the octaves past the sampling's Nyquist are skipped: the right answer, no overflow
+    g, used = kind(noise, Grid((4, 4), [(0, 1), (0, 1)]), 400, lacunarity=10, gain=0.9, return_octaves=True)
+    assert used == 1 and np.isfinite(g).all()
+    # within the limit, finite points whose scaled coordinates overflow are refused on every dimension
+    with pytest.raises(ValueError, match="x times the frequency .* overflows float64"):
+        kind(nl.LatticeNoise(1), np.full(3, 1e300), 40)
+    v = kind(noise, np.ones((2, 2)), 990, gain=1.0)
+    assert np.isfinite(v).all()
+
+
+def test_gain_overflow_is_a_value_error_with_the_octave_limit():
+    with pytest.raises(ValueError, match=r"gain=178 over octaves=138 .* at most 133 octaves"):
+        nl.fractal_sum(nl.LatticeNoise(1), np.ones(3), 138, gain=178.0)
+    with pytest.raises(ValueError, match="gain"):
+        octaves_used(138, gain=178.0)
+    v = nl.fractal_sum(nl.LatticeNoise(1), np.ones(3), 10, gain=178.0)
+    assert np.isfinite(v).all()
+
+
+def test_amplitude_past_float32_is_refused_not_inf():
+    noise = nl.LatticeNoise(2, amplitude=3.7e38)
+    with pytest.raises(ValueError, match=r"amplitude 3.7e\+38 exceeds the range of float32"):
+        noise(np.ones((3, 2), np.float32))
+    assert np.isfinite(noise(np.ones((3, 2)))).all()          # float64 output holds it
+    with pytest.raises(ValueError, match="amplitude .* exceeds the range of float32"):
+        noise.grid((4, 4), [(0, 1), (0, 1)], dtype=np.float32)
+    with pytest.raises(ValueError, match="amplitude .* exceeds the range of float32"):
+        nl.fractal_sum(nl.LatticeNoise(2, amplitude=1e38), np.ones((3, 2), np.float32), 4, gain=1.0)
+
+
+def test_grid_and_points_agree_past_2_to_the_53_cells():
+    noise = nl.LatticeNoise(1, seed=5, kernel="box", frequency=21475.0)
+    shape, extent = (4,), [(1.0, 559236275034.0)]
+    grid = noise.grid(shape, extent)
+    np.testing.assert_array_equal(grid, noise(noise.grid_points(shape, extent)))
+    assert grid[-1] == pytest.approx(0.5170, abs=1e-4)
+    # and in 2-D, across 2**52 (some octaves separable, some per point)
+    noise2 = nl.LatticeNoise(2, seed=3, frequency=1e4)
+    ext = [(0.0, 3e11), (5e11, 5e11 + 4.0)]
+    np.testing.assert_array_equal(noise2.grid((5, 6), ext), noise2(noise2.grid_points((5, 6), ext)))
+
+
+def test_flake_speeds_validates_its_parameters():
+    with pytest.raises(ValueError, match=r"c \(rad/frame\) must be finite"):
+        S.flake_speeds(c=np.nan)
+    with pytest.raises(TypeError, match="width must be an int, got bool"):
+        S.flake_speeds(width=True, height="x")
+    with pytest.raises(TypeError, match="height must be an int, got str"):
+        S.flake_speeds(height="x")
+    near, far = S.flake_speeds(1.0, (16, 128), 512)
+    assert near == pytest.approx(512 / (2 * np.pi * 16)) and far == pytest.approx(512 / (2 * np.pi * 128))
+
+
+def test_rescale_opacity_lo_hi():
+    with pytest.raises(ValueError, match="lo must be finite"):
+        S.rescale_opacity(image(), lo=np.nan, hi=1.0)
+    with pytest.raises(ValueError, match=r"hi must be in \[1, inf\), got 0"):
+        S.rescale_opacity(image(), lo=1.0, hi=0.0)
+    with pytest.raises(ValueError, match="lo and hi must be given together"):
+        S.rescale_opacity(image(), lo=0.0)
+    x = np.array([0.0, 0.5, 1.0])
+    np.testing.assert_allclose(S.rescale_opacity(x.copy(), beta=1.0, lo=0.0, hi=1.0), x)
+
+
+def test_parallax_composite_refuses_a_mask_without_a_clear_region():
+    fg = RNG.random((2, 8, 8)).astype(np.float32)
+    with pytest.raises(ValueError, match="every pixel veiled"):
+        S.parallax_composite(fg, np.ones((8, 8), bool))
+    with pytest.raises(ValueError, match="every pixel clear"):
+        S.parallax_composite(fg, np.zeros((8, 8), bool))
+    m = np.zeros((8, 8), bool)
+    m[:, 4:] = True
+    _, contrast = S.parallax_composite(fg, m)
+    assert all(np.isfinite(v) and 0 <= v <= 1 for v in contrast.values())
+
+
+@pytest.mark.parametrize("func", [S.tile, lambda a, r: list(S.iter_tiled_frames(a, r))])
+def test_tiling_refuses_nan_complex_str_and_empty(func):
+    with pytest.raises(ValueError, match="alpha must be finite; it holds 32 NaN"):
+        func(np.full((2, 4, 4), np.nan), 1)
+    with pytest.raises(TypeError, match="alpha must be a real numeric array, got dtype complex128"):
+        func(np.zeros((2, 4, 4), complex), 1)
+    with pytest.raises(TypeError, match="alpha must be a real numeric array, got dtype <U1"):
+        func(np.zeros((2, 4, 4), "U1"), 1)
+    with pytest.raises(ValueError, match=r"alpha is empty \(shape \(0, 4, 4\)\)"):
+        func(np.zeros((0, 4, 4)), 1)
+
+
+def test_tile_and_iter_tiled_frames_agree_on_an_int_reps():
+    a = RNG.random((3, 4, 5))
+    tiled = S.tile(a, (1, 2, 2))
+    frames = np.stack(list(S.iter_tiled_frames(a, 2)))
+    np.testing.assert_array_equal(frames, tiled)
+    with pytest.raises(ValueError, match=r"alpha is empty"):
+        list(S.iter_tiled_frames(np.zeros((0, 4, 4)), (1, 1), n_frames=3))
+    with pytest.raises(ValueError, match=r"crop must be a pair \(height, width\)"):
+        list(S.iter_tiled_frames(np.zeros((2, 4, 4)), (1, 1), crop=(2,)))
+    with pytest.raises(TypeError, match="reps must be an int"):
+        S.iter_tiled_frames(a, "2")
+
+
+def test_to_uint8_refuses_inf_and_infinite_bounds():
+    with pytest.raises(ValueError, match="array must be finite; it holds 1 NaN or inf"):
+        IO.to_uint8(np.array([0.0, np.inf]))
+    with pytest.raises(ValueError, match="vmax must be finite"):
+        IO.to_uint8(np.array([0.0, 1.0]), vmax=np.inf)
+    with pytest.raises(ValueError, match="vmax - vmin must be finite"):
+        IO.to_uint8(np.array([0.0, 1.0]), vmin=-1e308, vmax=1e308)
+    with pytest.raises(TypeError, match="complex"):
+        IO.to_uint8(np.zeros(3, complex))
+    np.testing.assert_array_equal(IO.to_uint8(np.array([-3e38, -1e38, 3e38]), vmin=-3e38, vmax=3e38), [0, 85, 255])
+
+
+def test_power_spectrum_of_huge_values():
+    x = image()
+    big = x * 1e140          # float64: scaled before squaring, the right spectrum
+    np.testing.assert_allclose(A.power_spectrum(big).power, A.power_spectrum(x).power * 1e280, rtol=1e-9)
+    with pytest.raises(ValueError, match=r"field values reach 1e\+154.* below 1e150"):
+        A.power_spectrum(np.where(x > 0.5, 1e154, 0.0))
+    f32 = (x * 1e18).astype(np.float32)  # float32: transformed in float64, finite
+    p = A.power_spectrum(f32)
+    assert np.isfinite(p.power).all() and p.total == pytest.approx(float(f32.astype(np.float64).var()), rel=1e-5)
+
+
+def test_resolution_report_is_finite_or_refused():
+    mesh = G.sphere(1)
+    with pytest.raises(ValueError, match=r"max_frequency \(cycles/unit\) must be in \[1e-300, 1e\+300\], got 0"):
+        G.resolution_report(mesh, 0.0)
+    with pytest.raises(ValueError, match="max_frequency"):
+        G.resolution_report(mesh, 1e308)
+    r = G.resolution_report(mesh, 1e300)
+    assert not r.ok and r.subdivisions > 900 and np.isfinite([r.samples_per_period, r.target_edge]).all()
+    with pytest.raises(ValueError, match="max_faces"):
+        G.subdivide_for_noise(mesh, 1e300)
+    assert len(G.subdivide_for_noise(mesh, 0.0).faces) == len(mesh.faces)   # a constant field: nothing to do
+    with pytest.raises(ValueError, match="max_frequency"):
+        G.sphere_for_noise(1e308)
+
+
+# ----------------------------------------------------------- envelopes
+def test_envelopes_validate_their_parameters():
+    w = np.linspace(-1, 1, 5)
+    with pytest.raises(ValueError, match="exponent must be finite"):
+        E.power_law(w, exponent=np.nan)
+    with pytest.raises(ValueError, match=r"exponent=1100 makes \|w\|\*\*\(-exponent\) overflow"):
+        E.power_law(w, exponent=1100)
+    with pytest.raises(ValueError, match=r"c \(rad/frame\) must be finite"):
+        E.tent(w, w, w, c=np.nan, tolerance=1.0)
+    with pytest.raises(TypeError, match=r"tolerance \(rad/frame\) must be a real number, got str"):
+        E.tent(w, w, w, c=1.0, tolerance="x")
+    with pytest.raises(ValueError, match=r"pan \(px/frame\) must hold 2 real numbers, got 1"):
+        E.sheared_tent(w, w, w, c=1.0, pan=(1,), tolerance=1.0)
+    with pytest.raises(ValueError, match="annulus needs lo <= hi"):
+        E.annulus(w, lo=0.3, hi=0.1)
+    with pytest.raises(ValueError, match=r"wx must be finite"):
+        E.tent_surface(w, w * np.nan, c=1.0)
+    with pytest.raises(TypeError, match="direction must be a pair"):
+        E.unit_direction("ab")
+    with pytest.raises(ValueError, match="thickness must be in"):
+        E.thickened_tent(w, w, w, c=1.0, thickness=2.0, tolerance=0.1)
+    with pytest.raises(ValueError, match="must broadcast together"):
+        E.radial_frequency(np.ones(3), np.ones(4))
+
+
+# ---------------------------------------------------- wrong exception types
+def test_overflow_errors_become_value_errors():
+    img = image()
+    with pytest.raises(ValueError, match=r"period must be an int in \[1, 4611686018427387904\]"):
+        nl.LatticeNoise(2, period=2**64)
+    with pytest.raises(ValueError, match="per_octave must be finite"):
+        A.octave_bands(2, 16, per_octave=np.inf)
+    with pytest.raises(ValueError, match="max_frequency"):
+        G.subdivide_for_noise(G.sphere(1), 1e308)
+    # a tiny lo is the right answer (octaves counted with the logs apart), not an OverflowError
+    oe = A.octave_energy(img, lo=5e-324)
+    assert len(oe.energy) == 1078 and np.isfinite(oe.energy).all()
+    assert oe.energy.sum() == pytest.approx(A.octave_energy(img, lo=1.0).energy.sum(), rel=1e-6)
+
+
+def test_index_errors_become_value_errors():
+    img = image()
+    with pytest.raises(ValueError, match=r"value_range must hold 2 real numbers, got 1"):
+        G.colored_surface(nl.LatticeNoise(2, 2), shape=(4, 4), value_range=(1.0,), on_aliasing="ignore")
+    with pytest.raises(ValueError, match=r"points must have shape \(n, k\), got \(3,\)"):
+        G.evaluate_field(nl.LatticeNoise(3), np.ones(3))
+    with pytest.raises(MemoryError, match="radial_spectrum with bins=9223372036854775807 needs about"):
+        A.radial_spectrum(img, bins=2**63 - 1)
+
+
+def test_power_spectrum_argument_types():
+    img = image()
+    with pytest.raises(ValueError, match="window must be None or 'hann', got array"):
+        A.power_spectrum(img, window=np.ones(16))
+    with pytest.raises(TypeError, match="band must be an ordered .* got a set"):
+        A.band_energy(img, {0.1, 0.2})
+    with pytest.raises(ValueError, match=r"axes\[0\] must be an int in \[-2, 1\], got 5"):
+        A.power_spectrum(img, axes=(5,))
+    with pytest.raises(TypeError, match=r"axes\[0\] must be an int, got float"):
+        A.power_spectrum(img, axes=(1.7,))
+    assert A.power_spectrum(img, axes=(-1,)).axes == (1,)
+
+
+# ------------------------------------------------------------ allocations
+def test_allocations_are_estimated_before_they_happen():
+    img = image()
+    with address_space(3):
+        with pytest.raises(MemoryError, match=r"LatticeNoise\(dim_out=100000000.* needs about"):
+            nl.LatticeNoise(1, dim_out=10**8)
+        with pytest.raises(MemoryError, match=r"grid coordinates for shape \(2147483648,\) needs about 16 GiB"):
+            nl.LatticeNoise(1).grid((2**31,), [(0, 1)])
+        with pytest.raises(MemoryError, match="grid_points"):
+            nl.LatticeNoise(2).grid_points((2**16, 2**16), [(0, 1), (0, 1)])
+        with pytest.raises(MemoryError, match="radial_spectrum with bins=2147483648 needs about 128 GiB"):
+            A.radial_spectrum(img, bins=2**31)
+        with pytest.raises(MemoryError, match=r"octave_bands with 6.44e\+09 bands needs about"):
+            A.octave_bands(2, 16, per_octave=2**31)
+        with pytest.raises(MemoryError, match="tiled frames"):
+            S.iter_tiled_frames(np.zeros((1, 4, 4)), (2**16, 2**16))
