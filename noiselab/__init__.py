@@ -43,6 +43,7 @@ _API = {
     "warp": "noiselab.lattice",
     "monge_normals": "noiselab.geometry.normals",
     "displaced_normals": "noiselab.geometry.normals",
+    "normal_angles": "noiselab.geometry.normals",
     # geometry
     "displace": "noiselab.geometry",
     # the laboratory's alternative snow generators
