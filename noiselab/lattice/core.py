@@ -386,7 +386,8 @@ class LatticeNoise:
         if flat.shape[0]:
             if not np.isfinite(flat).all():
                 check_finite_array(name, flat)
-            scaled = np.abs(flat).max(axis=0) * np.abs(freqs).max(axis=0)
+            with np.errstate(over="ignore"):
+                scaled = np.abs(flat).max(axis=0) * np.abs(freqs).max(axis=0)
             if not np.isfinite(scaled).all():
                 raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
             k = self.kernel
