@@ -188,6 +188,11 @@ def test_fractal_and_turbulence_gradients(absval, basis):
     assert used == 3 and gg.shape == (40, 30, 2)
     np.testing.assert_allclose(gg, pg, rtol=0, atol=1e-13)
     np.testing.assert_allclose(gv, value_fn(noise, grid, 3), rtol=0, atol=1e-14)
+    # vector noise: (..., dim_out, dim_in) on both paths
+    vec = LatticeNoise(2, 3, seed=4, basis=basis)
+    vg = grad_fn(vec, grid, 3)
+    assert vg.shape == (40, 30, 3, 2)
+    np.testing.assert_allclose(vg, grad_fn(vec, vec.grid_points(grid.shape, grid.extent), 3), rtol=0, atol=1e-13)
 
 
 def test_turbulence_crease_has_derivative_zero_and_one_sided_slopes_either_side():

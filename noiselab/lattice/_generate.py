@@ -348,6 +348,196 @@ def _function_tables(d: int, taps: int, kernel=None) -> str:
     return "\n".join(L) + "\n"
 
 
+def _function_jac(d: int, taps: int) -> str:
+    """Source of ``jac_d{d}_t{taps}``: values and Jacobians at scattered points (see ``_jit.eval_points_jac``).
+
+    The layout of :func:`_function` (phase 1 per axis over a chunk: weights,
+    their derivatives ``DW``, tap indices; phase 2 per point: the nested hash
+    and the sums), with the sums written out level by level as temporaries:
+    at level ``L`` (axis ``L``, innermost last) ``s = sum_k w_k s_k`` is the
+    partial value, ``e_a = sum_k w_k e_{k,a}`` for axes ``a > L`` and
+    ``e_L = sum_k (dw_k s_k [+ w_k e_{k,L}])``; in the gradient basis the
+    leaves also carry ``e_a = g_a`` (``d(g . r)/dt_a``), summed on every
+    level. ``out`` is ``(N, C, d + 1)``: value, then the derivatives in input
+    units (times ``amps[o] * freqs[o, a]``); turbulence multiplies them by
+    ``sign(octave)`` (0 at 0).
+    """
+    ind = "    "
+    L = []
+    a_ = L.append
+    lvl = lambda k: ind * k  # noqa: E731
+    a_("@nb.njit(cache=True, nogil=True)")
+    a_(f"def jac_d{d}_t{taps}(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,")
+    a_("        perms, values, grads, basis, absval):")
+    a_(f'{ind}"""Lattice noise and its Jacobian at scattered points, {d}-D input, {taps}-tap kernel (generated)."""')
+    a_(f"{ind}npts = pts.shape[0]")
+    a_(f"{ind}ncomp = perms.shape[0]")
+    a_(f"{ind}n = perms.shape[1] // 2")
+    a_(f"{ind}noct = freqs.shape[0]")
+    a_(f"{ind}W = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}DW = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}R = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}Q = np.empty(({d}, {taps}, CHUNK), np.uint64)")
+    a_(f"{ind}PAR = np.empty(CHUNK, np.int64)")
+    a_(f"{ind}FI = np.empty(CHUNK)")
+    a_(f"{ind}X = np.empty(({d}, CHUNK))")
+    a_(f"{ind}ACC = np.empty((ncomp, {d + 1}, CHUNK))")
+    for k in range(taps):
+        a_(f"{ind}" + "; ".join(f"c{k}{q} = coef[{k}, {q}]" for q in range(6)))
+        a_(f"{ind}" + "; ".join(f"d{k}{q} = dcoef[{k}, {q}]" for q in range(5)))
+    a_(f"{ind}for p0 in range(0, npts, CHUNK):")
+    a_(f"{lvl(2)}m = min(CHUNK, npts - p0)")
+    a_(f"{lvl(2)}for i in range(m):")
+    for a in range(d):
+        a_(f"{lvl(3)}X[{a}, i] = pts[p0 + i, {a}]")
+    a_(f"{lvl(2)}for o in range(noct):")
+    for a in range(d):
+        a_(f"{lvl(3)}f = freqs[o, {a}]; ph = phase[{a}]; per = period[{a}]; msk = pmask[{a}]")
+        a_(f"{lvl(3)}for i in range(m):")
+        b4 = lvl(4)
+        a_(f"{b4}u = X[{a}, i] * f + ph + shift")
+        a_(f"{b4}fi = np.floor(u)")
+        a_(f"{b4}t = u - fi")
+        a_(f"{b4}FI[i] = fi")
+        a_(f"{b4}t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t")
+        for k in range(taps):
+            a_(f"{b4}W[{a}, {k}, i] = (c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)")
+            a_(f"{b4}DW[{a}, {k}, i] = (d{k}0 + d{k}1 * t) + (d{k}2 * t2 + d{k}3 * t3) + d{k}4 * t4")
+        a_(f"{lvl(3)}if basis == 1:  # signed distances to the taps, for the gradient dot products")
+        a_(f"{lvl(4)}for i in range(m):")
+        a_(f"{lvl(5)}t = X[{a}, i] * f + ph + shift - FI[i]")
+        for k in range(taps):
+            a_(f"{lvl(5)}R[{a}, {k}, i] = t - shift + (left - {k})")
+        a_(f"{lvl(3)}exact = msk < 0 or per > n")
+        a_(f"{lvl(3)}if not exact:")
+        a_(f"{lvl(4)}inside = 0")
+        a_(f"{lvl(4)}for i in range(m):")
+        b5 = lvl(5)
+        a_(f"{b5}fi = FI[i]")
+        a_(f"{b5}inside += (fi < 4.0e15) & (fi > -4.0e15)")
+        a_(f"{b5}b = (np.int64(fi) - left) & msk")
+        a_(f"{b5}PAR[i] = b & 1" if a == 0 else f"{b5}PAR[i] = (PAR[i] + b) & 1")
+        for k in range(taps):
+            a_(f"{b5}Q[{a}, {k}, i] = (b + {k}) & msk" if k else f"{b5}Q[{a}, 0, i] = b")
+        a_(f"{lvl(4)}exact = inside != m")
+        a_(f"{lvl(3)}if exact:")
+        a_(f"{lvl(4)}for i in range(m):")
+        a_(f"{b5}b = _reduce(FI[i], left, per, msk)")
+        a_(f"{b5}PAR[i] = b & 1" if a == 0 else f"{b5}PAR[i] = (PAR[i] + b) & 1")
+        for k in range(taps):
+            if k:
+                a_(f"{b5}j = b + {k}")
+                a_(f"{b5}j = j - per if j >= per else j")
+            else:
+                a_(f"{b5}j = b")
+            a_(f"{b5}Q[{a}, {k}, i] = j if j < n else j % n")
+    a_(f"{lvl(3)}for i in range(m):")
+    b4 = lvl(4)
+    loop0 = d == 3  # keep a loop over the first axis (the body stays small enough to compile quickly)
+    first = 1 if loop0 else 0
+    a_(f"{b4}par = PAR[i]")
+    for a in range(first, d):
+        for k in range(taps):
+            a_(f"{b4}w{a}_{k} = W[{a}, {k}, i]; dw{a}_{k} = DW[{a}, {k}, i]; q{a}_{k} = Q[{a}, {k}, i]")
+    a_(f"{b4}for c in range(ncomp):")
+    b5 = lvl(5)
+    b6 = lvl(6) if loop0 else b5
+    if loop0:
+        a_(f"{b5}total = 0.0")
+        for a in range(d):
+            a_(f"{b5}D{a} = 0.0")
+        a_(f"{b5}for k0 in range({taps}):")
+        a_(f"{b6}hk = perms[c, Q[0, k0, i]]")
+        a_(f"{b6}pk = par ^ (k0 & 1)")
+        a_(f"{b6}w0k = W[0, k0, i]; dw0k = DW[0, k0, i]")
+    for level in range(first, d):
+        for ks in itertools.product(range(taps), repeat=level + 1 - first):
+            name = "h" + "".join(map(str, ks))
+            if level == 0:
+                a_(f"{b6}{name} = perms[c, q0_{ks[-1]}]")
+            else:
+                prev = "hk" if (loop0 and level == first) else "h" + "".join(map(str, ks[:-1]))
+                a_(f"{b6}{name} = perms[c, {prev} + q{level}_{ks[-1]}]")
+    parity0 = "pk" if loop0 else "par"
+
+    def body(grad, out_lines, pad):
+        """Emit the sums for one basis; returns the names of the value and of the per-axis derivatives."""
+        def emit(prefix, level):
+            tag = "".join(map(str, prefix))
+            kids = []
+            for k in range(taps):
+                ks = prefix + (k,)
+                if level == d - 1:
+                    h = "h" + "".join(map(str, ks))
+                    v = f"v{''.join(map(str, ks))}"
+                    if grad:
+                        gs = {}
+                        for a in range(d):
+                            gs[a] = f"g{''.join(map(str, ks))}_{a}"
+                            out_lines.append(f"{pad}{gs[a]} = grads[{h}, {a}]")
+                        rs = ["R[0, k0, i]" if (loop0 and a == 0) else f"R[{a}, {ks[a - first]}, i]" for a in range(d)]
+                        out_lines.append(f"{pad}{v} = " + " + ".join(f"{gs[a]} * {rs[a]}" for a in range(d)))
+                        kids.append((v, gs))
+                    else:
+                        odd = sum(ks) % 2
+                        out_lines.append(f"{pad}{v} = values[{parity0}{' ^ 1' if odd else ''}, {h}]")
+                        kids.append((v, {}))
+                else:
+                    kids.append(emit(ks, level + 1))
+            s = f"s{level}_{tag}"
+            out_lines.append(f"{pad}{s} = " + " + ".join(f"w{level}_{k} * {kid[0]}" for k, kid in enumerate(kids)))
+            derivs = {}
+            axes = range(d) if grad else range(level, d)
+            for a in axes:
+                e = f"e{level}_{tag}_{a}"
+                terms = []
+                for k, (ks_, kd) in enumerate(kids):
+                    if a == level:
+                        terms.append(f"dw{level}_{k} * {ks_}")
+                    if a in kd:
+                        terms.append(f"w{level}_{k} * {kd[a]}")
+                out_lines.append(f"{pad}{e} = " + " + ".join(terms))
+                derivs[a] = e
+            return s, derivs
+
+        return emit((), first)
+
+    for basis in (0, 1):
+        a_(f"{b6}{'if basis == 0' if basis == 0 else 'else'}:")
+        pad = b6 + ind
+        lines = []
+        s, derivs = body(basis == 1, lines, pad)
+        L.extend(lines)
+        if loop0:
+            a_(f"{pad}total += w0k * {s}")
+            a_(f"{pad}D0 += dw0k * {s}" + (f" + w0k * {derivs[0]}" if basis == 1 else ""))
+            for a in range(1, d):
+                a_(f"{pad}D{a} += w0k * {derivs[a]}")
+        else:
+            a_(f"{pad}total = {s}")
+            for a in range(d):
+                a_(f"{pad}D{a} = {derivs[a]}")
+    a_(f"{b5}amp = amps[o]")
+    a_(f"{b5}if absval:")
+    a_(f"{b5}    sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)")
+    a_(f"{b5}    total = abs(total)")
+    for a in range(d):
+        a_(f"{b5}    D{a} = sg * D{a}")
+    a_(f"{b5}if o == 0:")
+    a_(f"{b5}    ACC[c, 0, i] = amp * total")
+    for a in range(d):
+        a_(f"{b5}    ACC[c, {a + 1}, i] = (amp * freqs[o, {a}]) * D{a}")
+    a_(f"{b5}else:")
+    a_(f"{b5}    ACC[c, 0, i] += amp * total")
+    for a in range(d):
+        a_(f"{b5}    ACC[c, {a + 1}, i] += (amp * freqs[o, {a}]) * D{a}")
+    a_(f"{lvl(2)}for i in range(m):")
+    a_(f"{lvl(3)}for c in range(ncomp):")
+    a_(f"{lvl(4)}for a in range({d + 1}):")
+    a_(f"{lvl(5)}out[p0 + i, c, a] = ACC[c, a, i]")
+    return "\n".join(L) + "\n"
+
+
 def generate() -> str:
     parts = [HEADER]
     names = []
@@ -368,6 +558,13 @@ def generate() -> str:
     table = ",\n".join(entries)
     parts.append("\n# keyed by (dim_in, taps) with coefficients as arguments, or (dim_in, kernel name) with them written in"
                  f"\nTABLE_KERNELS = {{\n{table},\n}}\n")
+    jac = []
+    for d in (1, 2, 3):
+        for taps in (2, 3, 4):   # kernels with a continuous derivative have 2 to 4 taps
+            parts.append("\n" + _function_jac(d, taps) + "\n")
+            jac.append(f"    ({d}, {taps}): jac_d{d}_t{taps}")
+    table = ",\n".join(jac)
+    parts.append(f"\n# values and Jacobians, keyed by (dim_in, taps)\nJAC_KERNELS = {{\n{table},\n}}\n")
     return "".join(parts)
 
 

@@ -3633,3 +3633,1913 @@ TABLE_KERNELS = {
     (3, 'catmull-rom'): tables_d3_catmull_rom,
     (3, 'quintic'): tables_d3_quintic,
 }
+
+@nb.njit(cache=True, nogil=True)
+def jac_d1_t2(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        perms, values, grads, basis, absval):
+    """Lattice noise and its Jacobian at scattered points, 1-D input, 2-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = perms.shape[0]
+    n = perms.shape[1] // 2
+    noct = freqs.shape[0]
+    W = np.empty((1, 2, CHUNK))
+    DW = np.empty((1, 2, CHUNK))
+    R = np.empty((1, 2, CHUNK))
+    Q = np.empty((1, 2, CHUNK), np.uint64)
+    PAR = np.empty(CHUNK, np.int64)
+    FI = np.empty(CHUNK)
+    X = np.empty((1, CHUNK))
+    ACC = np.empty((ncomp, 2, CHUNK))
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = b & 1
+                    Q[0, 0, i] = b
+                    Q[0, 1, i] = (b + 1) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = b & 1
+                    j = b
+                    Q[0, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    if basis == 0:
+                        v0 = values[par, h0]
+                        v1 = values[par ^ 1, h1]
+                        s0_ = w0_0 * v0 + w0_1 * v1
+                        e0__0 = dw0_0 * v0 + dw0_1 * v1
+                        total = s0_
+                        D0 = e0__0
+                    else:
+                        g0_0 = grads[h0, 0]
+                        v0 = g0_0 * R[0, 0, i]
+                        g1_0 = grads[h1, 0]
+                        v1 = g1_0 * R[0, 1, i]
+                        s0_ = w0_0 * v0 + w0_1 * v1
+                        e0__0 = dw0_0 * v0 + w0_0 * g0_0 + dw0_1 * v1 + w0_1 * g1_0
+                        total = s0_
+                        D0 = e0__0
+                    amp = amps[o]
+                    if absval:
+                        sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                        total = abs(total)
+                        D0 = sg * D0
+                    if o == 0:
+                        ACC[c, 0, i] = amp * total
+                        ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                    else:
+                        ACC[c, 0, i] += amp * total
+                        ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(2):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def jac_d1_t3(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        perms, values, grads, basis, absval):
+    """Lattice noise and its Jacobian at scattered points, 1-D input, 3-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = perms.shape[0]
+    n = perms.shape[1] // 2
+    noct = freqs.shape[0]
+    W = np.empty((1, 3, CHUNK))
+    DW = np.empty((1, 3, CHUNK))
+    R = np.empty((1, 3, CHUNK))
+    Q = np.empty((1, 3, CHUNK), np.uint64)
+    PAR = np.empty(CHUNK, np.int64)
+    FI = np.empty(CHUNK)
+    X = np.empty((1, CHUNK))
+    ACC = np.empty((ncomp, 2, CHUNK))
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
+    d20 = dcoef[2, 0]; d21 = dcoef[2, 1]; d22 = dcoef[2, 2]; d23 = dcoef[2, 3]; d24 = dcoef[2, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[0, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = b & 1
+                    Q[0, 0, i] = b
+                    Q[0, 1, i] = (b + 1) & msk
+                    Q[0, 2, i] = (b + 2) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = b & 1
+                    j = b
+                    Q[0, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; dw0_2 = DW[0, 2, i]; q0_2 = Q[0, 2, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    h2 = perms[c, q0_2]
+                    if basis == 0:
+                        v0 = values[par, h0]
+                        v1 = values[par ^ 1, h1]
+                        v2 = values[par, h2]
+                        s0_ = w0_0 * v0 + w0_1 * v1 + w0_2 * v2
+                        e0__0 = dw0_0 * v0 + dw0_1 * v1 + dw0_2 * v2
+                        total = s0_
+                        D0 = e0__0
+                    else:
+                        g0_0 = grads[h0, 0]
+                        v0 = g0_0 * R[0, 0, i]
+                        g1_0 = grads[h1, 0]
+                        v1 = g1_0 * R[0, 1, i]
+                        g2_0 = grads[h2, 0]
+                        v2 = g2_0 * R[0, 2, i]
+                        s0_ = w0_0 * v0 + w0_1 * v1 + w0_2 * v2
+                        e0__0 = dw0_0 * v0 + w0_0 * g0_0 + dw0_1 * v1 + w0_1 * g1_0 + dw0_2 * v2 + w0_2 * g2_0
+                        total = s0_
+                        D0 = e0__0
+                    amp = amps[o]
+                    if absval:
+                        sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                        total = abs(total)
+                        D0 = sg * D0
+                    if o == 0:
+                        ACC[c, 0, i] = amp * total
+                        ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                    else:
+                        ACC[c, 0, i] += amp * total
+                        ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(2):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def jac_d1_t4(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        perms, values, grads, basis, absval):
+    """Lattice noise and its Jacobian at scattered points, 1-D input, 4-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = perms.shape[0]
+    n = perms.shape[1] // 2
+    noct = freqs.shape[0]
+    W = np.empty((1, 4, CHUNK))
+    DW = np.empty((1, 4, CHUNK))
+    R = np.empty((1, 4, CHUNK))
+    Q = np.empty((1, 4, CHUNK), np.uint64)
+    PAR = np.empty(CHUNK, np.int64)
+    FI = np.empty(CHUNK)
+    X = np.empty((1, CHUNK))
+    ACC = np.empty((ncomp, 2, CHUNK))
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
+    d20 = dcoef[2, 0]; d21 = dcoef[2, 1]; d22 = dcoef[2, 2]; d23 = dcoef[2, 3]; d24 = dcoef[2, 4]
+    c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
+    d30 = dcoef[3, 0]; d31 = dcoef[3, 1]; d32 = dcoef[3, 2]; d33 = dcoef[3, 3]; d34 = dcoef[3, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[0, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                DW[0, 3, i] = (d30 + d31 * t) + (d32 * t2 + d33 * t3) + d34 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = b & 1
+                    Q[0, 0, i] = b
+                    Q[0, 1, i] = (b + 1) & msk
+                    Q[0, 2, i] = (b + 2) & msk
+                    Q[0, 3, i] = (b + 3) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = b & 1
+                    j = b
+                    Q[0, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = j if j < n else j % n
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[0, 3, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; dw0_2 = DW[0, 2, i]; q0_2 = Q[0, 2, i]
+                w0_3 = W[0, 3, i]; dw0_3 = DW[0, 3, i]; q0_3 = Q[0, 3, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    h2 = perms[c, q0_2]
+                    h3 = perms[c, q0_3]
+                    if basis == 0:
+                        v0 = values[par, h0]
+                        v1 = values[par ^ 1, h1]
+                        v2 = values[par, h2]
+                        v3 = values[par ^ 1, h3]
+                        s0_ = w0_0 * v0 + w0_1 * v1 + w0_2 * v2 + w0_3 * v3
+                        e0__0 = dw0_0 * v0 + dw0_1 * v1 + dw0_2 * v2 + dw0_3 * v3
+                        total = s0_
+                        D0 = e0__0
+                    else:
+                        g0_0 = grads[h0, 0]
+                        v0 = g0_0 * R[0, 0, i]
+                        g1_0 = grads[h1, 0]
+                        v1 = g1_0 * R[0, 1, i]
+                        g2_0 = grads[h2, 0]
+                        v2 = g2_0 * R[0, 2, i]
+                        g3_0 = grads[h3, 0]
+                        v3 = g3_0 * R[0, 3, i]
+                        s0_ = w0_0 * v0 + w0_1 * v1 + w0_2 * v2 + w0_3 * v3
+                        e0__0 = dw0_0 * v0 + w0_0 * g0_0 + dw0_1 * v1 + w0_1 * g1_0 + dw0_2 * v2 + w0_2 * g2_0 + dw0_3 * v3 + w0_3 * g3_0
+                        total = s0_
+                        D0 = e0__0
+                    amp = amps[o]
+                    if absval:
+                        sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                        total = abs(total)
+                        D0 = sg * D0
+                    if o == 0:
+                        ACC[c, 0, i] = amp * total
+                        ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                    else:
+                        ACC[c, 0, i] += amp * total
+                        ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(2):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def jac_d2_t2(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        perms, values, grads, basis, absval):
+    """Lattice noise and its Jacobian at scattered points, 2-D input, 2-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = perms.shape[0]
+    n = perms.shape[1] // 2
+    noct = freqs.shape[0]
+    W = np.empty((2, 2, CHUNK))
+    DW = np.empty((2, 2, CHUNK))
+    R = np.empty((2, 2, CHUNK))
+    Q = np.empty((2, 2, CHUNK), np.uint64)
+    PAR = np.empty(CHUNK, np.int64)
+    FI = np.empty(CHUNK)
+    X = np.empty((2, CHUNK))
+    ACC = np.empty((ncomp, 3, CHUNK))
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = b & 1
+                    Q[0, 0, i] = b
+                    Q[0, 1, i] = (b + 1) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = b & 1
+                    j = b
+                    Q[0, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = X[1, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[1, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[1, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = (PAR[i] + b) & 1
+                    Q[1, 0, i] = b
+                    Q[1, 1, i] = (b + 1) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = (PAR[i] + b) & 1
+                    j = b
+                    Q[1, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    h00 = perms[c, h0 + q1_0]
+                    h01 = perms[c, h0 + q1_1]
+                    h10 = perms[c, h1 + q1_0]
+                    h11 = perms[c, h1 + q1_1]
+                    if basis == 0:
+                        v00 = values[par, h00]
+                        v01 = values[par ^ 1, h01]
+                        s1_0 = w1_0 * v00 + w1_1 * v01
+                        e1_0_1 = dw1_0 * v00 + dw1_1 * v01
+                        v10 = values[par ^ 1, h10]
+                        v11 = values[par, h11]
+                        s1_1 = w1_0 * v10 + w1_1 * v11
+                        e1_1_1 = dw1_0 * v10 + dw1_1 * v11
+                        s0_ = w0_0 * s1_0 + w0_1 * s1_1
+                        e0__0 = dw0_0 * s1_0 + dw0_1 * s1_1
+                        e0__1 = w0_0 * e1_0_1 + w0_1 * e1_1_1
+                        total = s0_
+                        D0 = e0__0
+                        D1 = e0__1
+                    else:
+                        g00_0 = grads[h00, 0]
+                        g00_1 = grads[h00, 1]
+                        v00 = g00_0 * R[0, 0, i] + g00_1 * R[1, 0, i]
+                        g01_0 = grads[h01, 0]
+                        g01_1 = grads[h01, 1]
+                        v01 = g01_0 * R[0, 0, i] + g01_1 * R[1, 1, i]
+                        s1_0 = w1_0 * v00 + w1_1 * v01
+                        e1_0_0 = w1_0 * g00_0 + w1_1 * g01_0
+                        e1_0_1 = dw1_0 * v00 + w1_0 * g00_1 + dw1_1 * v01 + w1_1 * g01_1
+                        g10_0 = grads[h10, 0]
+                        g10_1 = grads[h10, 1]
+                        v10 = g10_0 * R[0, 1, i] + g10_1 * R[1, 0, i]
+                        g11_0 = grads[h11, 0]
+                        g11_1 = grads[h11, 1]
+                        v11 = g11_0 * R[0, 1, i] + g11_1 * R[1, 1, i]
+                        s1_1 = w1_0 * v10 + w1_1 * v11
+                        e1_1_0 = w1_0 * g10_0 + w1_1 * g11_0
+                        e1_1_1 = dw1_0 * v10 + w1_0 * g10_1 + dw1_1 * v11 + w1_1 * g11_1
+                        s0_ = w0_0 * s1_0 + w0_1 * s1_1
+                        e0__0 = dw0_0 * s1_0 + w0_0 * e1_0_0 + dw0_1 * s1_1 + w0_1 * e1_1_0
+                        e0__1 = w0_0 * e1_0_1 + w0_1 * e1_1_1
+                        total = s0_
+                        D0 = e0__0
+                        D1 = e0__1
+                    amp = amps[o]
+                    if absval:
+                        sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                        total = abs(total)
+                        D0 = sg * D0
+                        D1 = sg * D1
+                    if o == 0:
+                        ACC[c, 0, i] = amp * total
+                        ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                    else:
+                        ACC[c, 0, i] += amp * total
+                        ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(3):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def jac_d2_t3(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        perms, values, grads, basis, absval):
+    """Lattice noise and its Jacobian at scattered points, 2-D input, 3-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = perms.shape[0]
+    n = perms.shape[1] // 2
+    noct = freqs.shape[0]
+    W = np.empty((2, 3, CHUNK))
+    DW = np.empty((2, 3, CHUNK))
+    R = np.empty((2, 3, CHUNK))
+    Q = np.empty((2, 3, CHUNK), np.uint64)
+    PAR = np.empty(CHUNK, np.int64)
+    FI = np.empty(CHUNK)
+    X = np.empty((2, CHUNK))
+    ACC = np.empty((ncomp, 3, CHUNK))
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
+    d20 = dcoef[2, 0]; d21 = dcoef[2, 1]; d22 = dcoef[2, 2]; d23 = dcoef[2, 3]; d24 = dcoef[2, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[0, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = b & 1
+                    Q[0, 0, i] = b
+                    Q[0, 1, i] = (b + 1) & msk
+                    Q[0, 2, i] = (b + 2) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = b & 1
+                    j = b
+                    Q[0, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = X[1, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[1, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[1, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[1, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = (PAR[i] + b) & 1
+                    Q[1, 0, i] = b
+                    Q[1, 1, i] = (b + 1) & msk
+                    Q[1, 2, i] = (b + 2) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = (PAR[i] + b) & 1
+                    j = b
+                    Q[1, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; dw0_2 = DW[0, 2, i]; q0_2 = Q[0, 2, i]
+                w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; dw1_2 = DW[1, 2, i]; q1_2 = Q[1, 2, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    h2 = perms[c, q0_2]
+                    h00 = perms[c, h0 + q1_0]
+                    h01 = perms[c, h0 + q1_1]
+                    h02 = perms[c, h0 + q1_2]
+                    h10 = perms[c, h1 + q1_0]
+                    h11 = perms[c, h1 + q1_1]
+                    h12 = perms[c, h1 + q1_2]
+                    h20 = perms[c, h2 + q1_0]
+                    h21 = perms[c, h2 + q1_1]
+                    h22 = perms[c, h2 + q1_2]
+                    if basis == 0:
+                        v00 = values[par, h00]
+                        v01 = values[par ^ 1, h01]
+                        v02 = values[par, h02]
+                        s1_0 = w1_0 * v00 + w1_1 * v01 + w1_2 * v02
+                        e1_0_1 = dw1_0 * v00 + dw1_1 * v01 + dw1_2 * v02
+                        v10 = values[par ^ 1, h10]
+                        v11 = values[par, h11]
+                        v12 = values[par ^ 1, h12]
+                        s1_1 = w1_0 * v10 + w1_1 * v11 + w1_2 * v12
+                        e1_1_1 = dw1_0 * v10 + dw1_1 * v11 + dw1_2 * v12
+                        v20 = values[par, h20]
+                        v21 = values[par ^ 1, h21]
+                        v22 = values[par, h22]
+                        s1_2 = w1_0 * v20 + w1_1 * v21 + w1_2 * v22
+                        e1_2_1 = dw1_0 * v20 + dw1_1 * v21 + dw1_2 * v22
+                        s0_ = w0_0 * s1_0 + w0_1 * s1_1 + w0_2 * s1_2
+                        e0__0 = dw0_0 * s1_0 + dw0_1 * s1_1 + dw0_2 * s1_2
+                        e0__1 = w0_0 * e1_0_1 + w0_1 * e1_1_1 + w0_2 * e1_2_1
+                        total = s0_
+                        D0 = e0__0
+                        D1 = e0__1
+                    else:
+                        g00_0 = grads[h00, 0]
+                        g00_1 = grads[h00, 1]
+                        v00 = g00_0 * R[0, 0, i] + g00_1 * R[1, 0, i]
+                        g01_0 = grads[h01, 0]
+                        g01_1 = grads[h01, 1]
+                        v01 = g01_0 * R[0, 0, i] + g01_1 * R[1, 1, i]
+                        g02_0 = grads[h02, 0]
+                        g02_1 = grads[h02, 1]
+                        v02 = g02_0 * R[0, 0, i] + g02_1 * R[1, 2, i]
+                        s1_0 = w1_0 * v00 + w1_1 * v01 + w1_2 * v02
+                        e1_0_0 = w1_0 * g00_0 + w1_1 * g01_0 + w1_2 * g02_0
+                        e1_0_1 = dw1_0 * v00 + w1_0 * g00_1 + dw1_1 * v01 + w1_1 * g01_1 + dw1_2 * v02 + w1_2 * g02_1
+                        g10_0 = grads[h10, 0]
+                        g10_1 = grads[h10, 1]
+                        v10 = g10_0 * R[0, 1, i] + g10_1 * R[1, 0, i]
+                        g11_0 = grads[h11, 0]
+                        g11_1 = grads[h11, 1]
+                        v11 = g11_0 * R[0, 1, i] + g11_1 * R[1, 1, i]
+                        g12_0 = grads[h12, 0]
+                        g12_1 = grads[h12, 1]
+                        v12 = g12_0 * R[0, 1, i] + g12_1 * R[1, 2, i]
+                        s1_1 = w1_0 * v10 + w1_1 * v11 + w1_2 * v12
+                        e1_1_0 = w1_0 * g10_0 + w1_1 * g11_0 + w1_2 * g12_0
+                        e1_1_1 = dw1_0 * v10 + w1_0 * g10_1 + dw1_1 * v11 + w1_1 * g11_1 + dw1_2 * v12 + w1_2 * g12_1
+                        g20_0 = grads[h20, 0]
+                        g20_1 = grads[h20, 1]
+                        v20 = g20_0 * R[0, 2, i] + g20_1 * R[1, 0, i]
+                        g21_0 = grads[h21, 0]
+                        g21_1 = grads[h21, 1]
+                        v21 = g21_0 * R[0, 2, i] + g21_1 * R[1, 1, i]
+                        g22_0 = grads[h22, 0]
+                        g22_1 = grads[h22, 1]
+                        v22 = g22_0 * R[0, 2, i] + g22_1 * R[1, 2, i]
+                        s1_2 = w1_0 * v20 + w1_1 * v21 + w1_2 * v22
+                        e1_2_0 = w1_0 * g20_0 + w1_1 * g21_0 + w1_2 * g22_0
+                        e1_2_1 = dw1_0 * v20 + w1_0 * g20_1 + dw1_1 * v21 + w1_1 * g21_1 + dw1_2 * v22 + w1_2 * g22_1
+                        s0_ = w0_0 * s1_0 + w0_1 * s1_1 + w0_2 * s1_2
+                        e0__0 = dw0_0 * s1_0 + w0_0 * e1_0_0 + dw0_1 * s1_1 + w0_1 * e1_1_0 + dw0_2 * s1_2 + w0_2 * e1_2_0
+                        e0__1 = w0_0 * e1_0_1 + w0_1 * e1_1_1 + w0_2 * e1_2_1
+                        total = s0_
+                        D0 = e0__0
+                        D1 = e0__1
+                    amp = amps[o]
+                    if absval:
+                        sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                        total = abs(total)
+                        D0 = sg * D0
+                        D1 = sg * D1
+                    if o == 0:
+                        ACC[c, 0, i] = amp * total
+                        ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                    else:
+                        ACC[c, 0, i] += amp * total
+                        ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(3):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def jac_d2_t4(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        perms, values, grads, basis, absval):
+    """Lattice noise and its Jacobian at scattered points, 2-D input, 4-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = perms.shape[0]
+    n = perms.shape[1] // 2
+    noct = freqs.shape[0]
+    W = np.empty((2, 4, CHUNK))
+    DW = np.empty((2, 4, CHUNK))
+    R = np.empty((2, 4, CHUNK))
+    Q = np.empty((2, 4, CHUNK), np.uint64)
+    PAR = np.empty(CHUNK, np.int64)
+    FI = np.empty(CHUNK)
+    X = np.empty((2, CHUNK))
+    ACC = np.empty((ncomp, 3, CHUNK))
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
+    d20 = dcoef[2, 0]; d21 = dcoef[2, 1]; d22 = dcoef[2, 2]; d23 = dcoef[2, 3]; d24 = dcoef[2, 4]
+    c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
+    d30 = dcoef[3, 0]; d31 = dcoef[3, 1]; d32 = dcoef[3, 2]; d33 = dcoef[3, 3]; d34 = dcoef[3, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[0, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                DW[0, 3, i] = (d30 + d31 * t) + (d32 * t2 + d33 * t3) + d34 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = b & 1
+                    Q[0, 0, i] = b
+                    Q[0, 1, i] = (b + 1) & msk
+                    Q[0, 2, i] = (b + 2) & msk
+                    Q[0, 3, i] = (b + 3) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = b & 1
+                    j = b
+                    Q[0, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = j if j < n else j % n
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[0, 3, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = X[1, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[1, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[1, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[1, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                W[1, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                DW[1, 3, i] = (d30 + d31 * t) + (d32 * t2 + d33 * t3) + d34 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = (PAR[i] + b) & 1
+                    Q[1, 0, i] = b
+                    Q[1, 1, i] = (b + 1) & msk
+                    Q[1, 2, i] = (b + 2) & msk
+                    Q[1, 3, i] = (b + 3) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = (PAR[i] + b) & 1
+                    j = b
+                    Q[1, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = j if j < n else j % n
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[1, 3, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                w0_2 = W[0, 2, i]; dw0_2 = DW[0, 2, i]; q0_2 = Q[0, 2, i]
+                w0_3 = W[0, 3, i]; dw0_3 = DW[0, 3, i]; q0_3 = Q[0, 3, i]
+                w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; dw1_2 = DW[1, 2, i]; q1_2 = Q[1, 2, i]
+                w1_3 = W[1, 3, i]; dw1_3 = DW[1, 3, i]; q1_3 = Q[1, 3, i]
+                for c in range(ncomp):
+                    h0 = perms[c, q0_0]
+                    h1 = perms[c, q0_1]
+                    h2 = perms[c, q0_2]
+                    h3 = perms[c, q0_3]
+                    h00 = perms[c, h0 + q1_0]
+                    h01 = perms[c, h0 + q1_1]
+                    h02 = perms[c, h0 + q1_2]
+                    h03 = perms[c, h0 + q1_3]
+                    h10 = perms[c, h1 + q1_0]
+                    h11 = perms[c, h1 + q1_1]
+                    h12 = perms[c, h1 + q1_2]
+                    h13 = perms[c, h1 + q1_3]
+                    h20 = perms[c, h2 + q1_0]
+                    h21 = perms[c, h2 + q1_1]
+                    h22 = perms[c, h2 + q1_2]
+                    h23 = perms[c, h2 + q1_3]
+                    h30 = perms[c, h3 + q1_0]
+                    h31 = perms[c, h3 + q1_1]
+                    h32 = perms[c, h3 + q1_2]
+                    h33 = perms[c, h3 + q1_3]
+                    if basis == 0:
+                        v00 = values[par, h00]
+                        v01 = values[par ^ 1, h01]
+                        v02 = values[par, h02]
+                        v03 = values[par ^ 1, h03]
+                        s1_0 = w1_0 * v00 + w1_1 * v01 + w1_2 * v02 + w1_3 * v03
+                        e1_0_1 = dw1_0 * v00 + dw1_1 * v01 + dw1_2 * v02 + dw1_3 * v03
+                        v10 = values[par ^ 1, h10]
+                        v11 = values[par, h11]
+                        v12 = values[par ^ 1, h12]
+                        v13 = values[par, h13]
+                        s1_1 = w1_0 * v10 + w1_1 * v11 + w1_2 * v12 + w1_3 * v13
+                        e1_1_1 = dw1_0 * v10 + dw1_1 * v11 + dw1_2 * v12 + dw1_3 * v13
+                        v20 = values[par, h20]
+                        v21 = values[par ^ 1, h21]
+                        v22 = values[par, h22]
+                        v23 = values[par ^ 1, h23]
+                        s1_2 = w1_0 * v20 + w1_1 * v21 + w1_2 * v22 + w1_3 * v23
+                        e1_2_1 = dw1_0 * v20 + dw1_1 * v21 + dw1_2 * v22 + dw1_3 * v23
+                        v30 = values[par ^ 1, h30]
+                        v31 = values[par, h31]
+                        v32 = values[par ^ 1, h32]
+                        v33 = values[par, h33]
+                        s1_3 = w1_0 * v30 + w1_1 * v31 + w1_2 * v32 + w1_3 * v33
+                        e1_3_1 = dw1_0 * v30 + dw1_1 * v31 + dw1_2 * v32 + dw1_3 * v33
+                        s0_ = w0_0 * s1_0 + w0_1 * s1_1 + w0_2 * s1_2 + w0_3 * s1_3
+                        e0__0 = dw0_0 * s1_0 + dw0_1 * s1_1 + dw0_2 * s1_2 + dw0_3 * s1_3
+                        e0__1 = w0_0 * e1_0_1 + w0_1 * e1_1_1 + w0_2 * e1_2_1 + w0_3 * e1_3_1
+                        total = s0_
+                        D0 = e0__0
+                        D1 = e0__1
+                    else:
+                        g00_0 = grads[h00, 0]
+                        g00_1 = grads[h00, 1]
+                        v00 = g00_0 * R[0, 0, i] + g00_1 * R[1, 0, i]
+                        g01_0 = grads[h01, 0]
+                        g01_1 = grads[h01, 1]
+                        v01 = g01_0 * R[0, 0, i] + g01_1 * R[1, 1, i]
+                        g02_0 = grads[h02, 0]
+                        g02_1 = grads[h02, 1]
+                        v02 = g02_0 * R[0, 0, i] + g02_1 * R[1, 2, i]
+                        g03_0 = grads[h03, 0]
+                        g03_1 = grads[h03, 1]
+                        v03 = g03_0 * R[0, 0, i] + g03_1 * R[1, 3, i]
+                        s1_0 = w1_0 * v00 + w1_1 * v01 + w1_2 * v02 + w1_3 * v03
+                        e1_0_0 = w1_0 * g00_0 + w1_1 * g01_0 + w1_2 * g02_0 + w1_3 * g03_0
+                        e1_0_1 = dw1_0 * v00 + w1_0 * g00_1 + dw1_1 * v01 + w1_1 * g01_1 + dw1_2 * v02 + w1_2 * g02_1 + dw1_3 * v03 + w1_3 * g03_1
+                        g10_0 = grads[h10, 0]
+                        g10_1 = grads[h10, 1]
+                        v10 = g10_0 * R[0, 1, i] + g10_1 * R[1, 0, i]
+                        g11_0 = grads[h11, 0]
+                        g11_1 = grads[h11, 1]
+                        v11 = g11_0 * R[0, 1, i] + g11_1 * R[1, 1, i]
+                        g12_0 = grads[h12, 0]
+                        g12_1 = grads[h12, 1]
+                        v12 = g12_0 * R[0, 1, i] + g12_1 * R[1, 2, i]
+                        g13_0 = grads[h13, 0]
+                        g13_1 = grads[h13, 1]
+                        v13 = g13_0 * R[0, 1, i] + g13_1 * R[1, 3, i]
+                        s1_1 = w1_0 * v10 + w1_1 * v11 + w1_2 * v12 + w1_3 * v13
+                        e1_1_0 = w1_0 * g10_0 + w1_1 * g11_0 + w1_2 * g12_0 + w1_3 * g13_0
+                        e1_1_1 = dw1_0 * v10 + w1_0 * g10_1 + dw1_1 * v11 + w1_1 * g11_1 + dw1_2 * v12 + w1_2 * g12_1 + dw1_3 * v13 + w1_3 * g13_1
+                        g20_0 = grads[h20, 0]
+                        g20_1 = grads[h20, 1]
+                        v20 = g20_0 * R[0, 2, i] + g20_1 * R[1, 0, i]
+                        g21_0 = grads[h21, 0]
+                        g21_1 = grads[h21, 1]
+                        v21 = g21_0 * R[0, 2, i] + g21_1 * R[1, 1, i]
+                        g22_0 = grads[h22, 0]
+                        g22_1 = grads[h22, 1]
+                        v22 = g22_0 * R[0, 2, i] + g22_1 * R[1, 2, i]
+                        g23_0 = grads[h23, 0]
+                        g23_1 = grads[h23, 1]
+                        v23 = g23_0 * R[0, 2, i] + g23_1 * R[1, 3, i]
+                        s1_2 = w1_0 * v20 + w1_1 * v21 + w1_2 * v22 + w1_3 * v23
+                        e1_2_0 = w1_0 * g20_0 + w1_1 * g21_0 + w1_2 * g22_0 + w1_3 * g23_0
+                        e1_2_1 = dw1_0 * v20 + w1_0 * g20_1 + dw1_1 * v21 + w1_1 * g21_1 + dw1_2 * v22 + w1_2 * g22_1 + dw1_3 * v23 + w1_3 * g23_1
+                        g30_0 = grads[h30, 0]
+                        g30_1 = grads[h30, 1]
+                        v30 = g30_0 * R[0, 3, i] + g30_1 * R[1, 0, i]
+                        g31_0 = grads[h31, 0]
+                        g31_1 = grads[h31, 1]
+                        v31 = g31_0 * R[0, 3, i] + g31_1 * R[1, 1, i]
+                        g32_0 = grads[h32, 0]
+                        g32_1 = grads[h32, 1]
+                        v32 = g32_0 * R[0, 3, i] + g32_1 * R[1, 2, i]
+                        g33_0 = grads[h33, 0]
+                        g33_1 = grads[h33, 1]
+                        v33 = g33_0 * R[0, 3, i] + g33_1 * R[1, 3, i]
+                        s1_3 = w1_0 * v30 + w1_1 * v31 + w1_2 * v32 + w1_3 * v33
+                        e1_3_0 = w1_0 * g30_0 + w1_1 * g31_0 + w1_2 * g32_0 + w1_3 * g33_0
+                        e1_3_1 = dw1_0 * v30 + w1_0 * g30_1 + dw1_1 * v31 + w1_1 * g31_1 + dw1_2 * v32 + w1_2 * g32_1 + dw1_3 * v33 + w1_3 * g33_1
+                        s0_ = w0_0 * s1_0 + w0_1 * s1_1 + w0_2 * s1_2 + w0_3 * s1_3
+                        e0__0 = dw0_0 * s1_0 + w0_0 * e1_0_0 + dw0_1 * s1_1 + w0_1 * e1_1_0 + dw0_2 * s1_2 + w0_2 * e1_2_0 + dw0_3 * s1_3 + w0_3 * e1_3_0
+                        e0__1 = w0_0 * e1_0_1 + w0_1 * e1_1_1 + w0_2 * e1_2_1 + w0_3 * e1_3_1
+                        total = s0_
+                        D0 = e0__0
+                        D1 = e0__1
+                    amp = amps[o]
+                    if absval:
+                        sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                        total = abs(total)
+                        D0 = sg * D0
+                        D1 = sg * D1
+                    if o == 0:
+                        ACC[c, 0, i] = amp * total
+                        ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                    else:
+                        ACC[c, 0, i] += amp * total
+                        ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(3):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def jac_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        perms, values, grads, basis, absval):
+    """Lattice noise and its Jacobian at scattered points, 3-D input, 2-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = perms.shape[0]
+    n = perms.shape[1] // 2
+    noct = freqs.shape[0]
+    W = np.empty((3, 2, CHUNK))
+    DW = np.empty((3, 2, CHUNK))
+    R = np.empty((3, 2, CHUNK))
+    Q = np.empty((3, 2, CHUNK), np.uint64)
+    PAR = np.empty(CHUNK, np.int64)
+    FI = np.empty(CHUNK)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, 4, CHUNK))
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = b & 1
+                    Q[0, 0, i] = b
+                    Q[0, 1, i] = (b + 1) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = b & 1
+                    j = b
+                    Q[0, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = X[1, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[1, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[1, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = (PAR[i] + b) & 1
+                    Q[1, 0, i] = b
+                    Q[1, 1, i] = (b + 1) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = (PAR[i] + b) & 1
+                    j = b
+                    Q[1, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = j if j < n else j % n
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            for i in range(m):
+                u = X[2, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[2, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[2, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[2, i] * f + ph + shift - FI[i]
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = (PAR[i] + b) & 1
+                    Q[2, 0, i] = b
+                    Q[2, 1, i] = (b + 1) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = (PAR[i] + b) & 1
+                    j = b
+                    Q[2, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[2, 1, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                w2_0 = W[2, 0, i]; dw2_0 = DW[2, 0, i]; q2_0 = Q[2, 0, i]
+                w2_1 = W[2, 1, i]; dw2_1 = DW[2, 1, i]; q2_1 = Q[2, 1, i]
+                for c in range(ncomp):
+                    total = 0.0
+                    D0 = 0.0
+                    D1 = 0.0
+                    D2 = 0.0
+                    for k0 in range(2):
+                        hk = perms[c, Q[0, k0, i]]
+                        pk = par ^ (k0 & 1)
+                        w0k = W[0, k0, i]; dw0k = DW[0, k0, i]
+                        h0 = perms[c, hk + q1_0]
+                        h1 = perms[c, hk + q1_1]
+                        h00 = perms[c, h0 + q2_0]
+                        h01 = perms[c, h0 + q2_1]
+                        h10 = perms[c, h1 + q2_0]
+                        h11 = perms[c, h1 + q2_1]
+                        if basis == 0:
+                            v00 = values[pk, h00]
+                            v01 = values[pk ^ 1, h01]
+                            s2_0 = w2_0 * v00 + w2_1 * v01
+                            e2_0_2 = dw2_0 * v00 + dw2_1 * v01
+                            v10 = values[pk ^ 1, h10]
+                            v11 = values[pk, h11]
+                            s2_1 = w2_0 * v10 + w2_1 * v11
+                            e2_1_2 = dw2_0 * v10 + dw2_1 * v11
+                            s1_ = w1_0 * s2_0 + w1_1 * s2_1
+                            e1__1 = dw1_0 * s2_0 + dw1_1 * s2_1
+                            e1__2 = w1_0 * e2_0_2 + w1_1 * e2_1_2
+                            total += w0k * s1_
+                            D0 += dw0k * s1_
+                            D1 += w0k * e1__1
+                            D2 += w0k * e1__2
+                        else:
+                            g00_0 = grads[h00, 0]
+                            g00_1 = grads[h00, 1]
+                            g00_2 = grads[h00, 2]
+                            v00 = g00_0 * R[0, k0, i] + g00_1 * R[1, 0, i] + g00_2 * R[2, 0, i]
+                            g01_0 = grads[h01, 0]
+                            g01_1 = grads[h01, 1]
+                            g01_2 = grads[h01, 2]
+                            v01 = g01_0 * R[0, k0, i] + g01_1 * R[1, 0, i] + g01_2 * R[2, 1, i]
+                            s2_0 = w2_0 * v00 + w2_1 * v01
+                            e2_0_0 = w2_0 * g00_0 + w2_1 * g01_0
+                            e2_0_1 = w2_0 * g00_1 + w2_1 * g01_1
+                            e2_0_2 = dw2_0 * v00 + w2_0 * g00_2 + dw2_1 * v01 + w2_1 * g01_2
+                            g10_0 = grads[h10, 0]
+                            g10_1 = grads[h10, 1]
+                            g10_2 = grads[h10, 2]
+                            v10 = g10_0 * R[0, k0, i] + g10_1 * R[1, 1, i] + g10_2 * R[2, 0, i]
+                            g11_0 = grads[h11, 0]
+                            g11_1 = grads[h11, 1]
+                            g11_2 = grads[h11, 2]
+                            v11 = g11_0 * R[0, k0, i] + g11_1 * R[1, 1, i] + g11_2 * R[2, 1, i]
+                            s2_1 = w2_0 * v10 + w2_1 * v11
+                            e2_1_0 = w2_0 * g10_0 + w2_1 * g11_0
+                            e2_1_1 = w2_0 * g10_1 + w2_1 * g11_1
+                            e2_1_2 = dw2_0 * v10 + w2_0 * g10_2 + dw2_1 * v11 + w2_1 * g11_2
+                            s1_ = w1_0 * s2_0 + w1_1 * s2_1
+                            e1__0 = w1_0 * e2_0_0 + w1_1 * e2_1_0
+                            e1__1 = dw1_0 * s2_0 + w1_0 * e2_0_1 + dw1_1 * s2_1 + w1_1 * e2_1_1
+                            e1__2 = w1_0 * e2_0_2 + w1_1 * e2_1_2
+                            total += w0k * s1_
+                            D0 += dw0k * s1_ + w0k * e1__0
+                            D1 += w0k * e1__1
+                            D2 += w0k * e1__2
+                    amp = amps[o]
+                    if absval:
+                        sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                        total = abs(total)
+                        D0 = sg * D0
+                        D1 = sg * D1
+                        D2 = sg * D2
+                    if o == 0:
+                        ACC[c, 0, i] = amp * total
+                        ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                        ACC[c, 3, i] = (amp * freqs[o, 2]) * D2
+                    else:
+                        ACC[c, 0, i] += amp * total
+                        ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+                        ACC[c, 3, i] += (amp * freqs[o, 2]) * D2
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(4):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def jac_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        perms, values, grads, basis, absval):
+    """Lattice noise and its Jacobian at scattered points, 3-D input, 3-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = perms.shape[0]
+    n = perms.shape[1] // 2
+    noct = freqs.shape[0]
+    W = np.empty((3, 3, CHUNK))
+    DW = np.empty((3, 3, CHUNK))
+    R = np.empty((3, 3, CHUNK))
+    Q = np.empty((3, 3, CHUNK), np.uint64)
+    PAR = np.empty(CHUNK, np.int64)
+    FI = np.empty(CHUNK)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, 4, CHUNK))
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
+    d20 = dcoef[2, 0]; d21 = dcoef[2, 1]; d22 = dcoef[2, 2]; d23 = dcoef[2, 3]; d24 = dcoef[2, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[0, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = b & 1
+                    Q[0, 0, i] = b
+                    Q[0, 1, i] = (b + 1) & msk
+                    Q[0, 2, i] = (b + 2) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = b & 1
+                    j = b
+                    Q[0, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = X[1, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[1, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[1, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[1, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = (PAR[i] + b) & 1
+                    Q[1, 0, i] = b
+                    Q[1, 1, i] = (b + 1) & msk
+                    Q[1, 2, i] = (b + 2) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = (PAR[i] + b) & 1
+                    j = b
+                    Q[1, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = j if j < n else j % n
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            for i in range(m):
+                u = X[2, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[2, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[2, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[2, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[2, i] * f + ph + shift - FI[i]
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = (PAR[i] + b) & 1
+                    Q[2, 0, i] = b
+                    Q[2, 1, i] = (b + 1) & msk
+                    Q[2, 2, i] = (b + 2) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = (PAR[i] + b) & 1
+                    j = b
+                    Q[2, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[2, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[2, 2, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; dw1_2 = DW[1, 2, i]; q1_2 = Q[1, 2, i]
+                w2_0 = W[2, 0, i]; dw2_0 = DW[2, 0, i]; q2_0 = Q[2, 0, i]
+                w2_1 = W[2, 1, i]; dw2_1 = DW[2, 1, i]; q2_1 = Q[2, 1, i]
+                w2_2 = W[2, 2, i]; dw2_2 = DW[2, 2, i]; q2_2 = Q[2, 2, i]
+                for c in range(ncomp):
+                    total = 0.0
+                    D0 = 0.0
+                    D1 = 0.0
+                    D2 = 0.0
+                    for k0 in range(3):
+                        hk = perms[c, Q[0, k0, i]]
+                        pk = par ^ (k0 & 1)
+                        w0k = W[0, k0, i]; dw0k = DW[0, k0, i]
+                        h0 = perms[c, hk + q1_0]
+                        h1 = perms[c, hk + q1_1]
+                        h2 = perms[c, hk + q1_2]
+                        h00 = perms[c, h0 + q2_0]
+                        h01 = perms[c, h0 + q2_1]
+                        h02 = perms[c, h0 + q2_2]
+                        h10 = perms[c, h1 + q2_0]
+                        h11 = perms[c, h1 + q2_1]
+                        h12 = perms[c, h1 + q2_2]
+                        h20 = perms[c, h2 + q2_0]
+                        h21 = perms[c, h2 + q2_1]
+                        h22 = perms[c, h2 + q2_2]
+                        if basis == 0:
+                            v00 = values[pk, h00]
+                            v01 = values[pk ^ 1, h01]
+                            v02 = values[pk, h02]
+                            s2_0 = w2_0 * v00 + w2_1 * v01 + w2_2 * v02
+                            e2_0_2 = dw2_0 * v00 + dw2_1 * v01 + dw2_2 * v02
+                            v10 = values[pk ^ 1, h10]
+                            v11 = values[pk, h11]
+                            v12 = values[pk ^ 1, h12]
+                            s2_1 = w2_0 * v10 + w2_1 * v11 + w2_2 * v12
+                            e2_1_2 = dw2_0 * v10 + dw2_1 * v11 + dw2_2 * v12
+                            v20 = values[pk, h20]
+                            v21 = values[pk ^ 1, h21]
+                            v22 = values[pk, h22]
+                            s2_2 = w2_0 * v20 + w2_1 * v21 + w2_2 * v22
+                            e2_2_2 = dw2_0 * v20 + dw2_1 * v21 + dw2_2 * v22
+                            s1_ = w1_0 * s2_0 + w1_1 * s2_1 + w1_2 * s2_2
+                            e1__1 = dw1_0 * s2_0 + dw1_1 * s2_1 + dw1_2 * s2_2
+                            e1__2 = w1_0 * e2_0_2 + w1_1 * e2_1_2 + w1_2 * e2_2_2
+                            total += w0k * s1_
+                            D0 += dw0k * s1_
+                            D1 += w0k * e1__1
+                            D2 += w0k * e1__2
+                        else:
+                            g00_0 = grads[h00, 0]
+                            g00_1 = grads[h00, 1]
+                            g00_2 = grads[h00, 2]
+                            v00 = g00_0 * R[0, k0, i] + g00_1 * R[1, 0, i] + g00_2 * R[2, 0, i]
+                            g01_0 = grads[h01, 0]
+                            g01_1 = grads[h01, 1]
+                            g01_2 = grads[h01, 2]
+                            v01 = g01_0 * R[0, k0, i] + g01_1 * R[1, 0, i] + g01_2 * R[2, 1, i]
+                            g02_0 = grads[h02, 0]
+                            g02_1 = grads[h02, 1]
+                            g02_2 = grads[h02, 2]
+                            v02 = g02_0 * R[0, k0, i] + g02_1 * R[1, 0, i] + g02_2 * R[2, 2, i]
+                            s2_0 = w2_0 * v00 + w2_1 * v01 + w2_2 * v02
+                            e2_0_0 = w2_0 * g00_0 + w2_1 * g01_0 + w2_2 * g02_0
+                            e2_0_1 = w2_0 * g00_1 + w2_1 * g01_1 + w2_2 * g02_1
+                            e2_0_2 = dw2_0 * v00 + w2_0 * g00_2 + dw2_1 * v01 + w2_1 * g01_2 + dw2_2 * v02 + w2_2 * g02_2
+                            g10_0 = grads[h10, 0]
+                            g10_1 = grads[h10, 1]
+                            g10_2 = grads[h10, 2]
+                            v10 = g10_0 * R[0, k0, i] + g10_1 * R[1, 1, i] + g10_2 * R[2, 0, i]
+                            g11_0 = grads[h11, 0]
+                            g11_1 = grads[h11, 1]
+                            g11_2 = grads[h11, 2]
+                            v11 = g11_0 * R[0, k0, i] + g11_1 * R[1, 1, i] + g11_2 * R[2, 1, i]
+                            g12_0 = grads[h12, 0]
+                            g12_1 = grads[h12, 1]
+                            g12_2 = grads[h12, 2]
+                            v12 = g12_0 * R[0, k0, i] + g12_1 * R[1, 1, i] + g12_2 * R[2, 2, i]
+                            s2_1 = w2_0 * v10 + w2_1 * v11 + w2_2 * v12
+                            e2_1_0 = w2_0 * g10_0 + w2_1 * g11_0 + w2_2 * g12_0
+                            e2_1_1 = w2_0 * g10_1 + w2_1 * g11_1 + w2_2 * g12_1
+                            e2_1_2 = dw2_0 * v10 + w2_0 * g10_2 + dw2_1 * v11 + w2_1 * g11_2 + dw2_2 * v12 + w2_2 * g12_2
+                            g20_0 = grads[h20, 0]
+                            g20_1 = grads[h20, 1]
+                            g20_2 = grads[h20, 2]
+                            v20 = g20_0 * R[0, k0, i] + g20_1 * R[1, 2, i] + g20_2 * R[2, 0, i]
+                            g21_0 = grads[h21, 0]
+                            g21_1 = grads[h21, 1]
+                            g21_2 = grads[h21, 2]
+                            v21 = g21_0 * R[0, k0, i] + g21_1 * R[1, 2, i] + g21_2 * R[2, 1, i]
+                            g22_0 = grads[h22, 0]
+                            g22_1 = grads[h22, 1]
+                            g22_2 = grads[h22, 2]
+                            v22 = g22_0 * R[0, k0, i] + g22_1 * R[1, 2, i] + g22_2 * R[2, 2, i]
+                            s2_2 = w2_0 * v20 + w2_1 * v21 + w2_2 * v22
+                            e2_2_0 = w2_0 * g20_0 + w2_1 * g21_0 + w2_2 * g22_0
+                            e2_2_1 = w2_0 * g20_1 + w2_1 * g21_1 + w2_2 * g22_1
+                            e2_2_2 = dw2_0 * v20 + w2_0 * g20_2 + dw2_1 * v21 + w2_1 * g21_2 + dw2_2 * v22 + w2_2 * g22_2
+                            s1_ = w1_0 * s2_0 + w1_1 * s2_1 + w1_2 * s2_2
+                            e1__0 = w1_0 * e2_0_0 + w1_1 * e2_1_0 + w1_2 * e2_2_0
+                            e1__1 = dw1_0 * s2_0 + w1_0 * e2_0_1 + dw1_1 * s2_1 + w1_1 * e2_1_1 + dw1_2 * s2_2 + w1_2 * e2_2_1
+                            e1__2 = w1_0 * e2_0_2 + w1_1 * e2_1_2 + w1_2 * e2_2_2
+                            total += w0k * s1_
+                            D0 += dw0k * s1_ + w0k * e1__0
+                            D1 += w0k * e1__1
+                            D2 += w0k * e1__2
+                    amp = amps[o]
+                    if absval:
+                        sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                        total = abs(total)
+                        D0 = sg * D0
+                        D1 = sg * D1
+                        D2 = sg * D2
+                    if o == 0:
+                        ACC[c, 0, i] = amp * total
+                        ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                        ACC[c, 3, i] = (amp * freqs[o, 2]) * D2
+                    else:
+                        ACC[c, 0, i] += amp * total
+                        ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+                        ACC[c, 3, i] += (amp * freqs[o, 2]) * D2
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(4):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def jac_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        perms, values, grads, basis, absval):
+    """Lattice noise and its Jacobian at scattered points, 3-D input, 4-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = perms.shape[0]
+    n = perms.shape[1] // 2
+    noct = freqs.shape[0]
+    W = np.empty((3, 4, CHUNK))
+    DW = np.empty((3, 4, CHUNK))
+    R = np.empty((3, 4, CHUNK))
+    Q = np.empty((3, 4, CHUNK), np.uint64)
+    PAR = np.empty(CHUNK, np.int64)
+    FI = np.empty(CHUNK)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, 4, CHUNK))
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
+    d20 = dcoef[2, 0]; d21 = dcoef[2, 1]; d22 = dcoef[2, 2]; d23 = dcoef[2, 3]; d24 = dcoef[2, 4]
+    c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
+    d30 = dcoef[3, 0]; d31 = dcoef[3, 1]; d32 = dcoef[3, 2]; d33 = dcoef[3, 3]; d34 = dcoef[3, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[0, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                DW[0, 3, i] = (d30 + d31 * t) + (d32 * t2 + d33 * t3) + d34 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[0, i] * f + ph + shift - FI[i]
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = b & 1
+                    Q[0, 0, i] = b
+                    Q[0, 1, i] = (b + 1) & msk
+                    Q[0, 2, i] = (b + 2) & msk
+                    Q[0, 3, i] = (b + 3) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = b & 1
+                    j = b
+                    Q[0, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = j if j < n else j % n
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[0, 3, i] = j if j < n else j % n
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            for i in range(m):
+                u = X[1, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[1, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[1, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[1, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                W[1, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                DW[1, 3, i] = (d30 + d31 * t) + (d32 * t2 + d33 * t3) + d34 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[1, i] * f + ph + shift - FI[i]
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = (PAR[i] + b) & 1
+                    Q[1, 0, i] = b
+                    Q[1, 1, i] = (b + 1) & msk
+                    Q[1, 2, i] = (b + 2) & msk
+                    Q[1, 3, i] = (b + 3) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = (PAR[i] + b) & 1
+                    j = b
+                    Q[1, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = j if j < n else j % n
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[1, 3, i] = j if j < n else j % n
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            for i in range(m):
+                u = X[2, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                FI[i] = fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[2, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[2, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[2, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                W[2, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                DW[2, 3, i] = (d30 + d31 * t) + (d32 * t2 + d33 * t3) + d34 * t4
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    t = X[2, i] * f + ph + shift - FI[i]
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+                    R[2, 3, i] = t - shift + (left - 3)
+            exact = msk < 0 or per > n
+            if not exact:
+                inside = 0
+                for i in range(m):
+                    fi = FI[i]
+                    inside += (fi < 4.0e15) & (fi > -4.0e15)
+                    b = (np.int64(fi) - left) & msk
+                    PAR[i] = (PAR[i] + b) & 1
+                    Q[2, 0, i] = b
+                    Q[2, 1, i] = (b + 1) & msk
+                    Q[2, 2, i] = (b + 2) & msk
+                    Q[2, 3, i] = (b + 3) & msk
+                exact = inside != m
+            if exact:
+                for i in range(m):
+                    b = _reduce(FI[i], left, per, msk)
+                    PAR[i] = (PAR[i] + b) & 1
+                    j = b
+                    Q[2, 0, i] = j if j < n else j % n
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[2, 1, i] = j if j < n else j % n
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[2, 2, i] = j if j < n else j % n
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[2, 3, i] = j if j < n else j % n
+            for i in range(m):
+                par = PAR[i]
+                w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                w1_2 = W[1, 2, i]; dw1_2 = DW[1, 2, i]; q1_2 = Q[1, 2, i]
+                w1_3 = W[1, 3, i]; dw1_3 = DW[1, 3, i]; q1_3 = Q[1, 3, i]
+                w2_0 = W[2, 0, i]; dw2_0 = DW[2, 0, i]; q2_0 = Q[2, 0, i]
+                w2_1 = W[2, 1, i]; dw2_1 = DW[2, 1, i]; q2_1 = Q[2, 1, i]
+                w2_2 = W[2, 2, i]; dw2_2 = DW[2, 2, i]; q2_2 = Q[2, 2, i]
+                w2_3 = W[2, 3, i]; dw2_3 = DW[2, 3, i]; q2_3 = Q[2, 3, i]
+                for c in range(ncomp):
+                    total = 0.0
+                    D0 = 0.0
+                    D1 = 0.0
+                    D2 = 0.0
+                    for k0 in range(4):
+                        hk = perms[c, Q[0, k0, i]]
+                        pk = par ^ (k0 & 1)
+                        w0k = W[0, k0, i]; dw0k = DW[0, k0, i]
+                        h0 = perms[c, hk + q1_0]
+                        h1 = perms[c, hk + q1_1]
+                        h2 = perms[c, hk + q1_2]
+                        h3 = perms[c, hk + q1_3]
+                        h00 = perms[c, h0 + q2_0]
+                        h01 = perms[c, h0 + q2_1]
+                        h02 = perms[c, h0 + q2_2]
+                        h03 = perms[c, h0 + q2_3]
+                        h10 = perms[c, h1 + q2_0]
+                        h11 = perms[c, h1 + q2_1]
+                        h12 = perms[c, h1 + q2_2]
+                        h13 = perms[c, h1 + q2_3]
+                        h20 = perms[c, h2 + q2_0]
+                        h21 = perms[c, h2 + q2_1]
+                        h22 = perms[c, h2 + q2_2]
+                        h23 = perms[c, h2 + q2_3]
+                        h30 = perms[c, h3 + q2_0]
+                        h31 = perms[c, h3 + q2_1]
+                        h32 = perms[c, h3 + q2_2]
+                        h33 = perms[c, h3 + q2_3]
+                        if basis == 0:
+                            v00 = values[pk, h00]
+                            v01 = values[pk ^ 1, h01]
+                            v02 = values[pk, h02]
+                            v03 = values[pk ^ 1, h03]
+                            s2_0 = w2_0 * v00 + w2_1 * v01 + w2_2 * v02 + w2_3 * v03
+                            e2_0_2 = dw2_0 * v00 + dw2_1 * v01 + dw2_2 * v02 + dw2_3 * v03
+                            v10 = values[pk ^ 1, h10]
+                            v11 = values[pk, h11]
+                            v12 = values[pk ^ 1, h12]
+                            v13 = values[pk, h13]
+                            s2_1 = w2_0 * v10 + w2_1 * v11 + w2_2 * v12 + w2_3 * v13
+                            e2_1_2 = dw2_0 * v10 + dw2_1 * v11 + dw2_2 * v12 + dw2_3 * v13
+                            v20 = values[pk, h20]
+                            v21 = values[pk ^ 1, h21]
+                            v22 = values[pk, h22]
+                            v23 = values[pk ^ 1, h23]
+                            s2_2 = w2_0 * v20 + w2_1 * v21 + w2_2 * v22 + w2_3 * v23
+                            e2_2_2 = dw2_0 * v20 + dw2_1 * v21 + dw2_2 * v22 + dw2_3 * v23
+                            v30 = values[pk ^ 1, h30]
+                            v31 = values[pk, h31]
+                            v32 = values[pk ^ 1, h32]
+                            v33 = values[pk, h33]
+                            s2_3 = w2_0 * v30 + w2_1 * v31 + w2_2 * v32 + w2_3 * v33
+                            e2_3_2 = dw2_0 * v30 + dw2_1 * v31 + dw2_2 * v32 + dw2_3 * v33
+                            s1_ = w1_0 * s2_0 + w1_1 * s2_1 + w1_2 * s2_2 + w1_3 * s2_3
+                            e1__1 = dw1_0 * s2_0 + dw1_1 * s2_1 + dw1_2 * s2_2 + dw1_3 * s2_3
+                            e1__2 = w1_0 * e2_0_2 + w1_1 * e2_1_2 + w1_2 * e2_2_2 + w1_3 * e2_3_2
+                            total += w0k * s1_
+                            D0 += dw0k * s1_
+                            D1 += w0k * e1__1
+                            D2 += w0k * e1__2
+                        else:
+                            g00_0 = grads[h00, 0]
+                            g00_1 = grads[h00, 1]
+                            g00_2 = grads[h00, 2]
+                            v00 = g00_0 * R[0, k0, i] + g00_1 * R[1, 0, i] + g00_2 * R[2, 0, i]
+                            g01_0 = grads[h01, 0]
+                            g01_1 = grads[h01, 1]
+                            g01_2 = grads[h01, 2]
+                            v01 = g01_0 * R[0, k0, i] + g01_1 * R[1, 0, i] + g01_2 * R[2, 1, i]
+                            g02_0 = grads[h02, 0]
+                            g02_1 = grads[h02, 1]
+                            g02_2 = grads[h02, 2]
+                            v02 = g02_0 * R[0, k0, i] + g02_1 * R[1, 0, i] + g02_2 * R[2, 2, i]
+                            g03_0 = grads[h03, 0]
+                            g03_1 = grads[h03, 1]
+                            g03_2 = grads[h03, 2]
+                            v03 = g03_0 * R[0, k0, i] + g03_1 * R[1, 0, i] + g03_2 * R[2, 3, i]
+                            s2_0 = w2_0 * v00 + w2_1 * v01 + w2_2 * v02 + w2_3 * v03
+                            e2_0_0 = w2_0 * g00_0 + w2_1 * g01_0 + w2_2 * g02_0 + w2_3 * g03_0
+                            e2_0_1 = w2_0 * g00_1 + w2_1 * g01_1 + w2_2 * g02_1 + w2_3 * g03_1
+                            e2_0_2 = dw2_0 * v00 + w2_0 * g00_2 + dw2_1 * v01 + w2_1 * g01_2 + dw2_2 * v02 + w2_2 * g02_2 + dw2_3 * v03 + w2_3 * g03_2
+                            g10_0 = grads[h10, 0]
+                            g10_1 = grads[h10, 1]
+                            g10_2 = grads[h10, 2]
+                            v10 = g10_0 * R[0, k0, i] + g10_1 * R[1, 1, i] + g10_2 * R[2, 0, i]
+                            g11_0 = grads[h11, 0]
+                            g11_1 = grads[h11, 1]
+                            g11_2 = grads[h11, 2]
+                            v11 = g11_0 * R[0, k0, i] + g11_1 * R[1, 1, i] + g11_2 * R[2, 1, i]
+                            g12_0 = grads[h12, 0]
+                            g12_1 = grads[h12, 1]
+                            g12_2 = grads[h12, 2]
+                            v12 = g12_0 * R[0, k0, i] + g12_1 * R[1, 1, i] + g12_2 * R[2, 2, i]
+                            g13_0 = grads[h13, 0]
+                            g13_1 = grads[h13, 1]
+                            g13_2 = grads[h13, 2]
+                            v13 = g13_0 * R[0, k0, i] + g13_1 * R[1, 1, i] + g13_2 * R[2, 3, i]
+                            s2_1 = w2_0 * v10 + w2_1 * v11 + w2_2 * v12 + w2_3 * v13
+                            e2_1_0 = w2_0 * g10_0 + w2_1 * g11_0 + w2_2 * g12_0 + w2_3 * g13_0
+                            e2_1_1 = w2_0 * g10_1 + w2_1 * g11_1 + w2_2 * g12_1 + w2_3 * g13_1
+                            e2_1_2 = dw2_0 * v10 + w2_0 * g10_2 + dw2_1 * v11 + w2_1 * g11_2 + dw2_2 * v12 + w2_2 * g12_2 + dw2_3 * v13 + w2_3 * g13_2
+                            g20_0 = grads[h20, 0]
+                            g20_1 = grads[h20, 1]
+                            g20_2 = grads[h20, 2]
+                            v20 = g20_0 * R[0, k0, i] + g20_1 * R[1, 2, i] + g20_2 * R[2, 0, i]
+                            g21_0 = grads[h21, 0]
+                            g21_1 = grads[h21, 1]
+                            g21_2 = grads[h21, 2]
+                            v21 = g21_0 * R[0, k0, i] + g21_1 * R[1, 2, i] + g21_2 * R[2, 1, i]
+                            g22_0 = grads[h22, 0]
+                            g22_1 = grads[h22, 1]
+                            g22_2 = grads[h22, 2]
+                            v22 = g22_0 * R[0, k0, i] + g22_1 * R[1, 2, i] + g22_2 * R[2, 2, i]
+                            g23_0 = grads[h23, 0]
+                            g23_1 = grads[h23, 1]
+                            g23_2 = grads[h23, 2]
+                            v23 = g23_0 * R[0, k0, i] + g23_1 * R[1, 2, i] + g23_2 * R[2, 3, i]
+                            s2_2 = w2_0 * v20 + w2_1 * v21 + w2_2 * v22 + w2_3 * v23
+                            e2_2_0 = w2_0 * g20_0 + w2_1 * g21_0 + w2_2 * g22_0 + w2_3 * g23_0
+                            e2_2_1 = w2_0 * g20_1 + w2_1 * g21_1 + w2_2 * g22_1 + w2_3 * g23_1
+                            e2_2_2 = dw2_0 * v20 + w2_0 * g20_2 + dw2_1 * v21 + w2_1 * g21_2 + dw2_2 * v22 + w2_2 * g22_2 + dw2_3 * v23 + w2_3 * g23_2
+                            g30_0 = grads[h30, 0]
+                            g30_1 = grads[h30, 1]
+                            g30_2 = grads[h30, 2]
+                            v30 = g30_0 * R[0, k0, i] + g30_1 * R[1, 3, i] + g30_2 * R[2, 0, i]
+                            g31_0 = grads[h31, 0]
+                            g31_1 = grads[h31, 1]
+                            g31_2 = grads[h31, 2]
+                            v31 = g31_0 * R[0, k0, i] + g31_1 * R[1, 3, i] + g31_2 * R[2, 1, i]
+                            g32_0 = grads[h32, 0]
+                            g32_1 = grads[h32, 1]
+                            g32_2 = grads[h32, 2]
+                            v32 = g32_0 * R[0, k0, i] + g32_1 * R[1, 3, i] + g32_2 * R[2, 2, i]
+                            g33_0 = grads[h33, 0]
+                            g33_1 = grads[h33, 1]
+                            g33_2 = grads[h33, 2]
+                            v33 = g33_0 * R[0, k0, i] + g33_1 * R[1, 3, i] + g33_2 * R[2, 3, i]
+                            s2_3 = w2_0 * v30 + w2_1 * v31 + w2_2 * v32 + w2_3 * v33
+                            e2_3_0 = w2_0 * g30_0 + w2_1 * g31_0 + w2_2 * g32_0 + w2_3 * g33_0
+                            e2_3_1 = w2_0 * g30_1 + w2_1 * g31_1 + w2_2 * g32_1 + w2_3 * g33_1
+                            e2_3_2 = dw2_0 * v30 + w2_0 * g30_2 + dw2_1 * v31 + w2_1 * g31_2 + dw2_2 * v32 + w2_2 * g32_2 + dw2_3 * v33 + w2_3 * g33_2
+                            s1_ = w1_0 * s2_0 + w1_1 * s2_1 + w1_2 * s2_2 + w1_3 * s2_3
+                            e1__0 = w1_0 * e2_0_0 + w1_1 * e2_1_0 + w1_2 * e2_2_0 + w1_3 * e2_3_0
+                            e1__1 = dw1_0 * s2_0 + w1_0 * e2_0_1 + dw1_1 * s2_1 + w1_1 * e2_1_1 + dw1_2 * s2_2 + w1_2 * e2_2_1 + dw1_3 * s2_3 + w1_3 * e2_3_1
+                            e1__2 = w1_0 * e2_0_2 + w1_1 * e2_1_2 + w1_2 * e2_2_2 + w1_3 * e2_3_2
+                            total += w0k * s1_
+                            D0 += dw0k * s1_ + w0k * e1__0
+                            D1 += w0k * e1__1
+                            D2 += w0k * e1__2
+                    amp = amps[o]
+                    if absval:
+                        sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                        total = abs(total)
+                        D0 = sg * D0
+                        D1 = sg * D1
+                        D2 = sg * D2
+                    if o == 0:
+                        ACC[c, 0, i] = amp * total
+                        ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                        ACC[c, 3, i] = (amp * freqs[o, 2]) * D2
+                    else:
+                        ACC[c, 0, i] += amp * total
+                        ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                        ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+                        ACC[c, 3, i] += (amp * freqs[o, 2]) * D2
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(4):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+
+
+# values and Jacobians, keyed by (dim_in, taps)
+JAC_KERNELS = {
+    (1, 2): jac_d1_t2,
+    (1, 3): jac_d1_t3,
+    (1, 4): jac_d1_t4,
+    (2, 2): jac_d2_t2,
+    (2, 3): jac_d2_t3,
+    (2, 4): jac_d2_t4,
+    (3, 2): jac_d3_t2,
+    (3, 3): jac_d3_t3,
+    (3, 4): jac_d3_t4,
+}

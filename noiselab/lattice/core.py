@@ -384,17 +384,25 @@ class LatticeNoise:
         amps = np.ascontiguousarray(amps, dtype=np.float64)
         out = np.empty((flat.shape[0], self.dim_out, self.dim_in + 1))
         if flat.shape[0]:
-            if not np.isfinite(flat).all():
-                check_finite_array(name, flat)
-            with np.errstate(over="ignore"):
-                scaled = np.abs(flat).max(axis=0) * np.abs(freqs).max(axis=0)
-            if not np.isfinite(scaled).all():
-                raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
+            # one full reduction (fast) decides the common case: finite, and no
+            # scaled coordinate can overflow; else the exact per-axis checks
+            with np.errstate(over="ignore", invalid="ignore"):
+                fine = np.isfinite(np.abs(flat).max() * np.abs(freqs).max())
+                if not fine:
+                    check_finite_array(name, flat)
+                    if not np.isfinite(np.abs(flat).max(axis=0) * np.abs(freqs).max(axis=0)).all():
+                        raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
             k = self.kernel
-            _run_split(_jit.eval_points_jac, flat, out,
-                       (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, self.period, self._pmask,
-                        self.perms, self.values, self.gradients, 0 if self.basis == "value" else 1, bool(absval)),
-                       workers)
+            basis = 0 if self.basis == "value" else 1
+            unrolled = _points.JAC_KERNELS.get((self.dim_in, k.taps))
+            if unrolled is not None and (self.period >= k.taps).all():
+                _run_split(unrolled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
+                                                 self.period, self._pmask, self._perms2, self.values,
+                                                 self.gradients, basis, bool(absval)), workers)
+            else:
+                _run_split(_jit.eval_points_jac, flat, out,
+                           (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, self.period,
+                            self._pmask, self.perms, self.values, self.gradients, basis, bool(absval)), workers)
         return out
 
     def _jac_result(self, out, lead, return_value, scalar):
@@ -450,7 +458,7 @@ class LatticeNoise:
         """
         workers = check_int("workers", workers, lo=1, hi=1024)
         self._check_differentiable()
-        lead, flat = self._prepare_points(check_finite_array("points", np.asarray(points)))
+        lead, flat = self._prepare_points(points)
         _check_large(flat.shape[0] * self.dim_out * (self.dim_in + 1) * 8 * 2, "lattice noise jacobian")
         out = self._evaluate_jac(flat, self.frequency[None], np.array([self.scale]), False, workers=workers)
         return self._jac_result(out, lead, return_value, scalar=False)
@@ -472,7 +480,7 @@ class LatticeNoise:
         self._scalar_only("gradient")
         workers = check_int("workers", workers, lo=1, hi=1024)
         self._check_differentiable()
-        lead, flat = self._prepare_points(check_finite_array("points", np.asarray(points)))
+        lead, flat = self._prepare_points(points)
         _check_large(flat.shape[0] * (self.dim_in + 1) * 8 * 2, "lattice noise gradient")
         out = self._evaluate_jac(flat, self.frequency[None], np.array([self.scale]), False, workers=workers)
         return self._jac_result(out, lead, return_value, scalar=True)
@@ -491,20 +499,27 @@ class LatticeNoise:
         _check_large(size * self.dim_out * (self.dim_in + 2) * 8, "lattice noise jacobian grid")
         kw = dict(dtype=np.float64, window=window, lacunarity=lacunarity, gain=gain)
         d = self.dim_in
+        # one contiguous (dim_out, *shape) block per input axis, written in
+        # place by the grid passes; returned as a (*shape, dim_out, dim_in) view
+        out_shape = tuple(hi - lo for lo, hi in self._window(shape, window))
+        buf = np.empty((d, self.dim_out) + out_shape)
         if not absval:
             val = self._grid(shape, ext, octaves=octaves, **kw) if value else None
-            parts = [self._grid(shape, ext, octaves=octaves, deriv_axis=a, **kw) for a in range(d)]
+            for a in range(d):
+                self._grid(shape, ext, octaves=octaves, deriv_axis=a, out=buf[a], **kw)
         else:
-            val, parts = None, [0.0] * d
+            buf[...] = 0.0
+            total = np.zeros((self.dim_out,) + out_shape)
+            octave, part = np.empty_like(total), np.empty_like(total)
             for o in range(octaves):
-                v = self._grid(shape, ext, octaves=o + 1, octave_start=o, **kw)
-                sgn = np.sign(v)
-                val = np.abs(v) if val is None else val + np.abs(v)
+                self._grid(shape, ext, octaves=o + 1, octave_start=o, out=octave, **kw)
+                sgn = np.sign(octave)
+                total += np.abs(octave)
                 for a in range(d):
-                    parts[a] = parts[a] + sgn * self._grid(shape, ext, octaves=o + 1, octave_start=o, deriv_axis=a, **kw)
-        jac = np.stack(parts, axis=-1)
-        if self.dim_out == 1:
-            jac = jac[..., None, :]
+                    self._grid(shape, ext, octaves=o + 1, octave_start=o, deriv_axis=a, out=part, **kw)
+                    buf[a] += sgn * part
+            val = self._finish_grid(total) if value else None
+        jac = np.moveaxis(buf, (0, 1), (-1, -2))
         return val, jac
 
     def jacobian_grid(self, shape, extent, *, window=None, return_value=False):
@@ -579,21 +594,11 @@ class LatticeNoise:
         return self._grid(shape, extent, dtype=dtype, window=window, octaves=1)
 
     def _grid(self, shape, extent, *, dtype, window, octaves, lacunarity=2.0, gain=0.5, absval=False,
-              deriv_axis=None, octave_start=0):
+              deriv_axis=None, octave_start=0, out=None):
         dtype = float_dtype(dtype)
         shape, ext = _check_grid(shape, extent, self.dim_in)
         coords = grid_coordinates(shape, ext)
-        if window is not None:
-            win = np.asarray(window, dtype=object)
-            if win.shape != (self.dim_in, 2):
-                raise ValueError(f"window must be one (lo, hi) index pair per axis, got {window!r}")
-            sl = []
-            for a, (lo, hi) in enumerate(win):
-                lo = check_int(f"window[{a}][0]", lo, lo=0, hi=shape[a])
-                hi = check_int(f"window[{a}][1]", hi, lo=lo, hi=shape[a])
-                sl.append((lo, hi))
-        else:
-            sl = [(0, s) for s in shape]
+        sl = self._window(shape, window)
         out_shape = tuple(hi - lo for lo, hi in sl)
         size = int(np.prod(out_shape, dtype=np.int64))
         _check_large(size * self.dim_out * dtype.itemsize * 2 + size * 8, "lattice noise grid")
@@ -608,13 +613,32 @@ class LatticeNoise:
             (separable if self._separable(full, freq) else sparse).append((freq, amp))
         # the separable pass writes every sample unless it accumulates |.| (turbulence)
         writes_all = bool(separable) and not absval
-        out = (np.empty if writes_all else np.zeros)((self.dim_out,) + out_shape, dtype=dtype)
+        if out is None:
+            out = (np.empty if writes_all else np.zeros)((self.dim_out,) + out_shape, dtype=dtype)
+        else:  # the caller's contiguous (dim_out, *out_shape) float64 buffer (the derivative grids)
+            assert out.shape == (self.dim_out,) + out_shape and out.flags.c_contiguous and out.dtype == dtype
+            if not writes_all:
+                out[...] = 0.0
         if separable:
             self._grid_separable(sub, full, separable, out, absval, deriv_axis)
         for freq, amp in sparse:
             # grids sparser than this octave's lattice: per-point path, added
             self._grid_scattered(sub, freq, amp, out, absval, deriv_axis)
         return self._finish_grid(out)
+
+    def _window(self, shape, window):
+        """The (lo, hi) sample range per axis of ``window`` (checked), or the whole grid."""
+        if window is None:
+            return [(0, s) for s in shape]
+        win = np.asarray(window, dtype=object)
+        if win.shape != (self.dim_in, 2):
+            raise ValueError(f"window must be one (lo, hi) index pair per axis, got {window!r}")
+        sl = []
+        for a, (lo, hi) in enumerate(win):
+            lo = check_int(f"window[{a}][0]", lo, lo=0, hi=shape[a])
+            hi = check_int(f"window[{a}][1]", hi, lo=lo, hi=shape[a])
+            sl.append((lo, hi))
+        return sl
 
     def _finish_grid(self, out):
         if self.dim_out == 1:
