@@ -5543,3 +5543,1091 @@ JAC_KERNELS = {
     (3, 3): jac_d3_t3,
     (3, 4): jac_d3_t4,
 }
+
+@nb.njit(cache=True, nogil=True)
+def tables_jac_d3_t2(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise and its Jacobian, 3-D input, 2-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    stride = np.uint64(VL.shape[1] // 2)
+    stride2 = stride + stride
+    n = (VL.shape[1] // 2 - 4) // 2
+    nu = np.uint64(n)
+    noct = freqs.shape[0]
+    W = np.empty((3, 2, CHUNK))
+    DW = np.empty((3, 2, CHUNK))
+    R = np.empty((3, 2, CHUNK))
+    Q = np.empty((3, 2, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, 4, CHUNK))
+    bad = 0
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+            if basis == 1:
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[1, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[1, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+            if basis == 1:
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[2, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[2, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+            if basis == 1:
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; dw2_0 = DW[2, 0, i]; w2_1 = W[2, 1, i]; dw2_1 = DW[2, 1, i]
+                    for c in range(ncomp):
+                        tab = VL[c]
+                        acc = (0.0, 0.0); a0 = (0.0, 0.0); a1 = (0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        ww = w0_0 * w1_0; w0d = dw0_0 * w1_0; w1d = w0_0 * dw1_0
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        ww = w0_0 * w1_1; w0d = dw0_0 * w1_1; w1d = w0_0 * dw1_1
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        ww = w0_1 * w1_0; w0d = dw0_1 * w1_0; w1d = w0_1 * dw1_0
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        ww = w0_1 * w1_1; w0d = dw0_1 * w1_1; w1d = w0_1 * dw1_1
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1]
+                        D0 = w2_0 * a0[0] + w2_1 * a0[1]
+                        D1 = w2_0 * a1[0] + w2_1 * a1[1]
+                        D2 = dw2_0 * acc[0] + dw2_1 * acc[1]
+                        amp = amps[o]
+                        if absval:
+                            sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                            total = abs(total)
+                            D0 = sg * D0; D1 = sg * D1; D2 = sg * D2
+                        if o == 0:
+                            ACC[c, 0, i] = amp * total
+                            ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] = (amp * freqs[o, 2]) * D2
+                        else:
+                            ACC[c, 0, i] += amp * total
+                            ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] += (amp * freqs[o, 2]) * D2
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; dw2_0 = DW[2, 0, i]; w2_1 = W[2, 1, i]; dw2_1 = DW[2, 1, i]
+                    r2_0 = R[2, 0, i]; r2_1 = R[2, 1, i]
+                    for c in range(ncomp):
+                        tab = G[c]
+                        P = (0.0, 0.0); A0 = (0.0, 0.0); A1 = (0.0, 0.0); A2 = (0.0, 0.0)
+                        QQ = (0.0, 0.0); B2 = (0.0, 0.0); S = (0.0, 0.0); C2 = (0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        ww = w0_0 * w1_0; w0d = dw0_0 * w1_0; w1d = w0_0 * dw1_0
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_0, tab, h), ww * r1_0, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_0, tab, h), w0d * r1_0, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_0, tab, h), w1d * r1_0, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        ww = w0_0 * w1_1; w0d = dw0_0 * w1_1; w1d = w0_0 * dw1_1
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_0, tab, h), ww * r1_1, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_0, tab, h), w0d * r1_1, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_0, tab, h), w1d * r1_1, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        ww = w0_1 * w1_0; w0d = dw0_1 * w1_0; w1d = w0_1 * dw1_0
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_1, tab, h), ww * r1_0, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_1, tab, h), w0d * r1_0, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_1, tab, h), w1d * r1_0, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        ww = w0_1 * w1_1; w0d = dw0_1 * w1_1; w1d = w0_1 * dw1_1
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_1, tab, h), ww * r1_1, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_1, tab, h), w0d * r1_1, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_1, tab, h), w1d * r1_1, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        v0 = P[0] + r2_0 * A2[0]
+                        v1 = P[1] + r2_1 * A2[1]
+                        total = w2_0 * v0 + w2_1 * v1
+                        D0 = w2_0 * (QQ[0] + r2_0 * B2[0] + A0[0]) + w2_1 * (QQ[1] + r2_1 * B2[1] + A0[1])
+                        D1 = w2_0 * (S[0] + r2_0 * C2[0] + A1[0]) + w2_1 * (S[1] + r2_1 * C2[1] + A1[1])
+                        D2 = (dw2_0 * v0 + w2_0 * A2[0]) + (dw2_1 * v1 + w2_1 * A2[1])
+                        amp = amps[o]
+                        if absval:
+                            sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                            total = abs(total)
+                            D0 = sg * D0; D1 = sg * D1; D2 = sg * D2
+                        if o == 0:
+                            ACC[c, 0, i] = amp * total
+                            ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] = (amp * freqs[o, 2]) * D2
+                        else:
+                            ACC[c, 0, i] += amp * total
+                            ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] += (amp * freqs[o, 2]) * D2
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(4):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+    return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def tables_jac_d3_t3(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise and its Jacobian, 3-D input, 3-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    stride = np.uint64(VL.shape[1] // 2)
+    stride2 = stride + stride
+    n = (VL.shape[1] // 2 - 4) // 2
+    nu = np.uint64(n)
+    noct = freqs.shape[0]
+    W = np.empty((3, 3, CHUNK))
+    DW = np.empty((3, 3, CHUNK))
+    R = np.empty((3, 3, CHUNK))
+    Q = np.empty((3, 3, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, 4, CHUNK))
+    bad = 0
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
+    d20 = dcoef[2, 0]; d21 = dcoef[2, 1]; d22 = dcoef[2, 2]; d23 = dcoef[2, 3]; d24 = dcoef[2, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[0, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+                Q[0, 2, i] = np.uint64(((b + 2) & msk)) * nu
+            if basis == 1:
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[1, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[1, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[1, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+                Q[1, 2, i] = np.uint64(((b + 2) & msk))
+            if basis == 1:
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[2, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[2, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[2, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+            if basis == 1:
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w0_2 = W[0, 2, i]; dw0_2 = DW[0, 2, i]; q0_2 = Q[0, 2, i]
+                    w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                    w1_2 = W[1, 2, i]; dw1_2 = DW[1, 2, i]; q1_2 = Q[1, 2, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; dw2_0 = DW[2, 0, i]; w2_1 = W[2, 1, i]; dw2_1 = DW[2, 1, i]; w2_2 = W[2, 2, i]; dw2_2 = DW[2, 2, i]
+                    for c in range(ncomp):
+                        tab = VL[c]
+                        acc = (0.0, 0.0, 0.0); a0 = (0.0, 0.0, 0.0); a1 = (0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        ww = w0_0 * w1_0; w0d = dw0_0 * w1_0; w1d = w0_0 * dw1_0
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        ww = w0_0 * w1_1; w0d = dw0_0 * w1_1; w1d = w0_0 * dw1_1
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        ww = w0_0 * w1_2; w0d = dw0_0 * w1_2; w1d = w0_0 * dw1_2
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        ww = w0_1 * w1_0; w0d = dw0_1 * w1_0; w1d = w0_1 * dw1_0
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        ww = w0_1 * w1_1; w0d = dw0_1 * w1_1; w1d = w0_1 * dw1_1
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        ww = w0_1 * w1_2; w0d = dw0_1 * w1_2; w1d = w0_1 * dw1_2
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        ww = w0_2 * w1_0; w0d = dw0_2 * w1_0; w1d = w0_2 * dw1_0
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        ww = w0_2 * w1_1; w0d = dw0_2 * w1_1; w1d = w0_2 * dw1_1
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        ww = w0_2 * w1_2; w0d = dw0_2 * w1_2; w1d = w0_2 * dw1_2
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2]
+                        D0 = w2_0 * a0[0] + w2_1 * a0[1] + w2_2 * a0[2]
+                        D1 = w2_0 * a1[0] + w2_1 * a1[1] + w2_2 * a1[2]
+                        D2 = dw2_0 * acc[0] + dw2_1 * acc[1] + dw2_2 * acc[2]
+                        amp = amps[o]
+                        if absval:
+                            sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                            total = abs(total)
+                            D0 = sg * D0; D1 = sg * D1; D2 = sg * D2
+                        if o == 0:
+                            ACC[c, 0, i] = amp * total
+                            ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] = (amp * freqs[o, 2]) * D2
+                        else:
+                            ACC[c, 0, i] += amp * total
+                            ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] += (amp * freqs[o, 2]) * D2
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w0_2 = W[0, 2, i]; dw0_2 = DW[0, 2, i]; q0_2 = Q[0, 2, i]
+                    r0_2 = R[0, 2, i]
+                    w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    w1_2 = W[1, 2, i]; dw1_2 = DW[1, 2, i]; q1_2 = Q[1, 2, i]
+                    r1_2 = R[1, 2, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; dw2_0 = DW[2, 0, i]; w2_1 = W[2, 1, i]; dw2_1 = DW[2, 1, i]; w2_2 = W[2, 2, i]; dw2_2 = DW[2, 2, i]
+                    r2_0 = R[2, 0, i]; r2_1 = R[2, 1, i]; r2_2 = R[2, 2, i]
+                    for c in range(ncomp):
+                        tab = G[c]
+                        P = (0.0, 0.0, 0.0); A0 = (0.0, 0.0, 0.0); A1 = (0.0, 0.0, 0.0); A2 = (0.0, 0.0, 0.0)
+                        QQ = (0.0, 0.0, 0.0); B2 = (0.0, 0.0, 0.0); S = (0.0, 0.0, 0.0); C2 = (0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        ww = w0_0 * w1_0; w0d = dw0_0 * w1_0; w1d = w0_0 * dw1_0
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_0, tab, h), ww * r1_0, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_0, tab, h), w0d * r1_0, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_0, tab, h), w1d * r1_0, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        ww = w0_0 * w1_1; w0d = dw0_0 * w1_1; w1d = w0_0 * dw1_1
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_0, tab, h), ww * r1_1, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_0, tab, h), w0d * r1_1, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_0, tab, h), w1d * r1_1, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        ww = w0_0 * w1_2; w0d = dw0_0 * w1_2; w1d = w0_0 * dw1_2
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_0, tab, h), ww * r1_2, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_0, tab, h), w0d * r1_2, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_0, tab, h), w1d * r1_2, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        ww = w0_1 * w1_0; w0d = dw0_1 * w1_0; w1d = w0_1 * dw1_0
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_1, tab, h), ww * r1_0, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_1, tab, h), w0d * r1_0, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_1, tab, h), w1d * r1_0, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        ww = w0_1 * w1_1; w0d = dw0_1 * w1_1; w1d = w0_1 * dw1_1
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_1, tab, h), ww * r1_1, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_1, tab, h), w0d * r1_1, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_1, tab, h), w1d * r1_1, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        ww = w0_1 * w1_2; w0d = dw0_1 * w1_2; w1d = w0_1 * dw1_2
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_1, tab, h), ww * r1_2, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_1, tab, h), w0d * r1_2, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_1, tab, h), w1d * r1_2, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        ww = w0_2 * w1_0; w0d = dw0_2 * w1_0; w1d = w0_2 * dw1_0
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_2, tab, h), ww * r1_0, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_2, tab, h), w0d * r1_0, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_2, tab, h), w1d * r1_0, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        ww = w0_2 * w1_1; w0d = dw0_2 * w1_1; w1d = w0_2 * dw1_1
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_2, tab, h), ww * r1_1, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_2, tab, h), w0d * r1_1, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_2, tab, h), w1d * r1_1, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        ww = w0_2 * w1_2; w0d = dw0_2 * w1_2; w1d = w0_2 * dw1_2
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_2, tab, h), ww * r1_2, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_2, tab, h), w0d * r1_2, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_2, tab, h), w1d * r1_2, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        v0 = P[0] + r2_0 * A2[0]
+                        v1 = P[1] + r2_1 * A2[1]
+                        v2 = P[2] + r2_2 * A2[2]
+                        total = w2_0 * v0 + w2_1 * v1 + w2_2 * v2
+                        D0 = w2_0 * (QQ[0] + r2_0 * B2[0] + A0[0]) + w2_1 * (QQ[1] + r2_1 * B2[1] + A0[1]) + w2_2 * (QQ[2] + r2_2 * B2[2] + A0[2])
+                        D1 = w2_0 * (S[0] + r2_0 * C2[0] + A1[0]) + w2_1 * (S[1] + r2_1 * C2[1] + A1[1]) + w2_2 * (S[2] + r2_2 * C2[2] + A1[2])
+                        D2 = (dw2_0 * v0 + w2_0 * A2[0]) + (dw2_1 * v1 + w2_1 * A2[1]) + (dw2_2 * v2 + w2_2 * A2[2])
+                        amp = amps[o]
+                        if absval:
+                            sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                            total = abs(total)
+                            D0 = sg * D0; D1 = sg * D1; D2 = sg * D2
+                        if o == 0:
+                            ACC[c, 0, i] = amp * total
+                            ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] = (amp * freqs[o, 2]) * D2
+                        else:
+                            ACC[c, 0, i] += amp * total
+                            ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] += (amp * freqs[o, 2]) * D2
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(4):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+    return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def tables_jac_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,
+        H2, VL, G, basis, absval):
+    """Lattice noise and its Jacobian, 3-D input, 4-tap kernel, hash tables (generated)."""
+    npts = pts.shape[0]
+    ncomp = H2.shape[0]
+    stride = np.uint64(VL.shape[1] // 2)
+    stride2 = stride + stride
+    n = (VL.shape[1] // 2 - 4) // 2
+    nu = np.uint64(n)
+    noct = freqs.shape[0]
+    W = np.empty((3, 4, CHUNK))
+    DW = np.empty((3, 4, CHUNK))
+    R = np.empty((3, 4, CHUNK))
+    Q = np.empty((3, 4, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    ACC = np.empty((ncomp, 4, CHUNK))
+    bad = 0
+    c00 = coef[0, 0]; c01 = coef[0, 1]; c02 = coef[0, 2]; c03 = coef[0, 3]; c04 = coef[0, 4]; c05 = coef[0, 5]
+    d00 = dcoef[0, 0]; d01 = dcoef[0, 1]; d02 = dcoef[0, 2]; d03 = dcoef[0, 3]; d04 = dcoef[0, 4]
+    c10 = coef[1, 0]; c11 = coef[1, 1]; c12 = coef[1, 2]; c13 = coef[1, 3]; c14 = coef[1, 4]; c15 = coef[1, 5]
+    d10 = dcoef[1, 0]; d11 = dcoef[1, 1]; d12 = dcoef[1, 2]; d13 = dcoef[1, 3]; d14 = dcoef[1, 4]
+    c20 = coef[2, 0]; c21 = coef[2, 1]; c22 = coef[2, 2]; c23 = coef[2, 3]; c24 = coef[2, 4]; c25 = coef[2, 5]
+    d20 = dcoef[2, 0]; d21 = dcoef[2, 1]; d22 = dcoef[2, 2]; d23 = dcoef[2, 3]; d24 = dcoef[2, 4]
+    c30 = coef[3, 0]; c31 = coef[3, 1]; c32 = coef[3, 2]; c33 = coef[3, 3]; c34 = coef[3, 4]; c35 = coef[3, 5]
+    d30 = dcoef[3, 0]; d31 = dcoef[3, 1]; d32 = dcoef[3, 2]; d33 = dcoef[3, 3]; d34 = dcoef[3, 4]
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[0, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[0, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[0, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[0, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[0, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                W[0, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                DW[0, 3, i] = (d30 + d31 * t) + (d32 * t2 + d33 * t3) + d34 * t4
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
+                b = (np.int64(fi) - left) & msk
+                Q[0, 0, i] = np.uint64(b) * nu
+                Q[0, 1, i] = np.uint64(((b + 1) & msk)) * nu
+                Q[0, 2, i] = np.uint64(((b + 2) & msk)) * nu
+                Q[0, 3, i] = np.uint64(((b + 3) & msk)) * nu
+            if basis == 1:
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[0, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[0, 0, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[0, 1, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[0, 2, i] = np.uint64(j if j < n else j % n) * nu
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[0, 3, i] = np.uint64(j if j < n else j % n) * nu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[1, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[1, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[1, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[1, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[1, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                W[1, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                DW[1, 3, i] = (d30 + d31 * t) + (d32 * t2 + d33 * t3) + d34 * t4
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
+                b = (np.int64(fi) - left) & msk
+                Q[1, 0, i] = np.uint64(b)
+                Q[1, 1, i] = np.uint64(((b + 1) & msk))
+                Q[1, 2, i] = np.uint64(((b + 2) & msk))
+                Q[1, 3, i] = np.uint64(((b + 3) & msk))
+            if basis == 1:
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[1, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[1, 0, i] = np.uint64(j if j < n else j % n)
+                    j = b + 1
+                    j = j - per if j >= per else j
+                    Q[1, 1, i] = np.uint64(j if j < n else j % n)
+                    j = b + 2
+                    j = j - per if j >= per else j
+                    Q[1, 2, i] = np.uint64(j if j < n else j % n)
+                    j = b + 3
+                    j = j - per if j >= per else j
+                    Q[1, 3, i] = np.uint64(j if j < n else j % n)
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (c00 + c01 * t) + (c02 * t2 + c03 * t3) + (c04 * t4 + c05 * t5)
+                DW[2, 0, i] = (d00 + d01 * t) + (d02 * t2 + d03 * t3) + d04 * t4
+                W[2, 1, i] = (c10 + c11 * t) + (c12 * t2 + c13 * t3) + (c14 * t4 + c15 * t5)
+                DW[2, 1, i] = (d10 + d11 * t) + (d12 * t2 + d13 * t3) + d14 * t4
+                W[2, 2, i] = (c20 + c21 * t) + (c22 * t2 + c23 * t3) + (c24 * t4 + c25 * t5)
+                DW[2, 2, i] = (d20 + d21 * t) + (d22 * t2 + d23 * t3) + d24 * t4
+                W[2, 3, i] = (c30 + c31 * t) + (c32 * t2 + c33 * t3) + (c34 * t4 + c35 * t5)
+                DW[2, 3, i] = (d30 + d31 * t) + (d32 * t2 + d33 * t3) + d34 * t4
+                inside += (fi < 9.0e18) & (fi > -9.0e18)
+                b = (np.int64(fi) - left) & msk
+                Q[2, 0, i] = np.uint64(b)
+            if basis == 1:
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+                    R[2, 3, i] = t - shift + (left - 3)
+            if msk < 0 or per > n or inside != m:
+                for i in range(m):
+                    fi = np.floor(X[2, i] * f + ph + shift)
+                    if fi - fi != 0.0:  # NaN or inf
+                        bad += 1
+                        fi = 0.0
+                    b = _reduce(fi, left, per, msk)
+                    j = b
+                    Q[2, 0, i] = np.uint64(j if j < n else j % n)
+            if basis == 0:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                    w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                    w0_2 = W[0, 2, i]; dw0_2 = DW[0, 2, i]; q0_2 = Q[0, 2, i]
+                    w0_3 = W[0, 3, i]; dw0_3 = DW[0, 3, i]; q0_3 = Q[0, 3, i]
+                    w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                    w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                    w1_2 = W[1, 2, i]; dw1_2 = DW[1, 2, i]; q1_2 = Q[1, 2, i]
+                    w1_3 = W[1, 3, i]; dw1_3 = DW[1, 3, i]; q1_3 = Q[1, 3, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; dw2_0 = DW[2, 0, i]; w2_1 = W[2, 1, i]; dw2_1 = DW[2, 1, i]; w2_2 = W[2, 2, i]; dw2_2 = DW[2, 2, i]; w2_3 = W[2, 3, i]; dw2_3 = DW[2, 3, i]
+                    for c in range(ncomp):
+                        tab = VL[c]
+                        acc = (0.0, 0.0, 0.0, 0.0); a0 = (0.0, 0.0, 0.0, 0.0); a1 = (0.0, 0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        ww = w0_0 * w1_0; w0d = dw0_0 * w1_0; w1d = w0_0 * dw1_0
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        ww = w0_0 * w1_1; w0d = dw0_0 * w1_1; w1d = w0_0 * dw1_1
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        ww = w0_0 * w1_2; w0d = dw0_0 * w1_2; w1d = w0_0 * dw1_2
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_0 + q1_3]) + q2
+                        ww = w0_0 * w1_3; w0d = dw0_0 * w1_3; w1d = w0_0 * dw1_3
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        ww = w0_1 * w1_0; w0d = dw0_1 * w1_0; w1d = w0_1 * dw1_0
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        ww = w0_1 * w1_1; w0d = dw0_1 * w1_1; w1d = w0_1 * dw1_1
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        ww = w0_1 * w1_2; w0d = dw0_1 * w1_2; w1d = w0_1 * dw1_2
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_1 + q1_3]) + q2
+                        ww = w0_1 * w1_3; w0d = dw0_1 * w1_3; w1d = w0_1 * dw1_3
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        ww = w0_2 * w1_0; w0d = dw0_2 * w1_0; w1d = w0_2 * dw1_0
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        ww = w0_2 * w1_1; w0d = dw0_2 * w1_1; w1d = w0_2 * dw1_1
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        ww = w0_2 * w1_2; w0d = dw0_2 * w1_2; w1d = w0_2 * dw1_2
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_2 + q1_3]) + q2
+                        ww = w0_2 * w1_3; w0d = dw0_2 * w1_3; w1d = w0_2 * dw1_3
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_0]) + q2
+                        ww = w0_3 * w1_0; w0d = dw0_3 * w1_0; w1d = w0_3 * dw1_0
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_1]) + q2
+                        ww = w0_3 * w1_1; w0d = dw0_3 * w1_1; w1d = w0_3 * dw1_1
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_2]) + q2
+                        ww = w0_3 * w1_2; w0d = dw0_3 * w1_2; w1d = w0_3 * dw1_2
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        h = np.uint64(H2[c, q0_3 + q1_3]) + q2
+                        ww = w0_3 * w1_3; w0d = dw0_3 * w1_3; w1d = w0_3 * dw1_3
+                        acc = axpy_lanes(acc, ww, tab, h)
+                        a0 = axpy_lanes(a0, w0d, tab, h)
+                        a1 = axpy_lanes(a1, w1d, tab, h)
+                        total = w2_0 * acc[0] + w2_1 * acc[1] + w2_2 * acc[2] + w2_3 * acc[3]
+                        D0 = w2_0 * a0[0] + w2_1 * a0[1] + w2_2 * a0[2] + w2_3 * a0[3]
+                        D1 = w2_0 * a1[0] + w2_1 * a1[1] + w2_2 * a1[2] + w2_3 * a1[3]
+                        D2 = dw2_0 * acc[0] + dw2_1 * acc[1] + dw2_2 * acc[2] + dw2_3 * acc[3]
+                        amp = amps[o]
+                        if absval:
+                            sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                            total = abs(total)
+                            D0 = sg * D0; D1 = sg * D1; D2 = sg * D2
+                        if o == 0:
+                            ACC[c, 0, i] = amp * total
+                            ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] = (amp * freqs[o, 2]) * D2
+                        else:
+                            ACC[c, 0, i] += amp * total
+                            ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] += (amp * freqs[o, 2]) * D2
+            else:
+                for i in range(m):
+                    w0_0 = W[0, 0, i]; dw0_0 = DW[0, 0, i]; q0_0 = Q[0, 0, i]
+                    r0_0 = R[0, 0, i]
+                    w0_1 = W[0, 1, i]; dw0_1 = DW[0, 1, i]; q0_1 = Q[0, 1, i]
+                    r0_1 = R[0, 1, i]
+                    w0_2 = W[0, 2, i]; dw0_2 = DW[0, 2, i]; q0_2 = Q[0, 2, i]
+                    r0_2 = R[0, 2, i]
+                    w0_3 = W[0, 3, i]; dw0_3 = DW[0, 3, i]; q0_3 = Q[0, 3, i]
+                    r0_3 = R[0, 3, i]
+                    w1_0 = W[1, 0, i]; dw1_0 = DW[1, 0, i]; q1_0 = Q[1, 0, i]
+                    r1_0 = R[1, 0, i]
+                    w1_1 = W[1, 1, i]; dw1_1 = DW[1, 1, i]; q1_1 = Q[1, 1, i]
+                    r1_1 = R[1, 1, i]
+                    w1_2 = W[1, 2, i]; dw1_2 = DW[1, 2, i]; q1_2 = Q[1, 2, i]
+                    r1_2 = R[1, 2, i]
+                    w1_3 = W[1, 3, i]; dw1_3 = DW[1, 3, i]; q1_3 = Q[1, 3, i]
+                    r1_3 = R[1, 3, i]
+                    q2 = Q[2, 0, i]
+                    w2_0 = W[2, 0, i]; dw2_0 = DW[2, 0, i]; w2_1 = W[2, 1, i]; dw2_1 = DW[2, 1, i]; w2_2 = W[2, 2, i]; dw2_2 = DW[2, 2, i]; w2_3 = W[2, 3, i]; dw2_3 = DW[2, 3, i]
+                    r2_0 = R[2, 0, i]; r2_1 = R[2, 1, i]; r2_2 = R[2, 2, i]; r2_3 = R[2, 3, i]
+                    for c in range(ncomp):
+                        tab = G[c]
+                        P = (0.0, 0.0, 0.0, 0.0); A0 = (0.0, 0.0, 0.0, 0.0); A1 = (0.0, 0.0, 0.0, 0.0); A2 = (0.0, 0.0, 0.0, 0.0)
+                        QQ = (0.0, 0.0, 0.0, 0.0); B2 = (0.0, 0.0, 0.0, 0.0); S = (0.0, 0.0, 0.0, 0.0); C2 = (0.0, 0.0, 0.0, 0.0)
+                        h = np.uint64(H2[c, q0_0 + q1_0]) + q2
+                        ww = w0_0 * w1_0; w0d = dw0_0 * w1_0; w1d = w0_0 * dw1_0
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_0, tab, h), ww * r1_0, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_0, tab, h), w0d * r1_0, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_0, tab, h), w1d * r1_0, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_0 + q1_1]) + q2
+                        ww = w0_0 * w1_1; w0d = dw0_0 * w1_1; w1d = w0_0 * dw1_1
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_0, tab, h), ww * r1_1, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_0, tab, h), w0d * r1_1, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_0, tab, h), w1d * r1_1, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_0 + q1_2]) + q2
+                        ww = w0_0 * w1_2; w0d = dw0_0 * w1_2; w1d = w0_0 * dw1_2
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_0, tab, h), ww * r1_2, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_0, tab, h), w0d * r1_2, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_0, tab, h), w1d * r1_2, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_0 + q1_3]) + q2
+                        ww = w0_0 * w1_3; w0d = dw0_0 * w1_3; w1d = w0_0 * dw1_3
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_0, tab, h), ww * r1_3, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_0, tab, h), w0d * r1_3, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_0, tab, h), w1d * r1_3, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_1 + q1_0]) + q2
+                        ww = w0_1 * w1_0; w0d = dw0_1 * w1_0; w1d = w0_1 * dw1_0
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_1, tab, h), ww * r1_0, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_1, tab, h), w0d * r1_0, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_1, tab, h), w1d * r1_0, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_1 + q1_1]) + q2
+                        ww = w0_1 * w1_1; w0d = dw0_1 * w1_1; w1d = w0_1 * dw1_1
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_1, tab, h), ww * r1_1, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_1, tab, h), w0d * r1_1, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_1, tab, h), w1d * r1_1, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_1 + q1_2]) + q2
+                        ww = w0_1 * w1_2; w0d = dw0_1 * w1_2; w1d = w0_1 * dw1_2
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_1, tab, h), ww * r1_2, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_1, tab, h), w0d * r1_2, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_1, tab, h), w1d * r1_2, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_1 + q1_3]) + q2
+                        ww = w0_1 * w1_3; w0d = dw0_1 * w1_3; w1d = w0_1 * dw1_3
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_1, tab, h), ww * r1_3, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_1, tab, h), w0d * r1_3, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_1, tab, h), w1d * r1_3, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_2 + q1_0]) + q2
+                        ww = w0_2 * w1_0; w0d = dw0_2 * w1_0; w1d = w0_2 * dw1_0
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_2, tab, h), ww * r1_0, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_2, tab, h), w0d * r1_0, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_2, tab, h), w1d * r1_0, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_2 + q1_1]) + q2
+                        ww = w0_2 * w1_1; w0d = dw0_2 * w1_1; w1d = w0_2 * dw1_1
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_2, tab, h), ww * r1_1, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_2, tab, h), w0d * r1_1, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_2, tab, h), w1d * r1_1, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_2 + q1_2]) + q2
+                        ww = w0_2 * w1_2; w0d = dw0_2 * w1_2; w1d = w0_2 * dw1_2
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_2, tab, h), ww * r1_2, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_2, tab, h), w0d * r1_2, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_2, tab, h), w1d * r1_2, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_2 + q1_3]) + q2
+                        ww = w0_2 * w1_3; w0d = dw0_2 * w1_3; w1d = w0_2 * dw1_3
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_2, tab, h), ww * r1_3, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_2, tab, h), w0d * r1_3, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_2, tab, h), w1d * r1_3, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_3 + q1_0]) + q2
+                        ww = w0_3 * w1_0; w0d = dw0_3 * w1_0; w1d = w0_3 * dw1_0
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_3, tab, h), ww * r1_0, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_3, tab, h), w0d * r1_0, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_3, tab, h), w1d * r1_0, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_3 + q1_1]) + q2
+                        ww = w0_3 * w1_1; w0d = dw0_3 * w1_1; w1d = w0_3 * dw1_1
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_3, tab, h), ww * r1_1, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_3, tab, h), w0d * r1_1, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_3, tab, h), w1d * r1_1, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_3 + q1_2]) + q2
+                        ww = w0_3 * w1_2; w0d = dw0_3 * w1_2; w1d = w0_3 * dw1_2
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_3, tab, h), ww * r1_2, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_3, tab, h), w0d * r1_2, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_3, tab, h), w1d * r1_2, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        h = np.uint64(H2[c, q0_3 + q1_3]) + q2
+                        ww = w0_3 * w1_3; w0d = dw0_3 * w1_3; w1d = w0_3 * dw1_3
+                        h1 = h + stride; h2 = h + stride2
+                        P = axpy_lanes(axpy_lanes(P, ww * r0_3, tab, h), ww * r1_3, tab, h1)
+                        A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); A2 = axpy_lanes(A2, ww, tab, h2)
+                        QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_3, tab, h), w0d * r1_3, tab, h1)
+                        B2 = axpy_lanes(B2, w0d, tab, h2)
+                        S = axpy_lanes(axpy_lanes(S, w1d * r0_3, tab, h), w1d * r1_3, tab, h1)
+                        C2 = axpy_lanes(C2, w1d, tab, h2)
+                        v0 = P[0] + r2_0 * A2[0]
+                        v1 = P[1] + r2_1 * A2[1]
+                        v2 = P[2] + r2_2 * A2[2]
+                        v3 = P[3] + r2_3 * A2[3]
+                        total = w2_0 * v0 + w2_1 * v1 + w2_2 * v2 + w2_3 * v3
+                        D0 = w2_0 * (QQ[0] + r2_0 * B2[0] + A0[0]) + w2_1 * (QQ[1] + r2_1 * B2[1] + A0[1]) + w2_2 * (QQ[2] + r2_2 * B2[2] + A0[2]) + w2_3 * (QQ[3] + r2_3 * B2[3] + A0[3])
+                        D1 = w2_0 * (S[0] + r2_0 * C2[0] + A1[0]) + w2_1 * (S[1] + r2_1 * C2[1] + A1[1]) + w2_2 * (S[2] + r2_2 * C2[2] + A1[2]) + w2_3 * (S[3] + r2_3 * C2[3] + A1[3])
+                        D2 = (dw2_0 * v0 + w2_0 * A2[0]) + (dw2_1 * v1 + w2_1 * A2[1]) + (dw2_2 * v2 + w2_2 * A2[2]) + (dw2_3 * v3 + w2_3 * A2[3])
+                        amp = amps[o]
+                        if absval:
+                            sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                            total = abs(total)
+                            D0 = sg * D0; D1 = sg * D1; D2 = sg * D2
+                        if o == 0:
+                            ACC[c, 0, i] = amp * total
+                            ACC[c, 1, i] = (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] = (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] = (amp * freqs[o, 2]) * D2
+                        else:
+                            ACC[c, 0, i] += amp * total
+                            ACC[c, 1, i] += (amp * freqs[o, 0]) * D0
+                            ACC[c, 2, i] += (amp * freqs[o, 1]) * D1
+                            ACC[c, 3, i] += (amp * freqs[o, 2]) * D2
+        for i in range(m):
+            for c in range(ncomp):
+                for a in range(4):
+                    out[p0 + i, c, a] = ACC[c, a, i]
+    return bad
+
+
+# values and Jacobians over the 3-D hash tables, keyed by (dim_in, taps)
+JAC_TABLE_KERNELS = {
+    (3, 2): tables_jac_d3_t2,
+    (3, 3): tables_jac_d3_t3,
+    (3, 4): tables_jac_d3_t4,
+}

@@ -395,7 +395,12 @@ class LatticeNoise:
             k = self.kernel
             basis = 0 if self.basis == "value" else 1
             unrolled = _points.JAC_KERNELS.get((self.dim_in, k.taps))
-            if unrolled is not None and (self.period >= k.taps).all():
+            tabled = _points.JAC_TABLE_KERNELS.get((self.dim_in, k.taps))
+            if tabled is not None and self._uses_tables():
+                _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
+                                               self.period, self._pmask, *self._hash_tables(basis), basis,
+                                               bool(absval)), workers)
+            elif unrolled is not None and (self.period >= k.taps).all():
                 _run_split(unrolled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
                                                  self.period, self._pmask, self._perms2, self.values,
                                                  self.gradients, basis, bool(absval)), workers)
