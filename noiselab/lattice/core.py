@@ -123,7 +123,8 @@ class LatticeNoise:
     basis : {"value", "gradient"}, default "value"
         ``"value"``: Phillips' random values. ``"gradient"``: Perlin's gradient
         noise, ``sum_i K(x - i) g_i . (x - i)`` with unit gradients ``g_i``
-        (zero at every lattice point).
+        (zero at every lattice point for the interpolating kernels: linear,
+        catmull-rom, quintic).
     table_size : int, default 256
         Entries n of the permutation table and of each value table (even, >= 2).
     period : int or sequence of int, optional
@@ -154,6 +155,12 @@ class LatticeNoise:
     kernels and ``S = 5/4`` for Catmull-Rom (``sum |w| = 1 + t (1 - t)``), whose
     overshoot is therefore absorbed by a factor ``(4/5)**d``. Gradient noise is
     divided by ``sqrt(d Q) S**(d - 1/2)`` (:meth:`Kernel.gradient_bound`).
+
+    **Derivatives.** :meth:`gradient`, :meth:`jacobian`, :meth:`gradient_grid`
+    and :meth:`jacobian_grid` give the exact derivative in input units for
+    the kernels with a continuous first derivative (quadratic, cubic,
+    catmull-rom, quintic); see also :func:`noiselab.curl_noise`,
+    :func:`noiselab.warp` and :func:`noiselab.fractal.fractal_gradient`.
 
     **Precision.** Coordinates are split in float64 into an integer lattice
     index and an exact fraction (``u - floor(u)`` is exact); the index is
