@@ -394,7 +394,7 @@ class LatticeNoise:
             # one full reduction (fast) decides the common case: finite, and no
             # scaled coordinate can overflow; else the exact per-axis checks
             with np.errstate(over="ignore", invalid="ignore"):
-                fine = np.isfinite(np.abs(flat).max() * np.abs(freqs).max())
+                fine = np.isfinite(max(-flat.min(), flat.max()) * np.abs(freqs).max())
                 if not fine:
                     check_finite_array(name, flat)
                     if not np.isfinite(np.abs(flat).max(axis=0) * np.abs(freqs).max(axis=0)).all():
@@ -418,12 +418,13 @@ class LatticeNoise:
         return out
 
     def _jac_result(self, out, lead, return_value, scalar):
+        """Views into the kernels' ``(N, dim_out, 1 + dim_in)`` output (no copies): the Jacobian and the value."""
         jac = out[:, :, 1:]
         jac = jac[:, 0].reshape(tuple(lead) + (self.dim_in,)) if scalar else \
             jac.reshape(tuple(lead) + (self.dim_out, self.dim_in))
         if not return_value:
             return jac
-        return self._shape_out(np.ascontiguousarray(out[:, :, 0]), lead), jac
+        return self._shape_out(out[:, :, 0], lead), jac
 
     def _scalar_only(self, what):
         if self.dim_out != 1:
