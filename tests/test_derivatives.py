@@ -320,3 +320,19 @@ def test_mesh_face_normals_converge_to_the_exact_normals():
     # without the curvature term the sphere's normals are off by the first-order error
     flat = displaced_normals(sphere, field3, amplitude=0.1, frequency=2.0)
     assert np.median(normal_angles(flat, vertex_normals(bumpy))) > 2 * medians[2]
+
+
+@pytest.mark.parametrize("period", [(2, 3), (5, 6), (256, 256)])
+def test_tiling_and_alternation_carry_over_to_the_gradient(period):
+    # periods below the tap count (generic kernel), non-powers of two, and the
+    # lattice-parity alternation: the gradient tiles with the noise and matches its differences
+    noise = LatticeNoise(2, seed=6, kernel="cubic", period=period, frequency=[1.5, 0.75], alternation="lattice"
+                         if all(p % 2 == 0 for p in period) else "table")
+    x = np.random.default_rng(2).uniform(-3, 3, (200, 2))
+    g = noise.gradient(x)
+    shift = np.array(period) / noise.frequency
+    np.testing.assert_allclose(noise.gradient(x + shift), g, rtol=0, atol=1e-9)
+    fd = _central(noise, x, 1e-6)
+    assert np.abs(g - fd).max() < 1e-7 * (1 + np.abs(g).max())
+    grid = noise.gradient_grid((16, 12), [(0, 2), (0, 3)])
+    np.testing.assert_allclose(grid, noise.gradient(noise.grid_points((16, 12), [(0, 2), (0, 3)])), rtol=0, atol=1e-13)
