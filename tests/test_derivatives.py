@@ -60,6 +60,16 @@ def _compare(noise, x, h, tol_smooth, tol_knot):
 
 
 # ------------------------------------------------------------------ kernels
+def test_generated_jacobian_kernels_match_their_generator():
+    """``_jacobians.py`` is generated and committed (numba caches need a file): it must be what the generator writes."""
+    from pathlib import Path
+
+    from noiselab.lattice import _generate
+
+    committed = Path(_generate.__file__).with_name("_jacobians.py").read_text()
+    assert committed == _generate.generate_jacobians(), "run `python -m noiselab.lattice._generate` and commit"
+
+
 def test_kernel_continuity_classes_and_derivative_polynomials():
     assert {n: k.continuity for n, k in KERNELS.items()} == {
         "box": -1, "linear": 0, "quadratic": 1, "cubic": 2, "catmull-rom": 1, "quintic": 2}

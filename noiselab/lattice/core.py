@@ -401,8 +401,10 @@ class LatticeNoise:
                         raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
             k = self.kernel
             basis = 0 if self.basis == "value" else 1
-            unrolled = _points.JAC_KERNELS.get((self.dim_in, k.taps))
-            tabled = _points.JAC_TABLE_KERNELS.get((self.dim_in, k.taps))
+            from . import _jacobians  # imported on the first derivative (its kernels cost import time)
+
+            unrolled = _jacobians.JAC_KERNELS.get((self.dim_in, k.taps))
+            tabled = _jacobians.JAC_TABLE_KERNELS.get((self.dim_in, k.taps))
             if tabled is not None and self._uses_tables():
                 _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
                                                self.period, self._pmask, *self._hash_tables(basis), basis,
