@@ -37,6 +37,14 @@ _API = {
     "LatticeNoise": "noiselab.lattice",
     "fractal_sum": "noiselab.fractal",
     "turbulence": "noiselab.fractal",
+    # exact derivatives of lattice noise
+    "fractal_gradient": "noiselab.fractal",
+    "turbulence_gradient": "noiselab.fractal",
+    "curl_noise": "noiselab.lattice",
+    "warp": "noiselab.lattice",
+    "monge_normals": "noiselab.geometry.normals",
+    "displaced_normals": "noiselab.geometry.normals",
+    "normal_angles": "noiselab.geometry.normals",
     # geometry
     "displace": "noiselab.geometry",
     # the laboratory's alternative snow generators

@@ -6,7 +6,7 @@ a module (see :mod:`gallery.registry`).
 """
 import importlib
 
-GROUP_MODULES = ("snow", "phillips", "lab")
+GROUP_MODULES = ("snow", "phillips", "lab", "derivatives")
 
 for _name in GROUP_MODULES:
     importlib.import_module(f"{__name__}.{_name}")

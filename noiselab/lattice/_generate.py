@@ -348,6 +348,357 @@ def _function_tables(d: int, taps: int, kernel=None) -> str:
     return "\n".join(L) + "\n"
 
 
+def _function_jac(d: int, taps: int) -> str:
+    """Source of ``jac_d{d}_t{taps}``: values and Jacobians at scattered points (see ``_jit.eval_points_jac``).
+
+    The layout of :func:`_function` (phase 1 per axis over a chunk: weights,
+    their derivatives ``DW``, tap indices; phase 2 per point: the nested hash
+    and the sums), with the sums written out level by level as temporaries:
+    at level ``L`` (axis ``L``, innermost last) ``s = sum_k w_k s_k`` is the
+    partial value, ``e_a = sum_k w_k e_{k,a}`` for axes ``a > L`` and
+    ``e_L = sum_k (dw_k s_k [+ w_k e_{k,L}])``; in the gradient basis the
+    leaves also carry ``e_a = g_a`` (``d(g . r)/dt_a``), summed on every
+    level. ``out`` is ``(N, C, d + 1)``: value, then the derivatives in input
+    units (times ``amps[o] * freqs[o, a]``); turbulence multiplies them by
+    ``sign(octave)`` (0 at 0).
+    """
+    ind = "    "
+    L = []
+    a_ = L.append
+    lvl = lambda k: ind * k  # noqa: E731
+    a_("@nb.njit(cache=True, nogil=True)")
+    a_(f"def jac_d{d}_t{taps}(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,")
+    a_("        perms, values, grads, basis, absval):")
+    a_(f'{ind}"""Lattice noise and its Jacobian at scattered points, {d}-D input, {taps}-tap kernel (generated)."""')
+    a_(f"{ind}npts = pts.shape[0]")
+    a_(f"{ind}ncomp = perms.shape[0]")
+    a_(f"{ind}n = perms.shape[1] // 2")
+    a_(f"{ind}noct = freqs.shape[0]")
+    a_(f"{ind}W = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}DW = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}R = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}Q = np.empty(({d}, {taps}, CHUNK), np.uint64)")
+    a_(f"{ind}PAR = np.empty(CHUNK, np.int64)")
+    a_(f"{ind}FI = np.empty(CHUNK)")
+    a_(f"{ind}X = np.empty(({d}, CHUNK))")
+    a_(f"{ind}ACC = np.empty((ncomp, {d + 1}, CHUNK))")
+    for k in range(taps):
+        a_(f"{ind}" + "; ".join(f"c{k}{q} = coef[{k}, {q}]" for q in range(6)))
+        a_(f"{ind}" + "; ".join(f"d{k}{q} = dcoef[{k}, {q}]" for q in range(5)))
+    a_(f"{ind}for p0 in range(0, npts, CHUNK):")
+    a_(f"{lvl(2)}m = min(CHUNK, npts - p0)")
+    a_(f"{lvl(2)}for i in range(m):")
+    for a in range(d):
+        a_(f"{lvl(3)}X[{a}, i] = pts[p0 + i, {a}]")
+    a_(f"{lvl(2)}for o in range(noct):")
+    for a in range(d):
+        a_(f"{lvl(3)}f = freqs[o, {a}]; ph = phase[{a}]; per = period[{a}]; msk = pmask[{a}]")
+        a_(f"{lvl(3)}for i in range(m):")
+        b4 = lvl(4)
+        a_(f"{b4}u = X[{a}, i] * f + ph + shift")
+        a_(f"{b4}fi = np.floor(u)")
+        a_(f"{b4}t = u - fi")
+        a_(f"{b4}FI[i] = fi")
+        a_(f"{b4}t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t")
+        for k in range(taps):
+            a_(f"{b4}W[{a}, {k}, i] = (c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)")
+            a_(f"{b4}DW[{a}, {k}, i] = (d{k}0 + d{k}1 * t) + (d{k}2 * t2 + d{k}3 * t3) + d{k}4 * t4")
+        a_(f"{lvl(3)}if basis == 1:  # signed distances to the taps, for the gradient dot products")
+        a_(f"{lvl(4)}for i in range(m):")
+        a_(f"{lvl(5)}t = X[{a}, i] * f + ph + shift - FI[i]")
+        for k in range(taps):
+            a_(f"{lvl(5)}R[{a}, {k}, i] = t - shift + (left - {k})")
+        a_(f"{lvl(3)}exact = msk < 0 or per > n")
+        a_(f"{lvl(3)}if not exact:")
+        a_(f"{lvl(4)}inside = 0")
+        a_(f"{lvl(4)}for i in range(m):")
+        b5 = lvl(5)
+        a_(f"{b5}fi = FI[i]")
+        a_(f"{b5}inside += (fi < 4.0e15) & (fi > -4.0e15)")
+        a_(f"{b5}b = (np.int64(fi) - left) & msk")
+        a_(f"{b5}PAR[i] = b & 1" if a == 0 else f"{b5}PAR[i] = (PAR[i] + b) & 1")
+        for k in range(taps):
+            a_(f"{b5}Q[{a}, {k}, i] = (b + {k}) & msk" if k else f"{b5}Q[{a}, 0, i] = b")
+        a_(f"{lvl(4)}exact = inside != m")
+        a_(f"{lvl(3)}if exact:")
+        a_(f"{lvl(4)}for i in range(m):")
+        a_(f"{b5}b = _reduce(FI[i], left, per, msk)")
+        a_(f"{b5}PAR[i] = b & 1" if a == 0 else f"{b5}PAR[i] = (PAR[i] + b) & 1")
+        for k in range(taps):
+            if k:
+                a_(f"{b5}j = b + {k}")
+                a_(f"{b5}j = j - per if j >= per else j")
+            else:
+                a_(f"{b5}j = b")
+            a_(f"{b5}Q[{a}, {k}, i] = j if j < n else j % n")
+    a_(f"{lvl(3)}for i in range(m):")
+    b4 = lvl(4)
+    loop0 = d == 3  # keep a loop over the first axis (the body stays small enough to compile quickly)
+    first = 1 if loop0 else 0
+    a_(f"{b4}par = PAR[i]")
+    for a in range(first, d):
+        for k in range(taps):
+            a_(f"{b4}w{a}_{k} = W[{a}, {k}, i]; dw{a}_{k} = DW[{a}, {k}, i]; q{a}_{k} = Q[{a}, {k}, i]")
+    a_(f"{b4}for c in range(ncomp):")
+    b5 = lvl(5)
+    b6 = lvl(6) if loop0 else b5
+    if loop0:
+        a_(f"{b5}total = 0.0")
+        for a in range(d):
+            a_(f"{b5}D{a} = 0.0")
+        a_(f"{b5}for k0 in range({taps}):")
+        a_(f"{b6}hk = perms[c, Q[0, k0, i]]")
+        a_(f"{b6}pk = par ^ (k0 & 1)")
+        a_(f"{b6}w0k = W[0, k0, i]; dw0k = DW[0, k0, i]")
+    for level in range(first, d):
+        for ks in itertools.product(range(taps), repeat=level + 1 - first):
+            name = "h" + "".join(map(str, ks))
+            if level == 0:
+                a_(f"{b6}{name} = perms[c, q0_{ks[-1]}]")
+            else:
+                prev = "hk" if (loop0 and level == first) else "h" + "".join(map(str, ks[:-1]))
+                a_(f"{b6}{name} = perms[c, {prev} + q{level}_{ks[-1]}]")
+    parity0 = "pk" if loop0 else "par"
+
+    def body(grad, out_lines, pad):
+        """Emit the sums for one basis; returns the names of the value and of the per-axis derivatives."""
+        def emit(prefix, level):
+            tag = "".join(map(str, prefix))
+            kids = []
+            for k in range(taps):
+                ks = prefix + (k,)
+                if level == d - 1:
+                    h = "h" + "".join(map(str, ks))
+                    v = f"v{''.join(map(str, ks))}"
+                    if grad:
+                        gs = {}
+                        for a in range(d):
+                            gs[a] = f"g{''.join(map(str, ks))}_{a}"
+                            out_lines.append(f"{pad}{gs[a]} = grads[{h}, {a}]")
+                        rs = ["R[0, k0, i]" if (loop0 and a == 0) else f"R[{a}, {ks[a - first]}, i]" for a in range(d)]
+                        out_lines.append(f"{pad}{v} = " + " + ".join(f"{gs[a]} * {rs[a]}" for a in range(d)))
+                        kids.append((v, gs))
+                    else:
+                        odd = sum(ks) % 2
+                        out_lines.append(f"{pad}{v} = values[{parity0}{' ^ 1' if odd else ''}, {h}]")
+                        kids.append((v, {}))
+                else:
+                    kids.append(emit(ks, level + 1))
+            s = f"s{level}_{tag}"
+            out_lines.append(f"{pad}{s} = " + " + ".join(f"w{level}_{k} * {kid[0]}" for k, kid in enumerate(kids)))
+            derivs = {}
+            axes = range(d) if grad else range(level, d)
+            for a in axes:
+                e = f"e{level}_{tag}_{a}"
+                terms = []
+                for k, (ks_, kd) in enumerate(kids):
+                    if a == level:
+                        terms.append(f"dw{level}_{k} * {ks_}")
+                    if a in kd:
+                        terms.append(f"w{level}_{k} * {kd[a]}")
+                out_lines.append(f"{pad}{e} = " + " + ".join(terms))
+                derivs[a] = e
+            return s, derivs
+
+        return emit((), first)
+
+    for basis in (0, 1):
+        a_(f"{b6}{'if basis == 0' if basis == 0 else 'else'}:")
+        pad = b6 + ind
+        lines = []
+        s, derivs = body(basis == 1, lines, pad)
+        L.extend(lines)
+        if loop0:
+            a_(f"{pad}total += w0k * {s}")
+            a_(f"{pad}D0 += dw0k * {s}" + (f" + w0k * {derivs[0]}" if basis == 1 else ""))
+            for a in range(1, d):
+                a_(f"{pad}D{a} += w0k * {derivs[a]}")
+        else:
+            a_(f"{pad}total = {s}")
+            for a in range(d):
+                a_(f"{pad}D{a} = {derivs[a]}")
+    a_(f"{b5}amp = amps[o]")
+    a_(f"{b5}if absval:")
+    a_(f"{b5}    sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)")
+    a_(f"{b5}    total = abs(total)")
+    for a in range(d):
+        a_(f"{b5}    D{a} = sg * D{a}")
+    a_(f"{b5}if o == 0:")
+    a_(f"{b5}    ACC[c, 0, i] = amp * total")
+    for a in range(d):
+        a_(f"{b5}    ACC[c, {a + 1}, i] = (amp * freqs[o, {a}]) * D{a}")
+    a_(f"{b5}else:")
+    a_(f"{b5}    ACC[c, 0, i] += amp * total")
+    for a in range(d):
+        a_(f"{b5}    ACC[c, {a + 1}, i] += (amp * freqs[o, {a}]) * D{a}")
+    a_(f"{lvl(2)}for i in range(m):")
+    a_(f"{lvl(3)}for c in range(ncomp):")
+    a_(f"{lvl(4)}for a in range({d + 1}):")
+    a_(f"{lvl(5)}out[p0 + i, c, a] = ACC[c, a, i]")
+    return "\n".join(L) + "\n"
+
+
+
+def _function_tables_jac(taps: int) -> str:
+    """Source of ``tables_jac_d3_t{taps}``: values and Jacobians over the precombined hash tables (3-D).
+
+    The tables and the lane sums of :func:`_function_tables` (the last axis's
+    taps are the lanes of one short vector per (k0, k1) tap pair), with more
+    lane accumulators. Value basis, ``L`` the lanes of a pair, ``W = w0 w1``:
+    ``acc += W L``, ``a0 += w0' w1 L``, ``a1 += w0 w1' L``; then ``value =
+    sum_k w2_k acc_k``, ``d0 = sum_k w2_k a0_k``, ``d1 = sum_k w2_k a1_k``,
+    ``d2 = sum_k w2'_k acc_k``. Gradient basis (lanes ``g_a`` of the three
+    gradient components, ``dot = g0 r0 + g1 r1 + g2 r2``): ``P = sum W (g0 r0
+    + g1 r1)``, ``A_a = sum W g_a``, ``Q`` and ``B2`` (``S`` and ``C2``) the same
+    sums with ``w0' w1`` (``w0 w1'``); then ``value = sum w2 (P + r2 A2)``,
+    ``d0 = sum w2 (Q + r2 B2 + A0)``, ``d1 = sum w2 (S + r2 C2 + A1)``,
+    ``d2 = sum w2' (P + r2 A2) + w2 A2``. ``out`` as in ``_jit.eval_points_jac``.
+    """
+    d = 3
+    fname = f"tables_jac_d3_t{taps}"
+    ind = "    "
+    L = []
+    a_ = L.append
+    lvl = lambda k: ind * k  # noqa: E731
+    a_("@nb.njit(cache=True, nogil=True)")
+    a_(f"def {fname}(pts, out, freqs, amps, phase, shift, left, coef, dcoef, period, pmask,")
+    a_("        H2, VL, G, basis, absval):")
+    a_(f'{ind}"""Lattice noise and its Jacobian, 3-D input, {taps}-tap kernel, hash tables (generated)."""')
+    a_(f"{ind}npts = pts.shape[0]")
+    a_(f"{ind}ncomp = H2.shape[0]")
+    a_(f"{ind}stride = np.uint64(VL.shape[1] // 2)")
+    a_(f"{ind}stride2 = stride + stride")
+    a_(f"{ind}n = (VL.shape[1] // 2 - 4) // 2")
+    a_(f"{ind}nu = np.uint64(n)")
+    a_(f"{ind}noct = freqs.shape[0]")
+    a_(f"{ind}W = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}DW = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}R = np.empty(({d}, {taps}, CHUNK))")
+    a_(f"{ind}Q = np.empty(({d}, {taps}, CHUNK), np.uint64)")
+    a_(f"{ind}X = np.empty(({d}, CHUNK))")
+    a_(f"{ind}ACC = np.empty((ncomp, {d + 1}, CHUNK))")
+    a_(f"{ind}bad = 0")
+    for k in range(taps):
+        a_(f"{ind}" + "; ".join(f"c{k}{q} = coef[{k}, {q}]" for q in range(6)))
+        a_(f"{ind}" + "; ".join(f"d{k}{q} = dcoef[{k}, {q}]" for q in range(5)))
+    a_(f"{ind}for p0 in range(0, npts, CHUNK):")
+    a_(f"{lvl(2)}m = min(CHUNK, npts - p0)")
+    a_(f"{lvl(2)}for i in range(m):")
+    for a in range(d):
+        a_(f"{lvl(3)}X[{a}, i] = pts[p0 + i, {a}]")
+    a_(f"{lvl(2)}for o in range(noct):")
+    for a in range(d):
+        mul = " * nu" if a == 0 else ""
+        a_(f"{lvl(3)}f = freqs[o, {a}]; ph = phase[{a}]; per = period[{a}]; msk = pmask[{a}]")
+        a_(f"{lvl(3)}inside = 0")
+        a_(f"{lvl(3)}for i in range(m):")
+        b4 = lvl(4)
+        a_(f"{b4}u = X[{a}, i] * f + ph + shift")
+        a_(f"{b4}fi = np.floor(u)")
+        a_(f"{b4}t = u - fi")
+        a_(f"{b4}t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t")
+        for k in range(taps):
+            a_(f"{b4}W[{a}, {k}, i] = (c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)")
+            a_(f"{b4}DW[{a}, {k}, i] = (d{k}0 + d{k}1 * t) + (d{k}2 * t2 + d{k}3 * t3) + d{k}4 * t4")
+        a_(f"{b4}inside += (fi < 9.0e18) & (fi > -9.0e18)")
+        a_(f"{b4}b = (np.int64(fi) - left) & msk")
+        for k in range(taps if a < d - 1 else 1):
+            j = f"((b + {k}) & msk)" if k else "b"
+            a_(f"{b4}Q[{a}, {k}, i] = np.uint64({j}){mul}")
+        a_(f"{lvl(3)}if basis == 1:")
+        a_(f"{lvl(4)}for i in range(m):")
+        a_(f"{lvl(5)}u = X[{a}, i] * f + ph + shift")
+        a_(f"{lvl(5)}t = u - np.floor(u)")
+        for k in range(taps):
+            a_(f"{lvl(5)}R[{a}, {k}, i] = t - shift + (left - {k})")
+        a_(f"{lvl(3)}if msk < 0 or per > n or inside != m:")
+        a_(f"{lvl(4)}for i in range(m):")
+        b5 = lvl(5)
+        a_(f"{b5}fi = np.floor(X[{a}, i] * f + ph + shift)")
+        a_(f"{b5}if fi - fi != 0.0:  # NaN or inf")
+        a_(f"{b5}    bad += 1")
+        a_(f"{b5}    fi = 0.0")
+        a_(f"{b5}b = _reduce(fi, left, per, msk)")
+        for k in range(taps if a < d - 1 else 1):
+            if k:
+                a_(f"{b5}j = b + {k}")
+                a_(f"{b5}j = j - per if j >= per else j")
+            else:
+                a_(f"{b5}j = b")
+            a_(f"{b5}Q[{a}, {k}, i] = np.uint64(j if j < n else j % n){mul}")
+    zero = "(" + ", ".join(["0.0"] * taps) + ")"
+    for basis in (0, 1):
+        a_(f"{lvl(3)}{'if basis == 0' if basis == 0 else 'else'}:")
+        a_(f"{lvl(4)}for i in range(m):")
+        b5 = lvl(5)
+        for a in range(d - 1):
+            for k in range(taps):
+                a_(f"{b5}w{a}_{k} = W[{a}, {k}, i]; dw{a}_{k} = DW[{a}, {k}, i]; q{a}_{k} = Q[{a}, {k}, i]")
+                if basis:
+                    a_(f"{b5}r{a}_{k} = R[{a}, {k}, i]")
+        a_(f"{b5}q2 = Q[2, 0, i]")
+        a_(f"{b5}" + "; ".join(f"w2_{k} = W[2, {k}, i]; dw2_{k} = DW[2, {k}, i]" for k in range(taps)))
+        if basis:
+            a_(f"{b5}" + "; ".join(f"r2_{k} = R[2, {k}, i]" for k in range(taps)))
+        a_(f"{b5}for c in range(ncomp):")
+        b6 = lvl(6)
+        if basis == 0:
+            a_(f"{b6}tab = VL[c]")
+            a_(f"{b6}acc = {zero}; a0 = {zero}; a1 = {zero}")
+        else:
+            a_(f"{b6}tab = G[c]")
+            a_(f"{b6}P = {zero}; A0 = {zero}; A1 = {zero}; A2 = {zero}")
+            a_(f"{b6}QQ = {zero}; B2 = {zero}; S = {zero}; C2 = {zero}")
+        for k0 in range(taps):
+            for k1 in range(taps):
+                a_(f"{b6}h = np.uint64(H2[c, q0_{k0} + q1_{k1}]) + q2")
+                a_(f"{b6}ww = w0_{k0} * w1_{k1}; w0d = dw0_{k0} * w1_{k1}; w1d = w0_{k0} * dw1_{k1}")
+                if basis == 0:
+                    a_(f"{b6}acc = axpy_lanes(acc, ww, tab, h)")
+                    a_(f"{b6}a0 = axpy_lanes(a0, w0d, tab, h)")
+                    a_(f"{b6}a1 = axpy_lanes(a1, w1d, tab, h)")
+                else:
+                    a_(f"{b6}h1 = h + stride; h2 = h + stride2")
+                    a_(f"{b6}P = axpy_lanes(axpy_lanes(P, ww * r0_{k0}, tab, h), ww * r1_{k1}, tab, h1)")
+                    a_(f"{b6}A0 = axpy_lanes(A0, ww, tab, h); A1 = axpy_lanes(A1, ww, tab, h1); "
+                       f"A2 = axpy_lanes(A2, ww, tab, h2)")
+                    a_(f"{b6}QQ = axpy_lanes(axpy_lanes(QQ, w0d * r0_{k0}, tab, h), w0d * r1_{k1}, tab, h1)")
+                    a_(f"{b6}B2 = axpy_lanes(B2, w0d, tab, h2)")
+                    a_(f"{b6}S = axpy_lanes(axpy_lanes(S, w1d * r0_{k0}, tab, h), w1d * r1_{k1}, tab, h1)")
+                    a_(f"{b6}C2 = axpy_lanes(C2, w1d, tab, h2)")
+        if basis == 0:
+            a_(f"{b6}total = " + " + ".join(f"w2_{k} * acc[{k}]" for k in range(taps)))
+            a_(f"{b6}D0 = " + " + ".join(f"w2_{k} * a0[{k}]" for k in range(taps)))
+            a_(f"{b6}D1 = " + " + ".join(f"w2_{k} * a1[{k}]" for k in range(taps)))
+            a_(f"{b6}D2 = " + " + ".join(f"dw2_{k} * acc[{k}]" for k in range(taps)))
+        else:
+            for k in range(taps):
+                a_(f"{b6}v{k} = P[{k}] + r2_{k} * A2[{k}]")
+            a_(f"{b6}total = " + " + ".join(f"w2_{k} * v{k}" for k in range(taps)))
+            a_(f"{b6}D0 = " + " + ".join(f"w2_{k} * (QQ[{k}] + r2_{k} * B2[{k}] + A0[{k}])" for k in range(taps)))
+            a_(f"{b6}D1 = " + " + ".join(f"w2_{k} * (S[{k}] + r2_{k} * C2[{k}] + A1[{k}])" for k in range(taps)))
+            a_(f"{b6}D2 = " + " + ".join(f"(dw2_{k} * v{k} + w2_{k} * A2[{k}])" for k in range(taps)))
+        a_(f"{b6}amp = amps[o]")
+        a_(f"{b6}if absval:")
+        a_(f"{b6}    sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)")
+        a_(f"{b6}    total = abs(total)")
+        a_(f"{b6}    D0 = sg * D0; D1 = sg * D1; D2 = sg * D2")
+        a_(f"{b6}if o == 0:")
+        a_(f"{b6}    ACC[c, 0, i] = amp * total")
+        for a in range(d):
+            a_(f"{b6}    ACC[c, {a + 1}, i] = (amp * freqs[o, {a}]) * D{a}")
+        a_(f"{b6}else:")
+        a_(f"{b6}    ACC[c, 0, i] += amp * total")
+        for a in range(d):
+            a_(f"{b6}    ACC[c, {a + 1}, i] += (amp * freqs[o, {a}]) * D{a}")
+    a_(f"{lvl(2)}for i in range(m):")
+    a_(f"{lvl(3)}for c in range(ncomp):")
+    a_(f"{lvl(4)}for a in range({d + 1}):")
+    a_(f"{lvl(5)}out[p0 + i, c, a] = ACC[c, a, i]")
+    a_(f"{ind}return bad")
+    return "\n".join(L) + "\n"
+
+
 def generate() -> str:
     parts = [HEADER]
     names = []
@@ -371,7 +722,49 @@ def generate() -> str:
     return "".join(parts)
 
 
+JAC_HEADER = '''"""Scattered-point kernels for lattice noise's value and exact Jacobian, unrolled per input dimension and tap count.
+
+GENERATED by ``python -m noiselab.lattice._generate``; do not edit by hand.
+Kept apart from ``_points.py`` so that ``import noiselab.lattice`` does not
+pay for them: ``LatticeNoise`` imports this module on the first derivative.
+``JAC_KERNELS`` (``jac_d{d}_t{taps}``) have the signature of
+``_jit.eval_points_jac`` minus ``taps`` and take ``perms`` written twice, as
+the ``points_*`` kernels of ``_points.py``; ``JAC_TABLE_KERNELS`` read the 3-D
+precombined hash tables of ``LatticeNoise._hash_tables`` and return the
+number of non-finite scaled coordinates they met.
+"""
+import numba as nb
+import numpy as np
+
+from ._jit import _reduce, axpy_lanes
+
+CHUNK = 256
+
+'''
+
+
+def generate_jacobians() -> str:
+    """The source of ``_jacobians.py``."""
+    parts = [JAC_HEADER]
+    jac = []
+    for d in (1, 2, 3):
+        for taps in (2, 3, 4):   # kernels with a continuous derivative have 2 to 4 taps
+            parts.append("\n" + _function_jac(d, taps) + "\n")
+            jac.append(f"    ({d}, {taps}): jac_d{d}_t{taps}")
+    table = ",\n".join(jac)
+    parts.append(f"\n# values and Jacobians, keyed by (dim_in, taps)\nJAC_KERNELS = {{\n{table},\n}}\n")
+    jac = []
+    for taps in (2, 3, 4):
+        parts.append("\n" + _function_tables_jac(taps) + "\n")
+        jac.append(f"    (3, {taps}): tables_jac_d3_t{taps}")
+    table = ",\n".join(jac)
+    parts.append(f"\n# values and Jacobians over the 3-D hash tables, keyed by (dim_in, taps)\n"
+                 f"JAC_TABLE_KERNELS = {{\n{table},\n}}\n")
+    return "".join(parts)
+
+
 if __name__ == "__main__":
-    target = Path(__file__).with_name("_points.py")
-    target.write_text(generate())
-    print(f"wrote {target}")
+    for name, source in (("_points.py", generate()), ("_jacobians.py", generate_jacobians())):
+        target = Path(__file__).with_name(name)
+        target.write_text(source)
+        print(f"wrote {target}")

@@ -171,7 +171,8 @@ class LatticeNoise:
     basis : {"value", "gradient"}, default "value"
         ``"value"``: Phillips' random values. ``"gradient"``: Perlin's gradient
         noise, ``sum_i K(x - i) g_i . (x - i)`` with unit gradients ``g_i``
-        (zero at every lattice point).
+        (zero at every lattice point for the interpolating kernels: linear,
+        catmull-rom, quintic).
     table_size : int, default 256
         Entries n of the permutation table and of each value table (even, >= 2).
     period : int or sequence of int, optional
@@ -202,6 +203,12 @@ class LatticeNoise:
     kernels and ``S = 5/4`` for Catmull-Rom (``sum |w| = 1 + t (1 - t)``), whose
     overshoot is therefore absorbed by a factor ``(4/5)**d``. Gradient noise is
     divided by ``sqrt(d Q) S**(d - 1/2)`` (:meth:`Kernel.gradient_bound`).
+
+    **Derivatives.** :meth:`gradient`, :meth:`jacobian`, :meth:`gradient_grid`
+    and :meth:`jacobian_grid` give the exact derivative in input units for
+    the kernels with a continuous first derivative (quadratic, cubic,
+    catmull-rom, quintic); see also :func:`noiselab.curl_noise`,
+    :func:`noiselab.warp` and :func:`noiselab.fractal.fractal_gradient`.
 
     **Precision.** Coordinates are split in float64 into an integer lattice
     index and an exact fraction (``u - floor(u)`` is exact); the index is
@@ -421,6 +428,204 @@ class LatticeNoise:
             return out.reshape(lead)
         return out.reshape(tuple(lead) + (self.dim_out,))
 
+    # ----------------------------------------------------------- derivatives
+    def _check_differentiable(self):
+        k = self.kernel
+        if k.continuity < 1:
+            smooth = ", ".join(name for name, kk in KERNELS.items() if kk.continuity >= 1)
+            raise ValueError(f"kernel {k.name!r} has no continuous first derivative (its noise is "
+                             f"{'discontinuous' if k.continuity < 0 else 'only C0: creased at every lattice line'}); "
+                             f"derivatives need a C1 kernel: kernel must be one of {smooth}")
+
+    def _evaluate_jac(self, flat, freqs, amps, absval, name="points", workers=1):
+        """Values and Jacobians at points ``flat`` (N, d): float64 ``(N, dim_out, 1 + dim_in)``, value first."""
+        self._check_differentiable()
+        flat = np.ascontiguousarray(flat, dtype=np.float64)
+        freqs = np.ascontiguousarray(freqs, dtype=np.float64)
+        amps = np.ascontiguousarray(amps, dtype=np.float64)
+        out = np.empty((flat.shape[0], self.dim_out, self.dim_in + 1))
+        if flat.shape[0]:
+            # one full reduction (fast) decides the common case: finite, and no
+            # scaled coordinate can overflow; else the exact per-axis checks
+            with np.errstate(over="ignore", invalid="ignore"):
+                fine = np.isfinite(max(-flat.min(), flat.max()) * np.abs(freqs).max())
+                if not fine:
+                    check_finite_array(name, flat)
+                    if not np.isfinite(np.abs(flat).max(axis=0) * np.abs(freqs).max(axis=0)).all():
+                        raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
+            k = self.kernel
+            basis = 0 if self.basis == "value" else 1
+            from . import _jacobians  # imported on the first derivative (its kernels cost import time)
+
+            unrolled = _jacobians.JAC_KERNELS.get((self.dim_in, k.taps))
+            tabled = _jacobians.JAC_TABLE_KERNELS.get((self.dim_in, k.taps))
+            if tabled is not None and self._uses_tables():
+                _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
+                                               self.period, self._pmask, *self._hash_tables(basis), basis,
+                                               bool(absval)), workers)
+            elif unrolled is not None and (self.period >= k.taps).all():
+                _run_split(unrolled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
+                                                 self.period, self._pmask, self._perms2, self.values,
+                                                 self.gradients, basis, bool(absval)), workers)
+            else:
+                _run_split(_jit.eval_points_jac, flat, out,
+                           (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, self.period,
+                            self._pmask, self.perms, self.values, self.gradients, basis, bool(absval)), workers)
+        return out
+
+    def _jac_result(self, out, lead, return_value, scalar):
+        """Views into the kernels' ``(N, dim_out, 1 + dim_in)`` output (no copies): the Jacobian and the value."""
+        jac = out[:, :, 1:]
+        jac = jac[:, 0].reshape(tuple(lead) + (self.dim_in,)) if scalar else \
+            jac.reshape(tuple(lead) + (self.dim_out, self.dim_in))
+        if not return_value:
+            return jac
+        return self._shape_out(out[:, :, 0], lead), jac
+
+    def _scalar_only(self, what):
+        if self.dim_out != 1:
+            raise ValueError(f"{what} is for scalar noise (dim_out=1), this noise has dim_out={self.dim_out}; "
+                             f"use jacobian{'_grid' if 'grid' in what else ''} for vector noise")
+
+    def jacobian(self, points, *, return_value=False, workers=1):
+        r"""The exact Jacobian ``d noise_c / d x_a`` at points ``(..., dim_in)``: shape ``(..., dim_out, dim_in)``.
+
+        In input units: the chain rule through ``a * noise(F x + phi)`` gives
+        ``a F_a`` times the lattice-space derivative, which is the kernel's
+        derivative on one axis of the tensor product (and, in the gradient
+        basis, the gradient component ``g_a`` weighted by the kernel). It
+        needs a kernel with a continuous first derivative (``quadratic``,
+        ``cubic``, ``catmull-rom``, ``quintic``); ``box`` and ``linear`` raise
+        ValueError.
+
+        Parameters
+        ----------
+        points : array_like, shape (..., dim_in)
+            As for ``__call__`` (for ``dim_in == 1`` a plain array is that many inputs).
+        return_value : bool, default False
+            Also return the noise values (computed in the same pass), as ``(value, jacobian)``.
+        workers : int, default 1
+            Threads over blocks of points (bit-identical to one worker).
+
+        Returns
+        -------
+        ndarray ``(..., dim_out, dim_in)``, or ``(value, jacobian)``
+
+        Notes
+        -----
+        The result is float64. The value returned with it agrees with
+        ``noise(points)`` to rounding (a few ulp; the fast value kernels sum
+        in another order). Accuracy against central differences:
+        ``tests/test_derivatives.py``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> noise = LatticeNoise(3, 3, seed=2, frequency=2.0)
+        >>> noise.jacobian(np.zeros((5, 3))).shape
+        (5, 3, 3)
+        """
+        workers = check_int("workers", workers, lo=1, hi=1024)
+        self._check_differentiable()
+        lead, flat = self._prepare_points(points)
+        _check_large(flat.shape[0] * self.dim_out * (self.dim_in + 1) * 8 * 2, "lattice noise jacobian")
+        out = self._evaluate_jac(flat, self.frequency[None], np.array([self.scale]), False, workers=workers)
+        return self._jac_result(out, lead, return_value, scalar=False)
+
+    def gradient(self, points, *, return_value=False, workers=1):
+        """The exact gradient of scalar noise (``dim_out == 1``) at points ``(..., dim_in)``: shape ``(..., dim_in)``.
+
+        :meth:`jacobian` of a one-component noise, without the component
+        axis; see there for units, kernels and ``return_value``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> noise = LatticeNoise(2, seed=1, kernel="quintic", frequency=4.0)
+        >>> value, grad = noise.gradient(np.array([[0.3, 0.7]]), return_value=True)
+        >>> value.shape, grad.shape
+        ((1,), (1, 2))
+        """
+        self._scalar_only("gradient")
+        workers = check_int("workers", workers, lo=1, hi=1024)
+        self._check_differentiable()
+        lead, flat = self._prepare_points(points)
+        _check_large(flat.shape[0] * (self.dim_in + 1) * 8 * 2, "lattice noise gradient")
+        out = self._evaluate_jac(flat, self.frequency[None], np.array([self.scale]), False, workers=workers)
+        return self._jac_result(out, lead, return_value, scalar=True)
+
+    def _grid_jac(self, shape, extent, *, window=None, octaves=1, lacunarity=2.0, gain=0.5, absval=False,
+                  value=True):
+        """Value (or None) and Jacobian ``shape + (dim_out, dim_in)`` on a grid, by the separable passes.
+
+        One pass per input axis with the kernel's derivative on that axis (and
+        one for the value). Turbulence (``absval``) is summed octave by octave
+        as ``sign(n_o) n_o'``.
+        """
+        self._check_differentiable()
+        shape, ext = _check_grid(shape, extent, self.dim_in)
+        size = int(np.prod(shape, dtype=np.int64))
+        _check_large(size * self.dim_out * (self.dim_in + 2) * 8, "lattice noise jacobian grid")
+        kw = dict(dtype=np.float64, window=window, lacunarity=lacunarity, gain=gain)
+        d = self.dim_in
+        # one contiguous (dim_out, *shape) block per input axis, written in
+        # place by the grid passes; returned as a (*shape, dim_out, dim_in) view
+        out_shape = tuple(hi - lo for lo, hi in self._window(shape, window))
+        buf = np.empty((d, self.dim_out) + out_shape)
+        if not absval:
+            val = self._grid(shape, ext, octaves=octaves, **kw) if value else None
+            for a in range(d):
+                self._grid(shape, ext, octaves=octaves, deriv_axis=a, out=buf[a], **kw)
+        else:
+            buf[...] = 0.0
+            total = np.zeros((self.dim_out,) + out_shape)
+            octave, part = np.empty_like(total), np.empty_like(total)
+            for o in range(octaves):
+                self._grid(shape, ext, octaves=o + 1, octave_start=o, out=octave, **kw)
+                sgn = np.sign(octave)
+                total += np.abs(octave)
+                for a in range(d):
+                    self._grid(shape, ext, octaves=o + 1, octave_start=o, deriv_axis=a, out=part, **kw)
+                    buf[a] += sgn * part
+            val = self._finish_grid(total) if value else None
+        jac = np.moveaxis(buf, (0, 1), (-1, -2))
+        return val, jac
+
+    def jacobian_grid(self, shape, extent, *, window=None, return_value=False):
+        """:meth:`jacobian` on a regular grid (as :meth:`grid`): shape ``shape + (dim_out, dim_in)``.
+
+        Evaluated by the grid's separable passes with the kernel's derivative
+        on one axis (one set of passes per input axis); agrees with
+        :meth:`jacobian` on :meth:`grid_points` to rounding (tested).
+        ``window`` as in :meth:`grid`; ``return_value`` also returns
+        :meth:`grid`'s values, as ``(value, jacobian)``.
+
+        Examples
+        --------
+        >>> noise = LatticeNoise(2, 2, seed=3)
+        >>> noise.jacobian_grid((32, 16), [(0, 4), (0, 2)]).shape
+        (32, 16, 2, 2)
+        """
+        val, jac = self._grid_jac(shape, extent, window=window, value=bool(return_value))
+        return (val, jac) if return_value else jac
+
+    def gradient_grid(self, shape, extent, *, window=None, return_value=False):
+        """:meth:`gradient` on a regular grid (as :meth:`grid`): shape ``shape + (dim_in,)``.
+
+        See :meth:`jacobian_grid`.
+
+        Examples
+        --------
+        >>> noise = LatticeNoise(2, seed=3, kernel="quintic")
+        >>> h, g = noise.gradient_grid((64, 64), [(0, 4), (0, 4)], return_value=True)
+        >>> h.shape, g.shape
+        ((64, 64), (64, 64, 2))
+        """
+        self._scalar_only("gradient_grid")
+        val, jac = self._grid_jac(shape, extent, window=window, value=bool(return_value))
+        jac = jac[..., 0, :]
+        return (val, jac) if return_value else jac
+
     # ------------------------------------------------------------------ grid
     def grid_points(self, shape, extent):
         """The points ``(*shape, dim_in)`` that :meth:`grid` samples (for the scattered path)."""
@@ -468,21 +673,12 @@ class LatticeNoise:
             return chunked_grid(self, shape, extent, dtype=dtype, chunks=chunks, window=window)
         return self._grid(shape, extent, dtype=dtype, window=window, octaves=1)
 
-    def _grid(self, shape, extent, *, dtype, window, octaves, lacunarity=2.0, gain=0.5, absval=False):
+    def _grid(self, shape, extent, *, dtype, window, octaves, lacunarity=2.0, gain=0.5, absval=False,
+              deriv_axis=None, octave_start=0, out=None):
         dtype = float_dtype(dtype)
         shape, ext = _check_grid(shape, extent, self.dim_in)
         coords = grid_coordinates(shape, ext)
-        if window is not None:
-            win = np.asarray(window, dtype=object)
-            if win.shape != (self.dim_in, 2):
-                raise ValueError(f"window must be one (lo, hi) index pair per axis, got {window!r}")
-            sl = []
-            for a, (lo, hi) in enumerate(win):
-                lo = check_int(f"window[{a}][0]", lo, lo=0, hi=shape[a])
-                hi = check_int(f"window[{a}][1]", hi, lo=lo, hi=shape[a])
-                sl.append((lo, hi))
-        else:
-            sl = [(0, s) for s in shape]
+        sl = self._window(shape, window)
         out_shape = tuple(hi - lo for lo, hi in sl)
         size = math.prod(out_shape)
         _check_large(size * self.dim_out * dtype.itemsize * 2 + size * 8, f"lattice noise grid {shape}")
@@ -493,7 +689,7 @@ class LatticeNoise:
         full = list(coords)
         sub = [coords[a][lo:hi] for a, (lo, hi) in enumerate(sl)]
         separable, sparse = [], []
-        for o in range(octaves):
+        for o in range(octave_start, octaves):
             freq = self.frequency * lacunarity ** o
             amp = self.scale * gain ** o
             with np.errstate(over="ignore"):
@@ -506,13 +702,32 @@ class LatticeNoise:
             (separable if exact and self._separable(full, freq) else sparse).append((freq, amp))
         # the separable pass writes every sample unless it accumulates |.| (turbulence)
         writes_all = bool(separable) and not absval
-        out = (np.empty if writes_all else np.zeros)((self.dim_out,) + out_shape, dtype=dtype)
+        if out is None:
+            out = (np.empty if writes_all else np.zeros)((self.dim_out,) + out_shape, dtype=dtype)
+        else:  # the caller's contiguous (dim_out, *out_shape) float64 buffer (the derivative grids)
+            assert out.shape == (self.dim_out,) + out_shape and out.flags.c_contiguous and out.dtype == dtype
+            if not writes_all:
+                out[...] = 0.0
         if separable:
-            self._grid_separable(sub, full, separable, out, absval)
+            self._grid_separable(sub, full, separable, out, absval, deriv_axis)
         for freq, amp in sparse:
             # grids sparser than this octave's lattice: per-point path, added
-            self._grid_scattered(sub, freq, amp, out, absval)
+            self._grid_scattered(sub, freq, amp, out, absval, deriv_axis)
         return self._finish_grid(out)
+
+    def _window(self, shape, window):
+        """The (lo, hi) sample range per axis of ``window`` (checked), or the whole grid."""
+        if window is None:
+            return [(0, s) for s in shape]
+        win = np.asarray(window, dtype=object)
+        if win.shape != (self.dim_in, 2):
+            raise ValueError(f"window must be one (lo, hi) index pair per axis, got {window!r}")
+        sl = []
+        for a, (lo, hi) in enumerate(win):
+            lo = check_int(f"window[{a}][0]", lo, lo=0, hi=shape[a])
+            hi = check_int(f"window[{a}][1]", hi, lo=lo, hi=shape[a])
+            sl.append((lo, hi))
+        return sl
 
     def _finish_grid(self, out):
         if self.dim_out == 1:
@@ -531,7 +746,7 @@ class LatticeNoise:
             samples *= n
         return block <= 4.0 * samples + 4096
 
-    def _grid_scattered(self, sub, freq, amp, out, absval):
+    def _grid_scattered(self, sub, freq, amp, out, absval, deriv_axis=None):
         # rows along axis 0 keep the temporary small; per-point results do
         # not depend on the chunking
         rest = np.stack(np.meshgrid(*sub[1:], indexing="ij"), axis=-1).reshape(-1, self.dim_in - 1) \
@@ -541,15 +756,25 @@ class LatticeNoise:
             pts = np.empty((rest.shape[0], self.dim_in))
             pts[:, 0] = x0
             pts[:, 1:] = rest
-            vals = self._evaluate(pts, freq[None], np.array([amp]), absval, np.dtype(np.float64))
+            if deriv_axis is None:
+                vals = self._evaluate(pts, freq[None], np.array([amp]), absval, np.dtype(np.float64))
+            else:
+                vals = self._evaluate_jac(pts, freq[None], np.array([amp]), absval)[:, :, 1 + deriv_axis]
             for c in range(self.dim_out):
                 flat_out[c, j] += vals[:, c].astype(out.dtype)
 
-    def _axis_taps(self, coords_a, freq_a, a, grad):
-        """Weights, tap positions and the reduced lattice indices of the distinct taps along one axis."""
+    def _axis_taps(self, coords_a, freq_a, a, grad, deriv=False):
+        """Weights, tap positions and the reduced lattice indices of the distinct taps along one axis.
+
+        ``deriv``: the weights' derivatives along this axis in input units
+        instead (:func:`_jit.axis_dweights`), for the derivative grids.
+        """
         k = self.kernel
         fis, base, w, rw = _jit.axis_weights(coords_a, freq_a, self.phase[a], k.shift, k.left, k.taps,
                                              k.coef, int(self.period[a]), grad)
+        if deriv:
+            w, rw = _jit.axis_dweights(coords_a, freq_a, self.phase[a], k.shift, k.left, k.taps,
+                                       k.coef, k.dcoef, grad)
         # distinct lattice taps along this axis, relative to the smallest
         span = fis.max() - fis.min() if fis.size else 0.0
         if span <= 4 * k.taps * fis.size + 64:
@@ -571,8 +796,12 @@ class LatticeNoise:
             h, par = _jit.hash_expand(h, par, np.ascontiguousarray(lat, dtype=np.int64), perm, n, a == 0)
         return h, par
 
-    def _grid_separable(self, sub, full, octaves, out, absval):
-        """Separable grid path: per octave and term, contract axes d-1..1; then one fused pass on axis 0."""
+    def _grid_separable(self, sub, full, octaves, out, absval, deriv_axis=None):
+        """Separable grid path: per octave and term, contract axes d-1..1; then one fused pass on axis 0.
+
+        ``deriv_axis``: the derivative along that input axis instead (the
+        same passes, with the kernel's derivative on that axis).
+        """
         d = self.dim_in
         grad = self.basis == "gradient"
         nterm = d if grad else 1
@@ -594,7 +823,8 @@ class LatticeNoise:
         post = int(np.prod([c.shape[0] for c in sub[1:]], dtype=np.int64))
         nj = sub[0].shape[0]
         for bi, batch in enumerate(batches):
-            axes_per_octave = [[self._axis_taps(sub[a], freq[a], a, grad) for a in range(d)] for freq, _ in batch]
+            axes_per_octave = [[self._axis_taps(sub[a], freq[a], a, grad, deriv=a == deriv_axis) for a in range(d)]
+                               for freq, _ in batch]
             rows = sum(len(axes[0][0]) for axes in axes_per_octave) * nterm
             for c in range(self.dim_out):
                 inter_all = np.empty((rows, post))

@@ -28,6 +28,7 @@ through the lattice values.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.polynomial import Polynomial
@@ -86,6 +87,49 @@ class Kernel:
             inside = (t >= 0) & (t < 1)
             out[inside] = self.weights(t[inside])[:, k]
         return out
+
+    @cached_property
+    def dcoef(self) -> np.ndarray:
+        """``dcoef[k, p]``: coefficient of ``t**p`` in the derivative ``w_k'(t)`` (shape (4, 6), last column 0)."""
+        d = np.zeros_like(self.coef)
+        d[:, :-1] = self.coef[:, 1:] * np.arange(1, MAX_DEGREE + 1)
+        return d
+
+    def dweights(self, t):
+        """Derivatives ``w_k'(t)`` of the tap weights, shape ``t.shape + (taps,)``."""
+        t = np.asarray(t, dtype=np.float64)
+        powers = t[..., None] ** np.arange(MAX_DEGREE + 1)
+        return powers @ self.dcoef[: self.taps].T
+
+    def derivative(self, x):
+        """The kernel's derivative ``K'(x)`` (one-sided from the right at its knots)."""
+        x = np.asarray(x, dtype=np.float64)
+        out = np.zeros_like(x)
+        for k in range(self.taps):
+            t = x + self.shift - self.left + k
+            inside = (t >= 0) & (t < 1)
+            out[inside] = self.dweights(t[inside])[:, k]
+        return out
+
+    @cached_property
+    def continuity(self) -> int:
+        """Smoothness class of ``K``: -1 (jumps), 0 (C0), 1 (C1), 2 (C2) or more.
+
+        Checked on the tap polynomials: across every knot the pieces of
+        ``K`` and of its derivatives must meet, ``w_k^(j)(1) = w_{k-1}^(j)(0)``,
+        and vanish at both ends of the support (exact rational coefficients,
+        compared to 1e-12).
+        """
+        polys = [Polynomial(self.coef[k]) for k in range(self.taps)]
+        order = -1
+        for j in range(MAX_DEGREE + 1):
+            ders = [p.deriv(j) for p in polys]
+            ok = abs(ders[self.taps - 1](0.0)) < 1e-12 and abs(ders[0](1.0)) < 1e-12
+            ok = ok and all(abs(ders[k](1.0) - ders[k - 1](0.0)) < 1e-12 for k in range(1, self.taps))
+            if not ok:
+                break
+            order = j
+        return order
 
     def value_bound(self, dim: int) -> float:
         """Largest possible ``|sum_i K(x - i) v_i|`` for values ``|v_i| <= 1`` in ``dim`` dimensions."""
