@@ -525,7 +525,8 @@ def test_removing_the_static_part_frees_the_band_speeds_from_a_still_background(
         A.best_velocity(np.stack([still] * 8), remove_static=True)
 
 
-@pytest.mark.parametrize("module", ["", ".spectrum", ".slope", ".isotropy", ".motion", ".seams", ".contrast"])
+@pytest.mark.parametrize("module", ["", ".spectrum", ".slope", ".isotropy", ".motion", ".seams", ".contrast",
+                                    ".quality"])
 def test_docstring_examples_hold(module):
     import doctest
     import importlib

@@ -347,3 +347,101 @@ def test_allocations_are_estimated_before_they_happen():
             A.octave_bands(2, 16, per_octave=2**31)
         with pytest.raises(MemoryError, match="tiled frames"):
             S.iter_tiled_frames(np.zeros((1, 4, 4)), (2**16, 2**16))
+
+
+# ------------------------------------ the functions of issues 15 and 16 (follow-up)
+def test_derivative_paths_refuse_coordinate_and_derivative_overflow():
+    far = np.full((1, 2), 1e10)
+    with pytest.raises(ValueError, match="points times the frequency"):
+        nl.LatticeNoise(2, frequency=1e300).jacobian(far)
+    with pytest.raises(ValueError, match="x times the frequency"):
+        nl.fractal_gradient(nl.LatticeNoise(2, frequency=1e300), far, 1)
+    with pytest.raises(ValueError, match="extent times the frequency"):
+        nl.LatticeNoise(2, frequency=1e300).gradient_grid((2, 2), [(0, 1e10), (0, 1)])
+    # the phase counts too: x * frequency + phase past float64
+    with pytest.raises(ValueError, match="points times the frequency"):
+        nl.LatticeNoise(2, phase=1.7e308).gradient(np.full((1, 2), 1e307))
+    # coordinates fine, but the derivative (amplitude * frequency * ...) overflows: refused, not inf
+    steep = nl.LatticeNoise(2, frequency=1e300, amplitude=1e10)
+    with pytest.raises(ValueError, match="derivative at the given points overflows"):
+        steep.jacobian(np.ones((1, 2)))
+    with pytest.raises(ValueError, match=r"derivative on this grid \(extent\) overflows"):
+        nl.LatticeNoise(2, frequency=1e10, amplitude=1e300).gradient_grid((4, 4), [(0, 1e-10), (0, 1e-10)])
+    assert np.isfinite(nl.LatticeNoise(2, frequency=1e300).gradient(np.ones((3, 2)))).all()
+
+
+def test_new_functions_name_their_bad_arguments():
+    n2, v2, pts = nl.LatticeNoise(2, seed=1), nl.LatticeNoise(2, 2, seed=2), np.ones((3, 2))
+    cases = [
+        (TypeError, "points", lambda: nl.curl_noise(n2, "abc")),
+        (TypeError, "points", lambda: nl.warp(n2, v2)([[1.0, 2.0], [3.0]])),
+        (TypeError, "amount", lambda: nl.warp(n2, v2, 1j)),
+        (ValueError, "amount", lambda: nl.warp(n2, v2, 10**400)),
+        (TypeError, "x", lambda: nl.fractal_gradient(n2, [[1.0, 2.0], [3.0]], 2)),
+        (TypeError, "phase", lambda: nl.monge_normals(n2, pts, phase=1j)),
+        (TypeError, "points", lambda: nl.monge_normals(n2, pts + 1j)),
+        (ValueError, "curvature", lambda: nl.displaced_normals(G.sphere(1), nl.LatticeNoise(3), curvature=10**400)),
+        (TypeError, "normals", lambda: nl.displaced_normals(G.sphere(1), nl.LatticeNoise(3), normals="abc")),
+        (ValueError, "field must take 3-D points", lambda: nl.displaced_normals(G.sphere(1), nl.LatticeNoise(1))),
+        (TypeError, "a", lambda: nl.normal_angles(None, np.eye(3))),
+        (ValueError, "b must hold 3-D vectors", lambda: nl.normal_angles(np.eye(3), np.ones(2))),
+        (TypeError, "target", lambda: A.envelope_error(image(), "noise")),
+        (ValueError, "target", lambda: A.envelope_error(image(), lambda f: np.ones(3))),
+        (TypeError, "bounds", lambda: A.value_statistics(image(), bounds={1.0, 2.0})),
+        (ValueError, "variance must be in", lambda: A.value_statistics(image(), variance=5e-324)),
+        (ValueError, "bounds .* too narrow", lambda: A.value_statistics(image(), bounds=(0, 5e-324))),
+        (ValueError, "support must be in", lambda: A.envelope_error(image(), lambda f: f + 1.0, support=1.0)),
+        (ValueError, "holds no spatial frequency", lambda: A.tent_energy_per_band(image()[None].repeat(4, 0)
+                                                                                  + np.arange(4)[:, None, None],
+                                                                                  1.0, (0.1, 0.2))),
+    ]
+    for exc, words, call in cases:
+        with pytest.raises(exc, match=words):
+            call()
+
+
+def test_normals_of_steep_and_huge_surfaces_are_the_limits_not_nan():
+    n2, pts = nl.LatticeNoise(2, seed=1), np.random.default_rng(0).uniform(0, 4, (50, 2))
+    g = nl.fractal_gradient(n2, pts, 1)
+    # |amplitude * frequency| -> inf: the normal turns horizontal, against the gradient
+    steep = nl.monge_normals(n2, pts, amplitude=1e300)
+    np.testing.assert_allclose(steep[:, :2], -g / np.linalg.norm(g, axis=1, keepdims=True), atol=1e-12)
+    assert np.all(np.abs(steep[:, 2]) < 1e-290)
+    # continuous across the switch to the scaled formula (|amplitude| * frequency = 1), and the plain formula below
+    below = nl.monge_normals(n2, pts, amplitude=1 - 1e-9)
+    np.testing.assert_allclose(below, nl.monge_normals(n2, pts, amplitude=1 + 1e-9), atol=1e-8)
+    plain = np.concatenate([-g * (1 - 1e-9), np.ones((len(g), 1))], axis=1)
+    np.testing.assert_allclose(below, plain / np.linalg.norm(plain, axis=1, keepdims=True), atol=1e-13)
+    # displaced normals: continuous across the switch to the scaled formula (|amplitude| * frequency = 1)
+    sphere, n3 = G.sphere(2), nl.LatticeNoise(3, seed=3)
+    below = nl.displaced_normals(sphere, n3, 1 - 1e-9, curvature=1.0)
+    above = nl.displaced_normals(sphere, n3, 1 + 1e-9, curvature=1.0)
+    np.testing.assert_allclose(below, above, atol=1e-7)
+    np.testing.assert_allclose(nl.displaced_normals(sphere, n3, 1e300, curvature=1.0),
+                               nl.displaced_normals(sphere, n3, 1e12, curvature=1.0), atol=1e-9)
+    # angles do not depend on the vectors' lengths, however large or small
+    a, b = np.random.default_rng(1).standard_normal((2, 20, 3))
+    np.testing.assert_allclose(nl.normal_angles(a * 1e300, b * 1e-300), nl.normal_angles(a, b), rtol=1e-12)
+
+
+def test_scale_free_measures_of_huge_and_tiny_fields():
+    x = np.random.default_rng(0).standard_normal(100)
+    for scale in (1e300, 1e-310):
+        assert A.detect_period(np.tile(x, 3) * scale).period == 100
+    line = nl.LatticeNoise(1, seed=0, kernel="linear").grid((4096,), [(0, 256)])
+    assert A.variance_striping(line * 1e300, 16) == pytest.approx(A.variance_striping(line, 16), rel=1e-9)
+    with pytest.raises(ValueError, match="variance would overflow"):
+        A.value_statistics(line * 1e300)
+    # a power law in a band of any width: log-frequency integration, no k**18 overflow; converged for e=8
+    assert A.shell_slice_below(2, 1e300, exponent=8) == pytest.approx(A.shell_slice_below(2, 1e10, exponent=8))
+    assert 0 <= A.shell_slice_below(2, 1e300) < 1e-200
+    # a subnormal band edge: octave edges lo * 2**k without overflow
+    leak = A.band_leakage(image(), (5e-324, 1e-300))
+    assert leak.inside == 0 and np.isfinite(leak.edges).all()
+    assert leak.below + leak.inside + leak.above + leak.aliased == pytest.approx(1)
+    # a sub-band with no frequency cell: fraction 0 and share 0, not NaN
+    video = np.random.default_rng(2).random((4, 16, 16))
+    m = A.tent_energy_per_band(video, 1.0, (1, 1.02))
+    assert np.isfinite(m.fraction).all()
+    m = A.tent_energy_per_band(video, 1.0, (2, 8), per_octave=4)
+    assert np.isfinite(m.fraction).all() and (m.fraction[m.share == 0] == 0).all() and (m.share == 0).any()

@@ -405,7 +405,8 @@ def test_nan_vertices_are_a_clear_error():
         displace(bad, waves)
 
 
-@pytest.mark.parametrize("module", ["fields", "displace", "shapes", "curves", "surfaces", "flow", "render"])
+@pytest.mark.parametrize("module", ["fields", "displace", "shapes", "curves", "surfaces", "flow", "render",
+                                    "normals"])
 def test_docstring_examples_run(module):
     import doctest
     import importlib

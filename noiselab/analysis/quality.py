@@ -10,12 +10,13 @@ with the same instrument. Frequencies are in cycles/frame (see
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.fft
 
-from .._validate import check_int, check_real
+from .._validate import _asarray, check_int, check_real, check_real_sequence
 from ._common import check_band, check_field, half_weight, noise_floor
 from .spectrum import PowerSpectrum, _radial_frequency, _slabs, as_spectrum, power_spectrum
 
@@ -129,9 +130,12 @@ def band_leakage(field, band, *, oversample=1, window=None) -> BandLeakage:
     nyq = nyq_field / oversample
     lo, hi = check_band("band", band, nyq * np.sqrt(len(spec.axes)))
     fmax = nyq_field * np.sqrt(len(spec.axes))
-    k_lo = int(np.floor(np.log2(min(1.0, lo) / lo))) - 1
-    k_hi = int(np.ceil(np.log2(fmax / lo))) + 1
-    edges = lo * 2.0 ** np.arange(k_lo, k_hi + 1)
+    # lo = m * 2**e exactly: r / lo = (r / m) * 2**-e, so log2(r / lo) = log2(r / m) - e without forming r / lo
+    # (which overflows for a subnormal lo); the edges lo * 2**k are ldexp's exact scalings
+    lo_m, lo_e = np.frexp(lo)
+    k_lo = int(np.floor(np.log2(min(1.0, lo) / lo_m) - lo_e)) - 1
+    k_hi = int(np.ceil(np.log2(fmax / lo_m) - lo_e)) + 1
+    edges = np.ldexp(lo, np.arange(k_lo, k_hi + 1))
     nb = edges.size - 1
     octs = np.zeros(nb)
     octs_al = np.zeros(nb)
@@ -165,7 +169,7 @@ def band_leakage(field, band, *, oversample=1, window=None) -> BandLeakage:
         inside += float(kept[(r >= lo) & (r <= hi)].sum())
         above += float(kept[r > hi].sum())
         pos = r > 0
-        idx = np.clip(np.floor(np.log2(r[pos] / lo)).astype(np.int64) - k_lo, 0, nb - 1)
+        idx = np.clip(np.floor(np.log2(r[pos] / lo_m) - lo_e).astype(np.int64) - k_lo, 0, nb - 1)
         octs += np.bincount(idx, weights=e[pos], minlength=nb)
         octs_al += np.bincount(idx, weights=(e - kept)[pos], minlength=nb)
     total = below + inside + above + aliased
@@ -261,10 +265,21 @@ def shell_slice_below(lo, hi, exponent=0.0) -> float:
     lo = check_real("lo", lo, lo=0.0, lo_open=True)
     hi = check_real("hi", hi, lo=lo, lo_open=True)
     e = check_real("exponent", exponent, lo=-8, hi=8)
-    dens = lambda k: k ** (2 - 2 * e)  # noqa: E731
-    num = quad(lambda k: dens(k) * (1 - np.sqrt(max(1 - lo**2 / k**2, 0.0))), lo, hi, limit=200)[0]
-    den = quad(dens, lo, hi, limit=200)[0]
-    return float(num / den)
+    # k = lo * exp(t), t in [0, L]: dk = k dt, so both integrands carry exp(q t), q = 3 - 2 e, which is
+    # divided by exp(q M) (M = L if q > 0, else 0) so that it stays <= 1 for any band (hi / lo up to 1e600)
+    span = math.log(hi) - math.log(lo)
+    q = 3.0 - 2.0 * e
+    top = span if q > 0 else 0.0
+    # 1 - sqrt(1 - x) = x / (1 + sqrt(1 - x)), x = exp(-2 t): no cancellation for large t
+    cap = lambda t: math.exp(-2 * t) / (1 + math.sqrt(max(-math.expm1(-2 * t), 0.0)))  # noqa: E731
+    # the mass sits within a few units of t = 0 or t = span: split there, so a wide band is not under-sampled
+    cuts = sorted({0.0, span, *(c for d in (0.25, 1.0, 4.0, 16.0, 64.0) for c in (d, span - d) if 0 < c < span)})
+    num = sum(quad(lambda t: math.exp(q * (t - top)) * cap(t), a, b, limit=200)[0] for a, b in zip(cuts, cuts[1:]))
+    if q == 0:
+        den = span
+    else:
+        den = -math.expm1(-q * span) / q if q > 0 else math.expm1(q * span) / q
+    return float(min(max(num / den, 0.0), 1.0))
 
 
 # --------------------------------------------------------------------------- envelope error
@@ -304,16 +319,34 @@ class EnvelopeError:
     outside: float
 
 
+def _real_target(t) -> np.ndarray:
+    """A target (power per cell) as a real float64 array; its finiteness is checked once DC is set aside."""
+    t = _asarray("target", t)
+    if t.dtype.kind not in "biuf":
+        raise TypeError(f"target must be real power per cell (an array or a callable returning one), got dtype "
+                        f"{t.dtype}")
+    return t.astype(np.float64, copy=False)
+
+
 def _target_half(target, spec: PowerSpectrum) -> np.ndarray:
     shape = spec.power.shape
     if callable(target):
         comps, _ = _radial_frequency(spec, spec.axes)
         r = np.sqrt(sum(c.astype(np.float64) ** 2 for c in comps))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = np.asarray(target(np.broadcast_to(r, shape)), dtype=np.float64)
-        t = np.broadcast_to(t, shape)
+        try:
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                t = target(np.broadcast_to(r, shape))
+        except (ValueError, TypeError) as exc:
+            raise type(exc)(f"target must be a callable of the radial frequency (an array of shape {shape}, "
+                            f"cycles/frame) returning the power there; calling it raised: {exc}") from exc
+        t = _real_target(t)
+        try:
+            t = np.broadcast_to(t.astype(np.float64, copy=False), shape)
+        except ValueError:
+            raise ValueError(f"target(f) must return an array of the frequencies' shape {shape} (or one that "
+                             f"broadcasts to it), got shape {t.shape}") from None
     else:
-        t = np.asarray(target, dtype=np.float64)
+        t = _real_target(target)
         if t.shape == tuple(spec.shape) and t.shape != shape:
             t = t[..., : shape[-1]]  # a full fftn-layout target: keep the rfftn half
         if t.shape != shape:
@@ -348,8 +381,8 @@ def envelope_error(field, target, *, groups=16, support=1e-6, window=None) -> En
         ``rfftn`` layout (or full ``fftn`` layout) of the field's shape.
     groups : int
         Number of target-level groups.
-    support : float
-        Cells whose target is below ``support`` x the target's peak are outside the envelope.
+    support : float in [0, 1)
+        Cells whose target is at most ``support`` x the target's peak are outside the envelope.
     window : {None, "hann"}
 
     Returns
@@ -365,7 +398,7 @@ def envelope_error(field, target, *, groups=16, support=1e-6, window=None) -> En
     (True, True)
     """
     groups = check_int("groups", groups, lo=1, hi=1000)
-    support = check_real("support", support, lo=0.0, hi=1.0)
+    support = check_real("support", support, lo=0.0, hi=1.0, hi_open=True)
     spec = as_spectrum(field, window=window)
     t = _target_half(target, spec)
     w = np.broadcast_to(spec.weight, spec.power.shape).astype(np.float64)
@@ -373,6 +406,7 @@ def envelope_error(field, target, *, groups=16, support=1e-6, window=None) -> En
     peak = float(t.max())
     if peak <= 0:
         raise ValueError("target is zero everywhere: no envelope to compare with")
+    t = t / peak  # the comparison removes the gain: in units of the peak no sum of the target can overflow
     inside = t > support * peak
     total = float(np.sum(p * w))
     if total <= 0:
@@ -395,9 +429,9 @@ def envelope_error(field, target, *, groups=16, support=1e-6, window=None) -> En
     with np.errstate(divide="ignore"):
         db = 10 * np.log10(pm / (gain * tm))
     fw = cnt / cnt.sum()
-    return EnvelopeError(target_level=tm, db=db, counts=cnt, rms_db=float(np.sqrt(np.sum(fw * db**2))),
+    return EnvelopeError(target_level=tm * peak, db=db, counts=cnt, rms_db=float(np.sqrt(np.sum(fw * db**2))),
                          max_db=float(np.max(np.abs(db))), noise_db=float(np.sqrt(np.sum(fw * (10 / np.log(10)) ** 2 / cnt))),
-                         gain_db=float(10 * np.log10(gain)), outside=outside)
+                         gain_db=float(10 * np.log10(gain) - 10 * np.log10(peak)), outside=outside)
 
 
 # --------------------------------------------------------------------------- variance and range
@@ -461,26 +495,36 @@ def value_statistics(field, *, variance=None, bounds=None) -> ValueStatistics:
     (1.0, True, 1.0)
     """
     arr = check_field("field", field, min_size=1)
-    var = float(np.var(arr, dtype=np.float64))
     lo_v, hi_v = float(arr.min()), float(arr.max())
+    biggest = max(abs(lo_v), abs(hi_v))
+    if not 1e-150 <= biggest <= 1e150:
+        raise ValueError(f"field values reach {biggest:.3g} in magnitude: their variance would "
+                         f"{'overflow' if biggest > 1 else 'underflow'} float64; |field| must reach 1e-150 and stay "
+                         "below 1e150 (rescale it)")
+    var = float(np.var(arr, dtype=np.float64))
     ratio = None
     if variance is not None:
         variance = check_real("variance", variance, lo=0.0, lo_open=True)
-        ratio = var / variance
+        with np.errstate(over="ignore"):
+            ratio = float(np.float64(var) / variance)
+        if not math.isfinite(ratio):
+            raise ValueError(f"variance must be in ({var / np.finfo(np.float64).max:.3g}, inf) for this field (variance {var:.3g}): "
+                             f"the ratio to {variance:.3g} overflows float64")
     within = used = None
     if bounds is not None:
-        if isinstance(bounds, (str, bytes)) or not hasattr(bounds, "__len__") or len(bounds) != 2:
-            raise ValueError(f"bounds must be a (lo, hi) pair, got {bounds!r}")
-        b0 = check_real("bounds[0]", bounds[0])
-        b1 = check_real("bounds[1]", bounds[1])
+        b0, b1 = check_real_sequence("bounds", bounds, length=2)
         if not b1 > b0:
             raise ValueError(f"bounds must have lo < hi, got ({b0:g}, {b1:g})")
         bounds = (b0, b1)
         within = bool(lo_v >= b0 and hi_v <= b1)
-        used = (hi_v - lo_v) / (b1 - b0)
+        with np.errstate(over="ignore", divide="ignore"):  # b1 - b0 > 0 (gradual underflow), maybe inf (used 0)
+            used = float(np.float64(hi_v - lo_v) / (np.float64(b1) - np.float64(b0)))
+        if not math.isfinite(used):
+            raise ValueError(f"bounds ({b0:g}, {b1:g}) are too narrow for the field's range ({lo_v:g}, {hi_v:g}): "
+                             "the ratio of the widths overflows float64")
     return ValueStatistics(mean=float(np.mean(arr, dtype=np.float64)), variance=var, min=lo_v, max=hi_v,
                            expected_variance=variance, variance_ratio=ratio, bounds=bounds, within_bounds=within,
-                           range_used=used, range_sd=(hi_v - lo_v) / np.sqrt(var))
+                           range_used=used, range_sd=float((hi_v - lo_v) / np.sqrt(var)))
 
 
 # --------------------------------------------------------------------------- periods
@@ -540,6 +584,7 @@ def detect_period(field, axis=-1, *, tol=1e-6, max_lag=None, min_lag=1) -> Perio
     None
     """
     arr = check_field("field", field, min_size=1).astype(np.float64)
+    arr = arr / np.max(np.abs(arr))  # scale-free: scaled to |x| <= 1, the squares neither overflow nor underflow
     axis = check_int("axis", axis, lo=-arr.ndim, hi=arr.ndim - 1) % arr.ndim
     n = arr.shape[axis]
     if n < 4:
@@ -703,6 +748,7 @@ def variance_striping(field, period, *, axis=-1, phases=None) -> float:
     True
     """
     arr = check_field("field", field, min_size=1).astype(np.float64)
+    arr = arr / np.max(np.abs(arr))  # scale-free: scaled to |x| <= 1, the squares neither overflow nor underflow
     axis = check_int("axis", axis, lo=-arr.ndim, hi=arr.ndim - 1) % arr.ndim
     period = check_real("period", period, lo=2.0, hi=arr.shape[axis] / 2)
     nph = int(round(period)) if phases is None else check_int("phases", phases, lo=2)
@@ -740,6 +786,11 @@ def tent_energy_per_band(video, c, band, direction=(0.0, 1.0), *, per_octave=1, 
 
     With ``c = 0`` the tent is the still plane ``w_t = 0``; for a single
     rigid motion use :func:`noiselab.analysis.motion_energy` per band.
+    ``band`` is split into ``per_octave`` bands per octave
+    (:func:`noiselab.analysis.octave_bands`); a band holding no power (no
+    frequency cell of the video, or none with power) has fraction 0 and share
+    0. A ``band`` holding no spatial frequency of the video at all is a
+    ValueError.
 
     Examples
     --------
@@ -761,10 +812,14 @@ def tent_energy_per_band(video, c, band, direction=(0.0, 1.0), *, per_octave=1, 
     # power of each spatial cell summed over temporal frequency, weighted for the unstored mirror columns
     spatial = np.sum(spec.power, axis=0, dtype=np.float64) * g.weight
     total = spec.total
+    if not g.band_mask((lo, hi)).any():
+        raise ValueError(f"band ({lo:g}, {hi:g}) cycles/frame holds no spatial frequency of this video (its "
+                         f"nonzero ones run from {float(g.r[g.r > 0].min()):g} to {float(g.r.max()):g} cycles/frame)")
     frac, share = [], []
     for b in bands:
         s = float(spatial[g.band_mask(b)].sum()) / total if total > 0 else 0.0
-        on = tent_energy(spec, c, b, direction, thickness=thickness, tol=tol)
-        frac.append(on / s if s > 0 else float("nan"))
+        # a sub-band without power (no cell in it, or none with power) has nothing to measure: fraction 0
+        on = tent_energy(spec, c, b, direction, thickness=thickness, tol=tol) if s > 0 else 0.0
+        frac.append(on / s if s > 0 else 0.0)
         share.append(s)
     return BandMotion(bands=np.array(bands), fraction=np.array(frac), share=np.array(share))

@@ -35,7 +35,7 @@ import numbers
 
 import numpy as np
 
-from .._validate import _asarray, check_int, check_real, check_real_array, float_dtype
+from .._validate import _asarray, check_finite_array, check_int, check_real, check_real_array, float_dtype
 
 __all__ = ["fractal_sum", "turbulence", "octaves_used", "fractal_gradient", "turbulence_gradient"]
 
@@ -269,27 +269,33 @@ def _jacobian_sum(noise, x, octaves, lacunarity, gain, normalize, return_value, 
         value, jac = noise._grid_jac(shape, ext, octaves=used, lacunarity=lacunarity, gain=gain, absval=absval,
                                      value=bool(return_value))
     elif lattice:
-        lead, flat = noise._prepare_points(np.asarray(x), "x")
+        lead, flat = noise._prepare_points(_asarray("x", x), "x")
         freqs = noise.frequency[None, :] * (lacunarity ** np.arange(used))[:, None]
         amps = noise.scale * gain ** np.arange(used)
         out = noise._evaluate_jac(flat, freqs, amps, absval, "x", workers)
         value = noise._shape_out(np.ascontiguousarray(out[:, :, 0]), lead)
         jac = out[:, :, 1:].reshape(tuple(lead) + (noise.dim_out, noise.dim_in))
     else:
-        pts = np.stack(np.meshgrid(*grid_coordinates(shape, ext), indexing="ij"), axis=-1) if is_grid else np.asarray(x)
+        pts = np.stack(np.meshgrid(*grid_coordinates(shape, ext), indexing="ij"), axis=-1) if is_grid \
+            else check_finite_array("x", x)
         value = jac = None
-        for o in range(used):
-            scale = lacunarity ** o
-            v, j = noise.jacobian(pts * scale, return_value=True)
-            v = np.asarray(v, dtype=np.float64)
-            j = np.asarray(j, dtype=np.float64) * (gain ** o * scale)
-            if absval:
-                j = j * np.sign(v).reshape(v.shape + (1,) * (j.ndim - v.ndim))
-                v = np.abs(v)
-            v = gain ** o * v
-            value = v if value is None else value + v
-            jac = j if jac is None else jac + j
+        with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused below
+            for o in range(used):
+                scale = lacunarity ** o
+                v, j = noise.jacobian(pts * scale, return_value=True)
+                v = np.asarray(v, dtype=np.float64)
+                j = np.asarray(j, dtype=np.float64) * (gain ** o * scale)
+                if absval:
+                    j = j * np.sign(v).reshape(v.shape + (1,) * (j.ndim - v.ndim))
+                    v = np.abs(v)
+                v = gain ** o * v
+                value = v if value is None else value + v
+                jac = j if jac is None else jac + j
         jac = jac.reshape(value.shape[:value.ndim - (1 if noise.dim_out > 1 else 0)] + (noise.dim_out, noise.dim_in))
+        if not (np.isfinite(value).all() and np.isfinite(jac).all()):
+            raise ValueError(f"noise returned NaN or inf (or the octave sum of its derivative overflowed float64) "
+                             f"at {int((~np.isfinite(jac)).any(axis=(-2, -1)).sum())} point(s); noise's jacobian "
+                             "must be finite")
     if normalize:
         jac = jac / norm
         value = None if value is None else value / norm

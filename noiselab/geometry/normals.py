@@ -15,9 +15,11 @@
 """
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_real
+from .._validate import check_finite_array, check_int, check_real, check_real_array, check_real_vector
 
 __all__ = ["monge_normals", "displaced_normals", "normal_angles", "field_gradient"]
 
@@ -47,24 +49,45 @@ def field_gradient(field, points, *, octaves=1, kind="fractal", lacunarity=2.0, 
         raise ValueError(f"kind must be 'noise', 'fractal' or 'turbulence', got {kind!r}")
     if kind == "noise" and octaves != 1:
         raise ValueError(f"kind='noise' means a single octave; use kind='fractal' for octaves={octaves}")
-    pts = check_finite_array("points", np.asarray(points, dtype=np.float64))
+    pts = check_finite_array("points", points).astype(np.float64, copy=False)
+    if pts.ndim != 2:
+        raise ValueError(f"points must be an (n, k) array of k-D points, got shape {pts.shape}")
+    if getattr(field, "dim_in", None) != pts.shape[1]:
+        raise ValueError(f"field must take {pts.shape[1]}-D points here (dim_in={pts.shape[1]}), got "
+                         f"dim_in={getattr(field, 'dim_in', None)}")
     summed = turbulence_gradient if kind == "turbulence" else fractal_gradient
     value, grad = summed(field, pts, octaves, lacunarity=lacunarity, gain=gain, return_value=True)
     return np.asarray(value, dtype=np.float64), np.asarray(grad, dtype=np.float64)
 
 
 def _unit(v):
+    """Rows of ``v`` scaled to unit length (0 rows stay 0); scaled by their largest entry first, so that
+    neither huge (1e300) nor tiny (1e-300) rows overflow or underflow in the squares."""
+    big = np.max(np.abs(v), axis=-1, keepdims=True)
+    v = v / np.where(big > 0, big, 1.0)
     norm = np.linalg.norm(v, axis=-1, keepdims=True)
     return v / np.where(norm > 0, norm, 1.0)
 
 
-def _per_axis(name, value, size):
-    arr = np.asarray(value, dtype=np.float64)
-    if arr.ndim == 0:
-        arr = np.full(size, float(arr))
-    if arr.shape != (size,):
-        raise ValueError(f"{name} must be a number or a vector of {size} numbers, got shape {arr.shape}")
-    return check_finite_array(name, arr)
+def _scaled_points(points, frequency, phase):
+    """``points * frequency + phase``, refused (naming frequency) where it overflows float64."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        q = points * frequency + phase
+    if not np.isfinite(q).all():
+        raise ValueError(f"frequency times the points (plus phase) overflows float64: |points| up to "
+                         f"{float(np.abs(points).max()):.3g}, frequency up to {float(np.max(frequency)):.3g}; keep "
+                         "|points * frequency + phase| below 1.7e308")
+    return q
+
+
+def _gain(amplitude, frequency):
+    """``(c0, ca, fs)`` with ``c0 n - ca grad(s) * (frequency / fs)`` proportional to the normal's terms:
+    ``(1, amplitude, 1)`` when ``|amplitude| * max(frequency) <= 1``, else everything divided by that
+    product (computed without forming it, which may overflow)."""
+    top = float(np.max(frequency))
+    if abs(amplitude) * top <= 1.0:
+        return 1.0, amplitude, 1.0
+    return (1.0 / top) / abs(amplitude), float(np.sign(amplitude)), top
 
 
 def monge_normals(field, points, amplitude=1.0, frequency=1.0, phase=0.0, *, octaves=1, kind="fractal",
@@ -103,16 +126,24 @@ def monge_normals(field, points, amplitude=1.0, frequency=1.0, phase=0.0, *, oct
     """
     amplitude = check_real("amplitude", amplitude)
     frequency = check_real("frequency", frequency, lo=0.0)
-    phase = _per_axis("phase", phase, 2)
-    pts = check_finite_array("points", np.asarray(points, dtype=np.float64))
+    phase = check_real_vector("phase", phase, 2)
+    pts = check_finite_array("points", points).astype(np.float64, copy=False)
     if pts.ndim == 0 or pts.shape[-1] != 2:
         raise ValueError(f"points must have shape (..., 2) (x, y), got {pts.shape}")
     lead = pts.shape[:-1]
-    value, grad = field_gradient(field, pts.reshape(-1, 2) * frequency + phase, octaves=octaves, kind=kind,
-                                 lacunarity=lacunarity, gain=gain)
-    slope = grad.reshape(lead + (2,)) * (amplitude * frequency)
-    normals = _unit(np.concatenate([-slope, np.ones(lead + (1,))], axis=-1))
-    return (amplitude * value.reshape(lead), normals) if return_heights else normals
+    value, grad = field_gradient(field, _scaled_points(pts.reshape(-1, 2), frequency, phase), octaves=octaves,
+                                 kind=kind, lacunarity=lacunarity, gain=gain)
+    # n ~ (-amplitude * frequency * grad, 1), scaled by 1 / (|amplitude| * frequency) when that product is large
+    c0, ca, fs = _gain(amplitude, frequency)
+    slope = grad.reshape(lead + (2,)) * (ca * (frequency / fs))
+    normals = _unit(np.concatenate([-slope, np.full(lead + (1,), c0)], axis=-1))
+    if not return_heights:
+        return normals
+    with np.errstate(over="ignore"):
+        heights = amplitude * value.reshape(lead)
+    if not np.isfinite(heights).all():
+        raise ValueError(f"amplitude {amplitude:.3g} times the field's values overflows float64 (the heights)")
+    return heights, normals
 
 
 def displaced_normals(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, *, octaves=1, kind="fractal",
@@ -162,29 +193,32 @@ def displaced_normals(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, *, o
     mesh = as_trimesh(mesh)
     vertices = np.asarray(mesh.vertices, dtype=np.float64)
     amplitude = check_real("amplitude", amplitude)
-    freq = _per_axis("frequency", frequency, 3)
-    if np.any(freq < 0):
-        raise ValueError(f"frequency must be >= 0 (on every axis), got {freq.tolist()}")
-    phase_v = _per_axis("phase", phase, 3)
+    freq = check_real_vector("frequency", frequency, 3, lo=0.0)
+    phase_v = check_real_vector("phase", phase, 3)
     if normals is None:
         base = vertex_normals(mesh, weld=True)
         if len(mesh.faces) and mesh.is_watertight and mesh.is_winding_consistent and mesh.volume < 0:
             base = -base
     else:
-        base = check_finite_array("normals", np.asarray(normals, dtype=np.float64))
+        base = check_finite_array("normals", normals).astype(np.float64, copy=False)
         if base.shape != vertices.shape:
             raise ValueError(f"normals must have shape {vertices.shape}, got {base.shape}")
         base = _unit(base)
-    kappa = np.asarray(curvature, dtype=np.float64)
-    if kappa.ndim and kappa.shape != (len(vertices),):
-        raise ValueError(f"curvature must be a number or one per vertex ({len(vertices)}), got shape {kappa.shape}")
-    kappa = check_finite_array("curvature", kappa)
-    value, grad = field_gradient(field, vertices * freq + phase_v, octaves=octaves, kind=kind,
+    if isinstance(curvature, (numbers.Real, np.generic)) and not isinstance(curvature, (bool, np.bool_)):
+        kappa = np.float64(check_real("curvature", curvature))
+    else:
+        kappa = check_real_array("curvature", curvature).astype(np.float64, copy=False)
+        if kappa.ndim and kappa.shape != (len(vertices),):
+            raise ValueError(f"curvature must be a number or one per vertex ({len(vertices)}), got shape "
+                             f"{kappa.shape}")
+    value, grad = field_gradient(field, _scaled_points(vertices, freq, phase_v), octaves=octaves, kind=kind,
                                  lacunarity=lacunarity, gain=gain)
-    h = amplitude * value
-    grad_h = amplitude * grad * freq
+    # N ~ (1 + h kappa) n - grad_S h, h = amplitude * s: divided through by max(1, |amplitude| * F) (see
+    # _gain), F the largest of the frequencies and |kappa|, so no product can overflow
+    c0, ca, fs = _gain(amplitude, np.concatenate([freq, np.abs(np.atleast_1d(kappa)), [0.0]]))
+    grad_h = ca * grad * (freq / fs)
     surface_grad = grad_h - np.einsum("ij,ij->i", grad_h, base)[:, None] * base
-    return _unit((1.0 + h * kappa)[..., None] * base - surface_grad)
+    return _unit((c0 + ca * value * (kappa / fs))[..., None] * base - surface_grad)
 
 
 def normal_angles(a, b):
@@ -197,7 +231,17 @@ def normal_angles(a, b):
     >>> float(normal_angles([0, 0, 1], [0, 1, 1] / np.sqrt(2)).round(6))
     45.0
     """
-    a = np.asarray(a, dtype=np.float64)
-    b = np.asarray(b, dtype=np.float64)
+    a = check_real_array("a", a).astype(np.float64, copy=False)
+    b = check_real_array("b", b).astype(np.float64, copy=False)
+    for name, v in (("a", a), ("b", b)):
+        if v.ndim == 0 or v.shape[-1] != 3:
+            raise ValueError(f"{name} must hold 3-D vectors, shape (..., 3); got shape {v.shape}")
+    try:
+        np.broadcast_shapes(a.shape, b.shape)
+    except ValueError:
+        raise ValueError(f"a and b must have the same (or broadcastable) shapes, got {a.shape} and {b.shape}") \
+            from None
+    # the angle does not depend on the lengths: scaled to unit length, the products neither overflow nor underflow
+    a, b = _unit(a), _unit(b)
     cross = np.linalg.norm(np.cross(a, b), axis=-1)
     return np.degrees(np.arctan2(cross, np.sum(a * b, axis=-1)))

@@ -130,6 +130,13 @@ def _check_reach(flat, freqs, phase, name):
                          "lattice cells per unit; keep |x * frequency| below 1.7e308")
 
 
+def _check_jac_finite(out, where):
+    """Derivatives scale with amplitude * frequency (* (gain * lacunarity)**octave): refuse an overflowed one."""
+    if not np.isfinite(out).all():
+        raise ValueError(f"the derivative {where} overflows float64: amplitude times frequency (times "
+                         "(gain * lacunarity)**octave) is too large; keep |amplitude * frequency| well below 1.7e308")
+
+
 def _check_amplitude(amplitude, dtype, what="amplitude"):
     """The output bound ``amplitude`` (times the octaves' gains) must fit the output dtype."""
     top = float(np.finfo(dtype).max)
@@ -445,14 +452,7 @@ class LatticeNoise:
         amps = np.ascontiguousarray(amps, dtype=np.float64)
         out = np.empty((flat.shape[0], self.dim_out, self.dim_in + 1))
         if flat.shape[0]:
-            # one full reduction (fast) decides the common case: finite, and no
-            # scaled coordinate can overflow; else the exact per-axis checks
-            with np.errstate(over="ignore", invalid="ignore"):
-                fine = np.isfinite(max(-flat.min(), flat.max()) * np.abs(freqs).max())
-                if not fine:
-                    check_finite_array(name, flat)
-                    if not np.isfinite(np.abs(flat).max(axis=0) * np.abs(freqs).max(axis=0)).all():
-                        raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
+            _check_reach(flat, freqs, self.phase, name)  # as for values: x * frequency + phase must stay finite
             k = self.kernel
             basis = 0 if self.basis == "value" else 1
             from . import _jacobians  # imported on the first derivative (its kernels cost import time)
@@ -471,6 +471,7 @@ class LatticeNoise:
                 _run_split(_jit.eval_points_jac, flat, out,
                            (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, self.period,
                             self._pmask, self.perms, self.values, self.gradients, basis, bool(absval)), workers)
+            _check_jac_finite(out, f"at the given {name}")
         return out
 
     def _jac_result(self, out, lead, return_value, scalar):
@@ -564,6 +565,9 @@ class LatticeNoise:
         """
         self._check_differentiable()
         shape, ext = _check_grid(shape, extent, self.dim_in)
+        with np.errstate(over="ignore"):
+            freqs = self.frequency[None, :] * (float(lacunarity) ** np.arange(octaves, dtype=np.float64))[:, None]
+        _check_reach(np.ascontiguousarray(ext.T), freqs, self.phase, "extent")  # before any allocation
         size = int(np.prod(shape, dtype=np.int64))
         _check_large(size * self.dim_out * (self.dim_in + 2) * 8, "lattice noise jacobian grid")
         kw = dict(dtype=np.float64, window=window, lacunarity=lacunarity, gain=gain)
@@ -588,6 +592,7 @@ class LatticeNoise:
                     self._grid(shape, ext, octaves=o + 1, octave_start=o, deriv_axis=a, out=part, **kw)
                     buf[a] += sgn * part
             val = self._finish_grid(total) if value else None
+        _check_jac_finite(buf, "on this grid (extent)")
         jac = np.moveaxis(buf, (0, 1), (-1, -2))
         return val, jac
 

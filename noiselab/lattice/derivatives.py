@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_real
+from .._validate import check_finite_array, check_int, check_real_vector
 from .core import Grid, LatticeNoise, _check_grid, grid_coordinates
 
 __all__ = ["curl_noise", "warp", "Warped"]
@@ -33,7 +33,7 @@ def _check_noise(name, noise):
 
 def _as_points(points, dim, name="points"):
     """``points`` as float64 ``(..., dim)`` (for ``dim == 1`` a plain array is that many inputs)."""
-    pts = check_finite_array(name, np.asarray(points, dtype=np.float64))
+    pts = check_finite_array(name, points).astype(np.float64, copy=False)
     if dim == 1 and (pts.ndim == 0 or pts.shape[-1] != 1):
         pts = pts[..., None]
     if pts.ndim == 0 or pts.shape[-1] != dim:
@@ -116,10 +116,9 @@ class Warped:
         if warp_noise.dim_in != noise.dim_in or warp_noise.dim_out != noise.dim_in:
             raise ValueError(f"warp_noise must map the noise's input space to itself: dim_in = dim_out = "
                              f"{noise.dim_in}; got dim_in={warp_noise.dim_in}, dim_out={warp_noise.dim_out}")
-        amount = np.asarray(amount, dtype=np.float64)
-        if amount.ndim > 1 or amount.size not in (1, noise.dim_in):
-            raise ValueError(f"amount must be a number or dim_in={noise.dim_in} numbers, got {amount.tolist()!r}")
-        self.amount = np.broadcast_to(check_finite_array("amount", amount), (noise.dim_in,)).copy()
+        if isinstance(amount, (list, tuple, np.ndarray)) and np.ndim(amount) == 1 and len(amount) == 1:
+            amount = amount[0]  # one number in a sequence: every axis
+        self.amount = check_real_vector("amount", amount, noise.dim_in)
         self.noise, self.warp_noise = noise, warp_noise
         self.dim_in, self.dim_out = noise.dim_in, noise.dim_out
 
@@ -128,7 +127,15 @@ class Warped:
 
     def _displaced(self, x):
         w = np.asarray(self.warp_noise(x), dtype=np.float64).reshape(x.shape)
-        return x + self.amount * w
+        return self._add(x, w)
+
+    def _add(self, x, w):
+        with np.errstate(over="ignore", invalid="ignore"):
+            y = x + self.amount * w
+        if not np.isfinite(y).all():
+            raise ValueError(f"the warped points x + amount * warp_noise(x) overflow float64 (amount up to "
+                             f"{np.abs(self.amount).max():.3g}); use a smaller amount or warp_noise amplitude")
+        return y
 
     def warp_points(self, points):
         """The warped positions ``x + amount * warp_noise(x)``, shape ``(..., dim_in)``."""
@@ -144,11 +151,14 @@ class Warped:
         wv, wj = self.warp_noise.jacobian(x, return_value=True)
         wv = np.asarray(wv, dtype=np.float64).reshape(x.shape)
         wj = np.asarray(wj).reshape(x.shape[:-1] + (self.dim_in, self.dim_in))
-        y = x + self.amount * wv
+        y = self._add(x, wv)
         value, nj = self.noise.jacobian(y, return_value=True)
         nj = np.asarray(nj).reshape(x.shape[:-1] + (self.dim_out, self.dim_in))
-        inner = self.amount[:, None] * wj + np.eye(self.dim_in)
-        jac = np.matmul(nj, inner)
+        with np.errstate(over="ignore", invalid="ignore"):
+            jac = np.matmul(nj, self.amount[:, None] * wj + np.eye(self.dim_in))
+        if not np.isfinite(jac).all():
+            raise ValueError(f"the warp's derivative overflows float64: amount (up to {np.abs(self.amount).max():.3g}) "
+                             "times warp_noise's derivative; use a smaller amount")
         return (value, jac) if return_value else jac
 
     def gradient(self, points, *, return_value=False):
