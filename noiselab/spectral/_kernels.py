@@ -128,9 +128,10 @@ def coefficient_parts(key, start, mode, a2, c, s):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def count_envelope_rows(env2, counts):
-    """Cells with ``env > 0`` per row; returns 1 if a value is not finite, 2 if one is negative, else 0."""
+def count_envelope_rows(env2, counts, emax):
+    """Cells with ``env > 0`` per row, and ``emax[0]`` the largest value; returns 1 if a value is not finite, 2 if one is negative, else 0."""
     R, K = env2.shape
+    top = 0.0
     for r in range(R):
         n = 0
         for k in range(K):
@@ -141,7 +142,9 @@ def count_envelope_rows(env2, counts):
                 return 2
             if e > 0:
                 n += 1
+                top = max(top, e)
         counts[r] = n
+    emax[0] = top
     return 0
 
 
@@ -182,23 +185,24 @@ def fill_envelope(spec2, env2, counts, r0, r1, a2, c, s):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def band_rows(q0, q1, wxsq, lo, hi, kbeg, kend):
+def band_rows(q0, q1, wxsq, lo, hi, allow_dc, kbeg, kend):
     """Per row ``(i0, i1)`` of a ``(m0, m1, K)`` block, the kx interval ``[kbeg, kend)`` inside the band.
 
     ``lo`` and ``hi`` are the annulus limits in cycles/sample with their
-    tolerance already applied. The radius grows with kx along a row, so the
-    band is one interval; its ends are found by bisection on the same test.
+    tolerance already applied; DC (``f = 0``) is in the band only with
+    ``allow_dc``. The radius grows with kx along a row, so the band is one
+    interval; its ends are found by bisection on the same test.
     """
     m1 = q1.size
     K = wxsq.size
     for r in range(q0.size * m1):
         q = q0[r // m1] + q1[r % m1]
-        # first k with f >= lo and f > 0
+        # first k with f >= lo and (f > 0 or DC allowed)
         a, b = 0, K
         while a < b:
             mid = (a + b) // 2
             f = np.sqrt(q + wxsq[mid]) / _TWO_PI
-            if f >= lo and f > 0:
+            if f >= lo and (f > 0 or allow_dc):
                 b = mid
             else:
                 a = mid + 1
@@ -217,17 +221,24 @@ def band_rows(q0, q1, wxsq, lo, hi, kbeg, kend):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, exponent, interior, pw):
-    """Rows ``r0..r1-1`` of a ``(m0*m1, K)`` block: ``|w|**-exponent * a * exp(i*th)`` inside each row's band.
+def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, exponent, qfloor, inv_qref, weight,
+                   sample, pw):
+    """Rows ``r0..r1-1`` of a ``(m0*m1, K)`` block: ``e * a * exp(i*th)`` inside each row's band, 0 outside.
+
+    ``e = (max(|w|**2, qfloor) * inv_qref) ** (-exponent/2)`` is the power law
+    divided by its value at ``|w|**2 = 1/inv_qref`` (the caller picks the
+    band's loudest end, so ``e <= 1``: no float32 overflow for any exponent;
+    ``qfloor`` makes the law flat below the lowest nonzero frequency, which
+    only DC can be). ``|w|**2 = q0[i0] + q1[i1] + wxsq[kx]`` is summed in
+    float64, ``e`` and the cell in the block's precision.
 
     ``specf`` is the block's flat float view (real and imaginary parts
-    interleaved, ``2*K`` per row), written in its own precision. ``a2`` is the
-    squared random amplitude of each coefficient, ``c, s`` its phase's cosine
-    and sine (the magnitude is taken as ``sqrt(a2 / (c**2 + s**2))``, so that
-    ``|exp(i*th)| = 1`` to the output's precision). Writes into ``pw`` (one
-    entry per coefficient) ``|S|**2 * interior[kx]``: ``interior`` is 1 where a
-    half-spectrum cell stands for two cells of the full spectrum, 0 on the
-    self-conjugate planes (whose power the caller adds once they are Hermitian).
+    interleaved, ``2*K`` per row). ``a2`` is the squared random amplitude of
+    each coefficient, ``c, s`` its phase's cosine and sine (the magnitude is
+    taken as ``sqrt(a2 / (c**2 + s**2))``, so that ``|exp(i*th)| = 1`` to the
+    output's precision). Writes into ``pw`` (one entry per coefficient) the
+    cell's power times ``weight[kx]``: its expected power ``e**2``, or with
+    ``sample`` its drawn power ``|S|**2``.
 
     Indices are unsigned offsets rather than slices: no negative-index
     wrap-around, so the loops vectorise, and no per-row array views (whose
@@ -257,20 +268,28 @@ def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, exponen
                 cc = c[uj + t]
                 ss = s[uj + t]
                 den = cc * cc + ss * ss
-                m = np.sqrt(a2[uj + t] / (T(q + wxsq[ub + t]) * den))
+                qn = T(max(q + wxsq[ub + t], qfloor) * inv_qref)
+                m = np.sqrt(a2[uj + t] / (qn * den))
                 specf[ob + two * t] = m * cc
                 specf[ob + two * t + one] = m * ss
-                pw[uj + t] = m * m * den * interior[ub + t]
+                if sample:
+                    pw[uj + t] = m * m * den * weight[ub + t]
+                else:
+                    pw[uj + t] = weight[ub + t] / qn
         else:
             for i in range(n):
                 t = np.uint64(i)
                 cc = c[uj + t]
                 ss = s[uj + t]
                 den = cc * cc + ss * ss
-                m = T(q + wxsq[ub + t]) ** ex * np.sqrt(a2[uj + t] / den)
+                e = T(max(q + wxsq[ub + t], qfloor) * inv_qref) ** ex
+                m = e * np.sqrt(a2[uj + t] / den)
                 specf[ob + two * t] = m * cc
                 specf[ob + two * t + one] = m * ss
-                pw[uj + t] = m * m * den * interior[ub + t]
+                if sample:
+                    pw[uj + t] = m * m * den * weight[ub + t]
+                else:
+                    pw[uj + t] = e * e * weight[ub + t]
         for k in range(2 * b1, 2 * K):
             specf[base + np.uint64(k)] = zero
         j += n
