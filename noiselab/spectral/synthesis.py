@@ -309,7 +309,7 @@ def _self_conjugate_columns(last_n):
 def _workers(workers):
     """``workers`` with scipy.fft's meaning (None: scipy's default; -1: every core; -k: cores + 1 - k) as a count >= 1."""
     if workers is None:
-        return 1
+        return int(scipy.fft.get_workers())  # 1, or what a scipy.fft.set_workers block around the call says
     if isinstance(workers, (bool, np.bool_)) or not isinstance(workers, (int, np.integer)):
         raise TypeError(f"workers must be an int (scipy.fft's meaning: -1 for every core) or None, got {workers!r}")
     cores = os.cpu_count() or 1
