@@ -220,79 +220,112 @@ def band_rows(q0, q1, wxsq, lo, hi, allow_dc, kbeg, kend):
         kend[r] = max(a, start)
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
-def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, exponent, qfloor, inv_qref, weight,
-                   sample, pw):
-    """Rows ``r0..r1-1`` of a ``(m0*m1, K)`` block: ``e * a * exp(i*th)`` inside each row's band, 0 outside.
+def _make_fill_power_law(mode, exponent_one, sample):
+    """:func:`fill_power_law` compiled for one amplitude law, ``exponent == 1`` or not, sample power or not (constants, so each loop vectorises)."""
 
-    ``e = (max(|w|**2, qfloor) * inv_qref) ** (-exponent/2)`` is the power law
-    divided by its value at ``|w|**2 = 1/inv_qref`` (the caller picks the
-    band's loudest end, so ``e <= 1``: no float32 overflow for any exponent;
-    ``qfloor`` makes the law flat below the lowest nonzero frequency, which
-    only DC can be). ``|w|**2 = q0[i0] + q1[i1] + wxsq[kx]`` is summed in
-    float64, ``e`` and the cell in the block's precision.
+    @njit(cache=True, nogil=True, error_model="numpy")
+    def fill(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, exponent, qfloor, inv_qref, weight, rowpow,
+             scratch):
+        """Rows ``r0..r1-1`` of a ``(m0*m1, K)`` block: ``e * a * exp(i*th)`` inside each row's band, 0 outside.
 
-    ``specf`` is the block's flat float view (real and imaginary parts
-    interleaved, ``2*K`` per row). ``a2`` is the squared random amplitude of
-    each coefficient, ``c, s`` its phase's cosine and sine (the magnitude is
-    taken as ``sqrt(a2 / (c**2 + s**2))``, so that ``|exp(i*th)| = 1`` to the
-    output's precision). Writes into ``pw`` (one entry per coefficient) the
-    cell's power times ``weight[kx]``: its expected power ``e**2``, or with
-    ``sample`` its drawn power ``|S|**2``.
+        The coefficients are words ``start, start+1, ...`` of the stream ``key``
+        (the ``j``-th cell of the rows in C order takes word ``start + j``), drawn
+        in the loop that writes them: the same float32 values as
+        :func:`coefficient_parts` (so :func:`synthesize` with the same envelope
+        draws the same), without the arrays between the two.
 
-    Indices are unsigned offsets rather than slices: no negative-index
-    wrap-around, so the loops vectorise, and no per-row array views (whose
-    reference counting cost more than a short row's arithmetic).
-    """
-    m1 = q1.size
-    T = specf.dtype.type
-    ex = T(-0.5 * exponent)
-    zero = T(0)
-    one = np.uint64(1)
-    two = np.uint64(2)
-    j = 0
-    for r in range(r0, r1):
-        q = q0[r // m1] + q1[r % m1]
-        b0 = kbeg[r]
-        b1 = kend[r]
-        base = np.uint64(r * 2 * K)
-        for k in range(2 * b0):
-            specf[base + np.uint64(k)] = zero
-        n = b1 - b0
-        ob = base + np.uint64(2 * b0)
-        uj = np.uint64(j)
-        ub = np.uint64(b0)
-        if exponent == 1.0:
+        ``e = (max(|w|**2, qfloor) * inv_qref) ** (-exponent/2)`` is the power law
+        divided by its value at ``|w|**2 = 1/inv_qref`` (the caller picks the
+        band's loudest end, so ``e <= 1``: no float32 overflow for any exponent;
+        ``qfloor`` makes the law flat below the lowest nonzero frequency, which
+        only DC can be). ``|w|**2 = q0[i0] + q1[i1] + wxsq[kx]`` is summed in
+        float64, ``e`` and the cell in the block's precision; the magnitude is
+        ``e * sqrt(a2 / (c**2 + s**2))`` so that ``|exp(i*th)| = 1`` to the
+        output's precision.
+
+        ``specf`` is the block's flat float view (real and imaginary parts
+        interleaved, ``2*K`` per row). ``rowpow[r]`` receives the row's power
+        weighted by ``weight[kx]``: expected (``e**2``) or, with ``sample``, drawn
+        (``|S|**2``); ``scratch`` (at least ``K`` floats) holds a row's terms,
+        summed in float64 in a fixed order.
+
+        Indices are unsigned offsets rather than slices: no negative-index
+        wrap-around, so the loops vectorise, and no per-row array views (whose
+        reference counting cost more than a short row's arithmetic).
+        """
+        m1 = q1.size
+        T = specf.dtype.type
+        ex = T(-0.5 * exponent)
+        zero = T(0)
+        one = np.uint64(1)
+        two = np.uint64(2)
+        j = start
+        for r in range(r0, r1):
+            q = q0[r // m1] + q1[r % m1]
+            b0 = kbeg[r]
+            b1 = kend[r]
+            base = np.uint64(r * 2 * K)
+            for k in range(2 * b0):
+                specf[base + np.uint64(k)] = zero
+            n = b1 - b0
+            ob = base + np.uint64(2 * b0)
+            ub = np.uint64(b0)
             for i in range(n):
                 t = np.uint64(i)
-                cc = c[uj + t]
-                ss = s[uj + t]
+                z = splitmix64(key, j + i)
+                a2 = T(_amplitude2(z, mode))
+                c32, s32 = _phase(z)
+                cc = T(c32)
+                ss = T(s32)
                 den = cc * cc + ss * ss
                 qn = T(max(q + wxsq[ub + t], qfloor) * inv_qref)
-                m = np.sqrt(a2[uj + t] / (qn * den))
+                if exponent_one:
+                    m = np.sqrt(a2 / (qn * den))
+                    e2 = T(1) / qn
+                else:
+                    e = qn ** ex
+                    m = e * np.sqrt(a2 / den)
+                    e2 = e * e
                 specf[ob + two * t] = m * cc
                 specf[ob + two * t + one] = m * ss
                 if sample:
-                    pw[uj + t] = m * m * den * weight[ub + t]
+                    scratch[t] = m * m * den * weight[ub + t]
                 else:
-                    pw[uj + t] = weight[ub + t] / qn
-        else:
-            for i in range(n):
-                t = np.uint64(i)
-                cc = c[uj + t]
-                ss = s[uj + t]
-                den = cc * cc + ss * ss
-                e = T(max(q + wxsq[ub + t], qfloor) * inv_qref) ** ex
-                m = e * np.sqrt(a2[uj + t] / den)
-                specf[ob + two * t] = m * cc
-                specf[ob + two * t + one] = m * ss
-                if sample:
-                    pw[uj + t] = m * m * den * weight[ub + t]
-                else:
-                    pw[uj + t] = e * e * weight[ub + t]
-        for k in range(2 * b1, 2 * K):
-            specf[base + np.uint64(k)] = zero
-        j += n
+                    scratch[t] = e2 * weight[ub + t]
+            # four running sums (a fixed order, so the same float every time; one chain would wait on each add)
+            p0 = 0.0
+            p1 = 0.0
+            p2 = 0.0
+            p3 = 0.0
+            i = 0
+            while i + 4 <= n:
+                p0 += np.float64(scratch[i])
+                p1 += np.float64(scratch[i + 1])
+                p2 += np.float64(scratch[i + 2])
+                p3 += np.float64(scratch[i + 3])
+                i += 4
+            while i < n:
+                p0 += np.float64(scratch[i])
+                i += 1
+            rowpow[r] = (p0 + p1) + (p2 + p3)
+            for k in range(2 * b1, 2 * K):
+                specf[base + np.uint64(k)] = zero
+            j += n
+
+    return fill
+
+
+_FILLS = {}
+
+
+def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, mode, exponent, qfloor, inv_qref,
+                   weight, sample, rowpow, scratch):
+    """See :func:`_make_fill_power_law`'s kernel; dispatches to the variant for ``mode``, ``exponent == 1``, ``sample``."""
+    flags = (int(mode), bool(exponent == 1.0), bool(sample))
+    f = _FILLS.get(flags)
+    if f is None:
+        f = _FILLS[flags] = _make_fill_power_law(*flags)
+    f(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, exponent, qfloor, inv_qref, weight, rowpow, scratch)
 
 
 @njit(cache=True, nogil=True, error_model="numpy")

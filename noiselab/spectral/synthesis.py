@@ -421,17 +421,17 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     groups = _row_groups(counts)
     starts = np.concatenate([[0], np.cumsum([g[2] for g in groups])[:-1]]).astype(np.int64)
 
+    rowpow = np.zeros(R)
+
     def fill(i):
-        r0, r1, m = groups[i]
-        a2, c, s = _draws(key, int(starts[i]), m, mode, dt)
-        pw = np.empty(m, dtype=dt)
-        _kernels.fill_power_law(bf, Kr, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, float(exponent),
-                                float(qfloor), float(inv_qref), weight, sample, pw)
-        return float(np.sum(pw, dtype=np.float64))
+        r0, r1, _ = groups[i]
+        scratch = np.empty(Kr, dtype=dt)
+        _kernels.fill_power_law(bf, Kr, q0, q1, wxsq, kbeg, kend, r0, r1, key, int(starts[i]), mode,
+                                float(exponent), float(qfloor), float(inv_qref), weight, sample, rowpow, scratch)
 
     nw = _workers(workers)
-    # one sum per group, added in group order: the same float for any worker count
-    power = 2.0 * float(np.sum(_map_groups(fill, range(len(groups)), nw)))
+    _map_groups(fill, range(len(groups)), nw)
+    power = 2.0 * float(np.sum(rowpow))  # the same float for any worker count: one fixed order
     # the self-conjugate planes: the annulus is symmetric under k -> -k, and so is the kept block
     maps = [np.searchsorted(ix, (-ix) % m) for ix, m in zip(index, shape[:-1])]
     maps = [np.zeros(1, dtype=np.int64)] * (2 - len(maps)) + maps
