@@ -431,3 +431,18 @@ def test_workers_is_validated():
     for bad in (1.5, "2", True):
         with pytest.raises(TypeError, match="workers must be"):
             synthesize((16, 16), lambda wy, wx: 1.0 + 0 * wy * wx, workers=bad)
+
+
+def test_analysers_give_the_same_bits_for_any_worker_count():
+    from noiselab import analysis as A
+    from noiselab.snow import snow
+
+    img = spectral_noise((96, 128), seed=1)
+    video = snow((16, 64, 64), seed=2)
+    assert A.power_spectrum(img, workers=1).power.tobytes() == A.power_spectrum(img, workers=2).power.tobytes()
+    r1, r2 = A.radial_spectrum(img, workers=1), A.radial_spectrum(img, workers=-1)
+    assert r1.power.tobytes() == r2.power.tobytes()
+    band = (4, 16)
+    assert A.tent_energy(video, 1.0, band, workers=1) == A.tent_energy(video, 1.0, band, workers=2)
+    bands = [(2, 8), (8, 32)]
+    assert A.band_speeds(video, bands, workers=1).tobytes() == A.band_speeds(video, bands, workers=-1).tobytes()

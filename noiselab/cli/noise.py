@@ -65,6 +65,9 @@ def add_arguments(parser):
     parser.add_argument("--dtype", default="float32", choices=("float32", "float64"),
                         help="precision of .npy output (default: float32)")
     parser.add_argument("--fps", type=float, default=24.0, help="frames per second of a video (default: 24)")
+    parser.add_argument("--workers", type=int, default=-1,
+                        help="threads: a count, or -1 for every core, -2 for all but one (default: -1); "
+                             "the output is the same for any count")
 
 
 def run(args) -> int:
@@ -96,8 +99,10 @@ def run(args) -> int:
     dtype = np.float32 if (suffix != ".npy" or args.dtype == "float32") else np.float64
     grid = Grid(shape, [(0.0, c) for c in cells])
     summer = turbulence if args.kind == "turbulence" else fractal_sum
+    from ..spectral.synthesis import _workers
+
     field, used = summer(noise, grid, args.octaves, lacunarity=args.lacunarity, gain=args.gain,
-                         dtype=dtype, return_octaves=True)
+                         dtype=dtype, return_octaves=True, workers=_workers(args.workers))
     bound = sum(args.gain ** o for o in range(used))
     lo, hi = (0.0 if args.kind == "turbulence" else -bound), bound
     if args.value_range == "data":
