@@ -412,16 +412,18 @@ def test_synthesize_huge_and_tiny_envelopes_are_scaled_or_refused():
 
 @pytest.mark.parametrize("workers", [2, 3, -1])
 def test_output_is_bit_identical_for_any_worker_count(workers):
-    cases = [((192, 256), None), ((64, 80), (2, 12)), ((24, 32, 40), None), ((24, 32, 40), (1, 6)), ((5000,), None)]
+    # big enough to be filled on several threads (at least 2**16 cells), and a small one filled on one
+    cases = [((384, 512), None), ((40, 64, 80), None), ((96, 128, 128), (2, 40)), ((1 << 18,), None),
+             ((64, 80), (2, 12))]
     for shape, band in cases:
         for normalize in ("expected", "sample"):
             a = spectral_noise(shape, band=band, seed=5, normalize=normalize, workers=1)
             b = spectral_noise(shape, band=band, seed=5, normalize=normalize, workers=workers)
             assert a.tobytes() == b.tobytes(), (shape, band, normalize)
     env = lambda wt, wy, wx: E.annulus(wt, wy, wx, lo=0.02, hi=0.4)  # noqa: E731
-    a = synthesize((24, 40, 48), env, seed=2, workers=1)
-    assert a.tobytes() == synthesize((24, 40, 48), env, seed=2, workers=workers).tobytes()
-    assert a.tobytes() == synthesize((24, 40, 48), env, seed=2).tobytes()
+    a = synthesize((48, 64, 80), env, seed=2, workers=1)
+    assert a.tobytes() == synthesize((48, 64, 80), env, seed=2, workers=workers).tobytes()
+    assert a.tobytes() == synthesize((48, 64, 80), env, seed=2).tobytes()
 
 
 def test_workers_is_validated():

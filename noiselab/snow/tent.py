@@ -26,7 +26,6 @@ and ``wt`` in rad/frame; ``c`` in rad/frame; speeds in px/frame.
 """
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -216,7 +215,7 @@ def to_half_spectrum(C, cols: TentColumns):
     return S
 
 
-def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 20, bar=None, workers=None):
+def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 18, bar=None, workers=None):
     """``irfftn`` of the sparse columns into ``out`` (T, H, W), transforming only what carries energy.
 
     Equal to ``scipy.fft.irfftn(to_half_spectrum(C, cols), s=(T, H, W))`` to
@@ -231,7 +230,7 @@ def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 20, bar=None, w
     whichever thread takes it, so the bits do not depend on ``workers``; the
     only full-size array is ``out`` (plus one block's scratch per thread).
     """
-    from ..spectral.synthesis import _workers
+    from ..spectral.synthesis import _pool, _workers
     from . import _kernels
 
     nw = _workers(workers)
@@ -242,7 +241,7 @@ def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 20, bar=None, w
     kx = cols.kx.astype(np.int64)
     tc = int(max(1, min(T, chunk_bytes // max(1, H * K * C.itemsize))))
     blocks = [(t0, min(T, t0 + tc)) for t0 in range(0, T, tc)]
-    rows = int(max(1, min(H, (chunk_bytes // 4) // max(1, W * out.itemsize))))
+    rows = int(max(1, min(H, chunk_bytes // max(1, W * out.itemsize))))
 
     def render(blk):
         t0, t1 = blk
@@ -260,19 +259,14 @@ def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 20, bar=None, w
         return blo, bhi, t1 - t0
 
     lo, hi = np.inf, -np.inf
-    if nw <= 1 or len(blocks) <= 1:
+    if nw <= 1 or len(blocks) <= 1 or T * H * W < (1 << 16):
         results = map(render, blocks)
     else:
-        pool = ThreadPoolExecutor(max_workers=min(nw, len(blocks)))
-        results = pool.map(render, blocks)
-    try:
-        for blo, bhi, n in results:  # in block order, whichever thread finished first
-            lo, hi = min(lo, blo), max(hi, bhi)
-            if bar is not None:
-                bar.update(n)
-    finally:
-        if nw > 1 and len(blocks) > 1:
-            pool.shutdown()
+        results = _pool(min(nw, len(blocks))).map(render, blocks)
+    for blo, bhi, n in results:  # in block order, whichever thread finished first
+        lo, hi = min(lo, blo), max(hi, bhi)
+        if bar is not None:
+            bar.update(n)
     return lo, hi
 
 

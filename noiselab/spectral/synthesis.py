@@ -279,7 +279,7 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
         u, c, s = _draws(key, int(starts[i]), n, mode)
         _kernels.fill_envelope(spec2, env2, counts, r0, r1, u, c, s)
 
-    _map_groups(fill, range(len(groups)), nw)
+    _map_groups(fill, range(len(groups)), nw if int(counts.sum()) >= _MIN_PARALLEL else 1)
     for j in _self_conjugate_columns(shape[-1]):
         spec[..., j] = hermitian_plane(spec[..., j], env[..., j] > 0)
     field = scipy.fft.irfftn(spec, s=shape, workers=workers)  # (overwrite_x=True measured slower: in-place strided passes)
@@ -320,12 +320,24 @@ def _workers(workers):
     return n
 
 
+_POOLS = {}  # worker count -> a thread pool kept for the process (starting threads per call cost ~0.1 ms each)
+_MIN_PARALLEL = 1 << 16  # fewer cells than this are filled on the calling thread (measured: threads cost more)
+
+
+def _pool(nw):
+    """A process-wide pool of ``nw`` threads (created on first use)."""
+    pool = _POOLS.get(nw)
+    if pool is None:
+        pool = _POOLS[nw] = ThreadPoolExecutor(max_workers=nw, thread_name_prefix="noiselab")
+    return pool
+
+
 def _map_groups(fn, groups, nw):
     """``[fn(g) for g in groups]``, on ``nw`` threads when more than one (the numba kernels release the GIL)."""
+    groups = list(groups)
     if nw <= 1 or len(groups) <= 1:
         return [fn(g) for g in groups]
-    with ThreadPoolExecutor(max_workers=min(nw, len(groups))) as pool:
-        return list(pool.map(fn, groups))
+    return list(_pool(min(nw, len(groups))).map(fn, groups))
 
 
 def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, workers=1):
@@ -429,7 +441,7 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
         _kernels.fill_power_law(bf, Kr, q0, q1, wxsq, kbeg, kend, r0, r1, key, int(starts[i]), mode,
                                 float(exponent), float(qfloor), float(inv_qref), weight, sample, rowpow, scratch)
 
-    nw = _workers(workers)
+    nw = _workers(workers) if int(counts.sum()) >= _MIN_PARALLEL else 1
     _map_groups(fill, range(len(groups)), nw)
     power = 2.0 * float(np.sum(rowpow))  # the same float for any worker count: one fixed order
     # the self-conjugate planes: the annulus is symmetric under k -> -k, and so is the kept block
