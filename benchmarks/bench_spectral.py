@@ -50,19 +50,28 @@ from noiselab.spectral import spectral_noise, synthesize  # noqa: E402
 
 
 def _before_module(rev):
-    """``noiselab/spectral/synthesis.py`` as it was at git revision ``rev``, imported as a module."""
-    src = subprocess.run(["git", "show", f"{rev}:noiselab/spectral/synthesis.py"], cwd=ROOT, check=True,
-                         capture_output=True, text=True).stdout
-    src = (src.replace("from .._validate", "from noiselab._validate")
-           .replace("from .envelopes", "from noiselab.spectral.envelopes")
-           .replace("from .frequencies", "from noiselab.spectral.frequencies")
-           .replace("from . import _kernels", "from noiselab.spectral import _kernels"))
-    path = Path(tempfile.mkdtemp()) / "spectral_before.py"
-    path.write_text(src)
-    spec = importlib.util.spec_from_file_location("spectral_before", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    """``noiselab/spectral/synthesis.py`` and its ``_kernels.py`` as they were at git revision ``rev``, imported."""
+    tmp = Path(tempfile.mkdtemp())
+
+    def load(name, relpath, subst):
+        src = subprocess.run(["git", "show", f"{rev}:{relpath}"], cwd=ROOT, check=True,
+                             capture_output=True, text=True).stdout
+        for a, b in subst:
+            src = src.replace(a, b)
+        path = tmp / f"{name}.py"
+        path.write_text(src)
+        spec = importlib.util.spec_from_file_location(name, path)
+        mod = importlib.util.module_from_spec(spec)
+        sys.modules[name] = mod
+        spec.loader.exec_module(mod)
+        return mod
+
+    load("spectral_kernels_before", "noiselab/spectral/_kernels.py", [])
+    return load("spectral_before", "noiselab/spectral/synthesis.py", [
+        ("from .._validate", "from noiselab._validate"),
+        ("from .envelopes", "from noiselab.spectral.envelopes"),
+        ("from .frequencies", "from noiselab.spectral.frequencies"),
+        ("from . import _kernels", "import spectral_kernels_before as _kernels")])
 
 
 def _half_spectrum(shape, dtype):
