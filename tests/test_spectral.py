@@ -372,7 +372,8 @@ def test_dc_term_kept_on_request_with_the_lowest_ring_amplitude():
 
 # --- issue 11: silent wrong output from the spectral engine ---
 
-@pytest.mark.parametrize("shape,exponent", [((4096,), 8.0), ((65536,), 5.0), ((512, 512), 8.0), ((8192,), -8.0)])
+@pytest.mark.parametrize("shape,exponent", [((4096,), 8.0), ((65536,), 5.0), ((512, 512), 8.0), ((8192,), -8.0),
+                                            ((4096,), 7.3), ((64, 64, 64), 6.5)])
 def test_steep_exponents_are_right_in_float32(shape, exponent):
     # the float32 power sum used to overflow (all zeros, or std 2.9e13 at 2048**2): the law is now evaluated
     # relative to the band's loudest end and the sums are float64, so float32 gives the float64 field
