@@ -303,3 +303,19 @@ def test_default_snow_falls_down_in_its_spectrum_and_images():
     assert down > 20 * up
     dx, dy = _mean_displacement(a, steps=8)
     assert dy > 0.5 and abs(dx) < 0.5
+
+
+def test_cli_workers_option_same_video_and_named_errors(tmp_path, capsys):
+    from noiselab.cli import main
+
+    outs = []
+    for w in ("1", "2"):
+        out = tmp_path / f"alpha{w}.npy"
+        args = ["snow", "--width", "64", "--height", "48", "--frames", "24", "--loops", "1", "--no-background",
+                "--output", str(out), "--quiet", "--workers", w]
+        assert main(args) == 0
+        outs.append(np.load(out))
+    assert outs[0].tobytes() == outs[1].tobytes()
+    assert main(["snow", "--width", "16", "--height", "16", "--frames", "2", "--workers", "0",
+                 "--output", str(tmp_path / "x.npy"), "--quiet"]) == 2
+    assert "workers must be" in capsys.readouterr().err
