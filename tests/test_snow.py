@@ -255,7 +255,7 @@ def test_same_seed_same_bits_float32_close_to_float64():
 def test_bit_identical_for_any_worker_count(workers):
     # frames are rendered in blocks shared among threads; each block is computed the same way by any thread,
     # and the t-pass is scipy's with workers: same bits for any count (odd sizes, many blocks, float64)
-    for shape, kw in [((24, 96, 80), {}), ((7, 33, 31), dict(dtype=np.float64, band=(1, 15))),
+    for shape, kw in [((24, 96, 80), {}), ((20, 256, 256), {}), ((7, 33, 31), dict(dtype=np.float64, band=(1, 15))),
                       ((40, 64, 64), dict(rescale=False, pan=(0.3, 0.1)))]:
         a = snow(shape, seed=5, workers=1, **kw)
         b = snow(shape, seed=5, workers=workers, **kw)

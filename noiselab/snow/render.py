@@ -6,19 +6,21 @@ import numpy as np
 from .._progress import progress
 from .._validate import as_generator, check_finite_array, check_memory, check_real, check_shape, float_dtype
 from ..spectral.envelopes import unit_direction
-from ..spectral.synthesis import AMPLITUDES, _workers
+from ..spectral.synthesis import AMPLITUDES, _pool, _workers
 from . import _kernels
 from .tent import assemble, pruned_irfftn, tent_columns, to_half_spectrum
 
 __all__ = ["snow", "snow_spectrum", "rescale_opacity"]
 
 
-def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
+def rescale_opacity(field, beta=1.5, *, lo=None, hi=None, workers=None):
     """Map a field to opacity in place: ``alpha = ((field - min) / (max - min)) ** beta`` (thesis 3.3).
 
     A constant field (``max == min``) has no structure to show and becomes
     fully transparent (``alpha = 0``) instead of dividing by zero. ``lo`` and
-    ``hi`` may pass a known minimum and maximum (saves one pass).
+    ``hi`` may pass a known minimum and maximum (saves one pass). ``workers``:
+    threads (scipy.fft's meaning, -1 every core), the field split in fixed
+    chunks: the same values for any count.
 
     Examples
     --------
@@ -50,7 +52,14 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
     scale = ft(1) / span
     while (ft(hi) - ft(lo)) * scale < 1:
         scale = np.nextafter(scale, ft(np.inf))
-    _kernels.rescale_power(flat, float(lo), float(scale), beta)
+    nw = _workers(workers)
+    step = 1 << 20  # fixed chunks (not per worker): each element is mapped alone, so any count gives the same bits
+    chunks = [flat[i:i + step] for i in range(0, flat.size, step)]
+    if nw <= 1 or len(chunks) <= 1:
+        _kernels.rescale_power(flat, float(lo), float(scale), beta)
+    else:
+        list(_pool(min(nw, len(chunks))).map(lambda c: _kernels.rescale_power(c, float(lo), float(scale), beta),
+                                             chunks))
     return field
 
 
@@ -172,7 +181,7 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
     with progress(total=T, desc="snow", enabled=show_progress, unit="frame") as bar:
         lo, hi = pruned_irfftn(C, cols, out, bar=bar, workers=workers)
     if rescale:
-        rescale_opacity(out, beta, lo=lo, hi=hi)
+        rescale_opacity(out, beta, lo=lo, hi=hi, workers=nw)
     return out
 
 
