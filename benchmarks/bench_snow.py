@@ -280,7 +280,12 @@ def main():
             lines.append(f"| {base} -> {w} | {t['speedup_floor32']:.2f} "
                          f"({_parallel_fraction(t['speedup_floor32'], base, w):.2f}) | {t['speedup_snow32']:.2f} "
                          f"({_parallel_fraction(t['speedup_snow32'], base, w):.2f}) |")
-        lines.append("")
+        t1 = tm[base]
+        serial = t1["build_frac"] / t1["ratio32"]
+        lines += ["", f"From the {base}-worker profile instead (robust to the load): the spectrum build (sparse tent "
+                  f"cells + random draws) is the only serial stage, {100 * serial:.0f} % of `snow`'s time; every other "
+                  f"stage runs on the workers, so p <= {1 - serial:.2f} (Amdahl's bound on 2 workers: "
+                  f"{1 / (serial + (1 - serial) / 2):.2f} x).", ""]
     tm1 = tm
     lines += [
         f"What is exploited: {tm1['cells']:,} of the {tm1['half_spectrum']:,} half-spectrum cells carry energy "
