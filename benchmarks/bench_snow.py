@@ -226,7 +226,9 @@ def main():
         print(json.dumps(memory_case(args.memory_case, shape, workers[0])))
         return
     rounds = 5 if args.quick else max(5, args.rounds)
+    load0 = os.getloadavg()[0]
     tm = timing(shape, rounds, workers)
+    load1 = os.getloadavg()[0]
     mem = memory(shape, workers)
     acc = accuracy(shape)
     pr = None if args.no_peer else peer(shape, 5)
@@ -245,7 +247,8 @@ def main():
         f"noiselab {noiselab.__version__}",
         f"- shape (T, H, W) = {shape}, default scene (band {W / 32:g}..{W / 4:g} cycles/frame, c = 1, "
         f"thickness 0.1, beta 1.5); the same worker count on both sides (scipy.fft `workers=`; snow's `workers=`)",
-        f"- timing: {rounds} interleaved rounds, median of per-round ratios",
+        f"- timing: {rounds} interleaved rounds, median of per-round ratios; load average (1 min) "
+        f"{load0:.1f} before and {load1:.1f} after the timing, on {os.cpu_count()} cores",
         "",
         "## Speed (floor = bare `scipy.fft.irfftn` of a `(T, H, W//2+1)` spectrum to the same output, same workers)",
         "",

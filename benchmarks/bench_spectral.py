@@ -238,13 +238,16 @@ def _cpu():
 
 def write_md(rows, names, rounds, argv, path, before_rev=None):
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    load = next((x for x in argv if x.startswith("#load")), None)
     lines = [
         "# spectral_noise / synthesize against a bare irfftn",
         "",
-        f"Command: `python3 benchmarks/bench_spectral.py {' '.join(argv)}`".replace(" `", " `").rstrip(),
+        f"Command: `python3 benchmarks/bench_spectral.py {' '.join(a for a in argv if not a.startswith('#load'))}`"
+        .rstrip(),
         "",
         f"Date: {now}. Machine: {platform.node()}, {_cpu()}, {os.cpu_count()} cores (shared with other jobs: "
-        "ratios are what hold, the milliseconds move with the load). "
+        "ratios are what hold, the milliseconds move with the load; load average (1 min) before and after: "
+        f"{' and '.join(load.split()[1:]) if load else '?'}). "
         f"Python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}, "
         f"numba {numba.__version__}, noiselab {getattr(noiselab, '__version__', '?')}.",
         "",
@@ -306,7 +309,9 @@ def main(argv=None):
     a = p.parse_args(argv)
     if a.rounds < 5:
         p.error("--rounds must be at least 5 (medians of fewer are not reported)")
+    load0 = os.getloadavg()[0]
     rows, names = run(a.rounds, a.quick, a.before, a.workers)
+    argv = list(argv) + [f"#load {load0:.1f} {os.getloadavg()[0]:.1f}"]
     write_md(rows, names, a.rounds, argv, Path(a.output), a.before)
 
 
