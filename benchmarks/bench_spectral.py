@@ -187,35 +187,35 @@ def run(rounds, quick, before_rev, workers):
 
 
 def serial_share(shape, band, dt, rounds):
-    """Share of one single-worker ``spectral_noise`` call spent outside the threaded stages (fill, scale, FFT).
+    """Shares of one single-worker ``spectral_noise`` call: (outside the threaded stages, spectrum fill + scaling, FFT).
 
-    The stages are timed by wrapping ``_map_groups`` and ``_pruned_irfftn`` of the module; median of
-    ``rounds`` calls. Robust to the load (one call's own parts)."""
+    The stages are timed by wrapping ``_map_groups`` (fill, then scaling) and ``_pruned_irfftn`` of the
+    module; medians of ``rounds`` calls. Robust to the load (one call's own parts)."""
     import noiselab.spectral.synthesis as SY
 
-    spent = []
+    spent = {"fill": 0.0, "fft": 0.0}
     orig = (SY._map_groups, SY._pruned_irfftn)
 
-    def wrap(f):
+    def wrap(f, key):
         def g(*a, **k):
             t = time.perf_counter()
             r = f(*a, **k)
-            spent.append(time.perf_counter() - t)
+            spent[key] += time.perf_counter() - t
             return r
         return g
 
-    SY._map_groups, SY._pruned_irfftn = wrap(orig[0]), wrap(orig[1])
+    SY._map_groups, SY._pruned_irfftn = wrap(orig[0], "fill"), wrap(orig[1], "fft")
     try:
         shares = []
         for r in range(rounds):
-            spent.clear()
+            spent["fill"] = spent["fft"] = 0.0
             t = time.perf_counter()
             SY.spectral_noise(shape, band=band, seed=r, dtype=dt, workers=1)
             total = time.perf_counter() - t
-            shares.append(1 - sum(spent) / total)
+            shares.append((1 - (spent["fill"] + spent["fft"]) / total, spent["fill"] / total, spent["fft"] / total))
     finally:
         SY._map_groups, SY._pruned_irfftn = orig
-    return float(np.median(shares))
+    return tuple(float(x) for x in np.median(np.array(shares), axis=0))
 
 
 def _parallel_fraction(speedup, n_from, n_to):
@@ -283,15 +283,17 @@ def write_md(rows, names, rounds, argv, path, before_rev=None):
                   f"Speed-up = median over the rounds of (time at {base} worker(s) / time at n workers) in the same "
                   "round; p = Amdahl's parallel fraction it implies. On a machine shared with other jobs the "
                   "second core is often busy, so both sides scale less than they would alone.", "",
-                  "The last column is measured on one worker instead (robust to the load): the share of a call spent "
-                  "outside the threaded stages (spectrum fill and scaling, FFT passes), the bound it puts on p.", "",
-                  "| case | workers | floor speed-up (p) | spectral_noise speed-up (p) | serial share at 1 worker |",
+                  "The last column is measured on one worker instead (robust to the load): the shares of one call "
+                  "spent outside the threaded stages (serial: 1 - p at most), in the spectrum fill and scaling, and "
+                  "in the FFT passes.", "",
+                  "| case | workers | floor speed-up (p) | spectral_noise speed-up (p) | 1-worker call: serial / fill / FFT |",
                   "|---|---|---|---|---|"]
         for r in scaled:
             fs, ns = r["speedup floor"], r["speedup spectral_noise"]
             lines.append(f"| {r['case']} | {base} -> {r['workers']} | {fs:.2f} "
                          f"({_parallel_fraction(fs, base, r['workers']):.2f}) | {ns:.2f} "
-                         f"({_parallel_fraction(ns, base, r['workers']):.2f}) | {100 * r['serial']:.0f} % |")
+                         f"({_parallel_fraction(ns, base, r['workers']):.2f}) | "
+                         + " / ".join(f"{100 * x:.0f} %" for x in r["serial"]) + " |")
         lines.append("")
     path.write_text("\n".join(lines))
     print("\n".join(lines))
