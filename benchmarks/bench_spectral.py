@@ -218,6 +218,44 @@ def serial_share(shape, band, dt, rounds):
     return tuple(float(x) for x in np.median(np.array(shares), axis=0))
 
 
+def exponent_sweep(rounds, before_rev, path, argv):
+    """``spectral_noise`` 1024^2 float32, one worker, at several exponents against the floor (and ``--before``)."""
+    before = _before_module(before_rev) if before_rev else None
+    shape = (1024, 1024)
+    S = _half_spectrum(shape, np.float32)
+    exps = (1.0, 1.5, 2.0, 0.5, 1.3, 2.7)
+    runs = {"spectral_noise": lambda e, r: spectral_noise(shape, exponent=e, seed=r, workers=1)}
+    if before is not None:
+        runs["before"] = lambda e, r: before.spectral_noise(shape, exponent=e, seed=r)
+    for e in exps:
+        for f in runs.values():
+            f(e, 0)
+    t = {(e, k): [] for e in exps for k in ["floor", *runs]}
+    for r in range(rounds):
+        for e in exps:
+            for k in ["floor", *runs]:
+                t0 = time.perf_counter()
+                scipy.fft.irfftn(S, s=shape, workers=1) if k == "floor" else runs[k](e, r)
+                t[(e, k)].append(time.perf_counter() - t0)
+    lines = ["# spectral_noise: cost of the power law's exponent", "",
+             f"Command: `python3 benchmarks/bench_spectral.py {' '.join(argv)}`", "",
+             f"Date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M UTC}. Machine: {_cpu()}, "
+             f"{os.cpu_count()} cores shared with other jobs (load average {os.getloadavg()[0]:.1f}). 1024 x 1024 "
+             f"float32, full band, one worker; ratio = median over {rounds} interleaved rounds of time / bare "
+             "`irfftn` time in the same round. Exponents that are multiples of 1/2 are computed with square roots "
+             "and products (vectorised), the others with `pow` per cell." +
+             (f" `before` = `{before_rev}` (`pow` for every exponent but 1)." if before is not None else ""), "",
+             "| exponent | spectral_noise (x floor) |" + (" before (x floor) |" if before is not None else ""),
+             "|---|---|" + ("---|" if before is not None else "")]
+    for e in exps:
+        fl = np.array(t[(e, "floor")])
+        cells = [f"{np.median(np.array(t[(e, k)]) / fl):.2f}" for k in runs]
+        lines.append(f"| {e:g} | " + " | ".join(cells) + " |")
+    lines.append("")
+    path.write_text("\n".join(lines))
+    print("\n".join(lines))
+
+
 def _parallel_fraction(speedup, n_from, n_to):
     """Amdahl's parallel fraction implied by ``speedup`` going from ``n_from`` to ``n_to`` workers."""
     r = n_to / n_from
@@ -306,11 +344,18 @@ def main(argv=None):
     p.add_argument("--before", default=None, help="git revision whose spectral_noise to time beside (e.g. c3cdeef)")
     p.add_argument("--workers", type=int, nargs="+", default=[1, os.cpu_count() or 1],
                    help="worker counts, the same on both sides (default: 1 and every core)")
-    p.add_argument("--output", default=str(ROOT / "benchmarks" / "bench_spectral.md"))
+    p.add_argument("--output", default=None, help="default benchmarks/bench_spectral.md "
+                   "(bench_spectral_exponents.md with --exponents)")
+    p.add_argument("--exponents", action="store_true", help="only the exponent sweep (1024^2 float32, 1 worker)")
     argv = sys.argv[1:] if argv is None else argv
     a = p.parse_args(argv)
     if a.rounds < 5:
         p.error("--rounds must be at least 5 (medians of fewer are not reported)")
+    if a.exponents:
+        exponent_sweep(a.rounds, a.before, Path(a.output or ROOT / "benchmarks" / "bench_spectral_exponents.md"),
+                       argv)
+        return
+    a.output = a.output or str(ROOT / "benchmarks" / "bench_spectral.md")
     load0 = os.getloadavg()[0]
     rows, names = run(a.rounds, a.quick, a.before, a.workers)
     argv = list(argv) + [f"#load {load0:.1f} {os.getloadavg()[0]:.1f}"]

@@ -166,17 +166,17 @@ def _stream_key(rng):
 
 
 def _row_groups(counts, chunk=_CHUNK):
-    """Split rows into consecutive groups holding about ``chunk`` coefficients each (at least one row)."""
+    """Split rows into consecutive groups of about ``chunk`` coefficients (a group starts where a multiple of ``chunk`` is passed).
+
+    Returns ``(r0, r1, n)`` per group: rows ``r0..r1-1`` holding ``n``
+    coefficients (possibly 0: such rows are still written, as zeros). Every row is in one group.
+    """
     cum = np.cumsum(counts)
-    R = counts.size
-    bounds = [0]
-    while bounds[-1] < R:
-        start = bounds[-1]
-        base = int(cum[start - 1]) if start else 0
-        end = int(np.searchsorted(cum, base + chunk, side="right"))
-        bounds.append(min(R, max(end, start + 1)))
-    return [(bounds[i], bounds[i + 1], int(cum[bounds[i + 1] - 1]) - (int(cum[bounds[i] - 1]) if bounds[i] else 0))
-            for i in range(len(bounds) - 1)]
+    before = cum - counts  # coefficients before each row
+    ids = before // max(1, int(chunk))
+    bounds = np.concatenate([[0], np.flatnonzero(np.diff(ids)) + 1, [counts.size]]).astype(np.int64)
+    n = np.add.reduceat(counts, bounds[:-1]) if counts.size else np.zeros(0, np.int64)
+    return [(int(a), int(b), int(m)) for a, b, m in zip(bounds[:-1], bounds[1:], n)]
 
 
 def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.float32, return_spectrum=False,
@@ -430,9 +430,12 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     mode = _MODES[amplitude]
     bf = block.reshape(-1).view(dt)  # real and imaginary parts, 2 Kr per row
     key = _stream_key(rng)
-    groups = _row_groups(counts)
+    total = int(counts.sum())
+    nw = _workers(workers) if total >= _MIN_PARALLEL else 1
+    # the draws are made in the fill (no per-group scratch to keep in cache): about four groups per thread,
+    # few calls; the grouping changes no bit (each row's cells and power depend on the row alone)
+    groups = _row_groups(counts, max(_CHUNK, -(-total // (4 * nw))))
     starts = np.concatenate([[0], np.cumsum([g[2] for g in groups])[:-1]]).astype(np.int64)
-
     rowpow = np.zeros(R)
 
     def fill(i):
@@ -441,7 +444,6 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
         _kernels.fill_power_law(bf, Kr, q0, q1, wxsq, kbeg, kend, r0, r1, key, int(starts[i]), mode,
                                 float(exponent), float(qfloor), float(inv_qref), weight, sample, rowpow, scratch)
 
-    nw = _workers(workers) if int(counts.sum()) >= _MIN_PARALLEL else 1
     _map_groups(fill, range(len(groups)), nw)
     power = 2.0 * float(np.sum(rowpow))  # the same float for any worker count: one fixed order
     # the self-conjugate planes: the annulus is symmetric under k -> -k, and so is the kept block
