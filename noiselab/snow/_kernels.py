@@ -33,7 +33,7 @@ def scatter_columns(C, t0, ky, kx, B):
 
     The y-pass input of one block of frames: the spectrum columns put back at
     their ``(ky, kx)`` cells, zeros elsewhere, in one pass (numpy's fancy
-    scatter after a ``zeros`` measured 3x slower).
+    scatter after a ``zeros`` was slower in a scratch timing, loaded machine).
     """
     nt, H, K = B.shape
     zero = B.dtype.type(0)
