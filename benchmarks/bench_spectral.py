@@ -5,6 +5,7 @@ Run from the repository root::
     python3 benchmarks/bench_spectral.py                      # writes benchmarks/bench_spectral.md
     python3 benchmarks/bench_spectral.py --before c3cdeef     # adds the version at that commit, side by side
     python3 benchmarks/bench_spectral.py --quick              # smaller, for a smoke test
+    python3 benchmarks/bench_spectral.py --workers 1 2 4      # worker counts (default: 1 and every core)
 
 The floor is ``scipy.fft.irfftn`` of a ready-made half spectrum producing the
 same output (shape and dtype): the one transform any spectral synthesis must
@@ -12,8 +13,11 @@ do. Everything runs in one process, interleaved round by round (the floor and
 each contender, for every case, in every round, in an order rotated from
 round to round), and is reported as the median of the per-round ratios to
 the floor, because the machine is shared.
-Single-threaded throughout (scipy's default ``workers=1``; noiselab's kernels
-are serial). Peak memory is the ``tracemalloc`` peak of one call (numpy
+Every case runs at each worker count with the same count on both sides
+(``workers=`` of the floor's ``irfftn`` and of ``spectral_noise`` /
+``synthesize``); the strong-scaling table gives, per case, the speed-up from
+the first count to the others and the parallel fraction ``p`` it implies
+(Amdahl: ``speedup = 1 / ((1 - p) + p / n)``). Peak memory is the ``tracemalloc`` peak of one call (numpy
 arrays; numba's scratch and the FFT library's buffers are not traced),
 given beside the output's own size.
 """
@@ -46,19 +50,28 @@ from noiselab.spectral import spectral_noise, synthesize  # noqa: E402
 
 
 def _before_module(rev):
-    """``noiselab/spectral/synthesis.py`` as it was at git revision ``rev``, imported as a module."""
-    src = subprocess.run(["git", "show", f"{rev}:noiselab/spectral/synthesis.py"], cwd=ROOT, check=True,
-                         capture_output=True, text=True).stdout
-    src = (src.replace("from .._validate", "from noiselab._validate")
-           .replace("from .envelopes", "from noiselab.spectral.envelopes")
-           .replace("from .frequencies", "from noiselab.spectral.frequencies")
-           .replace("from . import _kernels", "from noiselab.spectral import _kernels"))
-    path = Path(tempfile.mkdtemp()) / "spectral_before.py"
-    path.write_text(src)
-    spec = importlib.util.spec_from_file_location("spectral_before", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    """``noiselab/spectral/synthesis.py`` and its ``_kernels.py`` as they were at git revision ``rev``, imported."""
+    tmp = Path(tempfile.mkdtemp())
+
+    def load(name, relpath, subst):
+        src = subprocess.run(["git", "show", f"{rev}:{relpath}"], cwd=ROOT, check=True,
+                             capture_output=True, text=True).stdout
+        for a, b in subst:
+            src = src.replace(a, b)
+        path = tmp / f"{name}.py"
+        path.write_text(src)
+        spec = importlib.util.spec_from_file_location(name, path)
+        mod = importlib.util.module_from_spec(spec)
+        sys.modules[name] = mod
+        spec.loader.exec_module(mod)
+        return mod
+
+    load("spectral_kernels_before", "noiselab/spectral/_kernels.py", [])
+    return load("spectral_before", "noiselab/spectral/synthesis.py", [
+        ("from .._validate", "from noiselab._validate"),
+        ("from .envelopes", "from noiselab.spectral.envelopes"),
+        ("from .frequencies", "from noiselab.spectral.frequencies"),
+        ("from . import _kernels", "import spectral_kernels_before as _kernels")])
 
 
 def _half_spectrum(shape, dtype):
@@ -105,54 +118,150 @@ def _peak(f):
     return peak
 
 
-def run(rounds, quick, before_rev):
+def run(rounds, quick, before_rev, workers):
     before = _before_module(before_rev) if before_rev else None
     cases = _cases(quick)
     spectral_noise((8, 8), seed=0)  # numba warm-up (cached kernels load)
     synthesize((8, 8), lambda wy, wx: 1.0 + 0 * wy * wx, seed=0)
     contenders = {
-        "spectral_noise": lambda shape, band, dt, r: spectral_noise(shape, band=band, seed=r, dtype=dt),
-        "synthesize": lambda shape, band, dt, r: synthesize(shape, _synth_env(shape, band), seed=r,
-                                                            amplitude="rayleigh", dtype=dt),
+        "spectral_noise": lambda shape, band, dt, r, w: spectral_noise(shape, band=band, seed=r, dtype=dt,
+                                                                       workers=w),
+        "synthesize": lambda shape, band, dt, r, w: synthesize(shape, _synth_env(shape, band), seed=r,
+                                                               amplitude="rayleigh", dtype=dt, workers=w),
     }
     if before is not None:
-        contenders["spectral_noise before"] = lambda shape, band, dt, r: before.spectral_noise(
+        # the earlier version has no workers: it runs single-threaded (compare it at 1 worker)
+        contenders["spectral_noise before"] = lambda shape, band, dt, r, w: before.spectral_noise(
             shape, band=band, seed=r, dtype=dt)
     floors = {c: _half_spectrum(c[0], c[2]) for c in cases}
-    times = {(c, k): [] for c in cases for k in ["floor", *contenders]}
+    names = ["floor", *contenders]
+    times = {(c, w, k): [] for c in cases for w in workers for k in names}
     for c in cases:  # warm every path once
         shape, band, dt = c
-        scipy.fft.irfftn(floors[c], s=shape)
-        for f in contenders.values():
-            f(shape, band, dt, 0)
-    names = ["floor", *contenders]
+        for w in workers:
+            scipy.fft.irfftn(floors[c], s=shape, workers=w)
+            for f in contenders.values():
+                f(shape, band, dt, 0, w)
     for r in range(rounds):
         # each round runs the contenders in a rotated order, so that none always follows the same
         # (memory-hungry) neighbour: the allocator's and the caches' state favour whoever comes first
         order = names[r % len(names):] + names[:r % len(names)]
         for c in cases:
             shape, band, dt = c
-            for k in order:
-                t0 = time.perf_counter()
-                y = scipy.fft.irfftn(floors[c], s=shape) if k == "floor" else contenders[k](shape, band, dt, r)
-                times[(c, k)].append(time.perf_counter() - t0)
-                assert y.dtype == dt and y.shape == shape
-                del y
+            for w in workers:
+                for k in order:
+                    t0 = time.perf_counter()
+                    y = (scipy.fft.irfftn(floors[c], s=shape, workers=w) if k == "floor"
+                         else contenders[k](shape, band, dt, r, w))
+                    times[(c, w, k)].append(time.perf_counter() - t0)
+                    assert y.dtype == dt and y.shape == shape
+                    del y
     rows = []
     for c in cases:
         shape, band, dt = c
-        fl = np.array(times[(c, "floor")])
-        row = {"case": _label(*c), "floor_ms": 1e3 * float(np.median(fl)),
-               "out_mib": np.prod(shape) * np.dtype(dt).itemsize / 2**20}
-        for k in contenders:
-            t = np.array(times[(c, k)])
-            row[k] = (float(np.median(t / fl)), 1e3 * float(np.median(t)))
-        row["peak_mib"] = _peak(lambda: spectral_noise(shape, band=band, seed=0, dtype=dt)) / 2**20
-        row["peak_floor_mib"] = _peak(lambda: scipy.fft.irfftn(floors[c], s=shape)) / 2**20
-        if before is not None:
-            row["peak_before_mib"] = _peak(lambda: before.spectral_noise(shape, band=band, seed=0, dtype=dt)) / 2**20
-        rows.append(row)
+        peak = _peak(lambda: spectral_noise(shape, band=band, seed=0, dtype=dt)) / 2**20
+        serial = serial_share(shape, band, dt, rounds)
+        peak_floor = _peak(lambda: scipy.fft.irfftn(floors[c], s=shape)) / 2**20
+        peak_before = (_peak(lambda: before.spectral_noise(shape, band=band, seed=0, dtype=dt)) / 2**20
+                       if before is not None else None)
+        for w in workers:
+            fl = np.array(times[(c, w, "floor")])
+            row = {"case": _label(*c), "workers": w, "floor_ms": 1e3 * float(np.median(fl)),
+                   "out_mib": np.prod(shape) * np.dtype(dt).itemsize / 2**20}
+            for k in contenders:
+                t = np.array(times[(c, w, k)])
+                row[k] = (float(np.median(t / fl)), 1e3 * float(np.median(t)))
+            # strong scaling against the first worker count, per round (the same round's load on both)
+            base = workers[0]
+            for k in ("floor", "spectral_noise"):
+                t0 = np.array(times[(c, base, k)])
+                t1 = np.array(times[(c, w, k)])
+                row[f"speedup {k}"] = float(np.median(t0 / t1))
+            row["serial"] = serial
+            row["peak_mib"] = peak
+            row["peak_floor_mib"] = peak_floor
+            if peak_before is not None:
+                row["peak_before_mib"] = peak_before
+            rows.append(row)
     return rows, list(contenders)
+
+
+def serial_share(shape, band, dt, rounds):
+    """Shares of one single-worker ``spectral_noise`` call: (outside the threaded stages, spectrum fill + scaling, FFT).
+
+    The stages are timed by wrapping ``_map_groups`` (fill, then scaling) and ``_pruned_irfftn`` of the
+    module; medians of ``rounds`` calls. Robust to the load (one call's own parts)."""
+    import noiselab.spectral.synthesis as SY
+
+    spent = {"fill": 0.0, "fft": 0.0}
+    orig = (SY._map_groups, SY._pruned_irfftn)
+
+    def wrap(f, key):
+        def g(*a, **k):
+            t = time.perf_counter()
+            r = f(*a, **k)
+            spent[key] += time.perf_counter() - t
+            return r
+        return g
+
+    SY._map_groups, SY._pruned_irfftn = wrap(orig[0], "fill"), wrap(orig[1], "fft")
+    try:
+        shares = []
+        for r in range(rounds):
+            spent["fill"] = spent["fft"] = 0.0
+            t = time.perf_counter()
+            SY.spectral_noise(shape, band=band, seed=r, dtype=dt, workers=1)
+            total = time.perf_counter() - t
+            shares.append((1 - (spent["fill"] + spent["fft"]) / total, spent["fill"] / total, spent["fft"] / total))
+    finally:
+        SY._map_groups, SY._pruned_irfftn = orig
+    return tuple(float(x) for x in np.median(np.array(shares), axis=0))
+
+
+def exponent_sweep(rounds, before_rev, path, argv):
+    """``spectral_noise`` 1024^2 float32, one worker, at several exponents against the floor (and ``--before``)."""
+    before = _before_module(before_rev) if before_rev else None
+    shape = (1024, 1024)
+    S = _half_spectrum(shape, np.float32)
+    exps = (1.0, 1.5, 2.0, 0.5, 1.3, 2.7)
+    runs = {"spectral_noise": lambda e, r: spectral_noise(shape, exponent=e, seed=r, workers=1)}
+    if before is not None:
+        runs["before"] = lambda e, r: before.spectral_noise(shape, exponent=e, seed=r)
+    for e in exps:
+        for f in runs.values():
+            f(e, 0)
+    t = {(e, k): [] for e in exps for k in ["floor", *runs]}
+    for r in range(rounds):
+        for e in exps:
+            for k in ["floor", *runs]:
+                t0 = time.perf_counter()
+                scipy.fft.irfftn(S, s=shape, workers=1) if k == "floor" else runs[k](e, r)
+                t[(e, k)].append(time.perf_counter() - t0)
+    lines = ["# spectral_noise: cost of the power law's exponent", "",
+             f"Command: `python3 benchmarks/bench_spectral.py {' '.join(argv)}`", "",
+             f"Date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M UTC}. Machine: {_cpu()}, "
+             f"{os.cpu_count()} cores shared with other jobs (load average {os.getloadavg()[0]:.1f}). 1024 x 1024 "
+             f"float32, full band, one worker; ratio = median over {rounds} interleaved rounds of time / bare "
+             "`irfftn` time in the same round. Exponents that are multiples of 1/2 are computed with square roots "
+             "and products (vectorised), the others with `pow` per cell." +
+             (f" `before` = `{before_rev}` (`pow` for every exponent but 1)." if before is not None else ""), "",
+             "| exponent | spectral_noise (x floor) |" + (" before (x floor) |" if before is not None else ""),
+             "|---|---|" + ("---|" if before is not None else "")]
+    for e in exps:
+        fl = np.array(t[(e, "floor")])
+        cells = [f"{np.median(np.array(t[(e, k)]) / fl):.2f}" for k in runs]
+        lines.append(f"| {e:g} | " + " | ".join(cells) + " |")
+    lines.append("")
+    path.write_text("\n".join(lines))
+    print("\n".join(lines))
+
+
+def _parallel_fraction(speedup, n_from, n_to):
+    """Amdahl's parallel fraction implied by ``speedup`` going from ``n_from`` to ``n_to`` workers."""
+    r = n_to / n_from
+    if r == 1:
+        return float("nan")
+    return (1 - 1 / speedup) / (1 - 1 / r)
 
 
 def _cpu():
@@ -167,19 +276,23 @@ def _cpu():
 
 def write_md(rows, names, rounds, argv, path, before_rev=None):
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    load = next((x for x in argv if x.startswith("#load")), None)
     lines = [
         "# spectral_noise / synthesize against a bare irfftn",
         "",
-        f"Command: `python3 benchmarks/bench_spectral.py {' '.join(argv)}`".replace(" `", " `").rstrip(),
+        f"Command: `python3 benchmarks/bench_spectral.py {' '.join(a for a in argv if not a.startswith('#load'))}`"
+        .rstrip(),
         "",
         f"Date: {now}. Machine: {platform.node()}, {_cpu()}, {os.cpu_count()} cores (shared with other jobs: "
-        "ratios are what hold, the milliseconds move with the load). "
+        "ratios are what hold, the milliseconds move with the load; load average (1 min) before and after: "
+        f"{' and '.join(load.split()[1:]) if load else '?'}). "
         f"Python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}, "
         f"numba {numba.__version__}, noiselab {getattr(noiselab, '__version__', '?')}.",
         "",
         f"Ratio = median over {rounds} interleaved rounds (order rotated each round) of (time / floor time in the "
         "same round); floor = "
-        "`scipy.fft.irfftn` of a ready half spectrum to the same output shape and dtype (one thread). "
+        "`scipy.fft.irfftn` of a ready half spectrum to the same output shape and dtype, with the row's worker "
+        "count (`workers=`) on both sides. "
         "`synthesize` gets the float64 envelope `annulus * power_law` as a callable (the general path). "
         "Peak = `tracemalloc` peak of one `spectral_noise` call (numpy arrays only), floor's for comparison.",
         "",
@@ -188,12 +301,12 @@ def write_md(rows, names, rounds, argv, path, before_rev=None):
         lines[-1:-1] = ["", f"`spectral_noise before` = `noiselab/spectral/synthesis.py` at `{before_rev}` (float64 "
                         "envelope over the whole half spectrum, float64 uniforms + log/cos/sin per cell, flatnonzero "
                         "scatter, mean/std passes on the field), timed in the same rounds."]
-    head = "| case | floor ms | " + " | ".join(f"{n} (x floor, ms)" for n in names) + \
+    head = "| case | workers | floor ms | " + " | ".join(f"{n} (x floor, ms)" for n in names) + \
         " | peak MiB (floor; output) |" + (" before peak MiB |" if "spectral_noise before" in names else "")
     lines.append(head)
     lines.append("|" + "---|" * (head.count("|") - 1))
     for r in rows:
-        cells = [r["case"], f"{r['floor_ms']:.1f}"]
+        cells = [r["case"], str(r["workers"]), f"{r['floor_ms']:.1f}"]
         cells += [f"**{r[n][0]:.2f}** ({r[n][1]:.1f})" if n == "spectral_noise" else f"{r[n][0]:.2f} ({r[n][1]:.1f})"
                   for n in names]
         cells.append(f"{r['peak_mib']:.1f} ({r['peak_floor_mib']:.1f}; {r['out_mib']:.1f})")
@@ -201,6 +314,25 @@ def write_md(rows, names, rounds, argv, path, before_rev=None):
             cells.append(f"{r['peak_before_mib']:.1f}")
         lines.append("| " + " | ".join(cells) + " |")
     lines.append("")
+    base = rows[0]["workers"]
+    scaled = [r for r in rows if r["workers"] != base]
+    if scaled:
+        lines += ["## Strong scaling", "",
+                  f"Speed-up = median over the rounds of (time at {base} worker(s) / time at n workers) in the same "
+                  "round; p = Amdahl's parallel fraction it implies. On a machine shared with other jobs the "
+                  "second core is often busy, so both sides scale less than they would alone.", "",
+                  "The last column is measured on one worker instead (robust to the load): the shares of one call "
+                  "spent outside the threaded stages (serial: 1 - p at most), in the spectrum fill and scaling, and "
+                  "in the FFT passes.", "",
+                  "| case | workers | floor speed-up (p) | spectral_noise speed-up (p) | 1-worker call: serial / fill / FFT |",
+                  "|---|---|---|---|---|"]
+        for r in scaled:
+            fs, ns = r["speedup floor"], r["speedup spectral_noise"]
+            lines.append(f"| {r['case']} | {base} -> {r['workers']} | {fs:.2f} "
+                         f"({_parallel_fraction(fs, base, r['workers']):.2f}) | {ns:.2f} "
+                         f"({_parallel_fraction(ns, base, r['workers']):.2f}) | "
+                         + " / ".join(f"{100 * x:.0f} %" for x in r["serial"]) + " |")
+        lines.append("")
     path.write_text("\n".join(lines))
     print("\n".join(lines))
 
@@ -210,12 +342,23 @@ def main(argv=None):
     p.add_argument("--rounds", type=int, default=7)
     p.add_argument("--quick", action="store_true")
     p.add_argument("--before", default=None, help="git revision whose spectral_noise to time beside (e.g. c3cdeef)")
-    p.add_argument("--output", default=str(ROOT / "benchmarks" / "bench_spectral.md"))
+    p.add_argument("--workers", type=int, nargs="+", default=[1, os.cpu_count() or 1],
+                   help="worker counts, the same on both sides (default: 1 and every core)")
+    p.add_argument("--output", default=None, help="default benchmarks/bench_spectral.md "
+                   "(bench_spectral_exponents.md with --exponents)")
+    p.add_argument("--exponents", action="store_true", help="only the exponent sweep (1024^2 float32, 1 worker)")
     argv = sys.argv[1:] if argv is None else argv
     a = p.parse_args(argv)
     if a.rounds < 5:
         p.error("--rounds must be at least 5 (medians of fewer are not reported)")
-    rows, names = run(a.rounds, a.quick, a.before)
+    if a.exponents:
+        exponent_sweep(a.rounds, a.before, Path(a.output or ROOT / "benchmarks" / "bench_spectral_exponents.md"),
+                       argv)
+        return
+    a.output = a.output or str(ROOT / "benchmarks" / "bench_spectral.md")
+    load0 = os.getloadavg()[0]
+    rows, names = run(a.rounds, a.quick, a.before, a.workers)
+    argv = list(argv) + [f"#load {load0:.1f} {os.getloadavg()[0]:.1f}"]
     write_md(rows, names, a.rounds, argv, Path(a.output), a.before)
 
 

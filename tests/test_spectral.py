@@ -118,7 +118,7 @@ def _radial_power_slope(field, lo, hi):
 
 @pytest.mark.parametrize("exponent", [0.5, 1.0, 2.0])
 def test_spectral_noise_power_slope(exponent):
-    x = spectral_noise((256, 256), exponent=exponent, seed=2)
+    x = spectral_noise((256, 256), exponent=exponent, seed=2, normalize="sample")
     slope = _radial_power_slope(x, 4 / 256, 100 / 256)
     assert abs(slope + 2 * exponent) < 0.15, slope
     assert abs(float(x.std()) - 1) < 1e-5 and abs(float(x.mean())) < 1e-5
@@ -213,11 +213,11 @@ def test_spectral_noise_is_synthesize_with_annulus_times_power_law(shape, band):
 
 @pytest.mark.parametrize("shape,band", NOISE_CASES)
 def test_spectrum_side_normalisation_gives_zero_mean_unit_variance_exactly(shape, band):
-    # the spectrum is scaled by N / sqrt(sum |S|^2) before the FFT (Parseval, DC = 0): no pass after it
-    x = spectral_noise(shape, band=band, seed=3, dtype=np.float64)
+    # normalize="sample": the spectrum is scaled by N / sqrt(sum |S|^2) before the FFT (Parseval, DC = 0)
+    x = spectral_noise(shape, band=band, seed=3, dtype=np.float64, normalize="sample")
     assert abs(float(x.mean())) < 1e-14
     assert abs(float(x.std()) - 1.0) < 1e-13
-    y = spectral_noise(shape, band=band, seed=3, dtype=np.float32)
+    y = spectral_noise(shape, band=band, seed=3, dtype=np.float32, normalize="sample")
     assert abs(float(y.mean(dtype=np.float64))) < 1e-6
     assert abs(float(y.std(dtype=np.float64)) - 1.0) < 2e-6
     # float32 and float64 share their draws: the same field to float32 precision
@@ -228,12 +228,13 @@ def test_pruned_inverse_fft_equals_irfftn_of_the_full_spectrum():
     from noiselab.spectral.synthesis import _noise_spectrum, _pruned_irfftn
 
     for shape, band in [((64, 96), (2, 9)), ((20, 24, 30), (1, 4)), ((50,), (1, 6))]:
-        block, index, _ = _noise_spectrum(shape, 1.0, band, 5, "rayleigh", np.dtype(np.float64))
+        block, index = _noise_spectrum(shape, 1.0, band, 5, "rayleigh", np.dtype(np.float64))
         assert block.shape[-1] < shape[-1] // 2 + 1  # something was pruned
         full = np.zeros(shape[:-1] + (shape[-1] // 2 + 1,), dtype=block.dtype)
         full[np.ix_(*index, np.arange(block.shape[-1]))] = block
-        np.testing.assert_allclose(_pruned_irfftn(block.copy(), index, shape), scipy.fft.irfftn(full, s=shape),
-                                   rtol=0, atol=1e-15)
+        ref = scipy.fft.irfftn(full, s=shape)
+        np.testing.assert_allclose(_pruned_irfftn(block.copy(), index, shape), ref, rtol=0,
+                                   atol=1e-14 * np.abs(ref).max())
 
 
 def test_spectral_noise_same_seed_same_bits_and_band_edges():
@@ -294,3 +295,157 @@ def test_synthesize_follows_its_documented_draws_on_dense_and_sparse_rows():
     for j in (0, 5):
         ref[:, j] = hermitian_plane(ref[:, j], sup[:, j])
     np.testing.assert_allclose(S, ref, rtol=0, atol=1e-12)
+
+
+# --- issue 15 part 1: an unbiased ensemble (the round-trip power tests of powerbox and colorednoise, ported) ---
+
+def _ensemble_power(shape, exponent, seeds, **kw):
+    """Mean |fftn|**2 over seeds, the law's expected |X|**2 at unit variance, and |f| of every cell."""
+    X = np.mean([np.abs(np.fft.fftn(spectral_noise(shape, exponent=exponent, seed=s, dtype=np.float64, **kw))) ** 2
+                 for s in range(seeds)], axis=0)
+    f = np.sqrt(sum(np.meshgrid(*[np.fft.fftfreq(n) ** 2 for n in shape], indexing="ij")))
+    law = np.where(f > 0, np.where(f > 0, f, 1) ** (-2.0 * exponent), 0.0)
+    return X, law / law.sum() * float(np.prod(shape)) ** 2, f
+
+
+ROUND_TRIP = [((64,), 1.0, 400), ((63,), 1.5, 400), ((65,), 1.0, 400),
+              ((48, 72), 1.0, 80), ((47, 71), 1.0, 80), ((48, 71), 0.5, 80),
+              ((12, 14, 16), 1.0, 30), ((13, 15, 17), 1.0, 30), ((12, 15, 16), 1.5, 30)]
+
+
+@pytest.mark.parametrize("shape,exponent,seeds", ROUND_TRIP)
+def test_round_trip_power_is_the_law_on_average(shape, exponent, seeds):
+    # powerbox's round trip: the power of the generated fields, averaged over realisations and binned by |k|,
+    # is the input P(k) = |k|**(-2*exponent) (scaled to unit variance) at every |k|, odd and even sizes
+    X, target, f = _ensemble_power(shape, exponent, seeds)
+    edges = np.quantile(f[f > 0], np.linspace(0, 1, 7))
+    edges[-1] += 1
+    for a, b in zip(edges[:-1], edges[1:]):
+        m = (f >= a) & (f < b)
+        ratio = X[m].sum() / target[m].sum()
+        # |X|**2 of a Gaussian field is exponential (sd = mean) and k, -k are one draw: the bin's sd
+        sd = np.sqrt(np.sum(target[m] ** 2) / seeds) / target[m].sum() * np.sqrt(2)
+        assert abs(ratio - 1) < 5 * sd + 0.01, (a, b, ratio, sd)
+    # colorednoise's variance test: the realisations' variance is 1 on average (E[x**2] = 1, not each field's)
+    v = [spectral_noise(shape, exponent=exponent, seed=s, dtype=np.float64).var() for s in range(seeds)]
+    assert abs(np.mean(v) - 1) < 5 * np.std(v) / np.sqrt(seeds)
+
+
+def test_sample_normalisation_keeps_each_field_at_unit_variance_and_biases_the_ensemble():
+    # the documented trade: "sample" sets each field's variance to exactly 1 and lifts the ensemble's
+    # high-frequency power above the law (1-D k**-2: about 1.5x); "expected" does not
+    for normalize, lo, hi in [("sample", 1.3, 1.8), ("expected", 0.95, 1.05)]:
+        X, target, f = _ensemble_power((64,), 1.0, 400, normalize=normalize)
+        high = f >= 0.25
+        assert lo < X[high].sum() / target[high].sum() < hi, normalize
+    x = spectral_noise((64,), exponent=1.0, seed=1, normalize="sample", dtype=np.float64)
+    assert abs(x.var() - 1) < 1e-13
+    with pytest.raises(ValueError, match="normalize must be one of"):
+        spectral_noise((64,), normalize="max")
+
+
+def test_dc_term_kept_on_request_with_the_lowest_ring_amplitude():
+    # a 1/f**2 random walk (exponent 1 in 1-D) has a displacement: dc=True keeps DC, with the law taken flat
+    # below the lowest nonzero frequency, so |S(0)| = |S(1/n)| when every cell has amplitude exactly the law
+    x = spectral_noise((256,), exponent=1.0, dc=True, seed=3, amplitude="fixed", dtype=np.float64)
+    S = np.abs(np.fft.rfft(x))
+    assert S[0] > 0 and abs(S[0] / S[1] - 1) < 1e-12 and abs(S[2] / S[1] - 2 ** -1.0) < 1e-12
+    # non-square 2-D: the lowest ring is 1/24 cycles/sample, the (0, 1) cell along the 24-sample axis
+    y = spectral_noise((16, 24), exponent=2.0, dc=True, seed=3, amplitude="fixed", dtype=np.float64)
+    Y = np.abs(np.fft.fft2(y))
+    assert abs(Y[0, 0] / Y[0, 1] - 1) < 1e-12 and Y[0, 0] > Y[1, 0]
+    # the band must start at 0; a blue law is 0 at DC and stays 0
+    z = spectral_noise((64,), exponent=-1.0, dc=True, band=(0, 32), seed=0, amplitude="fixed", dtype=np.float64)
+    assert abs(np.fft.rfft(z)[0]) < 1e-12 * np.abs(np.fft.rfft(z)).max()
+    with pytest.raises(ValueError, match="dc=True .* band"):
+        spectral_noise((64,), dc=True, band=(1, 8))
+    with pytest.raises(TypeError, match="dc must be"):
+        spectral_noise((64,), dc="yes")
+    # the ensemble: E[x**2] = 1 with DC in, and the walk's mean varies from field to field
+    walks = np.stack([spectral_noise((128,), exponent=1.0, dc=True, seed=s, dtype=np.float64) for s in range(300)])
+    m2 = np.mean(walks ** 2, axis=1)
+    assert abs(m2.mean() - 1) < 5 * m2.std() / np.sqrt(300)
+    assert walks.mean(axis=1).std() > 0.3
+    no_dc = spectral_noise((128,), exponent=1.0, seed=0, dtype=np.float64)
+    assert abs(no_dc.mean()) < 1e-14
+
+
+# --- issue 11: silent wrong output from the spectral engine ---
+
+@pytest.mark.parametrize("shape,exponent", [((4096,), 8.0), ((65536,), 5.0), ((512, 512), 8.0), ((8192,), -8.0),
+                                            ((4096,), 7.3), ((64, 64, 64), 6.5)])
+def test_steep_exponents_are_right_in_float32(shape, exponent):
+    # the float32 power sum used to overflow (all zeros, or std 2.9e13 at 2048**2): the law is now evaluated
+    # relative to the band's loudest end and the sums are float64, so float32 gives the float64 field
+    x32 = spectral_noise(shape, exponent=exponent, seed=4, dtype=np.float32)
+    x64 = spectral_noise(shape, exponent=exponent, seed=4, dtype=np.float64)
+    assert np.all(np.isfinite(x32)) and np.abs(x32).max() > 0
+    np.testing.assert_allclose(x32, x64, rtol=0, atol=1e-5 * np.abs(x64).max())
+    y32 = spectral_noise(shape, exponent=exponent, seed=4, dtype=np.float32, normalize="sample")
+    assert abs(float(y32.std(dtype=np.float64)) - 1) < 1e-4
+
+
+def test_empty_band_and_single_sample_shape_are_refused():
+    with pytest.raises(ValueError, match=r"band \(0.1, 0.2\) cycles/frame holds no frequency"):
+        spectral_noise((64, 64), band=(0.1, 0.2))
+    with pytest.raises(ValueError, match="no nonzero frequency"):
+        spectral_noise((1, 1))
+    with pytest.raises(ValueError, match="no nonzero frequency"):
+        spectral_noise((1,))
+    assert spectral_noise((1, 2), seed=0).shape == (1, 2)  # one nonzero frequency is enough
+
+
+def test_synthesize_huge_and_tiny_envelopes_are_scaled_or_refused():
+    env = lambda wy, wx: E.annulus(wy, wx, lo=0.05, hi=0.3)  # noqa: E731
+    ref, S = synthesize((32, 32), env, seed=1, dtype=np.float64, return_spectrum=True)
+    for k in (1e300, 1e-300):
+        big, Sb = synthesize((32, 32), lambda wy, wx: k * env(wy, wx), seed=1, dtype=np.float64,
+                             return_spectrum=True)
+        np.testing.assert_allclose(big, k * ref, rtol=1e-12, atol=0)
+        np.testing.assert_allclose(Sb, k * S, rtol=1e-12, atol=0)
+    small = synthesize((32, 32), lambda wy, wx: 1e-35 * env(wy, wx), seed=1, dtype=np.float32)
+    np.testing.assert_allclose(small, 1e-35 * ref, rtol=1e-5, atol=1e-40)
+    with pytest.raises(ValueError, match="envelope is too large for float32"):
+        synthesize((32, 32), lambda wy, wx: 1e300 * env(wy, wx), seed=1)
+
+
+# --- issue 17: workers ---
+
+@pytest.mark.parametrize("workers", [2, 3, -1])
+def test_output_is_bit_identical_for_any_worker_count(workers):
+    # big enough to be filled on several threads (at least 2**16 cells), and a small one filled on one
+    cases = [((384, 512), None), ((40, 64, 80), None), ((96, 128, 128), (2, 40)), ((1 << 18,), None),
+             ((64, 80), (2, 12))]
+    for shape, band in cases:
+        for normalize in ("expected", "sample"):
+            a = spectral_noise(shape, band=band, seed=5, normalize=normalize, workers=1)
+            b = spectral_noise(shape, band=band, seed=5, normalize=normalize, workers=workers)
+            assert a.tobytes() == b.tobytes(), (shape, band, normalize)
+    env = lambda wt, wy, wx: E.annulus(wt, wy, wx, lo=0.02, hi=0.4)  # noqa: E731
+    a = synthesize((48, 64, 80), env, seed=2, workers=1)
+    assert a.tobytes() == synthesize((48, 64, 80), env, seed=2, workers=workers).tobytes()
+    assert a.tobytes() == synthesize((48, 64, 80), env, seed=2).tobytes()
+
+
+def test_workers_is_validated():
+    for bad in (0, -10_000):
+        with pytest.raises(ValueError, match="workers must be"):
+            spectral_noise((16, 16), workers=bad)
+    for bad in (1.5, "2", True):
+        with pytest.raises(TypeError, match="workers must be"):
+            synthesize((16, 16), lambda wy, wx: 1.0 + 0 * wy * wx, workers=bad)
+
+
+def test_analysers_give_the_same_bits_for_any_worker_count():
+    from noiselab import analysis as A
+    from noiselab.snow import snow
+
+    img = spectral_noise((96, 128), seed=1)
+    video = snow((16, 64, 64), seed=2)
+    assert A.power_spectrum(img, workers=1).power.tobytes() == A.power_spectrum(img, workers=2).power.tobytes()
+    r1, r2 = A.radial_spectrum(img, workers=1), A.radial_spectrum(img, workers=-1)
+    assert r1.power.tobytes() == r2.power.tobytes()
+    band = (4, 16)
+    assert A.tent_energy(video, 1.0, band, workers=1) == A.tent_energy(video, 1.0, band, workers=2)
+    bands = [(2, 8), (8, 32)]
+    assert A.band_speeds(video, bands, workers=1).tobytes() == A.band_speeds(video, bands, workers=-1).tobytes()

@@ -59,7 +59,7 @@ __all__ = [
 ]
 
 
-def video_spectrum(video, *, window=None, remove_static=False) -> PowerSpectrum:
+def video_spectrum(video, *, window=None, remove_static=False, workers=None) -> PowerSpectrum:
     """The 3-D power spectrum the motion analysers share (``window`` tapers time only).
 
     Compute it once and pass it to several analysers instead of the video to
@@ -67,7 +67,8 @@ def video_spectrum(video, *, window=None, remove_static=False) -> PowerSpectrum:
     mean first (one more copy of the video): a still background composited
     under moving snow then no longer pulls every band's velocity towards
     zero. (The kt = 0 plane alone would not do with a window: a tapered
-    still leaks into the neighbouring temporal bins.)
+    still leaks into the neighbouring temporal bins.) ``workers``: FFT
+    threads, scipy.fft's meaning (-1: every core); same result for any count.
     """
     if isinstance(video, PowerSpectrum):
         if len(video.shape) != 3 or video.axes != (0, 1, 2):
@@ -83,7 +84,7 @@ def video_spectrum(video, *, window=None, remove_static=False) -> PowerSpectrum:
         arr = arr - np.mean(arr, axis=0, dtype=np.float64).astype(arr.dtype)
         if float(np.max(np.abs(arr))) <= 64 * np.finfo(arr.dtype).eps * scale:  # rounding only
             raise ValueError("the video does not change in time: nothing is left once its static part is removed")
-    return power_spectrum(arr, window=window, window_axes=(0,), min_size=1)
+    return power_spectrum(arr, window=window, window_axes=(0,), min_size=1, workers=workers)
 
 
 class _Grid:
@@ -192,7 +193,8 @@ def _tent_kt(g: _Grid, c, direction, pan):
     return wt * g.t / (2 * np.pi)
 
 
-def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), thickness=0.1, tol=0.5, window=None) -> float:
+def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), thickness=0.1, tol=0.5, window=None,
+                workers=None) -> float:
     """Fraction of a video's power on the falling-snow tent inside ``band``.
 
     The tent (Langer & Zhang Eq. 3.3, numpy's FFT sign): ``w_t = -(c / |w|) d . w``,
@@ -222,6 +224,8 @@ def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), thickne
         thickness. The default 1/2 accepts the bins that overlap the
         (thickened) surface, exactly the cells ``noiselab.snow`` fills.
     window : {None, "hann"}
+    workers : int, optional
+        FFT threads, scipy.fft's meaning (-1: every core); same result for any count.
 
     Returns
     -------
@@ -237,7 +241,7 @@ def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), thickne
     >>> round(tent_energy(video, c, (2, 8), thickness=0), 6)
     1.0
     """
-    spec = video_spectrum(video, window=window)
+    spec = video_spectrum(video, window=window, workers=workers)
     c = check_real("c", c, lo=0.0, hi=np.pi)
     d = check_vector("direction", direction, nonzero=True)
     p = check_vector("pan", pan)
@@ -391,14 +395,15 @@ class SpeedProfile:
 
 
 def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octave=2,
-                  remove_static=False) -> SpeedProfile:
+                  remove_static=False, workers=None) -> SpeedProfile:
     """Velocity per spatial-frequency band, with band centres, coherence and energy.
 
     ``bands`` default: ``per_octave`` bands per octave from 2 cycles/frame to
     Nyquist, keeping only those holding at least ``min_energy`` of the power. Explicit
-    bands must all hold power (else ``ValueError`` naming the band).
+    bands must all hold power (else ``ValueError`` naming the band). ``workers``:
+    FFT threads, scipy.fft's meaning (-1: every core); same result for any count.
     """
-    spec = video_spectrum(video, window=window, remove_static=remove_static)
+    spec = video_spectrum(video, window=window, remove_static=remove_static, workers=workers)
     g = _Grid(spec.shape)
     explicit = bands is not None
     min_energy = check_real("min_energy", min_energy, lo=0.0, hi=1.0)
@@ -439,13 +444,14 @@ def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octa
     )
 
 
-def band_speeds(video, bands, *, window="hann", remove_static=False) -> np.ndarray:
+def band_speeds(video, bands, *, window="hann", remove_static=False, workers=None) -> np.ndarray:
     """Velocity ``(vx, vy)`` in px/frame of each spatial-frequency band: an array of shape ``(len(bands), 2)``.
 
     ``bands`` is a sequence of ``(lo, hi)`` pairs in cycles/frame (see
     :func:`octave_bands`). For falling snow with tent constant ``c`` the
     speed of a band near ``f`` cycles/frame is ``c N / (2 pi f)``: speed x
-    frequency is constant (motion parallax).
+    frequency is constant (motion parallax). ``workers``: FFT threads,
+    scipy.fft's meaning (-1: every core); same result for any count.
 
     Examples
     --------
@@ -456,4 +462,4 @@ def band_speeds(video, bands, *, window="hann", remove_static=False) -> np.ndarr
     >>> band_speeds(slow + fast, [(2, 8), (16, 32)]).round(6).tolist()
     [[0.0, 2.0], [0.25, 0.25]]
     """
-    return speed_profile(video, bands, window=window, remove_static=remove_static).velocity
+    return speed_profile(video, bands, window=window, remove_static=remove_static, workers=workers).velocity

@@ -118,7 +118,7 @@ def _hann(n: int, dtype) -> np.ndarray:
     return (0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(n) / n)).astype(dtype)
 
 
-def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=4) -> PowerSpectrum:
+def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=4, workers=None) -> PowerSpectrum:
     """Power spectrum of a 1-, 2- or 3-D real field, normalised so that Parseval holds.
 
     Parameters
@@ -137,6 +137,9 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=
     min_size : int
         Fewest samples accepted along any axis (a video's time axis may
         have 2: :func:`noiselab.analysis.video_spectrum` checks it).
+    workers : int, optional
+        FFT threads, scipy.fft's meaning (-1: every core; None: scipy's
+        default); the result is the same for any count.
 
     Returns
     -------
@@ -190,7 +193,7 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=
             shape[ax] = w.size
             work *= w.reshape(shape)
             scale *= float(np.mean(w.astype(np.float64) ** 2))
-    spec = scipy.fft.rfftn(work, axes=axes, overwrite_x=work is not arr)
+    spec = scipy.fft.rfftn(work, axes=axes, overwrite_x=work is not arr, workers=workers)
     del work
     if zero_dc:
         spec[tuple(0 if a in axes else slice(None) for a in range(nd))] = 0
@@ -212,7 +215,7 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=
     return PowerSpectrum(power=power, shape=arr.shape, axes=axes, window=window, window_axes=window_axes if window else (), mean=mean)
 
 
-def as_spectrum(field, *, window=None, axes=None, window_axes=None) -> PowerSpectrum:
+def as_spectrum(field, *, window=None, axes=None, window_axes=None, workers=None) -> PowerSpectrum:
     """Return ``field`` if it already is a :class:`PowerSpectrum` (over the same axes), else compute it."""
     if isinstance(field, PowerSpectrum):
         if axes is not None:
@@ -221,7 +224,7 @@ def as_spectrum(field, *, window=None, axes=None, window_axes=None) -> PowerSpec
             if want != field.axes:
                 raise ValueError(f"the spectrum was computed over axes {field.axes}, this measurement needs {want}")
         return field
-    return power_spectrum(field, window=window, axes=axes, window_axes=window_axes)
+    return power_spectrum(field, window=window, axes=axes, window_axes=window_axes, workers=workers)
 
 
 def _radial_frequency(spec: PowerSpectrum, radial_axes) -> tuple[list, int]:
@@ -330,7 +333,7 @@ def _bin_index(r, edges):
     return idx
 
 
-def radial_spectrum(field, *, bins=None, log=False, window=None, axes=None, fmax=None) -> RadialSpectrum:
+def radial_spectrum(field, *, bins=None, log=False, window=None, axes=None, fmax=None, workers=None) -> RadialSpectrum:
     """Radially averaged power spectrum of a 1-, 2- or 3-D field (or of a :class:`PowerSpectrum`).
 
     Parameters
@@ -351,6 +354,8 @@ def radial_spectrum(field, *, bins=None, log=False, window=None, axes=None, fmax
         Upper limit in cycles/frame; default ``N / 2`` (the inscribed Nyquist
         circle; the corners beyond it hold an incomplete annulus). At most
         ``N / 2 * sqrt(d)``.
+    workers : int, optional
+        FFT threads, scipy.fft's meaning (-1: every core); same result for any count.
 
     Returns
     -------
@@ -364,7 +369,7 @@ def radial_spectrum(field, *, bins=None, log=False, window=None, axes=None, fmax
     >>> float(rs.centers[np.argmax(rs.power)])
     8.0
     """
-    spec = as_spectrum(field, window=window, axes=axes)
+    spec = as_spectrum(field, window=window, axes=axes, workers=workers)
     radial_axes = spec.axes
     comps, n_ref = _radial_frequency(spec, radial_axes)
     nyq = n_ref / 2.0

@@ -36,7 +36,10 @@ def run(args):
         if out.exists() and not out.is_dir():
             raise ValueError(f"--output must be a folder, got the file {str(out)!r}")
         out.mkdir(parents=True, exist_ok=True)
-    res = run_all(quick=args.quick, output=args.output, peers=not args.no_peers,
-                  log=lambda m: print(m, flush=True))
+    import scipy.fft
+
+    with scipy.fft.set_workers(-1):  # every core for snow, spectral_noise and the analysers (explicit counts win)
+        res = run_all(quick=args.quick, output=args.output, peers=not args.no_peers,
+                      log=lambda m: print(m, flush=True))
     print(f"results: {res['path']}")
     return 0

@@ -44,4 +44,7 @@ def add_arguments(parser):
 
 
 def run(args) -> int:
-    return load_builder().run(args)
+    import scipy.fft
+
+    with scipy.fft.set_workers(-1):  # every core for the FFTs of snow, spectral_noise and the analysers
+        return load_builder().run(args)

@@ -72,6 +72,9 @@ def add_arguments(parser):
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
                         help="with .zarr output: dask scheduler, threads (default), processes, synchronous, "
                              "or the address of a running dask.distributed scheduler, e.g. tcp://host:8786")
+    parser.add_argument("--workers", type=int, default=-1,
+                        help="threads: a count, or -1 for every core, -2 for all but one (default: -1); "
+                             "the output is the same for any count")
 
 
 def run(args) -> int:
@@ -106,8 +109,10 @@ def run(args) -> int:
     if suffix == ".zarr" or args.chunks is not None or args.scheduler is not None:
         from ..scale.commands import write_noise_zarr  # chunked on dask, streamed to zarr
         return write_noise_zarr(args, noise, grid, summer, dtype, path)
+    from ..spectral.synthesis import _workers
+
     field, used = summer(noise, grid, args.octaves, lacunarity=args.lacunarity, gain=args.gain,
-                         dtype=dtype, return_octaves=True)
+                         dtype=dtype, return_octaves=True, workers=_workers(args.workers))
     bound = sum(args.gain ** o for o in range(used))
     lo, hi = (0.0 if args.kind == "turbulence" else -bound), bound
     if args.value_range == "data":

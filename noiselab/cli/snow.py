@@ -39,6 +39,9 @@ def add_arguments(p):
     t.add_argument("--on-alias", choices=("raise", "drop"), default="raise",
                    help="energy past the temporal Nyquist: error (default) or drop those cells")
     t.add_argument("--dtype", choices=("float32", "float64"), default="float32", help="precision (default float32)")
+    t.add_argument("--workers", type=int, default=-1,
+                   help="FFT threads: a count, or -1 for every core, -2 for all but one (default -1); "
+                        "the video is the same for any count")
     o = p.add_argument_group("output")
     o.add_argument("--background", default=None,
                    help="image or video file (or folder of PNG frames) to snow on; default: a built-in landscape")
@@ -113,7 +116,8 @@ def run(args) -> int:
     t0 = time.perf_counter()
     alpha = snow((T, th, tw), seed=args.seed, c=args.c, band=band, thickness=args.thickness,
                  direction=tuple(args.direction), pan=tuple(args.pan), beta=args.beta, exponent=args.exponent,
-                 amplitude=args.amplitude, dtype=args.dtype, on_alias=args.on_alias, show_progress=args.progress)
+                 amplitude=args.amplitude, dtype=args.dtype, on_alias=args.on_alias, show_progress=args.progress,
+                 workers=args.workers)
     t_render = time.perf_counter() - t0
     reps = (math.ceil(H / th), math.ceil(W / tw))
     alpha_frames = iter_tiled_frames(alpha, reps, n_frames=n_out, crop=(H, W))

@@ -112,6 +112,13 @@ def octaves_used(octaves, *, lacunarity=2.0, gain=0.5, spacing=None, frequency=1
     return used
 
 
+
+def _grid_spacing(shape, ext):
+    """Sample spacing per grid axis; NaN (no Nyquist limit) for an axis of one sample or of zero width."""
+    steps = np.array([abs(ext[a, 1] - ext[a, 0]) / n if n > 1 else np.nan for a, n in enumerate(shape)])
+    steps[steps == 0] = np.nan  # every sample of that axis at one point: nothing to alias along it
+    return steps
+
 def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, absval, workers=1,
          chunks=None):
     from ..lattice import Grid, LatticeNoise
@@ -125,8 +132,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
     if is_grid:
         dim = noise.dim_in if isinstance(noise, LatticeNoise) else len(tuple(np.atleast_1d(x.shape)))
         shape, ext = _check_grid(x.shape, x.extent, dim)
-        steps = np.array([(ext[a, 1] - ext[a, 0]) / n if n > 1 else np.nan for a, n in enumerate(shape)])
-        spacing = np.abs(steps)
+        spacing = _grid_spacing(shape, ext)
         out_dtype = float_dtype(np.float64 if dtype is None else dtype)
     else:
         raw = _asarray("x", x)
@@ -258,8 +264,7 @@ def _jacobian_sum(noise, x, octaves, lacunarity, gain, normalize, return_value, 
     is_grid = isinstance(x, Grid)
     if is_grid:
         shape, ext = _check_grid(x.shape, x.extent, noise.dim_in)
-        steps = np.array([(ext[a, 1] - ext[a, 0]) / n if n > 1 else np.nan for a, n in enumerate(shape)])
-        spacing = np.abs(steps)
+        spacing = _grid_spacing(shape, ext)
     elif spacing is not None:
         spacing = check_real("spacing", spacing, lo=0.0, lo_open=True)
     freq = noise.frequency if lattice else 1.0

@@ -8,19 +8,21 @@ import numpy as np
 from .._progress import progress
 from .._validate import as_generator, _asarray, check_finite_array, check_memory, check_real, check_real_sequence, check_shape, float_dtype
 from ..spectral.envelopes import unit_direction
-from ..spectral.synthesis import AMPLITUDES
+from ..spectral.synthesis import AMPLITUDES, _pool, _workers
 from . import _kernels
 from .tent import assemble, pruned_irfftn, tent_columns, to_half_spectrum
 
 __all__ = ["snow", "snow_spectrum", "rescale_opacity"]
 
 
-def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
+def rescale_opacity(field, beta=1.5, *, lo=None, hi=None, workers=None):
     """Map a field to opacity in place: ``alpha = ((field - min) / (max - min)) ** beta`` (thesis 3.3).
 
     A constant field (``max == min``) has no structure to show and becomes
     fully transparent (``alpha = 0``) instead of dividing by zero. ``lo`` and
-    ``hi`` may pass a known minimum and maximum (saves one pass).
+    ``hi`` may pass a known minimum and maximum (saves one pass). ``workers``:
+    threads (scipy.fft's meaning, -1 every core), the field split in fixed
+    chunks: the same values for any count.
 
     Examples
     --------
@@ -62,7 +64,14 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None):
     scale = ft(1) / span
     while (ft(hi) - ft(lo)) * scale < 1:
         scale = np.nextafter(scale, ft(np.inf))
-    _kernels.rescale_power(flat, float(lo), float(scale), beta)
+    nw = _workers(workers)
+    step = 1 << 20  # fixed chunks (not per worker): each element is mapped alone, so any count gives the same bits
+    chunks = [flat[i:i + step] for i in range(0, flat.size, step)]
+    if nw <= 1 or len(chunks) <= 1:
+        _kernels.rescale_power(flat, float(lo), float(scale), beta)
+    else:
+        list(_pool(min(nw, len(chunks))).map(lambda c: _kernels.rescale_power(c, float(lo), float(scale), beta),
+                                             chunks))
     return field
 
 
@@ -89,7 +98,7 @@ def _check_params(shape, c, band, thickness, direction, pan, beta, exponent, amp
 
 def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, direction=(0.0, 1.0),
          pan=(0.0, 0.0), beta=1.5, exponent=1.0, amplitude="uniform", dtype=np.float32,
-         on_alias="raise", rescale=True, show_progress=False):
+         on_alias="raise", rescale=True, show_progress=False, workers=None):
     """Falling-snow opacity ``alpha(t, y, x)`` in [0, 1] from the tent model (Langer & Zhang 2003).
 
     Energy sits on the thickened tent ``wt = -c*(d . w)/|w| - pan . w`` inside
@@ -141,6 +150,12 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
         ``False`` returns the raw zero-mean field (the inverse FFT itself).
     show_progress : bool or None
         Progress bar over the frames of the final FFT pass.
+    workers : int, optional
+        Threads, with scipy.fft's meaning (-1: every core): the t-pass runs on
+        them inside scipy, the blocks of frames of the y- and x-passes are
+        shared among them. The output is bit-identical for any count.
+        Default (None): scipy's default, one thread unless set with
+        ``scipy.fft.set_workers`` (``noiselab snow`` uses every core).
 
     Returns
     -------
@@ -165,20 +180,21 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
     """
     (T, H, W), c, band, thickness, direction, pan, beta, exponent = _check_params(
         shape, c, band, thickness, direction, pan, beta, exponent, amplitude, on_alias)
+    nw = _workers(workers)
     dt = float_dtype(dtype)
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1
     item = dt.itemsize
-    check_memory(T * H * W * item + 2 * T * cols.ky.size * 2 * item + 3 * (8 << 20) + H * K * 2 * item,
+    check_memory(T * H * W * item + 2 * T * cols.ky.size * 2 * item + 3 * (8 << 20) + nw * 3 * H * K * 2 * item,
                  f"snow{(T, H, W)}")
     rng = as_generator(seed)
     C = assemble(cols, rng, amplitude, dt)
     out = np.empty((T, H, W), dtype=dt)
     with progress(total=T, desc="snow", enabled=show_progress, unit="frame") as bar:
-        lo, hi = pruned_irfftn(C, cols, out, bar=bar)
+        lo, hi = pruned_irfftn(C, cols, out, bar=bar, workers=workers)
     if rescale:
-        rescale_opacity(out, beta, lo=lo, hi=hi)
+        rescale_opacity(out, beta, lo=lo, hi=hi, workers=nw)
     return out
 
 

@@ -38,9 +38,6 @@ from ..spectral.synthesis import _check_band, _complex_dtype, draw_coefficients,
 
 __all__ = ["TentColumns", "tent_columns", "largest_c", "pruned_irfftn", "flake_speeds"]
 
-_NP_FFT_OUT = "out" in getattr(np.fft.irfft, "__doc__", "")  # numpy >= 2 writes irfft into a given array
-
-
 @dataclass
 class TentColumns:
     """The tent spectrum in sparse form: band cells (columns) and their temporal bins."""
@@ -220,31 +217,58 @@ def to_half_spectrum(C, cols: TentColumns):
     return S
 
 
-def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 20, bar=None):
+def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 18, bar=None, workers=None):
     """``irfftn`` of the sparse columns into ``out`` (T, H, W), transforming only what carries energy.
 
     Equal to ``scipy.fft.irfftn(to_half_spectrum(C, cols), s=(T, H, W))`` to
     float precision (tested). ``C`` is overwritten. Returns the output's
-    minimum and maximum, taken chunk by chunk while the chunk is in cache.
+    minimum and maximum, taken block by block while the block is in cache.
+
+    The t-pass runs once on the tent's columns (``workers`` threads inside
+    scipy); then each block of frames (about ``chunk_bytes`` of y-pass input)
+    is scattered back to its ``(ky, kx)`` cells, transformed along y on the
+    band's kx columns and along x (complex-to-real) into ``out``, the blocks
+    shared among ``workers`` threads. A block is computed the same way
+    whichever thread takes it, so the bits do not depend on ``workers``; the
+    only full-size array is ``out`` (plus one block's scratch per thread).
     """
-    lo, hi = np.inf, -np.inf
+    from ..spectral.synthesis import _pool, _workers
+    from . import _kernels
+
+    nw = _workers(workers)
     T, H, W = cols.shape
-    C = scipy.fft.ifft(C, axis=0, overwrite_x=True) if T > 1 else C
+    C = scipy.fft.ifft(C, axis=0, overwrite_x=True, workers=nw) if T > 1 else C
     K = int(cols.kx.max()) + 1
+    ky = cols.ky.astype(np.int64)
+    kx = cols.kx.astype(np.int64)
     tc = int(max(1, min(T, chunk_bytes // max(1, H * K * C.itemsize))))
-    for t0 in range(0, T, tc):
-        t1 = min(T, t0 + tc)
-        B = np.zeros((t1 - t0, H, K), dtype=C.dtype)
-        B[:, cols.ky, cols.kx] = C[t0:t1]
-        B = scipy.fft.ifft(B, axis=1, overwrite_x=True)
-        if _NP_FFT_OUT:
-            np.fft.irfft(B, n=W, axis=2, out=out[t0:t1])
-        else:  # pragma: no cover - numpy < 2
-            out[t0:t1] = scipy.fft.irfft(B, n=W, axis=2)
-        chunk = out[t0:t1]
-        lo, hi = min(lo, float(chunk.min())), max(hi, float(chunk.max()))
+    blocks = [(t0, min(T, t0 + tc)) for t0 in range(0, T, tc)]
+    rows = int(max(1, min(H, chunk_bytes // max(1, W * out.itemsize))))
+
+    def render(blk):
+        t0, t1 = blk
+        B = np.empty((t1 - t0, H, K), dtype=C.dtype)
+        _kernels.scatter_columns(C, t0, ky, kx, B)
+        B = scipy.fft.ifft(B, axis=1, overwrite_x=True, workers=1)
+        # x-pass: scipy's irfft into a small scratch (a slab of rows) then a copy, faster than numpy's irfft
+        # straight into out (scipy vectorises across rows); min and max while the slab is in cache
+        blo, bhi = np.inf, -np.inf
+        for t in range(t1 - t0):
+            for y0 in range(0, H, rows):
+                slab = scipy.fft.irfft(B[t, y0:y0 + rows], n=W, axis=1, workers=1)
+                out[t0 + t, y0:y0 + rows] = slab
+                blo, bhi = min(blo, float(slab.min())), max(bhi, float(slab.max()))
+        return blo, bhi, t1 - t0
+
+    lo, hi = np.inf, -np.inf
+    if nw <= 1 or len(blocks) <= 1 or T * H * W < (1 << 16):
+        results = map(render, blocks)
+    else:
+        results = _pool(min(nw, len(blocks))).map(render, blocks)
+    for blo, bhi, n in results:  # in block order, whichever thread finished first
+        lo, hi = min(lo, blo), max(hi, bhi)
         if bar is not None:
-            bar.update(t1 - t0)
+            bar.update(n)
     return lo, hi
 
 

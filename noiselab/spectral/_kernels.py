@@ -128,9 +128,10 @@ def coefficient_parts(key, start, mode, a2, c, s):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def count_envelope_rows(env2, counts):
-    """Cells with ``env > 0`` per row; returns 1 if a value is not finite, 2 if one is negative, else 0."""
+def count_envelope_rows(env2, counts, emax):
+    """Cells with ``env > 0`` per row, and ``emax[0]`` the largest value; returns 1 if a value is not finite, 2 if one is negative, else 0."""
     R, K = env2.shape
+    top = 0.0
     for r in range(R):
         n = 0
         for k in range(K):
@@ -141,7 +142,9 @@ def count_envelope_rows(env2, counts):
                 return 2
             if e > 0:
                 n += 1
+                top = max(top, e)
         counts[r] = n
+    emax[0] = top
     return 0
 
 
@@ -182,23 +185,24 @@ def fill_envelope(spec2, env2, counts, r0, r1, a2, c, s):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def band_rows(q0, q1, wxsq, lo, hi, kbeg, kend):
+def band_rows(q0, q1, wxsq, lo, hi, allow_dc, kbeg, kend):
     """Per row ``(i0, i1)`` of a ``(m0, m1, K)`` block, the kx interval ``[kbeg, kend)`` inside the band.
 
     ``lo`` and ``hi`` are the annulus limits in cycles/sample with their
-    tolerance already applied. The radius grows with kx along a row, so the
-    band is one interval; its ends are found by bisection on the same test.
+    tolerance already applied; DC (``f = 0``) is in the band only with
+    ``allow_dc``. The radius grows with kx along a row, so the band is one
+    interval; its ends are found by bisection on the same test.
     """
     m1 = q1.size
     K = wxsq.size
     for r in range(q0.size * m1):
         q = q0[r // m1] + q1[r % m1]
-        # first k with f >= lo and f > 0
+        # first k with f >= lo and (f > 0 or DC allowed)
         a, b = 0, K
         while a < b:
             mid = (a + b) // 2
             f = np.sqrt(q + wxsq[mid]) / _TWO_PI
-            if f >= lo and f > 0:
+            if f >= lo and (f > 0 or allow_dc):
                 b = mid
             else:
                 a = mid + 1
@@ -216,64 +220,136 @@ def band_rows(q0, q1, wxsq, lo, hi, kbeg, kend):
         kend[r] = max(a, start)
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
-def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, exponent, interior, pw):
-    """Rows ``r0..r1-1`` of a ``(m0*m1, K)`` block: ``|w|**-exponent * a * exp(i*th)`` inside each row's band.
+def _make_fill_power_law(mode, exponent_one, sample, quarter):
+    """:func:`fill_power_law` compiled for one amplitude law, ``exponent == 1`` or not, sample power or not (constants, so each loop vectorises).
 
-    ``specf`` is the block's flat float view (real and imaginary parts
-    interleaved, ``2*K`` per row), written in its own precision. ``a2`` is the
-    squared random amplitude of each coefficient, ``c, s`` its phase's cosine
-    and sine (the magnitude is taken as ``sqrt(a2 / (c**2 + s**2))``, so that
-    ``|exp(i*th)| = 1`` to the output's precision). Writes into ``pw`` (one
-    entry per coefficient) ``|S|**2 * interior[kx]``: ``interior`` is 1 where a
-    half-spectrum cell stands for two cells of the full spectrum, 0 on the
-    self-conjugate planes (whose power the caller adds once they are Hermitian).
-
-    Indices are unsigned offsets rather than slices: no negative-index
-    wrap-around, so the loops vectorise, and no per-row array views (whose
-    reference counting cost more than a short row's arithmetic).
+    ``quarter``: ``2 * exponent`` when that is an integer other than 2 (the
+    exponents 0.5, 1.5, 2, ... -1, ...), else None. Then ``|w|**-exponent =
+    (qn**-0.25)**quarter`` by square roots and a fixed chain of products (a
+    few roundings, vectorised) instead of a scalar ``pow`` per cell; otherwise
+    ``pow`` (1024^2 float32: 1.59-1.68x a bare ``irfftn`` against 2.24-2.39x,
+    ``benchmarks/bench_spectral_exponents.md``).
     """
-    m1 = q1.size
-    T = specf.dtype.type
-    ex = T(-0.5 * exponent)
-    zero = T(0)
-    one = np.uint64(1)
-    two = np.uint64(2)
-    j = 0
-    for r in range(r0, r1):
-        q = q0[r // m1] + q1[r % m1]
-        b0 = kbeg[r]
-        b1 = kend[r]
-        base = np.uint64(r * 2 * K)
-        for k in range(2 * b0):
-            specf[base + np.uint64(k)] = zero
-        n = b1 - b0
-        ob = base + np.uint64(2 * b0)
-        uj = np.uint64(j)
-        ub = np.uint64(b0)
-        if exponent == 1.0:
+    qpos = quarter is not None and quarter > 0
+    qn_pow = 0 if quarter is None else abs(quarter)
+
+    @njit(cache=True, nogil=True, error_model="numpy")
+    def fill(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, exponent, qfloor, inv_qref, weight, rowpow,
+             scratch):
+        """Rows ``r0..r1-1`` of a ``(m0*m1, K)`` block: ``e * a * exp(i*th)`` inside each row's band, 0 outside.
+
+        The coefficients are words ``start, start+1, ...`` of the stream ``key``
+        (the ``j``-th cell of the rows in C order takes word ``start + j``), drawn
+        in the loop that writes them: the same float32 values as
+        :func:`coefficient_parts` (so :func:`synthesize` with the same envelope
+        draws the same), without the arrays between the two.
+
+        ``e = (max(|w|**2, qfloor) * inv_qref) ** (-exponent/2)`` is the power law
+        divided by its value at ``|w|**2 = 1/inv_qref`` (the caller picks the
+        band's loudest end, so ``e <= 1``: no float32 overflow for any exponent;
+        ``qfloor`` makes the law flat below the lowest nonzero frequency, which
+        only DC can be). ``|w|**2 = q0[i0] + q1[i1] + wxsq[kx]`` is summed in
+        float64, ``e`` and the cell in the block's precision; the magnitude is
+        ``e * sqrt(a2 / (c**2 + s**2))`` so that ``|exp(i*th)| = 1`` to the
+        output's precision.
+
+        ``specf`` is the block's flat float view (real and imaginary parts
+        interleaved, ``2*K`` per row). ``rowpow[r]`` receives the row's power
+        weighted by ``weight[kx]``: expected (``e**2``) or, with ``sample``, drawn
+        (``|S|**2``); ``scratch`` (at least ``K`` floats) holds a row's terms,
+        summed in float64 in a fixed order.
+
+        Indices are unsigned offsets rather than slices: no negative-index
+        wrap-around, so the loops vectorise, and no per-row array views (whose
+        reference counting cost more than a short row's arithmetic).
+        """
+        m1 = q1.size
+        T = specf.dtype.type
+        ex = T(-0.5 * exponent)
+        zero = T(0)
+        one = np.uint64(1)
+        two = np.uint64(2)
+        j = start
+        for r in range(r0, r1):
+            q = q0[r // m1] + q1[r % m1]
+            b0 = kbeg[r]
+            b1 = kend[r]
+            base = np.uint64(r * 2 * K)
+            for k in range(2 * b0):
+                specf[base + np.uint64(k)] = zero
+            n = b1 - b0
+            ob = base + np.uint64(2 * b0)
+            ub = np.uint64(b0)
             for i in range(n):
                 t = np.uint64(i)
-                cc = c[uj + t]
-                ss = s[uj + t]
+                z = splitmix64(key, j + i)
+                a2 = T(_amplitude2(z, mode))
+                c32, s32 = _phase(z)
+                cc = T(c32)
+                ss = T(s32)
                 den = cc * cc + ss * ss
-                m = np.sqrt(a2[uj + t] / (T(q + wxsq[ub + t]) * den))
+                qn = T(max(q + wxsq[ub + t], qfloor) * inv_qref)
+                if exponent_one:
+                    m = np.sqrt(a2 / (qn * den))
+                    e2 = T(1) / qn
+                elif quarter is not None:
+                    r4 = np.sqrt(np.sqrt(qn))
+                    b = T(1) / r4 if qpos else r4
+                    e = T(1)
+                    nq = qn_pow
+                    while nq:
+                        if nq & 1:
+                            e = e * b
+                        b = b * b
+                        nq >>= 1
+                    m = e * np.sqrt(a2 / den)
+                    e2 = e * e
+                else:
+                    e = qn ** ex
+                    m = e * np.sqrt(a2 / den)
+                    e2 = e * e
                 specf[ob + two * t] = m * cc
                 specf[ob + two * t + one] = m * ss
-                pw[uj + t] = m * m * den * interior[ub + t]
-        else:
-            for i in range(n):
-                t = np.uint64(i)
-                cc = c[uj + t]
-                ss = s[uj + t]
-                den = cc * cc + ss * ss
-                m = T(q + wxsq[ub + t]) ** ex * np.sqrt(a2[uj + t] / den)
-                specf[ob + two * t] = m * cc
-                specf[ob + two * t + one] = m * ss
-                pw[uj + t] = m * m * den * interior[ub + t]
-        for k in range(2 * b1, 2 * K):
-            specf[base + np.uint64(k)] = zero
-        j += n
+                if sample:
+                    scratch[t] = m * m * den * weight[ub + t]
+                else:
+                    scratch[t] = e2 * weight[ub + t]
+            # four running sums (a fixed order, so the same float every time; one chain would wait on each add)
+            p0 = 0.0
+            p1 = 0.0
+            p2 = 0.0
+            p3 = 0.0
+            i = 0
+            while i + 4 <= n:
+                p0 += np.float64(scratch[i])
+                p1 += np.float64(scratch[i + 1])
+                p2 += np.float64(scratch[i + 2])
+                p3 += np.float64(scratch[i + 3])
+                i += 4
+            while i < n:
+                p0 += np.float64(scratch[i])
+                i += 1
+            rowpow[r] = (p0 + p1) + (p2 + p3)
+            for k in range(2 * b1, 2 * K):
+                specf[base + np.uint64(k)] = zero
+            j += n
+
+    return fill
+
+
+_FILLS = {}
+
+
+def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, mode, exponent, qfloor, inv_qref,
+                   weight, sample, rowpow, scratch):
+    """See :func:`_make_fill_power_law`'s kernel; dispatches to the variant for ``mode``, ``exponent == 1``, ``sample``."""
+    two = 2.0 * float(exponent)
+    quarter = int(two) if two == int(two) and exponent != 1.0 else None
+    flags = (int(mode), bool(exponent == 1.0), bool(sample), quarter)
+    f = _FILLS.get(flags)
+    if f is None:
+        f = _FILLS[flags] = _make_fill_power_law(*flags)
+    f(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, exponent, qfloor, inv_qref, weight, rowpow, scratch)
 
 
 @njit(cache=True, nogil=True, error_model="numpy")

@@ -34,6 +34,9 @@ earlier scheme (``noiselab.snow`` uses it for its few cells).
 """
 from __future__ import annotations
 
+import os
+from concurrent.futures import ThreadPoolExecutor
+
 import numpy as np
 import scipy.fft
 
@@ -42,7 +45,7 @@ from . import _kernels
 from .envelopes import annulus
 from .frequencies import frequency_vectors, half_spectrum_shape
 
-__all__ = ["synthesize", "spectral_noise", "draw_coefficients", "hermitian_plane", "AMPLITUDES"]
+__all__ = ["synthesize", "spectral_noise", "NORMALIZATIONS", "draw_coefficients", "hermitian_plane", "AMPLITUDES"]
 
 AMPLITUDES = ("uniform", "rayleigh", "fixed")
 _MODES = {"uniform": 0, "rayleigh": 1, "fixed": 2}  # amplitude law -> kernel mode
@@ -163,20 +166,21 @@ def _stream_key(rng):
 
 
 def _row_groups(counts, chunk=_CHUNK):
-    """Split rows into consecutive groups holding about ``chunk`` coefficients each (at least one row)."""
+    """Split rows into consecutive groups of about ``chunk`` coefficients (a group starts where a multiple of ``chunk`` is passed).
+
+    Returns ``(r0, r1, n)`` per group: rows ``r0..r1-1`` holding ``n``
+    coefficients (possibly 0: such rows are still written, as zeros). Every row is in one group.
+    """
     cum = np.cumsum(counts)
-    R = counts.size
-    bounds = [0]
-    while bounds[-1] < R:
-        start = bounds[-1]
-        base = int(cum[start - 1]) if start else 0
-        end = int(np.searchsorted(cum, base + chunk, side="right"))
-        bounds.append(min(R, max(end, start + 1)))
-    return [(bounds[i], bounds[i + 1], int(cum[bounds[i + 1] - 1]) - (int(cum[bounds[i] - 1]) if bounds[i] else 0))
-            for i in range(len(bounds) - 1)]
+    before = cum - counts  # coefficients before each row
+    ids = before // max(1, int(chunk))
+    bounds = np.concatenate([[0], np.flatnonzero(np.diff(ids)) + 1, [counts.size]]).astype(np.int64)
+    n = np.add.reduceat(counts, bounds[:-1]) if counts.size else np.zeros(0, np.int64)
+    return [(int(a), int(b), int(m)) for a, b, m in zip(bounds[:-1], bounds[1:], n)]
 
 
-def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.float32, return_spectrum=False):
+def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.float32, return_spectrum=False,
+               workers=None):
     """Real random field with the given amplitude envelope: ``irfftn(envelope * a * exp(i*phi))``.
 
     Parameters
@@ -199,6 +203,11 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
         one seed agree to float32 precision.
     return_spectrum : bool
         Also return the half spectrum ``S`` with ``rfftn(field) == S``.
+    workers : int, optional
+        Threads, with scipy.fft's meaning (-1: every core), for the inverse
+        FFT and the spectrum fill; the output is bit-identical for any count.
+        Default (None): scipy's default (one thread unless set with
+        ``scipy.fft.set_workers``).
 
     Returns
     -------
@@ -212,6 +221,10 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     rows draws the coefficients and writes them into the spectrum (zeros
     elsewhere), in C order, without an index array; the self-conjugate planes
     are then made Hermitian and ``irfftn`` runs (not in place: measured slower).
+    An envelope so large or so small that the spectrum or the FFT's sums would
+    leave the dtype's range is divided by its maximum before the FFT and the
+    field multiplied by it after; a field whose values themselves do not fit
+    the dtype is a ``ValueError``.
     Timings against a bare ``irfftn``: ``benchmarks/bench_spectral.md``.
 
     Examples
@@ -241,22 +254,48 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     R = n_half // K
     env2 = env.reshape(R, K)
     counts = np.zeros(R, dtype=np.int64)
-    if _kernels.count_envelope_rows(env2, counts) != 0:
+    top = np.zeros(1)
+    if _kernels.count_envelope_rows(env2, counts, top) != 0:
         if not np.all(np.isfinite(env)):
             raise ValueError("envelope must be finite everywhere (an infinite amplitude at DC? multiply by an annulus)")
         raise ValueError("envelope must be non-negative (it is an amplitude)")
+    nw = _workers(workers)
+    # keep the spectrum and the FFT's partial sums (at most n_half cells of |S| <= 5 env) inside the dtype's range
+    fi = np.finfo(dt)
+    emax = float(top[0])
+    rescale = emax > 0 and not (float(fi.tiny) / float(fi.eps) <= emax <= float(fi.max) / (8.0 * n_half))
+    if rescale:
+        env2 = env2 / emax
     rng = as_generator(seed)
     mode = _MODES[amplitude]
     spec = np.empty(hshape, dtype=cdt)
     spec2 = spec.reshape(R, K)
-    key, start = _stream_key(rng), 0
-    for r0, r1, n in _row_groups(counts):
-        u, c, s = _draws(key, start, n, mode)
+    key = _stream_key(rng)
+    groups = _row_groups(counts)
+    starts = np.concatenate([[0], np.cumsum([g[2] for g in groups])[:-1]]).astype(np.int64)
+
+    def fill(i):
+        r0, r1, n = groups[i]
+        u, c, s = _draws(key, int(starts[i]), n, mode)
         _kernels.fill_envelope(spec2, env2, counts, r0, r1, u, c, s)
-        start += n
+
+    _map_groups(fill, range(len(groups)), nw if int(counts.sum()) >= _MIN_PARALLEL else 1)
     for j in _self_conjugate_columns(shape[-1]):
         spec[..., j] = hermitian_plane(spec[..., j], env[..., j] > 0)
-    field = scipy.fft.irfftn(spec, s=shape)  # (overwrite_x=True measured slower: in-place strided passes)
+    field = scipy.fft.irfftn(spec, s=shape, workers=workers)  # (overwrite_x=True measured slower: in-place strided passes)
+    if rescale:
+        with np.errstate(over="ignore", invalid="ignore"):
+            big = float(np.max(np.abs(field), initial=0.0)) * emax
+            if not big <= float(fi.max):
+                raise ValueError(f"envelope is too large for {dt}: its maximum {emax:.3g} gives field values "
+                                 f"of {big:.3g}, past the dtype's largest {float(fi.max):.3g}; scale it down "
+                                 f"or use float64")
+            field = (field.astype(np.float64) * emax).astype(dt)
+            if return_spectrum:
+                spec = (spec.astype(np.complex128) * emax).astype(cdt)
+                if not np.all(np.isfinite(spec.view(dt))):
+                    raise ValueError(f"envelope is too large for the {cdt} spectrum: its maximum {emax:.3g}; "
+                                     f"scale it down or use float64")
     if field.dtype != dt:
         field = field.astype(dt)
     return (field, spec) if return_spectrum else field
@@ -267,26 +306,70 @@ def _self_conjugate_columns(last_n):
     return [0] + ([last_n // 2] if last_n % 2 == 0 and last_n > 1 else [])
 
 
-def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype):
-    """The unnormalised half spectrum of :func:`spectral_noise`, on the block of cells the band can reach.
+def _workers(workers):
+    """``workers`` with scipy.fft's meaning (None: scipy's default; -1: every core; -k: cores + 1 - k) as a count >= 1."""
+    if workers is None:
+        return int(scipy.fft.get_workers())  # 1, or what a scipy.fft.set_workers block around the call says
+    if isinstance(workers, (bool, np.bool_)) or not isinstance(workers, (int, np.integer)):
+        raise TypeError(f"workers must be an int (scipy.fft's meaning: -1 for every core) or None, got {workers!r}")
+    cores = os.cpu_count() or 1
+    n = int(workers) if workers > 0 else cores + 1 + int(workers)
+    if workers == 0 or n < 1:
+        raise ValueError(f"workers must be a positive count or -1 .. -{cores} (every core, every core but one, ...), "
+                         f"got {workers!r}")
+    return n
 
-    Returns ``(block, index, power)``: ``block`` has shape
-    ``(len(index[0]), ..., K)`` with ``index[i]`` the kept indices (increasing)
-    of leading axis ``i`` and ``K`` the kept kx columns ``0..K-1``; every cell
-    outside the block is 0. ``power`` is the sum of ``|S|**2`` over the full
-    spectrum (``sum(field**2) * N`` for ``N`` samples). The coefficients are
-    the ones :func:`synthesize` draws for the envelope
-    ``annulus(lo, hi) * power_law(exponent)`` with the same seed: the same
-    cells, the same order, the same words.
+
+_POOLS = {}  # worker count -> a thread pool kept for the process (starting threads per call cost ~0.1 ms each)
+_MIN_PARALLEL = 1 << 16  # fewer cells than this are filled on the calling thread (measured: threads cost more)
+
+
+def _pool(nw):
+    """A process-wide pool of ``nw`` threads (created on first use)."""
+    pool = _POOLS.get(nw)
+    if pool is None:
+        pool = _POOLS[nw] = ThreadPoolExecutor(max_workers=nw, thread_name_prefix="noiselab")
+    return pool
+
+
+def _map_groups(fn, groups, nw):
+    """``[fn(g) for g in groups]``, on ``nw`` threads when more than one (the numba kernels release the GIL)."""
+    groups = list(groups)
+    if nw <= 1 or len(groups) <= 1:
+        return [fn(g) for g in groups]
+    return list(_pool(min(nw, len(groups))).map(fn, groups))
+
+
+def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, workers=1):
+    """The half spectrum of :func:`spectral_noise`, normalised, on the block of cells the band can reach.
+
+    Returns ``(block, index)``: ``block`` has shape ``(len(index[0]), ..., K)``
+    with ``index[i]`` the kept indices (increasing) of leading axis ``i`` and
+    ``K`` the kept kx columns ``0..K-1``; every cell outside the block is 0.
+    Before the scaling, the coefficients are the ones :func:`synthesize` draws
+    for the envelope ``annulus(lo, hi) * power_law(exponent)`` with the same
+    seed (the same cells, the same order, the same words), divided by the
+    power law's value at the band's loudest end. The block is then scaled so
+    that the field has unit variance: expected over the ensemble
+    (``normalize="expected"``: ``sum`` of the envelope squared, which needs no
+    random number) or of this realisation (``"sample"``: ``sum |S|**2``).
+    Row groups are filled on ``workers`` threads; each group's coefficients
+    are fixed by its position in the stream, so the bits do not depend on it.
     """
     dt = float_dtype(dtype)
     cdt = _complex_dtype(dt)
     d = len(shape)
     n = shape[-1]
+    if all(m == 1 for m in shape):
+        raise ValueError(f"shape {shape} holds no nonzero frequency (a single sample); spectral noise needs "
+                         f"an axis of at least 2 samples")
     if band is None:
         lo, hi = 0.0, 0.5 * np.sqrt(d) + 1.0  # everything, corners included
     else:
         lo, hi = _check_band(band, n)
+        if dc and lo > 0:
+            raise ValueError(f"dc=True keeps the DC term, which a band must then start at: got band[0] = {lo:g} "
+                             f"cycles/frame; pass band=(0, hi)")
         lo, hi = lo / n, hi / n
     eps = 1e-12  # the tolerance of envelopes.annulus
     lo_e, hi_e = lo * (1 - eps), hi * (1 + eps)
@@ -303,19 +386,31 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype):
     check_memory(int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * _CHUNK,
                  f"spectral_noise{shape}")
     wxsq = np.ascontiguousarray(wsq[-1][:K])
-    interior = np.zeros(K, dtype=dt)  # 1 where a half-spectrum cell stands for two full-spectrum cells
-    interior[1:n // 2 if n % 2 == 0 else n // 2 + 1] = 1
+    # weight of a half-spectrum cell in the full spectrum's power, halved: 1 where it stands for two cells, 1/2
+    # on the self-conjugate planes (sample power: 0 there, their power is added once they are Hermitian)
+    sample = normalize == "sample"
+    weight = np.ones(K, dtype=dt)
+    for j in _self_conjugate_columns(n):
+        if j < K:
+            weight[j] = 0 if sample else 0.5
+    # the power law relative to its value at the band's loudest end (|e| <= 1, whatever the exponent), and flat
+    # below the lowest nonzero frequency of the grid (2*pi / the longest axis): only DC can be there
+    wmin2 = (2 * np.pi / max(m for m in shape if m > 1)) ** 2
+    qfloor = wmin2 if exponent > 0 else 0.0
+    q_lo = max(wmin2, (2 * np.pi * lo_e) ** 2)
+    q_hi = min(float(sum(np.max(x) for x in wsq)), (2 * np.pi * hi_e) ** 2)
+    inv_qref = 1.0 / (q_lo if exponent >= 0 else q_hi)
     block = np.empty(bshape, dtype=cdt)
     if band is None and d == 3:
         # every cell but DC: fill whole (ky, kx) planes as single rows (|w|**2 = wt**2 + (wy**2 + wx**2)),
         # long loops instead of many short ones (measured 2x faster at 128**3); the first row starts after DC
         wxsq = np.ascontiguousarray((q1[:, None] + wxsq[None, :]).reshape(-1))
-        interior = np.tile(interior, q1.size)
+        weight = np.tile(weight, q1.size)
         q1 = np.zeros(1)
         R, Kr = q0.size, wxsq.size
         kbeg = np.zeros(R, dtype=np.int64)
         kend = np.full(R, Kr, dtype=np.int64)
-        kbeg[0] = 1
+        kbeg[0] = 0 if dc else 1
     else:
         R, Kr = q0.size * q1.size, K
         kbeg = np.empty(R, dtype=np.int64)
@@ -323,43 +418,70 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype):
         if band is None:  # every cell but DC (the first row holds DC: index[i][0] == 0)
             kbeg[:] = 0
             kend[:] = K
-            kbeg[0] = 1
+            kbeg[0] = 0 if dc else 1
         else:
-            _kernels.band_rows(q0, q1, wxsq, lo_e, hi_e, kbeg, kend)
+            _kernels.band_rows(q0, q1, wxsq, lo_e, hi_e, bool(dc), kbeg, kend)
     counts = kend - kbeg
+    if not counts.any():
+        raise ValueError(f"band ({lo * n:g}, {hi * n:g}) cycles/frame holds no frequency of a "
+                         f"{' x '.join(map(str, shape))} grid (frequency steps are 1 cycle/frame along the last "
+                         f"axis, {n}/length along the others); widen the band")
     rng = as_generator(seed)
     mode = _MODES[amplitude]
     bf = block.reshape(-1).view(dt)  # real and imaginary parts, 2 Kr per row
-    inner_power = 0.0
-    key, start = _stream_key(rng), 0
-    for r0, r1, m in _row_groups(counts):
-        a2, c, s = _draws(key, start, m, mode, dt)
-        pw = np.empty(m, dtype=dt)
-        _kernels.fill_power_law(bf, Kr, q0, q1, wxsq, kbeg, kend, r0, r1, a2, c, s, float(exponent),
-                                interior, pw)
-        inner_power += float(np.sum(pw))  # pairwise in the output precision, repeatable
-        start += m
-    power = 2.0 * inner_power
+    key = _stream_key(rng)
+    total = int(counts.sum())
+    nw = _workers(workers) if total >= _MIN_PARALLEL else 1
+    # the draws are made in the fill (no per-group scratch to keep in cache): about four groups per thread,
+    # few calls; the grouping changes no bit (each row's cells and power depend on the row alone)
+    groups = _row_groups(counts, max(_CHUNK, -(-total // (4 * nw))))
+    starts = np.concatenate([[0], np.cumsum([g[2] for g in groups])[:-1]]).astype(np.int64)
+    rowpow = np.zeros(R)
+
+    def fill(i):
+        r0, r1, _ = groups[i]
+        scratch = np.empty(Kr, dtype=dt)
+        _kernels.fill_power_law(bf, Kr, q0, q1, wxsq, kbeg, kend, r0, r1, key, int(starts[i]), mode,
+                                float(exponent), float(qfloor), float(inv_qref), weight, sample, rowpow, scratch)
+
+    _map_groups(fill, range(len(groups)), nw)
+    power = 2.0 * float(np.sum(rowpow))  # the same float for any worker count: one fixed order
     # the self-conjugate planes: the annulus is symmetric under k -> -k, and so is the kept block
     maps = [np.searchsorted(ix, (-ix) % m) for ix, m in zip(index, shape[:-1])]
     maps = [np.zeros(1, dtype=np.int64)] * (2 - len(maps)) + maps
     for j in _self_conjugate_columns(n):
         if j < K:
             plane = block[..., j].reshape(maps[0].size, maps[1].size)
-            power += _kernels.hermitian_symmetric_plane(plane, maps[0], maps[1])
-    return block, index, power
+            p = _kernels.hermitian_symmetric_plane(plane, maps[0], maps[1])
+            if sample:
+                power += p
+    if sample and dc:
+        power -= float(np.abs(block.reshape(-1)[0])) ** 2  # the sample variance is about the field's mean
+    if not power > 0:
+        raise ValueError(f"the band carries no energy to normalise (only DC, where the law is 0 for exponent < 0, "
+                         f"or only DC with normalize='sample'; got band={band!r}, exponent={exponent:g}); widen the band")
+    # var(field) = sum over the full spectrum of |S|**2 / N**2 (Parseval), DC included in the expected case
+    g = dt.type(np.prod(shape, dtype=np.float64) / np.sqrt(power))
+    rows = block.reshape(R, -1)
+
+    def scale(i):
+        rows[groups[i][0]:groups[i][1]] *= g
+
+    _map_groups(scale, range(len(groups)), nw)
+    return block, index
 
 
-def _pruned_irfftn(block, index, shape):
+def _pruned_irfftn(block, index, shape, workers=None):
     """``irfftn`` of a half spectrum that is 0 outside ``block`` (see :func:`_noise_spectrum`), ``block`` overwritten.
 
     Along each leading axis only the kept kx columns are transformed (after
     putting the kept rows back at their indices); the last pass ``irfft``
     zero-pads kx to ``W//2 + 1``. With nothing pruned it is ``irfftn`` itself.
+    Every pass gets scipy's ``workers``.
     """
     d = len(shape)
     if all(ix.size == n for ix, n in zip(index, shape[:-1])) and block.shape[-1] == shape[-1] // 2 + 1:
-        return scipy.fft.irfftn(block, s=shape)
+        return scipy.fft.irfftn(block, s=shape, workers=workers)
     B = block
     for ax in range(d - 1):
         n = shape[ax]
@@ -372,28 +494,63 @@ def _pruned_irfftn(block, index, shape):
             sl[ax] = ix
             F[tuple(sl)] = B
             B = F
-        B = scipy.fft.ifft(B, axis=ax, overwrite_x=True)
-    return scipy.fft.irfft(B, n=shape[-1], axis=-1, overwrite_x=True)
+        B = scipy.fft.ifft(B, axis=ax, overwrite_x=True, workers=workers)
+    return scipy.fft.irfft(B, n=shape[-1], axis=-1, overwrite_x=True, workers=workers)
 
 
-def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayleigh", dtype=np.float32):
+NORMALIZATIONS = ("expected", "sample")
+
+
+def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayleigh", dtype=np.float32,
+                   normalize="expected", dc=False, workers=None):
     """Isotropic band-limited ``1/f**exponent`` noise in 1, 2 or 3 dimensions, zero mean and unit variance.
 
     Parameters
     ----------
     shape : int or tuple of int
         ``(n,)``, ``(H, W)`` or ``(D, H, W)``; isotropic in samples (pixels).
+        At least one axis of 2 samples or more.
     exponent : float
-        Amplitude falls as ``f**-exponent`` (1: pink/"1/f"; 2: brown). In 2-D,
-        ``exponent=1`` gives equal energy per octave.
+        Amplitude falls as ``f**-exponent``, ``-8 <= exponent <= 8`` (1:
+        pink/"1/f"; 2: brown, a random walk's ``1/f**2`` power). In 2-D,
+        ``exponent=1`` gives equal energy per octave. Any accepted exponent is
+        right in float32 too: the law is evaluated relative to its value at
+        the band's loudest end, so no power overflows or underflows to 0.
     band : (lo, hi), optional
         Pass band in cycles per frame along the last axis (cycles per
         ``shape[-1]`` samples), inclusive; ``hi`` at most the Nyquist frequency
-        ``shape[-1]/2``. Default: everything but DC.
+        ``shape[-1]/2``. Default: every frequency (DC only with ``dc=True``).
+        A band holding no frequency of the grid is a ``ValueError``.
     seed : int or numpy.random.Generator
     amplitude : {"rayleigh", "uniform", "fixed"}
         Default: complex Gaussian coefficients, i.e. a Gaussian field.
     dtype : float32 or float64
+    normalize : {"expected", "sample"}
+        ``"expected"`` (default): the spectrum is scaled by the analytic
+        variance, so the *ensemble* has unit variance and exactly the
+        requested power at every frequency (the mean power spectrum over seeds
+        follows the law; one field's variance scatters around 1, the more the
+        steeper the law). ``"sample"``: each field is rescaled to exactly
+        zero mean and unit sample variance (the earlier default); one field's
+        slope is unchanged, but averaged over seeds the power is no longer the
+        law (1.50x too high at high frequency for 1-D ``k**-2``, issue 15:
+        dividing by the sample variance biases the ensemble).
+    dc : bool
+        Keep the DC term (the band must start at 0): the field gets a random
+        mean, e.g. the displacement of a random walk (``exponent=1`` in 1-D).
+        The power law is infinite at ``f = 0`` for ``exponent > 0``, so it is
+        taken flat below the grid's lowest nonzero frequency (``1/max(shape)``
+        cycles/sample; the ``fmin`` convention of colorednoise): DC gets the
+        amplitude of the lowest ring. For ``exponent <= 0`` the law is finite
+        at 0 and used as is (0 for ``exponent < 0``, 1 for white noise). The
+        variance is then taken about 0 (``"expected"``: the ensemble's
+        ``E[x**2] = 1``) or about the field's mean (``"sample"``).
+    workers : int, optional
+        Threads, with scipy.fft's meaning (-1: every core). Used by every FFT
+        pass and by the spectrum fill; the output is bit-identical for any
+        count. Default (None): scipy's default, one thread unless set with
+        ``scipy.fft.set_workers`` (the library does not take cores a caller
+        did not give it; the command line uses every core).
 
     Notes
     -----
@@ -402,28 +559,37 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
     evaluated cell by cell while the coefficients are written, each row's band
     is one kx interval, and only the block of rows and columns the band can
     reach is stored and transformed (a pruned inverse FFT, as in
-    :mod:`noiselab.snow`). Mean and variance are set on the spectrum: DC is 0,
-    and Parseval gives the variance, so the spectrum is scaled by
-    ``N / sqrt(sum |S|**2)`` before the FFT and the field needs no pass after
-    it. Timings (ratio to a bare ``irfftn`` of the output, and peak memory):
-    ``benchmarks/bench_spectral.md``.
+    :mod:`noiselab.snow`). Mean and variance are set on the spectrum (DC is 0
+    unless ``dc``; Parseval gives the variance), so the field needs no pass
+    after the FFT. Timings (ratio to a bare ``irfftn`` of the output at equal
+    workers, and peak memory): ``benchmarks/bench_spectral.md``.
 
     Examples
     --------
+    >>> import numpy as np
     >>> x = spectral_noise((64, 64), exponent=1.0, band=(2, 16), seed=0)
-    >>> x.shape, x.dtype, round(float(x.std()), 3)
-    ((64, 64), dtype('float32'), 1.0)
+    >>> x.shape, x.dtype, abs(float(x.mean())) < 1e-6
+    ((64, 64), dtype('float32'), True)
+    >>> y = spectral_noise((64, 64), exponent=1.0, band=(2, 16), seed=0, normalize="sample")
+    >>> round(float(y.std()), 3)
+    1.0
+    >>> walks = np.stack([spectral_noise((256,), exponent=1.0, dc=True, seed=s) for s in range(200)])
+    >>> round(float(np.mean(walks ** 2)), 1)   # E[x**2] = 1 over the ensemble
+    1.0
     """
     shape = check_shape("shape", shape, ndim={1, 2, 3})
     exponent = check_real("exponent", exponent, lo=-8, hi=8)
     if amplitude not in AMPLITUDES:
         raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
+    if normalize not in NORMALIZATIONS:
+        raise ValueError(f"normalize must be one of {NORMALIZATIONS}, got {normalize!r}")
+    if not isinstance(dc, (bool, np.bool_)):
+        raise TypeError(f"dc must be True or False, got {dc!r}")
+    nw = _workers(workers)
     dt = float_dtype(dtype)
-    block, index, power = _noise_spectrum(shape, exponent, band, seed, amplitude, dt)
-    if power > 0:
-        # var(field) = sum over the full spectrum of |S|**2 (DC is 0) / N**2
-        block.view(dt)[...] *= dt.type(np.prod(shape) / np.sqrt(power))
-    field = _pruned_irfftn(block, index, shape)
+    block, index = _noise_spectrum(shape, exponent, band, seed, amplitude, dt, normalize=normalize, dc=bool(dc),
+                                   workers=nw)
+    field = _pruned_irfftn(block, index, shape, workers=workers)
     if field.dtype != dt:
         field = field.astype(dt)
     return field
