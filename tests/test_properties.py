@@ -594,16 +594,30 @@ TABLE += [
                          np.testing.assert_array_less(-1e-12, np.asarray(r)))),
 ]
 
-# Parameters not fuzzed yet, and why: their checks belong to code another branch is rewriting.
+# the spectral engine's building blocks (spectral/synthesis.py, issue 17)
+TABLE += [
+    Entry("hermitian_plane", SP.hermitian_plane, dict(plane=RNG.standard_normal((4, 5)) + 1j),
+          dict(plane="array", support="array"), shaped(lambda kw: np.shape(kw["plane"]))),
+    Entry("draw_coefficients", SP.draw_coefficients, dict(n=16, rng=np.random.default_rng(0)),
+          dict(n="int", rng="seed", amplitude="choice", dtype="dtype"),
+          shaped(lambda kw: (kw["n"],))),
+]
+
+# Parameters not fuzzed yet, and why: each is a bug to fix in that code, then its line here removed.
+_SYN = "spectral/synthesis.py (issue 17, merged 23 Nov 01:12 UTC) does not validate it yet: "
 PENDING = {
-    ("synthesize", "envelope"): "spectral/synthesis.py is rewritten on branch issue17 (issue 17); a non-callable "
-                                "or non-finite envelope is checked there",
+    ("synthesize", "envelope"): _SYN + "a str is numpy's 'could not convert'; a callable of the wrong arity raises "
+                                "its own TypeError; a wrongly shaped result numpy's broadcast error",
+    ("draw_coefficients", "n"): _SYN + "negative or huge n is numpy's 'negative dimensions'/'maximum dimension'; "
+                                "n=2**31 allocates 16 GiB before any check_memory",
+    ("draw_coefficients", "rng"): _SYN + "an int/str rng is an AttributeError (as_generator would take a seed)",
+    ("draw_coefficients", "dtype"): _SYN + "dtype='nope' is numpy's 'data type not understood' (float_dtype)",
+    ("hermitian_plane", "plane"): _SYN + "NaN/inf pass through to the output; str/None/ragged are numpy's errors",
+    ("hermitian_plane", "support"): _SYN + "a non-array is an AttributeError, a non-bool array numpy's ufunc error",
 }
 
 # Public callables without an entry, and why (each is still validated: these only draw or move files).
 EXCLUDED = {
-    "hermitian_plane": "in spectral/synthesis.py, rewritten on branch issue17: add an entry after that merge",
-    "draw_coefficients": "in spectral/synthesis.py, rewritten on branch issue17: add an entry after that merge",
     "render_mesh": "renders with VTK (seconds per call); its inputs are checked in test_geometry_render",
     "render_sequence": "renders with VTK and writes a video; test_geometry_render",
     "render_stereo_pair": "renders with VTK; test_geometry_render",
@@ -655,8 +669,10 @@ def test_every_public_function_has_an_entry():
     assert not api_missing, f"noiselab._API names must be driven by the suite, not excluded: {api_missing}"
     covered = sorted(n for n in public if _covered(n))
     # the size the closing note of issue 11 reports
-    print(f"\n{len(covered)} public functions covered ({len(TABLE)} entries x {EXAMPLES} examples = "
-          f"{len(TABLE) * EXAMPLES} examples per run); {len(EXCLUDED)} excluded (drawing, file I/O, or pending the issue-17 merge)")
+    fuzzed = sum(1 for e in TABLE for p in e.fuzz if (e.name, p) not in PENDING)
+    print(f"\n{len(covered)} public functions covered ({len(TABLE)} entries, {fuzzed} parameters fuzzed, "
+          f"{len(PENDING)} pending; {len(FUZZED)} fuzzed entries x {EXAMPLES} examples = "
+          f"{len(FUZZED) * EXAMPLES} examples per run); {len(EXCLUDED)} excluded (drawing or file I/O)")
     assert len(covered) + len(public & set(EXCLUDED)) == len(public)
 
 
