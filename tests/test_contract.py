@@ -445,3 +445,18 @@ def test_scale_free_measures_of_huge_and_tiny_fields():
     assert np.isfinite(m.fraction).all()
     m = A.tent_energy_per_band(video, 1.0, (2, 8), per_octave=4)
     assert np.isfinite(m.fraction).all() and (m.fraction[m.share == 0] == 0).all() and (m.share == 0).any()
+
+
+def test_envelope_error_depends_on_the_target_shape_not_its_scale():
+    x = nl.spectral_noise((64, 64), exponent=1.0, band=(4, 32), seed=0, dtype=np.float64)
+
+    def target(f):
+        return np.where((f >= 4) & (f <= 32), f ** -2.0, 0.0)
+
+    base = A.envelope_error(x, target)
+    for scale in (1e-200, 1e250):   # sums of 1e250 targets would overflow; 1e-200 ones underflow in x**2
+        e = A.envelope_error(x, lambda f: target(f) * scale)
+        np.testing.assert_allclose(e.db, base.db, rtol=1e-9, atol=1e-9)
+        assert e.outside == pytest.approx(base.outside) and e.rms_db == pytest.approx(base.rms_db)
+        assert e.gain_db == pytest.approx(base.gain_db - 10 * np.log10(scale))
+        np.testing.assert_allclose(e.target_level, base.target_level * scale, rtol=1e-9)

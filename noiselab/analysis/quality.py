@@ -407,7 +407,7 @@ def envelope_error(field, target, *, groups=16, support=1e-6, window=None) -> En
     if peak <= 0:
         raise ValueError("target is zero everywhere: no envelope to compare with")
     t = t / peak  # the comparison removes the gain: in units of the peak no sum of the target can overflow
-    inside = t > support * peak
+    inside = t > support
     total = float(np.sum(p * w))
     if total <= 0:
         raise ValueError("field has no power: nothing to compare")
