@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_real_vector
+from .._validate import check_finite_array, check_int, check_real, check_real_vector
 from .core import Grid, LatticeNoise, _check_grid, grid_coordinates
 
 __all__ = ["curl_noise", "warp", "Warped"]
@@ -96,6 +96,8 @@ def curl_noise(noise, points, *, octaves=1, lacunarity=2.0, gain=0.5):
     """
     _check_noise("noise", noise)
     octaves = check_int("octaves", octaves, lo=1, hi=10_000)
+    check_real("lacunarity", lacunarity, lo=1.0, lo_open=True)  # checked even when one octave leaves them unused
+    check_real("gain", gain, lo=0.0, lo_open=True)
     if noise.dim_in == 2 and noise.dim_out == 1:
         jac = _jacobian(noise, points, octaves, lacunarity, gain)[..., 0, :]
         return np.stack([jac[..., 1], -jac[..., 0]], axis=-1)
