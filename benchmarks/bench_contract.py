@@ -11,7 +11,9 @@ time (1.00: free). The checks measured:
 - ``_check_reach``: the overflow check of ``x * frequency`` that scattered
   lattice points now get in every dimension (min and max over the points);
 - envelope validation: finiteness and range of the frequency vectors;
-- ``power_spectrum``'s range check of the field (max and min).
+- ``power_spectrum``'s range check of the field (max and min);
+- ``_check_jac_finite``: the pass over a derivative's output that refuses
+  an overflowed one (amplitude * frequency too large), on points and grids.
 """
 from __future__ import annotations
 
@@ -65,6 +67,12 @@ def no_reach():
     return lambda: setattr(core, "_check_reach", old)
 
 
+def no_jac_finite():
+    old = core._check_jac_finite
+    core._check_jac_finite = lambda *a, **k: None
+    return lambda: setattr(core, "_check_jac_finite", old)
+
+
 def no_env_checks():
     old = env._frequencies
     env._frequencies = lambda w, names=None: [np.asarray(x) for x in w]
@@ -83,6 +91,15 @@ def main():
         pts = rng.uniform(-100, 100, (1_000_000 // dim, dim))
         r, t = ratio(lambda: noise(pts), no_reach, repeats)
         rows.append((f"LatticeNoise({dim}, kernel={kernel!r}) on {len(pts):,} points", r, t))
+    # the derivative paths: the finiteness check of the derivative (one pass over it)
+    for dim in (2, 3):
+        noise = LatticeNoise(dim, seed=1)
+        pts = rng.uniform(-100, 100, (1_000_000 // dim, dim))
+        r, t = ratio(lambda: noise.gradient(pts), no_jac_finite, repeats)
+        rows.append((f"LatticeNoise({dim}).gradient on {len(pts):,} points", r, t))
+    noise = LatticeNoise(2, seed=1)
+    r, t = ratio(lambda: noise.gradient_grid((1024, 1024), [(0, 64), (0, 64)]), no_jac_finite, repeats)
+    rows.append(("LatticeNoise(2).gradient_grid 1024 x 1024", r, t))
     wt, wy, wx = frequency_vectors((64, 256, 256))
     r, t = ratio(lambda: env.tent(wt, wy, wx, c=1.0, tolerance=np.pi / 64), no_env_checks, repeats)
     rows.append(("envelopes.tent on a (64, 256, 129) half spectrum", r, t))

@@ -477,8 +477,9 @@ def value_statistics(field, *, variance=None, bounds=None) -> ValueStatistics:
     Parameters
     ----------
     field : array_like
+        Values with ``1e-150 <= max|field| <= 1e150`` (its variance must fit float64).
     variance : float, optional
-        The analytic (expected) variance.
+        The analytic (expected) variance (> 0; the ratio to it must fit float64).
     bounds : (lo, hi), optional
         The analytic range.
 

@@ -112,7 +112,13 @@ def monge_normals(field, points, amplitude=1.0, frequency=1.0, phase=0.0, *, oct
 
     Returns
     -------
-    ndarray (..., 3), upward (``n_z > 0``) unit normals
+    ndarray (..., 3), upward (``n_z >= 0``) unit normals
+
+    Notes
+    -----
+    With ``|amplitude| * frequency > 1`` the normal is computed divided
+    through by that product, so a huge one (1e300) gives the limit, a
+    horizontal normal against the gradient, instead of overflowing.
 
     Examples
     --------
@@ -177,7 +183,9 @@ def displaced_normals(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, *, o
 
     Returns
     -------
-    ndarray (n_vertices, 3): unit normals of the displaced surface at its vertices
+    ndarray (n_vertices, 3): unit normals of the displaced surface at its vertices (0 where the normal
+    is undefined: ``(1 + h kappa) n = grad_S h = 0``). Computed divided through by
+    ``max(1, |amplitude| * F)``, ``F`` the largest frequency or ``|curvature|``, so that no term overflows.
 
     Examples
     --------
@@ -224,7 +232,9 @@ def displaced_normals(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, *, o
 def normal_angles(a, b):
     """Angles in degrees between corresponding unit normals ``a`` and ``b`` (``(..., 3)`` each).
 
-    Computed as ``atan2(|a x b|, a . b)``, accurate for small angles too.
+    Computed as ``atan2(|a x b|, a . b)`` of the vectors scaled to unit
+    length (any length works, 1e-300 to 1e300), accurate for small angles
+    too; a zero vector (an undefined normal) gives 0.
 
     Examples
     --------
