@@ -193,6 +193,8 @@ def atomic_output(path, *, directory=False):
         else:
             with contextlib.suppress(FileNotFoundError):
                 tmp.unlink()
+        if isinstance(exc, OutputError) and exc.path.startswith(str(tmp)):   # a writer named our temporary
+            raise OutputError(path, exc.reason, exc.errno) from exc
         if isinstance(exc, OSError) and not isinstance(exc, OutputError) and _ours(exc, tmp):
             raise output_error(path, exc) from exc
         raise

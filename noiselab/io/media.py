@@ -13,7 +13,7 @@ import numpy as np
 
 from .._progress import progress
 from .atomic import atomic_output
-from .errors import InputError, OutputError, cause, input_error
+from .errors import InputError, cause, input_error, output_error
 
 VIDEO_SUFFIXES = (".mp4", ".gif", ".npy")
 IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".npy")
@@ -57,11 +57,21 @@ def write_image(path, image, *, vmin=None, vmax=None) -> Path:
         return path
     if image.ndim not in (2, 3) or (image.ndim == 3 and image.shape[-1] not in (3, 4)):
         raise ValueError(f"image must have shape (H, W) or (H, W, 3|4), got {image.shape}")
+    data = _encode(to_uint8(image, vmin, vmax), suffix)
+    with atomic_output(path) as tmp:
+        Path(tmp).write_bytes(data)
+    return path
+
+
+def _encode(image, suffix, **kwargs) -> bytes:
+    """Encode an image (or a GIF's frames) in memory, so that writing the file is one plain write.
+
+    A failed write then raises one clean ``OSError`` here, instead of a second
+    error when the encoder's half-closed file is collected.
+    """
     import imageio.v3 as iio
 
-    with atomic_output(path) as tmp:
-        iio.imwrite(tmp, to_uint8(image, vmin, vmax))
-    return path
+    return iio.imwrite("<bytes>", image, extension=suffix, **kwargs)
 
 
 def _frame_source(frames):
@@ -99,7 +109,7 @@ def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_pro
             import imageio.v3 as iio
 
             for i, frame in enumerate(bar):
-                iio.imwrite(tmp / f"frame_{i:05d}.png", to_uint8(frame, vmin, vmax))
+                (tmp / f"frame_{i:05d}.png").write_bytes(_encode(to_uint8(frame, vmin, vmax), ".png"))
         return path
     if suffix not in (".mp4", ".gif"):
         raise ValueError(f"video path must end in .mp4, .gif or .npy, or be a folder for PNG frames; got {path.name!r}")
@@ -110,7 +120,7 @@ def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_pro
             # GIF is a preview format: frames are small uint8, so they are
             # gathered and written in one call (Pillow needs them all for the palette).
             gif = np.stack([to_uint8(frame, vmin, vmax) for frame in bar])
-            iio.imwrite(tmp, gif, extension=".gif", duration=1000.0 / fps, loop=0)
+            Path(tmp).write_bytes(_encode(gif, ".gif", duration=1000.0 / fps, loop=0))
             return path
         _write_mp4(tmp, bar, fps, quality, vmin, vmax)
     return path
@@ -160,8 +170,11 @@ def _write_mp4(path, frames, fps, quality, vmin, vmax):
         if code != 0:
             errlog.seek(0)
             lines = [ln.strip() for ln in errlog.read().decode(errors="replace").splitlines() if ln.strip()]
-            reason = lines[-1].split("] ", 1)[-1] if lines else f"ffmpeg exited with status {code}"
-            raise OutputError(path, cause(RuntimeError(reason)))
+            text = "\n".join(lines)
+            reason = cause(RuntimeError(text))   # an OS error named anywhere in ffmpeg's messages
+            if reason == (lines[0] if lines else ""):
+                reason = lines[-1].split("] ", 1)[-1] if lines else f"ffmpeg exited with status {code}"
+            raise output_error(path, RuntimeError(reason))
     finally:
         if proc is not None and proc.poll() is None:   # interrupted: stop the encoder before the file is removed
             proc.kill()
