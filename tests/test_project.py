@@ -65,8 +65,17 @@ def test_install_sh_installs_into_an_active_virtualenv_and_links_dot_venv(tmp_pa
             (repo / name).parent.mkdir(parents=True, exist_ok=True)
             (repo / name).write_bytes(src.read_bytes())
             (repo / name).chmod(src.stat().st_mode)
-    env_dir = tmp_path / "env"   # sees this interpreter's packages, so pip has nothing to download but the build tools
-    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(env_dir)], check=True)
+    env_dir = tmp_path / "env"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(env_dir)], check=True)
+    # the new environment sees this interpreter's packages (pip among them), so pip has nothing to download
+    # but the build tools, also when this interpreter is itself a virtualenv
+    import site
+    import sysconfig
+
+    purelib = Path(subprocess.run([str(env_dir / "bin" / "python"), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                                  capture_output=True, text=True, check=True).stdout.strip())
+    parents = [p for p in dict.fromkeys(site.getsitepackages() + [sysconfig.get_paths()["purelib"]]) if Path(p).is_dir()]
+    (purelib / "_parent_env.pth").write_text("\n".join(parents) + "\n")
     env = {k: v for k, v in __import__("os").environ.items() if k not in ("PYTHONPATH", "CONDA_PREFIX")}
     env.update(VIRTUAL_ENV=str(env_dir), PATH=f"{env_dir / 'bin'}:{env['PATH']}")
     proc = subprocess.run(["./install.sh"], cwd=repo, env=env, capture_output=True, text=True, timeout=600)
