@@ -164,14 +164,16 @@ def _commands(tmp_path, out):
         "snow-mp4": ["snow", "--frames", "4", "--width", "32", "--height", "32", "-o", f"{out}.mp4"],
         "snow-npy": ["snow", "--frames", "4", "--width", "32", "--height", "32", "--no-background", "-o", f"{out}.npy"],
         "mesh-ply": ["mesh", "--shape", "sphere", "--subdivisions", "1", "--resolution", "ignore", "-o", f"{out}.ply"],
+        "mesh-render": ["mesh", "--shape", "sphere", "--subdivisions", "1", "--resolution", "ignore", "--size", "32",
+                        "--render", f"{out}.png"],
         "analyze-json": ["analyze", str(src), "--json", f"{out}.json"],
         "analyze-plot": ["analyze", str(src), "--plot", f"{out}.png"],
         "bench": ["bench", "--quick", "--dry-run", "--no-peers", "--output", f"{out}"],
     }
 
 
-CMDS = ["noise-png", "noise-npy", "noise-mp4", "snow-gif", "snow-mp4", "snow-npy", "mesh-ply", "analyze-json",
-        "analyze-plot"]
+CMDS = ["noise-png", "noise-npy", "noise-mp4", "snow-gif", "snow-mp4", "snow-npy", "mesh-ply", "mesh-render",
+        "analyze-json", "analyze-plot"]
 
 
 @pytest.mark.parametrize("cmd", CMDS + ["bench"])
@@ -186,7 +188,7 @@ def test_output_whose_parent_is_a_regular_file(tmp_path, capsys, cmd):
 @pytest.mark.parametrize("cmd", CMDS)
 def test_output_that_is_an_existing_folder(tmp_path, capsys, cmd):
     args = _commands(tmp_path, tmp_path / "o")[cmd]
-    target = Path(args[args.index("-o") + 1] if "-o" in args else args[-1])
+    target = Path(args[-1])
     target.mkdir()
     (target / "keep").write_text("k")
     rc = main(args)

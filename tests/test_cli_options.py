@@ -136,3 +136,17 @@ def test_analyze_streams_video_frames_into_one_grey_array(tmp_path):
                   ).max() < 1e-6
     assert np.abs(data - grey).max() <= 0.5   # GIF's palette quantises; this checks orientation and scale
     assert peak < 1.5 * data.nbytes, (peak, data.nbytes)   # reading it all first would take 3x (RGB uint8 + float32)
+
+
+def test_example_size_small_caps_the_sizes_and_says_so(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("NOISELAB_EXAMPLE_SIZE", "small")
+    assert main(["snow", "--frames", "64", "--width", "32", "--height", "32", "--no-background",
+                 "-o", str(tmp_path / "a.npy")]) == 0
+    assert np.load(tmp_path / "a.npy").shape == (8, 32, 32)   # snow.SMALL: frames capped at 8
+    assert "NOISELAB_EXAMPLE_SIZE=small: frames=8" in capsys.readouterr().err
+    assert main(["snow", "--frames", "4", "--width", "32", "--height", "32", "--no-background",
+                 "-o", str(tmp_path / "b.npy")]) == 0
+    assert np.load(tmp_path / "b.npy").shape == (4, 32, 32)   # below the cap: untouched
+    monkeypatch.chdir(tmp_path)
+    assert main(["bench"]) == 0                                 # bench.SMALL: a dry run, nothing written
+    assert "dry run" in capsys.readouterr().out and not (tmp_path / "out" / "bench" / "RESULTS.md").exists()
