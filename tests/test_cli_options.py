@@ -149,4 +149,4 @@ def test_example_size_small_caps_the_sizes_and_says_so(tmp_path, capsys, monkeyp
     assert np.load(tmp_path / "b.npy").shape == (4, 32, 32)   # below the cap: untouched
     monkeypatch.chdir(tmp_path)
     assert main(["bench"]) == 0                                 # bench.SMALL: a dry run, nothing written
-    assert "dry run" in capsys.readouterr().out and not (tmp_path / "out" / "bench" / "RESULTS.md").exists()
+    assert "dry run" in capsys.readouterr().out and not (tmp_path / "out").exists()   # not even the folder

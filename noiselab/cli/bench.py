@@ -58,7 +58,7 @@ def run(args):
     out = PUBLISHED if args.publish else Path(args.output) if args.output is not None else default_output(args.quick)
     if out.exists() and not out.is_dir():
         raise ValueError(f"--output must be a folder, got the file {str(out)!r}")
-    prepare_output(out / "RESULTS.md")
+    prepare_output(out / "RESULTS.md", create=not args.dry_run)
     peers_reason = "peers not run (--no-peers)" if args.no_peers else peers_missing_reason()
     if args.publish and peers_reason and not args.allow_missing_peers:
         raise PublishError(f"refusing to publish without section 4 (the peers): {peers_reason}; "

@@ -30,13 +30,15 @@ def _first_existing(path: Path) -> Path:
     return p
 
 
-def prepare_output(path, *, directory=False, make_parents=True, probe=True) -> Path:
+def prepare_output(path, *, directory=False, make_parents=True, probe=True, create=True) -> Path:
     """Check that ``path`` can be written, creating missing parent folders; raise ``OutputError`` if not.
 
     Call it before long work so a run fails at once, not after minutes of
     rendering. ``directory=True`` for an output that is a folder (PNG frames).
     ``probe`` creates and removes a temporary file beside the target, which
     catches a read-only file system or a folder without write permission.
+    ``create=False`` checks only: missing folders are not made, the probe runs
+    in the nearest folder that exists.
 
     Examples
     --------
@@ -58,10 +60,13 @@ def prepare_output(path, *, directory=False, make_parents=True, probe=True) -> P
             raise OutputError(path, f"{str(existing)!r} is a file, not a folder", errno.ENOTDIR)
         if not make_parents:
             raise OutputError(path, f"the folder {str(parent)!r} does not exist", errno.ENOENT)
-        try:
-            parent.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise output_error(path, exc) from None
+        if not create:
+            parent = existing
+        else:
+            try:
+                parent.mkdir(parents=True, exist_ok=True)
+            except OSError as exc:
+                raise output_error(path, exc) from None
     if directory and path.exists() and not path.is_dir():
         raise OutputError(path, "it is an existing file, not a folder for frames", errno.ENOTDIR)
     if not directory and path.is_dir():
