@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from noiselab.cli import main
-from noiselab.io import write_image, write_mesh, write_video
-from noiselab.io.errors import InputError, OutputError, describe, input_error, output_error
+from noiselab.io import write_image, write_video
+from noiselab.io.errors import OutputError, describe, input_error, output_error
 
 
 def _one_line_error(capsys, rc, *needles):

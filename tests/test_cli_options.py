@@ -2,7 +2,6 @@
 and the published benchmark results are only written by an explicit --publish."""
 import argparse
 import inspect
-import json
 from pathlib import Path
 
 import numpy as np

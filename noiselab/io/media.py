@@ -106,15 +106,11 @@ def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_pro
         return path
     if suffix == "":
         with atomic_output(path, directory=True) as tmp:
-            import imageio.v3 as iio
-
             for i, frame in enumerate(bar):
                 (tmp / f"frame_{i:05d}.png").write_bytes(_encode(to_uint8(frame, vmin, vmax), ".png"))
         return path
     if suffix not in (".mp4", ".gif"):
         raise ValueError(f"video path must end in .mp4, .gif or .npy, or be a folder for PNG frames; got {path.name!r}")
-    import imageio.v3 as iio
-
     with atomic_output(path) as tmp:
         if suffix == ".gif":
             # GIF is a preview format: frames are small uint8, so they are
@@ -153,8 +149,9 @@ def _write_mp4(path, frames, fps, quality, vmin, vmax):
                 shape = frame.shape
                 pix_fmt = {2: "gray", 3: "rgb24"}[frame.ndim] if frame.ndim == 2 or frame.shape[-1] == 3 else "rgba"
                 crf = int((1 - quality / 10.0) * 51)   # imageio-ffmpeg's quality -> crf (8 -> 10)
+                rate = str(Fraction(fps).limit_denominator())
                 cmd = [imageio_ffmpeg.get_ffmpeg_exe(), "-y", "-f", "rawvideo", "-vcodec", "rawvideo",
-                       "-s", f"{shape[1]}x{shape[0]}", "-pix_fmt", pix_fmt, "-r", str(Fraction(fps).limit_denominator()), "-i", "-", "-an",
+                       "-s", f"{shape[1]}x{shape[0]}", "-pix_fmt", pix_fmt, "-r", rate, "-i", "-", "-an",
                        "-vcodec", "libx264", "-pix_fmt", "yuv420p", "-crf", str(crf), "-v", "error", str(path)]
                 proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=errlog)
             elif frame.shape != shape:
@@ -165,7 +162,10 @@ def _write_mp4(path, frames, fps, quality, vmin, vmax):
                 break
         if proc is None:
             raise ValueError("no frames to write")
-        proc.stdin.close()
+        try:
+            proc.stdin.close()
+        except BrokenPipeError:
+            pass
         code = proc.wait()
         if code != 0:
             errlog.seek(0)
