@@ -60,9 +60,13 @@ if [ -n "$base_python" ] && ! "$base_python" -c 'import venv, ensurepip' >/dev/n
     fi
 fi
 missing=()
-for pkg in "${system_packages[@]}"; do
-    dpkg -s "$pkg" >/dev/null 2>&1 || missing+=("$pkg")
-done
+if command -v dpkg >/dev/null 2>&1; then
+    for pkg in "${system_packages[@]}"; do
+        dpkg -s "$pkg" >/dev/null 2>&1 || missing+=("$pkg")
+    done
+else
+    say "not a Debian/Ubuntu system: install the equivalents of ${system_packages[*]} yourself if they are missing"
+fi
 if [ ${#missing[@]} -gt 0 ]; then
     command -v apt-get >/dev/null 2>&1 || die "please install these system packages first: ${missing[*]}"
     say "installing system packages: ${missing[*]}"
