@@ -33,6 +33,12 @@ if [ -n "$active" ] && [ "$(cd "$active" && pwd -P)" = "$(cd .venv 2>/dev/null &
     active=""   # the active env is this project's own .venv: keep it as it is
 fi
 
+# a .venv left half-made (e.g. by `python3 -m venv` without ensurepip: a python but no pip) is made again
+if [ -z "$active" ] && [ -d .venv ] && [ ! -L .venv ] && ! .venv/bin/python -m pip --version >/dev/null 2>&1; then
+    say "the virtual environment .venv is incomplete (no pip): making it again"
+    rm -rf .venv
+fi
+
 # the Python that builds .venv: the first python3 on PATH that is 3.11 or newer
 base_python=""
 if [ -z "$active" ] && [ ! -x .venv/bin/python ]; then
