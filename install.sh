@@ -35,6 +35,7 @@ fi
 
 # a .venv left half-made (e.g. by `python3 -m venv` without ensurepip: a python but no pip) is made again
 if [ -z "$active" ] && [ -d .venv ] && [ ! -L .venv ] && ! .venv/bin/python -m pip --version >/dev/null 2>&1; then
+    [ -f .venv/.noiselab-install ] || die ".venv exists without pip and was not made by install.sh; move it away first"
     say "the virtual environment .venv is incomplete (no pip): making it again"
     rm -rf .venv
 fi
@@ -102,8 +103,8 @@ if [ -n "$active" ]; then
 elif [ ! -x .venv/bin/python ]; then
     [ -L .venv ] && rm -f .venv     # a link to an environment that is gone
     say "creating the virtual environment .venv with $base_python ($("$base_python" --version 2>&1))"
+    mkdir -p .venv && touch .venv/.noiselab-install     # ours, also if venv stops half-way
     "$base_python" -m venv .venv || die "could not create .venv with $base_python"
-    touch .venv/.noiselab-install
 else
     say "using the existing virtual environment .venv"
 fi
