@@ -26,7 +26,7 @@ def test_install_sh_never_pip_installs_into_the_system_python():
     """PEP 668: pip runs only with the environment's own interpreter (.venv/bin/python)."""
     script = (ROOT / "install.sh").read_text()
     pip_lines = [line.strip() for line in script.splitlines()
-                 if re.search(r"\bpip\b.*\binstall\b", line) and not line.strip().startswith("#")]
+                 if re.search(r"\bpip3?\s+install\b", line) and not line.strip().startswith("#")]
     assert pip_lines, "install.sh installs nothing with pip"
     assert all(line.startswith('"$python" -m pip install') for line in pip_lines), pip_lines
     assert re.search(r"^python=\.venv/bin/python$", script, re.M)
