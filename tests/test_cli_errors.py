@@ -284,7 +284,8 @@ def _wait_for_temporary(folder, timeout=120):
     raise AssertionError(f"no temporary file appeared in {folder}")
 
 
-@pytest.mark.parametrize("sig, output", [(signal.SIGTERM, "s.mp4"), (signal.SIGHUP, "frames")])
+@pytest.mark.parametrize("sig, output", [(signal.SIGTERM, "s.mp4"), (signal.SIGHUP, "frames"),
+                                         (signal.SIGINT, "s.mp4")])
 def test_sigterm_and_sighup_remove_temporary_files(tmp_path, sig, output):
     out = tmp_path / "out"
     out.mkdir()
@@ -301,6 +302,7 @@ def test_sigterm_and_sighup_remove_temporary_files(tmp_path, sig, output):
     assert proc.returncode == 128 + sig, err
     lines = [ln for ln in err.splitlines() if ln.strip()]
     assert len(lines) == 1 and signal.Signals(sig).name in lines[0] and "Traceback" not in err, err
+    time.sleep(0.5)   # an orphaned encoder would still be writing: give it time to show up
     assert _listing(out) == []
 
 
@@ -348,3 +350,18 @@ def test_io_docstring_examples_run(modname):
 
     result = doctest.testmod(importlib.import_module(modname), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_a_signal_inside_a_held_step_waits_for_its_end(tmp_path, monkeypatch):
+    """The window between creating a temporary file (or starting ffmpeg) and recording it is closed."""
+    from noiselab.cli import Terminated, _on_signal
+    from noiselab.io import atomic
+
+    monkeypatch.setattr(signal, "signal", lambda *a: None)   # the handler's own re-arming is not under test
+    steps = []
+    with pytest.raises(Terminated) as info:
+        with atomic.hold_signals():
+            _on_signal(signal.SIGTERM, None)   # arrives mid-step: no exception yet
+            steps.append("finished")
+            monkeypatch.setattr(signal, "raise_signal", lambda s: _on_signal(s, None))
+    assert steps == ["finished"] and info.value.signum == signal.SIGTERM

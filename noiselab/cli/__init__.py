@@ -34,7 +34,7 @@ SMALL_ENV = "NOISELAB_EXAMPLE_SIZE"
 
 
 class Terminated(KeyboardInterrupt):
-    """Raised in the main thread by SIGTERM or SIGHUP, so the clean-up of SIGINT runs."""
+    """Raised in the main thread by SIGINT, SIGTERM or SIGHUP: a KeyboardInterrupt, so every clean-up runs."""
 
     def __init__(self, signum):
         super().__init__(signum)
@@ -42,6 +42,10 @@ class Terminated(KeyboardInterrupt):
 
 
 def _on_signal(signum, frame):
+    from ..io.atomic import defer_signal
+
+    if defer_signal(signum):   # inside a step that must finish first (creating a temporary file): later
+        return
     for s in (signal.SIGTERM, signal.SIGHUP, signal.SIGINT):   # a second signal must not cut the clean-up short
         signal.signal(s, signal.SIG_IGN)
     raise Terminated(signum)
@@ -99,7 +103,7 @@ def main(argv=None) -> int:
         _apply_small(args._module, args)
     previous = {}
     try:
-        for s in (signal.SIGTERM, signal.SIGHUP):
+        for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
             previous[s] = signal.signal(s, _on_signal)
     except ValueError:   # not the main thread: leave the signals alone
         previous = {}
@@ -113,8 +117,9 @@ def main(argv=None) -> int:
         print(f"noiselab {args.command}: error: {describe(exc)}", file=sys.stderr)
         return 2
     except Terminated as exc:
-        print(f"noiselab {args.command}: terminated by {signal.Signals(exc.signum).name}; "
-              "temporary files removed", file=sys.stderr)
+        what = "interrupted (SIGINT)" if exc.signum == signal.SIGINT else \
+            f"terminated by {signal.Signals(exc.signum).name}"
+        print(f"noiselab {args.command}: {what}; temporary files removed", file=sys.stderr)
         return 128 + exc.signum
     except KeyboardInterrupt:
         print(f"noiselab {args.command}: interrupted; temporary files removed", file=sys.stderr)

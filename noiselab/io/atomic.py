@@ -20,7 +20,39 @@ from pathlib import Path
 
 from .errors import OutputError, output_error
 
-__all__ = ["atomic_output", "prepare_output", "exchange_paths"]
+__all__ = ["atomic_output", "prepare_output", "exchange_paths", "hold_signals", "defer_signal"]
+
+_held = 0
+_deferred = []
+
+
+@contextlib.contextmanager
+def hold_signals():
+    """Hold a stopping signal (SIGINT/SIGTERM/SIGHUP handled by ``noiselab.cli``) until the block ends.
+
+    Around the few steps that create something that must be cleaned up (a
+    temporary file, the ffmpeg process) and record it, so an interruption
+    never falls between creating it and knowing about it. A signal that came
+    in the meantime is raised again when the block ends.
+    """
+    global _held
+    _held += 1
+    try:
+        yield
+    finally:
+        _held -= 1
+        if not _held and _deferred:
+            import signal
+
+            signal.raise_signal(_deferred.pop())
+
+
+def defer_signal(signum) -> bool:
+    """Called by a signal handler: True (and the signal kept for later) inside :func:`hold_signals`."""
+    if _held:
+        _deferred[:] = [signum]
+        return True
+    return False
 
 
 def _first_existing(path: Path) -> Path:
@@ -172,16 +204,19 @@ def atomic_output(path, *, directory=False):
     path = Path(path)
     prepare_output(path, directory=directory, make_parents=False, probe=False)
     parent = path.parent if str(path.parent) else Path(".")
+    tmp = None
     try:
-        if directory:
-            tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent))
-        else:
-            fd, name = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".tmp" + "".join(path.suffixes), dir=parent)
-            os.close(fd)
-            tmp = Path(name)
-    except OSError as exc:
-        raise output_error(path, exc) from None
-    try:
+        with hold_signals():   # an interruption must not fall between creating the file and knowing its name
+            try:
+                if directory:
+                    tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent))
+                else:
+                    fd, name = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".tmp" + "".join(path.suffixes),
+                                                dir=parent)
+                    os.close(fd)
+                    tmp = Path(name)
+            except OSError as exc:
+                raise output_error(path, exc) from None
         yield tmp
         # mkstemp/mkdtemp create owner-only files; give the result the
         # permissions an ordinary open() would (0666/0777 less the umask).
@@ -193,6 +228,8 @@ def atomic_output(path, *, directory=False):
         else:
             os.replace(tmp, path)
     except BaseException as exc:
+        if tmp is None:
+            raise
         if directory:
             shutil.rmtree(tmp, ignore_errors=True)
         else:

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from .._progress import progress
-from .atomic import atomic_output
+from .atomic import atomic_output, hold_signals
 from .errors import InputError, cause, input_error, output_error
 
 VIDEO_SUFFIXES = (".mp4", ".gif", ".npy")
@@ -153,7 +153,8 @@ def _write_mp4(path, frames, fps, quality, vmin, vmax):
                 cmd = [imageio_ffmpeg.get_ffmpeg_exe(), "-y", "-f", "rawvideo", "-vcodec", "rawvideo",
                        "-s", f"{shape[1]}x{shape[0]}", "-pix_fmt", pix_fmt, "-r", rate, "-i", "-", "-an",
                        "-vcodec", "libx264", "-pix_fmt", "yuv420p", "-crf", str(crf), "-v", "error", str(path)]
-                proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=errlog)
+                with hold_signals():   # never an ffmpeg running that `proc` does not name
+                    proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=errlog)
             elif frame.shape != shape:
                 raise ValueError(f"all frames must have one shape: frame of shape {frame.shape} after {shape}")
             try:
