@@ -2,7 +2,8 @@
 
 Run from the repository root::
 
-    python3 benchmarks/lab_run.py            # full run (~10 min on 2 cores), writes benchmarks/RESULTS.md
+    python3 benchmarks/lab_run.py            # full run (2.5-5 min on 2 cores), writes out/bench/RESULTS.md
+    python3 benchmarks/lab_run.py --publish  # ... and updates the published benchmarks/RESULTS.md
     python3 benchmarks/lab_run.py --quick --output /tmp/lab
 """
 import sys

@@ -18,9 +18,29 @@ def _quick_start_commands():
 
 def test_readme_has_exactly_two_setup_commands():
     commands = _quick_start_commands()
-    assert len(commands) == 2, commands
-    assert commands[0].startswith("./install.sh &&")
-    assert "pytest" in commands[1] and "test" in commands[1]
+    assert commands == ["./install.sh && .venv/bin/noiselab gallery",
+                        "./install.sh test && .venv/bin/python -m pytest"], commands
+
+
+def test_install_sh_never_pip_installs_into_the_system_python():
+    """PEP 668: pip runs only with the environment's own interpreter (.venv/bin/python)."""
+    script = (ROOT / "install.sh").read_text()
+    pip_lines = [line.strip() for line in script.splitlines()
+                 if re.search(r"\bpip3?\s+install\b", line) and not line.strip().startswith("#")]
+    assert pip_lines, "install.sh installs nothing with pip"
+    assert all(line.startswith('"$python" -m pip install') for line in pip_lines), pip_lines
+    assert re.search(r"^python=\.venv/bin/python$", script, re.M)
+    assert "/.venv" in (ROOT / ".gitignore").read_text().split()
+
+
+def test_test_extra_includes_hypothesis_and_the_dask_extra():
+    import tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["optional-dependencies"]
+    names = {re.split(r"[<>=\[ ]", r)[0] for r in extras["test"]}
+    assert {"pytest", "pytest-xdist", "hypothesis", "noiselab"} <= names
+    assert "noiselab[dask]" in extras["test"]
+    assert {re.split(r"[<>=\[ ]", r)[0] for r in extras["dask"]} == {"dask", "distributed", "zarr"}
 
 
 def test_ci_runs_the_readme_test_command_verbatim():
@@ -32,3 +52,40 @@ def test_cli_rejects_unknown_command_with_usage_error():
     proc = subprocess.run([sys.executable, "-m", "noiselab", "no-such-command"], capture_output=True, text=True)
     assert proc.returncode == 2
     assert "invalid choice" in proc.stderr
+
+
+def test_install_sh_installs_into_an_active_virtualenv_and_links_dot_venv(tmp_path):
+    """With a virtualenv active, install.sh installs there and `.venv` runs that environment's noiselab."""
+    files = subprocess.run(["git", "ls-files", "-co", "--exclude-standard"], cwd=ROOT, capture_output=True,
+                           text=True, check=True).stdout.split()
+    repo = tmp_path / "repo"
+    for name in files:
+        src = ROOT / name
+        if src.is_file():
+            (repo / name).parent.mkdir(parents=True, exist_ok=True)
+            (repo / name).write_bytes(src.read_bytes())
+            (repo / name).chmod(src.stat().st_mode)
+    env_dir = tmp_path / "env"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(env_dir)], check=True)
+    # the new environment sees this interpreter's packages (pip among them), so pip has nothing to download
+    # but the build tools, also when this interpreter is itself a virtualenv
+    import site
+    import sysconfig
+
+    purelib = Path(subprocess.run([str(env_dir / "bin" / "python"), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                                  capture_output=True, text=True, check=True).stdout.strip())
+    parents = [p for p in dict.fromkeys(site.getsitepackages() + [sysconfig.get_paths()["purelib"]]) if Path(p).is_dir()]
+    (purelib / "_parent_env.pth").write_text("\n".join(parents) + "\n")
+    env = {k: v for k, v in __import__("os").environ.items() if k not in ("PYTHONPATH", "CONDA_PREFIX")}
+    env.update(VIRTUAL_ENV=str(env_dir), PATH=f"{env_dir / 'bin'}:{env['PATH']}")
+    proc = subprocess.run(["./install.sh"], cwd=repo, env=env, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    out = proc.stdout.splitlines()
+    assert all(line.startswith("install.sh: ") for line in out) and len(out) <= 6, out   # a few lines, not dpkg's
+    assert (repo / ".venv").is_symlink() and (repo / ".venv").resolve() == env_dir.resolve()
+    where = subprocess.run([str(repo / ".venv" / "bin" / "python"), "-c", "import noiselab; print(noiselab.__file__)"],
+                           cwd=tmp_path, env=env, capture_output=True, text=True)
+    assert where.stdout.strip() == str(repo / "noiselab" / "__init__.py"), where.stderr
+    version = subprocess.run([str(repo / ".venv" / "bin" / "noiselab"), "--version"], env=env, capture_output=True,
+                             text=True)
+    assert version.stdout.strip().startswith("noiselab "), version.stderr

@@ -9,16 +9,66 @@ Each subcommand lives in its own module in this package (``snow.py``,
     def run(args) -> int: ...           # do the work, return the exit status
 
 Modules are discovered here, so adding a command is adding one file.
-Errors that come from bad input (``ValueError``, ``TypeError``,
-``FileNotFoundError``, ``MemoryError``) are printed as one line on stderr with
-exit status 2, never as a traceback.
+Errors that come from bad input or the machine's state (``ValueError``,
+``TypeError``, any ``OSError``: a missing or unreadable input, an output that
+cannot be written, a full disk; ``MemoryError``) are printed as one line on
+stderr naming the file and the cause, with exit status 2, never as a
+traceback. SIGINT, SIGTERM and SIGHUP stop a run the same way: temporary
+files are removed, and the status is 128 + the signal number (130, 143, 129).
+
+``NOISELAB_EXAMPLE_SIZE=small`` in the environment runs every command at the
+small sizes its module's ``SMALL`` dict sets (see ``DEVELOPERS.md``; the
+README test runs the README's examples so), and says so on stderr.
 """
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
+import os
 import pkgutil
+import signal
 import sys
+
+SMALL_ENV = "NOISELAB_EXAMPLE_SIZE"
+
+
+class Terminated(KeyboardInterrupt):
+    """Raised in the main thread by SIGINT, SIGTERM or SIGHUP: a KeyboardInterrupt, so every clean-up runs."""
+
+    def __init__(self, signum):
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _on_signal(signum, frame):
+    from ..io.atomic import defer_signal
+
+    if defer_signal(signum):   # inside a step that must finish first (creating a temporary file): later
+        return
+    for s in (signal.SIGTERM, signal.SIGHUP, signal.SIGINT):   # a second signal must not cut the clean-up short
+        signal.signal(s, signal.SIG_IGN)
+    raise Terminated(signum)
+
+
+def _apply_small(module, args):
+    """Cap the sizes of a run at the module's ``SMALL`` values (``NOISELAB_EXAMPLE_SIZE=small``)."""
+    changed = []
+    for name, value in getattr(module, "SMALL", {}).items():
+        if not hasattr(args, name):
+            continue
+        old = getattr(args, name)
+        if isinstance(value, bool):
+            new = value
+        elif old is None or (isinstance(old, (int, float)) and not isinstance(old, bool)):
+            new = value if old is None else min(old, value)
+        else:
+            new = value
+        if new != old:
+            setattr(args, name, new)
+            changed.append(f"{name.replace('_', '-')}={new}")
+    if changed:
+        print(f"noiselab {module.NAME}: {SMALL_ENV}=small: {', '.join(changed)}", file=sys.stderr)
 
 
 def _command_modules():
@@ -40,18 +90,40 @@ def build_parser() -> argparse.ArgumentParser:
     for module in _command_modules():
         p = sub.add_parser(module.NAME, help=getattr(module, "HELP", None), description=getattr(module, "HELP", None))
         module.add_arguments(p)
-        p.set_defaults(_run=module.run)
+        p.set_defaults(_run=module.run, _module=module)
     return parser
 
 
 def main(argv=None) -> int:
+    from ..io.errors import describe
+
     parser = build_parser()
     args = parser.parse_args(argv)
+    if os.environ.get(SMALL_ENV, "").strip().lower() == "small":
+        _apply_small(args._module, args)
+    previous = {}
+    try:
+        for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+            previous[s] = signal.signal(s, _on_signal)
+    except ValueError:   # not the main thread: leave the signals alone
+        previous = {}
     try:
         return int(args._run(args) or 0)
-    except (ValueError, TypeError, FileNotFoundError, MemoryError) as exc:
-        print(f"noiselab {args.command}: error: {exc}", file=sys.stderr)
+    except BrokenPipeError:   # the reader of our output went away (``| head``): stop quietly, as other tools do
+        with contextlib.suppress(OSError):
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 128 + signal.SIGPIPE
+    except (ValueError, TypeError, OSError, MemoryError, EOFError) as exc:
+        print(f"noiselab {args.command}: error: {describe(exc)}", file=sys.stderr)
         return 2
+    except Terminated as exc:
+        what = "interrupted (SIGINT)" if exc.signum == signal.SIGINT else \
+            f"terminated by {signal.Signals(exc.signum).name}"
+        print(f"noiselab {args.command}: {what}; temporary files removed", file=sys.stderr)
+        return 128 + exc.signum
     except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
+        print(f"noiselab {args.command}: interrupted; temporary files removed", file=sys.stderr)
         return 130
+    finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler)

@@ -46,10 +46,56 @@ def add_arguments(parser):
     parser.add_argument("--json", default=None, metavar="PATH", help="write the measurements as JSON to PATH")
 
 
+def _frame_count(path):
+    """The number of frames of a video file or folder without decoding it (None when unknown)."""
+    try:
+        if path.is_dir():
+            return sum(1 for p in path.iterdir() if p.suffix.lower() == ".png")
+        if path.suffix.lower() == ".gif":
+            from PIL import Image
+
+            with Image.open(path) as im:
+                return int(getattr(im, "n_frames", 1))
+        import imageio_ffmpeg
+
+        return int(imageio_ffmpeg.count_frames_and_secs(str(path))[0])   # a stream copy, no decoding
+    except Exception:   # unreadable: iter_video below says why
+        return None
+
+
+def _stream_grey_video(path, max_frames=None):
+    """Decode a video file or PNG-frame folder frame by frame into one grey float32 array.
+
+    The frames are counted first (without decoding) and written one by one into
+    the preallocated ``(frames, height, width)`` float32 result, so the peak is
+    that array plus one decoded frame, not the decoded RGB video and its copies.
+    """
+    from ..analysis import to_grey
+    from ..io import InputError, iter_video
+
+    count = _frame_count(path)
+    if count is not None and max_frames is not None:
+        count = min(count, max_frames)
+    out, n = None, 0
+    for frame in iter_video(path, max_frames=max_frames):
+        g = to_grey(frame.astype(np.float32) / 255.0 if frame.dtype == np.uint8 else frame.astype(np.float32))
+        if out is None:
+            out = np.empty((max(count or 1, 1),) + g.shape, np.float32)
+        elif g.shape != out.shape[1:]:
+            raise InputError(path, f"frame {n} has shape {g.shape}, the first {out.shape[1:]}")
+        if n == out.shape[0]:   # the count was short: grow (rare)
+            out = np.concatenate([out, np.empty_like(out[: max(1, n // 2)])])
+        out[n] = g
+        n += 1
+    if out is None:
+        raise InputError(path, "the video has no frames")
+    return out if n == out.shape[0] else out[:n].copy()
+
+
 def load(path, kind="auto", max_frames=None):
     """Read ``path`` and return ``(array, kind)`` with kind in image/video/volume/signal; RGB becomes grey."""
     from ..analysis import to_grey
-    from ..io import read_image, read_video
+    from ..io import InputError, load_npy, read_image
 
     path = Path(path)
     suffix = path.suffix.lower()
@@ -58,15 +104,15 @@ def load(path, kind="auto", max_frames=None):
         data = read_zarr(path)
         data = (data[:max_frames] if max_frames is not None and data.ndim == 3 and kind != "volume" else data).compute()
     elif path.is_dir() or suffix in _VIDEO_SUFFIXES:
-        data = to_grey(read_video(path, as_float=True, max_frames=max_frames))
+        data = _stream_grey_video(path, max_frames)
         if data.ndim == 3 and data.shape[0] == 1:
             data = data[0]
     elif suffix in _IMAGE_SUFFIXES:
         data = to_grey(read_image(path, as_float=True))
     elif suffix == ".npy":
-        if not path.is_file():
-            raise FileNotFoundError(f"no such file: {str(path)!r}")
-        data = np.load(path, allow_pickle=False)
+        data = load_npy(path)
+        if data.size == 0:
+            raise InputError(path, f"it holds an empty array of shape {data.shape}: nothing to measure")
         if data.dtype == np.uint8:
             data = data.astype(np.float32) / 255.0
         if data.ndim in (3, 4) and data.shape[-1] in (3, 4) and kind != "volume":
@@ -77,7 +123,9 @@ def load(path, kind="auto", max_frames=None):
         raise ValueError(f"cannot analyse {path.name!r}: expected .png/.jpg/.tif, .mp4/.gif, .npy or a folder of PNG frames")
     data = np.asarray(data)
     if data.dtype.kind not in "biuf":
-        raise ValueError(f"{path.name} holds {data.dtype} data, not a real numeric array")
+        raise InputError(path, f"it holds {data.dtype} data, not a real numeric array")
+    if data.size == 0:
+        raise InputError(path, f"it holds an empty array of shape {data.shape}: nothing to measure")
     guess = {1: "signal", 2: "image", 3: "video"}.get(data.ndim)
     if guess is None:
         raise ValueError(f"{path.name} holds a {data.ndim}-D array of shape {data.shape}; expected 1-, 2- or 3-D (plus RGB)")
@@ -292,6 +340,11 @@ def run(args) -> int:
     check_int("--bands-per-octave", args.bands_per_octave, lo=1, hi=8)
     if args.plot is not None and Path(args.plot).suffix.lower() not in (".png", ".pdf", ".svg"):
         raise ValueError(f"--plot must end in .png, .pdf or .svg, got {args.plot!r}")
+    from ..io import prepare_output
+
+    for out in (args.plot, args.json):   # fail now, not after measuring
+        if out is not None:
+            prepare_output(out)
     data, kind = load(args.file, args.kind, args.max_frames)
     m = measure(data, kind, band=args.band, window=args.window, bands_per_octave=args.bands_per_octave)
     print(report(args.file, m))

@@ -15,6 +15,8 @@ NAME = "gallery"
 HELP = "build the gallery (the seed papers' figures, reproduced and measured) and print where index.html is"
 
 PACKAGE = "noiselab_gallery"
+# NOISELAB_EXAMPLE_SIZE=small (the README test): every figure at its quick size
+SMALL = {"quick": True}
 GALLERY_DIR = Path(__file__).resolve().parents[2] / "gallery"
 
 
@@ -44,7 +46,17 @@ def add_arguments(parser):
 
 
 def run(args) -> int:
+    builder = load_builder()
+    if not getattr(args, "list", False) and getattr(args, "out", None):
+        from ..io import prepare_output
+
+        out = Path(args.out)
+        if out.exists() and not out.is_dir():
+            from ..io import OutputError
+
+            raise OutputError(out, "it is an existing file, not a folder for the gallery")
+        prepare_output(out / "index.html")   # fail now, not after building the figures
     import scipy.fft
 
     with scipy.fft.set_workers(-1):  # every core for the FFTs of snow, spectral_noise and the analysers
-        return load_builder().run(args)
+        return builder.run(args)

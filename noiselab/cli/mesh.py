@@ -3,10 +3,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..io.media import DEFAULT_FPS
+
 NAME = "mesh"
 HELP = "displace a mesh or built-in shape along its normals by noise (Eq. 11); write PLY/OBJ/STL/GLB, render PNG/MP4/GIF"
 
 SHAPES = ("sphere", "squashed", "plane", "ant", "airplane", "nut")
+# NOISELAB_EXAMPLE_SIZE=small (the README test): 4 animation frames, 128 px renders
+SMALL = {"frames": 4, "size": 128}
 
 
 def add_arguments(parser):
@@ -52,7 +56,8 @@ def add_arguments(parser):
     o.add_argument("--animate", choices=("turntable", "boil"), default="turntable",
                    help="animation for a video --render: camera turntable or boiling shape (4-D noise over time)")
     o.add_argument("--frames", type=int, default=48, help="animation frames (default 48)")
-    o.add_argument("--fps", type=float, default=24.0)
+    o.add_argument("--fps", type=float, default=DEFAULT_FPS,
+                   help="frames per second of a video --render (default %(default)g)")
     o.add_argument("--duration", type=float, default=2.0, help="noise time spanned by a 'boil' animation (default 2)")
     o.add_argument("--size", type=int, default=512, help="rendered image size in pixels (square, default 512)")
     o.add_argument("--view", default="iso", help="camera view: iso, xy, xz, yz (default iso)")
@@ -121,6 +126,11 @@ def run(args) -> int:
     if args.render and not video and Path(args.render).suffix.lower() not in (".png", ".jpg", ".jpeg", ".tif", ".tiff"):
         raise ValueError(f"--render must end in .png, .jpg, .tif (image) or .mp4, .gif (animation), got {args.render!r}")
     boil = bool(video and args.animate == "boil")
+    from ..io import prepare_output
+
+    for out in (args.output, args.render):   # fail now, not after displacing and rendering
+        if out:
+            prepare_output(out)
     octaves = check_int("--octaves", args.octaves if args.octaves is not None else (1 if args.field == "noise" else 4),
                         lo=1, hi=64)
     if args.field == "noise" and octaves != 1:

@@ -15,6 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..io.media import DEFAULT_FPS
+
 NAME = "noise"
 HELP = "Render Phillips lattice noise (value or gradient), fractal sums or turbulence to PNG, MP4/GIF or NPY."
 
@@ -22,11 +24,12 @@ _DEFAULT_SIZE = {1: "1024", 2: "512x512", 3: "48x128x128"}
 
 
 def _parse_axes(name, text, dims, cast):
-    parts = [p for p in str(text).lower().replace(",", "x").split("x") if p]
+    parts = str(text).lower().replace(",", "x").split("x")
     try:
-        values = [cast(p) for p in parts]
+        values = [cast(p.strip()) for p in parts]   # an empty part ('10x', 'x8') is an error, not a default
     except ValueError:
-        raise ValueError(f"{name} must be a number or {dims} numbers joined by 'x', got {text!r}") from None
+        raise ValueError(f"{name} must be a number or {dims} numbers joined by 'x' (e.g. 8 or "
+                         f"{'x'.join(['8'] * dims)}), got {text!r}") from None
     if len(values) == 1:
         values = values * dims
     if len(values) != dims:
@@ -66,7 +69,8 @@ def add_arguments(parser):
                              "or the data's min..max (default: bound)")
     parser.add_argument("--dtype", default="float32", choices=("float32", "float64"),
                         help="precision of .npy and .zarr output (default: float32)")
-    parser.add_argument("--fps", type=float, default=24.0, help="frames per second of a video (default: 24)")
+    parser.add_argument("--fps", type=float, default=DEFAULT_FPS,
+                        help="frames per second of an MP4/GIF video (default: %(default)g)")
     parser.add_argument("--chunks", default=None,
                         help="with .zarr output: chunk shape, e.g. 64 or 32x64x64, or auto (default: auto)")
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
@@ -96,6 +100,9 @@ def run(args) -> int:
     allowed = {1: (".png", ".npy"), 2: (".png", ".npy"), 3: (".mp4", ".gif", ".npy")}[dims] + (".zarr",)
     if suffix not in allowed:
         raise ValueError(f"--output for a {dims}-D field must end in {' or '.join(allowed)}, got {path.name!r}")
+    from ..io import prepare_output
+
+    prepare_output(path, directory=suffix == ".zarr")   # fail now, not after computing the field
     period = None
     if args.tileable:
         if any(abs(c - round(c)) > 1e-9 for c in cells):
@@ -119,7 +126,6 @@ def run(args) -> int:
         lo, hi = float(field.min()), float(field.max())
         if hi <= lo:
             hi = lo + 1.0
-    path.parent.mkdir(parents=True, exist_ok=True)
     if suffix == ".npy":
         write_image(path, field) if dims < 3 else write_video(path, field)
     elif dims == 1:

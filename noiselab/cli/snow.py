@@ -1,4 +1,10 @@
-"""``noiselab snow``: render falling snow (tent model) and composite it over a background."""
+"""``noiselab snow``: render falling snow (tent model) and composite it over a background.
+
+``--frames N`` is the period of the snow and the number of frames written to
+every format; ``--loops K`` repeats the period K times in an MP4 only (a
+playback format that does not loop by itself; a GIF loops by itself, NPY and
+PNG frames hold the data once). A video background sets the length instead.
+"""
 from __future__ import annotations
 
 import math
@@ -7,7 +13,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..io.media import DEFAULT_FPS
+
 NAME = "snow"
+# NOISELAB_EXAMPLE_SIZE=small (the README test): an 8-frame period written once
+SMALL = {"frames": 8, "loops": 1}
 HELP = "render Langer & Zhang's falling snow by inverse FFT over a background, to MP4, GIF, PNG frames or NPY"
 
 
@@ -15,9 +25,11 @@ def add_arguments(p):
     g = p.add_argument_group("scene")
     g.add_argument("--width", type=int, default=None, help="frame width in px (default: the background's, else 512)")
     g.add_argument("--height", type=int, default=None, help="frame height in px (default: the background's, else 512)")
-    g.add_argument("--frames", type=int, default=64, help="frames in one period of the snow (default 64); it loops seamlessly")
-    g.add_argument("--loops", type=int, default=2,
-                   help="how many periods to write (default 2; a video background sets the length instead)")
+    g.add_argument("--frames", type=int, default=64,
+                   help="frames in one period of the snow, and in the file (default 64); it loops seamlessly")
+    g.add_argument("--loops", type=int, default=None,
+                   help="MP4 only: how many periods to write (default 2); a GIF loops by itself, NPY and PNG "
+                        "frames hold one period; a video background sets the length instead")
     g.add_argument("--tile", type=int, default=None, metavar="N",
                    help="render an N x N tile and repeat it over the frame (thesis 3.4; cheaper, periodic)")
     g.add_argument("--seed", type=int, default=0, help="random seed (default 0); same seed, same video")
@@ -37,7 +49,8 @@ def add_arguments(p):
     t.add_argument("--amplitude", choices=("uniform", "rayleigh", "fixed"), default="uniform",
                    help="random amplitude law (default uniform, as the thesis)")
     t.add_argument("--on-alias", choices=("raise", "drop"), default="raise",
-                   help="energy past the temporal Nyquist: error (default) or drop those cells")
+                   help="energy past the temporal Nyquist (pi rad/frame, e.g. --c above 2.856): error (default) "
+                        "or drop those cells")
     t.add_argument("--dtype", choices=("float32", "float64"), default="float32", help="precision (default float32)")
     t.add_argument("--workers", type=int, default=-1,
                    help="FFT threads: a count, or -1 for every core, -2 for all but one (default -1); "
@@ -49,27 +62,40 @@ def add_arguments(p):
     o.add_argument("--intensity", type=float, default=250.0, help="snow intensity 0..255 (default 250)")
     o.add_argument("--output", "-o", default="out/snow.mp4",
                    help="file .mp4, .gif or .npy, or a folder (no suffix) for PNG frames (default out/snow.mp4)")
-    o.add_argument("--fps", type=float, default=25.0, help="frames per second (default 25)")
+    o.add_argument("--fps", type=float, default=DEFAULT_FPS,
+                   help="frames per second of an MP4 or GIF (default %(default)g)")
     pr = o.add_mutually_exclusive_group()
     pr.add_argument("--progress", dest="progress", action="store_true", default=None, help="always show progress bars")
     pr.add_argument("--quiet", dest="progress", action="store_false", help="never show progress bars")
 
 
+def _cli_words(message):
+    """The library's error message in the command line's words (``--on-alias drop``, ``--c``, ``--pan``)."""
+    for old, new in (("pass on_alias='drop'", "add --on-alias drop"), ('on_alias="drop"', "--on-alias drop"),
+                     ("on_alias='drop'", "--on-alias drop"), ("largest allowed c ", "largest allowed --c "),
+                     ("Largest allowed c ", "Largest allowed --c "), ("temporal aliasing: c=", "temporal aliasing: --c "),
+                     ("and pan=", "and --pan "), (" with thickness=", " with --thickness ")):
+        message = message.replace(old, new)
+    return message
+
+
 def _load_background(path):
-    from ..io import read_image, read_video
+    from ..io import InputError, load_npy, read_image, read_video
 
     p = Path(path)
     if p.is_dir() or p.suffix.lower() in (".mp4", ".gif"):
         bg = read_video(p)
         if bg.shape[0] == 1:
             bg = bg[0]
-        return bg
-    if p.suffix.lower() == ".npy":
-        if not p.is_file():
-            raise FileNotFoundError(f"no such background file: {str(p)!r}")
-        bg = np.load(p)
-        return bg
-    return read_image(p)
+    elif p.suffix.lower() == ".npy":
+        bg = load_npy(p)
+    else:
+        bg = read_image(p)
+    if bg.size == 0:
+        raise InputError(p, f"it holds an empty array of shape {bg.shape}")
+    if bg.dtype.kind not in "biuf":
+        raise InputError(p, f"it holds {bg.dtype} data, not an image")
+    return bg
 
 
 def run(args) -> int:
@@ -78,12 +104,23 @@ def run(args) -> int:
     from ..snow.background import default_background
     from ..snow.composite import _background_layout
 
+    from ..io import prepare_output
+
     if args.frames < 1:
         raise ValueError(f"--frames must be >= 1, got {args.frames}")
-    if args.loops < 1:
+    out = Path(args.output)
+    mp4 = out.suffix.lower() == ".mp4"
+    if args.loops is not None and args.loops < 1:
         raise ValueError(f"--loops must be >= 1, got {args.loops}")
+    if args.loops not in (None, 1) and not mp4:
+        raise ValueError(f"--loops applies to .mp4 output only (a GIF loops by itself; NPY and PNG frames hold "
+                         f"one period of --frames {args.frames}), got --loops {args.loops} for {out.name!r}")
+    loops = (2 if args.loops is None else args.loops) if mp4 else 1
     if args.background and args.no_background:
         raise ValueError("--background and --no-background exclude each other")
+    if out.suffix.lower() not in ("", ".mp4", ".gif", ".npy"):
+        raise ValueError(f"--output must end in .mp4, .gif or .npy, or be a folder for PNG frames; got {out.name!r}")
+    prepare_output(out, directory=out.suffix == "")   # fail now, not after rendering
     background = None
     if args.background:
         background = _load_background(args.background)
@@ -104,7 +141,7 @@ def run(args) -> int:
     if H < 1 or W < 1:
         raise ValueError(f"--width and --height must be >= 1, got {W} x {H}")
     T = args.frames
-    n_out = T * args.loops
+    n_out = T * loops
     if background is not None and is_video:
         n_out = background.shape[0]  # the snow loops over the whole background video
     th, tw = (H, W) if args.tile is None else (args.tile, args.tile)
@@ -114,10 +151,13 @@ def run(args) -> int:
     if band is not None and args.tile is not None:
         band = tuple(b * tw / W for b in band)  # keep the flakes' size in pixels
     t0 = time.perf_counter()
-    alpha = snow((T, th, tw), seed=args.seed, c=args.c, band=band, thickness=args.thickness,
-                 direction=tuple(args.direction), pan=tuple(args.pan), beta=args.beta, exponent=args.exponent,
-                 amplitude=args.amplitude, dtype=args.dtype, on_alias=args.on_alias, show_progress=args.progress,
-                 workers=args.workers)
+    try:
+        alpha = snow((T, th, tw), seed=args.seed, c=args.c, band=band, thickness=args.thickness,
+                     direction=tuple(args.direction), pan=tuple(args.pan), beta=args.beta, exponent=args.exponent,
+                     amplitude=args.amplitude, dtype=args.dtype, on_alias=args.on_alias, show_progress=args.progress,
+                     workers=args.workers)
+    except ValueError as exc:   # name the flags a command-line user types, not the Python keywords
+        raise ValueError(_cli_words(str(exc))) from None
     t_render = time.perf_counter() - t0
     reps = (math.ceil(H / th), math.ceil(W / tw))
     alpha_frames = iter_tiled_frames(alpha, reps, n_frames=n_out, crop=(H, W))
@@ -145,8 +185,6 @@ def run(args) -> int:
         def __len__(self):
             return self.n
 
-    out = Path(args.output)
-    out.parent.mkdir(parents=True, exist_ok=True)
     write_video(out, _Sized(frames, n_out), fps=args.fps, show_progress=args.progress)
     what = "opacity" if args.no_background else "snow scene"
     print(f"wrote {what} to {out} ({n_out} frames of {W} x {H} px at {args.fps:g} fps; "

@@ -247,7 +247,7 @@ def render_stereo_pair(meshes, path=None, *, separation=5.0, cross=True, size=38
     return _save_array(image, path)
 
 
-def render_turntable(meshes, path=None, *, frames=36, fps=12.0, degrees=360.0, size=512, view="iso",
+def render_turntable(meshes, path=None, *, frames=36, fps=25.0, degrees=360.0, size=512, view="iso",
                      elevation=0.0, zoom=1.0, colors=None, scalars=None, cmap="viridis", clim=None,
                      background="white", smooth_shading=True, show_edges=False, style="surface",
                      show_progress=None) -> np.ndarray:
@@ -289,7 +289,7 @@ def render_turntable(meshes, path=None, *, frames=36, fps=12.0, degrees=360.0, s
     return video
 
 
-def render_sequence(meshes, path=None, *, fps=12.0, size=512, view="iso", azimuth=0.0, elevation=0.0,
+def render_sequence(meshes, path=None, *, fps=25.0, size=512, view="iso", azimuth=0.0, elevation=0.0,
                     zoom=1.0, color=None, scalars=None, cmap="viridis", clim=None, background="white",
                     smooth_shading=True, spin=0.0, show_progress=None) -> np.ndarray:
     """Render a time-varying shape: an iterable of meshes with the same faces (e.g. :func:`displace_frames`).

@@ -1,11 +1,184 @@
-"""Write-to-temporary-then-rename, so a failed run leaves nothing half-written."""
+"""Write-to-temporary-then-rename, so a failed run leaves nothing half-written.
+
+Every failure to write (a full disk, a read-only file system, no permission,
+an output that is an existing folder, a parent that is a regular file)
+becomes an :class:`~noiselab.io.errors.OutputError` naming the target and the
+cause, and the temporary file or folder is removed, also when the run is
+interrupted (``KeyboardInterrupt``; the command line turns SIGTERM and SIGHUP
+into the same).
+"""
 from __future__ import annotations
 
 import contextlib
+import ctypes
+import ctypes.util
+import errno
 import os
 import shutil
 import tempfile
 from pathlib import Path
+
+from .errors import OutputError, output_error
+
+__all__ = ["atomic_output", "prepare_output", "exchange_paths", "hold_signals", "defer_signal"]
+
+_held = 0
+_deferred = []
+
+
+@contextlib.contextmanager
+def hold_signals():
+    """Hold a stopping signal (SIGINT/SIGTERM/SIGHUP handled by ``noiselab.cli``) until the block ends.
+
+    Around the few steps that create something that must be cleaned up (a
+    temporary file, the ffmpeg process) and record it, so an interruption
+    never falls between creating it and knowing about it. A signal that came
+    in the meantime is raised again when the block ends.
+    """
+    global _held
+    _held += 1
+    try:
+        yield
+    finally:
+        _held -= 1
+        if not _held and _deferred:
+            import signal
+
+            signal.raise_signal(_deferred.pop())
+
+
+def defer_signal(signum) -> bool:
+    """Called by a signal handler: True (and the signal kept for later) inside :func:`hold_signals`."""
+    if _held:
+        _deferred[:] = [signum]
+        return True
+    return False
+
+
+def _first_existing(path: Path) -> Path:
+    p = path
+    while not os.path.lexists(p) and p != p.parent:
+        p = p.parent
+    return p
+
+
+def prepare_output(path, *, directory=False, make_parents=True, probe=True, create=True) -> Path:
+    """Check that ``path`` can be written, creating missing parent folders; raise ``OutputError`` if not.
+
+    Call it before long work so a run fails at once, not after minutes of
+    rendering. ``directory=True`` for an output that is a folder (PNG frames).
+    ``probe`` creates and removes a temporary file beside the target, which
+    catches a read-only file system or a folder without write permission.
+    ``create=False`` checks only: missing folders are not made, the probe runs
+    in the nearest folder that exists.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> prepare_output(os.path.join(d, "new", "a.png")).name
+    'a.png'
+    >>> open(os.path.join(d, "file"), "w").close()
+    >>> prepare_output(os.path.join(d, "file", "a.png"))
+    Traceback (most recent call last):
+    ...
+    noiselab.io.errors.OutputError: cannot write '.../file/a.png': ... is a file, not a folder
+    """
+    path = Path(path)
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir():
+        existing = _first_existing(parent)
+        if os.path.lexists(existing) and not existing.is_dir():
+            raise OutputError(path, f"{str(existing)!r} is a file, not a folder", errno.ENOTDIR)
+        if not make_parents:
+            raise OutputError(path, f"the folder {str(parent)!r} does not exist", errno.ENOENT)
+        if not create:
+            parent = existing
+        else:
+            try:
+                parent.mkdir(parents=True, exist_ok=True)
+            except OSError as exc:
+                raise output_error(path, exc) from None
+    if directory and path.exists() and not path.is_dir():
+        raise OutputError(path, "it is an existing file, not a folder for frames", errno.ENOTDIR)
+    if not directory and path.is_dir():
+        raise OutputError(path, "it is an existing folder", errno.EISDIR)
+    if probe:
+        try:
+            fd, name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".probe", dir=parent)
+            os.close(fd)
+            os.unlink(name)
+        except OSError as exc:
+            raise output_error(path, exc) from None
+    return path
+
+
+_RENAME_EXCHANGE = 2
+_AT_FDCWD = -100
+
+
+def _renameat2():
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
+        fn = libc.renameat2
+    except (OSError, AttributeError):
+        return None
+    fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
+    fn.restype = ctypes.c_int
+    return fn
+
+
+def exchange_paths(a, b) -> bool:
+    """Swap two existing paths in one atomic step (Linux ``renameat2(RENAME_EXCHANGE)``).
+
+    Returns False where the system or file system cannot (then nothing was
+    changed). Used to replace an output folder: at every moment either the old
+    or the new folder is at the target's name.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp(); a, b = os.path.join(d, "a"), os.path.join(d, "b")
+    >>> os.mkdir(a); os.mkdir(b); open(os.path.join(a, "from_a"), "w").close()
+    >>> exchange_paths(a, b) and os.listdir(b) == ["from_a"] and os.listdir(a) == []
+    True
+    """
+    fn = _renameat2()
+    if fn is None:
+        return False
+    rc = fn(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE)
+    if rc == 0:
+        return True
+    code = ctypes.get_errno()
+    if code in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP):
+        return False
+    raise OSError(code, os.strerror(code), str(a), None, str(b))
+
+
+def _replace_folder(tmp: Path, path: Path) -> None:
+    if not os.path.lexists(path):
+        os.replace(tmp, path)
+        return
+    if exchange_paths(tmp, path):     # the new folder is at `path`, the old one at `tmp`
+        shutil.rmtree(tmp, ignore_errors=True)
+        return
+    # no atomic exchange here (not Linux, or a file system without it): move the old folder
+    # aside and the new one in; for that instant neither is at `path`
+    old = Path(tempfile.mkdtemp(prefix=f".{path.name}.old.", dir=path.parent))
+    os.replace(path, old / path.name)
+    try:
+        os.replace(tmp, path)
+    except BaseException:
+        os.replace(old / path.name, path)
+        raise
+    finally:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def _ours(exc, tmp: Path) -> bool:
+    """Whether an OSError raised while writing concerns the output (no file named, or the temporary one)."""
+    name = getattr(exc, "filename", None)
+    return name is None or str(name).startswith(str(tmp))
 
 
 @contextlib.contextmanager
@@ -13,8 +186,11 @@ def atomic_output(path, *, directory=False):
     """Yield a temporary path beside ``path``; rename it onto ``path`` on success.
 
     The temporary name keeps the target's suffix (writers such as imageio pick
-    the format from it). On any exception the temporary file or folder is
-    removed and the target is left exactly as it was.
+    the format from it). On any exception (and on ``KeyboardInterrupt``) the
+    temporary file or folder is removed and the target is left exactly as it
+    was; an ``OSError`` from writing becomes an ``OutputError`` naming ``path``
+    and the cause. An existing folder is replaced atomically
+    (:func:`exchange_paths`): the old or the new one is always there.
 
     Examples
     --------
@@ -26,16 +202,21 @@ def atomic_output(path, *, directory=False):
     ['a.npy']
     """
     path = Path(path)
+    prepare_output(path, directory=directory, make_parents=False, probe=False)
     parent = path.parent if str(path.parent) else Path(".")
-    if not parent.is_dir():
-        raise FileNotFoundError(f"output folder {str(parent)!r} does not exist")
-    if directory:
-        tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent))
-    else:
-        fd, name = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".tmp" + "".join(path.suffixes), dir=parent)
-        os.close(fd)
-        tmp = Path(name)
+    tmp = None
     try:
+        with hold_signals():   # an interruption must not fall between creating the file and knowing its name
+            try:
+                if directory:
+                    tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent))
+                else:
+                    fd, name = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".tmp" + "".join(path.suffixes),
+                                                dir=parent)
+                    os.close(fd)
+                    tmp = Path(name)
+            except OSError as exc:
+                raise output_error(path, exc) from None
         yield tmp
         # mkstemp/mkdtemp create owner-only files; give the result the
         # permissions an ordinary open() would (0666/0777 less the umask).
@@ -43,19 +224,19 @@ def atomic_output(path, *, directory=False):
         os.umask(umask)
         os.chmod(tmp, (0o777 if directory else 0o666) & ~umask)
         if directory:
-            if path.exists():
-                old = Path(tempfile.mkdtemp(prefix=f".{path.name}.old.", dir=parent))
-                os.replace(path, old / path.name)
-                os.replace(tmp, path)
-                shutil.rmtree(old, ignore_errors=True)
-            else:
-                os.replace(tmp, path)
+            _replace_folder(tmp, path)
         else:
             os.replace(tmp, path)
-    except BaseException:
+    except BaseException as exc:
+        if tmp is None:
+            raise
         if directory:
             shutil.rmtree(tmp, ignore_errors=True)
         else:
             with contextlib.suppress(FileNotFoundError):
                 tmp.unlink()
+        if isinstance(exc, OutputError) and exc.path.startswith(str(tmp)):   # a writer named our temporary
+            raise OutputError(path, exc.reason, exc.errno) from exc
+        if isinstance(exc, OSError) and not isinstance(exc, OutputError) and _ours(exc, tmp):
+            raise output_error(path, exc) from exc
         raise

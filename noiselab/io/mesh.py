@@ -3,7 +3,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .atomic import atomic_output
+from .atomic import atomic_output, prepare_output
+from .errors import InputError, cause, input_error
 
 MESH_SUFFIXES = (".ply", ".obj", ".stl", ".glb", ".off")
 
@@ -37,8 +38,7 @@ def write_mesh(path, mesh, *, make_parents=True) -> Path:
         raise TypeError(f"mesh must be a trimesh.Trimesh, got {type(mesh).__name__}")
     if len(mesh.faces) == 0:
         raise ValueError("mesh has no faces: nothing to write as a surface mesh")
-    if make_parents:
-        path.parent.mkdir(parents=True, exist_ok=True)
+    prepare_output(path, make_parents=make_parents, probe=False)
     kwargs = {"include_attributes": True} if suffix == ".ply" else {}
     data = mesh.export(file_type=suffix[1:], **kwargs)
     if isinstance(data, str):
@@ -62,15 +62,20 @@ def read_mesh(path):
     """
     import trimesh
 
+    from .media import _check_readable
+
     path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"no such mesh file: {str(path)!r}")
+    _check_readable(path, "mesh file")
     try:
         loaded = trimesh.load(path, force="mesh", process=False)
-    except (ValueError, KeyError, IndexError) as exc:
-        raise ValueError(f"could not read a mesh from {str(path)!r}: {exc}") from None
+    except MemoryError:
+        raise
+    except Exception as exc:   # trimesh's loaders raise many kinds on a file they cannot parse
+        if isinstance(exc, OSError):
+            raise input_error(path, exc) from None
+        raise InputError(path, f"not a mesh trimesh can read: {cause(exc)}") from None
     if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
-        raise ValueError(f"{str(path)!r} holds no triangle faces (a point cloud?): a surface mesh is needed")
+        raise InputError(path, "it holds no triangle faces (a point cloud?): a surface mesh is needed")
     if path.suffix.lower() == ".stl":
         # STL stores a triangle soup: join the corners it repeats so the mesh is connected again
         loaded.merge_vertices()

@@ -1,8 +1,10 @@
 """Run every laboratory experiment and write ``benchmarks/RESULTS.md`` with its plots.
 
-One command regenerates it all::
+One command runs it all; an ordinary run writes to ``out/bench/`` and only
+``--publish`` replaces the published ``benchmarks/RESULTS.md``::
 
-    python3 -m noiselab bench                  # or: python3 benchmarks/lab_run.py
+    python3 -m noiselab bench                  # -> out/bench/RESULTS.md
+    python3 -m noiselab bench --publish        # -> benchmarks/RESULTS.md (needs the peers)
     python3 -m noiselab bench --quick --output /tmp/lab   # CI-size smoke run
 
 The peers run in their own environment (``benchmarks/.venv-peers``) in a
@@ -26,7 +28,7 @@ from .experiments import (CAPABILITIES, Config, flake_scaling, pareto_sweeps, sc
 from .measure import fit_exponent, machine_info
 from .quality import quality_experiment, quality_section
 
-__all__ = ["run_all", "md_table", "ROOT", "PEER_PYTHON"]
+__all__ = ["run_all", "md_table", "ROOT", "PEER_PYTHON", "PUBLISHED", "default_output", "PublishError"]
 
 # the checkout this package runs from (an editable install, as install.sh makes); the current
 # folder when noiselab was installed elsewhere
@@ -34,6 +36,24 @@ ROOT = Path(__file__).resolve().parents[2]
 if not (ROOT / "benchmarks").is_dir():  # pragma: no cover - non-editable installs
     ROOT = Path.cwd()
 PEER_PYTHON = ROOT / "benchmarks" / ".venv-peers" / "bin" / "python"
+#: the published results the README cites: written only by ``run_all(publish=True)`` (``bench --publish``)
+PUBLISHED = ROOT / "benchmarks"
+
+
+class PublishError(ValueError):
+    """Publishing would drop a section of the published results (the peers) without being told to."""
+
+
+def default_output(quick=False) -> Path:
+    """Where an ordinary run writes: ``out/bench`` (``out/bench-quick`` for ``--quick``) under the current folder."""
+    return Path("out") / ("bench-quick" if quick else "bench")
+
+
+def peers_missing_reason():
+    """Why the peers cannot run here (a string), or None when their environment exists."""
+    if not PEER_PYTHON.exists():
+        return f"peer environment missing ({PEER_PYTHON}): run `bash benchmarks/setup_peers.sh`"
+    return None
 
 
 def _fmt(v):
@@ -219,8 +239,8 @@ def plot_peers(prows, path):
 
 def run_peers(n, frames, repeats, timeout=900):
     """Run :mod:`noiselab.lab.peers` in the peer environment; returns (info, rows) or (None, reason)."""
-    if not PEER_PYTHON.exists():
-        return None, f"peer environment missing ({PEER_PYTHON}): run `bash benchmarks/setup_peers.sh`"
+    if peers_missing_reason():
+        return None, peers_missing_reason()
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "peers.json"
         env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
@@ -243,7 +263,7 @@ def _strip(rows):
     return [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows]
 
 
-def run_all(*, quick=False, output=None, peers=True, log=print):
+def run_all(*, quick=False, output=None, peers=True, log=print, publish=False, allow_missing_peers=False):
     """Run the experiments and write ``RESULTS.md``, ``results.json`` and the plots.
 
     Parameters
@@ -252,22 +272,32 @@ def run_all(*, quick=False, output=None, peers=True, log=print):
         CI-size run (seconds, tiny sizes); the numbers are not meaningful.
     output : path, optional
         Folder for ``RESULTS.md``; plots and JSON go to ``output/results/``.
-        Default ``benchmarks/`` of this checkout (the published results), or
-        ``out/bench-quick/`` for a quick run.
+        Default :func:`default_output` (``out/bench``); never the published results.
     peers : bool
         Also run the peers (needs ``benchmarks/.venv-peers``).
+    publish : bool
+        Write to the published ``benchmarks/`` instead (not with ``quick`` or
+        ``output``). Refused with :class:`PublishError` when the peers were not
+        run or failed, unless ``allow_missing_peers``; then the skipped section
+        is logged loudly.
 
     Returns
     -------
     dict with the tables (``texture``, ``snow``, ``scaling``, ``fits``, ``flakes``,
-    ``sweeps``, ``peers``), ``info`` and the written ``path``.
+    ``sweeps``, ``peers``), ``info``, the written ``path`` and ``skipped``
+    (section -> reason).
     """
+    if publish and quick:
+        raise PublishError("a quick run is never published (its numbers only show that the pipeline works)")
+    if publish and output is not None:
+        raise PublishError(f"publishing writes to {PUBLISHED}; drop the output folder")
+    if publish and not allow_missing_peers:
+        reason = "peers not run (--no-peers)" if not peers else peers_missing_reason()
+        if reason:
+            raise PublishError(f"refusing to publish without section 4 (the peers): {reason}; "
+                               "run without --publish, or add --allow-missing-peers")
     cfg = Config.quick_config() if quick else Config.full()
-    if output is not None:
-        out_dir = Path(output)
-    else:
-        # a quick run never overwrites the published results
-        out_dir = ROOT / "out" / "bench-quick" if quick else ROOT / "benchmarks"
+    out_dir = PUBLISHED if publish else Path(output) if output is not None else default_output(quick)
     res_dir = out_dir / "results"
     res_dir.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
@@ -290,9 +320,22 @@ def run_all(*, quick=False, output=None, peers=True, log=print):
         n = 128 if quick else 512
         pinfo, prows = run_peers(n, 8 if quick else 32, cfg.repeats)
         results["peer_info"], results["peers"] = pinfo, prows
-        log(f"lab: peers done in {time.perf_counter() - t0:.1f} s")
+        status = f"{len(prows)} cases" if isinstance(prows, list) else f"NOT RUN: {prows}"
+        log(f"lab: peers done in {time.perf_counter() - t0:.1f} s ({status})")
     else:
         results["peer_info"], results["peers"] = None, "peers not run (--no-peers)"
+    skipped = {}
+    if not isinstance(results["peers"], list):
+        skipped["4. the peers"] = results["peers"]
+    if publish and skipped and not allow_missing_peers:
+        out_dir = default_output(quick)
+        res_dir = out_dir / "results"
+        res_dir.mkdir(parents=True, exist_ok=True)
+        log(f"lab: NOT PUBLISHED: the peers failed ({skipped['4. the peers']}); writing to {out_dir} instead")
+        publish = False
+    for section, why in skipped.items():
+        log(f"lab: SKIPPED section {section}: {why}")
+    results["skipped"] = skipped
     results["elapsed_s"] = time.perf_counter() - t_start
     plot_texture(results["texture"], res_dir / "texture_spectra.png")
     plot_snow(results["snow"], res_dir / "snow_parallax.png")
@@ -310,7 +353,8 @@ def run_all(*, quick=False, output=None, peers=True, log=print):
     with atomic_output(path) as tmp:
         Path(tmp).write_text(md)
     results["path"] = path
-    log(f"lab: wrote {path} ({results['elapsed_s']:.0f} s)")
+    results["published"] = publish
+    log(f"lab: wrote {path} ({results['elapsed_s']:.0f} s)" + (" (the published results)" if publish else ""))
     return results
 
 
@@ -335,9 +379,11 @@ def _winner(rows, key, best="min"):
 
 def render_markdown(res, *, quick=False):
     info = res["info"]
-    cmd = "python3 -m noiselab bench --quick" if quick else "python3 -m noiselab bench   (or: python3 benchmarks/lab_run.py)"
+    cmd = "python3 -m noiselab bench --quick" if quick else "python3 -m noiselab bench --publish"
     L = []
     L.append("# noiselab laboratory results\n")
+    for section, why in res.get("skipped", {}).items():
+        L.append(f"> **Section {section} skipped in this run:** {why}\n")
     if quick:
         L.append("> **Quick run** (CI sizes): the numbers only show that the pipeline works.\n")
     L.append(f"Regenerate with `{cmd}`; this run took {res['elapsed_s']:.0f} s. "

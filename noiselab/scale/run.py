@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import contextlib
 import sys
+import time
 
 from ._deps import require_dask
 
@@ -37,7 +38,30 @@ def _on_client(client, objs, progress):
         with contextlib.redirect_stdout(sys.stderr):
             distributed.progress(futures)
         print(file=sys.stderr)
-    return tuple(client.gather(futures))
+    try:
+        return tuple(client.gather(futures))
+    except BaseException:
+        # gather raises at the first failed task while others may still be running (and, for a store, still
+        # writing chunks into the caller's temporary folder, re-creating it after the caller cleans up): cancel
+        # what has not started and wait until none of this graph's tasks is running any more, then re-raise
+        client.cancel(futures)
+        _wait_idle(client, objs)
+        raise
+
+
+def _wait_idle(client, objs, timeout=60.0):
+    keys = set()
+    for obj in objs:
+        keys.update(str(k) for k in obj.__dask_graph__().keys())
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            running = {str(k) for ks in client.processing().values() for k in ks}
+        except Exception:  # the cluster went away: nothing of ours can still run there
+            return
+        if not running & keys:
+            return
+        time.sleep(0.05)
 
 
 def compute(*objs, scheduler=None, progress=None):

@@ -1,0 +1,151 @@
+"""Consistency of the command line: help on every option, one default fps, --frames N gives N frames,
+and the published benchmark results are only written by an explicit --publish."""
+import argparse
+import inspect
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from noiselab.cli import build_parser, main
+from noiselab.io import DEFAULT_FPS, read_video
+
+
+def _subparsers():
+    parser = build_parser()
+    action = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return action.choices
+
+
+def test_every_option_of_every_subcommand_has_help():
+    subs = _subparsers()
+    assert {"snow", "noise", "mesh", "analyze", "bench", "gallery"} <= set(subs)
+    missing = [f"{name} {'/'.join(a.option_strings) or a.dest}"
+               for name, p in subs.items() for a in p._actions
+               if not isinstance(a, argparse._HelpAction) and (not a.help or a.help == argparse.SUPPRESS)]
+    assert missing == []
+
+
+def test_one_default_fps_everywhere():
+    from noiselab.geometry import render_sequence, render_turntable
+    from noiselab.io import write_video
+
+    fps = {name: next(a.default for a in p._actions if a.dest == "fps")
+           for name, p in _subparsers().items() if any(a.dest == "fps" for a in p._actions)}
+    assert set(fps) >= {"snow", "noise", "mesh"}
+    for fn in (write_video, render_turntable, render_sequence):
+        fps[fn.__name__] = inspect.signature(fn).parameters["fps"].default
+    assert set(fps.values()) == {DEFAULT_FPS}, fps
+
+
+@pytest.mark.parametrize("output, frames", [("a.npy", 6), ("a.gif", 6), ("frames", 6), ("a.mp4", 12)])
+def test_frames_n_gives_n_frames_and_loops_only_repeat_an_mp4(tmp_path, capsys, output, frames):
+    rc = main(["snow", "--frames", "6", "--width", "32", "--height", "32", "--no-background", "-o",
+               str(tmp_path / output)])
+    assert rc == 0, capsys.readouterr().err
+    assert read_video(tmp_path / output).shape[0] == frames   # MP4: 2 periods by default
+
+
+def test_loops_for_a_format_that_does_not_play_is_refused(tmp_path, capsys):
+    rc = main(["snow", "--frames", "4", "--loops", "2", "--width", "16", "--height", "16", "-o", str(tmp_path / "a.gif")])
+    err = capsys.readouterr().err
+    assert rc == 2 and "--loops applies to .mp4 output only" in err
+    rc = main(["snow", "--frames", "4", "--loops", "3", "--width", "16", "--height", "16", "--no-background",
+               "-o", str(tmp_path / "a.mp4")])
+    assert rc == 0 and read_video(tmp_path / "a.mp4").shape[0] == 12
+
+
+def test_aliasing_error_names_the_command_line_flags(tmp_path, capsys):
+    rc = main(["snow", "--c", "3", "--frames", "4", "--width", "32", "--height", "32", "-o", str(tmp_path / "a.gif")])
+    err = capsys.readouterr().err
+    assert rc == 2 and "--on-alias drop" in err and "--c 3" in err and "on_alias" not in err
+    assert not (tmp_path / "a.gif").exists()
+    rc = main(["snow", "--c", "3", "--on-alias", "drop", "--frames", "4", "--width", "32", "--height", "32",
+               "-o", str(tmp_path / "a.gif")])
+    assert rc == 0
+
+
+# ----------------------------------------------------------------------------- bench
+
+@pytest.fixture
+def fake_published(tmp_path, monkeypatch):
+    """The published results in a scratch folder, and no peer environment."""
+    import noiselab.lab.run as lab_run
+
+    published = tmp_path / "benchmarks"
+    (published / "results").mkdir(parents=True)
+    (published / "RESULTS.md").write_text("published\n")
+    monkeypatch.setattr(lab_run, "PUBLISHED", published)
+    monkeypatch.setattr(lab_run, "PEER_PYTHON", tmp_path / "no-peers" / "bin" / "python")
+    monkeypatch.chdir(tmp_path)
+    return published
+
+
+def test_bench_writes_to_out_bench_by_default(fake_published, capsys):
+    assert main(["bench", "--dry-run"]) == 0
+    out = capsys.readouterr().out
+    assert str(Path("out") / "bench" / "RESULTS.md") in out and "benchmarks" not in out.split("would run")[1]
+    assert "WARNING: section 4 (the peers) will be skipped" in out
+
+
+def test_bench_publish_refuses_without_the_peers(fake_published, capsys):
+    rc = main(["bench", "--publish"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "refusing to publish without section 4 (the peers)" in err and "--allow-missing-peers" in err
+    assert (fake_published / "RESULTS.md").read_text() == "published\n"
+    assert main(["bench", "--publish", "--quick"]) == 2
+    assert main(["bench", "--allow-missing-peers"]) == 2
+    capsys.readouterr()
+    assert main(["bench", "--publish", "--allow-missing-peers", "--dry-run"]) == 0
+    out = capsys.readouterr().out
+    assert "WARNING: section 4 (the peers) will be skipped" in out and str(fake_published / "RESULTS.md") in out
+
+
+def test_run_all_refuses_to_publish_before_running_anything(fake_published, monkeypatch):
+    import noiselab.lab.run as lab_run
+
+    monkeypatch.setattr(lab_run, "machine_info", lambda: pytest.fail("an experiment ran"))
+    with pytest.raises(lab_run.PublishError, match="peer environment missing"):
+        lab_run.run_all(publish=True)
+    with pytest.raises(lab_run.PublishError, match="--no-peers"):
+        lab_run.run_all(publish=True, peers=False)
+    with pytest.raises(lab_run.PublishError, match="quick"):
+        lab_run.run_all(publish=True, quick=True, allow_missing_peers=True)
+    assert lab_run.default_output() == Path("out") / "bench"
+    assert (fake_published / "RESULTS.md").read_text() == "published\n"
+
+
+def test_analyze_streams_video_frames_into_one_grey_array(tmp_path):
+    """Frames are decoded one by one into a preallocated float32 array: peak near that array's size."""
+    import tracemalloc
+
+    from noiselab.cli.analyze import load
+    from noiselab.io import write_video
+
+    rng = np.random.default_rng(0)
+    video = rng.integers(0, 256, (48, 64, 96, 3), dtype=np.uint8)
+    write_video(tmp_path / "v.gif", video)
+    tracemalloc.start()
+    data, kind = load(tmp_path / "v.gif")
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    assert kind == "video" and data.shape == (48, 64, 96) and data.dtype == np.float32
+    grey = np.asarray(video, np.float32) / 255 @ np.array([0.2126, 0.7152, 0.0722], np.float32)
+    assert np.abs(data - read_video(tmp_path / "v.gif", as_float=True) @ np.array([0.2126, 0.7152, 0.0722], np.float32)
+                  ).max() < 1e-6
+    assert np.abs(data - grey).max() <= 0.5   # GIF's palette quantises; this checks orientation and scale
+    assert peak < 1.5 * data.nbytes, (peak, data.nbytes)   # reading it all first would take 3x (RGB uint8 + float32)
+
+
+def test_example_size_small_caps_the_sizes_and_says_so(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("NOISELAB_EXAMPLE_SIZE", "small")
+    assert main(["snow", "--frames", "64", "--width", "32", "--height", "32", "--no-background",
+                 "-o", str(tmp_path / "a.npy")]) == 0
+    assert np.load(tmp_path / "a.npy").shape == (8, 32, 32)   # snow.SMALL: frames capped at 8
+    assert "NOISELAB_EXAMPLE_SIZE=small: frames=8" in capsys.readouterr().err
+    assert main(["snow", "--frames", "4", "--width", "32", "--height", "32", "--no-background",
+                 "-o", str(tmp_path / "b.npy")]) == 0
+    assert np.load(tmp_path / "b.npy").shape == (4, 32, 32)   # below the cap: untouched
+    monkeypatch.chdir(tmp_path)
+    assert main(["bench"]) == 0                                 # bench.SMALL: a dry run, nothing written
+    assert "dry run" in capsys.readouterr().out and not (tmp_path / "out").exists()   # not even the folder
