@@ -638,6 +638,10 @@ EXCLUDED = {
     "read_mesh": "file I/O (test_io)",
     "write_mesh": "file I/O (test_io)",
     "read_zarr": "file I/O, a zarr store (test_dask)",
+    "load_npy": "file I/O: numpy.load of a path (test_cli_errors)",
+    "iter_video": "file I/O: decodes a video file or a folder of PNGs (test_cli_errors)",
+    "prepare_output": "file I/O: checks and creates an output path (test_cli_errors, its doctest)",
+    "exchange_paths": "file I/O: swaps two paths on disk (its doctest)",
     "write_zarr": "file I/O, a zarr store; its array is a lattice grid's (covered) (test_dask)",
 }
 
