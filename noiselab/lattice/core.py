@@ -366,9 +366,15 @@ class LatticeNoise:
             if tables is None:
                 _check_reach(flat, freqs, self.phase, name)  # the table kernels count overflows themselves
             if self.hash == "integer":
-                _run_split(_inthash.int_points, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef,
-                                                            self.period, self._pmask, self._keys, self._mult,
-                                                            self.gradients, basis, bool(absval)), workers)
+                from . import _intpoints  # imported on first use (import noiselab.lattice costs what it did)
+
+                rest = (self.period, self._pmask, self._keys, self._mult, self.gradients, basis, bool(absval))
+                fused = _intpoints.INT_KERNELS.get((self.dim_in, k.taps))
+                if fused is not None:
+                    _run_split(fused, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef) + rest, workers)
+                else:
+                    _run_split(_inthash.int_points, flat, out,
+                               (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef) + rest, workers)
             elif tables is not None:
                 bad = _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
                                                      self._pmask, *tables, basis, bool(absval)), workers)
