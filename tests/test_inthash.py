@@ -187,3 +187,12 @@ def test_bad_hash_parameters_name_them():
         LatticeNoise(2, hash="integer", alternation="lattice")
     with pytest.raises(ValueError, match="finite"):
         _int(3)(np.array([[0.0, np.nan, 1.0]]))
+
+
+def test_generated_integer_kernels_match_their_generator():
+    from pathlib import Path
+
+    from noiselab.lattice import _generate
+
+    committed = Path(_generate.__file__).with_name("_intpoints.py").read_text()
+    assert committed == _generate.generate_int(), "run `python -m noiselab.lattice._generate` and commit _intpoints.py"

@@ -782,7 +782,7 @@ CHUNK = 256
 '''
 
 
-def _function_int(d: int, taps: int) -> str:
+def _function_int(d: int, taps: int, kernel=None) -> str:
     """Source of ``int_d{d}_t{taps}``: the integer-hash scattered kernel.
 
     Per chunk of points and octave, one pass per axis computes the weights
@@ -792,13 +792,17 @@ def _function_int(d: int, taps: int) -> str:
     loop over the chunk sums the ``taps**(d - 1)`` remaining corners written
     out: prefix words ``key + M0 + M1 + ...``, the hash, the weights. No
     table gathers in the value basis, so LLVM vectorises the loop over points.
+    ``kernel``: a stock kernel whose coefficients are written in
+    (``int_d{d}_<name>``; the same values, see :func:`_poly`).
     """
+    coef = None if kernel is None else kernel.coef.tolist()
+    fname = f"int_d{d}_t{taps}" if kernel is None else f"int_d{d}_{kernel.name.replace('-', '_')}"
     ind = "    "
     L = []
     a_ = L.append
     lvl = lambda k: ind * k  # noqa: E731
     a_("@nb.njit(cache=True, nogil=True)")
-    a_(f"def int_d{d}_t{taps}(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,")
+    a_(f"def {fname}(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,")
     a_("        keys, mult, grads, basis, absval):")
     a_(f'{ind}"""Integer-hash lattice noise at scattered points, {d}-D input, {taps}-tap kernel (generated)."""')
     a_(f"{ind}npts = pts.shape[0]")
@@ -812,7 +816,7 @@ def _function_int(d: int, taps: int) -> str:
     a_(f"{ind}X = np.empty(({d}, CHUNK))")
     a_(f"{ind}T = np.empty(CHUNK)")
     a_(f"{ind}ACC = np.empty((ncomp, CHUNK))")
-    for k in range(taps):
+    for k in range(taps if coef is None else 0):
         a_(f"{ind}" + "; ".join(f"c{k}{q} = coef[{k}, {q}]" for q in range(6)))
     a_(f"{ind}for p0 in range(0, npts, CHUNK):")
     a_(f"{lvl(2)}m = min(CHUNK, npts - p0)")
@@ -830,7 +834,7 @@ def _function_int(d: int, taps: int) -> str:
         a_(f"{b4}t = u - fi")
         a_(f"{b4}t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t")
         for k in range(taps):
-            a_(f"{b4}W[{a}, {k}, i] = (c{k}0 + c{k}1 * t) + (c{k}2 * t2 + c{k}3 * t3) + (c{k}4 * t4 + c{k}5 * t5)")
+            a_(f"{b4}W[{a}, {k}, i] = {_poly(a, k, coef)}")
         a_(f"{b4}inside += (fi < 4.0e15) & (fi > -4.0e15)")
         a_(f"{b4}b = (np.int64(fi) - left) & msk")
         for k in range(taps):
@@ -918,8 +922,14 @@ def generate_int() -> str:
         for taps in (1, 2, 3, 4):
             parts.append("\n" + _function_int(d, taps) + "\n")
             names.append(f"    ({d}, {taps}): int_d{d}_t{taps}")
+    from .kernels import KERNELS as _KERNELS
+    for d in (2, 3):
+        for name, kernel in _KERNELS.items():
+            parts.append("\n" + _function_int(d, kernel.taps, kernel) + "\n")
+            names.append(f"    ({d}, {name!r}): int_d{d}_{name.replace('-', '_')}")
     table = ",\n".join(names)
-    parts.append(f"\n# keyed by (dim_in, taps)\nINT_KERNELS = {{\n{table},\n}}\n")
+    parts.append("\n# keyed by (dim_in, taps) with coefficients as arguments, or (dim_in, kernel name) with them "
+                 f"written in\nINT_KERNELS = {{\n{table},\n}}\n")
     return "".join(parts)
 
 

@@ -1523,7 +1523,1829 @@ def int_d3_t4(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
                 out[p0 + i, c] = ACC[c, i]
 
 
-# keyed by (dim_in, taps)
+@nb.njit(cache=True, nogil=True)
+def int_d2_box(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 2-D input, 1-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((2, 1, CHUNK))
+    R = np.empty((2, 1, CHUNK))
+    M = np.empty((2, 1, CHUNK), np.uint64)
+    X = np.empty((2, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (1.0)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (1.0)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(1):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            h0 = hk + m1_0
+                            T[i] += W[0, k0, i] * (w1_0 * (hash_value(h0)))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            h0 = hk + m1_0
+                            g0 = hash_index(h0, n, nmask)
+                            v0 = grads[g0, 0] * r0 + grads[g0, 1] * r1_0
+                            T[i] += W[0, k0, i] * (w1_0 * (v0))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d2_linear(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 2-D input, 2-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((2, 2, CHUNK))
+    R = np.empty((2, 2, CHUNK))
+    M = np.empty((2, 2, CHUNK), np.uint64)
+    X = np.empty((2, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (1.0 + -1.0 * t)
+                W[0, 1, i] = (t)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+                M[0, 1, i] = np.uint64(((b + 1) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[0, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (1.0 + -1.0 * t)
+                W[1, 1, i] = (t)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+                M[1, 1, i] = np.uint64(((b + 1) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[1, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(2):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            T[i] += W[0, k0, i] * (w1_0 * (hash_value(h0)) + w1_1 * (hash_value(h1)))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            r1_1 = R[1, 1, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            g0 = hash_index(h0, n, nmask)
+                            v0 = grads[g0, 0] * r0 + grads[g0, 1] * r1_0
+                            g1 = hash_index(h1, n, nmask)
+                            v1 = grads[g1, 0] * r0 + grads[g1, 1] * r1_1
+                            T[i] += W[0, k0, i] * (w1_0 * (v0) + w1_1 * (v1))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d2_quadratic(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 2-D input, 3-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((2, 3, CHUNK))
+    R = np.empty((2, 3, CHUNK))
+    M = np.empty((2, 3, CHUNK), np.uint64)
+    X = np.empty((2, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
+                W[0, 1, i] = (0.5 + t) + (-1.0 * t2)
+                W[0, 2, i] = (0.5 * t2)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+                M[0, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[0, 2, i] = np.uint64(((b + 2) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[0, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[0, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
+                W[1, 1, i] = (0.5 + t) + (-1.0 * t2)
+                W[1, 2, i] = (0.5 * t2)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+                M[1, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[1, 2, i] = np.uint64(((b + 2) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[1, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[1, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(3):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            T[i] += W[0, k0, i] * (w1_0 * (hash_value(h0)) + w1_1 * (hash_value(h1)) + w1_2 * (hash_value(h2)))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            r1_1 = R[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            r1_2 = R[1, 2, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            g0 = hash_index(h0, n, nmask)
+                            v0 = grads[g0, 0] * r0 + grads[g0, 1] * r1_0
+                            g1 = hash_index(h1, n, nmask)
+                            v1 = grads[g1, 0] * r0 + grads[g1, 1] * r1_1
+                            g2 = hash_index(h2, n, nmask)
+                            v2 = grads[g2, 0] * r0 + grads[g2, 1] * r1_2
+                            T[i] += W[0, k0, i] * (w1_0 * (v0) + w1_1 * (v1) + w1_2 * (v2))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d2_cubic(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 2-D input, 4-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((2, 4, CHUNK))
+    R = np.empty((2, 4, CHUNK))
+    M = np.empty((2, 4, CHUNK), np.uint64)
+    X = np.empty((2, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (0.16666666666666666 + -0.5 * t) + (0.5 * t2 + -0.16666666666666666 * t3)
+                W[0, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
+                W[0, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
+                W[0, 3, i] = (0.16666666666666666 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+                M[0, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[0, 2, i] = np.uint64(((b + 2) & msk)) * mu
+                M[0, 3, i] = np.uint64(((b + 3) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[0, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[0, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+                    M[0, 3, i] = np.uint64(_wrap(b + 3, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (0.16666666666666666 + -0.5 * t) + (0.5 * t2 + -0.16666666666666666 * t3)
+                W[1, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
+                W[1, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
+                W[1, 3, i] = (0.16666666666666666 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+                M[1, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[1, 2, i] = np.uint64(((b + 2) & msk)) * mu
+                M[1, 3, i] = np.uint64(((b + 3) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[1, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[1, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+                    M[1, 3, i] = np.uint64(_wrap(b + 3, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(4):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            w1_3 = W[1, 3, i]; m1_3 = M[1, 3, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            h3 = hk + m1_3
+                            T[i] += W[0, k0, i] * (w1_0 * (hash_value(h0)) + w1_1 * (hash_value(h1)) + w1_2 * (hash_value(h2)) + w1_3 * (hash_value(h3)))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            r1_1 = R[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            r1_2 = R[1, 2, i]
+                            w1_3 = W[1, 3, i]; m1_3 = M[1, 3, i]
+                            r1_3 = R[1, 3, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            h3 = hk + m1_3
+                            g0 = hash_index(h0, n, nmask)
+                            v0 = grads[g0, 0] * r0 + grads[g0, 1] * r1_0
+                            g1 = hash_index(h1, n, nmask)
+                            v1 = grads[g1, 0] * r0 + grads[g1, 1] * r1_1
+                            g2 = hash_index(h2, n, nmask)
+                            v2 = grads[g2, 0] * r0 + grads[g2, 1] * r1_2
+                            g3 = hash_index(h3, n, nmask)
+                            v3 = grads[g3, 0] * r0 + grads[g3, 1] * r1_3
+                            T[i] += W[0, k0, i] * (w1_0 * (v0) + w1_1 * (v1) + w1_2 * (v2) + w1_3 * (v3))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d2_catmull_rom(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 2-D input, 4-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((2, 4, CHUNK))
+    R = np.empty((2, 4, CHUNK))
+    M = np.empty((2, 4, CHUNK), np.uint64)
+    X = np.empty((2, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (-0.5 * t) + (t2 + -0.5 * t3)
+                W[0, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
+                W[0, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
+                W[0, 3, i] = (-0.5 * t2 + 0.5 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+                M[0, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[0, 2, i] = np.uint64(((b + 2) & msk)) * mu
+                M[0, 3, i] = np.uint64(((b + 3) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[0, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[0, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+                    M[0, 3, i] = np.uint64(_wrap(b + 3, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (-0.5 * t) + (t2 + -0.5 * t3)
+                W[1, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
+                W[1, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
+                W[1, 3, i] = (-0.5 * t2 + 0.5 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+                M[1, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[1, 2, i] = np.uint64(((b + 2) & msk)) * mu
+                M[1, 3, i] = np.uint64(((b + 3) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[1, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[1, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+                    M[1, 3, i] = np.uint64(_wrap(b + 3, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(4):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            w1_3 = W[1, 3, i]; m1_3 = M[1, 3, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            h3 = hk + m1_3
+                            T[i] += W[0, k0, i] * (w1_0 * (hash_value(h0)) + w1_1 * (hash_value(h1)) + w1_2 * (hash_value(h2)) + w1_3 * (hash_value(h3)))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            r1_1 = R[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            r1_2 = R[1, 2, i]
+                            w1_3 = W[1, 3, i]; m1_3 = M[1, 3, i]
+                            r1_3 = R[1, 3, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            h3 = hk + m1_3
+                            g0 = hash_index(h0, n, nmask)
+                            v0 = grads[g0, 0] * r0 + grads[g0, 1] * r1_0
+                            g1 = hash_index(h1, n, nmask)
+                            v1 = grads[g1, 0] * r0 + grads[g1, 1] * r1_1
+                            g2 = hash_index(h2, n, nmask)
+                            v2 = grads[g2, 0] * r0 + grads[g2, 1] * r1_2
+                            g3 = hash_index(h3, n, nmask)
+                            v3 = grads[g3, 0] * r0 + grads[g3, 1] * r1_3
+                            T[i] += W[0, k0, i] * (w1_0 * (v0) + w1_1 * (v1) + w1_2 * (v2) + w1_3 * (v3))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d2_quintic(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 2-D input, 2-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((2, 2, CHUNK))
+    R = np.empty((2, 2, CHUNK))
+    M = np.empty((2, 2, CHUNK), np.uint64)
+    X = np.empty((2, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
+                W[0, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+                M[0, 1, i] = np.uint64(((b + 1) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[0, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
+                W[1, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+                M[1, 1, i] = np.uint64(((b + 1) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[1, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(2):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            T[i] += W[0, k0, i] * (w1_0 * (hash_value(h0)) + w1_1 * (hash_value(h1)))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            r1_1 = R[1, 1, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            g0 = hash_index(h0, n, nmask)
+                            v0 = grads[g0, 0] * r0 + grads[g0, 1] * r1_0
+                            g1 = hash_index(h1, n, nmask)
+                            v1 = grads[g1, 0] * r0 + grads[g1, 1] * r1_1
+                            T[i] += W[0, k0, i] * (w1_0 * (v0) + w1_1 * (v1))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d3_box(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 3-D input, 1-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((3, 1, CHUNK))
+    R = np.empty((3, 1, CHUNK))
+    M = np.empty((3, 1, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (1.0)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (1.0)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]; mu = mult[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (1.0)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[2, 0, i] = np.uint64(b) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[2, i] * f + ph + shift), left, per, msk)
+                    M[2, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(1):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            h0 = hk + m1_0
+                            h00 = h0 + m2_0
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (hash_value(h00))))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            r2_0 = R[2, 0, i]
+                            h0 = hk + m1_0
+                            h00 = h0 + m2_0
+                            g00 = hash_index(h00, n, nmask)
+                            v00 = grads[g00, 0] * r0 + grads[g00, 1] * r1_0 + grads[g00, 2] * r2_0
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (v00)))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d3_linear(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 3-D input, 2-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((3, 2, CHUNK))
+    R = np.empty((3, 2, CHUNK))
+    M = np.empty((3, 2, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (1.0 + -1.0 * t)
+                W[0, 1, i] = (t)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+                M[0, 1, i] = np.uint64(((b + 1) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[0, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (1.0 + -1.0 * t)
+                W[1, 1, i] = (t)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+                M[1, 1, i] = np.uint64(((b + 1) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[1, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]; mu = mult[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (1.0 + -1.0 * t)
+                W[2, 1, i] = (t)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[2, 0, i] = np.uint64(b) * mu
+                M[2, 1, i] = np.uint64(((b + 1) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[2, i] * f + ph + shift), left, per, msk)
+                    M[2, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[2, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(2):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            w2_1 = W[2, 1, i]; m2_1 = M[2, 1, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h00 = h0 + m2_0
+                            h01 = h0 + m2_1
+                            h10 = h1 + m2_0
+                            h11 = h1 + m2_1
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (hash_value(h00)) + w2_1 * (hash_value(h01))) + w1_1 * (w2_0 * (hash_value(h10)) + w2_1 * (hash_value(h11))))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            r1_1 = R[1, 1, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            r2_0 = R[2, 0, i]
+                            w2_1 = W[2, 1, i]; m2_1 = M[2, 1, i]
+                            r2_1 = R[2, 1, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h00 = h0 + m2_0
+                            h01 = h0 + m2_1
+                            h10 = h1 + m2_0
+                            h11 = h1 + m2_1
+                            g00 = hash_index(h00, n, nmask)
+                            v00 = grads[g00, 0] * r0 + grads[g00, 1] * r1_0 + grads[g00, 2] * r2_0
+                            g01 = hash_index(h01, n, nmask)
+                            v01 = grads[g01, 0] * r0 + grads[g01, 1] * r1_0 + grads[g01, 2] * r2_1
+                            g10 = hash_index(h10, n, nmask)
+                            v10 = grads[g10, 0] * r0 + grads[g10, 1] * r1_1 + grads[g10, 2] * r2_0
+                            g11 = hash_index(h11, n, nmask)
+                            v11 = grads[g11, 0] * r0 + grads[g11, 1] * r1_1 + grads[g11, 2] * r2_1
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (v00) + w2_1 * (v01)) + w1_1 * (w2_0 * (v10) + w2_1 * (v11)))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d3_quadratic(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 3-D input, 3-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((3, 3, CHUNK))
+    R = np.empty((3, 3, CHUNK))
+    M = np.empty((3, 3, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
+                W[0, 1, i] = (0.5 + t) + (-1.0 * t2)
+                W[0, 2, i] = (0.5 * t2)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+                M[0, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[0, 2, i] = np.uint64(((b + 2) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[0, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[0, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
+                W[1, 1, i] = (0.5 + t) + (-1.0 * t2)
+                W[1, 2, i] = (0.5 * t2)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+                M[1, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[1, 2, i] = np.uint64(((b + 2) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[1, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[1, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]; mu = mult[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (0.5 + -1.0 * t) + (0.5 * t2)
+                W[2, 1, i] = (0.5 + t) + (-1.0 * t2)
+                W[2, 2, i] = (0.5 * t2)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[2, 0, i] = np.uint64(b) * mu
+                M[2, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[2, 2, i] = np.uint64(((b + 2) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[2, i] * f + ph + shift), left, per, msk)
+                    M[2, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[2, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[2, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(3):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            w2_1 = W[2, 1, i]; m2_1 = M[2, 1, i]
+                            w2_2 = W[2, 2, i]; m2_2 = M[2, 2, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            h00 = h0 + m2_0
+                            h01 = h0 + m2_1
+                            h02 = h0 + m2_2
+                            h10 = h1 + m2_0
+                            h11 = h1 + m2_1
+                            h12 = h1 + m2_2
+                            h20 = h2 + m2_0
+                            h21 = h2 + m2_1
+                            h22 = h2 + m2_2
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (hash_value(h00)) + w2_1 * (hash_value(h01)) + w2_2 * (hash_value(h02))) + w1_1 * (w2_0 * (hash_value(h10)) + w2_1 * (hash_value(h11)) + w2_2 * (hash_value(h12))) + w1_2 * (w2_0 * (hash_value(h20)) + w2_1 * (hash_value(h21)) + w2_2 * (hash_value(h22))))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            r1_1 = R[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            r1_2 = R[1, 2, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            r2_0 = R[2, 0, i]
+                            w2_1 = W[2, 1, i]; m2_1 = M[2, 1, i]
+                            r2_1 = R[2, 1, i]
+                            w2_2 = W[2, 2, i]; m2_2 = M[2, 2, i]
+                            r2_2 = R[2, 2, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            h00 = h0 + m2_0
+                            h01 = h0 + m2_1
+                            h02 = h0 + m2_2
+                            h10 = h1 + m2_0
+                            h11 = h1 + m2_1
+                            h12 = h1 + m2_2
+                            h20 = h2 + m2_0
+                            h21 = h2 + m2_1
+                            h22 = h2 + m2_2
+                            g00 = hash_index(h00, n, nmask)
+                            v00 = grads[g00, 0] * r0 + grads[g00, 1] * r1_0 + grads[g00, 2] * r2_0
+                            g01 = hash_index(h01, n, nmask)
+                            v01 = grads[g01, 0] * r0 + grads[g01, 1] * r1_0 + grads[g01, 2] * r2_1
+                            g02 = hash_index(h02, n, nmask)
+                            v02 = grads[g02, 0] * r0 + grads[g02, 1] * r1_0 + grads[g02, 2] * r2_2
+                            g10 = hash_index(h10, n, nmask)
+                            v10 = grads[g10, 0] * r0 + grads[g10, 1] * r1_1 + grads[g10, 2] * r2_0
+                            g11 = hash_index(h11, n, nmask)
+                            v11 = grads[g11, 0] * r0 + grads[g11, 1] * r1_1 + grads[g11, 2] * r2_1
+                            g12 = hash_index(h12, n, nmask)
+                            v12 = grads[g12, 0] * r0 + grads[g12, 1] * r1_1 + grads[g12, 2] * r2_2
+                            g20 = hash_index(h20, n, nmask)
+                            v20 = grads[g20, 0] * r0 + grads[g20, 1] * r1_2 + grads[g20, 2] * r2_0
+                            g21 = hash_index(h21, n, nmask)
+                            v21 = grads[g21, 0] * r0 + grads[g21, 1] * r1_2 + grads[g21, 2] * r2_1
+                            g22 = hash_index(h22, n, nmask)
+                            v22 = grads[g22, 0] * r0 + grads[g22, 1] * r1_2 + grads[g22, 2] * r2_2
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (v00) + w2_1 * (v01) + w2_2 * (v02)) + w1_1 * (w2_0 * (v10) + w2_1 * (v11) + w2_2 * (v12)) + w1_2 * (w2_0 * (v20) + w2_1 * (v21) + w2_2 * (v22)))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d3_cubic(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 3-D input, 4-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((3, 4, CHUNK))
+    R = np.empty((3, 4, CHUNK))
+    M = np.empty((3, 4, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (0.16666666666666666 + -0.5 * t) + (0.5 * t2 + -0.16666666666666666 * t3)
+                W[0, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
+                W[0, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
+                W[0, 3, i] = (0.16666666666666666 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+                M[0, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[0, 2, i] = np.uint64(((b + 2) & msk)) * mu
+                M[0, 3, i] = np.uint64(((b + 3) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[0, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[0, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+                    M[0, 3, i] = np.uint64(_wrap(b + 3, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (0.16666666666666666 + -0.5 * t) + (0.5 * t2 + -0.16666666666666666 * t3)
+                W[1, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
+                W[1, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
+                W[1, 3, i] = (0.16666666666666666 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+                M[1, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[1, 2, i] = np.uint64(((b + 2) & msk)) * mu
+                M[1, 3, i] = np.uint64(((b + 3) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[1, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[1, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+                    M[1, 3, i] = np.uint64(_wrap(b + 3, per, msk)) * mu
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]; mu = mult[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (0.16666666666666666 + -0.5 * t) + (0.5 * t2 + -0.16666666666666666 * t3)
+                W[2, 1, i] = (0.6666666666666666) + (-1.0 * t2 + 0.5 * t3)
+                W[2, 2, i] = (0.16666666666666666 + 0.5 * t) + (0.5 * t2 + -0.5 * t3)
+                W[2, 3, i] = (0.16666666666666666 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[2, 0, i] = np.uint64(b) * mu
+                M[2, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[2, 2, i] = np.uint64(((b + 2) & msk)) * mu
+                M[2, 3, i] = np.uint64(((b + 3) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+                    R[2, 3, i] = t - shift + (left - 3)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[2, i] * f + ph + shift), left, per, msk)
+                    M[2, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[2, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[2, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+                    M[2, 3, i] = np.uint64(_wrap(b + 3, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(4):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            w1_3 = W[1, 3, i]; m1_3 = M[1, 3, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            w2_1 = W[2, 1, i]; m2_1 = M[2, 1, i]
+                            w2_2 = W[2, 2, i]; m2_2 = M[2, 2, i]
+                            w2_3 = W[2, 3, i]; m2_3 = M[2, 3, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            h3 = hk + m1_3
+                            h00 = h0 + m2_0
+                            h01 = h0 + m2_1
+                            h02 = h0 + m2_2
+                            h03 = h0 + m2_3
+                            h10 = h1 + m2_0
+                            h11 = h1 + m2_1
+                            h12 = h1 + m2_2
+                            h13 = h1 + m2_3
+                            h20 = h2 + m2_0
+                            h21 = h2 + m2_1
+                            h22 = h2 + m2_2
+                            h23 = h2 + m2_3
+                            h30 = h3 + m2_0
+                            h31 = h3 + m2_1
+                            h32 = h3 + m2_2
+                            h33 = h3 + m2_3
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (hash_value(h00)) + w2_1 * (hash_value(h01)) + w2_2 * (hash_value(h02)) + w2_3 * (hash_value(h03))) + w1_1 * (w2_0 * (hash_value(h10)) + w2_1 * (hash_value(h11)) + w2_2 * (hash_value(h12)) + w2_3 * (hash_value(h13))) + w1_2 * (w2_0 * (hash_value(h20)) + w2_1 * (hash_value(h21)) + w2_2 * (hash_value(h22)) + w2_3 * (hash_value(h23))) + w1_3 * (w2_0 * (hash_value(h30)) + w2_1 * (hash_value(h31)) + w2_2 * (hash_value(h32)) + w2_3 * (hash_value(h33))))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            r1_1 = R[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            r1_2 = R[1, 2, i]
+                            w1_3 = W[1, 3, i]; m1_3 = M[1, 3, i]
+                            r1_3 = R[1, 3, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            r2_0 = R[2, 0, i]
+                            w2_1 = W[2, 1, i]; m2_1 = M[2, 1, i]
+                            r2_1 = R[2, 1, i]
+                            w2_2 = W[2, 2, i]; m2_2 = M[2, 2, i]
+                            r2_2 = R[2, 2, i]
+                            w2_3 = W[2, 3, i]; m2_3 = M[2, 3, i]
+                            r2_3 = R[2, 3, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            h3 = hk + m1_3
+                            h00 = h0 + m2_0
+                            h01 = h0 + m2_1
+                            h02 = h0 + m2_2
+                            h03 = h0 + m2_3
+                            h10 = h1 + m2_0
+                            h11 = h1 + m2_1
+                            h12 = h1 + m2_2
+                            h13 = h1 + m2_3
+                            h20 = h2 + m2_0
+                            h21 = h2 + m2_1
+                            h22 = h2 + m2_2
+                            h23 = h2 + m2_3
+                            h30 = h3 + m2_0
+                            h31 = h3 + m2_1
+                            h32 = h3 + m2_2
+                            h33 = h3 + m2_3
+                            g00 = hash_index(h00, n, nmask)
+                            v00 = grads[g00, 0] * r0 + grads[g00, 1] * r1_0 + grads[g00, 2] * r2_0
+                            g01 = hash_index(h01, n, nmask)
+                            v01 = grads[g01, 0] * r0 + grads[g01, 1] * r1_0 + grads[g01, 2] * r2_1
+                            g02 = hash_index(h02, n, nmask)
+                            v02 = grads[g02, 0] * r0 + grads[g02, 1] * r1_0 + grads[g02, 2] * r2_2
+                            g03 = hash_index(h03, n, nmask)
+                            v03 = grads[g03, 0] * r0 + grads[g03, 1] * r1_0 + grads[g03, 2] * r2_3
+                            g10 = hash_index(h10, n, nmask)
+                            v10 = grads[g10, 0] * r0 + grads[g10, 1] * r1_1 + grads[g10, 2] * r2_0
+                            g11 = hash_index(h11, n, nmask)
+                            v11 = grads[g11, 0] * r0 + grads[g11, 1] * r1_1 + grads[g11, 2] * r2_1
+                            g12 = hash_index(h12, n, nmask)
+                            v12 = grads[g12, 0] * r0 + grads[g12, 1] * r1_1 + grads[g12, 2] * r2_2
+                            g13 = hash_index(h13, n, nmask)
+                            v13 = grads[g13, 0] * r0 + grads[g13, 1] * r1_1 + grads[g13, 2] * r2_3
+                            g20 = hash_index(h20, n, nmask)
+                            v20 = grads[g20, 0] * r0 + grads[g20, 1] * r1_2 + grads[g20, 2] * r2_0
+                            g21 = hash_index(h21, n, nmask)
+                            v21 = grads[g21, 0] * r0 + grads[g21, 1] * r1_2 + grads[g21, 2] * r2_1
+                            g22 = hash_index(h22, n, nmask)
+                            v22 = grads[g22, 0] * r0 + grads[g22, 1] * r1_2 + grads[g22, 2] * r2_2
+                            g23 = hash_index(h23, n, nmask)
+                            v23 = grads[g23, 0] * r0 + grads[g23, 1] * r1_2 + grads[g23, 2] * r2_3
+                            g30 = hash_index(h30, n, nmask)
+                            v30 = grads[g30, 0] * r0 + grads[g30, 1] * r1_3 + grads[g30, 2] * r2_0
+                            g31 = hash_index(h31, n, nmask)
+                            v31 = grads[g31, 0] * r0 + grads[g31, 1] * r1_3 + grads[g31, 2] * r2_1
+                            g32 = hash_index(h32, n, nmask)
+                            v32 = grads[g32, 0] * r0 + grads[g32, 1] * r1_3 + grads[g32, 2] * r2_2
+                            g33 = hash_index(h33, n, nmask)
+                            v33 = grads[g33, 0] * r0 + grads[g33, 1] * r1_3 + grads[g33, 2] * r2_3
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (v00) + w2_1 * (v01) + w2_2 * (v02) + w2_3 * (v03)) + w1_1 * (w2_0 * (v10) + w2_1 * (v11) + w2_2 * (v12) + w2_3 * (v13)) + w1_2 * (w2_0 * (v20) + w2_1 * (v21) + w2_2 * (v22) + w2_3 * (v23)) + w1_3 * (w2_0 * (v30) + w2_1 * (v31) + w2_2 * (v32) + w2_3 * (v33)))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d3_catmull_rom(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 3-D input, 4-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((3, 4, CHUNK))
+    R = np.empty((3, 4, CHUNK))
+    M = np.empty((3, 4, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (-0.5 * t) + (t2 + -0.5 * t3)
+                W[0, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
+                W[0, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
+                W[0, 3, i] = (-0.5 * t2 + 0.5 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+                M[0, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[0, 2, i] = np.uint64(((b + 2) & msk)) * mu
+                M[0, 3, i] = np.uint64(((b + 3) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+                    R[0, 2, i] = t - shift + (left - 2)
+                    R[0, 3, i] = t - shift + (left - 3)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[0, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[0, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+                    M[0, 3, i] = np.uint64(_wrap(b + 3, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (-0.5 * t) + (t2 + -0.5 * t3)
+                W[1, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
+                W[1, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
+                W[1, 3, i] = (-0.5 * t2 + 0.5 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+                M[1, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[1, 2, i] = np.uint64(((b + 2) & msk)) * mu
+                M[1, 3, i] = np.uint64(((b + 3) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+                    R[1, 2, i] = t - shift + (left - 2)
+                    R[1, 3, i] = t - shift + (left - 3)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[1, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[1, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+                    M[1, 3, i] = np.uint64(_wrap(b + 3, per, msk)) * mu
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]; mu = mult[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (-0.5 * t) + (t2 + -0.5 * t3)
+                W[2, 1, i] = (1.0) + (-2.5 * t2 + 1.5 * t3)
+                W[2, 2, i] = (0.5 * t) + (2.0 * t2 + -1.5 * t3)
+                W[2, 3, i] = (-0.5 * t2 + 0.5 * t3)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[2, 0, i] = np.uint64(b) * mu
+                M[2, 1, i] = np.uint64(((b + 1) & msk)) * mu
+                M[2, 2, i] = np.uint64(((b + 2) & msk)) * mu
+                M[2, 3, i] = np.uint64(((b + 3) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+                    R[2, 2, i] = t - shift + (left - 2)
+                    R[2, 3, i] = t - shift + (left - 3)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[2, i] * f + ph + shift), left, per, msk)
+                    M[2, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[2, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+                    M[2, 2, i] = np.uint64(_wrap(b + 2, per, msk)) * mu
+                    M[2, 3, i] = np.uint64(_wrap(b + 3, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(4):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            w1_3 = W[1, 3, i]; m1_3 = M[1, 3, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            w2_1 = W[2, 1, i]; m2_1 = M[2, 1, i]
+                            w2_2 = W[2, 2, i]; m2_2 = M[2, 2, i]
+                            w2_3 = W[2, 3, i]; m2_3 = M[2, 3, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            h3 = hk + m1_3
+                            h00 = h0 + m2_0
+                            h01 = h0 + m2_1
+                            h02 = h0 + m2_2
+                            h03 = h0 + m2_3
+                            h10 = h1 + m2_0
+                            h11 = h1 + m2_1
+                            h12 = h1 + m2_2
+                            h13 = h1 + m2_3
+                            h20 = h2 + m2_0
+                            h21 = h2 + m2_1
+                            h22 = h2 + m2_2
+                            h23 = h2 + m2_3
+                            h30 = h3 + m2_0
+                            h31 = h3 + m2_1
+                            h32 = h3 + m2_2
+                            h33 = h3 + m2_3
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (hash_value(h00)) + w2_1 * (hash_value(h01)) + w2_2 * (hash_value(h02)) + w2_3 * (hash_value(h03))) + w1_1 * (w2_0 * (hash_value(h10)) + w2_1 * (hash_value(h11)) + w2_2 * (hash_value(h12)) + w2_3 * (hash_value(h13))) + w1_2 * (w2_0 * (hash_value(h20)) + w2_1 * (hash_value(h21)) + w2_2 * (hash_value(h22)) + w2_3 * (hash_value(h23))) + w1_3 * (w2_0 * (hash_value(h30)) + w2_1 * (hash_value(h31)) + w2_2 * (hash_value(h32)) + w2_3 * (hash_value(h33))))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            r1_1 = R[1, 1, i]
+                            w1_2 = W[1, 2, i]; m1_2 = M[1, 2, i]
+                            r1_2 = R[1, 2, i]
+                            w1_3 = W[1, 3, i]; m1_3 = M[1, 3, i]
+                            r1_3 = R[1, 3, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            r2_0 = R[2, 0, i]
+                            w2_1 = W[2, 1, i]; m2_1 = M[2, 1, i]
+                            r2_1 = R[2, 1, i]
+                            w2_2 = W[2, 2, i]; m2_2 = M[2, 2, i]
+                            r2_2 = R[2, 2, i]
+                            w2_3 = W[2, 3, i]; m2_3 = M[2, 3, i]
+                            r2_3 = R[2, 3, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h2 = hk + m1_2
+                            h3 = hk + m1_3
+                            h00 = h0 + m2_0
+                            h01 = h0 + m2_1
+                            h02 = h0 + m2_2
+                            h03 = h0 + m2_3
+                            h10 = h1 + m2_0
+                            h11 = h1 + m2_1
+                            h12 = h1 + m2_2
+                            h13 = h1 + m2_3
+                            h20 = h2 + m2_0
+                            h21 = h2 + m2_1
+                            h22 = h2 + m2_2
+                            h23 = h2 + m2_3
+                            h30 = h3 + m2_0
+                            h31 = h3 + m2_1
+                            h32 = h3 + m2_2
+                            h33 = h3 + m2_3
+                            g00 = hash_index(h00, n, nmask)
+                            v00 = grads[g00, 0] * r0 + grads[g00, 1] * r1_0 + grads[g00, 2] * r2_0
+                            g01 = hash_index(h01, n, nmask)
+                            v01 = grads[g01, 0] * r0 + grads[g01, 1] * r1_0 + grads[g01, 2] * r2_1
+                            g02 = hash_index(h02, n, nmask)
+                            v02 = grads[g02, 0] * r0 + grads[g02, 1] * r1_0 + grads[g02, 2] * r2_2
+                            g03 = hash_index(h03, n, nmask)
+                            v03 = grads[g03, 0] * r0 + grads[g03, 1] * r1_0 + grads[g03, 2] * r2_3
+                            g10 = hash_index(h10, n, nmask)
+                            v10 = grads[g10, 0] * r0 + grads[g10, 1] * r1_1 + grads[g10, 2] * r2_0
+                            g11 = hash_index(h11, n, nmask)
+                            v11 = grads[g11, 0] * r0 + grads[g11, 1] * r1_1 + grads[g11, 2] * r2_1
+                            g12 = hash_index(h12, n, nmask)
+                            v12 = grads[g12, 0] * r0 + grads[g12, 1] * r1_1 + grads[g12, 2] * r2_2
+                            g13 = hash_index(h13, n, nmask)
+                            v13 = grads[g13, 0] * r0 + grads[g13, 1] * r1_1 + grads[g13, 2] * r2_3
+                            g20 = hash_index(h20, n, nmask)
+                            v20 = grads[g20, 0] * r0 + grads[g20, 1] * r1_2 + grads[g20, 2] * r2_0
+                            g21 = hash_index(h21, n, nmask)
+                            v21 = grads[g21, 0] * r0 + grads[g21, 1] * r1_2 + grads[g21, 2] * r2_1
+                            g22 = hash_index(h22, n, nmask)
+                            v22 = grads[g22, 0] * r0 + grads[g22, 1] * r1_2 + grads[g22, 2] * r2_2
+                            g23 = hash_index(h23, n, nmask)
+                            v23 = grads[g23, 0] * r0 + grads[g23, 1] * r1_2 + grads[g23, 2] * r2_3
+                            g30 = hash_index(h30, n, nmask)
+                            v30 = grads[g30, 0] * r0 + grads[g30, 1] * r1_3 + grads[g30, 2] * r2_0
+                            g31 = hash_index(h31, n, nmask)
+                            v31 = grads[g31, 0] * r0 + grads[g31, 1] * r1_3 + grads[g31, 2] * r2_1
+                            g32 = hash_index(h32, n, nmask)
+                            v32 = grads[g32, 0] * r0 + grads[g32, 1] * r1_3 + grads[g32, 2] * r2_2
+                            g33 = hash_index(h33, n, nmask)
+                            v33 = grads[g33, 0] * r0 + grads[g33, 1] * r1_3 + grads[g33, 2] * r2_3
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (v00) + w2_1 * (v01) + w2_2 * (v02) + w2_3 * (v03)) + w1_1 * (w2_0 * (v10) + w2_1 * (v11) + w2_2 * (v12) + w2_3 * (v13)) + w1_2 * (w2_0 * (v20) + w2_1 * (v21) + w2_2 * (v22) + w2_3 * (v23)) + w1_3 * (w2_0 * (v30) + w2_1 * (v31) + w2_2 * (v32) + w2_3 * (v33)))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+@nb.njit(cache=True, nogil=True)
+def int_d3_quintic(pts, out, freqs, amps, phase, shift, left, coef, period, pmask,
+        keys, mult, grads, basis, absval):
+    """Integer-hash lattice noise at scattered points, 3-D input, 2-tap kernel (generated)."""
+    npts = pts.shape[0]
+    ncomp = keys.shape[0]
+    n = grads.shape[0]
+    nmask = n - 1 if (n & (n - 1)) == 0 else -1
+    noct = freqs.shape[0]
+    W = np.empty((3, 2, CHUNK))
+    R = np.empty((3, 2, CHUNK))
+    M = np.empty((3, 2, CHUNK), np.uint64)
+    X = np.empty((3, CHUNK))
+    T = np.empty(CHUNK)
+    ACC = np.empty((ncomp, CHUNK))
+    for p0 in range(0, npts, CHUNK):
+        m = min(CHUNK, npts - p0)
+        for i in range(m):
+            X[0, i] = pts[p0 + i, 0]
+            X[1, i] = pts[p0 + i, 1]
+            X[2, i] = pts[p0 + i, 2]
+        for o in range(noct):
+            f = freqs[o, 0]; ph = phase[0]; per = period[0]; msk = pmask[0]; mu = mult[0]
+            inside = 0
+            for i in range(m):
+                u = X[0, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[0, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
+                W[0, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[0, 0, i] = np.uint64(b) * mu
+                M[0, 1, i] = np.uint64(((b + 1) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[0, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[0, 0, i] = t - shift + (left - 0)
+                    R[0, 1, i] = t - shift + (left - 1)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[0, i] * f + ph + shift), left, per, msk)
+                    M[0, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[0, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+            f = freqs[o, 1]; ph = phase[1]; per = period[1]; msk = pmask[1]; mu = mult[1]
+            inside = 0
+            for i in range(m):
+                u = X[1, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[1, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
+                W[1, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[1, 0, i] = np.uint64(b) * mu
+                M[1, 1, i] = np.uint64(((b + 1) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[1, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[1, 0, i] = t - shift + (left - 0)
+                    R[1, 1, i] = t - shift + (left - 1)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[1, i] * f + ph + shift), left, per, msk)
+                    M[1, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[1, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+            f = freqs[o, 2]; ph = phase[2]; per = period[2]; msk = pmask[2]; mu = mult[2]
+            inside = 0
+            for i in range(m):
+                u = X[2, i] * f + ph + shift  # same rounding as the grid path
+                fi = np.floor(u)
+                t = u - fi
+                t2 = t * t; t3 = t2 * t; t4 = t2 * t2; t5 = t4 * t
+                W[2, 0, i] = (1.0) + (-10.0 * t3) + (15.0 * t4 + -6.0 * t5)
+                W[2, 1, i] = (10.0 * t3) + (-15.0 * t4 + 6.0 * t5)
+                inside += (fi < 4.0e15) & (fi > -4.0e15)
+                b = (np.int64(fi) - left) & msk
+                M[2, 0, i] = np.uint64(b) * mu
+                M[2, 1, i] = np.uint64(((b + 1) & msk)) * mu
+            if basis == 1:  # signed distances to the taps, for the gradient dot products
+                for i in range(m):
+                    u = X[2, i] * f + ph + shift
+                    t = u - np.floor(u)
+                    R[2, 0, i] = t - shift + (left - 0)
+                    R[2, 1, i] = t - shift + (left - 1)
+            if msk < 0 or inside != m:  # exact reduction (non-power-of-two period, or |index| >= 4e15)
+                for i in range(m):
+                    b = _reduce(np.floor(X[2, i] * f + ph + shift), left, per, msk)
+                    M[2, 0, i] = np.uint64(_wrap(b + 0, per, msk)) * mu
+                    M[2, 1, i] = np.uint64(_wrap(b + 1, per, msk)) * mu
+            amp = amps[o]
+            for c in range(ncomp):
+                key = keys[c]
+                for i in range(m):
+                    T[i] = 0.0
+                for k0 in range(2):
+                    if basis == 0:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            w2_1 = W[2, 1, i]; m2_1 = M[2, 1, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h00 = h0 + m2_0
+                            h01 = h0 + m2_1
+                            h10 = h1 + m2_0
+                            h11 = h1 + m2_1
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (hash_value(h00)) + w2_1 * (hash_value(h01))) + w1_1 * (w2_0 * (hash_value(h10)) + w2_1 * (hash_value(h11))))
+                    else:
+                        for i in range(m):
+                            hk = key + M[0, k0, i]
+                            r0 = R[0, k0, i]
+                            w1_0 = W[1, 0, i]; m1_0 = M[1, 0, i]
+                            r1_0 = R[1, 0, i]
+                            w1_1 = W[1, 1, i]; m1_1 = M[1, 1, i]
+                            r1_1 = R[1, 1, i]
+                            w2_0 = W[2, 0, i]; m2_0 = M[2, 0, i]
+                            r2_0 = R[2, 0, i]
+                            w2_1 = W[2, 1, i]; m2_1 = M[2, 1, i]
+                            r2_1 = R[2, 1, i]
+                            h0 = hk + m1_0
+                            h1 = hk + m1_1
+                            h00 = h0 + m2_0
+                            h01 = h0 + m2_1
+                            h10 = h1 + m2_0
+                            h11 = h1 + m2_1
+                            g00 = hash_index(h00, n, nmask)
+                            v00 = grads[g00, 0] * r0 + grads[g00, 1] * r1_0 + grads[g00, 2] * r2_0
+                            g01 = hash_index(h01, n, nmask)
+                            v01 = grads[g01, 0] * r0 + grads[g01, 1] * r1_0 + grads[g01, 2] * r2_1
+                            g10 = hash_index(h10, n, nmask)
+                            v10 = grads[g10, 0] * r0 + grads[g10, 1] * r1_1 + grads[g10, 2] * r2_0
+                            g11 = hash_index(h11, n, nmask)
+                            v11 = grads[g11, 0] * r0 + grads[g11, 1] * r1_1 + grads[g11, 2] * r2_1
+                            T[i] += W[0, k0, i] * (w1_0 * (w2_0 * (v00) + w2_1 * (v01)) + w1_1 * (w2_0 * (v10) + w2_1 * (v11)))
+                acc = ACC[c]
+                if o == 0:
+                    for i in range(m):
+                        acc[i] = amp * (abs(T[i]) if absval else T[i])
+                else:
+                    for i in range(m):
+                        acc[i] += amp * (abs(T[i]) if absval else T[i])
+        for i in range(m):
+            for c in range(ncomp):
+                out[p0 + i, c] = ACC[c, i]
+
+
+# keyed by (dim_in, taps) with coefficients as arguments, or (dim_in, kernel name) with them written in
 INT_KERNELS = {
     (1, 1): int_d1_t1,
     (1, 2): int_d1_t2,
@@ -1537,4 +3359,16 @@ INT_KERNELS = {
     (3, 2): int_d3_t2,
     (3, 3): int_d3_t3,
     (3, 4): int_d3_t4,
+    (2, 'box'): int_d2_box,
+    (2, 'linear'): int_d2_linear,
+    (2, 'quadratic'): int_d2_quadratic,
+    (2, 'cubic'): int_d2_cubic,
+    (2, 'catmull-rom'): int_d2_catmull_rom,
+    (2, 'quintic'): int_d2_quintic,
+    (3, 'box'): int_d3_box,
+    (3, 'linear'): int_d3_linear,
+    (3, 'quadratic'): int_d3_quadratic,
+    (3, 'cubic'): int_d3_cubic,
+    (3, 'catmull-rom'): int_d3_catmull_rom,
+    (3, 'quintic'): int_d3_quintic,
 }

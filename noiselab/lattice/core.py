@@ -369,7 +369,10 @@ class LatticeNoise:
                 from . import _intpoints  # imported on first use (import noiselab.lattice costs what it did)
 
                 rest = (self.period, self._pmask, self._keys, self._mult, self.gradients, basis, bool(absval))
-                fused = _intpoints.INT_KERNELS.get((self.dim_in, k.taps))
+                stock = KERNELS.get(k.name)
+                named = stock is not None and np.array_equal(stock.coef, k.coef)
+                fused = _intpoints.INT_KERNELS.get((self.dim_in, k.name if named else k.taps),
+                                                   _intpoints.INT_KERNELS.get((self.dim_in, k.taps)))
                 if fused is not None:
                     _run_split(fused, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef) + rest, workers)
                 else:
