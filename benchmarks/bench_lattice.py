@@ -306,6 +306,63 @@ def scattered_section(repeats, quick, lines):
     return summary
 
 
+# ------------------------------------------------------------------- integer hash
+HASH_HEAD = "## Scattered 3-D points: the table hash, the integer hash and pyfastnoisesimd"
+
+
+def hash_section(repeats, lines, npts=1_000_000):
+    """Both hashes beside pyfastnoisesimd (1 worker) and the floor, interleaved in one process, one thread."""
+    rng = np.random.default_rng(0)
+    pts = rng.uniform(0.0, 100.0, (npts, 3))
+    pts32 = pts.astype(np.float32)
+    fns = _peer("fns")
+    lines.append(HASH_HEAD + "\n")
+    lines.append(f"{npts:,} random 3-D points in [0, 100)^3, one thread, float64 points and computation (noiselab); "
+                 "pyfastnoisesimd computes in float32 (AVX-512 on this CPU) from float32 coordinates. Every candidate of "
+                 "a row is timed interleaved with the others in the same rounds; `x FNS` = pyfastnoisesimd time / "
+                 "time (median of the per-round ratios; the peer noise named in the row), `x floor` = time of "
+                 f"`np.full({npts:_}, 0.5)` / time. The float32 column: float32 points in, float32 out (computed in "
+                 "float64).\n")
+    lines.append("| noise | peer | table pts/s | x FNS | integer pts/s | x FNS | integer float32 pts/s | x FNS "
+                 "| integer x floor | FNS pts/s |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|")
+    summary = {}
+    for kname, basis, peer in (("quintic", "value", "Value"), ("quintic", "gradient", "Perlin"),
+                               ("catmull-rom", "value", "Cubic"), ("cubic", "value", "Cubic")):
+        table = LatticeNoise(3, seed=1, kernel=kname, basis=basis)
+        integer = LatticeNoise(3, seed=1, kernel=kname, basis=basis, hash="integer")
+        cands = {"floor": lambda: np.full(npts, 0.5), "table": lambda: table(pts), "integer": lambda: integer(pts),
+                 "integer32": lambda: integer(pts32)}
+        if fns is not None:
+            aligned = fns.empty_coords(npts)
+            aligned[:] = pts32.T
+            f = fns.Noise(seed=1, numWorkers=1)
+            f.noiseType = getattr(fns.NoiseType, peer)
+            f.frequency = 1.0
+            cands["fns"] = lambda f=f, aligned=aligned: f.genFromCoords(aligned)
+        t = bench(cands, repeats)
+        xf = lambda k: f"{t.ratio('fns', k):.3f}" if "fns" in t else "n/a"  # noqa: E731
+        lines.append(f"| {kname} {basis} | {peer} | {npts / t['table']:.3g} | {xf('table')} | "
+                     f"{npts / t['integer']:.3g} | {xf('integer')} | {npts / t['integer32']:.3g} | {xf('integer32')} | "
+                     f"{t.ratio('floor', 'integer'):.4f} | {npts / t['fns'] if 'fns' in t else float('nan'):.3g} |")
+        summary[(kname, basis)] = {k: (npts / t[k], t.ratio("fns", k) if "fns" in t else None)
+                                   for k in ("table", "integer", "integer32")}
+    lines.append("")
+    return summary
+
+
+def _splice(path, head, section):
+    """Replace the section starting at ``head`` (to the next ``## `` heading) in ``path``, or append it."""
+    text = Path(path).read_text() if Path(path).exists() else ""
+    if head in text:
+        a = text.index(head)
+        b = text.find("\n## ", a + 1)
+        text = text[:a] + section.rstrip("\n") + "\n" + (text[b:] if b >= 0 else "")
+    else:
+        text = text.rstrip("\n") + "\n\n" + section
+    Path(path).write_text(text)
+
+
 # ----------------------------------------------------------------------- precision
 def precision_section(lines):
     origins = [0.0, 1e6, 1e9, 2.2e9, 1e12]
@@ -387,8 +444,24 @@ def main():
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--quick", action="store_true", help="cubic and quintic only")
     ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
+    ap.add_argument("--hash-only", action="store_true",
+                    help="run only the integer-hash section and replace it in the output file (the rest is kept)")
     args = ap.parse_args()
     repeats = max(5, args.repeats)
+    if args.hash_only:
+        cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py --hash-only"
+               + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
+        lines = []
+        load = os.getloadavg()[0]
+        hash_section(repeats, lines)
+        lines.insert(1, f"Run alone (`{cmd}`), {_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M UTC}, "
+                        f"{platform.machine()}, {os.cpu_count()} cores ({_cpu()}) shared with other jobs, load average "
+                        f"{load:.1f} at start; python {platform.python_version()}, numpy {np.__version__}, numba "
+                        f"{_version('numba')}, pyfastnoisesimd {_version('pyfastnoisesimd')}; median of {repeats} "
+                        "interleaved rounds. The rest of this file is from the run in its header.\n")
+        _splice(args.output, HASH_HEAD, "\n".join(lines) + "\n")
+        print("\n".join(lines))
+        return
     cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py" + (" --quick" if args.quick else "")
            + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
     lines = ["# Lattice noise benchmark\n",
@@ -404,6 +477,7 @@ def main():
     body = []
     gsum = grid_section(repeats, args.quick, body)
     ssum = scattered_section(repeats, args.quick, body)
+    hash_section(repeats, body)
     precision_section(body)
     lines.append("## Summary (float64 unless stated; ratios > 1 mean noiselab is faster)\n")
     for kname in ("cubic", "quintic"):

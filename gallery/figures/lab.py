@@ -137,3 +137,63 @@ def measures(out, *, size):
                   "Nyquist when the noise is rendered twice as densely (what sampling folds back; the spectral field "
                   "has none, drawn at 1e-12), the anisotropy index and Ulichney's anisotropy over 8 seeds. The "
                   "numbers for 512 x 512 are in benchmarks/RESULTS.md, section 5.", measured)
+
+
+@figure("lab", "hashes", seed="The lab's own comparison (Phillips 2004, Sec. 2.4.1 nested permutation)",
+        title="The hash question: Phillips' nested permutation table against an arithmetic integer hash",
+        params=dict(cells=256, spc=2, seeds=8, kernel="catmull-rom", seed=23), quick=dict(cells=32, seeds=3),
+        uses=USES)
+def hashes(out, *, cells, spc, seeds, kernel, seed):
+    from noiselab import LatticeNoise, analysis
+    from noiselab.lab.hashes import profile_striping
+
+    from .._common import pyplot, save_figure
+
+    plt = pyplot()
+    n = cells * spc
+    ext = [(0, cells), (0, cells)]
+    make = {"table": lambda s, **kw: LatticeNoise(2, seed=s, kernel=kernel, table_size=cells, period=cells, **kw),
+            "integer": lambda s, **kw: LatticeNoise(2, seed=s, kernel=kernel, hash="integer", period=cells, **kw)}
+    fig, axes = plt.subplots(2, 3, figsize=(13.5, 8.4), layout="constrained")
+    measured = {}
+    for r, (h, mk) in enumerate(make.items()):
+        imgs = np.stack([mk(seed + s).grid((n, n), ext) for s in range(seeds)])
+        art = analysis.axis_artefacts(imgs[0])
+        cv = profile_striping(imgs)
+        axes[r, 0].imshow(imgs[0], cmap="gray", vmin=-1, vmax=1)
+        axes[r, 0].set_title(f"hash={h!r}: one full period, {cells} x {cells} cells", fontsize=9)
+        axes[r, 0].axis("off")
+        axes[0, 1].plot(imgs[0].mean(axis=1), lw=0.8, label=f"hash={h!r}", color=f"C{r}")
+        prof = np.mean(np.abs(np.fft.rfft(imgs, axis=-1)) ** 2, axis=1)[:, 1:n // 4 + 1]
+        axes[1, 1].semilogy(np.arange(1, n // 4 + 1), prof[0] / prof.mean(axis=0), lw=0.8, color=f"C{r}",
+                            label=f"hash={h!r}: CV {np.median(cv):.2f}")
+        line = LatticeNoise(1, seed=seed, kernel=kernel, table_size=cells, hash=h).grid((16 * cells,), [(0, 4 * cells)])
+        per = analysis.detect_period(line, min_lag=16)
+        lags = np.arange(16, line.size // 2)
+        diff = [np.mean((line[L:] - line[:-L]) ** 2) / (2 * line.var()) for L in lags]
+        axes[0, 2].plot(lags / 4, diff, lw=0.8, color=f"C{r}", label=f"hash={h!r}: period "
+                        + ("none" if per.period is None else f"{per.period / 4:g} cells"))
+        measured[f"{h}: mean spread excess (1 = independent rows)"] = art.mean_spread_excess
+        measured[f"{h}: row-mean spread x sqrt(rows)"] = art.row_mean_spread * np.sqrt(n)
+        measured[f"{h}: profile CV (median over {seeds} seeds)"] = float(np.median(cv))
+        measured[f"{h}: period of a 1-D line at the default period (cells)"] = None if per.period is None else per.period / 4
+        measured[f"{h}: range"] = [float(imgs.min()), float(imgs.max())]
+    axes[0, 1].set_title("row means of one field", fontsize=9), axes[0, 1].set_xlabel("row")
+    axes[0, 1].legend(fontsize=8)
+    axes[1, 1].set_title("row-averaged periodogram along x / mean over seeds", fontsize=9)
+    axes[1, 1].set_xlabel("cycles/frame"), axes[1, 1].legend(fontsize=8)
+    axes[0, 2].set_title("1-D line, default period: mean squared difference at lag / 2 var", fontsize=9)
+    axes[0, 2].set_xlabel("lag (cells)"), axes[0, 2].legend(fontsize=8)
+    axes[1, 2].axis("off")
+    axes[1, 2].text(0.0, 0.95, "\n".join(f"{k}: {v:.3g}" if isinstance(v, float) else f"{k}: {v}"
+                                         for k, v in measured.items() if "range" not in k).replace("None", "none"),
+                    va="top", fontsize=7.5, family="monospace", transform=axes[1, 2].transAxes)
+    return Result([save_figure(fig, out / "hashes.png")],
+                  f"{kernel} value noise over one full period of {cells} x {cells} lattice cells ({spc} samples per cell), "
+                  "addressed by Phillips' nested permutation P[(P[i] + j) mod n] (top, n = period) and by the "
+                  "integer hash fmix64(key + i M0 + j M1) (bottom). With the permutation every lattice row is a "
+                  "permutation of the same n values: the row means are all equal (middle top: a flat line) and a "
+                  "field's row-averaged spectrum along x is one random periodogram (middle bottom: the coefficient "
+                  "of variation about the mean over seeds is near 1, against about 1/sqrt(rows) for independent "
+                  "rows). Right: a 1-D line repeats after the table size with the permutation and not with the "
+                  "integer hash. Figures: benchmarks/RESULTS.md section 6.", measured)

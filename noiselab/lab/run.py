@@ -26,6 +26,7 @@ import numpy as np
 from .experiments import (CAPABILITIES, Config, flake_scaling, pareto_sweeps, scaling_fits, snow_experiment,
                           snow_scaling, texture_experiment, texture_scaling)
 from .measure import fit_exponent, machine_info
+from .hashes import hash_experiment, hash_section
 from .quality import quality_experiment, quality_section
 
 __all__ = ["run_all", "md_table", "ROOT", "PEER_PYTHON", "PUBLISHED", "default_output", "PublishError"]
@@ -306,7 +307,8 @@ def run_all(*, quick=False, output=None, peers=True, log=print, publish=False, a
     steps = [("texture", lambda: texture_experiment(cfg)), ("texture_scaling", lambda: texture_scaling(cfg)),
              ("snow", lambda: snow_experiment(cfg)),
              ("scaling", lambda: snow_scaling(cfg)), ("flakes", lambda: flake_scaling(cfg)),
-             ("sweeps", lambda: pareto_sweeps(cfg)), ("quality", lambda: quality_experiment(cfg))]
+             ("sweeps", lambda: pareto_sweeps(cfg)), ("quality", lambda: quality_experiment(cfg)),
+             ("hashes", lambda: hash_experiment(cfg))]
     for name, fn in steps:
         t0 = time.perf_counter()
         results[name] = fn()
@@ -530,6 +532,8 @@ def render_markdown(res, *, quick=False):
             L.append("")
         L.append("![peers](results/peers.png)\n")
     L.append(quality_section(res))
+    if "hashes" in res:
+        L.append(hash_section(res["hashes"]))
     L.append("## Notes\n")
     L.append("- Other benchmark reports: [bench_snow.md](bench_snow.md) (snow against its floor, MotionClouds), "
              "[bench_lattice.md](bench_lattice.md) (lattice peers, precision), [bench_mesh.md](bench_mesh.md).")

@@ -17,13 +17,20 @@ from typing import NamedTuple
 import numpy as np
 
 from .._validate import as_generator, _asarray, check_finite_array, check_int, check_memory, check_real, check_shape, float_dtype
-from . import _jit, _points
+from . import _inthash, _jit, _points
 from .kernels import KERNELS, Kernel, get_kernel
 
 __all__ = ["LatticeNoise", "Grid", "grid_coordinates"]
 
 _BASES = ("value", "gradient")
 _ALTERNATIONS = ("table", "lattice")
+_HASHES = ("table", "integer")
+# without ``period``, the integer hash reduces lattice indices modulo 2**32 per axis
+_INT_PERIOD = 1 << 32
+# odd multipliers of the integer hash's linear prefix, one per input axis
+# (fixed: the seed enters through the per-component keys)
+_INT_MULT = np.array([(0x9E3779B97F4A7C15 * (2 * a + 1) + 0xD1B54A32D192ED03 * a) % (1 << 64) | 1
+                      for a in range(32)], dtype=np.uint64)
 # the 3-D scattered kernels' two-level hash table (uint16, n * n entries per
 # output component; its entries reach 3n + 4 < 2**16) is used up to this
 # size (n = 1024 for one component: 2 MiB)
@@ -218,6 +225,16 @@ class LatticeNoise:
         reading of Phillips' figure 1, the sign alternates with the parity of
         the lattice point (``i_1 + ... + i_d``); this adds a deterministic
         checkerboard of wavelength 2 cells (not stationary, not isotropic).
+    hash : {"table", "integer"}, default "table"
+        How a lattice point is addressed. ``"table"``: Phillips' nested
+        permutation ``P[(P[i] + j) mod n]`` into the value (or gradient)
+        table. ``"integer"``: an arithmetic hash of the (period-reduced)
+        lattice coordinates and a seed-derived key per component,
+        ``fmix64(key + sum_a j_a M_a)`` (see :mod:`noiselab.lattice._inthash`):
+        values uniform on [-1, 1) from its top 32 bits, or a gradient of the
+        same unit-gradient table. No permutation, so no 256-cell period (the
+        default period is 2**32 cells per axis) and no row/column artefacts
+        of the nested permutation; ``alternation`` must be ``"table"``.
 
     Notes
     -----
@@ -258,7 +275,7 @@ class LatticeNoise:
     """
 
     def __init__(self, dim_in, dim_out=1, *, seed=0, kernel="cubic", basis="value", table_size=256,
-                 period=None, frequency=1.0, phase=0.0, amplitude=1.0, alternation="table"):
+                 period=None, frequency=1.0, phase=0.0, amplitude=1.0, alternation="table", hash="table"):
         self.dim_in = check_int("dim_in", dim_in, lo=1, hi=32)
         self.dim_out = check_int("dim_out", dim_out, lo=1)
         self.kernel: Kernel = get_kernel(kernel)
@@ -266,8 +283,14 @@ class LatticeNoise:
             raise ValueError(f"basis must be one of {_BASES}, got {basis!r}")
         if alternation not in _ALTERNATIONS:
             raise ValueError(f"alternation must be one of {_ALTERNATIONS}, got {alternation!r}")
+        if hash not in _HASHES:
+            raise ValueError(f"hash must be one of {_HASHES}, got {hash!r}")
+        if hash == "integer" and alternation != "table":
+            raise ValueError("alternation must be 'table' with hash='integer' (the integer hash draws signed values; "
+                             f"there are no separate positive and negative tables), got {alternation!r}")
         self.basis = basis
         self.alternation = alternation
+        self.hash = hash
         n = check_int("table_size", table_size, lo=2, hi=1 << 24)
         if n % 2:
             raise ValueError(f"table_size must be even (equal positive and negative tables), got {n}")
@@ -277,7 +300,7 @@ class LatticeNoise:
                      f"LatticeNoise(dim_out={self.dim_out}, table_size={n})")
         d = self.dim_in
         if period is None:
-            self.period = np.full(d, n, dtype=np.int64)
+            self.period = np.full(d, n if hash == "table" else _INT_PERIOD, dtype=np.int64)
             self.tileable = False
         else:
             self.period = _per_axis("period", period, d, integer=True)
@@ -298,6 +321,10 @@ class LatticeNoise:
         gradients = rng.standard_normal((n, d))
         norms = np.linalg.norm(gradients, axis=1, keepdims=True)
         gradients /= np.where(norms > 0, norms, 1.0)
+        # the integer hash's per-component 64-bit keys (drawn only for it, so the table hash's draws are
+        # unchanged; before the permutations, so that a smaller dim_out gets the first keys)
+        self._keys = (rng.integers(0, 1 << 63, size=self.dim_out, dtype=np.int64).astype(np.uint64) * np.uint64(2)
+                      + np.uint64(1)) if hash == "integer" else np.zeros(self.dim_out, np.uint64)
         self.perms = np.stack([rng.permutation(n) for _ in range(self.dim_out)]).astype(np.int64)
         self._perms2 = np.ascontiguousarray(np.concatenate([self.perms, self.perms], axis=1), dtype=np.uint64)
         if alternation == "table":
@@ -307,6 +334,7 @@ class LatticeNoise:
             self.values = np.stack([positive, negative])
         self.positive, self.negative = positive, negative
         self.gradients = np.ascontiguousarray(gradients)
+        self._mult = np.ascontiguousarray(_INT_MULT[:d])
         if basis == "value":
             self.bound = self.kernel.value_bound(d)
         else:
@@ -317,7 +345,8 @@ class LatticeNoise:
     # ------------------------------------------------------------------ repr
     def __repr__(self):
         return (f"LatticeNoise(dim_in={self.dim_in}, dim_out={self.dim_out}, seed={self.seed!r}, "
-                f"kernel={self.kernel.name!r}, basis={self.basis!r}, table_size={self.table_size})")
+                f"kernel={self.kernel.name!r}, basis={self.basis!r}, table_size={self.table_size}"
+                + (", hash='integer')" if self.hash == "integer" else ")"))
 
     # ------------------------------------------------------------- scattered
     def _prepare_points(self, points, name="points"):
@@ -361,7 +390,20 @@ class LatticeNoise:
             tables = self._hash_tables(basis) if use_tables else None
             if tables is None:
                 _check_reach(flat, freqs, self.phase, name)  # the table kernels count overflows themselves
-            if tables is not None:
+            if self.hash == "integer":
+                from . import _intpoints  # imported on first use (import noiselab.lattice costs what it did)
+
+                rest = (self.period, self._pmask, self._keys, self._mult, self.gradients, basis, bool(absval))
+                stock = KERNELS.get(k.name)
+                named = stock is not None and np.array_equal(stock.coef, k.coef)
+                fused = _intpoints.INT_KERNELS.get((self.dim_in, k.name if named else k.taps),
+                                                   _intpoints.INT_KERNELS.get((self.dim_in, k.taps)))
+                if fused is not None:
+                    _run_split(fused, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef) + rest, workers)
+                else:
+                    _run_split(_inthash.int_points, flat, out,
+                               (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef) + rest, workers)
+            elif tables is not None:
                 bad = _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
                                                      self._pmask, *tables, basis, bool(absval)), workers)
                 if bad:
@@ -388,7 +430,7 @@ class LatticeNoise:
     def _uses_tables(self):
         """Whether the scattered kernel over precombined hash tables applies (3-D input; last period n)."""
         k = self.kernel
-        return ((self.dim_in, k.taps) in _points.TABLE_KERNELS and (self.period >= k.taps).all()
+        return (self.hash == "table" and (self.dim_in, k.taps) in _points.TABLE_KERNELS and (self.period >= k.taps).all()
                 and self.period[-1] == self.table_size and self.table_size ** 2 * self.dim_out <= _MAX_H2_ENTRIES)
 
     def _hash_tables(self, basis):
@@ -477,7 +519,11 @@ class LatticeNoise:
 
             unrolled = _jacobians.JAC_KERNELS.get((self.dim_in, k.taps))
             tabled = _jacobians.JAC_TABLE_KERNELS.get((self.dim_in, k.taps))
-            if tabled is not None and self._uses_tables():
+            if self.hash == "integer":
+                _run_split(_inthash.int_points_jac, flat, out,
+                           (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, self.period,
+                            self._pmask, self._keys, self._mult, self.gradients, basis, bool(absval)), workers)
+            elif tabled is not None and self._uses_tables():
                 _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
                                                self.period, self._pmask, *self._hash_tables(basis), basis,
                                                bool(absval)), workers)
@@ -820,6 +866,14 @@ class LatticeNoise:
             h, par = _jit.hash_expand(h, par, np.ascontiguousarray(lat, dtype=np.int64), perm, n, a == 0)
         return h, par
 
+    def _int_prefix(self, c, lattices):
+        """The integer hash's linear prefix ``key_c + sum_a j_a M_a`` over the block of lattice points (flat)."""
+        h = self._keys[c:c + 1]
+        for a, lat in enumerate(lattices):
+            h = _inthash.block_prefix(h, np.ascontiguousarray(lat, dtype=np.int64), self._mult[a], a == 0,
+                                      self._keys[c])
+        return h
+
     def _grid_separable(self, sub, full, octaves, out, absval, deriv_axis=None):
         """Separable grid path: per octave and term, contract axes d-1..1; then one fused pass on axis 0.
 
@@ -858,7 +912,11 @@ class LatticeNoise:
                     lattices = [ax[0] for ax in axes]
                     bshape = tuple(len(lat) for lat in lattices)
                     block = np.empty(int(np.prod(bshape, dtype=np.int64)))
-                    if grad:
+                    if self.hash == "integer":
+                        h = self._int_prefix(c, lattices)
+                        if not grad:
+                            _inthash.block_values(h, block)
+                    elif grad:
                         h, par = self._block_hash(c, lattices)
                     else:
                         # hash all but the last level, then hash and look up in one pass
@@ -866,7 +924,9 @@ class LatticeNoise:
                         _jit.hash_expand_values(h, par, np.ascontiguousarray(lattices[-1], dtype=np.int64),
                                                 self.perms[c], self.table_size, d == 1, self.values, block)
                     for b in range(nterm):
-                        if grad:
+                        if grad and self.hash == "integer":
+                            _inthash.block_gradients(h, self.gradients, b, block)
+                        elif grad:
                             _jit.gather_gradients(h, self.gradients, b, block)
                         target = inter_all[row0:row0 + bshape[0]]
                         self._contract_rest(block.reshape(bshape), axes, b if grad else -1, target)

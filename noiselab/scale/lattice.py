@@ -79,7 +79,7 @@ def _noise_token(noise):
 
     k = noise.kernel
     return tokenize(type(noise).__qualname__, noise.dim_in, noise.dim_out, k.name, np.asarray(k.coef), k.shift,
-                    k.left, k.taps, noise.basis, noise.alternation, noise.table_size, noise.period,
+                    k.left, k.taps, noise.basis, noise.alternation, getattr(noise, "hash", "table"), noise.table_size, noise.period,
                     noise.frequency, noise.phase, noise.scale, noise.perms, noise.values, noise.gradients)
 
 

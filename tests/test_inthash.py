@@ -1,0 +1,198 @@
+"""LatticeNoise(hash="integer"): the arithmetic integer hash beside Phillips' permutation table.
+
+The same guarantees as the table hash (range, determinism, both evaluation
+paths, periods, derivatives, bit-identity across chunkings), and the
+property it is there for: no 256-cell period and none of the nested
+permutation's row/column artefacts.
+"""
+import numpy as np
+import pytest
+
+from noiselab import LatticeNoise, fractal_sum
+from noiselab.analysis import axis_artefacts, detect_period
+from noiselab.lattice import KERNELS, Grid, _inthash
+
+RNG = np.random.default_rng(2024)
+C1_KERNELS = [name for name, k in KERNELS.items() if k.continuity >= 1]
+
+
+def _int(dim, dim_out=1, **kw):
+    return LatticeNoise(dim, dim_out, hash="integer", **kw)
+
+
+@pytest.mark.parametrize("basis", ["value", "gradient"])
+@pytest.mark.parametrize("dim", [1, 2, 3, 4])
+def test_range_within_bound_and_not_vacuous(dim, basis):
+    for name in ("box", "catmull-rom", "quintic"):
+        noise = _int(dim, seed=3, kernel=name, basis=basis, frequency=1.7)
+        v = noise(RNG.uniform(-50, 50, (4000 if dim < 4 else 1500, dim)))
+        assert np.abs(v).max() <= 1.0, (name, dim, basis)
+        # the bound is not vacuous: the field uses a good part of it
+        assert np.abs(v).max() > (0.5 if basis == "value" else 0.25) / dim, (name, dim, basis)
+
+
+def test_values_at_lattice_points_are_the_documented_hash():
+    # interpolating kernels pass through the lattice values: v = (fmix64(key + j . M) >>s 32) / 2**31
+    noise = _int(3, 2, seed=5, kernel="catmull-rom")
+    j = RNG.integers(-1000, 1000, (200, 3))
+    got = noise(j.astype(np.float64))
+    mask = np.uint64((1 << 32) - 1)
+    for c in range(2):
+        h = noise._keys[c] + (j.astype(np.int64).astype(np.uint64) & mask) @ noise._mult[:3]  # wraps mod 2**64
+        words = np.array([_inthash.fmix64(np.uint64(x)) for x in h], dtype=np.uint64)
+        want = (words.view(np.int64) >> 32).astype(np.float64) / 2.0 ** 31
+        np.testing.assert_allclose(got[:, c], want * noise.scale, rtol=0, atol=1e-15)
+    # and they spread over [-1, 1): mean near 0, variance near 1/3
+    vals = _int(1, seed=1, kernel="catmull-rom", amplitude=1.0)(np.arange(20000.0)) / 0.8
+    assert abs(vals.mean()) < 0.02 and abs(vals.var() - 1 / 3) < 0.02
+
+
+def test_deterministic_and_seeded():
+    pts = RNG.uniform(-20, 20, (3000, 3))
+    a = _int(3, seed=7, kernel="quintic")(pts)
+    np.testing.assert_array_equal(a, _int(3, seed=7, kernel="quintic")(pts))
+    np.testing.assert_array_equal(a, _int(3, seed=np.random.default_rng(7), kernel="quintic")(pts))
+    b = _int(3, seed=8, kernel="quintic")(pts)
+    assert abs(np.corrcoef(a, b)[0, 1]) < 0.1
+    # components are independent too, and the first ones do not depend on dim_out
+    two = _int(3, 2, seed=7, kernel="quintic")(pts)
+    three = _int(3, 3, seed=7, kernel="quintic")(pts)
+    np.testing.assert_array_equal(two, three[:, :2])
+    assert abs(np.corrcoef(three[:, 0], three[:, 1])[0, 1]) < 0.1
+    # and the integer hash is a different noise from the table hash of the same seed
+    assert abs(np.corrcoef(a, LatticeNoise(3, seed=7, kernel="quintic")(pts))[0, 1]) < 0.1
+
+
+@pytest.mark.parametrize("basis", ["value", "gradient"])
+@pytest.mark.parametrize("dim", [1, 2, 3])
+def test_grid_and_points_agree(dim, basis):
+    shape = {1: (300,), 2: (40, 30), 3: (12, 10, 9)}[dim]
+    ext = [(-3.1, 4.5), (0.2, 6.0), (-2.0, 1.0)][:dim]
+    for name in ("linear", "cubic", "catmull-rom", "quintic"):
+        noise = _int(dim, 2, seed=2, kernel=name, basis=basis, frequency=1.3, phase=0.25)
+        np.testing.assert_allclose(noise.grid(shape, ext), noise(noise.grid_points(shape, ext)), atol=1e-12)
+
+
+@pytest.mark.parametrize("basis", ["value", "gradient"])
+@pytest.mark.parametrize("dim", [1, 2, 3])
+def test_unrolled_kernels_agree_with_the_generic_one(dim, basis):
+    from noiselab.lattice import _intpoints
+
+    pts = RNG.uniform(-40, 40, (700, dim))
+    for name in ("box", "linear", "quadratic", "cubic"):   # 1 to 4 taps
+        noise = _int(dim, 2, seed=4, kernel=name, basis=basis, period=[6, 8, 16][:dim])
+        k = noise.kernel
+        freqs, amps = np.array([[1.0] * dim, [2.5] * dim]), np.array([0.7, 0.3])
+        rest = (noise.period, noise._pmask, noise._keys, noise._mult, noise.gradients, int(basis == "gradient"))
+        for absval in (False, True):
+            fused = np.empty((700, 2))
+            generic = np.empty((700, 2))
+            _intpoints.INT_KERNELS[(dim, k.taps)](pts, fused, freqs, amps, noise.phase, k.shift, k.left, k.coef,
+                                                  *rest, absval)
+            _inthash.int_points(pts, generic, freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef,
+                                *rest, absval)
+            np.testing.assert_allclose(fused, generic, atol=1e-13)
+
+
+def test_chunkings_threads_and_windows_are_bit_identical():
+    noise = _int(3, 2, seed=2, kernel="quintic", basis="gradient")
+    pts = RNG.uniform(-30, 30, (5000, 3))
+    pts[::5] += 1e13    # past 2**52: no fractional bits
+    pts[::11] *= 1e17   # far out: those chunks take the exact reduction
+    whole = noise(pts)
+    parts = np.concatenate([noise(pts[i:i + 137]) for i in range(0, 5000, 137)])
+    np.testing.assert_array_equal(whole, parts)
+    np.testing.assert_array_equal(noise(pts, workers=3), whole)
+    np.testing.assert_array_equal(np.array([noise(p) for p in pts[:40]]), whole[:40])
+    shape, ext = (24, 20, 16), [(0, 5), (2, 9), (-1, 1)]
+    full = noise.grid(shape, ext)
+    np.testing.assert_array_equal(noise.grid(shape, ext, window=[(5, 19), (0, 20), (3, 11)]), full[5:19, :, 3:11])
+
+
+@pytest.mark.parametrize("dim", [1, 2, 3, 4])
+def test_periods_tile_exactly(dim):
+    period = [5, 8, 6, 3][:dim]         # powers of two and not
+    noise = _int(dim, seed=9, kernel="cubic", period=period, frequency=2.0)
+    x = np.round(RNG.uniform(-10, 10, (500, dim)) * 64) / 64   # dyadic: x + period / frequency is exact
+    v = noise(x)
+    for a in range(dim):
+        shifted = x.copy()
+        shifted[:, a] += period[a] / 2.0
+        np.testing.assert_array_equal(noise(shifted), v)
+    # and a period that is not a repeat of the axis: half a period is a different field
+    half = x.copy()
+    half[:, 0] += 1.0
+    assert np.abs(noise(half) - v).max() > 0.1
+
+
+def test_no_table_period_and_no_row_mean_artefact():
+    # 1-D, 1024 cells: the table hash repeats after its 256-entry table, the integer hash does not
+    line_t = LatticeNoise(1, seed=0, kernel="linear").grid((4096,), [(0, 1024)])
+    line_i = _int(1, seed=0, kernel="linear").grid((4096,), [(0, 1024)])
+    assert detect_period(line_t).period == 4 * 256
+    per = detect_period(line_i, min_lag=16)   # lags past the kernel's reach (4 samples per cell)
+    assert per.period is None and per.difference > 0.3
+    # 2-D, one full 256-cell period (both tile it exactly): Phillips' nested permutation makes every
+    # lattice row a permutation of one table, so the row means of lattice-aligned samples are all equal
+    ext = [(0, 256), (0, 256)]
+    img_t = LatticeNoise(2, seed=1, kernel="catmull-rom").grid((256, 256), ext)
+    img_i = _int(2, seed=1, kernel="catmull-rom", period=256).grid((256, 256), ext)
+    art_t, art_i = axis_artefacts(img_t), axis_artefacts(img_i)
+    assert art_t.mean_spread_excess < 1e-6 and art_t.row_mean_spread < 1e-6
+    # independent rows: the row means spread like an isotropic field's (excess about 1)
+    assert 0.3 < art_i.mean_spread_excess < 3.0
+    assert 0.3 < art_i.row_mean_spread * np.sqrt(256) < 3.0 and 0.3 < art_i.column_mean_spread * np.sqrt(256) < 3.0
+
+
+def test_huge_coordinates_stay_smooth_and_in_range():
+    noise = _int(2, seed=4, kernel="quintic")
+    t = np.linspace(0, 20, 2000)
+    for origin in (1e9, 5e9, 1e12, -1e12):   # past the 2**32-cell default period and 2**40
+        x = np.stack([origin + t, -0.5 * origin + 0.7 * t], axis=-1)
+        v = noise(x)
+        assert np.abs(v).max() <= 1 and v.std() > 0.05
+        assert np.abs(np.diff(v)).max() < 0.1   # smooth: 100 samples per cell
+
+
+@pytest.mark.parametrize("basis", ["value", "gradient"])
+@pytest.mark.parametrize("dim", [1, 2, 3, 4])
+def test_derivatives_match_central_differences(dim, basis):
+    pts = RNG.uniform(-5, 5, (60, dim))
+    eps = 1e-6
+    for name in C1_KERNELS:
+        noise = _int(dim, 2, seed=6, kernel=name, basis=basis, frequency=1.9)
+        val, jac = noise.jacobian(pts, return_value=True)
+        np.testing.assert_allclose(val, noise(pts), atol=1e-13)
+        fd = np.stack([(noise(pts + eps * e) - noise(pts - eps * e)) / (2 * eps) for e in np.eye(dim)], axis=-1)
+        np.testing.assert_allclose(jac, fd, atol=2e-6 * dim, err_msg=f"{name} {basis} d={dim}")
+    # the grid derivative agrees with the scattered one
+    shape = (9,) * dim
+    ext = [(0.0, 2.0)] * dim
+    noise = _int(dim, 2, seed=6, kernel="quintic", basis=basis, frequency=1.9)
+    np.testing.assert_allclose(noise.jacobian_grid(shape, ext), noise.jacobian(noise.grid_points(shape, ext)),
+                               atol=1e-12)
+
+
+def test_fractal_sums_on_both_paths():
+    noise = _int(2, seed=3, kernel="quintic", basis="gradient")
+    g = Grid((48, 40), [(0, 3), (1, 4)])
+    pts = noise.grid_points(g.shape, g.extent)
+    np.testing.assert_allclose(fractal_sum(noise, g, 5), fractal_sum(noise, pts, 5), atol=1e-12)
+
+
+def test_bad_hash_parameters_name_them():
+    with pytest.raises(ValueError, match="hash must be one of"):
+        LatticeNoise(2, hash="murmur")
+    with pytest.raises(ValueError, match="alternation must be 'table' with hash='integer'"):
+        LatticeNoise(2, hash="integer", alternation="lattice")
+    with pytest.raises(ValueError, match="finite"):
+        _int(3)(np.array([[0.0, np.nan, 1.0]]))
+
+
+def test_generated_integer_kernels_match_their_generator():
+    from pathlib import Path
+
+    from noiselab.lattice import _generate
+
+    committed = Path(_generate.__file__).with_name("_intpoints.py").read_text()
+    assert committed == _generate.generate_int(), "run `python -m noiselab.lattice._generate` and commit _intpoints.py"
