@@ -262,6 +262,7 @@ W2 = SP.frequency_vectors((8, 8))
 MESH = G.sphere(1)
 N1, N2, N3 = L.LatticeNoise(1, seed=1), L.LatticeNoise(2, seed=2), L.LatticeNoise(3, seed=3)
 V2 = L.LatticeNoise(2, 2, seed=4)
+NI = L.LatticeNoise(2, 3, seed=5, hash="integer")
 PTS2 = RNG.uniform(-4, 4, (5, 2))
 MASK = np.zeros((16, 16), bool)
 MASK[:, 8:] = True
@@ -368,7 +369,8 @@ TABLE = [
     # ------------------------------------------------------------- lattice
     Entry("LatticeNoise", _lattice_call, dict(dim_in=2, dim_out=1, seed=0),
           dict(dim_in="int", dim_out="int", seed="seed", kernel="choice", basis="choice", table_size="int",
-               period="int", frequency="real", phase="real", amplitude="real", alternation="choice"),
+               period="int", frequency="real", phase="real", amplitude="real", alternation="choice",
+               hash="choice"),
           _lattice_check),
     Entry("LatticeNoise.__call__", lambda points, **kw: N2(points, **kw), dict(points=PTS2),
           dict(points="array", dtype="dtype", workers="int"),
@@ -376,6 +378,13 @@ TABLE = [
     Entry("LatticeNoise.grid", lambda **kw: N2.grid(**kw), dict(shape=(4, 5), extent=[(0, 1), (0, 2)]),
           dict(shape="shape", extent="array", dtype="dtype", window="array"),
           lambda r, kw: (finite(r), np.testing.assert_array_less(np.abs(r), 1 + 1e-12))),
+    # the derivative paths (points, grid; the table and the integer hash)
+    Entry("LatticeNoise.gradient", lambda points, **kw: N2.gradient(points, **kw), dict(points=PTS2),
+          dict(points="array", workers="int")),
+    Entry("LatticeNoise(hash='integer').jacobian", lambda points, **kw: NI.jacobian(points, **kw),
+          dict(points=PTS2), dict(points="array", workers="int")),
+    Entry("LatticeNoise.jacobian_grid", lambda **kw: V2.jacobian_grid(**kw), dict(shape=(4, 5), extent=[(0, 1), (0, 2)]),
+          dict(shape="shape", extent="array", window="array"), shaped(lambda kw: None)),
     Entry("grid_coordinates", L.grid_coordinates, dict(shape=(4,), extent=[(0, 2)]),
           dict(shape="shape", extent="array")),
     Entry("get_kernel", L.get_kernel, dict(kernel="cubic"), dict(kernel="choice"),
