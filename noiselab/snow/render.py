@@ -98,7 +98,7 @@ def _check_params(shape, c, band, thickness, direction, pan, beta, exponent, amp
 
 def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, direction=(0.0, 1.0),
          pan=(0.0, 0.0), beta=1.5, exponent=1.0, amplitude="uniform", dtype=np.float32,
-         on_alias="raise", rescale=True, show_progress=False, workers=None):
+         on_alias="raise", rescale=True, show_progress=False, workers=None, chunks=None):
     """Falling-snow opacity ``alpha(t, y, x)`` in [0, 1] from the tent model (Langer & Zhang 2003).
 
     Energy sits on the thickened tent ``wt = -c*(d . w)/|w| - pan . w`` inside
@@ -156,6 +156,11 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
         shared among them. The output is bit-identical for any count.
         Default (None): scipy's default, one thread unless set with
         ``scipy.fft.set_workers`` (``noiselab snow`` uses every core).
+    chunks : int, tuple or "auto", optional
+        Return a lazy ``dask.array.Array`` in these ``(t, y, x)`` chunks,
+        computed by the same pruned FFT split into pencils, with the extremes
+        for the rescale found by a dask reduction (:mod:`noiselab.scale.spectral`;
+        needs ``noiselab[dask]``). Equal to the in-memory video to float rounding.
 
     Returns
     -------
@@ -182,6 +187,12 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
         shape, c, band, thickness, direction, pan, beta, exponent, amplitude, on_alias)
     nw = _workers(workers)
     dt = float_dtype(dtype)
+    if chunks is not None:  # lazy, on dask: noiselab.scale.spectral
+        from ..scale.spectral import chunked_snow
+
+        return chunked_snow((T, H, W), chunks, seed=seed, c=c, band=band, thickness=thickness, direction=direction,
+                            pan=pan, beta=beta, exponent=exponent, amplitude=amplitude, dtype=dt, on_alias=on_alias,
+                            rescale=rescale)
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1

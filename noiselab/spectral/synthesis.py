@@ -341,7 +341,7 @@ def _map_groups(fn, groups, nw):
     return list(_pool(min(nw, len(groups))).map(fn, groups))
 
 
-def _noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False):
+def _noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, check=True):
     """Everything :func:`_noise_spectrum` decides before it fills the block (no allocation of the block).
 
     Shared with the chunked path (:mod:`noiselab.scale.spectral`), which fills
@@ -374,8 +374,9 @@ def _noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="exp
     lead = [np.zeros(1)] * (2 - len(lead)) + lead
     q0, q1 = lead
     bshape = tuple(ix.size for ix in index) + (K,)
-    check_memory(int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * _CHUNK,
-                 f"spectral_noise{shape}")
+    if check:  # the in-memory path (the chunked one holds a chunk at a time)
+        check_memory(int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * _CHUNK,
+                     f"spectral_noise{shape}")
     wxsq = np.ascontiguousarray(wsq[-1][:K])
     # weight of a half-spectrum cell in the full spectrum's power, halved: 1 where it stands for two cells, 1/2
     # on the self-conjugate planes (sample power: 0 there, their power is added once they are Hermitian)
@@ -519,7 +520,7 @@ NORMALIZATIONS = ("expected", "sample")
 
 
 def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayleigh", dtype=np.float32,
-                   normalize="expected", dc=False, workers=None):
+                   normalize="expected", dc=False, workers=None, chunks=None):
     """Isotropic band-limited ``1/f**exponent`` noise in 1, 2 or 3 dimensions, zero mean and unit variance.
 
     Parameters
@@ -568,6 +569,11 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         count. Default (None): scipy's default, one thread unless set with
         ``scipy.fft.set_workers`` (the library does not take cores a caller
         did not give it; the command line uses every core).
+    chunks : int, tuple or "auto", optional
+        Return a lazy ``dask.array.Array`` in these chunks (dask's syntax, one
+        entry per axis), computed by a pencil-decomposed inverse FFT that never
+        holds the whole field (:mod:`noiselab.scale.spectral`; needs
+        ``noiselab[dask]``). Equal to the in-memory field to float rounding.
 
     Notes
     -----
@@ -604,6 +610,11 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         raise TypeError(f"dc must be True or False, got {dc!r}")
     nw = _workers(workers)
     dt = float_dtype(dtype)
+    if chunks is not None:  # lazy, on dask: noiselab.scale.spectral
+        from ..scale.spectral import chunked_spectral_noise
+
+        return chunked_spectral_noise(shape, chunks, exponent=exponent, band=band, seed=seed, amplitude=amplitude,
+                                      dtype=dt, normalize=normalize, dc=bool(dc))
     block, index = _noise_spectrum(shape, exponent, band, seed, amplitude, dt, normalize=normalize, dc=bool(dc),
                                    workers=nw)
     field = _pruned_irfftn(block, index, shape, workers=workers)
