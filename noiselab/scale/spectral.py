@@ -63,6 +63,11 @@ def _out_chunks(chunks, shape, dtype):
     return normalize_grid_chunks(chunks, shape, 1, dtype)
 
 
+def _slab_bytes(out_chunks, dt):
+    """Bytes of a transposed stage's chunk: twice the caller's largest output chunk, at least 1 MiB."""
+    return max(1 << 20, 2 * int(np.prod([max(c) for c in out_chunks])) * np.dtype(dt).itemsize)
+
+
 def _blocks(n, size):
     size = int(max(1, min(n, size)))
     return tuple([size] * (n // size) + ([n % size] if n % size else []))
@@ -85,6 +90,77 @@ def _graph(*arrays):
     for a in arrays:
         out.update(dict(a.__dask_graph__()))
     return out
+
+
+# ------------------------------------------------------------------ the transpose on disk (spill=)
+
+
+def _write_block(x, path, region):
+    import zarr
+
+    zarr.open_array(path, mode="r+")[tuple(slice(a, b) for a, b in region)] = x
+    return int(x.nbytes)
+
+
+def _written(sizes):
+    return int(sum(sizes))
+
+
+def _read_block(path, region, *after):
+    import zarr
+
+    return zarr.open_array(path, mode="r")[tuple(slice(a, b) for a, b in region)]
+
+
+def _regions(chunks, idx):
+    st = [_starts(c) for c in chunks]
+    return [[int(st[a][i]), int(st[a][i + 1])] for a, i in enumerate(idx)]
+
+
+def _spill_write(arr, new_chunks, spill, dsk):
+    """Tasks writing ``arr`` into a zarr array under ``spill`` chunked on both chunkings' grid; returns (path, done key)."""
+    import itertools
+    import os
+
+    import zarr
+
+    zch = tuple(int(min(max(a), max(b))) for a, b in zip(arr.chunks, new_chunks))
+    path = os.path.join(os.fspath(spill), f"{arr.name}.zarr")
+    zarr.create_array(path, shape=arr.shape, chunks=zch, dtype=arr.dtype, compressors=None, fill_value=0,
+                      overwrite=True)
+    dsk.update(_graph(arr))
+    w = f"spill-write-{arr.name}"
+    keys = []
+    for idx in itertools.product(*[range(len(c)) for c in arr.chunks]):
+        dsk[(w,) + idx] = (_write_block, (arr.name,) + idx, path, _regions(arr.chunks, idx))
+        keys.append((w,) + idx)
+    done = f"spill-done-{arr.name}"
+    dsk[done] = (_written, keys)
+    return path, done
+
+
+def _spill_read(path, done, chunks, dtype, name, dsk, after=()):
+    """Tasks reading the spilled array in ``chunks`` once ``done`` (and ``after``) are computed."""
+    import itertools
+
+    for idx in itertools.product(*[range(len(c)) for c in chunks]):
+        dsk[(name,) + idx] = (_read_block, path, _regions(chunks, idx), done) + tuple(after)
+    return name
+
+
+def _transpose(arr, new_chunks, spill, tok, tag):
+    """``arr`` in ``new_chunks``: dask's rechunk (``spill=None``) or through a zarr array on disk."""
+    if spill is None:
+        return arr.rechunk(new_chunks)
+    dsk = {}
+    path, done = _spill_write(arr, new_chunks, spill, dsk)
+    name = _spill_read(path, done, new_chunks, arr.dtype, f"spill-read-{tag}-{tok}", dsk)
+    return _array(dsk, name, new_chunks, arr.dtype)
+
+
+def _regular(chunks):
+    """Regular chunks with the same largest block (a spilled transpose reads whole zarr chunks)."""
+    return tuple(_blocks(sum(c), max(c)) for c in chunks)
 
 
 # ------------------------------------------------------------------ spectral noise
@@ -180,7 +256,7 @@ def _one_piece(shape, kw):
     return spectral_noise(shape, **kw)
 
 
-def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dtype, normalize, dc):
+def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dtype, normalize, dc, spill=None):
     """:func:`noiselab.spectral.spectral_noise` as a lazy dask array in ``chunks`` (see the module notes).
 
     Called by ``spectral_noise`` when ``chunks`` is given, after it validated
@@ -232,14 +308,15 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dt
     spec = _array(dsk, b_name, bchunks, p.cdt)
     # transpose 1: slabs of kx, leading axes whole
     full_lead = int(np.prod(shape[:-1]))
-    ckx = max(1, _TARGET // max(1, full_lead * item))
+    ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, full_lead * item))
     kx_blocks = _blocks(p.K, ckx)
-    spec = spec.rechunk(tuple((m,) for m in p.bshape[:-1]) + (kx_blocks,))
+    spec = _transpose(spec, tuple((m,) for m in p.bshape[:-1]) + (kx_blocks,), spill, tok, "spectrum")
     s1 = spec.map_blocks(_leading_passes, p.index, shape, chunks=tuple((m,) for m in shape[:-1]) + (kx_blocks,),
                          dtype=p.cdt, name=f"spectral-lead-{tok}")
     # transpose 2: the output's chunks along the leading axes, kx whole
-    s1 = s1.rechunk(out_chunks[:-1] + ((p.K,),))
-    out = s1.map_blocks(_last_pass, shape[-1], dt, chunks=out_chunks[:-1] + ((shape[-1],),), dtype=dt,
+    lead_chunks = out_chunks[:-1] if spill is None else _regular(out_chunks[:-1])
+    s1 = _transpose(s1, lead_chunks + ((p.K,),), spill, tok, "lead")
+    out = s1.map_blocks(_last_pass, shape[-1], dt, chunks=lead_chunks + ((shape[-1],),), dtype=dt,
                         name=f"spectral-x-{tok}")
     return out.rechunk(out_chunks)
 
@@ -331,7 +408,7 @@ def _snow_rescale(B, W, dt, beta, lohi):
 
 
 def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, beta, exponent, amplitude, dtype,
-                 on_alias, rescale):
+                 on_alias, rescale, spill=None):
     """:func:`noiselab.snow.snow` as a lazy dask array in ``chunks`` (see the module notes).
 
     Called by ``snow`` when ``chunks`` is given, after it validated the
@@ -362,34 +439,50 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     coef = draw_coefficients(cols.n_cells, as_generator(seed), amplitude, dt)  # as assemble() draws them
     coef *= cols.weight.astype(coef.real.dtype)
     plane_cols, plane_vals = _snow_planes(cols, coef, cdt)
-    ckx = max(1, _TARGET // max(1, T * H * cdt.itemsize))
+    ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, T * H * cdt.itemsize))
     kx_blocks, pieces = _snow_plan(cols, coef, plane_vals, plane_cols, T, H, K, ckx, dt, cdt)
     tok = uuid.uuid4().hex[:12]
-    s2_chunks = out_chunks[:2] + ((W,),)
+    ty = out_chunks[:2] if spill is None else _regular(out_chunks[:2])
+    s2_chunks = ty + ((W,),)
+    mm_chunks = tuple((1,) * len(c_) for c_ in ty) + ((2,),)
 
     def stage1(prefix, after=()):
         name = f"snow-{prefix}-ty-{tok}"
         dsk = {}
         for b, piece in enumerate(pieces):
             dsk[(name, 0, 0, b)] = (_snow_slab, piece, T, H, cdt) + tuple(after)
-        return _array(dsk, name, ((T,), (H,), kx_blocks), cdt).rechunk(out_chunks[:2] + ((K,),))
+        return _array(dsk, name, ((T,), (H,), kx_blocks), cdt)
 
+    import itertools
+
+    name = f"snow-alpha-{tok}"
+    lohi = f"snow-lohi-{tok}"
+    if spill is not None:
+        # the t- and y-passes once, spilled; the x-pass twice (extremes, then the rescale), read back chunk by chunk
+        dsk = {}
+        path, done = _spill_write(stage1("s"), s2_chunks[:2] + ((K,),), spill, dsk)
+        ra = _array(dsk, _spill_read(path, done, ty + ((K,),), cdt, f"snow-read-a-{tok}", dsk), ty + ((K,),), cdt)
+        if not rescale:
+            out = ra.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
+            return out.rechunk(out_chunks)
+        mm = ra.map_blocks(_snow_extremes, W, dt, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
+        dsk = _graph(mm)
+        dsk[lohi] = (_reduce_extremes, list(mm.__dask_keys__()))
+        rb = _spill_read(path, done, ty + ((K,),), cdt, f"snow-read-b-{tok}", dsk, after=(lohi,))
+        for i, j in itertools.product(range(len(ty[0])), range(len(ty[1]))):
+            dsk[(name, i, j, 0)] = (_snow_rescale, (rb, i, j, 0), W, dt, float(beta), lohi)
+        return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)
     if not rescale:
-        s1 = stage1("raw")
+        s1 = stage1("raw").rechunk(ty + ((K,),))
         out = s1.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
         return out.rechunk(out_chunks)
     # pass 1: each chunk's extremes only; pass 2 waits for them, recomputes, rescales chunk by chunk
-    a1 = stage1("a")
-    mm = a1.map_blocks(_snow_extremes, W, dt, chunks=tuple((1,) * len(c_) for c_ in out_chunks[:2]) + ((2,),),
-                       dtype=dt, name=f"snow-extremes-{tok}")
-    lohi = f"snow-lohi-{tok}"
+    a1 = stage1("a").rechunk(ty + ((K,),))
+    mm = a1.map_blocks(_snow_extremes, W, dt, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
     dsk = _graph(mm)
     dsk[lohi] = (_reduce_extremes, list(mm.__dask_keys__()))
-    b1 = stage1("b", after=(lohi,))
-    name = f"snow-alpha-{tok}"
-    import itertools
-
-    for i, j in itertools.product(range(len(out_chunks[0])), range(len(out_chunks[1]))):
+    b1 = stage1("b", after=(lohi,)).rechunk(ty + ((K,),))
+    for i, j in itertools.product(range(len(ty[0])), range(len(ty[1]))):
         dsk[(name, i, j, 0)] = (_snow_rescale, (b1.name, i, j, 0), W, dt, float(beta), lohi)
     dsk.update(_graph(b1))
     out = _array(dsk, name, s2_chunks, dt)

@@ -520,7 +520,7 @@ NORMALIZATIONS = ("expected", "sample")
 
 
 def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayleigh", dtype=np.float32,
-                   normalize="expected", dc=False, workers=None, chunks=None):
+                   normalize="expected", dc=False, workers=None, chunks=None, spill=None):
     """Isotropic band-limited ``1/f**exponent`` noise in 1, 2 or 3 dimensions, zero mean and unit variance.
 
     Parameters
@@ -574,6 +574,11 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         entry per axis), computed by a pencil-decomposed inverse FFT that never
         holds the whole field (:mod:`noiselab.scale.spectral`; needs
         ``noiselab[dask]``). Equal to the in-memory field to float rounding.
+    spill : path, optional
+        With ``chunks``: a directory (on storage every worker sees) for the
+        two transposes as zarr arrays, so no worker ever holds more than its
+        chunks (for fields bigger than the cluster's memory). The caller
+        removes it after computing. Default: dask's in-memory rechunk.
 
     Notes
     -----
@@ -614,7 +619,7 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         from ..scale.spectral import chunked_spectral_noise
 
         return chunked_spectral_noise(shape, chunks, exponent=exponent, band=band, seed=seed, amplitude=amplitude,
-                                      dtype=dt, normalize=normalize, dc=bool(dc))
+                                      dtype=dt, normalize=normalize, dc=bool(dc), spill=spill)
     block, index = _noise_spectrum(shape, exponent, band, seed, amplitude, dt, normalize=normalize, dc=bool(dc),
                                    workers=nw)
     field = _pruned_irfftn(block, index, shape, workers=workers)
