@@ -193,6 +193,8 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
         shape, c, band, thickness, direction, pan, beta, exponent, amplitude, on_alias)
     nw = _workers(workers)
     dt = float_dtype(dtype)
+    if spill is not None and chunks is None:
+        raise ValueError("spill= is the chunked path's scratch directory: pass chunks= too")
     if chunks is not None:  # lazy, on dask: noiselab.scale.spectral
         from ..scale.spectral import chunked_snow
 

@@ -615,6 +615,8 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         raise TypeError(f"dc must be True or False, got {dc!r}")
     nw = _workers(workers)
     dt = float_dtype(dtype)
+    if spill is not None and chunks is None:
+        raise ValueError("spill= is the chunked path's scratch directory: pass chunks= too")
     if chunks is not None:  # lazy, on dask: noiselab.scale.spectral
         from ..scale.spectral import chunked_spectral_noise
 
