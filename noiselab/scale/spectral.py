@@ -245,9 +245,18 @@ def _leading_passes(slab, index, shape):
     return B
 
 
+_CACHE = 1 << 18  # bytes of a pass's working block (the in-memory snow's 256 KiB)
+
+
 def _last_pass(B, n, dt):
-    out = scipy.fft.irfft(B, n=n, axis=-1, workers=1)
-    return out if out.dtype == dt else out.astype(dt)
+    """``irfft`` along the last axis into a new ``dt`` array, a slab of rows at a time (cache-sized, as in memory)."""
+    out = np.empty(B.shape[:-1] + (n,), dtype=dt)
+    Bf = B.reshape(-1, B.shape[-1])
+    of = out.reshape(-1, n)
+    rows = int(max(1, _CACHE // max(1, n * np.dtype(dt).itemsize)))
+    for r0 in range(0, Bf.shape[0], rows):
+        of[r0:r0 + rows] = scipy.fft.irfft(Bf[r0:r0 + rows], n=n, axis=1, workers=1)
+    return out
 
 
 def _one_piece(shape, kw):
@@ -383,9 +392,16 @@ def _snow_slab(piece, T, H, cdt, *after):
         C[:, piece["pcol"]] = piece["pval"]
     if T > 1:
         C = scipy.fft.ifft(C, axis=0, overwrite_x=True, workers=1)
-    B = np.zeros((T, H, piece["k"]), dtype=cdt)
-    B[:, piece["ky"], piece["kx"]] = C
-    return scipy.fft.ifft(B, axis=1, overwrite_x=True, workers=1)
+    from ..snow import _kernels
+
+    k = piece["k"]
+    B = np.empty((T, H, k), dtype=cdt)
+    tb = int(max(1, _CACHE // max(1, H * k * np.dtype(cdt).itemsize)))
+    for t0 in range(0, T, tb):  # a few frames at a time, in cache, as in memory
+        blk = B[t0:t0 + tb]
+        _kernels.scatter_columns(C, t0, piece["ky"], piece["kx"], blk)
+        blk[...] = scipy.fft.ifft(blk, axis=1, overwrite_x=True, workers=1)
+    return B
 
 
 def _snow_extremes(B, W, dt):
