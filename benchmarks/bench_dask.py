@@ -350,7 +350,10 @@ def snow_main(args):
          "| path | CPU (s) | ratio to in memory (median) | min | max |", "| --- | --- | --- | --- | --- |"]
     for k, c, r, lo, hi in ov:
         L.append(f"| {k} | {c:.3f} | {r:.2f}x | {lo:.2f}x | {hi:.2f}x |")
-    L += ["", "## S2. Peak memory per worker against the chunk", "",
+    L += ["", "The in-memory path's CPU time moves a lot between runs on this loaded machine (it page-faults its whole "
+          "output in; its median was 0.47 s in a run minutes before this one, against 0.91 s here), so the ratios "
+          "scatter (see min and max); the chunked paths allocate one chunk at a time.",
+          "", "## S2. Peak memory per worker against the chunk", "",
           f"A fresh 1-worker cluster per chunk writes `snow({mshape}, seed=3, chunks=C, spill=...)` "
           f"({whole:.0f} MiB of float32) to zarr; the worker's peak RSS growth (as in section 3).", "",
           "| chunk C | chunk (MiB) | worker peak growth (MiB) | growth / chunk | worker RSS before (MiB) |",
@@ -388,8 +391,8 @@ def snow_main(args):
           f"- memory per worker: the largest task, a t/y slab ({p['slab_mib']:.0f} MiB out, about 3x that while it runs) "
           f"or an x-pass chunk; never the {out_gib:.0f} GiB plate.", "",
           f"So the plate takes on the order of {max(work / 1024, (3 * spill_gib + out_gib) / 5, ntasks * 2.6e-3) + p['t_plan']:.0f} s "
-          "(the largest of the three, plus the client's serial plan), bound by the file system and the spill's many "
-          "small reads rather than by the FFTs. Not measured: the network, worker start-up, a real shared file "
+          "(the largest of the three, plus the client's serial plan), bound by the file system (the spill and the "
+          "output) rather than by the FFTs. Not measured: the network, worker start-up, a real shared file "
           "system (its per-file latency would weigh on the spill reads).", ""]
     md = Path(args.out)
     text = md.read_text() if md.exists() else ""
