@@ -61,9 +61,15 @@ def add_arguments(p):
     o.add_argument("--no-background", action="store_true", help="write the opacity alpha itself (grey)")
     o.add_argument("--intensity", type=float, default=250.0, help="snow intensity 0..255 (default 250)")
     o.add_argument("--output", "-o", default="out/snow.mp4",
-                   help="file .mp4, .gif or .npy, or a folder (no suffix) for PNG frames (default out/snow.mp4)")
+                   help="file .mp4, .gif, .npy or .zarr (one period of the opacity, on dask: see --chunks), "
+                        "or a folder (no suffix) for PNG frames (default out/snow.mp4)")
     o.add_argument("--fps", type=float, default=DEFAULT_FPS,
                    help="frames per second of an MP4 or GIF (default %(default)g)")
+    o.add_argument("--chunks", default=None,
+                   help="with .zarr output (the opacity, computed on dask): chunk shape TxHxW, e.g. 8x256x512 (default: auto)")
+    o.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="with .zarr output: dask scheduler, threads (default), processes, synchronous, "
+                        "or the address of a running dask.distributed scheduler, e.g. tcp://host:8786")
     pr = o.add_mutually_exclusive_group()
     pr.add_argument("--progress", dest="progress", action="store_true", default=None, help="always show progress bars")
     pr.add_argument("--quiet", dest="progress", action="store_false", help="never show progress bars")
@@ -118,9 +124,10 @@ def run(args) -> int:
     loops = (2 if args.loops is None else args.loops) if mp4 else 1
     if args.background and args.no_background:
         raise ValueError("--background and --no-background exclude each other")
-    if out.suffix.lower() not in ("", ".mp4", ".gif", ".npy"):
-        raise ValueError(f"--output must end in .mp4, .gif or .npy, or be a folder for PNG frames; got {out.name!r}")
-    prepare_output(out, directory=out.suffix == "")   # fail now, not after rendering
+    if out.suffix.lower() not in ("", ".mp4", ".gif", ".npy", ".zarr"):
+        raise ValueError(f"--output must end in .mp4, .gif, .npy or .zarr, or be a folder for PNG frames; "
+                         f"got {out.name!r}")
+    prepare_output(out, directory=out.suffix.lower() in ("", ".zarr"))   # fail now, not after rendering
     background = None
     if args.background:
         background = _load_background(args.background)
@@ -141,6 +148,10 @@ def run(args) -> int:
     if H < 1 or W < 1:
         raise ValueError(f"--width and --height must be >= 1, got {W} x {H}")
     T = args.frames
+    if Path(args.output).suffix.lower() == ".zarr" or args.chunks is not None or args.scheduler is not None:
+        from ..scale.commands import write_snow_zarr  # chunked on dask, streamed to zarr
+
+        return write_snow_zarr(args, (T, H, W), Path(args.output))
     n_out = T * loops
     if background is not None and is_video:
         n_out = background.shape[0]  # the snow loops over the whole background video

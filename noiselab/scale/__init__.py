@@ -14,6 +14,7 @@ active or named with ``scheduler=``. dask, distributed and zarr are the
 optional extra ``pip install noiselab[dask]``.
 
 Modules: :mod:`noiselab.scale.lattice` (chunked grids and fractal sums),
+:mod:`noiselab.scale.spectral` (chunked spectral noise and snow: pencil-decomposed inverse FFTs),
 :mod:`noiselab.scale.run` (computing on a chosen scheduler with progress).
 """
 from ._deps import require_dask

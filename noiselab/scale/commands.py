@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["write_noise_zarr"]
+__all__ = ["write_noise_zarr", "write_snow_zarr"]
 
 _DIMS = {1: ("x",), 2: ("y", "x"), 3: ("z", "y", "x")}
 
@@ -61,4 +61,59 @@ def write_noise_zarr(args, noise, grid, summer, dtype, path):
     print(f"noiselab noise: wrote {path} shape={field.shape} chunks={chunk_shape} ({field.npartitions} task{'s' if field.npartitions != 1 else ''}) "
           f"kernel={noise.kernel.name} basis={noise.basis} {args.kind} octaves used {used}/{args.octaves} "
           f"bound [{lo:.4f}, {hi:.4f}]")
+    return 0
+
+
+def write_snow_zarr(args, shape, path):
+    """``noiselab snow ... -o out.zarr [--chunks TxHxW] [--scheduler ...]``: one period of the opacity, out of core.
+
+    The snow is computed by :func:`noiselab.scale.spectral.chunked_snow` with
+    its transpose spilled to a temporary zarr array beside the output (removed
+    afterwards, also on failure), so no worker holds more than its chunks; the
+    store carries the command's parameters, the seed, the noiselab version and
+    the units, with dims ``(t, y, x)`` in frames and pixels.
+    """
+    import shutil
+    import tempfile
+
+    from ..io.zarr import write_zarr
+    from ..snow import snow
+
+    if path.suffix.lower() != ".zarr":
+        raise ValueError(f"--chunks and --scheduler need .zarr output, got {path.name!r}")
+    if args.tile is not None or args.background:
+        raise ValueError("--tile and --background are not used with .zarr output (it stores the opacity of one "
+                         "period); drop them")
+    chunks = _parse_chunks(args.chunks, 3)
+    band = None if args.band is None else tuple(args.band)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    spill = tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".spill.tmp", dir=path.parent)
+    try:
+        try:
+            alpha = snow(shape, seed=args.seed, c=args.c, band=band, thickness=args.thickness,
+                         direction=tuple(args.direction), pan=tuple(args.pan), beta=args.beta,
+                         exponent=args.exponent, amplitude=args.amplitude, dtype=args.dtype,
+                         on_alias=args.on_alias, chunks=chunks, spill=spill)
+        except ImportError as exc:
+            raise ValueError(str(exc)) from None
+        T, H, W = shape
+        params = {
+            "command": "noiselab snow", "shape": [T, H, W], "c": args.c,
+            "band": list(band) if band is not None else [W / 32, W / 4], "thickness": args.thickness,
+            "direction": list(args.direction), "pan": list(args.pan), "beta": args.beta,
+            "exponent": args.exponent, "amplitude": args.amplitude, "on_alias": args.on_alias, "dtype": args.dtype,
+        }
+        coords = {"t": np.arange(T, dtype=np.float64), "y": np.arange(H, dtype=np.float64),
+                  "x": np.arange(W, dtype=np.float64)}
+        try:
+            write_zarr(path, alpha, dims=("t", "y", "x"), coords=coords, params=params, seed=args.seed,
+                       units="opacity in [0, 1]; t in frames (one period, it loops), y and x in pixels",
+                       scheduler=args.scheduler, progress=args.progress)
+        except (ImportError, FileExistsError) as exc:
+            raise ValueError(str(exc)) from None
+    finally:
+        shutil.rmtree(spill, ignore_errors=True)
+    chunk_shape = tuple(max(c) for c in alpha.chunks)
+    print(f"noiselab snow: wrote {path} shape={alpha.shape} chunks={chunk_shape} opacity of one period "
+          f"({T} frames of {W} x {H} px), seed {args.seed}")
     return 0

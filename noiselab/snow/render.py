@@ -98,7 +98,7 @@ def _check_params(shape, c, band, thickness, direction, pan, beta, exponent, amp
 
 def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, direction=(0.0, 1.0),
          pan=(0.0, 0.0), beta=1.5, exponent=1.0, amplitude="uniform", dtype=np.float32,
-         on_alias="raise", rescale=True, show_progress=False, workers=None):
+         on_alias="raise", rescale=True, show_progress=False, workers=None, chunks=None, spill=None):
     """Falling-snow opacity ``alpha(t, y, x)`` in [0, 1] from the tent model (Langer & Zhang 2003).
 
     Energy sits on the thickened tent ``wt = -c*(d . w)/|w| - pan . w`` inside
@@ -156,6 +156,17 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
         shared among them. The output is bit-identical for any count.
         Default (None): scipy's default, one thread unless set with
         ``scipy.fft.set_workers`` (``noiselab snow`` uses every core).
+    chunks : int, tuple or "auto", optional
+        Return a lazy ``dask.array.Array`` in these ``(t, y, x)`` chunks,
+        computed by the same pruned FFT split into pencils, with the extremes
+        for the rescale found by a dask reduction (:mod:`noiselab.scale.spectral`;
+        needs ``noiselab[dask]``). Equal to the in-memory video to float rounding.
+    spill : path, optional
+        With ``chunks``: a directory (on storage every worker sees) for the
+        transposed t/y-pass output as a zarr array: the t- and y-passes then
+        run once and no worker holds more than its chunks (videos bigger than
+        the cluster's memory). The caller removes it after computing.
+        Default: dask's in-memory rechunk (the passes run twice).
 
     Returns
     -------
@@ -182,6 +193,14 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
         shape, c, band, thickness, direction, pan, beta, exponent, amplitude, on_alias)
     nw = _workers(workers)
     dt = float_dtype(dtype)
+    if spill is not None and chunks is None:
+        raise ValueError("spill= is the chunked path's scratch directory: pass chunks= too")
+    if chunks is not None:  # lazy, on dask: noiselab.scale.spectral
+        from ..scale.spectral import chunked_snow
+
+        return chunked_snow((T, H, W), chunks, seed=seed, c=c, band=band, thickness=thickness, direction=direction,
+                            pan=pan, beta=beta, exponent=exponent, amplitude=amplitude, dtype=dt, on_alias=on_alias,
+                            rescale=rescale, spill=spill)
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1

@@ -35,6 +35,7 @@ earlier scheme (``noiselab.snow`` uses it for its few cells).
 from __future__ import annotations
 
 import os
+from types import SimpleNamespace
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -340,21 +341,11 @@ def _map_groups(fn, groups, nw):
     return list(_pool(min(nw, len(groups))).map(fn, groups))
 
 
-def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, workers=1):
-    """The half spectrum of :func:`spectral_noise`, normalised, on the block of cells the band can reach.
+def _noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, check=True):
+    """Everything :func:`_noise_spectrum` decides before it fills the block (no allocation of the block).
 
-    Returns ``(block, index)``: ``block`` has shape ``(len(index[0]), ..., K)``
-    with ``index[i]`` the kept indices (increasing) of leading axis ``i`` and
-    ``K`` the kept kx columns ``0..K-1``; every cell outside the block is 0.
-    Before the scaling, the coefficients are the ones :func:`synthesize` draws
-    for the envelope ``annulus(lo, hi) * power_law(exponent)`` with the same
-    seed (the same cells, the same order, the same words), divided by the
-    power law's value at the band's loudest end. The block is then scaled so
-    that the field has unit variance: expected over the ensemble
-    (``normalize="expected"``: ``sum`` of the envelope squared, which needs no
-    random number) or of this realisation (``"sample"``: ``sum |S|**2``).
-    Row groups are filled on ``workers`` threads; each group's coefficients
-    are fixed by its position in the stream, so the bits do not depend on it.
+    Shared with the chunked path (:mod:`noiselab.scale.spectral`), which fills
+    the block's rows chunk by chunk from the same stream. Returns a namespace.
     """
     dt = float_dtype(dtype)
     cdt = _complex_dtype(dt)
@@ -383,8 +374,9 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     lead = [np.zeros(1)] * (2 - len(lead)) + lead
     q0, q1 = lead
     bshape = tuple(ix.size for ix in index) + (K,)
-    check_memory(int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * _CHUNK,
-                 f"spectral_noise{shape}")
+    if check:  # the in-memory path (the chunked one holds a chunk at a time)
+        check_memory(int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * _CHUNK,
+                     f"spectral_noise{shape}")
     wxsq = np.ascontiguousarray(wsq[-1][:K])
     # weight of a half-spectrum cell in the full spectrum's power, halved: 1 where it stands for two cells, 1/2
     # on the self-conjugate planes (sample power: 0 there, their power is added once they are Hermitian)
@@ -400,7 +392,6 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     q_lo = max(wmin2, (2 * np.pi * lo_e) ** 2)
     q_hi = min(float(sum(np.max(x) for x in wsq)), (2 * np.pi * hi_e) ** 2)
     inv_qref = 1.0 / (q_lo if exponent >= 0 else q_hi)
-    block = np.empty(bshape, dtype=cdt)
     if band is None and d == 3:
         # every cell but DC: fill whole (ky, kx) planes as single rows (|w|**2 = wt**2 + (wy**2 + wx**2)),
         # long loops instead of many short ones (measured 2x faster at 128**3); the first row starts after DC
@@ -427,9 +418,36 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
                          f"{' x '.join(map(str, shape))} grid (frequency steps are 1 cycle/frame along the last "
                          f"axis, {n}/length along the others); widen the band")
     rng = as_generator(seed)
-    mode = _MODES[amplitude]
+    return SimpleNamespace(shape=tuple(shape), dt=dt, cdt=cdt, n=n, index=index, K=K, bshape=bshape, q0=q0, q1=q1,
+                           wxsq=wxsq, kbeg=kbeg, kend=kend, counts=counts, R=R, Kr=Kr, weight=weight, sample=sample,
+                           exponent=float(exponent), qfloor=float(qfloor), inv_qref=float(inv_qref),
+                           key=_stream_key(rng), mode=_MODES[amplitude], dc=bool(dc), band=band, lo=lo)
+
+
+def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, workers=1):
+    """The half spectrum of :func:`spectral_noise`, normalised, on the block of cells the band can reach.
+
+    Returns ``(block, index)``: ``block`` has shape ``(len(index[0]), ..., K)``
+    with ``index[i]`` the kept indices (increasing) of leading axis ``i`` and
+    ``K`` the kept kx columns ``0..K-1``; every cell outside the block is 0.
+    Before the scaling, the coefficients are the ones :func:`synthesize` draws
+    for the envelope ``annulus(lo, hi) * power_law(exponent)`` with the same
+    seed (the same cells, the same order, the same words), divided by the
+    power law's value at the band's loudest end. The block is then scaled so
+    that the field has unit variance: expected over the ensemble
+    (``normalize="expected"``: ``sum`` of the envelope squared, which needs no
+    random number) or of this realisation (``"sample"``: ``sum |S|**2``).
+    Row groups are filled on ``workers`` threads; each group's coefficients
+    are fixed by its position in the stream, so the bits do not depend on it.
+    """
+    p = _noise_plan(shape, exponent, band, seed, amplitude, dtype, normalize=normalize, dc=dc)
+    dt, cdt, n, index, K, bshape = p.dt, p.cdt, p.n, p.index, p.K, p.bshape
+    q0, q1, wxsq, kbeg, kend, counts, R, Kr, weight, sample = (p.q0, p.q1, p.wxsq, p.kbeg, p.kend, p.counts, p.R,
+                                                               p.Kr, p.weight, p.sample)
+    qfloor, inv_qref = p.qfloor, p.inv_qref
+    block = np.empty(bshape, dtype=cdt)
+    mode, key = p.mode, p.key
     bf = block.reshape(-1).view(dt)  # real and imaginary parts, 2 Kr per row
-    key = _stream_key(rng)
     total = int(counts.sum())
     nw = _workers(workers) if total >= _MIN_PARALLEL else 1
     # the draws are made in the fill (no per-group scratch to keep in cache): about four groups per thread,
@@ -502,7 +520,7 @@ NORMALIZATIONS = ("expected", "sample")
 
 
 def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayleigh", dtype=np.float32,
-                   normalize="expected", dc=False, workers=None):
+                   normalize="expected", dc=False, workers=None, chunks=None, spill=None):
     """Isotropic band-limited ``1/f**exponent`` noise in 1, 2 or 3 dimensions, zero mean and unit variance.
 
     Parameters
@@ -551,6 +569,16 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         count. Default (None): scipy's default, one thread unless set with
         ``scipy.fft.set_workers`` (the library does not take cores a caller
         did not give it; the command line uses every core).
+    chunks : int, tuple or "auto", optional
+        Return a lazy ``dask.array.Array`` in these chunks (dask's syntax, one
+        entry per axis), computed by a pencil-decomposed inverse FFT that never
+        holds the whole field (:mod:`noiselab.scale.spectral`; needs
+        ``noiselab[dask]``). Equal to the in-memory field to float rounding.
+    spill : path, optional
+        With ``chunks``: a directory (on storage every worker sees) for the
+        two transposes as zarr arrays, so no worker ever holds more than its
+        chunks (for fields bigger than the cluster's memory). The caller
+        removes it after computing. Default: dask's in-memory rechunk.
 
     Notes
     -----
@@ -587,6 +615,13 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         raise TypeError(f"dc must be True or False, got {dc!r}")
     nw = _workers(workers)
     dt = float_dtype(dtype)
+    if spill is not None and chunks is None:
+        raise ValueError("spill= is the chunked path's scratch directory: pass chunks= too")
+    if chunks is not None:  # lazy, on dask: noiselab.scale.spectral
+        from ..scale.spectral import chunked_spectral_noise
+
+        return chunked_spectral_noise(shape, chunks, exponent=exponent, band=band, seed=seed, amplitude=amplitude,
+                                      dtype=dt, normalize=normalize, dc=bool(dc), spill=spill)
     block, index = _noise_spectrum(shape, exponent, band, seed, amplitude, dt, normalize=normalize, dc=bool(dc),
                                    workers=nw)
     field = _pruned_irfftn(block, index, shape, workers=workers)

@@ -1,0 +1,505 @@
+"""Chunked spectral noise and snow: lazy ``dask.array`` arrays from a pencil-decomposed inverse FFT.
+
+The inverse FFT is global, and ``dask.array.fft`` transforms only an axis
+that sits in one chunk, so it is done here the way distributed FFTs do it:
+separable 1-D ``scipy.fft`` passes with a rechunk (an all-to-all transpose)
+between them.
+
+Spectral noise (``spectral_noise(..., chunks=)``, 2-D and 3-D):
+
+1. the half spectrum's block (only the rows and kx columns the band can
+   reach, as in memory) is filled in slabs of its first axis; every row takes
+   its words of the counter-based stream at its own offset, so the values do
+   not depend on the chunking;
+2. transpose to slabs of kx; every leading axis in turn: the kept rows back at
+   their indices, ``ifft`` along that axis;
+3. transpose to the output's chunks along the leading axes with kx whole:
+   ``irfft`` along the last axis.
+
+The normalisation (``power``) and the self-conjugate planes (kx = 0 and
+Nyquist) need the whole spectrum: a first pass fills every slab and keeps only
+its row powers and its plane columns; one small task makes the planes
+Hermitian and computes the gain; the second pass fills the slabs again and
+feeds the FFT. The spectrum is never held whole. 1-D noise is one task (a
+single FFT axis cannot be split by separable passes).
+
+Snow (``snow(..., chunks=)``), the pruned FFT of :mod:`noiselab.snow.tent`
+kept:
+
+1. the tent's random coefficients (about 1 % of the video's cells) are drawn
+   on the client exactly as in memory; the columns are ordered by kx, so a
+   slab of kx holds a contiguous run of columns;
+2. per kx slab: the ``(T, columns)`` matrix, ``ifft`` along t on the tent's
+   columns only, the columns back at their ``(ky, kx)`` cells, ``ifft`` along y
+   on the slab's kx columns only (the band's kx columns; nothing past the
+   band's largest kx exists);
+3. transpose to ``(t, y)`` chunks with kx whole: ``irfft`` along x.
+
+The rescale to [0, 1] and ``alpha ** beta`` need the raw field's global
+minimum and maximum: the first pass of steps 2-3 returns only each chunk's
+extremes (a tree-free reduction over tiny arrays), and the second pass, which
+starts only after it (its first tasks depend on the extremes), recomputes
+steps 2-3 and rescales each chunk as it is made. No stage holds more than
+its own chunk; the price is the FFT twice (``benchmarks/bench_dask.md``).
+``rescale=False`` is one pass.
+"""
+from __future__ import annotations
+
+import uuid
+
+import numpy as np
+import scipy.fft
+
+from ._deps import require_dask
+
+__all__ = ["chunked_spectral_noise", "chunked_snow"]
+
+_TARGET = 16 << 20  # bytes of a stage's chunk when the caller's chunk does not fix it
+
+
+def _out_chunks(chunks, shape, dtype):
+    from .lattice import normalize_grid_chunks
+
+    return normalize_grid_chunks(chunks, shape, 1, dtype)
+
+
+def _slab_bytes(out_chunks, dt):
+    """Bytes of a transposed stage's chunk: twice the caller's largest output chunk, at least 1 MiB."""
+    return max(1 << 20, 2 * int(np.prod([max(c) for c in out_chunks])) * np.dtype(dt).itemsize)
+
+
+def _blocks(n, size):
+    size = int(max(1, min(n, size)))
+    return tuple([size] * (n // size) + ([n % size] if n % size else []))
+
+
+def _starts(blocks):
+    return np.concatenate([[0], np.cumsum(blocks)]).astype(np.int64)
+
+
+def _array(dsk, name, chunks, dtype, deps=()):
+    import dask.array as da
+    from dask.highlevelgraph import HighLevelGraph
+
+    graph = HighLevelGraph.from_collections(name, dsk, dependencies=list(deps))
+    return da.Array(graph, name, chunks, dtype=dtype)
+
+
+def _graph(*arrays):
+    out = {}
+    for a in arrays:
+        out.update(dict(a.__dask_graph__()))
+    return out
+
+
+# ------------------------------------------------------------------ the transpose on disk (spill=)
+
+
+def _write_block(x, path, region):
+    import zarr
+
+    zarr.open_array(path, mode="r+")[tuple(slice(a, b) for a, b in region)] = x
+    return int(x.nbytes)
+
+
+def _written(sizes):
+    return int(sum(sizes))
+
+
+def _read_block(path, region, *after):
+    import zarr
+
+    return zarr.open_array(path, mode="r")[tuple(slice(a, b) for a, b in region)]
+
+
+def _regions(chunks, idx):
+    st = [_starts(c) for c in chunks]
+    return [[int(st[a][i]), int(st[a][i + 1])] for a, i in enumerate(idx)]
+
+
+def _spill_write(arr, new_chunks, spill, dsk):
+    """Tasks writing ``arr`` into a zarr array under ``spill`` chunked on both chunkings' grid; returns (path, done key)."""
+    import itertools
+    import os
+
+    import zarr
+
+    zch = tuple(int(min(max(a), max(b))) for a, b in zip(arr.chunks, new_chunks))
+    path = os.path.join(os.fspath(spill), f"{arr.name}.zarr")
+    zarr.create_array(path, shape=arr.shape, chunks=zch, dtype=arr.dtype, compressors=None, fill_value=0,
+                      overwrite=True)
+    dsk.update(_graph(arr))
+    w = f"spill-write-{arr.name}"
+    keys = []
+    for idx in itertools.product(*[range(len(c)) for c in arr.chunks]):
+        dsk[(w,) + idx] = (_write_block, (arr.name,) + idx, path, _regions(arr.chunks, idx))
+        keys.append((w,) + idx)
+    done = f"spill-done-{arr.name}"
+    dsk[done] = (_written, keys)
+    return path, done
+
+
+def _spill_read(path, done, chunks, dtype, name, dsk, after=()):
+    """Tasks reading the spilled array in ``chunks`` once ``done`` (and ``after``) are computed."""
+    import itertools
+
+    for idx in itertools.product(*[range(len(c)) for c in chunks]):
+        dsk[(name,) + idx] = (_read_block, path, _regions(chunks, idx), done) + tuple(after)
+    return name
+
+
+def _transpose(arr, new_chunks, spill, tok, tag):
+    """``arr`` in ``new_chunks``: dask's rechunk (``spill=None``) or through a zarr array on disk."""
+    if spill is None:
+        return arr.rechunk(new_chunks)
+    dsk = {}
+    path, done = _spill_write(arr, new_chunks, spill, dsk)
+    name = _spill_read(path, done, new_chunks, arr.dtype, f"spill-read-{tag}-{tok}", dsk)
+    return _array(dsk, name, new_chunks, arr.dtype)
+
+
+def _regular(chunks):
+    """Regular chunks with the same largest block (a spilled transpose reads whole zarr chunks)."""
+    return tuple(_blocks(sum(c), max(c)) for c in chunks)
+
+
+# ------------------------------------------------------------------ spectral noise
+
+
+def _fill_rows(p, i0, i1, rpi):
+    """The block's slab ``i0:i1`` along its first axis, unscaled (rows ``i0*rpi .. i1*rpi``), and its row powers."""
+    from ..spectral import _kernels
+
+    r0, r1 = i0 * rpi, i1 * rpi
+    slab = np.empty((i1 - i0,) + tuple(p.bshape[1:]), dtype=p.cdt)
+    bf = slab.reshape(-1).view(p.dt)
+    start = int(p.counts[:r0].sum())
+    q0, q1 = p.q0, p.q1
+    if len(p.shape) == 2:
+        q1 = q1[i0:i1]   # 2-D: q0 is one zero, rows are the first axis itself
+    else:
+        q0 = q0[i0:i1]   # 3-D: rpi rows per index of the first axis
+    rowpow = np.zeros(r1 - r0)
+    scratch = np.empty(p.Kr, dtype=p.dt)
+    _kernels.fill_power_law(bf, p.Kr, q0, q1, p.wxsq, p.kbeg[r0:r1], p.kend[r0:r1], 0, r1 - r0, p.key, start,
+                            p.mode, p.exponent, p.qfloor, p.inv_qref, p.weight, p.sample, rowpow, scratch)
+    return slab, rowpow
+
+
+def _sc_cols(p):
+    from ..spectral.synthesis import _self_conjugate_columns
+
+    return [j for j in _self_conjugate_columns(p.n) if j < p.K]
+
+
+def _pass_a(p, i0, i1, rpi):
+    slab, rowpow = _fill_rows(p, i0, i1, rpi)
+    return rowpow, [slab[..., j].copy() for j in _sc_cols(p)]
+
+
+def _gain(p, parts):
+    """The Hermitian planes and the gain ``g``, from every slab's row powers and plane columns (as in memory)."""
+    from ..spectral import _kernels
+
+    power = 2.0 * float(np.sum(np.concatenate([r for r, _ in parts])))
+    maps = [np.searchsorted(ix, (-ix) % m) for ix, m in zip(p.index, p.shape[:-1])]
+    maps = [np.zeros(1, dtype=np.int64)] * (2 - len(maps)) + maps
+    planes = []
+    for k, _ in enumerate(_sc_cols(p)):
+        plane = np.ascontiguousarray(np.concatenate([pl[k] for _, pl in parts], axis=0))
+        pw = _kernels.hermitian_symmetric_plane(plane.reshape(maps[0].size, maps[1].size), maps[0], maps[1])
+        if p.sample:
+            power += pw
+        planes.append(plane)
+    if p.sample and p.dc:
+        power -= float(np.abs(planes[0].reshape(-1)[0])) ** 2
+    if not power > 0:
+        raise ValueError(f"the band carries no energy to normalise (band={p.band!r}, exponent={p.exponent:g}); "
+                         f"widen the band")
+    return p.dt.type(np.prod(p.shape, dtype=np.float64) / np.sqrt(power)), planes
+
+
+def _pass_b(p, i0, i1, rpi, gp):
+    g, planes = gp
+    slab, _ = _fill_rows(p, i0, i1, rpi)
+    for k, j in enumerate(_sc_cols(p)):
+        slab[..., j] = planes[k][i0:i1]
+    slab *= g
+    return slab
+
+
+def _leading_passes(slab, index, shape):
+    """``ifft`` along every leading axis of a kx slab, the kept rows put back at their indices first."""
+    B = slab
+    for ax in range(len(shape) - 1):
+        n, ix = shape[ax], index[ax]
+        if ix.size < n:
+            full = list(B.shape)
+            full[ax] = n
+            F = np.zeros(full, dtype=B.dtype)
+            sl = [slice(None)] * B.ndim
+            sl[ax] = ix
+            F[tuple(sl)] = B
+            B = F
+        B = scipy.fft.ifft(B, axis=ax, overwrite_x=B is not slab, workers=1)
+    return B
+
+
+_CACHE = 1 << 18  # bytes of a pass's working block (the in-memory snow's 256 KiB)
+
+
+def _last_pass(B, n, dt):
+    """``irfft`` along the last axis into a new ``dt`` array, a slab of rows at a time (cache-sized, as in memory)."""
+    out = np.empty(B.shape[:-1] + (n,), dtype=dt)
+    Bf = B.reshape(-1, B.shape[-1])
+    of = out.reshape(-1, n)
+    rows = int(max(1, _CACHE // max(1, n * np.dtype(dt).itemsize)))
+    for r0 in range(0, Bf.shape[0], rows):
+        of[r0:r0 + rows] = scipy.fft.irfft(Bf[r0:r0 + rows], n=n, axis=1, workers=1)
+    return out
+
+
+def _one_piece(shape, kw):
+    from ..spectral.synthesis import spectral_noise
+
+    return spectral_noise(shape, **kw)
+
+
+def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dtype, normalize, dc, spill=None):
+    """:func:`noiselab.spectral.spectral_noise` as a lazy dask array in ``chunks`` (see the module notes).
+
+    Called by ``spectral_noise`` when ``chunks`` is given, after it validated
+    the arguments. Equal to the in-memory field to float rounding.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from noiselab.spectral import spectral_noise
+    >>> lazy = spectral_noise((40, 36), band=(2, 12), seed=3, chunks=(16, 20))
+    >>> lazy.chunks
+    ((16, 16, 8), (20, 16))
+    >>> ref = spectral_noise((40, 36), band=(2, 12), seed=3)
+    >>> float(np.max(np.abs(lazy.compute() - ref))) < 1e-5
+    True
+    """
+    require_dask()
+    import dask.array as da
+    from dask import delayed
+
+    from ..spectral.synthesis import _noise_plan
+    from .._validate import float_dtype
+
+    shape = tuple(int(s) for s in shape)
+    dt = float_dtype(dtype)
+    out_chunks = _out_chunks(chunks, shape, dt)
+    if len(shape) == 1:  # one FFT axis: one task
+        kw = dict(exponent=exponent, band=band, seed=seed, amplitude=amplitude, dtype=dt, normalize=normalize, dc=dc)
+        x = da.from_delayed(delayed(_one_piece, pure=True)(shape, kw), shape, dtype=dt)
+        return x.rechunk(out_chunks)
+    p = _noise_plan(shape, exponent, band, seed, amplitude, dt, normalize=normalize, dc=dc, check=False)
+    tok = uuid.uuid4().hex[:12]  # a fresh graph per call (the plan holds arrays; no reliable cheap token)
+    b0 = p.bshape[0]
+    rpi = p.R // b0
+    rest = int(np.prod(p.bshape[1:]))
+    item = p.cdt.itemsize
+    slab_rows = _blocks(b0, max(1, _TARGET // max(1, rest * item)))
+    st = _starts(slab_rows)
+    pkey = f"spectral-plan-{tok}"
+    a_name, g_name, b_name = f"spectral-a-{tok}", f"spectral-gain-{tok}", f"spectral-spectrum-{tok}"
+    dsk = {pkey: p}
+    for i in range(len(slab_rows)):
+        dsk[(a_name, i)] = (_pass_a, pkey, int(st[i]), int(st[i + 1]), rpi)
+    dsk[g_name] = (_gain, pkey, [(a_name, i) for i in range(len(slab_rows))])
+    extra = (0,) * (len(p.bshape) - 1)
+    for i in range(len(slab_rows)):
+        dsk[(b_name, i) + extra] = (_pass_b, pkey, int(st[i]), int(st[i + 1]), rpi, g_name)
+    bchunks = (slab_rows,) + tuple((m,) for m in p.bshape[1:])
+    spec = _array(dsk, b_name, bchunks, p.cdt)
+    # transpose 1: slabs of kx, leading axes whole
+    full_lead = int(np.prod(shape[:-1]))
+    ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, full_lead * item))
+    kx_blocks = _blocks(p.K, ckx)
+    spec = _transpose(spec, tuple((m,) for m in p.bshape[:-1]) + (kx_blocks,), spill, tok, "spectrum")
+    s1 = spec.map_blocks(_leading_passes, p.index, shape, chunks=tuple((m,) for m in shape[:-1]) + (kx_blocks,),
+                         dtype=p.cdt, name=f"spectral-lead-{tok}")
+    # transpose 2: the output's chunks along the leading axes, kx whole
+    lead_chunks = out_chunks[:-1] if spill is None else _regular(out_chunks[:-1])
+    s1 = _transpose(s1, lead_chunks + ((p.K,),), spill, tok, "lead")
+    out = s1.map_blocks(_last_pass, shape[-1], dt, chunks=lead_chunks + ((shape[-1],),), dtype=dt,
+                        name=f"spectral-x-{tok}")
+    return out.rechunk(out_chunks)
+
+
+# ------------------------------------------------------------------ snow
+
+
+def _snow_plan(cols, coef, C_planes, plane_cols, T, H, K, ckx, dt, cdt):
+    """Per kx slab: its columns (local), its entries (local column, bin, coefficient) and plane overrides."""
+    order = np.lexsort((np.arange(cols.ky.size), cols.kx))  # kx-major, then the in-memory order
+    kx_sorted = cols.kx[order]
+    rank = np.empty_like(order)
+    rank[order] = np.arange(order.size)
+    ent_rank = rank[cols.entry_col]
+    eorder = np.argsort(ent_rank, kind="stable")
+    ent_rank_sorted = ent_rank[eorder]
+    kx_blocks = _blocks(K, ckx)
+    kst = _starts(kx_blocks)
+    pieces = []
+    plane_rank = rank[plane_cols] if plane_cols.size else plane_cols
+    for b in range(len(kx_blocks)):
+        k0, k1 = int(kst[b]), int(kst[b + 1])
+        a, z = np.searchsorted(kx_sorted, [k0, k1])
+        e0, e1 = np.searchsorted(ent_rank_sorted, [a, z])
+        ent = eorder[e0:e1]
+        pm = (plane_rank >= a) & (plane_rank < z)
+        pieces.append(dict(
+            ky=cols.ky[order[a:z]].astype(np.int64), kx=(kx_sorted[a:z] - k0).astype(np.int64), k=k1 - k0,
+            lcol=(ent_rank[ent] - a).astype(np.int64), bins=cols.entry_bin[ent].astype(np.int64), coef=coef[ent],
+            pcol=(plane_rank[pm] - a).astype(np.int64), pval=np.ascontiguousarray(C_planes[:, pm]),
+        ))
+    return kx_blocks, pieces
+
+
+def _snow_planes(cols, coef, cdt):
+    """The tent's columns on the self-conjugate planes after :func:`assemble`'s Hermitian step: (columns, (T, m) values)."""
+    from ..spectral.synthesis import hermitian_plane
+
+    T, H, W = cols.shape
+    planes = [0] + ([W // 2] if W % 2 == 0 and W > 1 else [])
+    out_cols, out_vals = [], []
+    for j in planes:
+        pc = np.flatnonzero(cols.kx == j)
+        if pc.size == 0:
+            continue
+        inp = np.isin(cols.entry_col, pc)
+        P = np.zeros((T, H), dtype=cdt)
+        sup = np.zeros((T, H), dtype=bool)
+        P[cols.entry_bin[inp], cols.ky[cols.entry_col[inp]]] = coef[inp]
+        sup[cols.entry_bin[inp], cols.ky[cols.entry_col[inp]]] = True
+        P = hermitian_plane(P, sup)
+        out_cols.append(pc)
+        out_vals.append(P[:, cols.ky[pc]])
+    if not out_cols:
+        return np.zeros(0, dtype=np.int64), np.zeros((T, 0), dtype=cdt)
+    return np.concatenate(out_cols), np.concatenate(out_vals, axis=1)
+
+
+def _snow_slab(piece, T, H, cdt, *after):
+    """t-pass on the slab's tent columns, the columns at their (ky, kx) cells, y-pass: ``(T, H, k)`` complex."""
+    C = np.zeros((T, piece["ky"].size), dtype=cdt)
+    C[piece["bins"], piece["lcol"]] = piece["coef"]
+    if piece["pcol"].size:
+        C[:, piece["pcol"]] = piece["pval"]
+    if T > 1:
+        C = scipy.fft.ifft(C, axis=0, overwrite_x=True, workers=1)
+    from ..snow import _kernels
+
+    k = piece["k"]
+    B = np.empty((T, H, k), dtype=cdt)
+    tb = int(max(1, _CACHE // max(1, H * k * np.dtype(cdt).itemsize)))
+    for t0 in range(0, T, tb):  # a few frames at a time, in cache, as in memory
+        blk = B[t0:t0 + tb]
+        _kernels.scatter_columns(C, t0, piece["ky"], piece["kx"], blk)
+        blk[...] = scipy.fft.ifft(blk, axis=1, overwrite_x=True, workers=1)
+    return B
+
+
+def _snow_extremes(B, W, dt):
+    x = _last_pass(B, W, dt)
+    return np.array([[[x.min(), x.max()]]], dtype=dt)
+
+
+def _reduce_extremes(parts):
+    lo = min(float(np.asarray(q)[..., 0].min()) for q in parts)
+    hi = max(float(np.asarray(q)[..., 1].max()) for q in parts)
+    return lo, hi
+
+
+def _snow_rescale(B, W, dt, beta, lohi):
+    from ..snow.render import rescale_opacity
+
+    x = _last_pass(B, W, dt)
+    lo, hi = lohi
+    return rescale_opacity(x, beta, lo=lo, hi=hi, workers=1)
+
+
+def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, beta, exponent, amplitude, dtype,
+                 on_alias, rescale, spill=None):
+    """:func:`noiselab.snow.snow` as a lazy dask array in ``chunks`` (see the module notes).
+
+    Called by ``snow`` when ``chunks`` is given, after it validated the
+    arguments. Equal to the in-memory video to float rounding.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from noiselab.snow import snow
+    >>> lazy = snow((8, 48, 64), seed=1, chunks=(3, 20, 64))
+    >>> lazy.chunks
+    ((3, 3, 2), (20, 20, 8), (64,))
+    >>> float(np.max(np.abs(lazy.compute() - snow((8, 48, 64), seed=1)))) < 1e-6
+    True
+    """
+    require_dask()
+    from ..snow.tent import tent_columns
+    from ..spectral.synthesis import _complex_dtype, draw_coefficients
+    from .._validate import as_generator, float_dtype
+
+    T, H, W = shape
+    dt = float_dtype(dtype)
+    cdt = _complex_dtype(dt)
+    out_chunks = _out_chunks(chunks, (T, H, W), dt)
+    cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
+                        exponent=exponent, on_alias=on_alias)
+    K = int(cols.kx.max()) + 1
+    coef = draw_coefficients(cols.n_cells, as_generator(seed), amplitude, dt)  # as assemble() draws them
+    coef *= cols.weight.astype(coef.real.dtype)
+    plane_cols, plane_vals = _snow_planes(cols, coef, cdt)
+    ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, T * H * cdt.itemsize))
+    kx_blocks, pieces = _snow_plan(cols, coef, plane_vals, plane_cols, T, H, K, ckx, dt, cdt)
+    tok = uuid.uuid4().hex[:12]
+    ty = out_chunks[:2] if spill is None else _regular(out_chunks[:2])
+    s2_chunks = ty + ((W,),)
+    mm_chunks = tuple((1,) * len(c_) for c_ in ty) + ((2,),)
+
+    def stage1(prefix, after=()):
+        name = f"snow-{prefix}-ty-{tok}"
+        dsk = {}
+        for b, piece in enumerate(pieces):
+            dsk[(name, 0, 0, b)] = (_snow_slab, piece, T, H, cdt) + tuple(after)
+        return _array(dsk, name, ((T,), (H,), kx_blocks), cdt)
+
+    import itertools
+
+    name = f"snow-alpha-{tok}"
+    lohi = f"snow-lohi-{tok}"
+    if spill is not None:
+        # the t- and y-passes once, spilled; the x-pass twice (extremes, then the rescale), read back chunk by chunk
+        dsk = {}
+        path, done = _spill_write(stage1("s"), s2_chunks[:2] + ((K,),), spill, dsk)
+        ra = _array(dsk, _spill_read(path, done, ty + ((K,),), cdt, f"snow-read-a-{tok}", dsk), ty + ((K,),), cdt)
+        if not rescale:
+            out = ra.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
+            return out.rechunk(out_chunks)
+        mm = ra.map_blocks(_snow_extremes, W, dt, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
+        dsk = _graph(mm)
+        dsk[lohi] = (_reduce_extremes, list(mm.__dask_keys__()))
+        rb = _spill_read(path, done, ty + ((K,),), cdt, f"snow-read-b-{tok}", dsk, after=(lohi,))
+        for i, j in itertools.product(range(len(ty[0])), range(len(ty[1]))):
+            dsk[(name, i, j, 0)] = (_snow_rescale, (rb, i, j, 0), W, dt, float(beta), lohi)
+        return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)
+    if not rescale:
+        s1 = stage1("raw").rechunk(ty + ((K,),))
+        out = s1.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
+        return out.rechunk(out_chunks)
+    # pass 1: each chunk's extremes only; pass 2 waits for them, recomputes, rescales chunk by chunk
+    a1 = stage1("a").rechunk(ty + ((K,),))
+    mm = a1.map_blocks(_snow_extremes, W, dt, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
+    dsk = _graph(mm)
+    dsk[lohi] = (_reduce_extremes, list(mm.__dask_keys__()))
+    b1 = stage1("b", after=(lohi,)).rechunk(ty + ((K,),))
+    for i, j in itertools.product(range(len(ty[0])), range(len(ty[1]))):
+        dsk[(name, i, j, 0)] = (_snow_rescale, (b1.name, i, j, 0), W, dt, float(beta), lohi)
+    dsk.update(_graph(b1))
+    out = _array(dsk, name, s2_chunks, dt)
+    return out.rechunk(out_chunks)
