@@ -460,3 +460,66 @@ def test_envelope_error_depends_on_the_target_shape_not_its_scale():
         assert e.outside == pytest.approx(base.outside) and e.rms_db == pytest.approx(base.rms_db)
         assert e.gain_db == pytest.approx(base.gain_db - 10 * np.log10(scale))
         np.testing.assert_allclose(e.target_level, base.target_level * scale, rtol=1e-9)
+
+
+# ------------------------------------ the spectral engine's building blocks (issue 11, the last PENDING lines)
+def test_synthesize_envelope_a_str_is_a_type_error_naming_envelope():
+    with pytest.raises(TypeError, match="envelope must be a callable or a real amplitude array"):
+        nl.spectral.synthesize((8, 8), "annulus", seed=0)
+
+
+def test_synthesize_envelope_of_the_wrong_arity_is_a_type_error_naming_envelope():
+    with pytest.raises(TypeError, match="envelope must be a callable taking 2 frequency arrays"):
+        nl.spectral.synthesize((8, 8), lambda w: w, seed=0)
+
+
+def test_synthesize_envelope_returning_the_wrong_shape_is_a_value_error_naming_envelope():
+    with pytest.raises(ValueError, match=r"envelope\(\*w\) must return .* half spectrum \(8, 5\).* got shape \(3,\)"):
+        nl.spectral.synthesize((8, 8), lambda wy, wx: np.ones(3), seed=0)
+    # a constant (a scalar broadcast to the half spectrum) is a valid envelope
+    assert np.isfinite(nl.spectral.synthesize((8, 8), 1.0, seed=0)).all()
+
+
+def test_draw_coefficients_n_negative_or_huge():
+    with pytest.raises(ValueError, match=r"n must be an int in \[0, inf\]"):
+        nl.spectral.draw_coefficients(-1, np.random.default_rng(0))
+    with address_space(3):
+        with pytest.raises(MemoryError, match=r"draw_coefficients\(n=2147483648\) needs about 64 GiB"):
+            nl.spectral.draw_coefficients(2**31, np.random.default_rng(0))
+    assert nl.spectral.draw_coefficients(0, np.random.default_rng(0)).shape == (0,)
+
+
+def test_draw_coefficients_takes_an_int_seed_as_rng():
+    a = nl.spectral.draw_coefficients(8, 5)
+    np.testing.assert_array_equal(a, nl.spectral.draw_coefficients(8, np.random.default_rng(5)))
+    with pytest.raises(TypeError, match="rng must be a numpy.random.Generator or a non-negative int seed"):
+        nl.spectral.draw_coefficients(8, "x")
+    with pytest.raises(ValueError, match="rng must be"):
+        nl.spectral.draw_coefficients(8, -1)
+
+
+def test_draw_coefficients_dtype_is_float32_or_float64():
+    with pytest.raises(TypeError, match="dtype must be float32 or float64"):
+        nl.spectral.draw_coefficients(8, 0, dtype="nope")
+    assert nl.spectral.draw_coefficients(8, 0, dtype=np.float64).dtype == np.complex128
+
+
+def test_hermitian_plane_refuses_non_finite_and_non_array_planes():
+    with pytest.raises(ValueError, match="plane must be finite"):
+        nl.spectral.hermitian_plane(np.array([1.0, np.nan, 2.0]))
+    with pytest.raises(ValueError, match="plane must be finite"):
+        nl.spectral.hermitian_plane(np.array([1.0, 2.0, np.inf + 0j]))
+    for bad in ("abc", None, [[1.0, 2.0], [3.0]]):
+        with pytest.raises(TypeError, match="plane must be a"):
+            nl.spectral.hermitian_plane(bad)
+
+
+def test_hermitian_plane_support_must_be_a_bool_array_of_the_planes_shape():
+    plane = np.array([1 + 1j, 2 + 0j, 0j, 3j])
+    with pytest.raises(TypeError, match="support must be a"):
+        nl.spectral.hermitian_plane(plane, "abc")
+    with pytest.raises(TypeError, match="support must be a bool array"):
+        nl.spectral.hermitian_plane(plane, np.ones(4))
+    with pytest.raises(ValueError, match=r"support must have the plane's shape \(4,\)"):
+        nl.spectral.hermitian_plane(plane, np.ones(3, bool))
+    np.testing.assert_array_equal(nl.spectral.hermitian_plane(plane, plane != 0), nl.spectral.hermitian_plane(plane))

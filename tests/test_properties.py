@@ -613,16 +613,7 @@ TABLE += [
 ]
 
 # Parameters not fuzzed yet, and why: each is a bug to fix in that code, then its line here removed.
-_SYN = "spectral/synthesis.py (issue 17, merged 23 Nov 01:12 UTC) does not validate it yet: "
-PENDING = {
-    ("synthesize", "envelope"): _SYN + "a str is numpy's 'could not convert'; a callable of the wrong arity raises "
-                                "its own TypeError; a wrongly shaped result numpy's broadcast error",
-    ("draw_coefficients", "n"): _SYN + "negative or huge n is numpy's 'negative dimensions'/'maximum dimension'; "
-                                "n=2**31 allocates 16 GiB before any check_memory",
-    ("draw_coefficients", "rng"): _SYN + "an int/str rng is an AttributeError (as_generator would take a seed)",
-    ("draw_coefficients", "dtype"): _SYN + "dtype='nope' is numpy's 'data type not understood' (float_dtype)",
-    ("hermitian_plane", "plane"): _SYN + "NaN/inf pass through to the output; str/None/ragged are numpy's errors",
-    ("hermitian_plane", "support"): _SYN + "a non-array is an AttributeError, a non-bool array numpy's ufunc error",
+PENDING: dict = {
 }
 
 # Public callables without an entry, and why (each is still validated: these only draw or move files).

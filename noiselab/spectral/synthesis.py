@@ -34,6 +34,7 @@ earlier scheme (``noiselab.snow`` uses it for its few cells).
 """
 from __future__ import annotations
 
+import inspect
 import os
 from types import SimpleNamespace
 from concurrent.futures import ThreadPoolExecutor
@@ -41,7 +42,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import scipy.fft
 
-from .._validate import as_generator, check_memory, check_real, check_shape, float_dtype
+from .._validate import _asarray, as_generator, check_int, check_memory, check_real, check_shape, float_dtype
 from . import _kernels
 from .envelopes import annulus
 from .frequencies import frequency_vectors, half_spectrum_shape
@@ -63,6 +64,17 @@ def draw_coefficients(n, rng, amplitude="uniform", dtype=np.float32) -> np.ndarr
     The draws happen in one fixed order (all amplitudes, then all phases), so
     the same generator state always gives the same values.
 
+    Parameters
+    ----------
+    n : int
+        How many coefficients, ``n >= 0``.
+    rng : numpy.random.Generator or int
+        The generator drawn from (advanced by the draws), or a non-negative
+        int seed (a fresh ``default_rng(seed)``: the same seed, the same values).
+    amplitude : {"uniform", "rayleigh", "fixed"}
+    dtype : float32 or float64
+        Precision of the parts: complex64 or complex128 out.
+
     Examples
     --------
     >>> import numpy as np
@@ -70,9 +82,18 @@ def draw_coefficients(n, rng, amplitude="uniform", dtype=np.float32) -> np.ndarr
     >>> z.dtype, round(float(np.mean(np.abs(z) ** 2)), 2)
     (dtype('complex64'), 1.0)
     """
+    n = check_int("n", n, lo=0)
     if amplitude not in AMPLITUDES:
         raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
-    fdt = np.dtype(dtype)
+    fdt = float_dtype(dtype)
+    cdt = _complex_dtype(fdt)
+    if rng is None or isinstance(rng, (bool, np.bool_)) or not isinstance(rng, (np.random.Generator, int, np.integer)):
+        raise TypeError(f"rng must be a numpy.random.Generator or a non-negative int seed, got {type(rng).__name__}")
+    if not isinstance(rng, np.random.Generator) and rng < 0:
+        raise ValueError(f"rng must be a numpy.random.Generator or a non-negative int seed, got {rng}")
+    # peak: the float64 amplitudes and phases, one float64 temporary (cos or sin), and the output
+    check_memory(n * (3 * 8 + cdt.itemsize), f"draw_coefficients(n={n})")
+    rng = as_generator(rng)
     if amplitude == "uniform":
         a = rng.random(n, dtype=np.float64) * np.sqrt(3.0)
     elif amplitude == "rayleigh":
@@ -80,7 +101,7 @@ def draw_coefficients(n, rng, amplitude="uniform", dtype=np.float32) -> np.ndarr
     else:
         a = np.ones(n)
     phi = rng.random(n, dtype=np.float64) * (2 * np.pi)
-    out = np.empty(n, dtype=_complex_dtype(fdt))
+    out = np.empty(n, dtype=cdt)
     out.real = a * np.cos(phi)
     out.imag = a * np.sin(phi)
     return out
@@ -119,12 +140,27 @@ def hermitian_plane(plane, support=None):
     >>> hermitian_plane(np.array([1 + 1j, 2 + 0j, 0j, 3j]))  # k=1 and k=3 are a mirror pair
     array([1.41421356+0.j, 2.        +0.j, 0.        +0.j, 2.        -0.j])
     """
-    plane = np.asarray(plane)
-    if plane.ndim == 0:
-        v = plane[()]
-        return np.asarray(abs(v) * (1.0 if v.real >= 0 else -1.0), dtype=plane.dtype)
+    if plane is None or isinstance(plane, (str, bytes, dict, set, frozenset)):
+        raise TypeError(f"plane must be a numeric (complex or real) array, got {type(plane).__name__}")
+    plane = _asarray("plane", plane)
+    if plane.dtype.kind not in "biufc":
+        raise TypeError(f"plane must be a numeric (complex or real) array, got dtype {plane.dtype}")
+    if plane.dtype.kind in "biu":
+        plane = plane.astype(np.float64)
+    if not np.all(np.isfinite(plane)):
+        raise ValueError("plane must be finite; it holds NaN or inf values (a spectrum with infinite power?)")
     if support is None:
         support = plane != 0
+    else:
+        support = _asarray("support", support)
+        if support.dtype.kind != "b":
+            raise TypeError(f"support must be a bool array (True where the envelope carries energy), got dtype "
+                            f"{support.dtype}")
+        if support.shape != plane.shape:
+            raise ValueError(f"support must have the plane's shape {plane.shape}, got {support.shape}")
+    if plane.ndim == 0:
+        v = plane[()]
+        return _real_magnitudes(np.asarray(abs(v) * (1.0 if v.real >= 0 else -1.0)), plane.dtype)
     lin = np.arange(plane.size).reshape(plane.shape)
     lin_m = _mirror(lin)
     canonical = lin < lin_m
@@ -136,8 +172,17 @@ def hermitian_plane(plane, support=None):
     out = np.where(take_mirror, np.conj(mir), plane)
     out = np.where(canonical | selfconj, out, np.conj(_mirror(out)))
     sc = out[selfconj]
-    out[selfconj] = np.abs(sc) * np.where(sc.real >= 0, 1.0, -1.0)
+    out[selfconj] = _real_magnitudes(np.abs(sc.astype(np.complex128)) * np.where(sc.real >= 0, 1.0, -1.0), out.dtype)
     return out
+
+
+def _real_magnitudes(v, dtype):
+    """``v`` (float64 signed magnitudes of self-conjugate cells) in ``dtype``; a ValueError if one is past its range."""
+    fmax = float(np.finfo(dtype).max)
+    if np.any(np.abs(v) > fmax):
+        raise ValueError(f"plane holds a value whose magnitude {float(np.max(np.abs(v))):.3g} is past the largest "
+                         f"{dtype} ({fmax:.3g}); scale it down or use complex128")
+    return np.asarray(v).astype(dtype)
 
 
 def _draws(key, start, n, mode, dtype=np.float32):
@@ -246,11 +291,7 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     n_out = int(np.prod(shape))
     n_half = int(np.prod(hshape))
     check_memory(n_out * dt.itemsize + n_half * cdt.itemsize + 20 * _CHUNK, f"synthesize{shape}")
-    if callable(envelope):
-        env = envelope(*frequency_vectors(shape))
-    else:
-        env = envelope
-    env = np.broadcast_to(np.asarray(env, dtype=np.float64), hshape)
+    env = _envelope_array(envelope, shape, hshape)
     K = hshape[-1]
     R = n_half // K
     env2 = env.reshape(R, K)
@@ -300,6 +341,40 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     if field.dtype != dt:
         field = field.astype(dt)
     return (field, spec) if return_spectrum else field
+
+
+def _envelope_array(envelope, shape, hshape):
+    """``envelope`` (a callable of the frequency vectors, or an array) as a float64 array of the half-spectrum shape."""
+    d = len(shape)
+    if callable(envelope):
+        try:
+            inspect.signature(envelope).bind(*range(d))
+        except TypeError as exc:
+            raise TypeError(f"envelope must be a callable taking {d} frequency arrays (one per axis of shape "
+                            f"{shape}), or an amplitude array; it does not accept {d} positional arguments: "
+                            f"{exc}") from None
+        except ValueError:  # no signature to inspect (some builtins): just call it
+            pass
+        try:
+            env = envelope(*frequency_vectors(shape))
+        except (ValueError, TypeError) as exc:
+            raise type(exc)(f"envelope must be a callable of the {d} frequency arrays (rad/sample) returning the "
+                            f"amplitude there; calling it raised: {exc}") from exc
+        what = "envelope(*w) must return"
+    else:
+        env, what = envelope, "envelope must be a callable or"
+    if env is None or isinstance(env, (str, bytes, dict, set, frozenset)):
+        raise TypeError(f"{what} a real amplitude array broadcastable to the half spectrum {hshape}, got "
+                        f"{type(env).__name__}")
+    env = _asarray("envelope", env)
+    if env.dtype.kind not in "biuf":
+        raise TypeError(f"{what} a real amplitude array broadcastable to the half spectrum {hshape}, got dtype "
+                        f"{env.dtype}" + (" (pass its magnitude)" if env.dtype.kind == "c" else ""))
+    try:
+        return np.broadcast_to(env.astype(np.float64, copy=False), hshape)
+    except ValueError:
+        raise ValueError(f"{what} a real amplitude array broadcastable to the half spectrum {hshape} "
+                         f"(shape {shape}), got shape {env.shape}") from None
 
 
 def _self_conjugate_columns(last_n):
