@@ -230,19 +230,9 @@ def _pass_b(p, i0, i1, rpi, gp):
 
 def _leading_passes(slab, index, shape):
     """``ifft`` along every leading axis of a kx slab, the kept rows put back at their indices first."""
-    B = slab
-    for ax in range(len(shape) - 1):
-        n, ix = shape[ax], index[ax]
-        if ix.size < n:
-            full = list(B.shape)
-            full[ax] = n
-            F = np.zeros(full, dtype=B.dtype)
-            sl = [slice(None)] * B.ndim
-            sl[ax] = ix
-            F[tuple(sl)] = B
-            B = F
-        B = scipy.fft.ifft(B, axis=ax, overwrite_x=B is not slab, workers=1)
-    return B
+    from ..spectral.synthesis import _leading_ifft
+
+    return _leading_ifft(slab, index, shape, workers=1, overwrite=False)
 
 
 _CACHE = 1 << 18  # bytes of a pass's working block (the in-memory snow's 256 KiB)

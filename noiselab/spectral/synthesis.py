@@ -564,21 +564,15 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     return block, index
 
 
-def _pruned_irfftn(block, index, shape, workers=None):
-    """``irfftn`` of a half spectrum that is 0 outside ``block`` (see :func:`_noise_spectrum`), ``block`` overwritten.
 
-    Along each leading axis only the kept kx columns are transformed (after
-    putting the kept rows back at their indices); the last pass ``irfft``
-    zero-pads kx to ``W//2 + 1``. With nothing pruned it is ``irfftn`` itself.
-    Every pass gets scipy's ``workers``.
+def _leading_ifft(block, index, shape, *, workers=None, overwrite=True):
+    """``ifft`` along every leading axis of a half spectrum ``block``, the kept rows put back at their indices first.
+
+    ``index[ax]`` holds the rows of ``shape[ax]`` that ``block`` keeps; ``overwrite=False`` leaves ``block`` as it is.
     """
-    d = len(shape)
-    if all(ix.size == n for ix, n in zip(index, shape[:-1])) and block.shape[-1] == shape[-1] // 2 + 1:
-        return scipy.fft.irfftn(block, s=shape, workers=workers)
     B = block
-    for ax in range(d - 1):
-        n = shape[ax]
-        ix = index[ax]
+    for ax in range(len(shape) - 1):
+        n, ix = shape[ax], index[ax]
         if ix.size < n:
             full_shape = list(B.shape)
             full_shape[ax] = n
@@ -587,7 +581,21 @@ def _pruned_irfftn(block, index, shape, workers=None):
             sl[ax] = ix
             F[tuple(sl)] = B
             B = F
-        B = scipy.fft.ifft(B, axis=ax, overwrite_x=True, workers=workers)
+        B = scipy.fft.ifft(B, axis=ax, overwrite_x=overwrite or B is not block, workers=workers)
+    return B
+
+
+def _pruned_irfftn(block, index, shape, workers=None):
+    """``irfftn`` of a half spectrum that is 0 outside ``block`` (see :func:`_noise_spectrum`), ``block`` overwritten.
+
+    Along each leading axis only the kept kx columns are transformed (after
+    putting the kept rows back at their indices); the last pass ``irfft``
+    zero-pads kx to ``W//2 + 1``. With nothing pruned it is ``irfftn`` itself.
+    Every pass gets scipy's ``workers``.
+    """
+    if all(ix.size == n for ix, n in zip(index, shape[:-1])) and block.shape[-1] == shape[-1] // 2 + 1:
+        return scipy.fft.irfftn(block, s=shape, workers=workers)
+    B = _leading_ifft(block, index, shape, workers=workers)
     return scipy.fft.irfft(B, n=shape[-1], axis=-1, overwrite_x=True, workers=workers)
 
 
