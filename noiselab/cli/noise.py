@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io.media import DEFAULT_FPS
+from ..scale.commands import add_dask_arguments
 
 NAME = "noise"
 HELP = "Render Phillips lattice noise (value or gradient), fractal sums or turbulence to PNG, MP4/GIF or NPY."
@@ -71,11 +72,7 @@ def add_arguments(parser):
                         help="precision of .npy and .zarr output (default: float32)")
     parser.add_argument("--fps", type=float, default=DEFAULT_FPS,
                         help="frames per second of an MP4/GIF video (default: %(default)g)")
-    parser.add_argument("--chunks", default=None,
-                        help="with .zarr output: chunk shape, e.g. 64 or 32x64x64, or auto (default: auto)")
-    parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                        help="with .zarr output: dask scheduler, threads (default), processes, synchronous, "
-                             "or the address of a running dask.distributed scheduler, e.g. tcp://host:8786")
+    add_dask_arguments(parser, "with .zarr output: chunk shape, e.g. 64 or 32x64x64, or auto (default: auto)")
     parser.add_argument("--workers", type=int, default=-1,
                         help="threads: a count, or -1 for every core, -2 for all but one (default: -1); "
                              "the output is the same for any count")

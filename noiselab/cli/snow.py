@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io.media import DEFAULT_FPS
+from ..scale.commands import add_dask_arguments
 
 NAME = "snow"
 # NOISELAB_EXAMPLE_SIZE=small (the README test): an 8-frame period written once
@@ -65,11 +66,8 @@ def add_arguments(p):
                         "or a folder (no suffix) for PNG frames (default out/snow.mp4)")
     o.add_argument("--fps", type=float, default=DEFAULT_FPS,
                    help="frames per second of an MP4 or GIF (default %(default)g)")
-    o.add_argument("--chunks", default=None,
-                   help="with .zarr output (the opacity, computed on dask): chunk shape TxHxW, e.g. 8x256x512 (default: auto)")
-    o.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                   help="with .zarr output: dask scheduler, threads (default), processes, synchronous, "
-                        "or the address of a running dask.distributed scheduler, e.g. tcp://host:8786")
+    add_dask_arguments(o, "with .zarr output (the opacity, computed on dask): chunk shape TxHxW, e.g. 8x256x512 "
+                          "(default: auto)")
     pr = o.add_mutually_exclusive_group()
     pr.add_argument("--progress", dest="progress", action="store_true", default=None, help="always show progress bars")
     pr.add_argument("--quiet", dest="progress", action="store_false", help="never show progress bars")

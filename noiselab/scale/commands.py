@@ -3,9 +3,17 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["write_noise_zarr", "write_snow_zarr"]
+__all__ = ["add_dask_arguments", "write_noise_zarr", "write_snow_zarr"]
 
 _DIMS = {1: ("x",), 2: ("y", "x"), 3: ("z", "y", "x")}
+
+
+def add_dask_arguments(parser, chunks_help):
+    """The ``--chunks`` and ``--scheduler`` options of a command that writes .zarr on dask."""
+    parser.add_argument("--chunks", default=None, help=chunks_help)
+    parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                        help="with .zarr output: dask scheduler, threads (default), processes, synchronous, "
+                             "or the address of a running dask.distributed scheduler, e.g. tcp://host:8786")
 
 
 def _parse_chunks(text, dims):
