@@ -332,8 +332,6 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
         check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6)
         return mesh.copy()  # a constant field: any mesh samples it
     report = resolution_report(mesh, max_frequency, samples_per_period=samples_per_period)
-    if method not in ("midpoint", "loop", "adaptive"):
-        raise ValueError(f"method must be 'adaptive', 'midpoint' or 'loop', got {method!r}")
     if report.ok:
         return mesh.copy()
     faces = len(mesh.faces) * 4 ** report.subdivisions

@@ -20,6 +20,7 @@ import numbers
 import numpy as np
 
 from .._validate import check_finite_array, check_int, check_real, check_real_array, check_real_vector
+from .surfaces import _scaled
 
 __all__ = ["monge_normals", "displaced_normals", "normal_angles", "field_gradient"]
 
@@ -67,17 +68,6 @@ def _unit(v):
     v = v / np.where(big > 0, big, 1.0)
     norm = np.linalg.norm(v, axis=-1, keepdims=True)
     return v / np.where(norm > 0, norm, 1.0)
-
-
-def _scaled_points(points, frequency, phase):
-    """``points * frequency + phase``, refused (naming frequency) where it overflows float64."""
-    with np.errstate(over="ignore", invalid="ignore"):
-        q = points * frequency + phase
-    if not np.isfinite(q).all():
-        raise ValueError(f"frequency times the points (plus phase) overflows float64: |points| up to "
-                         f"{float(np.abs(points).max()):.3g}, frequency up to {float(np.max(frequency)):.3g}; keep "
-                         "|points * frequency + phase| below 1.7e308")
-    return q
 
 
 def _gain(amplitude, frequency):
@@ -137,7 +127,7 @@ def monge_normals(field, points, amplitude=1.0, frequency=1.0, phase=0.0, *, oct
     if pts.ndim == 0 or pts.shape[-1] != 2:
         raise ValueError(f"points must have shape (..., 2) (x, y), got {pts.shape}")
     lead = pts.shape[:-1]
-    value, grad = field_gradient(field, _scaled_points(pts.reshape(-1, 2), frequency, phase), octaves=octaves,
+    value, grad = field_gradient(field, _scaled("points", pts.reshape(-1, 2), frequency, phase), octaves=octaves,
                                  kind=kind, lacunarity=lacunarity, gain=gain)
     # n ~ (-amplitude * frequency * grad, 1), scaled by 1 / (|amplitude| * frequency) when that product is large
     c0, ca, fs = _gain(amplitude, frequency)
@@ -219,7 +209,7 @@ def displaced_normals(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, *, o
         if kappa.ndim and kappa.shape != (len(vertices),):
             raise ValueError(f"curvature must be a number or one per vertex ({len(vertices)}), got shape "
                              f"{kappa.shape}")
-    value, grad = field_gradient(field, _scaled_points(vertices, freq, phase_v), octaves=octaves, kind=kind,
+    value, grad = field_gradient(field, _scaled("points", vertices, freq, phase_v), octaves=octaves, kind=kind,
                                  lacunarity=lacunarity, gain=gain)
     # N ~ (1 + h kappa) n - grad_S h, h = amplitude * s: divided through by max(1, |amplitude| * F) (see
     # _gain), F the largest of the frequencies and |kappa|, so no product can overflow
