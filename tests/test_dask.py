@@ -94,6 +94,12 @@ def test_threaded_scheduler_auto_chunks_and_a_callable_noise():
     f = lambda p: np.sin(3 * p[..., 0]) * np.cos(2 * p[..., 1]) + p[..., 2]  # noqa: E731
     ref = turbulence(f, grid, 3, normalize=True, dtype="float32")
     assert np.array_equal(turbulence(f, grid, 3, normalize=True, dtype="float32", chunks=(7, 18, 5)).compute(), ref)
+    # a callable that returns inf is refused per chunk as in memory, not passed through
+    bad = lambda p: np.where(p[..., 0] > 1.5, np.inf, 0.0)  # noqa: E731
+    with pytest.raises(ValueError, match="noise returned NaN or inf"):
+        fractal_sum(bad, grid, 2)
+    with pytest.raises(ValueError, match="noise returned NaN or inf"):
+        fractal_sum(bad, grid, 2, chunks=(7, 18, 5)).compute(scheduler="synchronous")
 
 
 def test_the_lazy_array_does_not_follow_later_changes_to_the_noise():

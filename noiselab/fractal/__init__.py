@@ -169,17 +169,23 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
         if not callable(noise):
             raise TypeError(f"noise must be a LatticeNoise or a callable on points, got {type(noise).__name__}")
         pts = np.stack(np.meshgrid(*grid_coordinates(shape, ext), indexing="ij"), axis=-1) if is_grid else raw
-        result = None
-        with np.errstate(over="ignore", invalid="ignore"):
-            for o in range(used):
-                v = np.asarray(noise(pts * lacunarity ** o), dtype=np.float64)
-                term = gain ** o * (np.abs(v) if absval else v)
-                result = term if result is None else result + term
-            result = (result / norm).astype(out_dtype)
-        if not np.isfinite(result).all():
-            raise ValueError(f"noise returned NaN or inf (or the octave sum overflowed {out_dtype.name}) at "
-                             f"{int((~np.isfinite(result)).sum())} point(s); noise must return finite values")
+        result = _callable_sum(noise, pts, used, lacunarity, gain, absval, norm, out_dtype)
     return (result, used) if return_octaves else result
+
+
+def _callable_sum(noise, pts, used, lacunarity, gain, absval, norm, out_dtype):
+    """The octave sum of a plain callable on points (in memory, and per chunk on dask); finite or refused."""
+    result = None
+    with np.errstate(over="ignore", invalid="ignore"):
+        for o in range(used):
+            v = np.asarray(noise(pts * lacunarity ** o), dtype=np.float64)
+            term = gain ** o * (np.abs(v) if absval else v)
+            result = term if result is None else result + term
+        result = (result / norm).astype(out_dtype)
+    if not np.isfinite(result).all():
+        raise ValueError(f"noise returned NaN or inf (or the octave sum overflowed {out_dtype.name}) at "
+                         f"{int((~np.isfinite(result)).sum())} point(s); noise must return finite values")
+    return result
 
 
 def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False, dtype=None,

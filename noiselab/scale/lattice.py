@@ -153,16 +153,12 @@ def _render_sum(noise, window, shape, ext, dtype, used, lacunarity, gain, absval
 
 def _render_sum_callable(noise, window, shape, ext, dtype, used, lacunarity, gain, absval, norm):
     # exactly what noiselab.fractal._sum does for a callable on a grid, on the window's points
+    from ..fractal import _callable_sum
     from ..lattice.core import grid_coordinates
 
     sub = [c[lo:hi] for c, (lo, hi) in zip(grid_coordinates(shape, ext), window)]
     pts = np.stack(np.meshgrid(*sub, indexing="ij"), axis=-1)
-    result = None
-    for o in range(used):
-        v = np.asarray(noise(pts * lacunarity ** o), dtype=np.float64)
-        term = gain ** o * (np.abs(v) if absval else v)
-        result = term if result is None else result + term
-    return (result / (1.0 if norm is None else norm)).astype(dtype)
+    return _callable_sum(noise, pts, used, lacunarity, gain, absval, 1.0 if norm is None else norm, np.dtype(dtype))
 
 
 def chunked_sum(noise, shape, ext, chunks, *, dtype, used, lacunarity, gain, absval, norm):
