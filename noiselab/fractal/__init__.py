@@ -31,7 +31,6 @@ smooth (the octave count used for the value decides it).
 from __future__ import annotations
 
 import math
-import numbers
 
 import numpy as np
 

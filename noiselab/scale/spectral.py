@@ -199,24 +199,11 @@ def _pass_a(p, i0, i1, rpi):
 
 def _gain(p, parts):
     """The Hermitian planes and the gain ``g``, from every slab's row powers and plane columns (as in memory)."""
-    from ..spectral import _kernels
+    from ..spectral.synthesis import _hermitian_gain
 
-    power = 2.0 * float(np.sum(np.concatenate([r for r, _ in parts])))
-    maps = [np.searchsorted(ix, (-ix) % m) for ix, m in zip(p.index, p.shape[:-1])]
-    maps = [np.zeros(1, dtype=np.int64)] * (2 - len(maps)) + maps
-    planes = []
-    for k, _ in enumerate(_sc_cols(p)):
-        plane = np.ascontiguousarray(np.concatenate([pl[k] for _, pl in parts], axis=0))
-        pw = _kernels.hermitian_symmetric_plane(plane.reshape(maps[0].size, maps[1].size), maps[0], maps[1])
-        if p.sample:
-            power += pw
-        planes.append(plane)
-    if p.sample and p.dc:
-        power -= float(np.abs(planes[0].reshape(-1)[0])) ** 2
-    if not power > 0:
-        raise ValueError(f"the band carries no energy to normalise (band={p.band!r}, exponent={p.exponent:g}); "
-                         f"widen the band")
-    return p.dt.type(np.prod(p.shape, dtype=np.float64) / np.sqrt(power)), planes
+    planes = [np.ascontiguousarray(np.concatenate([pl[k] for _, pl in parts], axis=0))
+              for k, _ in enumerate(_sc_cols(p))]
+    return _hermitian_gain(p, np.concatenate([r for r, _ in parts]), planes), planes
 
 
 def _pass_b(p, i0, i1, rpi, gp):

@@ -44,7 +44,6 @@ import scipy.fft
 
 from .._validate import _asarray, as_generator, check_int, check_memory, check_real, check_shape, float_dtype
 from . import _kernels
-from .envelopes import annulus
 from .frequencies import frequency_vectors, half_spectrum_shape
 
 __all__ = ["synthesize", "spectral_noise", "NORMALIZATIONS", "draw_coefficients", "hermitian_plane", "AMPLITUDES"]
@@ -499,6 +498,30 @@ def _noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="exp
                            key=_stream_key(rng), mode=_MODES[amplitude], dc=bool(dc), band=band, lo=lo)
 
 
+
+def _hermitian_gain(p, rowpow, planes):
+    """Make the self-conjugate ``planes`` (views, in place) Hermitian and return the gain ``g`` of the plan ``p``.
+
+    ``rowpow`` holds every kept row's power outside those planes, in the row order of the kept block (the
+    in-memory fill and the chunked one hand in the same array, so ``g`` is the same float). The annulus is
+    symmetric under k -> -k, and so is the kept block.
+    """
+    power = 2.0 * float(np.sum(rowpow))  # the same float for any worker count or chunking: one fixed order
+    maps = [np.searchsorted(ix, (-ix) % m) for ix, m in zip(p.index, p.shape[:-1])]
+    maps = [np.zeros(1, dtype=np.int64)] * (2 - len(maps)) + maps
+    for plane in planes:
+        pw = _kernels.hermitian_symmetric_plane(plane.reshape(maps[0].size, maps[1].size), maps[0], maps[1])
+        if p.sample:
+            power += pw
+    if p.sample and p.dc:
+        power -= float(np.abs(planes[0].reshape(-1)[0])) ** 2  # the sample variance is about the field's mean
+    if not power > 0:
+        raise ValueError(f"the band carries no energy to normalise (only DC, where the law is 0 for exponent < 0, "
+                         f"or only DC with normalize='sample'; got band={p.band!r}, exponent={p.exponent:g}); "
+                         "widen the band")
+    # var(field) = sum over the full spectrum of |S|**2 / N**2 (Parseval), DC included in the expected case
+    return p.dt.type(np.prod(p.shape, dtype=np.float64) / np.sqrt(power))
+
 def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, workers=1):
     """The half spectrum of :func:`spectral_noise`, normalised, on the block of cells the band can reach.
 
@@ -538,23 +561,7 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
                                 float(exponent), float(qfloor), float(inv_qref), weight, sample, rowpow, scratch)
 
     _map_groups(fill, range(len(groups)), nw)
-    power = 2.0 * float(np.sum(rowpow))  # the same float for any worker count: one fixed order
-    # the self-conjugate planes: the annulus is symmetric under k -> -k, and so is the kept block
-    maps = [np.searchsorted(ix, (-ix) % m) for ix, m in zip(index, shape[:-1])]
-    maps = [np.zeros(1, dtype=np.int64)] * (2 - len(maps)) + maps
-    for j in _self_conjugate_columns(n):
-        if j < K:
-            plane = block[..., j].reshape(maps[0].size, maps[1].size)
-            p = _kernels.hermitian_symmetric_plane(plane, maps[0], maps[1])
-            if sample:
-                power += p
-    if sample and dc:
-        power -= float(np.abs(block.reshape(-1)[0])) ** 2  # the sample variance is about the field's mean
-    if not power > 0:
-        raise ValueError(f"the band carries no energy to normalise (only DC, where the law is 0 for exponent < 0, "
-                         f"or only DC with normalize='sample'; got band={band!r}, exponent={exponent:g}); widen the band")
-    # var(field) = sum over the full spectrum of |S|**2 / N**2 (Parseval), DC included in the expected case
-    g = dt.type(np.prod(shape, dtype=np.float64) / np.sqrt(power))
+    g = _hermitian_gain(p, rowpow, [block[..., j] for j in _self_conjugate_columns(n) if j < K])
     rows = block.reshape(R, -1)
 
     def scale(i):
