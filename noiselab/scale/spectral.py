@@ -337,30 +337,6 @@ def _snow_plan(cols, coef, C_planes, plane_cols, T, H, K, ckx, dt, cdt):
     return kx_blocks, pieces
 
 
-def _snow_planes(cols, coef, cdt):
-    """The tent's columns on the self-conjugate planes after :func:`assemble`'s Hermitian step: (columns, (T, m) values)."""
-    from ..spectral.synthesis import hermitian_plane
-
-    T, H, W = cols.shape
-    planes = [0] + ([W // 2] if W % 2 == 0 and W > 1 else [])
-    out_cols, out_vals = [], []
-    for j in planes:
-        pc = np.flatnonzero(cols.kx == j)
-        if pc.size == 0:
-            continue
-        inp = np.isin(cols.entry_col, pc)
-        P = np.zeros((T, H), dtype=cdt)
-        sup = np.zeros((T, H), dtype=bool)
-        P[cols.entry_bin[inp], cols.ky[cols.entry_col[inp]]] = coef[inp]
-        sup[cols.entry_bin[inp], cols.ky[cols.entry_col[inp]]] = True
-        P = hermitian_plane(P, sup)
-        out_cols.append(pc)
-        out_vals.append(P[:, cols.ky[pc]])
-    if not out_cols:
-        return np.zeros(0, dtype=np.int64), np.zeros((T, 0), dtype=cdt)
-    return np.concatenate(out_cols), np.concatenate(out_vals, axis=1)
-
-
 def _snow_slab(piece, T, H, cdt, *after):
     """t-pass on the slab's tent columns, the columns at their (ky, kx) cells, y-pass: ``(T, H, k)`` complex."""
     C = np.zeros((T, piece["ky"].size), dtype=cdt)
@@ -418,8 +394,8 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     True
     """
     require_dask()
-    from ..snow.tent import tent_columns
-    from ..spectral.synthesis import _complex_dtype, draw_coefficients
+    from ..snow.tent import self_conjugate_planes, tent_coefficients, tent_columns
+    from ..spectral.synthesis import _complex_dtype
     from .._validate import as_generator, float_dtype
 
     T, H, W = shape
@@ -429,9 +405,8 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1
-    coef = draw_coefficients(cols.n_cells, as_generator(seed), amplitude, dt)  # as assemble() draws them
-    coef *= cols.weight.astype(coef.real.dtype)
-    plane_cols, plane_vals = _snow_planes(cols, coef, cdt)
+    coef = tent_coefficients(cols, as_generator(seed), amplitude, dt)  # as assemble() draws them
+    plane_cols, plane_vals = self_conjugate_planes(cols, coef, cdt)
     ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, T * H * cdt.itemsize))
     kx_blocks, pieces = _snow_plan(cols, coef, plane_vals, plane_cols, T, H, K, ckx, dt, cdt)
     tok = uuid.uuid4().hex[:12]

@@ -33,8 +33,9 @@ import numpy as np
 import scipy.fft
 
 from .._validate import check_int, check_real
-from ..spectral.envelopes import tent_surface, unit_direction
-from ..spectral.synthesis import _check_band, _complex_dtype, draw_coefficients, hermitian_plane
+from ..spectral.envelopes import unit_direction
+from ..spectral.synthesis import (_check_band, _complex_dtype, _self_conjugate_columns, draw_coefficients,
+                                  hermitian_plane)
 
 __all__ = ["TentColumns", "tent_columns", "largest_c", "pruned_irfftn", "flake_speeds"]
 
@@ -185,27 +186,46 @@ def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alia
     return TentColumns((T, H, W), ky, kx, entry_col, entry_bin, weight, peak, dropped)
 
 
+def tent_coefficients(cols: TentColumns, rng, amplitude, dtype):
+    """The random coefficients of the tent's cells, weighted (one per cell, in ``cols``' entry order)."""
+    coef = draw_coefficients(cols.n_cells, rng, amplitude, dtype)
+    coef *= cols.weight.astype(coef.real.dtype)
+    return coef
+
+
+def self_conjugate_planes(cols: TentColumns, coef, cdt):
+    """The tent's columns on the self-conjugate planes (kx = 0 and W/2), made Hermitian: ``(columns, (T, m) values)``.
+
+    Within one such plane every column has its own ky, so each plane is filled from ``coef`` alone.
+    """
+    T, H, W = cols.shape
+    out_cols, out_vals = [], []
+    for j in _self_conjugate_columns(W):
+        pc = np.flatnonzero(cols.kx == j)
+        if pc.size == 0:
+            continue
+        inp = np.isin(cols.entry_col, pc)
+        P = np.zeros((T, H), dtype=cdt)
+        sup = np.zeros((T, H), dtype=bool)
+        P[cols.entry_bin[inp], cols.ky[cols.entry_col[inp]]] = coef[inp]
+        sup[cols.entry_bin[inp], cols.ky[cols.entry_col[inp]]] = True
+        P = hermitian_plane(P, sup)
+        out_cols.append(pc)
+        out_vals.append(P[:, cols.ky[pc]])
+    if not out_cols:
+        return np.zeros(0, dtype=np.int64), np.zeros((T, 0), dtype=cdt)
+    return np.concatenate(out_cols), np.concatenate(out_vals, axis=1)
+
+
 def assemble(cols: TentColumns, rng, amplitude, dtype):
     """Random coefficients on the tent cells: the ``(T, n_columns)`` spectrum columns, Hermitian on the self-conjugate planes."""
     T, H, W = cols.shape
     cdt = _complex_dtype(dtype)
-    coef = draw_coefficients(cols.n_cells, rng, amplitude, dtype)
-    coef *= cols.weight.astype(coef.real.dtype)
+    coef = tent_coefficients(cols, rng, amplitude, dtype)
     C = np.zeros((T, cols.ky.size), dtype=cdt)
     C[cols.entry_bin, cols.entry_col] = coef
-    planes = [0] + ([W // 2] if W % 2 == 0 and W > 1 else [])
-    for j in planes:
-        pc = np.flatnonzero(cols.kx == j)
-        if pc.size == 0:
-            continue
-        P = np.zeros((T, H), dtype=cdt)
-        sup = np.zeros((T, H), dtype=bool)
-        P[:, cols.ky[pc]] = C[:, pc]
-        sup_cols = np.zeros(C.shape, dtype=bool)
-        sup_cols[cols.entry_bin, cols.entry_col] = True
-        sup[:, cols.ky[pc]] = sup_cols[:, pc]
-        P = hermitian_plane(P, sup)
-        C[:, pc] = P[:, cols.ky[pc]]
+    plane_cols, plane_vals = self_conjugate_planes(cols, coef, cdt)
+    C[:, plane_cols] = plane_vals
     return C
 
 
