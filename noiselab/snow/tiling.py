@@ -13,9 +13,7 @@ __all__ = ["tile", "iter_tiled_frames"]
 
 def _check_video(alpha, ndims):
     """A finite real array of one of ``ndims`` dimensions, non-empty (NaN, complex and str are refused)."""
-    if isinstance(alpha, (str, bytes)) or alpha is None:
-        raise TypeError(f"alpha must be a real numeric array, got {type(alpha).__name__}")
-    alpha = check_finite_array("alpha", alpha)
+    alpha = check_finite_array("alpha", alpha)  # str, bytes and None are refused there by name
     if alpha.ndim not in ndims:
         shapes = " or ".join(("(T, H, W)", "(H, W)")[3 - d] for d in ndims)
         raise ValueError(f"alpha must have shape {shapes}, got {alpha.shape}")
