@@ -25,6 +25,7 @@ import numba as nb
 import numpy as np
 from llvmlite import ir
 from numba import types
+from numba.core import cgutils
 from numba.extending import intrinsic
 
 # Beyond 2**52 a float64 has no fractional bits; beyond 2**62 it no longer
@@ -798,3 +799,313 @@ def axis_dweights(coords, freq, phase, shift, left, taps, coef, dcoef, grad):
             if grad:
                 drw[j, k] = freq * (ds * (t - shift + (left - k)) + s)
     return dw, drw
+
+
+# ---------------------------------------------------------------- fused 2-D grids
+@intrinsic
+def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
+    """``row[ridx + p] = sum_m E[e0 + 8 m + p] * v[B + m]`` (m = 0 .. M-1, in order; p < 8), one vector of 8 lanes."""
+    sig = types.void(row, ridx, E, e0, v, B, M)
+
+    def codegen(context, builder, signature, args):
+        row_v, ridx_v, E_v, e0_v, v_v, B_v, M_v = args
+        dty = ir.DoubleType()
+        vty = ir.VectorType(dty, 8)
+        i64 = ir.IntType(64)
+        acc = cgutils.alloca_once(builder, vty)
+        builder.store(ir.Constant(vty, [0.0] * 8), acc)
+        Eary = context.make_array(signature.args[2])(context, builder, E_v)
+        vary = context.make_array(signature.args[4])(context, builder, v_v)
+        rary = context.make_array(signature.args[0])(context, builder, row_v)
+        with cgutils.for_range(builder, M_v) as loop:
+            m = loop.index
+            eptr = builder.gep(Eary.data, [builder.add(e0_v, builder.mul(m, ir.Constant(i64, 8)))])
+            e = builder.load(builder.bitcast(eptr, vty.as_pointer()), align=8)
+            s = builder.load(builder.gep(vary.data, [builder.add(B_v, m)]))
+            sv = builder.insert_element(ir.Constant(vty, ir.Undefined), s, ir.Constant(ir.IntType(32), 0))
+            sv = builder.shuffle_vector(sv, ir.Constant(vty, ir.Undefined), ir.Constant(ir.VectorType(ir.IntType(32), 8), [0] * 8))
+            builder.store(builder.fadd(builder.load(acc), builder.fmul(sv, e)), acc)
+        rptr = builder.gep(rary.data, [ridx_v])
+        builder.store(builder.load(acc), builder.bitcast(rptr, vty.as_pointer()), align=8)
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+@nb.njit(cache=True, nogil=True)
+def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, ext, basis,
+           absval, out, tile):
+    """A 2-D grid of table-hashed lattice noise, every octave fused, in tiles of ``tile`` columns.
+
+    Octave ``o`` has the distinct lattice taps ``lat0[off0[o]:off0[o + 1]]``
+    along axis 0 and ``lat1[off1[o]:off1[o + 1]]`` along axis 1 (reduced
+    modulo the table size n), each output row's taps ``pos0[o]`` (nj, taps)
+    in the first and each column's first tap ``base1[o]`` (nq,) in the second
+    (a sample's taps are consecutive distinct taps); ``dense1[o]``: the axis-1
+    taps are consecutive lattice points modulo n. Weights per axis: ``wa``
+    (the kernel) and ``wb`` (kernel x signed distance, the gradient basis's
+    ramp), ``wa0[o]`` (nj, taps) and ``wa1[o]`` (taps, nq). ``scales[o]``: the
+    octave's amplitude. ``ext`` (2, n + width) or (2, 0): the last hash level
+    folded into the table and run on past n (gradient: its two components;
+    value: the values by parity row, as in ``LatticeNoise._hash_tables``),
+    used for dense axis-1 taps. ``out`` (nj, nq), float32 or float64:
+    written, or with ``absval`` (turbulence) added to.
+
+    The arithmetic is that of the general separable path (``hash_expand``,
+    ``gather_gradients``, ``contract_last``, ``final_pass``), tap by tap and
+    term by term in the same order, so the bits are the same. A lattice row
+    ``r`` of octave ``o`` is hashed and contracted along axis 1 only when an
+    output row first needs it, into a ring of ``2**ceil(log2 taps)`` rows per
+    octave that stays in cache (rows are never held as a block in memory).
+    The axis-1 contraction runs eight columns at a time (:func:`expand_dot8`)
+    over the block's lattice values with the weights spread out to each
+    column's offset (zeros elsewhere): adding the zero products changes no
+    bit, so it equals the four-tap sum. Each sample depends only on its row
+    and column, not on the tile, so any window is the same slice of the
+    full grid, bit for bit.
+    """
+    noct, nj, taps = pos0.shape
+    nq = base1.shape[1]
+    n = perm.shape[0]
+    grad = basis == 1
+    nterm = 2 if grad else 1
+    S = 1
+    while S < taps:
+        S *= 2
+    smask = S - 1
+    L = 8
+    tile = (min(max(tile, L), nq) + L - 1) // L * L  # whole blocks of eight lanes (the ring rows are padded)
+    ring = np.empty((noct, S, nterm, tile))
+    tags = np.empty((noct, S), np.int64)
+    acc = np.empty(tile)
+    tmp = np.empty(tile)
+    width = 1
+    for o in range(noct):
+        width = max(width, off1[o + 1] - off1[o])
+    vbuf0 = np.empty(width)
+    vbuf1 = np.empty(width)
+    lmin = np.empty(noct, np.int64)
+    lmax = np.empty(noct, np.int64)
+    rel = np.empty((noct, tile), np.int64)
+    use_ext = ext.shape[1] > 0
+    nblk_max = (tile + L - 1) // L
+    # widest expanded block: (largest tap-base span within 8 samples) + taps
+    mmax = taps
+    for o in range(noct):
+        for qa in range(0, nq, L):
+            qb = min(qa + L, nq)
+            lo_ = base1[o, qa]
+            hi_ = lo_
+            for q in range(qa, qb):
+                lo_ = min(lo_, base1[o, q])
+                hi_ = max(hi_, base1[o, q])
+            mmax = max(mmax, hi_ - lo_ + taps)
+    expand = mmax <= 4 * L
+    if not expand:
+        mmax = 1
+    E = np.zeros(noct * nterm * nblk_max * mmax * L)
+    bB = np.empty((noct, nblk_max), np.int64)
+    bM = np.empty((noct, nblk_max), np.int64)
+    for q0 in range(0, nq, tile):
+        q1 = min(q0 + tile, nq)
+        nt = q1 - q0
+        for o in range(noct):
+            lo = base1[o, q0]
+            hi = lo
+            for q in range(q0, q1):
+                lo = min(lo, base1[o, q])
+                hi = max(hi, base1[o, q])
+            lmin[o] = lo
+            lmax[o] = hi + taps - 1
+            for q in range(nt):
+                rel[o, q] = base1[o, q0 + q] - lo
+            for s in range(S):
+                tags[o, s] = -1
+            if expand:
+                for blk in range((nt + L - 1) // L):
+                    qa = q0 + blk * L
+                    qb = min(qa + L, q1)
+                    lo_ = base1[o, qa]
+                    hi_ = lo_
+                    for q in range(qa, qb):
+                        lo_ = min(lo_, base1[o, q])
+                        hi_ = max(hi_, base1[o, q])
+                    mb = hi_ - lo_ + taps
+                    bB[o, blk] = lo_ - lo
+                    bM[o, blk] = mb
+                    for b in range(nterm):
+                        e0 = ((o * nterm + b) * nblk_max + blk) * mmax * L
+                        wsrc = wb1 if b == 1 else wa1
+                        for x in range(mb * L):
+                            E[e0 + x] = 0.0
+                        for q in range(qa, qb):
+                            d = base1[o, q] - lo_
+                            for k in range(taps):
+                                E[e0 + (d + k) * L + (q - qa)] = wsrc[o, k, q]
+        for j in range(nj):
+            for o in range(noct):
+                for k in range(taps):
+                    r = pos0[o, j, k]
+                    slot = r & smask
+                    if tags[o, slot] == r:
+                        continue
+                    tags[o, slot] = r
+                    lo = lmin[o]
+                    m = lmax[o] + 1 - lo
+                    i0 = lat0[off0[o] + r]
+                    h1 = perm[i0]
+                    p0 = i0 & 1
+                    seg = lat1[off1[o] + lo: off1[o] + lo + m]
+                    if use_ext and dense1[o]:
+                        s0 = h1 + seg[0]
+                        s0 = s0 - n if s0 >= n else s0
+                        if grad:
+                            v0 = ext[0, s0:s0 + m]
+                            v1 = ext[1, s0:s0 + m]
+                        else:
+                            v0 = ext[(p0 + seg[0] + s0) & 1, s0:s0 + m]
+                            v1 = v0
+                    else:
+                        v0 = vbuf0
+                        v1 = vbuf1
+                        for l in range(m):
+                            i1 = seg[l]
+                            s = h1 + i1
+                            s = s - n if s >= n else s
+                            h = perm[s]
+                            if grad:
+                                v0[l] = grads[h, 0]
+                                v1[l] = grads[h, 1]
+                            else:
+                                v0[l] = values[(p0 + i1) & 1, h]
+                    if expand:
+                        for b in range(nterm):
+                            vv = v1 if b == 1 else v0
+                            row = ring[o, slot, b]
+                            ebase = (o * nterm + b) * nblk_max * mmax * L
+                            for blk in range((nt + L - 1) // L):
+                                B = bB[o, blk]
+                                e0 = ebase + blk * mmax * L
+                                expand_dot8(row, blk * L, E, e0, vv, B, bM[o, blk])
+                        continue
+                    rl = rel[o]
+                    row = ring[o, slot, 0]
+                    c0 = wa1[o, 0, q0:q1]; c1 = wa1[o, 1 % taps, q0:q1]
+                    c2 = wa1[o, 2 % taps, q0:q1]; c3 = wa1[o, 3 % taps, q0:q1]
+                    if grad:
+                        row1 = ring[o, slot, 1]
+                        d0 = wb1[o, 0, q0:q1]; d1 = wb1[o, 1 % taps, q0:q1]
+                        d2 = wb1[o, 2 % taps, q0:q1]; d3 = wb1[o, 3 % taps, q0:q1]
+                        if taps == 4:
+                            for q in range(nt):
+                                b = rl[q]
+                                row[q] = c0[q] * v0[b] + c1[q] * v0[b + 1] + c2[q] * v0[b + 2] + c3[q] * v0[b + 3]
+                                row1[q] = d0[q] * v1[b] + d1[q] * v1[b + 1] + d2[q] * v1[b + 2] + d3[q] * v1[b + 3]
+                        elif taps == 2:
+                            for q in range(nt):
+                                b = rl[q]
+                                row[q] = c0[q] * v0[b] + c1[q] * v0[b + 1]
+                                row1[q] = d0[q] * v1[b] + d1[q] * v1[b + 1]
+                        else:
+                            for q in range(nt):
+                                b = rl[q]
+                                sa = wa1[o, 0, q0 + q] * v0[b]
+                                sb = wb1[o, 0, q0 + q] * v1[b]
+                                for kk in range(1, taps):
+                                    sa += wa1[o, kk, q0 + q] * v0[b + kk]
+                                    sb += wb1[o, kk, q0 + q] * v1[b + kk]
+                                row[q] = sa
+                                row1[q] = sb
+                    else:
+                        if taps == 4:
+                            for q in range(nt):
+                                b = rl[q]
+                                row[q] = c0[q] * v0[b] + c1[q] * v0[b + 1] + c2[q] * v0[b + 2] + c3[q] * v0[b + 3]
+                        elif taps == 2:
+                            for q in range(nt):
+                                b = rl[q]
+                                row[q] = c0[q] * v0[b] + c1[q] * v0[b + 1]
+                        else:
+                            for q in range(nt):
+                                b = rl[q]
+                                sa = wa1[o, 0, q0 + q] * v0[b]
+                                for kk in range(1, taps):
+                                    sa += wa1[o, kk, q0 + q] * v0[b + kk]
+                                row[q] = sa
+            # the axis-0 pass: octave by octave, its terms in order, each a tap sum added to the running sum
+            for o in range(noct):
+                sc = scales[o]
+                buf = tmp if (absval and o > 0) else acc
+                fst = o == 0 or absval
+                if grad and taps == 4:
+                    a0 = wb0[o, j, 0] * sc; a1 = wb0[o, j, 1] * sc; a2 = wb0[o, j, 2] * sc; a3 = wb0[o, j, 3] * sc
+                    b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1] * sc; b2 = wa0[o, j, 2] * sc; b3 = wa0[o, j, 3] * sc
+                    x0 = ring[o, pos0[o, j, 0] & smask, 0]; x1 = ring[o, pos0[o, j, 1] & smask, 0]
+                    x2 = ring[o, pos0[o, j, 2] & smask, 0]; x3 = ring[o, pos0[o, j, 3] & smask, 0]
+                    y0 = ring[o, pos0[o, j, 0] & smask, 1]; y1 = ring[o, pos0[o, j, 1] & smask, 1]
+                    y2 = ring[o, pos0[o, j, 2] & smask, 1]; y3 = ring[o, pos0[o, j, 3] & smask, 1]
+                    if fst:
+                        for q in range(nt):
+                            buf[q] = ((a0 * x0[q] + a1 * x1[q] + a2 * x2[q] + a3 * x3[q])
+                                      + (b0 * y0[q] + b1 * y1[q] + b2 * y2[q] + b3 * y3[q]))
+                    else:
+                        for q in range(nt):
+                            buf[q] = ((buf[q] + (a0 * x0[q] + a1 * x1[q] + a2 * x2[q] + a3 * x3[q]))
+                                      + (b0 * y0[q] + b1 * y1[q] + b2 * y2[q] + b3 * y3[q]))
+                elif grad and taps == 2:
+                    a0 = wb0[o, j, 0] * sc; a1 = wb0[o, j, 1] * sc
+                    b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1] * sc
+                    x0 = ring[o, pos0[o, j, 0] & smask, 0]; x1 = ring[o, pos0[o, j, 1] & smask, 0]
+                    y0 = ring[o, pos0[o, j, 0] & smask, 1]; y1 = ring[o, pos0[o, j, 1] & smask, 1]
+                    if fst:
+                        for q in range(nt):
+                            buf[q] = (a0 * x0[q] + a1 * x1[q]) + (b0 * y0[q] + b1 * y1[q])
+                    else:
+                        for q in range(nt):
+                            buf[q] = (buf[q] + (a0 * x0[q] + a1 * x1[q])) + (b0 * y0[q] + b1 * y1[q])
+                elif taps == 4:
+                    a0 = wa0[o, j, 0] * sc; a1 = wa0[o, j, 1] * sc; a2 = wa0[o, j, 2] * sc; a3 = wa0[o, j, 3] * sc
+                    x0 = ring[o, pos0[o, j, 0] & smask, 0]; x1 = ring[o, pos0[o, j, 1] & smask, 0]
+                    x2 = ring[o, pos0[o, j, 2] & smask, 0]; x3 = ring[o, pos0[o, j, 3] & smask, 0]
+                    if fst:
+                        for q in range(nt):
+                            buf[q] = a0 * x0[q] + a1 * x1[q] + a2 * x2[q] + a3 * x3[q]
+                    else:
+                        for q in range(nt):
+                            buf[q] += a0 * x0[q] + a1 * x1[q] + a2 * x2[q] + a3 * x3[q]
+                elif taps == 2:
+                    a0 = wa0[o, j, 0] * sc; a1 = wa0[o, j, 1] * sc
+                    x0 = ring[o, pos0[o, j, 0] & smask, 0]; x1 = ring[o, pos0[o, j, 1] & smask, 0]
+                    if fst:
+                        for q in range(nt):
+                            buf[q] = a0 * x0[q] + a1 * x1[q]
+                    else:
+                        for q in range(nt):
+                            buf[q] += a0 * x0[q] + a1 * x1[q]
+                else:
+                    # taps 1 and 3: every tap product is added to the running sum by itself (final_pass's order)
+                    for b in range(nterm):
+                        wt = wb0 if (grad and b == 0) else wa0
+                        for k in range(taps):
+                            wk = wt[o, j, k] * sc
+                            rk = ring[o, pos0[o, j, k] & smask, b]
+                            if fst and b == 0 and k == 0:
+                                for q in range(nt):
+                                    buf[q] = wk * rk[q]
+                            else:
+                                for q in range(nt):
+                                    buf[q] += wk * rk[q]
+                if absval:
+                    if o == 0:
+                        for q in range(nt):
+                            acc[q] = abs(acc[q])
+                    else:
+                        for q in range(nt):
+                            acc[q] += abs(tmp[q])
+            orow = out[j, q0:q1]
+            if absval:
+                for q in range(nt):
+                    orow[q] += acc[q]
+            else:
+                for q in range(nt):
+                    orow[q] = acc[q]

@@ -882,6 +882,9 @@ class LatticeNoise:
         """
         d = self.dim_in
         grad = self.basis == "gradient"
+        if d == 2 and self.hash == "table":
+            self._grid_fused_2d(sub, octaves, out, absval, deriv_axis)
+            return
         nterm = d if grad else 1
         # Batches of octaves whose partially contracted blocks fit a memory
         # budget, decided on the full grid so that windows batch identically.
@@ -945,6 +948,57 @@ class LatticeNoise:
                     _jit.final_pass_direct(inter_all, poss, ws, scales, target)
                 else:
                     _jit.final_pass(inter_all, poss, ws, scales, group_start, target, mode)
+
+    # columns per tile of the fused 2-D pass (a multiple of 8); its rings of contracted lattice rows
+    # (octaves x 4 rows x gradient terms x tile, float64) stay in the L2 cache
+    _TILE_2D = 256
+
+    def _grid_fused_2d(self, sub, octaves, out, absval, deriv_axis):
+        """The separable pass of a 2-D grid with the table hash: every octave in one kernel (:func:`_jit.grid2d`).
+
+        The same arithmetic, term by term, as the general path (the same
+        bits), without the lattice block or octave batches in memory.
+        """
+        grad = self.basis == "gradient"
+        taps = self.kernel.taps
+        n = self.table_size
+        per_axis = [[], []]
+        for freq, _ in octaves:
+            for a in range(2):
+                per_axis[a].append(self._axis_taps(sub[a], freq[a], a, grad, deriv=a == deriv_axis))
+        packed = []
+        for a, axis in enumerate(per_axis):
+            lat = np.concatenate([np.asarray(ax[0], dtype=np.int64) for ax in axis]) % n
+            off = np.zeros(len(axis) + 1, np.int64)
+            off[1:] = np.cumsum([len(ax[0]) for ax in axis])
+            pos = np.ascontiguousarray(np.stack([ax[1] for ax in axis]), dtype=np.int64)
+            # a sample's taps are consecutive distinct taps (the kernel's rings and blocks rely on it)
+            assert (pos - pos[..., :1] == np.arange(taps)).all()
+            wa = np.stack([ax[2] for ax in axis])
+            wb = np.stack([ax[3] for ax in axis]) if grad else wa
+            if a == 0:
+                packed.append((lat, off, pos, np.ascontiguousarray(wa), np.ascontiguousarray(wb)))
+            else:
+                # consecutive lattice points modulo n (the period a multiple of n): the row's values are
+                # a contiguous run of the extended table
+                dense = np.array([self.period[1] % n == 0 and bool((np.diff(ax[0]) % self.period[1] == 1).all())
+                                  for ax in axis])
+                packed.append((lat, off, np.ascontiguousarray(pos[:, :, 0]), dense,
+                               np.ascontiguousarray(wa.transpose(0, 2, 1)), np.ascontiguousarray(wb.transpose(0, 2, 1))))
+        width = int(np.max(np.diff(packed[1][1])))
+        use_ext = n <= 1 << 16 and bool(packed[1][3].any())
+        x = np.arange(n + width) % n if use_ext else None
+        scales = np.array([amp for _, amp in octaves], dtype=np.float64)
+        for c in range(self.dim_out):
+            perm = self.perms[c]
+            if not use_ext:
+                ext = np.zeros((2, 0))
+            elif grad:
+                ext = np.ascontiguousarray(self.gradients[perm[x], :2].T)
+            else:
+                ext = np.stack([self.values[(r + x) & 1, perm[x]] for r in range(2)])
+            _jit.grid2d(*packed[0], *packed[1], scales, perm, self.values, self.gradients, ext, 1 if grad else 0,
+                        bool(absval), out[c], self._TILE_2D)
 
     @staticmethod
     def _contract_rest(block, axes, use_r, target):
