@@ -832,9 +832,71 @@ def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
     return sig, codegen
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3,
+                  b0, b1, b2, b3):
+    """One octave of :func:`grid2d`'s axis-0 pass: ``dst[doff + q] = (prev[poff + q] +) T0[q] (+ T1[q])``.
+
+    ``T0 = sum_k a_k R[x_k + q]`` (the value term, or the gradient's first
+    term), ``T1 = sum_k b_k R[x_k + dy + q]`` (the gradient's second term).
+    The sums are :func:`final_pass`'s: for 2 and 4 taps each term's tap sum
+    is added to the running sum, for 1 and 3 taps every tap product is.
+    Offsets and ``nt`` are uint64; ``dst`` and ``prev`` are different arrays
+    (so that the loop vectorises).
+    """
+    if taps == 4 and grad:
+        y0 = x0 + dy
+        y1 = x1 + dy
+        y2 = x2 + dy
+        y3 = x3 + dy
+        if has_prev:
+            for q in range(nt):
+                dst[doff + q] = ((prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q]))
+                                 + (b0 * R[y0 + q] + b1 * R[y1 + q] + b2 * R[y2 + q] + b3 * R[y3 + q]))
+        else:
+            for q in range(nt):
+                dst[doff + q] = ((a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q])
+                                 + (b0 * R[y0 + q] + b1 * R[y1 + q] + b2 * R[y2 + q] + b3 * R[y3 + q]))
+    elif taps == 2 and grad:
+        y0 = x0 + dy
+        y1 = x1 + dy
+        if has_prev:
+            for q in range(nt):
+                dst[doff + q] = (prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q])) + (b0 * R[y0 + q] + b1 * R[y1 + q])
+        else:
+            for q in range(nt):
+                dst[doff + q] = (a0 * R[x0 + q] + a1 * R[x1 + q]) + (b0 * R[y0 + q] + b1 * R[y1 + q])
+    elif taps == 4:
+        if has_prev:
+            for q in range(nt):
+                dst[doff + q] = prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q])
+        else:
+            for q in range(nt):
+                dst[doff + q] = a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q]
+    elif taps == 2:
+        if has_prev:
+            for q in range(nt):
+                dst[doff + q] = prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q])
+        else:
+            for q in range(nt):
+                dst[doff + q] = a0 * R[x0 + q] + a1 * R[x1 + q]
+    else:  # 1 or 3 taps (x3 unused)
+        for q in range(nt):
+            s = prev[poff + q] + a0 * R[x0 + q] if has_prev else a0 * R[x0 + q]
+            if taps == 3:
+                s += a1 * R[x1 + q]
+                s += a2 * R[x2 + q]
+            if grad:
+                s += b0 * R[x0 + dy + q]
+                if taps == 3:
+                    s += b1 * R[x1 + dy + q]
+                    s += b2 * R[x2 + dy + q]
+            dst[doff + q] = s
+
+
 @nb.njit(cache=True, nogil=True)
-def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, ext, basis,
-           absval, out, tile):
+def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
+           absval, out, nq, tile):
     """A 2-D grid of table-hashed lattice noise, every octave fused, in tiles of ``tile`` columns.
 
     Octave ``o`` has the distinct lattice taps ``lat0[off0[o]:off0[o + 1]]``
@@ -844,12 +906,13 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
     (a sample's taps are consecutive distinct taps); ``dense1[o]``: the axis-1
     taps are consecutive lattice points modulo n. Weights per axis: ``wa``
     (the kernel) and ``wb`` (kernel x signed distance, the gradient basis's
-    ramp), ``wa0[o]`` (nj, taps) and ``wa1[o]`` (taps, nq). ``scales[o]``: the
-    octave's amplitude. ``ext`` (2, n + width) or (2, 0): the last hash level
-    folded into the table and run on past n (gradient: its two components;
-    value: the values by parity row, as in ``LatticeNoise._hash_tables``),
-    used for dense axis-1 taps. ``out`` (nj, nq), float32 or float64:
-    written, or with ``absval`` (turbulence) added to.
+    ramp), ``wa0[o]`` (nj, taps) and ``wa1[o]`` (taps, nq) (:func:`pack_axis`).
+    ``scales[o]``: the octave's amplitude. For dense axis-1 taps the last hash
+    level is folded into a table run on past n (gradient: its two
+    components; value: the values by parity row, as in
+    ``LatticeNoise._hash_tables``), so a lattice row's values are a
+    contiguous run of it. ``out`` (nj * nq,), the flattened output,
+    float32 or float64: written, or with ``absval`` (turbulence) added to.
 
     The arithmetic is that of the general separable path (``hash_expand``,
     ``gather_gradients``, ``contract_last``, ``final_pass``), tap by tap and
@@ -860,12 +923,13 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
     The axis-1 contraction runs eight columns at a time (:func:`expand_dot8`)
     over the block's lattice values with the weights spread out to each
     column's offset (zeros elsewhere): adding the zero products changes no
-    bit, so it equals the four-tap sum. Each sample depends only on its row
+    bit, so it equals the four-tap sum. The hot loops index flat arrays with
+    unsigned offsets (no negative-index wrap: they vectorise) and make no array
+    views (each costs an atomic reference count). Each sample depends only on its row
     and column, not on the tile, so any window is the same slice of the
     full grid, bit for bit.
     """
     noct, nj, taps = pos0.shape
-    nq = base1.shape[1]
     n = perm.shape[0]
     grad = basis == 1
     nterm = 2 if grad else 1
@@ -875,21 +939,34 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
     smask = S - 1
     L = 8
     tile = (min(max(tile, L), nq) + L - 1) // L * L  # whole blocks of eight lanes (the ring rows are padded)
-    ring = np.empty((noct, S, nterm, tile))
+    ring = np.empty(noct * S * nterm * tile)  # rows (octave, slot, term) of tile columns
     tags = np.empty((noct, S), np.int64)
     acc = np.empty(tile)
     tmp = np.empty(tile)
     width = 1
     for o in range(noct):
         width = max(width, off1[o + 1] - off1[o])
-    vbuf0 = np.empty(width)
-    vbuf1 = np.empty(width)
+    vbuf = np.empty(2 * width)  # a row's lattice values (gradient: both components) when not read from ext
     lmin = np.empty(noct, np.int64)
     lmax = np.empty(noct, np.int64)
-    rel = np.empty((noct, tile), np.int64)
-    use_ext = ext.shape[1] > 0
-    nblk_max = (tile + L - 1) // L
-    # widest expanded block: (largest tap-base span within 8 samples) + taps
+    use_ext = False
+    for o in range(noct):
+        use_ext = use_ext or dense1[o]
+    use_ext = use_ext and n <= 1 << 16
+    ext_len = n + width
+    ext = np.empty(2 * ext_len if use_ext else 0)
+    if use_ext:
+        for x in range(ext_len):
+            xm = x % n
+            h = perm[xm]
+            if grad:
+                ext[x] = grads[h, 0]
+                ext[ext_len + x] = grads[h, 1]
+            else:
+                ext[x] = values[x & 1, h]
+                ext[ext_len + x] = values[(1 + x) & 1, h]
+    nblk_max = tile // L
+    # widest block of eight columns, in lattice taps: (largest first-tap span within the block) + taps
     mmax = taps
     for o in range(noct):
         for qa in range(0, nq, L):
@@ -900,12 +977,13 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
                 lo_ = min(lo_, base1[o, q])
                 hi_ = max(hi_, base1[o, q])
             mmax = max(mmax, hi_ - lo_ + taps)
-    expand = mmax <= 4 * L
+    expand = mmax <= 4 * L  # else (columns sparser than the lattice) a plain per-column loop
     if not expand:
         mmax = 1
     E = np.zeros(noct * nterm * nblk_max * mmax * L)
     bB = np.empty((noct, nblk_max), np.int64)
     bM = np.empty((noct, nblk_max), np.int64)
+    u = np.uint64
     for q0 in range(0, nq, tile):
         q1 = min(q0 + tile, nq)
         nt = q1 - q0
@@ -917,11 +995,10 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
                 hi = max(hi, base1[o, q])
             lmin[o] = lo
             lmax[o] = hi + taps - 1
-            for q in range(nt):
-                rel[o, q] = base1[o, q0 + q] - lo
             for s in range(S):
                 tags[o, s] = -1
             if expand:
+                # the axis-1 weights spread out: block of 8 columns x (its taps), zero off each column's taps
                 for blk in range((nt + L - 1) // L):
                     qa = q0 + blk * L
                     qb = min(qa + L, q1)
@@ -950,162 +1027,151 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
                     if tags[o, slot] == r:
                         continue
                     tags[o, slot] = r
+                    # lattice row r: its values against this tile's axis-1 taps lo .. lo + m - 1
                     lo = lmin[o]
                     m = lmax[o] + 1 - lo
                     i0 = lat0[off0[o] + r]
                     h1 = perm[i0]
                     p0 = i0 & 1
-                    seg = lat1[off1[o] + lo: off1[o] + lo + m]
+                    first = lat1[off1[o] + lo]
                     if use_ext and dense1[o]:
-                        s0 = h1 + seg[0]
+                        s0 = h1 + first
                         s0 = s0 - n if s0 >= n else s0
+                        src = ext
                         if grad:
-                            v0 = ext[0, s0:s0 + m]
-                            v1 = ext[1, s0:s0 + m]
+                            v0 = s0
+                            v1 = ext_len + s0
                         else:
-                            v0 = ext[(p0 + seg[0] + s0) & 1, s0:s0 + m]
+                            v0 = ((p0 + first + s0) & 1) * ext_len + s0
                             v1 = v0
                     else:
-                        v0 = vbuf0
-                        v1 = vbuf1
+                        src = vbuf
+                        v0 = 0
+                        v1 = width
                         for l in range(m):
-                            i1 = seg[l]
+                            i1 = lat1[off1[o] + lo + l]
                             s = h1 + i1
                             s = s - n if s >= n else s
                             h = perm[s]
                             if grad:
-                                v0[l] = grads[h, 0]
-                                v1[l] = grads[h, 1]
+                                vbuf[l] = grads[h, 0]
+                                vbuf[width + l] = grads[h, 1]
                             else:
-                                v0[l] = values[(p0 + i1) & 1, h]
+                                vbuf[l] = values[(p0 + i1) & 1, h]
+                    row0 = ((o * S + slot) * nterm) * tile
                     if expand:
                         for b in range(nterm):
-                            vv = v1 if b == 1 else v0
-                            row = ring[o, slot, b]
+                            vb = v1 if b == 1 else v0
                             ebase = (o * nterm + b) * nblk_max * mmax * L
                             for blk in range((nt + L - 1) // L):
-                                B = bB[o, blk]
-                                e0 = ebase + blk * mmax * L
-                                expand_dot8(row, blk * L, E, e0, vv, B, bM[o, blk])
-                        continue
-                    rl = rel[o]
-                    row = ring[o, slot, 0]
-                    c0 = wa1[o, 0, q0:q1]; c1 = wa1[o, 1 % taps, q0:q1]
-                    c2 = wa1[o, 2 % taps, q0:q1]; c3 = wa1[o, 3 % taps, q0:q1]
-                    if grad:
-                        row1 = ring[o, slot, 1]
-                        d0 = wb1[o, 0, q0:q1]; d1 = wb1[o, 1 % taps, q0:q1]
-                        d2 = wb1[o, 2 % taps, q0:q1]; d3 = wb1[o, 3 % taps, q0:q1]
-                        if taps == 4:
-                            for q in range(nt):
-                                b = rl[q]
-                                row[q] = c0[q] * v0[b] + c1[q] * v0[b + 1] + c2[q] * v0[b + 2] + c3[q] * v0[b + 3]
-                                row1[q] = d0[q] * v1[b] + d1[q] * v1[b + 1] + d2[q] * v1[b + 2] + d3[q] * v1[b + 3]
-                        elif taps == 2:
-                            for q in range(nt):
-                                b = rl[q]
-                                row[q] = c0[q] * v0[b] + c1[q] * v0[b + 1]
-                                row1[q] = d0[q] * v1[b] + d1[q] * v1[b + 1]
-                        else:
-                            for q in range(nt):
-                                b = rl[q]
-                                sa = wa1[o, 0, q0 + q] * v0[b]
-                                sb = wb1[o, 0, q0 + q] * v1[b]
-                                for kk in range(1, taps):
-                                    sa += wa1[o, kk, q0 + q] * v0[b + kk]
-                                    sb += wb1[o, kk, q0 + q] * v1[b + kk]
-                                row[q] = sa
-                                row1[q] = sb
+                                expand_dot8(ring, row0 + b * tile + blk * L, E, ebase + blk * mmax * L, src,
+                                            vb + bB[o, blk], bM[o, blk])
                     else:
-                        if taps == 4:
+                        # contract_last's sums, column by column
+                        for b in range(nterm):
+                            vb = v1 if b == 1 else v0
+                            wsrc = wb1 if b == 1 else wa1
                             for q in range(nt):
-                                b = rl[q]
-                                row[q] = c0[q] * v0[b] + c1[q] * v0[b + 1] + c2[q] * v0[b + 2] + c3[q] * v0[b + 3]
-                        elif taps == 2:
-                            for q in range(nt):
-                                b = rl[q]
-                                row[q] = c0[q] * v0[b] + c1[q] * v0[b + 1]
-                        else:
-                            for q in range(nt):
-                                b = rl[q]
-                                sa = wa1[o, 0, q0 + q] * v0[b]
-                                for kk in range(1, taps):
-                                    sa += wa1[o, kk, q0 + q] * v0[b + kk]
-                                row[q] = sa
-            # the axis-0 pass: octave by octave, its terms in order, each a tap sum added to the running sum
+                                c = vb + base1[o, q0 + q] - lo
+                                if taps == 4:
+                                    sa = (wsrc[o, 0, q0 + q] * src[c] + wsrc[o, 1, q0 + q] * src[c + 1]
+                                          + wsrc[o, 2, q0 + q] * src[c + 2] + wsrc[o, 3, q0 + q] * src[c + 3])
+                                elif taps == 2:
+                                    sa = wsrc[o, 0, q0 + q] * src[c] + wsrc[o, 1, q0 + q] * src[c + 1]
+                                else:
+                                    sa = wsrc[o, 0, q0 + q] * src[c]
+                                    for kk in range(1, taps):
+                                        sa += wsrc[o, kk, q0 + q] * src[c + kk]
+                                ring[row0 + b * tile + q] = sa
+            # the axis-0 pass: octave by octave, each octave's terms in order, each a tap sum added to the
+            # running sum (between two buffers; the last octave straight into the output row)
+            ntu = u(nt)
+            dy = u(tile if grad else 0)  # the second term's rows follow the first's
             for o in range(noct):
                 sc = scales[o]
-                buf = tmp if (absval and o > 0) else acc
-                fst = o == 0 or absval
-                if grad and taps == 4:
-                    a0 = wb0[o, j, 0] * sc; a1 = wb0[o, j, 1] * sc; a2 = wb0[o, j, 2] * sc; a3 = wb0[o, j, 3] * sc
-                    b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1] * sc; b2 = wa0[o, j, 2] * sc; b3 = wa0[o, j, 3] * sc
-                    x0 = ring[o, pos0[o, j, 0] & smask, 0]; x1 = ring[o, pos0[o, j, 1] & smask, 0]
-                    x2 = ring[o, pos0[o, j, 2] & smask, 0]; x3 = ring[o, pos0[o, j, 3] & smask, 0]
-                    y0 = ring[o, pos0[o, j, 0] & smask, 1]; y1 = ring[o, pos0[o, j, 1] & smask, 1]
-                    y2 = ring[o, pos0[o, j, 2] & smask, 1]; y3 = ring[o, pos0[o, j, 3] & smask, 1]
-                    if fst:
-                        for q in range(nt):
-                            buf[q] = ((a0 * x0[q] + a1 * x1[q] + a2 * x2[q] + a3 * x3[q])
-                                      + (b0 * y0[q] + b1 * y1[q] + b2 * y2[q] + b3 * y3[q]))
-                    else:
-                        for q in range(nt):
-                            buf[q] = ((buf[q] + (a0 * x0[q] + a1 * x1[q] + a2 * x2[q] + a3 * x3[q]))
-                                      + (b0 * y0[q] + b1 * y1[q] + b2 * y2[q] + b3 * y3[q]))
-                elif grad and taps == 2:
-                    a0 = wb0[o, j, 0] * sc; a1 = wb0[o, j, 1] * sc
-                    b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1] * sc
-                    x0 = ring[o, pos0[o, j, 0] & smask, 0]; x1 = ring[o, pos0[o, j, 1] & smask, 0]
-                    y0 = ring[o, pos0[o, j, 0] & smask, 1]; y1 = ring[o, pos0[o, j, 1] & smask, 1]
-                    if fst:
-                        for q in range(nt):
-                            buf[q] = (a0 * x0[q] + a1 * x1[q]) + (b0 * y0[q] + b1 * y1[q])
-                    else:
-                        for q in range(nt):
-                            buf[q] = (buf[q] + (a0 * x0[q] + a1 * x1[q])) + (b0 * y0[q] + b1 * y1[q])
-                elif taps == 4:
-                    a0 = wa0[o, j, 0] * sc; a1 = wa0[o, j, 1] * sc; a2 = wa0[o, j, 2] * sc; a3 = wa0[o, j, 3] * sc
-                    x0 = ring[o, pos0[o, j, 0] & smask, 0]; x1 = ring[o, pos0[o, j, 1] & smask, 0]
-                    x2 = ring[o, pos0[o, j, 2] & smask, 0]; x3 = ring[o, pos0[o, j, 3] & smask, 0]
-                    if fst:
-                        for q in range(nt):
-                            buf[q] = a0 * x0[q] + a1 * x1[q] + a2 * x2[q] + a3 * x3[q]
-                    else:
-                        for q in range(nt):
-                            buf[q] += a0 * x0[q] + a1 * x1[q] + a2 * x2[q] + a3 * x3[q]
-                elif taps == 2:
-                    a0 = wa0[o, j, 0] * sc; a1 = wa0[o, j, 1] * sc
-                    x0 = ring[o, pos0[o, j, 0] & smask, 0]; x1 = ring[o, pos0[o, j, 1] & smask, 0]
-                    if fst:
-                        for q in range(nt):
-                            buf[q] = a0 * x0[q] + a1 * x1[q]
-                    else:
-                        for q in range(nt):
-                            buf[q] += a0 * x0[q] + a1 * x1[q]
+                rb = o * S * nterm * tile
+                x0 = u(rb + (pos0[o, j, 0] & smask) * nterm * tile)
+                x1 = u(rb + (pos0[o, j, 1 % taps] & smask) * nterm * tile)
+                x2 = u(rb + (pos0[o, j, 2 % taps] & smask) * nterm * tile)
+                x3 = u(rb + (pos0[o, j, 3 % taps] & smask) * nterm * tile)
+                wt = wb0 if grad else wa0
+                a0 = wt[o, j, 0] * sc; a1 = wt[o, j, 1 % taps] * sc
+                a2 = wt[o, j, 2 % taps] * sc; a3 = wt[o, j, 3 % taps] * sc
+                b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1 % taps] * sc
+                b2 = wa0[o, j, 2 % taps] * sc; b3 = wa0[o, j, 3 % taps] * sc
+                if not absval and o == noct - 1:
+                    _axis0_octave(out, u(j * nq + q0), acc if o % 2 == 1 else tmp, u(0), o > 0, ring, ntu, taps,
+                                  grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
                 else:
-                    # taps 1 and 3: every tap product is added to the running sum by itself (final_pass's order)
-                    for b in range(nterm):
-                        wt = wb0 if (grad and b == 0) else wa0
-                        for k in range(taps):
-                            wk = wt[o, j, k] * sc
-                            rk = ring[o, pos0[o, j, k] & smask, b]
-                            if fst and b == 0 and k == 0:
-                                for q in range(nt):
-                                    buf[q] = wk * rk[q]
-                            else:
-                                for q in range(nt):
-                                    buf[q] += wk * rk[q]
-                if absval:
-                    if o == 0:
+                    # turbulence: each octave into tmp, |.| summed into acc; else acc and tmp in turn
+                    dst = tmp if (absval or o % 2 == 1) else acc
+                    prev = acc if (absval or o % 2 == 1) else tmp
+                    _axis0_octave(dst, u(0), prev, u(0), o > 0 and not absval, ring, ntu, taps, grad, x0, x1, x2, x3,
+                                  dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                    if absval and o == 0:
                         for q in range(nt):
-                            acc[q] = abs(acc[q])
-                    else:
+                            acc[q] = abs(tmp[q])
+                    elif absval:
                         for q in range(nt):
                             acc[q] += abs(tmp[q])
-            orow = out[j, q0:q1]
             if absval:
+                ob = j * nq + q0
                 for q in range(nt):
-                    orow[q] += acc[q]
-            else:
-                for q in range(nt):
-                    orow[q] = acc[q]
+                    out[ob + q] += acc[q]
+
+
+@nb.njit(cache=True, nogil=True)
+def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv, last):
+    """Every octave's distinct taps and weights along one grid axis, packed for :func:`grid2d`.
+
+    Per octave: :func:`axis_weights` (or, with ``deriv``, :func:`axis_dweights`)
+    and :func:`dense_taps`, as ``LatticeNoise._axis_taps`` computes them.
+    Returns ``ok`` (False when an octave's taps span too many cells for
+    :func:`dense_taps`: the caller then packs ``_axis_taps``' sparse result),
+    ``lat`` (the distinct taps modulo n, octave after octave), ``off``
+    (octave o's taps are ``lat[off[o]:off[o + 1]]``), ``pos`` (O, N, taps),
+    ``base`` (O, N) = ``pos[:, :, 0]``, the weights ``wa``, ``wb`` (O, N, taps),
+    or (O, taps, N) with ``last``, and ``dense`` (O,): the taps are
+    consecutive lattice points modulo n (and the period a multiple of n).
+    """
+    noct = freqs.shape[0]
+    nn = coords.shape[0]
+    cap = noct * (4 * taps * nn + 64 + taps)
+    lat = np.empty(cap, np.int64)
+    off = np.zeros(noct + 1, np.int64)
+    pos = np.empty((noct, nn, taps), np.int64)
+    base = np.empty((noct, nn), np.int64)
+    if last:
+        wa = np.empty((noct, taps, nn))
+        wb = np.empty((noct, taps, nn))
+    else:
+        wa = np.empty((noct, nn, taps))
+        wb = np.empty((noct, nn, taps))
+    dense = np.zeros(noct, np.bool_)
+    for o in range(noct):
+        fis, fbase, w, rw = axis_weights(coords, freqs[o], phase, shift, left, taps, coef, period, grad)
+        if deriv:
+            w, rw = axis_dweights(coords, freqs[o], phase, shift, left, taps, coef, dcoef, grad)
+        span = fis.max() - fis.min() if nn > 0 else 0.0
+        if not span <= 4 * taps * nn + 64:
+            return False, lat[:0], off, pos, base, wa, wb, dense
+        lattice, p = dense_taps(fis, fbase, taps, period)
+        cnt = lattice.shape[0]
+        consecutive = period % n == 0
+        for i in range(cnt):
+            lat[off[o] + i] = lattice[i] % n
+            if i > 0 and (lattice[i] - lattice[i - 1]) % period != 1:
+                consecutive = False
+        off[o + 1] = off[o] + cnt
+        dense[o] = consecutive
+        for j in range(nn):
+            base[o, j] = p[j, 0]
+            for k in range(taps):
+                pos[o, j, k] = p[j, k]
+                if last:
+                    wa[o, k, j] = w[j, k]
+                    wb[o, k, j] = rw[j, k]
+                else:
+                    wa[o, j, k] = w[j, k]
+                    wb[o, j, k] = rw[j, k]
+    return True, lat[:off[noct]], off, pos, base, wa, wb, dense

@@ -949,9 +949,10 @@ class LatticeNoise:
                 else:
                     _jit.final_pass(inter_all, poss, ws, scales, group_start, target, mode)
 
-    # columns per tile of the fused 2-D pass (a multiple of 8); its rings of contracted lattice rows
-    # (octaves x 4 rows x gradient terms x tile, float64) stay in the L2 cache
-    _TILE_2D = 256
+    # columns per tile of the fused 2-D pass (None: as many as keep its ring of contracted lattice rows,
+    # octaves x 4 rows x gradient terms x tile float64, within _RING_BYTES); a test sets it small
+    _TILE_2D = None
+    _RING_BYTES = 128 << 10
 
     def _grid_fused_2d(self, sub, octaves, out, absval, deriv_axis):
         """The separable pass of a 2-D grid with the table hash: every octave in one kernel (:func:`_jit.grid2d`).
@@ -960,45 +961,36 @@ class LatticeNoise:
         bits), without the lattice block or octave batches in memory.
         """
         grad = self.basis == "gradient"
-        taps = self.kernel.taps
+        k = self.kernel
         n = self.table_size
-        per_axis = [[], []]
-        for freq, _ in octaves:
-            for a in range(2):
-                per_axis[a].append(self._axis_taps(sub[a], freq[a], a, grad, deriv=a == deriv_axis))
+        freqs = np.array([freq for freq, _ in octaves], dtype=np.float64)
         packed = []
-        for a, axis in enumerate(per_axis):
-            lat = np.concatenate([np.asarray(ax[0], dtype=np.int64) for ax in axis]) % n
-            off = np.zeros(len(axis) + 1, np.int64)
-            off[1:] = np.cumsum([len(ax[0]) for ax in axis])
-            pos = np.ascontiguousarray(np.stack([ax[1] for ax in axis]), dtype=np.int64)
-            # a sample's taps are consecutive distinct taps (the kernel's rings and blocks rely on it)
-            assert (pos - pos[..., :1] == np.arange(taps)).all()
-            wa = np.stack([ax[2] for ax in axis])
-            wb = np.stack([ax[3] for ax in axis]) if grad else wa
-            if a == 0:
-                packed.append((lat, off, pos, np.ascontiguousarray(wa), np.ascontiguousarray(wb)))
-            else:
-                # consecutive lattice points modulo n (the period a multiple of n): the row's values are
-                # a contiguous run of the extended table
+        for a in range(2):
+            ok, lat, off, pos, base, wa, wb, dense = _jit.pack_axis(
+                sub[a], np.ascontiguousarray(freqs[:, a]), self.phase[a], k.shift, k.left, k.taps, k.coef, k.dcoef,
+                int(self.period[a]), n, grad, a == deriv_axis, a == 1)
+            if not ok:  # taps spread over many cells: _axis_taps' sparse branch, packed alike
+                axis = [self._axis_taps(sub[a], freq[a], a, grad, deriv=a == deriv_axis) for freq in freqs]
+                lat = np.concatenate([np.asarray(ax[0], dtype=np.int64) for ax in axis]) % n
+                off = np.zeros(len(axis) + 1, np.int64)
+                off[1:] = np.cumsum([len(ax[0]) for ax in axis])
+                pos = np.ascontiguousarray(np.stack([ax[1] for ax in axis]), dtype=np.int64)
+                base = np.ascontiguousarray(pos[:, :, 0])
+                wa = np.stack([ax[2] for ax in axis])
+                wb = np.stack([ax[3] for ax in axis])
+                if a == 1:
+                    wa, wb = wa.transpose(0, 2, 1), wb.transpose(0, 2, 1)
+                wa, wb = np.ascontiguousarray(wa), np.ascontiguousarray(wb)
                 dense = np.array([self.period[1] % n == 0 and bool((np.diff(ax[0]) % self.period[1] == 1).all())
                                   for ax in axis])
-                packed.append((lat, off, np.ascontiguousarray(pos[:, :, 0]), dense,
-                               np.ascontiguousarray(wa.transpose(0, 2, 1)), np.ascontiguousarray(wb.transpose(0, 2, 1))))
-        width = int(np.max(np.diff(packed[1][1])))
-        use_ext = n <= 1 << 16 and bool(packed[1][3].any())
-        x = np.arange(n + width) % n if use_ext else None
+            packed.append((lat, off, pos, wa, wb) if a == 0 else (lat, off, base, dense, wa, wb))
         scales = np.array([amp for _, amp in octaves], dtype=np.float64)
+        nq = out.shape[2]
+        tile = self._TILE_2D or int(min(2048, max(64, self._RING_BYTES // (8 * len(octaves) * 4 * (2 if grad else 1)))))
+        assert out.flags.c_contiguous
         for c in range(self.dim_out):
-            perm = self.perms[c]
-            if not use_ext:
-                ext = np.zeros((2, 0))
-            elif grad:
-                ext = np.ascontiguousarray(self.gradients[perm[x], :2].T)
-            else:
-                ext = np.stack([self.values[(r + x) & 1, perm[x]] for r in range(2)])
-            _jit.grid2d(*packed[0], *packed[1], scales, perm, self.values, self.gradients, ext, 1 if grad else 0,
-                        bool(absval), out[c], self._TILE_2D)
+            _jit.grid2d(*packed[0], *packed[1], scales, self.perms[c], self.values, self.gradients, 1 if grad else 0,
+                        bool(absval), out[c].reshape(-1), nq, tile)
 
     @staticmethod
     def _contract_rest(block, axes, use_r, target):
