@@ -941,12 +941,11 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
     tile = (min(max(tile, L), nq) + L - 1) // L * L  # whole blocks of eight lanes (the ring rows are padded)
     ring = np.empty(noct * S * nterm * tile)  # rows (octave, slot, term) of tile columns
     tags = np.empty((noct, S), np.int64)
-    acc = np.empty(tile)
-    tmp = np.empty(tile)
+    bufs = np.empty(2 * tile)  # two running sums of a row (acc at 0, tmp at tile); no array is chosen at run
+    # time in the loops below (each such choice costs an atomic reference count)
     width = 1
     for o in range(noct):
         width = max(width, off1[o + 1] - off1[o])
-    vbuf = np.empty(2 * width)  # a row's lattice values (gradient: both components) when not read from ext
     lmin = np.empty(noct, np.int64)
     lmax = np.empty(noct, np.int64)
     use_ext = False
@@ -954,7 +953,9 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
         use_ext = use_ext or dense1[o]
     use_ext = use_ext and n <= 1 << 16
     ext_len = n + width
-    ext = np.empty(2 * ext_len if use_ext else 0)
+    # the extended tables (when used), then room for a row's lattice values hashed one by one
+    vbase = 2 * ext_len if use_ext else 0
+    ext = np.empty(vbase + 2 * width)
     if use_ext:
         for x in range(ext_len):
             xm = x % n
@@ -1037,7 +1038,6 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
                     if use_ext and dense1[o]:
                         s0 = h1 + first
                         s0 = s0 - n if s0 >= n else s0
-                        src = ext
                         if grad:
                             v0 = s0
                             v1 = ext_len + s0
@@ -1045,26 +1045,25 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
                             v0 = ((p0 + first + s0) & 1) * ext_len + s0
                             v1 = v0
                     else:
-                        src = vbuf
-                        v0 = 0
-                        v1 = width
+                        v0 = vbase
+                        v1 = vbase + width
                         for l in range(m):
                             i1 = lat1[off1[o] + lo + l]
                             s = h1 + i1
                             s = s - n if s >= n else s
                             h = perm[s]
                             if grad:
-                                vbuf[l] = grads[h, 0]
-                                vbuf[width + l] = grads[h, 1]
+                                ext[v0 + l] = grads[h, 0]
+                                ext[v1 + l] = grads[h, 1]
                             else:
-                                vbuf[l] = values[(p0 + i1) & 1, h]
+                                ext[v0 + l] = values[(p0 + i1) & 1, h]
                     row0 = ((o * S + slot) * nterm) * tile
                     if expand:
                         for b in range(nterm):
                             vb = v1 if b == 1 else v0
                             ebase = (o * nterm + b) * nblk_max * mmax * L
                             for blk in range((nt + L - 1) // L):
-                                expand_dot8(ring, row0 + b * tile + blk * L, E, ebase + blk * mmax * L, src,
+                                expand_dot8(ring, row0 + b * tile + blk * L, E, ebase + blk * mmax * L, ext,
                                             vb + bB[o, blk], bM[o, blk])
                     else:
                         # contract_last's sums, column by column
@@ -1074,14 +1073,14 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
                             for q in range(nt):
                                 c = vb + base1[o, q0 + q] - lo
                                 if taps == 4:
-                                    sa = (wsrc[o, 0, q0 + q] * src[c] + wsrc[o, 1, q0 + q] * src[c + 1]
-                                          + wsrc[o, 2, q0 + q] * src[c + 2] + wsrc[o, 3, q0 + q] * src[c + 3])
+                                    sa = (wsrc[o, 0, q0 + q] * ext[c] + wsrc[o, 1, q0 + q] * ext[c + 1]
+                                          + wsrc[o, 2, q0 + q] * ext[c + 2] + wsrc[o, 3, q0 + q] * ext[c + 3])
                                 elif taps == 2:
-                                    sa = wsrc[o, 0, q0 + q] * src[c] + wsrc[o, 1, q0 + q] * src[c + 1]
+                                    sa = wsrc[o, 0, q0 + q] * ext[c] + wsrc[o, 1, q0 + q] * ext[c + 1]
                                 else:
-                                    sa = wsrc[o, 0, q0 + q] * src[c]
+                                    sa = wsrc[o, 0, q0 + q] * ext[c]
                                     for kk in range(1, taps):
-                                        sa += wsrc[o, kk, q0 + q] * src[c + kk]
+                                        sa += wsrc[o, kk, q0 + q] * ext[c + kk]
                                 ring[row0 + b * tile + q] = sa
             # the axis-0 pass: octave by octave, each octave's terms in order, each a tap sum added to the
             # running sum (between two buffers; the last octave straight into the output row)
@@ -1094,30 +1093,33 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
                 x1 = u(rb + (pos0[o, j, 1 % taps] & smask) * nterm * tile)
                 x2 = u(rb + (pos0[o, j, 2 % taps] & smask) * nterm * tile)
                 x3 = u(rb + (pos0[o, j, 3 % taps] & smask) * nterm * tile)
-                wt = wb0 if grad else wa0
-                a0 = wt[o, j, 0] * sc; a1 = wt[o, j, 1 % taps] * sc
-                a2 = wt[o, j, 2 % taps] * sc; a3 = wt[o, j, 3 % taps] * sc
+                if grad:
+                    a0 = wb0[o, j, 0] * sc; a1 = wb0[o, j, 1 % taps] * sc
+                    a2 = wb0[o, j, 2 % taps] * sc; a3 = wb0[o, j, 3 % taps] * sc
+                else:
+                    a0 = wa0[o, j, 0] * sc; a1 = wa0[o, j, 1 % taps] * sc
+                    a2 = wa0[o, j, 2 % taps] * sc; a3 = wa0[o, j, 3 % taps] * sc
                 b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1 % taps] * sc
                 b2 = wa0[o, j, 2 % taps] * sc; b3 = wa0[o, j, 3 % taps] * sc
                 if not absval and o == noct - 1:
-                    _axis0_octave(out, u(j * nq + q0), acc if o % 2 == 1 else tmp, u(0), o > 0, ring, ntu, taps,
+                    _axis0_octave(out, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu, taps,
                                   grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
                 else:
                     # turbulence: each octave into tmp, |.| summed into acc; else acc and tmp in turn
-                    dst = tmp if (absval or o % 2 == 1) else acc
-                    prev = acc if (absval or o % 2 == 1) else tmp
-                    _axis0_octave(dst, u(0), prev, u(0), o > 0 and not absval, ring, ntu, taps, grad, x0, x1, x2, x3,
-                                  dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                    into_tmp = absval or o % 2 == 1
+                    _axis0_octave(bufs, u(tile if into_tmp else 0), bufs, u(0 if into_tmp else tile),
+                                  o > 0 and not absval, ring, ntu, taps, grad, x0, x1, x2, x3, dy,
+                                  a0, a1, a2, a3, b0, b1, b2, b3)
                     if absval and o == 0:
                         for q in range(nt):
-                            acc[q] = abs(tmp[q])
+                            bufs[q] = abs(bufs[tile + q])
                     elif absval:
                         for q in range(nt):
-                            acc[q] += abs(tmp[q])
+                            bufs[q] += abs(bufs[tile + q])
             if absval:
                 ob = j * nq + q0
                 for q in range(nt):
-                    out[ob + q] += acc[q]
+                    out[ob + q] += bufs[q]
 
 
 @nb.njit(cache=True, nogil=True)
