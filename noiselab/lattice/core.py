@@ -882,7 +882,7 @@ class LatticeNoise:
         """
         d = self.dim_in
         grad = self.basis == "gradient"
-        if d == 2 and self.hash == "table":
+        if d == 2 and self.hash == "table" and self._FUSED_2D:
             self._grid_fused_2d(sub, octaves, out, absval, deriv_axis)
             return
         nterm = d if grad else 1
@@ -949,6 +949,8 @@ class LatticeNoise:
                 else:
                     _jit.final_pass(inter_all, poss, ws, scales, group_start, target, mode)
 
+    # 2-D grids with the table hash take the fused kernel (a test turns it off to compare with the general path)
+    _FUSED_2D = True
     # columns per tile of the fused 2-D pass (None: as many as keep its ring of contracted lattice rows,
     # octaves x 2**ceil(log2 taps) rows x gradient terms x tile float64, within _RING_BYTES: measured
     # on 512^2 and 1024^2 grids, wider tiles are faster up to the L2 cache); a test sets it small
