@@ -99,59 +99,117 @@ def _version(dist):
 
 
 # --------------------------------------------------------------------------- grids
+GRID_HEAD = "## 2-D grids against pyfastnoisesimd and the floor"
+# (n, lattice cells per side): the issue's 1024^2 grid of 16 cells, and the denser 512^2 grid of 32 cells
+# that the lab's peer comparison renders (noiselab/lab/peers.py, CELLS_1)
+GRID_SETTINGS = ((1024, 16), (512, 32))
+
+
+def _fns_noise(fns, basis, octaves, cells, n):
+    """pyfastnoisesimd's like-for-like noise: Value(Fractal) for value, Perlin(Fractal) for gradient noise.
+
+    One worker (the calling thread); frequency = lattice cells per sample; the
+    fractal FBM with noiselab's octaves, lacunarity 2 and gain 0.5.
+    """
+    f = fns.Noise(seed=1, numWorkers=1)
+    base = "Value" if basis == "value" else "Perlin"
+    f.noiseType = getattr(fns.NoiseType, base if octaves == 1 else base + "Fractal")
+    f.frequency = cells / n
+    if octaves > 1:
+        f.fractal.fractalType = fns.FractalType.FBM
+        f.fractal.octaves = octaves
+        f.fractal.lacunarity = 2.0
+        f.fractal.gain = 0.5
+    return f
+
+
+def bench_cpu(cands: dict, repeats: int) -> Times:
+    """:func:`bench` on this thread's CPU time (``time.thread_time``) instead of the wall clock.
+
+    On the shared machine other jobs preempt this one for a varying share of
+    each run, which the wall clock counts; CPU time does not. Every candidate
+    of the grid section runs in the calling thread (pyfastnoisesimd with one
+    worker included), so its CPU time is its whole cost.
+    """
+    for f in cands.values():
+        f()
+    times = {k: [] for k in cands}
+    for _ in range(repeats):
+        for k, f in cands.items():
+            t0 = time.thread_time()
+            f()
+            times[k].append(time.thread_time() - t0)
+    return Times(times)
+
+
 def grid_section(repeats, quick, lines):
+    fns = _peer("fns")
+    lines.append(GRID_HEAD + "\n")
+    lines.append("One thread; times are the thread's CPU time (`time.thread_time`: on the shared machine the wall "
+                 "clock also counts the other jobs' share of the core). Every row's candidates are timed interleaved "
+                 "in the same rounds: noiselab "
+                 "(`LatticeNoise(2, kernel=..., basis=...)`, table hash; `.grid` for one octave, `fractal_sum(noise, "
+                 "Grid(...), 6)` for six), pyfastnoisesimd's like-for-like noise (value: `Value` / `ValueFractal`; "
+                 "gradient: `Perlin` / `PerlinFractal`; float32, 1 worker, `genAsGrid`, frequency = cells per "
+                 "sample, FBM with 6 octaves, lacunarity 2, gain 0.5) and the floor (writing the output: "
+                 "`np.full(shape, 0.5)` in the output's dtype). `x FNS` = pyfastnoisesimd time / time, `x floor` = "
+                 "floor time / time (1.0 would be as fast as writing the output), each the median of the "
+                 "per-round ratios. noiselab computes in float64 (the float32 column rounds the float64 sum as it "
+                 "stores). `used`: the octaves `fractal_sum` evaluates (it drops octaves finer than the sample "
+                 "spacing: 5 of 6 on the 512^2, 32-cell grid; pyfastnoisesimd computes all 6). pyfastnoisesimd's "
+                 "value and Perlin noise interpolate with the quintic fade, so the quintic rows are the like-for-"
+                 "like ones; the other kernels do more work per sample (a 4-tap kernel sums 16 lattice points in "
+                 "2-D, the quintic 4).\n")
+    summary = {}
+    kernels = ["cubic", "quintic"] if quick else kernel_names()
+    for n, cells in GRID_SETTINGS:
+        shape = (n, n)
+        npts = n * n
+        grid = Grid(shape, [(0.0, float(cells)), (0.0, float(cells))])
+        lines.append(f"### {n} x {n}, {cells} lattice cells per side\n")
+        lines.append("| kernel | basis | octaves | float64 pts/s | x floor | x FNS | float32 pts/s | x floor | x FNS "
+                     "| FNS pts/s |")
+        lines.append("|---|---|---|---|---|---|---|---|---|---|")
+        for kname in kernels:
+            for basis in ("value", "gradient"):
+                noise = LatticeNoise(2, seed=1, kernel=kname, basis=basis)
+                cands = {"floor_float64": lambda: np.full(shape, 0.5),
+                         "floor_float32": lambda: np.full(shape, 0.5, dtype=np.float32)}
+                if fns is not None:
+                    for octaves in (1, 6):
+                        f = _fns_noise(fns, basis, octaves, cells, n)
+                        cands[f"fns{octaves}"] = lambda f=f: f.genAsGrid([1, *shape])
+                for dt in ("float64", "float32"):
+                    cands[f"one_{dt}"] = lambda dt=dt, noise=noise: noise.grid(shape, grid.extent, dtype=dt)
+                    cands[f"six_{dt}"] = lambda dt=dt, noise=noise: fractal_sum(noise, grid, 6, dtype=dt)
+                t = bench_cpu(cands, repeats)
+                _, used = fractal_sum(noise, grid, 6, return_octaves=True)
+                for label, key, fkey in (("1", "one", "fns1"), (f"6 (used {used})", "six", "fns6")):
+                    row = [kname, basis, label]
+                    for dt in ("float64", "float32"):
+                        k_ = f"{key}_{dt}"
+                        xfns = t.ratio(fkey, k_) if fkey in t else None
+                        row += [f"{npts / t[k_]:.3g}", f"{t.ratio('floor_' + dt, k_):.2f}",
+                                f"{xfns:.2f}" if xfns is not None else "n/a"]
+                        summary[(n, kname, basis, key, dt)] = (npts / t[k_], t.ratio("floor_" + dt, k_), xfns)
+                    row.append(f"{npts / t[fkey]:.3g}" if fkey in t else "n/a")
+                    lines.append("| " + " | ".join(row) + " |")
+        lines.append("")
+    fns_rows = [v[2] for k, v in summary.items() if v[2] is not None]
+    if fns_rows:
+        grad = [v[2] for k, v in summary.items() if k[2] == "gradient" and v[2] is not None]
+        dense = [v[2] for k, v in summary.items() if k[0] == 512 and v[2] is not None]
+        quint = [v[2] for k, v in summary.items() if k[1] == "quintic" and v[2] is not None]
+        lines.append(f"Range of `x FNS` over the tables: all rows {min(fns_rows):.2f}-{max(fns_rows):.2f}; gradient "
+                     f"rows {min(grad):.2f}-{max(grad):.2f}; the 512^2, 32-cell rows {min(dense):.2f}-{max(dense):.2f}; "
+                     f"the quintic rows {min(quint):.2f}-{max(quint):.2f}.\n")
     shape = (1024, 1024)
     cells = 16.0
     npts = shape[0] * shape[1]
     grid = Grid(shape, [(0.0, cells), (0.0, cells)])
-    fns = _peer("fns")
-    lines.append("## 2-D grid, 1024 x 1024, 16 lattice cells per side\n")
-    lines.append("Points per second (median); `x floor` = time of `np.full((1024, 1024), 0.5)` (float64) / time; "
-                 "`x FNS` = pyfastnoisesimd value noise (float32, 1 worker) time / time, same octaves.\n")
-    lines.append("| kernel | basis | octaves | float64 pts/s | x floor | x FNS | float32 pts/s | x floor | x FNS |")
-    lines.append("|---|---|---|---|---|---|---|---|---|")
-    summary = {}
-    kernels = ["cubic", "quintic"] if quick else kernel_names()
-    for kname in kernels:
-        for basis in ("value", "gradient"):
-            noise = LatticeNoise(2, seed=1, kernel=kname, basis=basis)
-            cands = {"floor": lambda: np.full(shape, 0.5)}
-            if fns is not None:
-                f1 = fns.Noise(seed=1, numWorkers=1)
-                f1.noiseType = fns.NoiseType.Value
-                f1.frequency = cells / shape[0]
-                f6 = fns.Noise(seed=1, numWorkers=1)
-                f6.noiseType = fns.NoiseType.ValueFractal
-                f6.frequency = cells / shape[0]
-                f6.fractal.octaves = 6
-                f6.fractal.lacunarity = 2.0
-                f6.fractal.gain = 0.5
-                cands["fns1"] = lambda f1=f1: f1.genAsGrid([1, *shape])
-                cands["fns6"] = lambda f6=f6: f6.genAsGrid([1, *shape])
-            for dt in ("float64", "float32"):
-                cands[f"one_{dt}"] = lambda dt=dt, noise=noise: noise.grid(shape, grid.extent, dtype=dt)
-                cands[f"six_{dt}"] = lambda dt=dt, noise=noise: fractal_sum(noise, grid, 6, dtype=dt)
-            t = bench(cands, repeats)
-            _, used = fractal_sum(noise, grid, 6, return_octaves=True)
-            for label, key, fkey in (("1", "one", "fns1"), (f"6 (used {used})", "six", "fns6")):
-                row = [kname, basis, label]
-                for dt in ("float64", "float32"):
-                    tt = t[f"{key}_{dt}"]
-                    k_ = f"{key}_{dt}"
-                    row += [f"{npts / tt:.3g}", f"{t.ratio('floor', k_):.2f}",
-                            f"{t.ratio(fkey, k_):.2f}" if fkey in t else "n/a"]
-                    summary[(kname, basis, key, dt)] = (npts / tt, t.ratio("floor", k_),
-                                                        t.ratio(fkey, k_) if fkey in t else None)
-                lines.append("| " + " | ".join(row) + " |")
-            if "fns1" in t:
-                summary["fns"] = (npts / t["fns1"], npts / t["fns6"])
-            summary["floor"] = npts / t["floor"]
-    if "fns" in summary:
-        lines.append(f"\npyfastnoisesimd value noise (float32, 1 worker), last group: {summary['fns'][0]:.3g} pts/s one octave, "
-                     f"{summary['fns'][1]:.3g} pts/s six octaves; floor {summary['floor']:.3g} pts/s.\n")
 
     # other grid peers, one octave, measured once side by side
-    lines.append("### Other peers on the same 1024 x 1024 grid (one octave)\n")
+    lines.append("### Other peers on the 1024 x 1024 grid (one octave)\n")
     lines.append("| implementation | precision | pts/s | x floor | note |")
     lines.append("|---|---|---|---|---|")
     cands = {"floor": lambda: np.full(shape, 0.5)}
@@ -446,8 +504,27 @@ def main():
     ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
     ap.add_argument("--hash-only", action="store_true",
                     help="run only the integer-hash section and replace it in the output file (the rest is kept)")
+    ap.add_argument("--grid-only", action="store_true",
+                    help="run only the 2-D grid section and replace it in the output file (the rest is kept)")
     args = ap.parse_args()
     repeats = max(5, args.repeats)
+    if args.grid_only:
+        cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py --grid-only"
+               + (" --quick" if args.quick else "") + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
+        lines = []
+        load = os.getloadavg()[0]
+        start = _dt.datetime.now(_dt.timezone.utc)
+        gsum = grid_section(repeats, args.quick, lines)
+        lines.insert(1, f"Run alone (`{cmd}`), {start:%Y-%m-%d %H:%M UTC}, {platform.machine()}, {os.cpu_count()} "
+                        f"cores ({_cpu()}, AVX-512: pyfastnoisesimd runs its AVX-512 path) shared with other jobs, "
+                        f"load average {load:.1f} at start and {os.getloadavg()[0]:.1f} at the end; python "
+                        f"{platform.python_version()}, numpy {np.__version__}, numba {_version('numba')}, "
+                        f"pyfastnoisesimd {_version('pyfastnoisesimd')}; median of {repeats} interleaved rounds. "
+                        "It replaces the grid lines of the summary above (from the full run in the header, on "
+                        "another machine). Float64 summary of this run:\n\n" + "\n".join(_grid_summary(gsum)) + "\n")
+        _splice(args.output, GRID_HEAD, "\n".join(lines) + "\n")
+        print("\n".join(lines))
+        return
     if args.hash_only:
         cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py --hash-only"
                + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
@@ -480,14 +557,7 @@ def main():
     hash_section(repeats, body)
     precision_section(body)
     lines.append("## Summary (float64 unless stated; ratios > 1 mean noiselab is faster)\n")
-    for kname in ("cubic", "quintic"):
-        for key, label in (("one", "one octave"), ("six", "6-octave fractal sum")):
-            r = gsum.get((kname, "value", key, "float64"))
-            r32 = gsum.get((kname, "value", key, "float32"))
-            if r:
-                fns_txt = f", {r[2]:.2f}x pyfastnoisesimd value noise (float32)" if r[2] else ""
-                lines.append(f"- 2-D grid 1024^2, value noise, {kname} kernel, {label}: {r[0]:.3g} pts/s "
-                             f"({r[1]:.2f}x the float64 write floor{fns_txt}); float32 output {r32[0]:.3g} pts/s")
+    lines += _grid_summary(gsum)
     for kname in ("quintic", "cubic"):
         r = ssum.get((kname, "value"))
         if r:
@@ -505,6 +575,22 @@ def main():
     lines += body
     Path(args.output).write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
+
+
+def _grid_summary(gsum):
+    """The summary's grid lines (float64 output; the like-for-like pyfastnoisesimd noise)."""
+    out = []
+    for n, cells in GRID_SETTINGS:
+        for kname in ("quintic", "cubic"):
+            for basis in ("value", "gradient"):
+                for key, label in (("one", "one octave"), ("six", "6-octave fractal sum")):
+                    r = gsum.get((n, kname, basis, key, "float64"))
+                    if r:
+                        peer = ("Value" if basis == "value" else "Perlin") + ("Fractal" if key == "six" else "")
+                        fns_txt = f", {r[2]:.2f}x pyfastnoisesimd {peer}" if r[2] is not None else ""
+                        out.append(f"- 2-D grid {n}^2 ({cells} cells), {basis} noise, {kname}, {label}: {r[0]:.3g} "
+                                   f"pts/s ({r[1]:.2f}x the write floor{fns_txt})")
+    return out
 
 
 def _cpu():

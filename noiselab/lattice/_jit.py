@@ -1177,3 +1177,28 @@ def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, g
                     wa[o, j, k] = w[j, k]
                     wb[o, j, k] = rw[j, k]
     return True, lat[:off[noct]], off, pos, base, wa, wb, dense
+
+
+@nb.njit(cache=True, nogil=True)
+def grid2d_all(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv_axis, scales, perms,
+               values, grads, absval, out, nq, tile):
+    """:func:`pack_axis` for both axes, then :func:`grid2d` for every component, in one call.
+
+    ``freqs`` (O, 2), ``phase`` and ``period`` (2,), ``perms`` (C, n), ``out``
+    (C, nj * nq). Returns False (and writes nothing) when an axis's taps need
+    ``LatticeNoise._axis_taps``' sparse packing.
+    """
+    ok0, lat0, off0, pos0, base0, wa0, wb0, dense0 = pack_axis(
+        c0, np.ascontiguousarray(freqs[:, 0]), phase[0], shift, left, taps, coef, dcoef, period[0], n, grad,
+        deriv_axis == 0, False)
+    if not ok0:
+        return False
+    ok1, lat1, off1, pos1, base1, wa1, wb1, dense1 = pack_axis(
+        c1, np.ascontiguousarray(freqs[:, 1]), phase[1], shift, left, taps, coef, dcoef, period[1], n, grad,
+        deriv_axis == 1, True)
+    if not ok1:
+        return False
+    for c in range(perms.shape[0]):
+        grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perms[c], values, grads,
+               1 if grad else 0, absval, out[c], nq, tile)
+    return True

@@ -92,6 +92,11 @@ def grid_coordinates(shape, extent):
     [[0.0, 0.5, 1.0, 1.5]]
     """
     shape, ext = _check_grid(shape, extent, len(check_shape("shape", shape, min_size=0)))
+    return _coordinates(shape, ext)
+
+
+def _coordinates(shape, ext):
+    """:func:`grid_coordinates` of an already checked shape and (dim, 2) float64 extent."""
     _check_large(8 * sum(shape), f"grid coordinates for shape {shape}")
     return [ext[a, 0] + np.arange(n, dtype=np.float64) * ((ext[a, 1] - ext[a, 0]) / max(n, 1))
             for a, n in enumerate(shape)]
@@ -747,7 +752,7 @@ class LatticeNoise:
               deriv_axis=None, octave_start=0, out=None):
         dtype = float_dtype(dtype)
         shape, ext = _check_grid(shape, extent, self.dim_in)
-        coords = grid_coordinates(shape, ext)
+        coords = _coordinates(shape, ext)
         sl = self._window(shape, window)
         out_shape = tuple(hi - lo for lo, hi in sl)
         size = math.prod(out_shape)
@@ -967,6 +972,22 @@ class LatticeNoise:
         k = self.kernel
         n = self.table_size
         freqs = np.array([freq for freq, _ in octaves], dtype=np.float64)
+        scales = np.array([amp for _, amp in octaves], dtype=np.float64)
+        nq = out.shape[2]
+        tile = self._TILE_2D
+        if tile is None:  # the widest tile whose ring fits the budget, the row split into equal tiles
+            slots = 1 << max(0, (k.taps - 1).bit_length())
+            most = max(64, self._RING_BYTES // (8 * len(octaves) * slots * (2 if grad else 1)))
+            tiles = -(-nq // most)
+            tile = -(-nq // tiles)
+        tile = -(-tile // 8) * 8
+        assert out.flags.c_contiguous
+        flat = out.reshape(self.dim_out, -1)
+        dax = -1 if deriv_axis is None else int(deriv_axis)
+        if _jit.grid2d_all(sub[0], sub[1], freqs, self.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, self.period,
+                           n, grad, dax, scales, self.perms, self.values, self.gradients, bool(absval), flat, nq, tile):
+            return
+        # an axis whose taps spread over many cells: packed here, _axis_taps' sparse branch for that axis
         packed = []
         for a in range(2):
             ok, lat, off, pos, base, wa, wb, dense = _jit.pack_axis(
@@ -987,19 +1008,9 @@ class LatticeNoise:
                 dense = np.array([self.period[1] % n == 0 and bool((np.diff(ax[0]) % self.period[1] == 1).all())
                                   for ax in axis])
             packed.append((lat, off, pos, wa, wb) if a == 0 else (lat, off, base, dense, wa, wb))
-        scales = np.array([amp for _, amp in octaves], dtype=np.float64)
-        nq = out.shape[2]
-        tile = self._TILE_2D
-        if tile is None:  # the widest tile whose ring fits the budget, the row split into equal tiles
-            slots = 1 << max(0, (k.taps - 1).bit_length())
-            most = max(64, self._RING_BYTES // (8 * len(octaves) * slots * (2 if grad else 1)))
-            tiles = -(-nq // most)
-            tile = -(-nq // tiles)
-        tile = -(-tile // 8) * 8
-        assert out.flags.c_contiguous
         for c in range(self.dim_out):
             _jit.grid2d(*packed[0], *packed[1], scales, self.perms[c], self.values, self.gradients, 1 if grad else 0,
-                        bool(absval), out[c].reshape(-1), nq, tile)
+                        bool(absval), flat[c], nq, tile)
 
     @staticmethod
     def _contract_rest(block, axes, use_r, target):
