@@ -520,8 +520,7 @@ def main():
                         f"load average {load:.1f} at start and {os.getloadavg()[0]:.1f} at the end; python "
                         f"{platform.python_version()}, numpy {np.__version__}, numba {_version('numba')}, "
                         f"pyfastnoisesimd {_version('pyfastnoisesimd')}; median of {repeats} interleaved rounds. "
-                        "It replaces the grid lines of the summary above (from the full run in the header, on "
-                        "another machine). Float64 summary of this run:\n\n" + "\n".join(_grid_summary(gsum)) + "\n")
+                        "The rest of this file is from the run in its header. Float64 summary of this run:\n\n" + "\n".join(_grid_summary(gsum)) + "\n")
         _splice(args.output, GRID_HEAD, "\n".join(lines) + "\n")
         print("\n".join(lines))
         return

@@ -880,18 +880,40 @@ def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2
         else:
             for q in range(nt):
                 dst[doff + q] = a0 * R[x0 + q] + a1 * R[x1 + q]
-    else:  # 1 or 3 taps (x3 unused)
-        for q in range(nt):
-            s = prev[poff + q] + a0 * R[x0 + q] if has_prev else a0 * R[x0 + q]
-            if taps == 3:
-                s += a1 * R[x1 + q]
-                s += a2 * R[x2 + q]
-            if grad:
-                s += b0 * R[x0 + dy + q]
-                if taps == 3:
-                    s += b1 * R[x1 + dy + q]
-                    s += b2 * R[x2 + dy + q]
-            dst[doff + q] = s
+    elif taps == 3:  # every tap product added to the running sum by itself
+        if grad:
+            y0 = x0 + dy
+            y1 = x1 + dy
+            y2 = x2 + dy
+            if has_prev:
+                for q in range(nt):
+                    dst[doff + q] = (((((prev[poff + q] + a0 * R[x0 + q]) + a1 * R[x1 + q]) + a2 * R[x2 + q])
+                                      + b0 * R[y0 + q]) + b1 * R[y1 + q]) + b2 * R[y2 + q]
+            else:
+                for q in range(nt):
+                    dst[doff + q] = ((((a0 * R[x0 + q] + a1 * R[x1 + q]) + a2 * R[x2 + q]) + b0 * R[y0 + q])
+                                     + b1 * R[y1 + q]) + b2 * R[y2 + q]
+        elif has_prev:
+            for q in range(nt):
+                dst[doff + q] = ((prev[poff + q] + a0 * R[x0 + q]) + a1 * R[x1 + q]) + a2 * R[x2 + q]
+        else:
+            for q in range(nt):
+                dst[doff + q] = (a0 * R[x0 + q] + a1 * R[x1 + q]) + a2 * R[x2 + q]
+    else:  # one tap
+        if grad:
+            y0 = x0 + dy
+            if has_prev:
+                for q in range(nt):
+                    dst[doff + q] = (prev[poff + q] + a0 * R[x0 + q]) + b0 * R[y0 + q]
+            else:
+                for q in range(nt):
+                    dst[doff + q] = a0 * R[x0 + q] + b0 * R[y0 + q]
+        elif has_prev:
+            for q in range(nt):
+                dst[doff + q] = prev[poff + q] + a0 * R[x0 + q]
+        else:
+            for q in range(nt):
+                dst[doff + q] = a0 * R[x0 + q]
 
 
 @nb.njit(cache=True, nogil=True)
