@@ -918,7 +918,7 @@ def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2
 
 @nb.njit(cache=True, nogil=True)
 def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
-           absval, out, nq, tile):
+           absval, out64, out32, nq, tile):
     """A 2-D grid of table-hashed lattice noise, every octave fused, in tiles of ``tile`` columns.
 
     Octave ``o`` has the distinct lattice taps ``lat0[off0[o]:off0[o + 1]]``
@@ -933,8 +933,9 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
     level is folded into a table run on past n (gradient: its two
     components; value: the values by parity row, as in
     ``LatticeNoise._hash_tables``), so a lattice row's values are a
-    contiguous run of it. ``out`` (nj * nq,), the flattened output,
-    float32 or float64: written, or with ``absval`` (turbulence) added to.
+    contiguous run of it. The flattened output (nj * nq,) is ``out64``
+    (float64) or ``out32`` (float32), the other one empty (one compiled
+    kernel for both dtypes): written, or with ``absval`` (turbulence) added to.
 
     The arithmetic is that of the general separable path (``hash_expand``,
     ``gather_gradients``, ``contract_last``, ``final_pass``), tap by tap and
@@ -954,6 +955,7 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
     noct, nj, taps = pos0.shape
     n = perm.shape[0]
     grad = basis == 1
+    use32 = out32.shape[0] > 0
     nterm = 2 if grad else 1
     S = 1
     while S < taps:
@@ -1094,15 +1096,9 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
                             wsrc = wb1 if b == 1 else wa1
                             for q in range(nt):
                                 c = vb + base1[o, q0 + q] - lo
-                                if taps == 4:
-                                    sa = (wsrc[o, 0, q0 + q] * ext[c] + wsrc[o, 1, q0 + q] * ext[c + 1]
-                                          + wsrc[o, 2, q0 + q] * ext[c + 2] + wsrc[o, 3, q0 + q] * ext[c + 3])
-                                elif taps == 2:
-                                    sa = wsrc[o, 0, q0 + q] * ext[c] + wsrc[o, 1, q0 + q] * ext[c + 1]
-                                else:
-                                    sa = wsrc[o, 0, q0 + q] * ext[c]
-                                    for kk in range(1, taps):
-                                        sa += wsrc[o, kk, q0 + q] * ext[c + kk]
+                                sa = wsrc[o, 0, q0 + q] * ext[c]  # left to right, as contract_last sums
+                                for kk in range(1, taps):
+                                    sa += wsrc[o, kk, q0 + q] * ext[c + kk]
                                 ring[row0 + b * tile + q] = sa
             # the axis-0 pass: octave by octave, each octave's terms in order, each a tap sum added to the
             # running sum (between two buffers; the last octave straight into the output row)
@@ -1123,9 +1119,12 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
                     a2 = wa0[o, j, 2 % taps] * sc; a3 = wa0[o, j, 3 % taps] * sc
                 b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1 % taps] * sc
                 b2 = wa0[o, j, 2 % taps] * sc; b3 = wa0[o, j, 3 % taps] * sc
-                if not absval and o == noct - 1:
-                    _axis0_octave(out, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu, taps,
-                                  grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                if not absval and o == noct - 1 and use32:
+                    _axis0_octave(out32, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu,
+                                  taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                elif not absval and o == noct - 1:
+                    _axis0_octave(out64, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu,
+                                  taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
                 else:
                     # turbulence: each octave into tmp, |.| summed into acc; else acc and tmp in turn
                     into_tmp = absval or o % 2 == 1
@@ -1140,8 +1139,12 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
                             bufs[q] += abs(bufs[tile + q])
             if absval:
                 ob = j * nq + q0
-                for q in range(nt):
-                    out[ob + q] += bufs[q]
+                if use32:
+                    for q in range(nt):
+                        out32[ob + q] += bufs[q]
+                else:
+                    for q in range(nt):
+                        out64[ob + q] += bufs[q]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -1203,11 +1206,11 @@ def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, g
 
 @nb.njit(cache=True, nogil=True)
 def grid2d_all(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv_axis, scales, perms,
-               values, grads, absval, out, nq, tile):
+               values, grads, absval, out64, out32, nq, tile):
     """:func:`pack_axis` for both axes, then :func:`grid2d` for every component, in one call.
 
-    ``freqs`` (O, 2), ``phase`` and ``period`` (2,), ``perms`` (C, n), ``out``
-    (C, nj * nq). Returns False (and writes nothing) when an axis's taps need
+    ``freqs`` (O, 2), ``phase`` and ``period`` (2,), ``perms`` (C, n), ``out64``
+    and ``out32`` (C, nj * nq) and (C, 0), either way round. Returns False (and writes nothing) when an axis's taps need
     ``LatticeNoise._axis_taps``' sparse packing.
     """
     ok0, lat0, off0, pos0, base0, wa0, wb0, dense0 = pack_axis(
@@ -1222,5 +1225,5 @@ def grid2d_all(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, period, n, 
         return False
     for c in range(perms.shape[0]):
         grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perms[c], values, grads,
-               1 if grad else 0, absval, out[c], nq, tile)
+               1 if grad else 0, absval, out64[c], out32[c], nq, tile)
     return True

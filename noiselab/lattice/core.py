@@ -988,9 +988,15 @@ class LatticeNoise:
         tile = -(-tile // 8) * 8
         assert out.flags.c_contiguous
         flat = out.reshape(self.dim_out, -1)
+        # one compiled kernel for both output dtypes: the other output array is empty
+        if out.dtype == np.float32:
+            out64, out32 = np.empty((self.dim_out, 0)), flat
+        else:
+            out64, out32 = flat, np.empty((self.dim_out, 0), np.float32)
         dax = -1 if deriv_axis is None else int(deriv_axis)
         if _jit.grid2d_all(sub[0], sub[1], freqs, self.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, self.period,
-                           n, grad, dax, scales, self.perms, self.values, self.gradients, bool(absval), flat, nq, tile):
+                           n, grad, dax, scales, self.perms, self.values, self.gradients, bool(absval), out64, out32,
+                           nq, tile):
             return
         # an axis whose taps spread over many cells: packed here, _axis_taps' sparse branch for that axis
         packed = []
@@ -1015,7 +1021,7 @@ class LatticeNoise:
             packed.append((lat, off, pos, wa, wb) if a == 0 else (lat, off, base, dense, wa, wb))
         for c in range(self.dim_out):
             _jit.grid2d(*packed[0], *packed[1], scales, self.perms[c], self.values, self.gradients, 1 if grad else 0,
-                        bool(absval), flat[c], nq, tile)
+                        bool(absval), out64[c], out32[c], nq, tile)
 
     @staticmethod
     def _contract_rest(block, axes, use_r, target):
