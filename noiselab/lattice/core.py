@@ -744,9 +744,10 @@ class LatticeNoise:
         to the scattered path. Both paths agree to 1e-12 (tested). 2-D grids
         with the table hash run every octave in one fused kernel, tile by
         tile, with the same bits (tested); on a 512 x 512 grid of 32 cells it
-        runs at 1.0-1.6x pyfastnoisesimd's value and Perlin noise
-        (quintic, one and six octaves, float64 output; ``bench_lattice.py
-        --grid-only``, ``benchmarks/bench_lattice.md``).
+        ran at 0.9-1.8x pyfastnoisesimd's value and Perlin noise with
+        float64 output and 1.3-2.5x with float32 output (quintic, one and
+        six octaves, three runs of ``bench_lattice.py --grid-only``; see
+        ``benchmarks/bench_lattice.md``).
         """
         if chunks is not None:
             from ..scale.lattice import chunked_grid
