@@ -13,6 +13,10 @@
   (the hashed block of lattice values), :func:`contract_last` /
   :func:`contract_mid` (one separable pass per axis), and :func:`final_pass` /
   :func:`final_pass_direct` (the last pass, fused over octaves).
+- 2-D grids with the table hash: :func:`grid2d_all` (:func:`pack_axis` for
+  both axes, then :func:`grid2d` per component): every octave in one pass,
+  tile by tile, with the general path's sums (the same bits); its axis-1
+  contraction runs eight columns at a time (:func:`expand_dot8`).
 
 All arithmetic is float64; only the final store may round to float32. The
 specialisations are kept few so that a cold cache compiles quickly.
