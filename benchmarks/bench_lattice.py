@@ -15,12 +15,8 @@ array of the output's size (``np.full``); "x floor" is floor time / our time
 from __future__ import annotations
 
 import argparse
-import datetime as _dt
-import importlib.metadata as _md
 import os
-import platform
 import sys
-import time
 from pathlib import Path
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
@@ -36,6 +32,7 @@ if not hasattr(np, "product"):  # pyfastnoisesimd 0.4.2 still calls np.product (
 
 from noiselab import LatticeNoise, fractal_sum  # noqa: E402
 from noiselab.lattice import Grid, kernel_names  # noqa: E402
+from noiselab.lab.measure import Timings as Times, header_lines, interleaved, run_info  # noqa: E402
 
 
 def _peer(name):
@@ -62,40 +59,9 @@ def _peer(name):
         return None
 
 
-class Times(dict):
-    """Median seconds per candidate (the dict), plus :meth:`ratio` from paired runs."""
-
-    def __init__(self, raw):
-        super().__init__({k: float(np.median(v)) for k, v in raw.items()})
-        self.raw = {k: np.asarray(v) for k, v in raw.items()}
-
-    def ratio(self, ref, key):
-        """Median over repeats of time(ref) / time(key), each pair measured back to back.
-
-        On a shared machine the load drifts between repeats; a ratio of two
-        neighbouring runs cancels most of that drift.
-        """
-        return float(np.median(self.raw[ref] / self.raw[key]))
-
-
 def bench(cands: dict, repeats: int) -> Times:
-    """Time candidates interleaved (one warm-up each), ``repeats`` rounds."""
-    for f in cands.values():
-        f()
-    times = {k: [] for k in cands}
-    for _ in range(repeats):
-        for k, f in cands.items():
-            t0 = time.perf_counter()
-            f()
-            times[k].append(time.perf_counter() - t0)
-    return Times(times)
-
-
-def _version(dist):
-    try:
-        return _md.version(dist)
-    except _md.PackageNotFoundError:
-        return "not installed"
+    """Time candidates interleaved (one warm-up round, order rotated each round), ``repeats`` rounds."""
+    return interleaved(cands, repeats=repeats)
 
 
 # --------------------------------------------------------------------------- grids
@@ -439,14 +405,18 @@ def precision_section(lines):
     return results
 
 
-def main():
+def build_parser():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--quick", action="store_true", help="cubic and quintic only")
     ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
     ap.add_argument("--hash-only", action="store_true",
                     help="run only the integer-hash section and replace it in the output file (the rest is kept)")
-    args = ap.parse_args()
+    return ap
+
+
+def main(argv=None):
+    args = build_parser().parse_args(argv)
     repeats = max(5, args.repeats)
     if args.hash_only:
         cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py --hash-only"
@@ -454,26 +424,21 @@ def main():
         lines = []
         load = os.getloadavg()[0]
         hash_section(repeats, lines)
-        lines.insert(1, f"Run alone (`{cmd}`), {_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M UTC}, "
-                        f"{platform.machine()}, {os.cpu_count()} cores ({_cpu()}) shared with other jobs, load average "
-                        f"{load:.1f} at start; python {platform.python_version()}, numpy {np.__version__}, numba "
-                        f"{_version('numba')}, pyfastnoisesimd {_version('pyfastnoisesimd')}; median of {repeats} "
+        info = run_info(cmd, ["pyfastnoisesimd"], load=load)
+        lines.insert(1, f"Run alone (`{cmd}`), {info['date']}, {info['machine']}, {info['cores']} cores ({info['cpu']}) "
+                        f"shared with other jobs, load average {load:.1f} at start; "
+                        + ", ".join(f"{k} {v}" for k, v in info["versions"].items()) + f"; median of {repeats} "
                         "interleaved rounds. The rest of this file is from the run in its header.\n")
         _splice(args.output, HASH_HEAD, "\n".join(lines) + "\n")
         print("\n".join(lines))
         return
     cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py" + (" --quick" if args.quick else "")
            + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
+    info = run_info(cmd, ["noise", "pyfastnoiselite", "pyfastnoisesimd", "opensimplex", "vnoise", "perlin-numpy", "vtk"])
     lines = ["# Lattice noise benchmark\n",
-             f"- date: {_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M UTC}",
-             f"- command: `{cmd}`",
-             f"- machine: {platform.machine()}, {os.cpu_count()} cores ({_cpu()}), shared with other jobs; "
-             f"one thread; load average at start {os.getloadavg()[0]:.1f}",
-             f"- python {platform.python_version()}, numpy {np.__version__}, numba {_version('numba')}, "
-             + ", ".join(f"{d} {_version(d)}" for d in ("noise", "pyfastnoiselite", "pyfastnoisesimd", "opensimplex",
-                                                         "vnoise", "perlin-numpy", "vtk")),
-             f"- timings: median of {repeats} interleaved runs per table; ratios: median of the {repeats} "
-             "ratios of back-to-back runs\n"]
+             *header_lines(info, timing=f"one thread; median of {repeats} interleaved rounds per table (order rotated "
+                           f"each round, `noiselab.lab.measure.interleaved`); ratios: median of the {repeats} per-round "
+                           "ratios\n")]
     body = []
     gsum = grid_section(repeats, args.quick, body)
     ssum = scattered_section(repeats, args.quick, body)
@@ -505,16 +470,6 @@ def main():
     lines += body
     Path(args.output).write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
-
-
-def _cpu():
-    try:
-        for line in open("/proc/cpuinfo"):
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown cpu"
 
 
 if __name__ == "__main__":
