@@ -502,7 +502,7 @@ def _cpu_model():
 
 
 def machine_info():
-    """Date (UTC), CPU model, cores, memory, OS and the versions that matter, as a dict of strings."""
+    """Date (UTC), CPU model, cores, load average at the call, memory, OS and the versions that matter, as a dict of strings."""
     import numba
     import scipy
 
@@ -521,6 +521,7 @@ def machine_info():
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "cpu": _cpu_model(),
         "cores": str(os.cpu_count()),
+        "load (1 min) at start": f"{load_average():.1f}",
         "memory": mem,
         "os": platform.platform(),
         "python": platform.python_version(),
