@@ -294,7 +294,8 @@ def write_md(rows, names, rounds, argv, path, before_rev=None):
     print("\n".join(lines))
 
 
-def main(argv=None):
+def build_parser():
+    """The command line (``--rounds``, ``--quick``, ``--before``, ``--workers``, ``--output``, ``--exponents``)."""
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--rounds", type=int, default=7)
     p.add_argument("--quick", action="store_true")
@@ -304,6 +305,11 @@ def main(argv=None):
     p.add_argument("--output", default=None, help="default benchmarks/bench_spectral.md "
                    "(bench_spectral_exponents.md with --exponents)")
     p.add_argument("--exponents", action="store_true", help="only the exponent sweep (1024^2 float32, 1 worker)")
+    return p
+
+
+def main(argv=None):
+    p = build_parser()
     argv = sys.argv[1:] if argv is None else argv
     a = p.parse_args(argv)
     if a.rounds < 5:

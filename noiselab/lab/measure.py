@@ -335,8 +335,8 @@ def header_lines(info, *, timing=None):
     shared = "shared with other jobs (read the ratios)" if info["shared"] else "not shared"
     lines = [f"- date: {info['date']}",
              f"- command: `{info['command']}`",
-             f"- machine: {info['machine']}, {info['cpu']}, {info['cores']} cores, {shared}; "
-             f"load average (1 min) at start {info['load']:.1f}",
+             (f"- machine: {info['machine']}, {info['cpu']}, {info['cores']} cores, {shared}; "
+              f"load average (1 min) at start {info['load']:.1f}"),
              "- versions: " + ", ".join(f"{k} {v}" for k, v in info["versions"].items())]
     if timing:
         lines.append(f"- timing: {timing}")
@@ -401,7 +401,7 @@ def write_floor(shape, dtype=np.float64):
     return floor
 
 
-def time_against_floor(cases, floor, repeats=5, warmup=1, *, timer=None):
+def time_against_floor(cases, floor, repeats=5, warmup=1, *, timer=None, collect=True):
     """Time each case and the floor in interleaved rounds, the floor first in every round.
 
     The floor-first form of :func:`interleaved` the laboratory's experiments use.
@@ -415,6 +415,8 @@ def time_against_floor(cases, floor, repeats=5, warmup=1, *, timer=None):
         Untimed calls first (numba compilation, FFT plans, page faults).
     timer : callable, optional
         Clock (default :func:`time.perf_counter`).
+    collect : bool
+        ``gc.collect()`` before each timed call (outside the timing).
 
     Returns
     -------
@@ -427,7 +429,8 @@ def time_against_floor(cases, floor, repeats=5, warmup=1, *, timer=None):
     (['floor', 'sum'], 5)
     """
     key = object()  # never collides with a case's name
-    t = interleaved({key: floor, **cases}, repeats=repeats, warmup=warmup, order="fixed", timer=timer)
+    t = interleaved({key: floor, **cases}, repeats=repeats, warmup=warmup, order="fixed", timer=timer,
+                    collect=collect)
     out = {name: {"median_s": t[name], "ratio": t.ratio(name, key), "times": [float(x) for x in t.raw[name]]} for name in cases}
     out["floor"] = {"median_s": t[key], "ratio": 1.0, "times": [float(x) for x in t.raw[key]]}
     return out
