@@ -122,10 +122,10 @@ def scaling(n, chunk, repeats, tmp):
 
         # the in-process reference: in memory, then the same zarr written from numpy; then 1 and 2 workers
         t = interleaved({
-            "s0": clear("s0.zarr", _lap("s0", lambda: write_zarr(tmp / "s0.zarr", fractal_sum(
+            "s0 + clean-up": clear("s0.zarr", _lap("s0", lambda: write_zarr(tmp / "s0.zarr", fractal_sum(
                 noise, grid, OCTAVES, dtype="float32"), chunks=chunk, scheduler="synchronous", progress=False))),
-            "s1": clear("s1.zarr", _lap("s1", lambda: write_zarr(tmp / "s1.zarr", lazy, scheduler=one, progress=False))),
-            "s2": clear("s2.zarr", _lap("s2", lambda: write_zarr(tmp / "s2.zarr", lazy, scheduler=two, progress=False))),
+            "s1 + clean-up": clear("s1.zarr", _lap("s1", lambda: write_zarr(tmp / "s1.zarr", lazy, scheduler=one, progress=False))),
+            "s2 + clean-up": clear("s2.zarr", _lap("s2", lambda: write_zarr(tmp / "s2.zarr", lazy, scheduler=two, progress=False))),
         }, repeats=repeats, warmup=0, order="fixed")
         ratios, over = t.ratios("s1", "s2"), t.ratios("s1", "s0")
         ref = fractal_sum(noise, grid, OCTAVES, dtype="float32")

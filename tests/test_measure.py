@@ -133,6 +133,8 @@ def test_bad_arguments_are_refused():
         interleaved({"a": lambda: None}, order="random")
     with pytest.raises(ValueError, match="candidates"):
         interleaved({})
+    with pytest.raises(ValueError, match="lap"):
+        interleaved({"a": lambda: Laps(b=1.0), "b": lambda: None}, repeats=1, warmup=0, collect=False)
     with pytest.raises(TypeError, match="repeats"):
         interleaved({"a": lambda: None}, repeats=5.0)
 

@@ -116,8 +116,9 @@ class Timings(dict):
 
         On a shared machine the load drifts between rounds; a ratio of two
         neighbouring calls cancels most of that drift, a ratio of medians
-        does not. ``ratio("floor", name)`` is how many times the floor's
-        speed ``name`` runs at; ``ratio(name, "floor")`` its time in floors.
+        does not. ``ratio(name, "floor")`` is the time of ``name`` in floor
+        times; ``ratio("floor", name)`` its speed as a fraction of the
+        floor's (1 = as fast as the floor).
 
         Examples
         --------
@@ -225,7 +226,7 @@ def interleaved(candidates, *, repeats=5, warmup=1, order="rotate", units=None, 
     ------
     ValueError
         ``repeats`` below ``min_repeats``, ``warmup`` negative, an unknown
-        ``order``, or no candidate.
+        ``order``, no candidate, or a lap named like a candidate.
 
     Examples
     --------
@@ -260,6 +261,8 @@ def interleaved(candidates, *, repeats=5, warmup=1, order="rotate", units=None, 
             raw[k].append(t)
             if isinstance(out, Laps):
                 for stage, s in out.items():
+                    if stage in candidates:
+                        raise ValueError(f"a lap of {k!r} is named {stage!r}, like a candidate; name laps apart")
                     raw.setdefault(stage, []).append(float(s))
             del out
     if units is not None and not isinstance(units, dict):
