@@ -284,7 +284,7 @@ def snow_memory(shape, chunk_list, tmp):
 def snow_plate(repeats, tmp, shape=(512, 4096, 4096), out_chunk=(16, 512, 4096), ckx=16):
     """Per-task costs of a 4096 x 4096 x 512 snow plate: the client's plan, one t/y slab, one x-pass chunk, spill I/O."""
     from noiselab.scale import spectral as S
-    from noiselab.snow.tent import tent_columns
+    from noiselab.snow.tent import self_conjugate_planes, tent_columns
     from noiselab.spectral.synthesis import draw_coefficients
     import noiselab._validate as V
 
@@ -295,7 +295,7 @@ def snow_plate(repeats, tmp, shape=(512, 4096, 4096), out_chunk=(16, 512, 4096),
     K = int(cols.kx.max()) + 1
     coef = draw_coefficients(cols.n_cells, V.as_generator(3), "uniform", np.float32)
     coef *= cols.weight.astype(np.float32)
-    pcols, pvals = S._snow_planes(cols, coef, np.dtype(np.complex64))
+    pcols, pvals = self_conjugate_planes(cols, coef, np.dtype(np.complex64))  # as the chunked snow does
     kx_blocks, pieces = S._snow_plan(cols, coef, pvals, pcols, T, H, K, ckx, np.float32, np.dtype(np.complex64))
     t_plan = time.perf_counter() - t0
     piece = pieces[len(pieces) // 2]
