@@ -355,8 +355,8 @@ def snow_main(args):
     for k, c, r, lo, hi in ov:
         L.append(f"| {k} | {c:.3f} | {r:.2f}x | {lo:.2f}x | {hi:.2f}x |")
     L += ["", "The in-memory path's CPU time moves a lot between runs on this loaded machine (it page-faults its whole "
-          "output in; its median was 0.47 s in a run minutes before this one, against 0.91 s here), so the ratios "
-          "scatter (see min and max); the chunked paths allocate one chunk at a time.",
+          f"output in; its median was 0.47 s and 0.91 s in two earlier runs, {ov[0][1]:.2f} s in this one), so the "
+          "ratios scatter (see min and max); the chunked paths allocate one chunk at a time.",
           "", "## S2. Peak memory per worker against the chunk", "",
           f"A fresh 1-worker cluster per chunk writes `snow({mshape}, seed=3, chunks=C, spill=...)` "
           f"({whole:.0f} MiB of float32) to zarr; the worker's peak RSS growth (as in section 3).", "",
