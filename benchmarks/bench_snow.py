@@ -234,7 +234,8 @@ def main(argv=None):
     pr = None if args.no_peer else peer(shape, 5)
     cmd = "python3 benchmarks/bench_snow.py" + (" --quick" if args.quick else "") + (
         f" --rounds {args.rounds}" if args.rounds != 9 else "") + (
-        " --workers " + " ".join(map(str, args.workers)) if args.workers else "")
+        " --workers " + " ".join(map(str, args.workers)) if args.workers else "") + (
+        " --shape " + " ".join(map(str, args.shape)) if args.shape else "") + (" --no-peer" if args.no_peer else "")
     T, H, W = shape
     out_mib = T * H * W * 4 / 2**20
     lines = [
