@@ -21,10 +21,7 @@ at 512 x 512 over 4..128 cycles/frame, 20 seeds per alpha.
 from __future__ import annotations
 
 import argparse
-import datetime
-import platform
 import sys
-import time
 import tracemalloc
 from pathlib import Path
 
@@ -37,6 +34,8 @@ sys.path.insert(0, str(ROOT))
 
 import noiselab  # noqa: E402
 from noiselab import analysis as A  # noqa: E402
+from noiselab.lab.measure import header_lines, markdown_table, run_info  # noqa: E402
+from noiselab.lab.measure import interleaved  # noqa: E402
 
 
 def power_law_field(n, alpha, seed):
@@ -72,19 +71,9 @@ def timing(shape, rounds):
         "on a spectrum: spatiotemporal_spectrum": lambda: A.spatiotemporal_spectrum(spec),
         "on a spectrum: radial_spectrum (3-D)": lambda: A.radial_spectrum(spec),
     }
-    for f in cases.values():  # warm-up
-        f()
-    times = {k: [] for k in cases}
-    for _ in range(rounds):
-        for k, f in cases.items():
-            t0 = time.perf_counter()
-            f()
-            times[k].append(time.perf_counter() - t0)
-    floor = np.array(times["floor: scipy.fft.rfftn(video)"])
-    rows = []
-    for k, t in times.items():
-        t = np.array(t)
-        rows.append((k, float(np.median(t)), float(np.median(t / floor))))
+    FLOOR = "floor: scipy.fft.rfftn(video)"
+    t = interleaved(cases, repeats=rounds)
+    rows = [(k, t[k], t.ratio(k, FLOOR)) for k in cases]
     # memory: one end-to-end call each
     mem = []
     unit = video.nbytes
@@ -150,34 +139,42 @@ def generator_figures():
     return rows
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--quick", action="store_true")
-    args = ap.parse_args()
+def build_parser():
+    """The command line (``--quick``, ``--rounds``)."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="smaller, for a smoke test (writes nothing)")
+    ap.add_argument("--rounds", type=int, default=5, help="timed rounds (>= 5)")
+    return ap
+
+
+def main(argv=None):
+    ap = build_parser()
+    args = ap.parse_args(argv)
     shape = (16, 128, 128) if args.quick else (64, 512, 512)
-    rounds = 5
+    if args.rounds < 5:
+        ap.error("--rounds must be >= 5 (median of at least 5)")
+    rounds = args.rounds
     seeds = 4 if args.quick else 20
     n = 256 if args.quick else 512
+    cmd = "python3 benchmarks/bench_analysis.py" + (" --quick" if args.quick else "") + (
+        f" --rounds {rounds}" if rounds != 5 else "")
+    info = run_info(cmd, ["scipy", "noiselab"])
     rows, mem, nbytes = timing(shape, rounds)
     acc = accuracy(n, seeds)
     gens = generator_figures()
-    cmd = "python3 benchmarks/bench_analysis.py" + (" --quick" if args.quick else "")
     lines = [
         "# noiselab.analysis: speed, memory and slope accuracy",
         "",
-        f"- date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC",
-        f"- machine: {platform.machine()}, {platform.processor() or 'cpu'}, shared with other jobs; "
-        f"Python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}",
-        f"- command: `{cmd}`",
+        *header_lines(info),
         "",
         f"## Speed on a {' x '.join(map(str, shape))} float32 video (falling snow)",
         "",
-        f"Median of {rounds} interleaved rounds; ratio = median of per-round (time / bare `scipy.fft.rfftn` of the video).",
+        f"Median of {rounds} interleaved rounds after one warm-up round (order rotated each round, "
+        "`noiselab.lab.measure.interleaved`); ratio = median of per-round (time / bare `scipy.fft.rfftn` of the video).",
         "",
-        "| analyser | median time (s) | x rfftn |",
-        "| --- | ---: | ---: |",
+        *markdown_table(["analyser", "median time (s)", "x rfftn"], [(k, f"{t:.3f}", f"{r:.2f}") for k, t, r in rows],
+                        align="lrr"),
     ]
-    lines += [f"| {k} | {t:.3f} | {r:.2f} |" for k, t, r in rows]
     lines += [
         "",
         f"## Peak traced memory (numpy arrays), in units of the float32 video ({nbytes / 2**20:.0f} MiB)",

@@ -18,11 +18,8 @@ time (1.00: free). The checks measured:
 from __future__ import annotations
 
 import argparse
-import datetime as _dt
 import os
-import platform
 import sys
-import time
 from pathlib import Path
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
@@ -37,28 +34,24 @@ import noiselab.spectral.envelopes as env  # noqa: E402
 from noiselab import LatticeNoise  # noqa: E402
 from noiselab.analysis import power_spectrum  # noqa: E402
 from noiselab.spectral import frequency_vectors  # noqa: E402
-
-
-def _timed(fn):
-    t0 = time.perf_counter()
-    fn()
-    return time.perf_counter() - t0
+from noiselab.lab.measure import header_lines, interleaved, run_info  # noqa: E402
 
 
 def ratio(fn, patch, repeats):
-    """Median of checked / unchecked time, back to back; ``patch()`` returns an undo callable."""
-    fn()
-    ratios, checked = [], []
-    for _ in range(repeats):
-        a = _timed(fn)
+    """Median of checked / unchecked time, interleaved rounds; ``patch()`` returns an undo callable.
+
+    The unchecked candidate patches the check out, calls, and undoes the patch (two attribute writes, well
+    under a microsecond, inside its timing). Returns (ratio, median checked seconds).
+    """
+    def unchecked():
         undo = patch()
         try:
-            b = _timed(fn)
+            return fn()
         finally:
             undo()
-        ratios.append(a / b)
-        checked.append(a)
-    return float(np.median(ratios)), float(np.median(checked))
+
+    t = interleaved({"checked": fn, "unchecked": unchecked}, repeats=repeats, min_repeats=5)
+    return t.ratio("checked", "unchecked"), t["checked"]
 
 
 def no_reach():
@@ -79,11 +72,17 @@ def no_env_checks():
     return lambda: setattr(env, "_frequencies", old)
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--repeats", type=int, default=7)
-    args = ap.parse_args()
+def build_parser():
+    """The command line (``--repeats``)."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=7, help="interleaved rounds (5 at least)")
+    return ap
+
+
+def main(argv=None):
+    args = build_parser().parse_args(argv)
     repeats = max(5, args.repeats)
+    info = run_info(f"python3 benchmarks/bench_contract.py --repeats {repeats}")
     rng = np.random.default_rng(0)
     rows = []
     for dim, kernel in [(1, "linear"), (2, "linear"), (2, "cubic"), (4, "cubic")]:
@@ -105,19 +104,18 @@ def main():
     rows.append(("envelopes.tent on a (64, 256, 129) half spectrum", r, t))
     field = rng.standard_normal((1024, 1024))
     # the range check's two passes, against the whole spectrum
-    t_ps = float(np.median([_timed(lambda: power_spectrum(field)) for _ in range(repeats)]))
-    t_mm = float(np.median([_timed(lambda: (field.min(), field.max())) for _ in range(repeats)]))
-    rows.append(("power_spectrum 1024 x 1024: min+max / whole call", 1 + t_mm / t_ps, t_ps))
+    t = interleaved({"call": lambda: power_spectrum(field), "minmax": lambda: (field.min(), field.max())},
+                    repeats=repeats, min_repeats=5)
+    rows.append(("power_spectrum 1024 x 1024: min+max / whole call", 1 + t.ratio("minmax", "call"), t["call"]))
 
     lines = [
         "# Cost of the bad-input checks (issue 11)",
         "",
-        f"{_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M} UTC, {platform.machine()}, {os.cpu_count()} cores "
-        "(shared with other jobs while measured), numpy " + np.__version__ + ", one thread.",
+        *header_lines(info, timing="one thread"),
         "",
-        f"Command: `python3 benchmarks/bench_contract.py --repeats {repeats}`",
-        "",
-        "Ratio = checked time / time with the check replaced by a no-op, median of the back-to-back ratios.",
+        "Ratio = checked time / time with the check replaced by a no-op, median of the per-round ratios of "
+        f"{repeats} interleaved rounds (one warm-up round, order rotated each round, "
+        "`noiselab.lab.measure.interleaved`).",
         "",
         "| case | checked / unchecked | checked time (s) |",
         "| --- | ---: | ---: |",

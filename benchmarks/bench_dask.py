@@ -25,11 +25,8 @@ cells per side, 6 octaves requested):
 from __future__ import annotations
 
 import argparse
-import datetime
 import os
-import platform
 import shutil
-import statistics
 import sys
 import tempfile
 import time
@@ -45,9 +42,9 @@ import dask.array as da  # noqa: E402
 import distributed  # noqa: E402
 import zarr  # noqa: E402
 
-import noiselab  # noqa: E402
 from noiselab.fractal import fractal_sum  # noqa: E402
 from noiselab.io import write_zarr  # noqa: E402
+from noiselab.lab.measure import Laps, header_lines, interleaved, load_average, run_info  # noqa: E402
 from noiselab.lattice import Grid, LatticeNoise  # noqa: E402
 
 OCTAVES = 6
@@ -64,40 +61,42 @@ def _timed(fn):
     return time.perf_counter() - t, out
 
 
-def _cpu_timed(fn):
-    """Wall and CPU time of this process (CPU time is robust to other jobs on a shared machine)."""
-    t, c = time.perf_counter(), time.process_time()
-    out = fn()
-    return time.perf_counter() - t, time.process_time() - c, out
+def _lap(name, fn, clock=time.perf_counter):
+    """A candidate for ``interleaved`` timing only ``fn()`` (what it prepares first is outside): a lap ``name``."""
+    def run(*_):
+        t = clock()
+        fn()
+        return Laps({name: clock() - t})
+    return run
+
+
+def _cpu_and_wall(name, fn):
+    """A candidate timed on this process's CPU time by ``interleaved(timer=time.process_time)``; its wall time a lap."""
+    def run(*_):
+        t = time.perf_counter()
+        fn()
+        return Laps({f"{name} wall": time.perf_counter() - t})
+    return run
 
 
 def overhead(n, chunk_sizes, repeats):
+    """CPU time (and wall) of the chunked path against in memory, interleaved rounds alternating the order."""
     noise, grid = _volume(n)
     fractal_sum(noise, Grid((16, 16, 16), grid.extent), OCTAVES)  # compile / warm
     rows = []
     for c in chunk_sizes:
-        t_mem, t_dask, ratios, c_mem, c_dask, cratios, c_blocks = [], [], [], [], [], [], []
-        for r in range(repeats):
-            lazy = fractal_sum(noise, grid, OCTAVES, dtype="float32", chunks=c)
-            blocks = lazy.to_delayed().ravel().tolist()
-            pair = [lambda: fractal_sum(noise, grid, OCTAVES, dtype="float32"),
-                    lambda: lazy.compute(scheduler="synchronous"),
-                    lambda: dask.compute(*blocks, scheduler="synchronous")]  # the chunks, not assembled
-            order = (0, 1, 2) if r % 2 == 0 else (2, 1, 0)  # alternate who goes first
-            wall, cpu, outs = {}, {}, {}
-            for i in order:
-                wall[i], cpu[i], outs[i] = _cpu_timed(pair[i])
-            assert np.array_equal(outs[0], outs[1])
-            c_blocks.append(cpu[2])
-            t_mem.append(wall[0])
-            t_dask.append(wall[1])
-            ratios.append(wall[1] / wall[0])
-            c_mem.append(cpu[0])
-            c_dask.append(cpu[1])
-            cratios.append(cpu[1] / cpu[0])
-        med = statistics.median
-        rows.append((c, lazy.npartitions, med(c_mem), med(c_dask), med(cratios), min(cratios), max(cratios),
-                     med(t_mem), med(t_dask), med(ratios), min(c_dask) / min(c_mem), min(c_blocks) / min(c_mem)))
+        lazy = fractal_sum(noise, grid, OCTAVES, dtype="float32", chunks=c)
+        blocks = lazy.to_delayed().ravel().tolist()
+        assert np.array_equal(fractal_sum(noise, grid, OCTAVES, dtype="float32"), lazy.compute(scheduler="synchronous"))
+        t = interleaved({"mem": _cpu_and_wall("mem", lambda: fractal_sum(noise, grid, OCTAVES, dtype="float32")),
+                         "dask": _cpu_and_wall("dask", lambda: lazy.compute(scheduler="synchronous")),
+                         # the chunks, not assembled
+                         "blocks": _cpu_and_wall("blocks", lambda: dask.compute(*blocks, scheduler="synchronous"))},
+                        repeats=repeats, warmup=0, order="alternate", timer=time.process_time)
+        r = t.ratios("dask", "mem")
+        rows.append((c, lazy.npartitions, t["mem"], t["dask"], t.ratio("dask", "mem"), float(r.min()), float(r.max()),
+                     t["mem wall"], t["dask wall"], t.ratio("dask wall", "mem wall"), t.min("dask") / t.min("mem"),
+                     t.min("blocks") / t.min("mem")))
     return rows
 
 
@@ -115,19 +114,20 @@ def scaling(n, chunk, repeats, tmp):
             distributed.LocalCluster(n_workers=2, **kw) as c2, distributed.Client(c2, set_as_default=False) as two:
         for client in (one, two):  # warm the workers (imports, compiled kernels)
             _write(tmp / "warm.zarr", fractal_sum(noise, Grid((32,) * 3, grid.extent), 2, chunks=16), client)
-        t0, t1, t2, ratios, over = [], [], [], [], []
-        for r in range(repeats):
-            # the in-process reference: in memory, then the same zarr written from numpy
-            shutil.rmtree(tmp / "s0.zarr", ignore_errors=True)
-            z, _ = _timed(lambda: write_zarr(tmp / "s0.zarr", fractal_sum(noise, grid, OCTAVES, dtype="float32"),
-                                             chunks=chunk, scheduler="synchronous", progress=False))
-            a = _write(tmp / "s1.zarr", lazy, one)
-            b = _write(tmp / "s2.zarr", lazy, two)
-            t0.append(z)
-            t1.append(a)
-            t2.append(b)
-            ratios.append(a / b)
-            over.append(a / z)
+        def clear(name, fn):
+            def run(*_):
+                shutil.rmtree(tmp / name, ignore_errors=True)  # outside the lap
+                return fn()
+            return run
+
+        # the in-process reference: in memory, then the same zarr written from numpy; then 1 and 2 workers
+        t = interleaved({
+            "s0 + clean-up": clear("s0.zarr", _lap("s0", lambda: write_zarr(tmp / "s0.zarr", fractal_sum(
+                noise, grid, OCTAVES, dtype="float32"), chunks=chunk, scheduler="synchronous", progress=False))),
+            "s1 + clean-up": clear("s1.zarr", _lap("s1", lambda: write_zarr(tmp / "s1.zarr", lazy, scheduler=one, progress=False))),
+            "s2 + clean-up": clear("s2.zarr", _lap("s2", lambda: write_zarr(tmp / "s2.zarr", lazy, scheduler=two, progress=False))),
+        }, repeats=repeats, warmup=0, order="fixed")
+        ratios, over = t.ratios("s1", "s2"), t.ratios("s1", "s0")
         ref = fractal_sum(noise, grid, OCTAVES, dtype="float32")
         for name in ("s0.zarr", "s1.zarr", "s2.zarr"):
             assert np.array_equal(zarr.open_group(str(tmp / name))["data"][:], ref)
@@ -137,8 +137,8 @@ def scaling(n, chunk, repeats, tmp):
         noop = da.ones(2000, chunks=1).map_blocks(lambda b: b + 1, dtype=float).sum()
         ntask = len(noop.__dask_graph__())
         t_task, _ = _timed(lambda: one.compute(noop).result())
-    return statistics.median(t1), statistics.median(t2), statistics.median(ratios), min(ratios), max(ratios), \
-        t_task / ntask, statistics.median(t0), statistics.median(over), min(over), max(over)
+    return t["s1"], t["s2"], t.ratio("s1", "s2"), float(ratios.min()), float(ratios.max()), \
+        t_task / ntask, t["s0"], t.ratio("s1", "s0"), float(over.min()), float(over.max())
 
 
 def _status_kib(field):
@@ -184,16 +184,14 @@ def per_chunk(repeats, tmp, n_big=2048, chunks=(128, 256)):
         k = n_big // chunk
         block = lazy.blocks[k // 3, k // 2, k - 2]  # an interior chunk
         data = block.compute(scheduler="synchronous")
-        t_render = statistics.median(_timed(lambda: block.compute(scheduler="synchronous"))[0]
-                                     for _ in range(repeats))
         path = tmp / f"one{chunk}.zarr"
         store = zarr.open_array(str(path), mode="w", shape=data.shape, chunks=data.shape, dtype=data.dtype)
 
         def write():
             store[:] = data
 
-        write()
-        t_write = statistics.median(_timed(write)[0] for _ in range(repeats))
+        t = interleaved({"render": lambda: block.compute(scheduler="synchronous"), "write": write}, repeats=repeats)
+        t_render, t_write = t["render"], t["write"]
         stored = sum(f.stat().st_size for f in path.rglob("*") if f.is_file() and f.name != "zarr.json")
         rows.append(dict(n_big=n_big, chunk=chunk, used=used, t_render=t_render, t_write=t_write,
                          raw_mib=data.nbytes / 2 ** 20, stored_mib=stored / 2 ** 20, nchunks=lazy.npartitions))
@@ -233,30 +231,37 @@ def snow_overhead(shape, chunks, repeats, tmp):
                                                                       spill=tmp / f"spill{r}"),
         "chunked raw (rescale=False), chunks": lambda r: snow(shape, seed=3, chunks=chunks, rescale=False),
     }
-    cpu = {k: [] for k in variants}
-    ratios = {k: [] for k in variants}
     ref = snow(shape, seed=3, workers=1)
     raw = snow(shape, seed=3, workers=1, rescale=False)
-    for r in range(repeats):
-        keys = list(variants) if r % 2 == 0 else list(variants)[::-1]
-        for k in keys:
-            lazy = variants[k](r)
+
+    def candidate(k):
+        def run(r):
+            lazy = variants[k](max(r, 0))  # the graph is built outside the lap
             if lazy is None:
-                _, c, out = _cpu_timed(lambda: snow(shape, seed=3, workers=1))
+                c = time.process_time()
+                out = snow(shape, seed=3, workers=1)
+                c = time.process_time() - c
                 assert np.array_equal(out, ref)
             elif "assembled" in k:
-                _, c, out = _cpu_timed(lambda: lazy.compute(scheduler="synchronous"))
+                c = time.process_time()
+                out = lazy.compute(scheduler="synchronous")
+                c = time.process_time() - c
                 assert np.array_equal(out, ref)
             else:
                 blocks = lazy.to_delayed().ravel().tolist()
-                _, c, out = _cpu_timed(lambda: dask.compute(*blocks, scheduler="synchronous"))
+                c = time.process_time()
+                out = dask.compute(*blocks, scheduler="synchronous")
+                c = time.process_time() - c
                 assert _blocks_equal(out, lazy, raw if "raw" in k else ref)
-            del out
-            cpu[k].append(c)
-        for k in variants:
-            ratios[k].append(cpu[k][-1] / cpu["in memory"][-1])
-    med = statistics.median
-    return [(k, med(cpu[k]), med(ratios[k]), min(ratios[k]), max(ratios[k])) for k in variants]
+            return Laps({f"{k} cpu": c})
+        return run
+
+    t = interleaved({k: candidate(k) for k in variants}, repeats=repeats, warmup=0, order="alternate", round_arg=True)
+    out = []
+    for k in variants:
+        r = t.ratios(f"{k} cpu", "in memory cpu")
+        out.append((k, t[f"{k} cpu"], t.ratio(f"{k} cpu", "in memory cpu"), float(r.min()), float(r.max())))
+    return out
 
 
 def snow_memory(shape, chunk_list, tmp):
@@ -279,7 +284,7 @@ def snow_memory(shape, chunk_list, tmp):
 def snow_plate(repeats, tmp, shape=(512, 4096, 4096), out_chunk=(16, 512, 4096), ckx=16):
     """Per-task costs of a 4096 x 4096 x 512 snow plate: the client's plan, one t/y slab, one x-pass chunk, spill I/O."""
     from noiselab.scale import spectral as S
-    from noiselab.snow.tent import tent_columns
+    from noiselab.snow.tent import self_conjugate_planes, tent_columns
     from noiselab.spectral.synthesis import draw_coefficients
     import noiselab._validate as V
 
@@ -290,25 +295,24 @@ def snow_plate(repeats, tmp, shape=(512, 4096, 4096), out_chunk=(16, 512, 4096),
     K = int(cols.kx.max()) + 1
     coef = draw_coefficients(cols.n_cells, V.as_generator(3), "uniform", np.float32)
     coef *= cols.weight.astype(np.float32)
-    pcols, pvals = S._snow_planes(cols, coef, np.dtype(np.complex64))
+    pcols, pvals = self_conjugate_planes(cols, coef, np.dtype(np.complex64))  # as the chunked snow does
     kx_blocks, pieces = S._snow_plan(cols, coef, pvals, pcols, T, H, K, ckx, np.float32, np.dtype(np.complex64))
     t_plan = time.perf_counter() - t0
     piece = pieces[len(pieces) // 2]
-    t_slab = statistics.median(_timed(lambda: S._snow_slab(piece, T, H, np.dtype(np.complex64)))[0]
-                               for _ in range(max(2, repeats // 2)))
     slab = S._snow_slab(piece, T, H, np.dtype(np.complex64))
     rng = np.random.default_rng(0)
     B = (rng.standard_normal(out_chunk[:2] + (K,)) + 1j * rng.standard_normal(out_chunk[:2] + (K,))).astype(np.complex64)
-    t_x = statistics.median(_timed(lambda: S._snow_rescale(B, W, np.dtype(np.float32), 1.5, (-1.0, 1.0)))[0]
-                            for _ in range(repeats))
     # spill I/O: one slab written as (8, 256, ckx) zarr chunks, one x-pass chunk's input read back
     path = str(tmp / "plate_spill.zarr")
     z = zarr.create_array(path, shape=(T, H, 2 * ckx), chunks=out_chunk[:2] + (ckx,), dtype="complex64",
                           compressors=None, fill_value=0, overwrite=True)
-    t_w = statistics.median(_timed(lambda: z.__setitem__((slice(None), slice(None), slice(0, ckx)), slab))[0]
-                            for _ in range(max(2, repeats // 2)))
     z[:, :, 0:ckx] = slab
-    t_r = statistics.median(_timed(lambda: z[0:out_chunk[0], 0:out_chunk[1], 0:ckx])[0] for _ in range(repeats))
+    big = interleaved({"slab": lambda: S._snow_slab(piece, T, H, np.dtype(np.complex64)),
+                       "write": lambda: z.__setitem__((slice(None), slice(None), slice(0, ckx)), slab)},
+                      repeats=max(2, repeats // 2), warmup=0)
+    small = interleaved({"x": lambda: S._snow_rescale(B, W, np.dtype(np.float32), 1.5, (-1.0, 1.0)),
+                         "read": lambda: z[0:out_chunk[0], 0:out_chunk[1], 0:ckx]}, repeats=repeats)
+    t_slab, t_w, t_x, t_r = big["slab"], big["write"], small["x"], small["read"]
     return dict(shape=shape, out_chunk=out_chunk, ckx=ckx, K=K, ncols=int(cols.ky.size), ncells=int(cols.n_cells),
                 n_slabs=len(kx_blocks), t_plan=t_plan, t_slab=t_slab, slab_mib=slab.nbytes / 2 ** 20, t_x=t_x,
                 x_in_mib=B.nbytes / 2 ** 20, x_out_mib=int(np.prod(out_chunk)) * 4 / 2 ** 20, t_w=t_w, t_r=t_r,
@@ -321,6 +325,8 @@ def snow_main(args):
     repeats = 3 if args.quick else args.repeats
     shape = (16, 256, 256) if args.quick else (64, 1024, 1024)
     chunks = (8, 128, shape[2]) if args.quick else (16, 512, shape[2])
+    info = run_info(f"python3 benchmarks/bench_dask.py --snow{' --quick' if args.quick else ''} --repeats {args.repeats}",
+                    ["dask", "zarr", "noiselab"])
     tmp = Path(tempfile.mkdtemp(prefix="bench_dask_snow."))
     try:
         t0 = time.perf_counter()
@@ -335,11 +341,9 @@ def snow_main(args):
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     L = [SNOW_MARK, "", "# Snow on dask (the spectral half of issue 13)", "",
-         f"Date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC. Machine: {platform.machine()}, "
-         f"{os.cpu_count()} cores **shared with other jobs** (ratios are CPU-time ratios measured side by side in one "
-         f"process, which the load disturbs least). Command: `python3 benchmarks/bench_dask.py --snow"
-         f"{' --quick' if args.quick else ''} --repeats {args.repeats}` ({elapsed:.0f} s). noiselab "
-         f"{noiselab.__version__}, dask {dask.__version__}, zarr {zarr.__version__}.", "",
+         *header_lines(info, timing=f"{elapsed:.0f} s; ratios are CPU-time ratios measured side by side in one "
+                       "process, in interleaved rounds (`noiselab.lab.measure.interleaved`), which the load disturbs "
+                       "least"), "",
          "## S1. Overhead of the chunked snow on one thread", "",
          f"`snow({shape}, seed=3)` in memory (`workers=1`) against `snow(..., chunks={chunks})` computed with dask's "
          f"synchronous scheduler (one thread), paired and alternated, median of {repeats}; every result is "
@@ -351,8 +355,8 @@ def snow_main(args):
     for k, c, r, lo, hi in ov:
         L.append(f"| {k} | {c:.3f} | {r:.2f}x | {lo:.2f}x | {hi:.2f}x |")
     L += ["", "The in-memory path's CPU time moves a lot between runs on this loaded machine (it page-faults its whole "
-          "output in; its median was 0.47 s in a run minutes before this one, against 0.91 s here), so the ratios "
-          "scatter (see min and max); the chunked paths allocate one chunk at a time.",
+          f"output in; its median was 0.47 s and 0.91 s in two earlier runs, {ov[0][1]:.2f} s in this one), so the "
+          "ratios scatter (see min and max); the chunked paths allocate one chunk at a time.",
           "", "## S2. Peak memory per worker against the chunk", "",
           f"A fresh 1-worker cluster per chunk writes `snow({mshape}, seed=3, chunks=C, spill=...)` "
           f"({whole:.0f} MiB of float32) to zarr; the worker's peak RSS growth (as in section 3).", "",
@@ -401,16 +405,24 @@ def snow_main(args):
     md.write_text(text.rstrip("\n") + "\n\n" + "\n".join(L))
 
 
-def main(argv=None):
+def build_parser():
+    """The command line (``--quick``, ``--repeats``, ``--out``, ``--snow``)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="small sizes, 3 repeats (smoke run)")
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--out", default=str(Path(__file__).with_suffix(".md")))
     parser.add_argument("--snow", action="store_true", help="only the snow sections S1-S3 (replaced in --out)")
-    args = parser.parse_args(argv)
+    return parser
+
+
+def main(argv=None):
+    args = build_parser().parse_args(argv)
     if args.snow:
         return snow_main(args)
     repeats = 3 if args.quick else args.repeats
+    args.info = run_info("python3 benchmarks/bench_dask.py" + (" --quick" if args.quick else "")
+                         + (f" --repeats {args.repeats}" if args.repeats != 5 and not args.quick else ""),
+                         ["dask", "distributed", "zarr", "noiselab"])
     n = 128 if args.quick else 256
     tmp = Path(tempfile.mkdtemp(prefix="bench_dask."))
     try:
@@ -430,19 +442,13 @@ def main(argv=None):
 
 
 def write_report(args, n, repeats, ov, sc, mem, whole_mib, pc, elapsed):
-    cmd = "python3 benchmarks/bench_dask.py" + (" --quick" if args.quick else "") + \
-        (f" --repeats {args.repeats}" if args.repeats != 5 and not args.quick else "")
-    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     L = [
         "# Chunked lattice noise on dask: overhead, scaling, memory, per-chunk costs",
         "",
-        f"Written by `{cmd}` on {now} ({elapsed:.0f} s). Machine: {platform.machine()}, "
-        f"{os.cpu_count()} cores **shared with other jobs** (load average at the end "
-        f"{os.getloadavg()[0]:.1f}), Python {platform.python_version()}, numpy {np.__version__}, "
-        f"dask {dask.__version__}, distributed {distributed.__version__}, zarr {zarr.__version__}, "
-        f"noiselab {noiselab.__version__}. Times are medians of {repeats} repeats; ratios are medians of "
-        "back-to-back pairs (robust to the load, absolute times are not). Every chunked result was checked "
-        "bit-identical to the in-memory one.",
+        *header_lines(args.info, timing=f"{elapsed:.0f} s in all; load average (1 min) at the end {load_average():.1f}; "
+                      f"times are medians of {repeats} interleaved rounds (`noiselab.lab.measure.interleaved`); "
+                      "ratios are medians of the per-round ratios (robust to the load, absolute times are not). "
+                      "Every chunked result was checked bit-identical to the in-memory one."),
         "",
         f"Field: `fractal_sum(LatticeNoise(3, seed=1), Grid(({n}, {n}, {n}), [(0, {CELLS:g})] * 3), {OCTAVES}, "
         "dtype='float32')` (value noise, cubic B-spline).",

@@ -21,12 +21,8 @@ back-to-back runs, robust to the load drifting on a shared machine.
 from __future__ import annotations
 
 import argparse
-import datetime as _dt
-import importlib.metadata as _md
 import os
-import platform
 import sys
-import time
 from pathlib import Path
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
@@ -37,20 +33,12 @@ sys.path.insert(0, str(ROOT))
 import numpy as np  # noqa: E402
 
 from noiselab import LatticeNoise  # noqa: E402
-from noiselab.lattice import grid_coordinates  # noqa: E402
+from noiselab.lab.measure import header_lines, interleaved, run_info  # noqa: E402
 
 
 def _bench(cands: dict, repeats: int):
-    """Interleaved runs: {name: [seconds per repeat]} (one warm-up call each first)."""
-    for f in cands.values():
-        f()
-    times = {k: [] for k in cands}
-    for _ in range(repeats):
-        for k, f in cands.items():
-            t = time.perf_counter()
-            f()
-            times[k].append(time.perf_counter() - t)
-    return {k: np.array(v) for k, v in times.items()}
+    """Interleaved rounds (one warm-up round, order rotated each round): a :class:`~noiselab.lab.measure.Timings`."""
+    return interleaved(cands, repeats=repeats, min_repeats=5)
 
 
 def _fd_points(noise, x, h):
@@ -76,9 +64,9 @@ def _fd_grid(noise, shape, ext, h):
 
 
 def _row(label, t, n):
-    v, g, f = t["value"], t["value+gradient"], t["finite differences"]
-    return (f"| {label} | {n / np.median(v):.3g} | {n / np.median(g):.3g} | {np.median(g / v):.2f} "
-            f"| {np.median(f / v):.2f} | {np.median(f / g):.2f} |")
+    v, g, f = "value", "value+gradient", "finite differences"
+    return (f"| {label} | {t.rate(v, n):.3g} | {t.rate(g, n):.3g} | {t.ratio(g, v):.2f} "
+            f"| {t.ratio(f, v):.2f} | {t.ratio(f, g):.2f} |")
 
 
 HEAD = ("| case | value pts/s | value+gradient pts/s | (value+gradient) / value | finite differences / value "
@@ -114,7 +102,7 @@ def grids(repeats, quick, lines, summary):
         floor = _bench({"value": lambda: np.full(shape, 0.5),
                         "value+gradient": lambda: [np.full(shape, 0.5) for _ in range(d + 1)],
                         "finite differences": lambda: None}, repeats)
-        floor_ratio = np.median(floor["value+gradient"] / floor["value"])
+        floor_ratio = floor.ratio("value+gradient", "value")
         for kernel in ("cubic", "quintic"):
             for basis in ("value", "gradient"):
                 noise = LatticeNoise(d, seed=1, kernel=kernel, basis=basis)
@@ -124,7 +112,7 @@ def grids(repeats, quick, lines, summary):
                             "d+1 values": lambda: [noise.grid(shape, ext) for _ in range(d + 1)]}, repeats)
                 size = int(np.prod(shape))
                 lines.append(_row(f"{d}-D {'x'.join(map(str, shape))} {kernel} {basis}", t, size)
-                             + f" {floor_ratio:.2f} | {np.median(t['value+gradient'] / t['d+1 values']):.2f} |")
+                             + f" {floor_ratio:.2f} | {t.ratio('value+gradient', 'd+1 values'):.2f} |")
                 summary.append((f"{d}-D grid {'x'.join(map(str, shape))}, {kernel}, {basis} basis", t))
 
 
@@ -141,21 +129,24 @@ def accuracy(lines):
             lines.append(f"| {base:g} + [0, 50) | {h:g} | {np.abs(fd - exact).max() / np.abs(exact).max():.1e} |")
 
 
-def main():
+def build_parser():
+    """The command line (``--repeats``, ``--quick``)."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=7)
     ap.add_argument("--quick", action="store_true", help="small sizes (a smoke run)")
-    args = ap.parse_args()
+    return ap
+
+
+def main(argv=None):
+    ap = build_parser()
+    args = ap.parse_args(argv)
     if args.repeats < 5:
         ap.error("--repeats must be >= 5")
     cmd = "python3 benchmarks/bench_derivatives.py" + (" --quick" if args.quick else "") + f" --repeats {args.repeats}"
     lines = ["# Derivatives of lattice noise: benchmark", "",
-             f"- date: {_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M} UTC",
-             f"- command: `{cmd}`",
-             f"- machine: {platform.machine()}, {os.cpu_count()} cores, shared with other jobs (load average at "
-             f"start {os.getloadavg()[0]:.1f}); one thread",
-             f"- python {platform.python_version()}, numpy {np.__version__}, numba {_md.version('numba')}",
-             f"- ratios: median of the {args.repeats} ratios of back-to-back interleaved runs; pts/s: median time",
+             *header_lines(run_info(cmd), timing="one thread"),
+             f"- ratios: median of the {args.repeats} per-round ratios of interleaved rounds (one warm-up round, order "
+             "rotated each round, `noiselab.lab.measure.interleaved`); pts/s: median time",
              "- `value+gradient` = `noise.gradient(x, return_value=True)` / `noise.gradient_grid(..., "
              "return_value=True)`; `finite differences` = the value plus central differences, 2d+1 value "
              "evaluations (h = 1e-5)"]
@@ -166,9 +157,9 @@ def main():
     accuracy(body)
     lines += ["", "## Summary", ""]
     for label, t in summary:
-        lines.append(f"- {label}: value + gradient costs {np.median(t['value+gradient'] / t['value']):.2f}x the "
-                     f"value alone; finite differences cost {np.median(t['finite differences'] / t['value']):.2f}x "
-                     f"({np.median(t['finite differences'] / t['value+gradient']):.2f}x value + gradient)")
+        lines.append(f"- {label}: value + gradient costs {t.ratio('value+gradient', 'value'):.2f}x the "
+                     f"value alone; finite differences cost {t.ratio('finite differences', 'value'):.2f}x "
+                     f"({t.ratio('finite differences', 'value+gradient'):.2f}x value + gradient)")
     lines += body
     out = Path(__file__).with_suffix(".md")
     out.write_text("\n".join(lines) + "\n")

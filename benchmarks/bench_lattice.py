@@ -15,10 +15,7 @@ array of the output's size (``np.full``); "x floor" is floor time / our time
 from __future__ import annotations
 
 import argparse
-import datetime as _dt
-import importlib.metadata as _md
 import os
-import platform
 import sys
 import time
 from pathlib import Path
@@ -36,6 +33,7 @@ if not hasattr(np, "product"):  # pyfastnoisesimd 0.4.2 still calls np.product (
 
 from noiselab import LatticeNoise, fractal_sum  # noqa: E402
 from noiselab.lattice import Grid, kernel_names  # noqa: E402
+from noiselab.lab.measure import Timings as Times, header_lines, interleaved, run_info  # noqa: E402
 
 
 def _peer(name):
@@ -62,40 +60,9 @@ def _peer(name):
         return None
 
 
-class Times(dict):
-    """Median seconds per candidate (the dict), plus :meth:`ratio` from paired runs."""
-
-    def __init__(self, raw):
-        super().__init__({k: float(np.median(v)) for k, v in raw.items()})
-        self.raw = {k: np.asarray(v) for k, v in raw.items()}
-
-    def ratio(self, ref, key):
-        """Median over repeats of time(ref) / time(key), each pair measured back to back.
-
-        On a shared machine the load drifts between repeats; a ratio of two
-        neighbouring runs cancels most of that drift.
-        """
-        return float(np.median(self.raw[ref] / self.raw[key]))
-
-
 def bench(cands: dict, repeats: int) -> Times:
-    """Time candidates interleaved (one warm-up each), ``repeats`` rounds."""
-    for f in cands.values():
-        f()
-    times = {k: [] for k in cands}
-    for _ in range(repeats):
-        for k, f in cands.items():
-            t0 = time.perf_counter()
-            f()
-            times[k].append(time.perf_counter() - t0)
-    return Times(times)
-
-
-def _version(dist):
-    try:
-        return _md.version(dist)
-    except _md.PackageNotFoundError:
-        return "not installed"
+    """Time candidates interleaved (one warm-up round, order rotated each round), ``repeats`` rounds."""
+    return interleaved(cands, repeats=repeats)
 
 
 # --------------------------------------------------------------------------- grids
@@ -131,15 +98,7 @@ def bench_cpu(cands: dict, repeats: int) -> Times:
     of the grid section runs in the calling thread (pyfastnoisesimd with one
     worker included), so its CPU time is its whole cost.
     """
-    for f in cands.values():
-        f()
-    times = {k: [] for k in cands}
-    for _ in range(repeats):
-        for k, f in cands.items():
-            t0 = time.thread_time()
-            f()
-            times[k].append(time.thread_time() - t0)
-    return Times(times)
+    return interleaved(cands, repeats=repeats, timer=time.thread_time)
 
 
 def grid_section(repeats, quick, lines):
@@ -497,7 +456,7 @@ def precision_section(lines):
     return results
 
 
-def main():
+def build_parser():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--quick", action="store_true", help="cubic and quintic only")
@@ -506,21 +465,25 @@ def main():
                     help="run only the integer-hash section and replace it in the output file (the rest is kept)")
     ap.add_argument("--grid-only", action="store_true",
                     help="run only the 2-D grid section and replace it in the output file (the rest is kept)")
-    args = ap.parse_args()
+    return ap
+
+
+def main(argv=None):
+    args = build_parser().parse_args(argv)
     repeats = max(5, args.repeats)
     if args.grid_only:
         cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py --grid-only"
                + (" --quick" if args.quick else "") + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
         lines = []
         load = os.getloadavg()[0]
-        start = _dt.datetime.now(_dt.timezone.utc)
+        info = run_info(cmd, ["pyfastnoisesimd"], load=load)
         gsum = grid_section(repeats, args.quick, lines)
-        lines.insert(1, f"Run alone (`{cmd}`), {start:%Y-%m-%d %H:%M UTC}, {platform.machine()}, {os.cpu_count()} "
-                        f"cores ({_cpu()}, AVX-512: pyfastnoisesimd runs its AVX-512 path) shared with other jobs, "
-                        f"load average {load:.1f} at start and {os.getloadavg()[0]:.1f} at the end; python "
-                        f"{platform.python_version()}, numpy {np.__version__}, numba {_version('numba')}, "
-                        f"pyfastnoisesimd {_version('pyfastnoisesimd')}; median of {repeats} interleaved rounds. "
-                        "The rest of this file is from the run in its header. Float64 summary of this run:\n\n" + "\n".join(_grid_summary(gsum)) + "\n")
+        lines.insert(1, f"Run alone (`{cmd}`), {info['date']}, {info['machine']}, {info['cores']} cores ({info['cpu']}, "
+                        f"AVX-512: pyfastnoisesimd runs its AVX-512 path) shared with other jobs, load average "
+                        f"{load:.1f} at start and {os.getloadavg()[0]:.1f} at the end; "
+                        + ", ".join(f"{k} {v}" for k, v in info["versions"].items()) + f"; median of {repeats} "
+                        "interleaved rounds. The rest of this file is from the run in its header. Float64 summary of "
+                        "this run:\n\n" + "\n".join(_grid_summary(gsum)) + "\n")
         _splice(args.output, GRID_HEAD, "\n".join(lines) + "\n")
         print("\n".join(lines))
         return
@@ -530,26 +493,21 @@ def main():
         lines = []
         load = os.getloadavg()[0]
         hash_section(repeats, lines)
-        lines.insert(1, f"Run alone (`{cmd}`), {_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M UTC}, "
-                        f"{platform.machine()}, {os.cpu_count()} cores ({_cpu()}) shared with other jobs, load average "
-                        f"{load:.1f} at start; python {platform.python_version()}, numpy {np.__version__}, numba "
-                        f"{_version('numba')}, pyfastnoisesimd {_version('pyfastnoisesimd')}; median of {repeats} "
+        info = run_info(cmd, ["pyfastnoisesimd"], load=load)
+        lines.insert(1, f"Run alone (`{cmd}`), {info['date']}, {info['machine']}, {info['cores']} cores ({info['cpu']}) "
+                        f"shared with other jobs, load average {load:.1f} at start; "
+                        + ", ".join(f"{k} {v}" for k, v in info["versions"].items()) + f"; median of {repeats} "
                         "interleaved rounds. The rest of this file is from the run in its header.\n")
         _splice(args.output, HASH_HEAD, "\n".join(lines) + "\n")
         print("\n".join(lines))
         return
     cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py" + (" --quick" if args.quick else "")
            + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
+    info = run_info(cmd, ["noise", "pyfastnoiselite", "pyfastnoisesimd", "opensimplex", "vnoise", "perlin-numpy", "vtk"])
     lines = ["# Lattice noise benchmark\n",
-             f"- date: {_dt.datetime.now(_dt.timezone.utc):%Y-%m-%d %H:%M UTC}",
-             f"- command: `{cmd}`",
-             f"- machine: {platform.machine()}, {os.cpu_count()} cores ({_cpu()}), shared with other jobs; "
-             f"one thread; load average at start {os.getloadavg()[0]:.1f}",
-             f"- python {platform.python_version()}, numpy {np.__version__}, numba {_version('numba')}, "
-             + ", ".join(f"{d} {_version(d)}" for d in ("noise", "pyfastnoiselite", "pyfastnoisesimd", "opensimplex",
-                                                         "vnoise", "perlin-numpy", "vtk")),
-             f"- timings: median of {repeats} interleaved runs per table; ratios: median of the {repeats} "
-             "ratios of back-to-back runs\n"]
+             *header_lines(info, timing=f"one thread; median of {repeats} interleaved rounds per table (order rotated "
+                           f"each round, `noiselab.lab.measure.interleaved`); ratios: median of the {repeats} per-round "
+                           "ratios\n")]
     body = []
     gsum = grid_section(repeats, args.quick, body)
     ssum = scattered_section(repeats, args.quick, body)
@@ -590,16 +548,6 @@ def _grid_summary(gsum):
                         out.append(f"- 2-D grid {n}^2 ({cells} cells), {basis} noise, {kname}, {label}: {r[0]:.3g} "
                                    f"pts/s ({r[1]:.2f}x the write floor{fns_txt})")
     return out
-
-
-def _cpu():
-    try:
-        for line in open("/proc/cpuinfo"):
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown cpu"
 
 
 if __name__ == "__main__":

@@ -15,14 +15,10 @@ Usage (the printed per-round lines show the drift of the machine's load)::
 from __future__ import annotations
 
 import argparse
-import datetime
 import os
-import platform
 import shlex
-import statistics
 import subprocess
 import sys
-import time
 import warnings
 from pathlib import Path
 
@@ -39,18 +35,25 @@ from noiselab.geometry import displace, trimesh_to_pyvista, vertex_normals  # no
 
 render = __import__("importlib").import_module("noiselab.geometry.render")
 from noiselab.geometry.fields import octave_field  # noqa: E402
+from noiselab.lab.measure import Stopwatch, header_lines, interleaved, markdown_table, run_info  # noqa: E402
 import importlib  # noqa: E402
 
 D = importlib.import_module("noiselab.geometry.displace")
 
 
-def main(argv=None):
+def build_parser():
+    """The command line (``--count``, ``--octaves``, ``--size``, ``--repeats``, ``--output``)."""
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--count", type=int, default=708, help="UV-sphere rings and segments (708: ~1.0M vertices)")
     ap.add_argument("--octaves", type=int, default=4)
     ap.add_argument("--size", type=int, default=512)
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
+    return ap
+
+
+def main(argv=None):
+    ap = build_parser()
     args = ap.parse_args(argv)
     if args.repeats < 5:
         ap.error("--repeats must be >= 5 (median of at least 5)")
@@ -63,6 +66,7 @@ def main(argv=None):
     noise = noiselab.LatticeNoise(3, seed=0)
     field = octave_field(noise, args.octaves)
     frequency, amplitude = 2.0, 0.1
+    info = run_info(command, ["trimesh", "pyvista", "vtk"])
     print(f"mesh: UV sphere, {n_vertices:,} vertices, {n_faces:,} faces", flush=True)
 
     def fresh():
@@ -71,25 +75,24 @@ def main(argv=None):
     vertex_normals(trimesh.creation.box())        # compile (or load the cached) numba kernel first
     warnings.simplefilter("ignore")               # the aliasing report is not what is measured here
 
-    # Every part is measured once per round, rounds repeated; each part's ratio is taken to the floor
-    # measured in the same round (then the median over rounds), so that load from other jobs on the
-    # shared machine, which drifts over minutes, cancels as far as it can.
-    parts = {}    # name -> list of seconds
+    # Every part is measured once per round (one candidate of lab.measure.interleaved whose stages are laps),
+    # rounds repeated; each part's ratio is taken to the floor measured in the same round (then the median over
+    # rounds), so that load from other jobs on the shared machine, which drifts over minutes, cancels as far as
+    # it can. No warm-up round (a round is long; the numba kernel is compiled above).
     notes = {}
-
-    def run(name, fn, note=""):
-        t0 = time.perf_counter()
-        result = fn()
-        parts.setdefault(name, []).append(time.perf_counter() - t0)
-        notes[name] = note
-        return result
-
     FLOOR = "floor: trimesh vertex_normals (fresh mesh)"
-    out = img = None
-    for r in range(args.repeats):
+    last = {}
+
+    def one_round(r):
+        sw = Stopwatch()
+
+        def run(name, fn, note=""):
+            notes[name] = note
+            return sw(name, fn)
+
         run(FLOOR, lambda: fresh().vertex_normals, "angle-weighted; face normals + sparse sum")
-        ours = run("noiselab vertex_normals (area-weighted)", lambda: vertex_normals(fresh()),
-                   "one numba pass over the faces")
+        run("noiselab vertex_normals (area-weighted)", lambda: vertex_normals(fresh()),
+            "one numba pass over the faces")
         run("numpy reference: gathers + cross + bincount normals + edge lengths",
             lambda: (lambda g: (D._area_weighted_normals(g[-1], f, len(v)), D._edge_lengths(*g[1:4])))(
                 D._face_geometry(v, f)), "what the numba face pass replaces")
@@ -126,11 +129,16 @@ def main(argv=None):
         run(f"  render stage: draw + read back {args.size}x{args.size}", lambda: render._snap(plotter),
             "Mesa llvmpipe (software GL) through EGL")
         plotter.close()
-        img = run(f"render_mesh total {args.size}x{args.size}", lambda: render.render_mesh(out, size=args.size))
+        last["img"] = run(f"render_mesh total {args.size}x{args.size}", lambda: render.render_mesh(out, size=args.size))
         run("io: write binary PLY (atomic)", lambda: noiselab.io.write_mesh("/tmp/geo_bench_mesh_out.ply", out))
-        print(f"round {r + 1}/{args.repeats}: floor {parts[FLOOR][-1]:.2f} s, "
-              f"displace {parts[f'displace total ({args.octaves}-octave fractal sum)'][-1]:.2f} s, "
-              f"render {parts[f'render_mesh total {args.size}x{args.size}'][-1]:.2f} s", flush=True)
+        laps = sw.laps
+        print(f"round {r + 1}/{args.repeats}: floor {laps[FLOOR]:.2f} s, "
+              f"displace {laps[f'displace total ({args.octaves}-octave fractal sum)']:.2f} s, "
+              f"render {laps[f'render_mesh total {args.size}x{args.size}']:.2f} s", flush=True)
+        return laps
+
+    t = interleaved({"round": one_round}, repeats=args.repeats, warmup=0, round_arg=True, min_repeats=5)
+    img = last["img"]
 
     ours = vertex_normals(fresh())
     ref = fresh().vertex_normals
@@ -138,40 +146,28 @@ def main(argv=None):
     kernel_dev = float(np.abs(ours - numpy_ref).max())
     angle_dev = float(np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", ours, ref), -1, 1))).max())
     fg = float(np.any(img < 247, axis=2).mean())
-    floor_times = np.asarray(parts[FLOOR])
-    rows = []
-    for name, times in parts.items():
-        ratios = np.asarray(times) / floor_times
-        rows.append((name, statistics.median(times), float(np.median(ratios)), times, notes[name]))
-    floor = statistics.median(parts[FLOOR])
+    floor_times = t.raw[FLOOR]
+    rows = [(name, t[name], t.ratio(name, FLOOR), notes[name]) for name in notes]
+    floor = t[FLOOR]
 
-    try:
-        import pyvista
-        import vtk
-
-        versions = f"numpy {np.__version__}, trimesh {trimesh.__version__}, pyvista {pyvista.__version__}, VTK {vtk.vtkVersion.GetVTKVersion()}, numba {__import__('numba').__version__}"
-    except Exception:  # pragma: no cover
-        versions = f"numpy {np.__version__}, trimesh {trimesh.__version__}"
     rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+    info["date"] += f"; noiselab at `{rev}`"
     lines = [
         "# bench_mesh: displacing a ~1M-vertex mesh and rendering it",
         "",
-        f"- date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M UTC}; noiselab at `{rev}`",
-        f"- machine: {platform.machine()}, {os.cpu_count()} cores, {platform.python_implementation()} {platform.python_version()}, shared with four other jobs (timings noisy; read the ratios)",
-        f"- versions: {versions}",
-        f"- command: `{command}`",
+        *header_lines(info),
         f"- mesh: `trimesh.creation.uv_sphere(count=[{args.count}, {args.count}])`: {n_vertices:,} vertices, {n_faces:,} faces (watertight; its pole fans are thin triangles)",
         f"- field: `LatticeNoise(3, seed=0)` (value noise, cubic B-spline kernel, float64), {args.octaves}-octave fractal sum (Eq. 9), frequency {frequency}, amplitude {amplitude}",
-        f"- {args.repeats} rounds, each measuring every row once; time = median over rounds; ratio = median over "
+        f"- {args.repeats} rounds (`noiselab.lab.measure.interleaved`, each round one call timing every row as a lap), "
+        "each measuring every row once; time = median over rounds; ratio = median over "
         "rounds of (row / floor in the same round); the floor's own spread over rounds: "
         f"{floor_times.min():.2f} to {floor_times.max():.2f} s",
         "",
-        "| part | median | ratio to floor | note |",
-        "| --- | ---: | ---: | --- |",
+        *markdown_table(["part", "median", "ratio to floor", "note"],
+                        [(name, f"{med * 1e3:.1f} ms", f"{ratio:.3f}", note) for name, med, ratio, note in rows],
+                        align="lrrl"),
     ]
-    for name, med, ratio, times, note in rows:
-        lines.append(f"| {name} | {med * 1e3:.1f} ms | {ratio:.3f} | {note} |")
-    row = {n: (m, q) for n, m, q, _, _ in rows}
+    row = {n: (m, q) for n, m, q, _ in rows}
     d_total, d_ratio = row[f"displace total ({args.octaves}-octave fractal sum)"]
     r_total, r_ratio = row[f"render_mesh total {args.size}x{args.size}"]
     stages = {n[len("  displace stage: "):]: m for n, (m, _) in row.items() if n.startswith("  displace stage: ")}

@@ -17,13 +17,10 @@ when its environment is present.
 from __future__ import annotations
 
 import argparse
-import datetime
 import json
 import os
-import platform
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -33,9 +30,9 @@ import scipy.fft
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-import noiselab  # noqa: E402
 from noiselab.snow import snow  # noqa: E402
 from noiselab.snow.render import rescale_opacity  # noqa: E402
+from noiselab.lab.measure import Laps, Stopwatch, header_lines, interleaved, load_average, run_info  # noqa: E402
 from noiselab.snow.tent import assemble, pruned_irfftn, tent_columns  # noqa: E402
 
 PEER_PY = ROOT / "benchmarks" / ".venv-peers" / "bin" / "python"
@@ -52,61 +49,59 @@ def _random_half_spectrum(shape, dtype):
 
 
 def timing(shape, rounds, workers):
-    """Interleaved rounds: floor (irfftn) and snow, float32 and float64, at each worker count; ratios per round."""
+    """Interleaved rounds: floor (irfftn) and snow, float32 and float64, at each worker count; ratios per round.
+
+    One :func:`noiselab.lab.measure.interleaved` call over every (case, worker count), the order reversed every
+    other round; the stages of ``snow`` (float32) are one more candidate that returns their laps.
+    """
     S32 = _random_half_spectrum(shape, np.float32)
     S64 = S32.astype(np.complex128)
     snow((4, 32, 32), seed=0)  # numba warm-up
+    band = (shape[2] / 32, shape[2] / 4)
+
+    def stages(r, w):
+        sw = Stopwatch()
+        cols = sw("build", lambda: tent_columns(shape, c=1.0, band=band, thickness=0.1, direction=(0, 1), pan=(0, 0),
+                                                exponent=1.0))
+        C = sw("build", lambda: assemble(cols, np.random.default_rng(r), "uniform", np.float32))
+        out = np.empty(shape, np.float32)
+        lo, hi = sw("fft", lambda: pruned_irfftn(C, cols, out, workers=w))
+        sw("rescale", lambda: rescale_opacity(out, 1.5, lo=lo, hi=hi))
+        return Laps({f"{k}@{w}": v for k, v in sw.laps.items()})
+
+    def floor(S, w):
+        y = scipy.fft.irfftn(S, s=shape, workers=w)
+        assert y.dtype == (np.float32 if S.dtype == np.complex64 else np.float64)
+        return y
+
+    cands = {}
     for w in workers:
-        scipy.fft.irfftn(S32, s=shape, workers=w)
-        snow(shape, seed=0, workers=w)
-    keys = ("floor32", "snow32", "floor64", "snow64", "build", "fft", "rescale")
-    rows = {(w, k): [] for w in workers for k in keys}
-    for r in range(rounds):
-        for w in (workers if r % 2 == 0 else workers[::-1]):
-            t0 = time.perf_counter(); y = scipy.fft.irfftn(S32, s=shape, workers=w); t1 = time.perf_counter()  # noqa: E702
-            assert y.dtype == np.float32
-            del y
-            t2 = time.perf_counter(); a = snow(shape, seed=r, workers=w); t3 = time.perf_counter()  # noqa: E702
-            del a
-            t4 = time.perf_counter(); y = scipy.fft.irfftn(S64, s=shape, workers=w); t5 = time.perf_counter()  # noqa: E702
-            del y
-            t6 = time.perf_counter(); a = snow(shape, seed=r, dtype=np.float64, workers=w); t7 = time.perf_counter()  # noqa: E702
-            del a
-            # the stages of snow (float32)
-            s0 = time.perf_counter()
-            cols = tent_columns(shape, c=1.0, band=(shape[2] / 32, shape[2] / 4), thickness=0.1, direction=(0, 1),
-                                pan=(0, 0), exponent=1.0)
-            C = assemble(cols, np.random.default_rng(r), "uniform", np.float32)
-            s1 = time.perf_counter()
-            out = np.empty(shape, np.float32)
-            lo, hi = pruned_irfftn(C, cols, out, workers=w)
-            s2 = time.perf_counter()
-            rescale_opacity(out, 1.5, lo=lo, hi=hi)
-            s3 = time.perf_counter()
-            del out, C
-            for k, v in (("floor32", t1 - t0), ("snow32", t3 - t2), ("floor64", t5 - t4), ("snow64", t7 - t6),
-                         ("build", s1 - s0), ("fft", s2 - s1), ("rescale", s3 - s2)):
-                rows[(w, k)].append(v)
-    rows = {k: np.array(v) for k, v in rows.items()}
-    res = {}
+        cands.update({f"floor32@{w}": lambda r, w=w: floor(S32, w),
+                      f"snow32@{w}": lambda r, w=w: snow(shape, seed=max(r, 0), workers=w),
+                      f"floor64@{w}": lambda r, w=w: floor(S64, w),
+                      f"snow64@{w}": lambda r, w=w: snow(shape, seed=max(r, 0), dtype=np.float64, workers=w),
+                      f"stages@{w}": lambda r, w=w: stages(max(r, 0), w)})
+    t = interleaved(cands, repeats=rounds, order="alternate", round_arg=True)
+    res = {"timings": t}
+    w0 = workers[0]
     for w in workers:
-        g = {k: rows[(w, k)] for k in keys}
         res[w] = {
-            "floor32_s": float(np.median(g["floor32"])),
-            "snow32_s": float(np.median(g["snow32"])),
-            "floor64_s": float(np.median(g["floor64"])),
-            "snow64_s": float(np.median(g["snow64"])),
-            "ratio32": float(np.median(g["snow32"] / g["floor32"])),
-            "ratio64": float(np.median(g["snow64"] / g["floor64"])),
-            "ratio64_vs_floor32": float(np.median(g["snow64"] / g["floor32"])),
-            "build_frac": float(np.median(g["build"] / g["floor32"])),
-            "fft_frac": float(np.median(g["fft"] / g["floor32"])),
-            "rescale_frac": float(np.median(g["rescale"] / g["floor32"])),
-            "ratios32": [round(float(x), 3) for x in g["snow32"] / g["floor32"]],
+            "floor32_s": t[f"floor32@{w}"],
+            "snow32_s": t[f"snow32@{w}"],
+            "floor64_s": t[f"floor64@{w}"],
+            "snow64_s": t[f"snow64@{w}"],
+            "ratio32": t.ratio(f"snow32@{w}", f"floor32@{w}"),
+            "ratio64": t.ratio(f"snow64@{w}", f"floor64@{w}"),
+            "ratio64_vs_floor32": t.ratio(f"snow64@{w}", f"floor32@{w}"),
+            "build_frac": t.ratio(f"build@{w}", f"floor32@{w}"),
+            "fft_frac": t.ratio(f"fft@{w}", f"floor32@{w}"),
+            "rescale_frac": t.ratio(f"rescale@{w}", f"floor32@{w}"),
+            "ratios32": [round(float(x), 3) for x in t.ratios(f"snow32@{w}", f"floor32@{w}")],
             # strong scaling against the first worker count, per round
-            "speedup_floor32": float(np.median(rows[(workers[0], "floor32")] / g["floor32"])),
-            "speedup_snow32": float(np.median(rows[(workers[0], "snow32")] / g["snow32"])),
+            "speedup_floor32": t.ratio(f"floor32@{w0}", f"floor32@{w}"),
+            "speedup_snow32": t.ratio(f"snow32@{w0}", f"snow32@{w}"),
         }
+    cols = tent_columns(shape, c=1.0, band=band, thickness=0.1, direction=(0, 1), pan=(0, 0), exponent=1.0)
     res["cells"] = int(cols.n_cells)
     res["columns"] = int(cols.ky.size)
     res["half_spectrum"] = int(shape[0] * shape[1] * (shape[2] // 2 + 1))
@@ -210,8 +205,9 @@ def peer(shape, rounds):
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
 
-def main():
-    ap = argparse.ArgumentParser()
+def build_parser():
+    """The command line (``--quick``, ``--rounds``, ``--shape``, ``--workers``, ``--no-peer``; ``--memory-case`` is internal)."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--rounds", type=int, default=9)
     ap.add_argument("--memory-case", default=None)
@@ -219,35 +215,37 @@ def main():
     ap.add_argument("--no-peer", action="store_true")
     ap.add_argument("--workers", type=int, nargs="+", default=None,
                     help="worker counts, the same on both sides (default: 1 and every core)")
-    args = ap.parse_args()
+    return ap
+
+
+def main(argv=None):
+    args = build_parser().parse_args(argv)
     workers = args.workers or [1, os.cpu_count() or 1]
     shape = tuple(args.shape) if args.shape else ((16, 128, 128) if args.quick else (64, 512, 512))
     if args.memory_case:
         print(json.dumps(memory_case(args.memory_case, shape, workers[0])))
         return
     rounds = 5 if args.quick else max(5, args.rounds)
-    load0 = os.getloadavg()[0]
+    load0 = load_average()
     tm = timing(shape, rounds, workers)
-    load1 = os.getloadavg()[0]
+    load1 = load_average()
     mem = memory(shape, workers)
     acc = accuracy(shape)
     pr = None if args.no_peer else peer(shape, 5)
     cmd = "python3 benchmarks/bench_snow.py" + (" --quick" if args.quick else "") + (
         f" --rounds {args.rounds}" if args.rounds != 9 else "") + (
-        " --workers " + " ".join(map(str, args.workers)) if args.workers else "")
+        " --workers " + " ".join(map(str, args.workers)) if args.workers else "") + (
+        " --shape " + " ".join(map(str, args.shape)) if args.shape else "") + (" --no-peer" if args.no_peer else "")
     T, H, W = shape
     out_mib = T * H * W * 4 / 2**20
     lines = [
         "# bench_snow: falling snow against the inverse-FFT floor",
         "",
-        f"- command: `{cmd}`",
-        f"- date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M UTC}",
-        f"- machine: {platform.machine()}, {os.cpu_count()} cores (shared with other jobs), {platform.platform()}",
-        f"- versions: python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}, "
-        f"noiselab {noiselab.__version__}",
+        *header_lines(run_info(cmd, ["scipy", "noiselab"], load=load0)),
         f"- shape (T, H, W) = {shape}, default scene (band {W / 32:g}..{W / 4:g} cycles/frame, c = 1, "
         f"thickness 0.1, beta 1.5); the same worker count on both sides (scipy.fft `workers=`; snow's `workers=`)",
-        f"- timing: {rounds} interleaved rounds, median of per-round ratios; load average (1 min) "
+        f"- timing: {rounds} interleaved rounds after one warm-up round (`noiselab.lab.measure.interleaved`, the order "
+        f"reversed every other round), median of per-round ratios; load average (1 min) "
         f"{load0:.1f} before and {load1:.1f} after the timing, on {os.cpu_count()} cores",
         "",
         "## Speed (floor = bare `scipy.fft.irfftn` of a `(T, H, W//2+1)` spectrum to the same output, same workers)",

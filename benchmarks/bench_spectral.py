@@ -24,14 +24,11 @@ given beside the output's own size.
 from __future__ import annotations
 
 import argparse
-import datetime
 import importlib.util
 import os
-import platform
 import subprocess
 import sys
 import tempfile
-import time
 import tracemalloc
 from pathlib import Path
 
@@ -42,10 +39,9 @@ import scipy.fft
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-import numba  # noqa: E402
 
-import noiselab  # noqa: E402
 from noiselab.spectral import envelopes as E  # noqa: E402
+from noiselab.lab.measure import Laps, Stopwatch, header_lines, interleaved, load_average, run_info  # noqa: E402
 from noiselab.spectral import spectral_noise, synthesize  # noqa: E402
 
 
@@ -135,27 +131,19 @@ def run(rounds, quick, before_rev, workers):
             shape, band=band, seed=r, dtype=dt)
     floors = {c: _half_spectrum(c[0], c[2]) for c in cases}
     names = ["floor", *contenders]
-    times = {(c, w, k): [] for c in cases for w in workers for k in names}
-    for c in cases:  # warm every path once
+
+    def call(c, w, k, r):
         shape, band, dt = c
-        for w in workers:
-            scipy.fft.irfftn(floors[c], s=shape, workers=w)
-            for f in contenders.values():
-                f(shape, band, dt, 0, w)
-    for r in range(rounds):
-        # each round runs the contenders in a rotated order, so that none always follows the same
-        # (memory-hungry) neighbour: the allocator's and the caches' state favour whoever comes first
-        order = names[r % len(names):] + names[:r % len(names)]
-        for c in cases:
-            shape, band, dt = c
-            for w in workers:
-                for k in order:
-                    t0 = time.perf_counter()
-                    y = (scipy.fft.irfftn(floors[c], s=shape, workers=w) if k == "floor"
-                         else contenders[k](shape, band, dt, r, w))
-                    times[(c, w, k)].append(time.perf_counter() - t0)
-                    assert y.dtype == dt and y.shape == shape
-                    del y
+        y = (scipy.fft.irfftn(floors[c], s=shape, workers=w) if k == "floor"
+             else contenders[k](shape, band, dt, max(r, 0), w))
+        assert y.dtype == dt and y.shape == shape
+        return y
+
+    # one interleaved run per case, over every (worker count, contender): one warm-up round, then each round
+    # in an order rotated from the last, so that none always follows the same (memory-hungry) neighbour: the
+    # allocator's and the caches' state favour whoever comes first
+    timings = {c: interleaved({(w, k): (lambda r, c=c, w=w, k=k: call(c, w, k, r)) for w in workers for k in names},
+                              repeats=rounds, round_arg=True) for c in cases}
     rows = []
     for c in cases:
         shape, band, dt = c
@@ -164,19 +152,16 @@ def run(rounds, quick, before_rev, workers):
         peak_floor = _peak(lambda: scipy.fft.irfftn(floors[c], s=shape)) / 2**20
         peak_before = (_peak(lambda: before.spectral_noise(shape, band=band, seed=0, dtype=dt)) / 2**20
                        if before is not None else None)
+        t = timings[c]
         for w in workers:
-            fl = np.array(times[(c, w, "floor")])
-            row = {"case": _label(*c), "workers": w, "floor_ms": 1e3 * float(np.median(fl)),
+            row = {"case": _label(*c), "workers": w, "floor_ms": 1e3 * t[(w, "floor")],
                    "out_mib": np.prod(shape) * np.dtype(dt).itemsize / 2**20}
             for k in contenders:
-                t = np.array(times[(c, w, k)])
-                row[k] = (float(np.median(t / fl)), 1e3 * float(np.median(t)))
+                row[k] = (t.ratio((w, k), (w, "floor")), 1e3 * t[(w, k)])
             # strong scaling against the first worker count, per round (the same round's load on both)
             base = workers[0]
             for k in ("floor", "spectral_noise"):
-                t0 = np.array(times[(c, base, k)])
-                t1 = np.array(times[(c, w, k)])
-                row[f"speedup {k}"] = float(np.median(t0 / t1))
+                row[f"speedup {k}"] = t.ratio((base, k), (w, k))
             row["serial"] = serial
             row["peak_mib"] = peak
             row["peak_floor_mib"] = peak_floor
@@ -193,54 +178,40 @@ def serial_share(shape, band, dt, rounds):
     module; medians of ``rounds`` calls. Robust to the load (one call's own parts)."""
     import noiselab.spectral.synthesis as SY
 
-    spent = {"fill": 0.0, "fft": 0.0}
     orig = (SY._map_groups, SY._pruned_irfftn)
 
-    def wrap(f, key):
-        def g(*a, **k):
-            t = time.perf_counter()
-            r = f(*a, **k)
-            spent[key] += time.perf_counter() - t
-            return r
-        return g
+    def wrap(f, key, sw):
+        return lambda *a, **k: sw(key, lambda: f(*a, **k))
 
-    SY._map_groups, SY._pruned_irfftn = wrap(orig[0], "fill"), wrap(orig[1], "fft")
-    try:
-        shares = []
-        for r in range(rounds):
-            spent["fill"] = spent["fft"] = 0.0
-            t = time.perf_counter()
-            SY.spectral_noise(shape, band=band, seed=r, dtype=dt, workers=1)
-            total = time.perf_counter() - t
-            shares.append((1 - (spent["fill"] + spent["fft"]) / total, spent["fill"] / total, spent["fft"] / total))
-    finally:
-        SY._map_groups, SY._pruned_irfftn = orig
-    return tuple(float(x) for x in np.median(np.array(shares), axis=0))
+    def one(r):
+        sw = Stopwatch()
+        SY._map_groups, SY._pruned_irfftn = wrap(orig[0], "fill", sw), wrap(orig[1], "fft", sw)
+        try:
+            SY.spectral_noise(shape, band=band, seed=max(r, 0), dtype=dt, workers=1)
+        finally:
+            SY._map_groups, SY._pruned_irfftn = orig
+        return Laps(fill=sw.laps.get("fill", 0.0), fft=sw.laps.get("fft", 0.0))
+
+    t = interleaved({"call": one}, repeats=rounds, round_arg=True)
+    fill, fft = t.ratio("fill", "call"), t.ratio("fft", "call")
+    return float(1 - float(np.median((t.raw["fill"] + t.raw["fft"]) / t.raw["call"]))), fill, fft
 
 
 def exponent_sweep(rounds, before_rev, path, argv):
     """``spectral_noise`` 1024^2 float32, one worker, at several exponents against the floor (and ``--before``)."""
     before = _before_module(before_rev) if before_rev else None
+    info = run_info(f"python3 benchmarks/bench_spectral.py {' '.join(argv)}".rstrip(), ["scipy", "noiselab"])
     shape = (1024, 1024)
     S = _half_spectrum(shape, np.float32)
     exps = (1.0, 1.5, 2.0, 0.5, 1.3, 2.7)
     runs = {"spectral_noise": lambda e, r: spectral_noise(shape, exponent=e, seed=r, workers=1)}
     if before is not None:
         runs["before"] = lambda e, r: before.spectral_noise(shape, exponent=e, seed=r)
-    for e in exps:
-        for f in runs.values():
-            f(e, 0)
-    t = {(e, k): [] for e in exps for k in ["floor", *runs]}
-    for r in range(rounds):
-        for e in exps:
-            for k in ["floor", *runs]:
-                t0 = time.perf_counter()
-                scipy.fft.irfftn(S, s=shape, workers=1) if k == "floor" else runs[k](e, r)
-                t[(e, k)].append(time.perf_counter() - t0)
-    lines = ["# spectral_noise: cost of the power law's exponent", "",
-             f"Command: `python3 benchmarks/bench_spectral.py {' '.join(argv)}`", "",
-             f"Date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M UTC}. Machine: {_cpu()}, "
-             f"{os.cpu_count()} cores shared with other jobs (load average {os.getloadavg()[0]:.1f}). 1024 x 1024 "
+    cands = {(e, k): (lambda r, e=e, k=k: scipy.fft.irfftn(S, s=shape, workers=1) if k == "floor"
+                      else runs[k](e, max(r, 0))) for e in exps for k in ["floor", *runs]}
+    t = interleaved(cands, repeats=rounds, round_arg=True)
+    lines = ["# spectral_noise: cost of the power law's exponent", "", *header_lines(info), "",
+             "1024 x 1024 "
              f"float32, full band, one worker; ratio = median over {rounds} interleaved rounds of time / bare "
              "`irfftn` time in the same round. Exponents that are multiples of 1/2 are computed with square roots "
              "and products (vectorised), the others with `pow` per cell." +
@@ -248,8 +219,7 @@ def exponent_sweep(rounds, before_rev, path, argv):
              "| exponent | spectral_noise (x floor) |" + (" before (x floor) |" if before is not None else ""),
              "|---|---|" + ("---|" if before is not None else "")]
     for e in exps:
-        fl = np.array(t[(e, "floor")])
-        cells = [f"{np.median(np.array(t[(e, k)]) / fl):.2f}" for k in runs]
+        cells = [f"{t.ratio((e, k), (e, 'floor')):.2f}" for k in runs]
         lines.append(f"| {e:g} | " + " | ".join(cells) + " |")
     lines.append("")
     path.write_text("\n".join(lines))
@@ -264,33 +234,20 @@ def _parallel_fraction(speedup, n_from, n_to):
     return (1 - 1 / speedup) / (1 - 1 / r)
 
 
-def _cpu():
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
-
-
 def write_md(rows, names, rounds, argv, path, before_rev=None):
-    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     load = next((x for x in argv if x.startswith("#load")), None)
+    cmd = f"python3 benchmarks/bench_spectral.py {' '.join(a for a in argv if not a.startswith('#load'))}".rstrip()
+    info = run_info(cmd, ["scipy", "noiselab"], load=float(load.split()[1]) if load else None)
     lines = [
         "# spectral_noise / synthesize against a bare irfftn",
         "",
-        f"Command: `python3 benchmarks/bench_spectral.py {' '.join(a for a in argv if not a.startswith('#load'))}`"
-        .rstrip(),
+        *header_lines(info, timing="load average (1 min) before and after the timing: "
+                      f"{' and '.join(load.split()[1:]) if load else '?'}; ratios are what hold, the milliseconds "
+                      "move with the load"),
         "",
-        f"Date: {now}. Machine: {platform.node()}, {_cpu()}, {os.cpu_count()} cores (shared with other jobs: "
-        "ratios are what hold, the milliseconds move with the load; load average (1 min) before and after: "
-        f"{' and '.join(load.split()[1:]) if load else '?'}). "
-        f"Python {platform.python_version()}, numpy {np.__version__}, scipy {scipy.__version__}, "
-        f"numba {numba.__version__}, noiselab {getattr(noiselab, '__version__', '?')}.",
-        "",
-        f"Ratio = median over {rounds} interleaved rounds (order rotated each round) of (time / floor time in the "
-        "same round); floor = "
+        f"Ratio = median over {rounds} interleaved rounds after one warm-up round (`noiselab.lab.measure.interleaved`, "
+        "one run per case over its worker counts and contenders, the order rotated each round) of (time / floor time "
+        "in the same round); floor = "
         "`scipy.fft.irfftn` of a ready half spectrum to the same output shape and dtype, with the row's worker "
         "count (`workers=`) on both sides. "
         "`synthesize` gets the float64 envelope `annulus * power_law` as a callable (the general path). "
@@ -337,7 +294,8 @@ def write_md(rows, names, rounds, argv, path, before_rev=None):
     print("\n".join(lines))
 
 
-def main(argv=None):
+def build_parser():
+    """The command line (``--rounds``, ``--quick``, ``--before``, ``--workers``, ``--output``, ``--exponents``)."""
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--rounds", type=int, default=7)
     p.add_argument("--quick", action="store_true")
@@ -347,6 +305,11 @@ def main(argv=None):
     p.add_argument("--output", default=None, help="default benchmarks/bench_spectral.md "
                    "(bench_spectral_exponents.md with --exponents)")
     p.add_argument("--exponents", action="store_true", help="only the exponent sweep (1024^2 float32, 1 worker)")
+    return p
+
+
+def main(argv=None):
+    p = build_parser()
     argv = sys.argv[1:] if argv is None else argv
     a = p.parse_args(argv)
     if a.rounds < 5:
@@ -356,9 +319,9 @@ def main(argv=None):
                        argv)
         return
     a.output = a.output or str(ROOT / "benchmarks" / "bench_spectral.md")
-    load0 = os.getloadavg()[0]
+    load0 = load_average()
     rows, names = run(a.rounds, a.quick, a.before, a.workers)
-    argv = list(argv) + [f"#load {load0:.1f} {os.getloadavg()[0]:.1f}"]
+    argv = list(argv) + [f"#load {load0:.1f} {load_average():.1f}"]
     write_md(rows, names, a.rounds, argv, Path(a.output), a.before)
 
 

@@ -3,8 +3,9 @@
 - :mod:`noiselab.lab.snowgen`: the alternative snow generators,
   :func:`layered_lattice_snow` (depth layers of lattice noise) and
   :func:`particle_snow` (Reeves-style particles).
-- :mod:`noiselab.lab.measure`: timing (interleaved rounds, medians, ratios to
-  a floor), peak memory, machine description, scaling fits.
+- :mod:`noiselab.lab.measure`: the one timing harness (:func:`~noiselab.lab.measure.interleaved`
+  rounds, medians, per-round ratios, run headers, tables; every ``benchmarks/bench_*.py``
+  times through it), peak memory, machine description, scaling fits.
 - :mod:`noiselab.lab.experiments`: the experiments, each returning rows of a
   results table.
 - :mod:`noiselab.lab.run`: runs them all and writes ``benchmarks/RESULTS.md``

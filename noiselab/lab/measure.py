@@ -1,10 +1,16 @@
-"""Measurement helpers of the laboratory: interleaved timing against a floor, peak memory, machine, fits.
+"""The one timing harness of the project, and the laboratory's other measurements (peak memory, machine, fits).
 
-Timing rule (DEVELOPERS.md): every case is timed in the same process as its
-floor, round by round (floor, case, floor, case, ...), and reported as the
-median of at least 5 repeats together with the median of the per-round ratios
-to the floor; ratios hold when a shared machine's speed drifts, absolute
-seconds do not.
+Timing rule (DEVELOPERS.md): every candidate is timed in the same process as
+its reference (a floor, a peer, the previous version), in interleaved rounds
+(a, b, c, a, b, c, ...), after an untimed warm-up, and reported as the median
+of at least 5 rounds together with the median of the per-round ratios; ratios
+of two calls made seconds apart hold when a shared machine's speed drifts,
+absolute seconds do not. :func:`interleaved` runs the rounds over a dict of
+candidates and returns :class:`Timings`; :func:`time_against_floor` is the
+floor-first form the laboratory's experiments use; :func:`run_info` and
+:func:`header_lines` give the run header every report starts with, and
+:func:`markdown_table` the table. Every ``benchmarks/bench_*.py`` script times
+through this module.
 
 Memory: the peak of :mod:`tracemalloc` during one call, which sees every numpy
 allocation (numpy reports to tracemalloc) but not scratch that C/C++
@@ -23,8 +29,351 @@ import numpy as np
 
 from .._validate import check_int
 
-__all__ = ["time_against_floor", "peak_memory", "peak_rss", "machine_info", "fit_exponent", "fit_nlogn",
-           "fft_floor", "write_floor"]
+__all__ = ["interleaved", "Timings", "Laps", "Stopwatch", "run_info", "header_lines", "load_average",
+           "markdown_table", "package_version", "time_against_floor", "peak_memory", "peak_rss", "machine_info",
+           "fit_exponent", "fit_nlogn", "fft_floor", "write_floor"]
+
+_ORDERS = ("fixed", "rotate", "alternate")
+
+
+class Laps(dict):
+    """Durations (seconds) of the stages of one call, returned by a candidate to have them recorded too.
+
+    A candidate of :func:`interleaved` that returns a ``Laps`` (usually
+    :attr:`Stopwatch.laps`) adds one series per stage to the
+    :class:`Timings`, named ``stage`` (``prefix + stage`` with a
+    ``prefix`` argument), measured in the same round as everything else,
+    so a stage's per-round ratio to a floor is as robust as a whole call's.
+    """
+
+
+class Stopwatch:
+    """Times the stages of one call: ``sw("name", fn)`` calls ``fn()``, records its duration, returns its result.
+
+    Parameters
+    ----------
+    timer : callable, optional
+        Clock returning seconds (default :func:`time.perf_counter`).
+
+    Examples
+    --------
+    >>> sw = Stopwatch()
+    >>> sw("sum", lambda: sum(range(10)))
+    45
+    >>> sorted(sw.laps)
+    ['sum']
+    """
+
+    def __init__(self, timer=None):
+        self.timer = time.perf_counter if timer is None else timer
+        self.laps = Laps()
+
+    def __call__(self, name, fn):
+        t0 = self.timer()
+        out = fn()
+        self.laps[name] = self.laps.get(name, 0.0) + (self.timer() - t0)
+        return out
+
+
+class Timings(dict):
+    """The result of :func:`interleaved`: median seconds per candidate (the dict), and the rounds behind it.
+
+    Attributes
+    ----------
+    raw : dict name -> ndarray
+        Seconds of every timed round, in round order (warm-up excluded).
+    calls : list of (round, name)
+        The order the candidates were called in (warm-up rounds as round -1).
+    units : dict name -> float
+        Work done per call (points, voxels...), where given.
+    repeats, warmup : int
+    """
+
+    def __init__(self, raw, *, units=None, calls=(), repeats=None, warmup=0):
+        super().__init__({k: float(np.median(v)) for k, v in raw.items()})
+        self.raw = {k: np.asarray(v, dtype=float) for k, v in raw.items()}
+        self.units = dict(units or {})
+        self.calls = list(calls)
+        self.repeats = repeats if repeats is not None else (len(next(iter(self.raw.values()))) if raw else 0)
+        self.warmup = warmup
+
+    def median(self, name):
+        """Median seconds of ``name`` over the rounds."""
+        return self[name]
+
+    def min(self, name):
+        """Fastest round of ``name`` (seconds)."""
+        return float(np.min(self.raw[name]))
+
+    def ratios(self, num, den):
+        """Per-round ``time(num) / time(den)``, each pair measured in the same round."""
+        a, b = self.raw[num], self.raw[den]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(b > 0, a / np.where(b > 0, b, 1.0), np.nan)
+
+    def ratio(self, num, den):
+        """Median over rounds of ``time(num) / time(den)`` measured in the same round.
+
+        On a shared machine the load drifts between rounds; a ratio of two
+        neighbouring calls cancels most of that drift, a ratio of medians
+        does not. ``ratio(name, "floor")`` is the time of ``name`` in floor
+        times; ``ratio("floor", name)`` its speed as a fraction of the
+        floor's (1 = as fast as the floor).
+
+        Examples
+        --------
+        >>> t = Timings({"a": [1.0, 4.0, 2.0], "b": [2.0, 2.0, 2.0]})
+        >>> t.ratio("a", "b"), t.ratio("b", "a")
+        (1.0, 1.0)
+        """
+        return float(np.median(self.ratios(num, den)))
+
+    def rate(self, name, units=None):
+        """Work units per second of ``name``: ``units / median seconds`` (``units`` default: the ones given)."""
+        u = self.units.get(name) if units is None else units
+        if u is None:
+            raise ValueError(f"rate: no work units given for {name!r}; pass units= to interleaved or to rate")
+        return float(u) / self[name]
+
+    def table(self, ref=None, *, labels=None, unit_name="pts/s", digits=3):
+        """The standard table: candidate, median s, min s, x ``ref`` (median per-round ratio), and the rate.
+
+        Parameters
+        ----------
+        ref : str, optional
+            Reference candidate for the ratio column ``time / time(ref)``.
+        labels : dict name -> str, optional
+            Row labels (default: the names).
+        unit_name : str
+            Header of the rate column, shown where units were given.
+        digits : int
+            Significant digits.
+
+        Returns
+        -------
+        list of str
+            Markdown lines (see :func:`markdown_table`).
+
+        Examples
+        --------
+        >>> t = Timings({"floor": [1.0, 1.0, 1.0], "f": [2.0, 3.0, 2.0]}, units={"f": 10})
+        >>> print("\\n".join(t.table("floor")))
+        | candidate | median s | min s | x floor | pts/s |
+        | --- | ---: | ---: | ---: | ---: |
+        | floor | 1 | 1 | 1 |  |
+        | f | 2 | 2 | 2 | 5 |
+        """
+        labels = labels or {}
+        head = ["candidate", "median s", "min s"] + ([f"x {ref}"] if ref else []) + ([unit_name] if self.units else [])
+        rows = []
+        for k in self:
+            row = [labels.get(k, str(k)), f"{self[k]:.{digits}g}", f"{self.min(k):.{digits}g}"]
+            if ref:
+                row.append(f"{self.ratio(k, ref):.{digits}g}")
+            if self.units:
+                row.append(f"{self.rate(k):.{digits}g}" if k in self.units else "")
+            rows.append(row)
+        return markdown_table(head, rows, align="l" + "r" * (len(head) - 1))
+
+
+def _order(names, r, order):
+    if order == "fixed":
+        return list(names)
+    if order == "alternate":
+        return list(names) if r % 2 == 0 else list(names)[::-1]
+    k = r % len(names) if names else 0
+    return list(names[k:]) + list(names[:k])
+
+
+def interleaved(candidates, *, repeats=5, warmup=1, order="rotate", units=None, timer=None, collect=True,
+                round_arg=False, min_repeats=1):
+    """Time a dict of candidates in interleaved rounds: every candidate once per round, ``repeats`` rounds.
+
+    Parameters
+    ----------
+    candidates : dict name -> callable
+        Called with no argument (with the round index if ``round_arg``). A
+        candidate returning :class:`Laps` also records its stages.
+    repeats : int, >= ``min_repeats``
+        Timed rounds (the rules ask for >= 5).
+    warmup : int, >= 0
+        Untimed rounds first (numba compilation, FFT plans, page faults).
+    order : {"rotate", "fixed", "alternate"}
+        The order within a round: ``"rotate"`` starts round ``r`` at the
+        ``r``-th candidate (none always follows the same neighbour, whose
+        allocations and cache state favour or hurt it); ``"fixed"`` keeps
+        the dict's order; ``"alternate"`` reverses it every other round.
+    units : float or dict name -> float, optional
+        Work units per call (points, voxels) for :meth:`Timings.rate`; one
+        number applies to every candidate.
+    timer : callable, optional
+        Clock returning seconds (default :func:`time.perf_counter`); tests
+        inject a fake one.
+    collect : bool
+        ``gc.collect()`` before each timed call (outside the timing).
+    round_arg : bool
+        Pass the round index (``-1`` in warm-up) to every candidate, e.g. as a seed.
+    min_repeats : int
+        Smallest ``repeats`` accepted (scripts that publish medians pass 5).
+
+    Returns
+    -------
+    Timings
+        Median seconds per candidate (and per recorded stage), with the
+        per-round times for :meth:`Timings.ratio`.
+
+    Raises
+    ------
+    ValueError
+        ``repeats`` below ``min_repeats``, ``warmup`` negative, an unknown
+        ``order``, no candidate, or a lap named like a candidate.
+
+    Examples
+    --------
+    >>> t = interleaved({"floor": lambda: np.ones(1000), "sum": lambda: np.ones(1000).sum()}, repeats=5,
+    ...                 units=1000)
+    >>> sorted(t), len(t.raw["sum"]), t.ratio("sum", "floor") > 0
+    (['floor', 'sum'], 5, True)
+    """
+    repeats = check_int("repeats", repeats, lo=max(1, int(min_repeats)))
+    warmup = check_int("warmup", warmup, lo=0)
+    if order not in _ORDERS:
+        raise ValueError(f"order must be one of {_ORDERS}, got {order!r}")
+    if not candidates:
+        raise ValueError("candidates must name at least one callable")
+    names = list(candidates)
+    timer = time.perf_counter if timer is None else timer
+    calls = []
+    for _ in range(warmup):
+        for k in names:
+            calls.append((-1, k))
+            candidates[k](-1) if round_arg else candidates[k]()
+    raw = {k: [] for k in names}
+    for r in range(repeats):
+        for k in _order(names, r, order):
+            fn = candidates[k]
+            if collect:
+                gc.collect()
+            calls.append((r, k))
+            t0 = timer()
+            out = fn(r) if round_arg else fn()
+            t = timer() - t0
+            raw[k].append(t)
+            if isinstance(out, Laps):
+                for stage, s in out.items():
+                    if stage in candidates:
+                        raise ValueError(f"a lap of {k!r} is named {stage!r}, like a candidate; name laps apart")
+                    raw.setdefault(stage, []).append(float(s))
+            del out
+    if units is not None and not isinstance(units, dict):
+        units = {k: units for k in names}
+    return Timings(raw, units=units, calls=calls, repeats=repeats, warmup=warmup)
+
+
+def load_average():
+    """The 1-minute load average (``nan`` where the OS has none)."""
+    try:
+        return float(os.getloadavg()[0])
+    except (OSError, AttributeError):
+        return float("nan")
+
+
+def package_version(dist):
+    """Installed version of distribution ``dist``, or ``"not installed"``."""
+    import importlib.metadata as md
+
+    try:
+        return md.version(dist)
+    except md.PackageNotFoundError:
+        return "not installed"
+
+
+def run_info(command, packages=(), *, now=None, load=None, shared=True):
+    """The run header's facts: UTC date, command, machine, CPU model, cores, load at start, versions.
+
+    Parameters
+    ----------
+    command : str
+        The command line that regenerates the report.
+    packages : iterable of str
+        Distributions whose versions to record beside python, numpy and numba.
+    now : datetime, optional
+        The time to record (default: now, UTC).
+    load : float, optional
+        The load average to record (default: :func:`load_average` now).
+    shared : bool
+        Whether the machine is shared with other jobs (said in the header).
+
+    Returns
+    -------
+    dict
+        ``date``, ``command``, ``machine``, ``cpu``, ``cores``, ``load``,
+        ``shared``, ``versions`` (dict name -> version).
+
+    Examples
+    --------
+    >>> info = run_info("python3 bench.py", ["numpy"], load=0.5)
+    >>> info["load"], "numba" in info["versions"]
+    (0.5, True)
+    """
+    now = datetime.datetime.now(datetime.timezone.utc) if now is None else now
+    versions = {"python": platform.python_version(), "numpy": np.__version__}
+    for d in ("numba", *packages):
+        if d not in versions:
+            versions[d] = package_version(d)
+    return {"date": now.strftime("%Y-%m-%d %H:%M UTC"), "command": command, "machine": platform.machine(),
+            "cpu": _cpu_model(), "cores": os.cpu_count() or 1, "load": load_average() if load is None else float(load),
+            "shared": bool(shared), "versions": versions}
+
+
+def header_lines(info, *, timing=None):
+    """The run header as Markdown bullet lines, from :func:`run_info` (and a sentence on the timing).
+
+    Examples
+    --------
+    >>> info = run_info("python3 bench.py", load=1.0)
+    >>> [line.split(":")[0] for line in header_lines(info)]
+    ['- date', '- command', '- machine', '- versions']
+    """
+    shared = "shared with other jobs (read the ratios)" if info["shared"] else "not shared"
+    lines = [f"- date: {info['date']}",
+             f"- command: `{info['command']}`",
+             (f"- machine: {info['machine']}, {info['cpu']}, {info['cores']} cores, {shared}; "
+              f"load average (1 min) at start {info['load']:.1f}"),
+             "- versions: " + ", ".join(f"{k} {v}" for k, v in info["versions"].items())]
+    if timing:
+        lines.append(f"- timing: {timing}")
+    return lines
+
+
+def markdown_table(header, rows, align=None):
+    """A Markdown table as a list of lines.
+
+    Parameters
+    ----------
+    header : sequence of str
+    rows : iterable of sequences (cells are formatted with ``str``)
+    align : str, optional
+        One letter per column, ``l`` or ``r`` (default all ``---``).
+
+    Examples
+    --------
+    >>> print("\\n".join(markdown_table(["a", "b"], [[1, 2]], align="lr")))
+    | a | b |
+    | --- | ---: |
+    | 1 | 2 |
+    """
+    header = [str(h) for h in header]
+    if align is not None and len(align) != len(header):
+        raise ValueError(f"align must give one letter per column ({len(header)}), got {align!r}")
+    sep = ["---:" if a == "r" else "---" for a in (align or "l" * len(header))]
+    out = ["| " + " | ".join(header) + " |", "| " + " | ".join(sep) + " |"]
+    for row in rows:
+        row = [str(c) for c in row]
+        if len(row) != len(header):
+            raise ValueError(f"a row has {len(row)} cells, the header {len(header)}")
+        out.append("| " + " | ".join(row) + " |")
+    return out
 
 
 def fft_floor(shape, dtype=np.float32):
@@ -55,8 +404,10 @@ def write_floor(shape, dtype=np.float64):
     return floor
 
 
-def time_against_floor(cases, floor, repeats=5, warmup=1):
-    """Time each case and the floor in interleaved rounds.
+def time_against_floor(cases, floor, repeats=5, warmup=1, *, timer=None, collect=True):
+    """Time each case and the floor in interleaved rounds, the floor first in every round.
+
+    The floor-first form of :func:`interleaved` the laboratory's experiments use.
 
     Parameters
     ----------
@@ -65,6 +416,10 @@ def time_against_floor(cases, floor, repeats=5, warmup=1):
     repeats : int, >= 1 (the rules ask for >= 5)
     warmup : int
         Untimed calls first (numba compilation, FFT plans, page faults).
+    timer : callable, optional
+        Clock (default :func:`time.perf_counter`).
+    collect : bool
+        ``gc.collect()`` before each timed call (outside the timing).
 
     Returns
     -------
@@ -76,32 +431,11 @@ def time_against_floor(cases, floor, repeats=5, warmup=1):
     >>> sorted(r), len(r["sum"]["times"])
     (['floor', 'sum'], 5)
     """
-    repeats = check_int("repeats", repeats, lo=1)
-    for _ in range(warmup):
-        floor()
-        for fn in cases.values():
-            fn()
-    times = {name: [] for name in cases}
-    ftimes = []
-    ratios = {name: [] for name in cases}
-    for _ in range(repeats):
-        gc.collect()
-        t0 = time.perf_counter()
-        r = floor()
-        tf = time.perf_counter() - t0
-        del r
-        ftimes.append(tf)
-        for name, fn in cases.items():
-            gc.collect()
-            t0 = time.perf_counter()
-            r = fn()
-            t = time.perf_counter() - t0
-            del r
-            times[name].append(t)
-            ratios[name].append(t / tf if tf > 0 else float("nan"))
-    out = {name: {"median_s": float(np.median(times[name])), "ratio": float(np.median(ratios[name])),
-                  "times": times[name]} for name in cases}
-    out["floor"] = {"median_s": float(np.median(ftimes)), "ratio": 1.0, "times": ftimes}
+    key = object()  # never collides with a case's name
+    t = interleaved({key: floor, **cases}, repeats=repeats, warmup=warmup, order="fixed", timer=timer,
+                    collect=collect)
+    out = {name: {"median_s": t[name], "ratio": t.ratio(name, key), "times": [float(x) for x in t.raw[name]]} for name in cases}
+    out["floor"] = {"median_s": t[key], "ratio": 1.0, "times": [float(x) for x in t.raw[key]]}
     return out
 
 
@@ -174,7 +508,7 @@ def _cpu_model():
 
 
 def machine_info():
-    """Date (UTC), CPU model, cores, memory, OS and the versions that matter, as a dict of strings."""
+    """Date (UTC), CPU model, cores, load average at the call, memory, OS and the versions that matter, as a dict of strings."""
     import numba
     import scipy
 
@@ -193,6 +527,7 @@ def machine_info():
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "cpu": _cpu_model(),
         "cores": str(os.cpu_count()),
+        "load (1 min) at start": f"{load_average():.1f}",
         "memory": mem,
         "os": platform.platform(),
         "python": platform.python_version(),
