@@ -801,7 +801,7 @@ import numpy as np
 from ._inthash import deinterleave2, deinterleave3, mix32
 from ._jit import _reduce, _wrap
 
-CHUNK = 512
+CHUNK = 256
 u32 = np.uint32
 
 
@@ -935,14 +935,6 @@ def _fast_corners(d, kernel, basis, F, b):
     return L
 
 
-_FAST_VARIANTS = {"s32f32": ("np.float32", "np.float32"), "s64f32": ("np.float64", "np.float32"),
-                  "s64f64": ("np.float64", "np.float64")}
-
-
-def _fast_name(d, kernel, basis, tail):
-    return f"d{d}_{kernel.name.replace('-', '_')}_{basis}_{tail}"
-
-
 def _fast_fraction(a, basis, S, F, b):
     """``s{a} = (u - floor u) - 1/2`` (and ``t{a}`` for the gradient basis), rounded once from the split's precision."""
     L = [f"{b}s{a} = {F}((u{a} - l{a}) - {S}(0.5))"]
@@ -951,33 +943,72 @@ def _fast_fraction(a, basis, S, F, b):
     return L
 
 
-def _fast_scratch(d, basis):
-    """Names of the per-axis scratch rows the float64-split bodies pass between their two loops."""
-    names = [f"S{a}" for a in range(d)] + [f"B{a}" for a in range(d)]
-    return names + ([f"T{a}" for a in range(d)] if basis == "gradient" else [])
+_FAST_VARIANTS = {"s32f32": ("np.float32", "np.float32"), "s64f32": ("np.float64", "np.float32"),
+                  "s64f64": ("np.float64", "np.float64")}
 
 
-def _function_fast_body(d, kernel, basis, variant):
-    """``_body_*``: one chunk with the branch-free split (power-of-two periods); returns how many points it covered.
+def _fast_name(d, kernel, basis, tail):
+    return f"d{d}_{kernel.name.replace('-', '_')}_{basis}_{tail}"
 
-    With the float32 split, one loop. With the float64 split, two: the split
-    (8 float64 lanes) writes the fractions and the 32-bit reduced indices to
-    scratch rows, then the hash and the sums run on 32-bit lanes only (16 per
-    AVX-512 register); one fused loop would run everything at the float64
-    width.
+
+def _fast_rows(d, kernel, basis):
+    """The scratch a split writes and the corners read, one 2-D array per kind (rows: axes, or axes x taps).
+
+    ``SR[a]``: fractions ``s = t - 1/2``; ``TR[a]``: ``t`` (gradient basis;
+    a 1 x 1 placeholder otherwise); ``KR[a * taps + k]``: tap ``k``'s reduced
+    index times the axis multiplier. Three arrays, not one row each: LLVM
+    checks every pair of a loop's arrays for overlap before vectorising and
+    gives up past a handful of checks.
+    """
+    return ["SR", "TR", "KR"]
+
+
+def _function_fast_corners(d, kernel, basis, F):
+    """``_corners_*``: the hash and the weighted sum over the corners, from the split's rows (one heavy function).
+
+    One loop over the chunk, straight-line 32-bit integer and float code with
+    no gathers, which LLVM vectorises (16 float32 lanes on AVX-512). Shared by
+    every split (float32, float64 and exact), so the results do not depend on
+    which split ran and each kernel compiles this once per output type.
+    """
+    ftag = "f32" if F == "np.float32" else "f64"
+    rows = ", ".join(_fast_rows(d, kernel, basis))
+    L = ["@nb.njit(cache=True, nogil=True)",
+         f"def _corners_{_fast_name(d, kernel, basis, ftag)}({rows}, O, m, key, amp, lim):",
+         f'    """Corner sums, {d}-D {kernel.name} {basis}, {ftag} (generated)."""',
+         "    for i in range(m):"]
+    b = "        "
+    for a in range(d):
+        L.append(f"{b}s{a} = SR[{a}, i]")
+        if basis == "gradient":
+            L.append(f"{b}t{a} = TR[{a}, i]")
+        for k in range(kernel.taps):
+            L.append(f"{b}x{a}_{k} = KR[{a * kernel.taps + k}, i]" + (" ^ key" if a == d - 1 else ""))
+    L += _fast_corners(d, kernel, basis, F, b)
+    return "\n".join(L) + "\n"
+
+
+def _function_fast_split(d, kernel, basis, variant):
+    """``_split_*``: the branch-free split of a chunk (power-of-two periods); returns how many points it covered.
+
+    ``u = x F + phi``, its fraction (as ``s = t - 1/2``, and ``t`` for the
+    gradient basis) rounded once to the output type, and each tap's reduced
+    index times the axis multiplier, all to 32 bits at once (mod 2**32, then
+    the period's mask: the period divides 2**32), so that the integer lanes
+    are 32-bit. A point whose index leaves the split's range (2**31 cells in
+    float32, 4e18 in float64) or is not finite is not counted: the caller
+    redoes the chunk with the exact split.
     """
     S, F = _FAST_VARIANTS[variant]
     I = "np.int32" if variant == "s32f32" else "np.int64"  # noqa: E741
     lim = "np.float32(2147483648.0)" if variant == "s32f32" else "4.0e18"
-    two = variant != "s32f32"
-    taps = kernel.taps
     ax = ", ".join(f"X{a}" for a in range(d))
     fq = ", ".join(f"f{a}, q{a}" for a in range(d))
     pm = ", ".join(f"pm{a}" for a in range(d))
-    scratch = ", ".join(_fast_scratch(d, basis))
+    rows = ", ".join(_fast_rows(d, kernel, basis))
     L = ["@nb.njit(cache=True, nogil=True)",
-         f"def _body_{_fast_name(d, kernel, basis, variant)}({ax}, O, m, key, {fq}, {pm}, amp, lim, {scratch}):",
-         f'    """Chunk body, {d}-D {kernel.name} {basis}, {variant} (generated)."""',
+         f"def _split_{_fast_name(d, kernel, basis, variant)}({ax}, m, {fq}, {pm}, {rows}):",
+         f'    """Split, {d}-D {kernel.name} {basis}, {variant} (generated)."""',
          "    ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width",
          "    for i in range(m):"]
     b = "        "
@@ -988,40 +1019,31 @@ def _function_fast_body(d, kernel, basis, variant):
         L += _fast_fraction(a, basis, S, F, b)
     L.append(f"{b}ok = u32(ok + u32(" + " & ".join(f"(l{a} < {lim}) & (l{a} >= -{lim})" for a in range(d)) + "))")
     for a in range(d):
-        # to 32 bits at once (mod 2**32, then the period's mask: the period divides 2**32), so that every
-        # integer lane is 32-bit (int64 lanes would halve the vector width)
         L.append(f"{b}b{a} = u32(u32({I}(l{a})) - u32({kernel.left})) & pm{a}")
-    if two:
-        for a in range(d):
-            L.append(f"{b}S{a}[i] = s{a}")
-            L.append(f"{b}B{a}[i] = b{a}")
-            if basis == "gradient":
-                L.append(f"{b}T{a}[i] = t{a}")
-        L.append("    for i in range(m):")
-        for a in range(d):
-            L.append(f"{b}s{a} = S{a}[i]")
-            L.append(f"{b}b{a} = B{a}[i]")
-            if basis == "gradient":
-                L.append(f"{b}t{a} = T{a}[i]")
-    for a in range(d):
-        for k in range(taps):
+        L.append(f"{b}SR[{a}, i] = s{a}")
+        if basis == "gradient":
+            L.append(f"{b}TR[{a}, i] = t{a}")
+        for k in range(kernel.taps):
             j = f"b{a}" if k == 0 else f"(u32(b{a} + u32({k})) & pm{a})"
-            L.append(f"{b}x{a}_{k} = u32({j} * P{a})" + (" ^ key" if a == d - 1 else ""))
-    L += _fast_corners(d, kernel, basis, F, b)
+            L.append(f"{b}KR[{a * kernel.taps + k}, i] = u32({j} * P{a})")
     L.append("    return np.int64(ok)")
     return "\n".join(L) + "\n"
 
 
 def _function_fast_exact(d, kernel, basis, F):
-    """``_exact_*``: one chunk with the exact index reduction (any period, any index; non-finite points counted)."""
-    taps = kernel.taps
+    """``_exact_*``: the split with the exact index reduction (any period, any index); returns the non-finite count.
+
+    The same float expressions as the fast splits (the float32 split is exact
+    where it is used, so it agrees), the index reduced by ``_jit._reduce``.
+    """
+    ftag = "f32" if F == "np.float32" else "f64"
     ax = ", ".join(f"X{a}" for a in range(d))
     fq = ", ".join(f"f{a}, q{a}" for a in range(d))
     pp = ", ".join(f"per{a}, pm{a}" for a in range(d))
-    ftag = "f32" if F == "np.float32" else "f64"
+    rows = ", ".join(_fast_rows(d, kernel, basis))
     L = ["@nb.njit(cache=True, nogil=True)",
-         f"def _exact_{_fast_name(d, kernel, basis, ftag)}({ax}, O, m, key, {fq}, {pp}, amp, lim):",
-         f'    """Chunk body with the exact reduction, {d}-D {kernel.name} {basis}, {ftag} (generated)."""',
+         f"def _exact_{_fast_name(d, kernel, basis, ftag)}({ax}, m, {fq}, {pp}, {rows}):",
+         f'    """Exact split, {d}-D {kernel.name} {basis}, {ftag} (generated)."""',
          "    bad = 0",
          "    for i in range(m):"]
     b = "        "
@@ -1029,23 +1051,23 @@ def _function_fast_exact(d, kernel, basis, F):
     for a in range(d):
         L.append(f"{b}u{a} = np.float64(X{a}[i]) * f{a} + q{a}{shift}")
     L.append(f"{b}if not (" + " and ".join(f"np.isfinite(u{a})" for a in range(d)) + "):")
-    L.append(f"{b}    O[i] = {F}(0.0)")
     L.append(f"{b}    bad += 1")
-    L.append(f"{b}    continue")
+    L.append(f"{b}    u{' = u'.join(str(a) for a in range(d))} = 0.0")
     for a in range(d):
         L.append(f"{b}l{a} = np.floor(u{a})")
         L += _fast_fraction(a, basis, "np.float64", F, b)
         L.append(f"{b}b{a} = _reduce(l{a}, {kernel.left}, per{a}, pm{a})")
-        for k in range(taps):
-            L.append(f"{b}x{a}_{k} = u32(u32(_wrap(b{a} + {k}, per{a}, pm{a})) * P{a})"
-                     + (" ^ key" if a == d - 1 else ""))
-    L += _fast_corners(d, kernel, basis, F, b)
+        L.append(f"{b}SR[{a}, i] = s{a}")
+        if basis == "gradient":
+            L.append(f"{b}TR[{a}, i] = t{a}")
+        for k in range(kernel.taps):
+            L.append(f"{b}KR[{a * kernel.taps + k}, i] = u32(u32(_wrap(b{a} + {k}, per{a}, pm{a})) * P{a})")
     L.append("    return bad")
     return "\n".join(L) + "\n"
 
 
 def _function_fast(d, kernel, basis, variant):
-    """The driver: per chunk, copy the points axis by axis, run the body per octave and component, accumulate, store."""
+    """The driver: per chunk, the points' rows; per octave, one split; per component, the corner sums."""
     S, F = _FAST_VARIANTS[variant]
     ftag = "f32" if F == "np.float32" else "f64"
     name = _fast_name(d, kernel, basis, variant)
@@ -1054,7 +1076,8 @@ def _function_fast(d, kernel, basis, variant):
     fq64 = ", ".join(f"freqs[o, {a}], phase[{a}]" for a in range(d))
     pm = ", ".join(f"pm{a}" for a in range(d))
     pp = ", ".join(f"period[{a}], pmask[{a}]" for a in range(d))
-    PM = "u32"
+    rows = _fast_rows(d, kernel, basis)
+    rl = ", ".join(rows)
     L = ["@nb.njit(cache=True, nogil=True)",
          f"def fast_{name}(pts, out, freqs, amps, phase, keys, pmask, period, limit, absval):",
          f'    """Integer-hash lattice noise at scattered points, {d}-D {kernel.name} {basis}, {variant} (generated)."""',
@@ -1067,28 +1090,28 @@ def _function_fast(d, kernel, basis, variant):
     for a in range(d):
         if d > 1:  # the coordinates' rows, in the points' own dtype
             L.append(f"    X{a} = np.empty(CHUNK, pts.dtype)")
-    for nm in _fast_scratch(d, basis):
-        L.append(f"    {nm} = np.empty(CHUNK, {'u32' if nm[0] == 'B' else F})")
+    L += [f"    SR = np.empty(({d}, CHUNK), {F})",
+          f"    TR = np.empty(({d if basis == 'gradient' else 1}, {'CHUNK' if basis == 'gradient' else 1}), {F})",
+          f"    KR = np.empty(({d * kernel.taps}, CHUNK), u32)"]
     L += [f"    O = np.empty(CHUNK, {F})",
           f"    ACC = np.empty((ncomp, CHUNK), {F})",
           "    exact = False",
           f"    for a in range({d}):",
           "        exact = exact or pmask[a] < 0"]
     for a in range(d):
-        L.append(f"    pm{a} = {PM}(pmask[{a}]) if pmask[{a}] >= 0 else {PM}(0)")
+        L.append(f"    pm{a} = u32(pmask[{a}]) if pmask[{a}] >= 0 else u32(0)")
     L += [f"    lim = {F}(limit)",
           f"    inf = {F}(np.inf)",
-          "    single = noct == 1 and ncomp == 1 and not absval  # the body writes the output itself",
+          "    single = noct == 1 and ncomp == 1 and not absval  # the corner sums write the output themselves",
           "    nonfinite = 0",
           "    for p0 in range(0, npts, CHUNK):",
           "        m = min(CHUNK, npts - p0)"]
     if d == 1:
         L.append("        X0 = col[p0:p0 + m]")
     else:
-        rows = ", ".join(f"X{a}" for a in range(d))
         L += ["        i = 0",
               "        while i + 16 <= m:",
-              f"            deinterleave{d}(pts, p0 + i, {rows}, i)",
+              f"            deinterleave{d}(pts, p0 + i, {ax}, i)",
               "            i += 16",
               "        for i in range(i, m):"]
         for a in range(d):
@@ -1096,15 +1119,13 @@ def _function_fast(d, kernel, basis, variant):
     L += ["        for o in range(noct):"]
     for a in range(d):
         L.append(f"            f{a} = {S}(freqs[o, {a}]); q{a} = {S}(phase[{a}])")
-    L += [f"            amp = {F}(amps[o])",
+    L += [f"            if exact or _split_{name}({ax}, m, {fq}, {pm}, {rl}) != m:",
+          f"                nonfinite += _exact_{_fast_name(d, kernel, basis, ftag)}({ax}, m, {fq64}, {pp}, {rl})",
+          f"            amp = {F}(amps[o])",
           "            for c in range(ncomp):",
-          "                key = keys[c]",
           "                T = flat[p0:p0 + m] if single else O",
-          "                top = lim if single else inf",
-          f"                if exact or _body_{name}({ax}, T, m, key, {fq}, {pm}, amp, top, "
-          f"{', '.join(_fast_scratch(d, basis))}) != m:",
-          f"                    nonfinite += _exact_{_fast_name(d, kernel, basis, ftag)}({ax}, T, m, key, {fq64}, {pp}, "
-          "amp, top)",
+          f"                _corners_{_fast_name(d, kernel, basis, ftag)}({rl}, T, m, keys[c], amp, "
+          "lim if single else inf)",
           "                if single:",
           "                    continue",
           "                acc = ACC[c]",
@@ -1125,11 +1146,13 @@ def _function_fast(d, kernel, basis, variant):
           "        if ncomp == 1:",
           "            acc = ACC[0]",
           "            for i in range(m):",
-          "                flat[p0 + i] = min(max(acc[i], -lim), lim)",
+          "                v = acc[i] if acc[i] <= lim else lim",
+          "                flat[p0 + i] = v if v >= -lim else -lim",
           "        else:",
           "            for i in range(m):",
           "                for c in range(ncomp):",
-          "                    flat[(p0 + i) * ncomp + c] = min(max(ACC[c, i], -lim), lim)",
+          "                    v = ACC[c, i] if ACC[c, i] <= lim else lim",
+          "                    flat[(p0 + i) * ncomp + c] = v if v >= -lim else -lim",
           "    return nonfinite"]
     return "\n".join(L) + "\n"
 
@@ -1146,9 +1169,10 @@ def generate_int() -> str:
         for kname, kernel in _KERNELS.items():
             for basis in ("value", "gradient"):
                 for F in ("np.float32", "np.float64"):
+                    parts.append("\n\n" + _function_fast_corners(d, kernel, basis, F))
                     parts.append("\n\n" + _function_fast_exact(d, kernel, basis, F))
                 for variant in _FAST_VARIANTS:
-                    parts.append("\n\n" + _function_fast_body(d, kernel, basis, variant))
+                    parts.append("\n\n" + _function_fast_split(d, kernel, basis, variant))
                     parts.append("\n\n" + _function_fast(d, kernel, basis, variant))
                     names.append(f"    ({d}, {kname!r}, {basis!r}, {variant!r}): "
                                  f"fast_{_fast_name(d, kernel, basis, variant)}")
