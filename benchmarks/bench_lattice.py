@@ -60,9 +60,12 @@ def _peer(name):
         return None
 
 
-def bench(cands: dict, repeats: int) -> Times:
-    """Time candidates interleaved (one warm-up round, order rotated each round), ``repeats`` rounds."""
-    return interleaved(cands, repeats=repeats)
+def bench(cands: dict, repeats: int, clock=None) -> Times:
+    """Time candidates interleaved (one warm-up round, order rotated each round), ``repeats`` rounds.
+
+    ``clock``: the timer (wall time by default; ``time.process_time`` for CPU time).
+    """
+    return interleaved(cands, repeats=repeats, timer=clock)
 
 
 # --------------------------------------------------------------------------- grids
@@ -324,46 +327,77 @@ def scattered_section(repeats, quick, lines):
 
 
 # ------------------------------------------------------------------- integer hash
-HASH_HEAD = "## Scattered 3-D points: the table hash, the integer hash and pyfastnoisesimd"
+HASH_HEAD = "## Scattered points: the table hash, the integer hash's SIMD kernels and the SIMD peers"
+
+
+def _max_err(a, b):
+    return float(np.max(np.abs(np.asarray(a, np.float64) - np.asarray(b, np.float64))))
 
 
 def hash_section(repeats, lines, npts=1_000_000):
-    """Both hashes beside pyfastnoisesimd (1 worker) and the floor, interleaved in one process, one thread."""
+    """Both hashes beside pyfastnoisesimd / pyfastnoiselite (1 thread) and the floor, interleaved in one process.
+
+    Timed in process CPU time (``time.process_time``), one thread each: on a
+    2-core machine shared with other jobs, wall time counts the time the
+    process waits for a core; CPU time does not. pyfastnoisesimd is run with
+    ``numWorkers=1``.
+    """
     rng = np.random.default_rng(0)
-    pts = rng.uniform(0.0, 100.0, (npts, 3))
-    pts32 = pts.astype(np.float32)
     fns = _peer("fns")
+    fnl = _peer("fnl")
     lines.append(HASH_HEAD + "\n")
-    lines.append(f"{npts:,} random 3-D points in [0, 100)^3, one thread, float64 points and computation (noiselab); "
-                 "pyfastnoisesimd computes in float32 (AVX-512 on this CPU) from float32 coordinates. Every candidate of "
-                 "a row is timed interleaved with the others in the same rounds; `x FNS` = pyfastnoisesimd time / "
-                 "time (median of the per-round ratios; the peer noise named in the row), `x floor` = time of "
-                 f"`np.full({npts:_}, 0.5)` / time. The float32 column: float32 points in, float32 out (computed in "
-                 "float64).\n")
-    lines.append("| noise | peer | table pts/s | x FNS | integer pts/s | x FNS | integer float32 pts/s | x FNS "
-                 "| integer x floor | FNS pts/s |")
-    lines.append("|---|---|---|---|---|---|---|---|---|---|")
+    lines.append(f"{npts:,} random points in [0, 100)^d, one thread, CPU time (median of the interleaved rounds). "
+                 "Columns: the table hash (Phillips' permutation, float64 points); the integer hash with float64 "
+                 "points (float64 arithmetic); float32 points at frequency 1 (the float32 SIMD kernel: its split "
+                 "is exact there); float32 points at frequency 0.37 (float64 split, float32 arithmetic); the peer "
+                 "(float32 coordinates; pyfastnoisesimd given its own aligned (3, N) buffer). `x peer` = peer time "
+                 "/ time (> 1: noiselab faster); `x floor` = time of writing the float32 output "
+                 "(`np.full(N, 0.5, np.float32)`) / time. `err32`: max |float32 - float64| of the integer hash at "
+                 "the same (float32-representable) points.\n")
+    lines.append("| d | noise | peer | table f64 pts/s | integer f64 pts/s | x peer | integer f32 pts/s | x peer "
+                 "| x floor | integer f32, F=0.37 pts/s | x peer | peer pts/s | err32 |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    rows = [(3, "quintic", "value", "Value"), (3, "quintic", "gradient", "Perlin"),
+            (3, "catmull-rom", "value", "Cubic"), (3, "cubic", "value", "Cubic"),
+            (2, "quintic", "value", "Value"), (2, "quintic", "gradient", "Perlin"),
+            (2, "catmull-rom", "value", "ValueCubic"),
+            (1, "quintic", "value", None), (1, "quintic", "gradient", None), (1, "catmull-rom", "value", None)]
     summary = {}
-    for kname, basis, peer in (("quintic", "value", "Value"), ("quintic", "gradient", "Perlin"),
-                               ("catmull-rom", "value", "Cubic"), ("cubic", "value", "Cubic")):
-        table = LatticeNoise(3, seed=1, kernel=kname, basis=basis)
-        integer = LatticeNoise(3, seed=1, kernel=kname, basis=basis, hash="integer")
-        cands = {"floor": lambda: np.full(npts, 0.5), "table": lambda: table(pts), "integer": lambda: integer(pts),
-                 "integer32": lambda: integer(pts32)}
-        if fns is not None:
+    for d, kname, basis, peer in rows:
+        pts32 = rng.uniform(0.0, 100.0, (npts, d)).astype(np.float32)
+        pts = pts32.astype(np.float64)
+        table = LatticeNoise(d, seed=1, kernel=kname, basis=basis)
+        integer = LatticeNoise(d, seed=1, kernel=kname, basis=basis, hash="integer")
+        general = LatticeNoise(d, seed=1, kernel=kname, basis=basis, hash="integer", frequency=0.37)
+        cands = {"floor": lambda: np.full(npts, 0.5, np.float32), "table": lambda: table(pts),
+                 "integer": lambda: integer(pts), "integer32": lambda: integer(pts32),
+                 "general32": lambda: general(pts32)}
+        peer_name = None
+        if d == 3 and fns is not None:
             aligned = fns.empty_coords(npts)
             aligned[:] = pts32.T
             f = fns.Noise(seed=1, numWorkers=1)
             f.noiseType = getattr(fns.NoiseType, peer)
             f.frequency = 1.0
-            cands["fns"] = lambda f=f, aligned=aligned: f.genFromCoords(aligned)
-        t = bench(cands, repeats)
-        xf = lambda k: f"{t.ratio('fns', k):.3f}" if "fns" in t else "n/a"  # noqa: E731
-        lines.append(f"| {kname} {basis} | {peer} | {npts / t['table']:.3g} | {xf('table')} | "
-                     f"{npts / t['integer']:.3g} | {xf('integer')} | {npts / t['integer32']:.3g} | {xf('integer32')} | "
-                     f"{t.ratio('floor', 'integer'):.4f} | {npts / t['fns'] if 'fns' in t else float('nan'):.3g} |")
-        summary[(kname, basis)] = {k: (npts / t[k], t.ratio("fns", k) if "fns" in t else None)
-                                   for k in ("table", "integer", "integer32")}
+            cands["peer"] = lambda f=f, aligned=aligned: f.genFromCoords(aligned)
+            peer_name = f"FNS {peer}"
+        elif d == 2 and fnl is not None:
+            lite = fnl.FastNoiseLite(1)
+            lite.noise_type = {"Value": fnl.NoiseType.NoiseType_Value, "Perlin": fnl.NoiseType.NoiseType_Perlin,
+                               "ValueCubic": fnl.NoiseType.NoiseType_ValueCubic}[peer]
+            lite.frequency = 1.0
+            coords = np.ascontiguousarray(pts32.T)
+            cands["peer"] = lambda lite=lite, coords=coords: lite.gen_from_coords(coords)
+            peer_name = f"FNL {peer}"
+        t = bench(cands, repeats, clock=time.process_time)
+        err32 = max(_max_err(integer(pts32), integer(pts)), _max_err(general(pts32), general(pts)))
+        xp = lambda k: f"{t.ratio('peer', k):.2f}" if "peer" in t else "n/a"  # noqa: E731
+        lines.append(f"| {d} | {kname} {basis} | {peer_name or 'none'} | {npts / t['table']:.3g} | "
+                     f"{npts / t['integer']:.3g} | {xp('integer')} | {npts / t['integer32']:.3g} | {xp('integer32')} | "
+                     f"{t.ratio('floor', 'integer32'):.3f} | {npts / t['general32']:.3g} | {xp('general32')} | "
+                     f"{npts / t['peer'] if 'peer' in t else float('nan'):.3g} | {err32:.1e} |")
+        summary[(d, kname, basis)] = {k: (npts / t[k], t.ratio("peer", k) if "peer" in t else None)
+                                      for k in ("table", "integer", "integer32", "general32")}
     lines.append("")
     return summary
 

@@ -31,20 +31,65 @@ def test_range_within_bound_and_not_vacuous(dim, basis):
         assert np.abs(v).max() > (0.5 if basis == "value" else 0.25) / dim, (name, dim, basis)
 
 
-def test_values_at_lattice_points_are_the_documented_hash():
-    # interpolating kernels pass through the lattice values: v = (fmix64(key + j . M) >>s 32) / 2**31
-    noise = _int(3, 2, seed=5, kernel="catmull-rom")
-    j = RNG.integers(-1000, 1000, (200, 3))
-    got = noise(j.astype(np.float64))
-    mask = np.uint64((1 << 32) - 1)
+def _mix32_py(h):
+    """The documented hash word in plain Python integers (independent of the numba code)."""
+    h &= 0xFFFFFFFF
+    h ^= h >> 16
+    h = (h * 0x85EBCA6B) & 0xFFFFFFFF
+    h ^= h >> 13
+    return (h * 0xC2B2AE35) & 0xFFFFFFFF
+
+
+def _word(noise, c, j):
+    """``mix32(key_c ^ j_0 M_0 ^ ... )`` for one lattice point (indices reduced mod 2**32)."""
+    h = int(noise._keys[c])
+    for a, ja in enumerate(j):
+        h ^= ((int(ja) % (1 << 32)) * int(noise._mult[a])) & 0xFFFFFFFF
+    return _mix32_py(h)
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+@pytest.mark.parametrize("dim", [1, 2, 3, 4])
+def test_values_at_lattice_points_are_the_documented_hash(dim, dtype):
+    # interpolating kernels pass through the lattice values: v = int32(mix32(key ^ j_0 M_0 ^ ...)) / 2**31
+    noise = _int(dim, 2, seed=5, kernel="catmull-rom")
+    j = RNG.integers(-1000, 1000, (200, dim))
+    got = noise(j.astype(dtype))
+    assert got.dtype == dtype
     for c in range(2):
-        h = noise._keys[c] + (j.astype(np.int64).astype(np.uint64) & mask) @ noise._mult[:3]  # wraps mod 2**64
-        words = np.array([_inthash.fmix64(np.uint64(x)) for x in h], dtype=np.uint64)
-        want = (words.view(np.int64) >> 32).astype(np.float64) / 2.0 ** 31
-        np.testing.assert_allclose(got[:, c], want * noise.scale, rtol=0, atol=1e-15)
+        words = np.array([_word(noise, c, row) for row in j], dtype=np.uint32)
+        want = words.view(np.int32).astype(np.float64) / 2.0 ** 31
+        tol = 1e-15 if dtype == np.float64 else 1.2e-7   # float32: the values rounded to 24 bits
+        np.testing.assert_allclose(got[:, c], want * noise.scale, rtol=0, atol=tol)
     # and they spread over [-1, 1): mean near 0, variance near 1/3
     vals = _int(1, seed=1, kernel="catmull-rom", amplitude=1.0)(np.arange(20000.0)) / 0.8
     assert abs(vals.mean()) < 0.02 and abs(vals.var() - 1 / 3) < 0.02
+
+
+@pytest.mark.parametrize("dim", [1, 2, 3])
+def test_gradients_are_the_documented_set(dim):
+    # gradient noise with the linear kernel, one cell from a lattice point along axis a, is g_a(j) times the
+    # distance (the other corners' weights vanish there): the gradient picked by the word's top bits
+    noise = _int(dim, seed=8, kernel="linear", basis="gradient")
+    grads = _inthash.gradient_set(dim, noise.gradients)
+    assert grads.shape == ({1: 2, 2: 8, 3: 16}[dim], dim)
+    np.testing.assert_allclose(np.linalg.norm(grads, axis=1), 1.0, rtol=1e-15)
+    j = RNG.integers(-500, 500, (100, dim))
+    for a in range(dim):
+        x = j.astype(np.float64)
+        x[:, a] += 0.25
+        got = noise(x) / noise.scale
+        idx = np.array([(_word(noise, 0, row) * len(grads)) >> 32 for row in j])
+        # the far corner (j + e_a) contributes too: weight 1/4 times its dot product with -3/4 e_a
+        far = j.copy()
+        far[:, a] += 1
+        idx_far = np.array([(_word(noise, 0, row) * len(grads)) >> 32 for row in far])
+        want = 0.75 * grads[idx, a] * 0.25 + 0.25 * grads[idx_far, a] * -0.75
+        np.testing.assert_allclose(got, want, atol=1e-14)
+    # the 3-D set is Perlin's 16: the 12 cube-edge directions, four of them twice
+    if dim == 3:
+        edges = {tuple(np.round(g * np.sqrt(2)).astype(int)) for g in grads}
+        assert len(edges) == 12 and all(sorted(map(abs, e)) == [0, 1, 1] for e in edges)
 
 
 def test_deterministic_and_seeded():
@@ -75,23 +120,74 @@ def test_grid_and_points_agree(dim, basis):
 
 @pytest.mark.parametrize("basis", ["value", "gradient"])
 @pytest.mark.parametrize("dim", [1, 2, 3])
-def test_unrolled_kernels_agree_with_the_generic_one(dim, basis):
+def test_simd_kernels_agree_with_the_generic_one(dim, basis):
+    # the generated SIMD kernels (every stock kernel; float64 and float32 arithmetic; fused octaves,
+    # turbulence, vector output, periods that are and are not powers of two) against the generic kernel
     from noiselab.lattice import _intpoints
 
     pts = RNG.uniform(-40, 40, (700, dim))
-    for name in ("box", "linear", "quadratic", "cubic"):   # 1 to 4 taps
-        noise = _int(dim, 2, seed=4, kernel=name, basis=basis, period=[6, 8, 16][:dim])
-        k = noise.kernel
-        freqs, amps = np.array([[1.0] * dim, [2.5] * dim]), np.array([0.7, 0.3])
-        rest = (noise.period, noise._pmask, noise._keys, noise._mult, noise.gradients, int(basis == "gradient"))
-        for absval in (False, True):
-            fused = np.empty((700, 2))
-            generic = np.empty((700, 2))
-            _intpoints.INT_KERNELS[(dim, k.taps)](pts, fused, freqs, amps, noise.phase, k.shift, k.left, k.coef,
-                                                  *rest, absval)
-            _inthash.int_points(pts, generic, freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef,
-                                *rest, absval)
-            np.testing.assert_allclose(fused, generic, atol=1e-13)
+    freqs, amps = np.array([[1.0] * dim, [2.5] * dim]), np.array([0.7, 0.3])
+    # every stock kernel in 1-D and 2-D; in 3-D one kernel per tap count up to 3 (4-tap 3-D kernels are
+    # compared through the public call in the range, grid and derivative tests: their compile is the slowest)
+    names = list(KERNELS) if dim < 3 else ["box", "quadratic", "quintic"]
+    for name in names:
+        for period in (None, [6, 8, 16][:dim]):
+            noise = _int(dim, 2, seed=4, kernel=name, basis=basis, period=period)
+            k = noise.kernel
+            factor = _intpoints.FACTOR[basis][dim - 1]
+            for absval in (False, True):
+                generic = np.empty((700, 2))
+                _inthash.int_points(pts, generic, freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef,
+                                    noise.period, noise._pmask, noise._keys, noise._mult, noise._int_grads,
+                                    int(basis == "gradient"), absval)
+                variants = [("s64f64", np.float64, 1e-13)]
+                if name in ("quadratic", "catmull-rom"):   # float32 arithmetic too (one shifted, one 4-tap kernel)
+                    variants.append(("s64f32", np.float32, 2e-6))
+                for variant, dtype, tol in variants:
+                    fast = np.empty((700, 2), dtype)
+                    bad = _intpoints.INT_KERNELS[(dim, name, basis, variant)](
+                        pts, fast, freqs, amps * factor, noise.phase, noise._keys, noise._pmask, noise.period,
+                        noise.bound * amps.sum(), absval)
+                    assert bad == 0
+                    np.testing.assert_allclose(fast, generic, atol=tol, err_msg=f"{name} {variant} {period}")
+
+
+@pytest.mark.parametrize("basis", ["value", "gradient"])
+@pytest.mark.parametrize("dim", [1, 2, 3])
+def test_float32_split_gives_the_same_bits_as_the_float64_split(dim, basis):
+    # float32 points at power-of-two frequencies take the all-float32 kernel; its split is exact, so the
+    # result equals the float64-split float32 kernel's bit for bit
+    from noiselab.lattice import _intpoints
+
+    pts = (RNG.uniform(-300, 300, (2000, dim)) * 64).round().astype(np.float32) / np.float32(64)
+    pts[::7] = RNG.uniform(-1, 1, (len(pts[::7]), dim)).astype(np.float32) * 1e-30   # tiny: fraction near 1
+    pts[::13] *= np.float32(-1.0)
+    freqs, amps = np.array([[1.0] * dim, [4.0] * dim]), np.array([0.6, 0.4])
+    for name in (("quintic", "catmull-rom") if dim == 2 else ("quintic",)):   # a 2-tap and a 4-tap kernel
+        noise = _int(dim, seed=2, kernel=name, basis=basis)
+        factor = _intpoints.FACTOR[basis][dim - 1]
+        outs = []
+        for variant in ("s32f32", "s64f32"):
+            out = np.empty((len(pts), 1), np.float32)
+            _intpoints.INT_KERNELS[(dim, name, basis, variant)](pts, out, freqs, amps * factor, noise.phase,
+                                                                noise._keys, noise._pmask, noise.period, 1.0, False)
+            outs.append(out)
+        np.testing.assert_array_equal(outs[0], outs[1])
+        # and the public call picks the float32 kernel for float32 points
+        np.testing.assert_array_equal(noise(pts), _int(dim, seed=2, kernel=name, basis=basis)(pts.astype(np.float64),
+                                                                                               dtype=np.float32))
+
+
+def test_float32_output_error_against_float64():
+    # float32 arithmetic after the exact split: a few float32 ulps of the float64 result, never out of range
+    for dim in (1, 2, 3):
+        pts = RNG.uniform(-1e4, 1e4, (20000, dim))
+        for name in ("cubic", "catmull-rom", "quintic"):
+            for basis in ("value", "gradient"):
+                noise = _int(dim, seed=1, kernel=name, basis=basis, frequency=0.37, phase=0.2)
+                v64, v32 = noise(pts), noise(pts, dtype=np.float32)
+                assert v32.dtype == np.float32 and np.abs(v32).max() <= 1.0
+                assert np.abs(v32 - v64).max() < 8e-7, (dim, name, basis, np.abs(v32 - v64).max())
 
 
 def test_chunkings_threads_and_windows_are_bit_identical():
@@ -185,8 +281,19 @@ def test_bad_hash_parameters_name_them():
         LatticeNoise(2, hash="murmur")
     with pytest.raises(ValueError, match="alternation must be 'table' with hash='integer'"):
         LatticeNoise(2, hash="integer", alternation="lattice")
-    with pytest.raises(ValueError, match="finite"):
-        _int(3)(np.array([[0.0, np.nan, 1.0]]))
+    with pytest.raises(ValueError, match="period must be at most 2\\*\\*32"):
+        LatticeNoise(2, hash="integer", period=[8, 2 ** 33])
+    for dtype in (np.float64, np.float32):
+        for dim in (1, 2, 3, 4):
+            bad = np.zeros((40, dim), dtype)
+            bad[17, -1] = np.nan
+            with pytest.raises(ValueError, match="finite"):
+                _int(dim)(bad)
+            bad[17, -1] = np.inf
+            with pytest.raises(ValueError, match="finite"):
+                _int(dim, kernel="quintic", basis="gradient")(bad)
+    with pytest.raises(ValueError, match="overflows"):
+        _int(3, frequency=1e300)(np.full((20, 3), 1e10))
 
 
 def test_generated_integer_kernels_match_their_generator():

@@ -4,8 +4,8 @@ Phillips (2004, 2.4.1) addresses the lattice through a nested permutation,
 ``P[(P[i] + j) mod n]``: along any lattice row a full period visits every
 table entry exactly once, so every row over a full period is a permutation of
 the same ``n`` values. ``LatticeNoise(..., hash="integer")`` hashes the
-coordinates arithmetically instead (``fmix64`` of a keyed linear form, see
-:mod:`noiselab.lattice._inthash`). Both are measured here on the same scenes,
+coordinates arithmetically instead (32-bit words: ``mix32`` of the key xored
+with each coordinate times its axis multiplier, see :mod:`noiselab.lattice._inthash`). Both are measured here on the same scenes,
 with the same kernels, bases and seeds:
 
 Full period (2-D)
@@ -102,14 +102,19 @@ def hash_experiment(cfg=None, *, cells=256, spc=2, repeats=None):
            "row_mean_spread_x_sqrt_rows": float(np.median([axis_artefacts(w).row_mean_spread for w in white])) * np.sqrt(n)}
     # speed: both hashes interleaved, one thread
     npts = 20_000 if quick else 1_000_000
-    pts = np.random.default_rng(0).uniform(0.0, 100.0, (npts, 3))
+    pts32 = np.random.default_rng(0).uniform(0.0, 100.0, (npts, 3)).astype(np.float32)
+    pts = pts32.astype(np.float64)
     speed = []
     for kernel, basis in (("quintic", "value"), ("quintic", "gradient"), ("catmull-rom", "value")):
         cases = {h: (lambda nz=_noise(h, kernel, basis, 1, dim=3): nz(pts)) for h in ("table", "integer")}
+        # float32 points take the integer hash's all-float32 SIMD kernel (the table hash computes in float64)
+        cases["integer32"] = lambda nz=_noise("integer", kernel, basis, 1, dim=3): nz(pts32)
         t = time_against_floor(cases, write_floor((npts,)), repeats=repeats)
+        ratio = lambda k: float(np.median(np.array(t["table"]["times"]) / np.array(t[k]["times"])))  # noqa: E731
         speed.append({"scene": f"{npts:,} random 3-D points", "kernel": kernel, "basis": basis,
                       "table_pts_s": npts / t["table"]["median_s"], "integer_pts_s": npts / t["integer"]["median_s"],
-                      "integer_over_table": float(np.median(np.array(t["table"]["times"]) / np.array(t["integer"]["times"])))})
+                      "integer_over_table": ratio("integer"), "integer32_pts_s": npts / t["integer32"]["median_s"],
+                      "integer32_over_table": ratio("integer32")})
     g = 128 if quick else 1024
     for kernel, basis in (("quintic", "value"), ("quintic", "gradient")):
         cases = {h: (lambda nz=_noise(h, kernel, basis, 1): nz.grid((g, g), [(0, 16), (0, 16)])) for h in ("table", "integer")}
@@ -165,11 +170,14 @@ def hash_section(res) -> str:
     L.append("Speed, one thread, both hashes interleaved in one process (median of "
              f"{s['repeats']} rounds; *integer / table*: median of the per-round speed ratios; the machine was "
              "shared with other jobs, so absolute rates are a floor while the ratios hold):\n")
-    L.append("| scene | kernel | basis | table pts/s | integer pts/s | integer / table |")
-    L.append("|---|---|---|---|---|---|")
+    L.append("| scene | kernel | basis | table pts/s | integer pts/s | integer / table | integer, float32 points "
+             "pts/s | integer float32 / table |")
+    L.append("|---|---|---|---|---|---|---|---|")
     for r in res["speed"]:
+        f32 = (f"{r['integer32_pts_s']:.3g} | {r['integer32_over_table']:.2f}" if "integer32_pts_s" in r
+               else "n/a | n/a")
         L.append(f"| {r['scene']} | {r['kernel']} | {r['basis']} | {r['table_pts_s']:.3g} | {r['integer_pts_s']:.3g} "
-                 f"| {r['integer_over_table']:.2f} |")
+                 f"| {r['integer_over_table']:.2f} | {f32} |")
     L.append("")
     return "\n".join(L) + "\n"
 

@@ -25,12 +25,8 @@ __all__ = ["LatticeNoise", "Grid", "grid_coordinates"]
 _BASES = ("value", "gradient")
 _ALTERNATIONS = ("table", "lattice")
 _HASHES = ("table", "integer")
-# without ``period``, the integer hash reduces lattice indices modulo 2**32 per axis
-_INT_PERIOD = 1 << 32
-# odd multipliers of the integer hash's linear prefix, one per input axis
-# (fixed: the seed enters through the per-component keys)
-_INT_MULT = np.array([(0x9E3779B97F4A7C15 * (2 * a + 1) + 0xD1B54A32D192ED03 * a) % (1 << 64) | 1
-                      for a in range(32)], dtype=np.uint64)
+# without ``period``, the integer hash reduces lattice indices modulo 2**32 per axis (its words are 32-bit)
+_INT_PERIOD = _inthash.PERIOD_MAX
 # the 3-D scattered kernels' two-level hash table (uint16, n * n entries per
 # output component; its entries reach 3n + 4 < 2**16) is used up to this
 # size (n = 1024 for one component: 2 MiB)
@@ -235,11 +231,16 @@ class LatticeNoise:
         permutation ``P[(P[i] + j) mod n]`` into the value (or gradient)
         table. ``"integer"``: an arithmetic hash of the (period-reduced)
         lattice coordinates and a seed-derived key per component,
-        ``fmix64(key + sum_a j_a M_a)`` (see :mod:`noiselab.lattice._inthash`):
-        values uniform on [-1, 1) from its top 32 bits, or a gradient of the
-        same unit-gradient table. No permutation, so no 256-cell period (the
-        default period is 2**32 cells per axis) and no row/column artefacts
-        of the nested permutation; ``alternation`` must be ``"table"``.
+        ``mix32(key ^ j_0 M_0 ^ ... ^ j_{d-1} M_{d-1})`` in 32-bit words (see
+        :mod:`noiselab.lattice._inthash`): values uniform on [-1, 1), or a
+        gradient picked by the word's top bits from a fixed set (1-D: +-1;
+        2-D: 8 directions at 45 degrees; 3-D: Perlin's 2002 cube-edge
+        directions; 4-D and up: the random unit gradients). No permutation,
+        so no 256-cell period (the default period is 2**32 cells per axis, the
+        most it allows) and no row/column artefacts of the nested
+        permutation; ``alternation`` must be ``"table"``. In 1-3-D with a
+        stock kernel it runs SIMD kernels: float32 points give float32
+        output computed in float32 (see Notes, Precision).
 
     Notes
     -----
@@ -262,7 +263,13 @@ class LatticeNoise:
     reduced modulo the period before it becomes an int64 (``fmod`` past 2**52),
     so inputs up to 1e12 and beyond stay continuous, and float32 inputs are
     promoted. The output is float64 (float32 for float32 input unless ``dtype``
-    says otherwise).
+    says otherwise). With ``hash="integer"`` (1-3-D, stock kernels) float32
+    output is computed in float32 after the exact float64 split (the split
+    itself is float32 when that is exact: zero phase, power-of-two
+    frequencies >= 1, kernels without a half-cell shift); its error against
+    the float64 computation is a few float32 ulps (``benchmarks/bench_lattice.md``,
+    integer-hash section), and the result is clamped to the proved bound,
+    which absorbs only that rounding.
 
     Examples
     --------
@@ -310,6 +317,9 @@ class LatticeNoise:
         else:
             self.period = _per_axis("period", period, d, integer=True)
             self.tileable = True
+            if hash == "integer" and (self.period > _INT_PERIOD).any():
+                raise ValueError(f"period must be at most 2**32 cells per axis with hash='integer' (its lattice words "
+                                 f"are 32-bit), got {self.period.tolist()}")
             if alternation == "lattice" and (self.period % 2).any():
                 raise ValueError(f"period must be even with alternation='lattice', got {self.period.tolist()}")
         self._pmask = np.where((self.period & (self.period - 1)) == 0, self.period - 1, -1).astype(np.int64)
@@ -328,8 +338,8 @@ class LatticeNoise:
         gradients /= np.where(norms > 0, norms, 1.0)
         # the integer hash's per-component 64-bit keys (drawn only for it, so the table hash's draws are
         # unchanged; before the permutations, so that a smaller dim_out gets the first keys)
-        self._keys = (rng.integers(0, 1 << 63, size=self.dim_out, dtype=np.int64).astype(np.uint64) * np.uint64(2)
-                      + np.uint64(1)) if hash == "integer" else np.zeros(self.dim_out, np.uint64)
+        self._keys = _inthash.component_keys(rng.integers(0, 1 << 63, size=self.dim_out, dtype=np.int64)) \
+            if hash == "integer" else np.zeros(self.dim_out, np.uint32)
         self.perms = np.stack([rng.permutation(n) for _ in range(self.dim_out)]).astype(np.int64)
         self._perms2 = np.ascontiguousarray(np.concatenate([self.perms, self.perms], axis=1), dtype=np.uint64)
         if alternation == "table":
@@ -339,7 +349,9 @@ class LatticeNoise:
             self.values = np.stack([positive, negative])
         self.positive, self.negative = positive, negative
         self.gradients = np.ascontiguousarray(gradients)
-        self._mult = np.ascontiguousarray(_INT_MULT[:d])
+        self._mult = np.ascontiguousarray(_inthash.MULT[:d])
+        # the integer hash's gradient set (fixed and small in 1-3-D, see _inthash.gradient_set)
+        self._int_grads = _inthash.gradient_set(d, self.gradients)
         if basis == "value":
             self.bound = self.kernel.value_bound(d)
         else:
@@ -356,7 +368,7 @@ class LatticeNoise:
     # ------------------------------------------------------------- scattered
     def _prepare_points(self, points, name="points"):
         points = _asarray(name, points)
-        tables = self._uses_tables()
+        tables = self._uses_tables() or self._int_fast() is not None  # kernels that read float32 and count non-finite
         if not (points.dtype.kind == "f" and tables):  # the table kernels check
             points = check_finite_array(name, points)
         d = self.dim_in
@@ -368,7 +380,7 @@ class LatticeNoise:
                 raise ValueError(f"{name} must have shape (..., dim_in={d}), got {points.shape}")
             lead = points.shape[:-1]
             flat = points.reshape(-1, d)
-        # the table kernels read float32 points themselves (exact widening), saving a converted copy
+        # the table and integer-hash SIMD kernels read float32 points themselves (exact widening), saving a copy
         keep = tables and points.dtype == np.float32
         return lead, np.ascontiguousarray(flat, dtype=np.float32 if keep else np.float64)
 
@@ -382,8 +394,9 @@ class LatticeNoise:
         # float64 result (the table kernels round as they store; the others
         # write float64, one compiled specialisation each)
         use_tables = self._uses_tables()
-        out = np.empty((flat.shape[0], self.dim_out), dtype=dtype if use_tables else np.float64)
-        if not use_tables:
+        own = use_tables or self._int_fast() is not None  # kernels that store the output dtype themselves
+        out = np.empty((flat.shape[0], self.dim_out), dtype=dtype if own else np.float64)
+        if not own:
             flat = np.ascontiguousarray(flat, dtype=np.float64)
         if flat.shape[0]:
             k = self.kernel
@@ -393,21 +406,13 @@ class LatticeNoise:
             tabled = self._table_kernel()
             unrolled = _points.KERNELS.get((self.dim_in, k.taps))
             tables = self._hash_tables(basis) if use_tables else None
-            if tables is None:
-                _check_reach(flat, freqs, self.phase, name)  # the table kernels count overflows themselves
+            if not own:
+                _check_reach(flat, freqs, self.phase, name)  # the table and SIMD kernels count overflows themselves
             if self.hash == "integer":
-                from . import _intpoints  # imported on first use (import noiselab.lattice costs what it did)
-
-                rest = (self.period, self._pmask, self._keys, self._mult, self.gradients, basis, bool(absval))
-                stock = KERNELS.get(k.name)
-                named = stock is not None and np.array_equal(stock.coef, k.coef)
-                fused = _intpoints.INT_KERNELS.get((self.dim_in, k.name if named else k.taps),
-                                                   _intpoints.INT_KERNELS.get((self.dim_in, k.taps)))
-                if fused is not None:
-                    _run_split(fused, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef) + rest, workers)
-                else:
-                    _run_split(_inthash.int_points, flat, out,
-                               (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef) + rest, workers)
+                bad = self._evaluate_int(flat, out, freqs, amps, absval, workers)
+                if bad:
+                    check_finite_array(name, flat)  # raises for NaN or inf input
+                    raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
             elif tables is not None:
                 bad = _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
                                                      self._pmask, *tables, basis, bool(absval)), workers)
@@ -423,6 +428,42 @@ class LatticeNoise:
                                                          self.period, self._pmask, self.perms, self.values,
                                                          self.gradients, basis, bool(absval)), workers)
         return out if out.dtype == dtype else out.astype(dtype)
+
+    def _int_fast(self):
+        """The integer hash's SIMD kernels for this noise (``{variant: kernel}``), or None (4-D and up, custom kernels)."""
+        if self.hash != "integer" or self.dim_in > 3:
+            return None
+        k = self.kernel
+        stock = KERNELS.get(k.name)
+        if stock is None or not np.array_equal(stock.coef, k.coef) or stock.shift != k.shift or stock.left != k.left:
+            return None
+        from . import _intpoints  # imported on first use (import noiselab.lattice costs what it did)
+
+        return {v: _intpoints.INT_KERNELS[(self.dim_in, k.name, self.basis, v)] for v in ("s32f32", "s64f32", "s64f64")}
+
+    def _evaluate_int(self, flat, out, freqs, amps, absval, workers):
+        """The integer hash at scattered points into ``out``; returns the count of non-finite coordinates."""
+        k = self.kernel
+        fast = self._int_fast()
+        if fast is None:  # any dimension, any kernel: the generic kernel (float64, checked by the caller)
+            _run_split(_inthash.int_points, flat, out,
+                       (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, self.period, self._pmask,
+                        self._keys, self._mult, self._int_grads, int(self.basis == "gradient"), bool(absval)),
+                       workers)
+            return 0
+        from . import _intpoints
+
+        if out.dtype == np.float64:
+            variant = "s64f64"
+        else:
+            # float32 points whose split x * F + phi is exact in float32: no phase or shift, F = 2**e >= 1
+            exact32 = (flat.dtype == np.float32 and k.shift == 0.0 and not self.phase.any()
+                       and bool(np.all((freqs >= 1.0) & (np.frexp(freqs)[0] == 0.5))))
+            variant = "s32f32" if exact32 else "s64f32"
+        factor = _intpoints.FACTOR[self.basis][self.dim_in - 1]
+        limit = self.bound * float(np.abs(amps).sum())
+        return _run_split(fast[variant], flat, out, (freqs, amps * factor, self.phase, self._keys, self._pmask,
+                                                     self.period, limit, bool(absval)), workers)
 
     def _table_kernel(self):
         """The 3-D table kernel: with this kernel's coefficients written in if it is a stock kernel."""
@@ -527,7 +568,7 @@ class LatticeNoise:
             if self.hash == "integer":
                 _run_split(_inthash.int_points_jac, flat, out,
                            (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, self.period,
-                            self._pmask, self._keys, self._mult, self.gradients, basis, bool(absval)), workers)
+                            self._pmask, self._keys, self._mult, self._int_grads, basis, bool(absval)), workers)
             elif tabled is not None and self._uses_tables():
                 _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
                                                self.period, self._pmask, *self._hash_tables(basis), basis,
@@ -878,7 +919,7 @@ class LatticeNoise:
         return h, par
 
     def _int_prefix(self, c, lattices):
-        """The integer hash's linear prefix ``key_c + sum_a j_a M_a`` over the block of lattice points (flat)."""
+        """The integer hash's prefix words ``key_c ^ j_0 M_0 ^ ...`` over the block of lattice points (flat)."""
         h = self._keys[c:c + 1]
         for a, lat in enumerate(lattices):
             h = _inthash.block_prefix(h, np.ascontiguousarray(lat, dtype=np.int64), self._mult[a], a == 0,
@@ -939,7 +980,7 @@ class LatticeNoise:
                                                 self.perms[c], self.table_size, d == 1, self.values, block)
                     for b in range(nterm):
                         if grad and self.hash == "integer":
-                            _inthash.block_gradients(h, self.gradients, b, block)
+                            _inthash.block_gradients(h, self._int_grads, b, block)
                         elif grad:
                             _jit.gather_gradients(h, self.gradients, b, block)
                         target = inter_all[row0:row0 + bshape[0]]
