@@ -33,7 +33,7 @@ result is clamped to it, which absorbs float rounding only.
 import numba as nb
 import numpy as np
 
-from ._inthash import deinterleave2, deinterleave3, mix32
+from ._inthash import deinterleave2, deinterleave3, flipsign, mix32
 from ._jit import _reduce, _wrap
 
 CHUNK = 256
@@ -726,6 +726,31 @@ def _exact_d1_linear_value_f64(X0, m, f0, q0, per0, pm0, SR, TR, KR):
 
 
 @nb.njit(cache=True, nogil=True)
+def _fused_d1_linear_value_s32f32(X0, O, m, key, f0, q0, pm0, amp, lim):
+    """Split and corner sums in one loop, 1-D linear value, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0) ^ key
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.0))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        v0 = np.float32(np.int32(mix32(u32(x0_0))))
+        v1 = np.float32(np.int32(mix32(u32(x0_1))))
+        v = amp * ((v0) + w0_1 * ((v1) - (v0)))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
+
+
+@nb.njit(cache=True, nogil=True)
 def _split_d1_linear_value_s32f32(X0, m, f0, q0, pm0, SR, TR, KR):
     """Split, 1-D linear value, s32f32 (generated)."""
     ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width
@@ -767,12 +792,12 @@ def fast_d1_linear_value_s32f32(pts, out, freqs, amps, phase, keys, pmask, perio
         X0 = col[p0:p0 + m]
         for o in range(noct):
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
-            if exact or _split_d1_linear_value_s32f32(X0, m, f0, q0, pm0, SR, TR, KR) != m:
-                nonfinite += _exact_d1_linear_value_f32(X0, m, freqs[o, 0], phase[0], period[0], pmask[0], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d1_linear_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d1_linear_value_s32f32(X0, T, m, keys[c], f0, q0, pm0, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d1_linear_value_f32(X0, m, freqs[o, 0], phase[0], period[0], pmask[0], SR, TR, KR)
+                    _corners_d1_linear_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -1048,6 +1073,36 @@ def _exact_d1_linear_gradient_f64(X0, m, f0, q0, per0, pm0, SR, TR, KR):
 
 
 @nb.njit(cache=True, nogil=True)
+def _fused_d1_linear_gradient_s32f32(X0, O, m, key, f0, q0, pm0, amp, lim):
+    """Split and corner sums in one loop, 1-D linear gradient, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        t0 = np.float32(u0 - l0)
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0) ^ key
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.0))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        r0_0 = t0
+        r0_1 = t0 + np.float32(-1.0)
+        g0 = mix32(u32(x0_0))
+        v0 = r0_0 if g0 < u32(0x80000000) else -r0_0
+        g1 = mix32(u32(x0_1))
+        v1 = r0_1 if g1 < u32(0x80000000) else -r0_1
+        v = amp * ((v0) + w0_1 * ((v1) - (v0)))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
+
+
+@nb.njit(cache=True, nogil=True)
 def _split_d1_linear_gradient_s32f32(X0, m, f0, q0, pm0, SR, TR, KR):
     """Split, 1-D linear gradient, s32f32 (generated)."""
     ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width
@@ -1091,12 +1146,12 @@ def fast_d1_linear_gradient_s32f32(pts, out, freqs, amps, phase, keys, pmask, pe
         X0 = col[p0:p0 + m]
         for o in range(noct):
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
-            if exact or _split_d1_linear_gradient_s32f32(X0, m, f0, q0, pm0, SR, TR, KR) != m:
-                nonfinite += _exact_d1_linear_gradient_f32(X0, m, freqs[o, 0], phase[0], period[0], pmask[0], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d1_linear_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d1_linear_gradient_s32f32(X0, T, m, keys[c], f0, q0, pm0, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d1_linear_gradient_f32(X0, m, freqs[o, 0], phase[0], period[0], pmask[0], SR, TR, KR)
+                    _corners_d1_linear_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -3396,6 +3451,31 @@ def _exact_d1_quintic_value_f64(X0, m, f0, q0, per0, pm0, SR, TR, KR):
 
 
 @nb.njit(cache=True, nogil=True)
+def _fused_d1_quintic_value_s32f32(X0, O, m, key, f0, q0, pm0, amp, lim):
+    """Split and corner sums in one loop, 1-D quintic value, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0) ^ key
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.875) + z0 * (np.float32(5.0) + z0 * (np.float32(-6.0))))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        v0 = np.float32(np.int32(mix32(u32(x0_0))))
+        v1 = np.float32(np.int32(mix32(u32(x0_1))))
+        v = amp * ((v0) + w0_1 * ((v1) - (v0)))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
+
+
+@nb.njit(cache=True, nogil=True)
 def _split_d1_quintic_value_s32f32(X0, m, f0, q0, pm0, SR, TR, KR):
     """Split, 1-D quintic value, s32f32 (generated)."""
     ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width
@@ -3437,12 +3517,12 @@ def fast_d1_quintic_value_s32f32(pts, out, freqs, amps, phase, keys, pmask, peri
         X0 = col[p0:p0 + m]
         for o in range(noct):
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
-            if exact or _split_d1_quintic_value_s32f32(X0, m, f0, q0, pm0, SR, TR, KR) != m:
-                nonfinite += _exact_d1_quintic_value_f32(X0, m, freqs[o, 0], phase[0], period[0], pmask[0], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d1_quintic_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d1_quintic_value_s32f32(X0, T, m, keys[c], f0, q0, pm0, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d1_quintic_value_f32(X0, m, freqs[o, 0], phase[0], period[0], pmask[0], SR, TR, KR)
+                    _corners_d1_quintic_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -3718,6 +3798,36 @@ def _exact_d1_quintic_gradient_f64(X0, m, f0, q0, per0, pm0, SR, TR, KR):
 
 
 @nb.njit(cache=True, nogil=True)
+def _fused_d1_quintic_gradient_s32f32(X0, O, m, key, f0, q0, pm0, amp, lim):
+    """Split and corner sums in one loop, 1-D quintic gradient, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        t0 = np.float32(u0 - l0)
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0) ^ key
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.875) + z0 * (np.float32(5.0) + z0 * (np.float32(-6.0))))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        r0_0 = t0
+        r0_1 = t0 + np.float32(-1.0)
+        g0 = mix32(u32(x0_0))
+        v0 = r0_0 if g0 < u32(0x80000000) else -r0_0
+        g1 = mix32(u32(x0_1))
+        v1 = r0_1 if g1 < u32(0x80000000) else -r0_1
+        v = amp * ((v0) + w0_1 * ((v1) - (v0)))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
+
+
+@nb.njit(cache=True, nogil=True)
 def _split_d1_quintic_gradient_s32f32(X0, m, f0, q0, pm0, SR, TR, KR):
     """Split, 1-D quintic gradient, s32f32 (generated)."""
     ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width
@@ -3761,12 +3871,12 @@ def fast_d1_quintic_gradient_s32f32(pts, out, freqs, amps, phase, keys, pmask, p
         X0 = col[p0:p0 + m]
         for o in range(noct):
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
-            if exact or _split_d1_quintic_gradient_s32f32(X0, m, f0, q0, pm0, SR, TR, KR) != m:
-                nonfinite += _exact_d1_quintic_gradient_f32(X0, m, freqs[o, 0], phase[0], period[0], pmask[0], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d1_quintic_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d1_quintic_gradient_s32f32(X0, T, m, keys[c], f0, q0, pm0, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d1_quintic_gradient_f32(X0, m, freqs[o, 0], phase[0], period[0], pmask[0], SR, TR, KR)
+                    _corners_d1_quintic_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -4822,6 +4932,44 @@ def _exact_d2_linear_value_f64(X0, X1, m, f0, q0, f1, q1, per0, pm0, per1, pm1, 
 
 
 @nb.njit(cache=True, nogil=True)
+def _fused_d2_linear_value_s32f32(X0, X1, O, m, key, f0, q0, f1, q1, pm0, pm1, amp, lim):
+    """Split and corner sums in one loop, 2-D linear value, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        u1 = X1[i] * f1 + q1
+        l1 = np.floor(u1)
+        s1 = np.float32((u1 - l1) - np.float32(0.5))
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0)
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0)
+        b1 = u32(u32(np.int32(l1)) - u32(0)) & pm1
+        x1_0 = u32(b1 * P1) ^ key
+        x1_1 = u32((u32(b1 + u32(1)) & pm1) * P1) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.0))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        z1 = s1 * s1
+        e1_0 = np.float32(0.5)
+        o1_0 = s1 * (np.float32(-1.0))
+        w1_0 = e1_0 + o1_0
+        w1_1 = e1_0 - o1_0
+        v00 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_0))))
+        v01 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_1))))
+        v10 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_0))))
+        v11 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_1))))
+        v = amp * (_lerp(w0_1, (v00) + w1_1 * ((v01) - (v00)), (v10) + w1_1 * ((v11) - (v10))))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
+
+
+@nb.njit(cache=True, nogil=True)
 def _split_d2_linear_value_s32f32(X0, X1, m, f0, q0, f1, q1, pm0, pm1, SR, TR, KR):
     """Split, 2-D linear value, s32f32 (generated)."""
     ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width
@@ -4879,12 +5027,12 @@ def fast_d2_linear_value_s32f32(pts, out, freqs, amps, phase, keys, pmask, perio
         for o in range(noct):
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
             f1 = np.float32(freqs[o, 1]); q1 = np.float32(phase[1])
-            if exact or _split_d2_linear_value_s32f32(X0, X1, m, f0, q0, f1, q1, pm0, pm1, SR, TR, KR) != m:
-                nonfinite += _exact_d2_linear_value_f32(X0, X1, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], period[0], pmask[0], period[1], pmask[1], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d2_linear_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d2_linear_value_s32f32(X0, X1, T, m, keys[c], f0, q0, f1, q1, pm0, pm1, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d2_linear_value_f32(X0, X1, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], period[0], pmask[0], period[1], pmask[1], SR, TR, KR)
+                    _corners_d2_linear_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -5280,6 +5428,74 @@ def _exact_d2_linear_gradient_f64(X0, X1, m, f0, q0, f1, q1, per0, pm0, per1, pm
 
 
 @nb.njit(cache=True, nogil=True)
+def _fused_d2_linear_gradient_s32f32(X0, X1, O, m, key, f0, q0, f1, q1, pm0, pm1, amp, lim):
+    """Split and corner sums in one loop, 2-D linear gradient, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        t0 = np.float32(u0 - l0)
+        u1 = X1[i] * f1 + q1
+        l1 = np.floor(u1)
+        s1 = np.float32((u1 - l1) - np.float32(0.5))
+        t1 = np.float32(u1 - l1)
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0)
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0)
+        b1 = u32(u32(np.int32(l1)) - u32(0)) & pm1
+        x1_0 = u32(b1 * P1) ^ key
+        x1_1 = u32((u32(b1 + u32(1)) & pm1) * P1) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.0))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        z1 = s1 * s1
+        e1_0 = np.float32(0.5)
+        o1_0 = s1 * (np.float32(-1.0))
+        w1_0 = e1_0 + o1_0
+        w1_1 = e1_0 - o1_0
+        r0_0 = t0
+        r0_1 = t0 + np.float32(-1.0)
+        r1_0 = t1
+        r1_1 = t1 + np.float32(-1.0)
+        g00 = mix32(u32(x0_0 ^ x1_0))
+        s00 = g00 >> u32(29)
+        e00 = r0_0 if (s00 & u32(2)) == u32(0) else r1_0
+        e00 = e00 if (s00 & u32(1)) == u32(0) else -e00
+        p00 = r0_0 if (s00 & u32(1)) == u32(0) else -r0_0
+        q00 = r1_0 if (s00 & u32(2)) == u32(0) else -r1_0
+        v00 = e00 if s00 < u32(4) else (p00 + q00) * np.float32(0.7071067811865476)
+        g01 = mix32(u32(x0_0 ^ x1_1))
+        s01 = g01 >> u32(29)
+        e01 = r0_0 if (s01 & u32(2)) == u32(0) else r1_1
+        e01 = e01 if (s01 & u32(1)) == u32(0) else -e01
+        p01 = r0_0 if (s01 & u32(1)) == u32(0) else -r0_0
+        q01 = r1_1 if (s01 & u32(2)) == u32(0) else -r1_1
+        v01 = e01 if s01 < u32(4) else (p01 + q01) * np.float32(0.7071067811865476)
+        g10 = mix32(u32(x0_1 ^ x1_0))
+        s10 = g10 >> u32(29)
+        e10 = r0_1 if (s10 & u32(2)) == u32(0) else r1_0
+        e10 = e10 if (s10 & u32(1)) == u32(0) else -e10
+        p10 = r0_1 if (s10 & u32(1)) == u32(0) else -r0_1
+        q10 = r1_0 if (s10 & u32(2)) == u32(0) else -r1_0
+        v10 = e10 if s10 < u32(4) else (p10 + q10) * np.float32(0.7071067811865476)
+        g11 = mix32(u32(x0_1 ^ x1_1))
+        s11 = g11 >> u32(29)
+        e11 = r0_1 if (s11 & u32(2)) == u32(0) else r1_1
+        e11 = e11 if (s11 & u32(1)) == u32(0) else -e11
+        p11 = r0_1 if (s11 & u32(1)) == u32(0) else -r0_1
+        q11 = r1_1 if (s11 & u32(2)) == u32(0) else -r1_1
+        v11 = e11 if s11 < u32(4) else (p11 + q11) * np.float32(0.7071067811865476)
+        v = amp * (_lerp(w0_1, (v00) + w1_1 * ((v01) - (v00)), (v10) + w1_1 * ((v11) - (v10))))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
+
+
+@nb.njit(cache=True, nogil=True)
 def _split_d2_linear_gradient_s32f32(X0, X1, m, f0, q0, f1, q1, pm0, pm1, SR, TR, KR):
     """Split, 2-D linear gradient, s32f32 (generated)."""
     ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width
@@ -5341,12 +5557,12 @@ def fast_d2_linear_gradient_s32f32(pts, out, freqs, amps, phase, keys, pmask, pe
         for o in range(noct):
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
             f1 = np.float32(freqs[o, 1]); q1 = np.float32(phase[1])
-            if exact or _split_d2_linear_gradient_s32f32(X0, X1, m, f0, q0, f1, q1, pm0, pm1, SR, TR, KR) != m:
-                nonfinite += _exact_d2_linear_gradient_f32(X0, X1, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], period[0], pmask[0], period[1], pmask[1], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d2_linear_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d2_linear_gradient_s32f32(X0, X1, T, m, keys[c], f0, q0, f1, q1, pm0, pm1, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d2_linear_gradient_f32(X0, X1, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], period[0], pmask[0], period[1], pmask[1], SR, TR, KR)
+                    _corners_d2_linear_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -8918,6 +9134,44 @@ def _exact_d2_quintic_value_f64(X0, X1, m, f0, q0, f1, q1, per0, pm0, per1, pm1,
 
 
 @nb.njit(cache=True, nogil=True)
+def _fused_d2_quintic_value_s32f32(X0, X1, O, m, key, f0, q0, f1, q1, pm0, pm1, amp, lim):
+    """Split and corner sums in one loop, 2-D quintic value, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        u1 = X1[i] * f1 + q1
+        l1 = np.floor(u1)
+        s1 = np.float32((u1 - l1) - np.float32(0.5))
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0)
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0)
+        b1 = u32(u32(np.int32(l1)) - u32(0)) & pm1
+        x1_0 = u32(b1 * P1) ^ key
+        x1_1 = u32((u32(b1 + u32(1)) & pm1) * P1) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.875) + z0 * (np.float32(5.0) + z0 * (np.float32(-6.0))))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        z1 = s1 * s1
+        e1_0 = np.float32(0.5)
+        o1_0 = s1 * (np.float32(-1.875) + z1 * (np.float32(5.0) + z1 * (np.float32(-6.0))))
+        w1_0 = e1_0 + o1_0
+        w1_1 = e1_0 - o1_0
+        v00 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_0))))
+        v01 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_1))))
+        v10 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_0))))
+        v11 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_1))))
+        v = amp * (_lerp(w0_1, (v00) + w1_1 * ((v01) - (v00)), (v10) + w1_1 * ((v11) - (v10))))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
+
+
+@nb.njit(cache=True, nogil=True)
 def _split_d2_quintic_value_s32f32(X0, X1, m, f0, q0, f1, q1, pm0, pm1, SR, TR, KR):
     """Split, 2-D quintic value, s32f32 (generated)."""
     ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width
@@ -8975,12 +9229,12 @@ def fast_d2_quintic_value_s32f32(pts, out, freqs, amps, phase, keys, pmask, peri
         for o in range(noct):
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
             f1 = np.float32(freqs[o, 1]); q1 = np.float32(phase[1])
-            if exact or _split_d2_quintic_value_s32f32(X0, X1, m, f0, q0, f1, q1, pm0, pm1, SR, TR, KR) != m:
-                nonfinite += _exact_d2_quintic_value_f32(X0, X1, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], period[0], pmask[0], period[1], pmask[1], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d2_quintic_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d2_quintic_value_s32f32(X0, X1, T, m, keys[c], f0, q0, f1, q1, pm0, pm1, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d2_quintic_value_f32(X0, X1, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], period[0], pmask[0], period[1], pmask[1], SR, TR, KR)
+                    _corners_d2_quintic_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -9376,6 +9630,74 @@ def _exact_d2_quintic_gradient_f64(X0, X1, m, f0, q0, f1, q1, per0, pm0, per1, p
 
 
 @nb.njit(cache=True, nogil=True)
+def _fused_d2_quintic_gradient_s32f32(X0, X1, O, m, key, f0, q0, f1, q1, pm0, pm1, amp, lim):
+    """Split and corner sums in one loop, 2-D quintic gradient, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        t0 = np.float32(u0 - l0)
+        u1 = X1[i] * f1 + q1
+        l1 = np.floor(u1)
+        s1 = np.float32((u1 - l1) - np.float32(0.5))
+        t1 = np.float32(u1 - l1)
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0)
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0)
+        b1 = u32(u32(np.int32(l1)) - u32(0)) & pm1
+        x1_0 = u32(b1 * P1) ^ key
+        x1_1 = u32((u32(b1 + u32(1)) & pm1) * P1) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.875) + z0 * (np.float32(5.0) + z0 * (np.float32(-6.0))))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        z1 = s1 * s1
+        e1_0 = np.float32(0.5)
+        o1_0 = s1 * (np.float32(-1.875) + z1 * (np.float32(5.0) + z1 * (np.float32(-6.0))))
+        w1_0 = e1_0 + o1_0
+        w1_1 = e1_0 - o1_0
+        r0_0 = t0
+        r0_1 = t0 + np.float32(-1.0)
+        r1_0 = t1
+        r1_1 = t1 + np.float32(-1.0)
+        g00 = mix32(u32(x0_0 ^ x1_0))
+        s00 = g00 >> u32(29)
+        e00 = r0_0 if (s00 & u32(2)) == u32(0) else r1_0
+        e00 = e00 if (s00 & u32(1)) == u32(0) else -e00
+        p00 = r0_0 if (s00 & u32(1)) == u32(0) else -r0_0
+        q00 = r1_0 if (s00 & u32(2)) == u32(0) else -r1_0
+        v00 = e00 if s00 < u32(4) else (p00 + q00) * np.float32(0.7071067811865476)
+        g01 = mix32(u32(x0_0 ^ x1_1))
+        s01 = g01 >> u32(29)
+        e01 = r0_0 if (s01 & u32(2)) == u32(0) else r1_1
+        e01 = e01 if (s01 & u32(1)) == u32(0) else -e01
+        p01 = r0_0 if (s01 & u32(1)) == u32(0) else -r0_0
+        q01 = r1_1 if (s01 & u32(2)) == u32(0) else -r1_1
+        v01 = e01 if s01 < u32(4) else (p01 + q01) * np.float32(0.7071067811865476)
+        g10 = mix32(u32(x0_1 ^ x1_0))
+        s10 = g10 >> u32(29)
+        e10 = r0_1 if (s10 & u32(2)) == u32(0) else r1_0
+        e10 = e10 if (s10 & u32(1)) == u32(0) else -e10
+        p10 = r0_1 if (s10 & u32(1)) == u32(0) else -r0_1
+        q10 = r1_0 if (s10 & u32(2)) == u32(0) else -r1_0
+        v10 = e10 if s10 < u32(4) else (p10 + q10) * np.float32(0.7071067811865476)
+        g11 = mix32(u32(x0_1 ^ x1_1))
+        s11 = g11 >> u32(29)
+        e11 = r0_1 if (s11 & u32(2)) == u32(0) else r1_1
+        e11 = e11 if (s11 & u32(1)) == u32(0) else -e11
+        p11 = r0_1 if (s11 & u32(1)) == u32(0) else -r0_1
+        q11 = r1_1 if (s11 & u32(2)) == u32(0) else -r1_1
+        v11 = e11 if s11 < u32(4) else (p11 + q11) * np.float32(0.7071067811865476)
+        v = amp * (_lerp(w0_1, (v00) + w1_1 * ((v01) - (v00)), (v10) + w1_1 * ((v11) - (v10))))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
+
+
+@nb.njit(cache=True, nogil=True)
 def _split_d2_quintic_gradient_s32f32(X0, X1, m, f0, q0, f1, q1, pm0, pm1, SR, TR, KR):
     """Split, 2-D quintic gradient, s32f32 (generated)."""
     ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width
@@ -9437,12 +9759,12 @@ def fast_d2_quintic_gradient_s32f32(pts, out, freqs, amps, phase, keys, pmask, p
         for o in range(noct):
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
             f1 = np.float32(freqs[o, 1]); q1 = np.float32(phase[1])
-            if exact or _split_d2_quintic_gradient_s32f32(X0, X1, m, f0, q0, f1, q1, pm0, pm1, SR, TR, KR) != m:
-                nonfinite += _exact_d2_quintic_gradient_f32(X0, X1, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], period[0], pmask[0], period[1], pmask[1], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d2_quintic_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d2_quintic_gradient_s32f32(X0, X1, T, m, keys[c], f0, q0, f1, q1, pm0, pm1, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d2_quintic_gradient_f32(X0, X1, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], period[0], pmask[0], period[1], pmask[1], SR, TR, KR)
+                    _corners_d2_quintic_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -10102,8 +10424,8 @@ def _corners_d3_box_gradient_f32(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         v = amp * (w0_0 * (w1_0 * (w2_0 * (v000))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -10169,8 +10491,8 @@ def _corners_d3_box_gradient_f64(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         v = amp * (w0_0 * (w1_0 * (w2_0 * (v000))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -10682,6 +11004,59 @@ def _exact_d3_linear_value_f64(X0, X1, X2, m, f0, q0, f1, q1, f2, q2, per0, pm0,
 
 
 @nb.njit(cache=True, nogil=True)
+def _fused_d3_linear_value_s32f32(X0, X1, X2, O, m, key, f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, amp, lim):
+    """Split and corner sums in one loop, 3-D linear value, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        u1 = X1[i] * f1 + q1
+        l1 = np.floor(u1)
+        s1 = np.float32((u1 - l1) - np.float32(0.5))
+        u2 = X2[i] * f2 + q2
+        l2 = np.floor(u2)
+        s2 = np.float32((u2 - l2) - np.float32(0.5))
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0)) & (l2 < np.float32(2147483648.0)) & (l2 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0)
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0)
+        b1 = u32(u32(np.int32(l1)) - u32(0)) & pm1
+        x1_0 = u32(b1 * P1)
+        x1_1 = u32((u32(b1 + u32(1)) & pm1) * P1)
+        b2 = u32(u32(np.int32(l2)) - u32(0)) & pm2
+        x2_0 = u32(b2 * P2) ^ key
+        x2_1 = u32((u32(b2 + u32(1)) & pm2) * P2) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.0))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        z1 = s1 * s1
+        e1_0 = np.float32(0.5)
+        o1_0 = s1 * (np.float32(-1.0))
+        w1_0 = e1_0 + o1_0
+        w1_1 = e1_0 - o1_0
+        z2 = s2 * s2
+        e2_0 = np.float32(0.5)
+        o2_0 = s2 * (np.float32(-1.0))
+        w2_0 = e2_0 + o2_0
+        w2_1 = e2_0 - o2_0
+        v000 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_0 ^ x2_0))))
+        v001 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_0 ^ x2_1))))
+        v010 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_1 ^ x2_0))))
+        v011 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_1 ^ x2_1))))
+        v100 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_0 ^ x2_0))))
+        v101 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_0 ^ x2_1))))
+        v110 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_1 ^ x2_0))))
+        v111 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_1 ^ x2_1))))
+        v = amp * (_lerp(w0_1, _lerp(w1_1, (v000) + w2_1 * ((v001) - (v000)), (v010) + w2_1 * ((v011) - (v010))), _lerp(w1_1, (v100) + w2_1 * ((v101) - (v100)), (v110) + w2_1 * ((v111) - (v110)))))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
+
+
+@nb.njit(cache=True, nogil=True)
 def _split_d3_linear_value_s32f32(X0, X1, X2, m, f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, SR, TR, KR):
     """Split, 3-D linear value, s32f32 (generated)."""
     ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width
@@ -10750,12 +11125,12 @@ def fast_d3_linear_value_s32f32(pts, out, freqs, amps, phase, keys, pmask, perio
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
             f1 = np.float32(freqs[o, 1]); q1 = np.float32(phase[1])
             f2 = np.float32(freqs[o, 2]); q2 = np.float32(phase[2])
-            if exact or _split_d3_linear_value_s32f32(X0, X1, X2, m, f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, SR, TR, KR) != m:
-                nonfinite += _exact_d3_linear_value_f32(X0, X1, X2, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], freqs[o, 2], phase[2], period[0], pmask[0], period[1], pmask[1], period[2], pmask[2], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d3_linear_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d3_linear_value_s32f32(X0, X1, X2, T, m, keys[c], f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d3_linear_value_f32(X0, X1, X2, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], freqs[o, 2], phase[2], period[0], pmask[0], period[1], pmask[1], period[2], pmask[2], SR, TR, KR)
+                    _corners_d3_linear_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -11036,43 +11411,43 @@ def _corners_d3_linear_gradient_f32(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
         s001 = g001 >> u32(28)
         e001 = r0_0 if s001 < u32(8) else r1_0
-        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 == u32(12)) | (s001 == u32(14)) else r2_1)
-        v001 = (e001 if (s001 & u32(1)) == u32(0) else -e001) + (f001 if (s001 & u32(2)) == u32(0) else -f001)
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
         g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
         s010 = g010 >> u32(28)
         e010 = r0_0 if s010 < u32(8) else r1_1
-        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 == u32(12)) | (s010 == u32(14)) else r2_0)
-        v010 = (e010 if (s010 & u32(1)) == u32(0) else -e010) + (f010 if (s010 & u32(2)) == u32(0) else -f010)
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
         g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
         s011 = g011 >> u32(28)
         e011 = r0_0 if s011 < u32(8) else r1_1
-        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 == u32(12)) | (s011 == u32(14)) else r2_1)
-        v011 = (e011 if (s011 & u32(1)) == u32(0) else -e011) + (f011 if (s011 & u32(2)) == u32(0) else -f011)
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
         g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
         s100 = g100 >> u32(28)
         e100 = r0_1 if s100 < u32(8) else r1_0
-        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 == u32(12)) | (s100 == u32(14)) else r2_0)
-        v100 = (e100 if (s100 & u32(1)) == u32(0) else -e100) + (f100 if (s100 & u32(2)) == u32(0) else -f100)
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
         g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
         s101 = g101 >> u32(28)
         e101 = r0_1 if s101 < u32(8) else r1_0
-        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 == u32(12)) | (s101 == u32(14)) else r2_1)
-        v101 = (e101 if (s101 & u32(1)) == u32(0) else -e101) + (f101 if (s101 & u32(2)) == u32(0) else -f101)
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
         g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
         s110 = g110 >> u32(28)
         e110 = r0_1 if s110 < u32(8) else r1_1
-        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 == u32(12)) | (s110 == u32(14)) else r2_0)
-        v110 = (e110 if (s110 & u32(1)) == u32(0) else -e110) + (f110 if (s110 & u32(2)) == u32(0) else -f110)
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
         g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
         s111 = g111 >> u32(28)
         e111 = r0_1 if s111 < u32(8) else r1_1
-        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 == u32(12)) | (s111 == u32(14)) else r2_1)
-        v111 = (e111 if (s111 & u32(1)) == u32(0) else -e111) + (f111 if (s111 & u32(2)) == u32(0) else -f111)
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
         v = amp * (_lerp(w0_1, _lerp(w1_1, (v000) + w2_1 * ((v001) - (v000)), (v010) + w2_1 * ((v011) - (v010))), _lerp(w1_1, (v100) + w2_1 * ((v101) - (v100)), (v110) + w2_1 * ((v111) - (v110)))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -11156,43 +11531,43 @@ def _corners_d3_linear_gradient_f64(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
         s001 = g001 >> u32(28)
         e001 = r0_0 if s001 < u32(8) else r1_0
-        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 == u32(12)) | (s001 == u32(14)) else r2_1)
-        v001 = (e001 if (s001 & u32(1)) == u32(0) else -e001) + (f001 if (s001 & u32(2)) == u32(0) else -f001)
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
         g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
         s010 = g010 >> u32(28)
         e010 = r0_0 if s010 < u32(8) else r1_1
-        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 == u32(12)) | (s010 == u32(14)) else r2_0)
-        v010 = (e010 if (s010 & u32(1)) == u32(0) else -e010) + (f010 if (s010 & u32(2)) == u32(0) else -f010)
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
         g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
         s011 = g011 >> u32(28)
         e011 = r0_0 if s011 < u32(8) else r1_1
-        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 == u32(12)) | (s011 == u32(14)) else r2_1)
-        v011 = (e011 if (s011 & u32(1)) == u32(0) else -e011) + (f011 if (s011 & u32(2)) == u32(0) else -f011)
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
         g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
         s100 = g100 >> u32(28)
         e100 = r0_1 if s100 < u32(8) else r1_0
-        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 == u32(12)) | (s100 == u32(14)) else r2_0)
-        v100 = (e100 if (s100 & u32(1)) == u32(0) else -e100) + (f100 if (s100 & u32(2)) == u32(0) else -f100)
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
         g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
         s101 = g101 >> u32(28)
         e101 = r0_1 if s101 < u32(8) else r1_0
-        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 == u32(12)) | (s101 == u32(14)) else r2_1)
-        v101 = (e101 if (s101 & u32(1)) == u32(0) else -e101) + (f101 if (s101 & u32(2)) == u32(0) else -f101)
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
         g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
         s110 = g110 >> u32(28)
         e110 = r0_1 if s110 < u32(8) else r1_1
-        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 == u32(12)) | (s110 == u32(14)) else r2_0)
-        v110 = (e110 if (s110 & u32(1)) == u32(0) else -e110) + (f110 if (s110 & u32(2)) == u32(0) else -f110)
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
         g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
         s111 = g111 >> u32(28)
         e111 = r0_1 if s111 < u32(8) else r1_1
-        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 == u32(12)) | (s111 == u32(14)) else r2_1)
-        v111 = (e111 if (s111 & u32(1)) == u32(0) else -e111) + (f111 if (s111 & u32(2)) == u32(0) else -f111)
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
         v = amp * (_lerp(w0_1, _lerp(w1_1, (v000) + w2_1 * ((v001) - (v000)), (v010) + w2_1 * ((v011) - (v010))), _lerp(w1_1, (v100) + w2_1 * ((v101) - (v100)), (v110) + w2_1 * ((v111) - (v110)))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -11234,6 +11609,100 @@ def _exact_d3_linear_gradient_f64(X0, X1, X2, m, f0, q0, f1, q1, f2, q2, per0, p
         KR[4, i] = u32(u32(_wrap(b2 + 0, per2, pm2)) * P2)
         KR[5, i] = u32(u32(_wrap(b2 + 1, per2, pm2)) * P2)
     return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def _fused_d3_linear_gradient_s32f32(X0, X1, X2, O, m, key, f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, amp, lim):
+    """Split and corner sums in one loop, 3-D linear gradient, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        t0 = np.float32(u0 - l0)
+        u1 = X1[i] * f1 + q1
+        l1 = np.floor(u1)
+        s1 = np.float32((u1 - l1) - np.float32(0.5))
+        t1 = np.float32(u1 - l1)
+        u2 = X2[i] * f2 + q2
+        l2 = np.floor(u2)
+        s2 = np.float32((u2 - l2) - np.float32(0.5))
+        t2 = np.float32(u2 - l2)
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0)) & (l2 < np.float32(2147483648.0)) & (l2 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0)
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0)
+        b1 = u32(u32(np.int32(l1)) - u32(0)) & pm1
+        x1_0 = u32(b1 * P1)
+        x1_1 = u32((u32(b1 + u32(1)) & pm1) * P1)
+        b2 = u32(u32(np.int32(l2)) - u32(0)) & pm2
+        x2_0 = u32(b2 * P2) ^ key
+        x2_1 = u32((u32(b2 + u32(1)) & pm2) * P2) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.0))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        z1 = s1 * s1
+        e1_0 = np.float32(0.5)
+        o1_0 = s1 * (np.float32(-1.0))
+        w1_0 = e1_0 + o1_0
+        w1_1 = e1_0 - o1_0
+        z2 = s2 * s2
+        e2_0 = np.float32(0.5)
+        o2_0 = s2 * (np.float32(-1.0))
+        w2_0 = e2_0 + o2_0
+        w2_1 = e2_0 - o2_0
+        r0_0 = t0
+        r0_1 = t0 + np.float32(-1.0)
+        r1_0 = t1
+        r1_1 = t1 + np.float32(-1.0)
+        r2_0 = t2
+        r2_1 = t2 + np.float32(-1.0)
+        g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
+        s000 = g000 >> u32(28)
+        e000 = r0_0 if s000 < u32(8) else r1_0
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
+        g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
+        s001 = g001 >> u32(28)
+        e001 = r0_0 if s001 < u32(8) else r1_0
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
+        g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
+        s010 = g010 >> u32(28)
+        e010 = r0_0 if s010 < u32(8) else r1_1
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
+        g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
+        s011 = g011 >> u32(28)
+        e011 = r0_0 if s011 < u32(8) else r1_1
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
+        g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
+        s100 = g100 >> u32(28)
+        e100 = r0_1 if s100 < u32(8) else r1_0
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
+        g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
+        s101 = g101 >> u32(28)
+        e101 = r0_1 if s101 < u32(8) else r1_0
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
+        g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
+        s110 = g110 >> u32(28)
+        e110 = r0_1 if s110 < u32(8) else r1_1
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
+        g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
+        s111 = g111 >> u32(28)
+        e111 = r0_1 if s111 < u32(8) else r1_1
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
+        v = amp * (_lerp(w0_1, _lerp(w1_1, (v000) + w2_1 * ((v001) - (v000)), (v010) + w2_1 * ((v011) - (v010))), _lerp(w1_1, (v100) + w2_1 * ((v101) - (v100)), (v110) + w2_1 * ((v111) - (v110)))))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -11311,12 +11780,12 @@ def fast_d3_linear_gradient_s32f32(pts, out, freqs, amps, phase, keys, pmask, pe
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
             f1 = np.float32(freqs[o, 1]); q1 = np.float32(phase[1])
             f2 = np.float32(freqs[o, 2]); q2 = np.float32(phase[2])
-            if exact or _split_d3_linear_gradient_s32f32(X0, X1, X2, m, f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, SR, TR, KR) != m:
-                nonfinite += _exact_d3_linear_gradient_f32(X0, X1, X2, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], freqs[o, 2], phase[2], period[0], pmask[0], period[1], pmask[1], period[2], pmask[2], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d3_linear_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d3_linear_gradient_s32f32(X0, X1, X2, T, m, keys[c], f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d3_linear_gradient_f32(X0, X1, X2, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], freqs[o, 2], phase[2], period[0], pmask[0], period[1], pmask[1], period[2], pmask[2], SR, TR, KR)
+                    _corners_d3_linear_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -12144,138 +12613,138 @@ def _corners_d3_quadratic_gradient_f32(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
         s001 = g001 >> u32(28)
         e001 = r0_0 if s001 < u32(8) else r1_0
-        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 == u32(12)) | (s001 == u32(14)) else r2_1)
-        v001 = (e001 if (s001 & u32(1)) == u32(0) else -e001) + (f001 if (s001 & u32(2)) == u32(0) else -f001)
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
         g002 = mix32(u32(x0_0 ^ x1_0 ^ x2_2))
         s002 = g002 >> u32(28)
         e002 = r0_0 if s002 < u32(8) else r1_0
-        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 == u32(12)) | (s002 == u32(14)) else r2_2)
-        v002 = (e002 if (s002 & u32(1)) == u32(0) else -e002) + (f002 if (s002 & u32(2)) == u32(0) else -f002)
+        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 & u32(13)) == u32(12) else r2_2)
+        v002 = flipsign(e002, u32(g002 << u32(3))) + flipsign(f002, u32(g002 << u32(2)))
         g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
         s010 = g010 >> u32(28)
         e010 = r0_0 if s010 < u32(8) else r1_1
-        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 == u32(12)) | (s010 == u32(14)) else r2_0)
-        v010 = (e010 if (s010 & u32(1)) == u32(0) else -e010) + (f010 if (s010 & u32(2)) == u32(0) else -f010)
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
         g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
         s011 = g011 >> u32(28)
         e011 = r0_0 if s011 < u32(8) else r1_1
-        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 == u32(12)) | (s011 == u32(14)) else r2_1)
-        v011 = (e011 if (s011 & u32(1)) == u32(0) else -e011) + (f011 if (s011 & u32(2)) == u32(0) else -f011)
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
         g012 = mix32(u32(x0_0 ^ x1_1 ^ x2_2))
         s012 = g012 >> u32(28)
         e012 = r0_0 if s012 < u32(8) else r1_1
-        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 == u32(12)) | (s012 == u32(14)) else r2_2)
-        v012 = (e012 if (s012 & u32(1)) == u32(0) else -e012) + (f012 if (s012 & u32(2)) == u32(0) else -f012)
+        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 & u32(13)) == u32(12) else r2_2)
+        v012 = flipsign(e012, u32(g012 << u32(3))) + flipsign(f012, u32(g012 << u32(2)))
         g020 = mix32(u32(x0_0 ^ x1_2 ^ x2_0))
         s020 = g020 >> u32(28)
         e020 = r0_0 if s020 < u32(8) else r1_2
-        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 == u32(12)) | (s020 == u32(14)) else r2_0)
-        v020 = (e020 if (s020 & u32(1)) == u32(0) else -e020) + (f020 if (s020 & u32(2)) == u32(0) else -f020)
+        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 & u32(13)) == u32(12) else r2_0)
+        v020 = flipsign(e020, u32(g020 << u32(3))) + flipsign(f020, u32(g020 << u32(2)))
         g021 = mix32(u32(x0_0 ^ x1_2 ^ x2_1))
         s021 = g021 >> u32(28)
         e021 = r0_0 if s021 < u32(8) else r1_2
-        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 == u32(12)) | (s021 == u32(14)) else r2_1)
-        v021 = (e021 if (s021 & u32(1)) == u32(0) else -e021) + (f021 if (s021 & u32(2)) == u32(0) else -f021)
+        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 & u32(13)) == u32(12) else r2_1)
+        v021 = flipsign(e021, u32(g021 << u32(3))) + flipsign(f021, u32(g021 << u32(2)))
         g022 = mix32(u32(x0_0 ^ x1_2 ^ x2_2))
         s022 = g022 >> u32(28)
         e022 = r0_0 if s022 < u32(8) else r1_2
-        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 == u32(12)) | (s022 == u32(14)) else r2_2)
-        v022 = (e022 if (s022 & u32(1)) == u32(0) else -e022) + (f022 if (s022 & u32(2)) == u32(0) else -f022)
+        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 & u32(13)) == u32(12) else r2_2)
+        v022 = flipsign(e022, u32(g022 << u32(3))) + flipsign(f022, u32(g022 << u32(2)))
         g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
         s100 = g100 >> u32(28)
         e100 = r0_1 if s100 < u32(8) else r1_0
-        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 == u32(12)) | (s100 == u32(14)) else r2_0)
-        v100 = (e100 if (s100 & u32(1)) == u32(0) else -e100) + (f100 if (s100 & u32(2)) == u32(0) else -f100)
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
         g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
         s101 = g101 >> u32(28)
         e101 = r0_1 if s101 < u32(8) else r1_0
-        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 == u32(12)) | (s101 == u32(14)) else r2_1)
-        v101 = (e101 if (s101 & u32(1)) == u32(0) else -e101) + (f101 if (s101 & u32(2)) == u32(0) else -f101)
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
         g102 = mix32(u32(x0_1 ^ x1_0 ^ x2_2))
         s102 = g102 >> u32(28)
         e102 = r0_1 if s102 < u32(8) else r1_0
-        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 == u32(12)) | (s102 == u32(14)) else r2_2)
-        v102 = (e102 if (s102 & u32(1)) == u32(0) else -e102) + (f102 if (s102 & u32(2)) == u32(0) else -f102)
+        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 & u32(13)) == u32(12) else r2_2)
+        v102 = flipsign(e102, u32(g102 << u32(3))) + flipsign(f102, u32(g102 << u32(2)))
         g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
         s110 = g110 >> u32(28)
         e110 = r0_1 if s110 < u32(8) else r1_1
-        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 == u32(12)) | (s110 == u32(14)) else r2_0)
-        v110 = (e110 if (s110 & u32(1)) == u32(0) else -e110) + (f110 if (s110 & u32(2)) == u32(0) else -f110)
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
         g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
         s111 = g111 >> u32(28)
         e111 = r0_1 if s111 < u32(8) else r1_1
-        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 == u32(12)) | (s111 == u32(14)) else r2_1)
-        v111 = (e111 if (s111 & u32(1)) == u32(0) else -e111) + (f111 if (s111 & u32(2)) == u32(0) else -f111)
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
         g112 = mix32(u32(x0_1 ^ x1_1 ^ x2_2))
         s112 = g112 >> u32(28)
         e112 = r0_1 if s112 < u32(8) else r1_1
-        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 == u32(12)) | (s112 == u32(14)) else r2_2)
-        v112 = (e112 if (s112 & u32(1)) == u32(0) else -e112) + (f112 if (s112 & u32(2)) == u32(0) else -f112)
+        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 & u32(13)) == u32(12) else r2_2)
+        v112 = flipsign(e112, u32(g112 << u32(3))) + flipsign(f112, u32(g112 << u32(2)))
         g120 = mix32(u32(x0_1 ^ x1_2 ^ x2_0))
         s120 = g120 >> u32(28)
         e120 = r0_1 if s120 < u32(8) else r1_2
-        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 == u32(12)) | (s120 == u32(14)) else r2_0)
-        v120 = (e120 if (s120 & u32(1)) == u32(0) else -e120) + (f120 if (s120 & u32(2)) == u32(0) else -f120)
+        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 & u32(13)) == u32(12) else r2_0)
+        v120 = flipsign(e120, u32(g120 << u32(3))) + flipsign(f120, u32(g120 << u32(2)))
         g121 = mix32(u32(x0_1 ^ x1_2 ^ x2_1))
         s121 = g121 >> u32(28)
         e121 = r0_1 if s121 < u32(8) else r1_2
-        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 == u32(12)) | (s121 == u32(14)) else r2_1)
-        v121 = (e121 if (s121 & u32(1)) == u32(0) else -e121) + (f121 if (s121 & u32(2)) == u32(0) else -f121)
+        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 & u32(13)) == u32(12) else r2_1)
+        v121 = flipsign(e121, u32(g121 << u32(3))) + flipsign(f121, u32(g121 << u32(2)))
         g122 = mix32(u32(x0_1 ^ x1_2 ^ x2_2))
         s122 = g122 >> u32(28)
         e122 = r0_1 if s122 < u32(8) else r1_2
-        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 == u32(12)) | (s122 == u32(14)) else r2_2)
-        v122 = (e122 if (s122 & u32(1)) == u32(0) else -e122) + (f122 if (s122 & u32(2)) == u32(0) else -f122)
+        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 & u32(13)) == u32(12) else r2_2)
+        v122 = flipsign(e122, u32(g122 << u32(3))) + flipsign(f122, u32(g122 << u32(2)))
         g200 = mix32(u32(x0_2 ^ x1_0 ^ x2_0))
         s200 = g200 >> u32(28)
         e200 = r0_2 if s200 < u32(8) else r1_0
-        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 == u32(12)) | (s200 == u32(14)) else r2_0)
-        v200 = (e200 if (s200 & u32(1)) == u32(0) else -e200) + (f200 if (s200 & u32(2)) == u32(0) else -f200)
+        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 & u32(13)) == u32(12) else r2_0)
+        v200 = flipsign(e200, u32(g200 << u32(3))) + flipsign(f200, u32(g200 << u32(2)))
         g201 = mix32(u32(x0_2 ^ x1_0 ^ x2_1))
         s201 = g201 >> u32(28)
         e201 = r0_2 if s201 < u32(8) else r1_0
-        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 == u32(12)) | (s201 == u32(14)) else r2_1)
-        v201 = (e201 if (s201 & u32(1)) == u32(0) else -e201) + (f201 if (s201 & u32(2)) == u32(0) else -f201)
+        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 & u32(13)) == u32(12) else r2_1)
+        v201 = flipsign(e201, u32(g201 << u32(3))) + flipsign(f201, u32(g201 << u32(2)))
         g202 = mix32(u32(x0_2 ^ x1_0 ^ x2_2))
         s202 = g202 >> u32(28)
         e202 = r0_2 if s202 < u32(8) else r1_0
-        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 == u32(12)) | (s202 == u32(14)) else r2_2)
-        v202 = (e202 if (s202 & u32(1)) == u32(0) else -e202) + (f202 if (s202 & u32(2)) == u32(0) else -f202)
+        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 & u32(13)) == u32(12) else r2_2)
+        v202 = flipsign(e202, u32(g202 << u32(3))) + flipsign(f202, u32(g202 << u32(2)))
         g210 = mix32(u32(x0_2 ^ x1_1 ^ x2_0))
         s210 = g210 >> u32(28)
         e210 = r0_2 if s210 < u32(8) else r1_1
-        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 == u32(12)) | (s210 == u32(14)) else r2_0)
-        v210 = (e210 if (s210 & u32(1)) == u32(0) else -e210) + (f210 if (s210 & u32(2)) == u32(0) else -f210)
+        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 & u32(13)) == u32(12) else r2_0)
+        v210 = flipsign(e210, u32(g210 << u32(3))) + flipsign(f210, u32(g210 << u32(2)))
         g211 = mix32(u32(x0_2 ^ x1_1 ^ x2_1))
         s211 = g211 >> u32(28)
         e211 = r0_2 if s211 < u32(8) else r1_1
-        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 == u32(12)) | (s211 == u32(14)) else r2_1)
-        v211 = (e211 if (s211 & u32(1)) == u32(0) else -e211) + (f211 if (s211 & u32(2)) == u32(0) else -f211)
+        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 & u32(13)) == u32(12) else r2_1)
+        v211 = flipsign(e211, u32(g211 << u32(3))) + flipsign(f211, u32(g211 << u32(2)))
         g212 = mix32(u32(x0_2 ^ x1_1 ^ x2_2))
         s212 = g212 >> u32(28)
         e212 = r0_2 if s212 < u32(8) else r1_1
-        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 == u32(12)) | (s212 == u32(14)) else r2_2)
-        v212 = (e212 if (s212 & u32(1)) == u32(0) else -e212) + (f212 if (s212 & u32(2)) == u32(0) else -f212)
+        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 & u32(13)) == u32(12) else r2_2)
+        v212 = flipsign(e212, u32(g212 << u32(3))) + flipsign(f212, u32(g212 << u32(2)))
         g220 = mix32(u32(x0_2 ^ x1_2 ^ x2_0))
         s220 = g220 >> u32(28)
         e220 = r0_2 if s220 < u32(8) else r1_2
-        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 == u32(12)) | (s220 == u32(14)) else r2_0)
-        v220 = (e220 if (s220 & u32(1)) == u32(0) else -e220) + (f220 if (s220 & u32(2)) == u32(0) else -f220)
+        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 & u32(13)) == u32(12) else r2_0)
+        v220 = flipsign(e220, u32(g220 << u32(3))) + flipsign(f220, u32(g220 << u32(2)))
         g221 = mix32(u32(x0_2 ^ x1_2 ^ x2_1))
         s221 = g221 >> u32(28)
         e221 = r0_2 if s221 < u32(8) else r1_2
-        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 == u32(12)) | (s221 == u32(14)) else r2_1)
-        v221 = (e221 if (s221 & u32(1)) == u32(0) else -e221) + (f221 if (s221 & u32(2)) == u32(0) else -f221)
+        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 & u32(13)) == u32(12) else r2_1)
+        v221 = flipsign(e221, u32(g221 << u32(3))) + flipsign(f221, u32(g221 << u32(2)))
         g222 = mix32(u32(x0_2 ^ x1_2 ^ x2_2))
         s222 = g222 >> u32(28)
         e222 = r0_2 if s222 < u32(8) else r1_2
-        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 == u32(12)) | (s222 == u32(14)) else r2_2)
-        v222 = (e222 if (s222 & u32(1)) == u32(0) else -e222) + (f222 if (s222 & u32(2)) == u32(0) else -f222)
+        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 & u32(13)) == u32(12) else r2_2)
+        v222 = flipsign(e222, u32(g222 << u32(3))) + flipsign(f222, u32(g222 << u32(2)))
         v = amp * (w0_0 * (w1_0 * (w2_0 * (v000) + w2_1 * (v001) + w2_2 * (v002)) + w1_1 * (w2_0 * (v010) + w2_1 * (v011) + w2_2 * (v012)) + w1_2 * (w2_0 * (v020) + w2_1 * (v021) + w2_2 * (v022))) + w0_1 * (w1_0 * (w2_0 * (v100) + w2_1 * (v101) + w2_2 * (v102)) + w1_1 * (w2_0 * (v110) + w2_1 * (v111) + w2_2 * (v112)) + w1_2 * (w2_0 * (v120) + w2_1 * (v121) + w2_2 * (v122))) + w0_2 * (w1_0 * (w2_0 * (v200) + w2_1 * (v201) + w2_2 * (v202)) + w1_1 * (w2_0 * (v210) + w2_1 * (v211) + w2_2 * (v212)) + w1_2 * (w2_0 * (v220) + w2_1 * (v221) + w2_2 * (v222))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -12371,138 +12840,138 @@ def _corners_d3_quadratic_gradient_f64(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
         s001 = g001 >> u32(28)
         e001 = r0_0 if s001 < u32(8) else r1_0
-        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 == u32(12)) | (s001 == u32(14)) else r2_1)
-        v001 = (e001 if (s001 & u32(1)) == u32(0) else -e001) + (f001 if (s001 & u32(2)) == u32(0) else -f001)
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
         g002 = mix32(u32(x0_0 ^ x1_0 ^ x2_2))
         s002 = g002 >> u32(28)
         e002 = r0_0 if s002 < u32(8) else r1_0
-        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 == u32(12)) | (s002 == u32(14)) else r2_2)
-        v002 = (e002 if (s002 & u32(1)) == u32(0) else -e002) + (f002 if (s002 & u32(2)) == u32(0) else -f002)
+        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 & u32(13)) == u32(12) else r2_2)
+        v002 = flipsign(e002, u32(g002 << u32(3))) + flipsign(f002, u32(g002 << u32(2)))
         g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
         s010 = g010 >> u32(28)
         e010 = r0_0 if s010 < u32(8) else r1_1
-        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 == u32(12)) | (s010 == u32(14)) else r2_0)
-        v010 = (e010 if (s010 & u32(1)) == u32(0) else -e010) + (f010 if (s010 & u32(2)) == u32(0) else -f010)
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
         g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
         s011 = g011 >> u32(28)
         e011 = r0_0 if s011 < u32(8) else r1_1
-        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 == u32(12)) | (s011 == u32(14)) else r2_1)
-        v011 = (e011 if (s011 & u32(1)) == u32(0) else -e011) + (f011 if (s011 & u32(2)) == u32(0) else -f011)
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
         g012 = mix32(u32(x0_0 ^ x1_1 ^ x2_2))
         s012 = g012 >> u32(28)
         e012 = r0_0 if s012 < u32(8) else r1_1
-        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 == u32(12)) | (s012 == u32(14)) else r2_2)
-        v012 = (e012 if (s012 & u32(1)) == u32(0) else -e012) + (f012 if (s012 & u32(2)) == u32(0) else -f012)
+        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 & u32(13)) == u32(12) else r2_2)
+        v012 = flipsign(e012, u32(g012 << u32(3))) + flipsign(f012, u32(g012 << u32(2)))
         g020 = mix32(u32(x0_0 ^ x1_2 ^ x2_0))
         s020 = g020 >> u32(28)
         e020 = r0_0 if s020 < u32(8) else r1_2
-        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 == u32(12)) | (s020 == u32(14)) else r2_0)
-        v020 = (e020 if (s020 & u32(1)) == u32(0) else -e020) + (f020 if (s020 & u32(2)) == u32(0) else -f020)
+        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 & u32(13)) == u32(12) else r2_0)
+        v020 = flipsign(e020, u32(g020 << u32(3))) + flipsign(f020, u32(g020 << u32(2)))
         g021 = mix32(u32(x0_0 ^ x1_2 ^ x2_1))
         s021 = g021 >> u32(28)
         e021 = r0_0 if s021 < u32(8) else r1_2
-        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 == u32(12)) | (s021 == u32(14)) else r2_1)
-        v021 = (e021 if (s021 & u32(1)) == u32(0) else -e021) + (f021 if (s021 & u32(2)) == u32(0) else -f021)
+        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 & u32(13)) == u32(12) else r2_1)
+        v021 = flipsign(e021, u32(g021 << u32(3))) + flipsign(f021, u32(g021 << u32(2)))
         g022 = mix32(u32(x0_0 ^ x1_2 ^ x2_2))
         s022 = g022 >> u32(28)
         e022 = r0_0 if s022 < u32(8) else r1_2
-        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 == u32(12)) | (s022 == u32(14)) else r2_2)
-        v022 = (e022 if (s022 & u32(1)) == u32(0) else -e022) + (f022 if (s022 & u32(2)) == u32(0) else -f022)
+        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 & u32(13)) == u32(12) else r2_2)
+        v022 = flipsign(e022, u32(g022 << u32(3))) + flipsign(f022, u32(g022 << u32(2)))
         g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
         s100 = g100 >> u32(28)
         e100 = r0_1 if s100 < u32(8) else r1_0
-        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 == u32(12)) | (s100 == u32(14)) else r2_0)
-        v100 = (e100 if (s100 & u32(1)) == u32(0) else -e100) + (f100 if (s100 & u32(2)) == u32(0) else -f100)
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
         g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
         s101 = g101 >> u32(28)
         e101 = r0_1 if s101 < u32(8) else r1_0
-        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 == u32(12)) | (s101 == u32(14)) else r2_1)
-        v101 = (e101 if (s101 & u32(1)) == u32(0) else -e101) + (f101 if (s101 & u32(2)) == u32(0) else -f101)
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
         g102 = mix32(u32(x0_1 ^ x1_0 ^ x2_2))
         s102 = g102 >> u32(28)
         e102 = r0_1 if s102 < u32(8) else r1_0
-        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 == u32(12)) | (s102 == u32(14)) else r2_2)
-        v102 = (e102 if (s102 & u32(1)) == u32(0) else -e102) + (f102 if (s102 & u32(2)) == u32(0) else -f102)
+        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 & u32(13)) == u32(12) else r2_2)
+        v102 = flipsign(e102, u32(g102 << u32(3))) + flipsign(f102, u32(g102 << u32(2)))
         g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
         s110 = g110 >> u32(28)
         e110 = r0_1 if s110 < u32(8) else r1_1
-        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 == u32(12)) | (s110 == u32(14)) else r2_0)
-        v110 = (e110 if (s110 & u32(1)) == u32(0) else -e110) + (f110 if (s110 & u32(2)) == u32(0) else -f110)
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
         g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
         s111 = g111 >> u32(28)
         e111 = r0_1 if s111 < u32(8) else r1_1
-        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 == u32(12)) | (s111 == u32(14)) else r2_1)
-        v111 = (e111 if (s111 & u32(1)) == u32(0) else -e111) + (f111 if (s111 & u32(2)) == u32(0) else -f111)
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
         g112 = mix32(u32(x0_1 ^ x1_1 ^ x2_2))
         s112 = g112 >> u32(28)
         e112 = r0_1 if s112 < u32(8) else r1_1
-        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 == u32(12)) | (s112 == u32(14)) else r2_2)
-        v112 = (e112 if (s112 & u32(1)) == u32(0) else -e112) + (f112 if (s112 & u32(2)) == u32(0) else -f112)
+        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 & u32(13)) == u32(12) else r2_2)
+        v112 = flipsign(e112, u32(g112 << u32(3))) + flipsign(f112, u32(g112 << u32(2)))
         g120 = mix32(u32(x0_1 ^ x1_2 ^ x2_0))
         s120 = g120 >> u32(28)
         e120 = r0_1 if s120 < u32(8) else r1_2
-        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 == u32(12)) | (s120 == u32(14)) else r2_0)
-        v120 = (e120 if (s120 & u32(1)) == u32(0) else -e120) + (f120 if (s120 & u32(2)) == u32(0) else -f120)
+        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 & u32(13)) == u32(12) else r2_0)
+        v120 = flipsign(e120, u32(g120 << u32(3))) + flipsign(f120, u32(g120 << u32(2)))
         g121 = mix32(u32(x0_1 ^ x1_2 ^ x2_1))
         s121 = g121 >> u32(28)
         e121 = r0_1 if s121 < u32(8) else r1_2
-        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 == u32(12)) | (s121 == u32(14)) else r2_1)
-        v121 = (e121 if (s121 & u32(1)) == u32(0) else -e121) + (f121 if (s121 & u32(2)) == u32(0) else -f121)
+        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 & u32(13)) == u32(12) else r2_1)
+        v121 = flipsign(e121, u32(g121 << u32(3))) + flipsign(f121, u32(g121 << u32(2)))
         g122 = mix32(u32(x0_1 ^ x1_2 ^ x2_2))
         s122 = g122 >> u32(28)
         e122 = r0_1 if s122 < u32(8) else r1_2
-        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 == u32(12)) | (s122 == u32(14)) else r2_2)
-        v122 = (e122 if (s122 & u32(1)) == u32(0) else -e122) + (f122 if (s122 & u32(2)) == u32(0) else -f122)
+        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 & u32(13)) == u32(12) else r2_2)
+        v122 = flipsign(e122, u32(g122 << u32(3))) + flipsign(f122, u32(g122 << u32(2)))
         g200 = mix32(u32(x0_2 ^ x1_0 ^ x2_0))
         s200 = g200 >> u32(28)
         e200 = r0_2 if s200 < u32(8) else r1_0
-        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 == u32(12)) | (s200 == u32(14)) else r2_0)
-        v200 = (e200 if (s200 & u32(1)) == u32(0) else -e200) + (f200 if (s200 & u32(2)) == u32(0) else -f200)
+        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 & u32(13)) == u32(12) else r2_0)
+        v200 = flipsign(e200, u32(g200 << u32(3))) + flipsign(f200, u32(g200 << u32(2)))
         g201 = mix32(u32(x0_2 ^ x1_0 ^ x2_1))
         s201 = g201 >> u32(28)
         e201 = r0_2 if s201 < u32(8) else r1_0
-        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 == u32(12)) | (s201 == u32(14)) else r2_1)
-        v201 = (e201 if (s201 & u32(1)) == u32(0) else -e201) + (f201 if (s201 & u32(2)) == u32(0) else -f201)
+        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 & u32(13)) == u32(12) else r2_1)
+        v201 = flipsign(e201, u32(g201 << u32(3))) + flipsign(f201, u32(g201 << u32(2)))
         g202 = mix32(u32(x0_2 ^ x1_0 ^ x2_2))
         s202 = g202 >> u32(28)
         e202 = r0_2 if s202 < u32(8) else r1_0
-        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 == u32(12)) | (s202 == u32(14)) else r2_2)
-        v202 = (e202 if (s202 & u32(1)) == u32(0) else -e202) + (f202 if (s202 & u32(2)) == u32(0) else -f202)
+        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 & u32(13)) == u32(12) else r2_2)
+        v202 = flipsign(e202, u32(g202 << u32(3))) + flipsign(f202, u32(g202 << u32(2)))
         g210 = mix32(u32(x0_2 ^ x1_1 ^ x2_0))
         s210 = g210 >> u32(28)
         e210 = r0_2 if s210 < u32(8) else r1_1
-        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 == u32(12)) | (s210 == u32(14)) else r2_0)
-        v210 = (e210 if (s210 & u32(1)) == u32(0) else -e210) + (f210 if (s210 & u32(2)) == u32(0) else -f210)
+        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 & u32(13)) == u32(12) else r2_0)
+        v210 = flipsign(e210, u32(g210 << u32(3))) + flipsign(f210, u32(g210 << u32(2)))
         g211 = mix32(u32(x0_2 ^ x1_1 ^ x2_1))
         s211 = g211 >> u32(28)
         e211 = r0_2 if s211 < u32(8) else r1_1
-        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 == u32(12)) | (s211 == u32(14)) else r2_1)
-        v211 = (e211 if (s211 & u32(1)) == u32(0) else -e211) + (f211 if (s211 & u32(2)) == u32(0) else -f211)
+        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 & u32(13)) == u32(12) else r2_1)
+        v211 = flipsign(e211, u32(g211 << u32(3))) + flipsign(f211, u32(g211 << u32(2)))
         g212 = mix32(u32(x0_2 ^ x1_1 ^ x2_2))
         s212 = g212 >> u32(28)
         e212 = r0_2 if s212 < u32(8) else r1_1
-        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 == u32(12)) | (s212 == u32(14)) else r2_2)
-        v212 = (e212 if (s212 & u32(1)) == u32(0) else -e212) + (f212 if (s212 & u32(2)) == u32(0) else -f212)
+        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 & u32(13)) == u32(12) else r2_2)
+        v212 = flipsign(e212, u32(g212 << u32(3))) + flipsign(f212, u32(g212 << u32(2)))
         g220 = mix32(u32(x0_2 ^ x1_2 ^ x2_0))
         s220 = g220 >> u32(28)
         e220 = r0_2 if s220 < u32(8) else r1_2
-        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 == u32(12)) | (s220 == u32(14)) else r2_0)
-        v220 = (e220 if (s220 & u32(1)) == u32(0) else -e220) + (f220 if (s220 & u32(2)) == u32(0) else -f220)
+        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 & u32(13)) == u32(12) else r2_0)
+        v220 = flipsign(e220, u32(g220 << u32(3))) + flipsign(f220, u32(g220 << u32(2)))
         g221 = mix32(u32(x0_2 ^ x1_2 ^ x2_1))
         s221 = g221 >> u32(28)
         e221 = r0_2 if s221 < u32(8) else r1_2
-        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 == u32(12)) | (s221 == u32(14)) else r2_1)
-        v221 = (e221 if (s221 & u32(1)) == u32(0) else -e221) + (f221 if (s221 & u32(2)) == u32(0) else -f221)
+        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 & u32(13)) == u32(12) else r2_1)
+        v221 = flipsign(e221, u32(g221 << u32(3))) + flipsign(f221, u32(g221 << u32(2)))
         g222 = mix32(u32(x0_2 ^ x1_2 ^ x2_2))
         s222 = g222 >> u32(28)
         e222 = r0_2 if s222 < u32(8) else r1_2
-        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 == u32(12)) | (s222 == u32(14)) else r2_2)
-        v222 = (e222 if (s222 & u32(1)) == u32(0) else -e222) + (f222 if (s222 & u32(2)) == u32(0) else -f222)
+        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 & u32(13)) == u32(12) else r2_2)
+        v222 = flipsign(e222, u32(g222 << u32(3))) + flipsign(f222, u32(g222 << u32(2)))
         v = amp * (w0_0 * (w1_0 * (w2_0 * (v000) + w2_1 * (v001) + w2_2 * (v002)) + w1_1 * (w2_0 * (v010) + w2_1 * (v011) + w2_2 * (v012)) + w1_2 * (w2_0 * (v020) + w2_1 * (v021) + w2_2 * (v022))) + w0_1 * (w1_0 * (w2_0 * (v100) + w2_1 * (v101) + w2_2 * (v102)) + w1_1 * (w2_0 * (v110) + w2_1 * (v111) + w2_2 * (v112)) + w1_2 * (w2_0 * (v120) + w2_1 * (v121) + w2_2 * (v122))) + w0_2 * (w1_0 * (w2_0 * (v200) + w2_1 * (v201) + w2_2 * (v202)) + w1_1 * (w2_0 * (v210) + w2_1 * (v211) + w2_2 * (v212)) + w1_2 * (w2_0 * (v220) + w2_1 * (v221) + w2_2 * (v222))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -13549,323 +14018,323 @@ def _corners_d3_cubic_gradient_f32(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
         s001 = g001 >> u32(28)
         e001 = r0_0 if s001 < u32(8) else r1_0
-        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 == u32(12)) | (s001 == u32(14)) else r2_1)
-        v001 = (e001 if (s001 & u32(1)) == u32(0) else -e001) + (f001 if (s001 & u32(2)) == u32(0) else -f001)
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
         g002 = mix32(u32(x0_0 ^ x1_0 ^ x2_2))
         s002 = g002 >> u32(28)
         e002 = r0_0 if s002 < u32(8) else r1_0
-        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 == u32(12)) | (s002 == u32(14)) else r2_2)
-        v002 = (e002 if (s002 & u32(1)) == u32(0) else -e002) + (f002 if (s002 & u32(2)) == u32(0) else -f002)
+        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 & u32(13)) == u32(12) else r2_2)
+        v002 = flipsign(e002, u32(g002 << u32(3))) + flipsign(f002, u32(g002 << u32(2)))
         g003 = mix32(u32(x0_0 ^ x1_0 ^ x2_3))
         s003 = g003 >> u32(28)
         e003 = r0_0 if s003 < u32(8) else r1_0
-        f003 = r1_0 if s003 < u32(4) else (r0_0 if (s003 == u32(12)) | (s003 == u32(14)) else r2_3)
-        v003 = (e003 if (s003 & u32(1)) == u32(0) else -e003) + (f003 if (s003 & u32(2)) == u32(0) else -f003)
+        f003 = r1_0 if s003 < u32(4) else (r0_0 if (s003 & u32(13)) == u32(12) else r2_3)
+        v003 = flipsign(e003, u32(g003 << u32(3))) + flipsign(f003, u32(g003 << u32(2)))
         g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
         s010 = g010 >> u32(28)
         e010 = r0_0 if s010 < u32(8) else r1_1
-        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 == u32(12)) | (s010 == u32(14)) else r2_0)
-        v010 = (e010 if (s010 & u32(1)) == u32(0) else -e010) + (f010 if (s010 & u32(2)) == u32(0) else -f010)
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
         g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
         s011 = g011 >> u32(28)
         e011 = r0_0 if s011 < u32(8) else r1_1
-        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 == u32(12)) | (s011 == u32(14)) else r2_1)
-        v011 = (e011 if (s011 & u32(1)) == u32(0) else -e011) + (f011 if (s011 & u32(2)) == u32(0) else -f011)
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
         g012 = mix32(u32(x0_0 ^ x1_1 ^ x2_2))
         s012 = g012 >> u32(28)
         e012 = r0_0 if s012 < u32(8) else r1_1
-        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 == u32(12)) | (s012 == u32(14)) else r2_2)
-        v012 = (e012 if (s012 & u32(1)) == u32(0) else -e012) + (f012 if (s012 & u32(2)) == u32(0) else -f012)
+        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 & u32(13)) == u32(12) else r2_2)
+        v012 = flipsign(e012, u32(g012 << u32(3))) + flipsign(f012, u32(g012 << u32(2)))
         g013 = mix32(u32(x0_0 ^ x1_1 ^ x2_3))
         s013 = g013 >> u32(28)
         e013 = r0_0 if s013 < u32(8) else r1_1
-        f013 = r1_1 if s013 < u32(4) else (r0_0 if (s013 == u32(12)) | (s013 == u32(14)) else r2_3)
-        v013 = (e013 if (s013 & u32(1)) == u32(0) else -e013) + (f013 if (s013 & u32(2)) == u32(0) else -f013)
+        f013 = r1_1 if s013 < u32(4) else (r0_0 if (s013 & u32(13)) == u32(12) else r2_3)
+        v013 = flipsign(e013, u32(g013 << u32(3))) + flipsign(f013, u32(g013 << u32(2)))
         g020 = mix32(u32(x0_0 ^ x1_2 ^ x2_0))
         s020 = g020 >> u32(28)
         e020 = r0_0 if s020 < u32(8) else r1_2
-        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 == u32(12)) | (s020 == u32(14)) else r2_0)
-        v020 = (e020 if (s020 & u32(1)) == u32(0) else -e020) + (f020 if (s020 & u32(2)) == u32(0) else -f020)
+        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 & u32(13)) == u32(12) else r2_0)
+        v020 = flipsign(e020, u32(g020 << u32(3))) + flipsign(f020, u32(g020 << u32(2)))
         g021 = mix32(u32(x0_0 ^ x1_2 ^ x2_1))
         s021 = g021 >> u32(28)
         e021 = r0_0 if s021 < u32(8) else r1_2
-        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 == u32(12)) | (s021 == u32(14)) else r2_1)
-        v021 = (e021 if (s021 & u32(1)) == u32(0) else -e021) + (f021 if (s021 & u32(2)) == u32(0) else -f021)
+        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 & u32(13)) == u32(12) else r2_1)
+        v021 = flipsign(e021, u32(g021 << u32(3))) + flipsign(f021, u32(g021 << u32(2)))
         g022 = mix32(u32(x0_0 ^ x1_2 ^ x2_2))
         s022 = g022 >> u32(28)
         e022 = r0_0 if s022 < u32(8) else r1_2
-        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 == u32(12)) | (s022 == u32(14)) else r2_2)
-        v022 = (e022 if (s022 & u32(1)) == u32(0) else -e022) + (f022 if (s022 & u32(2)) == u32(0) else -f022)
+        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 & u32(13)) == u32(12) else r2_2)
+        v022 = flipsign(e022, u32(g022 << u32(3))) + flipsign(f022, u32(g022 << u32(2)))
         g023 = mix32(u32(x0_0 ^ x1_2 ^ x2_3))
         s023 = g023 >> u32(28)
         e023 = r0_0 if s023 < u32(8) else r1_2
-        f023 = r1_2 if s023 < u32(4) else (r0_0 if (s023 == u32(12)) | (s023 == u32(14)) else r2_3)
-        v023 = (e023 if (s023 & u32(1)) == u32(0) else -e023) + (f023 if (s023 & u32(2)) == u32(0) else -f023)
+        f023 = r1_2 if s023 < u32(4) else (r0_0 if (s023 & u32(13)) == u32(12) else r2_3)
+        v023 = flipsign(e023, u32(g023 << u32(3))) + flipsign(f023, u32(g023 << u32(2)))
         g030 = mix32(u32(x0_0 ^ x1_3 ^ x2_0))
         s030 = g030 >> u32(28)
         e030 = r0_0 if s030 < u32(8) else r1_3
-        f030 = r1_3 if s030 < u32(4) else (r0_0 if (s030 == u32(12)) | (s030 == u32(14)) else r2_0)
-        v030 = (e030 if (s030 & u32(1)) == u32(0) else -e030) + (f030 if (s030 & u32(2)) == u32(0) else -f030)
+        f030 = r1_3 if s030 < u32(4) else (r0_0 if (s030 & u32(13)) == u32(12) else r2_0)
+        v030 = flipsign(e030, u32(g030 << u32(3))) + flipsign(f030, u32(g030 << u32(2)))
         g031 = mix32(u32(x0_0 ^ x1_3 ^ x2_1))
         s031 = g031 >> u32(28)
         e031 = r0_0 if s031 < u32(8) else r1_3
-        f031 = r1_3 if s031 < u32(4) else (r0_0 if (s031 == u32(12)) | (s031 == u32(14)) else r2_1)
-        v031 = (e031 if (s031 & u32(1)) == u32(0) else -e031) + (f031 if (s031 & u32(2)) == u32(0) else -f031)
+        f031 = r1_3 if s031 < u32(4) else (r0_0 if (s031 & u32(13)) == u32(12) else r2_1)
+        v031 = flipsign(e031, u32(g031 << u32(3))) + flipsign(f031, u32(g031 << u32(2)))
         g032 = mix32(u32(x0_0 ^ x1_3 ^ x2_2))
         s032 = g032 >> u32(28)
         e032 = r0_0 if s032 < u32(8) else r1_3
-        f032 = r1_3 if s032 < u32(4) else (r0_0 if (s032 == u32(12)) | (s032 == u32(14)) else r2_2)
-        v032 = (e032 if (s032 & u32(1)) == u32(0) else -e032) + (f032 if (s032 & u32(2)) == u32(0) else -f032)
+        f032 = r1_3 if s032 < u32(4) else (r0_0 if (s032 & u32(13)) == u32(12) else r2_2)
+        v032 = flipsign(e032, u32(g032 << u32(3))) + flipsign(f032, u32(g032 << u32(2)))
         g033 = mix32(u32(x0_0 ^ x1_3 ^ x2_3))
         s033 = g033 >> u32(28)
         e033 = r0_0 if s033 < u32(8) else r1_3
-        f033 = r1_3 if s033 < u32(4) else (r0_0 if (s033 == u32(12)) | (s033 == u32(14)) else r2_3)
-        v033 = (e033 if (s033 & u32(1)) == u32(0) else -e033) + (f033 if (s033 & u32(2)) == u32(0) else -f033)
+        f033 = r1_3 if s033 < u32(4) else (r0_0 if (s033 & u32(13)) == u32(12) else r2_3)
+        v033 = flipsign(e033, u32(g033 << u32(3))) + flipsign(f033, u32(g033 << u32(2)))
         g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
         s100 = g100 >> u32(28)
         e100 = r0_1 if s100 < u32(8) else r1_0
-        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 == u32(12)) | (s100 == u32(14)) else r2_0)
-        v100 = (e100 if (s100 & u32(1)) == u32(0) else -e100) + (f100 if (s100 & u32(2)) == u32(0) else -f100)
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
         g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
         s101 = g101 >> u32(28)
         e101 = r0_1 if s101 < u32(8) else r1_0
-        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 == u32(12)) | (s101 == u32(14)) else r2_1)
-        v101 = (e101 if (s101 & u32(1)) == u32(0) else -e101) + (f101 if (s101 & u32(2)) == u32(0) else -f101)
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
         g102 = mix32(u32(x0_1 ^ x1_0 ^ x2_2))
         s102 = g102 >> u32(28)
         e102 = r0_1 if s102 < u32(8) else r1_0
-        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 == u32(12)) | (s102 == u32(14)) else r2_2)
-        v102 = (e102 if (s102 & u32(1)) == u32(0) else -e102) + (f102 if (s102 & u32(2)) == u32(0) else -f102)
+        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 & u32(13)) == u32(12) else r2_2)
+        v102 = flipsign(e102, u32(g102 << u32(3))) + flipsign(f102, u32(g102 << u32(2)))
         g103 = mix32(u32(x0_1 ^ x1_0 ^ x2_3))
         s103 = g103 >> u32(28)
         e103 = r0_1 if s103 < u32(8) else r1_0
-        f103 = r1_0 if s103 < u32(4) else (r0_1 if (s103 == u32(12)) | (s103 == u32(14)) else r2_3)
-        v103 = (e103 if (s103 & u32(1)) == u32(0) else -e103) + (f103 if (s103 & u32(2)) == u32(0) else -f103)
+        f103 = r1_0 if s103 < u32(4) else (r0_1 if (s103 & u32(13)) == u32(12) else r2_3)
+        v103 = flipsign(e103, u32(g103 << u32(3))) + flipsign(f103, u32(g103 << u32(2)))
         g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
         s110 = g110 >> u32(28)
         e110 = r0_1 if s110 < u32(8) else r1_1
-        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 == u32(12)) | (s110 == u32(14)) else r2_0)
-        v110 = (e110 if (s110 & u32(1)) == u32(0) else -e110) + (f110 if (s110 & u32(2)) == u32(0) else -f110)
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
         g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
         s111 = g111 >> u32(28)
         e111 = r0_1 if s111 < u32(8) else r1_1
-        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 == u32(12)) | (s111 == u32(14)) else r2_1)
-        v111 = (e111 if (s111 & u32(1)) == u32(0) else -e111) + (f111 if (s111 & u32(2)) == u32(0) else -f111)
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
         g112 = mix32(u32(x0_1 ^ x1_1 ^ x2_2))
         s112 = g112 >> u32(28)
         e112 = r0_1 if s112 < u32(8) else r1_1
-        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 == u32(12)) | (s112 == u32(14)) else r2_2)
-        v112 = (e112 if (s112 & u32(1)) == u32(0) else -e112) + (f112 if (s112 & u32(2)) == u32(0) else -f112)
+        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 & u32(13)) == u32(12) else r2_2)
+        v112 = flipsign(e112, u32(g112 << u32(3))) + flipsign(f112, u32(g112 << u32(2)))
         g113 = mix32(u32(x0_1 ^ x1_1 ^ x2_3))
         s113 = g113 >> u32(28)
         e113 = r0_1 if s113 < u32(8) else r1_1
-        f113 = r1_1 if s113 < u32(4) else (r0_1 if (s113 == u32(12)) | (s113 == u32(14)) else r2_3)
-        v113 = (e113 if (s113 & u32(1)) == u32(0) else -e113) + (f113 if (s113 & u32(2)) == u32(0) else -f113)
+        f113 = r1_1 if s113 < u32(4) else (r0_1 if (s113 & u32(13)) == u32(12) else r2_3)
+        v113 = flipsign(e113, u32(g113 << u32(3))) + flipsign(f113, u32(g113 << u32(2)))
         g120 = mix32(u32(x0_1 ^ x1_2 ^ x2_0))
         s120 = g120 >> u32(28)
         e120 = r0_1 if s120 < u32(8) else r1_2
-        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 == u32(12)) | (s120 == u32(14)) else r2_0)
-        v120 = (e120 if (s120 & u32(1)) == u32(0) else -e120) + (f120 if (s120 & u32(2)) == u32(0) else -f120)
+        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 & u32(13)) == u32(12) else r2_0)
+        v120 = flipsign(e120, u32(g120 << u32(3))) + flipsign(f120, u32(g120 << u32(2)))
         g121 = mix32(u32(x0_1 ^ x1_2 ^ x2_1))
         s121 = g121 >> u32(28)
         e121 = r0_1 if s121 < u32(8) else r1_2
-        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 == u32(12)) | (s121 == u32(14)) else r2_1)
-        v121 = (e121 if (s121 & u32(1)) == u32(0) else -e121) + (f121 if (s121 & u32(2)) == u32(0) else -f121)
+        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 & u32(13)) == u32(12) else r2_1)
+        v121 = flipsign(e121, u32(g121 << u32(3))) + flipsign(f121, u32(g121 << u32(2)))
         g122 = mix32(u32(x0_1 ^ x1_2 ^ x2_2))
         s122 = g122 >> u32(28)
         e122 = r0_1 if s122 < u32(8) else r1_2
-        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 == u32(12)) | (s122 == u32(14)) else r2_2)
-        v122 = (e122 if (s122 & u32(1)) == u32(0) else -e122) + (f122 if (s122 & u32(2)) == u32(0) else -f122)
+        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 & u32(13)) == u32(12) else r2_2)
+        v122 = flipsign(e122, u32(g122 << u32(3))) + flipsign(f122, u32(g122 << u32(2)))
         g123 = mix32(u32(x0_1 ^ x1_2 ^ x2_3))
         s123 = g123 >> u32(28)
         e123 = r0_1 if s123 < u32(8) else r1_2
-        f123 = r1_2 if s123 < u32(4) else (r0_1 if (s123 == u32(12)) | (s123 == u32(14)) else r2_3)
-        v123 = (e123 if (s123 & u32(1)) == u32(0) else -e123) + (f123 if (s123 & u32(2)) == u32(0) else -f123)
+        f123 = r1_2 if s123 < u32(4) else (r0_1 if (s123 & u32(13)) == u32(12) else r2_3)
+        v123 = flipsign(e123, u32(g123 << u32(3))) + flipsign(f123, u32(g123 << u32(2)))
         g130 = mix32(u32(x0_1 ^ x1_3 ^ x2_0))
         s130 = g130 >> u32(28)
         e130 = r0_1 if s130 < u32(8) else r1_3
-        f130 = r1_3 if s130 < u32(4) else (r0_1 if (s130 == u32(12)) | (s130 == u32(14)) else r2_0)
-        v130 = (e130 if (s130 & u32(1)) == u32(0) else -e130) + (f130 if (s130 & u32(2)) == u32(0) else -f130)
+        f130 = r1_3 if s130 < u32(4) else (r0_1 if (s130 & u32(13)) == u32(12) else r2_0)
+        v130 = flipsign(e130, u32(g130 << u32(3))) + flipsign(f130, u32(g130 << u32(2)))
         g131 = mix32(u32(x0_1 ^ x1_3 ^ x2_1))
         s131 = g131 >> u32(28)
         e131 = r0_1 if s131 < u32(8) else r1_3
-        f131 = r1_3 if s131 < u32(4) else (r0_1 if (s131 == u32(12)) | (s131 == u32(14)) else r2_1)
-        v131 = (e131 if (s131 & u32(1)) == u32(0) else -e131) + (f131 if (s131 & u32(2)) == u32(0) else -f131)
+        f131 = r1_3 if s131 < u32(4) else (r0_1 if (s131 & u32(13)) == u32(12) else r2_1)
+        v131 = flipsign(e131, u32(g131 << u32(3))) + flipsign(f131, u32(g131 << u32(2)))
         g132 = mix32(u32(x0_1 ^ x1_3 ^ x2_2))
         s132 = g132 >> u32(28)
         e132 = r0_1 if s132 < u32(8) else r1_3
-        f132 = r1_3 if s132 < u32(4) else (r0_1 if (s132 == u32(12)) | (s132 == u32(14)) else r2_2)
-        v132 = (e132 if (s132 & u32(1)) == u32(0) else -e132) + (f132 if (s132 & u32(2)) == u32(0) else -f132)
+        f132 = r1_3 if s132 < u32(4) else (r0_1 if (s132 & u32(13)) == u32(12) else r2_2)
+        v132 = flipsign(e132, u32(g132 << u32(3))) + flipsign(f132, u32(g132 << u32(2)))
         g133 = mix32(u32(x0_1 ^ x1_3 ^ x2_3))
         s133 = g133 >> u32(28)
         e133 = r0_1 if s133 < u32(8) else r1_3
-        f133 = r1_3 if s133 < u32(4) else (r0_1 if (s133 == u32(12)) | (s133 == u32(14)) else r2_3)
-        v133 = (e133 if (s133 & u32(1)) == u32(0) else -e133) + (f133 if (s133 & u32(2)) == u32(0) else -f133)
+        f133 = r1_3 if s133 < u32(4) else (r0_1 if (s133 & u32(13)) == u32(12) else r2_3)
+        v133 = flipsign(e133, u32(g133 << u32(3))) + flipsign(f133, u32(g133 << u32(2)))
         g200 = mix32(u32(x0_2 ^ x1_0 ^ x2_0))
         s200 = g200 >> u32(28)
         e200 = r0_2 if s200 < u32(8) else r1_0
-        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 == u32(12)) | (s200 == u32(14)) else r2_0)
-        v200 = (e200 if (s200 & u32(1)) == u32(0) else -e200) + (f200 if (s200 & u32(2)) == u32(0) else -f200)
+        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 & u32(13)) == u32(12) else r2_0)
+        v200 = flipsign(e200, u32(g200 << u32(3))) + flipsign(f200, u32(g200 << u32(2)))
         g201 = mix32(u32(x0_2 ^ x1_0 ^ x2_1))
         s201 = g201 >> u32(28)
         e201 = r0_2 if s201 < u32(8) else r1_0
-        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 == u32(12)) | (s201 == u32(14)) else r2_1)
-        v201 = (e201 if (s201 & u32(1)) == u32(0) else -e201) + (f201 if (s201 & u32(2)) == u32(0) else -f201)
+        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 & u32(13)) == u32(12) else r2_1)
+        v201 = flipsign(e201, u32(g201 << u32(3))) + flipsign(f201, u32(g201 << u32(2)))
         g202 = mix32(u32(x0_2 ^ x1_0 ^ x2_2))
         s202 = g202 >> u32(28)
         e202 = r0_2 if s202 < u32(8) else r1_0
-        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 == u32(12)) | (s202 == u32(14)) else r2_2)
-        v202 = (e202 if (s202 & u32(1)) == u32(0) else -e202) + (f202 if (s202 & u32(2)) == u32(0) else -f202)
+        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 & u32(13)) == u32(12) else r2_2)
+        v202 = flipsign(e202, u32(g202 << u32(3))) + flipsign(f202, u32(g202 << u32(2)))
         g203 = mix32(u32(x0_2 ^ x1_0 ^ x2_3))
         s203 = g203 >> u32(28)
         e203 = r0_2 if s203 < u32(8) else r1_0
-        f203 = r1_0 if s203 < u32(4) else (r0_2 if (s203 == u32(12)) | (s203 == u32(14)) else r2_3)
-        v203 = (e203 if (s203 & u32(1)) == u32(0) else -e203) + (f203 if (s203 & u32(2)) == u32(0) else -f203)
+        f203 = r1_0 if s203 < u32(4) else (r0_2 if (s203 & u32(13)) == u32(12) else r2_3)
+        v203 = flipsign(e203, u32(g203 << u32(3))) + flipsign(f203, u32(g203 << u32(2)))
         g210 = mix32(u32(x0_2 ^ x1_1 ^ x2_0))
         s210 = g210 >> u32(28)
         e210 = r0_2 if s210 < u32(8) else r1_1
-        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 == u32(12)) | (s210 == u32(14)) else r2_0)
-        v210 = (e210 if (s210 & u32(1)) == u32(0) else -e210) + (f210 if (s210 & u32(2)) == u32(0) else -f210)
+        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 & u32(13)) == u32(12) else r2_0)
+        v210 = flipsign(e210, u32(g210 << u32(3))) + flipsign(f210, u32(g210 << u32(2)))
         g211 = mix32(u32(x0_2 ^ x1_1 ^ x2_1))
         s211 = g211 >> u32(28)
         e211 = r0_2 if s211 < u32(8) else r1_1
-        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 == u32(12)) | (s211 == u32(14)) else r2_1)
-        v211 = (e211 if (s211 & u32(1)) == u32(0) else -e211) + (f211 if (s211 & u32(2)) == u32(0) else -f211)
+        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 & u32(13)) == u32(12) else r2_1)
+        v211 = flipsign(e211, u32(g211 << u32(3))) + flipsign(f211, u32(g211 << u32(2)))
         g212 = mix32(u32(x0_2 ^ x1_1 ^ x2_2))
         s212 = g212 >> u32(28)
         e212 = r0_2 if s212 < u32(8) else r1_1
-        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 == u32(12)) | (s212 == u32(14)) else r2_2)
-        v212 = (e212 if (s212 & u32(1)) == u32(0) else -e212) + (f212 if (s212 & u32(2)) == u32(0) else -f212)
+        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 & u32(13)) == u32(12) else r2_2)
+        v212 = flipsign(e212, u32(g212 << u32(3))) + flipsign(f212, u32(g212 << u32(2)))
         g213 = mix32(u32(x0_2 ^ x1_1 ^ x2_3))
         s213 = g213 >> u32(28)
         e213 = r0_2 if s213 < u32(8) else r1_1
-        f213 = r1_1 if s213 < u32(4) else (r0_2 if (s213 == u32(12)) | (s213 == u32(14)) else r2_3)
-        v213 = (e213 if (s213 & u32(1)) == u32(0) else -e213) + (f213 if (s213 & u32(2)) == u32(0) else -f213)
+        f213 = r1_1 if s213 < u32(4) else (r0_2 if (s213 & u32(13)) == u32(12) else r2_3)
+        v213 = flipsign(e213, u32(g213 << u32(3))) + flipsign(f213, u32(g213 << u32(2)))
         g220 = mix32(u32(x0_2 ^ x1_2 ^ x2_0))
         s220 = g220 >> u32(28)
         e220 = r0_2 if s220 < u32(8) else r1_2
-        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 == u32(12)) | (s220 == u32(14)) else r2_0)
-        v220 = (e220 if (s220 & u32(1)) == u32(0) else -e220) + (f220 if (s220 & u32(2)) == u32(0) else -f220)
+        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 & u32(13)) == u32(12) else r2_0)
+        v220 = flipsign(e220, u32(g220 << u32(3))) + flipsign(f220, u32(g220 << u32(2)))
         g221 = mix32(u32(x0_2 ^ x1_2 ^ x2_1))
         s221 = g221 >> u32(28)
         e221 = r0_2 if s221 < u32(8) else r1_2
-        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 == u32(12)) | (s221 == u32(14)) else r2_1)
-        v221 = (e221 if (s221 & u32(1)) == u32(0) else -e221) + (f221 if (s221 & u32(2)) == u32(0) else -f221)
+        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 & u32(13)) == u32(12) else r2_1)
+        v221 = flipsign(e221, u32(g221 << u32(3))) + flipsign(f221, u32(g221 << u32(2)))
         g222 = mix32(u32(x0_2 ^ x1_2 ^ x2_2))
         s222 = g222 >> u32(28)
         e222 = r0_2 if s222 < u32(8) else r1_2
-        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 == u32(12)) | (s222 == u32(14)) else r2_2)
-        v222 = (e222 if (s222 & u32(1)) == u32(0) else -e222) + (f222 if (s222 & u32(2)) == u32(0) else -f222)
+        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 & u32(13)) == u32(12) else r2_2)
+        v222 = flipsign(e222, u32(g222 << u32(3))) + flipsign(f222, u32(g222 << u32(2)))
         g223 = mix32(u32(x0_2 ^ x1_2 ^ x2_3))
         s223 = g223 >> u32(28)
         e223 = r0_2 if s223 < u32(8) else r1_2
-        f223 = r1_2 if s223 < u32(4) else (r0_2 if (s223 == u32(12)) | (s223 == u32(14)) else r2_3)
-        v223 = (e223 if (s223 & u32(1)) == u32(0) else -e223) + (f223 if (s223 & u32(2)) == u32(0) else -f223)
+        f223 = r1_2 if s223 < u32(4) else (r0_2 if (s223 & u32(13)) == u32(12) else r2_3)
+        v223 = flipsign(e223, u32(g223 << u32(3))) + flipsign(f223, u32(g223 << u32(2)))
         g230 = mix32(u32(x0_2 ^ x1_3 ^ x2_0))
         s230 = g230 >> u32(28)
         e230 = r0_2 if s230 < u32(8) else r1_3
-        f230 = r1_3 if s230 < u32(4) else (r0_2 if (s230 == u32(12)) | (s230 == u32(14)) else r2_0)
-        v230 = (e230 if (s230 & u32(1)) == u32(0) else -e230) + (f230 if (s230 & u32(2)) == u32(0) else -f230)
+        f230 = r1_3 if s230 < u32(4) else (r0_2 if (s230 & u32(13)) == u32(12) else r2_0)
+        v230 = flipsign(e230, u32(g230 << u32(3))) + flipsign(f230, u32(g230 << u32(2)))
         g231 = mix32(u32(x0_2 ^ x1_3 ^ x2_1))
         s231 = g231 >> u32(28)
         e231 = r0_2 if s231 < u32(8) else r1_3
-        f231 = r1_3 if s231 < u32(4) else (r0_2 if (s231 == u32(12)) | (s231 == u32(14)) else r2_1)
-        v231 = (e231 if (s231 & u32(1)) == u32(0) else -e231) + (f231 if (s231 & u32(2)) == u32(0) else -f231)
+        f231 = r1_3 if s231 < u32(4) else (r0_2 if (s231 & u32(13)) == u32(12) else r2_1)
+        v231 = flipsign(e231, u32(g231 << u32(3))) + flipsign(f231, u32(g231 << u32(2)))
         g232 = mix32(u32(x0_2 ^ x1_3 ^ x2_2))
         s232 = g232 >> u32(28)
         e232 = r0_2 if s232 < u32(8) else r1_3
-        f232 = r1_3 if s232 < u32(4) else (r0_2 if (s232 == u32(12)) | (s232 == u32(14)) else r2_2)
-        v232 = (e232 if (s232 & u32(1)) == u32(0) else -e232) + (f232 if (s232 & u32(2)) == u32(0) else -f232)
+        f232 = r1_3 if s232 < u32(4) else (r0_2 if (s232 & u32(13)) == u32(12) else r2_2)
+        v232 = flipsign(e232, u32(g232 << u32(3))) + flipsign(f232, u32(g232 << u32(2)))
         g233 = mix32(u32(x0_2 ^ x1_3 ^ x2_3))
         s233 = g233 >> u32(28)
         e233 = r0_2 if s233 < u32(8) else r1_3
-        f233 = r1_3 if s233 < u32(4) else (r0_2 if (s233 == u32(12)) | (s233 == u32(14)) else r2_3)
-        v233 = (e233 if (s233 & u32(1)) == u32(0) else -e233) + (f233 if (s233 & u32(2)) == u32(0) else -f233)
+        f233 = r1_3 if s233 < u32(4) else (r0_2 if (s233 & u32(13)) == u32(12) else r2_3)
+        v233 = flipsign(e233, u32(g233 << u32(3))) + flipsign(f233, u32(g233 << u32(2)))
         g300 = mix32(u32(x0_3 ^ x1_0 ^ x2_0))
         s300 = g300 >> u32(28)
         e300 = r0_3 if s300 < u32(8) else r1_0
-        f300 = r1_0 if s300 < u32(4) else (r0_3 if (s300 == u32(12)) | (s300 == u32(14)) else r2_0)
-        v300 = (e300 if (s300 & u32(1)) == u32(0) else -e300) + (f300 if (s300 & u32(2)) == u32(0) else -f300)
+        f300 = r1_0 if s300 < u32(4) else (r0_3 if (s300 & u32(13)) == u32(12) else r2_0)
+        v300 = flipsign(e300, u32(g300 << u32(3))) + flipsign(f300, u32(g300 << u32(2)))
         g301 = mix32(u32(x0_3 ^ x1_0 ^ x2_1))
         s301 = g301 >> u32(28)
         e301 = r0_3 if s301 < u32(8) else r1_0
-        f301 = r1_0 if s301 < u32(4) else (r0_3 if (s301 == u32(12)) | (s301 == u32(14)) else r2_1)
-        v301 = (e301 if (s301 & u32(1)) == u32(0) else -e301) + (f301 if (s301 & u32(2)) == u32(0) else -f301)
+        f301 = r1_0 if s301 < u32(4) else (r0_3 if (s301 & u32(13)) == u32(12) else r2_1)
+        v301 = flipsign(e301, u32(g301 << u32(3))) + flipsign(f301, u32(g301 << u32(2)))
         g302 = mix32(u32(x0_3 ^ x1_0 ^ x2_2))
         s302 = g302 >> u32(28)
         e302 = r0_3 if s302 < u32(8) else r1_0
-        f302 = r1_0 if s302 < u32(4) else (r0_3 if (s302 == u32(12)) | (s302 == u32(14)) else r2_2)
-        v302 = (e302 if (s302 & u32(1)) == u32(0) else -e302) + (f302 if (s302 & u32(2)) == u32(0) else -f302)
+        f302 = r1_0 if s302 < u32(4) else (r0_3 if (s302 & u32(13)) == u32(12) else r2_2)
+        v302 = flipsign(e302, u32(g302 << u32(3))) + flipsign(f302, u32(g302 << u32(2)))
         g303 = mix32(u32(x0_3 ^ x1_0 ^ x2_3))
         s303 = g303 >> u32(28)
         e303 = r0_3 if s303 < u32(8) else r1_0
-        f303 = r1_0 if s303 < u32(4) else (r0_3 if (s303 == u32(12)) | (s303 == u32(14)) else r2_3)
-        v303 = (e303 if (s303 & u32(1)) == u32(0) else -e303) + (f303 if (s303 & u32(2)) == u32(0) else -f303)
+        f303 = r1_0 if s303 < u32(4) else (r0_3 if (s303 & u32(13)) == u32(12) else r2_3)
+        v303 = flipsign(e303, u32(g303 << u32(3))) + flipsign(f303, u32(g303 << u32(2)))
         g310 = mix32(u32(x0_3 ^ x1_1 ^ x2_0))
         s310 = g310 >> u32(28)
         e310 = r0_3 if s310 < u32(8) else r1_1
-        f310 = r1_1 if s310 < u32(4) else (r0_3 if (s310 == u32(12)) | (s310 == u32(14)) else r2_0)
-        v310 = (e310 if (s310 & u32(1)) == u32(0) else -e310) + (f310 if (s310 & u32(2)) == u32(0) else -f310)
+        f310 = r1_1 if s310 < u32(4) else (r0_3 if (s310 & u32(13)) == u32(12) else r2_0)
+        v310 = flipsign(e310, u32(g310 << u32(3))) + flipsign(f310, u32(g310 << u32(2)))
         g311 = mix32(u32(x0_3 ^ x1_1 ^ x2_1))
         s311 = g311 >> u32(28)
         e311 = r0_3 if s311 < u32(8) else r1_1
-        f311 = r1_1 if s311 < u32(4) else (r0_3 if (s311 == u32(12)) | (s311 == u32(14)) else r2_1)
-        v311 = (e311 if (s311 & u32(1)) == u32(0) else -e311) + (f311 if (s311 & u32(2)) == u32(0) else -f311)
+        f311 = r1_1 if s311 < u32(4) else (r0_3 if (s311 & u32(13)) == u32(12) else r2_1)
+        v311 = flipsign(e311, u32(g311 << u32(3))) + flipsign(f311, u32(g311 << u32(2)))
         g312 = mix32(u32(x0_3 ^ x1_1 ^ x2_2))
         s312 = g312 >> u32(28)
         e312 = r0_3 if s312 < u32(8) else r1_1
-        f312 = r1_1 if s312 < u32(4) else (r0_3 if (s312 == u32(12)) | (s312 == u32(14)) else r2_2)
-        v312 = (e312 if (s312 & u32(1)) == u32(0) else -e312) + (f312 if (s312 & u32(2)) == u32(0) else -f312)
+        f312 = r1_1 if s312 < u32(4) else (r0_3 if (s312 & u32(13)) == u32(12) else r2_2)
+        v312 = flipsign(e312, u32(g312 << u32(3))) + flipsign(f312, u32(g312 << u32(2)))
         g313 = mix32(u32(x0_3 ^ x1_1 ^ x2_3))
         s313 = g313 >> u32(28)
         e313 = r0_3 if s313 < u32(8) else r1_1
-        f313 = r1_1 if s313 < u32(4) else (r0_3 if (s313 == u32(12)) | (s313 == u32(14)) else r2_3)
-        v313 = (e313 if (s313 & u32(1)) == u32(0) else -e313) + (f313 if (s313 & u32(2)) == u32(0) else -f313)
+        f313 = r1_1 if s313 < u32(4) else (r0_3 if (s313 & u32(13)) == u32(12) else r2_3)
+        v313 = flipsign(e313, u32(g313 << u32(3))) + flipsign(f313, u32(g313 << u32(2)))
         g320 = mix32(u32(x0_3 ^ x1_2 ^ x2_0))
         s320 = g320 >> u32(28)
         e320 = r0_3 if s320 < u32(8) else r1_2
-        f320 = r1_2 if s320 < u32(4) else (r0_3 if (s320 == u32(12)) | (s320 == u32(14)) else r2_0)
-        v320 = (e320 if (s320 & u32(1)) == u32(0) else -e320) + (f320 if (s320 & u32(2)) == u32(0) else -f320)
+        f320 = r1_2 if s320 < u32(4) else (r0_3 if (s320 & u32(13)) == u32(12) else r2_0)
+        v320 = flipsign(e320, u32(g320 << u32(3))) + flipsign(f320, u32(g320 << u32(2)))
         g321 = mix32(u32(x0_3 ^ x1_2 ^ x2_1))
         s321 = g321 >> u32(28)
         e321 = r0_3 if s321 < u32(8) else r1_2
-        f321 = r1_2 if s321 < u32(4) else (r0_3 if (s321 == u32(12)) | (s321 == u32(14)) else r2_1)
-        v321 = (e321 if (s321 & u32(1)) == u32(0) else -e321) + (f321 if (s321 & u32(2)) == u32(0) else -f321)
+        f321 = r1_2 if s321 < u32(4) else (r0_3 if (s321 & u32(13)) == u32(12) else r2_1)
+        v321 = flipsign(e321, u32(g321 << u32(3))) + flipsign(f321, u32(g321 << u32(2)))
         g322 = mix32(u32(x0_3 ^ x1_2 ^ x2_2))
         s322 = g322 >> u32(28)
         e322 = r0_3 if s322 < u32(8) else r1_2
-        f322 = r1_2 if s322 < u32(4) else (r0_3 if (s322 == u32(12)) | (s322 == u32(14)) else r2_2)
-        v322 = (e322 if (s322 & u32(1)) == u32(0) else -e322) + (f322 if (s322 & u32(2)) == u32(0) else -f322)
+        f322 = r1_2 if s322 < u32(4) else (r0_3 if (s322 & u32(13)) == u32(12) else r2_2)
+        v322 = flipsign(e322, u32(g322 << u32(3))) + flipsign(f322, u32(g322 << u32(2)))
         g323 = mix32(u32(x0_3 ^ x1_2 ^ x2_3))
         s323 = g323 >> u32(28)
         e323 = r0_3 if s323 < u32(8) else r1_2
-        f323 = r1_2 if s323 < u32(4) else (r0_3 if (s323 == u32(12)) | (s323 == u32(14)) else r2_3)
-        v323 = (e323 if (s323 & u32(1)) == u32(0) else -e323) + (f323 if (s323 & u32(2)) == u32(0) else -f323)
+        f323 = r1_2 if s323 < u32(4) else (r0_3 if (s323 & u32(13)) == u32(12) else r2_3)
+        v323 = flipsign(e323, u32(g323 << u32(3))) + flipsign(f323, u32(g323 << u32(2)))
         g330 = mix32(u32(x0_3 ^ x1_3 ^ x2_0))
         s330 = g330 >> u32(28)
         e330 = r0_3 if s330 < u32(8) else r1_3
-        f330 = r1_3 if s330 < u32(4) else (r0_3 if (s330 == u32(12)) | (s330 == u32(14)) else r2_0)
-        v330 = (e330 if (s330 & u32(1)) == u32(0) else -e330) + (f330 if (s330 & u32(2)) == u32(0) else -f330)
+        f330 = r1_3 if s330 < u32(4) else (r0_3 if (s330 & u32(13)) == u32(12) else r2_0)
+        v330 = flipsign(e330, u32(g330 << u32(3))) + flipsign(f330, u32(g330 << u32(2)))
         g331 = mix32(u32(x0_3 ^ x1_3 ^ x2_1))
         s331 = g331 >> u32(28)
         e331 = r0_3 if s331 < u32(8) else r1_3
-        f331 = r1_3 if s331 < u32(4) else (r0_3 if (s331 == u32(12)) | (s331 == u32(14)) else r2_1)
-        v331 = (e331 if (s331 & u32(1)) == u32(0) else -e331) + (f331 if (s331 & u32(2)) == u32(0) else -f331)
+        f331 = r1_3 if s331 < u32(4) else (r0_3 if (s331 & u32(13)) == u32(12) else r2_1)
+        v331 = flipsign(e331, u32(g331 << u32(3))) + flipsign(f331, u32(g331 << u32(2)))
         g332 = mix32(u32(x0_3 ^ x1_3 ^ x2_2))
         s332 = g332 >> u32(28)
         e332 = r0_3 if s332 < u32(8) else r1_3
-        f332 = r1_3 if s332 < u32(4) else (r0_3 if (s332 == u32(12)) | (s332 == u32(14)) else r2_2)
-        v332 = (e332 if (s332 & u32(1)) == u32(0) else -e332) + (f332 if (s332 & u32(2)) == u32(0) else -f332)
+        f332 = r1_3 if s332 < u32(4) else (r0_3 if (s332 & u32(13)) == u32(12) else r2_2)
+        v332 = flipsign(e332, u32(g332 << u32(3))) + flipsign(f332, u32(g332 << u32(2)))
         g333 = mix32(u32(x0_3 ^ x1_3 ^ x2_3))
         s333 = g333 >> u32(28)
         e333 = r0_3 if s333 < u32(8) else r1_3
-        f333 = r1_3 if s333 < u32(4) else (r0_3 if (s333 == u32(12)) | (s333 == u32(14)) else r2_3)
-        v333 = (e333 if (s333 & u32(1)) == u32(0) else -e333) + (f333 if (s333 & u32(2)) == u32(0) else -f333)
+        f333 = r1_3 if s333 < u32(4) else (r0_3 if (s333 & u32(13)) == u32(12) else r2_3)
+        v333 = flipsign(e333, u32(g333 << u32(3))) + flipsign(f333, u32(g333 << u32(2)))
         v = amp * (w0_0 * (w1_0 * (w2_0 * (v000) + w2_1 * (v001) + w2_2 * (v002) + w2_3 * (v003)) + w1_1 * (w2_0 * (v010) + w2_1 * (v011) + w2_2 * (v012) + w2_3 * (v013)) + w1_2 * (w2_0 * (v020) + w2_1 * (v021) + w2_2 * (v022) + w2_3 * (v023)) + w1_3 * (w2_0 * (v030) + w2_1 * (v031) + w2_2 * (v032) + w2_3 * (v033))) + w0_1 * (w1_0 * (w2_0 * (v100) + w2_1 * (v101) + w2_2 * (v102) + w2_3 * (v103)) + w1_1 * (w2_0 * (v110) + w2_1 * (v111) + w2_2 * (v112) + w2_3 * (v113)) + w1_2 * (w2_0 * (v120) + w2_1 * (v121) + w2_2 * (v122) + w2_3 * (v123)) + w1_3 * (w2_0 * (v130) + w2_1 * (v131) + w2_2 * (v132) + w2_3 * (v133))) + w0_2 * (w1_0 * (w2_0 * (v200) + w2_1 * (v201) + w2_2 * (v202) + w2_3 * (v203)) + w1_1 * (w2_0 * (v210) + w2_1 * (v211) + w2_2 * (v212) + w2_3 * (v213)) + w1_2 * (w2_0 * (v220) + w2_1 * (v221) + w2_2 * (v222) + w2_3 * (v223)) + w1_3 * (w2_0 * (v230) + w2_1 * (v231) + w2_2 * (v232) + w2_3 * (v233))) + w0_3 * (w1_0 * (w2_0 * (v300) + w2_1 * (v301) + w2_2 * (v302) + w2_3 * (v303)) + w1_1 * (w2_0 * (v310) + w2_1 * (v311) + w2_2 * (v312) + w2_3 * (v313)) + w1_2 * (w2_0 * (v320) + w2_1 * (v321) + w2_2 * (v322) + w2_3 * (v323)) + w1_3 * (w2_0 * (v330) + w2_1 * (v331) + w2_2 * (v332) + w2_3 * (v333))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -13964,323 +14433,323 @@ def _corners_d3_cubic_gradient_f64(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
         s001 = g001 >> u32(28)
         e001 = r0_0 if s001 < u32(8) else r1_0
-        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 == u32(12)) | (s001 == u32(14)) else r2_1)
-        v001 = (e001 if (s001 & u32(1)) == u32(0) else -e001) + (f001 if (s001 & u32(2)) == u32(0) else -f001)
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
         g002 = mix32(u32(x0_0 ^ x1_0 ^ x2_2))
         s002 = g002 >> u32(28)
         e002 = r0_0 if s002 < u32(8) else r1_0
-        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 == u32(12)) | (s002 == u32(14)) else r2_2)
-        v002 = (e002 if (s002 & u32(1)) == u32(0) else -e002) + (f002 if (s002 & u32(2)) == u32(0) else -f002)
+        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 & u32(13)) == u32(12) else r2_2)
+        v002 = flipsign(e002, u32(g002 << u32(3))) + flipsign(f002, u32(g002 << u32(2)))
         g003 = mix32(u32(x0_0 ^ x1_0 ^ x2_3))
         s003 = g003 >> u32(28)
         e003 = r0_0 if s003 < u32(8) else r1_0
-        f003 = r1_0 if s003 < u32(4) else (r0_0 if (s003 == u32(12)) | (s003 == u32(14)) else r2_3)
-        v003 = (e003 if (s003 & u32(1)) == u32(0) else -e003) + (f003 if (s003 & u32(2)) == u32(0) else -f003)
+        f003 = r1_0 if s003 < u32(4) else (r0_0 if (s003 & u32(13)) == u32(12) else r2_3)
+        v003 = flipsign(e003, u32(g003 << u32(3))) + flipsign(f003, u32(g003 << u32(2)))
         g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
         s010 = g010 >> u32(28)
         e010 = r0_0 if s010 < u32(8) else r1_1
-        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 == u32(12)) | (s010 == u32(14)) else r2_0)
-        v010 = (e010 if (s010 & u32(1)) == u32(0) else -e010) + (f010 if (s010 & u32(2)) == u32(0) else -f010)
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
         g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
         s011 = g011 >> u32(28)
         e011 = r0_0 if s011 < u32(8) else r1_1
-        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 == u32(12)) | (s011 == u32(14)) else r2_1)
-        v011 = (e011 if (s011 & u32(1)) == u32(0) else -e011) + (f011 if (s011 & u32(2)) == u32(0) else -f011)
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
         g012 = mix32(u32(x0_0 ^ x1_1 ^ x2_2))
         s012 = g012 >> u32(28)
         e012 = r0_0 if s012 < u32(8) else r1_1
-        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 == u32(12)) | (s012 == u32(14)) else r2_2)
-        v012 = (e012 if (s012 & u32(1)) == u32(0) else -e012) + (f012 if (s012 & u32(2)) == u32(0) else -f012)
+        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 & u32(13)) == u32(12) else r2_2)
+        v012 = flipsign(e012, u32(g012 << u32(3))) + flipsign(f012, u32(g012 << u32(2)))
         g013 = mix32(u32(x0_0 ^ x1_1 ^ x2_3))
         s013 = g013 >> u32(28)
         e013 = r0_0 if s013 < u32(8) else r1_1
-        f013 = r1_1 if s013 < u32(4) else (r0_0 if (s013 == u32(12)) | (s013 == u32(14)) else r2_3)
-        v013 = (e013 if (s013 & u32(1)) == u32(0) else -e013) + (f013 if (s013 & u32(2)) == u32(0) else -f013)
+        f013 = r1_1 if s013 < u32(4) else (r0_0 if (s013 & u32(13)) == u32(12) else r2_3)
+        v013 = flipsign(e013, u32(g013 << u32(3))) + flipsign(f013, u32(g013 << u32(2)))
         g020 = mix32(u32(x0_0 ^ x1_2 ^ x2_0))
         s020 = g020 >> u32(28)
         e020 = r0_0 if s020 < u32(8) else r1_2
-        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 == u32(12)) | (s020 == u32(14)) else r2_0)
-        v020 = (e020 if (s020 & u32(1)) == u32(0) else -e020) + (f020 if (s020 & u32(2)) == u32(0) else -f020)
+        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 & u32(13)) == u32(12) else r2_0)
+        v020 = flipsign(e020, u32(g020 << u32(3))) + flipsign(f020, u32(g020 << u32(2)))
         g021 = mix32(u32(x0_0 ^ x1_2 ^ x2_1))
         s021 = g021 >> u32(28)
         e021 = r0_0 if s021 < u32(8) else r1_2
-        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 == u32(12)) | (s021 == u32(14)) else r2_1)
-        v021 = (e021 if (s021 & u32(1)) == u32(0) else -e021) + (f021 if (s021 & u32(2)) == u32(0) else -f021)
+        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 & u32(13)) == u32(12) else r2_1)
+        v021 = flipsign(e021, u32(g021 << u32(3))) + flipsign(f021, u32(g021 << u32(2)))
         g022 = mix32(u32(x0_0 ^ x1_2 ^ x2_2))
         s022 = g022 >> u32(28)
         e022 = r0_0 if s022 < u32(8) else r1_2
-        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 == u32(12)) | (s022 == u32(14)) else r2_2)
-        v022 = (e022 if (s022 & u32(1)) == u32(0) else -e022) + (f022 if (s022 & u32(2)) == u32(0) else -f022)
+        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 & u32(13)) == u32(12) else r2_2)
+        v022 = flipsign(e022, u32(g022 << u32(3))) + flipsign(f022, u32(g022 << u32(2)))
         g023 = mix32(u32(x0_0 ^ x1_2 ^ x2_3))
         s023 = g023 >> u32(28)
         e023 = r0_0 if s023 < u32(8) else r1_2
-        f023 = r1_2 if s023 < u32(4) else (r0_0 if (s023 == u32(12)) | (s023 == u32(14)) else r2_3)
-        v023 = (e023 if (s023 & u32(1)) == u32(0) else -e023) + (f023 if (s023 & u32(2)) == u32(0) else -f023)
+        f023 = r1_2 if s023 < u32(4) else (r0_0 if (s023 & u32(13)) == u32(12) else r2_3)
+        v023 = flipsign(e023, u32(g023 << u32(3))) + flipsign(f023, u32(g023 << u32(2)))
         g030 = mix32(u32(x0_0 ^ x1_3 ^ x2_0))
         s030 = g030 >> u32(28)
         e030 = r0_0 if s030 < u32(8) else r1_3
-        f030 = r1_3 if s030 < u32(4) else (r0_0 if (s030 == u32(12)) | (s030 == u32(14)) else r2_0)
-        v030 = (e030 if (s030 & u32(1)) == u32(0) else -e030) + (f030 if (s030 & u32(2)) == u32(0) else -f030)
+        f030 = r1_3 if s030 < u32(4) else (r0_0 if (s030 & u32(13)) == u32(12) else r2_0)
+        v030 = flipsign(e030, u32(g030 << u32(3))) + flipsign(f030, u32(g030 << u32(2)))
         g031 = mix32(u32(x0_0 ^ x1_3 ^ x2_1))
         s031 = g031 >> u32(28)
         e031 = r0_0 if s031 < u32(8) else r1_3
-        f031 = r1_3 if s031 < u32(4) else (r0_0 if (s031 == u32(12)) | (s031 == u32(14)) else r2_1)
-        v031 = (e031 if (s031 & u32(1)) == u32(0) else -e031) + (f031 if (s031 & u32(2)) == u32(0) else -f031)
+        f031 = r1_3 if s031 < u32(4) else (r0_0 if (s031 & u32(13)) == u32(12) else r2_1)
+        v031 = flipsign(e031, u32(g031 << u32(3))) + flipsign(f031, u32(g031 << u32(2)))
         g032 = mix32(u32(x0_0 ^ x1_3 ^ x2_2))
         s032 = g032 >> u32(28)
         e032 = r0_0 if s032 < u32(8) else r1_3
-        f032 = r1_3 if s032 < u32(4) else (r0_0 if (s032 == u32(12)) | (s032 == u32(14)) else r2_2)
-        v032 = (e032 if (s032 & u32(1)) == u32(0) else -e032) + (f032 if (s032 & u32(2)) == u32(0) else -f032)
+        f032 = r1_3 if s032 < u32(4) else (r0_0 if (s032 & u32(13)) == u32(12) else r2_2)
+        v032 = flipsign(e032, u32(g032 << u32(3))) + flipsign(f032, u32(g032 << u32(2)))
         g033 = mix32(u32(x0_0 ^ x1_3 ^ x2_3))
         s033 = g033 >> u32(28)
         e033 = r0_0 if s033 < u32(8) else r1_3
-        f033 = r1_3 if s033 < u32(4) else (r0_0 if (s033 == u32(12)) | (s033 == u32(14)) else r2_3)
-        v033 = (e033 if (s033 & u32(1)) == u32(0) else -e033) + (f033 if (s033 & u32(2)) == u32(0) else -f033)
+        f033 = r1_3 if s033 < u32(4) else (r0_0 if (s033 & u32(13)) == u32(12) else r2_3)
+        v033 = flipsign(e033, u32(g033 << u32(3))) + flipsign(f033, u32(g033 << u32(2)))
         g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
         s100 = g100 >> u32(28)
         e100 = r0_1 if s100 < u32(8) else r1_0
-        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 == u32(12)) | (s100 == u32(14)) else r2_0)
-        v100 = (e100 if (s100 & u32(1)) == u32(0) else -e100) + (f100 if (s100 & u32(2)) == u32(0) else -f100)
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
         g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
         s101 = g101 >> u32(28)
         e101 = r0_1 if s101 < u32(8) else r1_0
-        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 == u32(12)) | (s101 == u32(14)) else r2_1)
-        v101 = (e101 if (s101 & u32(1)) == u32(0) else -e101) + (f101 if (s101 & u32(2)) == u32(0) else -f101)
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
         g102 = mix32(u32(x0_1 ^ x1_0 ^ x2_2))
         s102 = g102 >> u32(28)
         e102 = r0_1 if s102 < u32(8) else r1_0
-        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 == u32(12)) | (s102 == u32(14)) else r2_2)
-        v102 = (e102 if (s102 & u32(1)) == u32(0) else -e102) + (f102 if (s102 & u32(2)) == u32(0) else -f102)
+        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 & u32(13)) == u32(12) else r2_2)
+        v102 = flipsign(e102, u32(g102 << u32(3))) + flipsign(f102, u32(g102 << u32(2)))
         g103 = mix32(u32(x0_1 ^ x1_0 ^ x2_3))
         s103 = g103 >> u32(28)
         e103 = r0_1 if s103 < u32(8) else r1_0
-        f103 = r1_0 if s103 < u32(4) else (r0_1 if (s103 == u32(12)) | (s103 == u32(14)) else r2_3)
-        v103 = (e103 if (s103 & u32(1)) == u32(0) else -e103) + (f103 if (s103 & u32(2)) == u32(0) else -f103)
+        f103 = r1_0 if s103 < u32(4) else (r0_1 if (s103 & u32(13)) == u32(12) else r2_3)
+        v103 = flipsign(e103, u32(g103 << u32(3))) + flipsign(f103, u32(g103 << u32(2)))
         g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
         s110 = g110 >> u32(28)
         e110 = r0_1 if s110 < u32(8) else r1_1
-        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 == u32(12)) | (s110 == u32(14)) else r2_0)
-        v110 = (e110 if (s110 & u32(1)) == u32(0) else -e110) + (f110 if (s110 & u32(2)) == u32(0) else -f110)
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
         g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
         s111 = g111 >> u32(28)
         e111 = r0_1 if s111 < u32(8) else r1_1
-        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 == u32(12)) | (s111 == u32(14)) else r2_1)
-        v111 = (e111 if (s111 & u32(1)) == u32(0) else -e111) + (f111 if (s111 & u32(2)) == u32(0) else -f111)
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
         g112 = mix32(u32(x0_1 ^ x1_1 ^ x2_2))
         s112 = g112 >> u32(28)
         e112 = r0_1 if s112 < u32(8) else r1_1
-        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 == u32(12)) | (s112 == u32(14)) else r2_2)
-        v112 = (e112 if (s112 & u32(1)) == u32(0) else -e112) + (f112 if (s112 & u32(2)) == u32(0) else -f112)
+        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 & u32(13)) == u32(12) else r2_2)
+        v112 = flipsign(e112, u32(g112 << u32(3))) + flipsign(f112, u32(g112 << u32(2)))
         g113 = mix32(u32(x0_1 ^ x1_1 ^ x2_3))
         s113 = g113 >> u32(28)
         e113 = r0_1 if s113 < u32(8) else r1_1
-        f113 = r1_1 if s113 < u32(4) else (r0_1 if (s113 == u32(12)) | (s113 == u32(14)) else r2_3)
-        v113 = (e113 if (s113 & u32(1)) == u32(0) else -e113) + (f113 if (s113 & u32(2)) == u32(0) else -f113)
+        f113 = r1_1 if s113 < u32(4) else (r0_1 if (s113 & u32(13)) == u32(12) else r2_3)
+        v113 = flipsign(e113, u32(g113 << u32(3))) + flipsign(f113, u32(g113 << u32(2)))
         g120 = mix32(u32(x0_1 ^ x1_2 ^ x2_0))
         s120 = g120 >> u32(28)
         e120 = r0_1 if s120 < u32(8) else r1_2
-        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 == u32(12)) | (s120 == u32(14)) else r2_0)
-        v120 = (e120 if (s120 & u32(1)) == u32(0) else -e120) + (f120 if (s120 & u32(2)) == u32(0) else -f120)
+        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 & u32(13)) == u32(12) else r2_0)
+        v120 = flipsign(e120, u32(g120 << u32(3))) + flipsign(f120, u32(g120 << u32(2)))
         g121 = mix32(u32(x0_1 ^ x1_2 ^ x2_1))
         s121 = g121 >> u32(28)
         e121 = r0_1 if s121 < u32(8) else r1_2
-        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 == u32(12)) | (s121 == u32(14)) else r2_1)
-        v121 = (e121 if (s121 & u32(1)) == u32(0) else -e121) + (f121 if (s121 & u32(2)) == u32(0) else -f121)
+        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 & u32(13)) == u32(12) else r2_1)
+        v121 = flipsign(e121, u32(g121 << u32(3))) + flipsign(f121, u32(g121 << u32(2)))
         g122 = mix32(u32(x0_1 ^ x1_2 ^ x2_2))
         s122 = g122 >> u32(28)
         e122 = r0_1 if s122 < u32(8) else r1_2
-        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 == u32(12)) | (s122 == u32(14)) else r2_2)
-        v122 = (e122 if (s122 & u32(1)) == u32(0) else -e122) + (f122 if (s122 & u32(2)) == u32(0) else -f122)
+        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 & u32(13)) == u32(12) else r2_2)
+        v122 = flipsign(e122, u32(g122 << u32(3))) + flipsign(f122, u32(g122 << u32(2)))
         g123 = mix32(u32(x0_1 ^ x1_2 ^ x2_3))
         s123 = g123 >> u32(28)
         e123 = r0_1 if s123 < u32(8) else r1_2
-        f123 = r1_2 if s123 < u32(4) else (r0_1 if (s123 == u32(12)) | (s123 == u32(14)) else r2_3)
-        v123 = (e123 if (s123 & u32(1)) == u32(0) else -e123) + (f123 if (s123 & u32(2)) == u32(0) else -f123)
+        f123 = r1_2 if s123 < u32(4) else (r0_1 if (s123 & u32(13)) == u32(12) else r2_3)
+        v123 = flipsign(e123, u32(g123 << u32(3))) + flipsign(f123, u32(g123 << u32(2)))
         g130 = mix32(u32(x0_1 ^ x1_3 ^ x2_0))
         s130 = g130 >> u32(28)
         e130 = r0_1 if s130 < u32(8) else r1_3
-        f130 = r1_3 if s130 < u32(4) else (r0_1 if (s130 == u32(12)) | (s130 == u32(14)) else r2_0)
-        v130 = (e130 if (s130 & u32(1)) == u32(0) else -e130) + (f130 if (s130 & u32(2)) == u32(0) else -f130)
+        f130 = r1_3 if s130 < u32(4) else (r0_1 if (s130 & u32(13)) == u32(12) else r2_0)
+        v130 = flipsign(e130, u32(g130 << u32(3))) + flipsign(f130, u32(g130 << u32(2)))
         g131 = mix32(u32(x0_1 ^ x1_3 ^ x2_1))
         s131 = g131 >> u32(28)
         e131 = r0_1 if s131 < u32(8) else r1_3
-        f131 = r1_3 if s131 < u32(4) else (r0_1 if (s131 == u32(12)) | (s131 == u32(14)) else r2_1)
-        v131 = (e131 if (s131 & u32(1)) == u32(0) else -e131) + (f131 if (s131 & u32(2)) == u32(0) else -f131)
+        f131 = r1_3 if s131 < u32(4) else (r0_1 if (s131 & u32(13)) == u32(12) else r2_1)
+        v131 = flipsign(e131, u32(g131 << u32(3))) + flipsign(f131, u32(g131 << u32(2)))
         g132 = mix32(u32(x0_1 ^ x1_3 ^ x2_2))
         s132 = g132 >> u32(28)
         e132 = r0_1 if s132 < u32(8) else r1_3
-        f132 = r1_3 if s132 < u32(4) else (r0_1 if (s132 == u32(12)) | (s132 == u32(14)) else r2_2)
-        v132 = (e132 if (s132 & u32(1)) == u32(0) else -e132) + (f132 if (s132 & u32(2)) == u32(0) else -f132)
+        f132 = r1_3 if s132 < u32(4) else (r0_1 if (s132 & u32(13)) == u32(12) else r2_2)
+        v132 = flipsign(e132, u32(g132 << u32(3))) + flipsign(f132, u32(g132 << u32(2)))
         g133 = mix32(u32(x0_1 ^ x1_3 ^ x2_3))
         s133 = g133 >> u32(28)
         e133 = r0_1 if s133 < u32(8) else r1_3
-        f133 = r1_3 if s133 < u32(4) else (r0_1 if (s133 == u32(12)) | (s133 == u32(14)) else r2_3)
-        v133 = (e133 if (s133 & u32(1)) == u32(0) else -e133) + (f133 if (s133 & u32(2)) == u32(0) else -f133)
+        f133 = r1_3 if s133 < u32(4) else (r0_1 if (s133 & u32(13)) == u32(12) else r2_3)
+        v133 = flipsign(e133, u32(g133 << u32(3))) + flipsign(f133, u32(g133 << u32(2)))
         g200 = mix32(u32(x0_2 ^ x1_0 ^ x2_0))
         s200 = g200 >> u32(28)
         e200 = r0_2 if s200 < u32(8) else r1_0
-        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 == u32(12)) | (s200 == u32(14)) else r2_0)
-        v200 = (e200 if (s200 & u32(1)) == u32(0) else -e200) + (f200 if (s200 & u32(2)) == u32(0) else -f200)
+        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 & u32(13)) == u32(12) else r2_0)
+        v200 = flipsign(e200, u32(g200 << u32(3))) + flipsign(f200, u32(g200 << u32(2)))
         g201 = mix32(u32(x0_2 ^ x1_0 ^ x2_1))
         s201 = g201 >> u32(28)
         e201 = r0_2 if s201 < u32(8) else r1_0
-        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 == u32(12)) | (s201 == u32(14)) else r2_1)
-        v201 = (e201 if (s201 & u32(1)) == u32(0) else -e201) + (f201 if (s201 & u32(2)) == u32(0) else -f201)
+        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 & u32(13)) == u32(12) else r2_1)
+        v201 = flipsign(e201, u32(g201 << u32(3))) + flipsign(f201, u32(g201 << u32(2)))
         g202 = mix32(u32(x0_2 ^ x1_0 ^ x2_2))
         s202 = g202 >> u32(28)
         e202 = r0_2 if s202 < u32(8) else r1_0
-        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 == u32(12)) | (s202 == u32(14)) else r2_2)
-        v202 = (e202 if (s202 & u32(1)) == u32(0) else -e202) + (f202 if (s202 & u32(2)) == u32(0) else -f202)
+        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 & u32(13)) == u32(12) else r2_2)
+        v202 = flipsign(e202, u32(g202 << u32(3))) + flipsign(f202, u32(g202 << u32(2)))
         g203 = mix32(u32(x0_2 ^ x1_0 ^ x2_3))
         s203 = g203 >> u32(28)
         e203 = r0_2 if s203 < u32(8) else r1_0
-        f203 = r1_0 if s203 < u32(4) else (r0_2 if (s203 == u32(12)) | (s203 == u32(14)) else r2_3)
-        v203 = (e203 if (s203 & u32(1)) == u32(0) else -e203) + (f203 if (s203 & u32(2)) == u32(0) else -f203)
+        f203 = r1_0 if s203 < u32(4) else (r0_2 if (s203 & u32(13)) == u32(12) else r2_3)
+        v203 = flipsign(e203, u32(g203 << u32(3))) + flipsign(f203, u32(g203 << u32(2)))
         g210 = mix32(u32(x0_2 ^ x1_1 ^ x2_0))
         s210 = g210 >> u32(28)
         e210 = r0_2 if s210 < u32(8) else r1_1
-        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 == u32(12)) | (s210 == u32(14)) else r2_0)
-        v210 = (e210 if (s210 & u32(1)) == u32(0) else -e210) + (f210 if (s210 & u32(2)) == u32(0) else -f210)
+        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 & u32(13)) == u32(12) else r2_0)
+        v210 = flipsign(e210, u32(g210 << u32(3))) + flipsign(f210, u32(g210 << u32(2)))
         g211 = mix32(u32(x0_2 ^ x1_1 ^ x2_1))
         s211 = g211 >> u32(28)
         e211 = r0_2 if s211 < u32(8) else r1_1
-        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 == u32(12)) | (s211 == u32(14)) else r2_1)
-        v211 = (e211 if (s211 & u32(1)) == u32(0) else -e211) + (f211 if (s211 & u32(2)) == u32(0) else -f211)
+        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 & u32(13)) == u32(12) else r2_1)
+        v211 = flipsign(e211, u32(g211 << u32(3))) + flipsign(f211, u32(g211 << u32(2)))
         g212 = mix32(u32(x0_2 ^ x1_1 ^ x2_2))
         s212 = g212 >> u32(28)
         e212 = r0_2 if s212 < u32(8) else r1_1
-        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 == u32(12)) | (s212 == u32(14)) else r2_2)
-        v212 = (e212 if (s212 & u32(1)) == u32(0) else -e212) + (f212 if (s212 & u32(2)) == u32(0) else -f212)
+        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 & u32(13)) == u32(12) else r2_2)
+        v212 = flipsign(e212, u32(g212 << u32(3))) + flipsign(f212, u32(g212 << u32(2)))
         g213 = mix32(u32(x0_2 ^ x1_1 ^ x2_3))
         s213 = g213 >> u32(28)
         e213 = r0_2 if s213 < u32(8) else r1_1
-        f213 = r1_1 if s213 < u32(4) else (r0_2 if (s213 == u32(12)) | (s213 == u32(14)) else r2_3)
-        v213 = (e213 if (s213 & u32(1)) == u32(0) else -e213) + (f213 if (s213 & u32(2)) == u32(0) else -f213)
+        f213 = r1_1 if s213 < u32(4) else (r0_2 if (s213 & u32(13)) == u32(12) else r2_3)
+        v213 = flipsign(e213, u32(g213 << u32(3))) + flipsign(f213, u32(g213 << u32(2)))
         g220 = mix32(u32(x0_2 ^ x1_2 ^ x2_0))
         s220 = g220 >> u32(28)
         e220 = r0_2 if s220 < u32(8) else r1_2
-        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 == u32(12)) | (s220 == u32(14)) else r2_0)
-        v220 = (e220 if (s220 & u32(1)) == u32(0) else -e220) + (f220 if (s220 & u32(2)) == u32(0) else -f220)
+        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 & u32(13)) == u32(12) else r2_0)
+        v220 = flipsign(e220, u32(g220 << u32(3))) + flipsign(f220, u32(g220 << u32(2)))
         g221 = mix32(u32(x0_2 ^ x1_2 ^ x2_1))
         s221 = g221 >> u32(28)
         e221 = r0_2 if s221 < u32(8) else r1_2
-        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 == u32(12)) | (s221 == u32(14)) else r2_1)
-        v221 = (e221 if (s221 & u32(1)) == u32(0) else -e221) + (f221 if (s221 & u32(2)) == u32(0) else -f221)
+        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 & u32(13)) == u32(12) else r2_1)
+        v221 = flipsign(e221, u32(g221 << u32(3))) + flipsign(f221, u32(g221 << u32(2)))
         g222 = mix32(u32(x0_2 ^ x1_2 ^ x2_2))
         s222 = g222 >> u32(28)
         e222 = r0_2 if s222 < u32(8) else r1_2
-        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 == u32(12)) | (s222 == u32(14)) else r2_2)
-        v222 = (e222 if (s222 & u32(1)) == u32(0) else -e222) + (f222 if (s222 & u32(2)) == u32(0) else -f222)
+        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 & u32(13)) == u32(12) else r2_2)
+        v222 = flipsign(e222, u32(g222 << u32(3))) + flipsign(f222, u32(g222 << u32(2)))
         g223 = mix32(u32(x0_2 ^ x1_2 ^ x2_3))
         s223 = g223 >> u32(28)
         e223 = r0_2 if s223 < u32(8) else r1_2
-        f223 = r1_2 if s223 < u32(4) else (r0_2 if (s223 == u32(12)) | (s223 == u32(14)) else r2_3)
-        v223 = (e223 if (s223 & u32(1)) == u32(0) else -e223) + (f223 if (s223 & u32(2)) == u32(0) else -f223)
+        f223 = r1_2 if s223 < u32(4) else (r0_2 if (s223 & u32(13)) == u32(12) else r2_3)
+        v223 = flipsign(e223, u32(g223 << u32(3))) + flipsign(f223, u32(g223 << u32(2)))
         g230 = mix32(u32(x0_2 ^ x1_3 ^ x2_0))
         s230 = g230 >> u32(28)
         e230 = r0_2 if s230 < u32(8) else r1_3
-        f230 = r1_3 if s230 < u32(4) else (r0_2 if (s230 == u32(12)) | (s230 == u32(14)) else r2_0)
-        v230 = (e230 if (s230 & u32(1)) == u32(0) else -e230) + (f230 if (s230 & u32(2)) == u32(0) else -f230)
+        f230 = r1_3 if s230 < u32(4) else (r0_2 if (s230 & u32(13)) == u32(12) else r2_0)
+        v230 = flipsign(e230, u32(g230 << u32(3))) + flipsign(f230, u32(g230 << u32(2)))
         g231 = mix32(u32(x0_2 ^ x1_3 ^ x2_1))
         s231 = g231 >> u32(28)
         e231 = r0_2 if s231 < u32(8) else r1_3
-        f231 = r1_3 if s231 < u32(4) else (r0_2 if (s231 == u32(12)) | (s231 == u32(14)) else r2_1)
-        v231 = (e231 if (s231 & u32(1)) == u32(0) else -e231) + (f231 if (s231 & u32(2)) == u32(0) else -f231)
+        f231 = r1_3 if s231 < u32(4) else (r0_2 if (s231 & u32(13)) == u32(12) else r2_1)
+        v231 = flipsign(e231, u32(g231 << u32(3))) + flipsign(f231, u32(g231 << u32(2)))
         g232 = mix32(u32(x0_2 ^ x1_3 ^ x2_2))
         s232 = g232 >> u32(28)
         e232 = r0_2 if s232 < u32(8) else r1_3
-        f232 = r1_3 if s232 < u32(4) else (r0_2 if (s232 == u32(12)) | (s232 == u32(14)) else r2_2)
-        v232 = (e232 if (s232 & u32(1)) == u32(0) else -e232) + (f232 if (s232 & u32(2)) == u32(0) else -f232)
+        f232 = r1_3 if s232 < u32(4) else (r0_2 if (s232 & u32(13)) == u32(12) else r2_2)
+        v232 = flipsign(e232, u32(g232 << u32(3))) + flipsign(f232, u32(g232 << u32(2)))
         g233 = mix32(u32(x0_2 ^ x1_3 ^ x2_3))
         s233 = g233 >> u32(28)
         e233 = r0_2 if s233 < u32(8) else r1_3
-        f233 = r1_3 if s233 < u32(4) else (r0_2 if (s233 == u32(12)) | (s233 == u32(14)) else r2_3)
-        v233 = (e233 if (s233 & u32(1)) == u32(0) else -e233) + (f233 if (s233 & u32(2)) == u32(0) else -f233)
+        f233 = r1_3 if s233 < u32(4) else (r0_2 if (s233 & u32(13)) == u32(12) else r2_3)
+        v233 = flipsign(e233, u32(g233 << u32(3))) + flipsign(f233, u32(g233 << u32(2)))
         g300 = mix32(u32(x0_3 ^ x1_0 ^ x2_0))
         s300 = g300 >> u32(28)
         e300 = r0_3 if s300 < u32(8) else r1_0
-        f300 = r1_0 if s300 < u32(4) else (r0_3 if (s300 == u32(12)) | (s300 == u32(14)) else r2_0)
-        v300 = (e300 if (s300 & u32(1)) == u32(0) else -e300) + (f300 if (s300 & u32(2)) == u32(0) else -f300)
+        f300 = r1_0 if s300 < u32(4) else (r0_3 if (s300 & u32(13)) == u32(12) else r2_0)
+        v300 = flipsign(e300, u32(g300 << u32(3))) + flipsign(f300, u32(g300 << u32(2)))
         g301 = mix32(u32(x0_3 ^ x1_0 ^ x2_1))
         s301 = g301 >> u32(28)
         e301 = r0_3 if s301 < u32(8) else r1_0
-        f301 = r1_0 if s301 < u32(4) else (r0_3 if (s301 == u32(12)) | (s301 == u32(14)) else r2_1)
-        v301 = (e301 if (s301 & u32(1)) == u32(0) else -e301) + (f301 if (s301 & u32(2)) == u32(0) else -f301)
+        f301 = r1_0 if s301 < u32(4) else (r0_3 if (s301 & u32(13)) == u32(12) else r2_1)
+        v301 = flipsign(e301, u32(g301 << u32(3))) + flipsign(f301, u32(g301 << u32(2)))
         g302 = mix32(u32(x0_3 ^ x1_0 ^ x2_2))
         s302 = g302 >> u32(28)
         e302 = r0_3 if s302 < u32(8) else r1_0
-        f302 = r1_0 if s302 < u32(4) else (r0_3 if (s302 == u32(12)) | (s302 == u32(14)) else r2_2)
-        v302 = (e302 if (s302 & u32(1)) == u32(0) else -e302) + (f302 if (s302 & u32(2)) == u32(0) else -f302)
+        f302 = r1_0 if s302 < u32(4) else (r0_3 if (s302 & u32(13)) == u32(12) else r2_2)
+        v302 = flipsign(e302, u32(g302 << u32(3))) + flipsign(f302, u32(g302 << u32(2)))
         g303 = mix32(u32(x0_3 ^ x1_0 ^ x2_3))
         s303 = g303 >> u32(28)
         e303 = r0_3 if s303 < u32(8) else r1_0
-        f303 = r1_0 if s303 < u32(4) else (r0_3 if (s303 == u32(12)) | (s303 == u32(14)) else r2_3)
-        v303 = (e303 if (s303 & u32(1)) == u32(0) else -e303) + (f303 if (s303 & u32(2)) == u32(0) else -f303)
+        f303 = r1_0 if s303 < u32(4) else (r0_3 if (s303 & u32(13)) == u32(12) else r2_3)
+        v303 = flipsign(e303, u32(g303 << u32(3))) + flipsign(f303, u32(g303 << u32(2)))
         g310 = mix32(u32(x0_3 ^ x1_1 ^ x2_0))
         s310 = g310 >> u32(28)
         e310 = r0_3 if s310 < u32(8) else r1_1
-        f310 = r1_1 if s310 < u32(4) else (r0_3 if (s310 == u32(12)) | (s310 == u32(14)) else r2_0)
-        v310 = (e310 if (s310 & u32(1)) == u32(0) else -e310) + (f310 if (s310 & u32(2)) == u32(0) else -f310)
+        f310 = r1_1 if s310 < u32(4) else (r0_3 if (s310 & u32(13)) == u32(12) else r2_0)
+        v310 = flipsign(e310, u32(g310 << u32(3))) + flipsign(f310, u32(g310 << u32(2)))
         g311 = mix32(u32(x0_3 ^ x1_1 ^ x2_1))
         s311 = g311 >> u32(28)
         e311 = r0_3 if s311 < u32(8) else r1_1
-        f311 = r1_1 if s311 < u32(4) else (r0_3 if (s311 == u32(12)) | (s311 == u32(14)) else r2_1)
-        v311 = (e311 if (s311 & u32(1)) == u32(0) else -e311) + (f311 if (s311 & u32(2)) == u32(0) else -f311)
+        f311 = r1_1 if s311 < u32(4) else (r0_3 if (s311 & u32(13)) == u32(12) else r2_1)
+        v311 = flipsign(e311, u32(g311 << u32(3))) + flipsign(f311, u32(g311 << u32(2)))
         g312 = mix32(u32(x0_3 ^ x1_1 ^ x2_2))
         s312 = g312 >> u32(28)
         e312 = r0_3 if s312 < u32(8) else r1_1
-        f312 = r1_1 if s312 < u32(4) else (r0_3 if (s312 == u32(12)) | (s312 == u32(14)) else r2_2)
-        v312 = (e312 if (s312 & u32(1)) == u32(0) else -e312) + (f312 if (s312 & u32(2)) == u32(0) else -f312)
+        f312 = r1_1 if s312 < u32(4) else (r0_3 if (s312 & u32(13)) == u32(12) else r2_2)
+        v312 = flipsign(e312, u32(g312 << u32(3))) + flipsign(f312, u32(g312 << u32(2)))
         g313 = mix32(u32(x0_3 ^ x1_1 ^ x2_3))
         s313 = g313 >> u32(28)
         e313 = r0_3 if s313 < u32(8) else r1_1
-        f313 = r1_1 if s313 < u32(4) else (r0_3 if (s313 == u32(12)) | (s313 == u32(14)) else r2_3)
-        v313 = (e313 if (s313 & u32(1)) == u32(0) else -e313) + (f313 if (s313 & u32(2)) == u32(0) else -f313)
+        f313 = r1_1 if s313 < u32(4) else (r0_3 if (s313 & u32(13)) == u32(12) else r2_3)
+        v313 = flipsign(e313, u32(g313 << u32(3))) + flipsign(f313, u32(g313 << u32(2)))
         g320 = mix32(u32(x0_3 ^ x1_2 ^ x2_0))
         s320 = g320 >> u32(28)
         e320 = r0_3 if s320 < u32(8) else r1_2
-        f320 = r1_2 if s320 < u32(4) else (r0_3 if (s320 == u32(12)) | (s320 == u32(14)) else r2_0)
-        v320 = (e320 if (s320 & u32(1)) == u32(0) else -e320) + (f320 if (s320 & u32(2)) == u32(0) else -f320)
+        f320 = r1_2 if s320 < u32(4) else (r0_3 if (s320 & u32(13)) == u32(12) else r2_0)
+        v320 = flipsign(e320, u32(g320 << u32(3))) + flipsign(f320, u32(g320 << u32(2)))
         g321 = mix32(u32(x0_3 ^ x1_2 ^ x2_1))
         s321 = g321 >> u32(28)
         e321 = r0_3 if s321 < u32(8) else r1_2
-        f321 = r1_2 if s321 < u32(4) else (r0_3 if (s321 == u32(12)) | (s321 == u32(14)) else r2_1)
-        v321 = (e321 if (s321 & u32(1)) == u32(0) else -e321) + (f321 if (s321 & u32(2)) == u32(0) else -f321)
+        f321 = r1_2 if s321 < u32(4) else (r0_3 if (s321 & u32(13)) == u32(12) else r2_1)
+        v321 = flipsign(e321, u32(g321 << u32(3))) + flipsign(f321, u32(g321 << u32(2)))
         g322 = mix32(u32(x0_3 ^ x1_2 ^ x2_2))
         s322 = g322 >> u32(28)
         e322 = r0_3 if s322 < u32(8) else r1_2
-        f322 = r1_2 if s322 < u32(4) else (r0_3 if (s322 == u32(12)) | (s322 == u32(14)) else r2_2)
-        v322 = (e322 if (s322 & u32(1)) == u32(0) else -e322) + (f322 if (s322 & u32(2)) == u32(0) else -f322)
+        f322 = r1_2 if s322 < u32(4) else (r0_3 if (s322 & u32(13)) == u32(12) else r2_2)
+        v322 = flipsign(e322, u32(g322 << u32(3))) + flipsign(f322, u32(g322 << u32(2)))
         g323 = mix32(u32(x0_3 ^ x1_2 ^ x2_3))
         s323 = g323 >> u32(28)
         e323 = r0_3 if s323 < u32(8) else r1_2
-        f323 = r1_2 if s323 < u32(4) else (r0_3 if (s323 == u32(12)) | (s323 == u32(14)) else r2_3)
-        v323 = (e323 if (s323 & u32(1)) == u32(0) else -e323) + (f323 if (s323 & u32(2)) == u32(0) else -f323)
+        f323 = r1_2 if s323 < u32(4) else (r0_3 if (s323 & u32(13)) == u32(12) else r2_3)
+        v323 = flipsign(e323, u32(g323 << u32(3))) + flipsign(f323, u32(g323 << u32(2)))
         g330 = mix32(u32(x0_3 ^ x1_3 ^ x2_0))
         s330 = g330 >> u32(28)
         e330 = r0_3 if s330 < u32(8) else r1_3
-        f330 = r1_3 if s330 < u32(4) else (r0_3 if (s330 == u32(12)) | (s330 == u32(14)) else r2_0)
-        v330 = (e330 if (s330 & u32(1)) == u32(0) else -e330) + (f330 if (s330 & u32(2)) == u32(0) else -f330)
+        f330 = r1_3 if s330 < u32(4) else (r0_3 if (s330 & u32(13)) == u32(12) else r2_0)
+        v330 = flipsign(e330, u32(g330 << u32(3))) + flipsign(f330, u32(g330 << u32(2)))
         g331 = mix32(u32(x0_3 ^ x1_3 ^ x2_1))
         s331 = g331 >> u32(28)
         e331 = r0_3 if s331 < u32(8) else r1_3
-        f331 = r1_3 if s331 < u32(4) else (r0_3 if (s331 == u32(12)) | (s331 == u32(14)) else r2_1)
-        v331 = (e331 if (s331 & u32(1)) == u32(0) else -e331) + (f331 if (s331 & u32(2)) == u32(0) else -f331)
+        f331 = r1_3 if s331 < u32(4) else (r0_3 if (s331 & u32(13)) == u32(12) else r2_1)
+        v331 = flipsign(e331, u32(g331 << u32(3))) + flipsign(f331, u32(g331 << u32(2)))
         g332 = mix32(u32(x0_3 ^ x1_3 ^ x2_2))
         s332 = g332 >> u32(28)
         e332 = r0_3 if s332 < u32(8) else r1_3
-        f332 = r1_3 if s332 < u32(4) else (r0_3 if (s332 == u32(12)) | (s332 == u32(14)) else r2_2)
-        v332 = (e332 if (s332 & u32(1)) == u32(0) else -e332) + (f332 if (s332 & u32(2)) == u32(0) else -f332)
+        f332 = r1_3 if s332 < u32(4) else (r0_3 if (s332 & u32(13)) == u32(12) else r2_2)
+        v332 = flipsign(e332, u32(g332 << u32(3))) + flipsign(f332, u32(g332 << u32(2)))
         g333 = mix32(u32(x0_3 ^ x1_3 ^ x2_3))
         s333 = g333 >> u32(28)
         e333 = r0_3 if s333 < u32(8) else r1_3
-        f333 = r1_3 if s333 < u32(4) else (r0_3 if (s333 == u32(12)) | (s333 == u32(14)) else r2_3)
-        v333 = (e333 if (s333 & u32(1)) == u32(0) else -e333) + (f333 if (s333 & u32(2)) == u32(0) else -f333)
+        f333 = r1_3 if s333 < u32(4) else (r0_3 if (s333 & u32(13)) == u32(12) else r2_3)
+        v333 = flipsign(e333, u32(g333 << u32(3))) + flipsign(f333, u32(g333 << u32(2)))
         v = amp * (w0_0 * (w1_0 * (w2_0 * (v000) + w2_1 * (v001) + w2_2 * (v002) + w2_3 * (v003)) + w1_1 * (w2_0 * (v010) + w2_1 * (v011) + w2_2 * (v012) + w2_3 * (v013)) + w1_2 * (w2_0 * (v020) + w2_1 * (v021) + w2_2 * (v022) + w2_3 * (v023)) + w1_3 * (w2_0 * (v030) + w2_1 * (v031) + w2_2 * (v032) + w2_3 * (v033))) + w0_1 * (w1_0 * (w2_0 * (v100) + w2_1 * (v101) + w2_2 * (v102) + w2_3 * (v103)) + w1_1 * (w2_0 * (v110) + w2_1 * (v111) + w2_2 * (v112) + w2_3 * (v113)) + w1_2 * (w2_0 * (v120) + w2_1 * (v121) + w2_2 * (v122) + w2_3 * (v123)) + w1_3 * (w2_0 * (v130) + w2_1 * (v131) + w2_2 * (v132) + w2_3 * (v133))) + w0_2 * (w1_0 * (w2_0 * (v200) + w2_1 * (v201) + w2_2 * (v202) + w2_3 * (v203)) + w1_1 * (w2_0 * (v210) + w2_1 * (v211) + w2_2 * (v212) + w2_3 * (v213)) + w1_2 * (w2_0 * (v220) + w2_1 * (v221) + w2_2 * (v222) + w2_3 * (v223)) + w1_3 * (w2_0 * (v230) + w2_1 * (v231) + w2_2 * (v232) + w2_3 * (v233))) + w0_3 * (w1_0 * (w2_0 * (v300) + w2_1 * (v301) + w2_2 * (v302) + w2_3 * (v303)) + w1_1 * (w2_0 * (v310) + w2_1 * (v311) + w2_2 * (v312) + w2_3 * (v313)) + w1_2 * (w2_0 * (v320) + w2_1 * (v321) + w2_2 * (v322) + w2_3 * (v323)) + w1_3 * (w2_0 * (v330) + w2_1 * (v331) + w2_2 * (v332) + w2_3 * (v333))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -15384,323 +15853,323 @@ def _corners_d3_catmull_rom_gradient_f32(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
         s001 = g001 >> u32(28)
         e001 = r0_0 if s001 < u32(8) else r1_0
-        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 == u32(12)) | (s001 == u32(14)) else r2_1)
-        v001 = (e001 if (s001 & u32(1)) == u32(0) else -e001) + (f001 if (s001 & u32(2)) == u32(0) else -f001)
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
         g002 = mix32(u32(x0_0 ^ x1_0 ^ x2_2))
         s002 = g002 >> u32(28)
         e002 = r0_0 if s002 < u32(8) else r1_0
-        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 == u32(12)) | (s002 == u32(14)) else r2_2)
-        v002 = (e002 if (s002 & u32(1)) == u32(0) else -e002) + (f002 if (s002 & u32(2)) == u32(0) else -f002)
+        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 & u32(13)) == u32(12) else r2_2)
+        v002 = flipsign(e002, u32(g002 << u32(3))) + flipsign(f002, u32(g002 << u32(2)))
         g003 = mix32(u32(x0_0 ^ x1_0 ^ x2_3))
         s003 = g003 >> u32(28)
         e003 = r0_0 if s003 < u32(8) else r1_0
-        f003 = r1_0 if s003 < u32(4) else (r0_0 if (s003 == u32(12)) | (s003 == u32(14)) else r2_3)
-        v003 = (e003 if (s003 & u32(1)) == u32(0) else -e003) + (f003 if (s003 & u32(2)) == u32(0) else -f003)
+        f003 = r1_0 if s003 < u32(4) else (r0_0 if (s003 & u32(13)) == u32(12) else r2_3)
+        v003 = flipsign(e003, u32(g003 << u32(3))) + flipsign(f003, u32(g003 << u32(2)))
         g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
         s010 = g010 >> u32(28)
         e010 = r0_0 if s010 < u32(8) else r1_1
-        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 == u32(12)) | (s010 == u32(14)) else r2_0)
-        v010 = (e010 if (s010 & u32(1)) == u32(0) else -e010) + (f010 if (s010 & u32(2)) == u32(0) else -f010)
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
         g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
         s011 = g011 >> u32(28)
         e011 = r0_0 if s011 < u32(8) else r1_1
-        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 == u32(12)) | (s011 == u32(14)) else r2_1)
-        v011 = (e011 if (s011 & u32(1)) == u32(0) else -e011) + (f011 if (s011 & u32(2)) == u32(0) else -f011)
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
         g012 = mix32(u32(x0_0 ^ x1_1 ^ x2_2))
         s012 = g012 >> u32(28)
         e012 = r0_0 if s012 < u32(8) else r1_1
-        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 == u32(12)) | (s012 == u32(14)) else r2_2)
-        v012 = (e012 if (s012 & u32(1)) == u32(0) else -e012) + (f012 if (s012 & u32(2)) == u32(0) else -f012)
+        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 & u32(13)) == u32(12) else r2_2)
+        v012 = flipsign(e012, u32(g012 << u32(3))) + flipsign(f012, u32(g012 << u32(2)))
         g013 = mix32(u32(x0_0 ^ x1_1 ^ x2_3))
         s013 = g013 >> u32(28)
         e013 = r0_0 if s013 < u32(8) else r1_1
-        f013 = r1_1 if s013 < u32(4) else (r0_0 if (s013 == u32(12)) | (s013 == u32(14)) else r2_3)
-        v013 = (e013 if (s013 & u32(1)) == u32(0) else -e013) + (f013 if (s013 & u32(2)) == u32(0) else -f013)
+        f013 = r1_1 if s013 < u32(4) else (r0_0 if (s013 & u32(13)) == u32(12) else r2_3)
+        v013 = flipsign(e013, u32(g013 << u32(3))) + flipsign(f013, u32(g013 << u32(2)))
         g020 = mix32(u32(x0_0 ^ x1_2 ^ x2_0))
         s020 = g020 >> u32(28)
         e020 = r0_0 if s020 < u32(8) else r1_2
-        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 == u32(12)) | (s020 == u32(14)) else r2_0)
-        v020 = (e020 if (s020 & u32(1)) == u32(0) else -e020) + (f020 if (s020 & u32(2)) == u32(0) else -f020)
+        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 & u32(13)) == u32(12) else r2_0)
+        v020 = flipsign(e020, u32(g020 << u32(3))) + flipsign(f020, u32(g020 << u32(2)))
         g021 = mix32(u32(x0_0 ^ x1_2 ^ x2_1))
         s021 = g021 >> u32(28)
         e021 = r0_0 if s021 < u32(8) else r1_2
-        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 == u32(12)) | (s021 == u32(14)) else r2_1)
-        v021 = (e021 if (s021 & u32(1)) == u32(0) else -e021) + (f021 if (s021 & u32(2)) == u32(0) else -f021)
+        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 & u32(13)) == u32(12) else r2_1)
+        v021 = flipsign(e021, u32(g021 << u32(3))) + flipsign(f021, u32(g021 << u32(2)))
         g022 = mix32(u32(x0_0 ^ x1_2 ^ x2_2))
         s022 = g022 >> u32(28)
         e022 = r0_0 if s022 < u32(8) else r1_2
-        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 == u32(12)) | (s022 == u32(14)) else r2_2)
-        v022 = (e022 if (s022 & u32(1)) == u32(0) else -e022) + (f022 if (s022 & u32(2)) == u32(0) else -f022)
+        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 & u32(13)) == u32(12) else r2_2)
+        v022 = flipsign(e022, u32(g022 << u32(3))) + flipsign(f022, u32(g022 << u32(2)))
         g023 = mix32(u32(x0_0 ^ x1_2 ^ x2_3))
         s023 = g023 >> u32(28)
         e023 = r0_0 if s023 < u32(8) else r1_2
-        f023 = r1_2 if s023 < u32(4) else (r0_0 if (s023 == u32(12)) | (s023 == u32(14)) else r2_3)
-        v023 = (e023 if (s023 & u32(1)) == u32(0) else -e023) + (f023 if (s023 & u32(2)) == u32(0) else -f023)
+        f023 = r1_2 if s023 < u32(4) else (r0_0 if (s023 & u32(13)) == u32(12) else r2_3)
+        v023 = flipsign(e023, u32(g023 << u32(3))) + flipsign(f023, u32(g023 << u32(2)))
         g030 = mix32(u32(x0_0 ^ x1_3 ^ x2_0))
         s030 = g030 >> u32(28)
         e030 = r0_0 if s030 < u32(8) else r1_3
-        f030 = r1_3 if s030 < u32(4) else (r0_0 if (s030 == u32(12)) | (s030 == u32(14)) else r2_0)
-        v030 = (e030 if (s030 & u32(1)) == u32(0) else -e030) + (f030 if (s030 & u32(2)) == u32(0) else -f030)
+        f030 = r1_3 if s030 < u32(4) else (r0_0 if (s030 & u32(13)) == u32(12) else r2_0)
+        v030 = flipsign(e030, u32(g030 << u32(3))) + flipsign(f030, u32(g030 << u32(2)))
         g031 = mix32(u32(x0_0 ^ x1_3 ^ x2_1))
         s031 = g031 >> u32(28)
         e031 = r0_0 if s031 < u32(8) else r1_3
-        f031 = r1_3 if s031 < u32(4) else (r0_0 if (s031 == u32(12)) | (s031 == u32(14)) else r2_1)
-        v031 = (e031 if (s031 & u32(1)) == u32(0) else -e031) + (f031 if (s031 & u32(2)) == u32(0) else -f031)
+        f031 = r1_3 if s031 < u32(4) else (r0_0 if (s031 & u32(13)) == u32(12) else r2_1)
+        v031 = flipsign(e031, u32(g031 << u32(3))) + flipsign(f031, u32(g031 << u32(2)))
         g032 = mix32(u32(x0_0 ^ x1_3 ^ x2_2))
         s032 = g032 >> u32(28)
         e032 = r0_0 if s032 < u32(8) else r1_3
-        f032 = r1_3 if s032 < u32(4) else (r0_0 if (s032 == u32(12)) | (s032 == u32(14)) else r2_2)
-        v032 = (e032 if (s032 & u32(1)) == u32(0) else -e032) + (f032 if (s032 & u32(2)) == u32(0) else -f032)
+        f032 = r1_3 if s032 < u32(4) else (r0_0 if (s032 & u32(13)) == u32(12) else r2_2)
+        v032 = flipsign(e032, u32(g032 << u32(3))) + flipsign(f032, u32(g032 << u32(2)))
         g033 = mix32(u32(x0_0 ^ x1_3 ^ x2_3))
         s033 = g033 >> u32(28)
         e033 = r0_0 if s033 < u32(8) else r1_3
-        f033 = r1_3 if s033 < u32(4) else (r0_0 if (s033 == u32(12)) | (s033 == u32(14)) else r2_3)
-        v033 = (e033 if (s033 & u32(1)) == u32(0) else -e033) + (f033 if (s033 & u32(2)) == u32(0) else -f033)
+        f033 = r1_3 if s033 < u32(4) else (r0_0 if (s033 & u32(13)) == u32(12) else r2_3)
+        v033 = flipsign(e033, u32(g033 << u32(3))) + flipsign(f033, u32(g033 << u32(2)))
         g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
         s100 = g100 >> u32(28)
         e100 = r0_1 if s100 < u32(8) else r1_0
-        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 == u32(12)) | (s100 == u32(14)) else r2_0)
-        v100 = (e100 if (s100 & u32(1)) == u32(0) else -e100) + (f100 if (s100 & u32(2)) == u32(0) else -f100)
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
         g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
         s101 = g101 >> u32(28)
         e101 = r0_1 if s101 < u32(8) else r1_0
-        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 == u32(12)) | (s101 == u32(14)) else r2_1)
-        v101 = (e101 if (s101 & u32(1)) == u32(0) else -e101) + (f101 if (s101 & u32(2)) == u32(0) else -f101)
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
         g102 = mix32(u32(x0_1 ^ x1_0 ^ x2_2))
         s102 = g102 >> u32(28)
         e102 = r0_1 if s102 < u32(8) else r1_0
-        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 == u32(12)) | (s102 == u32(14)) else r2_2)
-        v102 = (e102 if (s102 & u32(1)) == u32(0) else -e102) + (f102 if (s102 & u32(2)) == u32(0) else -f102)
+        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 & u32(13)) == u32(12) else r2_2)
+        v102 = flipsign(e102, u32(g102 << u32(3))) + flipsign(f102, u32(g102 << u32(2)))
         g103 = mix32(u32(x0_1 ^ x1_0 ^ x2_3))
         s103 = g103 >> u32(28)
         e103 = r0_1 if s103 < u32(8) else r1_0
-        f103 = r1_0 if s103 < u32(4) else (r0_1 if (s103 == u32(12)) | (s103 == u32(14)) else r2_3)
-        v103 = (e103 if (s103 & u32(1)) == u32(0) else -e103) + (f103 if (s103 & u32(2)) == u32(0) else -f103)
+        f103 = r1_0 if s103 < u32(4) else (r0_1 if (s103 & u32(13)) == u32(12) else r2_3)
+        v103 = flipsign(e103, u32(g103 << u32(3))) + flipsign(f103, u32(g103 << u32(2)))
         g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
         s110 = g110 >> u32(28)
         e110 = r0_1 if s110 < u32(8) else r1_1
-        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 == u32(12)) | (s110 == u32(14)) else r2_0)
-        v110 = (e110 if (s110 & u32(1)) == u32(0) else -e110) + (f110 if (s110 & u32(2)) == u32(0) else -f110)
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
         g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
         s111 = g111 >> u32(28)
         e111 = r0_1 if s111 < u32(8) else r1_1
-        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 == u32(12)) | (s111 == u32(14)) else r2_1)
-        v111 = (e111 if (s111 & u32(1)) == u32(0) else -e111) + (f111 if (s111 & u32(2)) == u32(0) else -f111)
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
         g112 = mix32(u32(x0_1 ^ x1_1 ^ x2_2))
         s112 = g112 >> u32(28)
         e112 = r0_1 if s112 < u32(8) else r1_1
-        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 == u32(12)) | (s112 == u32(14)) else r2_2)
-        v112 = (e112 if (s112 & u32(1)) == u32(0) else -e112) + (f112 if (s112 & u32(2)) == u32(0) else -f112)
+        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 & u32(13)) == u32(12) else r2_2)
+        v112 = flipsign(e112, u32(g112 << u32(3))) + flipsign(f112, u32(g112 << u32(2)))
         g113 = mix32(u32(x0_1 ^ x1_1 ^ x2_3))
         s113 = g113 >> u32(28)
         e113 = r0_1 if s113 < u32(8) else r1_1
-        f113 = r1_1 if s113 < u32(4) else (r0_1 if (s113 == u32(12)) | (s113 == u32(14)) else r2_3)
-        v113 = (e113 if (s113 & u32(1)) == u32(0) else -e113) + (f113 if (s113 & u32(2)) == u32(0) else -f113)
+        f113 = r1_1 if s113 < u32(4) else (r0_1 if (s113 & u32(13)) == u32(12) else r2_3)
+        v113 = flipsign(e113, u32(g113 << u32(3))) + flipsign(f113, u32(g113 << u32(2)))
         g120 = mix32(u32(x0_1 ^ x1_2 ^ x2_0))
         s120 = g120 >> u32(28)
         e120 = r0_1 if s120 < u32(8) else r1_2
-        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 == u32(12)) | (s120 == u32(14)) else r2_0)
-        v120 = (e120 if (s120 & u32(1)) == u32(0) else -e120) + (f120 if (s120 & u32(2)) == u32(0) else -f120)
+        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 & u32(13)) == u32(12) else r2_0)
+        v120 = flipsign(e120, u32(g120 << u32(3))) + flipsign(f120, u32(g120 << u32(2)))
         g121 = mix32(u32(x0_1 ^ x1_2 ^ x2_1))
         s121 = g121 >> u32(28)
         e121 = r0_1 if s121 < u32(8) else r1_2
-        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 == u32(12)) | (s121 == u32(14)) else r2_1)
-        v121 = (e121 if (s121 & u32(1)) == u32(0) else -e121) + (f121 if (s121 & u32(2)) == u32(0) else -f121)
+        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 & u32(13)) == u32(12) else r2_1)
+        v121 = flipsign(e121, u32(g121 << u32(3))) + flipsign(f121, u32(g121 << u32(2)))
         g122 = mix32(u32(x0_1 ^ x1_2 ^ x2_2))
         s122 = g122 >> u32(28)
         e122 = r0_1 if s122 < u32(8) else r1_2
-        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 == u32(12)) | (s122 == u32(14)) else r2_2)
-        v122 = (e122 if (s122 & u32(1)) == u32(0) else -e122) + (f122 if (s122 & u32(2)) == u32(0) else -f122)
+        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 & u32(13)) == u32(12) else r2_2)
+        v122 = flipsign(e122, u32(g122 << u32(3))) + flipsign(f122, u32(g122 << u32(2)))
         g123 = mix32(u32(x0_1 ^ x1_2 ^ x2_3))
         s123 = g123 >> u32(28)
         e123 = r0_1 if s123 < u32(8) else r1_2
-        f123 = r1_2 if s123 < u32(4) else (r0_1 if (s123 == u32(12)) | (s123 == u32(14)) else r2_3)
-        v123 = (e123 if (s123 & u32(1)) == u32(0) else -e123) + (f123 if (s123 & u32(2)) == u32(0) else -f123)
+        f123 = r1_2 if s123 < u32(4) else (r0_1 if (s123 & u32(13)) == u32(12) else r2_3)
+        v123 = flipsign(e123, u32(g123 << u32(3))) + flipsign(f123, u32(g123 << u32(2)))
         g130 = mix32(u32(x0_1 ^ x1_3 ^ x2_0))
         s130 = g130 >> u32(28)
         e130 = r0_1 if s130 < u32(8) else r1_3
-        f130 = r1_3 if s130 < u32(4) else (r0_1 if (s130 == u32(12)) | (s130 == u32(14)) else r2_0)
-        v130 = (e130 if (s130 & u32(1)) == u32(0) else -e130) + (f130 if (s130 & u32(2)) == u32(0) else -f130)
+        f130 = r1_3 if s130 < u32(4) else (r0_1 if (s130 & u32(13)) == u32(12) else r2_0)
+        v130 = flipsign(e130, u32(g130 << u32(3))) + flipsign(f130, u32(g130 << u32(2)))
         g131 = mix32(u32(x0_1 ^ x1_3 ^ x2_1))
         s131 = g131 >> u32(28)
         e131 = r0_1 if s131 < u32(8) else r1_3
-        f131 = r1_3 if s131 < u32(4) else (r0_1 if (s131 == u32(12)) | (s131 == u32(14)) else r2_1)
-        v131 = (e131 if (s131 & u32(1)) == u32(0) else -e131) + (f131 if (s131 & u32(2)) == u32(0) else -f131)
+        f131 = r1_3 if s131 < u32(4) else (r0_1 if (s131 & u32(13)) == u32(12) else r2_1)
+        v131 = flipsign(e131, u32(g131 << u32(3))) + flipsign(f131, u32(g131 << u32(2)))
         g132 = mix32(u32(x0_1 ^ x1_3 ^ x2_2))
         s132 = g132 >> u32(28)
         e132 = r0_1 if s132 < u32(8) else r1_3
-        f132 = r1_3 if s132 < u32(4) else (r0_1 if (s132 == u32(12)) | (s132 == u32(14)) else r2_2)
-        v132 = (e132 if (s132 & u32(1)) == u32(0) else -e132) + (f132 if (s132 & u32(2)) == u32(0) else -f132)
+        f132 = r1_3 if s132 < u32(4) else (r0_1 if (s132 & u32(13)) == u32(12) else r2_2)
+        v132 = flipsign(e132, u32(g132 << u32(3))) + flipsign(f132, u32(g132 << u32(2)))
         g133 = mix32(u32(x0_1 ^ x1_3 ^ x2_3))
         s133 = g133 >> u32(28)
         e133 = r0_1 if s133 < u32(8) else r1_3
-        f133 = r1_3 if s133 < u32(4) else (r0_1 if (s133 == u32(12)) | (s133 == u32(14)) else r2_3)
-        v133 = (e133 if (s133 & u32(1)) == u32(0) else -e133) + (f133 if (s133 & u32(2)) == u32(0) else -f133)
+        f133 = r1_3 if s133 < u32(4) else (r0_1 if (s133 & u32(13)) == u32(12) else r2_3)
+        v133 = flipsign(e133, u32(g133 << u32(3))) + flipsign(f133, u32(g133 << u32(2)))
         g200 = mix32(u32(x0_2 ^ x1_0 ^ x2_0))
         s200 = g200 >> u32(28)
         e200 = r0_2 if s200 < u32(8) else r1_0
-        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 == u32(12)) | (s200 == u32(14)) else r2_0)
-        v200 = (e200 if (s200 & u32(1)) == u32(0) else -e200) + (f200 if (s200 & u32(2)) == u32(0) else -f200)
+        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 & u32(13)) == u32(12) else r2_0)
+        v200 = flipsign(e200, u32(g200 << u32(3))) + flipsign(f200, u32(g200 << u32(2)))
         g201 = mix32(u32(x0_2 ^ x1_0 ^ x2_1))
         s201 = g201 >> u32(28)
         e201 = r0_2 if s201 < u32(8) else r1_0
-        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 == u32(12)) | (s201 == u32(14)) else r2_1)
-        v201 = (e201 if (s201 & u32(1)) == u32(0) else -e201) + (f201 if (s201 & u32(2)) == u32(0) else -f201)
+        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 & u32(13)) == u32(12) else r2_1)
+        v201 = flipsign(e201, u32(g201 << u32(3))) + flipsign(f201, u32(g201 << u32(2)))
         g202 = mix32(u32(x0_2 ^ x1_0 ^ x2_2))
         s202 = g202 >> u32(28)
         e202 = r0_2 if s202 < u32(8) else r1_0
-        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 == u32(12)) | (s202 == u32(14)) else r2_2)
-        v202 = (e202 if (s202 & u32(1)) == u32(0) else -e202) + (f202 if (s202 & u32(2)) == u32(0) else -f202)
+        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 & u32(13)) == u32(12) else r2_2)
+        v202 = flipsign(e202, u32(g202 << u32(3))) + flipsign(f202, u32(g202 << u32(2)))
         g203 = mix32(u32(x0_2 ^ x1_0 ^ x2_3))
         s203 = g203 >> u32(28)
         e203 = r0_2 if s203 < u32(8) else r1_0
-        f203 = r1_0 if s203 < u32(4) else (r0_2 if (s203 == u32(12)) | (s203 == u32(14)) else r2_3)
-        v203 = (e203 if (s203 & u32(1)) == u32(0) else -e203) + (f203 if (s203 & u32(2)) == u32(0) else -f203)
+        f203 = r1_0 if s203 < u32(4) else (r0_2 if (s203 & u32(13)) == u32(12) else r2_3)
+        v203 = flipsign(e203, u32(g203 << u32(3))) + flipsign(f203, u32(g203 << u32(2)))
         g210 = mix32(u32(x0_2 ^ x1_1 ^ x2_0))
         s210 = g210 >> u32(28)
         e210 = r0_2 if s210 < u32(8) else r1_1
-        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 == u32(12)) | (s210 == u32(14)) else r2_0)
-        v210 = (e210 if (s210 & u32(1)) == u32(0) else -e210) + (f210 if (s210 & u32(2)) == u32(0) else -f210)
+        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 & u32(13)) == u32(12) else r2_0)
+        v210 = flipsign(e210, u32(g210 << u32(3))) + flipsign(f210, u32(g210 << u32(2)))
         g211 = mix32(u32(x0_2 ^ x1_1 ^ x2_1))
         s211 = g211 >> u32(28)
         e211 = r0_2 if s211 < u32(8) else r1_1
-        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 == u32(12)) | (s211 == u32(14)) else r2_1)
-        v211 = (e211 if (s211 & u32(1)) == u32(0) else -e211) + (f211 if (s211 & u32(2)) == u32(0) else -f211)
+        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 & u32(13)) == u32(12) else r2_1)
+        v211 = flipsign(e211, u32(g211 << u32(3))) + flipsign(f211, u32(g211 << u32(2)))
         g212 = mix32(u32(x0_2 ^ x1_1 ^ x2_2))
         s212 = g212 >> u32(28)
         e212 = r0_2 if s212 < u32(8) else r1_1
-        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 == u32(12)) | (s212 == u32(14)) else r2_2)
-        v212 = (e212 if (s212 & u32(1)) == u32(0) else -e212) + (f212 if (s212 & u32(2)) == u32(0) else -f212)
+        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 & u32(13)) == u32(12) else r2_2)
+        v212 = flipsign(e212, u32(g212 << u32(3))) + flipsign(f212, u32(g212 << u32(2)))
         g213 = mix32(u32(x0_2 ^ x1_1 ^ x2_3))
         s213 = g213 >> u32(28)
         e213 = r0_2 if s213 < u32(8) else r1_1
-        f213 = r1_1 if s213 < u32(4) else (r0_2 if (s213 == u32(12)) | (s213 == u32(14)) else r2_3)
-        v213 = (e213 if (s213 & u32(1)) == u32(0) else -e213) + (f213 if (s213 & u32(2)) == u32(0) else -f213)
+        f213 = r1_1 if s213 < u32(4) else (r0_2 if (s213 & u32(13)) == u32(12) else r2_3)
+        v213 = flipsign(e213, u32(g213 << u32(3))) + flipsign(f213, u32(g213 << u32(2)))
         g220 = mix32(u32(x0_2 ^ x1_2 ^ x2_0))
         s220 = g220 >> u32(28)
         e220 = r0_2 if s220 < u32(8) else r1_2
-        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 == u32(12)) | (s220 == u32(14)) else r2_0)
-        v220 = (e220 if (s220 & u32(1)) == u32(0) else -e220) + (f220 if (s220 & u32(2)) == u32(0) else -f220)
+        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 & u32(13)) == u32(12) else r2_0)
+        v220 = flipsign(e220, u32(g220 << u32(3))) + flipsign(f220, u32(g220 << u32(2)))
         g221 = mix32(u32(x0_2 ^ x1_2 ^ x2_1))
         s221 = g221 >> u32(28)
         e221 = r0_2 if s221 < u32(8) else r1_2
-        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 == u32(12)) | (s221 == u32(14)) else r2_1)
-        v221 = (e221 if (s221 & u32(1)) == u32(0) else -e221) + (f221 if (s221 & u32(2)) == u32(0) else -f221)
+        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 & u32(13)) == u32(12) else r2_1)
+        v221 = flipsign(e221, u32(g221 << u32(3))) + flipsign(f221, u32(g221 << u32(2)))
         g222 = mix32(u32(x0_2 ^ x1_2 ^ x2_2))
         s222 = g222 >> u32(28)
         e222 = r0_2 if s222 < u32(8) else r1_2
-        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 == u32(12)) | (s222 == u32(14)) else r2_2)
-        v222 = (e222 if (s222 & u32(1)) == u32(0) else -e222) + (f222 if (s222 & u32(2)) == u32(0) else -f222)
+        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 & u32(13)) == u32(12) else r2_2)
+        v222 = flipsign(e222, u32(g222 << u32(3))) + flipsign(f222, u32(g222 << u32(2)))
         g223 = mix32(u32(x0_2 ^ x1_2 ^ x2_3))
         s223 = g223 >> u32(28)
         e223 = r0_2 if s223 < u32(8) else r1_2
-        f223 = r1_2 if s223 < u32(4) else (r0_2 if (s223 == u32(12)) | (s223 == u32(14)) else r2_3)
-        v223 = (e223 if (s223 & u32(1)) == u32(0) else -e223) + (f223 if (s223 & u32(2)) == u32(0) else -f223)
+        f223 = r1_2 if s223 < u32(4) else (r0_2 if (s223 & u32(13)) == u32(12) else r2_3)
+        v223 = flipsign(e223, u32(g223 << u32(3))) + flipsign(f223, u32(g223 << u32(2)))
         g230 = mix32(u32(x0_2 ^ x1_3 ^ x2_0))
         s230 = g230 >> u32(28)
         e230 = r0_2 if s230 < u32(8) else r1_3
-        f230 = r1_3 if s230 < u32(4) else (r0_2 if (s230 == u32(12)) | (s230 == u32(14)) else r2_0)
-        v230 = (e230 if (s230 & u32(1)) == u32(0) else -e230) + (f230 if (s230 & u32(2)) == u32(0) else -f230)
+        f230 = r1_3 if s230 < u32(4) else (r0_2 if (s230 & u32(13)) == u32(12) else r2_0)
+        v230 = flipsign(e230, u32(g230 << u32(3))) + flipsign(f230, u32(g230 << u32(2)))
         g231 = mix32(u32(x0_2 ^ x1_3 ^ x2_1))
         s231 = g231 >> u32(28)
         e231 = r0_2 if s231 < u32(8) else r1_3
-        f231 = r1_3 if s231 < u32(4) else (r0_2 if (s231 == u32(12)) | (s231 == u32(14)) else r2_1)
-        v231 = (e231 if (s231 & u32(1)) == u32(0) else -e231) + (f231 if (s231 & u32(2)) == u32(0) else -f231)
+        f231 = r1_3 if s231 < u32(4) else (r0_2 if (s231 & u32(13)) == u32(12) else r2_1)
+        v231 = flipsign(e231, u32(g231 << u32(3))) + flipsign(f231, u32(g231 << u32(2)))
         g232 = mix32(u32(x0_2 ^ x1_3 ^ x2_2))
         s232 = g232 >> u32(28)
         e232 = r0_2 if s232 < u32(8) else r1_3
-        f232 = r1_3 if s232 < u32(4) else (r0_2 if (s232 == u32(12)) | (s232 == u32(14)) else r2_2)
-        v232 = (e232 if (s232 & u32(1)) == u32(0) else -e232) + (f232 if (s232 & u32(2)) == u32(0) else -f232)
+        f232 = r1_3 if s232 < u32(4) else (r0_2 if (s232 & u32(13)) == u32(12) else r2_2)
+        v232 = flipsign(e232, u32(g232 << u32(3))) + flipsign(f232, u32(g232 << u32(2)))
         g233 = mix32(u32(x0_2 ^ x1_3 ^ x2_3))
         s233 = g233 >> u32(28)
         e233 = r0_2 if s233 < u32(8) else r1_3
-        f233 = r1_3 if s233 < u32(4) else (r0_2 if (s233 == u32(12)) | (s233 == u32(14)) else r2_3)
-        v233 = (e233 if (s233 & u32(1)) == u32(0) else -e233) + (f233 if (s233 & u32(2)) == u32(0) else -f233)
+        f233 = r1_3 if s233 < u32(4) else (r0_2 if (s233 & u32(13)) == u32(12) else r2_3)
+        v233 = flipsign(e233, u32(g233 << u32(3))) + flipsign(f233, u32(g233 << u32(2)))
         g300 = mix32(u32(x0_3 ^ x1_0 ^ x2_0))
         s300 = g300 >> u32(28)
         e300 = r0_3 if s300 < u32(8) else r1_0
-        f300 = r1_0 if s300 < u32(4) else (r0_3 if (s300 == u32(12)) | (s300 == u32(14)) else r2_0)
-        v300 = (e300 if (s300 & u32(1)) == u32(0) else -e300) + (f300 if (s300 & u32(2)) == u32(0) else -f300)
+        f300 = r1_0 if s300 < u32(4) else (r0_3 if (s300 & u32(13)) == u32(12) else r2_0)
+        v300 = flipsign(e300, u32(g300 << u32(3))) + flipsign(f300, u32(g300 << u32(2)))
         g301 = mix32(u32(x0_3 ^ x1_0 ^ x2_1))
         s301 = g301 >> u32(28)
         e301 = r0_3 if s301 < u32(8) else r1_0
-        f301 = r1_0 if s301 < u32(4) else (r0_3 if (s301 == u32(12)) | (s301 == u32(14)) else r2_1)
-        v301 = (e301 if (s301 & u32(1)) == u32(0) else -e301) + (f301 if (s301 & u32(2)) == u32(0) else -f301)
+        f301 = r1_0 if s301 < u32(4) else (r0_3 if (s301 & u32(13)) == u32(12) else r2_1)
+        v301 = flipsign(e301, u32(g301 << u32(3))) + flipsign(f301, u32(g301 << u32(2)))
         g302 = mix32(u32(x0_3 ^ x1_0 ^ x2_2))
         s302 = g302 >> u32(28)
         e302 = r0_3 if s302 < u32(8) else r1_0
-        f302 = r1_0 if s302 < u32(4) else (r0_3 if (s302 == u32(12)) | (s302 == u32(14)) else r2_2)
-        v302 = (e302 if (s302 & u32(1)) == u32(0) else -e302) + (f302 if (s302 & u32(2)) == u32(0) else -f302)
+        f302 = r1_0 if s302 < u32(4) else (r0_3 if (s302 & u32(13)) == u32(12) else r2_2)
+        v302 = flipsign(e302, u32(g302 << u32(3))) + flipsign(f302, u32(g302 << u32(2)))
         g303 = mix32(u32(x0_3 ^ x1_0 ^ x2_3))
         s303 = g303 >> u32(28)
         e303 = r0_3 if s303 < u32(8) else r1_0
-        f303 = r1_0 if s303 < u32(4) else (r0_3 if (s303 == u32(12)) | (s303 == u32(14)) else r2_3)
-        v303 = (e303 if (s303 & u32(1)) == u32(0) else -e303) + (f303 if (s303 & u32(2)) == u32(0) else -f303)
+        f303 = r1_0 if s303 < u32(4) else (r0_3 if (s303 & u32(13)) == u32(12) else r2_3)
+        v303 = flipsign(e303, u32(g303 << u32(3))) + flipsign(f303, u32(g303 << u32(2)))
         g310 = mix32(u32(x0_3 ^ x1_1 ^ x2_0))
         s310 = g310 >> u32(28)
         e310 = r0_3 if s310 < u32(8) else r1_1
-        f310 = r1_1 if s310 < u32(4) else (r0_3 if (s310 == u32(12)) | (s310 == u32(14)) else r2_0)
-        v310 = (e310 if (s310 & u32(1)) == u32(0) else -e310) + (f310 if (s310 & u32(2)) == u32(0) else -f310)
+        f310 = r1_1 if s310 < u32(4) else (r0_3 if (s310 & u32(13)) == u32(12) else r2_0)
+        v310 = flipsign(e310, u32(g310 << u32(3))) + flipsign(f310, u32(g310 << u32(2)))
         g311 = mix32(u32(x0_3 ^ x1_1 ^ x2_1))
         s311 = g311 >> u32(28)
         e311 = r0_3 if s311 < u32(8) else r1_1
-        f311 = r1_1 if s311 < u32(4) else (r0_3 if (s311 == u32(12)) | (s311 == u32(14)) else r2_1)
-        v311 = (e311 if (s311 & u32(1)) == u32(0) else -e311) + (f311 if (s311 & u32(2)) == u32(0) else -f311)
+        f311 = r1_1 if s311 < u32(4) else (r0_3 if (s311 & u32(13)) == u32(12) else r2_1)
+        v311 = flipsign(e311, u32(g311 << u32(3))) + flipsign(f311, u32(g311 << u32(2)))
         g312 = mix32(u32(x0_3 ^ x1_1 ^ x2_2))
         s312 = g312 >> u32(28)
         e312 = r0_3 if s312 < u32(8) else r1_1
-        f312 = r1_1 if s312 < u32(4) else (r0_3 if (s312 == u32(12)) | (s312 == u32(14)) else r2_2)
-        v312 = (e312 if (s312 & u32(1)) == u32(0) else -e312) + (f312 if (s312 & u32(2)) == u32(0) else -f312)
+        f312 = r1_1 if s312 < u32(4) else (r0_3 if (s312 & u32(13)) == u32(12) else r2_2)
+        v312 = flipsign(e312, u32(g312 << u32(3))) + flipsign(f312, u32(g312 << u32(2)))
         g313 = mix32(u32(x0_3 ^ x1_1 ^ x2_3))
         s313 = g313 >> u32(28)
         e313 = r0_3 if s313 < u32(8) else r1_1
-        f313 = r1_1 if s313 < u32(4) else (r0_3 if (s313 == u32(12)) | (s313 == u32(14)) else r2_3)
-        v313 = (e313 if (s313 & u32(1)) == u32(0) else -e313) + (f313 if (s313 & u32(2)) == u32(0) else -f313)
+        f313 = r1_1 if s313 < u32(4) else (r0_3 if (s313 & u32(13)) == u32(12) else r2_3)
+        v313 = flipsign(e313, u32(g313 << u32(3))) + flipsign(f313, u32(g313 << u32(2)))
         g320 = mix32(u32(x0_3 ^ x1_2 ^ x2_0))
         s320 = g320 >> u32(28)
         e320 = r0_3 if s320 < u32(8) else r1_2
-        f320 = r1_2 if s320 < u32(4) else (r0_3 if (s320 == u32(12)) | (s320 == u32(14)) else r2_0)
-        v320 = (e320 if (s320 & u32(1)) == u32(0) else -e320) + (f320 if (s320 & u32(2)) == u32(0) else -f320)
+        f320 = r1_2 if s320 < u32(4) else (r0_3 if (s320 & u32(13)) == u32(12) else r2_0)
+        v320 = flipsign(e320, u32(g320 << u32(3))) + flipsign(f320, u32(g320 << u32(2)))
         g321 = mix32(u32(x0_3 ^ x1_2 ^ x2_1))
         s321 = g321 >> u32(28)
         e321 = r0_3 if s321 < u32(8) else r1_2
-        f321 = r1_2 if s321 < u32(4) else (r0_3 if (s321 == u32(12)) | (s321 == u32(14)) else r2_1)
-        v321 = (e321 if (s321 & u32(1)) == u32(0) else -e321) + (f321 if (s321 & u32(2)) == u32(0) else -f321)
+        f321 = r1_2 if s321 < u32(4) else (r0_3 if (s321 & u32(13)) == u32(12) else r2_1)
+        v321 = flipsign(e321, u32(g321 << u32(3))) + flipsign(f321, u32(g321 << u32(2)))
         g322 = mix32(u32(x0_3 ^ x1_2 ^ x2_2))
         s322 = g322 >> u32(28)
         e322 = r0_3 if s322 < u32(8) else r1_2
-        f322 = r1_2 if s322 < u32(4) else (r0_3 if (s322 == u32(12)) | (s322 == u32(14)) else r2_2)
-        v322 = (e322 if (s322 & u32(1)) == u32(0) else -e322) + (f322 if (s322 & u32(2)) == u32(0) else -f322)
+        f322 = r1_2 if s322 < u32(4) else (r0_3 if (s322 & u32(13)) == u32(12) else r2_2)
+        v322 = flipsign(e322, u32(g322 << u32(3))) + flipsign(f322, u32(g322 << u32(2)))
         g323 = mix32(u32(x0_3 ^ x1_2 ^ x2_3))
         s323 = g323 >> u32(28)
         e323 = r0_3 if s323 < u32(8) else r1_2
-        f323 = r1_2 if s323 < u32(4) else (r0_3 if (s323 == u32(12)) | (s323 == u32(14)) else r2_3)
-        v323 = (e323 if (s323 & u32(1)) == u32(0) else -e323) + (f323 if (s323 & u32(2)) == u32(0) else -f323)
+        f323 = r1_2 if s323 < u32(4) else (r0_3 if (s323 & u32(13)) == u32(12) else r2_3)
+        v323 = flipsign(e323, u32(g323 << u32(3))) + flipsign(f323, u32(g323 << u32(2)))
         g330 = mix32(u32(x0_3 ^ x1_3 ^ x2_0))
         s330 = g330 >> u32(28)
         e330 = r0_3 if s330 < u32(8) else r1_3
-        f330 = r1_3 if s330 < u32(4) else (r0_3 if (s330 == u32(12)) | (s330 == u32(14)) else r2_0)
-        v330 = (e330 if (s330 & u32(1)) == u32(0) else -e330) + (f330 if (s330 & u32(2)) == u32(0) else -f330)
+        f330 = r1_3 if s330 < u32(4) else (r0_3 if (s330 & u32(13)) == u32(12) else r2_0)
+        v330 = flipsign(e330, u32(g330 << u32(3))) + flipsign(f330, u32(g330 << u32(2)))
         g331 = mix32(u32(x0_3 ^ x1_3 ^ x2_1))
         s331 = g331 >> u32(28)
         e331 = r0_3 if s331 < u32(8) else r1_3
-        f331 = r1_3 if s331 < u32(4) else (r0_3 if (s331 == u32(12)) | (s331 == u32(14)) else r2_1)
-        v331 = (e331 if (s331 & u32(1)) == u32(0) else -e331) + (f331 if (s331 & u32(2)) == u32(0) else -f331)
+        f331 = r1_3 if s331 < u32(4) else (r0_3 if (s331 & u32(13)) == u32(12) else r2_1)
+        v331 = flipsign(e331, u32(g331 << u32(3))) + flipsign(f331, u32(g331 << u32(2)))
         g332 = mix32(u32(x0_3 ^ x1_3 ^ x2_2))
         s332 = g332 >> u32(28)
         e332 = r0_3 if s332 < u32(8) else r1_3
-        f332 = r1_3 if s332 < u32(4) else (r0_3 if (s332 == u32(12)) | (s332 == u32(14)) else r2_2)
-        v332 = (e332 if (s332 & u32(1)) == u32(0) else -e332) + (f332 if (s332 & u32(2)) == u32(0) else -f332)
+        f332 = r1_3 if s332 < u32(4) else (r0_3 if (s332 & u32(13)) == u32(12) else r2_2)
+        v332 = flipsign(e332, u32(g332 << u32(3))) + flipsign(f332, u32(g332 << u32(2)))
         g333 = mix32(u32(x0_3 ^ x1_3 ^ x2_3))
         s333 = g333 >> u32(28)
         e333 = r0_3 if s333 < u32(8) else r1_3
-        f333 = r1_3 if s333 < u32(4) else (r0_3 if (s333 == u32(12)) | (s333 == u32(14)) else r2_3)
-        v333 = (e333 if (s333 & u32(1)) == u32(0) else -e333) + (f333 if (s333 & u32(2)) == u32(0) else -f333)
+        f333 = r1_3 if s333 < u32(4) else (r0_3 if (s333 & u32(13)) == u32(12) else r2_3)
+        v333 = flipsign(e333, u32(g333 << u32(3))) + flipsign(f333, u32(g333 << u32(2)))
         v = amp * (w0_0 * (w1_0 * (w2_0 * (v000) + w2_1 * (v001) + w2_2 * (v002) + w2_3 * (v003)) + w1_1 * (w2_0 * (v010) + w2_1 * (v011) + w2_2 * (v012) + w2_3 * (v013)) + w1_2 * (w2_0 * (v020) + w2_1 * (v021) + w2_2 * (v022) + w2_3 * (v023)) + w1_3 * (w2_0 * (v030) + w2_1 * (v031) + w2_2 * (v032) + w2_3 * (v033))) + w0_1 * (w1_0 * (w2_0 * (v100) + w2_1 * (v101) + w2_2 * (v102) + w2_3 * (v103)) + w1_1 * (w2_0 * (v110) + w2_1 * (v111) + w2_2 * (v112) + w2_3 * (v113)) + w1_2 * (w2_0 * (v120) + w2_1 * (v121) + w2_2 * (v122) + w2_3 * (v123)) + w1_3 * (w2_0 * (v130) + w2_1 * (v131) + w2_2 * (v132) + w2_3 * (v133))) + w0_2 * (w1_0 * (w2_0 * (v200) + w2_1 * (v201) + w2_2 * (v202) + w2_3 * (v203)) + w1_1 * (w2_0 * (v210) + w2_1 * (v211) + w2_2 * (v212) + w2_3 * (v213)) + w1_2 * (w2_0 * (v220) + w2_1 * (v221) + w2_2 * (v222) + w2_3 * (v223)) + w1_3 * (w2_0 * (v230) + w2_1 * (v231) + w2_2 * (v232) + w2_3 * (v233))) + w0_3 * (w1_0 * (w2_0 * (v300) + w2_1 * (v301) + w2_2 * (v302) + w2_3 * (v303)) + w1_1 * (w2_0 * (v310) + w2_1 * (v311) + w2_2 * (v312) + w2_3 * (v313)) + w1_2 * (w2_0 * (v320) + w2_1 * (v321) + w2_2 * (v322) + w2_3 * (v323)) + w1_3 * (w2_0 * (v330) + w2_1 * (v331) + w2_2 * (v332) + w2_3 * (v333))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -15814,323 +16283,323 @@ def _corners_d3_catmull_rom_gradient_f64(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
         s001 = g001 >> u32(28)
         e001 = r0_0 if s001 < u32(8) else r1_0
-        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 == u32(12)) | (s001 == u32(14)) else r2_1)
-        v001 = (e001 if (s001 & u32(1)) == u32(0) else -e001) + (f001 if (s001 & u32(2)) == u32(0) else -f001)
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
         g002 = mix32(u32(x0_0 ^ x1_0 ^ x2_2))
         s002 = g002 >> u32(28)
         e002 = r0_0 if s002 < u32(8) else r1_0
-        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 == u32(12)) | (s002 == u32(14)) else r2_2)
-        v002 = (e002 if (s002 & u32(1)) == u32(0) else -e002) + (f002 if (s002 & u32(2)) == u32(0) else -f002)
+        f002 = r1_0 if s002 < u32(4) else (r0_0 if (s002 & u32(13)) == u32(12) else r2_2)
+        v002 = flipsign(e002, u32(g002 << u32(3))) + flipsign(f002, u32(g002 << u32(2)))
         g003 = mix32(u32(x0_0 ^ x1_0 ^ x2_3))
         s003 = g003 >> u32(28)
         e003 = r0_0 if s003 < u32(8) else r1_0
-        f003 = r1_0 if s003 < u32(4) else (r0_0 if (s003 == u32(12)) | (s003 == u32(14)) else r2_3)
-        v003 = (e003 if (s003 & u32(1)) == u32(0) else -e003) + (f003 if (s003 & u32(2)) == u32(0) else -f003)
+        f003 = r1_0 if s003 < u32(4) else (r0_0 if (s003 & u32(13)) == u32(12) else r2_3)
+        v003 = flipsign(e003, u32(g003 << u32(3))) + flipsign(f003, u32(g003 << u32(2)))
         g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
         s010 = g010 >> u32(28)
         e010 = r0_0 if s010 < u32(8) else r1_1
-        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 == u32(12)) | (s010 == u32(14)) else r2_0)
-        v010 = (e010 if (s010 & u32(1)) == u32(0) else -e010) + (f010 if (s010 & u32(2)) == u32(0) else -f010)
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
         g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
         s011 = g011 >> u32(28)
         e011 = r0_0 if s011 < u32(8) else r1_1
-        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 == u32(12)) | (s011 == u32(14)) else r2_1)
-        v011 = (e011 if (s011 & u32(1)) == u32(0) else -e011) + (f011 if (s011 & u32(2)) == u32(0) else -f011)
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
         g012 = mix32(u32(x0_0 ^ x1_1 ^ x2_2))
         s012 = g012 >> u32(28)
         e012 = r0_0 if s012 < u32(8) else r1_1
-        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 == u32(12)) | (s012 == u32(14)) else r2_2)
-        v012 = (e012 if (s012 & u32(1)) == u32(0) else -e012) + (f012 if (s012 & u32(2)) == u32(0) else -f012)
+        f012 = r1_1 if s012 < u32(4) else (r0_0 if (s012 & u32(13)) == u32(12) else r2_2)
+        v012 = flipsign(e012, u32(g012 << u32(3))) + flipsign(f012, u32(g012 << u32(2)))
         g013 = mix32(u32(x0_0 ^ x1_1 ^ x2_3))
         s013 = g013 >> u32(28)
         e013 = r0_0 if s013 < u32(8) else r1_1
-        f013 = r1_1 if s013 < u32(4) else (r0_0 if (s013 == u32(12)) | (s013 == u32(14)) else r2_3)
-        v013 = (e013 if (s013 & u32(1)) == u32(0) else -e013) + (f013 if (s013 & u32(2)) == u32(0) else -f013)
+        f013 = r1_1 if s013 < u32(4) else (r0_0 if (s013 & u32(13)) == u32(12) else r2_3)
+        v013 = flipsign(e013, u32(g013 << u32(3))) + flipsign(f013, u32(g013 << u32(2)))
         g020 = mix32(u32(x0_0 ^ x1_2 ^ x2_0))
         s020 = g020 >> u32(28)
         e020 = r0_0 if s020 < u32(8) else r1_2
-        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 == u32(12)) | (s020 == u32(14)) else r2_0)
-        v020 = (e020 if (s020 & u32(1)) == u32(0) else -e020) + (f020 if (s020 & u32(2)) == u32(0) else -f020)
+        f020 = r1_2 if s020 < u32(4) else (r0_0 if (s020 & u32(13)) == u32(12) else r2_0)
+        v020 = flipsign(e020, u32(g020 << u32(3))) + flipsign(f020, u32(g020 << u32(2)))
         g021 = mix32(u32(x0_0 ^ x1_2 ^ x2_1))
         s021 = g021 >> u32(28)
         e021 = r0_0 if s021 < u32(8) else r1_2
-        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 == u32(12)) | (s021 == u32(14)) else r2_1)
-        v021 = (e021 if (s021 & u32(1)) == u32(0) else -e021) + (f021 if (s021 & u32(2)) == u32(0) else -f021)
+        f021 = r1_2 if s021 < u32(4) else (r0_0 if (s021 & u32(13)) == u32(12) else r2_1)
+        v021 = flipsign(e021, u32(g021 << u32(3))) + flipsign(f021, u32(g021 << u32(2)))
         g022 = mix32(u32(x0_0 ^ x1_2 ^ x2_2))
         s022 = g022 >> u32(28)
         e022 = r0_0 if s022 < u32(8) else r1_2
-        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 == u32(12)) | (s022 == u32(14)) else r2_2)
-        v022 = (e022 if (s022 & u32(1)) == u32(0) else -e022) + (f022 if (s022 & u32(2)) == u32(0) else -f022)
+        f022 = r1_2 if s022 < u32(4) else (r0_0 if (s022 & u32(13)) == u32(12) else r2_2)
+        v022 = flipsign(e022, u32(g022 << u32(3))) + flipsign(f022, u32(g022 << u32(2)))
         g023 = mix32(u32(x0_0 ^ x1_2 ^ x2_3))
         s023 = g023 >> u32(28)
         e023 = r0_0 if s023 < u32(8) else r1_2
-        f023 = r1_2 if s023 < u32(4) else (r0_0 if (s023 == u32(12)) | (s023 == u32(14)) else r2_3)
-        v023 = (e023 if (s023 & u32(1)) == u32(0) else -e023) + (f023 if (s023 & u32(2)) == u32(0) else -f023)
+        f023 = r1_2 if s023 < u32(4) else (r0_0 if (s023 & u32(13)) == u32(12) else r2_3)
+        v023 = flipsign(e023, u32(g023 << u32(3))) + flipsign(f023, u32(g023 << u32(2)))
         g030 = mix32(u32(x0_0 ^ x1_3 ^ x2_0))
         s030 = g030 >> u32(28)
         e030 = r0_0 if s030 < u32(8) else r1_3
-        f030 = r1_3 if s030 < u32(4) else (r0_0 if (s030 == u32(12)) | (s030 == u32(14)) else r2_0)
-        v030 = (e030 if (s030 & u32(1)) == u32(0) else -e030) + (f030 if (s030 & u32(2)) == u32(0) else -f030)
+        f030 = r1_3 if s030 < u32(4) else (r0_0 if (s030 & u32(13)) == u32(12) else r2_0)
+        v030 = flipsign(e030, u32(g030 << u32(3))) + flipsign(f030, u32(g030 << u32(2)))
         g031 = mix32(u32(x0_0 ^ x1_3 ^ x2_1))
         s031 = g031 >> u32(28)
         e031 = r0_0 if s031 < u32(8) else r1_3
-        f031 = r1_3 if s031 < u32(4) else (r0_0 if (s031 == u32(12)) | (s031 == u32(14)) else r2_1)
-        v031 = (e031 if (s031 & u32(1)) == u32(0) else -e031) + (f031 if (s031 & u32(2)) == u32(0) else -f031)
+        f031 = r1_3 if s031 < u32(4) else (r0_0 if (s031 & u32(13)) == u32(12) else r2_1)
+        v031 = flipsign(e031, u32(g031 << u32(3))) + flipsign(f031, u32(g031 << u32(2)))
         g032 = mix32(u32(x0_0 ^ x1_3 ^ x2_2))
         s032 = g032 >> u32(28)
         e032 = r0_0 if s032 < u32(8) else r1_3
-        f032 = r1_3 if s032 < u32(4) else (r0_0 if (s032 == u32(12)) | (s032 == u32(14)) else r2_2)
-        v032 = (e032 if (s032 & u32(1)) == u32(0) else -e032) + (f032 if (s032 & u32(2)) == u32(0) else -f032)
+        f032 = r1_3 if s032 < u32(4) else (r0_0 if (s032 & u32(13)) == u32(12) else r2_2)
+        v032 = flipsign(e032, u32(g032 << u32(3))) + flipsign(f032, u32(g032 << u32(2)))
         g033 = mix32(u32(x0_0 ^ x1_3 ^ x2_3))
         s033 = g033 >> u32(28)
         e033 = r0_0 if s033 < u32(8) else r1_3
-        f033 = r1_3 if s033 < u32(4) else (r0_0 if (s033 == u32(12)) | (s033 == u32(14)) else r2_3)
-        v033 = (e033 if (s033 & u32(1)) == u32(0) else -e033) + (f033 if (s033 & u32(2)) == u32(0) else -f033)
+        f033 = r1_3 if s033 < u32(4) else (r0_0 if (s033 & u32(13)) == u32(12) else r2_3)
+        v033 = flipsign(e033, u32(g033 << u32(3))) + flipsign(f033, u32(g033 << u32(2)))
         g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
         s100 = g100 >> u32(28)
         e100 = r0_1 if s100 < u32(8) else r1_0
-        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 == u32(12)) | (s100 == u32(14)) else r2_0)
-        v100 = (e100 if (s100 & u32(1)) == u32(0) else -e100) + (f100 if (s100 & u32(2)) == u32(0) else -f100)
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
         g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
         s101 = g101 >> u32(28)
         e101 = r0_1 if s101 < u32(8) else r1_0
-        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 == u32(12)) | (s101 == u32(14)) else r2_1)
-        v101 = (e101 if (s101 & u32(1)) == u32(0) else -e101) + (f101 if (s101 & u32(2)) == u32(0) else -f101)
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
         g102 = mix32(u32(x0_1 ^ x1_0 ^ x2_2))
         s102 = g102 >> u32(28)
         e102 = r0_1 if s102 < u32(8) else r1_0
-        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 == u32(12)) | (s102 == u32(14)) else r2_2)
-        v102 = (e102 if (s102 & u32(1)) == u32(0) else -e102) + (f102 if (s102 & u32(2)) == u32(0) else -f102)
+        f102 = r1_0 if s102 < u32(4) else (r0_1 if (s102 & u32(13)) == u32(12) else r2_2)
+        v102 = flipsign(e102, u32(g102 << u32(3))) + flipsign(f102, u32(g102 << u32(2)))
         g103 = mix32(u32(x0_1 ^ x1_0 ^ x2_3))
         s103 = g103 >> u32(28)
         e103 = r0_1 if s103 < u32(8) else r1_0
-        f103 = r1_0 if s103 < u32(4) else (r0_1 if (s103 == u32(12)) | (s103 == u32(14)) else r2_3)
-        v103 = (e103 if (s103 & u32(1)) == u32(0) else -e103) + (f103 if (s103 & u32(2)) == u32(0) else -f103)
+        f103 = r1_0 if s103 < u32(4) else (r0_1 if (s103 & u32(13)) == u32(12) else r2_3)
+        v103 = flipsign(e103, u32(g103 << u32(3))) + flipsign(f103, u32(g103 << u32(2)))
         g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
         s110 = g110 >> u32(28)
         e110 = r0_1 if s110 < u32(8) else r1_1
-        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 == u32(12)) | (s110 == u32(14)) else r2_0)
-        v110 = (e110 if (s110 & u32(1)) == u32(0) else -e110) + (f110 if (s110 & u32(2)) == u32(0) else -f110)
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
         g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
         s111 = g111 >> u32(28)
         e111 = r0_1 if s111 < u32(8) else r1_1
-        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 == u32(12)) | (s111 == u32(14)) else r2_1)
-        v111 = (e111 if (s111 & u32(1)) == u32(0) else -e111) + (f111 if (s111 & u32(2)) == u32(0) else -f111)
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
         g112 = mix32(u32(x0_1 ^ x1_1 ^ x2_2))
         s112 = g112 >> u32(28)
         e112 = r0_1 if s112 < u32(8) else r1_1
-        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 == u32(12)) | (s112 == u32(14)) else r2_2)
-        v112 = (e112 if (s112 & u32(1)) == u32(0) else -e112) + (f112 if (s112 & u32(2)) == u32(0) else -f112)
+        f112 = r1_1 if s112 < u32(4) else (r0_1 if (s112 & u32(13)) == u32(12) else r2_2)
+        v112 = flipsign(e112, u32(g112 << u32(3))) + flipsign(f112, u32(g112 << u32(2)))
         g113 = mix32(u32(x0_1 ^ x1_1 ^ x2_3))
         s113 = g113 >> u32(28)
         e113 = r0_1 if s113 < u32(8) else r1_1
-        f113 = r1_1 if s113 < u32(4) else (r0_1 if (s113 == u32(12)) | (s113 == u32(14)) else r2_3)
-        v113 = (e113 if (s113 & u32(1)) == u32(0) else -e113) + (f113 if (s113 & u32(2)) == u32(0) else -f113)
+        f113 = r1_1 if s113 < u32(4) else (r0_1 if (s113 & u32(13)) == u32(12) else r2_3)
+        v113 = flipsign(e113, u32(g113 << u32(3))) + flipsign(f113, u32(g113 << u32(2)))
         g120 = mix32(u32(x0_1 ^ x1_2 ^ x2_0))
         s120 = g120 >> u32(28)
         e120 = r0_1 if s120 < u32(8) else r1_2
-        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 == u32(12)) | (s120 == u32(14)) else r2_0)
-        v120 = (e120 if (s120 & u32(1)) == u32(0) else -e120) + (f120 if (s120 & u32(2)) == u32(0) else -f120)
+        f120 = r1_2 if s120 < u32(4) else (r0_1 if (s120 & u32(13)) == u32(12) else r2_0)
+        v120 = flipsign(e120, u32(g120 << u32(3))) + flipsign(f120, u32(g120 << u32(2)))
         g121 = mix32(u32(x0_1 ^ x1_2 ^ x2_1))
         s121 = g121 >> u32(28)
         e121 = r0_1 if s121 < u32(8) else r1_2
-        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 == u32(12)) | (s121 == u32(14)) else r2_1)
-        v121 = (e121 if (s121 & u32(1)) == u32(0) else -e121) + (f121 if (s121 & u32(2)) == u32(0) else -f121)
+        f121 = r1_2 if s121 < u32(4) else (r0_1 if (s121 & u32(13)) == u32(12) else r2_1)
+        v121 = flipsign(e121, u32(g121 << u32(3))) + flipsign(f121, u32(g121 << u32(2)))
         g122 = mix32(u32(x0_1 ^ x1_2 ^ x2_2))
         s122 = g122 >> u32(28)
         e122 = r0_1 if s122 < u32(8) else r1_2
-        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 == u32(12)) | (s122 == u32(14)) else r2_2)
-        v122 = (e122 if (s122 & u32(1)) == u32(0) else -e122) + (f122 if (s122 & u32(2)) == u32(0) else -f122)
+        f122 = r1_2 if s122 < u32(4) else (r0_1 if (s122 & u32(13)) == u32(12) else r2_2)
+        v122 = flipsign(e122, u32(g122 << u32(3))) + flipsign(f122, u32(g122 << u32(2)))
         g123 = mix32(u32(x0_1 ^ x1_2 ^ x2_3))
         s123 = g123 >> u32(28)
         e123 = r0_1 if s123 < u32(8) else r1_2
-        f123 = r1_2 if s123 < u32(4) else (r0_1 if (s123 == u32(12)) | (s123 == u32(14)) else r2_3)
-        v123 = (e123 if (s123 & u32(1)) == u32(0) else -e123) + (f123 if (s123 & u32(2)) == u32(0) else -f123)
+        f123 = r1_2 if s123 < u32(4) else (r0_1 if (s123 & u32(13)) == u32(12) else r2_3)
+        v123 = flipsign(e123, u32(g123 << u32(3))) + flipsign(f123, u32(g123 << u32(2)))
         g130 = mix32(u32(x0_1 ^ x1_3 ^ x2_0))
         s130 = g130 >> u32(28)
         e130 = r0_1 if s130 < u32(8) else r1_3
-        f130 = r1_3 if s130 < u32(4) else (r0_1 if (s130 == u32(12)) | (s130 == u32(14)) else r2_0)
-        v130 = (e130 if (s130 & u32(1)) == u32(0) else -e130) + (f130 if (s130 & u32(2)) == u32(0) else -f130)
+        f130 = r1_3 if s130 < u32(4) else (r0_1 if (s130 & u32(13)) == u32(12) else r2_0)
+        v130 = flipsign(e130, u32(g130 << u32(3))) + flipsign(f130, u32(g130 << u32(2)))
         g131 = mix32(u32(x0_1 ^ x1_3 ^ x2_1))
         s131 = g131 >> u32(28)
         e131 = r0_1 if s131 < u32(8) else r1_3
-        f131 = r1_3 if s131 < u32(4) else (r0_1 if (s131 == u32(12)) | (s131 == u32(14)) else r2_1)
-        v131 = (e131 if (s131 & u32(1)) == u32(0) else -e131) + (f131 if (s131 & u32(2)) == u32(0) else -f131)
+        f131 = r1_3 if s131 < u32(4) else (r0_1 if (s131 & u32(13)) == u32(12) else r2_1)
+        v131 = flipsign(e131, u32(g131 << u32(3))) + flipsign(f131, u32(g131 << u32(2)))
         g132 = mix32(u32(x0_1 ^ x1_3 ^ x2_2))
         s132 = g132 >> u32(28)
         e132 = r0_1 if s132 < u32(8) else r1_3
-        f132 = r1_3 if s132 < u32(4) else (r0_1 if (s132 == u32(12)) | (s132 == u32(14)) else r2_2)
-        v132 = (e132 if (s132 & u32(1)) == u32(0) else -e132) + (f132 if (s132 & u32(2)) == u32(0) else -f132)
+        f132 = r1_3 if s132 < u32(4) else (r0_1 if (s132 & u32(13)) == u32(12) else r2_2)
+        v132 = flipsign(e132, u32(g132 << u32(3))) + flipsign(f132, u32(g132 << u32(2)))
         g133 = mix32(u32(x0_1 ^ x1_3 ^ x2_3))
         s133 = g133 >> u32(28)
         e133 = r0_1 if s133 < u32(8) else r1_3
-        f133 = r1_3 if s133 < u32(4) else (r0_1 if (s133 == u32(12)) | (s133 == u32(14)) else r2_3)
-        v133 = (e133 if (s133 & u32(1)) == u32(0) else -e133) + (f133 if (s133 & u32(2)) == u32(0) else -f133)
+        f133 = r1_3 if s133 < u32(4) else (r0_1 if (s133 & u32(13)) == u32(12) else r2_3)
+        v133 = flipsign(e133, u32(g133 << u32(3))) + flipsign(f133, u32(g133 << u32(2)))
         g200 = mix32(u32(x0_2 ^ x1_0 ^ x2_0))
         s200 = g200 >> u32(28)
         e200 = r0_2 if s200 < u32(8) else r1_0
-        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 == u32(12)) | (s200 == u32(14)) else r2_0)
-        v200 = (e200 if (s200 & u32(1)) == u32(0) else -e200) + (f200 if (s200 & u32(2)) == u32(0) else -f200)
+        f200 = r1_0 if s200 < u32(4) else (r0_2 if (s200 & u32(13)) == u32(12) else r2_0)
+        v200 = flipsign(e200, u32(g200 << u32(3))) + flipsign(f200, u32(g200 << u32(2)))
         g201 = mix32(u32(x0_2 ^ x1_0 ^ x2_1))
         s201 = g201 >> u32(28)
         e201 = r0_2 if s201 < u32(8) else r1_0
-        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 == u32(12)) | (s201 == u32(14)) else r2_1)
-        v201 = (e201 if (s201 & u32(1)) == u32(0) else -e201) + (f201 if (s201 & u32(2)) == u32(0) else -f201)
+        f201 = r1_0 if s201 < u32(4) else (r0_2 if (s201 & u32(13)) == u32(12) else r2_1)
+        v201 = flipsign(e201, u32(g201 << u32(3))) + flipsign(f201, u32(g201 << u32(2)))
         g202 = mix32(u32(x0_2 ^ x1_0 ^ x2_2))
         s202 = g202 >> u32(28)
         e202 = r0_2 if s202 < u32(8) else r1_0
-        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 == u32(12)) | (s202 == u32(14)) else r2_2)
-        v202 = (e202 if (s202 & u32(1)) == u32(0) else -e202) + (f202 if (s202 & u32(2)) == u32(0) else -f202)
+        f202 = r1_0 if s202 < u32(4) else (r0_2 if (s202 & u32(13)) == u32(12) else r2_2)
+        v202 = flipsign(e202, u32(g202 << u32(3))) + flipsign(f202, u32(g202 << u32(2)))
         g203 = mix32(u32(x0_2 ^ x1_0 ^ x2_3))
         s203 = g203 >> u32(28)
         e203 = r0_2 if s203 < u32(8) else r1_0
-        f203 = r1_0 if s203 < u32(4) else (r0_2 if (s203 == u32(12)) | (s203 == u32(14)) else r2_3)
-        v203 = (e203 if (s203 & u32(1)) == u32(0) else -e203) + (f203 if (s203 & u32(2)) == u32(0) else -f203)
+        f203 = r1_0 if s203 < u32(4) else (r0_2 if (s203 & u32(13)) == u32(12) else r2_3)
+        v203 = flipsign(e203, u32(g203 << u32(3))) + flipsign(f203, u32(g203 << u32(2)))
         g210 = mix32(u32(x0_2 ^ x1_1 ^ x2_0))
         s210 = g210 >> u32(28)
         e210 = r0_2 if s210 < u32(8) else r1_1
-        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 == u32(12)) | (s210 == u32(14)) else r2_0)
-        v210 = (e210 if (s210 & u32(1)) == u32(0) else -e210) + (f210 if (s210 & u32(2)) == u32(0) else -f210)
+        f210 = r1_1 if s210 < u32(4) else (r0_2 if (s210 & u32(13)) == u32(12) else r2_0)
+        v210 = flipsign(e210, u32(g210 << u32(3))) + flipsign(f210, u32(g210 << u32(2)))
         g211 = mix32(u32(x0_2 ^ x1_1 ^ x2_1))
         s211 = g211 >> u32(28)
         e211 = r0_2 if s211 < u32(8) else r1_1
-        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 == u32(12)) | (s211 == u32(14)) else r2_1)
-        v211 = (e211 if (s211 & u32(1)) == u32(0) else -e211) + (f211 if (s211 & u32(2)) == u32(0) else -f211)
+        f211 = r1_1 if s211 < u32(4) else (r0_2 if (s211 & u32(13)) == u32(12) else r2_1)
+        v211 = flipsign(e211, u32(g211 << u32(3))) + flipsign(f211, u32(g211 << u32(2)))
         g212 = mix32(u32(x0_2 ^ x1_1 ^ x2_2))
         s212 = g212 >> u32(28)
         e212 = r0_2 if s212 < u32(8) else r1_1
-        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 == u32(12)) | (s212 == u32(14)) else r2_2)
-        v212 = (e212 if (s212 & u32(1)) == u32(0) else -e212) + (f212 if (s212 & u32(2)) == u32(0) else -f212)
+        f212 = r1_1 if s212 < u32(4) else (r0_2 if (s212 & u32(13)) == u32(12) else r2_2)
+        v212 = flipsign(e212, u32(g212 << u32(3))) + flipsign(f212, u32(g212 << u32(2)))
         g213 = mix32(u32(x0_2 ^ x1_1 ^ x2_3))
         s213 = g213 >> u32(28)
         e213 = r0_2 if s213 < u32(8) else r1_1
-        f213 = r1_1 if s213 < u32(4) else (r0_2 if (s213 == u32(12)) | (s213 == u32(14)) else r2_3)
-        v213 = (e213 if (s213 & u32(1)) == u32(0) else -e213) + (f213 if (s213 & u32(2)) == u32(0) else -f213)
+        f213 = r1_1 if s213 < u32(4) else (r0_2 if (s213 & u32(13)) == u32(12) else r2_3)
+        v213 = flipsign(e213, u32(g213 << u32(3))) + flipsign(f213, u32(g213 << u32(2)))
         g220 = mix32(u32(x0_2 ^ x1_2 ^ x2_0))
         s220 = g220 >> u32(28)
         e220 = r0_2 if s220 < u32(8) else r1_2
-        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 == u32(12)) | (s220 == u32(14)) else r2_0)
-        v220 = (e220 if (s220 & u32(1)) == u32(0) else -e220) + (f220 if (s220 & u32(2)) == u32(0) else -f220)
+        f220 = r1_2 if s220 < u32(4) else (r0_2 if (s220 & u32(13)) == u32(12) else r2_0)
+        v220 = flipsign(e220, u32(g220 << u32(3))) + flipsign(f220, u32(g220 << u32(2)))
         g221 = mix32(u32(x0_2 ^ x1_2 ^ x2_1))
         s221 = g221 >> u32(28)
         e221 = r0_2 if s221 < u32(8) else r1_2
-        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 == u32(12)) | (s221 == u32(14)) else r2_1)
-        v221 = (e221 if (s221 & u32(1)) == u32(0) else -e221) + (f221 if (s221 & u32(2)) == u32(0) else -f221)
+        f221 = r1_2 if s221 < u32(4) else (r0_2 if (s221 & u32(13)) == u32(12) else r2_1)
+        v221 = flipsign(e221, u32(g221 << u32(3))) + flipsign(f221, u32(g221 << u32(2)))
         g222 = mix32(u32(x0_2 ^ x1_2 ^ x2_2))
         s222 = g222 >> u32(28)
         e222 = r0_2 if s222 < u32(8) else r1_2
-        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 == u32(12)) | (s222 == u32(14)) else r2_2)
-        v222 = (e222 if (s222 & u32(1)) == u32(0) else -e222) + (f222 if (s222 & u32(2)) == u32(0) else -f222)
+        f222 = r1_2 if s222 < u32(4) else (r0_2 if (s222 & u32(13)) == u32(12) else r2_2)
+        v222 = flipsign(e222, u32(g222 << u32(3))) + flipsign(f222, u32(g222 << u32(2)))
         g223 = mix32(u32(x0_2 ^ x1_2 ^ x2_3))
         s223 = g223 >> u32(28)
         e223 = r0_2 if s223 < u32(8) else r1_2
-        f223 = r1_2 if s223 < u32(4) else (r0_2 if (s223 == u32(12)) | (s223 == u32(14)) else r2_3)
-        v223 = (e223 if (s223 & u32(1)) == u32(0) else -e223) + (f223 if (s223 & u32(2)) == u32(0) else -f223)
+        f223 = r1_2 if s223 < u32(4) else (r0_2 if (s223 & u32(13)) == u32(12) else r2_3)
+        v223 = flipsign(e223, u32(g223 << u32(3))) + flipsign(f223, u32(g223 << u32(2)))
         g230 = mix32(u32(x0_2 ^ x1_3 ^ x2_0))
         s230 = g230 >> u32(28)
         e230 = r0_2 if s230 < u32(8) else r1_3
-        f230 = r1_3 if s230 < u32(4) else (r0_2 if (s230 == u32(12)) | (s230 == u32(14)) else r2_0)
-        v230 = (e230 if (s230 & u32(1)) == u32(0) else -e230) + (f230 if (s230 & u32(2)) == u32(0) else -f230)
+        f230 = r1_3 if s230 < u32(4) else (r0_2 if (s230 & u32(13)) == u32(12) else r2_0)
+        v230 = flipsign(e230, u32(g230 << u32(3))) + flipsign(f230, u32(g230 << u32(2)))
         g231 = mix32(u32(x0_2 ^ x1_3 ^ x2_1))
         s231 = g231 >> u32(28)
         e231 = r0_2 if s231 < u32(8) else r1_3
-        f231 = r1_3 if s231 < u32(4) else (r0_2 if (s231 == u32(12)) | (s231 == u32(14)) else r2_1)
-        v231 = (e231 if (s231 & u32(1)) == u32(0) else -e231) + (f231 if (s231 & u32(2)) == u32(0) else -f231)
+        f231 = r1_3 if s231 < u32(4) else (r0_2 if (s231 & u32(13)) == u32(12) else r2_1)
+        v231 = flipsign(e231, u32(g231 << u32(3))) + flipsign(f231, u32(g231 << u32(2)))
         g232 = mix32(u32(x0_2 ^ x1_3 ^ x2_2))
         s232 = g232 >> u32(28)
         e232 = r0_2 if s232 < u32(8) else r1_3
-        f232 = r1_3 if s232 < u32(4) else (r0_2 if (s232 == u32(12)) | (s232 == u32(14)) else r2_2)
-        v232 = (e232 if (s232 & u32(1)) == u32(0) else -e232) + (f232 if (s232 & u32(2)) == u32(0) else -f232)
+        f232 = r1_3 if s232 < u32(4) else (r0_2 if (s232 & u32(13)) == u32(12) else r2_2)
+        v232 = flipsign(e232, u32(g232 << u32(3))) + flipsign(f232, u32(g232 << u32(2)))
         g233 = mix32(u32(x0_2 ^ x1_3 ^ x2_3))
         s233 = g233 >> u32(28)
         e233 = r0_2 if s233 < u32(8) else r1_3
-        f233 = r1_3 if s233 < u32(4) else (r0_2 if (s233 == u32(12)) | (s233 == u32(14)) else r2_3)
-        v233 = (e233 if (s233 & u32(1)) == u32(0) else -e233) + (f233 if (s233 & u32(2)) == u32(0) else -f233)
+        f233 = r1_3 if s233 < u32(4) else (r0_2 if (s233 & u32(13)) == u32(12) else r2_3)
+        v233 = flipsign(e233, u32(g233 << u32(3))) + flipsign(f233, u32(g233 << u32(2)))
         g300 = mix32(u32(x0_3 ^ x1_0 ^ x2_0))
         s300 = g300 >> u32(28)
         e300 = r0_3 if s300 < u32(8) else r1_0
-        f300 = r1_0 if s300 < u32(4) else (r0_3 if (s300 == u32(12)) | (s300 == u32(14)) else r2_0)
-        v300 = (e300 if (s300 & u32(1)) == u32(0) else -e300) + (f300 if (s300 & u32(2)) == u32(0) else -f300)
+        f300 = r1_0 if s300 < u32(4) else (r0_3 if (s300 & u32(13)) == u32(12) else r2_0)
+        v300 = flipsign(e300, u32(g300 << u32(3))) + flipsign(f300, u32(g300 << u32(2)))
         g301 = mix32(u32(x0_3 ^ x1_0 ^ x2_1))
         s301 = g301 >> u32(28)
         e301 = r0_3 if s301 < u32(8) else r1_0
-        f301 = r1_0 if s301 < u32(4) else (r0_3 if (s301 == u32(12)) | (s301 == u32(14)) else r2_1)
-        v301 = (e301 if (s301 & u32(1)) == u32(0) else -e301) + (f301 if (s301 & u32(2)) == u32(0) else -f301)
+        f301 = r1_0 if s301 < u32(4) else (r0_3 if (s301 & u32(13)) == u32(12) else r2_1)
+        v301 = flipsign(e301, u32(g301 << u32(3))) + flipsign(f301, u32(g301 << u32(2)))
         g302 = mix32(u32(x0_3 ^ x1_0 ^ x2_2))
         s302 = g302 >> u32(28)
         e302 = r0_3 if s302 < u32(8) else r1_0
-        f302 = r1_0 if s302 < u32(4) else (r0_3 if (s302 == u32(12)) | (s302 == u32(14)) else r2_2)
-        v302 = (e302 if (s302 & u32(1)) == u32(0) else -e302) + (f302 if (s302 & u32(2)) == u32(0) else -f302)
+        f302 = r1_0 if s302 < u32(4) else (r0_3 if (s302 & u32(13)) == u32(12) else r2_2)
+        v302 = flipsign(e302, u32(g302 << u32(3))) + flipsign(f302, u32(g302 << u32(2)))
         g303 = mix32(u32(x0_3 ^ x1_0 ^ x2_3))
         s303 = g303 >> u32(28)
         e303 = r0_3 if s303 < u32(8) else r1_0
-        f303 = r1_0 if s303 < u32(4) else (r0_3 if (s303 == u32(12)) | (s303 == u32(14)) else r2_3)
-        v303 = (e303 if (s303 & u32(1)) == u32(0) else -e303) + (f303 if (s303 & u32(2)) == u32(0) else -f303)
+        f303 = r1_0 if s303 < u32(4) else (r0_3 if (s303 & u32(13)) == u32(12) else r2_3)
+        v303 = flipsign(e303, u32(g303 << u32(3))) + flipsign(f303, u32(g303 << u32(2)))
         g310 = mix32(u32(x0_3 ^ x1_1 ^ x2_0))
         s310 = g310 >> u32(28)
         e310 = r0_3 if s310 < u32(8) else r1_1
-        f310 = r1_1 if s310 < u32(4) else (r0_3 if (s310 == u32(12)) | (s310 == u32(14)) else r2_0)
-        v310 = (e310 if (s310 & u32(1)) == u32(0) else -e310) + (f310 if (s310 & u32(2)) == u32(0) else -f310)
+        f310 = r1_1 if s310 < u32(4) else (r0_3 if (s310 & u32(13)) == u32(12) else r2_0)
+        v310 = flipsign(e310, u32(g310 << u32(3))) + flipsign(f310, u32(g310 << u32(2)))
         g311 = mix32(u32(x0_3 ^ x1_1 ^ x2_1))
         s311 = g311 >> u32(28)
         e311 = r0_3 if s311 < u32(8) else r1_1
-        f311 = r1_1 if s311 < u32(4) else (r0_3 if (s311 == u32(12)) | (s311 == u32(14)) else r2_1)
-        v311 = (e311 if (s311 & u32(1)) == u32(0) else -e311) + (f311 if (s311 & u32(2)) == u32(0) else -f311)
+        f311 = r1_1 if s311 < u32(4) else (r0_3 if (s311 & u32(13)) == u32(12) else r2_1)
+        v311 = flipsign(e311, u32(g311 << u32(3))) + flipsign(f311, u32(g311 << u32(2)))
         g312 = mix32(u32(x0_3 ^ x1_1 ^ x2_2))
         s312 = g312 >> u32(28)
         e312 = r0_3 if s312 < u32(8) else r1_1
-        f312 = r1_1 if s312 < u32(4) else (r0_3 if (s312 == u32(12)) | (s312 == u32(14)) else r2_2)
-        v312 = (e312 if (s312 & u32(1)) == u32(0) else -e312) + (f312 if (s312 & u32(2)) == u32(0) else -f312)
+        f312 = r1_1 if s312 < u32(4) else (r0_3 if (s312 & u32(13)) == u32(12) else r2_2)
+        v312 = flipsign(e312, u32(g312 << u32(3))) + flipsign(f312, u32(g312 << u32(2)))
         g313 = mix32(u32(x0_3 ^ x1_1 ^ x2_3))
         s313 = g313 >> u32(28)
         e313 = r0_3 if s313 < u32(8) else r1_1
-        f313 = r1_1 if s313 < u32(4) else (r0_3 if (s313 == u32(12)) | (s313 == u32(14)) else r2_3)
-        v313 = (e313 if (s313 & u32(1)) == u32(0) else -e313) + (f313 if (s313 & u32(2)) == u32(0) else -f313)
+        f313 = r1_1 if s313 < u32(4) else (r0_3 if (s313 & u32(13)) == u32(12) else r2_3)
+        v313 = flipsign(e313, u32(g313 << u32(3))) + flipsign(f313, u32(g313 << u32(2)))
         g320 = mix32(u32(x0_3 ^ x1_2 ^ x2_0))
         s320 = g320 >> u32(28)
         e320 = r0_3 if s320 < u32(8) else r1_2
-        f320 = r1_2 if s320 < u32(4) else (r0_3 if (s320 == u32(12)) | (s320 == u32(14)) else r2_0)
-        v320 = (e320 if (s320 & u32(1)) == u32(0) else -e320) + (f320 if (s320 & u32(2)) == u32(0) else -f320)
+        f320 = r1_2 if s320 < u32(4) else (r0_3 if (s320 & u32(13)) == u32(12) else r2_0)
+        v320 = flipsign(e320, u32(g320 << u32(3))) + flipsign(f320, u32(g320 << u32(2)))
         g321 = mix32(u32(x0_3 ^ x1_2 ^ x2_1))
         s321 = g321 >> u32(28)
         e321 = r0_3 if s321 < u32(8) else r1_2
-        f321 = r1_2 if s321 < u32(4) else (r0_3 if (s321 == u32(12)) | (s321 == u32(14)) else r2_1)
-        v321 = (e321 if (s321 & u32(1)) == u32(0) else -e321) + (f321 if (s321 & u32(2)) == u32(0) else -f321)
+        f321 = r1_2 if s321 < u32(4) else (r0_3 if (s321 & u32(13)) == u32(12) else r2_1)
+        v321 = flipsign(e321, u32(g321 << u32(3))) + flipsign(f321, u32(g321 << u32(2)))
         g322 = mix32(u32(x0_3 ^ x1_2 ^ x2_2))
         s322 = g322 >> u32(28)
         e322 = r0_3 if s322 < u32(8) else r1_2
-        f322 = r1_2 if s322 < u32(4) else (r0_3 if (s322 == u32(12)) | (s322 == u32(14)) else r2_2)
-        v322 = (e322 if (s322 & u32(1)) == u32(0) else -e322) + (f322 if (s322 & u32(2)) == u32(0) else -f322)
+        f322 = r1_2 if s322 < u32(4) else (r0_3 if (s322 & u32(13)) == u32(12) else r2_2)
+        v322 = flipsign(e322, u32(g322 << u32(3))) + flipsign(f322, u32(g322 << u32(2)))
         g323 = mix32(u32(x0_3 ^ x1_2 ^ x2_3))
         s323 = g323 >> u32(28)
         e323 = r0_3 if s323 < u32(8) else r1_2
-        f323 = r1_2 if s323 < u32(4) else (r0_3 if (s323 == u32(12)) | (s323 == u32(14)) else r2_3)
-        v323 = (e323 if (s323 & u32(1)) == u32(0) else -e323) + (f323 if (s323 & u32(2)) == u32(0) else -f323)
+        f323 = r1_2 if s323 < u32(4) else (r0_3 if (s323 & u32(13)) == u32(12) else r2_3)
+        v323 = flipsign(e323, u32(g323 << u32(3))) + flipsign(f323, u32(g323 << u32(2)))
         g330 = mix32(u32(x0_3 ^ x1_3 ^ x2_0))
         s330 = g330 >> u32(28)
         e330 = r0_3 if s330 < u32(8) else r1_3
-        f330 = r1_3 if s330 < u32(4) else (r0_3 if (s330 == u32(12)) | (s330 == u32(14)) else r2_0)
-        v330 = (e330 if (s330 & u32(1)) == u32(0) else -e330) + (f330 if (s330 & u32(2)) == u32(0) else -f330)
+        f330 = r1_3 if s330 < u32(4) else (r0_3 if (s330 & u32(13)) == u32(12) else r2_0)
+        v330 = flipsign(e330, u32(g330 << u32(3))) + flipsign(f330, u32(g330 << u32(2)))
         g331 = mix32(u32(x0_3 ^ x1_3 ^ x2_1))
         s331 = g331 >> u32(28)
         e331 = r0_3 if s331 < u32(8) else r1_3
-        f331 = r1_3 if s331 < u32(4) else (r0_3 if (s331 == u32(12)) | (s331 == u32(14)) else r2_1)
-        v331 = (e331 if (s331 & u32(1)) == u32(0) else -e331) + (f331 if (s331 & u32(2)) == u32(0) else -f331)
+        f331 = r1_3 if s331 < u32(4) else (r0_3 if (s331 & u32(13)) == u32(12) else r2_1)
+        v331 = flipsign(e331, u32(g331 << u32(3))) + flipsign(f331, u32(g331 << u32(2)))
         g332 = mix32(u32(x0_3 ^ x1_3 ^ x2_2))
         s332 = g332 >> u32(28)
         e332 = r0_3 if s332 < u32(8) else r1_3
-        f332 = r1_3 if s332 < u32(4) else (r0_3 if (s332 == u32(12)) | (s332 == u32(14)) else r2_2)
-        v332 = (e332 if (s332 & u32(1)) == u32(0) else -e332) + (f332 if (s332 & u32(2)) == u32(0) else -f332)
+        f332 = r1_3 if s332 < u32(4) else (r0_3 if (s332 & u32(13)) == u32(12) else r2_2)
+        v332 = flipsign(e332, u32(g332 << u32(3))) + flipsign(f332, u32(g332 << u32(2)))
         g333 = mix32(u32(x0_3 ^ x1_3 ^ x2_3))
         s333 = g333 >> u32(28)
         e333 = r0_3 if s333 < u32(8) else r1_3
-        f333 = r1_3 if s333 < u32(4) else (r0_3 if (s333 == u32(12)) | (s333 == u32(14)) else r2_3)
-        v333 = (e333 if (s333 & u32(1)) == u32(0) else -e333) + (f333 if (s333 & u32(2)) == u32(0) else -f333)
+        f333 = r1_3 if s333 < u32(4) else (r0_3 if (s333 & u32(13)) == u32(12) else r2_3)
+        v333 = flipsign(e333, u32(g333 << u32(3))) + flipsign(f333, u32(g333 << u32(2)))
         v = amp * (w0_0 * (w1_0 * (w2_0 * (v000) + w2_1 * (v001) + w2_2 * (v002) + w2_3 * (v003)) + w1_1 * (w2_0 * (v010) + w2_1 * (v011) + w2_2 * (v012) + w2_3 * (v013)) + w1_2 * (w2_0 * (v020) + w2_1 * (v021) + w2_2 * (v022) + w2_3 * (v023)) + w1_3 * (w2_0 * (v030) + w2_1 * (v031) + w2_2 * (v032) + w2_3 * (v033))) + w0_1 * (w1_0 * (w2_0 * (v100) + w2_1 * (v101) + w2_2 * (v102) + w2_3 * (v103)) + w1_1 * (w2_0 * (v110) + w2_1 * (v111) + w2_2 * (v112) + w2_3 * (v113)) + w1_2 * (w2_0 * (v120) + w2_1 * (v121) + w2_2 * (v122) + w2_3 * (v123)) + w1_3 * (w2_0 * (v130) + w2_1 * (v131) + w2_2 * (v132) + w2_3 * (v133))) + w0_2 * (w1_0 * (w2_0 * (v200) + w2_1 * (v201) + w2_2 * (v202) + w2_3 * (v203)) + w1_1 * (w2_0 * (v210) + w2_1 * (v211) + w2_2 * (v212) + w2_3 * (v213)) + w1_2 * (w2_0 * (v220) + w2_1 * (v221) + w2_2 * (v222) + w2_3 * (v223)) + w1_3 * (w2_0 * (v230) + w2_1 * (v231) + w2_2 * (v232) + w2_3 * (v233))) + w0_3 * (w1_0 * (w2_0 * (v300) + w2_1 * (v301) + w2_2 * (v302) + w2_3 * (v303)) + w1_1 * (w2_0 * (v310) + w2_1 * (v311) + w2_2 * (v312) + w2_3 * (v313)) + w1_2 * (w2_0 * (v320) + w2_1 * (v321) + w2_2 * (v322) + w2_3 * (v323)) + w1_3 * (w2_0 * (v330) + w2_1 * (v331) + w2_2 * (v332) + w2_3 * (v333))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -16678,6 +17147,59 @@ def _exact_d3_quintic_value_f64(X0, X1, X2, m, f0, q0, f1, q1, f2, q2, per0, pm0
 
 
 @nb.njit(cache=True, nogil=True)
+def _fused_d3_quintic_value_s32f32(X0, X1, X2, O, m, key, f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, amp, lim):
+    """Split and corner sums in one loop, 3-D quintic value, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        u1 = X1[i] * f1 + q1
+        l1 = np.floor(u1)
+        s1 = np.float32((u1 - l1) - np.float32(0.5))
+        u2 = X2[i] * f2 + q2
+        l2 = np.floor(u2)
+        s2 = np.float32((u2 - l2) - np.float32(0.5))
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0)) & (l2 < np.float32(2147483648.0)) & (l2 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0)
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0)
+        b1 = u32(u32(np.int32(l1)) - u32(0)) & pm1
+        x1_0 = u32(b1 * P1)
+        x1_1 = u32((u32(b1 + u32(1)) & pm1) * P1)
+        b2 = u32(u32(np.int32(l2)) - u32(0)) & pm2
+        x2_0 = u32(b2 * P2) ^ key
+        x2_1 = u32((u32(b2 + u32(1)) & pm2) * P2) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.875) + z0 * (np.float32(5.0) + z0 * (np.float32(-6.0))))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        z1 = s1 * s1
+        e1_0 = np.float32(0.5)
+        o1_0 = s1 * (np.float32(-1.875) + z1 * (np.float32(5.0) + z1 * (np.float32(-6.0))))
+        w1_0 = e1_0 + o1_0
+        w1_1 = e1_0 - o1_0
+        z2 = s2 * s2
+        e2_0 = np.float32(0.5)
+        o2_0 = s2 * (np.float32(-1.875) + z2 * (np.float32(5.0) + z2 * (np.float32(-6.0))))
+        w2_0 = e2_0 + o2_0
+        w2_1 = e2_0 - o2_0
+        v000 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_0 ^ x2_0))))
+        v001 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_0 ^ x2_1))))
+        v010 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_1 ^ x2_0))))
+        v011 = np.float32(np.int32(mix32(u32(x0_0 ^ x1_1 ^ x2_1))))
+        v100 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_0 ^ x2_0))))
+        v101 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_0 ^ x2_1))))
+        v110 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_1 ^ x2_0))))
+        v111 = np.float32(np.int32(mix32(u32(x0_1 ^ x1_1 ^ x2_1))))
+        v = amp * (_lerp(w0_1, _lerp(w1_1, (v000) + w2_1 * ((v001) - (v000)), (v010) + w2_1 * ((v011) - (v010))), _lerp(w1_1, (v100) + w2_1 * ((v101) - (v100)), (v110) + w2_1 * ((v111) - (v110)))))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
+
+
+@nb.njit(cache=True, nogil=True)
 def _split_d3_quintic_value_s32f32(X0, X1, X2, m, f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, SR, TR, KR):
     """Split, 3-D quintic value, s32f32 (generated)."""
     ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width
@@ -16746,12 +17268,12 @@ def fast_d3_quintic_value_s32f32(pts, out, freqs, amps, phase, keys, pmask, peri
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
             f1 = np.float32(freqs[o, 1]); q1 = np.float32(phase[1])
             f2 = np.float32(freqs[o, 2]); q2 = np.float32(phase[2])
-            if exact or _split_d3_quintic_value_s32f32(X0, X1, X2, m, f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, SR, TR, KR) != m:
-                nonfinite += _exact_d3_quintic_value_f32(X0, X1, X2, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], freqs[o, 2], phase[2], period[0], pmask[0], period[1], pmask[1], period[2], pmask[2], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d3_quintic_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d3_quintic_value_s32f32(X0, X1, X2, T, m, keys[c], f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d3_quintic_value_f32(X0, X1, X2, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], freqs[o, 2], phase[2], period[0], pmask[0], period[1], pmask[1], period[2], pmask[2], SR, TR, KR)
+                    _corners_d3_quintic_value_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
@@ -17032,43 +17554,43 @@ def _corners_d3_quintic_gradient_f32(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
         s001 = g001 >> u32(28)
         e001 = r0_0 if s001 < u32(8) else r1_0
-        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 == u32(12)) | (s001 == u32(14)) else r2_1)
-        v001 = (e001 if (s001 & u32(1)) == u32(0) else -e001) + (f001 if (s001 & u32(2)) == u32(0) else -f001)
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
         g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
         s010 = g010 >> u32(28)
         e010 = r0_0 if s010 < u32(8) else r1_1
-        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 == u32(12)) | (s010 == u32(14)) else r2_0)
-        v010 = (e010 if (s010 & u32(1)) == u32(0) else -e010) + (f010 if (s010 & u32(2)) == u32(0) else -f010)
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
         g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
         s011 = g011 >> u32(28)
         e011 = r0_0 if s011 < u32(8) else r1_1
-        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 == u32(12)) | (s011 == u32(14)) else r2_1)
-        v011 = (e011 if (s011 & u32(1)) == u32(0) else -e011) + (f011 if (s011 & u32(2)) == u32(0) else -f011)
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
         g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
         s100 = g100 >> u32(28)
         e100 = r0_1 if s100 < u32(8) else r1_0
-        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 == u32(12)) | (s100 == u32(14)) else r2_0)
-        v100 = (e100 if (s100 & u32(1)) == u32(0) else -e100) + (f100 if (s100 & u32(2)) == u32(0) else -f100)
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
         g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
         s101 = g101 >> u32(28)
         e101 = r0_1 if s101 < u32(8) else r1_0
-        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 == u32(12)) | (s101 == u32(14)) else r2_1)
-        v101 = (e101 if (s101 & u32(1)) == u32(0) else -e101) + (f101 if (s101 & u32(2)) == u32(0) else -f101)
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
         g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
         s110 = g110 >> u32(28)
         e110 = r0_1 if s110 < u32(8) else r1_1
-        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 == u32(12)) | (s110 == u32(14)) else r2_0)
-        v110 = (e110 if (s110 & u32(1)) == u32(0) else -e110) + (f110 if (s110 & u32(2)) == u32(0) else -f110)
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
         g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
         s111 = g111 >> u32(28)
         e111 = r0_1 if s111 < u32(8) else r1_1
-        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 == u32(12)) | (s111 == u32(14)) else r2_1)
-        v111 = (e111 if (s111 & u32(1)) == u32(0) else -e111) + (f111 if (s111 & u32(2)) == u32(0) else -f111)
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
         v = amp * (_lerp(w0_1, _lerp(w1_1, (v000) + w2_1 * ((v001) - (v000)), (v010) + w2_1 * ((v011) - (v010))), _lerp(w1_1, (v100) + w2_1 * ((v101) - (v100)), (v110) + w2_1 * ((v111) - (v110)))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -17152,43 +17674,43 @@ def _corners_d3_quintic_gradient_f64(SR, TR, KR, O, m, key, amp, lim):
         g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
         s000 = g000 >> u32(28)
         e000 = r0_0 if s000 < u32(8) else r1_0
-        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 == u32(12)) | (s000 == u32(14)) else r2_0)
-        v000 = (e000 if (s000 & u32(1)) == u32(0) else -e000) + (f000 if (s000 & u32(2)) == u32(0) else -f000)
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
         g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
         s001 = g001 >> u32(28)
         e001 = r0_0 if s001 < u32(8) else r1_0
-        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 == u32(12)) | (s001 == u32(14)) else r2_1)
-        v001 = (e001 if (s001 & u32(1)) == u32(0) else -e001) + (f001 if (s001 & u32(2)) == u32(0) else -f001)
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
         g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
         s010 = g010 >> u32(28)
         e010 = r0_0 if s010 < u32(8) else r1_1
-        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 == u32(12)) | (s010 == u32(14)) else r2_0)
-        v010 = (e010 if (s010 & u32(1)) == u32(0) else -e010) + (f010 if (s010 & u32(2)) == u32(0) else -f010)
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
         g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
         s011 = g011 >> u32(28)
         e011 = r0_0 if s011 < u32(8) else r1_1
-        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 == u32(12)) | (s011 == u32(14)) else r2_1)
-        v011 = (e011 if (s011 & u32(1)) == u32(0) else -e011) + (f011 if (s011 & u32(2)) == u32(0) else -f011)
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
         g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
         s100 = g100 >> u32(28)
         e100 = r0_1 if s100 < u32(8) else r1_0
-        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 == u32(12)) | (s100 == u32(14)) else r2_0)
-        v100 = (e100 if (s100 & u32(1)) == u32(0) else -e100) + (f100 if (s100 & u32(2)) == u32(0) else -f100)
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
         g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
         s101 = g101 >> u32(28)
         e101 = r0_1 if s101 < u32(8) else r1_0
-        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 == u32(12)) | (s101 == u32(14)) else r2_1)
-        v101 = (e101 if (s101 & u32(1)) == u32(0) else -e101) + (f101 if (s101 & u32(2)) == u32(0) else -f101)
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
         g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
         s110 = g110 >> u32(28)
         e110 = r0_1 if s110 < u32(8) else r1_1
-        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 == u32(12)) | (s110 == u32(14)) else r2_0)
-        v110 = (e110 if (s110 & u32(1)) == u32(0) else -e110) + (f110 if (s110 & u32(2)) == u32(0) else -f110)
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
         g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
         s111 = g111 >> u32(28)
         e111 = r0_1 if s111 < u32(8) else r1_1
-        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 == u32(12)) | (s111 == u32(14)) else r2_1)
-        v111 = (e111 if (s111 & u32(1)) == u32(0) else -e111) + (f111 if (s111 & u32(2)) == u32(0) else -f111)
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
         v = amp * (_lerp(w0_1, _lerp(w1_1, (v000) + w2_1 * ((v001) - (v000)), (v010) + w2_1 * ((v011) - (v010))), _lerp(w1_1, (v100) + w2_1 * ((v101) - (v100)), (v110) + w2_1 * ((v111) - (v110)))))
         v = v if v <= lim else lim
         O[i] = v if v >= -lim else -lim
@@ -17230,6 +17752,100 @@ def _exact_d3_quintic_gradient_f64(X0, X1, X2, m, f0, q0, f1, q1, f2, q2, per0, 
         KR[4, i] = u32(u32(_wrap(b2 + 0, per2, pm2)) * P2)
         KR[5, i] = u32(u32(_wrap(b2 + 1, per2, pm2)) * P2)
     return bad
+
+
+@nb.njit(cache=True, nogil=True)
+def _fused_d3_quintic_gradient_s32f32(X0, X1, X2, O, m, key, f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, amp, lim):
+    """Split and corner sums in one loop, 3-D quintic gradient, s32f32 (generated)."""
+    ok = u32(0)
+    for i in range(m):
+        u0 = X0[i] * f0 + q0
+        l0 = np.floor(u0)
+        s0 = np.float32((u0 - l0) - np.float32(0.5))
+        t0 = np.float32(u0 - l0)
+        u1 = X1[i] * f1 + q1
+        l1 = np.floor(u1)
+        s1 = np.float32((u1 - l1) - np.float32(0.5))
+        t1 = np.float32(u1 - l1)
+        u2 = X2[i] * f2 + q2
+        l2 = np.floor(u2)
+        s2 = np.float32((u2 - l2) - np.float32(0.5))
+        t2 = np.float32(u2 - l2)
+        ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0)) & (l2 < np.float32(2147483648.0)) & (l2 >= -np.float32(2147483648.0))))
+        b0 = u32(u32(np.int32(l0)) - u32(0)) & pm0
+        x0_0 = u32(b0 * P0)
+        x0_1 = u32((u32(b0 + u32(1)) & pm0) * P0)
+        b1 = u32(u32(np.int32(l1)) - u32(0)) & pm1
+        x1_0 = u32(b1 * P1)
+        x1_1 = u32((u32(b1 + u32(1)) & pm1) * P1)
+        b2 = u32(u32(np.int32(l2)) - u32(0)) & pm2
+        x2_0 = u32(b2 * P2) ^ key
+        x2_1 = u32((u32(b2 + u32(1)) & pm2) * P2) ^ key
+        z0 = s0 * s0
+        e0_0 = np.float32(0.5)
+        o0_0 = s0 * (np.float32(-1.875) + z0 * (np.float32(5.0) + z0 * (np.float32(-6.0))))
+        w0_0 = e0_0 + o0_0
+        w0_1 = e0_0 - o0_0
+        z1 = s1 * s1
+        e1_0 = np.float32(0.5)
+        o1_0 = s1 * (np.float32(-1.875) + z1 * (np.float32(5.0) + z1 * (np.float32(-6.0))))
+        w1_0 = e1_0 + o1_0
+        w1_1 = e1_0 - o1_0
+        z2 = s2 * s2
+        e2_0 = np.float32(0.5)
+        o2_0 = s2 * (np.float32(-1.875) + z2 * (np.float32(5.0) + z2 * (np.float32(-6.0))))
+        w2_0 = e2_0 + o2_0
+        w2_1 = e2_0 - o2_0
+        r0_0 = t0
+        r0_1 = t0 + np.float32(-1.0)
+        r1_0 = t1
+        r1_1 = t1 + np.float32(-1.0)
+        r2_0 = t2
+        r2_1 = t2 + np.float32(-1.0)
+        g000 = mix32(u32(x0_0 ^ x1_0 ^ x2_0))
+        s000 = g000 >> u32(28)
+        e000 = r0_0 if s000 < u32(8) else r1_0
+        f000 = r1_0 if s000 < u32(4) else (r0_0 if (s000 & u32(13)) == u32(12) else r2_0)
+        v000 = flipsign(e000, u32(g000 << u32(3))) + flipsign(f000, u32(g000 << u32(2)))
+        g001 = mix32(u32(x0_0 ^ x1_0 ^ x2_1))
+        s001 = g001 >> u32(28)
+        e001 = r0_0 if s001 < u32(8) else r1_0
+        f001 = r1_0 if s001 < u32(4) else (r0_0 if (s001 & u32(13)) == u32(12) else r2_1)
+        v001 = flipsign(e001, u32(g001 << u32(3))) + flipsign(f001, u32(g001 << u32(2)))
+        g010 = mix32(u32(x0_0 ^ x1_1 ^ x2_0))
+        s010 = g010 >> u32(28)
+        e010 = r0_0 if s010 < u32(8) else r1_1
+        f010 = r1_1 if s010 < u32(4) else (r0_0 if (s010 & u32(13)) == u32(12) else r2_0)
+        v010 = flipsign(e010, u32(g010 << u32(3))) + flipsign(f010, u32(g010 << u32(2)))
+        g011 = mix32(u32(x0_0 ^ x1_1 ^ x2_1))
+        s011 = g011 >> u32(28)
+        e011 = r0_0 if s011 < u32(8) else r1_1
+        f011 = r1_1 if s011 < u32(4) else (r0_0 if (s011 & u32(13)) == u32(12) else r2_1)
+        v011 = flipsign(e011, u32(g011 << u32(3))) + flipsign(f011, u32(g011 << u32(2)))
+        g100 = mix32(u32(x0_1 ^ x1_0 ^ x2_0))
+        s100 = g100 >> u32(28)
+        e100 = r0_1 if s100 < u32(8) else r1_0
+        f100 = r1_0 if s100 < u32(4) else (r0_1 if (s100 & u32(13)) == u32(12) else r2_0)
+        v100 = flipsign(e100, u32(g100 << u32(3))) + flipsign(f100, u32(g100 << u32(2)))
+        g101 = mix32(u32(x0_1 ^ x1_0 ^ x2_1))
+        s101 = g101 >> u32(28)
+        e101 = r0_1 if s101 < u32(8) else r1_0
+        f101 = r1_0 if s101 < u32(4) else (r0_1 if (s101 & u32(13)) == u32(12) else r2_1)
+        v101 = flipsign(e101, u32(g101 << u32(3))) + flipsign(f101, u32(g101 << u32(2)))
+        g110 = mix32(u32(x0_1 ^ x1_1 ^ x2_0))
+        s110 = g110 >> u32(28)
+        e110 = r0_1 if s110 < u32(8) else r1_1
+        f110 = r1_1 if s110 < u32(4) else (r0_1 if (s110 & u32(13)) == u32(12) else r2_0)
+        v110 = flipsign(e110, u32(g110 << u32(3))) + flipsign(f110, u32(g110 << u32(2)))
+        g111 = mix32(u32(x0_1 ^ x1_1 ^ x2_1))
+        s111 = g111 >> u32(28)
+        e111 = r0_1 if s111 < u32(8) else r1_1
+        f111 = r1_1 if s111 < u32(4) else (r0_1 if (s111 & u32(13)) == u32(12) else r2_1)
+        v111 = flipsign(e111, u32(g111 << u32(3))) + flipsign(f111, u32(g111 << u32(2)))
+        v = amp * (_lerp(w0_1, _lerp(w1_1, (v000) + w2_1 * ((v001) - (v000)), (v010) + w2_1 * ((v011) - (v010))), _lerp(w1_1, (v100) + w2_1 * ((v101) - (v100)), (v110) + w2_1 * ((v111) - (v110)))))
+        v = v if v <= lim else lim
+        O[i] = v if v >= -lim else -lim
+    return np.int64(ok)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -17307,12 +17923,12 @@ def fast_d3_quintic_gradient_s32f32(pts, out, freqs, amps, phase, keys, pmask, p
             f0 = np.float32(freqs[o, 0]); q0 = np.float32(phase[0])
             f1 = np.float32(freqs[o, 1]); q1 = np.float32(phase[1])
             f2 = np.float32(freqs[o, 2]); q2 = np.float32(phase[2])
-            if exact or _split_d3_quintic_gradient_s32f32(X0, X1, X2, m, f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, SR, TR, KR) != m:
-                nonfinite += _exact_d3_quintic_gradient_f32(X0, X1, X2, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], freqs[o, 2], phase[2], period[0], pmask[0], period[1], pmask[1], period[2], pmask[2], SR, TR, KR)
             amp = np.float32(amps[o])
             for c in range(ncomp):
                 T = flat[p0:p0 + m] if single else O
-                _corners_d3_quintic_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
+                if exact or _fused_d3_quintic_gradient_s32f32(X0, X1, X2, T, m, keys[c], f0, q0, f1, q1, f2, q2, pm0, pm1, pm2, amp, lim if single else inf) != m:
+                    nonfinite += _exact_d3_quintic_gradient_f32(X0, X1, X2, m, freqs[o, 0], phase[0], freqs[o, 1], phase[1], freqs[o, 2], phase[2], period[0], pmask[0], period[1], pmask[1], period[2], pmask[2], SR, TR, KR)
+                    _corners_d3_quintic_gradient_f32(SR, TR, KR, T, m, keys[c], amp, lim if single else inf)
                 if single:
                     continue
                 acc = ACC[c]
