@@ -93,17 +93,6 @@ def _fns_noise(fns, basis, octaves, cells, n):
     return f
 
 
-def bench_cpu(cands: dict, repeats: int) -> Times:
-    """:func:`bench` on this thread's CPU time (``time.thread_time``) instead of the wall clock.
-
-    On the shared machine other jobs preempt this one for a varying share of
-    each run, which the wall clock counts; CPU time does not. Every candidate
-    of the grid section runs in the calling thread (pyfastnoisesimd with one
-    worker included), so its CPU time is its whole cost.
-    """
-    return interleaved(cands, repeats=repeats, timer=time.thread_time)
-
-
 def grid_section(repeats, quick, lines):
     fns = _peer("fns")
     lines.append(GRID_HEAD + "\n")
@@ -144,7 +133,9 @@ def grid_section(repeats, quick, lines):
                 for dt in ("float64", "float32"):
                     cands[f"one_{dt}"] = lambda dt=dt, noise=noise: noise.grid(shape, grid.extent, dtype=dt)
                     cands[f"six_{dt}"] = lambda dt=dt, noise=noise: fractal_sum(noise, grid, 6, dtype=dt)
-                t = bench_cpu(cands, repeats)
+                # this thread's CPU time: other jobs preempting it on the shared machine do not count, and every
+                # candidate (pyfastnoisesimd with one worker included) runs in the calling thread
+                t = bench(cands, repeats, clock=time.thread_time)
                 _, used = fractal_sum(noise, grid, 6, return_octaves=True)
                 for label, key, fkey in (("1", "one", "fns1"), (f"6 (used {used})", "six", "fns6")):
                     row = [kname, basis, label]

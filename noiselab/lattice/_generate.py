@@ -998,13 +998,38 @@ def _fused(kernel, variant):
     return variant == "s32f32" and kernel.taps == 2
 
 
+def _fast_split_lines(d, kernel, basis, variant, b):
+    """The branch-free split's lines, shared by ``_split_*`` and ``_fused_*``: ``(head, index)``.
+
+    ``head``: per axis ``u = x F + phi``, its floor and fraction, then the
+    in-range count ``ok``; ``index[a]``: axis ``a``'s reduced index ``b{a}``,
+    to 32 bits at once. Tap ``k`` of axis ``a`` is :func:`_fast_tap`.
+    """
+    S, F = _FAST_VARIANTS[variant]
+    I = "np.int32" if variant == "s32f32" else "np.int64"  # noqa: E741
+    lim = "np.float32(2147483648.0)" if variant == "s32f32" else "4.0e18"
+    shift = f" + {S}({kernel.shift!r})" if kernel.shift else ""
+    head = []
+    for a in range(d):
+        head.append(f"{b}u{a} = {'' if S == 'np.float32' else 'np.float64'}(X{a}[i]) * f{a} + q{a}{shift}")
+        head.append(f"{b}l{a} = np.floor(u{a})")
+        head += _fast_fraction(a, basis, S, F, b)
+    head.append(f"{b}ok = u32(ok + u32(" + " & ".join(f"(l{a} < {lim}) & (l{a} >= -{lim})" for a in range(d)) + "))")
+    index = [f"{b}b{a} = u32(u32({I}(l{a})) - u32({kernel.left})) & pm{a}" for a in range(d)]
+    return head, index
+
+
+def _fast_tap(a, k):
+    """Tap ``k``'s reduced index on axis ``a`` from ``b{a}`` (the mask wraps it at a power-of-two period)."""
+    return f"b{a}" if k == 0 else f"(u32(b{a} + u32({k})) & pm{a})"
+
+
 def _function_fast_fused(d, kernel, basis):
     """``_fused_*``: the float32 split and the corner sums in one loop (see :func:`_fused`); returns the covered count.
 
     The same expressions as ``_split_*_s32f32`` followed by ``_corners_*_f32``,
     so the same bits.
     """
-    lim = "np.float32(2147483648.0)"
     ax = ", ".join(f"X{a}" for a in range(d))
     fq = ", ".join(f"f{a}, q{a}" for a in range(d))
     pm = ", ".join(f"pm{a}" for a in range(d))
@@ -1014,17 +1039,12 @@ def _function_fast_fused(d, kernel, basis):
          "    ok = u32(0)",
          "    for i in range(m):"]
     b = "        "
-    shift = f" + np.float32({kernel.shift!r})" if kernel.shift else ""
+    head, index = _fast_split_lines(d, kernel, basis, "s32f32", b)
+    L += head
     for a in range(d):
-        L.append(f"{b}u{a} = X{a}[i] * f{a} + q{a}{shift}")
-        L.append(f"{b}l{a} = np.floor(u{a})")
-        L += _fast_fraction(a, basis, "np.float32", "np.float32", b)
-    L.append(f"{b}ok = u32(ok + u32(" + " & ".join(f"(l{a} < {lim}) & (l{a} >= -{lim})" for a in range(d)) + "))")
-    for a in range(d):
-        L.append(f"{b}b{a} = u32(u32(np.int32(l{a})) - u32({kernel.left})) & pm{a}")
+        L.append(index[a])
         for k in range(kernel.taps):
-            j = f"b{a}" if k == 0 else f"(u32(b{a} + u32({k})) & pm{a})"
-            L.append(f"{b}x{a}_{k} = u32({j} * P{a})" + (" ^ key" if a == d - 1 else ""))
+            L.append(f"{b}x{a}_{k} = u32({_fast_tap(a, k)} * P{a})" + (" ^ key" if a == d - 1 else ""))
     L += _fast_corners(d, kernel, basis, "np.float32", b)
     L.append("    return np.int64(ok)")
     return "\n".join(L) + "\n"
@@ -1041,9 +1061,6 @@ def _function_fast_split(d, kernel, basis, variant):
     float32, 4e18 in float64) or is not finite is not counted: the caller
     redoes the chunk with the exact split.
     """
-    S, F = _FAST_VARIANTS[variant]
-    I = "np.int32" if variant == "s32f32" else "np.int64"  # noqa: E741
-    lim = "np.float32(2147483648.0)" if variant == "s32f32" else "4.0e18"
     ax = ", ".join(f"X{a}" for a in range(d))
     fq = ", ".join(f"f{a}, q{a}" for a in range(d))
     pm = ", ".join(f"pm{a}" for a in range(d))
@@ -1054,20 +1071,15 @@ def _function_fast_split(d, kernel, basis, variant):
          "    ok = u32(0)  # 32-bit, like the lanes: an int64 count would halve the vector width",
          "    for i in range(m):"]
     b = "        "
-    shift = f" + {S}({kernel.shift!r})" if kernel.shift else ""
+    head, index = _fast_split_lines(d, kernel, basis, variant, b)
+    L += head
     for a in range(d):
-        L.append(f"{b}u{a} = {'' if S == 'np.float32' else 'np.float64'}(X{a}[i]) * f{a} + q{a}{shift}")
-        L.append(f"{b}l{a} = np.floor(u{a})")
-        L += _fast_fraction(a, basis, S, F, b)
-    L.append(f"{b}ok = u32(ok + u32(" + " & ".join(f"(l{a} < {lim}) & (l{a} >= -{lim})" for a in range(d)) + "))")
-    for a in range(d):
-        L.append(f"{b}b{a} = u32(u32({I}(l{a})) - u32({kernel.left})) & pm{a}")
+        L.append(index[a])
         L.append(f"{b}SR[{a}, i] = s{a}")
         if basis == "gradient":
             L.append(f"{b}TR[{a}, i] = t{a}")
         for k in range(kernel.taps):
-            j = f"b{a}" if k == 0 else f"(u32(b{a} + u32({k})) & pm{a})"
-            L.append(f"{b}KR[{a * kernel.taps + k}, i] = u32({j} * P{a})")
+            L.append(f"{b}KR[{a * kernel.taps + k}, i] = u32({_fast_tap(a, k)} * P{a})")
     L.append("    return np.int64(ok)")
     return "\n".join(L) + "\n"
 

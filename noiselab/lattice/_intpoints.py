@@ -730,7 +730,7 @@ def _fused_d1_linear_value_s32f32(X0, O, m, key, f0, q0, pm0, amp, lim):
     """Split and corner sums in one loop, 1-D linear value, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
         ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0))))
@@ -1077,7 +1077,7 @@ def _fused_d1_linear_gradient_s32f32(X0, O, m, key, f0, q0, pm0, amp, lim):
     """Split and corner sums in one loop, 1-D linear gradient, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
         t0 = np.float32(u0 - l0)
@@ -3455,7 +3455,7 @@ def _fused_d1_quintic_value_s32f32(X0, O, m, key, f0, q0, pm0, amp, lim):
     """Split and corner sums in one loop, 1-D quintic value, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
         ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0))))
@@ -3802,7 +3802,7 @@ def _fused_d1_quintic_gradient_s32f32(X0, O, m, key, f0, q0, pm0, amp, lim):
     """Split and corner sums in one loop, 1-D quintic gradient, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
         t0 = np.float32(u0 - l0)
@@ -4936,10 +4936,10 @@ def _fused_d2_linear_value_s32f32(X0, X1, O, m, key, f0, q0, f1, q1, pm0, pm1, a
     """Split and corner sums in one loop, 2-D linear value, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
-        u1 = X1[i] * f1 + q1
+        u1 = (X1[i]) * f1 + q1
         l1 = np.floor(u1)
         s1 = np.float32((u1 - l1) - np.float32(0.5))
         ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0))))
@@ -5432,11 +5432,11 @@ def _fused_d2_linear_gradient_s32f32(X0, X1, O, m, key, f0, q0, f1, q1, pm0, pm1
     """Split and corner sums in one loop, 2-D linear gradient, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
         t0 = np.float32(u0 - l0)
-        u1 = X1[i] * f1 + q1
+        u1 = (X1[i]) * f1 + q1
         l1 = np.floor(u1)
         s1 = np.float32((u1 - l1) - np.float32(0.5))
         t1 = np.float32(u1 - l1)
@@ -9138,10 +9138,10 @@ def _fused_d2_quintic_value_s32f32(X0, X1, O, m, key, f0, q0, f1, q1, pm0, pm1, 
     """Split and corner sums in one loop, 2-D quintic value, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
-        u1 = X1[i] * f1 + q1
+        u1 = (X1[i]) * f1 + q1
         l1 = np.floor(u1)
         s1 = np.float32((u1 - l1) - np.float32(0.5))
         ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0))))
@@ -9634,11 +9634,11 @@ def _fused_d2_quintic_gradient_s32f32(X0, X1, O, m, key, f0, q0, f1, q1, pm0, pm
     """Split and corner sums in one loop, 2-D quintic gradient, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
         t0 = np.float32(u0 - l0)
-        u1 = X1[i] * f1 + q1
+        u1 = (X1[i]) * f1 + q1
         l1 = np.floor(u1)
         s1 = np.float32((u1 - l1) - np.float32(0.5))
         t1 = np.float32(u1 - l1)
@@ -11008,13 +11008,13 @@ def _fused_d3_linear_value_s32f32(X0, X1, X2, O, m, key, f0, q0, f1, q1, f2, q2,
     """Split and corner sums in one loop, 3-D linear value, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
-        u1 = X1[i] * f1 + q1
+        u1 = (X1[i]) * f1 + q1
         l1 = np.floor(u1)
         s1 = np.float32((u1 - l1) - np.float32(0.5))
-        u2 = X2[i] * f2 + q2
+        u2 = (X2[i]) * f2 + q2
         l2 = np.floor(u2)
         s2 = np.float32((u2 - l2) - np.float32(0.5))
         ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0)) & (l2 < np.float32(2147483648.0)) & (l2 >= -np.float32(2147483648.0))))
@@ -11616,15 +11616,15 @@ def _fused_d3_linear_gradient_s32f32(X0, X1, X2, O, m, key, f0, q0, f1, q1, f2, 
     """Split and corner sums in one loop, 3-D linear gradient, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
         t0 = np.float32(u0 - l0)
-        u1 = X1[i] * f1 + q1
+        u1 = (X1[i]) * f1 + q1
         l1 = np.floor(u1)
         s1 = np.float32((u1 - l1) - np.float32(0.5))
         t1 = np.float32(u1 - l1)
-        u2 = X2[i] * f2 + q2
+        u2 = (X2[i]) * f2 + q2
         l2 = np.floor(u2)
         s2 = np.float32((u2 - l2) - np.float32(0.5))
         t2 = np.float32(u2 - l2)
@@ -17151,13 +17151,13 @@ def _fused_d3_quintic_value_s32f32(X0, X1, X2, O, m, key, f0, q0, f1, q1, f2, q2
     """Split and corner sums in one loop, 3-D quintic value, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
-        u1 = X1[i] * f1 + q1
+        u1 = (X1[i]) * f1 + q1
         l1 = np.floor(u1)
         s1 = np.float32((u1 - l1) - np.float32(0.5))
-        u2 = X2[i] * f2 + q2
+        u2 = (X2[i]) * f2 + q2
         l2 = np.floor(u2)
         s2 = np.float32((u2 - l2) - np.float32(0.5))
         ok = u32(ok + u32((l0 < np.float32(2147483648.0)) & (l0 >= -np.float32(2147483648.0)) & (l1 < np.float32(2147483648.0)) & (l1 >= -np.float32(2147483648.0)) & (l2 < np.float32(2147483648.0)) & (l2 >= -np.float32(2147483648.0))))
@@ -17759,15 +17759,15 @@ def _fused_d3_quintic_gradient_s32f32(X0, X1, X2, O, m, key, f0, q0, f1, q1, f2,
     """Split and corner sums in one loop, 3-D quintic gradient, s32f32 (generated)."""
     ok = u32(0)
     for i in range(m):
-        u0 = X0[i] * f0 + q0
+        u0 = (X0[i]) * f0 + q0
         l0 = np.floor(u0)
         s0 = np.float32((u0 - l0) - np.float32(0.5))
         t0 = np.float32(u0 - l0)
-        u1 = X1[i] * f1 + q1
+        u1 = (X1[i]) * f1 + q1
         l1 = np.floor(u1)
         s1 = np.float32((u1 - l1) - np.float32(0.5))
         t1 = np.float32(u1 - l1)
-        u2 = X2[i] * f2 + q2
+        u2 = (X2[i]) * f2 + q2
         l2 = np.floor(u2)
         s2 = np.float32((u2 - l2) - np.float32(0.5))
         t2 = np.float32(u2 - l2)

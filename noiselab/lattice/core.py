@@ -394,7 +394,8 @@ class LatticeNoise:
         # float64 result (the table kernels round as they store; the others
         # write float64, one compiled specialisation each)
         use_tables = self._uses_tables()
-        own = use_tables or self._int_fast() is not None  # kernels that store the output dtype themselves
+        fast = self._int_fast()
+        own = use_tables or fast is not None  # kernels that store the output dtype themselves
         out = np.empty((flat.shape[0], self.dim_out), dtype=dtype if own else np.float64)
         if not own:
             flat = np.ascontiguousarray(flat, dtype=np.float64)
@@ -409,7 +410,7 @@ class LatticeNoise:
             if not own:
                 _check_reach(flat, freqs, self.phase, name)  # the table and SIMD kernels count overflows themselves
             if self.hash == "integer":
-                bad = self._evaluate_int(flat, out, freqs, amps, absval, workers)
+                bad = self._evaluate_int(fast, flat, out, freqs, amps, absval, workers)
                 if bad:
                     check_finite_array(name, flat)  # raises for NaN or inf input
                     raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
@@ -441,10 +442,9 @@ class LatticeNoise:
 
         return {v: _intpoints.INT_KERNELS[(self.dim_in, k.name, self.basis, v)] for v in ("s32f32", "s64f32", "s64f64")}
 
-    def _evaluate_int(self, flat, out, freqs, amps, absval, workers):
-        """The integer hash at scattered points into ``out``; returns the count of non-finite coordinates."""
+    def _evaluate_int(self, fast, flat, out, freqs, amps, absval, workers):
+        """The integer hash at scattered points into ``out`` (``fast``: :meth:`_int_fast`); returns the non-finite count."""
         k = self.kernel
-        fast = self._int_fast()
         if fast is None:  # any dimension, any kernel: the generic kernel (float64, checked by the caller)
             _run_split(_inthash.int_points, flat, out,
                        (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, self.period, self._pmask,
