@@ -286,7 +286,7 @@ def snow_plate(repeats, tmp, shape=(512, 4096, 4096), out_chunk=(16, 512, 4096),
     from noiselab.scale import spectral as S
     from noiselab.snow.tent import self_conjugate_planes, tent_columns
     from noiselab.spectral.synthesis import draw_coefficients
-    import noiselab._validate as V
+    import noiselab._core.validate as V
 
     T, H, W = shape
     t0 = time.perf_counter()

@@ -64,7 +64,7 @@ def _before_module(rev):
 
     load("spectral_kernels_before", "noiselab/spectral/_kernels.py", [])
     return load("spectral_before", "noiselab/spectral/synthesis.py", [
-        ("from .._validate", "from noiselab._validate"),
+        ("from .._core", "from noiselab._core"),
         ("from .envelopes", "from noiselab.spectral.envelopes"),
         ("from .frequencies", "from noiselab.spectral.frequencies"),
         ("from . import _kernels", "import spectral_kernels_before as _kernels")])

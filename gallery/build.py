@@ -31,7 +31,7 @@ import time
 import traceback
 from pathlib import Path
 
-from noiselab._progress import progress
+from noiselab._core import progress
 from noiselab.io import atomic_output
 
 from .html import render_index

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import noiselab as nl
-from noiselab import _validate as V
+from noiselab._core import validate as V
 from noiselab import analysis as A
 from noiselab import geometry as G
 from noiselab import io as IO

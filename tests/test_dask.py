@@ -134,7 +134,7 @@ def test_bad_chunks_are_refused_with_the_parameter_named():
 def test_without_dask_the_error_names_the_extra(monkeypatch, tmp_path, capsys):
     import importlib
 
-    from noiselab.scale import _deps
+    from noiselab._core import deps as _deps
 
     def absent(name):
         if name.split(".")[0] in ("dask", "zarr", "distributed"):
@@ -353,7 +353,7 @@ def test_read_zarr_opens_stores_written_by_other_tools(tmp_path):
         read_zarr(tmp_path / "missing.zarr")
 
 
-@pytest.mark.parametrize("module", ["noiselab.scale._deps", "noiselab.scale.run", "noiselab.scale.lattice",
+@pytest.mark.parametrize("module", ["noiselab._core.deps", "noiselab.scale.run", "noiselab.scale.lattice",
                                     "noiselab.io.zarr"])
 def test_docstring_examples_run(module):
     import doctest

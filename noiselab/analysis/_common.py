@@ -18,7 +18,7 @@ import numbers
 
 import numpy as np
 
-from .._validate import _asarray, check_finite_array, check_real
+from .._core import as_array, check_finite_array, check_real
 
 __all__ = ["check_field", "check_video", "check_band", "frequency_index", "ref_size"]
 
@@ -32,7 +32,7 @@ def check_field(name, field, *, ndim=(1, 2, 3), min_size=4, allow_constant=False
     """
     if isinstance(field, (str, bytes)) or field is None:
         raise TypeError(f"{name} must be a numeric array, got {type(field).__name__}")
-    arr = _asarray(name, field)
+    arr = as_array(name, field)
     if arr.dtype.kind == "c":
         raise TypeError(f"{name} must be real; got a complex array (pass its real part, abs or power)")
     if arr.dtype.kind not in "biuf":

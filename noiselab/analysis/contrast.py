@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import _asarray, check_finite_array
+from .._core import as_array, check_finite_array
 
 __all__ = ["michelson_contrast", "rms_contrast", "to_grey"]
 
@@ -14,7 +14,7 @@ def _values(x, mask):
         raise ValueError("x is empty")
     if mask is None:
         return arr.astype(np.float64, copy=False).ravel()
-    m = _asarray("mask", mask)
+    m = as_array("mask", mask)
     if m.dtype != np.bool_:
         raise TypeError(f"mask must be a boolean array, got dtype {m.dtype}")
     try:

@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import _asarray, check_int
+from .._core import as_array, check_int
 from ._common import check_band, half_weight, noise_floor
 from .spectrum import as_spectrum
 
@@ -53,7 +53,7 @@ class Orientation:
 def _plane(image, band, window, what):
     """The frame-averaged half power spectrum of an image or video, its frequency grid and the band's cells."""
     if isinstance(image, np.ndarray) or not hasattr(image, "power"):
-        arr = _asarray("image", image)
+        arr = as_array("image", image)
         if arr.ndim not in (2, 3):
             raise ValueError(f"image must be 2-D (height, width) or 3-D (frames, height, width), got shape {arr.shape}")
         spec = as_spectrum(arr, window=window, axes=(-2, -1))

@@ -42,7 +42,7 @@ import math
 import numpy as np
 import scipy.fft
 
-from .._validate import check_memory, check_real
+from .._core import check_memory, check_real
 from ._common import check_band, check_tol, check_vector, check_video, frequency_index, half_weight, ref_size
 from .spectrum import PowerSpectrum, power_spectrum
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft
 
-from .._validate import _asarray, check_int, check_real, check_real_sequence
+from .._core import as_array, check_int, check_real, check_real_sequence
 from ._common import check_band, check_field, half_weight, noise_floor
 from .spectrum import PowerSpectrum, _radial_frequency, _slabs, as_spectrum, power_spectrum
 
@@ -321,7 +321,7 @@ class EnvelopeError:
 
 def _real_target(t) -> np.ndarray:
     """A target (power per cell) as a real float64 array; its finiteness is checked once DC is set aside."""
-    t = _asarray("target", t)
+    t = as_array("target", t)
     if t.dtype.kind not in "biuf":
         raise TypeError(f"target must be real power per cell (an array or a callable returning one), got dtype "
                         f"{t.dtype}")

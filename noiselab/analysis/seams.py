@@ -10,7 +10,7 @@ import numbers
 
 import numpy as np
 
-from .._validate import check_int
+from .._core import check_int
 from ._common import check_field, check_video
 
 __all__ = ["loop_seam", "tile_seam"]

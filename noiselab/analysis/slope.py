@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import check_int, check_real
+from .._core import check_int, check_real
 from ._common import check_band, noise_floor
 from .spectrum import as_spectrum, radial_spectrum
 

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field as dc_field
 import numpy as np
 import scipy.fft
 
-from .._validate import check_axes, check_int, check_memory, check_real
+from .._core import check_axes, check_int, check_memory, check_real
 from ._common import check_band, check_field, frequency_index, half_weight, ref_size
 
 __all__ = [

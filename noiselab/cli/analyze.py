@@ -332,7 +332,7 @@ def plot(path, m) -> Path:
 
 
 def run(args) -> int:
-    from .._validate import check_int
+    from .._core import check_int
     from ..io import atomic_output
 
     if args.max_frames is not None:

@@ -92,13 +92,13 @@ def _load(args):
         else:
             base = geo.sphere_for_noise(args._max_frequency, samples_per_period=args.samples_per_period)
         if shape == "squashed":
-            from .._validate import check_real
+            from .._core import check_real
 
             squash = check_real("--squash", args.squash, lo=0.0, hi=1.0, hi_open=True)
             base.apply_scale([1.0, 1.0, 1.0 - squash])
         return base
     if shape == "plane":
-        from .._validate import check_int
+        from .._core import check_int
 
         if args.subdivisions is not None:
             n = check_int("--subdivisions", args.subdivisions, lo=2, hi=20_000)
@@ -115,7 +115,7 @@ def run(args) -> int:
     import numpy as np
 
     from .. import geometry as geo
-    from .._validate import check_int, check_real
+    from .._core import check_int, check_real
     from ..io import MESH_SUFFIXES, write_mesh
 
     if not args.output and not args.render:

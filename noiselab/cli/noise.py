@@ -113,10 +113,10 @@ def run(args) -> int:
     if suffix == ".zarr" or args.chunks is not None or args.scheduler is not None:
         from ..scale.commands import write_noise_zarr  # chunked on dask, streamed to zarr
         return write_noise_zarr(args, noise, grid, summer, dtype, path)
-    from ..spectral.synthesis import _workers
+    from .._core import resolve_workers
 
     field, used = summer(noise, grid, args.octaves, lacunarity=args.lacunarity, gain=args.gain,
-                         dtype=dtype, return_octaves=True, workers=_workers(args.workers))
+                         dtype=dtype, return_octaves=True, workers=resolve_workers(args.workers))
     bound = sum(args.gain ** o for o in range(used))
     lo, hi = (0.0 if args.kind == "turbulence" else -bound), bound
     if args.value_range == "data":

@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from .._validate import _asarray, check_finite_array, check_int, check_real, check_real_array, float_dtype
+from .._core import resolve_workers, as_array, check_finite_array, check_int, check_real, check_real_array, float_dtype
 
 __all__ = ["fractal_sum", "turbulence", "octaves_used", "fractal_gradient", "turbulence_gradient"]
 
@@ -126,7 +126,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
     octaves = check_int("octaves", octaves, lo=1, hi=10_000)
     lacunarity = check_real("lacunarity", lacunarity, lo=1.0, lo_open=True)
     gain = check_real("gain", gain, lo=0.0, lo_open=True)
-    workers = check_int("workers", workers, lo=1, hi=1024)
+    workers = resolve_workers(workers)
     is_grid = isinstance(x, Grid)
     if is_grid:
         dim = noise.dim_in if isinstance(noise, LatticeNoise) else len(tuple(np.atleast_1d(x.shape)))
@@ -134,7 +134,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
         spacing = _grid_spacing(shape, ext)
         out_dtype = float_dtype(np.float64 if dtype is None else dtype)
     else:
-        raw = _asarray("x", x)
+        raw = as_array("x", x)
         out_dtype = float_dtype(dtype) if dtype is not None else (
             np.dtype(np.float32) if raw.dtype == np.float32 else np.dtype(np.float64))
         if spacing is not None:
@@ -262,7 +262,7 @@ def _jacobian_sum(noise, x, octaves, lacunarity, gain, normalize, return_value, 
     octaves = check_int("octaves", octaves, lo=1, hi=10_000)
     lacunarity = check_real("lacunarity", lacunarity, lo=1.0, lo_open=True)
     gain = check_real("gain", gain, lo=0.0, lo_open=True)
-    workers = check_int("workers", workers, lo=1, hi=1024)
+    workers = resolve_workers(workers)
     lattice = isinstance(noise, LatticeNoise)
     if not lattice and not callable(getattr(noise, "jacobian", None)):
         raise TypeError(f"noise must be a LatticeNoise or have a jacobian(points) method, got {type(noise).__name__}")
@@ -279,7 +279,7 @@ def _jacobian_sum(noise, x, octaves, lacunarity, gain, normalize, return_value, 
         value, jac = noise._grid_jac(shape, ext, octaves=used, lacunarity=lacunarity, gain=gain, absval=absval,
                                      value=bool(return_value))
     elif lattice:
-        lead, flat = noise._prepare_points(_asarray("x", x), "x")
+        lead, flat = noise._prepare_points(as_array("x", x), "x")
         freqs = noise.frequency[None, :] * (lacunarity ** np.arange(used))[:, None]
         amps = noise.scale * gain ** np.arange(used)
         out = noise._evaluate_jac(flat, freqs, amps, absval, "x", workers)

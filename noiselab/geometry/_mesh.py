@@ -11,7 +11,7 @@ import os
 
 import numpy as np
 
-from .._validate import check_finite_array
+from .._core import check_finite_array
 
 __all__ = ["AliasingWarning", "as_trimesh", "pyvista_to_trimesh", "trimesh_to_pyvista"]
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_real
+from .._core import check_finite_array, check_int, check_real
 from .fields import evaluate_field
 
 __all__ = ["noisy_arc", "noisy_circle", "trajectory", "plot_curves", "trajectory_frames"]

@@ -19,7 +19,7 @@ import warnings
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_memory, check_real, check_real_vector
+from .._core import check_finite_array, check_int, check_memory, check_real, check_real_vector
 from ._kernels import face_pass, unit_rows
 from ._mesh import AliasingWarning, as_trimesh  # noqa: F401  (defined in the leaf module _mesh; re-exported here)
 from .fields import evaluate_field, field_max_frequency, octave_field

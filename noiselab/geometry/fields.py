@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_real
+from .._core import check_finite_array, check_int, check_real
 
 __all__ = ["octave_field", "sampled_field", "evaluate_field", "field_max_frequency"]
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_real, check_real_vector
+from .._core import check_finite_array, check_int, check_real, check_real_vector
 from .fields import evaluate_field
 from .surfaces import _amplified, _extent, _scaled, grid_points
 
@@ -135,7 +135,7 @@ def quiver_image(field, path=None, *, shape=(20, 20), extent=((0.0, 4.0), (0.0, 
     >>> quiver_image(swirl, shape=(6, 6), size=64).shape
     (64, 64, 3)
     """
-    from .._validate import as_generator
+    from .._core import as_generator
     from .render import _new_figure, _save_array, figure_to_array
 
     pts, vec = flow_field(field, shape, extent, amplitude, frequency, phase)

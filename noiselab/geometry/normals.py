@@ -19,7 +19,7 @@ import numbers
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_real, check_real_array, check_real_vector
+from .._core import check_finite_array, check_int, check_real, check_real_array, check_real_vector
 from .surfaces import _scaled
 
 __all__ = ["monge_normals", "displaced_normals", "normal_angles", "field_gradient"]

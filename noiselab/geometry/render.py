@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._validate import check_int, check_real
+from .._core import check_int, check_real
 from ._mesh import _pyvista, as_trimesh, pyvista_to_trimesh, trimesh_to_pyvista
 from .displace import vertex_normals
 
@@ -263,7 +263,7 @@ def render_turntable(meshes, path=None, *, frames=36, fps=25.0, degrees=360.0, s
     >>> render_turntable(load_model("ant"), frames=3, size=32).shape
     (3, 32, 32, 3)
     """
-    from .._progress import progress
+    from .._core import progress
 
     frames = check_int("frames", frames, lo=1, hi=100_000)
     degrees = check_real("degrees", degrees, lo=-3600.0, hi=3600.0)
@@ -308,7 +308,7 @@ def render_sequence(meshes, path=None, *, fps=25.0, size=512, view="iso", azimut
     >>> render_sequence(boil, size=32).shape
     (2, 32, 32, 3)
     """
-    from .._progress import progress
+    from .._core import progress
 
     spin = check_real("spin", spin)
     out = []

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from .._validate import check_int, check_real
+from .._core import check_int, check_real
 from ._mesh import _pyvista, as_trimesh, pyvista_to_trimesh, trimesh_to_pyvista  # noqa: F401  (re-exported)
 from .displace import resolution_report
 from .surfaces import _grid_mesh, grid_points
@@ -47,7 +47,7 @@ def sphere(subdivisions=4, radius=1.0, center=(0.0, 0.0, 0.0)):
 
     subdivisions = check_int("subdivisions", subdivisions, lo=0, hi=10)
     radius = check_real("radius", radius, lo=1e-100, hi=1e100)
-    from .._validate import check_finite_array
+    from .._core import check_finite_array
 
     center = check_finite_array("center", center).astype(np.float64)
     if center.shape != (3,) or not np.all(np.isfinite(center)):

@@ -11,7 +11,7 @@ import warnings
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_memory, check_real, check_real_sequence, check_real_vector, check_shape
+from .._core import check_finite_array, check_int, check_memory, check_real, check_real_sequence, check_real_vector, check_shape
 from .fields import evaluate_field, field_max_frequency, octave_field
 
 __all__ = ["grid_points", "height_map", "monge_surface", "colored_surface", "height_map_image"]

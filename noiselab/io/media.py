@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .._progress import progress
-from .._validate import check_finite_array, check_real
+from .._core import progress
+from .._core import check_finite_array, check_real
 from .atomic import atomic_output, hold_signals
 from .errors import InputError, cause, input_error, output_error
 

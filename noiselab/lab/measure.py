@@ -27,7 +27,7 @@ import tracemalloc
 
 import numpy as np
 
-from .._validate import check_int
+from .._core import check_int
 
 __all__ = ["interleaved", "Timings", "Laps", "Stopwatch", "run_info", "header_lines", "load_average",
            "markdown_table", "package_version", "time_against_floor", "peak_memory", "peak_rss", "machine_info",

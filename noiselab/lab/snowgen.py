@@ -20,7 +20,7 @@ import math
 import numba
 import numpy as np
 
-from .._validate import as_generator, check_int, check_memory, check_real, check_shape, float_dtype
+from .._core import as_generator, check_int, check_memory, check_real, check_shape, float_dtype
 from ..lattice import LatticeNoise
 from ..snow import rescale_opacity
 from ..spectral.envelopes import unit_direction

@@ -11,12 +11,11 @@ Classic gradient (Perlin) noise is offered as a second basis.
 from __future__ import annotations
 
 import math
-from concurrent.futures import ThreadPoolExecutor
 from typing import NamedTuple
 
 import numpy as np
 
-from .._validate import as_generator, _asarray, check_finite_array, check_int, check_memory, check_real, check_shape, float_dtype
+from .._core import resolve_workers, run_split, as_generator, as_array, check_finite_array, check_int, check_memory, check_real, check_shape, float_dtype
 from . import _inthash, _jit, _points
 from .kernels import KERNELS, Kernel, get_kernel
 
@@ -31,22 +30,6 @@ _INT_PERIOD = _inthash.PERIOD_MAX
 # output component; its entries reach 3n + 4 < 2**16) is used up to this
 # size (n = 1024 for one component: 2 MiB)
 _MAX_H2_ENTRIES = 1 << 20
-
-
-def _run_split(kernel, flat, out, rest, workers):
-    """``kernel(flat, out, *rest)``, on ``workers`` threads over contiguous blocks of points.
-
-    Returns the sum of what the kernel returns (the table kernels count
-    non-finite coordinates; the others return None).
-    """
-    npts = flat.shape[0]
-    workers = min(workers, max(1, npts // 4096))  # a thread per few thousand points at least
-    if workers <= 1:
-        return kernel(flat, out, *rest) or 0
-    bounds = np.linspace(0, npts, workers + 1).astype(np.int64)
-    with ThreadPoolExecutor(workers) as pool:
-        futures = [pool.submit(kernel, flat[a:b], out[a:b], *rest) for a, b in zip(bounds[:-1], bounds[1:])]
-        return sum(f.result() or 0 for f in futures)
 
 
 class Grid(NamedTuple):
@@ -367,7 +350,7 @@ class LatticeNoise:
 
     # ------------------------------------------------------------- scattered
     def _prepare_points(self, points, name="points"):
-        points = _asarray(name, points)
+        points = as_array(name, points)
         tables = self._uses_tables() or self._int_fast() is not None  # kernels that read float32 and count non-finite
         if not (points.dtype.kind == "f" and tables):  # the table kernels check
             points = check_finite_array(name, points)
@@ -415,17 +398,17 @@ class LatticeNoise:
                     check_finite_array(name, flat)  # raises for NaN or inf input
                     raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
             elif tables is not None:
-                bad = _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
+                bad = run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
                                                      self._pmask, *tables, basis, bool(absval)), workers)
                 if bad:
                     check_finite_array(name, flat)  # raises for NaN or inf input
                     raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
             elif unrolled is not None and (self.period >= k.taps).all():
-                _run_split(unrolled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
+                run_split(unrolled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, self.period,
                                                  self._pmask, self._perms2, self.values, self.gradients, basis,
                                                  bool(absval)), workers)
             else:
-                _run_split(_jit.eval_points, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef,
+                run_split(_jit.eval_points, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef,
                                                          self.period, self._pmask, self.perms, self.values,
                                                          self.gradients, basis, bool(absval)), workers)
         return out if out.dtype == dtype else out.astype(dtype)
@@ -446,7 +429,7 @@ class LatticeNoise:
         """The integer hash at scattered points into ``out`` (``fast``: :meth:`_int_fast`); returns the non-finite count."""
         k = self.kernel
         if fast is None:  # any dimension, any kernel: the generic kernel (float64, checked by the caller)
-            _run_split(_inthash.int_points, flat, out,
+            run_split(_inthash.int_points, flat, out,
                        (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, self.period, self._pmask,
                         self._keys, self._mult, self._int_grads, int(self.basis == "gradient"), bool(absval)),
                        workers)
@@ -462,7 +445,7 @@ class LatticeNoise:
             variant = "s32f32" if exact32 else "s64f32"
         factor = _intpoints.FACTOR[self.basis][self.dim_in - 1]
         limit = self.bound * float(np.abs(amps).sum())
-        return _run_split(fast[variant], flat, out, (freqs, amps * factor, self.phase, self._keys, self._pmask,
+        return run_split(fast[variant], flat, out, (freqs, amps * factor, self.phase, self._keys, self._pmask,
                                                      self.period, limit, bool(absval)), workers)
 
     def _table_kernel(self):
@@ -527,8 +510,8 @@ class LatticeNoise:
         evaluated on threads (the kernels release the GIL); every point's
         arithmetic is the same, so the result is bit-identical to one worker.
         """
-        workers = check_int("workers", workers, lo=1, hi=1024)
-        raw = _asarray("points", points)
+        workers = resolve_workers(workers)
+        raw = as_array("points", points)
         lead, flat = self._prepare_points(raw)
         dtype = self._out_dtype(raw.dtype, dtype)
         _check_amplitude(self.amplitude, dtype)
@@ -566,19 +549,19 @@ class LatticeNoise:
             unrolled = _jacobians.JAC_KERNELS.get((self.dim_in, k.taps))
             tabled = _jacobians.JAC_TABLE_KERNELS.get((self.dim_in, k.taps))
             if self.hash == "integer":
-                _run_split(_inthash.int_points_jac, flat, out,
+                run_split(_inthash.int_points_jac, flat, out,
                            (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, self.period,
                             self._pmask, self._keys, self._mult, self._int_grads, basis, bool(absval)), workers)
             elif tabled is not None and self._uses_tables():
-                _run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
+                run_split(tabled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
                                                self.period, self._pmask, *self._hash_tables(basis), basis,
                                                bool(absval)), workers)
             elif unrolled is not None and (self.period >= k.taps).all():
-                _run_split(unrolled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
+                run_split(unrolled, flat, out, (freqs, amps, self.phase, k.shift, k.left, k.coef, k.dcoef,
                                                  self.period, self._pmask, self._perms2, self.values,
                                                  self.gradients, basis, bool(absval)), workers)
             else:
-                _run_split(_jit.eval_points_jac, flat, out,
+                run_split(_jit.eval_points_jac, flat, out,
                            (freqs, amps, self.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, self.period,
                             self._pmask, self.perms, self.values, self.gradients, basis, bool(absval)), workers)
             _check_jac_finite(out, f"at the given {name}", _jac_bound(freqs, amps))
@@ -636,7 +619,7 @@ class LatticeNoise:
         >>> noise.jacobian(np.zeros((5, 3))).shape
         (5, 3, 3)
         """
-        workers = check_int("workers", workers, lo=1, hi=1024)
+        workers = resolve_workers(workers)
         self._check_differentiable()
         lead, flat = self._prepare_points(points)
         _check_large(flat.shape[0] * self.dim_out * (self.dim_in + 1) * 8 * 2, "lattice noise jacobian")
@@ -658,7 +641,7 @@ class LatticeNoise:
         ((1,), (1, 2))
         """
         self._scalar_only("gradient")
-        workers = check_int("workers", workers, lo=1, hi=1024)
+        workers = resolve_workers(workers)
         self._check_differentiable()
         lead, flat = self._prepare_points(points)
         _check_large(flat.shape[0] * (self.dim_in + 1) * 8 * 2, "lattice noise gradient")

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_real, check_real_vector
+from .._core import check_finite_array, check_int, check_real, check_real_vector
 from .core import Grid, LatticeNoise, _check_grid, grid_coordinates
 
 __all__ = ["curl_noise", "warp", "Warped"]

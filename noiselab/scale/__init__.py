@@ -17,7 +17,7 @@ Modules: :mod:`noiselab.scale.lattice` (chunked grids and fractal sums),
 :mod:`noiselab.scale.spectral` (chunked spectral noise and snow: pencil-decomposed inverse FFTs),
 :mod:`noiselab.scale.run` (computing on a chosen scheduler with progress).
 """
-from ._deps import require_dask
+from .._core import require_dask
 from .run import compute
 
 __all__ = ["require_dask", "compute"]

@@ -21,7 +21,7 @@ import uuid
 
 import numpy as np
 
-from ._deps import require_dask
+from .._core import require_dask
 
 __all__ = ["chunked_grid", "chunked_sum", "normalize_grid_chunks"]
 
@@ -127,7 +127,7 @@ def chunked_grid(noise, shape, extent, *, dtype=np.float64, chunks="auto", windo
     """
     require_dask()
     from ..lattice.core import _check_grid
-    from .._validate import float_dtype
+    from .._core import float_dtype
 
     if window is not None:
         raise ValueError("window= and chunks= cannot be combined: slice the chunked array instead "

@@ -5,7 +5,7 @@ import contextlib
 import sys
 import time
 
-from ._deps import require_dask
+from .._core import require_dask
 
 __all__ = ["compute", "LOCAL_SCHEDULERS"]
 

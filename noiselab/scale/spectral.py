@@ -50,7 +50,7 @@ import uuid
 import numpy as np
 import scipy.fft
 
-from ._deps import require_dask
+from .._core import require_dask
 
 __all__ = ["chunked_spectral_noise", "chunked_snow"]
 
@@ -264,7 +264,7 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dt
     from dask import delayed
 
     from ..spectral.synthesis import _noise_plan
-    from .._validate import float_dtype
+    from .._core import float_dtype
 
     shape = tuple(int(s) for s in shape)
     dt = float_dtype(dtype)
@@ -396,7 +396,7 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     require_dask()
     from ..snow.tent import self_conjugate_planes, tent_coefficients, tent_columns
     from ..spectral.synthesis import _complex_dtype
-    from .._validate import as_generator, float_dtype
+    from .._core import as_generator, float_dtype
 
     T, H, W = shape
     dt = float_dtype(dtype)

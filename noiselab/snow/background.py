@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_int
+from .._core import check_int
 from ..spectral import spectral_noise
 
 __all__ = ["default_background"]

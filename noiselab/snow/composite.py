@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import _asarray, check_finite_array, check_memory, check_real
+from .._core import as_array, check_finite_array, check_memory, check_real
 from ..analysis.contrast import michelson_contrast  # one definition, re-exported here for the Eq. 6.1 reports
 
 __all__ = ["composite", "parallax_composite", "michelson_contrast"]
@@ -162,7 +162,7 @@ def parallax_composite(foreground, mask, *, transmittance=0.3, veil=255.0, veile
     fg2 = fg if veiled_foreground is None else _check_alpha(veiled_foreground, "veiled_foreground")
     if fg2.shape != fg.shape:
         raise ValueError(f"veiled_foreground shape {fg2.shape} does not match foreground shape {fg.shape}")
-    m = _asarray("mask", mask)
+    m = as_array("mask", mask)
     if m.dtype != bool:
         m = check_finite_array("mask", m)
         lo, hi = (float(m.min()), float(m.max())) if m.size else (0.0, 0.0)

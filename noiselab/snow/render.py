@@ -5,10 +5,10 @@ import math
 
 import numpy as np
 
-from .._progress import progress
-from .._validate import as_generator, _asarray, check_finite_array, check_memory, check_real, check_real_sequence, check_shape, float_dtype
+from .._core import resolve_workers, thread_pool, progress
+from .._core import as_generator, as_array, check_finite_array, check_memory, check_real, check_real_sequence, check_shape, float_dtype
 from ..spectral.envelopes import unit_direction
-from ..spectral.synthesis import AMPLITUDES, _pool, _workers
+from ..spectral.synthesis import AMPLITUDES
 from . import _kernels
 from .tent import assemble, pruned_irfftn, tent_columns, to_half_spectrum
 
@@ -33,7 +33,7 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None, workers=None):
     array([0., 0., 0.])
     """
     beta = check_real("beta", beta, lo=0, lo_open=True)
-    field = _asarray("field", field)
+    field = as_array("field", field)
     if field.dtype not in (np.float32, np.float64):
         raise TypeError(f"field must be float32 or float64, got {field.dtype}")
     if field.size == 0:
@@ -64,13 +64,13 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None, workers=None):
     scale = ft(1) / span
     while (ft(hi) - ft(lo)) * scale < 1:
         scale = np.nextafter(scale, ft(np.inf))
-    nw = _workers(workers)
+    nw = resolve_workers(workers)
     step = 1 << 20  # fixed chunks (not per worker): each element is mapped alone, so any count gives the same bits
     chunks = [flat[i:i + step] for i in range(0, flat.size, step)]
     if nw <= 1 or len(chunks) <= 1:
         _kernels.rescale_power(flat, float(lo), float(scale), beta)
     else:
-        list(_pool(min(nw, len(chunks))).map(lambda c: _kernels.rescale_power(c, float(lo), float(scale), beta),
+        list(thread_pool(min(nw, len(chunks))).map(lambda c: _kernels.rescale_power(c, float(lo), float(scale), beta),
                                              chunks))
     return field
 
@@ -191,7 +191,7 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
     """
     (T, H, W), c, band, thickness, direction, pan, beta, exponent = _check_params(
         shape, c, band, thickness, direction, pan, beta, exponent, amplitude, on_alias)
-    nw = _workers(workers)
+    nw = resolve_workers(workers)
     dt = float_dtype(dtype)
     if spill is not None and chunks is None:
         raise ValueError("spill= is the chunked path's scratch directory: pass chunks= too")

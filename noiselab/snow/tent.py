@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft
 
-from .._validate import check_int, check_real
+from .._core import check_int, check_real
 from ..spectral.envelopes import unit_direction
 from ..spectral.synthesis import (_check_band, _complex_dtype, _self_conjugate_columns, draw_coefficients,
                                   hermitian_plane)
@@ -252,10 +252,10 @@ def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 18, bar=None, w
     whichever thread takes it, so the bits do not depend on ``workers``; the
     only full-size array is ``out`` (plus one block's scratch per thread).
     """
-    from ..spectral.synthesis import _pool, _workers
+    from .._core import resolve_workers, thread_pool
     from . import _kernels
 
-    nw = _workers(workers)
+    nw = resolve_workers(workers)
     T, H, W = cols.shape
     C = scipy.fft.ifft(C, axis=0, overwrite_x=True, workers=nw) if T > 1 else C
     K = int(cols.kx.max()) + 1
@@ -284,7 +284,7 @@ def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 18, bar=None, w
     if nw <= 1 or len(blocks) <= 1 or T * H * W < (1 << 16):
         results = map(render, blocks)
     else:
-        results = _pool(min(nw, len(blocks))).map(render, blocks)
+        results = thread_pool(min(nw, len(blocks))).map(render, blocks)
     for blo, bhi, n in results:  # in block order, whichever thread finished first
         lo, hi = min(lo, blo), max(hi, bhi)
         if bar is not None:

@@ -6,7 +6,7 @@ import numbers
 
 import numpy as np
 
-from .._validate import check_finite_array, check_int, check_memory
+from .._core import check_finite_array, check_int, check_memory
 
 __all__ = ["tile", "iter_tiled_frames"]
 

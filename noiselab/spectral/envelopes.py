@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import check_finite_array, check_real, check_real_sequence
+from .._core import check_finite_array, check_real, check_real_sequence
 
 __all__ = [
     "radial_frequency",

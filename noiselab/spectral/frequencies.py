@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.fft
 
-from .._validate import check_memory, check_shape, float_dtype
+from .._core import check_memory, check_shape, float_dtype
 
 __all__ = ["frequency_vectors", "half_spectrum_shape"]
 

@@ -35,14 +35,12 @@ earlier scheme (``noiselab.snow`` uses it for its few cells).
 from __future__ import annotations
 
 import inspect
-import os
 from types import SimpleNamespace
-from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import scipy.fft
 
-from .._validate import _asarray, as_generator, check_int, check_memory, check_real, check_shape, float_dtype
+from .._core import map_blocks, resolve_workers, as_array, as_generator, check_int, check_memory, check_real, check_shape, float_dtype
 from . import _kernels
 from .frequencies import frequency_vectors, half_spectrum_shape
 
@@ -141,7 +139,7 @@ def hermitian_plane(plane, support=None):
     """
     if plane is None or isinstance(plane, (str, bytes, dict, set, frozenset)):
         raise TypeError(f"plane must be a numeric (complex or real) array, got {type(plane).__name__}")
-    plane = _asarray("plane", plane)
+    plane = as_array("plane", plane)
     if plane.dtype.kind not in "biufc":
         raise TypeError(f"plane must be a numeric (complex or real) array, got dtype {plane.dtype}")
     if plane.dtype.kind in "biu":
@@ -151,7 +149,7 @@ def hermitian_plane(plane, support=None):
     if support is None:
         support = plane != 0
     else:
-        support = _asarray("support", support)
+        support = as_array("support", support)
         if support.dtype.kind != "b":
             raise TypeError(f"support must be a bool array (True where the envelope carries energy), got dtype "
                             f"{support.dtype}")
@@ -300,7 +298,7 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
         if not np.all(np.isfinite(env)):
             raise ValueError("envelope must be finite everywhere (an infinite amplitude at DC? multiply by an annulus)")
         raise ValueError("envelope must be non-negative (it is an amplitude)")
-    nw = _workers(workers)
+    nw = resolve_workers(workers)
     # keep the spectrum and the FFT's partial sums (at most n_half cells of |S| <= 5 env) inside the dtype's range
     fi = np.finfo(dt)
     emax = float(top[0])
@@ -320,7 +318,7 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
         u, c, s = _draws(key, int(starts[i]), n, mode)
         _kernels.fill_envelope(spec2, env2, counts, r0, r1, u, c, s)
 
-    _map_groups(fill, range(len(groups)), nw if int(counts.sum()) >= _MIN_PARALLEL else 1)
+    map_blocks(fill, range(len(groups)), nw if int(counts.sum()) >= _MIN_PARALLEL else 1)
     for j in _self_conjugate_columns(shape[-1]):
         spec[..., j] = hermitian_plane(spec[..., j], env[..., j] > 0)
     field = scipy.fft.irfftn(spec, s=shape, workers=workers)  # (overwrite_x=True measured slower: in-place strided passes)
@@ -365,7 +363,7 @@ def _envelope_array(envelope, shape, hshape):
     if env is None or isinstance(env, (str, bytes, dict, set, frozenset)):
         raise TypeError(f"{what} a real amplitude array broadcastable to the half spectrum {hshape}, got "
                         f"{type(env).__name__}")
-    env = _asarray("envelope", env)
+    env = as_array("envelope", env)
     if env.dtype.kind not in "biuf":
         raise TypeError(f"{what} a real amplitude array broadcastable to the half spectrum {hshape}, got dtype "
                         f"{env.dtype}" + (" (pass its magnitude)" if env.dtype.kind == "c" else ""))
@@ -381,38 +379,8 @@ def _self_conjugate_columns(last_n):
     return [0] + ([last_n // 2] if last_n % 2 == 0 and last_n > 1 else [])
 
 
-def _workers(workers):
-    """``workers`` with scipy.fft's meaning (None: scipy's default; -1: every core; -k: cores + 1 - k) as a count >= 1."""
-    if workers is None:
-        return int(scipy.fft.get_workers())  # 1, or what a scipy.fft.set_workers block around the call says
-    if isinstance(workers, (bool, np.bool_)) or not isinstance(workers, (int, np.integer)):
-        raise TypeError(f"workers must be an int (scipy.fft's meaning: -1 for every core) or None, got {workers!r}")
-    cores = os.cpu_count() or 1
-    n = int(workers) if workers > 0 else cores + 1 + int(workers)
-    if workers == 0 or n < 1:
-        raise ValueError(f"workers must be a positive count or -1 .. -{cores} (every core, every core but one, ...), "
-                         f"got {workers!r}")
-    return n
-
-
-_POOLS = {}  # worker count -> a thread pool kept for the process (starting threads per call cost ~0.1 ms each)
-_MIN_PARALLEL = 1 << 16  # fewer cells than this are filled on the calling thread (measured: threads cost more)
-
-
-def _pool(nw):
-    """A process-wide pool of ``nw`` threads (created on first use)."""
-    pool = _POOLS.get(nw)
-    if pool is None:
-        pool = _POOLS[nw] = ThreadPoolExecutor(max_workers=nw, thread_name_prefix="noiselab")
-    return pool
-
-
-def _map_groups(fn, groups, nw):
-    """``[fn(g) for g in groups]``, on ``nw`` threads when more than one (the numba kernels release the GIL)."""
-    groups = list(groups)
-    if nw <= 1 or len(groups) <= 1:
-        return [fn(g) for g in groups]
-    return list(_pool(min(nw, len(groups))).map(fn, groups))
+# fewer cells than this are filled on the calling thread (measured: threads cost more)
+_MIN_PARALLEL = 1 << 16
 
 
 def _noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, check=True):
@@ -547,7 +515,7 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     mode, key = p.mode, p.key
     bf = block.reshape(-1).view(dt)  # real and imaginary parts, 2 Kr per row
     total = int(counts.sum())
-    nw = _workers(workers) if total >= _MIN_PARALLEL else 1
+    nw = resolve_workers(workers) if total >= _MIN_PARALLEL else 1
     # the draws are made in the fill (no per-group scratch to keep in cache): about four groups per thread,
     # few calls; the grouping changes no bit (each row's cells and power depend on the row alone)
     groups = _row_groups(counts, max(_CHUNK, -(-total // (4 * nw))))
@@ -560,14 +528,14 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
         _kernels.fill_power_law(bf, Kr, q0, q1, wxsq, kbeg, kend, r0, r1, key, int(starts[i]), mode,
                                 float(exponent), float(qfloor), float(inv_qref), weight, sample, rowpow, scratch)
 
-    _map_groups(fill, range(len(groups)), nw)
+    map_blocks(fill, range(len(groups)), nw)
     g = _hermitian_gain(p, rowpow, [block[..., j] for j in _self_conjugate_columns(n) if j < K])
     rows = block.reshape(R, -1)
 
     def scale(i):
         rows[groups[i][0]:groups[i][1]] *= g
 
-    _map_groups(scale, range(len(groups)), nw)
+    map_blocks(scale, range(len(groups)), nw)
     return block, index
 
 
@@ -703,7 +671,7 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         raise ValueError(f"normalize must be one of {NORMALIZATIONS}, got {normalize!r}")
     if not isinstance(dc, (bool, np.bool_)):
         raise TypeError(f"dc must be True or False, got {dc!r}")
-    nw = _workers(workers)
+    nw = resolve_workers(workers)
     dt = float_dtype(dtype)
     if spill is not None and chunks is None:
         raise ValueError("spill= is the chunked path's scratch directory: pass chunks= too")

@@ -26,6 +26,7 @@ __all__ = [
     "check_real_array",
     "check_real_sequence",
     "check_real_vector",
+    "as_array",
 ]
 
 # numpy cannot index an array of more than 2**63 - 1 bytes; shapes past this many
@@ -177,7 +178,7 @@ def check_real_array(name, array, *, ndim=None, allow_empty=True) -> np.ndarray:
     return arr
 
 
-def _asarray(name, value) -> np.ndarray:
+def as_array(name, value) -> np.ndarray:
     """``np.asarray(value)``, with numpy's conversion errors (ragged lists, huge ints) turned into ones naming ``name``."""
     if isinstance(value, np.ndarray):
         return value
@@ -193,7 +194,7 @@ def _asarray(name, value) -> np.ndarray:
 
 def check_finite_array(name, array) -> np.ndarray:
     """Return ``array`` as an ndarray; raise if it holds NaN or inf (naming how many)."""
-    array = _asarray(name, array)
+    array = as_array(name, array)
     if array.dtype.kind not in "biuf":
         kind = "complex" if array.dtype.kind == "c" else "real numeric"
         raise TypeError(f"{name} must be a real numeric array, got dtype {array.dtype}"
