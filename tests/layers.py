@@ -214,7 +214,7 @@ def check(root: Path = PACKAGE_DIR, layers=LAYERS) -> Report:
     modules, imports = read_imports(root)
     report = Report(modules, imports)
     report.cycles = find_cycles(_module_edges(modules, imports, pkg))
-    seen_unknown = set()
+    report.unknown_packages = sorted({subpackage(m) for m in modules} - set(layers) - TOP)
     for imp in imports:
         src = subpackage(imp.importer)
         if src in TOP:
@@ -227,10 +227,6 @@ def check(root: Path = PACKAGE_DIR, layers=LAYERS) -> Report:
         dst = subpackage(imp.target)
         if dst == "__init__" and imp.names:      # ``from noiselab import spectral``
             dst = imp.names[0] if imp.names[0] in layers else "__init__"
-        for name in (src, dst):
-            if name not in layers and name not in TOP and name not in seen_unknown:
-                seen_unknown.add(name)
-                report.unknown_packages.append(name)
         if dst == src:
             continue
         if dst == "scale" and layers.get(src, 99) < layers["scale"]:
