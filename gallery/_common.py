@@ -105,9 +105,9 @@ def cow(resolution=96, size=2.0):
     import trimesh
 
     from noiselab.geometry import normalize
-    from noiselab.geometry._mesh import _pyvista, pyvista_to_trimesh
+    from noiselab.geometry import require_pyvista, pyvista_to_trimesh
 
-    pv = _pyvista()
+    pv = require_pyvista()
     parts = [((0.0, 0.0, 0.0), (0.95, 0.42, 0.42)),            # body
              ((0.85, 0.0, 0.25), (0.35, 0.2, 0.25)),            # neck
              ((1.2, 0.0, 0.35), (0.3, 0.2, 0.22)),             # head
@@ -151,9 +151,9 @@ def terrain(height, width, *, seed=3, grid=384, extent=24.0, octaves=6, relief=3
     """
     from noiselab import LatticeNoise
     from noiselab.geometry import height_map
-    from noiselab.geometry._mesh import _pyvista
+    from noiselab.geometry import require_pyvista
 
-    pv = _pyvista()
+    pv = require_pyvista()
     ext = ((0.0, 5.0), (0.0, 5.0))
     h = height_map(LatticeNoise(2, seed=seed), (grid, grid), ext, octaves=octaves, kind="fractal", on_aliasing="ignore")
     h = (h - h.min()) / max(float(np.ptp(h)), 1e-12)

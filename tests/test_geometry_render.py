@@ -187,9 +187,9 @@ def test_stereo_pair_views_differ_by_the_separation():
 
 
 def test_pyvista_meshes_are_accepted_and_converted():
-    from noiselab.geometry.render import _pyvista
+    from noiselab.geometry.render import require_pyvista
 
-    pv = _pyvista()
+    pv = require_pyvista()
     out = displace(pv.Sphere(radius=1.0, theta_resolution=40, phi_resolution=40), lambda p: np.ones(len(p)), 0.1)
     r = np.linalg.norm(out.vertices, axis=1)
     np.testing.assert_allclose(r, 1.1, atol=0.01)

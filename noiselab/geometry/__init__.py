@@ -36,6 +36,7 @@ from .shapes import (
     squashed_sphere,
     trimesh_to_pyvista,
 )
+from ._mesh import require_pyvista
 from .render import figure_to_array, render_mesh, render_sequence, render_stereo_pair, render_turntable
 from .curves import noisy_arc, noisy_circle, plot_curves, trajectory, trajectory_frames
 from .surfaces import colored_surface, grid_points, height_map, height_map_image, monge_surface
@@ -47,7 +48,7 @@ __all__ = [
     "field_max_frequency", "figure_to_array", "flow_field", "flow_glyphs", "grid_points", "height_map",
     "height_map_image", "load_model", "monge_surface", "noisy_arc", "noisy_circle", "normalize",
     "octave_field", "plane", "plot_curves", "pyvista_to_trimesh", "quiver_image", "render_mesh", "render_sequence", "render_stereo_pair",
-    "render_turntable", "resolution_report", "sampled_field", "sphere", "sphere_for_noise",
+    "render_turntable", "require_pyvista", "resolution_report", "sampled_field", "sphere", "sphere_for_noise",
     "squashed_sphere", "streamline_image", "streamlines", "subdivide_for_noise", "trajectory",
     "trajectory_frames", "trimesh_to_pyvista", "vertex_normals",
 ]

@@ -13,14 +13,14 @@ import numpy as np
 
 from .._core import check_finite_array
 
-__all__ = ["AliasingWarning", "as_trimesh", "pyvista_to_trimesh", "trimesh_to_pyvista"]
+__all__ = ["AliasingWarning", "as_trimesh", "pyvista_to_trimesh", "require_pyvista", "trimesh_to_pyvista"]
 
 
 class AliasingWarning(UserWarning):
     """The mesh is too coarse for the field's highest frequency."""
 
 
-def _pyvista():
+def require_pyvista():
     """Import pyvista for off-screen rendering (EGL window selected before the first import)."""
     os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
     import pyvista as pv
@@ -64,8 +64,8 @@ def pyvista_to_trimesh(poly):
 
     Examples
     --------
-    >>> from noiselab.geometry._mesh import _pyvista
-    >>> pv = _pyvista()
+    >>> from noiselab.geometry._mesh import require_pyvista
+    >>> pv = require_pyvista()
     >>> len(pyvista_to_trimesh(pv.Cube()).faces)      # 6 quads -> 12 triangles
     12
     """
@@ -91,7 +91,7 @@ def trimesh_to_pyvista(mesh):
     >>> poly.n_points, poly.n_cells
     (42, 80)
     """
-    pv = _pyvista()
+    pv = require_pyvista()
     faces = np.asarray(mesh.faces, dtype=np.int64)
     cells = np.empty((len(faces), 4), dtype=np.int64)
     cells[:, 0] = 3

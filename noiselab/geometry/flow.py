@@ -194,7 +194,7 @@ def flow_glyphs(field, shape=(6, 6, 6), extent=((0.0, 4.0), (0.0, 4.0), (0.0, 4.
     >>> arrows.n_points > 8
     True
     """
-    from .render import _pyvista
+    from .render import require_pyvista
 
     pts, vec = flow_field(field, shape, extent, amplitude, frequency, phase)
     if pts.shape[-1] != 3:
@@ -206,7 +206,7 @@ def flow_glyphs(field, shape=(6, 6, 6), extent=((0.0, 4.0), (0.0, 4.0), (0.0, 4.
     if scale is None:
         scale = 0.9 * cell / longest if longest > 0 else 1.0
     scale = check_real("scale", scale, lo=0.0, lo_open=True)
-    pv = _pyvista()
+    pv = require_pyvista()
     cloud = pv.PolyData(pts.reshape(-1, 3))
     cloud["vectors"] = vec
     cloud["speed"] = np.linalg.norm(vec, axis=1)

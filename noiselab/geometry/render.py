@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from .._core import check_int, check_real
-from ._mesh import _pyvista, as_trimesh, pyvista_to_trimesh, trimesh_to_pyvista
+from ._mesh import require_pyvista, as_trimesh, pyvista_to_trimesh, trimesh_to_pyvista
 from .displace import vertex_normals
 
 __all__ = ["render_mesh", "render_stereo_pair", "render_turntable", "render_sequence", "figure_to_array"]
@@ -56,7 +56,7 @@ _STYLES = ("surface", "wireframe", "points")
 
 
 def _plotter(meshes, *, size, colors, scalars, cmap, clim, background, smooth_shading, show_edges, style="surface"):
-    pv = _pyvista()
+    pv = require_pyvista()
     h, w = _size(size)
     meshes = _as_list(meshes)
     if colors is None or isinstance(colors, str) or (np.ndim(colors) == 1 and len(colors) in (3, 4)

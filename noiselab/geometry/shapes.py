@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from .._core import check_int, check_real
-from ._mesh import _pyvista, as_trimesh, pyvista_to_trimesh, trimesh_to_pyvista  # noqa: F401  (re-exported)
+from ._mesh import require_pyvista, as_trimesh, pyvista_to_trimesh, trimesh_to_pyvista  # noqa: F401  (re-exported)
 from .displace import resolution_report
 from .surfaces import _grid_mesh, grid_points
 
@@ -173,7 +173,7 @@ def load_model(name="ant", *, size=2.0):
     if name not in BUNDLED_MODELS:
         raise ValueError(f"model must be one of {', '.join(BUNDLED_MODELS)} (pyvista's bundled models), got {name!r}")
 
-    _pyvista()
+    require_pyvista()
     from pyvista import examples
 
     mesh = pyvista_to_trimesh(getattr(examples, f"load_{name}")())

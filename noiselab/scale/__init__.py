@@ -1,12 +1,13 @@
-"""Beyond one machine: chunked, lazy noise on dask, computed anywhere dask runs.
+"""Beyond one machine: chunked, lazy noise on dask, computed anywhere dask runs (layer 5, beside the core).
 
-``LatticeNoise.grid(..., chunks=...)``, ``fractal_sum(..., chunks=...)`` and
-``turbulence(..., chunks=...)`` on a :class:`noiselab.lattice.Grid` return a
-lazy ``dask.array.Array``; every chunk is rendered by the ``window=`` path, so
-the array is bit-identical to the in-memory grid for any chunking, and no
-chunk needs more than its own samples (plus the lattice block under it) in
-memory. :func:`noiselab.io.write_zarr` streams such an array into a zarr store
-atomically, with its provenance in the attributes.
+``LatticeNoise.grid(..., chunks=...)``, ``fractal_sum(..., chunks=...)``,
+``turbulence(..., chunks=...)``, ``spectral_noise(..., chunks=...)`` and
+``snow(..., chunks=...)`` return a lazy ``dask.array.Array``. The in-memory
+core never imports this package: each of those functions asks
+:func:`noiselab._core.dispatch.chunked` for the implementation registered
+here under its name, and this package registers them when it is imported.
+Every chunk is rendered by the in-memory path's window, so the array is
+bit-identical to the in-memory result for any chunking.
 
 Scheduling is dask's: the default threaded scheduler, or a
 ``dask.distributed.Client`` (worker processes, a real cluster) if one is
@@ -18,6 +19,7 @@ Modules: :mod:`noiselab.scale.lattice` (chunked grids and fractal sums),
 :mod:`noiselab.scale.run` (computing on a chosen scheduler with progress).
 """
 from .._core import require_dask
+from . import lattice, spectral  # noqa: F401  (importing them registers the dask implementations)
 from .run import compute
 
 __all__ = ["require_dask", "compute"]
