@@ -101,7 +101,7 @@ def _label(shape, band, dt):
 def _synth_env(shape, band):
     n = shape[-1]
     lo, hi = (0.0, 0.5 * np.sqrt(len(shape)) + 1.0) if band is None else (band[0] / n, band[1] / n)
-    return lambda *w: E.annulus(*w, lo=lo, hi=hi) * E.power_law(*w, exponent=1.0)
+    return lambda *w: E.annulus(*w, band_cycles_per_sample=(lo, hi)) * E.power_law(*w, exponent=1.0)
 
 
 def _peak(f):

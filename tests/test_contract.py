@@ -282,7 +282,7 @@ def test_envelopes_validate_their_parameters():
     with pytest.raises(ValueError, match=r"pan \(px/frame\) must hold 2 real numbers, got 1"):
         E.sheared_tent(w, w, w, c=1.0, pan=(1,), tolerance=1.0)
     with pytest.raises(ValueError, match="annulus needs lo <= hi"):
-        E.annulus(w, lo=0.3, hi=0.1)
+        E.annulus(w, band_cycles_per_sample=(0.3, 0.1))
     with pytest.raises(ValueError, match=r"wx must be finite"):
         E.tent_surface(w, w * np.nan, c=1.0)
     with pytest.raises(TypeError, match="direction must be a pair"):

@@ -325,7 +325,7 @@ TABLE = [
     Entry("half_spectrum_shape", SP.half_spectrum_shape, dict(shape=(4, 8)), dict(shape="shape")),
     _env_entry("radial_frequency", E.radial_frequency, W2, {}, {}),
     _env_entry("power_law", E.power_law, W2, dict(exponent=1.0), dict(exponent="real")),
-    _env_entry("annulus", E.annulus, W2, dict(lo=0.1, hi=0.3), dict(lo="real", hi="real"),
+    _env_entry("annulus", E.annulus, W2, dict(band_cycles_per_sample=(0.1, 0.3)), dict(band_cycles_per_sample="pair"),
                check=shaped(lambda kw: None, lo=0, hi=1)),
     _env_entry("motion_plane", E.motion_plane, W3, dict(velocity=(1.0, 0.0), tolerance=0.5),
                dict(velocity="pair", tolerance="real"), wnames=["wt", "wy", "wx"]),

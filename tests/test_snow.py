@@ -47,13 +47,38 @@ def test_energy_only_on_the_thickened_tent_inside_the_band():
     kw = dict(c=1.3, thickness=0.2, direction=(np.cos(0.4), np.sin(0.4)), pan=(0.3, 0.1))
     S = snow_spectrum(shape, seed=1, band=(6, 20), dtype=np.float64, **kw)
     wt, wy, wx = frequency_vectors(shape)
-    dense = (E.annulus(wy, wx, lo=6 / 64, hi=20 / 64)
+    dense = (E.annulus(wy, wx, band_cycles_per_sample=(6 / 64, 20 / 64))
              * E.thickened_tent(wt, wy, wx, kw["c"], kw["direction"], kw["pan"],
                                 thickness=kw["thickness"], tolerance=np.pi / shape[0]))
     np.testing.assert_array_equal(S != 0, dense > 0)
     # about 1 % of the spectrum carries energy at the default band
     frac = (snow_spectrum((64, 256, 256), seed=0) != 0).mean()
     assert 0.003 < frac < 0.02, frac
+
+
+@pytest.mark.parametrize("shape,kw", [
+    ((15, 48, 64), dict(c=0.9, thickness=0.0, direction=(1.0, 0.0), pan=(0.0, 0.0))),
+    ((16, 64, 64), dict(c=0.9, thickness=0.35, direction=(-1.0, 1.0), pan=(0.5, -0.25))),
+    ((9, 40, 48), dict(c=0.0, thickness=0.1, direction=(0.0, 1.0), pan=(0.3, 0.2))),
+])
+def test_snow_cells_are_the_envelopes_tent_surface_cells(shape, kw):
+    # snow.tent evaluates spectral.envelopes.tent_surface at the band's cells (issue 21: no second derivation);
+    # its spectrum's support is the dense envelope's, thickened tent x annulus, cell for cell
+    T, H, W = shape
+    band = (4, 20)
+    S = snow_spectrum(shape, seed=2, band=band, amplitude="fixed", dtype=np.float64, **kw)
+    wt, wy, wx = frequency_vectors(shape)
+    dense = (E.annulus(wy, wx, band_cycles_per_sample=(band[0] / W, band[1] / W))
+             * E.thickened_tent(wt, wy, wx, kw["c"], kw["direction"], kw["pan"], thickness=kw["thickness"],
+                                tolerance=np.pi / T))
+    assert dense.any()
+    np.testing.assert_array_equal(S != 0, dense > 0)
+    # (the band stays off the Nyquist row and column, where a pan's surface is not odd under k -> -k)
+    # and the amplitude of each spatial column is the envelope's power law, split over its temporal bins
+    col = np.sqrt((np.abs(S) ** 2).sum(axis=0))
+    law = E.power_law(wy[0], wx[0], exponent=1.0) * (E.annulus(wy[0], wx[0], band_cycles_per_sample=(
+        band[0] / W, band[1] / W)))
+    np.testing.assert_allclose(col, law, rtol=1e-12, atol=0)
 
 
 def test_spatial_spectrum_is_1_over_f_with_equal_energy_per_octave():

@@ -82,7 +82,7 @@ def test_frequency_vectors_are_broadcast_not_meshgrids():
 
 
 def test_same_seed_bit_identical_and_generator_accepted():
-    env = lambda wy, wx: E.annulus(wy, wx, lo=0.05, hi=0.4)  # noqa: E731
+    env = lambda wy, wx: E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.4))  # noqa: E731
     a = synthesize((16, 16), env, seed=11)
     b = synthesize((16, 16), env, seed=11)
     c = synthesize((16, 16), env, seed=np.random.default_rng(11))
@@ -152,7 +152,7 @@ _displacement = phase_correlation_shift
 def test_motion_plane_envelope_translates_with_its_velocity():
     T = 16
     env = lambda wt, wy, wx: (E.motion_plane(wt, wy, wx, (2.0, -1.0), tolerance=np.pi / T)  # noqa: E731
-                              * E.annulus(wy, wx, lo=0.05, hi=0.3))
+                              * E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.3)))
     v = synthesize((T, 64, 64), env, seed=0, dtype=np.float64)
     assert _displacement(v[0], v[1]) == (2, -1)
 
@@ -172,7 +172,7 @@ def test_power_law_and_annulus():
     w = np.array([0.0, 0.5, 1.0])
     np.testing.assert_allclose(E.power_law(w, exponent=1.0), [0.0, 2.0, 1.0])
     f = np.array([0.0, 0.1, 0.2, 0.3]) * 2 * np.pi
-    np.testing.assert_array_equal(E.annulus(f, lo=0.1, hi=0.2), [0, 1, 1, 0])
+    np.testing.assert_array_equal(E.annulus(f, band_cycles_per_sample=(0.1, 0.2)), [0, 1, 1, 0])
     with pytest.raises(ValueError, match="non-zero"):
         E.unit_direction((0, 0))
 
@@ -202,7 +202,7 @@ def test_spectral_noise_is_synthesize_with_annulus_times_power_law(shape, band):
     # spectrum synthesize builds from the float64 envelope: same cells, same draws, same planes
     n = shape[-1]
     lo, hi = (band[0] / n, band[1] / n) if band else (0.0, 0.5 * np.sqrt(len(shape)) + 1.0)
-    env = lambda *w: E.annulus(*w, lo=lo, hi=hi) * E.power_law(*w, exponent=1.5)  # noqa: E731
+    env = lambda *w: E.annulus(*w, band_cycles_per_sample=(lo, hi)) * E.power_law(*w, exponent=1.5)  # noqa: E731
     _, S = synthesize(shape, env, seed=7, amplitude="rayleigh", dtype=np.float64, return_spectrum=True)
     x = spectral_noise(shape, exponent=1.5, band=band, seed=7, dtype=np.float64)
     X = scipy.fft.rfftn(x)
@@ -243,7 +243,7 @@ def test_spectral_noise_same_seed_same_bits_and_band_edges():
     c = spectral_noise((48, 40), band=(3, 12), seed=22)
     assert a.tobytes() == b.tobytes() and not np.array_equal(a, c)
     # return_spectrum and the in-place FFT path give the same bits
-    env = lambda wy, wx: E.annulus(wy, wx, lo=0.05, hi=0.4)  # noqa: E731
+    env = lambda wy, wx: E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.4))  # noqa: E731
     f1 = synthesize((16, 18), env, seed=4)
     f2, _ = synthesize((16, 18), env, seed=4, return_spectrum=True)
     assert f1.tobytes() == f2.tobytes()
@@ -279,7 +279,8 @@ def test_synthesize_follows_its_documented_draws_on_dense_and_sparse_rows():
     # coefficient i (the i-th cell with env > 0 in C order) is word i of the stream keyed by one word of
     # the generator: rows where every cell carries energy take the branch-free loop, the others the general
     # one; both must give env * sqrt(a2) * (c + i s) / |c + i s| before the planes are made Hermitian
-    from noiselab.spectral.synthesis import _MODES, _draws, _stream_key
+    from noiselab.spectral.plan import AMPLITUDE_MODES, stream_key
+    from noiselab.spectral.synthesis import _draws
 
     shape = (12, 10)
     env = np.ones((12, 6))
@@ -288,7 +289,7 @@ def test_synthesize_follows_its_documented_draws_on_dense_and_sparse_rows():
     env[7, 1:4] = [0.5, 2.0, 0.0]
     _, S = synthesize(shape, env, seed=9, amplitude="rayleigh", dtype=np.float64, return_spectrum=True)
     sup = env > 0
-    a2, c, s = _draws(_stream_key(np.random.default_rng(9)), 0, int(sup.sum()), _MODES["rayleigh"])
+    a2, c, s = _draws(stream_key(np.random.default_rng(9)), 0, int(sup.sum()), AMPLITUDE_MODES["rayleigh"])
     z = np.sqrt(a2.astype(np.float64)) * (c + 1j * s.astype(np.float64)) / np.abs(c + 1j * s.astype(np.float64))
     ref = np.zeros(env.shape, complex)
     ref[sup] = env[sup] * z
@@ -396,7 +397,7 @@ def test_empty_band_and_single_sample_shape_are_refused():
 
 
 def test_synthesize_huge_and_tiny_envelopes_are_scaled_or_refused():
-    env = lambda wy, wx: E.annulus(wy, wx, lo=0.05, hi=0.3)  # noqa: E731
+    env = lambda wy, wx: E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.3))  # noqa: E731
     ref, S = synthesize((32, 32), env, seed=1, dtype=np.float64, return_spectrum=True)
     for k in (1e300, 1e-300):
         big, Sb = synthesize((32, 32), lambda wy, wx: k * env(wy, wx), seed=1, dtype=np.float64,
@@ -421,7 +422,7 @@ def test_output_is_bit_identical_for_any_worker_count(workers):
             a = spectral_noise(shape, band=band, seed=5, normalize=normalize, workers=1)
             b = spectral_noise(shape, band=band, seed=5, normalize=normalize, workers=workers)
             assert a.tobytes() == b.tobytes(), (shape, band, normalize)
-    env = lambda wt, wy, wx: E.annulus(wt, wy, wx, lo=0.02, hi=0.4)  # noqa: E731
+    env = lambda wt, wy, wx: E.annulus(wt, wy, wx, band_cycles_per_sample=(0.02, 0.4))  # noqa: E731
     a = synthesize((48, 64, 80), env, seed=2, workers=1)
     assert a.tobytes() == synthesize((48, 64, 80), env, seed=2, workers=workers).tobytes()
     assert a.tobytes() == synthesize((48, 64, 80), env, seed=2).tobytes()
@@ -449,3 +450,77 @@ def test_analysers_give_the_same_bits_for_any_worker_count():
     assert A.tent_energy(video, 1.0, band, workers=1) == A.tent_energy(video, 1.0, band, workers=2)
     bands = [(2, 8), (8, 32)]
     assert A.band_speeds(video, bands, workers=1).tobytes() == A.band_speeds(video, bands, workers=-1).tobytes()
+
+
+# --- issue 21: one band validator, one unit per name, the plan shared with the dask path ---
+def test_one_band_validator_gives_one_message_everywhere():
+    import noiselab.analysis as A
+    from noiselab.snow import flake_speeds, snow
+
+    img = spectral_noise((64, 64), band=(2, 16), seed=0)
+    nyquist = "band[1] = 40 cycles/frame is past the Nyquist frequency 32 cycles/frame"
+    for call in (lambda b: spectral_noise((64, 64), band=b), lambda b: snow((2, 64, 64), band=b),
+                 lambda b: flake_speeds(1.0, b, 64), lambda b: A.spectral_slope(img, b)):
+        with pytest.raises(ValueError, match=nyquist.replace("[", r"\[").replace("]", r"\]")):
+            call((4, 40))
+        with pytest.raises(ValueError, match="band is empty: need lo < hi, got lo=9, hi=5 cycles/frame"):
+            call((9, 5))
+        with pytest.raises(TypeError, match="band must be an ordered .* got a set"):
+            call({4, 8})
+        with pytest.raises(ValueError, match=r"band must be a \(lo, hi\) pair in cycles/frame"):
+            call((1, 2, 3))
+    # the generators' bands may start at 0 (DC stays out unless dc=True); an analyser's log bins need lo > 0
+    assert spectral_noise((64, 64), band=(0, 8), seed=0).shape == (64, 64)
+    with pytest.raises(ValueError, match=r"band\[0\] \(cycles/frame\) must be in \(0, inf\)"):
+        A.spectral_slope(img, (0, 8))
+
+
+def test_annulus_band_says_its_unit_and_the_old_keywords_still_work():
+    w = 2 * np.pi * np.array([0.0, 0.1, 0.2, 0.3, 0.45])
+    new = E.annulus(w, band_cycles_per_sample=(0.1, 0.3))
+    np.testing.assert_array_equal(new, [0, 1, 1, 1, 0])
+    with pytest.warns(DeprecationWarning, match="band_cycles_per_sample"):
+        old = E.annulus(w, lo=0.1, hi=0.3)
+    np.testing.assert_array_equal(old, new)
+    with pytest.raises(TypeError, match="band_cycles_per_sample"):
+        E.annulus(w)
+    with pytest.raises(TypeError, match="band_cycles_per_sample"):
+        E.annulus(w, lo=0.1)
+    with pytest.raises(TypeError, match="not together"):
+        E.annulus(w, band_cycles_per_sample=(0.1, 0.3), lo=0.1, hi=0.3)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'band'"):
+        E.annulus(w, band=(0.1, 0.3))
+    # spectral_noise's band in cycles/frame is annulus's in cycles/sample times the width
+    shape, band = (48, 64), (3, 11)
+    x = spectral_noise(shape, band=band, seed=2, dtype=np.float64)
+    ring = E.annulus(*frequency_vectors(shape), band_cycles_per_sample=(band[0] / 64, band[1] / 64))
+    P = np.abs(scipy.fft.rfftn(x)) ** 2
+    assert P[ring == 0].max() < 1e-20 * P.max() and np.all(P[ring > 0] > 0)
+
+
+def test_chunked_spectral_noise_and_snow_are_chosen_by_the_dispatch_registry():
+    pytest.importorskip("dask")
+    from noiselab._core import dispatch
+    from noiselab.scale import spectral as SC
+
+    assert dispatch.chunked("spectral_noise") is SC.chunked_spectral_noise
+    assert dispatch.chunked("snow") is SC.chunked_snow
+
+
+def test_the_plan_fills_the_same_block_slab_by_slab():
+    # the dask path fills the block in slabs of its first axis (plan.fill_slab); the in-memory path in row
+    # groups: the same unscaled values, so the same gain and the same field
+    from noiselab.spectral import plan
+    from noiselab.spectral.synthesis import _noise_spectrum
+
+    for shape, band in [((40, 36), (2, 12)), ((12, 16, 20), (1, 6))]:
+        p = plan.noise_plan(shape, 1.0, band, 7, "rayleigh", np.float64)
+        block, _ = _noise_spectrum(shape, 1.0, band, 7, "rayleigh", np.float64)
+        n0 = p.bshape[0]
+        parts = [plan.fill_slab(p, i0, min(n0, i0 + 3)) for i0 in range(0, n0, 3)]
+        slabs = np.concatenate([s for s, _ in parts])
+        planes = [np.ascontiguousarray(slabs[..., j]) for j in plan.self_conjugate_columns(p.n) if j < p.K]
+        g = plan.hermitian_gain(p, np.concatenate([r for _, r in parts]), planes)
+        for k, j in enumerate(j for j in plan.self_conjugate_columns(p.n) if j < p.K):
+            slabs[..., j] = planes[k]
+        np.testing.assert_array_equal(slabs * g, block)

@@ -27,6 +27,7 @@ __all__ = [
     "check_real_sequence",
     "check_real_vector",
     "as_array",
+    "check_band",
 ]
 
 # numpy cannot index an array of more than 2**63 - 1 bytes; shapes past this many
@@ -149,6 +150,60 @@ def check_real_sequence(name, value, *, length=None, lo=None, hi=None, lo_open=F
         raise ValueError(f"{name} must hold {length} real numbers, got {len(value)}: {value!r}")
     return tuple(check_real(f"{name}[{i}]", v, lo=lo, hi=hi, lo_open=lo_open, hi_open=hi_open)
                  for i, v in enumerate(value))
+
+
+def check_band(name, band, fmax, *, lo_open=False, allow_none=False, width=None):
+    """Check a pass band ``(lo, hi)`` in cycles/frame, ``0 <= lo < hi <= fmax``; return it as two floats.
+
+    The one band validator of noiselab: the generators (``spectral_noise``,
+    ``snow``, ``flake_speeds``) and the analysers all check their bands here,
+    so a band means the same thing and fails with the same words everywhere.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name in the messages (``"band"``, ``"bands[2]"``).
+    band : pair of real
+        ``(lo, hi)`` in cycles/frame (cycles per frame width), inclusive.
+    fmax : float
+        The largest allowed ``hi`` in cycles/frame: the Nyquist frequency
+        ``width / 2`` of a generator's band, or the Nyquist radius an
+        analyser accepts (up to ``sqrt(d)`` times it, in the corners).
+    lo_open : bool
+        ``lo`` must be above 0 (the analysers: a band's log-spaced bins need
+        ``lo > 0``); otherwise ``lo = 0`` is allowed.
+    allow_none : bool
+        ``band=None`` returns None instead of raising.
+    width : int, optional
+        Frame width in pixels: the Nyquist message then says the limit in
+        cycles/pixel too.
+
+    Examples
+    --------
+    >>> check_band("band", (4, 32), 32)
+    (4.0, 32.0)
+    >>> check_band("band", (4, 40), 32, width=64)
+    Traceback (most recent call last):
+    ...
+    ValueError: band[1] = 40 cycles/frame is past the Nyquist frequency 32 cycles/frame (0.5 cycles/pixel for frames 64 pixels wide); allowed: 0 <= lo < hi <= 32
+    """
+    if band is None:
+        if allow_none:
+            return None
+        raise ValueError(f"{name} must be a (lo, hi) pair in cycles/frame, got None")
+    if isinstance(band, (str, bytes, set, frozenset, dict)):
+        raise TypeError(f"{name} must be an ordered (lo, hi) pair in cycles/frame, got a {type(band).__name__}")
+    if not hasattr(band, "__len__") or len(band) != 2:
+        raise ValueError(f"{name} must be a (lo, hi) pair in cycles/frame, got {band!r}")
+    lo = check_real(f"{name}[0] (cycles/frame)", band[0], lo=0.0, lo_open=lo_open)
+    hi = check_real(f"{name}[1] (cycles/frame)", band[1], lo=0.0, lo_open=lo_open)
+    if hi > fmax * (1 + 1e-12):
+        px = f" (0.5 cycles/pixel for frames {width} pixels wide)" if width is not None else ""
+        raise ValueError(f"{name}[1] = {hi:g} cycles/frame is past the Nyquist frequency {fmax:g} cycles/frame{px}; "
+                         f"allowed: 0 {'<' if lo_open else '<='} lo < hi <= {fmax:g}")
+    if not lo < hi:
+        raise ValueError(f"{name} is empty: need lo < hi, got lo={lo:g}, hi={hi:g} cycles/frame")
+    return lo, hi
 
 
 def check_real_vector(name, value, size, *, lo=None, hi=None, lo_open=False) -> np.ndarray:

@@ -18,7 +18,7 @@ import numbers
 
 import numpy as np
 
-from .._core import as_array, check_finite_array, check_real
+from .._core import as_array, check_finite_array, check_real, validate
 
 __all__ = ["check_field", "check_video", "check_band", "frequency_index", "ref_size"]
 
@@ -77,22 +77,11 @@ def ref_size(shape) -> int:
 
 
 def check_band(name, band, fmax, *, allow_none=False):
-    """Validate a ``(lo, hi)`` band in cycles/frame with ``0 < lo < hi <= fmax`` (the Nyquist radius)."""
-    if band is None:
-        if allow_none:
-            return None
-        raise ValueError(f"{name} must be a (lo, hi) pair in cycles/frame, got None")
-    if isinstance(band, (str, bytes, set, frozenset, dict)):
-        raise TypeError(f"{name} must be an ordered (lo, hi) pair in cycles/frame, got a {type(band).__name__}")
-    if not hasattr(band, "__len__") or len(band) != 2:
-        raise ValueError(f"{name} must be a (lo, hi) pair in cycles/frame, got {band!r}")
-    lo = check_real(f"{name}[0]", band[0], lo=0.0, lo_open=True)
-    hi = check_real(f"{name}[1]", band[1], lo=0.0, lo_open=True)
-    if not hi > lo:
-        raise ValueError(f"{name} must have lo < hi, got ({lo:g}, {hi:g})")
-    if hi > fmax * (1 + 1e-12):
-        raise ValueError(f"{name} upper edge {hi:g} cycles/frame is past the Nyquist limit {fmax:g} cycles/frame")
-    return lo, hi
+    """Validate a ``(lo, hi)`` band in cycles/frame with ``0 < lo < hi <= fmax`` (the Nyquist radius).
+
+    noiselab's one band validator (:func:`noiselab._core.validate.check_band`) with ``lo > 0``.
+    """
+    return validate.check_band(name, band, fmax, lo_open=True, allow_none=allow_none)
 
 
 def check_vector(name, value, *, nonzero=False) -> np.ndarray:

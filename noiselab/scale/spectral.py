@@ -50,7 +50,10 @@ import uuid
 import numpy as np
 import scipy.fft
 
-from .._core import require_dask
+from .._core import as_generator, dispatch, float_dtype, require_dask
+from ..snow.render import rescale_opacity
+from ..snow.tent import self_conjugate_planes, tent_coefficients, tent_columns, y_pass
+from ..spectral import plan, spectral_noise
 
 __all__ = ["chunked_spectral_noise", "chunked_snow"]
 
@@ -166,49 +169,25 @@ def _regular(chunks):
 # ------------------------------------------------------------------ spectral noise
 
 
-def _fill_rows(p, i0, i1, rpi):
-    """The block's slab ``i0:i1`` along its first axis, unscaled (rows ``i0*rpi .. i1*rpi``), and its row powers."""
-    from ..spectral import _kernels
-
-    r0, r1 = i0 * rpi, i1 * rpi
-    slab = np.empty((i1 - i0,) + tuple(p.bshape[1:]), dtype=p.cdt)
-    bf = slab.reshape(-1).view(p.dt)
-    start = int(p.counts[:r0].sum())
-    q0, q1 = p.q0, p.q1
-    if len(p.shape) == 2:
-        q1 = q1[i0:i1]   # 2-D: q0 is one zero, rows are the first axis itself
-    else:
-        q0 = q0[i0:i1]   # 3-D: rpi rows per index of the first axis
-    rowpow = np.zeros(r1 - r0)
-    scratch = np.empty(p.Kr, dtype=p.dt)
-    _kernels.fill_power_law(bf, p.Kr, q0, q1, p.wxsq, p.kbeg[r0:r1], p.kend[r0:r1], 0, r1 - r0, p.key, start,
-                            p.mode, p.exponent, p.qfloor, p.inv_qref, p.weight, p.sample, rowpow, scratch)
-    return slab, rowpow
-
-
 def _sc_cols(p):
-    from ..spectral.synthesis import _self_conjugate_columns
-
-    return [j for j in _self_conjugate_columns(p.n) if j < p.K]
+    return [j for j in plan.self_conjugate_columns(p.n) if j < p.K]
 
 
-def _pass_a(p, i0, i1, rpi):
-    slab, rowpow = _fill_rows(p, i0, i1, rpi)
+def _pass_a(p, i0, i1):
+    slab, rowpow = plan.fill_slab(p, i0, i1)
     return rowpow, [slab[..., j].copy() for j in _sc_cols(p)]
 
 
 def _gain(p, parts):
     """The Hermitian planes and the gain ``g``, from every slab's row powers and plane columns (as in memory)."""
-    from ..spectral.synthesis import _hermitian_gain
-
     planes = [np.ascontiguousarray(np.concatenate([pl[k] for _, pl in parts], axis=0))
               for k, _ in enumerate(_sc_cols(p))]
-    return _hermitian_gain(p, np.concatenate([r for r, _ in parts]), planes), planes
+    return plan.hermitian_gain(p, np.concatenate([r for r, _ in parts]), planes), planes
 
 
-def _pass_b(p, i0, i1, rpi, gp):
+def _pass_b(p, i0, i1, gp):
     g, planes = gp
-    slab, _ = _fill_rows(p, i0, i1, rpi)
+    slab, _ = plan.fill_slab(p, i0, i1)
     for k, j in enumerate(_sc_cols(p)):
         slab[..., j] = planes[k][i0:i1]
     slab *= g
@@ -217,9 +196,7 @@ def _pass_b(p, i0, i1, rpi, gp):
 
 def _leading_passes(slab, index, shape):
     """``ifft`` along every leading axis of a kx slab, the kept rows put back at their indices first."""
-    from ..spectral.synthesis import _leading_ifft
-
-    return _leading_ifft(slab, index, shape, workers=1, overwrite=False)
+    return plan.leading_ifft(slab, index, shape, workers=1, overwrite=False)
 
 
 _CACHE = 1 << 18  # bytes of a pass's working block (the in-memory snow's 256 KiB)
@@ -237,11 +214,10 @@ def _last_pass(B, n, dt):
 
 
 def _one_piece(shape, kw):
-    from ..spectral.synthesis import spectral_noise
-
     return spectral_noise(shape, **kw)
 
 
+@dispatch.register("spectral_noise")
 def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dtype, normalize, dc, spill=None):
     """:func:`noiselab.spectral.spectral_noise` as a lazy dask array in ``chunks`` (see the module notes).
 
@@ -263,9 +239,6 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dt
     import dask.array as da
     from dask import delayed
 
-    from ..spectral.synthesis import _noise_plan
-    from .._core import float_dtype
-
     shape = tuple(int(s) for s in shape)
     dt = float_dtype(dtype)
     out_chunks = _out_chunks(chunks, shape, dt)
@@ -273,10 +246,9 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dt
         kw = dict(exponent=exponent, band=band, seed=seed, amplitude=amplitude, dtype=dt, normalize=normalize, dc=dc)
         x = da.from_delayed(delayed(_one_piece, pure=True)(shape, kw), shape, dtype=dt)
         return x.rechunk(out_chunks)
-    p = _noise_plan(shape, exponent, band, seed, amplitude, dt, normalize=normalize, dc=dc, check=False)
+    p = plan.noise_plan(shape, exponent, band, seed, amplitude, dt, normalize=normalize, dc=dc, check=False)
     tok = uuid.uuid4().hex[:12]  # a fresh graph per call (the plan holds arrays; no reliable cheap token)
     b0 = p.bshape[0]
-    rpi = p.R // b0
     rest = int(np.prod(p.bshape[1:]))
     item = p.cdt.itemsize
     slab_rows = _blocks(b0, max(1, _TARGET // max(1, rest * item)))
@@ -285,11 +257,11 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dt
     a_name, g_name, b_name = f"spectral-a-{tok}", f"spectral-gain-{tok}", f"spectral-spectrum-{tok}"
     dsk = {pkey: p}
     for i in range(len(slab_rows)):
-        dsk[(a_name, i)] = (_pass_a, pkey, int(st[i]), int(st[i + 1]), rpi)
+        dsk[(a_name, i)] = (_pass_a, pkey, int(st[i]), int(st[i + 1]))
     dsk[g_name] = (_gain, pkey, [(a_name, i) for i in range(len(slab_rows))])
     extra = (0,) * (len(p.bshape) - 1)
     for i in range(len(slab_rows)):
-        dsk[(b_name, i) + extra] = (_pass_b, pkey, int(st[i]), int(st[i + 1]), rpi, g_name)
+        dsk[(b_name, i) + extra] = (_pass_b, pkey, int(st[i]), int(st[i + 1]), g_name)
     bchunks = (slab_rows,) + tuple((m,) for m in p.bshape[1:])
     spec = _array(dsk, b_name, bchunks, p.cdt)
     # transpose 1: slabs of kx, leading axes whole
@@ -345,15 +317,11 @@ def _snow_slab(piece, T, H, cdt, *after):
         C[:, piece["pcol"]] = piece["pval"]
     if T > 1:
         C = scipy.fft.ifft(C, axis=0, overwrite_x=True, workers=1)
-    from ..snow import _kernels
-
     k = piece["k"]
     B = np.empty((T, H, k), dtype=cdt)
     tb = int(max(1, _CACHE // max(1, H * k * np.dtype(cdt).itemsize)))
     for t0 in range(0, T, tb):  # a few frames at a time, in cache, as in memory
-        blk = B[t0:t0 + tb]
-        _kernels.scatter_columns(C, t0, piece["ky"], piece["kx"], blk)
-        blk[...] = scipy.fft.ifft(blk, axis=1, overwrite_x=True, workers=1)
+        y_pass(C, t0, piece["ky"], piece["kx"], B[t0:t0 + tb])
     return B
 
 
@@ -369,13 +337,12 @@ def _reduce_extremes(parts):
 
 
 def _snow_rescale(B, W, dt, beta, lohi):
-    from ..snow.render import rescale_opacity
-
     x = _last_pass(B, W, dt)
     lo, hi = lohi
     return rescale_opacity(x, beta, lo=lo, hi=hi, workers=1)
 
 
+@dispatch.register("snow")
 def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, beta, exponent, amplitude, dtype,
                  on_alias, rescale, spill=None):
     """:func:`noiselab.snow.snow` as a lazy dask array in ``chunks`` (see the module notes).
@@ -394,13 +361,9 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     True
     """
     require_dask()
-    from ..snow.tent import self_conjugate_planes, tent_coefficients, tent_columns
-    from ..spectral.synthesis import _complex_dtype
-    from .._core import as_generator, float_dtype
-
     T, H, W = shape
     dt = float_dtype(dtype)
-    cdt = _complex_dtype(dt)
+    cdt = plan.complex_dtype(dt)
     out_chunks = _out_chunks(chunks, (T, H, W), dt)
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)

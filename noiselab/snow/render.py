@@ -5,10 +5,10 @@ import math
 
 import numpy as np
 
-from .._core import resolve_workers, thread_pool, progress
-from .._core import as_generator, as_array, check_finite_array, check_memory, check_real, check_real_sequence, check_shape, float_dtype
+from .._core import (as_array, as_generator, check_finite_array, check_memory, check_real, check_real_sequence,
+                     check_shape, dispatch, float_dtype, progress, resolve_workers, thread_pool)
+from ..spectral import AMPLITUDES
 from ..spectral.envelopes import unit_direction
-from ..spectral.synthesis import AMPLITUDES
 from . import _kernels
 from .tent import assemble, pruned_irfftn, tent_columns, to_half_spectrum
 
@@ -195,12 +195,11 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
     dt = float_dtype(dtype)
     if spill is not None and chunks is None:
         raise ValueError("spill= is the chunked path's scratch directory: pass chunks= too")
-    if chunks is not None:  # lazy, on dask: noiselab.scale.spectral
-        from ..scale.spectral import chunked_snow
-
-        return chunked_snow((T, H, W), chunks, seed=seed, c=c, band=band, thickness=thickness, direction=direction,
-                            pan=pan, beta=beta, exponent=exponent, amplitude=amplitude, dtype=dt, on_alias=on_alias,
-                            rescale=rescale, spill=spill)
+    if chunks is not None:  # lazy, on dask: the implementation noiselab.scale.spectral registers
+        return dispatch.chunked("snow")((T, H, W), chunks, seed=seed, c=c, band=band, thickness=thickness,
+                                        direction=direction, pan=pan, beta=beta, exponent=exponent,
+                                        amplitude=amplitude, dtype=dt, on_alias=on_alias, rescale=rescale,
+                                        spill=spill)
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1

@@ -20,6 +20,14 @@ half-spectrum cells. So:
    a few frames at a time. This beats a bare ``irfftn`` of the same output
    (figures in ``benchmarks/bench_snow.md``).
 
+The tent itself is :func:`noiselab.spectral.envelopes.tent_surface`,
+evaluated at the band's spatial cells only (and the amplitude
+:func:`~noiselab.spectral.envelopes.power_law`): the cells that carry energy
+are the cells of ``thickened_tent(..., tolerance=pi/T) * annulus(...)``
+(tested). :func:`y_pass`, :func:`tent_columns`, :func:`tent_coefficients` and
+:func:`self_conjugate_planes` are the internal interface shared by the
+in-memory and dask paths (:mod:`noiselab.scale.spectral`).
+
 Units: spatial frequencies in cycles/pixel internally (band limits are given in
 cycles/frame = cycles per frame width); angular frequencies ``w`` in rad/px
 and ``wt`` in rad/frame; ``c`` in rad/frame; speeds in px/frame.
@@ -32,12 +40,15 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft
 
-from .._core import check_int, check_real
-from ..spectral.envelopes import unit_direction
-from ..spectral.synthesis import (_check_band, _complex_dtype, _self_conjugate_columns, draw_coefficients,
-                                  hermitian_plane)
+from .._core import check_int, check_real, resolve_workers, thread_pool
+from .._core.validate import check_band
+from ..spectral import draw_coefficients, hermitian_plane
+from ..spectral.envelopes import power_law, tent_surface
+from ..spectral.plan import complex_dtype, self_conjugate_columns
+from . import _kernels
 
-__all__ = ["TentColumns", "tent_columns", "largest_c", "pruned_irfftn", "flake_speeds"]
+__all__ = ["TentColumns", "tent_columns", "largest_c", "tent_coefficients", "self_conjugate_planes", "assemble",
+           "to_half_spectrum", "y_pass", "pruned_irfftn", "flake_speeds"]
 
 @dataclass
 class TentColumns:
@@ -72,15 +83,21 @@ def _band_columns(H, W, lo_cpp, hi_cpp):
     return rows[ri], cols[ci], fy_all[rows[ri]], fx_all[cols[ci]]
 
 
-def _surface_terms(fy, fx, direction, pan):
-    """Per column: a = (d . w)/|w| (dimensionless) and b = pan . w (rad/frame); tent wt = -c*a - b."""
-    dx, dy = unit_direction(direction)
+def _surface_terms(fy, fx, c, direction, pan):
+    """Per column, from :func:`noiselab.spectral.envelopes.tent_surface` at its angular frequencies ``w``.
+
+    Returns the tent's temporal frequency ``s`` (rad/frame, the surface the
+    cells sit on), its slope in ``c``, ``a = (d . w)/|w|`` (the surface at
+    ``c = 1`` without pan, negated: it sets the thickness and the largest
+    ``c``), and the pan's shear ``b = pan . w`` (the surface at ``c = 0``,
+    negated), so that ``s = -c*a - b``.
+    """
     wy = 2 * np.pi * fy
     wx = 2 * np.pi * fx
-    r = np.hypot(wy, wx)
-    a = (dx * wx + dy * wy) / r
-    b = float(pan[0]) * wx + float(pan[1]) * wy
-    return a, b, r
+    s = tent_surface(wy, wx, c, direction, pan)
+    a = -tent_surface(wy, wx, 1.0, direction)
+    b = -tent_surface(wy, wx, 0.0, direction, pan)
+    return s, a, b, (wy, wx)
 
 
 def largest_c(a, b, thickness):
@@ -119,15 +136,14 @@ def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alia
     spectrum does not depend on the thickness.
     """
     T, H, W = shape
-    lo, hi = _check_band(band, W)
+    lo, hi = check_band("band", band, W / 2, width=W)
     ky, kx, fy, fx = _band_columns(H, W, lo / W, hi / W)
     if ky.size == 0:
         raise ValueError(
             f"band ({lo:g}, {hi:g}) cycles/frame holds no spatial frequency of a {H} x {W} frame "
             f"(frequency steps are 1 cycle/frame across the width, W/H across the height); widen the band"
         )
-    a, b, r = _surface_terms(fy, fx, direction, pan)
-    s = -c * a - b                      # tent temporal frequency, rad/frame
+    s, a, b, w = _surface_terms(fy, fx, c, direction, pan)   # s: tent temporal frequency, rad/frame
     half = thickness * c * np.abs(a)    # thickened half-width, rad/frame
     peak = float(np.max(np.abs(s) + half))
     dropped = 0
@@ -181,7 +197,7 @@ def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alia
         entry_n = n_lo[entry_col] + (np.arange(entry_col.size) - starts[entry_col])
     entry_bin = np.mod(entry_n, T)
     count = np.bincount(entry_col, minlength=ky.size)
-    amp = r ** (-float(exponent))
+    amp = power_law(*w, exponent=exponent)  # DC is not a column: every r > 0
     weight = amp[entry_col] / np.sqrt(count[entry_col])
     return TentColumns((T, H, W), ky, kx, entry_col, entry_bin, weight, peak, dropped)
 
@@ -200,7 +216,7 @@ def self_conjugate_planes(cols: TentColumns, coef, cdt):
     """
     T, H, W = cols.shape
     out_cols, out_vals = [], []
-    for j in _self_conjugate_columns(W):
+    for j in self_conjugate_columns(W):
         pc = np.flatnonzero(cols.kx == j)
         if pc.size == 0:
             continue
@@ -220,7 +236,7 @@ def self_conjugate_planes(cols: TentColumns, coef, cdt):
 def assemble(cols: TentColumns, rng, amplitude, dtype):
     """Random coefficients on the tent cells: the ``(T, n_columns)`` spectrum columns, Hermitian on the self-conjugate planes."""
     T, H, W = cols.shape
-    cdt = _complex_dtype(dtype)
+    cdt = complex_dtype(dtype)
     coef = tent_coefficients(cols, rng, amplitude, dtype)
     C = np.zeros((T, cols.ky.size), dtype=cdt)
     C[cols.entry_bin, cols.entry_col] = coef
@@ -235,6 +251,31 @@ def to_half_spectrum(C, cols: TentColumns):
     S = np.zeros((T, H, W // 2 + 1), dtype=C.dtype)
     S[:, cols.ky, cols.kx] = C
     return S
+
+
+def y_pass(C, t0, ky, kx, B):
+    """The y-pass of a block of frames: ``B`` (``(frames, H, K)``) from frames ``t0 ..`` of the t-passed columns ``C``.
+
+    Scatters the columns ``C[t0 + t, j]`` (``(T, columns)``, already inverse
+    transformed along t) to their ``(ky[j], kx[j])`` cells of ``B``, zeros
+    elsewhere, then inverse-transforms ``B`` along y, in place (one thread);
+    returns ``B``. The in-memory renderer (:func:`pruned_irfftn`) and the
+    chunked one (:mod:`noiselab.scale.spectral`) compute every block with it,
+    so their bits agree.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> C = np.ones((2, 1), np.complex128)                    # one column, two frames
+    >>> B = y_pass(C, 0, np.array([0]), np.array([1]), np.empty((2, 4, 2), np.complex128))
+    >>> B[0, :, 1].real                                      # ky = 0 along y: a constant 1/H
+    array([0.25, 0.25, 0.25, 0.25])
+    """
+    _kernels.scatter_columns(C, t0, ky, kx, B)
+    out = scipy.fft.ifft(B, axis=1, overwrite_x=True, workers=1)
+    if out is not B:  # pocketfft writes a contiguous complex block in place; copy if it did not
+        B[...] = out
+    return B
 
 
 def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 18, bar=None, workers=None):
@@ -252,9 +293,6 @@ def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 18, bar=None, w
     whichever thread takes it, so the bits do not depend on ``workers``; the
     only full-size array is ``out`` (plus one block's scratch per thread).
     """
-    from .._core import resolve_workers, thread_pool
-    from . import _kernels
-
     nw = resolve_workers(workers)
     T, H, W = cols.shape
     C = scipy.fft.ifft(C, axis=0, overwrite_x=True, workers=nw) if T > 1 else C
@@ -267,9 +305,7 @@ def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 18, bar=None, w
 
     def render(blk):
         t0, t1 = blk
-        B = np.empty((t1 - t0, H, K), dtype=C.dtype)
-        _kernels.scatter_columns(C, t0, ky, kx, B)
-        B = scipy.fft.ifft(B, axis=1, overwrite_x=True, workers=1)
+        B = y_pass(C, t0, ky, kx, np.empty((t1 - t0, H, K), dtype=C.dtype))
         # x-pass: scipy's irfft into a small scratch (a slab of rows) then a copy, faster than numpy's irfft
         # straight into out (scipy vectorises across rows); min and max while the slab is in cache
         blo, bhi = np.inf, -np.inf
@@ -315,7 +351,7 @@ def flake_speeds(c=1.0, band=None, width=512, height=None):
         check_int("height", height, lo=1)
     if band is None:
         band = (width / 32, width / 4)
-    lo, hi = _check_band(band, width)
+    lo, hi = check_band("band", band, width / 2, width=width)
     near = np.inf if lo == 0 else c * width / (2 * np.pi * lo)
     far = c * width / (2 * np.pi * hi)
     if lo > 0 and not math.isfinite(near) or not math.isfinite(far):

@@ -3,7 +3,11 @@
 Every function takes angular frequencies in **rad/sample** (as returned by
 :func:`noiselab.spectral.frequency_vectors`: ``wt`` in rad/frame, ``wy`` and
 ``wx`` in rad/pixel, each in ``[-pi, pi]``) and returns an array that
-broadcasts against them. Masks are float arrays of 0 and 1, so that
+broadcasts against them. Their other parameters say their unit in their name
+or in their error messages: :func:`annulus`'s ``band_cycles_per_sample``
+(cycles/sample, the radius ``|w| / (2*pi)``; ``spectral_noise`` and ``snow``
+take bands in cycles/frame, ``W`` times that), ``c`` and ``tolerance`` in
+rad/frame, velocities in px/frame. Masks are float arrays of 0 and 1, so that
 ``annulus(...) * power_law(...) * tent(...)`` is the snow envelope.
 
 Sign convention (numpy's FFT, checked by measuring motion in the tests): a
@@ -22,11 +26,13 @@ Examples
 >>> import numpy as np
 >>> from noiselab.spectral import frequency_vectors
 >>> wt, wy, wx = frequency_vectors((64, 128, 128))
->>> env = annulus(wy, wx, lo=4/128, hi=32/128) * power_law(wy, wx) * tent(wt, wy, wx, c=1.0, tolerance=np.pi/64)
+>>> env = annulus(wy, wx, band_cycles_per_sample=(4/128, 32/128)) * power_law(wy, wx) * tent(wt, wy, wx, c=1.0, tolerance=np.pi/64)
 >>> env.shape
 (64, 128, 65)
 """
 from __future__ import annotations
+
+import warnings
 
 import numpy as np
 
@@ -147,15 +153,56 @@ def power_law(*w, exponent=1.0):
     return a
 
 
-def annulus(*w, lo, hi):
-    """Band limit (thesis 3.2.2): 1 where ``lo <= |w| / (2*pi) <= hi`` (cycles/sample), else 0; DC never."""
-    lo = check_real("lo (cycles/sample)", lo, lo=0.0, hi=_BOUND)
-    hi = check_real("hi (cycles/sample)", hi, lo=0.0, hi=_BOUND)
-    if lo > hi:
-        raise ValueError(f"annulus needs lo <= hi (cycles/sample), got lo={lo:g} > hi={hi:g}")
+def annulus(*w, band_cycles_per_sample=None, **deprecated):
+    """Band limit (thesis 3.2.2): 1 where ``lo <= |w| / (2*pi) <= hi`` cycles/sample, else 0; DC never.
+
+    Parameters
+    ----------
+    *w : arrays
+        Angular frequencies in rad/sample (:func:`noiselab.spectral.frequency_vectors`).
+    band_cycles_per_sample : (lo, hi)
+        The band in cycles/sample (cycles/pixel), ``0 <= lo <= hi``: the
+        radius ``|w| / (2*pi)``. A band of ``(lo, hi)`` cycles/frame, as
+        ``spectral_noise`` and ``snow`` take it, on frames ``W`` samples wide
+        is ``(lo / W, hi / W)`` here. (The earlier keywords ``lo=`` and
+        ``hi=``, same unit, still work with a ``DeprecationWarning``.)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> w = 2 * np.pi * np.array([0.0, 0.1, 0.2, 0.3])
+    >>> annulus(w, band_cycles_per_sample=(0.1, 0.2))
+    array([0., 1., 1., 0.])
+    """
+    lo, hi = _annulus_band(band_cycles_per_sample, deprecated)
     f = radial_frequency(*w) / (2 * np.pi)
     eps = 1e-12
     return ((f >= lo * (1 - eps)) & (f <= hi * (1 + eps)) & (f > 0)).astype(float)
+
+
+def _annulus_band(band, deprecated):
+    """``annulus``'s band, from ``band_cycles_per_sample`` or the deprecated ``lo=``/``hi=`` keywords, checked."""
+    unknown = sorted(set(deprecated) - {"lo", "hi"})
+    if unknown:
+        raise TypeError(f"annulus() got an unexpected keyword argument {unknown[0]!r}; the band is "
+                        "band_cycles_per_sample=(lo, hi)")
+    if deprecated:
+        if band is not None:
+            raise TypeError("annulus takes its band as band_cycles_per_sample=(lo, hi), not together with lo=/hi=")
+        if set(deprecated) != {"lo", "hi"}:
+            raise TypeError("annulus needs band_cycles_per_sample=(lo, hi) (cycles/sample); lo= and hi= "
+                            "(deprecated) go together")
+        warnings.warn("annulus(lo=, hi=) is deprecated: pass band_cycles_per_sample=(lo, hi), the same unit "
+                      "(cycles/sample)", DeprecationWarning, stacklevel=3)
+        lo = check_real("lo (cycles/sample)", deprecated["lo"], lo=0.0, hi=_BOUND)
+        hi = check_real("hi (cycles/sample)", deprecated["hi"], lo=0.0, hi=_BOUND)
+    else:
+        if band is None:
+            raise TypeError("annulus needs band_cycles_per_sample=(lo, hi), the band in cycles/sample")
+        lo, hi = check_real_sequence("band_cycles_per_sample", band, length=2, lo=0.0, hi=_BOUND)
+    if lo > hi:
+        raise ValueError(f"annulus needs lo <= hi (cycles/sample), got band_cycles_per_sample=({lo:g}, {hi:g})")
+    return lo, hi
 
 
 def motion_plane(wt, wy, wx, velocity, *, tolerance):

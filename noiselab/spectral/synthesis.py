@@ -35,24 +35,20 @@ earlier scheme (``noiselab.snow`` uses it for its few cells).
 from __future__ import annotations
 
 import inspect
-from types import SimpleNamespace
 
 import numpy as np
 import scipy.fft
 
-from .._core import map_blocks, resolve_workers, as_array, as_generator, check_int, check_memory, check_real, check_shape, float_dtype
+from .._core import (as_array, as_generator, check_int, check_memory, check_real, check_shape, dispatch,
+                     float_dtype, map_blocks, resolve_workers)
 from . import _kernels
 from .frequencies import frequency_vectors, half_spectrum_shape
+from .plan import (AMPLITUDE_MODES, CHUNK, complex_dtype, hermitian_gain, leading_ifft, noise_plan,
+                   self_conjugate_columns, stream_key)
 
 __all__ = ["synthesize", "spectral_noise", "NORMALIZATIONS", "draw_coefficients", "hermitian_plane", "AMPLITUDES"]
 
 AMPLITUDES = ("uniform", "rayleigh", "fixed")
-_MODES = {"uniform": 0, "rayleigh": 1, "fixed": 2}  # amplitude law -> kernel mode
-_CHUNK = 1 << 14  # coefficients drawn per chunk of rows (their float32 scratch stays in cache; 2**14 measured best)
-
-
-def _complex_dtype(dtype):
-    return np.dtype(np.complex64) if np.dtype(dtype) == np.float32 else np.dtype(np.complex128)
 
 
 def draw_coefficients(n, rng, amplitude="uniform", dtype=np.float32) -> np.ndarray:
@@ -83,7 +79,7 @@ def draw_coefficients(n, rng, amplitude="uniform", dtype=np.float32) -> np.ndarr
     if amplitude not in AMPLITUDES:
         raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
     fdt = float_dtype(dtype)
-    cdt = _complex_dtype(fdt)
+    cdt = complex_dtype(fdt)
     if rng is None or isinstance(rng, (bool, np.bool_)) or not isinstance(rng, (np.random.Generator, int, np.integer)):
         raise TypeError(f"rng must be a numpy.random.Generator or a non-negative int seed, got {type(rng).__name__}")
     if not isinstance(rng, np.random.Generator) and rng < 0:
@@ -203,12 +199,7 @@ def _draws(key, start, n, mode, dtype=np.float32):
     return a2, c, s
 
 
-def _stream_key(rng):
-    """The 64-bit key of a field's coefficient stream: one word of the caller's generator."""
-    return np.uint64(rng.integers(0, 2 ** 64, dtype=np.uint64))
-
-
-def _row_groups(counts, chunk=_CHUNK):
+def _row_groups(counts, chunk=CHUNK):
     """Split rows into consecutive groups of about ``chunk`` coefficients (a group starts where a multiple of ``chunk`` is passed).
 
     Returns ``(r0, r1, n)`` per group: rows ``r0..r1-1`` holding ``n``
@@ -274,20 +265,20 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     --------
     >>> import numpy as np, scipy.fft
     >>> from noiselab.spectral import envelopes as E
-    >>> f, S = synthesize((32, 32), lambda wy, wx: E.annulus(wy, wx, lo=0.05, hi=0.3),
-    ...                   seed=1, dtype=np.float64, return_spectrum=True)
+    >>> env = lambda wy, wx: E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.3))
+    >>> f, S = synthesize((32, 32), env, seed=1, dtype=np.float64, return_spectrum=True)
     >>> bool(np.allclose(scipy.fft.rfftn(f), S))
     True
     """
     shape = check_shape("shape", shape)
     dt = float_dtype(dtype)
-    cdt = _complex_dtype(dt)
+    cdt = complex_dtype(dt)
     if amplitude not in AMPLITUDES:
         raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
     hshape = half_spectrum_shape(shape)
     n_out = int(np.prod(shape))
     n_half = int(np.prod(hshape))
-    check_memory(n_out * dt.itemsize + n_half * cdt.itemsize + 20 * _CHUNK, f"synthesize{shape}")
+    check_memory(n_out * dt.itemsize + n_half * cdt.itemsize + 20 * CHUNK, f"synthesize{shape}")
     env = _envelope_array(envelope, shape, hshape)
     K = hshape[-1]
     R = n_half // K
@@ -306,10 +297,10 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     if rescale:
         env2 = env2 / emax
     rng = as_generator(seed)
-    mode = _MODES[amplitude]
+    mode = AMPLITUDE_MODES[amplitude]
     spec = np.empty(hshape, dtype=cdt)
     spec2 = spec.reshape(R, K)
-    key = _stream_key(rng)
+    key = stream_key(rng)
     groups = _row_groups(counts)
     starts = np.concatenate([[0], np.cumsum([g[2] for g in groups])[:-1]]).astype(np.int64)
 
@@ -319,7 +310,7 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
         _kernels.fill_envelope(spec2, env2, counts, r0, r1, u, c, s)
 
     map_blocks(fill, range(len(groups)), nw if int(counts.sum()) >= _MIN_PARALLEL else 1)
-    for j in _self_conjugate_columns(shape[-1]):
+    for j in self_conjugate_columns(shape[-1]):
         spec[..., j] = hermitian_plane(spec[..., j], env[..., j] > 0)
     field = scipy.fft.irfftn(spec, s=shape, workers=workers)  # (overwrite_x=True measured slower: in-place strided passes)
     if rescale:
@@ -374,121 +365,9 @@ def _envelope_array(envelope, shape, hshape):
                          f"(shape {shape}), got shape {env.shape}") from None
 
 
-def _self_conjugate_columns(last_n):
-    """kx indices of the self-conjugate planes: 0, and W/2 for an even width W > 1."""
-    return [0] + ([last_n // 2] if last_n % 2 == 0 and last_n > 1 else [])
-
-
 # fewer cells than this are filled on the calling thread (measured: threads cost more)
 _MIN_PARALLEL = 1 << 16
 
-
-def _noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, check=True):
-    """Everything :func:`_noise_spectrum` decides before it fills the block (no allocation of the block).
-
-    Shared with the chunked path (:mod:`noiselab.scale.spectral`), which fills
-    the block's rows chunk by chunk from the same stream. Returns a namespace.
-    """
-    dt = float_dtype(dtype)
-    cdt = _complex_dtype(dt)
-    d = len(shape)
-    n = shape[-1]
-    if all(m == 1 for m in shape):
-        raise ValueError(f"shape {shape} holds no nonzero frequency (a single sample); spectral noise needs "
-                         f"an axis of at least 2 samples")
-    if band is None:
-        lo, hi = 0.0, 0.5 * np.sqrt(d) + 1.0  # everything, corners included
-    else:
-        lo, hi = _check_band(band, n)
-        if dc and lo > 0:
-            raise ValueError(f"dc=True keeps the DC term, which a band must then start at: got band[0] = {lo:g} "
-                             f"cycles/frame; pass band=(0, hi)")
-        lo, hi = lo / n, hi / n
-    eps = 1e-12  # the tolerance of envelopes.annulus
-    lo_e, hi_e = lo * (1 - eps), hi * (1 + eps)
-    w = frequency_vectors(shape)
-    wsq = [wi.reshape(-1) * wi.reshape(-1) for wi in w]
-    # a cell can be in the band only if each of its own axis frequencies is (with a margin for rounding)
-    reach = hi_e * (1 + 1e-9)
-    index = [np.flatnonzero(np.abs(wi.reshape(-1)) / (2 * np.pi) <= reach) for wi in w[:-1]]
-    K = int(np.count_nonzero(np.abs(w[-1].reshape(-1)) / (2 * np.pi) <= reach))
-    lead = [wsq[i][index[i]] for i in range(d - 1)]
-    lead = [np.zeros(1)] * (2 - len(lead)) + lead
-    q0, q1 = lead
-    bshape = tuple(ix.size for ix in index) + (K,)
-    if check:  # the in-memory path (the chunked one holds a chunk at a time)
-        check_memory(int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * _CHUNK,
-                     f"spectral_noise{shape}")
-    wxsq = np.ascontiguousarray(wsq[-1][:K])
-    # weight of a half-spectrum cell in the full spectrum's power, halved: 1 where it stands for two cells, 1/2
-    # on the self-conjugate planes (sample power: 0 there, their power is added once they are Hermitian)
-    sample = normalize == "sample"
-    weight = np.ones(K, dtype=dt)
-    for j in _self_conjugate_columns(n):
-        if j < K:
-            weight[j] = 0 if sample else 0.5
-    # the power law relative to its value at the band's loudest end (|e| <= 1, whatever the exponent), and flat
-    # below the lowest nonzero frequency of the grid (2*pi / the longest axis): only DC can be there
-    wmin2 = (2 * np.pi / max(m for m in shape if m > 1)) ** 2
-    qfloor = wmin2 if exponent > 0 else 0.0
-    q_lo = max(wmin2, (2 * np.pi * lo_e) ** 2)
-    q_hi = min(float(sum(np.max(x) for x in wsq)), (2 * np.pi * hi_e) ** 2)
-    inv_qref = 1.0 / (q_lo if exponent >= 0 else q_hi)
-    if band is None and d == 3:
-        # every cell but DC: fill whole (ky, kx) planes as single rows (|w|**2 = wt**2 + (wy**2 + wx**2)),
-        # long loops instead of many short ones (measured 2x faster at 128**3); the first row starts after DC
-        wxsq = np.ascontiguousarray((q1[:, None] + wxsq[None, :]).reshape(-1))
-        weight = np.tile(weight, q1.size)
-        q1 = np.zeros(1)
-        R, Kr = q0.size, wxsq.size
-        kbeg = np.zeros(R, dtype=np.int64)
-        kend = np.full(R, Kr, dtype=np.int64)
-        kbeg[0] = 0 if dc else 1
-    else:
-        R, Kr = q0.size * q1.size, K
-        kbeg = np.empty(R, dtype=np.int64)
-        kend = np.empty(R, dtype=np.int64)
-        if band is None:  # every cell but DC (the first row holds DC: index[i][0] == 0)
-            kbeg[:] = 0
-            kend[:] = K
-            kbeg[0] = 0 if dc else 1
-        else:
-            _kernels.band_rows(q0, q1, wxsq, lo_e, hi_e, bool(dc), kbeg, kend)
-    counts = kend - kbeg
-    if not counts.any():
-        raise ValueError(f"band ({lo * n:g}, {hi * n:g}) cycles/frame holds no frequency of a "
-                         f"{' x '.join(map(str, shape))} grid (frequency steps are 1 cycle/frame along the last "
-                         f"axis, {n}/length along the others); widen the band")
-    rng = as_generator(seed)
-    return SimpleNamespace(shape=tuple(shape), dt=dt, cdt=cdt, n=n, index=index, K=K, bshape=bshape, q0=q0, q1=q1,
-                           wxsq=wxsq, kbeg=kbeg, kend=kend, counts=counts, R=R, Kr=Kr, weight=weight, sample=sample,
-                           exponent=float(exponent), qfloor=float(qfloor), inv_qref=float(inv_qref),
-                           key=_stream_key(rng), mode=_MODES[amplitude], dc=bool(dc), band=band, lo=lo)
-
-
-
-def _hermitian_gain(p, rowpow, planes):
-    """Make the self-conjugate ``planes`` (views, in place) Hermitian and return the gain ``g`` of the plan ``p``.
-
-    ``rowpow`` holds every kept row's power outside those planes, in the row order of the kept block (the
-    in-memory fill and the chunked one hand in the same array, so ``g`` is the same float). The annulus is
-    symmetric under k -> -k, and so is the kept block.
-    """
-    power = 2.0 * float(np.sum(rowpow))  # the same float for any worker count or chunking: one fixed order
-    maps = [np.searchsorted(ix, (-ix) % m) for ix, m in zip(p.index, p.shape[:-1])]
-    maps = [np.zeros(1, dtype=np.int64)] * (2 - len(maps)) + maps
-    for plane in planes:
-        pw = _kernels.hermitian_symmetric_plane(plane.reshape(maps[0].size, maps[1].size), maps[0], maps[1])
-        if p.sample:
-            power += pw
-    if p.sample and p.dc:
-        power -= float(np.abs(planes[0].reshape(-1)[0])) ** 2  # the sample variance is about the field's mean
-    if not power > 0:
-        raise ValueError(f"the band carries no energy to normalise (only DC, where the law is 0 for exponent < 0, "
-                         f"or only DC with normalize='sample'; got band={p.band!r}, exponent={p.exponent:g}); "
-                         "widen the band")
-    # var(field) = sum over the full spectrum of |S|**2 / N**2 (Parseval), DC included in the expected case
-    return p.dt.type(np.prod(p.shape, dtype=np.float64) / np.sqrt(power))
 
 def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, workers=1):
     """The half spectrum of :func:`spectral_noise`, normalised, on the block of cells the band can reach.
@@ -497,7 +376,7 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     with ``index[i]`` the kept indices (increasing) of leading axis ``i`` and
     ``K`` the kept kx columns ``0..K-1``; every cell outside the block is 0.
     Before the scaling, the coefficients are the ones :func:`synthesize` draws
-    for the envelope ``annulus(lo, hi) * power_law(exponent)`` with the same
+    for the envelope ``annulus((lo, hi) / n) * power_law(exponent)`` with the same
     seed (the same cells, the same order, the same words), divided by the
     power law's value at the band's loudest end. The block is then scaled so
     that the field has unit variance: expected over the ensemble
@@ -506,7 +385,7 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     Row groups are filled on ``workers`` threads; each group's coefficients
     are fixed by its position in the stream, so the bits do not depend on it.
     """
-    p = _noise_plan(shape, exponent, band, seed, amplitude, dtype, normalize=normalize, dc=dc)
+    p = noise_plan(shape, exponent, band, seed, amplitude, dtype, normalize=normalize, dc=dc)
     dt, cdt, n, index, K, bshape = p.dt, p.cdt, p.n, p.index, p.K, p.bshape
     q0, q1, wxsq, kbeg, kend, counts, R, Kr, weight, sample = (p.q0, p.q1, p.wxsq, p.kbeg, p.kend, p.counts, p.R,
                                                                p.Kr, p.weight, p.sample)
@@ -518,7 +397,7 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     nw = resolve_workers(workers) if total >= _MIN_PARALLEL else 1
     # the draws are made in the fill (no per-group scratch to keep in cache): about four groups per thread,
     # few calls; the grouping changes no bit (each row's cells and power depend on the row alone)
-    groups = _row_groups(counts, max(_CHUNK, -(-total // (4 * nw))))
+    groups = _row_groups(counts, max(CHUNK, -(-total // (4 * nw))))
     starts = np.concatenate([[0], np.cumsum([g[2] for g in groups])[:-1]]).astype(np.int64)
     rowpow = np.zeros(R)
 
@@ -529,7 +408,7 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
                                 float(exponent), float(qfloor), float(inv_qref), weight, sample, rowpow, scratch)
 
     map_blocks(fill, range(len(groups)), nw)
-    g = _hermitian_gain(p, rowpow, [block[..., j] for j in _self_conjugate_columns(n) if j < K])
+    g = hermitian_gain(p, rowpow, [block[..., j] for j in self_conjugate_columns(n) if j < K])
     rows = block.reshape(R, -1)
 
     def scale(i):
@@ -538,26 +417,6 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     map_blocks(scale, range(len(groups)), nw)
     return block, index
 
-
-
-def _leading_ifft(block, index, shape, *, workers=None, overwrite=True):
-    """``ifft`` along every leading axis of a half spectrum ``block``, the kept rows put back at their indices first.
-
-    ``index[ax]`` holds the rows of ``shape[ax]`` that ``block`` keeps; ``overwrite=False`` leaves ``block`` as it is.
-    """
-    B = block
-    for ax in range(len(shape) - 1):
-        n, ix = shape[ax], index[ax]
-        if ix.size < n:
-            full_shape = list(B.shape)
-            full_shape[ax] = n
-            F = np.zeros(full_shape, dtype=B.dtype)
-            sl = [slice(None)] * B.ndim
-            sl[ax] = ix
-            F[tuple(sl)] = B
-            B = F
-        B = scipy.fft.ifft(B, axis=ax, overwrite_x=overwrite or B is not block, workers=workers)
-    return B
 
 
 def _pruned_irfftn(block, index, shape, workers=None):
@@ -570,7 +429,7 @@ def _pruned_irfftn(block, index, shape, workers=None):
     """
     if all(ix.size == n for ix, n in zip(index, shape[:-1])) and block.shape[-1] == shape[-1] // 2 + 1:
         return scipy.fft.irfftn(block, s=shape, workers=workers)
-    B = _leading_ifft(block, index, shape, workers=workers)
+    B = leading_ifft(block, index, shape, workers=workers)
     return scipy.fft.irfft(B, n=shape[-1], axis=-1, overwrite_x=True, workers=workers)
 
 
@@ -675,33 +534,13 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
     dt = float_dtype(dtype)
     if spill is not None and chunks is None:
         raise ValueError("spill= is the chunked path's scratch directory: pass chunks= too")
-    if chunks is not None:  # lazy, on dask: noiselab.scale.spectral
-        from ..scale.spectral import chunked_spectral_noise
-
-        return chunked_spectral_noise(shape, chunks, exponent=exponent, band=band, seed=seed, amplitude=amplitude,
-                                      dtype=dt, normalize=normalize, dc=bool(dc), spill=spill)
+    if chunks is not None:  # lazy, on dask: the implementation noiselab.scale.spectral registers
+        return dispatch.chunked("spectral_noise")(shape, chunks, exponent=exponent, band=band, seed=seed,
+                                                  amplitude=amplitude, dtype=dt, normalize=normalize, dc=bool(dc),
+                                                  spill=spill)
     block, index = _noise_spectrum(shape, exponent, band, seed, amplitude, dt, normalize=normalize, dc=bool(dc),
                                    workers=nw)
     field = _pruned_irfftn(block, index, shape, workers=workers)
     if field.dtype != dt:
         field = field.astype(dt)
     return field
-
-
-def _check_band(band, n):
-    """Validate a pass band ``(lo, hi)`` in cycles/frame for frames of ``n`` samples; return floats."""
-    try:
-        lo, hi = band
-    except (TypeError, ValueError):
-        raise ValueError(f"band must be a pair (lo, hi) in cycles/frame, got {band!r}") from None
-    nyq = n / 2
-    lo = check_real("band[0] (cycles/frame)", lo, lo=0)
-    hi = check_real("band[1] (cycles/frame)", hi, lo=0)
-    if hi > nyq * (1 + 1e-12):
-        raise ValueError(
-            f"band[1] = {hi:g} cycles/frame is past the Nyquist frequency {nyq:g} cycles/frame "
-            f"(0.5 cycles/pixel for frames {n} pixels wide); allowed band is 0 <= lo < hi <= {nyq:g}"
-        )
-    if not lo < hi:
-        raise ValueError(f"band is empty: need lo < hi, got lo={lo:g}, hi={hi:g} cycles/frame")
-    return lo, hi
