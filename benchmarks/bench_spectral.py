@@ -67,6 +67,7 @@ def _before_module(rev):
         ("from .._core", "from noiselab._core"),
         ("from .envelopes", "from noiselab.spectral.envelopes"),
         ("from .frequencies", "from noiselab.spectral.frequencies"),
+        ("from .plan", "from noiselab.spectral.plan"),  # a revision with the shared plan: the current one's
         ("from . import _kernels", "import spectral_kernels_before as _kernels")])
 
 
@@ -174,22 +175,22 @@ def run(rounds, quick, before_rev, workers):
 def serial_share(shape, band, dt, rounds):
     """Shares of one single-worker ``spectral_noise`` call: (outside the threaded stages, spectrum fill + scaling, FFT).
 
-    The stages are timed by wrapping ``_map_groups`` (fill, then scaling) and ``_pruned_irfftn`` of the
+    The stages are timed by wrapping ``map_blocks`` (fill, then scaling) and ``_pruned_irfftn`` of the
     module; medians of ``rounds`` calls. Robust to the load (one call's own parts)."""
     import noiselab.spectral.synthesis as SY
 
-    orig = (SY._map_groups, SY._pruned_irfftn)
+    orig = (SY.map_blocks, SY._pruned_irfftn)
 
     def wrap(f, key, sw):
         return lambda *a, **k: sw(key, lambda: f(*a, **k))
 
     def one(r):
         sw = Stopwatch()
-        SY._map_groups, SY._pruned_irfftn = wrap(orig[0], "fill", sw), wrap(orig[1], "fft", sw)
+        SY.map_blocks, SY._pruned_irfftn = wrap(orig[0], "fill", sw), wrap(orig[1], "fft", sw)
         try:
             SY.spectral_noise(shape, band=band, seed=max(r, 0), dtype=dt, workers=1)
         finally:
-            SY._map_groups, SY._pruned_irfftn = orig
+            SY.map_blocks, SY._pruned_irfftn = orig
         return Laps(fill=sw.laps.get("fill", 0.0), fft=sw.laps.get("fft", 0.0))
 
     t = interleaved({"call": one}, repeats=rounds, round_arg=True)

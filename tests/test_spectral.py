@@ -254,10 +254,11 @@ def test_spectral_noise_same_seed_same_bits_and_band_edges():
 
 
 def test_coefficient_draws_are_complex_gaussian_and_uniform_in_phase():
-    from noiselab.spectral.synthesis import _MODES, _draws
+    from noiselab.spectral.plan import AMPLITUDE_MODES
+    from noiselab.spectral.synthesis import _draws
 
     n = 1 << 18
-    a2, c, s = _draws(np.uint64(12345), 0, n, _MODES["rayleigh"])
+    a2, c, s = _draws(np.uint64(12345), 0, n, AMPLITUDE_MODES["rayleigh"])
     z = np.sqrt(a2.astype(np.float64)) * (c + 1j * s)
     se = 4 / np.sqrt(n)
     assert abs(np.mean(np.abs(z) ** 2) - 1) < 4 * se and abs(np.mean(z)) < se and abs(np.mean(z * z)) < 2 * se
@@ -269,9 +270,9 @@ def test_coefficient_draws_are_complex_gaussian_and_uniform_in_phase():
     # |z|^2 is exponential: P(|z|^2 > 3) = e^-3
     assert abs(np.mean(a2 > 3) - np.exp(-3)) < 4 * np.sqrt(np.exp(-3) / n)
     # counter-based: any chunking of the stream gives the same coefficients
-    a2b, cb, sb = _draws(np.uint64(12345), 1000, 500, _MODES["rayleigh"])
+    a2b, cb, sb = _draws(np.uint64(12345), 1000, 500, AMPLITUDE_MODES["rayleigh"])
     assert a2b.tobytes() == a2[1000:1500].tobytes() and cb.tobytes() == c[1000:1500].tobytes()
-    u2, _, _ = _draws(np.uint64(1), 0, n, _MODES["uniform"])
+    u2, _, _ = _draws(np.uint64(1), 0, n, AMPLITUDE_MODES["uniform"])
     assert abs(np.mean(u2) - 1) < 4 * se and u2.max() <= 3.0
 
 

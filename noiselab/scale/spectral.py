@@ -1,5 +1,13 @@
 """Chunked spectral noise and snow: lazy ``dask.array`` arrays from a pencil-decomposed inverse FFT.
 
+``spectral_noise(..., chunks=)`` and ``snow(..., chunks=)`` reach
+:func:`chunked_spectral_noise` and :func:`chunked_snow` through
+:mod:`noiselab._core.dispatch` (registered below); the in-memory core never
+imports this module. What both paths compute the same way comes from their
+internal interfaces: :mod:`noiselab.spectral.plan` (the plan, the slab fill,
+the Hermitian gain, the leading-axis inverse FFT) and
+:mod:`noiselab.snow.tent` (the tent's columns and coefficients, the y-pass).
+
 The inverse FFT is global, and ``dask.array.fft`` transforms only an axis
 that sits in one chunk, so it is done here the way distributed FFTs do it:
 separable 1-D ``scipy.fft`` passes with a rechunk (an all-to-all transpose)

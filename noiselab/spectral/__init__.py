@@ -7,10 +7,13 @@
   non-parallel optical snow (Eq. 2.12, 2.14), tent (Eq. 3.3), thickened tent
   (3.2.1), sheared tent (Eq. 4.2), annulus band (3.2.2), power law (3.2.3).
 - :func:`frequency_vectors`: broadcast angular frequency vectors (rad/sample).
+- :mod:`noiselab.spectral.plan` (internal interface shared by the in-memory
+  and dask paths): the noise plan, the Hermitian gain, the pruned
+  leading-axis inverse FFT.
 
 Units: envelopes take angular frequencies in rad/sample (rad/pixel, rad/frame)
 in ``[-pi, pi]``; public band limits are in cycles/frame (cycles per frame
-width) unless a name says cycles/pixel.
+width) unless a name says otherwise (``annulus``'s ``band_cycles_per_sample``).
 """
 from . import envelopes
 from .frequencies import frequency_vectors, half_spectrum_shape

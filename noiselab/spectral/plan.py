@@ -49,12 +49,24 @@ CHUNK = 1 << 14  # coefficients drawn per chunk of rows (their float32 scratch s
 
 
 def complex_dtype(dtype):
-    """complex64 for float32, complex128 for float64: the dtype of a real field's half spectrum."""
+    """complex64 for float32, complex128 for float64: the dtype of a real field's half spectrum.
+
+    Examples
+    --------
+    >>> complex_dtype(np.float32)
+    dtype('complex64')
+    """
     return np.dtype(np.complex64) if np.dtype(dtype) == np.float32 else np.dtype(np.complex128)
 
 
 def self_conjugate_columns(last_n):
-    """kx indices of the self-conjugate planes: 0, and W/2 for an even width W > 1."""
+    """kx indices of the self-conjugate planes: 0, and W/2 for an even width W > 1.
+
+    Examples
+    --------
+    >>> self_conjugate_columns(8), self_conjugate_columns(7)
+    ([0, 4], [0])
+    """
     return [0] + ([last_n // 2] if last_n % 2 == 0 and last_n > 1 else [])
 
 
@@ -72,6 +84,12 @@ def noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="expe
     ``seed``. With ``check`` the in-memory path's peak is checked against the
     free memory (the chunked path holds one slab at a time). Returns the plan
     (a namespace; see the module notes).
+
+    Examples
+    --------
+    >>> p = noise_plan((64, 64), 1.0, (2, 16), 0, "rayleigh", np.float32)
+    >>> p.bshape, p.K            # the block the band (2..16 cycles/frame) can reach: 33 rows, kx 0..16
+    ((33, 17), 17)
     """
     dt = float_dtype(dtype)
     cdt = complex_dtype(dt)
@@ -155,6 +173,14 @@ def fill_slab(p, i0, i1):
 
     Every row takes its words of the plan's stream at its own offset, so a
     slab holds the same values as the same rows of the in-memory block.
+    2-D and 3-D plans (a 1-D block is one row).
+
+    Examples
+    --------
+    >>> p = noise_plan((64, 64), 1.0, (2, 16), 0, "rayleigh", np.float32, check=False)
+    >>> slab, rowpow = fill_slab(p, 0, 4)
+    >>> slab.shape, rowpow.shape
+    ((4, 17), (4,))
     """
     rpi = p.R // p.bshape[0]   # fill rows per index of the block's first axis
     r0, r1 = i0 * rpi, i1 * rpi
@@ -204,6 +230,12 @@ def leading_ifft(block, index, shape, *, workers=None, overwrite=True):
     """``ifft`` along every leading axis of a half spectrum ``block``, the kept rows put back at their indices first.
 
     ``index[ax]`` holds the rows of ``shape[ax]`` that ``block`` keeps; ``overwrite=False`` leaves ``block`` as it is.
+
+    Examples
+    --------
+    >>> block = np.ones((2, 3), np.complex128)          # rows 0 and 7 of an 8-row half spectrum kept
+    >>> leading_ifft(block, [np.array([0, 7])], (8, 4), overwrite=False).shape
+    (8, 3)
     """
     B = block
     for ax in range(len(shape) - 1):
