@@ -89,15 +89,16 @@ def _surface_terms(fy, fx, c, direction, pan):
     Returns the tent's temporal frequency ``s`` (rad/frame, the surface the
     cells sit on), its slope in ``c``, ``a = (d . w)/|w|`` (the surface at
     ``c = 1`` without pan, negated: it sets the thickness and the largest
-    ``c``), and the pan's shear ``b = pan . w`` (the surface at ``c = 0``,
-    negated), so that ``s = -c*a - b``.
+    ``c``), and ``w``. The pan's shear ``b = pan . w`` (``s = -c*a - b``) is
+    :func:`_pan_term`, needed only to explain an aliasing error.
     """
-    wy = 2 * np.pi * fy
-    wx = 2 * np.pi * fx
-    s = tent_surface(wy, wx, c, direction, pan)
-    a = -tent_surface(wy, wx, 1.0, direction)
-    b = -tent_surface(wy, wx, 0.0, direction, pan)
-    return s, a, b, (wy, wx)
+    w = (2 * np.pi * fy, 2 * np.pi * fx)
+    return tent_surface(*w, c, direction, pan), -tent_surface(*w, 1.0, direction), w
+
+
+def _pan_term(w, direction, pan):
+    """``b = pan . w`` per column: the tent surface at ``c = 0``, negated."""
+    return -tent_surface(*w, 0.0, direction, pan)
 
 
 def largest_c(a, b, thickness):
@@ -143,11 +144,12 @@ def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alia
             f"band ({lo:g}, {hi:g}) cycles/frame holds no spatial frequency of a {H} x {W} frame "
             f"(frequency steps are 1 cycle/frame across the width, W/H across the height); widen the band"
         )
-    s, a, b, w = _surface_terms(fy, fx, c, direction, pan)   # s: tent temporal frequency, rad/frame
+    s, a, w = _surface_terms(fy, fx, c, direction, pan)   # s: tent temporal frequency, rad/frame
     half = thickness * c * np.abs(a)    # thickened half-width, rad/frame
     peak = float(np.max(np.abs(s) + half))
     dropped = 0
     if T > 1 and peak > np.pi * (1 + 1e-9) and on_alias == "raise":
+        b = _pan_term(w, direction, pan)
         cmax = largest_c(a, b, thickness)
         msg = (
             f"temporal aliasing: c={c:g} rad/frame with thickness={thickness:g} and pan={tuple(pan)} puts energy at "

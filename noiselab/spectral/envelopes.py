@@ -87,12 +87,16 @@ def _frequencies(w, names=None):
             arr = np.asarray(wi)
         except (TypeError, ValueError):
             raise TypeError(f"{name} must be a real array of angular frequencies (rad/sample)") from None
-        arr = check_finite_array(name, arr)
+        if arr.dtype.kind not in "biuf":
+            check_finite_array(name, arr)  # raises the TypeError naming it
         if arr.dtype.kind in "biu" or arr.dtype.itemsize < 8:
             arr = arr.astype(np.float64)  # integer products wrap, float32/16 squares overflow at 1.8e19
-        if arr.size and max(abs(float(arr.max())), abs(float(arr.min()))) > _BOUND:
-            raise ValueError(f"{name} must hold angular frequencies within +-1e100 rad/sample (they lie in "
-                             f"[-pi, pi]); got values up to {max(abs(float(arr.max())), abs(float(arr.min()))):.3g}")
+        if arr.size:
+            lo, hi = float(arr.min()), float(arr.max())  # two passes check both the range and finiteness
+            if not (-_BOUND <= lo and hi <= _BOUND):    # (NaN fails both comparisons)
+                check_finite_array(name, arr)           # NaN or inf: the message counts them
+                raise ValueError(f"{name} must hold angular frequencies within +-1e100 rad/sample (they lie in "
+                                 f"[-pi, pi]); got values up to {max(abs(lo), abs(hi)):.3g}")
         out.append(arr)
     try:
         np.broadcast_shapes(*(a.shape for a in out))
@@ -122,7 +126,11 @@ def radial_frequency(*w):
     """
     if not w:
         raise ValueError("radial_frequency needs at least one frequency array w")
-    w = _frequencies(w)
+    return _radial(_frequencies(w))
+
+
+def _radial(w):
+    """``sqrt(sum(w_i**2))`` of frequency arrays already checked by :func:`_frequencies`."""
     r2 = 0
     for wi in w:
         r2 = r2 + wi * wi
@@ -254,10 +262,10 @@ def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
     c = check_real("c (rad/frame)", c, lo=-_BOUND, hi=_BOUND)
     dx, dy = unit_direction(direction)
     ux, uy = _pair("pan (px/frame)", pan)
-    r = radial_frequency(wy, wx)
+    r = _radial((wy, wx))
     wv = dx * wx + dy * wy
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = np.where(r > 0, wv / np.where(r > 0, r, 1.0), 0.0)
+    pos = r > 0
+    ratio = np.where(pos, wv / np.where(pos, r, 1.0), 0.0)  # (no division by 0: DC divides by 1)
     return -c * ratio - (ux * wx + uy * wy)
 
 
@@ -282,10 +290,10 @@ def thickened_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, thick
     thickness = check_real("thickness", thickness, lo=0.0, hi=1.0)
     tolerance = _tolerance(tolerance)
     dx, dy = unit_direction(direction)
-    r = radial_frequency(wy, wx)
+    r = _radial((wy, wx))
     wv = dx * wx + dy * wy
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = np.where(r > 0, np.abs(wv) / np.where(r > 0, r, 1.0), 0.0)
+    pos = r > 0
+    ratio = np.where(pos, np.abs(wv) / np.where(pos, r, 1.0), 0.0)  # (no division by 0: DC divides by 1)
     half = thickness * abs(c) * ratio
     return (np.abs(wt - tent_surface(wy, wx, c, direction, pan)) <= tolerance + half).astype(float)
 
