@@ -73,6 +73,10 @@ def test_snow_cells_are_the_envelopes_tent_surface_cells(shape, kw):
                                 tolerance=np.pi / T))
     assert dense.any()
     np.testing.assert_array_equal(S != 0, dense > 0)
+    # the unchecked form snow calls is tent_surface, bit for bit, and its terms are the surface's parts
+    wt_s, a, b = E.tent_surface_terms(wy[0], wx[0], kw["c"], E.unit_direction(kw["direction"]), kw["pan"])
+    np.testing.assert_array_equal(wt_s, E.tent_surface(wy[0], wx[0], kw["c"], kw["direction"], kw["pan"]))
+    np.testing.assert_array_equal(wt_s, -kw["c"] * a - b)
     # (the band stays off the Nyquist row and column, where a pan's surface is not odd under k -> -k)
     # and the amplitude of each spatial column is the envelope's power law, split over its temporal bins
     col = np.sqrt((np.abs(S) ** 2).sum(axis=0))

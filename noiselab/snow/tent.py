@@ -20,9 +20,10 @@ half-spectrum cells. So:
    a few frames at a time. This beats a bare ``irfftn`` of the same output
    (figures in ``benchmarks/bench_snow.md``).
 
-The tent itself is :func:`noiselab.spectral.envelopes.tent_surface`,
-evaluated at the band's spatial cells only (and the amplitude
-:func:`~noiselab.spectral.envelopes.power_law`): the cells that carry energy
+The tent itself is :func:`noiselab.spectral.envelopes.tent_surface` (its
+unchecked form ``tent_surface_terms``), evaluated at the band's spatial
+cells only, and the amplitude is
+:func:`~noiselab.spectral.envelopes.power_law`: the cells that carry energy
 are the cells of ``thickened_tent(..., tolerance=pi/T) * annulus(...)``
 (tested). :func:`y_pass`, :func:`tent_columns`, :func:`tent_coefficients` and
 :func:`self_conjugate_planes` are the internal interface shared by the
@@ -43,7 +44,7 @@ import scipy.fft
 from .._core import check_int, check_real, resolve_workers, thread_pool
 from .._core.validate import check_band
 from ..spectral import draw_coefficients, hermitian_plane
-from ..spectral.envelopes import power_law, tent_surface
+from ..spectral.envelopes import power_law, tent_surface_terms, unit_direction
 from ..spectral.plan import complex_dtype, self_conjugate_columns
 from . import _kernels
 
@@ -81,24 +82,6 @@ def _band_columns(H, W, lo_cpp, hi_cpp):
     mask = (r >= lo_cpp * (1 - eps)) & (r <= hi_cpp * (1 + eps)) & (r > 0)
     ri, ci = np.nonzero(mask)
     return rows[ri], cols[ci], fy_all[rows[ri]], fx_all[cols[ci]]
-
-
-def _surface_terms(fy, fx, c, direction, pan):
-    """Per column, from :func:`noiselab.spectral.envelopes.tent_surface` at its angular frequencies ``w``.
-
-    Returns the tent's temporal frequency ``s`` (rad/frame, the surface the
-    cells sit on), its slope in ``c``, ``a = (d . w)/|w|`` (the surface at
-    ``c = 1`` without pan, negated: it sets the thickness and the largest
-    ``c``), and ``w``. The pan's shear ``b = pan . w`` (``s = -c*a - b``) is
-    :func:`_pan_term`, needed only to explain an aliasing error.
-    """
-    w = (2 * np.pi * fy, 2 * np.pi * fx)
-    return tent_surface(*w, c, direction, pan), -tent_surface(*w, 1.0, direction), w
-
-
-def _pan_term(w, direction, pan):
-    """``b = pan . w`` per column: the tent surface at ``c = 0``, negated."""
-    return -tent_surface(*w, 0.0, direction, pan)
 
 
 def largest_c(a, b, thickness):
@@ -144,12 +127,13 @@ def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alia
             f"band ({lo:g}, {hi:g}) cycles/frame holds no spatial frequency of a {H} x {W} frame "
             f"(frequency steps are 1 cycle/frame across the width, W/H across the height); widen the band"
         )
-    s, a, w = _surface_terms(fy, fx, c, direction, pan)   # s: tent temporal frequency, rad/frame
+    w = (2 * np.pi * fy, 2 * np.pi * fx)   # rad/px
+    # the envelope's tent_surface at the band's cells: s (rad/frame), its slope a = (d . w)/|w| and b = pan . w
+    s, a, b = tent_surface_terms(*w, c, unit_direction(direction), (float(pan[0]), float(pan[1])))
     half = thickness * c * np.abs(a)    # thickened half-width, rad/frame
     peak = float(np.max(np.abs(s) + half))
     dropped = 0
     if T > 1 and peak > np.pi * (1 + 1e-9) and on_alias == "raise":
-        b = _pan_term(w, direction, pan)
         cmax = largest_c(a, b, thickness)
         msg = (
             f"temporal aliasing: c={c:g} rad/frame with thickness={thickness:g} and pan={tuple(pan)} puts energy at "

@@ -260,13 +260,37 @@ def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
     """
     wy, wx = _frequencies((wy, wx), ("wy", "wx"))
     c = check_real("c (rad/frame)", c, lo=-_BOUND, hi=_BOUND)
-    dx, dy = unit_direction(direction)
-    ux, uy = _pair("pan (px/frame)", pan)
+    direction = unit_direction(direction)
+    pan = _pair("pan (px/frame)", pan)
+    return tent_surface_terms(wy, wx, c, direction, pan)[0]
+
+
+def tent_surface_terms(wy, wx, c, direction, pan):
+    """:func:`tent_surface` and its two terms, for checked input (internal interface shared with ``noiselab.snow``).
+
+    ``wy``, ``wx``: finite float64 arrays (rad/px); ``c`` a float;
+    ``direction`` a unit vector; ``pan`` a pair of floats (px/frame): nothing
+    is checked (:func:`tent_surface` checks, then calls this). Returns
+    ``(wt, a, b)``: the surface ``wt = -c*a - b`` (rad/frame), its slope in
+    ``c``, ``a = (d . w)/|w|`` (0 at DC), and the pan's shear ``b = pan . w``.
+    ``noiselab.snow`` evaluates the tent here at its band's cells only: its
+    thickness is ``thickness * c * |a|``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> wt, a, b = tent_surface_terms(np.array([0.2]), np.array([0.0]), 1.0, (0.0, 1.0), (0.5, 0.0))
+    >>> float(wt[0]), float(a[0]), float(b[0])
+    (-1.0, 1.0, 0.0)
+    """
+    dx, dy = direction
+    ux, uy = pan
     r = _radial((wy, wx))
     wv = dx * wx + dy * wy
     pos = r > 0
-    ratio = np.where(pos, wv / np.where(pos, r, 1.0), 0.0)  # (no division by 0: DC divides by 1)
-    return -c * ratio - (ux * wx + uy * wy)
+    a = np.where(pos, wv / np.where(pos, r, 1.0), 0.0)  # (no division by 0: DC divides by 1)
+    b = ux * wx + uy * wy
+    return -c * a - b, a, b
 
 
 def tent(wt, wy, wx, c, direction=(0.0, 1.0), *, tolerance):
