@@ -74,7 +74,7 @@ def test_snow_cells_are_the_envelopes_tent_surface_cells(shape, kw):
     assert dense.any()
     np.testing.assert_array_equal(S != 0, dense > 0)
     # the unchecked form snow calls is tent_surface, bit for bit, and its terms are the surface's parts
-    wt_s, a, b = E.tent_surface_terms(wy[0], wx[0], kw["c"], E.unit_direction(kw["direction"]), kw["pan"])
+    wt_s, a, b, _ = E.tent_surface_terms(wy[0], wx[0], kw["c"], E.unit_direction(kw["direction"]), kw["pan"])
     np.testing.assert_array_equal(wt_s, E.tent_surface(wy[0], wx[0], kw["c"], kw["direction"], kw["pan"]))
     np.testing.assert_array_equal(wt_s, -kw["c"] * a - b)
     # (the band stays off the Nyquist row and column, where a pan's surface is not odd under k -> -k)

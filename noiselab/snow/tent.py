@@ -22,7 +22,7 @@ half-spectrum cells. So:
 
 The tent itself is :func:`noiselab.spectral.envelopes.tent_surface` (its
 unchecked form ``tent_surface_terms``), evaluated at the band's spatial
-cells only, and the amplitude is
+cells only, with the amplitude of
 :func:`~noiselab.spectral.envelopes.power_law`: the cells that carry energy
 are the cells of ``thickened_tent(..., tolerance=pi/T) * annulus(...)``
 (tested). :func:`y_pass`, :func:`tent_columns`, :func:`tent_coefficients` and
@@ -44,7 +44,7 @@ import scipy.fft
 from .._core import check_int, check_real, resolve_workers, thread_pool
 from .._core.validate import check_band
 from ..spectral import draw_coefficients, hermitian_plane
-from ..spectral.envelopes import power_law, tent_surface_terms, unit_direction
+from ..spectral.envelopes import tent_surface_terms, unit_direction
 from ..spectral.plan import complex_dtype, self_conjugate_columns
 from . import _kernels
 
@@ -129,7 +129,7 @@ def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alia
         )
     w = (2 * np.pi * fy, 2 * np.pi * fx)   # rad/px
     # the envelope's tent_surface at the band's cells: s (rad/frame), its slope a = (d . w)/|w| and b = pan . w
-    s, a, b = tent_surface_terms(*w, c, unit_direction(direction), (float(pan[0]), float(pan[1])))
+    s, a, b, r = tent_surface_terms(*w, c, unit_direction(direction), (float(pan[0]), float(pan[1])))
     half = thickness * c * np.abs(a)    # thickened half-width, rad/frame
     peak = float(np.max(np.abs(s) + half))
     dropped = 0
@@ -183,7 +183,7 @@ def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alia
         entry_n = n_lo[entry_col] + (np.arange(entry_col.size) - starts[entry_col])
     entry_bin = np.mod(entry_n, T)
     count = np.bincount(entry_col, minlength=ky.size)
-    amp = power_law(*w, exponent=exponent)  # DC is not a column: every r > 0
+    amp = r ** (-float(exponent))  # envelopes.power_law at the columns (tested equal; DC is not a column)
     weight = amp[entry_col] / np.sqrt(count[entry_col])
     return TentColumns((T, H, W), ky, kx, entry_col, entry_bin, weight, peak, dropped)
 

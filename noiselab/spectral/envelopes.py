@@ -271,15 +271,16 @@ def tent_surface_terms(wy, wx, c, direction, pan):
     ``wy``, ``wx``: finite float64 arrays (rad/px); ``c`` a float;
     ``direction`` a unit vector; ``pan`` a pair of floats (px/frame): nothing
     is checked (:func:`tent_surface` checks, then calls this). Returns
-    ``(wt, a, b)``: the surface ``wt = -c*a - b`` (rad/frame), its slope in
-    ``c``, ``a = (d . w)/|w|`` (0 at DC), and the pan's shear ``b = pan . w``.
-    ``noiselab.snow`` evaluates the tent here at its band's cells only: its
-    thickness is ``thickness * c * |a|``.
+    ``(wt, a, b, r)``: the surface ``wt = -c*a - b`` (rad/frame), its slope
+    in ``c``, ``a = (d . w)/|w|`` (0 at DC), the pan's shear ``b = pan . w``
+    and the radius ``r = |w|`` (rad/px). ``noiselab.snow`` evaluates the tent
+    here at its band's cells only: its thickness is ``thickness * c * |a|``,
+    its amplitude ``r**-exponent``.
 
     Examples
     --------
     >>> import numpy as np
-    >>> wt, a, b = tent_surface_terms(np.array([0.2]), np.array([0.0]), 1.0, (0.0, 1.0), (0.5, 0.0))
+    >>> wt, a, b, r = tent_surface_terms(np.array([0.2]), np.array([0.0]), 1.0, (0.0, 1.0), (0.5, 0.0))
     >>> float(wt[0]), float(a[0]), float(b[0])
     (-1.0, 1.0, 0.0)
     """
@@ -290,7 +291,7 @@ def tent_surface_terms(wy, wx, c, direction, pan):
     pos = r > 0
     a = np.where(pos, wv / np.where(pos, r, 1.0), 0.0)  # (no division by 0: DC divides by 1)
     b = ux * wx + uy * wy
-    return -c * a - b, a, b
+    return -c * a - b, a, b, r
 
 
 def tent(wt, wy, wx, c, direction=(0.0, 1.0), *, tolerance):
