@@ -26,12 +26,12 @@ from __future__ import annotations
 import contextlib
 import datetime
 import numbers
-import sys
 import warnings
 from pathlib import Path
 
 import numpy as np
 
+from .. import __version__  # the root's metadata: it imports no subpackage when it loads
 from .._core import deps, dispatch
 from .atomic import atomic_output
 
@@ -65,12 +65,6 @@ def is_dask_array(data) -> bool:
     False
     """
     return type(data).__module__.startswith("dask.") and hasattr(data, "dask") and hasattr(data, "chunks")
-
-
-def _version():
-    # the package root holds __version__ and is always imported before any of its submodules; reading it from
-    # sys.modules instead of importing it keeps io below the root (tests/layers.py)
-    return sys.modules[__name__.split(".")[0]].__version__
 
 
 def _jsonable(value, where="attrs"):
@@ -155,7 +149,7 @@ def zarr_store(path, shape, dtype, chunks, *, name=_DEFAULT_NAME, dims=None, coo
         if np.ndim(c) != 1 or len(c) != shape[dims.index(d)]:
             raise ValueError(f"coords[{d!r}] must be 1-D of length {shape[dims.index(d)]}, got shape {np.shape(c)}")
     meta = {
-        "noiselab_version": _version(),
+        "noiselab_version": __version__,
         "created_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
         "units": units,
         "seed": seed,
