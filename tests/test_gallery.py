@@ -339,3 +339,12 @@ def test_index_marks_a_figure_whose_code_changed_as_out_of_date(tmp_path):
     assert "Out of date" in kernels["caption"] and kernels["srcs"]
     fresh = [f for f in page.figures if f["id"] == "lab-one_over_f"][0]
     assert "Out of date" not in fresh["caption"]
+
+
+def test_docstring_examples_run():
+    import doctest
+
+    import noiselab.gallery
+
+    result = doctest.testmod(noiselab.gallery, optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0
