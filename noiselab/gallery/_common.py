@@ -75,7 +75,7 @@ def moon(n):
 
 def alpha_to_rgb_composite(alpha, background, intensity=250):
     """Eq. 3.6 over an RGB background, as uint8."""
-    from noiselab import composite
+    from noiselab.snow import composite
 
     out = composite(alpha, background, intensity=intensity)
     out = np.asarray(out)
@@ -104,8 +104,7 @@ def cow(resolution=96, size=2.0):
     """
     import trimesh
 
-    from noiselab.geometry import normalize
-    from noiselab.geometry import require_pyvista, pyvista_to_trimesh
+    from noiselab.geometry import normalize, require_pyvista, pyvista_to_trimesh
 
     pv = require_pyvista()
     parts = [((0.0, 0.0, 0.0), (0.95, 0.42, 0.42)),            # body
@@ -149,9 +148,8 @@ def terrain(height, width, *, seed=3, grid=384, extent=24.0, octaves=6, relief=3
     (haze: ``1 - exp(-d / haze)``), so the spectral snow of Fig. 3.1 falls over a
     landscape of the lattice family.
     """
-    from noiselab import LatticeNoise
-    from noiselab.geometry import height_map
-    from noiselab.geometry import require_pyvista
+    from noiselab.lattice import LatticeNoise
+    from noiselab.geometry import height_map, require_pyvista
 
     pv = require_pyvista()
     ext = ((0.0, 5.0), (0.0, 5.0))
