@@ -153,7 +153,7 @@ def terrain(height, width, *, seed=3, grid=384, extent=24.0, octaves=6, relief=3
 
     pv = require_pyvista()
     ext = ((0.0, 5.0), (0.0, 5.0))
-    h = height_map(LatticeNoise(2, seed=seed), (grid, grid), ext, octaves=octaves, kind="fractal", on_aliasing="ignore")
+    h = height_map(LatticeNoise(2, seed=seed), (grid, grid), ext, octaves=octaves, kind="fractal", on_aliasing="ignore").T  # (y, x)-ordered heights, transposed: the picture as before
     h = (h - h.min()) / max(float(np.ptp(h)), 1e-12)
     z = relief * h ** 1.8
     ys, xs = np.meshgrid(np.linspace(0, extent, grid), np.linspace(0, extent, grid), indexing="ij")
@@ -163,7 +163,7 @@ def terrain(height, width, *, seed=3, grid=384, extent=24.0, octaves=6, relief=3
     zz = np.asarray(surf.points)[:, 2] / relief
     # a smooth noise (another fractal sum) breaks the snow line up into drifts
     tex = 0.08 * (height_map(LatticeNoise(2, seed=seed + 1), (grid, grid), ((0.0, 20.0), (0.0, 20.0)), octaves=3,
-                             kind="fractal", on_aliasing="ignore").T.ravel())
+                             kind="fractal", on_aliasing="ignore").ravel())
     meadow, rock, snow = np.array([70, 92, 62.0]), np.array([112, 104, 98.0]), np.array([236, 240, 246.0])
     steep = np.clip((0.82 - nz) / 0.2, 0, 1)[:, None]
     colour = meadow * (1 - steep) + rock * steep

@@ -483,10 +483,10 @@ def fig09(out, *, arrows, cells, size, streamlines, seed):
     ext = ((0.0, cells), (0.0, cells))
     quiver_image(field, out / "fig09.png", shape=(arrows, arrows), extent=ext, size=size, streamline_seeds=streamlines, seed=seed)
     _, vec = flow_field(field, (64, 64), ext)
-    ang = np.arctan2(vec[..., 1], vec[..., 0])
+    ang = np.arctan2(vec[..., 0], vec[..., 1])   # vectors are (v_y, v_x), in array-axis order
     return Result([out / "fig09.png"], f"At each (x, y) a 2-vector from 2-output noise, over {cells:g} x {cells:g} cells; "
                                        "grey: streamlines through the field.",
-                  {"vx range": _range(vec[..., 0]), "vy range": _range(vec[..., 1]),
+                  {"vx range": _range(vec[..., 1]), "vy range": _range(vec[..., 0]),
                    "mean resultant length of directions (0 = no preferred direction)": float(np.hypot(np.cos(ang).mean(), np.sin(ang).mean()))})
 
 
@@ -509,7 +509,7 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
     return Result([save_image(out / "stereo.png", pair)],
                   f"{glyphs}^3 arrows of 3-output noise of (x, y, z); the two views differ by {eye_deg:g} degrees of azimuth "
                   "(left image = right eye, for cross-fusing).",
-                  {f"v{c} range": _range(vec[..., i]) for i, c in enumerate("xyz")})
+                  {f"v{c} range": _range(vec[..., i]) for i, c in enumerate("zyx")})
 
 
 @figure("phillips", "fig11", seed="Phillips 2004, Fig. 11", title="Height and colour from one vector-valued noise",
