@@ -1,6 +1,8 @@
 """Regenerate ``benchmarks/RESULTS.md`` (the laboratory): same as ``python3 -m noiselab bench``.
 
-Run from the repository root::
+It imports the noiselab of this checkout (not whichever is installed), so
+``--publish`` writes this checkout's ``benchmarks/RESULTS.md``; the output of
+an ordinary run goes under the current folder::
 
     python3 benchmarks/lab_run.py            # full run (2.5-5 min on 2 cores), writes out/bench/RESULTS.md
     python3 benchmarks/lab_run.py --publish  # ... and updates the published benchmarks/RESULTS.md

@@ -89,6 +89,14 @@ def test_snow_over_a_corrupt_background_is_one_line(tmp_path, capsys, name):
     assert _listing(out) == []
 
 
+def test_snow_over_a_video_background_with_four_channels_is_one_line_before_rendering(tmp_path, capsys):
+    path = tmp_path / "rgba.npy"
+    np.save(path, np.zeros((3, 16, 16, 4), np.uint8))
+    rc = main(["snow", "--background", str(path), "--frames", "4", "--output", str(tmp_path / "out" / "s.gif")])
+    _one_line_error(capsys, rc, "rgba.npy", "4 channels per pixel", "grey or RGB")
+    assert _listing(tmp_path / "out") == []
+
+
 def test_an_input_without_read_permission_is_one_line(tmp_path, capsys, monkeypatch):
     """Root reads any file, so the denial is raised where noiselab opens the file."""
     import noiselab.io.media as media

@@ -68,17 +68,26 @@ def test_aliasing_error_names_the_command_line_flags(tmp_path, capsys):
 # ----------------------------------------------------------------------------- bench
 
 @pytest.fixture
-def fake_published(tmp_path, monkeypatch):
-    """The published results in a scratch folder, and no peer environment."""
-    import noiselab.lab.run as lab_run
+def fake_checkout(tmp_path, monkeypatch):
+    """A scratch git checkout holding the published results, without a peer environment; run from inside it."""
+    import noiselab.lab.checkout as checkout
 
-    published = tmp_path / "benchmarks"
+    root = tmp_path / "checkout"
+    published = root / "benchmarks"
     (published / "results").mkdir(parents=True)
     (published / "RESULTS.md").write_text("published\n")
-    monkeypatch.setattr(lab_run, "PUBLISHED", published)
-    monkeypatch.setattr(lab_run, "PEER_PYTHON", tmp_path / "no-peers" / "bin" / "python")
-    monkeypatch.chdir(tmp_path)
-    return published
+    (root / "noiselab").mkdir()
+    (root / "noiselab" / "__init__.py").write_text("")
+    (root / "pyproject.toml").write_text("[project]\nname = 'noiselab'\n")
+    monkeypatch.setattr(checkout, "package_parent", lambda: tmp_path / "site-packages")   # an installed noiselab
+    monkeypatch.chdir(root)
+    return root
+
+
+@pytest.fixture
+def fake_published(fake_checkout):
+    """The published results (``benchmarks/`` of the scratch checkout)."""
+    return fake_checkout / "benchmarks"
 
 
 def test_bench_writes_to_out_bench_by_default(fake_published, capsys):
@@ -137,15 +146,54 @@ def test_analyze_streams_video_frames_into_one_grey_array(tmp_path):
     assert peak < 1.5 * data.nbytes, (peak, data.nbytes)   # reading it all first would take 3x (RGB uint8 + float32)
 
 
-def test_example_size_small_caps_the_sizes_and_says_so(tmp_path, capsys, monkeypatch):
-    monkeypatch.setenv("NOISELAB_EXAMPLE_SIZE", "small")
-    assert main(["snow", "--frames", "64", "--width", "32", "--height", "32", "--no-background",
-                 "-o", str(tmp_path / "a.npy")]) == 0
-    assert np.load(tmp_path / "a.npy").shape == (8, 32, 32)   # snow.SMALL: frames capped at 8
-    assert "NOISELAB_EXAMPLE_SIZE=small: frames=8" in capsys.readouterr().err
-    assert main(["snow", "--frames", "4", "--width", "32", "--height", "32", "--no-background",
-                 "-o", str(tmp_path / "b.npy")]) == 0
-    assert np.load(tmp_path / "b.npy").shape == (4, 32, 32)   # below the cap: untouched
+def test_bench_publish_finds_the_checkout_from_a_subfolder(fake_checkout, capsys, monkeypatch):
+    monkeypatch.chdir(fake_checkout / "benchmarks" / "results")
+    assert main(["bench", "--publish", "--allow-missing-peers", "--dry-run"]) == 0
+    assert str(fake_checkout / "benchmarks" / "RESULTS.md") in capsys.readouterr().out
+
+
+def test_bench_publish_without_a_checkout_is_one_line_and_status_2(tmp_path, capsys, monkeypatch):
+    import noiselab.lab.checkout as checkout
+    import noiselab.lab.run as lab_run
+
+    monkeypatch.setattr(checkout, "package_parent", lambda: tmp_path / "site-packages")
     monkeypatch.chdir(tmp_path)
-    assert main(["bench"]) == 0                                 # bench.SMALL: a dry run, nothing written
-    assert "dry run" in capsys.readouterr().out and not (tmp_path / "out").exists()   # not even the folder
+    for argv in (["bench", "--publish"], ["bench", "--publish", "--allow-missing-peers", "--dry-run"]):
+        rc = main(argv)
+        err = capsys.readouterr().err
+        assert rc == 2 and err.count("\n") == 1, err
+        assert err.startswith("noiselab bench: error: ") and "git checkout" in err and str(tmp_path) in err
+    assert not (tmp_path / "benchmarks").exists() and not (tmp_path / "out").exists()
+    monkeypatch.setattr(lab_run, "machine_info", lambda: pytest.fail("an experiment ran"))
+    with pytest.raises(checkout.CheckoutNotFound, match="git checkout"):
+        lab_run.run_all(publish=True, allow_missing_peers=True)
+    assert "no checkout was found" in lab_run.peers_missing_reason()
+
+
+def test_bench_dry_run_from_any_folder_writes_nothing_and_names_its_output(tmp_path, capsys, monkeypatch):
+    import noiselab.lab.checkout as checkout
+
+    monkeypatch.setattr(checkout, "package_parent", lambda: tmp_path / "site-packages")
+    monkeypatch.chdir(tmp_path)
+    assert main(["bench", "--quick", "--output", "lab", "--dry-run"]) == 0
+    out = capsys.readouterr().out
+    assert f"would run the quick laboratory and write {Path('lab') / 'RESULTS.md'}" in out
+    assert "WARNING: section 4 (the peers) will be skipped" in out and "no checkout was found" in out
+    assert list(tmp_path.iterdir()) == []   # a dry run creates not even the folder
+
+
+@pytest.mark.parametrize("frames", [3, 64])
+def test_snow_frames_is_honoured_as_given(tmp_path, capsys, frames):
+    """No size is capped behind the user's back: --frames 64 writes 64 frames."""
+    assert main(["snow", "--frames", str(frames), "--width", "16", "--height", "16", "--no-background",
+                 "-o", str(tmp_path / "a.npy")]) == 0
+    assert np.load(tmp_path / "a.npy").shape == (frames, 16, 16)
+    assert capsys.readouterr().err == ""
+
+
+def test_mesh_frames_and_size_are_honoured_as_given(tmp_path, capsys):
+    from noiselab.io import read_video
+
+    assert main(["mesh", "--shape", "sphere", "--subdivisions", "1", "--frames", "5", "--size", "48",
+                 "--render", str(tmp_path / "m.gif")]) == 0, capsys.readouterr().err
+    assert read_video(tmp_path / "m.gif").shape[:3] == (5, 48, 48)

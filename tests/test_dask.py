@@ -354,7 +354,7 @@ def test_read_zarr_opens_stores_written_by_other_tools(tmp_path):
 
 
 @pytest.mark.parametrize("module", ["noiselab._core.deps", "noiselab.scale.run", "noiselab.scale.lattice",
-                                    "noiselab.io.zarr"])
+                                    "noiselab.io.zarr", "noiselab.scale.zarr"])
 def test_docstring_examples_run(module):
     import doctest
     import importlib

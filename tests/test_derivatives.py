@@ -294,7 +294,7 @@ def test_monge_normals_match_a_dense_finite_difference_surface():
     z, exact = monge_normals(field, pts, amplitude=0.5, frequency=1.0, phase=0.25, return_heights=True)
     step = 4.0 / n
     zy, zx = np.gradient(z, step, step)       # rows are y, columns x; second order inside
-    fd = np.stack([-zx, -zy, np.ones_like(z)], axis=-1)
+    fd = np.stack([-zy, -zx, np.ones_like(z)], axis=-1)     # normals in (y, x) order, as the points
     fd /= np.linalg.norm(fd, axis=-1, keepdims=True)
     ang = normal_angles(exact, fd)[1:-1, 1:-1]
     # central differences err by step^2/6 |z'''|: ~1e-5 in slope, ~1e-3 degrees

@@ -11,13 +11,10 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from noiselab.cli.gallery import load_builder  # noqa: E402
+import noiselab.gallery.build as build_mod
+from noiselab.gallery import browser, registry
 
-build_mod = load_builder()
-registry = sys.modules["noiselab_gallery.registry"]
-browser = sys.modules.get("noiselab_gallery.browser") or __import__("importlib").import_module("noiselab_gallery.browser")
+ROOT = Path(__file__).resolve().parents[1]
 
 
 class _Refs(html.parser.HTMLParser):
@@ -259,12 +256,58 @@ def test_only_unknown_group_is_a_clear_error(tmp_path):
     assert not (tmp_path / "index.html").exists()
 
 
-def test_build_py_and_the_command_do_the_same_thing():
-    a = subprocess.run([sys.executable, str(ROOT / "gallery" / "build.py"), "--list"], capture_output=True, text=True)
+def test_python_m_noiselab_gallery_and_the_command_do_the_same_thing(tmp_path):
+    a = subprocess.run([sys.executable, "-m", "noiselab.gallery", "--list"], capture_output=True, text=True, cwd=tmp_path)
     b = subprocess.run([sys.executable, "-m", "noiselab", "gallery", "--list"], capture_output=True, text=True)
     assert a.returncode == b.returncode == 0, a.stderr + b.stderr
     assert a.stdout == b.stdout
     assert len(a.stdout.splitlines()) == len(registry.specs())
+
+
+def _installed_env(tmp_path):
+    """An environment whose noiselab is a copy of the package outside any git checkout (as ``pip install`` makes)."""
+    import shutil
+
+    import noiselab
+
+    site = tmp_path / "site-packages"
+    shutil.copytree(Path(noiselab.__file__).parent, site / "noiselab",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    env = dict(os.environ, PYTHONPATH=str(site), MPLBACKEND="Agg")
+    return site, env
+
+
+def test_gallery_runs_from_an_installed_noiselab_in_any_folder(tmp_path):
+    """No checkout needed: the builder is package code, the output goes where --out says."""
+    site, env = _installed_env(tmp_path)
+    work = tmp_path / "elsewhere"
+    work.mkdir()
+    proc = subprocess.run([sys.executable, "-m", "noiselab", "gallery", "--quick", "--no-progress", "--only",
+                           "snow/fig3_2", "--out", "tmp"], capture_output=True, text=True, cwd=work, env=env,
+                          timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    out = work / "tmp"
+    man = json.loads((out / "snow" / "fig3_2" / "manifest.json").read_text())
+    assert man["files"] and all((out / f).is_file() for f in man["files"]) and not man.get("error")
+    page = _parse(out / "index.html")
+    assert [f["id"] for f in page.figures if f["srcs"]] == ["snow-fig3_2"]
+    assert f"open {(out / 'index.html').resolve()}" in proc.stdout
+    assert sorted(p.name for p in work.iterdir()) == ["tmp"]          # nothing else in the current folder
+    assert not [p for p in site.rglob("*") if p.suffix in (".html", ".png", ".mp4", ".json")]   # nor in the package
+
+
+def test_bench_dry_run_from_an_installed_noiselab_in_any_folder(tmp_path):
+    site, env = _installed_env(tmp_path)
+    work = tmp_path / "elsewhere"
+    work.mkdir()
+    proc = subprocess.run([sys.executable, "-m", "noiselab", "bench", "--dry-run", "--output", "tmp"],
+                          capture_output=True, text=True, cwd=work, env=env, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert f"write {Path('tmp') / 'RESULTS.md'}" in proc.stdout and "no checkout was found" in proc.stdout
+    assert list(work.iterdir()) == []                                   # a dry run writes nothing
+    proc = subprocess.run([sys.executable, "-m", "noiselab", "bench", "--publish"], capture_output=True, text=True,
+                          cwd=work, env=env, timeout=300)
+    assert proc.returncode == 2 and proc.stderr.count("\n") == 1 and "git checkout" in proc.stderr, proc.stderr
 
 
 def test_a_failing_figure_is_reported_and_leaves_no_half_written_folder(tmp_path):
@@ -296,3 +339,12 @@ def test_index_marks_a_figure_whose_code_changed_as_out_of_date(tmp_path):
     assert "Out of date" in kernels["caption"] and kernels["srcs"]
     fresh = [f for f in page.figures if f["id"] == "lab-one_over_f"][0]
     assert "Out of date" not in fresh["caption"]
+
+
+def test_docstring_examples_run():
+    import doctest
+
+    import noiselab.gallery
+
+    result = doctest.testmod(noiselab.gallery, optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0

@@ -16,6 +16,7 @@ from noiselab.geometry import (
     noisy_circle,
     plot_curves,
     quiver_image,
+    streamline_image,
     streamlines,
     trajectory,
     trajectory_frames,
@@ -111,25 +112,76 @@ def test_trajectory_frames_show_the_point_moving():
 
 
 # ---------------------------------------------------------------- surfaces
-def test_grid_and_height_map_follow_the_image_convention():
-    pts = grid_points((3, 5), ((0, 5), (10, 13)))
+def test_grid_and_height_map_take_shape_and_extent_in_array_axis_order():
+    pts = grid_points((3, 5), ((10, 13), (0, 5)))              # (ny, nx), ((y0, y1), (x0, x1))
     assert pts.shape == (3, 5, 2)
-    np.testing.assert_array_equal(pts[2, 4], [4.0, 12.0])
-    h = height_map(lambda p: p[:, 0] + 10 * p[:, 1], (3, 5), ((0, 5), (0, 3)), on_aliasing="ignore")
+    np.testing.assert_array_equal(pts[2, 4], [12.0, 4.0])       # (y, x) at [row, column]
+    h = height_map(lambda p: 10 * p[:, 0] + p[:, 1], (3, 5), ((0, 3), (0, 5)), on_aliasing="ignore")
     np.testing.assert_array_equal(h[0], np.arange(5.0))          # x along columns
     np.testing.assert_array_equal(h[:, 0], [0.0, 10.0, 20.0])   # y along rows
+    p3 = grid_points((2, 3, 4), ((0, 2), (0, 3), (0, 4)))
+    np.testing.assert_array_equal(p3[1, 2, 3], [1.0, 2.0, 3.0])  # (z, y, x) at [z, y, x]
+    with pytest.raises(ValueError, match="one per array axis"):
+        grid_points((3, 5), ((0, 1), (0, 1), (0, 1)))
 
 
-def test_height_map_of_lattice_noise_matches_its_grid_path():
+def test_height_map_of_lattice_noise_is_its_grid_with_the_same_shape_and_extent():
+    # one order for shapes and extents (issue 21): the same numbers give the same field, not its transpose
     noise = noiselab.LatticeNoise(2, seed=9)
-    h = height_map(noise, (32, 48), ((0, 6), (0, 4)))
-    # the lattice's grid takes shape and extent in the same axis order (x first)
-    ref = noise.grid((48, 32), [(0, 6), (0, 4)])
-    np.testing.assert_allclose(h, ref.T, atol=1e-12)
+    shape, extent = (32, 48), ((0.0, 4.0), (1.0, 7.0))            # non-square shape and extent
+    ref = noise.grid(shape, extent)
+    h = height_map(noise, shape, extent)
+    assert h.shape == ref.shape == (32, 48)
+    np.testing.assert_allclose(h, ref, rtol=0, atol=1e-12)
+    # the swapped extent is another field (so the equality above says something)
+    assert np.abs(height_map(noise, shape, extent[::-1]) - ref).max() > 0.1
+    # octave sums: the lattice's own fractal sum over its Grid
+    from noiselab.fractal import fractal_sum
+    from noiselab.lattice import Grid
+
+    np.testing.assert_allclose(height_map(noise, shape, extent, octaves=3, on_aliasing="ignore"),
+                               fractal_sum(noise, Grid(shape, extent), 3), rtol=0, atol=1e-12)
+    # the same order reads it back: a sampled field over the same extent interpolates the heights
+    from noiselab.geometry import sampled_field
+
+    back = sampled_field(h, extent)(grid_points(shape, extent).reshape(-1, 2)).reshape(shape)
+    np.testing.assert_allclose(back, h, atol=1e-9)
+
+
+def test_monge_surface_flow_field_and_normals_follow_the_array_axis_order():
+    noise = noiselab.LatticeNoise(2, seed=9, kernel="cubic")
+    shape, extent = (24, 36), ((0.0, 2.0), (1.0, 4.0))
+    m = monge_surface(noise, shape, extent, amplitude=0.5)
+    # vertex i * nx + j is the grid point (y_i, x_j) followed by its height
+    np.testing.assert_array_equal(m.vertices[:, :2], grid_points(shape, extent).reshape(-1, 2))
+    np.testing.assert_allclose(m.vertices[:, 2].reshape(shape), 0.5 * noise.grid(shape, extent), atol=1e-12)
+    assert np.all(m.face_normals[:, 2] > 0)
+    hue = colored_surface(noiselab.LatticeNoise(2, 2, seed=2), shape, extent, amplitude=0.5, on_aliasing="ignore")
+    np.testing.assert_allclose(hue.vertices[:, 2].reshape(shape),
+                               0.5 * noiselab.LatticeNoise(2, 2, seed=2).grid(shape, extent)[..., 0], atol=1e-12)
+    # flow fields: vectors (v_y, v_x) at points (y, x), the lattice's vector grid in 2-D and 3-D
+    flow = noiselab.LatticeNoise(2, 2, seed=4)
+    pts, vec = flow_field(flow, shape, extent)
+    np.testing.assert_array_equal(pts, grid_points(shape, extent))
+    np.testing.assert_allclose(vec, flow.grid(shape, extent), rtol=0, atol=1e-12)
+    flow3 = noiselab.LatticeNoise(3, 3, seed=5)
+    shape3, extent3 = (3, 4, 5), ((0.0, 1.0), (0.0, 2.0), (1.0, 4.0))
+    np.testing.assert_allclose(flow_field(flow3, shape3, extent3)[1], flow3.grid(shape3, extent3), atol=1e-12)
+    # exact normals at the grid points: (-dz/dy, -dz/dx, 1) in the same order as a finite difference of the map
+    fine, ext = (300, 200), ((0.0, 3.0), (0.0, 2.0))
+    z, exact = noiselab.monge_normals(noise, grid_points(fine, ext), amplitude=0.5, return_heights=True)
+    np.testing.assert_allclose(z, height_map(noise, fine, ext, amplitude=0.5), atol=1e-12)
+    zy, zx = np.gradient(z, 3.0 / fine[0], 2.0 / fine[1])
+    fd = np.stack([-zy, -zx, np.ones_like(z)], axis=-1)
+    fd /= np.linalg.norm(fd, axis=-1, keepdims=True)
+    assert noiselab.normal_angles(exact, fd)[1:-1, 1:-1].max() < 0.05      # degrees
+    near = np.median(noiselab.normal_angles(noiselab.monge_normals(noise, m.vertices[:, :2], amplitude=0.5),
+                                            noiselab.geometry.vertex_normals(m)))
+    assert near < 1.0
 
 
 def test_monge_surface_heights_normals_and_aliasing():
-    m = monge_surface(lambda p: np.sin(p[:, 0]) * np.cos(p[:, 1]), (40, 30), ((0, 3), (0, 4)), amplitude=0.5)
+    m = monge_surface(lambda p: np.sin(p[:, 0]) * np.cos(p[:, 1]), (40, 30), ((0, 4), (0, 3)), amplitude=0.5)
     assert len(m.vertices) == 1200 and len(m.faces) == 2 * 39 * 29
     np.testing.assert_allclose(m.vertices[:, 2], 0.5 * np.sin(m.vertices[:, 0]) * np.cos(m.vertices[:, 1]))
     assert np.all(m.face_normals[:, 2] > 0)                     # wound to face up
@@ -180,12 +232,14 @@ def test_height_map_image_is_lighter_where_higher():
 
 # ---------------------------------------------------------------- flow
 def test_flow_field_samples_vectors_on_the_grid():
-    pts, vec = flow_field(rotation, (4, 5), ((0, 5), (0, 4)), amplitude=2.0)
+    pts, vec = flow_field(rotation, (4, 5), ((0, 4), (0, 5)), amplitude=2.0)
     assert pts.shape == vec.shape == (4, 5, 2)
     np.testing.assert_allclose(vec, 2.0 * np.stack([-pts[..., 1], pts[..., 0]], axis=-1))
-    p3, v3 = flow_field(lambda p: p[:, ::-1], (2, 3, 4), ((0, 4), (0, 3), (0, 2)))
+    np.testing.assert_array_equal(pts[3, 4], [3.0, 4.0])             # (y, x) at [row, column]
+    p3, v3 = flow_field(lambda p: p[:, ::-1], (2, 3, 4), ((0, 2), (0, 3), (0, 4)))
     assert p3.shape == (2, 3, 4, 3)
-    np.testing.assert_array_equal(p3[1, 2, 3], [3.0, 2.0, 1.0])      # (x, y, z) at [z, y, x]
+    np.testing.assert_array_equal(p3[1, 2, 3], [1.0, 2.0, 3.0])      # (z, y, x) at [z, y, x]
+    np.testing.assert_array_equal(v3[1, 2, 3], [3.0, 2.0, 1.0])
 
 
 def test_streamlines_rk4_and_solve_ivp_agree_and_follow_the_flow():
@@ -217,3 +271,21 @@ def test_quiver_and_glyphs_draw_something():
     assert glyphs.n_points > 27 and glyphs.n_cells > 27
     lo, hi = np.asarray(glyphs.bounds)[0::2], np.asarray(glyphs.bounds)[1::2]
     assert np.all(lo > -1.5) and np.all(hi < 4.0)           # arrows stay within about a cell of the grid
+    # the mesh's coordinates are the grid points (z, y, x): a flat extent along z gives a flat cloud of arrows
+    flat = flow_glyphs(lambda p: np.tile([0.0, 0.0, 1.0], (len(p), 1)), (2, 4, 4), ((0, 0.2), (0, 4), (0, 4)))
+    size = np.asarray(flat.bounds)[1::2] - np.asarray(flat.bounds)[0::2]
+    assert size[0] < 0.5 and size[1] > 2.5 and size[2] > 2.5
+
+
+def test_quiver_and_streamline_images_draw_x_right_and_y_up():
+    # an extent wide in x (axis 1) and narrow in y (axis 0), arrows pointing along +x: the ink is wide, not tall
+    along_x = lambda p: np.stack([np.zeros(len(p)), np.ones(len(p))], axis=1)      # (v_y, v_x) = (0, 1)
+    img = quiver_image(along_x, shape=(2, 12), extent=((0.0, 1.0), (0.0, 6.0)), size=200, amplitude=0.3)
+    rows, cols = np.nonzero(img.mean(axis=2) < 128)
+    assert np.ptp(cols) > 3 * np.ptp(rows)
+    # a streamline of that flow runs along x: one horizontal line; y grows upwards
+    line = streamlines(along_x, [[0.5, 0.0]], step=0.1, n_steps=40)
+    np.testing.assert_allclose(line[0, -1], [0.5, 4.0], atol=1e-12)
+    img = streamline_image(line, size=100, limits=((0.0, 4.0), (0.0, 4.0)))
+    rows, cols = np.nonzero(img.mean(axis=2) < 128)
+    assert np.ptp(cols) > 80 and np.ptp(rows) < 5 and rows.mean() > 80     # y = 0.5 of 4: near the bottom

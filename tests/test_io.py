@@ -78,3 +78,53 @@ def test_atomic_output_gives_ordinary_permissions(tmp_path):
     finally:
         os.umask(umask)
     assert mode == 0o644
+
+
+def test_write_zarr_of_a_numpy_array_needs_neither_dask_nor_the_scale_layer(tmp_path):
+    # io is a leaf below every layer: writing a numpy array loads zarr only (in a fresh interpreter)
+    import json
+    import subprocess
+    import sys
+    import textwrap
+
+    code = textwrap.dedent(f"""
+        import json, sys
+        import numpy as np
+        import zarr
+        from noiselab.io import write_zarr
+        out = write_zarr({str(tmp_path / "n.zarr")!r}, np.arange(12, dtype="f4").reshape(3, 4), dims=("y", "x"),
+                         coords={{"x": np.arange(4) / 2}}, units="m", seed=3, params={{"k": np.int64(2)}},
+                         chunks=(2, -1))
+        arr = zarr.open_group(str(out), mode="r")["data"]
+        print(json.dumps({{"loaded": sorted(m for m in sys.modules if m.split(".")[0] == "dask"
+                                           or m.startswith("noiselab.scale") or m == "distributed"),
+                          "data": arr[:].tolist(), "chunks": list(arr.chunks), "attrs": dict(arr.attrs),
+                          "dims": list(arr.metadata.dimension_names)}}))
+    """)
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    got = json.loads(proc.stdout)
+    assert got["loaded"] == []
+    assert got["data"] == np.arange(12.0).reshape(3, 4).tolist() and got["chunks"] == [2, 4]
+    assert got["dims"] == ["y", "x"] and got["attrs"]["units"] == "m" and got["attrs"]["seed"] == 3
+    assert got["attrs"]["params"] == {"k": 2}
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["n.zarr"]
+
+
+def test_write_zarr_of_a_numpy_array_checks_before_writing(tmp_path):
+    from noiselab.io import read_zarr, write_zarr
+
+    for bad in (0, (2,), (2, 0), (2, 2.5), True):
+        with pytest.raises(ValueError, match="chunks must be"):
+            write_zarr(tmp_path / "c.zarr", np.zeros((3, 4)), chunks=bad)
+    with pytest.raises(TypeError, match="real numeric array"):
+        write_zarr(tmp_path / "c.zarr", np.array(["a", "b"]))
+    with pytest.raises(ValueError, match=r"coords\['x'\] must be 1-D of length 4"):
+        write_zarr(tmp_path / "c.zarr", np.zeros((3, 4)), dims=("y", "x"), coords={"x": np.arange(3)})
+    with pytest.raises(ValueError, match="name must be a non-empty string"):
+        write_zarr(tmp_path / "c.zarr", np.zeros(3), name="a/b")
+    assert list(tmp_path.iterdir()) == []
+    # a chunk larger than the axis is clipped to it; -1 is the whole axis
+    out = write_zarr(tmp_path / "c.zarr", np.arange(6.0).reshape(2, 3), chunks=(5, -1))
+    back = read_zarr(out)
+    assert back.chunksize == (2, 3) and np.array_equal(back.compute(), np.arange(6.0).reshape(2, 3))

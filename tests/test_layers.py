@@ -94,3 +94,10 @@ def test_importing_the_core_loads_no_dask(module):
             "print(' '.join(bad))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "", f"{module} loaded: {out.stdout.strip()}"
+
+
+def test_the_root_imports_no_subpackage_when_it_loads():
+    """``from noiselab import __version__`` is allowed anywhere because the root loads nothing else."""
+    code = "import sys, noiselab; print(' '.join(sorted(m for m in sys.modules if m.startswith('noiselab.'))))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""

@@ -629,6 +629,8 @@ EXCLUDED = {
     "figure_to_array": "takes a matplotlib figure, nothing numeric to corrupt",
     "load_model": "reads a bundled mesh file by name (test_geometry)",
     "pyvista_to_trimesh": "a VTK conversion (test_geometry_render)",
+    "noise_floor": "takes a PowerSpectrum, which power_spectrum (covered) makes and checks",
+    "require_pyvista": "imports pyvista or names what to install; nothing numeric",
     "trimesh_to_pyvista": "a VTK conversion (test_geometry_render)",
     "atomic_output": "a file-writing context manager (test_io)",
     "read_image": "file I/O (test_io)",

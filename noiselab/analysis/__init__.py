@@ -59,6 +59,7 @@ from .quality import (
     value_statistics,
     variance_striping,
 )
+from ._common import noise_floor
 from .seams import loop_seam, tile_seam
 from .slope import OctaveEnergy, Slope, octave_energy, spectral_slope
 from .spectrum import (
@@ -79,6 +80,7 @@ __all__ = [
     "radial_spectrum",
     "spatiotemporal_spectrum",
     "band_energy",
+    "noise_floor",
     "Slope",
     "spectral_slope",
     "OctaveEnergy",

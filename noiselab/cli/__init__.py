@@ -15,10 +15,6 @@ cannot be written, a full disk; ``MemoryError``) are printed as one line on
 stderr naming the file and the cause, with exit status 2, never as a
 traceback. SIGINT, SIGTERM and SIGHUP stop a run the same way: temporary
 files are removed, and the status is 128 + the signal number (130, 143, 129).
-
-``NOISELAB_EXAMPLE_SIZE=small`` in the environment runs every command at the
-small sizes its module's ``SMALL`` dict sets (see ``DEVELOPERS.md``; the
-README test runs the README's examples so), and says so on stderr.
 """
 from __future__ import annotations
 
@@ -29,8 +25,6 @@ import os
 import pkgutil
 import signal
 import sys
-
-SMALL_ENV = "NOISELAB_EXAMPLE_SIZE"
 
 
 class Terminated(KeyboardInterrupt):
@@ -49,26 +43,6 @@ def _on_signal(signum, frame):
     for s in (signal.SIGTERM, signal.SIGHUP, signal.SIGINT):   # a second signal must not cut the clean-up short
         signal.signal(s, signal.SIG_IGN)
     raise Terminated(signum)
-
-
-def _apply_small(module, args):
-    """Cap the sizes of a run at the module's ``SMALL`` values (``NOISELAB_EXAMPLE_SIZE=small``)."""
-    changed = []
-    for name, value in getattr(module, "SMALL", {}).items():
-        if not hasattr(args, name):
-            continue
-        old = getattr(args, name)
-        if isinstance(value, bool):
-            new = value
-        elif old is None or (isinstance(old, (int, float)) and not isinstance(old, bool)):
-            new = value if old is None else min(old, value)
-        else:
-            new = value
-        if new != old:
-            setattr(args, name, new)
-            changed.append(f"{name.replace('_', '-')}={new}")
-    if changed:
-        print(f"noiselab {module.NAME}: {SMALL_ENV}=small: {', '.join(changed)}", file=sys.stderr)
 
 
 def _command_modules():
@@ -90,7 +64,7 @@ def build_parser() -> argparse.ArgumentParser:
     for module in _command_modules():
         p = sub.add_parser(module.NAME, help=getattr(module, "HELP", None), description=getattr(module, "HELP", None))
         module.add_arguments(p)
-        p.set_defaults(_run=module.run, _module=module)
+        p.set_defaults(_run=module.run)
     return parser
 
 
@@ -99,8 +73,6 @@ def main(argv=None) -> int:
 
     parser = build_parser()
     args = parser.parse_args(argv)
-    if os.environ.get(SMALL_ENV, "").strip().lower() == "small":
-        _apply_small(args._module, args)
     previous = {}
     try:
         for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):

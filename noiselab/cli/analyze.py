@@ -141,7 +141,7 @@ def load(path, kind="auto", max_frames=None):
 def _fit_band(spec, n_ref, band):
     """The slope band: the one asked for, else the default narrowed to where the field has power."""
     from ..analysis import radial_spectrum
-    from ..analysis._common import noise_floor
+    from ..analysis import noise_floor
     from ..analysis.slope import default_band
 
     if band is not None:

@@ -1,12 +1,14 @@
 """``noiselab bench``: run the laboratory (spectral against lattice, speed against error, the peers).
 
 An ordinary run writes ``RESULTS.md``, ``results/*.png`` and
-``results/results.json`` to ``out/bench/`` (``out/bench-quick/`` with
-``--quick``, or ``--output DIR``), never over the published results.
-``--publish`` writes the published ``benchmarks/RESULTS.md`` and its plots;
-it refuses when the peers cannot run (``benchmarks/.venv-peers`` missing, or
-``--no-peers``) unless ``--allow-missing-peers``, and then says which section
-was skipped. The full run takes 2.5 to 5 minutes on the 2-core development
+``results/results.json`` to ``out/bench/`` under the current folder
+(``out/bench-quick/`` with ``--quick``, or ``--output DIR``), from an
+installed noiselab anywhere, never over the published results.
+``--publish`` writes the published ``benchmarks/RESULTS.md`` of the git
+checkout and its plots (run it from the checkout; without one it stops with
+one line and status 2); it refuses when the peers cannot run
+(``benchmarks/.venv-peers`` missing, or ``--no-peers``) unless
+``--allow-missing-peers``, and then says which section was skipped. The full run takes 2.5 to 5 minutes on the 2-core development
 machine (161 s in the published run), ``--quick`` about 1 to 3 minutes of
 tiny sizes (65 s of CPU, 164 s wall on the loaded machine) that only show the
 pipeline works.
@@ -21,8 +23,6 @@ from __future__ import annotations
 
 NAME = "bench"
 HELP = "Run the laboratory experiments (spectral vs lattice, Pareto sweeps, peers); --publish updates benchmarks/RESULTS.md."
-# NOISELAB_EXAMPLE_SIZE=small: check the options and print the plan, run nothing (a run takes minutes)
-SMALL = {"dry_run": True}
 
 
 def add_arguments(parser):
@@ -34,8 +34,8 @@ def add_arguments(parser):
     parser.add_argument("--no-peers", action="store_true",
                         help="skip the peers (they need benchmarks/.venv-peers: bash benchmarks/setup_peers.sh)")
     parser.add_argument("--publish", action="store_true",
-                        help="write the published benchmarks/RESULTS.md and benchmarks/results/ (refused without "
-                             "the peers unless --allow-missing-peers)")
+                        help="write the published benchmarks/RESULTS.md and benchmarks/results/ of the git "
+                             "checkout (refused without the peers unless --allow-missing-peers)")
     parser.add_argument("--allow-missing-peers", action="store_true",
                         help="with --publish: publish even when the peers cannot run, without their section")
     parser.add_argument("--dry-run", action="store_true",
@@ -47,15 +47,16 @@ def run(args):
     from pathlib import Path
 
     from ..io import prepare_output
-    from ..lab.run import PUBLISHED, PublishError, default_output, peers_missing_reason, run_all
+    from ..lab.checkout import published_dir
+    from ..lab.run import PublishError, default_output, peers_missing_reason, run_all
 
     if args.allow_missing_peers and not args.publish:
         raise ValueError("--allow-missing-peers only applies with --publish")
     if args.publish and args.quick:
         raise PublishError("--publish and --quick exclude each other: quick numbers are never published")
     if args.publish and args.output is not None:
-        raise PublishError(f"--publish writes to {PUBLISHED}; drop --output")
-    out = PUBLISHED if args.publish else Path(args.output) if args.output is not None else default_output(args.quick)
+        raise PublishError("--publish writes to benchmarks/ of the git checkout; drop --output")
+    out = published_dir() if args.publish else Path(args.output) if args.output is not None else default_output(args.quick)
     if out.exists() and not out.is_dir():
         raise ValueError(f"--output must be a folder, got the file {str(out)!r}")
     prepare_output(out / "RESULTS.md", create=not args.dry_run)

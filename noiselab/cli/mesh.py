@@ -9,8 +9,6 @@ NAME = "mesh"
 HELP = "displace a mesh or built-in shape along its normals by noise (Eq. 11); write PLY/OBJ/STL/GLB, render PNG/MP4/GIF"
 
 SHAPES = ("sphere", "squashed", "plane", "ant", "airplane", "nut")
-# NOISELAB_EXAMPLE_SIZE=small (the README test): 4 animation frames, 128 px renders
-SMALL = {"frames": 4, "size": 128}
 
 
 def add_arguments(parser):

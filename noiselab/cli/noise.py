@@ -16,26 +16,12 @@ from pathlib import Path
 import numpy as np
 
 from ..io.media import DEFAULT_FPS
-from ..scale.commands import add_dask_arguments
+from ..scale.commands import add_dask_arguments, parse_axes
 
 NAME = "noise"
 HELP = "Render Phillips lattice noise (value or gradient), fractal sums or turbulence to PNG, MP4/GIF or NPY."
 
 _DEFAULT_SIZE = {1: "1024", 2: "512x512", 3: "48x128x128"}
-
-
-def _parse_axes(name, text, dims, cast):
-    parts = str(text).lower().replace(",", "x").split("x")
-    try:
-        values = [cast(p.strip()) for p in parts]   # an empty part ('10x', 'x8') is an error, not a default
-    except ValueError:
-        raise ValueError(f"{name} must be a number or {dims} numbers joined by 'x' (e.g. 8 or "
-                         f"{'x'.join(['8'] * dims)}), got {text!r}") from None
-    if len(values) == 1:
-        values = values * dims
-    if len(values) != dims:
-        raise ValueError(f"{name} must have 1 or {dims} entries for a {dims}-D field, got {text!r}")
-    return values
 
 
 def add_arguments(parser):
@@ -84,10 +70,10 @@ def run(args) -> int:
     from ..lattice import Grid, LatticeNoise
 
     dims = args.dims
-    shape = tuple(_parse_axes("--size", args.size or _DEFAULT_SIZE[dims], dims, int))
+    shape = tuple(parse_axes("--size", args.size or _DEFAULT_SIZE[dims], dims, int))
     if any(s < 1 for s in shape):
         raise ValueError(f"--size entries must be >= 1, got {shape}")
-    cells = _parse_axes("--cells", args.cells, dims, float)
+    cells = parse_axes("--cells", args.cells, dims, float)
     if any(not np.isfinite(c) or c <= 0 for c in cells):
         raise ValueError(f"--cells entries must be positive, got {cells}")
     if args.octaves < 1:

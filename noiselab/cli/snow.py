@@ -17,8 +17,6 @@ from ..io.media import DEFAULT_FPS
 from ..scale.commands import add_dask_arguments
 
 NAME = "snow"
-# NOISELAB_EXAMPLE_SIZE=small (the README test): an 8-frame period written once
-SMALL = {"frames": 8, "loops": 1}
 HELP = "render Langer & Zhang's falling snow by inverse FFT over a background, to MP4, GIF, PNG frames or NPY"
 
 
@@ -106,7 +104,6 @@ def run(args) -> int:
     from ..io import write_video
     from ..snow import composite, iter_tiled_frames, snow
     from ..snow.background import default_background
-    from ..snow.composite import _background_layout
 
     from ..io import prepare_output
 
@@ -135,6 +132,9 @@ def run(args) -> int:
     if background is not None:
         is_video = background.ndim == 4 or (background.ndim == 3 and background.shape[-1] != 3)
         bh, bw = background.shape[1:3] if is_video else background.shape[:2]
+        if background.ndim == 4 and background.shape[-1] != 3:
+            raise ValueError(f"background {args.background!r} has {background.shape[-1]} channels per pixel; "
+                             "expected grey or RGB (3)")
         if (args.width not in (None, bw)) or (args.height not in (None, bh)):
             raise ValueError(f"background {args.background!r} is {bw} x {bh} px but --width/--height ask for "
                              f"{args.width} x {args.height}; drop them or resize the background")
@@ -177,8 +177,7 @@ def run(args) -> int:
         if background is None:
             background = default_background(H, W)
             is_video = False
-        _background_layout(background.shape, n_out if is_video else None, H, W)
-        bg = background
+        bg = background   # its frame size, channels and length were checked above
         if bg.dtype != np.uint8 and bg.dtype.kind in "iu":
             bg = bg.astype(np.uint8) if bg.size and bg.min() >= 0 and bg.max() <= 255 else bg
         frames = (composite(a, bg[i] if is_video else bg, intensity=args.intensity)

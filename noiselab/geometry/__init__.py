@@ -4,6 +4,13 @@ Every function here is driven by a *field*: any callable on points ``(n, k)``
 returning ``(n,)`` or ``(n, m)`` (a ``noiselab.LatticeNoise``, an octave sum,
 a sampled spectral volume, a numpy function).
 
+Grids take ``shape`` and ``extent`` in array-axis order, like
+:class:`noiselab.lattice.Grid`: ``(ny, nx)`` and ``((y0, y1), (x0, x1))``
+(3-D: ``(nz, ny, nx)``, ``((z0, z1), (y0, y1), (x0, x1))``), and their points,
+vectors and phases are ``(y, x)`` in the same order, so
+``height_map(noise, shape, extent)`` is ``noise.grid(shape, extent)``
+(:mod:`.surfaces` says it in full).
+
 - :mod:`.fields`: ``octave_field`` (fractal sum / turbulence of any field), ``sampled_field``
 - :mod:`.displace`: ``displace`` (Eq. 11), ``displace_frames``, ``vertex_normals``,
   ``resolution_report``, ``subdivide_for_noise``

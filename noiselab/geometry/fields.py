@@ -207,7 +207,10 @@ def sampled_field(values, extent=None, *, periodic=True, order=3, vector=False, 
     ``values`` has one axis per input dimension (axis ``i`` is input
     coordinate ``i``), plus a trailing component axis when ``vector`` is true.
     ``extent`` gives one ``(start, stop)`` pair per input axis (stop excluded,
-    as in ``numpy.arange``; default ``(0, n)``: one unit per sample).
+    as in ``numpy.arange``; default ``(0, n)``: one unit per sample): the
+    array-axis order of every grid in :mod:`noiselab.geometry`, so
+    ``sampled_field(height_map(f, shape, extent), extent)`` interpolates a
+    height map at points ``(y, x)``.
     ``periodic`` wraps the grid (right for inverse-FFT output, which is
     periodic); otherwise points outside are clamped to the edge. ``order`` is
     the spline order (1 linear, 3 cubic). ``max_frequency`` (cycles per input

@@ -5,6 +5,12 @@ A flow field is a field with d-D input and d-D output (``LatticeNoise(2, 2)``,
 grids, traces streamlines through it (a vectorised fixed-step RK4, or
 scipy's adaptive ``solve_ivp``), and draws it (matplotlib quiver and
 streamline plots in 2-D, pyvista arrow glyphs in 3-D).
+
+Shapes, extents, points and vectors are in array-axis order, as everywhere in
+:mod:`noiselab.geometry` (see :mod:`noiselab.geometry.surfaces`): ``shape``
+``(ny, nx)``, ``extent`` ``((y0, y1), (x0, x1))``, a point ``(y, x)`` and a
+velocity ``(v_y, v_x)`` (component ``k`` along array axis ``k``); in 3-D
+``(z, y, x)``. The plots draw x to the right and y up.
 """
 from __future__ import annotations
 
@@ -32,17 +38,20 @@ def _velocity(field, d, amplitude, frequency, phase):
 def flow_field(field, shape=(16, 16), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=1.0, frequency=1.0, phase=0.0):
     """Sample a vector field on a grid: returns ``(points, vectors)``, both ``(*shape, d)``.
 
-    ``shape`` is in array order (rows first: ``(ny, nx)`` or ``(nz, ny, nx)``),
-    ``extent`` in coordinate order (``((x0, x1), (y0, y1)[, (z0, z1)])``, stop
-    excluded). ``vectors = amplitude * field(frequency * points + phase)[:, :d]``.
+    ``shape`` ``(ny, nx)`` or ``(nz, ny, nx)`` and ``extent``
+    ``((y0, y1), (x0, x1))`` or ``((z0, z1), (y0, y1), (x0, x1))`` are in
+    array-axis order (stop excluded); ``points`` are :func:`grid_points`
+    (``points[i, j] = (y_i, x_j)``) and
+    ``vectors = amplitude * field(frequency * points + phase)[:, :d]``, in the
+    same order: component ``k`` is the velocity along array axis ``k``.
 
     Examples
     --------
     >>> import numpy as np
     >>> f = lambda p: np.stack([-p[:, 1], p[:, 0]], axis=1)   # rotation
-    >>> pts, vec = flow_field(f, (3, 3), ((-1, 2), (-1, 2)))
-    >>> vec[0, 0].tolist()
-    [1.0, -1.0]
+    >>> pts, vec = flow_field(f, (3, 4), ((-1, 2), (-2, 2)))
+    >>> pts[0, 0].tolist(), vec[0, 0].tolist()
+    ([-1.0, -2.0], [2.0, -1.0])
     """
     pts = grid_points(shape, extent)
     d = pts.shape[-1]
@@ -62,7 +71,9 @@ def streamlines(field, seeds, *, step=0.01, n_steps=200, amplitude=1.0, frequenc
     ``method="solve_ivp"`` integrates each seed with scipy's adaptive RK45 to
     rtol 1e-6 and reports it at the same times (slower; a reference).
     ``normalize=True`` follows the direction only (unit speed), so that
-    streamlines have equal length whatever the local speed.
+    streamlines have equal length whatever the local speed. Seeds and
+    positions are in the field's input order: ``(y, x)`` (``(z, y, x)``) for
+    the array-axis order of :func:`flow_field`.
 
     Returns ``(m, n_steps + 1, d)`` positions, the seeds first.
 
@@ -123,10 +134,12 @@ def quiver_image(field, path=None, *, shape=(20, 20), extent=((0.0, 4.0), (0.0, 
                  n_steps=100, step=0.02) -> np.ndarray:
     """A 2-D flow field as arrows (figure 9), matplotlib; optional streamlines from random seeds.
 
+    ``shape`` ``(ny, nx)`` and ``extent`` ``((y0, y1), (x0, x1))`` are in
+    array-axis order, as for :func:`flow_field`; the plot draws x (axis 1) to
+    the right and y (axis 0) up (mathematical axes), each arrow ``(v_x, v_y)``.
     ``streamline_seeds`` > 0 traces that many streamlines (RK4, ``n_steps`` of
     ``step``) from seeded uniform positions in the extent, drawn in grey
-    under the arrows. y points up in the plot (mathematical axes).
-    Returns the RGB image; writes it when ``path`` is given.
+    under the arrows. Returns the RGB image; writes it when ``path`` is given.
 
     Examples
     --------
@@ -151,11 +164,11 @@ def quiver_image(field, path=None, *, shape=(20, 20), extent=((0.0, 4.0), (0.0, 
         lines = streamlines(field, seeds, step=step, n_steps=n_steps, amplitude=amplitude, frequency=frequency,
                             phase=phase)
         for line in lines:
-            ax.plot(line[:, 0], line[:, 1], color="0.6", lw=0.8)
-    ax.quiver(pts[..., 0], pts[..., 1], vec[..., 0], vec[..., 1], color=color, angles="xy", pivot="mid")
-    cell = (ext[:, 1] - ext[:, 0]) / np.asarray(list(reversed(pts.shape[:2])))
-    ax.set_xlim(ext[0, 0] - cell[0], ext[0, 1])
-    ax.set_ylim(ext[1, 0] - cell[1], ext[1, 1])
+            ax.plot(line[:, 1], line[:, 0], color="0.6", lw=0.8)
+    ax.quiver(pts[..., 1], pts[..., 0], vec[..., 1], vec[..., 0], color=color, angles="xy", pivot="mid")
+    cell = (ext[:, 1] - ext[:, 0]) / np.asarray(pts.shape[:2])
+    ax.set_xlim(ext[1, 0] - cell[1], ext[1, 1])
+    ax.set_ylim(ext[0, 0] - cell[0], ext[0, 1])
     ax.set_aspect("equal")
     ax.axis("off")
     return _save_array(figure_to_array(fig, close=False), path)
@@ -163,6 +176,11 @@ def quiver_image(field, path=None, *, shape=(20, 20), extent=((0.0, 4.0), (0.0, 
 
 def streamline_image(lines, path=None, *, size=512, color="black", linewidth=1.0, limits=None) -> np.ndarray:
     """Draw 2-D streamlines ``(m, n, 2)`` (from :func:`streamlines`) with matplotlib; return the image.
+
+    The lines' points are ``(y, x)``, in array-axis order like every point of
+    :mod:`noiselab.geometry`; they are drawn as :func:`quiver_image` draws its
+    field, x to the right and y up. ``limits`` is ``((y0, y1), (x0, x1))``, in
+    the same order (default: fitted to the lines).
 
     Examples
     --------
@@ -176,16 +194,23 @@ def streamline_image(lines, path=None, *, size=512, color="black", linewidth=1.0
     lines = np.asarray(lines, dtype=np.float64)
     if lines.ndim != 3 or lines.shape[2] < 2:
         raise ValueError(f"lines must have shape (m, n, 2), got {lines.shape}")
-    return plot_curves(list(lines), path, size=size, colors=color, linewidth=linewidth, limits=limits)
+    # plot_curves draws geometric (x, y) curves: hand it the lines and the limits with their two axes swapped
+    xy = list(lines[..., 1::-1])
+    if limits is not None:
+        limits = tuple(limits)[::-1]
+    return plot_curves(xy, path, size=size, colors=color, linewidth=linewidth, limits=limits)
 
 
 def flow_glyphs(field, shape=(6, 6, 6), extent=((0.0, 4.0), (0.0, 4.0), (0.0, 4.0)), amplitude=1.0,
                 frequency=1.0, phase=0.0, *, scale=None):
     """A 3-D flow field as a pyvista mesh of arrows (figure 10), ready for :func:`render_mesh`.
 
-    Arrows start at the grid points; their length is ``scale`` times the
-    vector's (default: the longest arrow is 0.9 grid cells). Render a
-    cross-fusible stereo pair with :func:`render_stereo_pair`.
+    ``shape`` ``(nz, ny, nx)`` and ``extent`` ``((z0, z1), (y0, y1), (x0, x1))``
+    in array-axis order, as for :func:`flow_field`: each arrow starts at its
+    grid point ``(z, y, x)`` (the mesh's coordinates) and points along
+    ``(v_z, v_y, v_x)``; its length is ``scale`` times the vector's (default:
+    the longest arrow is 0.9 grid cells). Render a cross-fusible stereo pair
+    with :func:`render_stereo_pair`.
 
     Examples
     --------
@@ -200,7 +225,7 @@ def flow_glyphs(field, shape=(6, 6, 6), extent=((0.0, 4.0), (0.0, 4.0), (0.0, 4.
     if pts.shape[-1] != 3:
         raise ValueError(f"flow_glyphs draws 3-D fields: shape must have 3 entries, got {shape!r}")
     ext = _extent(extent, 3)
-    cell = float(np.min((ext[:, 1] - ext[:, 0]) / np.asarray(list(reversed(pts.shape[:3])))))
+    cell = float(np.min((ext[:, 1] - ext[:, 0]) / np.asarray(pts.shape[:3])))
     vec = vec.reshape(-1, 3)
     longest = float(np.max(np.linalg.norm(vec, axis=1)))
     if scale is None:

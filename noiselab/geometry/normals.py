@@ -1,8 +1,10 @@
 """Exact normals of noise surfaces from the noise's analytic gradient.
 
 - :func:`monge_normals`: the normal of a Monge surface / height map
-  ``z = amplitude * s(frequency * (x, y) + phase)`` (Phillips Eq. 8, figures
-  8, 14, 15): ``(-dz/dx, -dz/dy, 1) / |.|``.
+  ``z = amplitude * s(frequency * (y, x) + phase)`` (Phillips Eq. 8, figures
+  8, 14, 15): ``(-dz/dy, -dz/dx, 1) / |.|``, its points and normals in the
+  array-axis order of the geometry grids (``(y, x)``, see
+  :mod:`noiselab.geometry.surfaces`).
 - :func:`displaced_normals`: the normal of a displaced mesh
   ``p' = p + h(p) n(p)``, ``h = amplitude * s(frequency * p + phase)``
   (Eq. 11, figures 16-20), from the noise gradient and the base normal.
@@ -82,19 +84,24 @@ def _gain(amplitude, frequency):
 
 def monge_normals(field, points, amplitude=1.0, frequency=1.0, phase=0.0, *, octaves=1, kind="fractal",
                   lacunarity=2.0, gain=0.5, return_heights=False):
-    r"""Exact unit normals of the Monge surface ``z = amplitude * s(frequency * (x, y) + phase)``.
+    r"""Exact unit normals of the Monge surface ``z = amplitude * s(frequency * (y, x) + phase)``.
 
     The parameters are those of :func:`noiselab.geometry.monge_surface` and
     :func:`~noiselab.geometry.height_map`, so ``monge_normals(field,
     mesh.vertices[:, :2], ...)`` gives the normals of the mesh those build,
-    without differencing it: ``n = (-z_x, -z_y, 1) / sqrt(1 + z_x^2 + z_y^2)``
-    with ``z_x = amplitude * frequency * ds/du``.
+    and ``monge_normals(field, grid_points(shape, extent))`` those of the
+    height map, without differencing it:
+    ``n = (-z_y, -z_x, 1) / sqrt(1 + z_y^2 + z_x^2)`` with
+    ``z_y = amplitude * frequency * ds/du_0`` (the derivative along the field's
+    first input, array axis 0 of a grid).
 
     Parameters
     ----------
     field : LatticeNoise (dim_in=2, dim_out=1, C1 kernel) or a warp of one
     points : array (..., 2)
-        (x, y) positions.
+        ``(y, x)`` positions, the field's inputs: array-axis order, as
+        :func:`~noiselab.geometry.grid_points` gives them. The normals'
+        first two components follow the same order.
     amplitude, frequency, phase, octaves, kind, lacunarity, gain
         As for :func:`noiselab.geometry.height_map`.
     return_heights : bool
@@ -125,7 +132,7 @@ def monge_normals(field, points, amplitude=1.0, frequency=1.0, phase=0.0, *, oct
     phase = check_real_vector("phase", phase, 2)
     pts = check_finite_array("points", points).astype(np.float64, copy=False)
     if pts.ndim == 0 or pts.shape[-1] != 2:
-        raise ValueError(f"points must have shape (..., 2) (x, y), got {pts.shape}")
+        raise ValueError(f"points must have shape (..., 2) (y, x), got {pts.shape}")
     lead = pts.shape[:-1]
     value, grad = field_gradient(field, _scaled("points", pts.reshape(-1, 2), frequency, phase), octaves=octaves,
                                  kind=kind, lacunarity=lacunarity, gain=gain)

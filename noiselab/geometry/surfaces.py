@@ -1,9 +1,20 @@
-"""Monge surfaces z = f(x, y) (Phillips 2004, Eq. 8, figures 8, 14, 15) and height + colour surfaces (figure 11).
+"""Monge surfaces z = f(y, x) (Phillips 2004, Eq. 8, figures 8, 14, 15) and height + colour surfaces (figure 11).
 
-Grids follow the image convention of noiselab: a ``(height, width)`` array,
-x running right along columns and y along rows (row 0 at ``y0``). ``extent``
-is ``((x0, x1), (y0, y1))`` with the stop excluded, as in ``numpy.arange``:
-column ``j`` is at ``x0 + j * (x1 - x0) / width``.
+One order for grids in all of :mod:`noiselab.geometry`, the array-axis order
+of :class:`noiselab.lattice.Grid`: ``shape`` is ``(rows, columns)`` =
+``(ny, nx)`` (``(nz, ny, nx)`` in 3-D) and ``extent`` is
+``((y0, y1), (x0, x1))`` (``((z0, z1), (y0, y1), (x0, x1))``), one
+``(start, stop)`` pair per array axis, the stop excluded as in
+``numpy.arange``: row ``i`` is at ``y0 + i * (y1 - y0) / ny`` and column ``j``
+at ``x0 + j * (x1 - x0) / nx`` (x runs right along columns, y along rows, as
+in noiselab's images). A grid point is in the same order, ``(y, x)``
+(``(z, y, x)``): the field is evaluated at ``(y_i, x_j)``, as
+``LatticeNoise.grid`` evaluates it, so ``height_map(noise, shape, extent)`` is
+``noise.grid(shape, extent)`` and ``sampled_field(heights, extent)``
+interpolates the heights back. ``phase`` has one entry per axis in that order.
+A mesh on a grid puts each vertex at its grid point followed by the height,
+``(y, x, z)``, so ``monge_normals(field, mesh.vertices[:, :2])`` gives its
+exact normals.
 """
 from __future__ import annotations
 
@@ -23,31 +34,41 @@ def _extent(extent, dims=2):
         raise TypeError(f"extent must hold numbers, got booleans: {extent!r}")
     arr = arr.astype(np.float64)
     if arr.shape != (dims, 2):
-        raise ValueError(f"extent must be {dims} (start, stop) pairs (x first), got {extent!r}")
+        raise ValueError(f"extent must be {dims} (start, stop) pairs, one per array axis (rows first), got {extent!r}")
     if not np.all(np.isfinite(arr)) or np.any(arr[:, 1] <= arr[:, 0]):
         raise ValueError(f"extent must be finite with stop > start on every axis, got {arr.tolist()}")
     return arr
 
 
 def grid_points(shape, extent):
-    """Sample points of a regular grid: ``shape`` in array order (rows first), ``extent`` in x, y(, z) order.
+    """Sample points of a regular grid, all in array-axis order (rows first), like :class:`noiselab.lattice.Grid`.
 
-    Returns ``(*shape, d)`` float64 where the last axis is (x, y[, z]):
-    for 2-D, ``points[i, j] = (x_j, y_i)``.
+    Parameters
+    ----------
+    shape : (ny, nx) or (nz, ny, nx)
+        Samples per array axis.
+    extent : ((y0, y1), (x0, x1)) or ((z0, z1), (y0, y1), (x0, x1))
+        One ``(start, stop)`` pair per array axis, in the order of ``shape``;
+        the stop is excluded.
+
+    Returns
+    -------
+    ndarray (*shape, d), float64
+        ``points[i, j] = (y_i, x_j)`` (3-D: ``points[k, i, j] = (z_k, y_i, x_j)``):
+        the coordinate along every array axis, in axis order, computed as
+        ``LatticeNoise.grid`` computes it (``start + i * ((stop - start) / n)``).
 
     Examples
     --------
-    >>> p = grid_points((2, 4), ((0, 4), (0, 1)))
+    >>> p = grid_points((2, 4), ((0, 1), (0, 4)))
     >>> p[1, 3].tolist()
-    [3.0, 0.5]
+    [0.5, 3.0]
     """
     shape = check_shape("shape", shape, ndim=(2, 3), min_size=1)
     ext = _extent(extent, len(shape))
     check_memory(int(np.prod(shape)) * len(shape) * 8 * 3, "the sampling grid")
-    axes = [ext[k, 0] + np.arange(n) * ((ext[k, 1] - ext[k, 0]) / n)
-            for k, n in enumerate(reversed(shape))]           # x, y(, z)
-    mesh = np.meshgrid(*reversed(axes), indexing="ij")       # array order: (z,) y, x
-    return np.stack(list(reversed(mesh)), axis=-1)
+    axes = [ext[k, 0] + np.arange(n, dtype=np.float64) * ((ext[k, 1] - ext[k, 0]) / n) for k, n in enumerate(shape)]
+    return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)
 
 
 def _check_grid_resolution(shape, ext, max_frequency, samples_per_period, on_aliasing):
@@ -55,7 +76,7 @@ def _check_grid_resolution(shape, ext, max_frequency, samples_per_period, on_ali
         return
     from ._mesh import AliasingWarning
 
-    spacing = float(np.max((ext[:, 1] - ext[:, 0]) / np.asarray(list(reversed(shape)), dtype=float)))
+    spacing = float(np.max((ext[:, 1] - ext[:, 0]) / np.asarray(shape, dtype=float)))
     spp = 1.0 / (max_frequency * spacing)
     if spp < samples_per_period:
         msg = (f"grid too coarse for the field: spacing {spacing:.4g} gives {spp:.2f} samples per period at the "
@@ -106,17 +127,20 @@ def _amplified(values, amplitude):
 def height_map(field, shape=(256, 256), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=1.0, frequency=1.0,
                phase=0.0, *, octaves=1, kind="fractal", lacunarity=2.0, gain=0.5, samples_per_period=4.0,
                on_aliasing="warn") -> np.ndarray:
-    """Heights ``amplitude * s(frequency * (x, y) + phase)`` on a grid: a ``(height, width)`` float64 array.
+    """Heights ``amplitude * s(frequency * (y, x) + phase)`` on a grid: a ``(ny, nx)`` float64 array.
 
     ``s`` is ``field`` (2-D input, scalar output) or its fractal sum /
-    turbulence over ``octaves`` (figures 14 and 15). A grid too coarse for the
-    highest octave warns (:class:`AliasingWarning`), or raises with
-    ``on_aliasing="raise"``.
+    turbulence over ``octaves`` (figures 14 and 15). ``shape`` is
+    ``(ny, nx)`` (rows, columns) and ``extent`` ``((y0, y1), (x0, x1))``, the
+    stop excluded; the field takes points ``(y, x)`` in the same array-axis
+    order (``phase`` too), so for a ``LatticeNoise`` this is
+    ``noise.grid(shape, extent)``. A grid too coarse for the highest octave
+    warns (:class:`AliasingWarning`), or raises with ``on_aliasing="raise"``.
 
     Examples
     --------
     >>> import numpy as np
-    >>> h = height_map(lambda p: np.sin(p[:, 0]), (4, 8), ((0, 8), (0, 4)), on_aliasing="ignore")
+    >>> h = height_map(lambda p: np.sin(p[:, 1]), (4, 8), ((0, 4), (0, 8)), on_aliasing="ignore")
     >>> h.shape, bool(np.allclose(h[0], np.sin(np.arange(8))))
     ((4, 8), True)
     """
@@ -128,8 +152,9 @@ def _grid_faces(h, w):
     idx = np.arange(h * w, dtype=np.int64).reshape(h, w)
     a, b = idx[:-1, :-1].ravel(), idx[:-1, 1:].ravel()
     c, d = idx[1:, :-1].ravel(), idx[1:, 1:].ravel()
-    # counter-clockwise seen from +z (x right, y up): normals point up
-    return np.concatenate([np.stack([a, b, d], 1), np.stack([a, d, c], 1)])
+    # vertex (i, j) sits at (y_i, x_j): counter-clockwise seen from +z with the first coordinate right and the
+    # second up, so that the normals point up
+    return np.concatenate([np.stack([a, d, b], 1), np.stack([a, c, d], 1)])
 
 
 def _grid_mesh(pts, heights):
@@ -145,11 +170,16 @@ def _grid_mesh(pts, heights):
 def monge_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=0.5, frequency=1.0,
                   phase=0.0, *, octaves=1, kind="fractal", lacunarity=2.0, gain=0.5, samples_per_period=4.0,
                   on_aliasing="warn"):
-    """A Monge-form surface z = amplitude * s(x, y) (Eq. 8) as a triangle mesh (figures 8, 14, 15).
+    """A Monge-form surface z = amplitude * s(y, x) (Eq. 8) as a triangle mesh (figures 8, 14, 15).
 
-    Vertices sit on the grid of :func:`height_map` (x, y, z); two triangles per
-    cell, wound so that normals point up (+z). ``vertex_attributes["height"]``
-    holds z. The mesh is open (a sheet), not watertight.
+    ``shape`` ``(ny, nx)`` and ``extent`` ``((y0, y1), (x0, x1))`` in
+    array-axis order, as for :func:`height_map`. Vertex ``i * nx + j`` is the
+    grid point followed by its height, ``(y_i, x_j, z_ij)``, so the vertices'
+    first two coordinates are the points the field was evaluated at (and
+    ``monge_normals(field, mesh.vertices[:, :2])`` its exact normals); two
+    triangles per cell, wound so that normals point up (+z).
+    ``vertex_attributes["height"]`` holds z. The mesh is open (a sheet), not
+    watertight.
 
     Examples
     --------
@@ -178,8 +208,10 @@ def colored_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), am
     [0, 1), at the given HSV ``saturation`` and ``value``).
     ``color="rgb"``: the field returns 4 components, the first is the height
     and the other three, mapped from ``value_range`` to [0, 1], are R, G, B.
-    Values outside ``value_range`` are clipped. Returns a Monge mesh with
-    vertex colours (kept by PLY/GLB/OBJ export and used by the renderer).
+    Values outside ``value_range`` are clipped. ``shape`` ``(ny, nx)`` and
+    ``extent`` ``((y0, y1), (x0, x1))`` in array-axis order; returns a Monge
+    mesh as :func:`monge_surface` builds it, with vertex colours (kept by
+    PLY/GLB/OBJ export and used by the renderer).
 
     Examples
     --------
@@ -217,7 +249,8 @@ def colored_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), am
 def height_map_image(heights, path=None, *, vmin=None, vmax=None) -> np.ndarray:
     """A depth-map image of heights, lighter = higher (figure 8, right): ``(H, W)`` uint8, written if ``path``.
 
-    ``vmin``/``vmax`` default to the array's range.
+    ``heights`` is drawn as it is stored: row 0 (``y0`` of :func:`height_map`)
+    at the top, x to the right. ``vmin``/``vmax`` default to the array's range.
 
     Examples
     --------

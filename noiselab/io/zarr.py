@@ -1,4 +1,4 @@
-"""zarr stores with provenance, written atomically from dask (or numpy) arrays.
+"""zarr stores with provenance, written atomically from numpy (here) or dask arrays (by the scale-out layer).
 
 A store is a zarr group holding the data array (``"data"`` by default), with
 named dimensions (zarr v3 ``dimension_names``, so ``xarray.open_zarr`` gives
@@ -10,11 +10,20 @@ the noiselab version, the units.
 The store is written under a temporary name beside the target (a dot folder
 ``.<name>.*.tmp``) and renamed onto it only after every chunk was written: a
 failed run leaves no store under the final name, and a killed run only a
-temporary folder (it is never mistaken for a result). Needs the extra
-``pip install noiselab[dask]``.
+temporary folder (it is never mistaken for a result).
+
+``io`` is a leaf every layer may use, so it imports neither dask nor
+:mod:`noiselab.scale`: :func:`write_zarr` writes a numpy array itself and hands
+a dask array to the implementation that the scale-out layer registered under
+``"write_zarr"`` (:mod:`noiselab.scale.zarr`, found through
+:mod:`noiselab._core.dispatch`), which streams it chunk by chunk into the
+store that :func:`zarr_store` opens; :func:`read_zarr` opens the store here and
+lets ``"read_zarr"`` wrap it lazily. zarr is imported on use; it and dask are
+the extra ``pip install noiselab[dask]``.
 """
 from __future__ import annotations
 
+import contextlib
 import datetime
 import numbers
 import warnings
@@ -22,11 +31,40 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import __version__  # the root's metadata: it imports no subpackage when it loads
+from .._core import deps, dispatch
 from .atomic import atomic_output
 
-__all__ = ["write_zarr", "read_zarr"]
+__all__ = ["write_zarr", "read_zarr", "zarr_store", "is_dask_array", "import_zarr"]
 
 _DEFAULT_NAME = "data"
+
+
+def import_zarr(what):
+    """Import zarr (through the optional-dependency seam of ``noiselab._core.deps``) or name the extra.
+
+    Examples
+    --------
+    >>> import_zarr("write_zarr").__name__
+    'zarr'
+    """
+    try:
+        return deps._import("zarr")
+    except ImportError as exc:
+        raise ImportError(f"{what} needs the optional package 'zarr', which is not installed: "
+                          f"{deps.EXTRA_HINT}") from exc
+
+
+def is_dask_array(data) -> bool:
+    """Whether ``data`` is a ``dask.array.Array``, told without importing dask.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> is_dask_array(np.zeros(3))
+    False
+    """
+    return type(data).__module__.startswith("dask.") and hasattr(data, "dask") and hasattr(data, "chunks")
 
 
 def _jsonable(value, where="attrs"):
@@ -56,6 +94,84 @@ def _is_zarr_store(path):
     return any((path / f).exists() for f in ("zarr.json", ".zgroup", ".zarray"))
 
 
+def _store_chunks(chunks, shape):
+    """The zarr chunk shape for a numpy array: ``None`` lets zarr choose; an int or one entry per axis (-1: whole)."""
+    if chunks is None:
+        return "auto"
+    entries = (chunks,) * len(shape) if isinstance(chunks, numbers.Integral) else tuple(chunks)
+    if len(entries) != len(shape) or not all(isinstance(c, numbers.Integral) and not isinstance(c, bool)
+                                             and (c >= 1 or c == -1) for c in entries):
+        raise ValueError(f"chunks must be an int >= 1 or one per axis of the data ({len(shape)}), each >= 1 or -1 "
+                         f"for the whole axis, got {chunks!r}")
+    return tuple(max(n, 1) if c == -1 else min(int(c), max(n, 1)) for c, n in zip(entries, shape))
+
+
+@contextlib.contextmanager
+def zarr_store(path, shape, dtype, chunks, *, name=_DEFAULT_NAME, dims=None, coords=None, attrs=None, units=None,
+               params=None, seed=None, what="write_zarr"):
+    """Open a new store for one array, under a temporary name; rename it onto ``path`` when the block succeeds.
+
+    Everything :func:`write_zarr` checks (the target, the name, the dims, the
+    coordinates, the attributes) is checked before anything is created, so a
+    bad argument leaves nothing on disk. The block receives the empty
+    ``zarr.Array`` (filled with 0) to write into; the coordinate arrays and
+    the provenance attributes are already in place, and the consolidated
+    metadata is written after the block. This is the one writer of the store
+    layout, used by :func:`write_zarr` for numpy arrays and by the scale-out
+    layer for dask arrays (``chunks``: the zarr chunk shape, or ``"auto"``).
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> out = os.path.join(tempfile.mkdtemp(), "s.zarr")
+    >>> with zarr_store(out, (2, 3), "float32", (1, 3), dims=("y", "x")) as target:
+    ...     target[:] = 1.0
+    >>> float(read_zarr(out).sum().compute())
+    6.0
+    """
+    zarr = import_zarr(what)
+    path = Path(path)
+    if path.exists() and not (path.is_dir() and _is_zarr_store(path)):
+        raise FileExistsError(f"{str(path)!r} exists and is not a zarr store; not replacing it")
+    if not isinstance(name, str) or not name or "/" in name:
+        raise ValueError(f"name must be a non-empty string without '/', got {name!r}")
+    shape = tuple(int(n) for n in shape)
+    ndim = len(shape)
+    if dims is None:
+        dims = tuple(f"dim_{a}" for a in range(ndim))
+    dims = tuple(dims)
+    if len(dims) != ndim or not all(isinstance(d, str) and d for d in dims) or len(set(dims)) != ndim:
+        raise ValueError(f"dims must be {ndim} distinct names, one per axis of the data, got {dims!r}")
+    coords = dict(coords or {})
+    for d, c in coords.items():
+        if d not in dims:
+            raise ValueError(f"coords: {d!r} is not one of dims {dims}")
+        if np.ndim(c) != 1 or len(c) != shape[dims.index(d)]:
+            raise ValueError(f"coords[{d!r}] must be 1-D of length {shape[dims.index(d)]}, got shape {np.shape(c)}")
+    meta = {
+        "noiselab_version": __version__,
+        "created_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        "units": units,
+        "seed": seed,
+        "params": params or {},
+    }
+    meta.update(attrs or {})
+    meta = _jsonable(meta)
+    with atomic_output(path, directory=True) as tmp:
+        root = zarr.open_group(str(tmp), mode="w", attributes={"noiselab": {"array": name}})
+        target = root.create_array(name, shape=shape, chunks=chunks, dtype=dtype, dimension_names=dims,
+                                   attributes=meta, fill_value=0)
+        for d, c in coords.items():
+            c = np.asarray(c)
+            arr = root.create_array(d, shape=c.shape, dtype=c.dtype, dimension_names=(d,))
+            arr[:] = c
+        yield target
+        with warnings.catch_warnings():
+            # consolidated metadata lets xarray open the store in one read; zarr warns it is a v3 extension
+            warnings.simplefilter("ignore")
+            zarr.consolidate_metadata(str(tmp))
+
+
 def write_zarr(path, data, *, name=_DEFAULT_NAME, dims=None, coords=None, attrs=None, units=None,
                params=None, seed=None, chunks=None, scheduler=None, progress=None):
     """Write ``data`` to the zarr store ``path`` atomically, with provenance in the attributes.
@@ -66,10 +182,12 @@ def write_zarr(path, data, *, name=_DEFAULT_NAME, dims=None, coords=None, attrs=
         The store (a folder, conventionally ``*.zarr``). Its parent must exist.
         An existing zarr store there is replaced (atomically); an existing
         folder that is not a zarr store is refused.
-    data : dask.array.Array or numpy.ndarray
-        What to write. A dask array is computed chunk by chunk on the workers
-        and each chunk written where it was computed: no process ever holds
-        more than a few chunks.
+    data : numpy.ndarray or dask.array.Array
+        What to write: a real numeric array. A numpy array is written here in
+        one go. A dask array is handed to the scale-out layer
+        (``noiselab.scale.zarr``), which computes it chunk by chunk on the
+        workers and writes each chunk where it was computed: no process ever
+        holds more than a few chunks.
     name : str, default "data"
         The data array's name in the store.
     dims : sequence of str, optional
@@ -82,13 +200,16 @@ def write_zarr(path, data, *, name=_DEFAULT_NAME, dims=None, coords=None, attrs=
         Provenance: the data's units (e.g. ``"noise amplitude"``), the
         parameters that made it (a JSON-like dict), the seed.
     chunks : int or tuple, optional
-        The store's chunk shape (default: the largest dask chunk per axis).
-        zarr chunks are regular, so an unevenly chunked dask array is
+        The store's chunk shape. For a numpy array: an int (every axis) or one
+        entry per axis (``-1``: the whole axis); default: zarr's choice. For a
+        dask array: dask's chunk syntax, default the largest dask chunk per
+        axis; zarr chunks are regular, so an unevenly chunked dask array is
         rechunked to them first (this only regroups whole dask chunks).
     scheduler, progress
-        Where and how to compute: see :func:`noiselab.scale.compute`
-        (default: the active ``distributed.Client``, else dask's threads; a
-        progress bar when stderr is a terminal).
+        For a dask array, where and how to compute: see
+        :func:`noiselab.scale.compute` (default: the active
+        ``distributed.Client``, else dask's threads; a progress bar when
+        stderr is a terminal). Not used for a numpy array.
 
     Returns
     -------
@@ -105,71 +226,24 @@ def write_zarr(path, data, *, name=_DEFAULT_NAME, dims=None, coords=None, attrs=
     >>> back.shape, back.dtype.name, bool((back == vol).all().compute())
     ((32, 32, 32), 'float32', True)
     """
-    from ..scale import compute, require_dask
-
-    da = require_dask("write_zarr", "zarr")
-    import zarr
-
-    import noiselab
-
-    path = Path(path)
-    if path.exists() and not (path.is_dir() and _is_zarr_store(path)):
-        raise FileExistsError(f"{str(path)!r} exists and is not a zarr store; not replacing it")
-    if not isinstance(name, str) or not name or "/" in name:
-        raise ValueError(f"name must be a non-empty string without '/', got {name!r}")
-    if not isinstance(data, da.Array):
-        data = np.asarray(data)
-        if data.dtype.kind not in "biuf":
-            raise TypeError(f"data must be a real numeric array, got dtype {data.dtype}")
-        data = da.from_array(data, chunks="auto" if chunks is None else chunks)
-    ndim = data.ndim
-    if dims is None:
-        dims = tuple(f"dim_{a}" for a in range(ndim))
-    dims = tuple(dims)
-    if len(dims) != ndim or not all(isinstance(d, str) and d for d in dims) or len(set(dims)) != ndim:
-        raise ValueError(f"dims must be {ndim} distinct names, one per axis of the data, got {dims!r}")
-    coords = dict(coords or {})
-    for d, c in coords.items():
-        if d not in dims:
-            raise ValueError(f"coords: {d!r} is not one of dims {dims}")
-        if np.ndim(c) != 1 or len(c) != data.shape[dims.index(d)]:
-            raise ValueError(f"coords[{d!r}] must be 1-D of length {data.shape[dims.index(d)]}, got shape {np.shape(c)}")
-    if chunks is None:
-        zchunks = tuple(max(max(c), 1) if c else 1 for c in data.chunks)
-    else:
-        zchunks = tuple(max(max(c), 1) if c else 1
-                        for c in da.core.normalize_chunks(chunks, data.shape, dtype=data.dtype))
-    regular = tuple(tuple([z] * (s // z) + ([s % z] if s % z else [])) if s else (0,)
-                    for z, s in zip(zchunks, data.shape))
-    if data.chunks != regular:
-        data = data.rechunk(regular)
-    meta = {
-        "noiselab_version": noiselab.__version__,
-        "created_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        "units": units,
-        "seed": seed,
-        "params": params or {},
-    }
-    meta.update(attrs or {})
-    meta = _jsonable(meta)
-    with atomic_output(path, directory=True) as tmp:
-        root = zarr.open_group(str(tmp), mode="w", attributes={"noiselab": {"array": name}})
-        target = root.create_array(name, shape=data.shape, chunks=zchunks, dtype=data.dtype,
-                                   dimension_names=dims, attributes=meta, fill_value=0)
-        for d, c in coords.items():
-            c = np.asarray(c)
-            arr = root.create_array(d, shape=c.shape, dtype=c.dtype, dimension_names=(d,))
-            arr[:] = c
-        compute(da.store(data, target, lock=False, compute=False), scheduler=scheduler, progress=progress)
-        with warnings.catch_warnings():
-            # consolidated metadata lets xarray open the store in one read; zarr warns it is a v3 extension
-            warnings.simplefilter("ignore")
-            zarr.consolidate_metadata(str(tmp))
-    return path
+    store = dict(name=name, dims=dims, coords=coords, attrs=attrs, units=units, params=params, seed=seed)
+    if is_dask_array(data):
+        return dispatch.chunked("write_zarr")(path, data, chunks=chunks, scheduler=scheduler, progress=progress,
+                                              **store)
+    import_zarr("write_zarr")  # the missing extra is named before the data is looked at
+    data = np.asarray(data)
+    if data.dtype.kind not in "biuf":
+        raise TypeError(f"data must be a real numeric array, got dtype {data.dtype}")
+    with zarr_store(path, data.shape, data.dtype, _store_chunks(chunks, data.shape), **store) as target:
+        target[...] = data
+    return Path(path)
 
 
 def read_zarr(path, *, name=None, as_xarray=False):
     """Open a zarr store lazily: a ``dask.array.Array`` (or an ``xarray.DataArray``).
+
+    The store is found and checked here; the lazy array is made by the
+    scale-out layer (``noiselab.scale.zarr``, registered as ``"read_zarr"``).
 
     Parameters
     ----------
@@ -193,19 +267,16 @@ def read_zarr(path, *, name=None, as_xarray=False):
     >>> da.dims, da.attrs["units"]
     (('y', 'x'), 'm')
     """
-    from ..scale import require_dask
-
-    dask_array = require_dask("read_zarr", "zarr")
-    import zarr
-
+    zarr = import_zarr("read_zarr")
     path = Path(path)
     if not (path.is_dir() and _is_zarr_store(path)):
         raise FileNotFoundError(f"no zarr store at {str(path)!r}")
     node = zarr.open(str(path), mode="r")
+    lazy = dispatch.chunked("read_zarr")
     if isinstance(node, zarr.Array):
         if as_xarray:
             raise ValueError("as_xarray=True needs a zarr group (as write_zarr writes), not a bare array")
-        return dask_array.from_zarr(node)
+        return lazy(path, node)
     if name is None:
         name = dict(node.attrs).get("noiselab", {}).get("array")
         if name is None:
@@ -215,11 +286,4 @@ def read_zarr(path, *, name=None, as_xarray=False):
             name = names[0]
     if name not in node:
         raise ValueError(f"name: no array {name!r} in {str(path)!r}")
-    if as_xarray:
-        import xarray
-
-        try:
-            return xarray.open_zarr(str(path), consolidated=True)[name]
-        except (KeyError, ValueError):  # a store without consolidated metadata (not written by write_zarr)
-            return xarray.open_zarr(str(path), consolidated=False)[name]
-    return dask_array.from_zarr(node[name])
+    return lazy(path, node[name], name=name, as_xarray=as_xarray)

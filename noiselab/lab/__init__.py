@@ -8,8 +8,10 @@
   times through it), peak memory, machine description, scaling fits.
 - :mod:`noiselab.lab.experiments`: the experiments, each returning rows of a
   results table.
-- :mod:`noiselab.lab.run`: runs them all and writes ``benchmarks/RESULTS.md``
-  and its plots (``noiselab bench`` or ``python benchmarks/lab_run.py``).
+- :mod:`noiselab.lab.run`: runs them all and writes ``RESULTS.md`` and its
+  plots where ``--output`` says (``noiselab bench`` or ``python benchmarks/lab_run.py``);
+  ``--publish`` writes the published ``benchmarks/RESULTS.md`` of the git checkout.
+- :mod:`noiselab.lab.checkout`: finds that checkout (and the peers' environment in it).
 """
 from .snowgen import layer_plan, lattice_peak, layered_lattice_snow, particle_snow
 

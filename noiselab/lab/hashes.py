@@ -194,10 +194,10 @@ def update_results(path=None, *, quick=False, log=print):
     from pathlib import Path
 
     from .experiments import Config
+    from .checkout import published_dir
     from .measure import machine_info
-    from .run import ROOT
 
-    path = Path(path) if path is not None else ROOT / "benchmarks" / "RESULTS.md"
+    path = Path(path) if path is not None else published_dir() / "RESULTS.md"
     load = os.getloadavg()[0]
     res = hash_experiment(Config.quick_config() if quick else Config.full())
     res["load"] = load

@@ -1,15 +1,17 @@
-"""Run every laboratory experiment and write ``benchmarks/RESULTS.md`` with its plots.
+"""Run every laboratory experiment and write ``RESULTS.md`` with its plots.
 
-One command runs it all; an ordinary run writes to ``out/bench/`` and only
-``--publish`` replaces the published ``benchmarks/RESULTS.md``::
+One command runs it all; an ordinary run writes to ``out/bench/`` under the
+current folder (or ``--output DIR``), from an installed noiselab anywhere; only
+``--publish`` replaces the published ``benchmarks/RESULTS.md`` of the git
+checkout (:mod:`noiselab.lab.checkout` finds it)::
 
-    python3 -m noiselab bench                  # -> out/bench/RESULTS.md
-    python3 -m noiselab bench --publish        # -> benchmarks/RESULTS.md (needs the peers)
-    python3 -m noiselab bench --quick --output /tmp/lab   # CI-size smoke run
+    noiselab bench                  # -> out/bench/RESULTS.md
+    noiselab bench --publish        # -> benchmarks/RESULTS.md of the checkout (needs the peers)
+    noiselab bench --quick --output /tmp/lab   # CI-size smoke run
 
-The peers run in their own environment (``benchmarks/.venv-peers``) in a
-subprocess (:mod:`noiselab.lab.peers`); without that environment the peer
-section says so.
+The peers run in their own environment (``benchmarks/.venv-peers`` of the
+checkout) in a subprocess (:mod:`noiselab.lab.peers`); without that
+environment the peer section says so.
 """
 from __future__ import annotations
 
@@ -23,22 +25,14 @@ from pathlib import Path
 
 import numpy as np
 
+from . import checkout
 from .experiments import (CAPABILITIES, Config, flake_scaling, pareto_sweeps, scaling_fits, snow_experiment,
                           snow_scaling, texture_experiment, texture_scaling)
 from .measure import fit_exponent, machine_info
 from .hashes import hash_experiment, hash_section
 from .quality import quality_experiment, quality_section
 
-__all__ = ["run_all", "md_table", "ROOT", "PEER_PYTHON", "PUBLISHED", "default_output", "PublishError"]
-
-# the checkout this package runs from (an editable install, as install.sh makes); the current
-# folder when noiselab was installed elsewhere
-ROOT = Path(__file__).resolve().parents[2]
-if not (ROOT / "benchmarks").is_dir():  # pragma: no cover - non-editable installs
-    ROOT = Path.cwd()
-PEER_PYTHON = ROOT / "benchmarks" / ".venv-peers" / "bin" / "python"
-#: the published results the README cites: written only by ``run_all(publish=True)`` (``bench --publish``)
-PUBLISHED = ROOT / "benchmarks"
+__all__ = ["run_all", "md_table", "default_output", "PublishError"]
 
 
 class PublishError(ValueError):
@@ -52,8 +46,12 @@ def default_output(quick=False) -> Path:
 
 def peers_missing_reason():
     """Why the peers cannot run here (a string), or None when their environment exists."""
-    if not PEER_PYTHON.exists():
-        return f"peer environment missing ({PEER_PYTHON}): run `bash benchmarks/setup_peers.sh`"
+    python = checkout.peer_python()
+    if python is None:
+        return ("peer environment missing: it is benchmarks/.venv-peers of the noiselab git checkout, and no "
+                "checkout was found")
+    if not python.exists():
+        return f"peer environment missing ({python}): run `bash benchmarks/setup_peers.sh`"
     return None
 
 
@@ -240,15 +238,17 @@ def plot_peers(prows, path):
 
 def run_peers(n, frames, repeats, timeout=900):
     """Run :mod:`noiselab.lab.peers` in the peer environment; returns (info, rows) or (None, reason)."""
-    if peers_missing_reason():
-        return None, peers_missing_reason()
+    reason = peers_missing_reason()
+    if reason:
+        return None, reason
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "peers.json"
-        env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
-        cmd = [str(PEER_PYTHON), "-m", "noiselab.lab.peers", "--n", str(n), "--frames", str(frames),
+        # the peers' interpreter imports this very noiselab (the one running), whichever folder holds it
+        env = dict(os.environ, PYTHONPATH=str(checkout.package_parent()) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+        cmd = [str(checkout.peer_python()), "-m", "noiselab.lab.peers", "--n", str(n), "--frames", str(frames),
                "--repeats", str(repeats), "--json", str(out)]
         try:
-            proc = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, timeout=timeout)
+            proc = subprocess.run(cmd, cwd=tmp, env=env, capture_output=True, text=True, timeout=timeout)
         except subprocess.TimeoutExpired:
             return None, f"peer run timed out after {timeout} s"
         if proc.returncode != 0 or not out.exists():
@@ -277,8 +277,9 @@ def run_all(*, quick=False, output=None, peers=True, log=print, publish=False, a
     peers : bool
         Also run the peers (needs ``benchmarks/.venv-peers``).
     publish : bool
-        Write to the published ``benchmarks/`` instead (not with ``quick`` or
-        ``output``). Refused with :class:`PublishError` when the peers were not
+        Write to the published ``benchmarks/`` of the git checkout instead (not
+        with ``quick`` or ``output``; :class:`~noiselab.lab.checkout.CheckoutNotFound`
+        without a checkout). Refused with :class:`PublishError` when the peers were not
         run or failed, unless ``allow_missing_peers``; then the skipped section
         is logged loudly.
 
@@ -291,14 +292,15 @@ def run_all(*, quick=False, output=None, peers=True, log=print, publish=False, a
     if publish and quick:
         raise PublishError("a quick run is never published (its numbers only show that the pipeline works)")
     if publish and output is not None:
-        raise PublishError(f"publishing writes to {PUBLISHED}; drop the output folder")
+        raise PublishError("publishing writes to benchmarks/ of the git checkout; drop the output folder")
+    published = checkout.published_dir() if publish else None   # no checkout: say so before anything runs
     if publish and not allow_missing_peers:
         reason = "peers not run (--no-peers)" if not peers else peers_missing_reason()
         if reason:
             raise PublishError(f"refusing to publish without section 4 (the peers): {reason}; "
                                "run without --publish, or add --allow-missing-peers")
     cfg = Config.quick_config() if quick else Config.full()
-    out_dir = PUBLISHED if publish else Path(output) if output is not None else default_output(quick)
+    out_dir = published if publish else Path(output) if output is not None else default_output(quick)
     res_dir = out_dir / "results"
     res_dir.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()

@@ -20,6 +20,7 @@ Modules: :mod:`noiselab.scale.lattice` (chunked grids and fractal sums),
 """
 from .._core import require_dask
 from . import lattice, spectral  # noqa: F401  (importing them registers the dask implementations)
+from . import zarr  # noqa: F401  (registers write_zarr and read_zarr for dask arrays)
 from .run import compute
 
 __all__ = ["require_dask", "compute"]

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["add_dask_arguments", "write_noise_zarr", "write_snow_zarr"]
+__all__ = ["add_dask_arguments", "parse_axes", "write_noise_zarr", "write_snow_zarr"]
 
 _DIMS = {1: ("x",), 2: ("y", "x"), 3: ("z", "y", "x")}
 
@@ -16,12 +16,37 @@ def add_dask_arguments(parser, chunks_help):
                              "or the address of a running dask.distributed scheduler, e.g. tcp://host:8786")
 
 
+def parse_axes(name, text, dims, cast):
+    """A per-axis option of the command line (``8``, ``480x640``, ``2,8,8``) as ``dims`` values of type ``cast``.
+
+    One value applies to every axis. Shared by the in-memory commands
+    (``--size``, ``--cells``) and the chunked path (``--chunks``); it lives
+    here, below the command line, so that both can import it.
+
+    Examples
+    --------
+    >>> parse_axes("--size", "48x128x128", 3, int)
+    [48, 128, 128]
+    >>> parse_axes("--cells", "8", 2, float)
+    [8.0, 8.0]
+    """
+    parts = str(text).lower().replace(",", "x").split("x")
+    try:
+        values = [cast(p.strip()) for p in parts]   # an empty part ('10x', 'x8') is an error, not a default
+    except ValueError:
+        raise ValueError(f"{name} must be a number or {dims} numbers joined by 'x' (e.g. 8 or "
+                         f"{'x'.join(['8'] * dims)}), got {text!r}") from None
+    if len(values) == 1:
+        values = values * dims
+    if len(values) != dims:
+        raise ValueError(f"{name} must have 1 or {dims} entries for a {dims}-D field, got {text!r}")
+    return values
+
+
 def _parse_chunks(text, dims):
     if text is None or str(text).strip().lower() == "auto":
         return "auto"
-    from ..cli.noise import _parse_axes
-
-    values = _parse_axes("--chunks", text, dims, int)
+    values = parse_axes("--chunks", text, dims, int)
     if any(v < 1 for v in values):
         raise ValueError(f"--chunks entries must be >= 1, got {text!r}")
     return tuple(values)

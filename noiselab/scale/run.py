@@ -70,7 +70,8 @@ def compute(*objs, scheduler=None, progress=None):
     Parameters
     ----------
     *objs : dask collections
-        What to compute (e.g. the delayed store of :func:`noiselab.io.write_zarr`).
+        What to compute (e.g. the delayed store that :func:`noiselab.scale.zarr.write_dask_zarr` builds
+        for :func:`noiselab.io.write_zarr`).
     scheduler : None, str or distributed.Client, optional
         ``None``: the active ``distributed.Client`` if there is one, else dask's
         default (threads). ``"threads"``, ``"processes"``, ``"synchronous"``:

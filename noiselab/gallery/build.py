@@ -1,9 +1,9 @@
 """Build the noiselab gallery: the seed papers' figures, reproduced and measured.
 
-Usage (both do the same thing)::
+Usage (both do the same thing, from any folder)::
 
-    python3 gallery/build.py [--out out/gallery] [--only GROUP] [--quick] [--force]
-    python3 -m noiselab gallery [same options]
+    noiselab gallery [--out out/gallery] [--only GROUP] [--quick] [--force]
+    python3 -m noiselab.gallery [same options]
 
 Every registered figure is built into ``OUT/<group>/<name>/`` together with a
 ``manifest.json`` that records its content hash (figure function source +
@@ -13,16 +13,6 @@ folder is written atomically (temporary folder, then rename), and so is
 ``OUT/index.html``, which shows every figure and plays every video. Nothing is
 downloaded: everything drawn is computed or ships with a package.
 """
-if __name__ == "__main__" and not __package__:
-    # run as a script: load this folder as a package and hand over to it
-    import sys as _sys
-    from pathlib import Path as _Path
-
-    _sys.path.insert(0, str(_Path(__file__).resolve().parents[1]))
-    from noiselab.cli.gallery import load_builder as _load
-
-    _sys.exit(_load().main())
-
 import argparse
 import json
 import os
@@ -37,7 +27,7 @@ from noiselab.io import atomic_output
 from .html import render_index
 from .registry import content_hash, specs
 
-DEFAULT_OUT = Path("out") / "gallery"
+DEFAULT_OUT = Path("out") / "gallery"   # under the current folder, never the package's
 MANIFEST = "manifest.json"
 
 
@@ -196,7 +186,7 @@ def run(args) -> int:
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="gallery/build.py", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="python3 -m noiselab.gallery", description=__doc__.split("\n\n")[0])
     add_arguments(parser)
     args = parser.parse_args(argv)
     try:

@@ -19,8 +19,7 @@ def _fd_divergence(field, x, h=1e-5):
         title="Curl noise: a divergence-free flow field beside plain vector noise",
         params=dict(samples=256, cells=4.0, arrows=24, seed=7), quick=dict(samples=64, arrows=12), uses=USES)
 def curl_flow(out, *, samples, cells, arrows, seed):
-    from noiselab import LatticeNoise, curl_noise
-    from noiselab.lattice import Grid
+    from noiselab.lattice import LatticeNoise, curl_noise, Grid
 
     from .._common import pyplot, save_figure
 
@@ -62,8 +61,7 @@ def curl_flow(out, *, samples, cells, arrows, seed):
         title="Domain warping and its exact gradient",
         params=dict(samples=384, cells=4.0, amount=0.8, seed=3), quick=dict(samples=96), uses=USES)
 def warp_figure(out, *, samples, cells, amount, seed):
-    from noiselab import LatticeNoise, warp
-    from noiselab.lattice import Grid
+    from noiselab.lattice import LatticeNoise, warp, Grid
 
     from .._common import pyplot, save_figure
 
@@ -111,8 +109,8 @@ def warp_figure(out, *, samples, cells, amount, seed):
 def normals(out, *, resolutions, subdivisions, shade, seed):
     import trimesh
 
-    from noiselab import LatticeNoise, displace
-    from noiselab.geometry import grid_points, monge_surface, vertex_normals
+    from noiselab.geometry import displace, grid_points, monge_surface, vertex_normals
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry.normals import displaced_normals, monge_normals, normal_angles
 
     from .._common import pyplot, save_figure

@@ -16,7 +16,7 @@ figure it reproduces, the parameters, and the measured analyser figures to the
 caption, so every caption carries all three.
 
 Adding a figure is adding one decorated function to one of the modules listed
-in :data:`gallery.figures.GROUP_MODULES`.
+in :data:`noiselab.gallery.figures.GROUP_MODULES`.
 """
 from __future__ import annotations
 
@@ -123,7 +123,8 @@ def specs(only=None) -> list[FigureSpec]:
     return chosen
 
 
-_ROOT = Path(__file__).resolve().parents[1]
+# the folder that holds the noiselab package (a checkout, or site-packages when installed)
+_ROOT = Path(__file__).resolve().parents[2]
 
 
 def module_version(module: str) -> str:
@@ -176,7 +177,7 @@ def content_hash(spec: FigureSpec, quick: bool = False) -> str:
     """Hash of (function source and its module-local helpers, parameters, noiselab version and source of the modules it uses)."""
     from noiselab import __version__
 
-    modules = sorted(set(spec.uses) | {"gallery._common"})
+    modules = sorted(set(spec.uses) | {"noiselab.gallery._common"})
     payload = {
         "key": spec.key,
         "source": function_sources(spec.func),

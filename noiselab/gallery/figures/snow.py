@@ -13,8 +13,8 @@ LAND = ("noiselab.lattice", "noiselab.fractal")
         params=dict(frames=64, size=512, c=1.0, thickness=0.1, beta=1.5, seed=1),
         quick=dict(frames=8, size=64), uses=SNOW)
 def opacity(out, *, frames, size, c, thickness, beta, seed):
-    from noiselab import analysis, snow
-    from noiselab.snow import flake_speeds
+    from noiselab import analysis
+    from noiselab.snow import snow, flake_speeds
 
     from .._common import pyplot, save_figure, save_video
 
@@ -54,7 +54,8 @@ def opacity(out, *, frames, size, c, thickness, beta, seed):
         params=dict(frames=64, size=512, c=1.0, beta=1.5, intensity=250, seed=2),
         quick=dict(frames=8, size=64), uses=SNOW + LAND + ("noiselab.geometry",))
 def winter_scene(out, *, frames, size, c, beta, intensity, seed):
-    from noiselab import analysis, snow
+    from noiselab import analysis
+    from noiselab.snow import snow
 
     from .._common import alpha_to_rgb_composite, save_image, save_video, terrain
 
@@ -83,7 +84,8 @@ def winter_scene(out, *, frames, size, c, beta, intensity, seed):
         params=dict(C=1.0, grid=61, frames=32, size=64, seed=3), quick=dict(grid=21, frames=8, size=32),
         uses=SNOW)
 def tent_plot(out, *, C, grid, frames, size, seed):
-    from noiselab import analysis, snow
+    from noiselab import analysis
+    from noiselab.snow import snow
 
     from .._common import pyplot, save_figure
 
@@ -118,8 +120,8 @@ def tent_plot(out, *, C, grid, frames, size, seed):
 
 
 def _tiling(out, tile, frames, size, c, seed, seeds):
-    from noiselab import analysis, snow
-    from noiselab.snow import iter_tiled_frames
+    from noiselab import analysis
+    from noiselab.snow import snow, iter_tiled_frames
 
     from .._common import alpha_to_rgb_composite, save_image, save_video, terrain
 
@@ -175,7 +177,8 @@ def tiling_64(out, *, tile, frames, size, c, seeds, seed):
         params=dict(C=1.0, s=0.3, grid=61, frames=64, size=384, pan=1.0, seed=6),
         quick=dict(grid=21, frames=8, size=64), uses=SNOW + LAND + ("noiselab.geometry",))
 def sheared_tent(out, *, C, s, grid, frames, size, pan, seed):
-    from noiselab import analysis, snow
+    from noiselab import analysis
+    from noiselab.snow import snow
 
     from .._common import alpha_to_rgb_composite, pyplot, save_figure, save_video, terrain
 
@@ -214,7 +217,7 @@ def sheared_tent(out, *, C, s, grid, frames, size, pan, seed):
 @figure("snow", "fig6_2", seed="Zhang 2003, Fig. 6.2", title="Motion-parallax transparency stimuli: checkerboard, moon, disc",
         params=dict(frames=64, size=512, c=1.0, transmittance=0.3, seed=7), quick=dict(frames=8, size=64), uses=SNOW)
 def parallax(out, *, frames, size, c, transmittance, seed):
-    from noiselab import parallax_composite, snow
+    from noiselab.snow import parallax_composite, snow
 
     from .._common import checkerboard, disc, moon, pyplot, save_figure, save_video
 
@@ -242,7 +245,8 @@ def parallax(out, *, frames, size, c, transmittance, seed):
 @figure("snow", "fig6_3", seed="Zhang 2003, Fig. 6.3", title="Motion-inconsistent stimulus: the disc falls down-left, the surround down-right",
         params=dict(frames=64, size=512, c=1.0, transmittance=0.3, seed=8), quick=dict(frames=8, size=64), uses=SNOW)
 def motion_inconsistent(out, *, frames, size, c, transmittance, seed):
-    from noiselab import analysis, parallax_composite, snow
+    from noiselab import analysis
+    from noiselab.snow import parallax_composite, snow
 
     from .._common import disc, save_image, save_video
 

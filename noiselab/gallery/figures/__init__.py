@@ -2,7 +2,7 @@
 
 The order below is the order of the gallery page. Adding a group is adding a
 module and its name here; adding a figure is adding a decorated function to
-a module (see :mod:`gallery.registry`).
+a module (see :mod:`noiselab.gallery.registry`).
 """
 import importlib
 

@@ -75,7 +75,7 @@ def moon(n):
 
 def alpha_to_rgb_composite(alpha, background, intensity=250):
     """Eq. 3.6 over an RGB background, as uint8."""
-    from noiselab import composite
+    from noiselab.snow import composite
 
     out = composite(alpha, background, intensity=intensity)
     out = np.asarray(out)
@@ -104,8 +104,7 @@ def cow(resolution=96, size=2.0):
     """
     import trimesh
 
-    from noiselab.geometry import normalize
-    from noiselab.geometry import require_pyvista, pyvista_to_trimesh
+    from noiselab.geometry import normalize, require_pyvista, pyvista_to_trimesh
 
     pv = require_pyvista()
     parts = [((0.0, 0.0, 0.0), (0.95, 0.42, 0.42)),            # body
@@ -149,13 +148,12 @@ def terrain(height, width, *, seed=3, grid=384, extent=24.0, octaves=6, relief=3
     (haze: ``1 - exp(-d / haze)``), so the spectral snow of Fig. 3.1 falls over a
     landscape of the lattice family.
     """
-    from noiselab import LatticeNoise
-    from noiselab.geometry import height_map
-    from noiselab.geometry import require_pyvista
+    from noiselab.lattice import LatticeNoise
+    from noiselab.geometry import height_map, require_pyvista
 
     pv = require_pyvista()
     ext = ((0.0, 5.0), (0.0, 5.0))
-    h = height_map(LatticeNoise(2, seed=seed), (grid, grid), ext, octaves=octaves, kind="fractal", on_aliasing="ignore")
+    h = height_map(LatticeNoise(2, seed=seed), (grid, grid), ext, octaves=octaves, kind="fractal", on_aliasing="ignore").T  # (y, x)-ordered heights, transposed: the picture as before
     h = (h - h.min()) / max(float(np.ptp(h)), 1e-12)
     z = relief * h ** 1.8
     ys, xs = np.meshgrid(np.linspace(0, extent, grid), np.linspace(0, extent, grid), indexing="ij")
@@ -165,7 +163,7 @@ def terrain(height, width, *, seed=3, grid=384, extent=24.0, octaves=6, relief=3
     zz = np.asarray(surf.points)[:, 2] / relief
     # a smooth noise (another fractal sum) breaks the snow line up into drifts
     tex = 0.08 * (height_map(LatticeNoise(2, seed=seed + 1), (grid, grid), ((0.0, 20.0), (0.0, 20.0)), octaves=3,
-                             kind="fractal", on_aliasing="ignore").T.ravel())
+                             kind="fractal", on_aliasing="ignore").ravel())
     meadow, rock, snow = np.array([70, 92, 62.0]), np.array([112, 104, 98.0]), np.array([236, 240, 246.0])
     steep = np.clip((0.82 - nz) / 0.2, 0, 1)[:, None]
     colour = meadow * (1 - steep) + rock * steep

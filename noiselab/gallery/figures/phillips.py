@@ -20,7 +20,8 @@ def _range(a):
 def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
     from scipy.ndimage import uniform_filter1d
 
-    from noiselab import LatticeNoise, analysis
+    from noiselab import analysis
+    from noiselab.lattice import LatticeNoise
 
     from .._common import pyplot, save_figure
 
@@ -80,7 +81,7 @@ def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
 @figure("phillips", "fig02", seed="Phillips 2004, Fig. 2", title="Diagram: random-number tables, permutation table, basis function",
         params=dict(entries=16, table_size=256, seed=1), quick=dict(entries=8), uses=NOISE)
 def fig02(out, *, entries, table_size, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
 
     from .._common import pyplot, save_figure
 
@@ -136,7 +137,7 @@ def fig02(out, *, entries, table_size, seed):
         params=dict(arc_deg=5.0, cycles_per_degree=2.0, amplitudes=(0.0, 0.0005, 0.001, 0.002, 0.004), points=800, seed=2),
         quick=dict(points=200), uses=GEOM)
 def fig03(out, *, arc_deg, cycles_per_degree, amplitudes, points, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import noisy_arc
 
     from .._common import pyplot, save_figure
@@ -178,7 +179,7 @@ def _independence(values, what, unit="seeds"):
         params=dict(seconds=2.0, fps=50, cycles_per_second=1.5, tail_seconds=1.0, size=320, panels=4, seeds=64, seed=3),
         quick=dict(fps=10, size=96, seeds=16), uses=GEOM)
 def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, seeds, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import trajectory, trajectory_frames
 
     from .._common import pyplot, save_figure, save_video
@@ -221,7 +222,7 @@ def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, s
         params=dict(amplitudes=(0.1, 0.2, 0.4), frequencies=(1.0, 2.0, 4.0), points=1440, seed=4),
         quick=dict(points=360), uses=GEOM)
 def fig05(out, *, amplitudes, frequencies, points, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import noisy_circle
 
     from .._common import pyplot, save_figure
@@ -283,7 +284,7 @@ def _taps_1d(kernel, x):
         params=dict(point=(14.0, 1.0), planes=(-1, 4), xrange=(9, 20), kernel="cubic", checks=200, seed=6),
         quick=dict(checks=20), uses=NOISE)
 def fig06(out, *, point, planes, xrange, kernel, checks, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
 
     from .._common import pyplot, save_figure
 
@@ -394,7 +395,8 @@ def _anisotropy_words(value):
         params=dict(frames=48, size=256, cells=4.0, cells_per_frame=0.05, panels=4, seed=5),
         quick=dict(frames=8, size=64), uses=NOISE)
 def fig07(out, *, frames, size, cells, cells_per_frame, panels, seed):
-    from noiselab import LatticeNoise, analysis
+    from noiselab import analysis
+    from noiselab.lattice import LatticeNoise
 
     from .._common import pyplot, save_figure, save_video
 
@@ -448,7 +450,8 @@ def _render_tiles(meshes, path, labels, columns=3, cell=300, **kw):
 @figure("phillips", "fig08", seed="Phillips 2004, Fig. 8", title="A Monge surface z = noise(x, y) and its depth map",
         params=dict(grid=160, cells=4.0, amplitude=1.6, size=480, seed=6), quick=dict(grid=32, size=160), uses=GEOM)
 def fig08(out, *, grid, cells, amplitude, size, seed):
-    from noiselab import LatticeNoise, analysis
+    from noiselab import analysis
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import height_map, height_map_image, monge_surface
 
     noise = LatticeNoise(2, seed=seed)
@@ -473,24 +476,24 @@ def fig08(out, *, grid, cells, amplitude, size, seed):
         params=dict(arrows=20, cells=4.0, size=512, streamlines=60, seed=7), quick=dict(arrows=10, size=200, streamlines=10),
         uses=GEOM)
 def fig09(out, *, arrows, cells, size, streamlines, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import flow_field, quiver_image
 
     field = LatticeNoise(2, 2, seed=seed)
     ext = ((0.0, cells), (0.0, cells))
     quiver_image(field, out / "fig09.png", shape=(arrows, arrows), extent=ext, size=size, streamline_seeds=streamlines, seed=seed)
     _, vec = flow_field(field, (64, 64), ext)
-    ang = np.arctan2(vec[..., 1], vec[..., 0])
+    ang = np.arctan2(vec[..., 0], vec[..., 1])   # vectors are (v_y, v_x), in array-axis order
     return Result([out / "fig09.png"], f"At each (x, y) a 2-vector from 2-output noise, over {cells:g} x {cells:g} cells; "
                                        "grey: streamlines through the field.",
-                  {"vx range": _range(vec[..., 0]), "vy range": _range(vec[..., 1]),
+                  {"vx range": _range(vec[..., 1]), "vy range": _range(vec[..., 0]),
                    "mean resultant length of directions (0 = no preferred direction)": float(np.hypot(np.cos(ang).mean(), np.sin(ang).mean()))})
 
 
 @figure("phillips", "fig10", seed="Phillips 2004, Fig. 10", title="A 3-D vector field, as a cross-fusible stereo pair",
         params=dict(glyphs=6, cells=3.0, size=360, eye_deg=4.0, seed=8), quick=dict(glyphs=3, size=120), uses=GEOM)
 def fig10(out, *, glyphs, cells, size, eye_deg, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import flow_field, flow_glyphs, render_mesh
 
     from .._common import save_image
@@ -506,13 +509,13 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
     return Result([save_image(out / "stereo.png", pair)],
                   f"{glyphs}^3 arrows of 3-output noise of (x, y, z); the two views differ by {eye_deg:g} degrees of azimuth "
                   "(left image = right eye, for cross-fusing).",
-                  {f"v{c} range": _range(vec[..., i]) for i, c in enumerate("xyz")})
+                  {f"v{c} range": _range(vec[..., i]) for i, c in enumerate("zyx")})
 
 
 @figure("phillips", "fig11", seed="Phillips 2004, Fig. 11", title="Height and colour from one vector-valued noise",
         params=dict(grid=96, cells=3.0, size=400, seeds=32, seed=9), quick=dict(grid=24, size=140, seeds=8), uses=GEOM)
 def fig11(out, *, grid, cells, size, seeds, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import colored_surface, render_mesh
 
     from .._common import save_image
@@ -551,7 +554,9 @@ def _slope_sentence(slopes, dim, gain=0.5, tolerance=0.25):
 
 
 def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=1, zoom=None):
-    from noiselab import LatticeNoise, analysis, fractal_sum, turbulence
+    from noiselab import analysis
+    from noiselab.fractal import fractal_sum, turbulence
+    from noiselab.lattice import LatticeNoise
 
     from .._common import pyplot, save_figure
 
@@ -616,7 +621,8 @@ def fig13(out, *, octaves, length, samples, cells, zoom, seed):
 
 
 def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed, seeds=1):
-    from noiselab import LatticeNoise, analysis
+    from noiselab import analysis
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import height_map, monge_surface
 
     noise = LatticeNoise(2, seed=seed)
@@ -682,7 +688,7 @@ def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_fr
                     size=1000, seed=12),
         quick=dict(frequencies=(1.0, 2.0, 3.0, 4.0), size=400), uses=GEOM)
 def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
 
     field = LatticeNoise(3, seed=seed)
     first, r1 = _spheres(field, [(a, frequency, 1, "fractal") for a in amplitudes])
@@ -710,7 +716,7 @@ def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
         params=dict(octaves=6, frequency=1.0, amplitude=0.3, samples_per_period=3.0, size=900, seed=13),
         quick=dict(octaves=3, size=360), uses=GEOM)
 def fig17(out, *, octaves, frequency, amplitude, samples_per_period, size, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import resolution_report
 
     field = LatticeNoise(3, seed=seed)
@@ -743,7 +749,7 @@ def fig17(out, *, octaves, frequency, amplitude, samples_per_period, size, seed)
         params=dict(amplitudes=(0.0, 0.1, 0.2, 0.3, 0.4, 0.5), scale=0.6, frequency=2.0, resolution=96, size=900, seed=14),
         quick=dict(amplitudes=(0.0, 0.25, 0.5), resolution=48, size=360), uses=GEOM)
 def fig18(out, *, amplitudes, scale, frequency, resolution, size, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import resolution_report, subdivide_for_noise
 
     from .._common import cow
@@ -775,7 +781,7 @@ def fig18(out, *, amplitudes, scale, frequency, resolution, size, seed):
 @figure("phillips", "fig19", seed="Phillips 2004, Fig. 19", title="Squashed spheres (5%) with noise from 0 to 10% of the radius",
         params=dict(squash=0.05, amplitudes=(0.0, 0.05, 0.1), frequency=2.0, size=600, seed=15), quick=dict(size=240), uses=GEOM)
 def fig19(out, *, squash, amplitudes, frequency, size, seed):
-    from noiselab import LatticeNoise
+    from noiselab.lattice import LatticeNoise
     from noiselab.geometry import arrange, squashed_sphere
 
     base = squashed_sphere(squash, subdivisions=5)
@@ -794,7 +800,8 @@ def fig19(out, *, squash, amplitudes, frequency, size, seed):
                     trial_size=256, trial_seeds=3, size=900, seed=16),
         quick=dict(frequencies=(1.0, 2.0, 3.0), trial_size=64, trial_seeds=2, size=360), uses=GEOM)
 def fig20(out, *, frequencies, amplitude, candidates, trial_size, trial_seeds, size, seed):
-    from noiselab import LatticeNoise, analysis
+    from noiselab import analysis
+    from noiselab.lattice import LatticeNoise
 
     # choose the basis and kernel that give the most isotropic blobs: anisotropy of 2-D slices in the blobs' band
     # (half to twice the lattice rate), mean over seeds; also the plateau fraction (pixels whose gradient is below

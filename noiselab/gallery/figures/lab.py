@@ -12,8 +12,10 @@ USES = ("noiselab.spectral", "noiselab.lattice", "noiselab.fractal", "noiselab.a
         title="1/f texture: spectral synthesis beside lattice fractal sums, with radial spectra and anisotropy",
         params=dict(size=512, octaves=8, cells=4.0, gains=(1.0, 0.5), seed=21), quick=dict(size=64, octaves=4), uses=USES)
 def one_over_f(out, *, size, octaves, cells, gains, seed):
-    from noiselab import LatticeNoise, analysis, fractal_sum, spectral_noise
-    from noiselab.lattice import Grid
+    from noiselab import analysis
+    from noiselab.fractal import fractal_sum
+    from noiselab.lattice import LatticeNoise, Grid
+    from noiselab.spectral import spectral_noise
 
     from .._common import pyplot, save_figure
 
@@ -64,8 +66,8 @@ def one_over_f(out, *, size, octaves, cells, gains, seed):
         title="Value and gradient noise for every smoothing kernel: images and radial spectra",
         params=dict(size=256, cells=8.0, seed=22), quick=dict(size=64), uses=USES)
 def kernels(out, *, size, cells, seed):
-    from noiselab import LatticeNoise, analysis
-    from noiselab.lattice import kernel_names
+    from noiselab import analysis
+    from noiselab.lattice import LatticeNoise, kernel_names
 
     from .._common import pyplot, save_figure
 
@@ -144,7 +146,8 @@ def measures(out, *, size):
         params=dict(cells=256, spc=2, seeds=8, kernel="catmull-rom", seed=23), quick=dict(cells=32, seeds=3),
         uses=USES)
 def hashes(out, *, cells, spc, seeds, kernel, seed):
-    from noiselab import LatticeNoise, analysis
+    from noiselab import analysis
+    from noiselab.lattice import LatticeNoise
     from noiselab.lab.hashes import profile_striping
 
     from .._common import pyplot, save_figure
