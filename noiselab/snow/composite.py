@@ -18,18 +18,8 @@ def _check_alpha(alpha, name="alpha"):
     return alpha
 
 
-def background_layout(bg_shape, T, H, W):
-    """``(is_video, is_rgb)`` of a background of shape ``bg_shape`` for alpha frames ``(H, W)``, or a ValueError naming both shapes.
-
-    ``T`` is the number of snow frames, or None for a still (then only a
-    still background fits). Used by :func:`composite` and by ``noiselab snow``
-    to check a background before rendering.
-
-    Examples
-    --------
-    >>> background_layout((4, 32, 48, 3), 4, 32, 48)
-    (True, True)
-    """
+def _background_layout(bg_shape, T, H, W):
+    """(is_video, is_rgb) of a background for alpha frames (H, W), or raise naming both shapes."""
     nd = len(bg_shape)
     if nd == 2 and bg_shape == (H, W):
         return False, False
@@ -42,9 +32,6 @@ def background_layout(bg_shape, T, H, W):
     want = f"(H, W), (H, W, 3), (T, H, W) or (T, H, W, 3) with T, H, W = {T}, {H}, {W}" if T is not None \
         else f"(H, W) or (H, W, 3) with H, W = {H}, {W}"
     raise ValueError(f"background shape {tuple(bg_shape)} does not match the snow: expected {want}")
-
-
-_background_layout = background_layout  # the name noiselab.cli.snow imports today (its owner moves to the public one)
 
 
 def composite(alpha, background, intensity=250):
@@ -87,7 +74,7 @@ def composite(alpha, background, intensity=250):
     T = None if still_alpha else alpha.shape[0]
     if still_alpha and bg.ndim in (3, 4) and not (bg.ndim == 3 and bg.shape == (H, W, 3)):
         T = bg.shape[0]
-    is_video, is_rgb = background_layout(bg.shape, T, H, W)
+    is_video, is_rgb = _background_layout(bg.shape, T, H, W)
     if bg.dtype == np.uint8:
         out_dtype, level = np.uint8, intensity
     elif bg.dtype.kind == "f":
