@@ -20,7 +20,7 @@ import math
 import numba
 import numpy as np
 
-from .._core import as_generator, check_int, check_memory, check_real, check_shape, float_dtype
+from .._core import as_generator, check_band, check_int, check_memory, check_real, check_shape, float_dtype
 from ..lattice import LatticeNoise
 from ..snow import rescale_opacity
 from ..spectral.envelopes import unit_direction
@@ -34,14 +34,7 @@ def _check_scene(shape, c, band, direction):
     c = check_real("c (rad/frame)", c, lo=0.0, hi=math.pi)
     if band is None:
         band = (W / 32, W / 4)
-    try:
-        lo, hi = band
-    except (TypeError, ValueError):
-        raise ValueError(f"band must be a pair (lo, hi) in cycles/frame, got {band!r}") from None
-    lo = check_real("band[0] (cycles/frame)", lo, lo=0.0, lo_open=True)
-    hi = check_real("band[1] (cycles/frame)", hi, lo=0.0, lo_open=True, hi=W / 2)
-    if not lo < hi:
-        raise ValueError(f"band is empty: need 0 < lo < hi <= {W / 2:g} cycles/frame, got ({lo:g}, {hi:g})")
+    lo, hi = check_band("band", band, W / 2, lo_open=True, width=W)
     return shape, c, (lo, hi), unit_direction(direction)
 
 
