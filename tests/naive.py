@@ -218,7 +218,7 @@ def synthesize(shape, envelope, seed, amplitude="uniform", parts=coefficient_par
     S.flat[cells] = env.flat[cells] * np.sqrt(a2 / (c * c + s * s)) * (c + 1j * s)
     for j in self_conjugate_columns(shape[-1]):
         S[..., j] = hermitian_plane(S[..., j], env[..., j] > 0)
-    return np.fft.irfftn(S, s=shape), S
+    return np.fft.irfftn(S, s=shape, axes=range(len(shape))), S
 
 
 def noise_envelope(shape, exponent, band, dc):
@@ -266,7 +266,7 @@ def spectral_noise(shape, exponent=1.0, band=None, seed=0, amplitude="rayleigh",
     S.flat[idx] = law.flat[idx] * np.sqrt(a2 / (c * c + s * s)) * (c + 1j * s)
     for j in self_conjugate_columns(shape[-1]):
         S[..., j] = hermitian_plane(S[..., j], cells[..., j])
-    field = np.fft.irfftn(S, s=shape)
+    field = np.fft.irfftn(S, s=shape, axes=range(len(shape)))
     if normalize == "sample":
         return field / field.std()
     full = np.where(cells, law, 0.0) ** 2

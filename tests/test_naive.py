@@ -39,13 +39,14 @@ SHAPES = [(16,), (15,), (8, 12), (9, 7), (4, 6, 8), (5, 7, 9)]
 @pytest.mark.parametrize("amplitude", ["uniform", "rayleigh", "fixed"])
 def test_documented_float32_draws_are_the_exact_math_rounded(amplitude):
     # the float32 construction the reference reproduces bit for bit is the exact math of the
-    # module notes to float32 rounding: cos and sin within 2**-23, a**2 within 2**-23 max(1, a**2)
+    # module notes to float32 rounding: cos and sin within 2**-23, a**2 within 2**-22 max(1, a**2) (a few
+    # float32 roundings; absolute below 1, where the log sees only the 24 leading bits of u)
     key = naive.stream_key(11)
     a2, c, s = naive.coefficient_parts(key, 20000, amplitude)
     ea2, ec, es = naive.coefficient_parts_exact(key, 20000, amplitude)
     assert a2.dtype == c.dtype == s.dtype == np.float32
     assert np.max(np.abs(c - ec)) <= F32_ULP and np.max(np.abs(s - es)) <= F32_ULP
-    assert np.all(np.abs(a2 - ea2) <= F32_ULP * np.maximum(1.0, ea2))
+    assert np.all(np.abs(a2 - ea2) <= 2 * F32_ULP * np.maximum(1.0, ea2))
     assert abs(np.mean(ea2) - 1) < 0.03  # E[a**2] = 1
 
 
@@ -61,8 +62,8 @@ def test_draw_coefficients_equals_reference(amplitude):
 
 @pytest.mark.parametrize("shape", [(), (1,), (2,), (7,), (8,), (4, 6), (5, 5), (3, 4, 5), (4, 4, 2)])
 def test_hermitian_plane_equals_reference(shape):
-    plane = RNG.standard_normal(shape) + 1j * RNG.standard_normal(shape)
-    plane[RNG.random(shape) < 0.2] = 0  # holes: some pairs with one member outside the support
+    plane = np.asarray(RNG.standard_normal(shape) + 1j * RNG.standard_normal(shape))
+    plane[np.asarray(RNG.random(shape)) < 0.2] = 0  # holes: some pairs with one member outside the support
     support = plane != 0
     want = naive.hermitian_plane(plane, support)
     got = hermitian_plane(plane, support)
@@ -114,7 +115,7 @@ NOISE_CASES = [
 @pytest.mark.parametrize("case", NOISE_CASES, ids=lambda c: "-".join(f"{k}={v}" for k, v in c.items()))
 @pytest.mark.parametrize("shape", SHAPES)
 def test_spectral_noise_equals_reference(shape, case):
-    kw = dict(amplitude="rayleigh", normalize="expected", band=None, dc=False, **case)
+    kw = {**dict(amplitude="rayleigh", normalize="expected", band=None, dc=False), **case}
     if kw["band"] is not None:
         kw["band"] = (kw["band"][0], min(kw["band"][1], shape[-1] / 2))
     seed = int(RNG.integers(1 << 30))
@@ -160,7 +161,7 @@ def test_tent_support_and_amplitudes_equal_reference(shape, kw):
 def test_tent_spectrum_and_snow_equal_reference(shape, kw, amplitude):
     want = naive.tent_spectrum(shape, seed=7, amplitude=amplitude, **kw)
     assert_close(snow_spectrum(shape, seed=7, amplitude=amplitude, dtype=np.float64, **kw), want)
-    raw = np.fft.irfftn(want, s=shape)
+    raw = np.fft.irfftn(want, s=shape, axes=(0, 1, 2))
     assert_close(snow(shape, seed=7, amplitude=amplitude, dtype=np.float64, rescale=False, **kw), raw)
     alpha = snow(shape, seed=7, amplitude=amplitude, dtype=np.float64, beta=1.5, **kw)
     assert_close(alpha, naive.rescale_opacity(raw, 1.5))
@@ -245,7 +246,7 @@ def test_motion_energy_equals_reference(velocity, tol, band, window):
                                 dict(window="hann", thickness=0.3)])
 def test_tent_energy_equals_reference(kw):
     shape = (8, 16, 16)
-    video = np.fft.irfftn(naive.tent_spectrum(shape, seed=2, c=0.9, band=(2, 7)), s=shape) \
+    video = np.fft.irfftn(naive.tent_spectrum(shape, seed=2, c=0.9, band=(2, 7)), s=shape, axes=(0, 1, 2)) \
         + 0.2 * np.random.default_rng(1).random(shape)
     got = tent_energy(video, 0.9, (2, 7), **kw)
     assert abs(got - naive.tent_energy(video, 0.9, (2, 7), **kw)) <= TOL
