@@ -280,7 +280,7 @@ def spectral_noise(shape, exponent=1.0, band=None, seed=0, amplitude="rayleigh",
 
 
 def tent_spectrum(shape, seed=0, c=1.0, band=None, thickness=0.1, direction=(0.0, 1.0), pan=(0.0, 0.0),
-                  exponent=1.0, amplitude="uniform"):
+                  exponent=1.0, amplitude="uniform", on_alias="drop"):
     """The falling-snow half spectrum of :func:`noiselab.snow.snow_spectrum`, cell by cell ([LZ], [Z] ch. 3-4).
 
     - Band ([Z] 3.2.2): the spatial cells with ``lo <= |f| <= hi`` (cycles per
@@ -294,8 +294,9 @@ def tent_spectrum(shape, seed=0, c=1.0, band=None, thickness=0.1, direction=(0.0
       ``c (1 +- thickness)``, a half-width ``thickness c |d . w|/|w|``.
     - A cell gets the temporal bins ``n`` its (thickened) surface overlaps,
       ``|n - T w_t / (2 pi)| <= 1/2 + half-width`` in bins, within the
-      Nyquist range ``|n| <= T/2`` (``n`` and ``n + T`` are one bin); a still
-      (``T = 1``) has the single bin 0.
+      Nyquist range ``|n| <= T/2`` (``n`` and ``n + T`` are one bin; bins past
+      it are left out, ``on_alias="drop"``: the reference never raises); a
+      still (``T = 1``) has the single bin 0.
     - Amplitude ``|w|**-exponent`` ([Z] 3.2.3, ``|w|`` in rad/px) split evenly
       over the cell's bins (divided by the square root of their count).
     - Random coefficients (:func:`draw_coefficients`) in the order: spatial
