@@ -267,10 +267,10 @@ def test_kernels_equal_reference(name):
     if name in naive.DERIVATIVES:
         assert k.continuity >= 1
         assert_close(k.derivative(y), naive.DERIVATIVES[name](y))
-        # the reference derivative is the reference kernel's
-        h = 1e-6
-        assert_close((naive.KERNELS[name](y + h) - naive.KERNELS[name](y - h)) / (2 * h),
-                     naive.DERIVATIVES[name](y), tol=1e-8)
+        # the reference derivative is the reference kernel's (off the knots, where K'' jumps)
+        h, yr = 1e-6, y[:2000]
+        assert_close((naive.KERNELS[name](yr + h) - naive.KERNELS[name](yr - h)) / (2 * h),
+                     naive.DERIVATIVES[name](yr), tol=1e-8)
     else:
         assert k.continuity < 1
 
