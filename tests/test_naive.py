@@ -365,6 +365,10 @@ def test_every_dimension_points_and_grids(dim, kernel, basis, hash):
     _check_float32(noise, x, lambda p: _want(ref, noise, p))
     if dim == 1:  # a plain array of scalar inputs
         assert_close(noise(x[:, 0]), _want(ref, noise, x))
+    # a power-of-two frequency and no phase: the integer hash's all-float32 kernel (exact float32 split)
+    noise2, ref2 = _pair(dim, seed=dim, kernel=kernel, basis=basis, hash=hash, frequency=2.0)
+    assert_close(noise2(x), _want(ref2, noise2, x))
+    _check_float32(noise2, x, lambda p: _want(ref2, noise2, p))
     shape = {1: (17,), 2: (9, 7), 3: (5, 6, 4), 4: (3, 4, 3, 2)}[dim]
     extent = [(-2.0 + a, 1.5 + 2 * a) for a in range(dim)]
     want = _want(ref, noise, naive.grid_points(shape, extent))
