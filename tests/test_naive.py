@@ -453,7 +453,8 @@ def test_fractal_sum_and_turbulence_points_and_grids(dim, kernel, basis, hash):
     x = _points(60 if dim < 4 else 20, dim, -6, 6)
     octaves = 4 if dim < 4 else 3
     shape = {1: (40,), 2: (12, 14), 3: (6, 7, 5), 4: (3, 3, 4, 3)}[dim]
-    extent = [(-1.5, 2.5 + 0.5 * a) for a in range(dim)]  # fine enough that every octave is visible
+    # samples 0.09 apart: finer than the last octave's lattice (1.1 * 2**3 cells per unit), so every octave is visible
+    extent = [(-1.5 + 0.2 * a, -1.5 + 0.2 * a + 0.09 * n) for a, n in enumerate(shape)]
     pts = naive.grid_points(shape, extent).reshape(-1, dim)
     total = sum(0.5 ** o for o in range(octaves))
     for func, turb in ((fractal_sum, False), (turbulence, True)):
@@ -496,10 +497,12 @@ def test_fractal_and_turbulence_gradients(dim, kernel, basis, hash):
         assert_close(grad, want)
         assert_close(value, naive.fractal_sum(ref, x, noise.bound, 3, turbulence=turb)[:, 0])
     shape = {1: (20,), 2: (8, 9), 3: (4, 5, 4), 4: (3, 2, 3, 2)}[dim]
-    extent = [(-1.0, 1.5 + a) for a in range(dim)]
+    extent = [(-1.0 + 0.3 * a, -1.0 + 0.3 * a + 0.15 * n) for a, n in enumerate(shape)]  # every octave visible
     pts = naive.grid_points(shape, extent).reshape(-1, dim)
     want = naive.fractal_gradient(ref, pts, noise.bound, 3)[:, 0].reshape(shape + (dim,))
-    assert_close(fractal_gradient(noise, Grid(shape, extent), 3), want)
+    got, used = fractal_gradient(noise, Grid(shape, extent), 3, return_octaves=True)
+    assert used == 3
+    assert_close(got, want)
 
 
 @pytest.mark.parametrize("shape,extent,frequency,octaves", [
