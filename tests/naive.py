@@ -279,6 +279,23 @@ def spectral_noise(shape, exponent=1.0, band=None, seed=0, amplitude="rayleigh",
 # ============================================================================ the tent (falling snow)
 
 
+def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
+    """Temporal frequency (rad/frame) of the tent at spatial frequency ``(wy, wx)`` rad/px, and its thickness unit.
+
+    [Z] Eq. 3.3 ``w_t = C w_v / |w|`` with numpy's FFT sign (a pattern moving
+    at ``v`` has ``w_t = -v . w``, [Z] Eq. 2.8): flakes falling along the unit
+    direction ``d`` at ``c / |w|`` px/frame give ``w_t = -c (d . w) / |w|``; a
+    panning camera adds ``-pan . w`` (the sheared tent, [Z] Eq. 4.2). Returns
+    ``(w_t, |d . w| / |w|)``; both 0 at DC.
+    """
+    wy, wx = np.broadcast_arrays(np.asarray(wy, dtype=float), np.asarray(wx, dtype=float))
+    d = np.array(direction, dtype=float) / np.hypot(*direction)
+    r = np.hypot(wy, wx)
+    along = np.zeros(r.shape)
+    np.divide(d[0] * wx + d[1] * wy, r, out=along, where=r > 0)
+    return -c * along - (pan[0] * wx + pan[1] * wy), np.abs(along)
+
+
 def tent_spectrum(shape, seed=0, c=1.0, band=None, thickness=0.1, direction=(0.0, 1.0), pan=(0.0, 0.0),
                   exponent=1.0, amplitude="uniform", on_alias="drop"):
     """The falling-snow half spectrum of :func:`noiselab.snow.snow_spectrum`, cell by cell ([LZ], [Z] ch. 3-4).
@@ -305,7 +322,6 @@ def tent_spectrum(shape, seed=0, c=1.0, band=None, thickness=0.1, direction=(0.0
     """
     T, H, W = shape
     lo, hi = (W / 32, W / 4) if band is None else band
-    d = np.array(direction, dtype=float) / np.hypot(*direction)
     cells, bins, amps = [], [], []
     for ky in range(H):
         for kx in range(W // 2 + 1):
@@ -315,9 +331,8 @@ def tent_spectrum(shape, seed=0, c=1.0, band=None, thickness=0.1, direction=(0.0
                 continue
             wy, wx = 2 * np.pi * fy, 2 * np.pi * fx
             r = np.hypot(wy, wx)
-            along = (d[0] * wx + d[1] * wy) / r
-            wt = -c * along - (pan[0] * wx + pan[1] * wy)
-            half = thickness * c * abs(along)
+            wt, along = (float(v) for v in tent_surface(wy, wx, c, direction, pan))
+            half = thickness * c * along
             if T == 1:
                 mine = [0]
             else:
@@ -472,14 +487,10 @@ def motion_energy(video, velocity, tol=1.0, band=None, window=None):
 def tent_energy(video, c, band, direction=(0.0, 1.0), pan=(0.0, 0.0), thickness=0.1, tol=0.5, window=None):
     """Fraction of the power on the (thickened, sheared) tent inside ``band`` (see :func:`tent_spectrum`)."""
     T, H, W = video.shape
-    d = np.array(direction, dtype=float) / np.hypot(*direction)
 
     def surface(ky, kx):
-        wy, wx = 2 * np.pi * ky / H, 2 * np.pi * kx / W
-        r = np.hypot(wy, wx)
-        along = (d[0] * wx + d[1] * wy) / r if r > 0 else 0.0
-        wt = -c * along - (pan[0] * wx + pan[1] * wy)
-        return wt * T / (2 * np.pi), thickness * c * abs(along) * T / (2 * np.pi)
+        wt, along = tent_surface(2 * np.pi * ky / H, 2 * np.pi * kx / W, c, direction, pan)
+        return float(wt) * T / (2 * np.pi), thickness * c * float(along) * T / (2 * np.pi)
 
     return _surface_fraction(video, surface, tol, band, window)
 

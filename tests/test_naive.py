@@ -168,6 +168,26 @@ def test_tent_spectrum_and_snow_equal_reference(shape, kw, amplitude):
     assert_close(alpha, naive.rescale_opacity(raw, 1.5))
 
 
+@pytest.mark.parametrize("c,direction,pan", [(1.0, (0.0, 1.0), (0.0, 0.0)), (0.7, (1.0, -2.0), (0.3, 0.1)),
+                                             (2.0, (-1.0, 0.0), (-0.5, 0.0))])
+def test_envelopes_equal_reference(c, direction, pan):
+    wt, wy, wx = naive.frequency_vectors((6, 10, 12))
+    surf, along = naive.tent_surface(wy, wx, c, direction, pan)
+    assert_close(envelopes.tent_surface(wy, wx, c, direction, pan), surf)
+    tol = np.pi / 6
+    want = (np.abs(wt - surf) <= tol).astype(float)
+    assert np.array_equal(envelopes.sheared_tent(wt, wy, wx, c, direction, pan, tolerance=tol), want)
+    if pan == (0.0, 0.0):
+        assert np.array_equal(envelopes.tent(wt, wy, wx, c, direction, tolerance=tol), want)
+    thick = (np.abs(wt - surf) <= tol + 0.3 * c * along).astype(float)
+    assert np.array_equal(envelopes.thickened_tent(wt, wy, wx, c, direction, pan, thickness=0.3, tolerance=tol), thick)
+    cells, law = naive.noise_envelope((6, 10, 12), 1.5, (2, 4), False)  # band (2, 4) cycles per 12 samples
+    got = envelopes.annulus(wt, wy, wx, lo=2 / 12, hi=4 / 12) * envelopes.power_law(wt, wy, wx, exponent=1.5)
+    assert np.array_equal(got > 0, cells)
+    # the reference law is in cycles/sample, the envelope's in rad/sample: a constant factor (2 pi)**-1.5
+    assert_close(got[cells], law[cells] * (2 * np.pi) ** -1.5)
+
+
 def test_tent_moves_flakes_at_c_over_w():
     # the reference's sign, checked on a translating pattern: a cosine of spatial frequency |w| moving
     # down at c/|w| px/frame has all its energy on the reference tent (and none on the opposite one)
