@@ -111,16 +111,10 @@ class LatticeNoise:
     catmull-rom, quintic); see also :func:`noiselab.curl_noise`,
     :func:`noiselab.warp` and :func:`noiselab.fractal.fractal_gradient`.
 
-    **Evaluation interface.** :meth:`evaluate`, :meth:`evaluate_grid` and
-    their Jacobian twins :meth:`evaluate_jacobian` and
-    :meth:`evaluate_grid_jacobian` evaluate the octave sum
-    ``sum_o gain**o b(noise(lacunarity**o x))`` (``b``: identity, or ``abs``
-    for turbulence) on points or a grid; ``__call__``, :meth:`grid` and the
-    derivative methods are their one-octave forms, and
-    :mod:`noiselab.fractal`, :mod:`noiselab.fields` and the dask path call
-    them. The work is done by module-level functions: :mod:`.tables`
-    (random tables and hashes), :mod:`.points_path`, :mod:`.grid_path`,
-    :mod:`.derivatives` and :mod:`.checks`.
+    **Evaluation interface.** :meth:`evaluate` and :meth:`evaluate_grid` (and
+    their Jacobian twins) sum octaves ``sum_o gain**o b(noise(lacunarity**o x))``
+    on points or grids; ``__call__``, :meth:`grid` and the derivative methods
+    are their one-octave forms, :mod:`noiselab.fractal` and the dask path call them.
 
     **Precision.** Coordinates are split in float64 into an integer lattice
     index and an exact fraction (``u - floor(u)`` is exact); the index is
@@ -199,19 +193,15 @@ class LatticeNoise:
         Parameters
         ----------
         points : array_like, shape (..., dim_in)
-            For ``dim_in == 1`` an array whose last axis is not 1 (or a scalar) is that many inputs.
-        octaves : int, default 1
-            Octaves summed (>= 1); one octave is the noise itself (``__call__``).
-        lacunarity, gain : float, default 2 and 0.5
-            Frequency (> 1) and amplitude (> 0) ratio between octaves.
+            As for ``__call__``.
+        octaves, lacunarity, gain : int, float, float; default 1, 2, 0.5
+            Octaves summed (>= 1; one is ``__call__``), their frequency (> 1) and amplitude (> 0) ratios.
         absval : bool, default False
-            Sum ``|noise|`` (turbulence) instead of ``noise`` (``b`` above).
-        dtype : float32 or float64, optional
-            Output precision; float32 for float32 points, else float64.
-        workers : int, default 1
-            Threads over blocks of points (scipy.fft's meaning; bit-identical for any count).
+            Sum ``|noise|`` (turbulence): ``b = abs``.
+        dtype, workers
+            As for ``__call__`` (``workers``: scipy.fft's meaning, bit-identical for any count).
         name : str, default "points"
-            The parameter's name in error messages (callers that take the points under another name pass theirs).
+            The points' name in error messages (for callers that take them under another name).
 
         Returns
         -------
@@ -271,18 +261,9 @@ class LatticeNoise:
                       dtype=np.float64):
         """:meth:`evaluate` on a regular grid (as :meth:`grid`), by the separable passes.
 
-        Parameters
-        ----------
-        shape, extent, window
-            As for :meth:`grid` (``noiselab.lattice.Grid`` holds the first two).
-        octaves, lacunarity, gain, absval
-            As for :meth:`evaluate`.
-        dtype : float32 or float64, default float64
-            Output precision (the computation is float64).
-
-        Returns
-        -------
-        ndarray, the window's shape (or ``+ (dim_out,)``)
+        ``shape``, ``extent``, ``window`` and ``dtype`` as for :meth:`grid`;
+        ``octaves``, ``lacunarity``, ``gain`` and ``absval`` as for
+        :meth:`evaluate`. Returns the window's shape (``+ (dim_out,)``).
 
         Examples
         --------
@@ -334,13 +315,9 @@ class LatticeNoise:
     def jacobian(self, points, *, return_value=False, workers=1):
         r"""The exact Jacobian ``d noise_c / d x_a`` at points ``(..., dim_in)``: shape ``(..., dim_out, dim_in)``.
 
-        In input units: the chain rule through ``a * noise(F x + phi)`` gives
-        ``a F_a`` times the lattice-space derivative, which is the kernel's
-        derivative on one axis of the tensor product (and, in the gradient
-        basis, the gradient component ``g_a`` weighted by the kernel). It
-        needs a kernel with a continuous first derivative (``quadratic``,
-        ``cubic``, ``catmull-rom``, ``quintic``); ``box`` and ``linear`` raise
-        ValueError.
+        In input units (:mod:`noiselab.lattice.derivatives`). It needs a kernel
+        with a continuous first derivative (``quadratic``, ``cubic``,
+        ``catmull-rom``, ``quintic``); ``box`` and ``linear`` raise ValueError.
 
         Parameters
         ----------
@@ -460,17 +437,14 @@ class LatticeNoise:
 
         Notes
         -----
-        The tensor-product kernel is applied one axis at a time to the block of
-        lattice values the grid covers (each pass is a banded matrix product),
-        so a sample costs ``taps`` multiply-adds in the last pass instead of
-        ``taps**d`` hashed lookups. Grids sparser than the lattice fall back
-        to the scattered path. Both paths agree to 1e-12 (tested). 2-D grids
-        with the table hash run every octave in one fused kernel, tile by
-        tile, with the same bits (tested); on a 512 x 512 grid of 32 cells it
-        ran at 0.9-1.8x pyfastnoisesimd's value and Perlin noise with
-        float64 output and 1.3-2.5x with float32 output (quintic, one and
-        six octaves, three runs of ``bench_lattice.py --grid-only``; see
-        ``benchmarks/bench_lattice.md``).
+        The kernel is applied one axis at a time to the block of lattice values
+        the grid covers (:mod:`noiselab.lattice.grid_path`): a sample costs
+        ``taps`` multiply-adds in the last pass instead of ``taps**d`` hashed
+        lookups; it agrees with the points path to 1e-12 (tested). On a 512 x
+        512 grid of 32 cells the fused 2-D kernel ran at 0.9-1.8x
+        pyfastnoisesimd's value and Perlin noise with float64 output and
+        1.3-2.5x with float32 output (quintic, one and six octaves, three runs
+        of ``bench_lattice.py --grid-only``; ``benchmarks/bench_lattice.md``).
         """
         if chunks is not None:
             return dispatch.chunked("lattice_grid")(self, shape, extent, dtype=dtype, chunks=chunks, window=window)
