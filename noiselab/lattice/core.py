@@ -178,13 +178,14 @@ class LatticeNoise:
                 + (", hash='integer')" if self.hash == "integer" else ")"))
 
     # ------------------------------------------------- the evaluation interface
-    def _octaves(self, octaves, lacunarity, gain):
-        """Checked octave parameters and the per-octave frequencies ``(octaves, dim_in)`` and amplitudes."""
-        octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
+    def _octave_arrays(self, octaves, lacunarity, gain):
+        """Per-octave frequencies ``(octaves, dim_in)`` and amplitudes, from checked octave parameters."""
+        if octaves == 1:  # the noise itself, without the array arithmetic (x * 1.0 is x: the same bits)
+            return self.frequency[None], np.array([self.scale])
         with np.errstate(over="ignore"):  # an overflow is refused by the amplitude and reach checks
             freqs = self.frequency[None, :] * (lacunarity ** np.arange(octaves))[:, None]
             amps = self.scale * gain ** np.arange(octaves)
-        return octaves, gain, freqs, amps
+        return freqs, amps
 
     def evaluate(self, points, *, octaves=1, lacunarity=2.0, gain=0.5, absval=False, dtype=None, workers=1,
                  name="points"):
@@ -217,8 +218,13 @@ class LatticeNoise:
         >>> bool(noise.evaluate(x, octaves=4, absval=True).min() >= 0)
         True
         """
+        octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
+        return self._sum_at(points, octaves, lacunarity, gain, absval, dtype, workers, name)
+
+    def _sum_at(self, points, octaves, lacunarity, gain, absval, dtype, workers, name):
+        """:meth:`evaluate` with checked octave parameters (``__call__`` comes here directly)."""
         workers = resolve_workers(workers)
-        octaves, gain, freqs, amps = self._octaves(octaves, lacunarity, gain)
+        freqs, amps = self._octave_arrays(octaves, lacunarity, gain)
         raw = as_array(name, points)
         lead, flat = prepare_points(self, raw, name)
         dtype = output_dtype(raw.dtype, dtype)
@@ -251,7 +257,7 @@ class LatticeNoise:
         """
         workers = resolve_workers(workers)
         checks.check_differentiable(self.kernel)
-        _, _, freqs, amps = self._octaves(octaves, lacunarity, gain)
+        freqs, amps = self._octave_arrays(*checks.check_octaves(octaves, lacunarity, gain))
         lead, flat = prepare_points(self, points, name)
         checks.check_large(flat.shape[0] * self.dim_out * (self.dim_in + 1) * 8 * 2, "lattice noise jacobian")
         out = evaluate_points_jac(self, flat, freqs, amps, absval, name, workers)
@@ -310,7 +316,7 @@ class LatticeNoise:
         evaluated on threads (the kernels release the GIL); every point's
         arithmetic is the same, so the result is bit-identical to one worker.
         """
-        return self.evaluate(points, dtype=dtype, workers=workers)
+        return self._sum_at(points, 1, 2.0, 0.5, False, dtype, workers, "points")
 
     def jacobian(self, points, *, return_value=False, workers=1):
         r"""The exact Jacobian ``d noise_c / d x_a`` at points ``(..., dim_in)``: shape ``(..., dim_out, dim_in)``.
