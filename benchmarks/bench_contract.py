@@ -8,11 +8,11 @@ timed back to back in one process, one thread, interleaved; the reported
 ratio is the median over ``--repeats`` (>= 5) of checked time / unchecked
 time (1.00: free). The checks measured:
 
-- ``_check_reach``: the overflow check of ``x * frequency`` that scattered
+- ``check_reach``: the overflow check of ``x * frequency`` that scattered
   lattice points now get in every dimension (min and max over the points);
 - envelope validation: finiteness and range of the frequency vectors;
 - ``power_spectrum``'s range check of the field (max and min);
-- ``_check_jac_finite``: the pass over a derivative's output that refuses
+- ``check_jac_finite``: the pass over a derivative's output that refuses
   an overflowed one (amplitude * frequency too large), on points and grids.
 """
 from __future__ import annotations
@@ -29,7 +29,7 @@ sys.path.insert(0, str(ROOT))
 
 import numpy as np  # noqa: E402
 
-import noiselab.lattice.core as core  # noqa: E402
+import noiselab.lattice.checks as checks  # noqa: E402
 import noiselab.spectral.envelopes as env  # noqa: E402
 from noiselab import LatticeNoise  # noqa: E402
 from noiselab.analysis import power_spectrum  # noqa: E402
@@ -55,15 +55,15 @@ def ratio(fn, patch, repeats):
 
 
 def no_reach():
-    old = core._check_reach
-    core._check_reach = lambda *a, **k: None
-    return lambda: setattr(core, "_check_reach", old)
+    old = checks.check_reach
+    checks.check_reach = lambda *a, **k: None
+    return lambda: setattr(checks, "check_reach", old)
 
 
 def no_jac_finite():
-    old = core._check_jac_finite
-    core._check_jac_finite = lambda *a, **k: None
-    return lambda: setattr(core, "_check_jac_finite", old)
+    old = checks.check_jac_finite
+    checks.check_jac_finite = lambda *a, **k: None
+    return lambda: setattr(checks, "check_jac_finite", old)
 
 
 def no_env_checks():

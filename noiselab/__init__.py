@@ -40,8 +40,8 @@ _API = {
     # exact derivatives of lattice noise
     "fractal_gradient": "noiselab.fractal",
     "turbulence_gradient": "noiselab.fractal",
-    "curl_noise": "noiselab.lattice",
-    "warp": "noiselab.lattice",
+    "curl_noise": "noiselab.fields",
+    "warp": "noiselab.fields",
     "monge_normals": "noiselab.geometry.normals",
     "displaced_normals": "noiselab.geometry.normals",
     "normal_angles": "noiselab.geometry.normals",

@@ -16,7 +16,7 @@ from noiselab import LatticeNoise, curl_noise, displace, fractal_gradient, turbu
 from noiselab.fractal import fractal_sum, turbulence
 from noiselab.geometry import grid_points, monge_surface, vertex_normals
 from noiselab.geometry.normals import displaced_normals, monge_normals, normal_angles
-from noiselab.lattice import KERNELS, Grid
+from noiselab.lattice import KERNELS, Grid, grid_path
 
 SMOOTH = [name for name, k in KERNELS.items() if k.continuity >= 1]
 
@@ -169,7 +169,8 @@ def test_grid_gradient_sparse_fallback_and_errors():
     # a grid much sparser than the lattice goes through the per-point path
     noise = LatticeNoise(3, seed=1, kernel="quadratic")
     shape, ext = (20, 20, 20), [(0, 900), (0, 700), (0, 800)]
-    assert not noise._separable([np.linspace(a, b, n) for n, (a, b) in zip(shape, ext)], noise.frequency)
+    assert not grid_path.is_separable(noise.kernel.taps, [np.linspace(a, b, n) for n, (a, b) in zip(shape, ext)],
+                                      noise.frequency)
     np.testing.assert_allclose(noise.gradient_grid(shape, ext), noise.gradient(noise.grid_points(shape, ext)),
                                rtol=0, atol=1e-13)
     with pytest.raises(ValueError, match="use jacobian_grid"):

@@ -430,3 +430,58 @@ def test_generated_kernels_match_their_generator():
 
     committed = (Path(_generate.__file__).with_name("_points.py")).read_text()
     assert committed == _generate.generate(), "run `python -m noiselab.lattice._generate` and commit _points.py"
+
+
+# ------------------------------------------------------- the evaluation interface
+@pytest.mark.parametrize("hash_", ["table", "integer"])
+@pytest.mark.parametrize("d", [2, 3])
+def test_evaluation_interface_is_what_the_calls_and_fractal_sums_return(d, hash_):
+    """``evaluate``/``evaluate_grid`` and their Jacobian twins give the user calls' and fractal sums' bits."""
+    from noiselab import fractal_gradient, fractal_sum, turbulence
+
+    noise = LatticeNoise(d, 2 if d == 3 else 1, seed=7, kernel="quintic", hash=hash_)
+    pts = np.random.default_rng(1).uniform(-6, 6, (500, d))
+    np.testing.assert_array_equal(noise.evaluate(pts), noise(pts))
+    np.testing.assert_array_equal(noise.evaluate(pts.astype(np.float32)), noise(pts.astype(np.float32)))
+    np.testing.assert_array_equal(noise.evaluate(pts, octaves=5, name="x"), fractal_sum(noise, pts, 5))
+    np.testing.assert_array_equal(noise.evaluate(pts, octaves=4, absval=True, gain=0.6), turbulence(noise, pts, 4, gain=0.6))
+    value, jac = noise.evaluate_jacobian(pts, octaves=3)
+    fv, fj = fractal_gradient(noise, pts, 3, return_value=True)
+    np.testing.assert_array_equal(value, fv)
+    np.testing.assert_array_equal(jac, fj if noise.dim_out > 1 else fj[..., None, :])
+    np.testing.assert_array_equal(noise.evaluate_jacobian(pts)[1], noise.jacobian(pts))
+    shape, ext = (24, 20, 6)[:d], [(0, 3), (-1, 2), (0, 1)][:d]
+    np.testing.assert_array_equal(noise.evaluate_grid(shape, ext), noise.grid(shape, ext))
+    np.testing.assert_array_equal(noise.evaluate_grid(shape, ext, octaves=3), fractal_sum(noise, Grid(shape, ext), 3))
+    none, gj = noise.evaluate_grid_jacobian(shape, ext, octaves=2, value=False)
+    assert none is None
+    np.testing.assert_array_equal(gj, noise.evaluate_grid_jacobian(shape, ext, octaves=2)[1])
+    np.testing.assert_array_equal(noise.evaluate_grid_jacobian(shape, ext)[1], noise.jacobian_grid(shape, ext))
+    for bad in (dict(octaves=0), dict(lacunarity=1.0), dict(gain=0.0)):
+        with pytest.raises(ValueError, match=next(iter(bad))):
+            noise.evaluate(pts, **bad)
+        with pytest.raises(ValueError, match=next(iter(bad))):
+            noise.evaluate_grid(shape, ext, **bad)
+    with pytest.raises(ValueError, match=r"x must have shape"):
+        noise.evaluate(np.zeros((3, d + 1)), name="x")
+
+
+def test_check_grid_names_shape_and_extent():
+    from noiselab.lattice.grid import check_grid
+
+    shape, ext = check_grid([3, 2], [(0, 1), (2, 4)], 2)
+    assert shape == (3, 2) and ext.dtype == np.float64 and ext.tolist() == [[0, 1], [2, 4]]
+    with pytest.raises(ValueError, match="shape"):
+        check_grid((3,), [(0, 1), (2, 4)], 2)
+    with pytest.raises(ValueError, match="extent"):
+        check_grid((3, 2), [(0, np.inf), (2, 4)], 2)
+
+
+@pytest.mark.parametrize("module", ["noiselab.lattice.core", "noiselab.lattice.grid", "noiselab.lattice.tables",
+                                    "noiselab.fractal.octaves", "noiselab.fields.curl", "noiselab.fields.warp"])
+def test_docstring_examples_run(module):
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(module), optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0

@@ -4,7 +4,7 @@ import pytest
 
 from noiselab import LatticeNoise, fractal_sum, turbulence
 from noiselab.fractal import fractal_gradient
-from noiselab.lattice import KERNELS, Grid
+from noiselab.lattice import KERNELS, Grid, grid_path
 
 # (shape, extent): dense, reversed axis with a negative start, wide and short, sparse (the taps of
 # neighbouring samples far apart: the fallback packing), and a grid sparser than the last octaves' lattices
@@ -36,7 +36,7 @@ def _everything(noise):
 def test_fused_kernel_equals_the_general_separable_path(name, basis, monkeypatch):
     noises = [LatticeNoise(2, seed=3, kernel=name, basis=basis, **kw) for kw in NOISES]
     fused = [_everything(noise) for noise in noises]
-    monkeypatch.setattr(LatticeNoise, "_FUSED_2D", False)
+    monkeypatch.setattr(grid_path, "FUSED_2D", False)
     general = [_everything(noise) for noise in noises]
     for noise, a, b in zip(noises, fused, general):
         for x, y in zip(a, b):
@@ -56,7 +56,7 @@ def test_fused_kernel_is_bit_identical_across_tiles_and_windows(name, basis, mon
     part = noise.grid(shape, ext, dtype="float32", window=win)
     np.testing.assert_array_equal(part, whole[2][1:5, 333:1207])
     for tile in (8, 24, 1504):
-        monkeypatch.setattr(LatticeNoise, "_TILE_2D", tile)
+        monkeypatch.setattr(grid_path, "TILE_2D", tile)
         again = [fractal_sum(noise, g, 6), turbulence(noise, g, 6), noise.grid(shape, ext, dtype="float32")]
         for x, y in zip(whole, again):
             np.testing.assert_array_equal(x, y)

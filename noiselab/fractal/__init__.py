@@ -34,7 +34,9 @@ import math
 
 import numpy as np
 
-from .._core import resolve_workers, as_array, check_finite_array, check_int, check_real, check_real_array, float_dtype
+from .._core import as_array, check_finite_array, check_int, check_real, check_real_array, dispatch, float_dtype, \
+    resolve_workers
+from .octaves import callable_sum
 
 __all__ = ["fractal_sum", "turbulence", "octaves_used", "fractal_gradient", "turbulence_gradient"]
 
@@ -120,8 +122,8 @@ def _grid_spacing(shape, ext):
 
 def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, absval, workers=1,
          chunks=None):
-    from ..lattice import Grid, LatticeNoise
-    from ..lattice.core import _check_grid, grid_coordinates
+    from ..lattice import Grid, LatticeNoise, grid_coordinates
+    from ..lattice.grid import check_grid
 
     octaves = check_int("octaves", octaves, lo=1, hi=10_000)
     lacunarity = check_real("lacunarity", lacunarity, lo=1.0, lo_open=True)
@@ -130,7 +132,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
     is_grid = isinstance(x, Grid)
     if is_grid:
         dim = noise.dim_in if isinstance(noise, LatticeNoise) else len(tuple(np.atleast_1d(x.shape)))
-        shape, ext = _check_grid(x.shape, x.extent, dim)
+        shape, ext = check_grid(x.shape, x.extent, dim)
         spacing = _grid_spacing(shape, ext)
         out_dtype = float_dtype(np.float64 if dtype is None else dtype)
     else:
@@ -145,46 +147,25 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
     if chunks is not None:
         if not is_grid:
             raise ValueError("chunks= needs x to be a Grid (chunked points: wrap them in dask.array.map_blocks)")
-        from ..scale.lattice import chunked_sum
-        result = chunked_sum(noise, shape, ext, chunks, dtype=out_dtype, used=used, lacunarity=lacunarity,
-                             gain=gain, absval=absval, norm=norm if normalize else None)
+        result = dispatch.chunked("fractal_sum")(noise, shape, ext, chunks, dtype=out_dtype, used=used,
+                                                 lacunarity=lacunarity, gain=gain, absval=absval,
+                                                 norm=norm if normalize else None)
         return (result, used) if return_octaves else result
 
     if isinstance(noise, LatticeNoise):
+        octave_sum = dict(octaves=used, lacunarity=lacunarity, gain=gain, absval=absval, dtype=out_dtype)
         if is_grid:
-            result = noise._grid(shape, ext, dtype=out_dtype, window=None, octaves=used,
-                                 lacunarity=lacunarity, gain=gain, absval=absval)
+            result = noise.evaluate_grid(shape, ext, **octave_sum)
         else:
-            from ..lattice.core import _check_amplitude
-            _check_amplitude(noise.amplitude * (sum(gain ** o for o in range(used)) if gain <= 1 else used * gain ** (used - 1)),
-                             out_dtype, "amplitude (times the sum of the octaves' gains)")
-            lead, flat = noise._prepare_points(raw, "x")
-            freqs = noise.frequency[None, :] * (lacunarity ** np.arange(used))[:, None]
-            amps = noise.scale * gain ** np.arange(used)
-            result = noise._shape_out(noise._evaluate(flat, freqs, amps, absval, out_dtype, "x", workers), lead)
+            result = noise.evaluate(raw, workers=workers, name="x", **octave_sum)
         if normalize:
             result /= np.asarray(norm, dtype=result.dtype)
     else:
         if not callable(noise):
             raise TypeError(f"noise must be a LatticeNoise or a callable on points, got {type(noise).__name__}")
         pts = np.stack(np.meshgrid(*grid_coordinates(shape, ext), indexing="ij"), axis=-1) if is_grid else raw
-        result = _callable_sum(noise, pts, used, lacunarity, gain, absval, norm, out_dtype)
+        result = callable_sum(noise, pts, used, lacunarity, gain, absval, norm, out_dtype)
     return (result, used) if return_octaves else result
-
-
-def _callable_sum(noise, pts, used, lacunarity, gain, absval, norm, out_dtype):
-    """The octave sum of a plain callable on points (in memory, and per chunk on dask); finite or refused."""
-    result = None
-    with np.errstate(over="ignore", invalid="ignore"):
-        for o in range(used):
-            v = np.asarray(noise(pts * lacunarity ** o), dtype=np.float64)
-            term = gain ** o * (np.abs(v) if absval else v)
-            result = term if result is None else result + term
-        result = (result / norm).astype(out_dtype)
-    if not np.isfinite(result).all():
-        raise ValueError(f"noise returned NaN or inf (or the octave sum overflowed {out_dtype.name}) at "
-                         f"{int((~np.isfinite(result)).sum())} point(s); noise must return finite values")
-    return result
 
 
 def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False, dtype=None,
@@ -256,8 +237,8 @@ def turbulence(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False
 
 def _jacobian_sum(noise, x, octaves, lacunarity, gain, normalize, return_value, return_octaves, spacing, absval,
                   workers):
-    from ..lattice import Grid, LatticeNoise
-    from ..lattice.core import _check_grid, grid_coordinates
+    from ..lattice import Grid, LatticeNoise, grid_coordinates
+    from ..lattice.grid import check_grid
 
     octaves = check_int("octaves", octaves, lo=1, hi=10_000)
     lacunarity = check_real("lacunarity", lacunarity, lo=1.0, lo_open=True)
@@ -268,7 +249,7 @@ def _jacobian_sum(noise, x, octaves, lacunarity, gain, normalize, return_value, 
         raise TypeError(f"noise must be a LatticeNoise or have a jacobian(points) method, got {type(noise).__name__}")
     is_grid = isinstance(x, Grid)
     if is_grid:
-        shape, ext = _check_grid(x.shape, x.extent, noise.dim_in)
+        shape, ext = check_grid(x.shape, x.extent, noise.dim_in)
         spacing = _grid_spacing(shape, ext)
     elif spacing is not None:
         spacing = check_real("spacing", spacing, lo=0.0, lo_open=True)
@@ -276,15 +257,12 @@ def _jacobian_sum(noise, x, octaves, lacunarity, gain, normalize, return_value, 
     used = octaves_used(octaves, lacunarity=lacunarity, gain=gain, spacing=spacing, frequency=freq)
     norm = sum(gain ** o for o in range(used)) if normalize else 1.0
     if lattice and is_grid:
-        value, jac = noise._grid_jac(shape, ext, octaves=used, lacunarity=lacunarity, gain=gain, absval=absval,
-                                     value=bool(return_value))
+        value, jac = noise.evaluate_grid_jacobian(shape, ext, octaves=used, lacunarity=lacunarity, gain=gain,
+                                                  absval=absval, value=bool(return_value))
     elif lattice:
-        lead, flat = noise._prepare_points(as_array("x", x), "x")
-        freqs = noise.frequency[None, :] * (lacunarity ** np.arange(used))[:, None]
-        amps = noise.scale * gain ** np.arange(used)
-        out = noise._evaluate_jac(flat, freqs, amps, absval, "x", workers)
-        value = noise._shape_out(np.ascontiguousarray(out[:, :, 0]), lead)
-        jac = out[:, :, 1:].reshape(tuple(lead) + (noise.dim_out, noise.dim_in))
+        value, jac = noise.evaluate_jacobian(as_array("x", x), octaves=used, lacunarity=lacunarity, gain=gain,
+                                             absval=absval, workers=workers, name="x")
+        value = np.ascontiguousarray(value)
     else:
         pts = np.stack(np.meshgrid(*grid_coordinates(shape, ext), indexing="ij"), axis=-1) if is_grid \
             else check_finite_array("x", x)

@@ -2,14 +2,22 @@
 
 ``LatticeNoise(dim_in, dim_out=1, *, seed=0, kernel=...)`` evaluates on
 scattered points (``noise(points)``, points ``(..., dim_in)``) and on regular
-grids (``noise.grid(shape, extent)``, by separability); its exact derivatives
-(``noise.gradient``, ``noise.jacobian``, ``noise.gradient_grid``,
-``noise.jacobian_grid``) give :func:`curl_noise` (divergence-free flow) and
-:func:`warp` (domain warping with its chain-rule Jacobian).
-"""
-from .core import Grid, LatticeNoise, grid_coordinates
-from .kernels import KERNELS, Kernel, get_kernel, kernel_names
-from .derivatives import Warped, curl_noise, warp
+grids (``noise.grid(shape, extent)``, by separability), with exact
+derivatives (``noise.gradient``, ``noise.jacobian``, ``noise.gradient_grid``,
+``noise.jacobian_grid``). Its evaluation interface (``noise.evaluate``,
+``noise.evaluate_grid`` and their Jacobian twins) sums octaves and is what
+:mod:`noiselab.fractal`, :mod:`noiselab.fields` (curl noise, domain
+warping) and the dask path call.
 
-__all__ = ["LatticeNoise", "Grid", "grid_coordinates", "Kernel", "KERNELS", "get_kernel", "kernel_names",
-           "curl_noise", "warp", "Warped"]
+Where to look: :mod:`.core` (the ``LatticeNoise`` class: state, and the
+calls), :mod:`.tables` (random tables and hashes), :mod:`.points_path`
+(scattered points), :mod:`.grid_path` (grids), :mod:`.derivatives`
+(Jacobians), :mod:`.checks` (argument checks), :mod:`.grid` (``Grid``,
+``check_grid``, ``grid_coordinates``), :mod:`.kernels` (the smoothing
+kernels), :mod:`._compiled` (where the compiled kernels are imported).
+"""
+from .core import LatticeNoise
+from .grid import Grid, grid_coordinates
+from .kernels import KERNELS, Kernel, get_kernel, kernel_names
+
+__all__ = ["LatticeNoise", "Grid", "grid_coordinates", "Kernel", "KERNELS", "get_kernel", "kernel_names"]

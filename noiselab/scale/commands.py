@@ -60,7 +60,7 @@ def write_noise_zarr(args, noise, grid, summer, dtype, path):
     units; the coordinates are the sample positions in lattice units.
     """
     from ..io.zarr import write_zarr
-    from ..lattice.core import grid_coordinates
+    from ..lattice import grid_coordinates
 
     if path.suffix.lower() != ".zarr":
         raise ValueError(f"--chunks and --scheduler need .zarr output, got {path.name!r}")

@@ -21,7 +21,7 @@ import uuid
 
 import numpy as np
 
-from .._core import require_dask
+from .._core import dispatch, require_dask
 
 __all__ = ["chunked_grid", "chunked_sum", "normalize_grid_chunks"]
 
@@ -107,6 +107,7 @@ def _render_grid(noise, window, shape, ext, dtype):
     return noise.grid(shape, ext, dtype=dtype, window=window)
 
 
+@dispatch.register("lattice_grid")
 def chunked_grid(noise, shape, extent, *, dtype=np.float64, chunks="auto", window=None):
     """``noise.grid(shape, extent, dtype=dtype)`` as a lazy dask array in ``chunks``.
 
@@ -126,14 +127,14 @@ def chunked_grid(noise, shape, extent, *, dtype=np.float64, chunks="auto", windo
     True
     """
     require_dask()
-    from ..lattice.core import _check_grid
     from .._core import float_dtype
+    from ..lattice.grid import check_grid
 
     if window is not None:
         raise ValueError("window= and chunks= cannot be combined: slice the chunked array instead "
                          "(dask computes only the chunks the slice touches)")
     dtype = float_dtype(dtype)
-    shape, ext = _check_grid(shape, extent, noise.dim_in)
+    shape, ext = check_grid(shape, extent, noise.dim_in)
     chunks = normalize_grid_chunks(chunks, shape, noise.dim_out, dtype)
     noise = copy.deepcopy(noise)  # later changes to the caller's noise must not reach the lazy array
     from dask.base import tokenize
@@ -144,8 +145,8 @@ def chunked_grid(noise, shape, extent, *, dtype=np.float64, chunks="auto", windo
 
 def _render_sum(noise, window, shape, ext, dtype, used, lacunarity, gain, absval, norm):
     # exactly what noiselab.fractal._sum does on the whole grid, on a window of it
-    out = noise._grid(shape, ext, dtype=dtype, window=window, octaves=used, lacunarity=lacunarity, gain=gain,
-                      absval=absval)
+    out = noise.evaluate_grid(shape, ext, dtype=dtype, window=window, octaves=used, lacunarity=lacunarity, gain=gain,
+                              absval=absval)
     if norm is not None:
         out /= np.asarray(norm, dtype=out.dtype)
     return out
@@ -153,14 +154,15 @@ def _render_sum(noise, window, shape, ext, dtype, used, lacunarity, gain, absval
 
 def _render_sum_callable(noise, window, shape, ext, dtype, used, lacunarity, gain, absval, norm):
     # exactly what noiselab.fractal._sum does for a callable on a grid, on the window's points
-    from ..fractal import _callable_sum
-    from ..lattice.core import grid_coordinates
+    from ..fractal.octaves import callable_sum
+    from ..lattice import grid_coordinates
 
     sub = [c[lo:hi] for c, (lo, hi) in zip(grid_coordinates(shape, ext), window)]
     pts = np.stack(np.meshgrid(*sub, indexing="ij"), axis=-1)
-    return _callable_sum(noise, pts, used, lacunarity, gain, absval, 1.0 if norm is None else norm, np.dtype(dtype))
+    return callable_sum(noise, pts, used, lacunarity, gain, absval, 1.0 if norm is None else norm, np.dtype(dtype))
 
 
+@dispatch.register("fractal_sum")
 def chunked_sum(noise, shape, ext, chunks, *, dtype, used, lacunarity, gain, absval, norm):
     """The fractal sum / turbulence of :func:`noiselab.fractal.fractal_sum` on a grid, as a lazy dask array.
 

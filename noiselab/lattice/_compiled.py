@@ -1,0 +1,91 @@
+"""The one module of the lattice path that imports the compiled kernels, and the lookups into their tables.
+
+Everything numba compiles lives in the kernel modules: :mod:`._jit` (the
+generic per-point kernels and the grid passes), :mod:`._inthash` (the
+integer hash and its generic kernels), and the specialised families
+:mod:`._points` (unrolled per dimension and tap count, and the 3-D kernels
+over precombined hash tables), :mod:`._jacobians` (their derivative twins)
+and :mod:`._intpoints` (the integer hash's SIMD kernels). The rest of the
+lattice code (:mod:`.tables`, :mod:`.points_path`, :mod:`.grid_path`,
+:mod:`.derivatives`) reaches them only through this module: ``jit`` and
+``inthash`` for the generic kernels, and the functions below for the
+specialised ones, so a change in where or how the kernels are built touches
+these lines only.
+
+``_intpoints`` and ``_jacobians`` are imported on first use: their kernels
+cost import time that a user of plain values or of the table hash does not
+need to pay.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import _inthash as inthash
+from . import _jit as jit
+from . import _points
+from .kernels import KERNELS, Kernel
+
+__all__ = ["jit", "inthash", "PERIOD_MAX", "has_table_points", "table_points_kernel", "unrolled_points_kernel",
+           "int_simd_kernels", "int_simd_factor", "unrolled_jacobian_kernel", "table_jacobian_kernel"]
+
+# without ``period``, the integer hash reduces lattice indices modulo 2**32 per axis (its words are 32-bit)
+PERIOD_MAX = inthash.PERIOD_MAX
+
+
+def _is_stock(kernel: Kernel) -> bool:
+    """Whether ``kernel`` has a stock kernel's name and coefficients (then kernels with them written in apply)."""
+    stock = KERNELS.get(kernel.name)
+    return stock is not None and np.array_equal(stock.coef, kernel.coef)
+
+
+def has_table_points(dim: int, taps: int) -> bool:
+    """Whether a scattered kernel over precombined hash tables exists for ``dim`` and ``taps`` (3-D only)."""
+    return (dim, taps) in _points.TABLE_KERNELS
+
+
+def table_points_kernel(dim: int, kernel: Kernel):
+    """The 3-D table kernel: with this kernel's coefficients written in if it is a stock kernel."""
+    if _is_stock(kernel) and (dim, kernel.name) in _points.TABLE_KERNELS:
+        return _points.TABLE_KERNELS[(dim, kernel.name)]
+    return _points.TABLE_KERNELS.get((dim, kernel.taps))
+
+
+def unrolled_points_kernel(dim: int, taps: int):
+    """The per-point kernel unrolled for ``dim`` and ``taps`` (1-3-D), or None."""
+    return _points.KERNELS.get((dim, taps))
+
+
+def int_simd_kernels(dim: int, kernel: Kernel, basis: str):
+    """The integer hash's SIMD kernels (``{variant: kernel}``, variants ``s32f32``, ``s64f32``, ``s64f64``), or None.
+
+    None for 4-D and up and for kernels other than the stock ones (those take
+    the generic :func:`._inthash.int_points`).
+    """
+    stock = KERNELS.get(kernel.name)
+    if (dim > 3 or stock is None or not np.array_equal(stock.coef, kernel.coef) or stock.shift != kernel.shift
+            or stock.left != kernel.left):
+        return None
+    from . import _intpoints  # imported on first use (import noiselab.lattice costs what it did)
+
+    return {v: _intpoints.INT_KERNELS[(dim, kernel.name, basis, v)] for v in ("s32f32", "s64f32", "s64f64")}
+
+
+def int_simd_factor(basis: str, dim: int) -> float:
+    """The factor folded into the SIMD kernels' amplitudes (their gradient sets are not unit length)."""
+    from . import _intpoints
+
+    return _intpoints.FACTOR[basis][dim - 1]
+
+
+def unrolled_jacobian_kernel(dim: int, taps: int):
+    """The per-point value-and-Jacobian kernel unrolled for ``dim`` and ``taps``, or None."""
+    from . import _jacobians  # imported on the first derivative (its kernels cost import time)
+
+    return _jacobians.JAC_KERNELS.get((dim, taps))
+
+
+def table_jacobian_kernel(dim: int, taps: int):
+    """The 3-D value-and-Jacobian kernel over precombined hash tables, or None."""
+    from . import _jacobians
+
+    return _jacobians.JAC_TABLE_KERNELS.get((dim, taps))

@@ -1,0 +1,345 @@
+"""The grid path: lattice noise (or its octave sum, or one partial derivative of it) on a regular grid.
+
+:func:`render_grid` evaluates a window of a grid (the whole grid by
+default). Per octave it chooses, on the *full* grid so that every window
+and chunk chooses alike:
+
+- the **separable** passes (:func:`grid_separable`): the tensor-product
+  kernel applied one axis at a time to the block of lattice values the grid
+  covers, axes ``d-1 .. 1`` contracted into rows (:func:`contract_rest`),
+  then one fused pass along axis 0; octaves are batched within a memory
+  budget. 2-D grids with the table hash run every octave in one fused
+  kernel, tile by tile (:func:`grid_fused_2d`), with the same bits;
+- the **scattered** path (:func:`grid_scattered`), row by row through
+  :func:`.points_path.evaluate_points`, for grids sparser than the octave's
+  lattice (:func:`is_separable`) and past 2**52 lattice cells, where a
+  float64 coordinate has no fractional bits left.
+
+Along one axis the taps are either a dense run of lattice points or, when
+they spread over many cells, the distinct ones (:func:`axis_taps`).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._core import float_dtype
+from . import checks
+from ._compiled import inthash, jit
+from .grid import check_grid, coordinates
+from .points_path import evaluate_points, evaluate_points_jac
+
+__all__ = ["render_grid", "finish_grid", "is_separable", "grid_scattered", "axis_taps", "block_hash", "int_prefix",
+           "grid_separable", "grid_fused_2d", "contract_rest", "FUSED_2D", "TILE_2D", "RING_BYTES"]
+
+# Past 2**52 lattice cells a float64 coordinate has no fractional bits: the
+# separable grid pass (which works with lattice indices relative to the
+# grid's first tap) is then replaced by the per-point path, which reduces
+# every index exactly (fmod), so both paths give the same samples.
+SEPARABLE_LIMIT = float(2 ** 52)
+# 2-D grids with the table hash take the fused kernel (a test turns it off to compare with the general path)
+FUSED_2D = True
+# columns per tile of the fused 2-D pass (None: as many as keep its ring of contracted lattice rows,
+# octaves x 2**ceil(log2 taps) rows x gradient terms x tile float64, within RING_BYTES: measured
+# on 512^2 and 1024^2 grids, wider tiles are faster up to the L2 cache); a test sets it small
+TILE_2D = None
+RING_BYTES = 256 << 10
+
+
+def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0, gain=0.5, absval=False,
+                deriv_axis=None, octave_start=0, out=None):
+    """Octaves ``octave_start .. octaves-1`` of the octave sum on a window of the grid: ``window shape (+ (dim_out,))``.
+
+    ``deriv_axis``: the partial derivative along that input axis instead (the
+    same passes, with the kernel's derivative on that axis). ``out``: a
+    contiguous ``(dim_out, *window shape)`` buffer of ``dtype`` to write
+    into (the derivative grids' own); the result is then a view of it.
+    """
+    dtype = float_dtype(dtype)
+    shape, ext = check_grid(shape, extent, noise.dim_in)
+    coords = coordinates(shape, ext)
+    sl = checks.check_window(window, shape, noise.dim_in)
+    out_shape = tuple(hi - lo for lo, hi in sl)
+    size = math.prod(out_shape)
+    checks.check_large(size * noise.dim_out * dtype.itemsize * 2 + size * 8, f"lattice noise grid {shape}")
+    checks.check_amplitude(noise.amplitude * checks.total_gain(octaves, gain), dtype,
+                           "amplitude (times the sum of the octaves' gains)")
+    if size == 0:
+        return finish_grid(np.zeros((noise.dim_out,) + out_shape, dtype=dtype))
+    full = list(coords)
+    sub = [coords[a][lo:hi] for a, (lo, hi) in enumerate(sl)]
+    separable, sparse = [], []
+    for o in range(octave_start, octaves):
+        freq = noise.frequency * lacunarity ** o
+        amp = noise.scale * gain ** o
+        with np.errstate(over="ignore"):
+            reach = max((max(abs(c[0]), abs(c[-1])) * freq[a] if c.size else 0.0) + abs(noise.phase[a])
+                        for a, c in enumerate(full))
+        if not np.isfinite(reach):
+            raise ValueError(f"extent times the frequency (and lacunarity**octave) overflows float64 "
+                             f"({freq.max():.3g} lattice cells per unit); keep |x * frequency| below 1.7e308")
+        exact = reach < SEPARABLE_LIMIT
+        (separable if exact and is_separable(noise.kernel.taps, full, freq) else sparse).append((freq, amp))
+    # the separable pass writes every sample unless it accumulates |.| (turbulence)
+    writes_all = bool(separable) and not absval
+    if out is None:
+        out = (np.empty if writes_all else np.zeros)((noise.dim_out,) + out_shape, dtype=dtype)
+    else:  # the caller's contiguous (dim_out, *out_shape) float64 buffer (the derivative grids)
+        assert out.shape == (noise.dim_out,) + out_shape and out.flags.c_contiguous and out.dtype == dtype
+        if not writes_all:
+            out[...] = 0.0
+    if separable:
+        grid_separable(noise, sub, full, separable, out, absval, deriv_axis)
+    for freq, amp in sparse:
+        # grids sparser than this octave's lattice: per-point path, added
+        grid_scattered(noise, sub, freq, amp, out, absval, deriv_axis)
+    return finish_grid(out)
+
+
+def finish_grid(out):
+    """``(dim_out, *shape)`` as ``shape`` (one component) or ``shape + (dim_out,)``."""
+    if out.shape[0] == 1:
+        return out[0]
+    return np.ascontiguousarray(np.moveaxis(out, 0, -1))
+
+
+def is_separable(taps, full_coords, freq):
+    """Separable if the lattice block is not much larger than the grid (decided on the full grid)."""
+    block = 1.0
+    samples = 1.0
+    for a, c in enumerate(full_coords):
+        n = c.shape[0]
+        span = abs(c[-1] - c[0]) * freq[a] if n > 1 else 0.0
+        block *= min(n * taps, span + taps + 1)
+        samples *= n
+    return block <= 4.0 * samples + 4096
+
+
+def grid_scattered(noise, sub, freq, amp, out, absval, deriv_axis=None):
+    """One octave added into ``out`` by the points path, one row of axis 0 at a time."""
+    # rows along axis 0 keep the temporary small; per-point results do
+    # not depend on the chunking
+    d = noise.dim_in
+    rest = np.stack(np.meshgrid(*sub[1:], indexing="ij"), axis=-1).reshape(-1, d - 1) \
+        if d > 1 else np.zeros((1, 0))
+    flat_out = out.reshape(noise.dim_out, sub[0].shape[0], -1)
+    for j, x0 in enumerate(sub[0]):
+        pts = np.empty((rest.shape[0], d))
+        pts[:, 0] = x0
+        pts[:, 1:] = rest
+        if deriv_axis is None:
+            vals = evaluate_points(noise, pts, freq[None], np.array([amp]), absval, np.dtype(np.float64))
+        else:
+            vals = evaluate_points_jac(noise, pts, freq[None], np.array([amp]), absval)[:, :, 1 + deriv_axis]
+        for c in range(noise.dim_out):
+            flat_out[c, j] += vals[:, c].astype(out.dtype)
+
+
+def axis_taps(noise, coords_a, freq_a, a, grad, deriv=False):
+    """Weights, tap positions and the reduced lattice indices of the distinct taps along one axis.
+
+    ``deriv``: the weights' derivatives along this axis in input units
+    instead (:func:`_jit.axis_dweights`), for the derivative grids.
+    """
+    k = noise.kernel
+    period = int(noise.period[a])
+    fis, base, w, rw = jit.axis_weights(coords_a, freq_a, noise.phase[a], k.shift, k.left, k.taps, k.coef, period,
+                                        grad)
+    if deriv:
+        w, rw = jit.axis_dweights(coords_a, freq_a, noise.phase[a], k.shift, k.left, k.taps, k.coef, k.dcoef, grad)
+    # distinct lattice taps along this axis, relative to the smallest
+    span = fis.max() - fis.min() if fis.size else 0.0
+    if span <= 4 * k.taps * fis.size + 64:
+        lattice, pos = jit.dense_taps(fis, base, k.taps, period)
+        return lattice, pos, w, rw
+    j0 = int(np.argmin(fis))
+    rel = (fis - fis[j0]).astype(np.int64)[:, None] + np.arange(k.taps)
+    uniq, inv = np.unique(rel, return_inverse=True)
+    pos = inv.reshape(rel.shape).astype(np.int64)
+    lattice = (base[j0] + uniq) % noise.period[a]
+    return lattice, pos, w, rw
+
+
+def block_hash(perm, n, lattices):
+    """Hash the block of lattice points: ``h_{a+1} = P[(h_a + j_a) mod n]``, and the index parity (flat)."""
+    h = par = np.zeros(1, np.int64)
+    for a, lat in enumerate(lattices):  # no lattices: the single empty prefix
+        h, par = jit.hash_expand(h, par, np.ascontiguousarray(lat, dtype=np.int64), perm, n, a == 0)
+    return h, par
+
+
+def int_prefix(key, mult, lattices):
+    """The integer hash's prefix words ``key ^ j_0 M_0 ^ ...`` over the block of lattice points (flat).
+
+    ``key`` is the component's ``(1,)`` uint32 key, ``mult`` the axis multipliers.
+    """
+    h = key
+    for a, lat in enumerate(lattices):
+        h = inthash.block_prefix(h, np.ascontiguousarray(lat, dtype=np.int64), mult[a], a == 0, key[0])
+    return h
+
+
+def _octave_batches(noise, full, octaves, nterm):
+    """Octaves in batches whose partially contracted blocks fit a memory budget (decided on the full grid)."""
+    post_full = int(np.prod([c.shape[0] for c in full[1:]], dtype=np.int64))
+    budget = max(64 << 20, 2 * 8 * full[0].shape[0] * post_full)
+    taps = noise.kernel.taps
+    batches, cur, used = [], [], 0
+    for freq, amp in octaves:
+        span = abs(full[0][-1] - full[0][0]) * freq[0] if full[0].shape[0] > 1 else 0.0
+        rows = min(full[0].shape[0] * taps, span + taps + 1)
+        need = 8 * rows * post_full * nterm
+        if cur and used + need > budget:
+            batches.append(cur)
+            cur, used = [], 0
+        cur.append((freq, amp))
+        used += need
+    batches.append(cur)
+    return batches
+
+
+def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
+    """Separable grid path: per octave and term, contract axes d-1..1; then one fused pass on axis 0.
+
+    ``deriv_axis``: the derivative along that input axis instead (the
+    same passes, with the kernel's derivative on that axis).
+    """
+    d = noise.dim_in
+    grad = noise.basis == "gradient"
+    integer = noise.hash == "integer"
+    if d == 2 and not integer and FUSED_2D:
+        grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis)
+        return
+    nterm = d if grad else 1
+    batches = _octave_batches(noise, full, octaves, nterm)
+    post = int(np.prod([c.shape[0] for c in sub[1:]], dtype=np.int64))
+    nj = sub[0].shape[0]
+    for bi, batch in enumerate(batches):
+        axes_per_octave = [[axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis) for a in range(d)]
+                           for freq, _ in batch]
+        rows = sum(len(axes[0][0]) for axes in axes_per_octave) * nterm
+        for c in range(noise.dim_out):
+            inter_all = np.empty((rows, post))
+            poss, ws, scales = [], [], []
+            row0 = 0
+            for (freq, amp), axes in zip(batch, axes_per_octave):
+                lattices = [ax[0] for ax in axes]
+                bshape = tuple(len(lat) for lat in lattices)
+                block = np.empty(int(np.prod(bshape, dtype=np.int64)))
+                if integer:
+                    h = int_prefix(noise._keys[c:c + 1], noise._mult, lattices)
+                    if not grad:
+                        inthash.block_values(h, block)
+                elif grad:
+                    h, par = block_hash(noise.perms[c], noise.table_size, lattices)
+                else:
+                    # hash all but the last level, then hash and look up in one pass
+                    h, par = block_hash(noise.perms[c], noise.table_size, lattices[:-1])
+                    jit.hash_expand_values(h, par, np.ascontiguousarray(lattices[-1], dtype=np.int64),
+                                           noise.perms[c], noise.table_size, d == 1, noise.values, block)
+                for b in range(nterm):
+                    if grad and integer:
+                        inthash.block_gradients(h, noise._int_grads, b, block)
+                    elif grad:
+                        jit.gather_gradients(h, noise.gradients, b, block)
+                    target = inter_all[row0:row0 + bshape[0]]
+                    contract_rest(block.reshape(bshape), axes, b if grad else -1, target)
+                    _, pos0, w0, rw0 = axes[0]
+                    poss.append(pos0 + row0)
+                    ws.append(rw0 if (grad and b == 0) else w0)
+                    scales.append(amp)
+                    row0 += bshape[0]
+            group_start = (np.arange(len(batch) + 1) * nterm if absval else np.array([0, len(ws)])).astype(np.int64)
+            mode = 2 if absval else (0 if bi == 0 else 1)
+            poss = np.ascontiguousarray(np.stack(poss))
+            ws = np.ascontiguousarray(np.stack(ws))
+            scales = np.asarray(scales, dtype=np.float64)
+            target = out[c].reshape(nj, post)
+            if mode == 0 and target.dtype == np.float64:
+                jit.final_pass_direct(inter_all, poss, ws, scales, target)
+            else:
+                jit.final_pass(inter_all, poss, ws, scales, group_start, target, mode)
+
+
+def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
+    """The separable pass of a 2-D grid with the table hash: every octave in one kernel (:func:`_jit.grid2d`).
+
+    The same arithmetic, term by term, as the general path (the same
+    bits), without the lattice block or octave batches in memory.
+    """
+    grad = noise.basis == "gradient"
+    k = noise.kernel
+    n = noise.table_size
+    freqs = np.array([freq for freq, _ in octaves], dtype=np.float64)
+    scales = np.array([amp for _, amp in octaves], dtype=np.float64)
+    nq = out.shape[2]
+    tile = TILE_2D
+    if tile is None:  # the widest tile whose ring fits the budget, the row split into equal tiles
+        slots = 1 << max(0, (k.taps - 1).bit_length())
+        most = max(64, RING_BYTES // (8 * len(octaves) * slots * (2 if grad else 1)))
+        tiles = -(-nq // most)
+        tile = -(-nq // tiles)
+    tile = -(-tile // 8) * 8
+    assert out.flags.c_contiguous
+    flat = out.reshape(noise.dim_out, -1)
+    # one compiled kernel for both output dtypes: the other output array is empty
+    if out.dtype == np.float32:
+        out64, out32 = np.empty((noise.dim_out, 0)), flat
+    else:
+        out64, out32 = flat, np.empty((noise.dim_out, 0), np.float32)
+    dax = -1 if deriv_axis is None else int(deriv_axis)
+    if jit.grid2d_all(sub[0], sub[1], freqs, noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, noise.period,
+                      n, grad, dax, scales, noise.perms, noise.values, noise.gradients, bool(absval), out64, out32,
+                      nq, tile):
+        return
+    # an axis whose taps spread over many cells: packed here, axis_taps' sparse branch for that axis
+    packed = []
+    for a in range(2):
+        ok, lat, off, pos, base, wa, wb, dense = jit.pack_axis(
+            sub[a], np.ascontiguousarray(freqs[:, a]), noise.phase[a], k.shift, k.left, k.taps, k.coef, k.dcoef,
+            int(noise.period[a]), n, grad, a == deriv_axis, a == 1)
+        if not ok:  # taps spread over many cells: axis_taps' sparse branch, packed alike
+            axis = [axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis) for freq in freqs]
+            lat = np.concatenate([np.asarray(ax[0], dtype=np.int64) for ax in axis]) % n
+            off = np.zeros(len(axis) + 1, np.int64)
+            off[1:] = np.cumsum([len(ax[0]) for ax in axis])
+            pos = np.ascontiguousarray(np.stack([ax[1] for ax in axis]), dtype=np.int64)
+            base = np.ascontiguousarray(pos[:, :, 0])
+            wa = np.stack([ax[2] for ax in axis])
+            wb = np.stack([ax[3] for ax in axis])
+            if a == 1:
+                wa, wb = wa.transpose(0, 2, 1), wb.transpose(0, 2, 1)
+            wa, wb = np.ascontiguousarray(wa), np.ascontiguousarray(wb)
+            dense = np.array([noise.period[1] % n == 0 and bool((np.diff(ax[0]) % noise.period[1] == 1).all())
+                              for ax in axis])
+        packed.append((lat, off, pos, wa, wb) if a == 0 else (lat, off, base, dense, wa, wb))
+    for c in range(noise.dim_out):
+        jit.grid2d(*packed[0], *packed[1], scales, noise.perms[c], noise.values, noise.gradients, 1 if grad else 0,
+                   bool(absval), out64[c], out32[c], nq, tile)
+
+
+def contract_rest(block, axes, use_r, target):
+    """Contract axes d-1 .. 1 of a lattice block into ``target`` (rows of axis 0 x the other grid axes).
+
+    Axis ``use_r`` takes the gradient ramp weights.
+    """
+    cur = block
+    d = cur.ndim
+    if d == 1:
+        target[:, 0] = cur
+        return
+    for a in range(d - 1, 0, -1):
+        _, pos, w, rw = axes[a]
+        weights = rw if a == use_r else w
+        pre = int(np.prod(cur.shape[:a], dtype=np.int64))
+        post = int(np.prod(cur.shape[a + 1:], dtype=np.int64))
+        if a == 1:
+            nxt = target.reshape(pre, pos.shape[0], post)
+        else:
+            nxt = np.empty((pre, pos.shape[0], post))
+        if post == 1:
+            jit.contract_last(cur.reshape(pre, cur.shape[a]), pos, weights, nxt.reshape(pre, pos.shape[0]))
+        else:
+            jit.contract_mid(cur.reshape(pre, cur.shape[a], post), pos, weights, nxt)
+        cur = nxt.reshape(cur.shape[:a] + (pos.shape[0],) + cur.shape[a + 1:])
