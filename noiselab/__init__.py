@@ -10,10 +10,13 @@ Subpackages, one idea each:
 - ``noiselab.snow``: Langer & Zhang's falling snow (tent model), compositing, tiling
 - ``noiselab.lattice``: Phillips' permutation-table lattice noise and its kernels
 - ``noiselab.fractal``: fractal sums and turbulence over any noise
+- ``noiselab.fields``: curl noise (divergence-free flow) and domain warping, with exact derivatives
 - ``noiselab.geometry``: noise-displaced meshes, curves, surfaces, flow fields, rendering
 - ``noiselab.analysis``: spectra, slopes, isotropy, motion and seam measurements
 - ``noiselab.io``: atomic image, video, mesh and zarr I/O
+- ``noiselab.lab``: the laboratory (experiments, the timing harness)
 - ``noiselab.scale``: chunked evaluation on dask (the ``noiselab[dask]`` extra)
+- ``noiselab.gallery``: the gallery builder
 - ``noiselab.cli``: the ``noiselab`` command
 """
 from __future__ import annotations
@@ -52,7 +55,8 @@ _API = {
     "particle_snow": "noiselab.lab",
 }
 
-_SUBPACKAGES = ("spectral", "snow", "lattice", "fractal", "geometry", "analysis", "io", "cli", "scale")
+_SUBPACKAGES = ("spectral", "snow", "lattice", "fractal", "fields", "geometry", "analysis", "io", "lab", "scale",
+                "gallery", "cli")
 
 __all__ = sorted(_API) + list(_SUBPACKAGES)
 

@@ -648,7 +648,7 @@ EXCLUDED = {
 }
 
 ENTRIES = {e.name: e for e in TABLE}
-_SUBPACKAGES = ("spectral", "spectral.envelopes", "snow", "lattice", "fractal", "geometry", "analysis", "io", "lab")
+_SUBPACKAGES = ("spectral", "spectral.envelopes", "snow", "lattice", "fractal", "fields", "geometry", "analysis", "io", "lab")
 
 
 def _public_callables():

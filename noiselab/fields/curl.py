@@ -59,7 +59,7 @@ def curl_noise(noise, points, *, octaves=1, lacunarity=2.0, gain=0.5):
     tensor-product sum, so the divergence vanishes identically and the
     finite-difference divergence of ``v`` is truncation and rounding only
     (``tests/test_derivatives.py`` measures it, against O(1) for plain
-    vector noise: ``gallery/figures/derivatives.py``).
+    vector noise: ``noiselab/gallery/figures/derivatives.py``).
 
     Examples
     --------

@@ -19,7 +19,8 @@ def _fd_divergence(field, x, h=1e-5):
         title="Curl noise: a divergence-free flow field beside plain vector noise",
         params=dict(samples=256, cells=4.0, arrows=24, seed=7), quick=dict(samples=64, arrows=12), uses=USES)
 def curl_flow(out, *, samples, cells, arrows, seed):
-    from noiselab.lattice import LatticeNoise, curl_noise, Grid
+    from noiselab.fields import curl_noise
+    from noiselab.lattice import Grid, LatticeNoise
 
     from .._common import pyplot, save_figure
 
@@ -61,7 +62,8 @@ def curl_flow(out, *, samples, cells, arrows, seed):
         title="Domain warping and its exact gradient",
         params=dict(samples=384, cells=4.0, amount=0.8, seed=3), quick=dict(samples=96), uses=USES)
 def warp_figure(out, *, samples, cells, amount, seed):
-    from noiselab.lattice import LatticeNoise, warp, Grid
+    from noiselab.fields import warp
+    from noiselab.lattice import Grid, LatticeNoise
 
     from .._common import pyplot, save_figure
 
