@@ -41,8 +41,10 @@ def resolve_workers(workers) -> int:
         return int(scipy.fft.get_workers())
     if isinstance(workers, (bool, np.bool_)) or not isinstance(workers, (int, np.integer)):
         raise TypeError(f"workers must be an int (scipy.fft's meaning: -1 for every core) or None, got {workers!r}")
-    cores = os.cpu_count() or 1
-    n = int(workers) if workers > 0 else cores + 1 + int(workers)
+    if workers > 0:
+        return int(workers)
+    cores = os.cpu_count() or 1   # ~14 us a call: only for the relative counts
+    n = cores + 1 + int(workers)
     if workers == 0 or n < 1:
         raise ValueError(f"workers must be a positive count or -1 .. -{cores} (every core, every core but one, ...), "
                          f"got {workers!r}")
