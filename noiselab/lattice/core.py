@@ -16,7 +16,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .._core import resolve_workers, run_split, as_generator, as_array, check_finite_array, check_int, check_memory, check_real, check_shape, float_dtype
-from . import _inthash, _jit, _points
+from . import _inthash, _jit, _kerncache
 from .kernels import KERNELS, Kernel, get_kernel
 
 __all__ = ["LatticeNoise", "Grid", "grid_coordinates"]
@@ -388,7 +388,7 @@ class LatticeNoise:
             amps = np.ascontiguousarray(amps, dtype=np.float64)
             basis = 0 if self.basis == "value" else 1
             tabled = self._table_kernel()
-            unrolled = _points.KERNELS.get((self.dim_in, k.taps))
+            unrolled = _kerncache.load("points").KERNELS.get((self.dim_in, k.taps))
             tables = self._hash_tables(basis) if use_tables else None
             if not own:
                 _check_reach(flat, freqs, self.phase, name)  # the table and SIMD kernels count overflows themselves
@@ -421,7 +421,7 @@ class LatticeNoise:
         stock = KERNELS.get(k.name)
         if stock is None or not np.array_equal(stock.coef, k.coef) or stock.shift != k.shift or stock.left != k.left:
             return None
-        from . import _intpoints  # imported on first use (import noiselab.lattice costs what it did)
+        _intpoints = _kerncache.load("intpoints")  # generated and imported on first use
 
         return {v: _intpoints.INT_KERNELS[(self.dim_in, k.name, self.basis, v)] for v in ("s32f32", "s64f32", "s64f64")}
 
@@ -434,7 +434,7 @@ class LatticeNoise:
                         self._keys, self._mult, self._int_grads, int(self.basis == "gradient"), bool(absval)),
                        workers)
             return 0
-        from . import _intpoints
+        _intpoints = _kerncache.load("intpoints")
 
         if out.dtype == np.float64:
             variant = "s64f64"
@@ -452,14 +452,16 @@ class LatticeNoise:
         """The 3-D table kernel: with this kernel's coefficients written in if it is a stock kernel."""
         k = self.kernel
         stock = KERNELS.get(k.name)
-        if stock is not None and np.array_equal(stock.coef, k.coef) and (self.dim_in, k.name) in _points.TABLE_KERNELS:
-            return _points.TABLE_KERNELS[(self.dim_in, k.name)]
-        return _points.TABLE_KERNELS.get((self.dim_in, k.taps))
+        table_kernels = _kerncache.load("points").TABLE_KERNELS
+        if stock is not None and np.array_equal(stock.coef, k.coef) and (self.dim_in, k.name) in table_kernels:
+            return table_kernels[(self.dim_in, k.name)]
+        return table_kernels.get((self.dim_in, k.taps))
 
     def _uses_tables(self):
         """Whether the scattered kernel over precombined hash tables applies (3-D input; last period n)."""
         k = self.kernel
-        return (self.hash == "table" and (self.dim_in, k.taps) in _points.TABLE_KERNELS and (self.period >= k.taps).all()
+        table_kernels = _kerncache.load("points").TABLE_KERNELS
+        return (self.hash == "table" and (self.dim_in, k.taps) in table_kernels and (self.period >= k.taps).all()
                 and self.period[-1] == self.table_size and self.table_size ** 2 * self.dim_out <= _MAX_H2_ENTRIES)
 
     def _hash_tables(self, basis):
@@ -544,7 +546,7 @@ class LatticeNoise:
             _check_reach(flat, freqs, self.phase, name)  # as for values: x * frequency + phase must stay finite
             k = self.kernel
             basis = 0 if self.basis == "value" else 1
-            from . import _jacobians  # imported on the first derivative (its kernels cost import time)
+            _jacobians = _kerncache.load("jacobians")  # generated and imported on the first derivative
 
             unrolled = _jacobians.JAC_KERNELS.get((self.dim_in, k.taps))
             tabled = _jacobians.JAC_TABLE_KERNELS.get((self.dim_in, k.taps))

@@ -1,0 +1,118 @@
+"""Time to a first result: ``import noiselab`` plus the first call of each common path, cold and warm numba cache.
+
+Run from the repository root::
+
+    python benchmarks/bench_coldstart.py [--paths points3 grid2 fbm2 int32] [--runs 1]
+
+Writes ``benchmarks/bench_coldstart.md`` beside this script. Each case runs
+in a fresh Python process (``import noiselab`` included) and is measured as
+the CPU time (user + system) of that child process, from
+``resource.getrusage(RUSAGE_CHILDREN)`` before and after: CPU time does not
+grow when the shared machine is busy, wall time does. "cold" is a process
+whose ``NUMBA_CACHE_DIR`` (and the generated-kernel cache, which lives under
+it) is a new empty folder: everything the call needs is generated and
+compiled. "warm" is a second process on the same folder: numba loads the
+machine code from its cache. The child also reports how many numba
+specialisations it compiled or loaded (``len(fn.signatures)`` summed over
+every dispatcher in ``noiselab.lattice``'s modules), which says where the
+cold time goes.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from noiselab.lab.measure import header_lines, markdown_table, run_info  # noqa: E402
+
+# the first call of each common path, as a user writes it (after `import numpy as np`, `import noiselab as nl`)
+PATHS = {
+    "points3": ("`LatticeNoise(3)(pts)`, 1e5 random 3-D points",
+                "pts = np.random.default_rng(0).random((100_000, 3)) * 32\n"
+                "nl.LatticeNoise(3)(pts)"),
+    "grid2": ("`LatticeNoise(2).grid((512, 512), [(0, 32), (0, 32)])`",
+              "nl.LatticeNoise(2).grid((512, 512), [(0, 32), (0, 32)])"),
+    "fbm2": ("`fractal_sum(LatticeNoise(2), Grid((512, 512), ((0, 32), (0, 32))), octaves=6)`",
+             "from noiselab.lattice import Grid\n"
+             "nl.fractal_sum(nl.LatticeNoise(2), Grid((512, 512), ((0, 32), (0, 32))), octaves=6)"),
+    "int32": ("`LatticeNoise(3, hash=\"integer\")(pts.astype(np.float32))`, 1e5 points",
+              "pts = np.random.default_rng(0).random((100_000, 3)) * 32\n"
+              "nl.LatticeNoise(3, hash=\"integer\")(pts.astype(np.float32))"),
+}
+
+# printed by the child after the call: the number of compiled (or cache-loaded) specialisations
+COUNT = """
+import sys as _sys
+_n = 0
+for _name, _mod in list(_sys.modules.items()):
+    if _name.startswith("noiselab.lattice") or _name.startswith("noiselab_kernels"):
+        for _v in list(vars(_mod).values()):
+            if hasattr(_v, "signatures") and hasattr(_v, "py_func"):
+                _n += len(_v.signatures)
+print("SPECIALISATIONS", _n)
+"""
+
+
+def run_child(code, cache_dir):
+    """CPU seconds (user + system) of one fresh process running ``code``, and its specialisation count."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1",
+               OMP_NUM_THREADS="1")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    proc = subprocess.run([sys.executable, "-c", "import numpy as np\nimport noiselab as nl\n" + code + COUNT],
+                          env=env, cwd=ROOT, capture_output=True, text=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode:
+        raise RuntimeError(f"child failed:\n{proc.stderr}")
+    spec = int(proc.stdout.split("SPECIALISATIONS")[-1])
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return cpu, spec
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--paths", nargs="+", choices=list(PATHS), default=list(PATHS), help="paths to time")
+    parser.add_argument("--runs", type=int, default=1, help="cold/warm pairs per path (the median is reported)")
+    parser.add_argument("--label", default="", help="a note for the table's title (e.g. before/after)")
+    parser.add_argument("--output", default=str(Path(__file__).with_suffix(".md")), help="Markdown file to write")
+    args = parser.parse_args(argv)
+    command = "python benchmarks/bench_coldstart.py " + " ".join(argv if argv is not None else sys.argv[1:])
+    info = run_info(command.strip())
+    base = run_child("", Path(tempfile.mkdtemp(prefix="nl-cold-")))[0]  # `import noiselab` alone
+    rows = []
+    for key in args.paths:
+        what, code = PATHS[key]
+        colds, warms, specs = [], [], 0
+        for _ in range(args.runs):
+            cache = Path(tempfile.mkdtemp(prefix="nl-cold-"))
+            try:
+                cold, specs = run_child(code, cache)
+                warm, _ = run_child(code, cache)
+            finally:
+                shutil.rmtree(cache, ignore_errors=True)
+            colds.append(cold)
+            warms.append(warm)
+            print(f"{key}: cold {cold:.2f} s, warm {warm:.2f} s CPU, {specs} specialisations", flush=True)
+        colds.sort()
+        warms.sort()
+        rows.append([what, f"{colds[len(colds) // 2]:.1f}", f"{warms[len(warms) // 2]:.1f}", str(specs)])
+    lines = [f"# Time to a first result{(' (' + args.label + ')') if args.label else ''}", ""]
+    lines += header_lines(info)
+    lines += ["", "CPU seconds (user + system) of a fresh process: `import noiselab`, then the call. "
+              "Cold: an empty numba cache (and generated-kernel cache); warm: a second process on the same cache. "
+              f"`import noiselab` alone: {base:.1f} s. Specialisations: numba signatures compiled "
+              "(cold) or loaded (warm) by `noiselab.lattice`'s kernels.", ""]
+    lines += markdown_table(["first call", "cold (s CPU)", "warm (s CPU)", "specialisations"], rows, "lrrr")
+    Path(args.output).write_text("\n".join(lines) + "\n")
+    print(f"wrote {args.output}")
+
+
+if __name__ == "__main__":
+    main()
