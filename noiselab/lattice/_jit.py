@@ -836,7 +836,7 @@ def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
     return sig, codegen
 
 
-@nb.njit(cache=True, nogil=True, inline="always")
+@nb.njit(cache=True, nogil=True)
 def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3,
                   b0, b1, b2, b3):
     """One octave of :func:`grid2d`'s axis-0 pass: ``dst[doff + q] = (prev[poff + q] +) T0[q] (+ T1[q])``.
@@ -846,7 +846,11 @@ def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2
     The sums are :func:`final_pass`'s: for 2 and 4 taps each term's tap sum
     is added to the running sum, for 1 and 3 taps every tap product is.
     Offsets and ``nt`` are uint64; ``dst`` and ``prev`` are different arrays
-    (so that the loop vectorises).
+    (so that the loop vectorises). Not inlined: :func:`_make_grid2d`'s kernel
+    passes ``taps`` and ``grad`` as literal constants, so numba compiles one
+    small function per tap count, basis and output dtype, the other branches
+    pruned before LLVM sees them (inlined, every branch was copied into each
+    of its three call sites: seconds of compilation).
     """
     if taps == 4 and grad:
         y0 = x0 + dy
