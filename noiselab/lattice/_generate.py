@@ -9,8 +9,8 @@ For 3-D input, ``tables_d3_*`` read precombined hash tables (see
 whose last axis is not the table size and for tables too large to build.
 The output is never committed: :mod:`._kerncache` writes it on first use into
 a cache folder keyed by this file's content (numba's ``cache=True`` needs a
-file); ``python -m noiselab.lattice._generate [folder]`` prints (or writes)
-the modules, to read them.
+file); ``python -m noiselab.lattice._kerncache`` prints where, and
+``python -m noiselab.lattice._generate FOLDER`` writes them there, to read.
 """
 from __future__ import annotations
 
@@ -1254,17 +1254,15 @@ def generate_int() -> str:
 
 
 if __name__ == "__main__":
-    # the modules are written on first use by _kerncache (never committed); this writes them where it
-    # would (or into the folder given) for reading
+    # the modules are written on first use by _kerncache (never committed; `python -m
+    # noiselab.lattice._kerncache` prints where); this writes them into the folder given, for reading
     import sys
 
-    from . import _kerncache
-
-    folder = Path(sys.argv[1]) if len(sys.argv) > 1 else None
-    for name, fn in _kerncache.GENERATORS.items():
-        if folder is None:
-            print(f"{_kerncache.path(name)}")
-        else:
-            folder.mkdir(parents=True, exist_ok=True)
-            (folder / f"_{name}.py").write_text(globals()[fn]())
-            print(f"wrote {folder / f'_{name}.py'}")
+    if len(sys.argv) != 2:
+        sys.exit("usage: python -m noiselab.lattice._generate FOLDER")
+    folder = Path(sys.argv[1])
+    folder.mkdir(parents=True, exist_ok=True)
+    for name, source in (("_points.py", generate()), ("_jacobians.py", generate_jacobians()),
+                         ("_intpoints.py", generate_int())):
+        (folder / name).write_text(source)
+        print(f"wrote {folder / name}")

@@ -133,3 +133,8 @@ def load(name: str):
             raise
     _LOADED[name] = mod
     return mod
+
+
+if __name__ == "__main__":  # where the generated modules are (written if missing)
+    for _name in GENERATORS:
+        print(path(_name))
