@@ -924,8 +924,8 @@ def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2
                 dst[doff + q] = a0 * R[x0 + q]
 
 
-def _make_grid2d(TAPS, GRAD):
-    """:func:`grid2d`'s compiled kernel for one tap count and basis (both compile-time constants).
+def _make_grid2d(TAPS, GRAD, USE32):
+    """:func:`grid2d`'s compiled kernel for one tap count, basis and output dtype (compile-time constants).
 
     With ``taps`` and ``grad`` frozen in the closure LLVM drops the other
     kernels' loops before optimising: one variant compiles in a fraction of
@@ -974,7 +974,6 @@ def _make_grid2d(TAPS, GRAD):
         taps = TAPS
         n = perm.shape[0]
         grad = GRAD
-        use32 = out32.shape[0] > 0
         nterm = 2 if grad else 1
         S = 1
         while S < taps:
@@ -1138,12 +1137,13 @@ def _make_grid2d(TAPS, GRAD):
                         a2 = wa0[o, j, 2 % taps] * sc; a3 = wa0[o, j, 3 % taps] * sc
                     b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1 % taps] * sc
                     b2 = wa0[o, j, 2 % taps] * sc; b3 = wa0[o, j, 3 % taps] * sc
-                    if not absval and o == noct - 1 and use32:
-                        _axis0_octave(out32, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu,
-                                      taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
-                    elif not absval and o == noct - 1:
-                        _axis0_octave(out64, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu,
-                                      taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                    if not absval and o == noct - 1:
+                        if USE32:  # a constant: numba prunes the other branch, so compiles one output dtype
+                            _axis0_octave(out32, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring,
+                                          ntu, taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                        else:
+                            _axis0_octave(out64, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring,
+                                          ntu, taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
                     else:
                         # turbulence: each octave into tmp, |.| summed into acc; else acc and tmp in turn
                         into_tmp = absval or o % 2 == 1
@@ -1158,7 +1158,7 @@ def _make_grid2d(TAPS, GRAD):
                                 bufs[q] += abs(bufs[tile + q])
                 if absval:
                     ob = j * nq + q0
-                    if use32:
+                    if USE32:
                         for q in range(nt):
                             out32[ob + q] += bufs[q]
                     else:
@@ -1177,14 +1177,31 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
 
     The arguments and the result are those of the kernel :func:`_make_grid2d`
     compiles (its docstring): ``taps`` is ``pos0.shape[2]``, ``basis`` 0
-    (value) or 1 (gradient). Only the variant called is compiled.
+    (value) or 1 (gradient), the output float32 when ``out32`` is not empty.
+    Only the variant called is compiled.
     """
-    key = (int(pos0.shape[2]), basis == 1)
+    key = (int(pos0.shape[2]), basis == 1, out32.shape[0] > 0)
     fn = _GRID2D.get(key)
     if fn is None:
         fn = _GRID2D[key] = _make_grid2d(*key)
     fn(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
        absval, out64, out32, nq, tile)
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _span(x):
+    """``x.max() - x.min()`` (NaN if any is NaN, 0 if empty) as a loop: numba's max and min compile slowly."""
+    if x.shape[0] == 0:
+        return 0.0
+    lo = x[0]
+    hi = x[0]
+    nan = False
+    for j in range(x.shape[0]):
+        v = x[j]
+        nan = nan or v != v
+        lo = min(lo, v)
+        hi = max(hi, v)
+    return np.nan if nan else hi - lo
 
 
 @nb.njit(cache=True, nogil=True)
@@ -1219,7 +1236,7 @@ def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, g
         fis, fbase, w, rw = axis_weights(coords, freqs[o], phase, shift, left, taps, coef, period, grad)
         if deriv:
             w, rw = axis_dweights(coords, freqs[o], phase, shift, left, taps, coef, dcoef, grad)
-        span = fis.max() - fis.min() if nn > 0 else 0.0
+        span = _span(fis)
         if not span <= 4 * taps * nn + 64:
             return False, lat[:0], off, pos, base, wa, wb, dense
         lattice, p = dense_taps(fis, fbase, taps, period)
