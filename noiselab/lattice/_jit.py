@@ -1204,61 +1204,83 @@ def _span(x):
     return np.nan if nan else hi - lo
 
 
-@nb.njit(cache=True, nogil=True)
+def _make_pack_axis(DERIV):
+    """:func:`pack_axis`'s compiled kernel with ``deriv`` a constant (a plain grid never compiles
+    :func:`axis_dweights`)."""
+
+    @nb.njit(cache=True, nogil=True)
+    def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv, last):
+        """Every octave's distinct taps and weights along one grid axis, packed for :func:`grid2d`.
+
+        Per octave: :func:`axis_weights` (or, with ``deriv``, :func:`axis_dweights`)
+        and :func:`dense_taps`, as ``LatticeNoise._axis_taps`` computes them.
+        Returns ``ok`` (False when an octave's taps span too many cells for
+        :func:`dense_taps`: the caller then packs ``_axis_taps``' sparse result),
+        ``lat`` (the distinct taps modulo n, octave after octave), ``off``
+        (octave o's taps are ``lat[off[o]:off[o + 1]]``), ``pos`` (O, N, taps),
+        ``base`` (O, N) = ``pos[:, :, 0]``, the weights ``wa``, ``wb`` (O, N, taps),
+        or (O, taps, N) with ``last``, and ``dense`` (O,): the taps are
+        consecutive lattice points modulo n (and the period a multiple of n).
+        """
+        noct = freqs.shape[0]
+        nn = coords.shape[0]
+        cap = noct * (4 * taps * nn + 64 + taps)
+        lat = np.empty(cap, np.int64)
+        off = np.zeros(noct + 1, np.int64)
+        pos = np.empty((noct, nn, taps), np.int64)
+        base = np.empty((noct, nn), np.int64)
+        if last:
+            wa = np.empty((noct, taps, nn))
+            wb = np.empty((noct, taps, nn))
+        else:
+            wa = np.empty((noct, nn, taps))
+            wb = np.empty((noct, nn, taps))
+        dense = np.zeros(noct, np.bool_)
+        for o in range(noct):
+            fis, fbase, w, rw = axis_weights(coords, freqs[o], phase, shift, left, taps, coef, period, grad)
+            if DERIV:  # a constant: numba prunes the call when False
+                w, rw = axis_dweights(coords, freqs[o], phase, shift, left, taps, coef, dcoef, grad)
+            span = _span(fis)
+            if not span <= 4 * taps * nn + 64:
+                return False, lat[:0], off, pos, base, wa, wb, dense
+            lattice, p = dense_taps(fis, fbase, taps, period)
+            cnt = lattice.shape[0]
+            consecutive = period % n == 0
+            for i in range(cnt):
+                lat[off[o] + i] = lattice[i] % n
+                if i > 0 and (lattice[i] - lattice[i - 1]) % period != 1:
+                    consecutive = False
+            off[o + 1] = off[o] + cnt
+            dense[o] = consecutive
+            for j in range(nn):
+                base[o, j] = p[j, 0]
+                for k in range(taps):
+                    pos[o, j, k] = p[j, k]
+                    if last:
+                        wa[o, k, j] = w[j, k]
+                        wb[o, k, j] = rw[j, k]
+                    else:
+                        wa[o, j, k] = w[j, k]
+                        wb[o, j, k] = rw[j, k]
+        return True, lat[:off[noct]], off, pos, base, wa, wb, dense
+
+    return pack_axis
+
+
+_PACK_AXIS = {}
+
+
 def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv, last):
     """Every octave's distinct taps and weights along one grid axis, packed for :func:`grid2d`.
 
-    Per octave: :func:`axis_weights` (or, with ``deriv``, :func:`axis_dweights`)
-    and :func:`dense_taps`, as ``LatticeNoise._axis_taps`` computes them.
-    Returns ``ok`` (False when an octave's taps span too many cells for
-    :func:`dense_taps`: the caller then packs ``_axis_taps``' sparse result),
-    ``lat`` (the distinct taps modulo n, octave after octave), ``off``
-    (octave o's taps are ``lat[off[o]:off[o + 1]]``), ``pos`` (O, N, taps),
-    ``base`` (O, N) = ``pos[:, :, 0]``, the weights ``wa``, ``wb`` (O, N, taps),
-    or (O, taps, N) with ``last``, and ``dense`` (O,): the taps are
-    consecutive lattice points modulo n (and the period a multiple of n).
+    The arguments and results of the kernel :func:`_make_pack_axis` compiles
+    for this ``deriv`` (its docstring).
     """
-    noct = freqs.shape[0]
-    nn = coords.shape[0]
-    cap = noct * (4 * taps * nn + 64 + taps)
-    lat = np.empty(cap, np.int64)
-    off = np.zeros(noct + 1, np.int64)
-    pos = np.empty((noct, nn, taps), np.int64)
-    base = np.empty((noct, nn), np.int64)
-    if last:
-        wa = np.empty((noct, taps, nn))
-        wb = np.empty((noct, taps, nn))
-    else:
-        wa = np.empty((noct, nn, taps))
-        wb = np.empty((noct, nn, taps))
-    dense = np.zeros(noct, np.bool_)
-    for o in range(noct):
-        fis, fbase, w, rw = axis_weights(coords, freqs[o], phase, shift, left, taps, coef, period, grad)
-        if deriv:
-            w, rw = axis_dweights(coords, freqs[o], phase, shift, left, taps, coef, dcoef, grad)
-        span = _span(fis)
-        if not span <= 4 * taps * nn + 64:
-            return False, lat[:0], off, pos, base, wa, wb, dense
-        lattice, p = dense_taps(fis, fbase, taps, period)
-        cnt = lattice.shape[0]
-        consecutive = period % n == 0
-        for i in range(cnt):
-            lat[off[o] + i] = lattice[i] % n
-            if i > 0 and (lattice[i] - lattice[i - 1]) % period != 1:
-                consecutive = False
-        off[o + 1] = off[o] + cnt
-        dense[o] = consecutive
-        for j in range(nn):
-            base[o, j] = p[j, 0]
-            for k in range(taps):
-                pos[o, j, k] = p[j, k]
-                if last:
-                    wa[o, k, j] = w[j, k]
-                    wb[o, k, j] = rw[j, k]
-                else:
-                    wa[o, j, k] = w[j, k]
-                    wb[o, j, k] = rw[j, k]
-    return True, lat[:off[noct]], off, pos, base, wa, wb, dense
+    key = bool(deriv)
+    fn = _PACK_AXIS.get(key)
+    if fn is None:
+        fn = _PACK_AXIS[key] = _make_pack_axis(key)
+    return fn(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv, last)
 
 
 def grid2d_all(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv_axis, scales, perms,
