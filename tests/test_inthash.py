@@ -302,12 +302,20 @@ def test_bad_hash_parameters_name_them():
 
 def test_generated_integer_kernels_match_their_generator():
     # the module the integer hash runs is the generator's text of today, read from the kernel cache, not git
+    import sys
     from pathlib import Path
 
     from noiselab.lattice import _generate, _kerncache
 
     mod = _kerncache.load("intpoints")
     assert Path(mod.__file__).read_text() == _generate.generate_int()
+    # one module per (dimension, kernel, basis), generated and imported on its first lookup
+    fast = mod.INT_KERNELS[(2, "catmull-rom", "gradient", "s64f64")]
+    part = sys.modules[fast.py_func.__module__]
+    assert Path(part.__file__).read_text() == _generate.generate_int_part(2, "catmull-rom", "gradient")
+    assert {key[:3] for key in part.INT_KERNELS} == {(2, "catmull-rom", "gradient")}
+    with pytest.raises(KeyError):
+        mod.INT_KERNELS[(4, "cubic", "value", "s64f64")]
     assert _kerncache.source_hash() in Path(mod.__file__).parent.name
     assert Path(mod.__file__).parent != Path(_generate.__file__).parent
 

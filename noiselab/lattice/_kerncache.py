@@ -29,8 +29,9 @@ import sys
 import tempfile
 from pathlib import Path
 
-# module name -> the generator function that writes its source
-GENERATORS = {"points": "generate", "jacobians": "generate_jacobians", "intpoints": "generate_int"}
+# module name -> the generator function that writes its source (called with load()'s extra arguments)
+GENERATORS = {"points": "generate", "jacobians": "generate_jacobians", "intpoints": "generate_int",
+              "intpart": "generate_int_part"}
 # the files whose content decides the generated text
 _INPUTS = ("_generate.py", "kernels.py", "_inthash.py")
 _STAMP = 1_000_000_000  # the fixed mtime of a written module (see the module docstring)
@@ -95,20 +96,28 @@ def _write(target: Path, text: str) -> None:
         raise
 
 
-def path(name: str) -> Path:
-    """The file of generated module ``name`` (one of :data:`GENERATORS`), written if missing."""
+def _stem(name, args):
+    """``_name`` or ``_name_arg1_arg2`` (``-`` written ``_``): the module's file stem and last name part."""
+    return "_" + "_".join([name] + [str(a).replace("-", "_") for a in args])
+
+
+def path(name: str, *args) -> Path:
+    """The file of generated module ``name`` (one of :data:`GENERATORS`, with its arguments), written if missing."""
     if name not in GENERATORS:
         raise ValueError(f"name must be one of {sorted(GENERATORS)}, got {name!r}")
     from . import _generate
 
-    target = cache_folder() / f"_{name}.py"
+    target = cache_folder() / f"{_stem(name, args)}.py"
     if not target.exists():
-        _write(target, getattr(_generate, GENERATORS[name])())
+        _write(target, getattr(_generate, GENERATORS[name])(*args))
     return target
 
 
-def load(name: str):
-    """The generated module ``name`` (``"points"``, ``"jacobians"`` or ``"intpoints"``), imported once per process.
+def load(name: str, *args):
+    """The generated module ``name`` (``"points"``, ``"jacobians"``, ``"intpoints"``), imported once per process.
+
+    ``"intpart"`` with ``(d, kernel name, basis)`` is one part of the integer
+    hash's kernels; ``_intpoints.INT_KERNELS`` loads the parts on demand.
 
     Examples
     --------
@@ -117,13 +126,14 @@ def load(name: str):
     >>> sorted(mod.KERNELS)[:2]
     [(1, 1), (1, 2)]
     """
-    mod = _LOADED.get(name)
+    stem = _stem(name, args)
+    mod = _LOADED.get(stem)
     if mod is not None:
         return mod
-    qual = f"{__package__}._{name}"
+    qual = f"{__package__}.{stem}"
     mod = sys.modules.get(qual)
     if mod is None:
-        spec = importlib.util.spec_from_file_location(qual, path(name))
+        spec = importlib.util.spec_from_file_location(qual, path(name, *args))
         mod = importlib.util.module_from_spec(spec)
         sys.modules[qual] = mod  # before exec: numba and pickling look the module up by name
         try:
@@ -131,10 +141,10 @@ def load(name: str):
         except BaseException:
             del sys.modules[qual]
             raise
-    _LOADED[name] = mod
+    _LOADED[stem] = mod
     return mod
 
 
 if __name__ == "__main__":  # where the generated modules are (written if missing)
-    for _name in GENERATORS:
+    for _name in ("points", "jacobians", "intpoints"):
         print(path(_name))

@@ -460,8 +460,10 @@ class LatticeNoise:
     def _uses_tables(self):
         """Whether the scattered kernel over precombined hash tables applies (3-D input; last period n)."""
         k = self.kernel
+        if self.hash != "table":
+            return False
         table_kernels = _kerncache.load("points").TABLE_KERNELS
-        return (self.hash == "table" and (self.dim_in, k.taps) in table_kernels and (self.period >= k.taps).all()
+        return ((self.dim_in, k.taps) in table_kernels and (self.period >= k.taps).all()
                 and self.period[-1] == self.table_size and self.table_size ** 2 * self.dim_out <= _MAX_H2_ENTRIES)
 
     def _hash_tables(self, basis):
