@@ -22,6 +22,7 @@ file's size and time) stays valid.
 """
 from __future__ import annotations
 
+import functools
 import hashlib
 import importlib.util
 import os
@@ -39,8 +40,15 @@ _LOADED = {}
 _HERE = Path(__file__).resolve().parent
 
 
+@functools.lru_cache(maxsize=None)
 def source_hash() -> str:
-    """A 16-hex-digit hash of the generator's inputs (the cache folder's name carries it)."""
+    """A 16-hex-digit hash of the generator's inputs (the cache folder's name carries it).
+
+    Read once per process, when the generator is imported (:func:`path`), so
+    that one process never writes an older generator's text under a newer hash.
+    """
+    from . import _generate  # noqa: F401  (imported with the files it hashes)
+
     h = hashlib.sha256()
     for name in _INPUTS:
         h.update(name.encode() + b"\0" + (_HERE / name).read_bytes() + b"\0")
