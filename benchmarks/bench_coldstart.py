@@ -2,7 +2,7 @@
 
 Run from the repository root::
 
-    python benchmarks/bench_coldstart.py [--paths points3 grid2 fbm2 int32] [--runs 1]
+    python benchmarks/bench_coldstart.py [--paths points3 grid2 fbm2 int32] [--runs 1] [--kernels]
 
 Writes ``benchmarks/bench_coldstart.md`` beside this script. Each case runs
 in a fresh Python process (``import noiselab`` included) and is measured as
@@ -23,6 +23,7 @@ from __future__ import annotations
 import argparse
 import os
 import resource
+import shlex
 import shutil
 import subprocess
 import sys
@@ -64,6 +65,41 @@ print("SPECIALISATIONS", sum(_seen.values()))
 """
 
 
+# the child's numba compilations, timed by numba's event API (nested: a kernel's time includes its callees')
+LISTEN = """
+import time as _time
+from numba.core import event as _event
+
+class _Compiles(_event.Listener):
+    def __init__(self):
+        self.start, self.done = {}, []
+
+    def on_start(self, ev):  # the start and end events are two objects: keyed by dispatcher and argument types
+        self.start[id(ev.data["dispatcher"]), str(ev.data["args"])] = _time.process_time()
+
+    def on_end(self, ev):
+        t0 = self.start.pop((id(ev.data["dispatcher"]), str(ev.data["args"])))
+        self.done.append((_time.process_time() - t0, ev.data["dispatcher"].py_func.__qualname__))
+
+_compiles = _Compiles()
+_event.register("numba:compile", _compiles)
+"""
+REPORT = """
+for _t, _name in sorted(_compiles.done, reverse=True)[:6]:
+    print("COMPILE", round(_t, 2), _name)
+"""
+
+
+def compile_times(code, cache_dir):
+    """The child's slowest numba compilations: ``[(cpu seconds, function name)]``, callees included in callers."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1")
+    proc = subprocess.run([sys.executable, "-c", LISTEN + "import numpy as np\nimport noiselab as nl\n" + code + REPORT],
+                          env=env, cwd=ROOT, capture_output=True, text=True)
+    if proc.returncode:
+        raise RuntimeError(f"child failed:\n{proc.stderr}")
+    return [(float(line.split()[1]), line.split()[2]) for line in proc.stdout.splitlines() if line.startswith("COMPILE")]
+
+
 def run_child(code, cache_dir):
     """CPU seconds (user + system) of one fresh process running ``code``, and its specialisation count."""
     env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1",
@@ -83,10 +119,12 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--paths", nargs="+", choices=list(PATHS), default=list(PATHS), help="paths to time")
     parser.add_argument("--runs", type=int, default=1, help="cold/warm pairs per path (the median is reported)")
+    parser.add_argument("--kernels", action="store_true",
+                        help="also time each numba compilation of a cold run (where the cold time goes)")
     parser.add_argument("--label", default="", help="a note for the table's title (e.g. before/after)")
     parser.add_argument("--output", default=str(Path(__file__).with_suffix(".md")), help="Markdown file to write")
     args = parser.parse_args(argv)
-    command = "python benchmarks/bench_coldstart.py " + " ".join(argv if argv is not None else sys.argv[1:])
+    command = "python benchmarks/bench_coldstart.py " + shlex.join(argv if argv is not None else sys.argv[1:])
     info = run_info(command.strip())
     base = run_child("", Path(tempfile.mkdtemp(prefix="nl-cold-")))[0]  # `import noiselab` alone
     rows = []
@@ -113,6 +151,19 @@ def main(argv=None):
               f"`import noiselab` alone: {base:.1f} s. Specialisations: numba signatures compiled "
               "(cold) or loaded (warm) by `noiselab.lattice`'s kernels.", ""]
     lines += markdown_table(["first call", "cold (s CPU)", "warm (s CPU)", "specialisations"], rows, "lrrr")
+    if args.kernels:
+        lines += ["", "Where the cold time goes: the slowest numba compilations of one more cold run, CPU seconds "
+                  "(numba's `numba:compile` events; a kernel's time includes its callees' compilation).", ""]
+        krows = []
+        for key in args.paths:
+            cache = Path(tempfile.mkdtemp(prefix="nl-cold-"))
+            try:
+                top = compile_times(PATHS[key][1], cache)
+            finally:
+                shutil.rmtree(cache, ignore_errors=True)
+            krows.append([key, "; ".join(f"`{name}` {t:.1f}" for t, name in top[:4])])
+            print(key, krows[-1][1], flush=True)
+        lines += markdown_table(["path", "compilations (s CPU)"], krows, "ll")
     Path(args.output).write_text("\n".join(lines) + "\n")
     print(f"wrote {args.output}")
 
