@@ -2,7 +2,7 @@
 
 Run from the repository root::
 
-    python benchmarks/bench_coldstart.py [--paths points3 grid2 fbm2 int32] [--runs 1] [--kernels]
+    python benchmarks/bench_coldstart.py [--paths points3 grid2 fbm2 int32] [--runs 1] [--kernels] [--speed 7]
 
 Writes ``benchmarks/bench_coldstart.md`` beside this script. Each case runs
 in a fresh Python process (``import noiselab`` included) and is measured as
@@ -90,6 +90,36 @@ for _t, _name in sorted(_compiles.done, reverse=True)[:6]:
 """
 
 
+SPEED = """
+import time
+from noiselab.lattice import Grid
+from noiselab.lab.measure import interleaved
+pts = np.random.default_rng(0).random((1_000_000, 3)) * 32
+p32 = pts.astype(np.float32)
+n3, n2, ni = nl.LatticeNoise(3), nl.LatticeNoise(2), nl.LatticeNoise(3, hash="integer")
+n2g = nl.LatticeNoise(2, basis="gradient", kernel="quintic")
+g = Grid((512, 512), ((0, 32), (0, 32)))
+cands = {"points3 (1e6 points)": lambda: n3(pts), "grid2": lambda: n2.grid((512, 512), [(0, 32), (0, 32)]),
+         "fbm2": lambda: nl.fractal_sum(n2, g, octaves=6),
+         "fbm2, gradient quintic": lambda: nl.fractal_sum(n2g, g, octaves=6),
+         "int32 (1e6 points)": lambda: ni(p32), "floor": lambda: np.full(1_000_000, 1.0)}
+t = interleaved(cands, repeats=REPEATS, timer=time.thread_time)
+for k in cands:
+    print("SPEED", repr((k, t[k], t.ratio("floor", k))))
+"""
+
+
+def warm_speed(repeats, cache_dir):
+    """Warm run times in one process (thread CPU, medians) and their ratio to the floor (1e6 float64 writes)."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1")
+    code = "import numpy as np\nimport noiselab as nl\n" + SPEED.replace("REPEATS", str(repeats))
+    proc = subprocess.run([sys.executable, "-c", code], env=env, cwd=ROOT, capture_output=True, text=True)
+    if proc.returncode:
+        raise RuntimeError(f"child failed:\n{proc.stderr}")
+    import ast
+    return [ast.literal_eval(line[6:]) for line in proc.stdout.splitlines() if line.startswith("SPEED")]
+
+
 def compile_times(code, cache_dir):
     """The child's slowest numba compilations: ``[(cpu seconds, function name)]``, callees included in callers."""
     env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1")
@@ -121,6 +151,8 @@ def main(argv=None):
     parser.add_argument("--runs", type=int, default=1, help="cold/warm pairs per path (the median is reported)")
     parser.add_argument("--kernels", action="store_true",
                         help="also time each numba compilation of a cold run (where the cold time goes)")
+    parser.add_argument("--speed", type=int, default=0, metavar="REPEATS",
+                        help="also time the warm calls in one process (REPEATS interleaved rounds, >= 5)")
     parser.add_argument("--label", default="", help="a note for the table's title (e.g. before/after)")
     parser.add_argument("--output", default=str(Path(__file__).with_suffix(".md")), help="Markdown file to write")
     args = parser.parse_args(argv)
@@ -164,6 +196,17 @@ def main(argv=None):
             krows.append([key, "; ".join(f"`{name}` {t:.1f}" for t, name in top[:4])])
             print(key, krows[-1][1], flush=True)
         lines += markdown_table(["path", "compilations (s CPU)"], krows, "ll")
+    if args.speed:
+        cache = Path(tempfile.mkdtemp(prefix="nl-warm-"))
+        try:
+            rows = warm_speed(args.speed, cache)
+        finally:
+            shutil.rmtree(cache, ignore_errors=True)
+        lines += ["", f"Warm speed: one process, {args.speed} interleaved rounds, median thread CPU time; "
+                  "x floor = time of writing 1e6 float64 (`np.full`) / time of the call, paired per round.", ""]
+        lines += markdown_table(["call", "ms", "x floor"], [[k, f"{t * 1e3:.2f}", f"{r:.3f}"] for k, t, r in rows],
+                                "lrr")
+        print("\n".join(lines[-len(rows) - 2:]), flush=True)
     Path(args.output).write_text("\n".join(lines) + "\n")
     print(f"wrote {args.output}")
 
