@@ -45,6 +45,11 @@ PATHS = {
     "fbm2": ("`fractal_sum(LatticeNoise(2), Grid((512, 512), ((0, 32), (0, 32))), octaves=6)`",
              "from noiselab.lattice import Grid\n"
              "nl.fractal_sum(nl.LatticeNoise(2), Grid((512, 512), ((0, 32), (0, 32))), octaves=6)"),
+    "grid2-all": ("every fused 2-D grid kernel: 64² grids, tap counts 1-4 x both bases x float32/float64 (16 calls)",
+                  "for k in ['box', 'linear', 'quadratic', 'cubic']:\n"
+                  "    for b in ('value', 'gradient'):\n"
+                  "        for dt in (np.float64, np.float32):\n"
+                  "            nl.LatticeNoise(2, kernel=k, basis=b).grid((64, 64), [(0, 8), (0, 8)], dtype=dt)"),
     "int32": ("`LatticeNoise(3, hash=\"integer\")(pts.astype(np.float32))`, 1e5 points",
               "pts = np.random.default_rng(0).random((100_000, 3)) * 32\n"
               "nl.LatticeNoise(3, hash=\"integer\")(pts.astype(np.float32))"),

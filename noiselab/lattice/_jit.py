@@ -847,10 +847,10 @@ def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2
     is added to the running sum, for 1 and 3 taps every tap product is.
     Offsets and ``nt`` are uint64; ``dst`` and ``prev`` are different arrays
     (so that the loop vectorises). Not inlined: :func:`_make_grid2d`'s kernel
-    passes ``taps`` and ``grad`` as literal constants, so numba compiles one
-    small function per tap count, basis and output dtype, the other branches
-    pruned before LLVM sees them (inlined, every branch was copied into each
-    of its three call sites: seconds of compilation).
+    passes ``grad`` as a literal constant, so numba compiles one function per
+    basis and output dtype, the other basis's branches pruned before LLVM sees
+    them (inlined, every branch was copied into each of its three call sites:
+    seconds of compilation).
     """
     if taps == 4 and grad:
         y0 = x0 + dy
@@ -924,14 +924,15 @@ def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2
                 dst[doff + q] = a0 * R[x0 + q]
 
 
-def _make_grid2d(TAPS, GRAD, USE32):
-    """:func:`grid2d`'s compiled kernel for one tap count, basis and output dtype (compile-time constants).
+def _make_grid2d(GRAD, USE32):
+    """:func:`grid2d`'s compiled kernel for one basis and output dtype (compile-time constants).
 
-    With ``taps`` and ``grad`` frozen in the closure LLVM drops the other
-    kernels' loops before optimising: one variant compiles in a fraction of
-    the time of the general kernel (which held every tap count and basis, 42
-    vectorised loops); numba caches each variant on disk (closure values are
-    part of its cache key).
+    With ``grad`` and the output dtype frozen in the closure numba prunes the
+    other basis's and dtype's code before compiling (numba caches each variant
+    on disk: closure values are part of its cache key). The tap count stays a
+    run-time value: a kernel per tap count as well compiled no faster for one
+    grid and 3.8 times slower for all of them (the test suite): 63 s against
+    17 s CPU for the 16 grids of ``bench_coldstart.py``'s ``grid2-all``.
     """
 
     @nb.njit(cache=True, nogil=True)
@@ -970,8 +971,7 @@ def _make_grid2d(TAPS, GRAD, USE32):
         and column, not on the tile, so any window is the same slice of the
         full grid, bit for bit.
         """
-        noct, nj, _ = pos0.shape
-        taps = TAPS
+        noct, nj, taps = pos0.shape
         n = perm.shape[0]
         grad = GRAD
         nterm = 2 if grad else 1
@@ -1173,14 +1173,14 @@ _GRID2D = {}
 
 def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
            absval, out64, out32, nq, tile):
-    """A 2-D grid of table-hashed lattice noise, every octave fused (the compiled kernel for this tap count and basis).
+    """A 2-D grid of table-hashed lattice noise, every octave fused (the compiled kernel for this basis and dtype).
 
     The arguments and the result are those of the kernel :func:`_make_grid2d`
-    compiles (its docstring): ``taps`` is ``pos0.shape[2]``, ``basis`` 0
-    (value) or 1 (gradient), the output float32 when ``out32`` is not empty.
+    compiles (its docstring): ``basis`` 0 (value) or 1 (gradient), the
+    output float32 when ``out32`` is not empty.
     Only the variant called is compiled.
     """
-    key = (int(pos0.shape[2]), basis == 1, out32.shape[0] > 0)
+    key = (basis == 1, out32.shape[0] > 0)
     fn = _GRID2D.get(key)
     if fn is None:
         fn = _GRID2D[key] = _make_grid2d(*key)
