@@ -28,6 +28,7 @@ import importlib.util
 import os
 import sys
 import tempfile
+import threading
 from pathlib import Path
 
 # module name -> the generator function that writes its source (called with load()'s extra arguments)
@@ -37,6 +38,7 @@ GENERATORS = {"points": "generate", "jacobians": "generate_jacobians", "intpoint
 _INPUTS = ("_generate.py", "kernels.py", "_inthash.py")
 _STAMP = 1_000_000_000  # the fixed mtime of a written module (see the module docstring)
 _LOADED = {}
+_LOCK = threading.RLock()  # one import per module when threads (workers=) ask at once
 _HERE = Path(__file__).resolve().parent
 
 
@@ -138,18 +140,19 @@ def load(name: str, *args):
     mod = _LOADED.get(stem)
     if mod is not None:
         return mod
-    qual = f"{__package__}.{stem}"
-    mod = sys.modules.get(qual)
-    if mod is None:
-        spec = importlib.util.spec_from_file_location(qual, path(name, *args))
-        mod = importlib.util.module_from_spec(spec)
-        sys.modules[qual] = mod  # before exec: numba and pickling look the module up by name
-        try:
-            spec.loader.exec_module(mod)
-        except BaseException:
-            del sys.modules[qual]
-            raise
-    _LOADED[stem] = mod
+    with _LOCK:
+        qual = f"{__package__}.{stem}"
+        mod = sys.modules.get(qual)
+        if mod is None:
+            spec = importlib.util.spec_from_file_location(qual, path(name, *args))
+            mod = importlib.util.module_from_spec(spec)
+            sys.modules[qual] = mod  # before exec: numba and pickling look the module up by name
+            try:
+                spec.loader.exec_module(mod)
+            except BaseException:
+                del sys.modules[qual]
+                raise
+        _LOADED[stem] = mod
     return mod
 
 
