@@ -328,7 +328,7 @@ print(_kerncache.path("points"))
 
 
 def test_kernel_cache_is_written_atomically_by_racing_processes(tmp_path):
-    # eight processes write the generated module into one empty cache at once: every one succeeds, the file
+    # four processes write the generated module into one empty cache at once: every one succeeds, the file
     # holds the generator's text, no temporary file is left and its mtime is the fixed stamp (numba's cache
     # keys on it, so whichever process wrote it the compiled kernels stay valid)
     import os
@@ -340,9 +340,9 @@ def test_kernel_cache_is_written_atomically_by_racing_processes(tmp_path):
 
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), PYTHONPATH=str(Path(_generate.__file__).parents[2]))
     procs = [subprocess.Popen([sys.executable, "-c", _RACE], env=env, stdout=subprocess.PIPE, text=True)
-             for _ in range(8)]
+             for _ in range(4)]
     outs = [p.communicate()[0].strip() for p in procs]
-    assert [p.returncode for p in procs] == [0] * 8
+    assert [p.returncode for p in procs] == [0] * 4
     assert len(set(outs)) == 1
     target = Path(outs[0])
     assert target.parent.parent == tmp_path and target.parent.name == f"noiselab-kernels-{_kerncache.source_hash()}"
