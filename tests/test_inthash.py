@@ -123,7 +123,9 @@ def test_grid_and_points_agree(dim, basis):
 def test_simd_kernels_agree_with_the_generic_one(dim, basis):
     # the generated SIMD kernels (every stock kernel; float64 and float32 arithmetic; fused octaves,
     # turbulence, vector output, periods that are and are not powers of two) against the generic kernel
-    from noiselab.lattice import _intpoints
+    from noiselab.lattice import _kerncache
+
+    _intpoints = _kerncache.load("intpoints")
 
     pts = RNG.uniform(-40, 40, (700, dim))
     freqs, amps = np.array([[1.0] * dim, [2.5] * dim]), np.array([0.7, 0.3])
@@ -157,7 +159,9 @@ def test_simd_kernels_agree_with_the_generic_one(dim, basis):
 def test_float32_split_gives_the_same_bits_as_the_float64_split(dim, basis):
     # float32 points at power-of-two frequencies take the all-float32 kernel; its split is exact, so the
     # result equals the float64-split float32 kernel's bit for bit
-    from noiselab.lattice import _intpoints
+    from noiselab.lattice import _kerncache
+
+    _intpoints = _kerncache.load("intpoints")
 
     pts = (RNG.uniform(-300, 300, (2000, dim)) * 64).round().astype(np.float32) / np.float32(64)
     pts[::7] = RNG.uniform(-1, 1, (len(pts[::7]), dim)).astype(np.float32) * 1e-30   # tiny: fraction near 1
@@ -297,9 +301,68 @@ def test_bad_hash_parameters_name_them():
 
 
 def test_generated_integer_kernels_match_their_generator():
+    # the module the integer hash runs is the generator's text of today, read from the kernel cache, not git
+    import sys
     from pathlib import Path
 
-    from noiselab.lattice import _generate
+    from noiselab.lattice import _generate, _kerncache
 
-    committed = Path(_generate.__file__).with_name("_intpoints.py").read_text()
-    assert committed == _generate.generate_int(), "run `python -m noiselab.lattice._generate` and commit _intpoints.py"
+    mod = _kerncache.load("intpoints")
+    assert Path(mod.__file__).read_text() == _generate.generate_int()
+    # one module per (dimension, kernel, basis), generated and imported on its first lookup
+    fast = mod.INT_KERNELS[(2, "catmull-rom", "gradient", "s64f64")]
+    part = sys.modules[fast.py_func.__module__]
+    assert Path(part.__file__).read_text() == _generate.generate_int_part(2, "catmull-rom", "gradient")
+    assert {key[:3] for key in part.INT_KERNELS} == {(2, "catmull-rom", "gradient")}
+    with pytest.raises(KeyError):
+        mod.INT_KERNELS[(4, "cubic", "value", "s64f64")]
+    assert _kerncache.source_hash() in Path(mod.__file__).parent.name
+    assert Path(mod.__file__).parent != Path(_generate.__file__).parent
+
+
+_RACE = """
+import sys
+from noiselab.lattice import _kerncache
+print(_kerncache.path("points"))
+"""
+
+
+def test_kernel_cache_is_written_atomically_by_racing_processes(tmp_path):
+    # four processes write the generated module into one empty cache at once: every one succeeds, the file
+    # holds the generator's text, no temporary file is left and its mtime is the fixed stamp (numba's cache
+    # keys on it, so whichever process wrote it the compiled kernels stay valid)
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from noiselab.lattice import _generate, _kerncache
+
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), PYTHONPATH=str(Path(_generate.__file__).parents[2]))
+    procs = [subprocess.Popen([sys.executable, "-c", _RACE], env=env, stdout=subprocess.PIPE, text=True)
+             for _ in range(4)]
+    outs = [p.communicate()[0].strip() for p in procs]
+    assert [p.returncode for p in procs] == [0] * 4
+    assert len(set(outs)) == 1
+    target = Path(outs[0])
+    assert target.parent.parent == tmp_path and target.parent.name == f"noiselab-kernels-{_kerncache.source_hash()}"
+    assert target.read_text() == _generate.generate()
+    assert os.stat(target).st_mtime == _kerncache._STAMP
+    assert not [f for f in os.listdir(target.parent) if f.endswith(".tmp")]
+
+
+def test_kernel_cache_falls_back_when_a_folder_cannot_be_written(tmp_path, monkeypatch):
+    # NUMBA_CACHE_DIR under a plain file cannot hold a folder: the user cache is used; when it cannot
+    # either, the temporary directory
+    from noiselab.lattice import _kerncache
+
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(blocker / "numba"))
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
+    assert _kerncache.cache_folder().parent == tmp_path / "xdg" / "noiselab"
+    monkeypatch.setenv("XDG_CACHE_HOME", str(blocker / "xdg"))
+    monkeypatch.setattr(_kerncache.tempfile, "tempdir", str(tmp_path / "tmp"))
+    assert _kerncache.cache_folder().parent == tmp_path / "tmp"
+    with pytest.raises(ValueError, match="name must be one of"):
+        _kerncache.path("nothing")

@@ -2,19 +2,21 @@
 
 Everything numba compiles lives in the kernel modules: :mod:`._jit` (the
 generic per-point kernels and the grid passes), :mod:`._inthash` (the
-integer hash and its generic kernels), and the specialised families
-:mod:`._points` (unrolled per dimension and tap count, and the 3-D kernels
-over precombined hash tables), :mod:`._jacobians` (their derivative twins)
-and :mod:`._intpoints` (the integer hash's SIMD kernels). The rest of the
+integer hash and its generic kernels), and the specialised families that
+``_generate.py`` writes and :mod:`._kerncache` generates on first use into a
+cache folder (never into git): ``points`` (unrolled per dimension and tap
+count, and the 3-D kernels over precombined hash tables), ``jacobians``
+(their derivative twins) and ``intpoints`` (the integer hash's SIMD
+kernels, one module per dimension, kernel and basis, loaded on first
+lookup). The rest of the
 lattice code (:mod:`.tables`, :mod:`.points_path`, :mod:`.grid_path`,
 :mod:`.derivatives`) reaches them only through this module: ``jit`` and
 ``inthash`` for the generic kernels, and the functions below for the
 specialised ones, so a change in where or how the kernels are built touches
 these lines only.
 
-``_intpoints`` and ``_jacobians`` are imported on first use: their kernels
-cost import time that a user of plain values or of the table hash does not
-need to pay.
+Each generated module is loaded on first use: its kernels cost import (and
+generation) time that a user of another path does not need to pay.
 """
 from __future__ import annotations
 
@@ -22,7 +24,7 @@ import numpy as np
 
 from . import _inthash as inthash
 from . import _jit as jit
-from . import _points
+from . import _kerncache
 from .kernels import KERNELS, Kernel
 
 __all__ = ["jit", "inthash", "PERIOD_MAX", "has_table_points", "table_points_kernel", "unrolled_points_kernel",
@@ -40,19 +42,20 @@ def _is_stock(kernel: Kernel) -> bool:
 
 def has_table_points(dim: int, taps: int) -> bool:
     """Whether a scattered kernel over precombined hash tables exists for ``dim`` and ``taps`` (3-D only)."""
-    return (dim, taps) in _points.TABLE_KERNELS
+    return (dim, taps) in _kerncache.load("points").TABLE_KERNELS
 
 
 def table_points_kernel(dim: int, kernel: Kernel):
     """The 3-D table kernel: with this kernel's coefficients written in if it is a stock kernel."""
-    if _is_stock(kernel) and (dim, kernel.name) in _points.TABLE_KERNELS:
-        return _points.TABLE_KERNELS[(dim, kernel.name)]
-    return _points.TABLE_KERNELS.get((dim, kernel.taps))
+    table_kernels = _kerncache.load("points").TABLE_KERNELS
+    if _is_stock(kernel) and (dim, kernel.name) in table_kernels:
+        return table_kernels[(dim, kernel.name)]
+    return table_kernels.get((dim, kernel.taps))
 
 
 def unrolled_points_kernel(dim: int, taps: int):
     """The per-point kernel unrolled for ``dim`` and ``taps`` (1-3-D), or None."""
-    return _points.KERNELS.get((dim, taps))
+    return _kerncache.load("points").KERNELS.get((dim, taps))
 
 
 def int_simd_kernels(dim: int, kernel: Kernel, basis: str):
@@ -65,27 +68,20 @@ def int_simd_kernels(dim: int, kernel: Kernel, basis: str):
     if (dim > 3 or stock is None or not np.array_equal(stock.coef, kernel.coef) or stock.shift != kernel.shift
             or stock.left != kernel.left):
         return None
-    from . import _intpoints  # imported on first use (import noiselab.lattice costs what it did)
-
-    return {v: _intpoints.INT_KERNELS[(dim, kernel.name, basis, v)] for v in ("s32f32", "s64f32", "s64f64")}
+    int_kernels = _kerncache.load("intpoints").INT_KERNELS   # each family's module loads on its first lookup
+    return {v: int_kernels[(dim, kernel.name, basis, v)] for v in ("s32f32", "s64f32", "s64f64")}
 
 
 def int_simd_factor(basis: str, dim: int) -> float:
     """The factor folded into the SIMD kernels' amplitudes (their gradient sets are not unit length)."""
-    from . import _intpoints
-
-    return _intpoints.FACTOR[basis][dim - 1]
+    return _kerncache.load("intpoints").FACTOR[basis][dim - 1]
 
 
 def unrolled_jacobian_kernel(dim: int, taps: int):
     """The per-point value-and-Jacobian kernel unrolled for ``dim`` and ``taps``, or None."""
-    from . import _jacobians  # imported on the first derivative (its kernels cost import time)
-
-    return _jacobians.JAC_KERNELS.get((dim, taps))
+    return _kerncache.load("jacobians").JAC_KERNELS.get((dim, taps))
 
 
 def table_jacobian_kernel(dim: int, taps: int):
     """The 3-D value-and-Jacobian kernel over precombined hash tables, or None."""
-    from . import _jacobians
-
-    return _jacobians.JAC_TABLE_KERNELS.get((dim, taps))
+    return _kerncache.load("jacobians").JAC_TABLE_KERNELS.get((dim, taps))

@@ -836,7 +836,7 @@ def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
     return sig, codegen
 
 
-@nb.njit(cache=True, nogil=True, inline="always")
+@nb.njit(cache=True, nogil=True)
 def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3,
                   b0, b1, b2, b3):
     """One octave of :func:`grid2d`'s axis-0 pass: ``dst[doff + q] = (prev[poff + q] +) T0[q] (+ T1[q])``.
@@ -846,7 +846,11 @@ def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2
     The sums are :func:`final_pass`'s: for 2 and 4 taps each term's tap sum
     is added to the running sum, for 1 and 3 taps every tap product is.
     Offsets and ``nt`` are uint64; ``dst`` and ``prev`` are different arrays
-    (so that the loop vectorises).
+    (so that the loop vectorises). Not inlined: :func:`_make_grid2d`'s kernel
+    passes ``grad`` as a literal constant, so numba compiles one function per
+    basis and output dtype, the other basis's branches pruned before LLVM sees
+    them (inlined, every branch was copied into each of its three call sites:
+    seconds of compilation).
     """
     if taps == 4 and grad:
         y0 = x0 + dy
@@ -920,295 +924,365 @@ def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2
                 dst[doff + q] = a0 * R[x0 + q]
 
 
-@nb.njit(cache=True, nogil=True)
+def _make_grid2d(GRAD, USE32):
+    """:func:`grid2d`'s compiled kernel for one basis and output dtype (compile-time constants).
+
+    With ``grad`` and the output dtype frozen in the closure numba prunes the
+    other basis's and dtype's code before compiling (numba caches each variant
+    on disk: closure values are part of its cache key). The tap count stays a
+    run-time value: a kernel per tap count as well compiled no faster for one
+    grid and 3.8 times slower for all of them (the test suite): 63 s against
+    17 s CPU for the 16 grids of ``bench_coldstart.py``'s ``grid2-all``.
+    """
+
+    @nb.njit(cache=True, nogil=True)
+    def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
+               absval, out64, out32, nq, tile):
+        """A 2-D grid of table-hashed lattice noise, every octave fused, in tiles of ``tile`` columns.
+
+        Octave ``o`` has the distinct lattice taps ``lat0[off0[o]:off0[o + 1]]``
+        along axis 0 and ``lat1[off1[o]:off1[o + 1]]`` along axis 1 (reduced
+        modulo the table size n), each output row's taps ``pos0[o]`` (nj, taps)
+        in the first and each column's first tap ``base1[o]`` (nq,) in the second
+        (a sample's taps are consecutive distinct taps); ``dense1[o]``: the axis-1
+        taps are consecutive lattice points modulo n. Weights per axis: ``wa``
+        (the kernel) and ``wb`` (kernel x signed distance, the gradient basis's
+        ramp), ``wa0[o]`` (nj, taps) and ``wa1[o]`` (taps, nq) (:func:`pack_axis`).
+        ``scales[o]``: the octave's amplitude. For dense axis-1 taps the last hash
+        level is folded into a table run on past n (gradient: its two
+        components; value: the values by parity row, as in
+        ``LatticeNoise._hash_tables``), so a lattice row's values are a
+        contiguous run of it. The flattened output (nj * nq,) is ``out64``
+        (float64) or ``out32`` (float32), the other one empty (one compiled
+        kernel for both dtypes): written, or with ``absval`` (turbulence) added to.
+
+        The arithmetic is that of the general separable path (``hash_expand``,
+        ``gather_gradients``, ``contract_last``, ``final_pass``), tap by tap and
+        term by term in the same order, so the bits are the same. A lattice row
+        ``r`` of octave ``o`` is hashed and contracted along axis 1 only when an
+        output row first needs it, into a ring of ``2**ceil(log2 taps)`` rows per
+        octave that stays in cache (rows are never held as a block in memory).
+        The axis-1 contraction runs eight columns at a time (:func:`expand_dot8`)
+        over the block's lattice values with the weights spread out to each
+        column's offset (zeros elsewhere): adding the zero products changes no
+        bit, so it equals the four-tap sum. The hot loops index flat arrays with
+        unsigned offsets (no negative-index wrap: they vectorise) and make no array
+        views (each costs an atomic reference count). Each sample depends only on its row
+        and column, not on the tile, so any window is the same slice of the
+        full grid, bit for bit.
+        """
+        noct, nj, taps = pos0.shape
+        n = perm.shape[0]
+        grad = GRAD
+        nterm = 2 if grad else 1
+        S = 1
+        while S < taps:
+            S *= 2
+        smask = S - 1
+        L = 8
+        tile = (min(max(tile, L), nq) + L - 1) // L * L  # whole blocks of eight lanes (the ring rows are padded)
+        ring = np.empty(noct * S * nterm * tile)  # rows (octave, slot, term) of tile columns
+        tags = np.empty((noct, S), np.int64)
+        bufs = np.empty(2 * tile)  # two running sums of a row (acc at 0, tmp at tile); no array is chosen at run
+        # time in the loops below (each such choice costs an atomic reference count)
+        width = 1
+        for o in range(noct):
+            width = max(width, off1[o + 1] - off1[o])
+        lmin = np.empty(noct, np.int64)
+        lmax = np.empty(noct, np.int64)
+        use_ext = False
+        for o in range(noct):
+            use_ext = use_ext or dense1[o]
+        use_ext = use_ext and n <= 1 << 16
+        ext_len = n + width
+        # the extended tables (when used), then room for a row's lattice values hashed one by one
+        vbase = 2 * ext_len if use_ext else 0
+        ext = np.empty(vbase + 2 * width)
+        if use_ext:
+            for x in range(ext_len):
+                xm = x % n
+                h = perm[xm]
+                if grad:
+                    ext[x] = grads[h, 0]
+                    ext[ext_len + x] = grads[h, 1]
+                else:
+                    ext[x] = values[x & 1, h]
+                    ext[ext_len + x] = values[(1 + x) & 1, h]
+        nblk_max = tile // L
+        # widest block of eight columns, in lattice taps: (largest first-tap span within the block) + taps
+        mmax = taps
+        for o in range(noct):
+            for qa in range(0, nq, L):
+                qb = min(qa + L, nq)
+                lo_ = base1[o, qa]
+                hi_ = lo_
+                for q in range(qa, qb):
+                    lo_ = min(lo_, base1[o, q])
+                    hi_ = max(hi_, base1[o, q])
+                mmax = max(mmax, hi_ - lo_ + taps)
+        expand = mmax <= 4 * L  # else (columns sparser than the lattice) a plain per-column loop
+        if not expand:
+            mmax = 1
+        E = np.zeros(noct * nterm * nblk_max * mmax * L)
+        bB = np.empty((noct, nblk_max), np.int64)
+        bM = np.empty((noct, nblk_max), np.int64)
+        u = np.uint64
+        for q0 in range(0, nq, tile):
+            q1 = min(q0 + tile, nq)
+            nt = q1 - q0
+            for o in range(noct):
+                lo = base1[o, q0]
+                hi = lo
+                for q in range(q0, q1):
+                    lo = min(lo, base1[o, q])
+                    hi = max(hi, base1[o, q])
+                lmin[o] = lo
+                lmax[o] = hi + taps - 1
+                for s in range(S):
+                    tags[o, s] = -1
+                if expand:
+                    # the axis-1 weights spread out: block of 8 columns x (its taps), zero off each column's taps
+                    for blk in range((nt + L - 1) // L):
+                        qa = q0 + blk * L
+                        qb = min(qa + L, q1)
+                        lo_ = base1[o, qa]
+                        hi_ = lo_
+                        for q in range(qa, qb):
+                            lo_ = min(lo_, base1[o, q])
+                            hi_ = max(hi_, base1[o, q])
+                        mb = hi_ - lo_ + taps
+                        bB[o, blk] = lo_ - lo
+                        bM[o, blk] = mb
+                        for b in range(nterm):
+                            e0 = ((o * nterm + b) * nblk_max + blk) * mmax * L
+                            wsrc = wb1 if b == 1 else wa1
+                            for x in range(mb * L):
+                                E[e0 + x] = 0.0
+                            for q in range(qa, qb):
+                                d = base1[o, q] - lo_
+                                for k in range(taps):
+                                    E[e0 + (d + k) * L + (q - qa)] = wsrc[o, k, q]
+            for j in range(nj):
+                for o in range(noct):
+                    for k in range(taps):
+                        r = pos0[o, j, k]
+                        slot = r & smask
+                        if tags[o, slot] == r:
+                            continue
+                        tags[o, slot] = r
+                        # lattice row r: its values against this tile's axis-1 taps lo .. lo + m - 1
+                        lo = lmin[o]
+                        m = lmax[o] + 1 - lo
+                        i0 = lat0[off0[o] + r]
+                        h1 = perm[i0]
+                        p0 = i0 & 1
+                        first = lat1[off1[o] + lo]
+                        if use_ext and dense1[o]:
+                            s0 = h1 + first
+                            s0 = s0 - n if s0 >= n else s0
+                            if grad:
+                                v0 = s0
+                                v1 = ext_len + s0
+                            else:
+                                v0 = ((p0 + first + s0) & 1) * ext_len + s0
+                                v1 = v0
+                        else:
+                            v0 = vbase
+                            v1 = vbase + width
+                            for l in range(m):
+                                i1 = lat1[off1[o] + lo + l]
+                                s = h1 + i1
+                                s = s - n if s >= n else s
+                                h = perm[s]
+                                if grad:
+                                    ext[v0 + l] = grads[h, 0]
+                                    ext[v1 + l] = grads[h, 1]
+                                else:
+                                    ext[v0 + l] = values[(p0 + i1) & 1, h]
+                        row0 = ((o * S + slot) * nterm) * tile
+                        if expand:
+                            for b in range(nterm):
+                                vb = v1 if b == 1 else v0
+                                ebase = (o * nterm + b) * nblk_max * mmax * L
+                                for blk in range((nt + L - 1) // L):
+                                    expand_dot8(ring, row0 + b * tile + blk * L, E, ebase + blk * mmax * L, ext,
+                                                vb + bB[o, blk], bM[o, blk])
+                        else:
+                            # contract_last's sums, column by column
+                            for b in range(nterm):
+                                vb = v1 if b == 1 else v0
+                                wsrc = wb1 if b == 1 else wa1
+                                for q in range(nt):
+                                    c = vb + base1[o, q0 + q] - lo
+                                    sa = wsrc[o, 0, q0 + q] * ext[c]  # left to right, as contract_last sums
+                                    for kk in range(1, taps):
+                                        sa += wsrc[o, kk, q0 + q] * ext[c + kk]
+                                    ring[row0 + b * tile + q] = sa
+                # the axis-0 pass: octave by octave, each octave's terms in order, each a tap sum added to the
+                # running sum (between two buffers; the last octave straight into the output row)
+                ntu = u(nt)
+                dy = u(tile if grad else 0)  # the second term's rows follow the first's
+                for o in range(noct):
+                    sc = scales[o]
+                    rb = o * S * nterm * tile
+                    x0 = u(rb + (pos0[o, j, 0] & smask) * nterm * tile)
+                    x1 = u(rb + (pos0[o, j, 1 % taps] & smask) * nterm * tile)
+                    x2 = u(rb + (pos0[o, j, 2 % taps] & smask) * nterm * tile)
+                    x3 = u(rb + (pos0[o, j, 3 % taps] & smask) * nterm * tile)
+                    if grad:
+                        a0 = wb0[o, j, 0] * sc; a1 = wb0[o, j, 1 % taps] * sc
+                        a2 = wb0[o, j, 2 % taps] * sc; a3 = wb0[o, j, 3 % taps] * sc
+                    else:
+                        a0 = wa0[o, j, 0] * sc; a1 = wa0[o, j, 1 % taps] * sc
+                        a2 = wa0[o, j, 2 % taps] * sc; a3 = wa0[o, j, 3 % taps] * sc
+                    b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1 % taps] * sc
+                    b2 = wa0[o, j, 2 % taps] * sc; b3 = wa0[o, j, 3 % taps] * sc
+                    if not absval and o == noct - 1:
+                        if USE32:  # a constant: numba prunes the other branch, so compiles one output dtype
+                            _axis0_octave(out32, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring,
+                                          ntu, taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                        else:
+                            _axis0_octave(out64, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring,
+                                          ntu, taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                    else:
+                        # turbulence: each octave into tmp, |.| summed into acc; else acc and tmp in turn
+                        into_tmp = absval or o % 2 == 1
+                        _axis0_octave(bufs, u(tile if into_tmp else 0), bufs, u(0 if into_tmp else tile),
+                                      o > 0 and not absval, ring, ntu, taps, grad, x0, x1, x2, x3, dy,
+                                      a0, a1, a2, a3, b0, b1, b2, b3)
+                        if absval and o == 0:
+                            for q in range(nt):
+                                bufs[q] = abs(bufs[tile + q])
+                        elif absval:
+                            for q in range(nt):
+                                bufs[q] += abs(bufs[tile + q])
+                if absval:
+                    ob = j * nq + q0
+                    if USE32:
+                        for q in range(nt):
+                            out32[ob + q] += bufs[q]
+                    else:
+                        for q in range(nt):
+                            out64[ob + q] += bufs[q]
+
+    return grid2d
+
+
+_GRID2D = {}
+
+
 def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
            absval, out64, out32, nq, tile):
-    """A 2-D grid of table-hashed lattice noise, every octave fused, in tiles of ``tile`` columns.
+    """A 2-D grid of table-hashed lattice noise, every octave fused (the compiled kernel for this basis and dtype).
 
-    Octave ``o`` has the distinct lattice taps ``lat0[off0[o]:off0[o + 1]]``
-    along axis 0 and ``lat1[off1[o]:off1[o + 1]]`` along axis 1 (reduced
-    modulo the table size n), each output row's taps ``pos0[o]`` (nj, taps)
-    in the first and each column's first tap ``base1[o]`` (nq,) in the second
-    (a sample's taps are consecutive distinct taps); ``dense1[o]``: the axis-1
-    taps are consecutive lattice points modulo n. Weights per axis: ``wa``
-    (the kernel) and ``wb`` (kernel x signed distance, the gradient basis's
-    ramp), ``wa0[o]`` (nj, taps) and ``wa1[o]`` (taps, nq) (:func:`pack_axis`).
-    ``scales[o]``: the octave's amplitude. For dense axis-1 taps the last hash
-    level is folded into a table run on past n (gradient: its two
-    components; value: the values by parity row, as in
-    ``LatticeNoise._hash_tables``), so a lattice row's values are a
-    contiguous run of it. The flattened output (nj * nq,) is ``out64``
-    (float64) or ``out32`` (float32), the other one empty (one compiled
-    kernel for both dtypes): written, or with ``absval`` (turbulence) added to.
-
-    The arithmetic is that of the general separable path (``hash_expand``,
-    ``gather_gradients``, ``contract_last``, ``final_pass``), tap by tap and
-    term by term in the same order, so the bits are the same. A lattice row
-    ``r`` of octave ``o`` is hashed and contracted along axis 1 only when an
-    output row first needs it, into a ring of ``2**ceil(log2 taps)`` rows per
-    octave that stays in cache (rows are never held as a block in memory).
-    The axis-1 contraction runs eight columns at a time (:func:`expand_dot8`)
-    over the block's lattice values with the weights spread out to each
-    column's offset (zeros elsewhere): adding the zero products changes no
-    bit, so it equals the four-tap sum. The hot loops index flat arrays with
-    unsigned offsets (no negative-index wrap: they vectorise) and make no array
-    views (each costs an atomic reference count). Each sample depends only on its row
-    and column, not on the tile, so any window is the same slice of the
-    full grid, bit for bit.
+    The arguments and the result are those of the kernel :func:`_make_grid2d`
+    compiles (its docstring): ``basis`` 0 (value) or 1 (gradient), the
+    output float32 when ``out32`` is not empty.
+    Only the variant called is compiled.
     """
-    noct, nj, taps = pos0.shape
-    n = perm.shape[0]
-    grad = basis == 1
-    use32 = out32.shape[0] > 0
-    nterm = 2 if grad else 1
-    S = 1
-    while S < taps:
-        S *= 2
-    smask = S - 1
-    L = 8
-    tile = (min(max(tile, L), nq) + L - 1) // L * L  # whole blocks of eight lanes (the ring rows are padded)
-    ring = np.empty(noct * S * nterm * tile)  # rows (octave, slot, term) of tile columns
-    tags = np.empty((noct, S), np.int64)
-    bufs = np.empty(2 * tile)  # two running sums of a row (acc at 0, tmp at tile); no array is chosen at run
-    # time in the loops below (each such choice costs an atomic reference count)
-    width = 1
-    for o in range(noct):
-        width = max(width, off1[o + 1] - off1[o])
-    lmin = np.empty(noct, np.int64)
-    lmax = np.empty(noct, np.int64)
-    use_ext = False
-    for o in range(noct):
-        use_ext = use_ext or dense1[o]
-    use_ext = use_ext and n <= 1 << 16
-    ext_len = n + width
-    # the extended tables (when used), then room for a row's lattice values hashed one by one
-    vbase = 2 * ext_len if use_ext else 0
-    ext = np.empty(vbase + 2 * width)
-    if use_ext:
-        for x in range(ext_len):
-            xm = x % n
-            h = perm[xm]
-            if grad:
-                ext[x] = grads[h, 0]
-                ext[ext_len + x] = grads[h, 1]
-            else:
-                ext[x] = values[x & 1, h]
-                ext[ext_len + x] = values[(1 + x) & 1, h]
-    nblk_max = tile // L
-    # widest block of eight columns, in lattice taps: (largest first-tap span within the block) + taps
-    mmax = taps
-    for o in range(noct):
-        for qa in range(0, nq, L):
-            qb = min(qa + L, nq)
-            lo_ = base1[o, qa]
-            hi_ = lo_
-            for q in range(qa, qb):
-                lo_ = min(lo_, base1[o, q])
-                hi_ = max(hi_, base1[o, q])
-            mmax = max(mmax, hi_ - lo_ + taps)
-    expand = mmax <= 4 * L  # else (columns sparser than the lattice) a plain per-column loop
-    if not expand:
-        mmax = 1
-    E = np.zeros(noct * nterm * nblk_max * mmax * L)
-    bB = np.empty((noct, nblk_max), np.int64)
-    bM = np.empty((noct, nblk_max), np.int64)
-    u = np.uint64
-    for q0 in range(0, nq, tile):
-        q1 = min(q0 + tile, nq)
-        nt = q1 - q0
+    key = (basis == 1, out32.shape[0] > 0)
+    fn = _GRID2D.get(key)
+    if fn is None:
+        fn = _GRID2D[key] = _make_grid2d(*key)
+    fn(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
+       absval, out64, out32, nq, tile)
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _span(x):
+    """``x.max() - x.min()`` (NaN if any is NaN, 0 if empty) as a loop: numba's max and min compile slowly."""
+    if x.shape[0] == 0:
+        return 0.0
+    lo = x[0]
+    hi = x[0]
+    nan = False
+    for j in range(x.shape[0]):
+        v = x[j]
+        nan = nan or v != v
+        lo = min(lo, v)
+        hi = max(hi, v)
+    return np.nan if nan else hi - lo
+
+
+def _make_pack_axis(DERIV):
+    """:func:`pack_axis`'s compiled kernel with ``deriv`` a constant (a plain grid never compiles
+    :func:`axis_dweights`)."""
+
+    @nb.njit(cache=True, nogil=True)
+    def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv, last):
+        """Every octave's distinct taps and weights along one grid axis, packed for :func:`grid2d`.
+
+        Per octave: :func:`axis_weights` (or, with ``deriv``, :func:`axis_dweights`)
+        and :func:`dense_taps`, as ``LatticeNoise._axis_taps`` computes them.
+        Returns ``ok`` (False when an octave's taps span too many cells for
+        :func:`dense_taps`: the caller then packs ``_axis_taps``' sparse result),
+        ``lat`` (the distinct taps modulo n, octave after octave), ``off``
+        (octave o's taps are ``lat[off[o]:off[o + 1]]``), ``pos`` (O, N, taps),
+        ``base`` (O, N) = ``pos[:, :, 0]``, the weights ``wa``, ``wb`` (O, N, taps),
+        or (O, taps, N) with ``last``, and ``dense`` (O,): the taps are
+        consecutive lattice points modulo n (and the period a multiple of n).
+        """
+        noct = freqs.shape[0]
+        nn = coords.shape[0]
+        cap = noct * (4 * taps * nn + 64 + taps)
+        lat = np.empty(cap, np.int64)
+        off = np.zeros(noct + 1, np.int64)
+        pos = np.empty((noct, nn, taps), np.int64)
+        base = np.empty((noct, nn), np.int64)
+        if last:
+            wa = np.empty((noct, taps, nn))
+            wb = np.empty((noct, taps, nn))
+        else:
+            wa = np.empty((noct, nn, taps))
+            wb = np.empty((noct, nn, taps))
+        dense = np.zeros(noct, np.bool_)
         for o in range(noct):
-            lo = base1[o, q0]
-            hi = lo
-            for q in range(q0, q1):
-                lo = min(lo, base1[o, q])
-                hi = max(hi, base1[o, q])
-            lmin[o] = lo
-            lmax[o] = hi + taps - 1
-            for s in range(S):
-                tags[o, s] = -1
-            if expand:
-                # the axis-1 weights spread out: block of 8 columns x (its taps), zero off each column's taps
-                for blk in range((nt + L - 1) // L):
-                    qa = q0 + blk * L
-                    qb = min(qa + L, q1)
-                    lo_ = base1[o, qa]
-                    hi_ = lo_
-                    for q in range(qa, qb):
-                        lo_ = min(lo_, base1[o, q])
-                        hi_ = max(hi_, base1[o, q])
-                    mb = hi_ - lo_ + taps
-                    bB[o, blk] = lo_ - lo
-                    bM[o, blk] = mb
-                    for b in range(nterm):
-                        e0 = ((o * nterm + b) * nblk_max + blk) * mmax * L
-                        wsrc = wb1 if b == 1 else wa1
-                        for x in range(mb * L):
-                            E[e0 + x] = 0.0
-                        for q in range(qa, qb):
-                            d = base1[o, q] - lo_
-                            for k in range(taps):
-                                E[e0 + (d + k) * L + (q - qa)] = wsrc[o, k, q]
-        for j in range(nj):
-            for o in range(noct):
+            fis, fbase, w, rw = axis_weights(coords, freqs[o], phase, shift, left, taps, coef, period, grad)
+            if DERIV:  # a constant: numba prunes the call when False
+                w, rw = axis_dweights(coords, freqs[o], phase, shift, left, taps, coef, dcoef, grad)
+            span = _span(fis)
+            if not span <= 4 * taps * nn + 64:
+                return False, lat[:0], off, pos, base, wa, wb, dense
+            lattice, p = dense_taps(fis, fbase, taps, period)
+            cnt = lattice.shape[0]
+            consecutive = period % n == 0
+            for i in range(cnt):
+                lat[off[o] + i] = lattice[i] % n
+                if i > 0 and (lattice[i] - lattice[i - 1]) % period != 1:
+                    consecutive = False
+            off[o + 1] = off[o] + cnt
+            dense[o] = consecutive
+            for j in range(nn):
+                base[o, j] = p[j, 0]
                 for k in range(taps):
-                    r = pos0[o, j, k]
-                    slot = r & smask
-                    if tags[o, slot] == r:
-                        continue
-                    tags[o, slot] = r
-                    # lattice row r: its values against this tile's axis-1 taps lo .. lo + m - 1
-                    lo = lmin[o]
-                    m = lmax[o] + 1 - lo
-                    i0 = lat0[off0[o] + r]
-                    h1 = perm[i0]
-                    p0 = i0 & 1
-                    first = lat1[off1[o] + lo]
-                    if use_ext and dense1[o]:
-                        s0 = h1 + first
-                        s0 = s0 - n if s0 >= n else s0
-                        if grad:
-                            v0 = s0
-                            v1 = ext_len + s0
-                        else:
-                            v0 = ((p0 + first + s0) & 1) * ext_len + s0
-                            v1 = v0
+                    pos[o, j, k] = p[j, k]
+                    if last:
+                        wa[o, k, j] = w[j, k]
+                        wb[o, k, j] = rw[j, k]
                     else:
-                        v0 = vbase
-                        v1 = vbase + width
-                        for l in range(m):
-                            i1 = lat1[off1[o] + lo + l]
-                            s = h1 + i1
-                            s = s - n if s >= n else s
-                            h = perm[s]
-                            if grad:
-                                ext[v0 + l] = grads[h, 0]
-                                ext[v1 + l] = grads[h, 1]
-                            else:
-                                ext[v0 + l] = values[(p0 + i1) & 1, h]
-                    row0 = ((o * S + slot) * nterm) * tile
-                    if expand:
-                        for b in range(nterm):
-                            vb = v1 if b == 1 else v0
-                            ebase = (o * nterm + b) * nblk_max * mmax * L
-                            for blk in range((nt + L - 1) // L):
-                                expand_dot8(ring, row0 + b * tile + blk * L, E, ebase + blk * mmax * L, ext,
-                                            vb + bB[o, blk], bM[o, blk])
-                    else:
-                        # contract_last's sums, column by column
-                        for b in range(nterm):
-                            vb = v1 if b == 1 else v0
-                            wsrc = wb1 if b == 1 else wa1
-                            for q in range(nt):
-                                c = vb + base1[o, q0 + q] - lo
-                                sa = wsrc[o, 0, q0 + q] * ext[c]  # left to right, as contract_last sums
-                                for kk in range(1, taps):
-                                    sa += wsrc[o, kk, q0 + q] * ext[c + kk]
-                                ring[row0 + b * tile + q] = sa
-            # the axis-0 pass: octave by octave, each octave's terms in order, each a tap sum added to the
-            # running sum (between two buffers; the last octave straight into the output row)
-            ntu = u(nt)
-            dy = u(tile if grad else 0)  # the second term's rows follow the first's
-            for o in range(noct):
-                sc = scales[o]
-                rb = o * S * nterm * tile
-                x0 = u(rb + (pos0[o, j, 0] & smask) * nterm * tile)
-                x1 = u(rb + (pos0[o, j, 1 % taps] & smask) * nterm * tile)
-                x2 = u(rb + (pos0[o, j, 2 % taps] & smask) * nterm * tile)
-                x3 = u(rb + (pos0[o, j, 3 % taps] & smask) * nterm * tile)
-                if grad:
-                    a0 = wb0[o, j, 0] * sc; a1 = wb0[o, j, 1 % taps] * sc
-                    a2 = wb0[o, j, 2 % taps] * sc; a3 = wb0[o, j, 3 % taps] * sc
-                else:
-                    a0 = wa0[o, j, 0] * sc; a1 = wa0[o, j, 1 % taps] * sc
-                    a2 = wa0[o, j, 2 % taps] * sc; a3 = wa0[o, j, 3 % taps] * sc
-                b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1 % taps] * sc
-                b2 = wa0[o, j, 2 % taps] * sc; b3 = wa0[o, j, 3 % taps] * sc
-                if not absval and o == noct - 1 and use32:
-                    _axis0_octave(out32, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu,
-                                  taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
-                elif not absval and o == noct - 1:
-                    _axis0_octave(out64, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu,
-                                  taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
-                else:
-                    # turbulence: each octave into tmp, |.| summed into acc; else acc and tmp in turn
-                    into_tmp = absval or o % 2 == 1
-                    _axis0_octave(bufs, u(tile if into_tmp else 0), bufs, u(0 if into_tmp else tile),
-                                  o > 0 and not absval, ring, ntu, taps, grad, x0, x1, x2, x3, dy,
-                                  a0, a1, a2, a3, b0, b1, b2, b3)
-                    if absval and o == 0:
-                        for q in range(nt):
-                            bufs[q] = abs(bufs[tile + q])
-                    elif absval:
-                        for q in range(nt):
-                            bufs[q] += abs(bufs[tile + q])
-            if absval:
-                ob = j * nq + q0
-                if use32:
-                    for q in range(nt):
-                        out32[ob + q] += bufs[q]
-                else:
-                    for q in range(nt):
-                        out64[ob + q] += bufs[q]
+                        wa[o, j, k] = w[j, k]
+                        wb[o, j, k] = rw[j, k]
+        return True, lat[:off[noct]], off, pos, base, wa, wb, dense
+
+    return pack_axis
 
 
-@nb.njit(cache=True, nogil=True)
+_PACK_AXIS = {}
+
+
 def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv, last):
     """Every octave's distinct taps and weights along one grid axis, packed for :func:`grid2d`.
 
-    Per octave: :func:`axis_weights` (or, with ``deriv``, :func:`axis_dweights`)
-    and :func:`dense_taps`, as ``LatticeNoise._axis_taps`` computes them.
-    Returns ``ok`` (False when an octave's taps span too many cells for
-    :func:`dense_taps`: the caller then packs ``_axis_taps``' sparse result),
-    ``lat`` (the distinct taps modulo n, octave after octave), ``off``
-    (octave o's taps are ``lat[off[o]:off[o + 1]]``), ``pos`` (O, N, taps),
-    ``base`` (O, N) = ``pos[:, :, 0]``, the weights ``wa``, ``wb`` (O, N, taps),
-    or (O, taps, N) with ``last``, and ``dense`` (O,): the taps are
-    consecutive lattice points modulo n (and the period a multiple of n).
+    The arguments and results of the kernel :func:`_make_pack_axis` compiles
+    for this ``deriv`` (its docstring).
     """
-    noct = freqs.shape[0]
-    nn = coords.shape[0]
-    cap = noct * (4 * taps * nn + 64 + taps)
-    lat = np.empty(cap, np.int64)
-    off = np.zeros(noct + 1, np.int64)
-    pos = np.empty((noct, nn, taps), np.int64)
-    base = np.empty((noct, nn), np.int64)
-    if last:
-        wa = np.empty((noct, taps, nn))
-        wb = np.empty((noct, taps, nn))
-    else:
-        wa = np.empty((noct, nn, taps))
-        wb = np.empty((noct, nn, taps))
-    dense = np.zeros(noct, np.bool_)
-    for o in range(noct):
-        fis, fbase, w, rw = axis_weights(coords, freqs[o], phase, shift, left, taps, coef, period, grad)
-        if deriv:
-            w, rw = axis_dweights(coords, freqs[o], phase, shift, left, taps, coef, dcoef, grad)
-        span = fis.max() - fis.min() if nn > 0 else 0.0
-        if not span <= 4 * taps * nn + 64:
-            return False, lat[:0], off, pos, base, wa, wb, dense
-        lattice, p = dense_taps(fis, fbase, taps, period)
-        cnt = lattice.shape[0]
-        consecutive = period % n == 0
-        for i in range(cnt):
-            lat[off[o] + i] = lattice[i] % n
-            if i > 0 and (lattice[i] - lattice[i - 1]) % period != 1:
-                consecutive = False
-        off[o + 1] = off[o] + cnt
-        dense[o] = consecutive
-        for j in range(nn):
-            base[o, j] = p[j, 0]
-            for k in range(taps):
-                pos[o, j, k] = p[j, k]
-                if last:
-                    wa[o, k, j] = w[j, k]
-                    wb[o, k, j] = rw[j, k]
-                else:
-                    wa[o, j, k] = w[j, k]
-                    wb[o, j, k] = rw[j, k]
-    return True, lat[:off[noct]], off, pos, base, wa, wb, dense
+    key = bool(deriv)
+    fn = _PACK_AXIS.get(key)
+    if fn is None:
+        fn = _PACK_AXIS[key] = _make_pack_axis(key)
+    return fn(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv, last)
 
 
-@nb.njit(cache=True, nogil=True)
 def grid2d_all(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv_axis, scales, perms,
                values, grads, absval, out64, out32, nq, tile):
     """:func:`pack_axis` for both axes, then :func:`grid2d` for every component, in one call.
@@ -1218,13 +1292,13 @@ def grid2d_all(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, period, n, 
     ``LatticeNoise._axis_taps``' sparse packing.
     """
     ok0, lat0, off0, pos0, base0, wa0, wb0, dense0 = pack_axis(
-        c0, np.ascontiguousarray(freqs[:, 0]), phase[0], shift, left, taps, coef, dcoef, period[0], n, grad,
-        deriv_axis == 0, False)
+        c0, np.ascontiguousarray(freqs[:, 0]), phase[0], shift, left, taps, coef, dcoef, int(period[0]), n, grad,
+        bool(deriv_axis == 0), False)
     if not ok0:
         return False
     ok1, lat1, off1, pos1, base1, wa1, wb1, dense1 = pack_axis(
-        c1, np.ascontiguousarray(freqs[:, 1]), phase[1], shift, left, taps, coef, dcoef, period[1], n, grad,
-        deriv_axis == 1, True)
+        c1, np.ascontiguousarray(freqs[:, 1]), phase[1], shift, left, taps, coef, dcoef, int(period[1]), n, grad,
+        bool(deriv_axis == 1), True)
     if not ok1:
         return False
     for c in range(perms.shape[0]):

@@ -1,0 +1,220 @@
+"""Time to a first result: ``import noiselab`` plus the first call of each common path, cold and warm numba cache.
+
+Run from the repository root::
+
+    python benchmarks/bench_coldstart.py [--paths points3 grid2 fbm2 int32] [--runs 1] [--kernels] [--speed 7]
+
+Writes ``benchmarks/bench_coldstart.md`` beside this script. Each case runs
+in a fresh Python process (``import noiselab`` included) and is measured as
+the CPU time (user + system) of that child process, from
+``resource.getrusage(RUSAGE_CHILDREN)`` before and after: CPU time does not
+grow when the shared machine is busy, wall time does. "cold" is a process
+whose ``NUMBA_CACHE_DIR`` (and the generated-kernel cache, which lives under
+it) is a new empty folder: everything the call needs is generated and
+compiled. "warm" is a second process on the same folder: numba loads the
+machine code from its cache. The child also reports how many numba
+specialisations it compiled or loaded (``len(fn.signatures)`` summed over
+every dispatcher in ``noiselab.lattice``'s modules and in their dicts of
+compiled variants; callees compiled only as part of another kernel are not
+counted), which says where the cold time goes.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import shlex
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from noiselab.lab.measure import header_lines, markdown_table, run_info  # noqa: E402
+
+# the first call of each common path, as a user writes it (after `import numpy as np`, `import noiselab as nl`)
+PATHS = {
+    "points3": ("`LatticeNoise(3)(pts)`, 1e5 random 3-D points",
+                "pts = np.random.default_rng(0).random((100_000, 3)) * 32\n"
+                "nl.LatticeNoise(3)(pts)"),
+    "grid2": ("`LatticeNoise(2).grid((512, 512), [(0, 32), (0, 32)])`",
+              "nl.LatticeNoise(2).grid((512, 512), [(0, 32), (0, 32)])"),
+    "fbm2": ("`fractal_sum(LatticeNoise(2), Grid((512, 512), ((0, 32), (0, 32))), octaves=6)`",
+             "from noiselab.lattice import Grid\n"
+             "nl.fractal_sum(nl.LatticeNoise(2), Grid((512, 512), ((0, 32), (0, 32))), octaves=6)"),
+    "grid2-all": ("every fused 2-D grid kernel: 64² grids, tap counts 1-4 x both bases x float32/float64 (16 calls)",
+                  "for k in ['box', 'linear', 'quadratic', 'cubic']:\n"
+                  "    for b in ('value', 'gradient'):\n"
+                  "        for dt in (np.float64, np.float32):\n"
+                  "            nl.LatticeNoise(2, kernel=k, basis=b).grid((64, 64), [(0, 8), (0, 8)], dtype=dt)"),
+    "int32": ("`LatticeNoise(3, hash=\"integer\")(pts.astype(np.float32))`, 1e5 points",
+              "pts = np.random.default_rng(0).random((100_000, 3)) * 32\n"
+              "nl.LatticeNoise(3, hash=\"integer\")(pts.astype(np.float32))"),
+}
+
+# printed by the child after the call: the number of compiled (or cache-loaded) specialisations
+COUNT = """
+import sys as _sys
+_seen = {}
+for _name, _mod in list(_sys.modules.items()):
+    if _name.startswith("noiselab.lattice"):
+        for _v in list(vars(_mod).values()):
+            # module-level kernels, and the per-variant kernels kept in dicts (e.g. _jit._GRID2D)
+            for _f in (list(_v.values()) if isinstance(_v, dict) else [_v]):
+                if hasattr(_f, "signatures") and hasattr(_f, "py_func"):
+                    _seen[id(_f)] = len(_f.signatures)
+print("SPECIALISATIONS", sum(_seen.values()))
+"""
+
+
+# the child's numba compilations, timed by numba's event API (nested: a kernel's time includes its callees')
+LISTEN = """
+import time as _time
+from numba.core import event as _event
+
+class _Compiles(_event.Listener):
+    def __init__(self):
+        self.start, self.done = {}, []
+
+    def on_start(self, ev):  # the start and end events are two objects: keyed by dispatcher and argument types
+        self.start[id(ev.data["dispatcher"]), str(ev.data["args"])] = _time.process_time()
+
+    def on_end(self, ev):
+        t0 = self.start.pop((id(ev.data["dispatcher"]), str(ev.data["args"])))
+        self.done.append((_time.process_time() - t0, ev.data["dispatcher"].py_func.__qualname__))
+
+_compiles = _Compiles()
+_event.register("numba:compile", _compiles)
+"""
+REPORT = """
+for _t, _name in sorted(_compiles.done, reverse=True)[:6]:
+    print("COMPILE", round(_t, 2), _name)
+"""
+
+
+SPEED = """
+import time
+from noiselab.lattice import Grid
+from noiselab.lab.measure import interleaved
+pts = np.random.default_rng(0).random((1_000_000, 3)) * 32
+p32 = pts.astype(np.float32)
+n3, n2, ni = nl.LatticeNoise(3), nl.LatticeNoise(2), nl.LatticeNoise(3, hash="integer")
+n2g = nl.LatticeNoise(2, basis="gradient", kernel="quintic")
+g = Grid((512, 512), ((0, 32), (0, 32)))
+cands = {"points3 (1e6 points)": lambda: n3(pts), "grid2": lambda: n2.grid((512, 512), [(0, 32), (0, 32)]),
+         "fbm2": lambda: nl.fractal_sum(n2, g, octaves=6),
+         "fbm2, gradient quintic": lambda: nl.fractal_sum(n2g, g, octaves=6),
+         "int32 (1e6 points)": lambda: ni(p32), "floor": lambda: np.full(1_000_000, 1.0)}
+t = interleaved(cands, repeats=REPEATS, timer=time.thread_time)
+for k in cands:
+    print("SPEED", repr((k, t[k], t.ratio("floor", k))))
+"""
+
+
+def warm_speed(repeats, cache_dir):
+    """Warm run times in one process (thread CPU, medians) and their ratio to the floor (1e6 float64 writes)."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1")
+    code = "import numpy as np\nimport noiselab as nl\n" + SPEED.replace("REPEATS", str(repeats))
+    proc = subprocess.run([sys.executable, "-c", code], env=env, cwd=ROOT, capture_output=True, text=True)
+    if proc.returncode:
+        raise RuntimeError(f"child failed:\n{proc.stderr}")
+    import ast
+    return [ast.literal_eval(line[6:]) for line in proc.stdout.splitlines() if line.startswith("SPEED")]
+
+
+def compile_times(code, cache_dir):
+    """The child's slowest numba compilations: ``[(cpu seconds, function name)]``, callees included in callers."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1")
+    proc = subprocess.run([sys.executable, "-c", LISTEN + "import numpy as np\nimport noiselab as nl\n" + code + REPORT],
+                          env=env, cwd=ROOT, capture_output=True, text=True)
+    if proc.returncode:
+        raise RuntimeError(f"child failed:\n{proc.stderr}")
+    return [(float(line.split()[1]), line.split()[2]) for line in proc.stdout.splitlines() if line.startswith("COMPILE")]
+
+
+def run_child(code, cache_dir):
+    """CPU seconds (user + system) of one fresh process running ``code``, and its specialisation count."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1",
+               OMP_NUM_THREADS="1")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    proc = subprocess.run([sys.executable, "-c", "import numpy as np\nimport noiselab as nl\n" + code + COUNT],
+                          env=env, cwd=ROOT, capture_output=True, text=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode:
+        raise RuntimeError(f"child failed:\n{proc.stderr}")
+    spec = int(proc.stdout.split("SPECIALISATIONS")[-1])
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return cpu, spec
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--paths", nargs="+", choices=list(PATHS), default=list(PATHS), help="paths to time")
+    parser.add_argument("--runs", type=int, default=1, help="cold/warm pairs per path (the median is reported)")
+    parser.add_argument("--kernels", action="store_true",
+                        help="also time each numba compilation of a cold run (where the cold time goes)")
+    parser.add_argument("--speed", type=int, default=0, metavar="REPEATS",
+                        help="also time the warm calls in one process (REPEATS interleaved rounds, >= 5)")
+    parser.add_argument("--label", default="", help="a note for the table's title (e.g. before/after)")
+    parser.add_argument("--output", default=str(Path(__file__).with_suffix(".md")), help="Markdown file to write")
+    args = parser.parse_args(argv)
+    command = "python benchmarks/bench_coldstart.py " + shlex.join(argv if argv is not None else sys.argv[1:])
+    info = run_info(command.strip())
+    base = run_child("", Path(tempfile.mkdtemp(prefix="nl-cold-")))[0]  # `import noiselab` alone
+    rows = []
+    for key in args.paths:
+        what, code = PATHS[key]
+        colds, warms, specs = [], [], 0
+        for _ in range(args.runs):
+            cache = Path(tempfile.mkdtemp(prefix="nl-cold-"))
+            try:
+                cold, specs = run_child(code, cache)
+                warm, _ = run_child(code, cache)
+            finally:
+                shutil.rmtree(cache, ignore_errors=True)
+            colds.append(cold)
+            warms.append(warm)
+            print(f"{key}: cold {cold:.2f} s, warm {warm:.2f} s CPU, {specs} specialisations", flush=True)
+        colds.sort()
+        warms.sort()
+        rows.append([what, f"{colds[len(colds) // 2]:.1f}", f"{warms[len(warms) // 2]:.1f}", str(specs)])
+    lines = [f"# Time to a first result{(' (' + args.label + ')') if args.label else ''}", ""]
+    lines += header_lines(info)
+    lines += ["", "CPU seconds (user + system) of a fresh process: `import noiselab`, then the call. "
+              "Cold: an empty numba cache (and generated-kernel cache); warm: a second process on the same cache. "
+              f"`import noiselab` alone: {base:.1f} s. Specialisations: numba signatures compiled "
+              "(cold) or loaded (warm) by `noiselab.lattice`'s kernels.", ""]
+    lines += markdown_table(["first call", "cold (s CPU)", "warm (s CPU)", "specialisations"], rows, "lrrr")
+    if args.kernels:
+        lines += ["", "Where the cold time goes: the slowest numba compilations of one more cold run, CPU seconds "
+                  "(numba's `numba:compile` events; a kernel's time includes its callees' compilation).", ""]
+        krows = []
+        for key in args.paths:
+            cache = Path(tempfile.mkdtemp(prefix="nl-cold-"))
+            try:
+                top = compile_times(PATHS[key][1], cache)
+            finally:
+                shutil.rmtree(cache, ignore_errors=True)
+            krows.append([key, "; ".join(f"`{name}` {t:.1f}" for t, name in top[:4])])
+            print(key, krows[-1][1], flush=True)
+        lines += markdown_table(["path", "compilations (s CPU)"], krows, "ll")
+    if args.speed:
+        cache = Path(tempfile.mkdtemp(prefix="nl-warm-"))
+        try:
+            rows = warm_speed(args.speed, cache)
+        finally:
+            shutil.rmtree(cache, ignore_errors=True)
+        lines += ["", f"Warm speed: one process, {args.speed} interleaved rounds, median thread CPU time; "
+                  "x floor = time of writing 1e6 float64 (`np.full`) / time of the call, paired per round.", ""]
+        lines += markdown_table(["call", "ms", "x floor"], [[k, f"{t * 1e3:.2f}", f"{r:.3f}"] for k, t, r in rows],
+                                "lrr")
+        print("\n".join(lines[-len(rows) - 2:]), flush=True)
+    Path(args.output).write_text("\n".join(lines) + "\n")
+    print(f"wrote {args.output}")
+
+
+if __name__ == "__main__":
+    main()

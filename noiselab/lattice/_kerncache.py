@@ -1,0 +1,161 @@
+"""The generated scattered-point kernels: written on first use into a cache folder, never kept in git.
+
+``_generate.py`` writes three modules of unrolled numba kernels (the table
+hash's ``points``, the Jacobians' ``jacobians`` and the integer hash's
+``intpoints``). numba's on-disk cache (``cache=True``) needs each kernel to
+live in a real file, so :func:`load` writes the module's source into a cache
+folder named by a hash of the files the generator reads (``_generate.py``,
+``kernels.py``, ``_inthash.py``), then imports it from there with
+:mod:`importlib` as ``noiselab.lattice._<name>`` (its relative imports of
+``._jit`` and ``._inthash`` work as they did in the package). A new
+generator, a new kernel or a new hash constant gives a new folder, so a
+stale module is never used; an unchanged one is written once per machine.
+
+The folder is ``$NUMBA_CACHE_DIR/noiselab-kernels-<hash>`` when
+``NUMBA_CACHE_DIR`` is set, else ``$XDG_CACHE_HOME/noiselab/kernels-<hash>``
+(``~/.cache`` by default), else, when neither can be written, one under the
+temporary directory. The file is written to a temporary name and moved into
+place with :func:`os.replace`, so two processes racing to write it both
+succeed and neither ever imports half a file; its modification time is set
+to a fixed value, so whichever process wrote it, numba's cache (keyed by the
+file's size and time) stays valid.
+"""
+from __future__ import annotations
+
+import functools
+import hashlib
+import importlib.util
+import os
+import sys
+import tempfile
+import threading
+from pathlib import Path
+
+# module name -> the generator function that writes its source (called with load()'s extra arguments)
+GENERATORS = {"points": "generate", "jacobians": "generate_jacobians", "intpoints": "generate_int",
+              "intpart": "generate_int_part"}
+# the files whose content decides the generated text
+_INPUTS = ("_generate.py", "kernels.py", "_inthash.py")
+_STAMP = 1_000_000_000  # the fixed mtime of a written module (see the module docstring)
+_LOADED = {}
+_LOCK = threading.RLock()  # one import per module when threads (workers=) ask at once
+_HERE = Path(__file__).resolve().parent
+
+
+@functools.lru_cache(maxsize=None)
+def source_hash() -> str:
+    """A 16-hex-digit hash of the generator's inputs (the cache folder's name carries it).
+
+    Read once per process, when the generator is imported (:func:`path`), so
+    that one process never writes an older generator's text under a newer hash.
+    """
+    from . import _generate  # noqa: F401  (imported with the files it hashes)
+
+    h = hashlib.sha256()
+    for name in _INPUTS:
+        h.update(name.encode() + b"\0" + (_HERE / name).read_bytes() + b"\0")
+    return h.hexdigest()[:16]
+
+
+def _writable(folder: Path) -> bool:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        probe = tempfile.NamedTemporaryFile(dir=folder, prefix=".probe-", delete=True)
+        probe.close()
+        return True
+    except OSError:
+        return False
+
+
+def cache_folder() -> Path:
+    """The folder the generated modules are written to (created; see the module docstring for the order tried)."""
+    key = source_hash()
+    tried = []
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        tried.append(Path(os.environ["NUMBA_CACHE_DIR"]) / f"noiselab-kernels-{key}")
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    tried.append(Path(base) / "noiselab" / f"kernels-{key}")
+    user = os.getuid() if hasattr(os, "getuid") else "user"
+    tried.append(Path(tempfile.gettempdir()) / f"noiselab-{user}-kernels-{key}")
+    for folder in tried:
+        if _writable(folder):
+            return folder
+    raise OSError(f"no writable folder for noiselab's generated kernels; tried {', '.join(map(str, tried))} "
+                  "(set NUMBA_CACHE_DIR to a writable folder)")
+
+
+def _write(target: Path, text: str) -> None:
+    """Write ``text`` to ``target`` atomically (temporary file + os.replace) unless it already holds it."""
+    data = text.encode()
+    try:
+        if target.read_bytes() == data:
+            return
+    except OSError:
+        pass
+    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.stem}-", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.utime(tmp, (_STAMP, _STAMP))
+        os.replace(tmp, target)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+
+
+def _stem(name, args):
+    """``_name`` or ``_name_arg1_arg2`` (``-`` written ``_``): the module's file stem and last name part."""
+    return "_" + "_".join([name] + [str(a).replace("-", "_") for a in args])
+
+
+def path(name: str, *args) -> Path:
+    """The file of generated module ``name`` (one of :data:`GENERATORS`, with its arguments), written if missing."""
+    if name not in GENERATORS:
+        raise ValueError(f"name must be one of {sorted(GENERATORS)}, got {name!r}")
+    from . import _generate
+
+    target = cache_folder() / f"{_stem(name, args)}.py"
+    if not target.exists():
+        _write(target, getattr(_generate, GENERATORS[name])(*args))
+    return target
+
+
+def load(name: str, *args):
+    """The generated module ``name`` (``"points"``, ``"jacobians"``, ``"intpoints"``), imported once per process.
+
+    ``"intpart"`` with ``(d, kernel name, basis)`` is one part of the integer
+    hash's kernels; ``_intpoints.INT_KERNELS`` loads the parts on demand.
+
+    Examples
+    --------
+    >>> from noiselab.lattice import _kerncache
+    >>> mod = _kerncache.load("points")
+    >>> sorted(mod.KERNELS)[:2]
+    [(1, 1), (1, 2)]
+    """
+    stem = _stem(name, args)
+    mod = _LOADED.get(stem)
+    if mod is not None:
+        return mod
+    with _LOCK:
+        qual = f"{__package__}.{stem}"
+        mod = sys.modules.get(qual)
+        if mod is None:
+            spec = importlib.util.spec_from_file_location(qual, path(name, *args))
+            mod = importlib.util.module_from_spec(spec)
+            sys.modules[qual] = mod  # before exec: numba and pickling look the module up by name
+            try:
+                spec.loader.exec_module(mod)
+            except BaseException:
+                del sys.modules[qual]
+                raise
+        _LOADED[stem] = mod
+    return mod
+
+
+if __name__ == "__main__":  # where the generated modules are (written if missing)
+    for _name in ("points", "jacobians", "intpoints"):
+        print(path(_name))
