@@ -103,7 +103,7 @@ def test_synthesize_equals_reference_on_a_callable_envelope(shape):
     n = shape[-1]
 
     def env(*w):
-        return envelopes.annulus(*w, lo=1.5 / n, hi=0.4) * envelopes.power_law(*w, exponent=1.3)
+        return envelopes.annulus(*w, band_cycles_per_sample=(1.5 / n, 0.4)) * envelopes.power_law(*w, exponent=1.3)
 
     want_f, _ = naive.synthesize(shape, env, 5, "rayleigh")
     assert_close(synthesize(shape, env, seed=5, amplitude="rayleigh", dtype=np.float64), want_f)
@@ -190,7 +190,7 @@ def test_envelopes_equal_reference(c, direction, pan):
     thick = (np.abs(wt - surf) <= tol + 0.3 * c * along).astype(float)
     assert np.array_equal(envelopes.thickened_tent(wt, wy, wx, c, direction, pan, thickness=0.3, tolerance=tol), thick)
     cells, law = naive.noise_envelope((6, 10, 12), 1.5, (2, 4), False)  # band (2, 4) cycles per 12 samples
-    got = envelopes.annulus(wt, wy, wx, lo=2 / 12, hi=4 / 12) * envelopes.power_law(wt, wy, wx, exponent=1.5)
+    got = envelopes.annulus(wt, wy, wx, band_cycles_per_sample=(2 / 12, 4 / 12)) * envelopes.power_law(wt, wy, wx, exponent=1.5)
     assert np.array_equal(got > 0, cells)
     # the reference law is in cycles/sample, the envelope's in rad/sample: a constant factor (2 pi)**-1.5
     assert_close(got[cells], law[cells] * (2 * np.pi) ** -1.5)

@@ -924,6 +924,17 @@ def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2
                 dst[doff + q] = a0 * R[x0 + q]
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _row_range(rows, o, a, b):
+    """``(min, max)`` of ``rows[o, a:b]`` as a loop over the row (no array view in grid2d's hot loops)."""
+    lo = rows[o, a]
+    hi = lo
+    for q in range(a, b):
+        lo = min(lo, rows[o, q])
+        hi = max(hi, rows[o, q])
+    return lo, hi
+
+
 def _make_grid2d(GRAD, USE32):
     """:func:`grid2d`'s compiled kernel for one basis and output dtype (compile-time constants).
 
@@ -1013,12 +1024,7 @@ def _make_grid2d(GRAD, USE32):
         mmax = taps
         for o in range(noct):
             for qa in range(0, nq, L):
-                qb = min(qa + L, nq)
-                lo_ = base1[o, qa]
-                hi_ = lo_
-                for q in range(qa, qb):
-                    lo_ = min(lo_, base1[o, q])
-                    hi_ = max(hi_, base1[o, q])
+                lo_, hi_ = _row_range(base1, o, qa, min(qa + L, nq))
                 mmax = max(mmax, hi_ - lo_ + taps)
         expand = mmax <= 4 * L  # else (columns sparser than the lattice) a plain per-column loop
         if not expand:
@@ -1031,11 +1037,7 @@ def _make_grid2d(GRAD, USE32):
             q1 = min(q0 + tile, nq)
             nt = q1 - q0
             for o in range(noct):
-                lo = base1[o, q0]
-                hi = lo
-                for q in range(q0, q1):
-                    lo = min(lo, base1[o, q])
-                    hi = max(hi, base1[o, q])
+                lo, hi = _row_range(base1, o, q0, q1)
                 lmin[o] = lo
                 lmax[o] = hi + taps - 1
                 for s in range(S):
@@ -1045,11 +1047,7 @@ def _make_grid2d(GRAD, USE32):
                     for blk in range((nt + L - 1) // L):
                         qa = q0 + blk * L
                         qb = min(qa + L, q1)
-                        lo_ = base1[o, qa]
-                        hi_ = lo_
-                        for q in range(qa, qb):
-                            lo_ = min(lo_, base1[o, q])
-                            hi_ = max(hi_, base1[o, q])
+                        lo_, hi_ = _row_range(base1, o, qa, qb)
                         mb = hi_ - lo_ + taps
                         bB[o, blk] = lo_ - lo
                         bM[o, blk] = mb
