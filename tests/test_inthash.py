@@ -366,3 +366,44 @@ def test_kernel_cache_falls_back_when_a_folder_cannot_be_written(tmp_path, monke
     assert _kerncache.cache_folder().parent == tmp_path / "tmp"
     with pytest.raises(ValueError, match="name must be one of"):
         _kerncache.path("nothing")
+
+
+_FULL_DISK = """
+import os, tempfile
+import numpy as np
+real = tempfile.mkstemp
+def mkstemp(*args, **kwargs):            # every temporary file is a link to /dev/full: writes fail with ENOSPC
+    fd, name = real(*args, **kwargs)
+    os.close(fd); os.unlink(name); os.symlink("/dev/full", name)
+    return os.open(name, os.O_WRONLY), name
+tempfile.mkstemp = mkstemp
+from noiselab import LatticeNoise
+from noiselab.lattice import _kerncache
+pts = np.random.default_rng(0).uniform(-9, 9, (500, 3))
+np.save(os.environ["OUT"], LatticeNoise(3, seed=4)(pts))
+mod = _kerncache.load("points")
+print(getattr(mod, "__file__", None), any(f.endswith(".py") for _, _, fs in os.walk(os.environ["NUMBA_CACHE_DIR"])
+                                          for f in fs))
+"""
+
+
+def test_kernel_cache_on_a_full_disk_runs_uncached_with_the_same_values(tmp_path):
+    # no folder can take the generated module (every write fails with ENOSPC): the kernels run from memory,
+    # uncached, silently (a command keeps its one output line), and give the same values as the cached ones
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from noiselab.lattice import _generate
+
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"), XDG_CACHE_HOME=str(tmp_path / "xdg"),
+               TMPDIR=str(tmp_path / "tmp"), OUT=str(tmp_path / "full.npy"),
+               PYTHONPATH=str(Path(_generate.__file__).parents[2]))
+    (tmp_path / "tmp").mkdir()
+    run = subprocess.run([sys.executable, "-c", _FULL_DISK], env=env, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split() == ["None", "False"]           # loaded from memory; no module file left anywhere
+    assert run.stderr.strip() == ""                          # nothing printed
+    pts = np.random.default_rng(0).uniform(-9, 9, (500, 3))
+    np.testing.assert_array_equal(np.load(tmp_path / "full.npy"), LatticeNoise(3, seed=4)(pts))

@@ -18,17 +18,22 @@ temporary directory. The file is written to a temporary name and moved into
 place with :func:`os.replace`, so two processes racing to write it both
 succeed and neither ever imports half a file; its modification time is set
 to a fixed value, so whichever process wrote it, numba's cache (keyed by the
-file's size and time) stays valid.
+file's size and time) stays valid. A folder that cannot take the file (a
+full disk, read-only, not a folder) passes to the next; when none can, the
+kernels run from memory, uncached (compiled anew in each process), and the
+``noiselab`` logger says so at INFO level: the results are the same.
 """
 from __future__ import annotations
 
 import functools
 import hashlib
 import importlib.util
+import logging
 import os
 import sys
 import tempfile
 import threading
+import types
 from pathlib import Path
 
 # module name -> the generator function that writes its source (called with load()'s extra arguments)
@@ -40,6 +45,7 @@ _STAMP = 1_000_000_000  # the fixed mtime of a written module (see the module do
 _LOADED = {}
 _LOCK = threading.RLock()  # one import per module when threads (workers=) ask at once
 _HERE = Path(__file__).resolve().parent
+_log = logging.getLogger("noiselab")
 
 
 @functools.lru_cache(maxsize=None)
@@ -67,8 +73,8 @@ def _writable(folder: Path) -> bool:
         return False
 
 
-def cache_folder() -> Path:
-    """The folder the generated modules are written to (created; see the module docstring for the order tried)."""
+def candidate_folders() -> list:
+    """The folders the generated modules may go to, in the order tried (see the module docstring)."""
     key = source_hash()
     tried = []
     if os.environ.get("NUMBA_CACHE_DIR"):
@@ -77,6 +83,12 @@ def cache_folder() -> Path:
     tried.append(Path(base) / "noiselab" / f"kernels-{key}")
     user = os.getuid() if hasattr(os, "getuid") else "user"
     tried.append(Path(tempfile.gettempdir()) / f"noiselab-{user}-kernels-{key}")
+    return tried
+
+
+def cache_folder() -> Path:
+    """The first folder of :func:`candidate_folders` that can be written (created)."""
+    tried = candidate_folders()
     for folder in tried:
         if _writable(folder):
             return folder
@@ -111,16 +123,61 @@ def _stem(name, args):
     return "_" + "_".join([name] + [str(a).replace("-", "_") for a in args])
 
 
-def path(name: str, *args) -> Path:
-    """The file of generated module ``name`` (one of :data:`GENERATORS`, with its arguments), written if missing."""
+def _check_name(name):
     if name not in GENERATORS:
         raise ValueError(f"name must be one of {sorted(GENERATORS)}, got {name!r}")
+
+
+def _source(name, args):
     from . import _generate
 
-    target = cache_folder() / f"{_stem(name, args)}.py"
-    if not target.exists():
-        _write(target, getattr(_generate, GENERATORS[name])(*args))
-    return target
+    return getattr(_generate, GENERATORS[name])(*args)
+
+
+def path(name: str, *args) -> Path | None:
+    """The file of generated module ``name`` (one of :data:`GENERATORS`, with its arguments), written if missing.
+
+    Each of :func:`candidate_folders` is tried in turn; a folder that cannot
+    take the file (read-only, full, not a folder) passes to the next. None
+    when none can: :func:`load` then runs the kernels uncached.
+    """
+    _check_name(name)
+    text, failed = None, []
+    for folder in candidate_folders():
+        target = folder / f"{_stem(name, args)}.py"
+        if target.exists():
+            return target
+        try:
+            if text is None:
+                text = _source(name, args)
+            folder.mkdir(parents=True, exist_ok=True)
+            _write(target, text)
+            return target
+        except OSError as exc:
+            failed.append(f"{folder} ({exc.strerror or exc})")
+    _log.info("noiselab: no folder could take the generated lattice kernels (%s); they run uncached, "
+              "compiled anew in every process (set NUMBA_CACHE_DIR to a writable folder)", "; ".join(failed))
+    return None
+
+
+def _uncached_module(qual, name, args):
+    """The generated module executed from memory, its kernels with ``cache=False`` (numba caches need a file).
+
+    The fallback when no cache folder can be written (a full disk, a read-only
+    home): the same kernels, compiled in every process instead of once per
+    machine. Logged on the ``noiselab`` logger, not printed: a user's command
+    keeps its one line of output, and nothing is wrong with the results.
+    """
+    source = _source(name, args).replace("cache=True", "cache=False")
+    mod = types.ModuleType(qual)
+    mod.__package__ = __package__
+    sys.modules[qual] = mod
+    try:
+        exec(compile(source, f"<noiselab generated {qual}>", "exec"), mod.__dict__)
+    except BaseException:
+        del sys.modules[qual]
+        raise
+    return mod
 
 
 def load(name: str, *args):
@@ -144,7 +201,13 @@ def load(name: str, *args):
         qual = f"{__package__}.{stem}"
         mod = sys.modules.get(qual)
         if mod is None:
-            spec = importlib.util.spec_from_file_location(qual, path(name, *args))
+            _check_name(name)
+            file = path(name, *args)
+            if file is None:
+                mod = _uncached_module(qual, name, args)
+                _LOADED[stem] = mod
+                return mod
+            spec = importlib.util.spec_from_file_location(qual, file)
             mod = importlib.util.module_from_spec(spec)
             sys.modules[qual] = mod  # before exec: numba and pickling look the module up by name
             try:
