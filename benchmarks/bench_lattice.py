@@ -393,6 +393,111 @@ def hash_section(repeats, lines, npts=1_000_000):
     return summary
 
 
+# ------------------------------------------------------------------ issue 22's targets
+TARGET_HEAD = "## Issue 22's targets: pyfastnoisesimd on one thread, the write floor, and `workers=2`"
+# (kernel, basis, pyfastnoisesimd's like-for-like noise) of issue 22's 3-D points rows
+TARGET_POINTS = (("quintic", "value", "Value"), ("quintic", "gradient", "Perlin"), ("catmull-rom", "value", "Cubic"))
+TARGET_GRID = (512, 16)  # 512^2 samples over 16 lattice cells per side: fractal_sum keeps all 6 octaves
+
+
+def _hashed(dim, kname, basis, hname):
+    return LatticeNoise(dim, seed=1, kernel=kname, basis=basis, **({} if hname == "table" else {"hash": hname}))
+
+
+def _target_cell(t, key, n, fkey):
+    """``pts/s (x FNS, x floor)`` of candidate ``key`` (its dtype's floor)."""
+    floor = "floor32" if key.endswith("32") else "floor64"
+    xf = f"{t.ratio(fkey, key):.2f}" if fkey in t else "n/a"
+    return f"{n / t[key]:.3g}", xf, f"{t.ratio(floor, key):.3f}"
+
+
+def _scaling(cands, repeats):
+    """Wall-clock speed-up of ``two`` over ``one`` (median of per-round ratios): CPU time would add both threads."""
+    t = bench(cands, repeats)  # perf_counter
+    return t.ratio("one", "two"), t
+
+
+def targets_section(repeats, lines, npts=1_000_000):
+    """Issue 22's speed targets, both hashes: 3-D points and 512^2 6-octave fBm grids against pyfastnoisesimd."""
+    fns = _peer("fns")
+    rng = np.random.default_rng(0)
+    pts32 = rng.uniform(0.0, 100.0, (npts, 3)).astype(np.float32)
+    pts = pts32.astype(np.float64)
+    lines.append(TARGET_HEAD + "\n")
+    lines.append(f"One thread unless stated. Single-thread rows: CPU time of the calling thread (`time.thread_time`; "
+                 "pyfastnoisesimd with `numWorkers=1` runs in the calling thread), median of the interleaved rounds; "
+                 "`x FNS` = pyfastnoisesimd time / time (> 1: noiselab faster) and `x floor` = time of writing the "
+                 "output in its dtype (`np.full(..., 0.5)`) / time, each the median of the per-round ratios. "
+                 "f64: float64 points (or float64 output) computed in float64; f32: float32 points in, float32 out "
+                 "(or `dtype=float32` for grids). `err32` = max |f32 - f64| at the same (float32-representable) "
+                 "points. `w2` = wall-clock time of `workers=1` / time of `workers=2` on the f32 call (wall time, "
+                 "since the CPU time of two threads adds up; on this shared 2-core machine the other jobs' load "
+                 "lowers it: read it with the load in the run line).\n")
+    lines.append(f"### {npts:,} random 3-D points in [0, 100)^3\n")
+    lines.append("| noise | hash | FNS | f64 pts/s | x FNS | x floor | f32 pts/s | x FNS | x floor | err32 "
+                 "| FNS pts/s | w2 (wall) |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    summary = {}
+    for kname, basis, peer in TARGET_POINTS:
+        for hname in ("table", "integer"):
+            noise = _hashed(3, kname, basis, hname)
+            cands = {"floor64": lambda: np.full(npts, 0.5), "floor32": lambda: np.full(npts, 0.5, np.float32),
+                     "f64": lambda noise=noise: noise(pts), "f32": lambda noise=noise: noise(pts32)}
+            if fns is not None:
+                aligned = fns.empty_coords(npts)
+                aligned[:] = pts32.T
+                f = fns.Noise(seed=1, numWorkers=1)
+                f.noiseType = getattr(fns.NoiseType, peer)
+                f.frequency = 1.0
+                cands["fns"] = lambda f=f, aligned=aligned: f.genFromCoords(aligned)
+            t = bench(cands, repeats, clock=time.thread_time)
+            err32 = _max_err(noise(pts32), noise(pts))
+            w2, _ = _scaling({"one": lambda noise=noise: noise(pts32),
+                              "two": lambda noise=noise: noise(pts32, workers=2)}, repeats)
+            c64, c32 = _target_cell(t, "f64", npts, "fns"), _target_cell(t, "f32", npts, "fns")
+            fns_rate = f"{npts / t['fns']:.3g}" if "fns" in t else "n/a"
+            lines.append(f"| 3-D points, {kname} {basis} | {hname} | {peer} | {' | '.join(c64)} | {' | '.join(c32)} "
+                         f"| {err32:.1e} | {fns_rate} | {w2:.2f} |")
+            summary[("points", kname, basis, hname)] = (t, err32, w2)
+    n, cells = TARGET_GRID
+    shape = (n, n)
+    grid = Grid(shape, [(0.0, float(cells)), (0.0, float(cells))])
+    lines.append(f"\n### {n} x {n} grid, {cells} lattice cells per side, 6-octave fBm (`fractal_sum(noise, Grid, 6)`)\n")
+    lines.append("pyfastnoisesimd: `ValueFractal` / `PerlinFractal`, FBM, 6 octaves, lacunarity 2, gain 0.5, "
+                 "`genAsGrid`, float32, 1 worker. `used`: octaves `fractal_sum` evaluates. Grids take no `workers=`: "
+                 "`w2 (dask)` is the wall-clock speed-up of the chunked path (`chunks=(n // 2, n)`, dask's threaded "
+                 "scheduler) with `num_workers=2` over `num_workers=1`, float32.\n")
+    lines.append("| noise | hash | used | f64 pts/s | x FNS | x floor | f32 pts/s | x FNS | x floor | err32 | FNS pts/s "
+                 "| w2 (dask) |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for basis in ("value", "gradient"):
+        for hname in ("table", "integer"):
+            noise = _hashed(2, "quintic", basis, hname)
+            cands = {"floor64": lambda: np.full(shape, 0.5), "floor32": lambda: np.full(shape, 0.5, np.float32),
+                     "f64": lambda noise=noise: fractal_sum(noise, grid, 6),
+                     "f32": lambda noise=noise: fractal_sum(noise, grid, 6, dtype=np.float32)}
+            if fns is not None:
+                f = _fns_noise(fns, basis, 6, cells, n)
+                cands["fns"] = lambda f=f: f.genAsGrid([1, *shape])
+            t = bench(cands, repeats, clock=time.thread_time)
+            _, used = fractal_sum(noise, grid, 6, return_octaves=True)
+            err32 = _max_err(fractal_sum(noise, grid, 6, dtype=np.float32), fractal_sum(noise, grid, 6))
+            try:
+                lazy = fractal_sum(noise, grid, 6, dtype=np.float32, chunks=(n // 2, n))
+                w2, _ = _scaling({"one": lambda lazy=lazy: lazy.compute(scheduler="threads", num_workers=1),
+                                  "two": lambda lazy=lazy: lazy.compute(scheduler="threads", num_workers=2)}, repeats)
+                w2 = f"{w2:.2f}"
+            except Exception as exc:  # noqa: BLE001 -- dask missing: reported in the cell
+                w2 = f"n/a ({type(exc).__name__})"
+            c64, c32 = _target_cell(t, "f64", n * n, "fns"), _target_cell(t, "f32", n * n, "fns")
+            fns_rate = f"{n * n / t['fns']:.3g}" if "fns" in t else "n/a"
+            lines.append(f"| {n}^2 fBm, quintic {basis} | {hname} | {used} | {' | '.join(c64)} | {' | '.join(c32)} "
+                         f"| {err32:.1e} | {fns_rate} | {w2} |")
+            summary[("grid", "quintic", basis, hname)] = (t, err32, w2)
+    lines.append("")
+    return summary
+
+
 def _splice(path, head, section):
     """Replace the section starting at ``head`` (to the next ``## `` heading) in ``path``, or append it."""
     text = Path(path).read_text() if Path(path).exists() else ""
@@ -490,6 +595,9 @@ def build_parser():
                     help="run only the integer-hash section and replace it in the output file (the rest is kept)")
     ap.add_argument("--grid-only", action="store_true",
                     help="run only the 2-D grid section and replace it in the output file (the rest is kept)")
+    ap.add_argument("--targets-only", action="store_true",
+                    help="run only issue 22's targets section (both hashes, pyfastnoisesimd, floor, workers=2) and "
+                         "replace it in the output file (the rest is kept)")
     return ap
 
 
@@ -510,6 +618,21 @@ def main(argv=None):
                         "interleaved rounds. The rest of this file is from the run in its header. Float64 summary of "
                         "this run:\n\n" + "\n".join(_grid_summary(gsum)) + "\n")
         _splice(args.output, GRID_HEAD, "\n".join(lines) + "\n")
+        print("\n".join(lines))
+        return
+    if args.targets_only:
+        cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py --targets-only"
+               + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
+        lines = []
+        load = os.getloadavg()[0]
+        targets_section(repeats, lines)
+        info = run_info(cmd, ["pyfastnoisesimd", "dask"], load=load)
+        lines.insert(1, f"Run alone (`{cmd}`), {info['date']}, {info['machine']}, {info['cores']} cores ({info['cpu']}) "
+                        f"shared with other jobs, load average {load:.1f} at start and {os.getloadavg()[0]:.1f} at "
+                        "the end; " + ", ".join(f"{k} {v}" for k, v in info["versions"].items())
+                        + f"; median of {repeats} interleaved rounds. The rest of this file is from the runs named "
+                        "in their sections.\n")
+        _splice(args.output, TARGET_HEAD, "\n".join(lines) + "\n")
         print("\n".join(lines))
         return
     if args.hash_only:
@@ -537,6 +660,7 @@ def main(argv=None):
     gsum = grid_section(repeats, args.quick, body)
     ssum = scattered_section(repeats, args.quick, body)
     hash_section(repeats, body)
+    targets_section(repeats, body)
     precision_section(body)
     lines.append("## Summary (float64 unless stated; ratios > 1 mean noiselab is faster)\n")
     lines += _grid_summary(gsum)
