@@ -412,9 +412,20 @@ def _target_cell(t, key, n, fkey):
 
 
 def _scaling(cands, repeats):
-    """Wall-clock speed-up of ``two`` over ``one`` (median of per-round ratios): CPU time would add both threads."""
+    """``"speed-up (cores)"``: the wall-clock speed-up of ``two`` over ``one`` and the cores ``two`` obtained.
+
+    Wall time (median of the per-round ratios): CPU time would add both
+    threads. The cores obtained (process CPU time / wall time of ``two``,
+    median of ``repeats`` calls) tell a shared machine's load apart from the
+    code: near 1, the other jobs held the second core.
+    """
     t = bench(cands, repeats)  # perf_counter
-    return t.ratio("one", "two"), t
+    cores = []
+    for _ in range(repeats):
+        w0, c0 = time.perf_counter(), time.process_time()
+        cands["two"]()
+        cores.append((time.process_time() - c0) / (time.perf_counter() - w0))
+    return f"{t.ratio('one', 'two'):.2f} ({np.median(cores):.1f})"
 
 
 def targets_section(repeats, lines, npts=1_000_000):
@@ -431,11 +442,12 @@ def targets_section(repeats, lines, npts=1_000_000):
                  "f64: float64 points (or float64 output) computed in float64; f32: float32 points in, float32 out "
                  "(or `dtype=float32` for grids). `err32` = max |f32 - f64| at the same (float32-representable) "
                  "points. `w2` = wall-clock time of `workers=1` / time of `workers=2` on the f32 call (wall time, "
-                 "since the CPU time of two threads adds up; on this shared 2-core machine the other jobs' load "
-                 "lowers it: read it with the load in the run line).\n")
+                 "since the CPU time of two threads adds up), and in brackets the cores the `workers=2` call obtained "
+                 "(process CPU time / wall time): on this shared 2-core machine a figure near 1 means the other "
+                 "jobs held the second core, so the speed-up measures the load, not the code.\n")
     lines.append(f"### {npts:,} random 3-D points in [0, 100)^3\n")
     lines.append("| noise | hash | FNS | f64 pts/s | x FNS | x floor | f32 pts/s | x FNS | x floor | err32 "
-                 "| FNS pts/s | w2 (wall) |")
+                 "| FNS pts/s | w2 wall (cores) |")
     lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
     summary = {}
     for kname, basis, peer in TARGET_POINTS:
@@ -452,12 +464,12 @@ def targets_section(repeats, lines, npts=1_000_000):
                 cands["fns"] = lambda f=f, aligned=aligned: f.genFromCoords(aligned)
             t = bench(cands, repeats, clock=time.thread_time)
             err32 = _max_err(noise(pts32), noise(pts))
-            w2, _ = _scaling({"one": lambda noise=noise: noise(pts32),
-                              "two": lambda noise=noise: noise(pts32, workers=2)}, repeats)
+            w2 = _scaling({"one": lambda noise=noise: noise(pts32),
+                           "two": lambda noise=noise: noise(pts32, workers=2)}, repeats)
             c64, c32 = _target_cell(t, "f64", npts, "fns"), _target_cell(t, "f32", npts, "fns")
             fns_rate = f"{npts / t['fns']:.3g}" if "fns" in t else "n/a"
             lines.append(f"| 3-D points, {kname} {basis} | {hname} | {peer} | {' | '.join(c64)} | {' | '.join(c32)} "
-                         f"| {err32:.1e} | {fns_rate} | {w2:.2f} |")
+                         f"| {err32:.1e} | {fns_rate} | {w2} |")
             summary[("points", kname, basis, hname)] = (t, err32, w2)
     n, cells = TARGET_GRID
     shape = (n, n)
@@ -465,10 +477,10 @@ def targets_section(repeats, lines, npts=1_000_000):
     lines.append(f"\n### {n} x {n} grid, {cells} lattice cells per side, 6-octave fBm (`fractal_sum(noise, Grid, 6)`)\n")
     lines.append("pyfastnoisesimd: `ValueFractal` / `PerlinFractal`, FBM, 6 octaves, lacunarity 2, gain 0.5, "
                  "`genAsGrid`, float32, 1 worker. `used`: octaves `fractal_sum` evaluates. Grids take no `workers=`: "
-                 "`w2 (dask)` is the wall-clock speed-up of the chunked path (`chunks=(n // 2, n)`, dask's threaded "
+                 "`w2 dask` is the wall-clock speed-up of the chunked path (`chunks=(n // 2, n)`, dask's threaded "
                  "scheduler) with `num_workers=2` over `num_workers=1`, float32.\n")
     lines.append("| noise | hash | used | f64 pts/s | x FNS | x floor | f32 pts/s | x FNS | x floor | err32 | FNS pts/s "
-                 "| w2 (dask) |")
+                 "| w2 dask wall (cores) |")
     lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for basis in ("value", "gradient"):
         for hname in ("table", "integer"):
@@ -484,9 +496,8 @@ def targets_section(repeats, lines, npts=1_000_000):
             err32 = _max_err(fractal_sum(noise, grid, 6, dtype=np.float32), fractal_sum(noise, grid, 6))
             try:
                 lazy = fractal_sum(noise, grid, 6, dtype=np.float32, chunks=(n // 2, n))
-                w2, _ = _scaling({"one": lambda lazy=lazy: lazy.compute(scheduler="threads", num_workers=1),
-                                  "two": lambda lazy=lazy: lazy.compute(scheduler="threads", num_workers=2)}, repeats)
-                w2 = f"{w2:.2f}"
+                w2 = _scaling({"one": lambda lazy=lazy: lazy.compute(scheduler="threads", num_workers=1),
+                               "two": lambda lazy=lazy: lazy.compute(scheduler="threads", num_workers=2)}, repeats)
             except Exception as exc:  # noqa: BLE001 -- dask missing: reported in the cell
                 w2 = f"n/a ({type(exc).__name__})"
             c64, c32 = _target_cell(t, "f64", n * n, "fns"), _target_cell(t, "f32", n * n, "fns")
