@@ -163,6 +163,7 @@ def grid_section(repeats, quick, lines):
 
     # other grid peers, one octave, measured once side by side
     lines.append("### Other peers on the 1024 x 1024 grid (one octave)\n")
+    lines.append("CPU time of the calling thread (`time.thread_time`), as above.\n")
     lines.append("| implementation | precision | pts/s | x floor | note |")
     lines.append("|---|---|---|---|---|")
     cands = {"floor": lambda: np.full(shape, 0.5)}
@@ -192,7 +193,7 @@ def grid_section(repeats, quick, lines):
     if pn is not None:
         cands["perlin-numpy generate_perlin_noise_2d"] = lambda: pn.generate_perlin_noise_2d(shape, (16, 16), rng=np.random.default_rng(1))
         notes["perlin-numpy generate_perlin_noise_2d"] = ("float64", "gradient noise, whole-grid NumPy")
-    t = bench(cands, repeats)
+    t = bench(cands, repeats, clock=time.thread_time)
     for k, v in t.items():
         if k == "floor":
             continue
@@ -210,7 +211,7 @@ def grid_section(repeats, quick, lines):
         slow["VTK vtkPerlinNoise.EvaluateFunction (Python loop, 128x128)"] = \
             lambda: [pv.EvaluateFunction(x, y, 0.0) for x in xs[:sub] for y in xs[:sub]]
     if slow:
-        ts = bench(slow, max(3, repeats // 2))
+        ts = bench(slow, max(3, repeats // 2), clock=time.thread_time)
         for k, v in ts.items():
             lines.append(f"| {k} | float32 inside | {sub * sub / v:.3g} | {t['floor'] / (v * npts / (sub * sub)):.4f} | "
                          "one call per point |")
@@ -225,7 +226,8 @@ def scattered_section(repeats, quick, lines):
     pts = rng.uniform(0.0, 100.0, (npts, 3))
     pts32 = pts.astype(np.float32)
     lines.append("## Scattered points: 1,000,000 random 3-D points in [0, 100)^3\n")
-    lines.append("Computation in float64; the float32 column returns float32 (from float32 input). "
+    lines.append("One thread, CPU time of the calling thread (`time.thread_time`; every candidate runs in it). "
+                 "Computation in float64; the float32 column returns float32 (from float32 input). "
                  "`x floor` = time of `np.full(1_000_000, 0.5)` / time; `x FNL` = pyfastnoiselite value noise "
                  "(float32) time / time.\n")
     lines.append("| kernel (taps) | basis | float64 pts/s | x floor | x FNL | float32 pts/s | x floor | x FNL |")
@@ -245,7 +247,7 @@ def scattered_section(repeats, quick, lines):
                 lite.noise_type = fnl.NoiseType.NoiseType_Value
                 lite.frequency = 1.0
                 cands["fnl"] = lambda lite=lite: lite.gen_from_coords(coords)
-            t = bench(cands, repeats)
+            t = bench(cands, repeats, clock=time.thread_time)
             xf = lambda k: f"{t.ratio('fnl', k):.2f}" if "fnl" in t else "n/a"  # noqa: E731
             lines.append(f"| {kname} ({noise.kernel.taps}) | {basis} | {npts / t['f64']:.3g} | {t.ratio('floor', 'f64'):.3f} | "
                          f"{xf('f64')} | {npts / t['f32']:.3g} | {t.ratio('floor', 'f32'):.3f} | {xf('f32')} |")
@@ -257,7 +259,9 @@ def scattered_section(repeats, quick, lines):
     lines.append("`workers=2` splits the points into two blocks evaluated on two threads (bit-identical to one); "
                  "pyfastnoiselite stays on one thread. `fractal_sum(noise, pts, 60)` evaluates the octaves whose "
                  "amplitude is above float64 resolution (54 of 60; without `spacing=` nothing tells which octaves "
-                 "the points can resolve); `x 1 octave` = time of one octave / time.\n")
+                 "the points can resolve); `x 1 octave` = time of one octave / time. Wall-clock time (`time.perf_counter`: "
+                 "the CPU time of two threads adds up), so on the shared machine the other jobs' load lowers the "
+                 "`workers=2` row.\n")
     lines.append("| kernel | evaluation | octaves used | pts/s | x 1 octave | x FNL |")
     lines.append("|---|---|---|---|---|---|")
     for kname in ("quintic", "cubic"):
@@ -304,14 +308,14 @@ def scattered_section(repeats, quick, lines):
     if vn is not None:
         vobj = vn.Noise(1)
         cands["vnoise noise3 (points)"] = lambda: vobj.noise3(pts[:, 0], pts[:, 1], pts[:, 2], grid_mode=False)
-    t = bench(cands, repeats) if cands else {}
+    t = bench(cands, repeats, clock=time.thread_time) if cands else {}
     for k, v in t.items():
         lines.append(f"| {k} | {'float64' if 'vnoise' in k else 'float32'} | {npts / v:.3g} |")
         summary[k] = npts / v
     nz = _peer("noise")
     if nz is not None:
         sub = pts[:20000]
-        ts = bench({"noise": lambda: [nz.pnoise3(*p) for p in sub]}, max(3, repeats // 2))
+        ts = bench({"noise": lambda: [nz.pnoise3(*p) for p in sub]}, max(3, repeats // 2), clock=time.thread_time)
         lines.append(f"| noise.pnoise3 (Python loop) | float32 | {sub.shape[0] / ts['noise']:.3g} |")
     lines.append("")
     return summary
@@ -683,7 +687,7 @@ def main(argv=None):
         r = ssum.get((kname, "value", "two"))
         if r:
             fnl_txt = f", {r[1]:.2f}x pyfastnoiselite (one thread)" if r[1] else ""
-            lines.append(f"- the same with `workers=2` (two threads): {r[0]:.3g} pts/s{fnl_txt}")
+            lines.append(f"- the same with `workers=2` (two threads, wall time: see its table): {r[0]:.3g} pts/s{fnl_txt}")
         r = ssum.get((kname, "value", "sixty"))
         if r:
             lines.append(f"- the same, `fractal_sum(noise, pts, 60)` ({r[3]} octaves used): {r[0]:.3g} pts/s, "
