@@ -163,6 +163,7 @@ def grid_section(repeats, quick, lines):
 
     # other grid peers, one octave, measured once side by side
     lines.append("### Other peers on the 1024 x 1024 grid (one octave)\n")
+    lines.append("CPU time of the calling thread (`time.thread_time`), as above.\n")
     lines.append("| implementation | precision | pts/s | x floor | note |")
     lines.append("|---|---|---|---|---|")
     cands = {"floor": lambda: np.full(shape, 0.5)}
@@ -192,7 +193,7 @@ def grid_section(repeats, quick, lines):
     if pn is not None:
         cands["perlin-numpy generate_perlin_noise_2d"] = lambda: pn.generate_perlin_noise_2d(shape, (16, 16), rng=np.random.default_rng(1))
         notes["perlin-numpy generate_perlin_noise_2d"] = ("float64", "gradient noise, whole-grid NumPy")
-    t = bench(cands, repeats)
+    t = bench(cands, repeats, clock=time.thread_time)
     for k, v in t.items():
         if k == "floor":
             continue
@@ -210,7 +211,7 @@ def grid_section(repeats, quick, lines):
         slow["VTK vtkPerlinNoise.EvaluateFunction (Python loop, 128x128)"] = \
             lambda: [pv.EvaluateFunction(x, y, 0.0) for x in xs[:sub] for y in xs[:sub]]
     if slow:
-        ts = bench(slow, max(3, repeats // 2))
+        ts = bench(slow, max(3, repeats // 2), clock=time.thread_time)
         for k, v in ts.items():
             lines.append(f"| {k} | float32 inside | {sub * sub / v:.3g} | {t['floor'] / (v * npts / (sub * sub)):.4f} | "
                          "one call per point |")
@@ -225,7 +226,8 @@ def scattered_section(repeats, quick, lines):
     pts = rng.uniform(0.0, 100.0, (npts, 3))
     pts32 = pts.astype(np.float32)
     lines.append("## Scattered points: 1,000,000 random 3-D points in [0, 100)^3\n")
-    lines.append("Computation in float64; the float32 column returns float32 (from float32 input). "
+    lines.append("One thread, CPU time of the calling thread (`time.thread_time`; every candidate runs in it). "
+                 "Computation in float64; the float32 column returns float32 (from float32 input). "
                  "`x floor` = time of `np.full(1_000_000, 0.5)` / time; `x FNL` = pyfastnoiselite value noise "
                  "(float32) time / time.\n")
     lines.append("| kernel (taps) | basis | float64 pts/s | x floor | x FNL | float32 pts/s | x floor | x FNL |")
@@ -245,7 +247,7 @@ def scattered_section(repeats, quick, lines):
                 lite.noise_type = fnl.NoiseType.NoiseType_Value
                 lite.frequency = 1.0
                 cands["fnl"] = lambda lite=lite: lite.gen_from_coords(coords)
-            t = bench(cands, repeats)
+            t = bench(cands, repeats, clock=time.thread_time)
             xf = lambda k: f"{t.ratio('fnl', k):.2f}" if "fnl" in t else "n/a"  # noqa: E731
             lines.append(f"| {kname} ({noise.kernel.taps}) | {basis} | {npts / t['f64']:.3g} | {t.ratio('floor', 'f64'):.3f} | "
                          f"{xf('f64')} | {npts / t['f32']:.3g} | {t.ratio('floor', 'f32'):.3f} | {xf('f32')} |")
@@ -257,7 +259,9 @@ def scattered_section(repeats, quick, lines):
     lines.append("`workers=2` splits the points into two blocks evaluated on two threads (bit-identical to one); "
                  "pyfastnoiselite stays on one thread. `fractal_sum(noise, pts, 60)` evaluates the octaves whose "
                  "amplitude is above float64 resolution (54 of 60; without `spacing=` nothing tells which octaves "
-                 "the points can resolve); `x 1 octave` = time of one octave / time.\n")
+                 "the points can resolve); `x 1 octave` = time of one octave / time. Wall-clock time (`time.perf_counter`: "
+                 "the CPU time of two threads adds up), so on the shared machine the other jobs' load lowers the "
+                 "`workers=2` row.\n")
     lines.append("| kernel | evaluation | octaves used | pts/s | x 1 octave | x FNL |")
     lines.append("|---|---|---|---|---|---|")
     for kname in ("quintic", "cubic"):
@@ -304,14 +308,14 @@ def scattered_section(repeats, quick, lines):
     if vn is not None:
         vobj = vn.Noise(1)
         cands["vnoise noise3 (points)"] = lambda: vobj.noise3(pts[:, 0], pts[:, 1], pts[:, 2], grid_mode=False)
-    t = bench(cands, repeats) if cands else {}
+    t = bench(cands, repeats, clock=time.thread_time) if cands else {}
     for k, v in t.items():
         lines.append(f"| {k} | {'float64' if 'vnoise' in k else 'float32'} | {npts / v:.3g} |")
         summary[k] = npts / v
     nz = _peer("noise")
     if nz is not None:
         sub = pts[:20000]
-        ts = bench({"noise": lambda: [nz.pnoise3(*p) for p in sub]}, max(3, repeats // 2))
+        ts = bench({"noise": lambda: [nz.pnoise3(*p) for p in sub]}, max(3, repeats // 2), clock=time.thread_time)
         lines.append(f"| noise.pnoise3 (Python loop) | float32 | {sub.shape[0] / ts['noise']:.3g} |")
     lines.append("")
     return summary
@@ -389,6 +393,122 @@ def hash_section(repeats, lines, npts=1_000_000):
                      f"{npts / t['peer'] if 'peer' in t else float('nan'):.3g} | {err32:.1e} |")
         summary[(d, kname, basis)] = {k: (npts / t[k], t.ratio("peer", k) if "peer" in t else None)
                                       for k in ("table", "integer", "integer32", "general32")}
+    lines.append("")
+    return summary
+
+
+# ------------------------------------------------------------------ issue 22's targets
+TARGET_HEAD = "## Issue 22's targets: pyfastnoisesimd on one thread, the write floor, and `workers=2`"
+# (kernel, basis, pyfastnoisesimd's like-for-like noise) of issue 22's 3-D points rows
+TARGET_POINTS = (("quintic", "value", "Value"), ("quintic", "gradient", "Perlin"), ("catmull-rom", "value", "Cubic"))
+TARGET_GRID = (512, 16)  # 512^2 samples over 16 lattice cells per side: fractal_sum keeps all 6 octaves
+
+
+def _hashed(dim, kname, basis, hname):
+    return LatticeNoise(dim, seed=1, kernel=kname, basis=basis, **({} if hname == "table" else {"hash": hname}))
+
+
+def _target_cell(t, key, n, fkey):
+    """``pts/s (x FNS, x floor)`` of candidate ``key`` (its dtype's floor)."""
+    floor = "floor32" if key.endswith("32") else "floor64"
+    xf = f"{t.ratio(fkey, key):.2f}" if fkey in t else "n/a"
+    return f"{n / t[key]:.3g}", xf, f"{t.ratio(floor, key):.3f}"
+
+
+def _scaling(cands, repeats):
+    """``"speed-up (cores)"``: the wall-clock speed-up of ``two`` over ``one`` and the cores ``two`` obtained.
+
+    Wall time (median of the per-round ratios): CPU time would add both
+    threads. The cores obtained (process CPU time / wall time of ``two``,
+    median of ``repeats`` calls) tell a shared machine's load apart from the
+    code: near 1, the other jobs held the second core.
+    """
+    t = bench(cands, repeats)  # perf_counter
+    cores = []
+    for _ in range(repeats):
+        w0, c0 = time.perf_counter(), time.process_time()
+        cands["two"]()
+        cores.append((time.process_time() - c0) / (time.perf_counter() - w0))
+    return f"{t.ratio('one', 'two'):.2f} ({np.median(cores):.1f})"
+
+
+def targets_section(repeats, lines, npts=1_000_000):
+    """Issue 22's speed targets, both hashes: 3-D points and 512^2 6-octave fBm grids against pyfastnoisesimd."""
+    fns = _peer("fns")
+    rng = np.random.default_rng(0)
+    pts32 = rng.uniform(0.0, 100.0, (npts, 3)).astype(np.float32)
+    pts = pts32.astype(np.float64)
+    lines.append(TARGET_HEAD + "\n")
+    lines.append(f"One thread unless stated. Single-thread rows: CPU time of the calling thread (`time.thread_time`; "
+                 "pyfastnoisesimd with `numWorkers=1` runs in the calling thread), median of the interleaved rounds; "
+                 "`x FNS` = pyfastnoisesimd time / time (> 1: noiselab faster) and `x floor` = time of writing the "
+                 "output in its dtype (`np.full(..., 0.5)`) / time, each the median of the per-round ratios. "
+                 "f64: float64 points (or float64 output) computed in float64; f32: float32 points in, float32 out "
+                 "(or `dtype=float32` for grids). `err32` = max |f32 - f64| at the same (float32-representable) "
+                 "points. `w2` = wall-clock time of `workers=1` / time of `workers=2` on the f32 call (wall time, "
+                 "since the CPU time of two threads adds up), and in brackets the cores the `workers=2` call obtained "
+                 "(process CPU time / wall time): on this shared 2-core machine a figure near 1 means the other "
+                 "jobs held the second core, so the speed-up measures the load, not the code.\n")
+    lines.append(f"### {npts:,} random 3-D points in [0, 100)^3\n")
+    lines.append("| noise | hash | FNS | f64 pts/s | x FNS | x floor | f32 pts/s | x FNS | x floor | err32 "
+                 "| FNS pts/s | w2 wall (cores) |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    summary = {}
+    for kname, basis, peer in TARGET_POINTS:
+        for hname in ("table", "integer"):
+            noise = _hashed(3, kname, basis, hname)
+            cands = {"floor64": lambda: np.full(npts, 0.5), "floor32": lambda: np.full(npts, 0.5, np.float32),
+                     "f64": lambda noise=noise: noise(pts), "f32": lambda noise=noise: noise(pts32)}
+            if fns is not None:
+                aligned = fns.empty_coords(npts)
+                aligned[:] = pts32.T
+                f = fns.Noise(seed=1, numWorkers=1)
+                f.noiseType = getattr(fns.NoiseType, peer)
+                f.frequency = 1.0
+                cands["fns"] = lambda f=f, aligned=aligned: f.genFromCoords(aligned)
+            t = bench(cands, repeats, clock=time.thread_time)
+            err32 = _max_err(noise(pts32), noise(pts))
+            w2 = _scaling({"one": lambda noise=noise: noise(pts32),
+                           "two": lambda noise=noise: noise(pts32, workers=2)}, repeats)
+            c64, c32 = _target_cell(t, "f64", npts, "fns"), _target_cell(t, "f32", npts, "fns")
+            fns_rate = f"{npts / t['fns']:.3g}" if "fns" in t else "n/a"
+            lines.append(f"| 3-D points, {kname} {basis} | {hname} | {peer} | {' | '.join(c64)} | {' | '.join(c32)} "
+                         f"| {err32:.1e} | {fns_rate} | {w2} |")
+            summary[("points", kname, basis, hname)] = (t, err32, w2)
+    n, cells = TARGET_GRID
+    shape = (n, n)
+    grid = Grid(shape, [(0.0, float(cells)), (0.0, float(cells))])
+    lines.append(f"\n### {n} x {n} grid, {cells} lattice cells per side, 6-octave fBm (`fractal_sum(noise, Grid, 6)`)\n")
+    lines.append("pyfastnoisesimd: `ValueFractal` / `PerlinFractal`, FBM, 6 octaves, lacunarity 2, gain 0.5, "
+                 "`genAsGrid`, float32, 1 worker. `used`: octaves `fractal_sum` evaluates. Grids take no `workers=`: "
+                 "`w2 dask` is the wall-clock speed-up of the chunked path (`chunks=(n // 2, n)`, dask's threaded "
+                 "scheduler) with `num_workers=2` over `num_workers=1`, float32.\n")
+    lines.append("| noise | hash | used | f64 pts/s | x FNS | x floor | f32 pts/s | x FNS | x floor | err32 | FNS pts/s "
+                 "| w2 dask wall (cores) |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for basis in ("value", "gradient"):
+        for hname in ("table", "integer"):
+            noise = _hashed(2, "quintic", basis, hname)
+            cands = {"floor64": lambda: np.full(shape, 0.5), "floor32": lambda: np.full(shape, 0.5, np.float32),
+                     "f64": lambda noise=noise: fractal_sum(noise, grid, 6),
+                     "f32": lambda noise=noise: fractal_sum(noise, grid, 6, dtype=np.float32)}
+            if fns is not None:
+                f = _fns_noise(fns, basis, 6, cells, n)
+                cands["fns"] = lambda f=f: f.genAsGrid([1, *shape])
+            t = bench(cands, repeats, clock=time.thread_time)
+            _, used = fractal_sum(noise, grid, 6, return_octaves=True)
+            err32 = _max_err(fractal_sum(noise, grid, 6, dtype=np.float32), fractal_sum(noise, grid, 6))
+            try:
+                lazy = fractal_sum(noise, grid, 6, dtype=np.float32, chunks=(n // 2, n))
+                w2 = _scaling({"one": lambda lazy=lazy: lazy.compute(scheduler="threads", num_workers=1),
+                               "two": lambda lazy=lazy: lazy.compute(scheduler="threads", num_workers=2)}, repeats)
+            except Exception as exc:  # noqa: BLE001 -- dask missing: reported in the cell
+                w2 = f"n/a ({type(exc).__name__})"
+            c64, c32 = _target_cell(t, "f64", n * n, "fns"), _target_cell(t, "f32", n * n, "fns")
+            fns_rate = f"{n * n / t['fns']:.3g}" if "fns" in t else "n/a"
+            lines.append(f"| {n}^2 fBm, quintic {basis} | {hname} | {used} | {' | '.join(c64)} | {' | '.join(c32)} "
+                         f"| {err32:.1e} | {fns_rate} | {w2} |")
+            summary[("grid", "quintic", basis, hname)] = (t, err32, w2)
     lines.append("")
     return summary
 
@@ -490,6 +610,9 @@ def build_parser():
                     help="run only the integer-hash section and replace it in the output file (the rest is kept)")
     ap.add_argument("--grid-only", action="store_true",
                     help="run only the 2-D grid section and replace it in the output file (the rest is kept)")
+    ap.add_argument("--targets-only", action="store_true",
+                    help="run only issue 22's targets section (both hashes, pyfastnoisesimd, floor, workers=2) and "
+                         "replace it in the output file (the rest is kept)")
     return ap
 
 
@@ -510,6 +633,21 @@ def main(argv=None):
                         "interleaved rounds. The rest of this file is from the run in its header. Float64 summary of "
                         "this run:\n\n" + "\n".join(_grid_summary(gsum)) + "\n")
         _splice(args.output, GRID_HEAD, "\n".join(lines) + "\n")
+        print("\n".join(lines))
+        return
+    if args.targets_only:
+        cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py --targets-only"
+               + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
+        lines = []
+        load = os.getloadavg()[0]
+        targets_section(repeats, lines)
+        info = run_info(cmd, ["pyfastnoisesimd", "dask"], load=load)
+        lines.insert(1, f"Run alone (`{cmd}`), {info['date']}, {info['machine']}, {info['cores']} cores ({info['cpu']}) "
+                        f"shared with other jobs, load average {load:.1f} at start and {os.getloadavg()[0]:.1f} at "
+                        "the end; " + ", ".join(f"{k} {v}" for k, v in info["versions"].items())
+                        + f"; median of {repeats} interleaved rounds. The rest of this file is from the runs named "
+                        "in their sections.\n")
+        _splice(args.output, TARGET_HEAD, "\n".join(lines) + "\n")
         print("\n".join(lines))
         return
     if args.hash_only:
@@ -537,6 +675,7 @@ def main(argv=None):
     gsum = grid_section(repeats, args.quick, body)
     ssum = scattered_section(repeats, args.quick, body)
     hash_section(repeats, body)
+    targets_section(repeats, body)
     precision_section(body)
     lines.append("## Summary (float64 unless stated; ratios > 1 mean noiselab is faster)\n")
     lines += _grid_summary(gsum)
@@ -548,7 +687,7 @@ def main(argv=None):
         r = ssum.get((kname, "value", "two"))
         if r:
             fnl_txt = f", {r[1]:.2f}x pyfastnoiselite (one thread)" if r[1] else ""
-            lines.append(f"- the same with `workers=2` (two threads): {r[0]:.3g} pts/s{fnl_txt}")
+            lines.append(f"- the same with `workers=2` (two threads, wall time: see its table): {r[0]:.3g} pts/s{fnl_txt}")
         r = ssum.get((kname, "value", "sixty"))
         if r:
             lines.append(f"- the same, `fractal_sum(noise, pts, 60)` ({r[3]} octaves used): {r[0]:.3g} pts/s, "
