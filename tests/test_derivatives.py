@@ -63,11 +63,9 @@ def _compare(noise, x, h, tol_smooth, tol_knot):
 def test_generated_jacobian_kernels_match_their_generator():
     """``_jacobians.py`` is generated on first use into the kernel cache (numba caches need a file): it is what the
     generator writes."""
-    from pathlib import Path
-
     from noiselab.lattice import _generate, _kerncache
 
-    assert Path(_kerncache.load("jacobians").__file__).read_text() == _generate.generate_jacobians()
+    assert _kerncache.path("jacobians").read_text() == _generate.generate_jacobians()
 
 
 def test_kernel_continuity_classes_and_derivative_polynomials():

@@ -424,12 +424,11 @@ def test_grid_coordinates_follow_arange_convention():
 
 def test_generated_kernels_match_their_generator():
     """``_points.py`` is generated on first use into the kernel cache (numba caches need a file): it is what the
-    generator writes today."""
-    from pathlib import Path
-
+    generator writes today. (Read from the cache file, not from the loaded module: a test that simulated a full
+    disk earlier in the process may have left the module loaded from memory, which has no file.)"""
     from noiselab.lattice import _generate, _kerncache
 
-    assert Path(_kerncache.load("points").__file__).read_text() == _generate.generate()
+    assert _kerncache.path("points").read_text() == _generate.generate()
 
 
 # ------------------------------------------------------- the evaluation interface
