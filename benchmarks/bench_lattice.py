@@ -297,13 +297,8 @@ def scattered_section(repeats, quick, lines):
             cands[f"pyfastnoiselite {label}"] = lambda lite=lite: lite.gen_from_coords(coords)
     fns = _peer("fns")
     if fns is not None:
-        aligned = fns.empty_coords(npts)
-        aligned[:] = pts32.T
         for label, nt in (("value", fns.NoiseType.Value), ("perlin", fns.NoiseType.Perlin)):
-            f = fns.Noise(seed=1, numWorkers=1)
-            f.noiseType = nt
-            f.frequency = 1.0
-            cands[f"pyfastnoisesimd {label} (1 worker)"] = lambda f=f: f.genFromCoords(aligned)
+            cands[f"pyfastnoisesimd {label} (1 worker)"] = _fns_points(fns, nt, pts32)
     vn = _peer("vnoise")
     if vn is not None:
         vobj = vn.Noise(1)
@@ -323,6 +318,16 @@ def scattered_section(repeats, quick, lines):
 
 # ------------------------------------------------------------------- integer hash
 HASH_HEAD = "## Scattered points: the table hash, the integer hash's SIMD kernels and the SIMD peers"
+
+
+def _fns_points(fns, noise_type, pts32):
+    """pyfastnoisesimd on the float32 points, one worker, frequency 1: a candidate callable (coordinates aligned once)."""
+    aligned = fns.empty_coords(pts32.shape[0])
+    aligned[:] = pts32.T
+    f = fns.Noise(seed=1, numWorkers=1)
+    f.noiseType = noise_type
+    f.frequency = 1.0
+    return lambda: f.genFromCoords(aligned)
 
 
 def _max_err(a, b):
@@ -369,12 +374,7 @@ def hash_section(repeats, lines, npts=1_000_000):
                  "general32": lambda: general(pts32)}
         peer_name = None
         if d == 3 and fns is not None:
-            aligned = fns.empty_coords(npts)
-            aligned[:] = pts32.T
-            f = fns.Noise(seed=1, numWorkers=1)
-            f.noiseType = getattr(fns.NoiseType, peer)
-            f.frequency = 1.0
-            cands["peer"] = lambda f=f, aligned=aligned: f.genFromCoords(aligned)
+            cands["peer"] = _fns_points(fns, getattr(fns.NoiseType, peer), pts32)
             peer_name = f"FNS {peer}"
         elif d == 2 and fnl is not None:
             lite = fnl.FastNoiseLite(1)
@@ -460,12 +460,7 @@ def targets_section(repeats, lines, npts=1_000_000):
             cands = {"floor64": lambda: np.full(npts, 0.5), "floor32": lambda: np.full(npts, 0.5, np.float32),
                      "f64": lambda noise=noise: noise(pts), "f32": lambda noise=noise: noise(pts32)}
             if fns is not None:
-                aligned = fns.empty_coords(npts)
-                aligned[:] = pts32.T
-                f = fns.Noise(seed=1, numWorkers=1)
-                f.noiseType = getattr(fns.NoiseType, peer)
-                f.frequency = 1.0
-                cands["fns"] = lambda f=f, aligned=aligned: f.genFromCoords(aligned)
+                cands["fns"] = _fns_points(fns, getattr(fns.NoiseType, peer), pts32)
             t = bench(cands, repeats, clock=time.thread_time)
             err32 = _max_err(noise(pts32), noise(pts))
             w2 = _scaling({"one": lambda noise=noise: noise(pts32),
@@ -616,6 +611,22 @@ def build_parser():
     return ap
 
 
+def _one_section(args, flag, section, head, packages, repeats, *, end_load, rest):
+    """Run one section alone and splice it into the report under ``head``, with its own command and load."""
+    cmd = (f"benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py {flag}"
+           + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
+    lines = []
+    load = os.getloadavg()[0]
+    section(repeats, lines)
+    info = run_info(cmd, packages, load=load)
+    loads = f"load average {load:.1f} at start" + (f" and {os.getloadavg()[0]:.1f} at the end" if end_load else "")
+    lines.insert(1, f"Run alone (`{cmd}`), {info['date']}, {info['machine']}, {info['cores']} cores ({info['cpu']}) "
+                    f"shared with other jobs, {loads}; " + ", ".join(f"{k} {v}" for k, v in info["versions"].items())
+                    + f"; median of {repeats} interleaved rounds. {rest}\n")
+    _splice(args.output, head, "\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
 def main(argv=None):
     args = build_parser().parse_args(argv)
     repeats = max(5, args.repeats)
@@ -636,34 +647,11 @@ def main(argv=None):
         print("\n".join(lines))
         return
     if args.targets_only:
-        cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py --targets-only"
-               + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
-        lines = []
-        load = os.getloadavg()[0]
-        targets_section(repeats, lines)
-        info = run_info(cmd, ["pyfastnoisesimd", "dask"], load=load)
-        lines.insert(1, f"Run alone (`{cmd}`), {info['date']}, {info['machine']}, {info['cores']} cores ({info['cpu']}) "
-                        f"shared with other jobs, load average {load:.1f} at start and {os.getloadavg()[0]:.1f} at "
-                        "the end; " + ", ".join(f"{k} {v}" for k, v in info["versions"].items())
-                        + f"; median of {repeats} interleaved rounds. The rest of this file is from the runs named "
-                        "in their sections.\n")
-        _splice(args.output, TARGET_HEAD, "\n".join(lines) + "\n")
-        print("\n".join(lines))
-        return
+        return _one_section(args, "--targets-only", targets_section, TARGET_HEAD, ["pyfastnoisesimd", "dask"], repeats,
+                            end_load=True, rest="The rest of this file is from the runs named in their sections.")
     if args.hash_only:
-        cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py --hash-only"
-               + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
-        lines = []
-        load = os.getloadavg()[0]
-        hash_section(repeats, lines)
-        info = run_info(cmd, ["pyfastnoisesimd"], load=load)
-        lines.insert(1, f"Run alone (`{cmd}`), {info['date']}, {info['machine']}, {info['cores']} cores ({info['cpu']}) "
-                        f"shared with other jobs, load average {load:.1f} at start; "
-                        + ", ".join(f"{k} {v}" for k, v in info["versions"].items()) + f"; median of {repeats} "
-                        "interleaved rounds. The rest of this file is from the run in its header.\n")
-        _splice(args.output, HASH_HEAD, "\n".join(lines) + "\n")
-        print("\n".join(lines))
-        return
+        return _one_section(args, "--hash-only", hash_section, HASH_HEAD, ["pyfastnoisesimd"], repeats,
+                            end_load=False, rest="The rest of this file is from the run in its header.")
     cmd = ("benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py" + (" --quick" if args.quick else "")
            + (f" --repeats {args.repeats}" if args.repeats != 5 else ""))
     info = run_info(cmd, ["noise", "pyfastnoiselite", "pyfastnoisesimd", "opensimplex", "vnoise", "perlin-numpy", "vtk"])
