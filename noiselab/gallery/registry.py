@@ -65,6 +65,7 @@ class FigureSpec:
     quick: dict
     uses: tuple
     func: Callable
+    look: str = ""
 
     @property
     def key(self) -> str:
@@ -80,14 +81,15 @@ class FigureSpec:
 REGISTRY: dict[str, FigureSpec] = {}
 
 
-def figure(group, name, *, seed, title, params=None, quick=None, uses=()):
+def figure(group, name, *, seed, title, params=None, quick=None, uses=(), look=""):
     """Register a figure function under ``group/name``.
 
     ``seed`` names the figure of a seed document it reproduces (for example
     ``"Phillips 2004, Fig. 12"``) or says it is the lab's own; ``params`` are
     passed to the function as keywords; ``quick`` overrides some of them for a
     fast build; ``uses`` lists the noiselab modules it calls (their source is
-    part of the content hash, so a change there rebuilds the figure).
+    part of the content hash, so a change there rebuilds the figure); ``look``
+    is one line for the reader: what to look for in the figure.
     """
     params = dict(params or {})
     quick = dict(quick or {})
@@ -96,7 +98,7 @@ def figure(group, name, *, seed, title, params=None, quick=None, uses=()):
         raise ValueError(f"figure {group}/{name}: quick overrides unknown parameters {sorted(unknown)}")
 
     def register(func):
-        spec = FigureSpec(group, name, seed, title, params, quick, tuple(uses), func)
+        spec = FigureSpec(group, name, seed, title, params, quick, tuple(uses), func, look)
         if spec.key in REGISTRY:
             raise ValueError(f"figure {spec.key} is registered twice")
         REGISTRY[spec.key] = spec
