@@ -94,10 +94,34 @@ def _smooth_min(a, b, k):
     return b * (1 - h) + a * h - k * h * (1 - h)
 
 
-def cow(resolution=96, size=2.0):
-    """A closed, single-part stylised cow, built in code (no file): a smooth union of ellipsoids, contoured.
+def _capsule_distance(points, a, b, radius):
+    """Signed distance to a capsule (the segment a-b thickened by ``radius``), negative inside."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    ab = b - a
+    t = np.clip((points - a) @ ab / float(ab @ ab), 0.0, 1.0)
+    return np.linalg.norm(points - (a + t[:, None] * ab), axis=-1) - radius
 
-    Body, neck, head, muzzle, four legs and two ears blended with a smooth
+
+# the cow's parts, x forward (head at +x), y to its left, z up: (kind, geometry, blend width of the smooth union)
+_COW = ([("e", ((0.0, 0.0, 0.0), (1.0, 0.42, 0.45)), 0.0),          # barrel
+         ("e", ((-0.62, 0.0, 0.06), (0.46, 0.42, 0.42)), 0.15),     # hindquarters
+         ("e", ((0.55, 0.0, -0.02), (0.45, 0.37, 0.45)), 0.15),     # chest
+         ("c", ((0.8, 0.0, 0.12), (1.18, 0.0, 0.3), 0.2), 0.12),    # neck
+         ("e", ((1.32, 0.0, 0.24), (0.3, 0.18, 0.2)), 0.08),         # head
+         ("e", ((1.56, 0.0, 0.06), (0.2, 0.16, 0.15)), 0.06),       # muzzle
+         ("e", ((-0.35, 0.0, -0.43), (0.2, 0.16, 0.12)), 0.06)]     # udder
+        + [("c", ((1.26, y, 0.4), (1.22, 1.9 * y, 0.56), 0.05), 0.04) for y in (-0.12, 0.12)]       # horns
+        + [("e", ((1.2, 2.1 * y, 0.33), (0.06, 0.12, 0.045)), 0.04) for y in (-0.12, 0.12)]       # ears
+        + [("c", ((x, y, -0.15), (x, y, -1.05), 0.1), 0.1) for x in (-0.66, 0.62) for y in (-0.22, 0.22)]   # legs
+        + [("c", ((-1.02, 0.0, 0.3), (-1.12, 0.0, -0.42), 0.05), 0.05),                         # tail
+           ("e", ((-1.12, 0.0, -0.5), (0.07, 0.07, 0.1)), 0.04)])                                # its tuft
+
+
+def cow(resolution=110, size=2.0):
+    """A closed, single-part cow built in code (no file): ellipsoids and capsules in a smooth union, contoured.
+
+    Barrel body, hindquarters, chest, neck, head, muzzle, horns, ears, udder,
+    four legs and a tail with a tuft, blended with a polynomial smooth
     minimum and turned into a triangle mesh by VTK's contour filter (marching
     cubes) on a ``resolution``-cell grid along the body. Returns a watertight
     ``trimesh.Trimesh`` normalised so its longest extent is ``size``.
@@ -107,27 +131,21 @@ def cow(resolution=96, size=2.0):
     from noiselab.geometry import normalize, require_pyvista, pyvista_to_trimesh
 
     pv = require_pyvista()
-    parts = [((0.0, 0.0, 0.0), (0.95, 0.42, 0.42)),            # body
-             ((0.85, 0.0, 0.25), (0.35, 0.2, 0.25)),            # neck
-             ((1.2, 0.0, 0.35), (0.3, 0.2, 0.22)),             # head
-             ((1.45, 0.0, 0.22), (0.17, 0.17, 0.15)),          # muzzle
-             ((1.1, 0.24, 0.5), (0.1, 0.15, 0.09)),            # ears
-             ((1.1, -0.24, 0.5), (0.1, 0.15, 0.09))]
-    parts += [((x, y, -0.55), (0.14, 0.14, 0.45)) for x in (-0.6, 0.6) for y in (-0.22, 0.22)]   # legs
-    lo, hi = np.array([-1.15, -0.6, -1.1]), np.array([1.75, 0.6, 0.75])
+    lo, hi = np.array([-1.3, -0.6, -1.15]), np.array([1.8, 0.6, 0.7])
     step = float((hi - lo)[0] / resolution)
     dims = np.ceil((hi - lo) / step).astype(int) + 1
     grid = pv.ImageData(dimensions=tuple(int(d) for d in dims), spacing=(step,) * 3, origin=tuple(lo))
     pts = np.asarray(grid.points)
-    d = _ellipsoid_distance(pts, *parts[0])
-    for c, r in parts[1:]:
-        d = _smooth_min(d, _ellipsoid_distance(pts, c, r), 0.12)
-    # keep the surface at least a fifth of a cell from every grid point: marching cubes then cuts no edge
+    d = None
+    for kind, geo, k in _COW:
+        part = _ellipsoid_distance(pts, *geo) if kind == "e" else _capsule_distance(pts, *geo)
+        d = part if d is None else _smooth_min(d, part, k)
+    # keep the surface at least a tenth of a cell from every grid point: marching cubes then cuts no edge
     # near its end, which is what leaves sliver triangles (they are the first faces to flip when displaced)
     eps = 0.1 * step
     d = np.where(np.abs(d) < eps, np.where(d < 0, -eps, eps), d)
     grid.point_data["d"] = d
-    surf = grid.contour([0.0], scalars="d").triangulate().clean().smooth_taubin(n_iter=40, pass_band=0.05)
+    surf = grid.contour([0.0], scalars="d").triangulate().clean().smooth_taubin(n_iter=30, pass_band=0.08)
     mesh = pyvista_to_trimesh(surf)
     mesh.merge_vertices()
     parts_found = len(mesh.split(only_watertight=False))
