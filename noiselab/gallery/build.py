@@ -24,7 +24,7 @@ from pathlib import Path
 from noiselab._core import progress
 from noiselab.io import atomic_output
 
-from .html import render_index
+from .html import render_pages
 from .registry import content_hash, specs
 
 DEFAULT_OUT = Path("out") / "gallery"   # under the current folder, never the package's
@@ -94,7 +94,7 @@ def _plain(measured):
 
 
 def write_index(out: Path, *, summary="") -> Path:
-    """Write ``out/index.html`` (atomically) from every registered figure's manifest."""
+    """Write ``out/index.html`` and ``out/lab.html`` (atomically) from every registered figure's manifest; return the first."""
     entries = []
     for spec in specs():
         man = read_manifest(out, spec)
@@ -103,11 +103,10 @@ def write_index(out: Path, *, summary="") -> Path:
         if man and not man.get("error"):
             man["stale"] = man.get("hash") != content_hash(spec, bool(man.get("quick")))
         entries.append((spec, man))
-    page = render_index(out, entries, summary=summary)
-    index = out / "index.html"
-    with atomic_output(index) as tmp:
-        Path(tmp).write_text(page, encoding="utf-8")
-    return index
+    for name, page in render_pages(out, entries, summary=summary).items():
+        with atomic_output(out / name) as tmp:
+            Path(tmp).write_text(page, encoding="utf-8")
+    return out / "index.html"
 
 
 def build(out=DEFAULT_OUT, *, only=None, quick=False, force=False, show_progress=None, log=None):
@@ -137,10 +136,8 @@ def build(out=DEFAULT_OUT, *, only=None, quick=False, force=False, show_progress
             built.append(spec.key)
     seconds = time.perf_counter() - t0
     mode = "quick" if quick else "full"
-    summary = (f"Reproductions of the figures of the seed documents (Langer & Zhang's falling snow, "
-               f"Phillips' noisy stimuli) with noiselab, each with what the analysers measured on it. "
-               f"Last build ({mode}): {len(built)} built, {len(skipped)} up to date, {len(failed)} failed, "
-               f"{seconds:.1f} s.")
+    summary = (f"Last build ({mode}): {len(built)} built, {len(skipped)} up to date, {len(failed)} failed, "
+               f"{seconds:.1f} s. Rebuild one figure with noiselab gallery --only GROUP/NAME.")
     index = write_index(out, summary=summary)
     return {"index": index, "built": built, "skipped": skipped, "failed": failed, "seconds": seconds}
 
@@ -153,7 +150,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--force", action="store_true", help="rebuild figures even if they are up to date")
     parser.add_argument("--list", action="store_true", help="list the figure groups and figures, then exit")
     parser.add_argument("--check", action="store_true",
-                        help="then open index.html in headless Chromium and report missing files and console errors")
+                        help="then open index.html and lab.html in headless Chromium and report missing files and console errors")
     parser.add_argument("--progress", dest="show_progress", action="store_true", default=None,
                         help="always show the progress bar (default: only on a terminal)")
     parser.add_argument("--no-progress", dest="show_progress", action="store_false", help="never show the progress bar")
@@ -174,14 +171,15 @@ def run(args) -> int:
     if getattr(args, "check", False):
         from .browser import check_page
 
-        page = check_page(index)
-        bad = ([e for e in page["console_errors"]] + [f"image {i['src']} did not load" for i in page["images"] if not i["ok"]]
-               + [f"video {v['src']} cannot play" for v in page["videos"] if v["error"] is not None or v["ready"] < 2])
-        for line in bad:
-            print(f"gallery: check: {line}", file=sys.stderr)
-        print(f"gallery: check in {page['browser']}: {len(page['images'])} images, {len(page['videos'])} videos, "
-              f"{len(bad)} problems")
-        status = status or (1 if bad else 0)
+        for page_path in (index, index.with_name("lab.html")):
+            page = check_page(page_path)
+            bad = ([e for e in page["console_errors"]] + [f"image {i['src']} did not load" for i in page["images"] if not i["ok"]]
+                   + [f"video {v['src']} cannot play" for v in page["videos"] if v["error"] is not None or v["ready"] < 2])
+            for line in bad:
+                print(f"gallery: check: {page_path.name}: {line}", file=sys.stderr)
+            print(f"gallery: check {page_path.name} in {page['browser']}: {len(page['images'])} images, "
+                  f"{len(page['videos'])} videos, {len(bad)} problems")
+            status = status or (1 if bad else 0)
     return status
 
 

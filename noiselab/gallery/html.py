@@ -16,26 +16,29 @@ IMAGE_EXT = {".png", ".gif", ".jpg", ".jpeg", ".svg", ".webp"}
 VIDEO_EXT = {".mp4", ".webm"}
 
 _CSS = """
-body { font-family: system-ui, sans-serif; margin: 0 auto; max-width: 1200px; padding: 1em 2em; color: #222; background: #fafafa; }
+body { font-family: system-ui, sans-serif; margin: 0 auto; max-width: 1240px; padding: 1em 2em; color: #222; background: #fafafa; font-size: 16px; }
 h1 { margin-bottom: 0.2em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
-nav a { margin-right: 1em; }
+.intro { background: #fff; border-left: 4px solid #7a9cc6; padding: 0.6em 1.2em; margin: 1em 0 1.5em 0; }
+.intro p { line-height: 1.5; max-width: 60em; }
+.intro img { max-width: 100%; height: auto; }
 figure { background: #fff; border: 1px solid #ddd; border-radius: 6px; margin: 1.5em 0; padding: 1em; }
-figure h3 { margin: 0 0 0.5em 0; font-size: 1.05em; }
+figure h3 { margin: 0 0 0.5em 0; font-size: 1.1em; }
 .media { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
 .media img, .media video { max-width: 100%; height: auto; border: 1px solid #eee; }
-.media video { max-width: 560px; display: block; }
+.media img.pixelated { image-rendering: pixelated; }
 .media a.shot { display: block; max-width: 100%; }
-.clip { font-size: 0.8em; } .clip a.full { color: #555; }
-.toc { columns: 2; font-size: 0.9em; } .toc ol { margin: 0.2em 0 0.6em 0; } .toc li { break-inside: avoid; }
+.clip { font-size: 0.85em; } .clip a.full { color: #555; }
+.toc { columns: 2; font-size: 0.95em; } .toc ol { margin: 0.2em 0 0.6em 0; } .toc li { break-inside: avoid; }
 a.anchor { font-size: 0.75em; font-weight: normal; color: #999; text-decoration: none; margin-left: 0.4em; }
-.hint { font-size: 0.9em; color: #555; }
 code { background: #f0f0f0; padding: 0 0.25em; border-radius: 3px; }
-figcaption { margin-top: 0.6em; line-height: 1.4; }
-.seed { font-weight: 600; }
+figcaption { margin-top: 0.6em; line-height: 1.45; }
+figcaption p { margin: 0.4em 0; }
+.look { font-weight: 600; color: #1d4e89; }
+details { margin-top: 0.5em; color: #444; } summary { cursor: pointer; color: #555; }
 .params, .measured { font-family: ui-monospace, monospace; font-size: 0.85em; color: #444; }
 .failed { border-color: #c33; } .failed figcaption { color: #a00; }
 .missing { color: #888; font-style: italic; }
-#status { font-size: 0.9em; color: #555; }
+footer { margin-top: 3em; border-top: 1px solid #ccc; padding-top: 0.5em; font-size: 0.9em; color: #555; }
 """
 
 _SCRIPT = """
@@ -45,6 +48,16 @@ _SCRIPT = """
     var s = document.getElementById('status');
     if (s) { s.textContent = report.bad.length ? ('Problems: ' + report.bad.join(', '))
                                                : ('All ' + report.images + ' images and ' + report.videos + ' videos loaded.'); }
+  }
+  // videos play only while at least half of them is on screen (never all at once)
+  if ('IntersectionObserver' in window) {
+    var io = new IntersectionObserver(function (entries) {
+      entries.forEach(function (e) {
+        var v = e.target;
+        if (e.isIntersecting) { var p = v.play(); if (p && p.catch) p.catch(function () {}); } else { v.pause(); }
+      });
+    }, {threshold: 0.5});
+    document.querySelectorAll('video').forEach(function (v) { io.observe(v); });
   }
   window.addEventListener('load', function () {
     var bad = [], imgs = document.querySelectorAll('img'), vids = document.querySelectorAll('video');
@@ -76,8 +89,38 @@ def poster_of(video: Path) -> Path:
     return video.with_name(video.stem + "_poster.png")
 
 
+def _png_size(path: Path):
+    """(width, height) of a PNG from its header, or None."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(24)
+    except OSError:
+        return None
+    if head[:8] != b"\x89PNG\r\n\x1a\n":
+        return None
+    return int.from_bytes(head[16:20], "big"), int.from_bytes(head[20:24], "big")
+
+
+SMALL = 256   # px: smaller images (tiles) are shown enlarged by a whole factor, nearest neighbour
+
+
+def _image(f: Path, root: Path) -> str:
+    src = html.escape(_rel(f, root), quote=True)
+    size = _png_size(f) if f.suffix.lower() == ".png" else None
+    attr = ""
+    if size and 0 < size[0] < SMALL:
+        k = -(-SMALL // size[0])
+        attr = f' class="pixelated" width="{size[0] * k}" height="{size[1] * k}"'
+    return (f'<a class="shot" href="{src}" target="_blank" title="open {html.escape(f.name)} at full size">'
+            f'<img src="{src}" alt="{html.escape(f.name)}"{attr} loading="eager"></a>')
+
+
 def _media(files, root):
-    """HTML for a figure's files: images (each a link to itself at full size), videos with their poster, links."""
+    """HTML for a figure's files: images (each a link to itself at full size), videos with their poster, links.
+
+    Each image is shown once: a video's poster is its still, never a second image beside it. Videos do not
+    autoplay; the page's script plays the ones on screen.
+    """
     files = [Path(f) for f in files]
     videos = [f for f in files if f.suffix.lower() in VIDEO_EXT]
     stems_with_video = {f.with_suffix("") for f in videos}
@@ -90,14 +133,13 @@ def _media(files, root):
             poster = poster_of(f)
             attr = f' poster="{html.escape(_rel(poster, root), quote=True)}"' if poster in files else ""
             mime = "video/mp4" if ext == ".mp4" else "video/webm"
-            parts.append(f'<div class="clip"><video controls loop muted autoplay playsinline preload="auto"{attr}>'
+            parts.append(f'<div class="clip"><video controls loop muted playsinline preload="auto"{attr}>'
                          f'<source src="{src}" type="{mime}"></video>'
-                         f'<a class="full" href="{src}" target="_blank">{html.escape(f.name)}: open full size</a></div>')
+                         f'<br><a class="full" href="{src}" target="_blank">{html.escape(f.name)}: open full size</a></div>')
         elif ext in IMAGE_EXT:
             if f in posters or (ext == ".gif" and f.with_suffix("") in stems_with_video):
                 continue  # shown as the video's poster
-            parts.append(f'<a class="shot" href="{src}" target="_blank" title="open {html.escape(f.name)} at full size">'
-                         f'<img src="{src}" alt="{html.escape(f.name)}" loading="eager"></a>')
+            parts.append(_image(f, root))
     links = [f'<a href="{html.escape(_rel(f, root), quote=True)}">{html.escape(f.name)}</a>'
              for f in files if f.suffix.lower() not in IMAGE_EXT | VIDEO_EXT]
     out = '<div class="media">' + "".join(parts) + "</div>"
@@ -126,59 +168,126 @@ def format_measured(measured: dict) -> str:
     return "; ".join(f"{k} = {fmt(v)}" for k, v in measured.items())
 
 
-def render_index(root: Path, entries, *, title="noiselab gallery", summary="") -> str:
-    """Return the HTML of the index page.
+# the two pages: the seed papers' reproductions, then the lab's own figures; a group not named here goes on the
+# first page, after the named ones (the stimuli group is named so that its figures find their place when added)
+PAGES = {"index.html": ("snow", "phillips", "stimuli"), "lab.html": ("lab", "derivatives")}
+PAGE_TITLES = {"index.html": "noiselab gallery: the seed papers' figures, reproduced and measured",
+               "lab.html": "noiselab lab: comparisons and derivatives"}
+GROUP_TITLES = {"snow": "Falling snow (Langer & Zhang 2003; Zhang's M.Sc. thesis)",
+                "phillips": "Noisy stimuli (Phillips 2004)",
+                "stimuli": "Transparency stimuli (Zhang's thesis, Chapter 5)",
+                "lab": "The lab's comparisons", "derivatives": "Derivatives of lattice noise"}
+INTROS = {
+    "snow": "Langer and Zhang render falling snow without particles. A near flake looks bigger and moves faster than "
+            "a far one, so in the Fourier domain a flake's size (its spatial frequency) fixes its speed: all the "
+            "energy of falling snow lies on one surface, the tent. The method fills the tent with random phases and "
+            "a 1/f amplitude inside a band of spatial frequencies, takes one inverse 3-D FFT, and uses the result as "
+            "the opacity of white snow over a picture. Every component is periodic, so the snow tiles in space and "
+            "loops in time. The thesis's Chapter 6 uses the same snow as a stimulus for perceptual transparency.",
+    "phillips": "Phillips builds psychophysical stimuli from lattice noise: random numbers at the integer points of "
+                "a lattice, found through a permutation table and smoothed by a kernel. The input can be 1-D (time: "
+                "a trajectory), 2-D (a texture, a height field) or 3-D (a solid, or 2-D over time), the output a "
+                "scalar or a vector (flow fields, colours). Summing octaves gives fractal sums (Eq. 9) and turbulence "
+                "(Eq. 10); displacing a mesh along its normals by noise gives the noisy spheres and the cow (Eq. 11).",
+    "stimuli": "The perceptual transparency stimuli that Chapter 5 of Zhang's thesis reviews: Singh and Anderson's "
+               "textured backgrounds with low-contrast regions (Fig. 5.4) and Stoner and Albright's moving "
+               "square-wave gratings (Fig. 5.5).",
+    "lab": "The lab's own comparisons, with no seed figure: spectral synthesis against lattice noise, every "
+           "smoothing kernel, quality measures from the literature, and the hash question, all measured with the "
+           "same instruments.",
+    "derivatives": "Exact derivatives of lattice noise: curl noise, domain warping, and surface normals from the "
+                   "gradient rather than from the mesh.",
+}
+INTRO = "intro"   # a figure of this name is drawn in its group's introduction, not as a card
 
-    ``entries`` is a list of ``(spec, manifest_or_None)`` in display order;
-    ``manifest`` holds ``files`` (relative to ``root``), ``caption``,
-    ``measured``, ``params``, ``error``.
-    """
-    groups = []
+
+def page_of(group: str) -> str:
+    """The page a group's figures appear on."""
+    for page, groups in PAGES.items():
+        if group in groups:
+            return page
+    return "index.html"
+
+
+def _card(spec, man, root):
+    anchor = html.escape(spec.key.replace("/", "-"))
+    head = (f'<h3>{html.escape(spec.seed)}: {html.escape(spec.title)} '
+            f'<a class="anchor" href="#{anchor}" title="link to this figure">#</a>'
+            f' <a class="anchor" href="#contents" title="back to the contents">contents</a></h3>')
+    if man is None:
+        return (f'<figure id="{anchor}">{head}<figcaption>'
+                f'<span class="missing">Not built yet (build without --only).</span></figcaption></figure>')
+    if man.get("error"):
+        return (f'<figure id="{anchor}" class="failed">{head}<figcaption>'
+                f'Failed to build: {html.escape(man["error"])}</figcaption></figure>')
+    files = [root / f for f in man["files"]]
+    cap = []
+    if spec.look:
+        cap.append(f'<p class="look">What to look for: {html.escape(spec.look)}.</p>')
+    cap.append(f'<p>{html.escape(man["caption"])}</p>')
+    if man.get("stale"):
+        cap.append('<p class="missing">Out of date: its code, parameters or the noiselab modules it uses changed '
+                   'since; build again to refresh it.</p>')
+    more = [f'<p class="params">Parameters: {html.escape(format_params(man["params"]))}</p>']
+    if man.get("measured"):
+        more.append(f'<p class="measured">Measured: {html.escape(format_measured(man["measured"]))}</p>')
+    more.append(f'<p class="params">Rebuild alone: <code>{html.escape(rebuild_command(spec))}</code></p>')
+    more.append(f'<p class="params">Built in {man.get("seconds", 0):.1f} s{" (quick sizes)" if man.get("quick") else ""}.</p>')
+    cap.append("<details><summary>Parameters, measured numbers, rebuild command</summary>" + "".join(more) + "</details>")
+    return f'<figure id="{anchor}">{head}{_media(files, root)}<figcaption>{"".join(cap)}</figcaption></figure>'
+
+
+def _intro(group, entries, root):
+    parts = [f'<div class="intro"><p>{html.escape(INTROS[group])}</p>' if group in INTROS else '<div class="intro">']
     for spec, man in entries:
-        if spec.group not in groups:
-            groups.append(spec.group)
-    toc = []
-    for g in groups:
-        items = "".join(f'<li><a href="#{html.escape(spec.key.replace("/", "-"))}">{html.escape(spec.seed)}: '
-                        f'{html.escape(spec.title)}</a></li>' for spec, _ in entries if spec.group == g)
-        toc.append(f'<li><a href="#{html.escape(g)}">{html.escape(g)}</a><ol>{items}</ol></li>')
-    body = [f"<h1>{html.escape(title)}</h1>",
-            f"<p>{html.escape(summary)}</p>" if summary else "",
-            '<p id="status">Checking that every file loads…</p>',
-            '<p class="hint">Click an image to open it at full size. Every caption ends with the parameters and the '
-            'command that rebuilds that figure alone.</p>',
-            '<nav id="contents"><h2>Contents</h2><ol class="toc">' + "".join(toc) + "</ol></nav>"]
-    for g in groups:
-        body.append(f'<h2 id="{html.escape(g)}">{html.escape(g)}</h2>')
-        for spec, man in entries:
-            if spec.group != g:
-                continue
-            anchor = html.escape(spec.key.replace("/", "-"))
-            head = (f'<h3>{html.escape(spec.title)} <a class="anchor" href="#{anchor}" title="link to this figure">#</a>'
-                    f' <a class="anchor" href="#contents" title="back to the contents">contents</a></h3>')
-            seed = f'<span class="seed">{html.escape(spec.seed)}.</span> '
-            if man is None:
-                body.append(f'<figure id="{anchor}">{head}<figcaption>{seed}'
-                            f'<span class="missing">Not built yet (build without --only).</span></figcaption></figure>')
-                continue
-            if man.get("error"):
-                body.append(f'<figure id="{anchor}" class="failed">{head}<figcaption>{seed}'
-                            f'Failed to build: {html.escape(man["error"])}</figcaption></figure>')
-                continue
-            files = [root / f for f in man["files"]]
-            cap = [seed, html.escape(man["caption"])]
-            cap.append(f'<br><span class="params">Parameters: {html.escape(format_params(man["params"]))}</span>')
-            if man.get("measured"):
-                cap.append(f'<br><span class="measured">Measured: {html.escape(format_measured(man["measured"]))}</span>')
-            cap.append(f'<br><span class="params">Rebuild alone: <code>{html.escape(rebuild_command(spec))}</code></span>')
-            cap.append(f'<br><span class="params">Built in {man.get("seconds", 0):.1f} s'
-                       f'{" (quick sizes)" if man.get("quick") else ""}.</span>')
-            if man.get("stale"):
-                cap.append('<br><span class="missing">Out of date: its code, parameters or the noiselab modules it '
-                           'uses changed since; build again to refresh it.</span>')
-            body.append(f'<figure id="{anchor}">{head}{_media(files, root)}<figcaption>{"".join(cap)}</figcaption></figure>')
-    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<title>{html.escape(title)}</title>"
-            '<link rel="icon" href="data:,">'
-            f"<style>{_CSS}</style></head>\n<body>\n" + "\n".join(b for b in body if b)
-            + f"\n<script>{_SCRIPT}</script>\n</body></html>\n")
+        if spec.group == group and spec.name == INTRO and man and not man.get("error"):
+            parts.append(_media([root / f for f in man["files"]], root))
+            parts.append(f'<p>{html.escape(man["caption"])}</p>')
+    return "".join(parts) + "</div>"
+
+
+def render_pages(root: Path, entries, *, summary="") -> dict:
+    """Return ``{file name: HTML}`` for the gallery's pages (``index.html``, ``lab.html``).
+
+    ``entries`` is a list of ``(spec, manifest_or_None)`` in registration order;
+    ``manifest`` holds ``files`` (relative to ``root``), ``caption``,
+    ``measured``, ``params``, ``error``. Each page opens with a short
+    introduction per paper (with its schematic, the figure named ``intro``),
+    then one card per figure; the build summary is in the footer.
+    """
+    pages = {}
+    for page, title in PAGE_TITLES.items():
+        groups = []
+        for spec, _ in entries:
+            if page_of(spec.group) == page and spec.group not in groups:
+                groups.append(spec.group)
+        order = list(PAGES[page])
+        groups.sort(key=lambda g: order.index(g) if g in order else len(order))
+        other = [p for p in PAGE_TITLES if p != page][0]
+        toc = []
+        for g in groups:
+            items = "".join(f'<li><a href="#{html.escape(spec.key.replace("/", "-"))}">{html.escape(spec.seed)}: '
+                            f'{html.escape(spec.title)}</a></li>' for spec, _ in entries
+                            if spec.group == g and spec.name != INTRO)
+            toc.append(f'<li><a href="#{html.escape(g)}">{html.escape(GROUP_TITLES.get(g, g))}</a><ol>{items}</ol></li>')
+        body = [f"<h1>{html.escape(title)}</h1>",
+                f'<p>Every figure is computed by noiselab when the gallery is built; its caption says what was measured '
+                f'on it. Click an image to open it at full size; videos play while they are on screen. '
+                f'<a href="{other}">{html.escape(PAGE_TITLES[other])}</a> are on a page of their own.</p>',
+                '<nav id="contents"><h2>Contents</h2><ol class="toc">' + "".join(toc) + "</ol></nav>"]
+        for g in groups:
+            body.append(f'<h2 id="{html.escape(g)}">{html.escape(GROUP_TITLES.get(g, g))}</h2>')
+            body.append(_intro(g, entries, root))
+            body += [_card(spec, man, root) for spec, man in entries if spec.group == g and spec.name != INTRO]
+        body.append(f'<footer><p>{html.escape(summary)}</p><p id="status">Checking that every file loads…</p></footer>')
+        pages[page] = ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+                       f"<title>{html.escape(title)}</title>"
+                       '<link rel="icon" href="data:,">'
+                       f"<style>{_CSS}</style></head>\n<body>\n" + "\n".join(b for b in body if b)
+                       + f"\n<script>{_SCRIPT}</script>\n</body></html>\n")
+    return pages
+
+
+def render_index(root: Path, entries, *, title=None, summary="") -> str:
+    """The HTML of ``index.html`` alone (the seed papers' page); see :func:`render_pages`."""
+    return render_pages(root, entries, summary=summary)["index.html"]

@@ -8,7 +8,8 @@ from ..registry import Result, figure
 USES = ("noiselab.spectral", "noiselab.lattice", "noiselab.fractal", "noiselab.analysis", "noiselab.io")
 
 
-@figure("lab", "one_over_f", seed="The lab's own comparison (no seed figure)",
+@figure("lab", "one_over_f", look="the spectral texture and the gain-1 fractal sum share a -1 slope; gain 1/2 falls as -2",
+        seed="The lab's own comparison (no seed figure)",
         title="1/f texture: spectral synthesis beside lattice fractal sums, with radial spectra and anisotropy",
         params=dict(size=512, octaves=8, cells=4.0, gains=(1.0, 0.5), seed=21), quick=dict(size=64, octaves=4), uses=USES)
 def one_over_f(out, *, size, octaves, cells, gains, seed):
@@ -62,7 +63,8 @@ def one_over_f(out, *, size, octaves, cells, gains, seed):
                   "orientation, all measured through a Hann window.", measured)
 
 
-@figure("lab", "kernels", seed="The lab's own comparison (Phillips 2004, Sec. 2.1.1 smoothing filters)",
+@figure("lab", "kernels", look="the steeper the spectrum falls past one cycle per cell, the smoother the texture looks",
+        seed="The lab's own comparison (Phillips 2004, Sec. 2.1.1 smoothing filters)",
         title="Value and gradient noise for every smoothing kernel: images and radial spectra",
         params=dict(size=256, cells=8.0, seed=22), quick=dict(size=64), uses=USES)
 def kernels(out, *, size, cells, seed):
@@ -99,7 +101,8 @@ def kernels(out, *, size, cells, seed):
                   "smoother): " + "; ".join(f"{k} {v:.1f}" for k, v in rolloff.items()) + ".", measured)
 
 
-@figure("lab", "measures", seed="Lagae et al. 2010 (band-limitedness, anisotropy); Cook & DeRose 2005; Ulichney 1987",
+@figure("lab", "measures", look="lower bars are better in every panel: leakage, aliasing, anisotropy (0 = no preferred direction)",
+        seed="Lagae et al. 2010 (band-limitedness, anisotropy); Cook & DeRose 2005; Ulichney 1987",
         title="One octave asked of every generator: leakage, aliasing, anisotropy and Ulichney's dB",
         params=dict(size=256), quick=dict(size=64), uses=USES + ("noiselab.lab",))
 def measures(out, *, size):
@@ -141,7 +144,8 @@ def measures(out, *, size):
                   "numbers for 512 x 512 are in benchmarks/RESULTS.md, section 5.", measured)
 
 
-@figure("lab", "hashes", seed="The lab's own comparison (Phillips 2004, Sec. 2.4.1 nested permutation)",
+@figure("lab", "hashes", look="with the permutation every row averages the same; a 1-D line repeats after the table size, not with the integer hash",
+        seed="The lab's own comparison (Phillips 2004, Sec. 2.4.1 nested permutation)",
         title="The hash question: Phillips' nested permutation table against an arithmetic integer hash",
         params=dict(cells=256, spc=2, seeds=8, kernel="catmull-rom", seed=23), quick=dict(cells=32, seeds=3),
         uses=USES)

@@ -14,7 +14,8 @@ def _range(a):
     return [float(a.min()), float(a.max())]
 
 
-@figure("phillips", "fig01", seed="Phillips 2004, Fig. 1", title="One alternating random basis (a), box-filtered and renormalised (b)-(d)",
+@figure("phillips", "fig01", look="the same random values, smoothed more and more: the wider the box, the slower the wiggles",
+        seed="Phillips 2004, Fig. 1", title="One alternating random basis (a), box-filtered and renormalised (b)-(d)",
         params=dict(length=100, per_unit=20, freqs=(1 / 20, 1 / 10, 1 / 5), passes=3, measure_length=4000, seed=1),
         quick=dict(per_unit=8, measure_length=800), uses=NOISE)
 def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
@@ -78,7 +79,8 @@ def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
                   f"holds {most} of its power below its F: {', '.join(f'{f:.2%}' for f in fractions)}.", measured)
 
 
-@figure("phillips", "fig02", seed="Phillips 2004, Fig. 2", title="Diagram: random-number tables, permutation table, basis function",
+@figure("phillips", "fig02", look="each lattice point looks up a table entry through the permutation; the stems are those entries",
+        seed="Phillips 2004, Fig. 2", title="Diagram: random-number tables, permutation table, basis function",
         params=dict(entries=16, table_size=256, seed=1), quick=dict(entries=8), uses=NOISE)
 def fig02(out, *, entries, table_size, seed):
     from noiselab.lattice import LatticeNoise
@@ -235,7 +237,8 @@ def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, c
                    f"x-y correlation over {seeds} other seeds (mean, sd)": stats})
 
 
-@figure("phillips", "fig05", seed="Phillips 2004, Fig. 5", title="Circles distorted in x and y by 2-D noise output",
+@figure("phillips", "fig05", look="to the right more bumps (frequency), downwards bigger ones (amplitude); every curve closes",
+        seed="Phillips 2004, Fig. 5", title="Circles distorted in x and y by 2-D noise output",
         params=dict(amplitudes=(0.1, 0.2, 0.4), frequencies=(1.0, 2.0, 4.0), points=1440, seed=4),
         quick=dict(points=360), uses=GEOM)
 def fig05(out, *, amplitudes, frequencies, points, seed):
@@ -297,7 +300,8 @@ def _taps_1d(kernel, x):
     return pts, powers @ kernel.coef[:kernel.taps].T
 
 
-@figure("phillips", "fig06", seed="Phillips 2004, Fig. 6", title="2-D noise from planes of 1-D basis functions, one per integer y",
+@figure("phillips", "fig06", look="2-D noise is 1-D noise along x on every integer row, then smoothed again across the rows",
+        seed="Phillips 2004, Fig. 6", title="2-D noise from planes of 1-D basis functions, one per integer y",
         params=dict(point=(14.0, 1.0), planes=(-1, 4), xrange=(9, 20), kernel="cubic", checks=200, seed=6),
         quick=dict(checks=20), uses=NOISE)
 def fig06(out, *, point, planes, xrange, kernel, checks, seed):
@@ -509,7 +513,8 @@ def fig08(out, *, grid, cells, amplitude, size, seed):
                                                                                             window="hann"))})
 
 
-@figure("phillips", "fig09", seed="Phillips 2004, Fig. 9", title="A 2-D flow field: 2-D input, 2-D output",
+@figure("phillips", "fig09", look="arrows that turn smoothly from place to place; the grey streamlines follow them",
+        seed="Phillips 2004, Fig. 9", title="A 2-D flow field: 2-D input, 2-D output",
         params=dict(arrows=20, cells=4.0, size=512, streamlines=60, seed=7), quick=dict(arrows=10, size=200, streamlines=10),
         uses=GEOM)
 def fig09(out, *, arrows, cells, size, streamlines, seed):
@@ -676,7 +681,8 @@ def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=
     return [save_figure(fig, out / f"{name}.png")], measured, sentence
 
 
-@figure("phillips", "fig12", seed="Phillips 2004, Fig. 12", title="Fractal sums of n = 1..5 octaves (Eq. 9)",
+@figure("phillips", "fig12", look="the large-scale shape stays; each octave adds finer, smaller wiggles on top",
+        seed="Phillips 2004, Fig. 12", title="Fractal sums of n = 1..5 octaves (Eq. 9)",
         params=dict(octaves=5, length=10.0, samples=4096, cells=8.0, seeds=16, seed=10), quick=dict(samples=1024, seeds=4),
         uses=NOISE)
 def fig12(out, *, octaves, length, samples, cells, seeds, seed):
@@ -711,8 +717,12 @@ def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed, see
                   cell=size // 3, elevation=10, scalars="height", cmap="gist_earth", clim=(-amplitude * 1.2, amplitude * 1.2))
     h = height_map(noise, (grid, grid), ext, octaves=octaves, kind=kind, on_aliasing="ignore")
     aniso = analysis.anisotropy(h, window="hann")
-    measured = {f"n = {octaves}: range": _range(h), "anisotropy (Hann window)": aniso}
-    sentence = f"Anisotropy of the n = {octaves} height map {_anisotropy_words(aniso)}."
+    spp = (grid - 1) / (cells * 2 ** (octaves - 1))
+    measured = {f"n = {octaves}: range": _range(h), "anisotropy (Hann window)": aniso,
+                "vertices per period of the finest octave": spp}
+    sentence = (f"One {grid} x {grid} mesh for every n: {spp:.1f} vertices per period of the finest octave of "
+                f"n = {octaves} ({'>= 6' if spp >= 6 else '< 6'}). Anisotropy of the n = {octaves} height map "
+                f"{_anisotropy_words(aniso)}.")
     if kind == "fractal":
         band = (cells / 2, min(grid / 4, cells * 2 ** (octaves - 1) / 4))
         slopes = [analysis.spectral_slope(height_map(LatticeNoise(2, seed=seed + k), (grid, grid), ext, octaves=octaves,
@@ -724,8 +734,9 @@ def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed, see
     return [out / "surfaces.png"], measured, sentence
 
 
-@figure("phillips", "fig14", seed="Phillips 2004, Fig. 14", title="Fractal-sum surfaces, n = 1..5 octaves",
-        params=dict(octaves=5, grid=128, cells=3.0, amplitude=0.5, size=900, seeds=8, seed=11),
+@figure("phillips", "fig14", look="the same hills in every panel, with finer and finer roughness as octaves are added",
+        seed="Phillips 2004, Fig. 14", title="Fractal-sum surfaces, n = 1..5 octaves",
+        params=dict(octaves=5, grid=320, cells=3.0, amplitude=0.5, size=900, seeds=8, seed=11),
         quick=dict(grid=32, size=300, seeds=3), uses=GEOM)
 def fig14(out, *, octaves, grid, cells, amplitude, size, seeds, seed):
     files, measured, sentence = _octave_surfaces(out, "fractal", octaves, grid, cells, amplitude, size, seed, seeds)
@@ -733,8 +744,9 @@ def fig14(out, *, octaves, grid, cells, amplitude, size, seeds, seed):
                          f"{grid} x {grid} vertices over {cells:g} x {cells:g} cells; colour = height. {sentence}", measured)
 
 
-@figure("phillips", "fig15", seed="Phillips 2004, Fig. 15", title="Turbulence surfaces, n = 1..5 octaves",
-        params=dict(octaves=5, grid=128, cells=3.0, amplitude=0.5, size=900, seed=11), quick=dict(grid=32, size=300), uses=GEOM)
+@figure("phillips", "fig15", look="sharp creases along the valleys, where each octave's noise changes sign",
+        seed="Phillips 2004, Fig. 15", title="Turbulence surfaces, n = 1..5 octaves",
+        params=dict(octaves=5, grid=320, cells=3.0, amplitude=0.5, size=900, seed=11), quick=dict(grid=32, size=300), uses=GEOM)
 def fig15(out, *, octaves, grid, cells, amplitude, size, seed):
     files, measured, sentence = _octave_surfaces(out, "turbulence", octaves, grid, cells, amplitude, size, seed)
     return Result(files, f"The same octaves summed as magnitudes (Eq. 10): z = {amplitude:g} turb(x, y, n), (a)-(e): "
@@ -761,7 +773,8 @@ def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_fr
     return meshes, ranges
 
 
-@figure("phillips", "fig16", seed="Phillips 2004, Fig. 16", title="Unit spheres displaced by noise (Eq. 11): amplitude, then frequency",
+@figure("phillips", "fig16", look="top row: the same bumps growing taller; bottom row: more and smaller bumps",
+        seed="Phillips 2004, Fig. 16", title="Unit spheres displaced by noise (Eq. 11): amplitude, then frequency",
         params=dict(amplitudes=(0.1, 0.2, 0.3, 0.4), frequency=2.0, frequencies=(1.0, 2.0, 4.0, 8.0), amplitude=0.25,
                     size=1000, seed=12),
         quick=dict(frequencies=(1.0, 2.0, 3.0, 4.0), size=400), uses=GEOM)
@@ -935,7 +948,8 @@ def _most_isotropic(seed, trial_size=256, trial_seeds=3):
     return best.split("/"), scores[best]
 
 
-@figure("phillips", "fig20", seed="Phillips 2004, Fig. 20", title="Stimuli: constant amplitude, frequency increasing",
+@figure("phillips", "fig20", look="the same amplitude everywhere: only the size of the blobs changes, from few large to many small",
+        seed="Phillips 2004, Fig. 20", title="Stimuli: constant amplitude, frequency increasing",
         params=dict(frequencies=(0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0), amplitude=0.12,
                     candidates=(("value", "cubic"), ("value", "quintic"), ("gradient", "cubic"), ("gradient", "catmull-rom"),
                                 ("gradient", "quintic")),

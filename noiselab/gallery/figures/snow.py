@@ -115,25 +115,6 @@ def winter_scene(out, *, frames, size, c, beta, intensity, direction, seed):
                             "background RMS contrast": analysis.rms_contrast(analysis.to_grey(bg))})
 
 
-@figure("snow", "fig3_3", seed="Zhang 2003, Fig. 3.3", title="The city background (the thesis's 'sydney'), 512 x 512",
-        look="a crisp, sunny scene with dark edges everywhere: the flakes of Fig. 3.4 will be seen against it",
-        params=dict(size=512), quick=dict(size=64), uses=("noiselab.analysis", "noiselab.io", "noiselab.gallery.scenes"))
-def city_background(out, *, size):
-    from noiselab import analysis
-
-    from .._common import save_image
-    from ..scenes import city_scene
-
-    bg = city_scene(size, size)
-    grey = analysis.to_grey(bg)
-    return Result([save_image(out / "city.png", bg)],
-                  f"The background of Figs. 3.4 and 3.5, {size} x {size}: the thesis's photograph of Sydney on a sunny day "
-                  "cannot ship, so the gallery draws a harbour city in code (towers, a tower with a turret, shell roofs, "
-                  "a steel arch bridge, water).",
-                  measured={"RMS contrast": analysis.rms_contrast(grey),
-                            "luminance range (0-255)": [float(grey.min()), float(grey.max())]})
-
-
 @figure("snow", "fig3_2", seed="Zhang 2003, Fig. 3.2", title="The tent surface w_t = C w_y / |w| (C = 1)",
         look="a surface that depends only on the direction of (w_x, w_y): every velocity's motion plane, tilted by 1/speed",
         params=dict(C=1.0, grid=61, frames=32, size=64, seed=3), quick=dict(grid=21, frames=8, size=32),
@@ -173,6 +154,25 @@ def tent_plot(out, *, C, grid, frames, size, seed):
                   "lies on two horizontal lines w_t = -+C (numpy's sign convention: w_t = -C w_y/|w|), the tent's "
                   "section at w_x = 0.",
                   measured={"energy on the tent": tent})
+
+
+@figure("snow", "fig3_3", seed="Zhang 2003, Fig. 3.3", title="The city background (the thesis's 'sydney'), 512 x 512",
+        look="a crisp, sunny scene with dark edges everywhere: the flakes of Fig. 3.4 will be seen against it",
+        params=dict(size=512), quick=dict(size=64), uses=("noiselab.analysis", "noiselab.io", "noiselab.gallery.scenes"))
+def city_background(out, *, size):
+    from noiselab import analysis
+
+    from .._common import save_image
+    from ..scenes import city_scene
+
+    bg = city_scene(size, size)
+    grey = analysis.to_grey(bg)
+    return Result([save_image(out / "city.png", bg)],
+                  f"The background of Figs. 3.4 and 3.5, {size} x {size}: the thesis's photograph of Sydney on a sunny day "
+                  "cannot ship, so the gallery draws a harbour city in code (towers, a tower with a turret, shell roofs, "
+                  "a steel arch bridge, water).",
+                  measured={"RMS contrast": analysis.rms_contrast(grey),
+                            "luminance range (0-255)": [float(grey.min()), float(grey.max())]})
 
 
 def _tiling(out, tile, frames, size, c, beta, direction, seed, seeds):
