@@ -24,6 +24,7 @@ class _Refs(html.parser.HTMLParser):
         super().__init__()
         self.refs, self.figures, self.videos, self._fig, self._in_caption = [], [], [], None, False
         self.posters, self.images, self.links, self.toc, self._href, self._in_toc = [], [], {}, [], None, False
+        self._in_head, self._in_look, self.autoplay = False, False, []
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
@@ -42,8 +43,14 @@ class _Refs(html.parser.HTMLParser):
                 self.links[a.get("src")] = self._href
         if tag == "video" and a.get("poster"):
             self.posters.append(a["poster"])
+        if tag == "video":
+            self.autoplay.append("autoplay" in a)
+        if tag == "h3" and self._fig is not None:
+            self._in_head = True
+        if tag == "p" and "look" in (a.get("class") or "") and self._fig is not None:
+            self._in_look = True
         if tag == "figure":
-            self._fig = {"id": a.get("id"), "class": a.get("class", ""), "caption": "", "srcs": []}
+            self._fig = {"id": a.get("id"), "class": a.get("class", ""), "caption": "", "srcs": [], "head": "", "look": ""}
             self.figures.append(self._fig)
         if tag in ("img", "source") and self._fig is not None:
             self._fig["srcs"].append(a.get("src"))
@@ -53,6 +60,10 @@ class _Refs(html.parser.HTMLParser):
             self._in_caption = True
 
     def handle_endtag(self, tag):
+        if tag == "h3":
+            self._in_head = False
+        if tag == "p":
+            self._in_look = False
         if tag == "a":
             self._href = None
         if tag == "nav":
@@ -65,12 +76,32 @@ class _Refs(html.parser.HTMLParser):
     def handle_data(self, data):
         if self._in_caption and self._fig is not None:
             self._fig["caption"] += data
+        if self._in_head and self._fig is not None:
+            self._fig["head"] += data
+        if self._in_look and self._fig is not None:
+            self._fig["look"] += data
 
 
 def _parse(index):
     p = _Refs()
     p.feed(Path(index).read_text(encoding="utf-8"))
     return p
+
+
+PAGES = ("index.html", "lab.html")
+
+
+def _parse_all(out):
+    """Both pages, read as one (the seed papers' page, then the lab's)."""
+    p = _Refs()
+    for name in PAGES:
+        p.feed(Path(out, name).read_text(encoding="utf-8"))
+    return p
+
+
+def _cards():
+    """The figures shown as cards: every registered one but the paper introductions' schematics."""
+    return [s for s in registry.specs() if s.name != "intro"]
 
 
 @pytest.fixture(scope="module")
@@ -94,10 +125,19 @@ def test_build_prints_where_index_is(quick_gallery):
 
 def test_every_figure_is_on_the_page_and_every_referenced_file_exists(quick_gallery):
     out, _ = quick_gallery
-    page = _parse(out / "index.html")
-    specs = registry.specs()
+    page = _parse_all(out)
     ids = [f["id"] for f in page.figures]
-    assert ids == [s.key.replace("/", "-") for s in specs]
+    assert sorted(ids) == sorted(s.key.replace("/", "-") for s in _cards())
+    # the lab's and the derivatives' figures are on a page of their own
+    lab = _parse(out / "lab.html")
+    assert {f["id"].split("-")[0] for f in lab.figures} == {"lab", "derivatives"}
+    assert not [f for f in _parse(out / "index.html").figures if f["id"].split("-")[0] in ("lab", "derivatives")]
+    # no image is shown twice (a video's poster is its still, never a second image beside it)
+    shown = page.images + page.posters
+    assert len(shown) == len(set(shown)), [i for i in shown if shown.count(i) > 1]
+    # no video autoplays: the page's script plays the ones on screen
+    assert page.autoplay and not any(page.autoplay)
+    assert "IntersectionObserver" in (out / "index.html").read_text()
     assert not [f["id"] for f in page.figures if "failed" in f["class"]]
     assert all(f["srcs"] for f in page.figures), "a figure without an image or a video"
     assert page.refs
@@ -114,24 +154,32 @@ def test_every_figure_is_on_the_page_and_every_referenced_file_exists(quick_gall
     assert all(not r.startswith("/") and ".." not in Path(r).parts for r in page.refs)
 
 
-SEED_FIGURES = (["Zhang 2003, Fig. " + f for f in ("3.1", "3.2", "3.4", "3.5", "4.1", "6.2", "6.3")]
+SEED_FIGURES = (["Zhang 2003, Fig. " + f for f in ("3.1", "3.2", "3.3", "3.4", "3.5", "4.1", "6.1", "6.2", "6.3")]
                 + [f"Phillips 2004, Fig. {n}." for n in range(1, 21)])
 
 
 def test_captions_carry_seed_figure_parameters_and_measurements(quick_gallery):
     out, _ = quick_gallery
-    page = _parse(out / "index.html")
+    page = _parse_all(out)
     captions = {f["id"]: " ".join(f["caption"].split()) for f in page.figures}
-    every = " | ".join(captions.values())
-    for seed in SEED_FIGURES:   # every seed figure the issue lists is reproduced, named in a caption
+    heads = {f["id"]: " ".join(f["head"].split()) for f in page.figures}
+    looks = {f["id"]: " ".join(f["look"].split()) for f in page.figures}
+    every = " | ".join(heads.values())
+    for seed in SEED_FIGURES:   # every seed figure the issue lists is reproduced, named in a heading
         assert seed in every, seed
-    for spec in registry.specs():
-        cap = captions[spec.key.replace("/", "-")]
-        assert cap.startswith(spec.seed), (spec.key, cap[:80])
+    for spec in _cards():
+        key = spec.key.replace("/", "-")
+        # the heading carries the figure number and the title; one line says what to look for
+        assert heads[key].startswith(f"{spec.seed}: {spec.title}"), (spec.key, heads[key][:80])
+        assert spec.look and looks[key] == f"What to look for: {spec.look}.", spec.key
+        cap = captions[key]
         assert "Parameters: " in cap and "Measured: " in cap, spec.key
         for name in spec.params:
             assert f"{name}=" in cap, (spec.key, name)
         assert f"Rebuild alone: python3 -m noiselab gallery --only {spec.key}" in cap, spec.key
+    # the parameters, measured numbers and rebuild command are folded away (one <details> per figure)
+    text = (out / "index.html").read_text()
+    assert text.count("<details>") == len([s for s in _cards() if s.group not in ("lab", "derivatives")])
     # the snow captions carry the snow measurements, the noise captions the noise ones
     snow = " ".join(c for k, c in captions.items() if k.startswith("snow-"))
     assert "energy on the tent" in snow and "speed per band" in snow and "loop seam" in snow
@@ -139,13 +187,25 @@ def test_captions_carry_seed_figure_parameters_and_measurements(quick_gallery):
     assert "range" in noise and "slope" in noise and "anisotropy" in noise
 
 
+def test_each_paper_opens_with_an_introduction_and_its_schematic(quick_gallery):
+    out, _ = quick_gallery
+    text = (out / "index.html").read_text()
+    for group, image in (("snow", "snow/intro/snow_method.png"), ("phillips", "phillips/intro/lattice_method.png")):
+        section = text[text.index(f'<h2 id="{group}">'):]
+        intro = section[:section.index("<figure")]
+        assert 'class="intro"' in intro and image in intro and len(intro) > 400, group
+    # the build log is in the footer, not at the top
+    assert text.index("Last build") > text.rindex("</figure>")
+
+
 def test_table_of_contents_links_every_figure(quick_gallery):
     out, _ = quick_gallery
-    page = _parse(out / "index.html")
-    ids = [f["id"] for f in page.figures]
-    groups = sorted({s.group for s in registry.specs()})
-    assert [t for t in page.toc if t not in groups] == ids
-    assert set(groups) <= set(page.toc)
+    for name in PAGES:
+        page = _parse(out / name)
+        ids = [f["id"] for f in page.figures]
+        groups = sorted({f.split("-")[0] for f in ids})
+        assert [t for t in page.toc if t not in groups] == ids
+        assert set(groups) <= set(page.toc)
 
 
 def test_measured_values_are_sane(quick_gallery):
@@ -166,6 +226,14 @@ def test_measured_values_are_sane(quick_gallery):
     assert [v for k, v in fig06.items() if k.startswith("largest |construction")][0] < 1e-12
     # Fig. 17: every sphere resolves its finest octave (>= 2 vertices per period along the longest edge)
     assert min(man["phillips/fig17"]["measured"]["samples per period of the finest octave (longest edge), n = 1.."]) >= 2
+    # Fig. 19: "10 % of the radius, on average" is the RMS displacement
+    assert man["phillips/fig19"]["measured"]["RMS displacement / radius"] == pytest.approx([0.0, 0.05, 0.1], abs=1e-9)
+    # Fig. 18: the cow visibly crumples: RMS displacement grows with s, to a few percent of its length at s = 0.5
+    crumple = man["phillips/fig18"]["measured"]["RMS displacement / body length per s"]
+    assert crumple[0] == 0 and all(b > a for a, b in zip(crumple, crumple[1:])) and crumple[-1] > 0.02
+    # Fig. 4.1 and Fig. 7 loop without a jump (the last-to-first step is an ordinary one)
+    assert 0.5 < man["snow/fig4_1"]["measured"]["loop seam of the panning composite (1 = seamless)"] < 1.5
+    assert 0.5 < man["phillips/fig07"]["measured"]["loop seam (1 = seamless)"] < 1.5
     # Fig. 18: the stand-in cow is closed, and the undisplaced one has no flipped face
     fig18 = man["phillips/fig18"]["measured"]
     assert fig18["watertight"] is True and fig18["flipped faces per s"][0] == 0
@@ -241,8 +309,8 @@ def test_only_builds_only_that_group(tmp_path):
     report = build_mod.build(tmp_path, only="lab", quick=True, show_progress=False)
     assert set(report["built"]) == {s.key for s in registry.specs("lab")}
     assert sorted(p.name for p in tmp_path.iterdir() if p.is_dir()) == ["lab"]
-    page = _parse(tmp_path / "index.html")
-    assert not [r for r in page.refs if not (tmp_path / r).is_file()]
+    page = _parse_all(tmp_path)
+    assert not [r for r in page.refs if not (tmp_path / r).is_file() and r not in PAGES]
     built = [f for f in page.figures if f["srcs"]]
     assert {f["id"] for f in built} == {k.replace("/", "-") for k in report["built"]}
     assert all("Not built yet" in f["caption"] for f in page.figures if not f["srcs"])
@@ -328,13 +396,13 @@ def test_a_failing_figure_is_reported_and_leaves_no_half_written_folder(tmp_path
 
 def test_index_marks_a_figure_whose_code_changed_as_out_of_date(tmp_path):
     build_mod.build(tmp_path, only="lab/kernels", quick=True, show_progress=False)
-    assert "Out of date" not in (tmp_path / "index.html").read_text()
+    assert "Out of date" not in (tmp_path / "lab.html").read_text()
     mpath = tmp_path / "lab" / "kernels" / "manifest.json"
     m = json.loads(mpath.read_text())
     m["hash"] = "f" * 64   # as if built by another version of the figure's code
     mpath.write_text(json.dumps(m))
     build_mod.build(tmp_path, only="lab/one_over_f", quick=True, show_progress=False)
-    page = _parse(tmp_path / "index.html")
+    page = _parse(tmp_path / "lab.html")
     kernels = [f for f in page.figures if f["id"] == "lab-kernels"][0]
     assert "Out of date" in kernels["caption"] and kernels["srcs"]
     fresh = [f for f in page.figures if f["id"] == "lab-one_over_f"][0]

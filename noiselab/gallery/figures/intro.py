@@ -49,7 +49,7 @@ def snow_intro(out, *, c, band, size, grid):
     ax.set_title(r"(a) the tent $\omega_t = C\,\omega_y/|\omega|$ and the band", fontsize=13)
     ax2 = fig.add_axes((0.45, 0.05, 0.54, 0.86))
     ax2.set_xlim(0, 10.6), ax2.set_ylim(0, 5), ax2.axis("off")
-    ax2.set_title("(b) the method, in four steps", fontsize=13)
+    ax2.set_title("(b) the method, step by step", fontsize=13)
     _box(ax2, 1.5, 3.8, "random phase,\n1/f amplitude", w=2.6, h=1.1)
     _box(ax2, 5.3, 3.8, "keep only the\ntent, in the band", w=2.7, h=1.1)
     _box(ax2, 9.1, 3.8, "inverse 3-D FFT\n(x, y, t)", w=2.6, h=1.1)
@@ -64,7 +64,7 @@ def snow_intro(out, *, c, band, size, grid):
                   f"(a) The tent surface of Eq. 3.3 with C = {c:g}: a flake moving down at speed v puts its energy on "
                   "the plane w_t = v w_y; the thesis lets the speed fall as 1/|w| (near flakes are both larger and "
                   f"faster), which bends the planes into the tent. Only the band {band[0]}-{band[1]} cycles/frame of a "
-                  f"{size}-pixel frame is filled (red: the nearest flakes, blue: the farthest). (b) The four steps.",
+                  f"{size}-pixel frame is filled (red: the nearest flakes, blue: the farthest). (b) The steps.",
                   measured={"near / far flake speed (px/frame)": [c * size / (2 * np.pi * band[0]),
                                                                   c * size / (2 * np.pi * band[1])]})
 

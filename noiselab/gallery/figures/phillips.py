@@ -479,7 +479,7 @@ def _render_tiles(meshes, path, labels, columns=3, cell=300, **kw):
         ax.axis("off")
     for ax, mesh, label in zip(axes.ravel(), meshes, labels):
         ax.imshow(render_mesh(mesh, size=cell, **kw))
-        ax.set_title(label, fontsize=10)
+        ax.set_title(label, fontsize=12)
     fig.tight_layout()
     return save_figure(fig, path)
 
@@ -848,7 +848,7 @@ def fig17(out, *, octaves, frequency, amplitude, samples_per_period, size, seed)
 
 @figure("phillips", "fig18", seed="Phillips 2004, Fig. 18", title="Any mesh: a cow displaced with s = 0 to 0.5 in steps of 0.1",
         look="the cow's smooth hide crumples more and more as s grows, until at 0.5 it folds into itself",
-        params=dict(amplitudes=(0.0, 0.1, 0.2, 0.3, 0.4, 0.5), length=4.0, frequency=1.5, resolution=110, size=960, seed=14),
+        params=dict(amplitudes=(0.0, 0.1, 0.2, 0.3, 0.4, 0.5), length=4.0, frequency=3.0, resolution=110, size=960, seed=14),
         quick=dict(amplitudes=(0.0, 0.25, 0.5), resolution=48, size=360), uses=GEOM)
 def fig18(out, *, amplitudes, length, frequency, resolution, size, seed):
     from noiselab.lattice import LatticeNoise
