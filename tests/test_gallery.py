@@ -155,7 +155,7 @@ def test_every_figure_is_on_the_page_and_every_referenced_file_exists(quick_gall
 
 
 SEED_FIGURES = (["Zhang 2003, Fig. " + f for f in ("3.1", "3.2", "3.3", "3.4", "3.5", "4.1", "6.1", "6.2", "6.3")]
-                + [f"Phillips 2004, Fig. {n}." for n in range(1, 21)])
+                + [f"Phillips 2004, Fig. {n}:" for n in range(1, 21)])
 
 
 def test_captions_carry_seed_figure_parameters_and_measurements(quick_gallery):

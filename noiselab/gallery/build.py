@@ -9,9 +9,12 @@ Every registered figure is built into ``OUT/<group>/<name>/`` together with a
 ``manifest.json`` that records its content hash (figure function source +
 parameters + noiselab version and source of the modules it uses). A figure
 whose hash matches and whose files are all there is not rebuilt. Each figure
-folder is written atomically (temporary folder, then rename), and so is
-``OUT/index.html``, which shows every figure and plays every video. Nothing is
-downloaded: everything drawn is computed or ships with a package.
+folder is written atomically (temporary folder, then rename), and so are the
+pages: ``OUT/index.html`` (the seed papers' figures, each paper opening with
+an introduction and a schematic) and ``OUT/lab.html`` (the lab's comparisons
+and the derivatives). Nothing is downloaded: everything drawn is computed or
+ships with a package (the snow backgrounds are drawn in code,
+:mod:`noiselab.gallery.scenes`).
 """
 import argparse
 import json

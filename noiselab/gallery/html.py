@@ -1,6 +1,10 @@
-"""The gallery's ``index.html``: every figure with its caption, every video playable.
+"""The gallery's pages, ``index.html`` and ``lab.html``: every figure with its caption, every video playable.
 
-The page is static and self-contained (no network, no scripts from elsewhere).
+The pages are static and self-contained (no network, no scripts from elsewhere).
+Each figure is a card: its seed figure and title as the heading, the media,
+one line on what to look for, the measured caption, and a ``<details>``
+block with the parameters, the measured numbers and the rebuild command.
+Videos do not autoplay: an IntersectionObserver plays those on screen.
 A small inline script checks, once the page has loaded, that every image
 decoded and every video can play, and writes the result into
 ``<body data-check=...>`` and a status line, so a reader (or a headless

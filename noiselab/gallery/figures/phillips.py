@@ -664,11 +664,12 @@ def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=
             o = noise(x[keep] * 2 ** (n - 1))
             z = np.nonzero(np.diff(np.sign(o)))[0]
             ax.plot(x[keep, 0][z], y[keep][z], "v", ms=4 + 1.2 * (octaves - n), color=f"C{n - 1}",
-                    label=f"octave {n}", ls="none")
+                    label=f"{n}", ls="none")
         ax.set_xlim(*zoom)
-        ax.legend(fontsize=8, loc="upper right", ncol=octaves, title="creases of", title_fontsize=8)
+        ax.legend(fontsize=10, loc="upper right", bbox_to_anchor=(1.0, -0.3), ncol=octaves, frameon=False,
+                  title="creases of octave", title_fontsize=10)
         ax.set_title(f"zoom on x = {zoom[0]:g}..{zoom[1]:g}: each marker is a crease (one octave's noise crosses zero)",
-                     fontsize=9, loc="left")
+                     fontsize=11, loc="left")
         axes[-2, 0].axvspan(*zoom, color="C1", alpha=0.15)
     axes[-1, 0].set_xlabel("x (input units)")
     sentence = ""
@@ -805,7 +806,7 @@ def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
 
 @figure("phillips", "fig17", seed="Phillips 2004, Fig. 17", title="Spheres displaced by fractal (left) and turbulent (right) sums, n = 1..6",
         look="each added octave adds finer wrinkles on top of the same large bumps; turbulence only pushes outwards",
-        params=dict(octaves=6, frequency=0.5, amplitude=0.3, samples_per_period=6.0, size=900, seed=13),
+        params=dict(octaves=6, frequency=1.0, amplitude=0.3, samples_per_period=6.0, size=900, seed=13),
         quick=dict(octaves=3, size=360), uses=GEOM)
 def fig17(out, *, octaves, frequency, amplitude, samples_per_period, size, seed):
     from noiselab.lattice import LatticeNoise
