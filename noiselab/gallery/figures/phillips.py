@@ -443,7 +443,10 @@ def fig07(out, *, frames, size, cells, cells_per_frame, panels, step, seed):
         ax.set_xlabel("x (lattice cells)"), ax.set_ylabel("y (lattice cells)")
         ax.set_title(f"frame {i}: t = {i * cells_per_frame:.2f} cells", fontsize=11)
     files = [save_figure(fig, out / "frames.png")] + save_video(out, "solid_noise", video)
-    aniso = analysis.anisotropy(vol[0], window="hann")
+    # measured in the blobs' band (half to twice the lattice rate), as Fig. 20 picks the kernel: over all
+    # frequencies the gradient basis's near-zero low end leaves the axis-aligned high-frequency cross to dominate
+    band = (cells / 2, 2 * cells)
+    aniso = analysis.anisotropy(vol[0], band, window="hann")
     step_corr = float(np.corrcoef(vol[0].ravel(), vol[step].ravel())[0, 1])
     seam = analysis.loop_seam(vol)
     return Result(files, f"noise(x, y, t) as grey level: {size} x {size} pixels over {cells:g} lattice cells, time moving "
@@ -452,8 +455,9 @@ def fig07(out, *, frames, size, cells, cells_per_frame, panels, step, seed):
                          f"has an exact lattice period of {t_cells:g} cells, so the {frames}-frame video loops (loop seam "
                          f"{seam:.2f}, 1 = an ordinary step). {basis.capitalize()} noise with the {kernel} kernel, the most "
                          f"isotropic candidate of Fig. 20. Grey levels stretch the measured range [{lo:.2f}, {hi:.2f}] to "
-                         f"black..white. Anisotropy of frame 0 (Hann window) {_anisotropy_words(aniso)}.",
-                  {"range": _range(vol), "anisotropy of frame 0 (Hann window)": aniso,
+                         f"black..white. Anisotropy of frame 0 over {band[0]:g}-{band[1]:g} cycles/frame (Hann window) "
+                         f"{_anisotropy_words(aniso)}.",
+                  {"range": _range(vol), "anisotropy of frame 0 in the blobs' band (Hann window)": aniso,
                    "correlation between neighbouring panels": step_corr, "loop seam (1 = seamless)": seam,
                    "roll-off slope above the lattice frequency": float(analysis.spectral_slope(vol[0], (2 * cells, 8 * cells),
                                                                                             window="hann"))})
@@ -501,14 +505,15 @@ def fig08(out, *, grid, cells, amplitude, size, seed):
     files = [_render(surf, out / "surface.png", size, elevation=-12, scalars="height", cmap="gist_earth",
                      clim=(-1.15 * lim, 1.15 * lim)), out / "depth.png"]
     height_map_image(h, files[1])
-    aniso = analysis.anisotropy(h, window="hann")
+    band = (cells / 2, 2 * cells)     # the blobs' band, as in Figs. 7 and 20
+    aniso = analysis.anisotropy(h, band, window="hann")
     return Result(files, f"Left: perspective view of z = {amplitude:g} noise(x, y) over {cells:g} x {cells:g} lattice cells "
                          f"({grid} x {grid} vertices), coloured by height (gist_earth: dark blue at the bottom, through green, to "
                          f"light brown at the top); right: the depth map, {size} x {size} pixels like the render, lighter = "
                          f"higher. {basis.capitalize()} noise with the {kernel} kernel, the most isotropic candidate of "
-                         "Fig. 20. Anisotropy "
+                         f"Fig. 20. Anisotropy over {band[0]:g}-{band[1]:g} cycles/frame (the blobs' band; Hann window) "
                          f"{_anisotropy_words(aniso)}.",
-                  {"range": _range(h), "anisotropy (Hann window)": aniso,
+                  {"range": _range(h), "anisotropy in the blobs' band (Hann window)": aniso,
                    "roll-off slope above the lattice frequency": float(analysis.spectral_slope(h, (2 * cells, size / 4),
                                                                                             window="hann"))})
 
