@@ -101,7 +101,7 @@ def kernels(out, *, size, cells, seed):
                   "smoother): " + "; ".join(f"{k} {v:.1f}" for k, v in rolloff.items()) + ".", measured)
 
 
-@figure("lab", "measures", look="lower bars are better in every panel: leakage, aliasing, anisotropy (0 = no preferred direction)",
+@figure("lab", "measures", look="shorter bars are better in the first three panels; in the last, the nearer the dotted line, the more isotropic",
         seed="Lagae et al. 2010 (band-limitedness, anisotropy); Cook & DeRose 2005; Ulichney 1987",
         title="One octave asked of every generator: leakage, aliasing, anisotropy and Ulichney's dB",
         params=dict(size=256), quick=dict(size=64), uses=USES + ("noiselab.lab",))
@@ -114,13 +114,14 @@ def measures(out, *, size):
     rows = [generator_measures(name, fam, make, info, size)
             for name, (fam, make, info) in octave_generators(size, 2).items()]
     names = [r["method"].replace(" noise, ", " ").replace("spectral_noise (flat octave)", "spectral") for r in rows]
-    panels = [("outside", "power outside the octave (aliasing included)", True),
-              ("aliased", "power past the output's Nyquist (2x render)", True),
-              ("anisotropy", "anisotropy (0 isotropic)", False),
-              ("ulichney_db", "Ulichney anisotropy (dB; isotropic: -9 dB)", False)]
-    fig, axes = plt.subplots(1, len(panels), figsize=(4.2 * len(panels), 4.6))
+    panels = [("outside", "power outside the octave\n(aliasing included)", True, "fraction of the power"),
+              ("aliased", "power past the output's Nyquist\n(2x render)", True, "fraction of the power"),
+              ("anisotropy", "anisotropy\n(0 = isotropic)", False, "anisotropy index"),
+              ("ulichney_db", "Ulichney anisotropy\n(dotted: an isotropic field)", False, "dB")]
+    fig, axes = plt.subplots(1, len(panels), figsize=(3.2 * len(panels) + 2.2, 0.42 * len(rows) + 2.2),
+                             layout="constrained")
     measured = {}
-    for ax, (key, title, log) in zip(axes, panels):
+    for ax, (key, title, log, unit) in zip(axes, panels):
         vals = np.array([r[key] for r in rows], dtype=float)
         shown = np.maximum(vals, 1e-12) if log else vals
         ax.barh(range(len(rows)), shown, color=["C3" if r["family"] == "spectral" else "C0" for r in rows])
@@ -129,12 +130,13 @@ def measures(out, *, size):
         if key == "ulichney_db":  # what an isotropic Gaussian field reads with this many periodograms
             ax.axvline(rows[0]["ulichney_floor_db"], color="k", ls=":", lw=1)
         ax.set_yticks(range(len(rows)))
-        ax.set_yticklabels(names if ax is axes[0] else [], fontsize=7)
-        ax.set_title(title, fontsize=8)
+        ax.set_yticklabels(names if ax is axes[0] else [], fontsize=11)
+        ax.set_title(title, fontsize=12)
+        ax.set_xlabel(unit, fontsize=11)
+        ax.tick_params(axis="x", labelsize=11)
         ax.invert_yaxis()
         for r, v in zip(rows, vals):
             measured[f"{r['method']}: {key}"] = float(v)
-    fig.tight_layout()
     return Result([save_figure(fig, out / "measures.png")],
                   f"Every generator asked for one octave around {size / 16:g} cycles/frame of a {size} x {size} frame "
                   "(noiselab.lab.quality: a flat spectral octave; lattice noise of each kernel and basis at the density "
@@ -168,7 +170,7 @@ def hashes(out, *, cells, spc, seeds, kernel, seed):
         art = analysis.axis_artefacts(imgs[0])
         cv = profile_striping(imgs)
         axes[r, 0].imshow(imgs[0], cmap="gray", vmin=-1, vmax=1)
-        axes[r, 0].set_title(f"hash={h!r}: one full period, {cells} x {cells} cells", fontsize=9)
+        axes[r, 0].set_title(f"hash={h!r}: one full period, {cells} x {cells} cells", fontsize=12)
         axes[r, 0].axis("off")
         axes[0, 1].plot(imgs[0].mean(axis=1), lw=0.8, label=f"hash={h!r}", color=f"C{r}")
         prof = np.mean(np.abs(np.fft.rfft(imgs, axis=-1)) ** 2, axis=1)[:, 1:n // 4 + 1]
@@ -185,16 +187,19 @@ def hashes(out, *, cells, spc, seeds, kernel, seed):
         measured[f"{h}: profile CV (median over {seeds} seeds)"] = float(np.median(cv))
         measured[f"{h}: period of a 1-D line at the default period (cells)"] = None if per.period is None else per.period / 4
         measured[f"{h}: range"] = [float(imgs.min()), float(imgs.max())]
-    axes[0, 1].set_title("row means of one field", fontsize=9), axes[0, 1].set_xlabel("row")
-    axes[0, 1].legend(fontsize=8)
-    axes[1, 1].set_title("row-averaged periodogram along x / mean over seeds", fontsize=9)
-    axes[1, 1].set_xlabel("cycles/frame"), axes[1, 1].legend(fontsize=8)
-    axes[0, 2].set_title("1-D line, default period: mean squared difference at lag / 2 var", fontsize=9)
-    axes[0, 2].set_xlabel("lag (cells)"), axes[0, 2].legend(fontsize=8)
-    axes[1, 2].axis("off")
-    axes[1, 2].text(0.0, 0.95, "\n".join(f"{k}: {v:.3g}" if isinstance(v, float) else f"{k}: {v}"
-                                         for k, v in measured.items() if "range" not in k).replace("None", "none"),
-                    va="top", fontsize=7.5, family="monospace", transform=axes[1, 2].transAxes)
+    axes[0, 1].set_title("row means of one field", fontsize=12)
+    axes[0, 1].set_xlabel("row (pixels)"), axes[0, 1].set_ylabel("mean value"), axes[0, 1].legend(fontsize=10)
+    axes[1, 1].set_title("row-averaged periodogram along x\n/ its mean over seeds", fontsize=12)
+    axes[1, 1].set_xlabel("cycles/frame"), axes[1, 1].set_ylabel("ratio"), axes[1, 1].legend(fontsize=10)
+    axes[0, 2].set_title("1-D line: mean squared difference\nat a lag / 2 var (0 = it repeats)", fontsize=12)
+    axes[0, 2].set_xlabel("lag (cells)"), axes[0, 2].set_ylabel("ratio"), axes[0, 2].legend(fontsize=10)
+    # the striping measure as bars (the numbers themselves are in the caption's details)
+    keys = list(make)
+    cvs = [measured[f"{h}: profile CV (median over {seeds} seeds)"] for h in keys]
+    axes[1, 2].bar(keys, cvs, color=["C0", "C1"])
+    axes[1, 2].axhline(1 / np.sqrt(n), color="k", ls=":", lw=1, label="1/sqrt(rows): independent rows")
+    axes[1, 2].set_title("spread of the row-averaged spectrum\nover seeds (coefficient of variation)", fontsize=12)
+    axes[1, 2].set_xlabel("hash"), axes[1, 2].set_ylabel("coefficient of variation"), axes[1, 2].legend(fontsize=10)
     return Result([save_figure(fig, out / "hashes.png")],
                   f"{kernel} value noise over one full period of {cells} x {cells} lattice cells ({spc} samples per cell), "
                   "addressed by Phillips' nested permutation P[(P[i] + j) mod n] (top, n = period) and by the "
@@ -202,5 +207,5 @@ def hashes(out, *, cells, spc, seeds, kernel, seed):
                   "permutation of the same n values: the row means are all equal (middle top: a flat line) and a "
                   "field's row-averaged spectrum along x is one random periodogram (middle bottom: the coefficient "
                   "of variation about the mean over seeds is near 1, against about 1/sqrt(rows) for independent "
-                  "rows). Right: a 1-D line repeats after the table size with the permutation and not with the "
-                  "integer hash. Figures: benchmarks/RESULTS.md section 6.", measured)
+                  "rows; bottom right, as bars). Top right: a 1-D line repeats after the table size with the permutation "
+                  "and not with the integer hash. Figures: benchmarks/RESULTS.md section 6.", measured)
