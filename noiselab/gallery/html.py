@@ -20,7 +20,7 @@ IMAGE_EXT = {".png", ".gif", ".jpg", ".jpeg", ".svg", ".webp"}
 VIDEO_EXT = {".mp4", ".webm"}
 
 _CSS = """
-body { font-family: system-ui, sans-serif; margin: 0 auto; max-width: 1240px; padding: 1em 2em; color: #222; background: #fafafa; font-size: 16px; }
+body { font-family: system-ui, sans-serif; margin: 0 auto; max-width: 1400px; padding: 1em 2em; color: #222; background: #fafafa; font-size: 16px; }
 h1 { margin-bottom: 0.2em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
 .intro { background: #fff; border-left: 4px solid #7a9cc6; padding: 0.6em 1.2em; margin: 1em 0 1.5em 0; }
 .intro p { line-height: 1.5; max-width: 60em; }

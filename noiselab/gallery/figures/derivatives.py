@@ -50,7 +50,7 @@ def curl_flow(out, *, samples, cells, arrows, seed):
             np.sqrt(np.mean(fine ** 2)) / ref)
         measured[f"{name}: RMS divergence / RMS speed (np.gradient on the {samples}^2 grid)"] = float(
             np.sqrt(np.mean(div_grid ** 2)) / np.sqrt(np.mean(speed ** 2)))
-        ax.set_title(f"{name}: streamlines over the divergence (colour, +-3)", fontsize=9)
+        ax.set_title(f"{name}: streamlines over the divergence (colour, +-3)", fontsize=10)
     return Result([save_figure(fig, out / "curl_flow.png")],
                   "Left: curl noise, the rotated exact gradient (dpsi/dy, -dpsi/dx) of a scalar lattice noise psi "
                   "(quintic kernel): its streamlines close on themselves and the divergence (colour) is zero up to "
@@ -80,13 +80,13 @@ def warp_figure(out, *, samples, cells, amount, seed):
                                      ("n(y + a/2 w2(x)), y = x + a w1(x)", twice))):
         value, grad = f.gradient(pts, return_value=True)
         axes[0, col].imshow(value.T, origin="lower", extent=(0, cells, 0, cells), cmap="gray", vmin=-1, vmax=1)
-        axes[0, col].set_title(name, fontsize=9)
+        axes[0, col].set_title(name, fontsize=10)
         # shaded as a height field lit from the upper left, with the exact normals
         n = np.concatenate([-0.15 * grad, np.ones(grad.shape[:-1] + (1,))], axis=-1)
         n /= np.linalg.norm(n, axis=-1, keepdims=True)
         light = np.array([-0.5, 0.5, 0.7]) / np.linalg.norm([-0.5, 0.5, 0.7])
         axes[1, col].imshow(np.clip(n @ light, 0, 1).T, origin="lower", extent=(0, cells, 0, cells), cmap="gray")
-        axes[1, col].set_title("shaded with its exact gradient", fontsize=9)
+        axes[1, col].set_title("shaded with its exact gradient", fontsize=10)
         x = np.random.default_rng(seed).uniform(0, cells, (1000, 2))
         g = f.gradient(x)
         h = 1e-6
@@ -149,15 +149,15 @@ def normals(out, *, resolutions, subdivisions, shade, seed):
         sphere_rows.append((edge, np.median(ang), ang.max()))
         measured[f"displaced sphere, icosphere({sub}), {len(sphere.vertices)} vertices: median / max angle "
                  "(degrees)"] = f"{np.median(ang):.3g} / {ang.max():.3g}"
-    fig, axes = plt.subplots(1, 3, figsize=(17, 5), gridspec_kw=dict(wspace=0.3))
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.6), gridspec_kw=dict(wspace=0.3))
     pts = grid_points((shade, shade), ext)
     z, nrm = monge_normals(field2, pts, amplitude=amp, return_heights=True)
     light = np.array([-0.6, 0.5, 0.4]) / np.linalg.norm([-0.6, 0.5, 0.4])
     axes[0].imshow(np.clip(nrm @ light, 0, 1), origin="lower", extent=(0, 4, 0, 4), cmap="gray")
-    axes[0].set_title(f"z = {amp} noise(x, y), Lambert-shaded with exact normals ({shade}^2)", fontsize=9)
+    axes[0].set_title(f"z = {amp} noise(x, y), Lambert-shaded with exact normals ({shade}^2)", fontsize=10)
     im = axes[1].imshow(coarse_angles, origin="lower", extent=(0, 4, 0, 4), cmap="magma")
     plt.colorbar(im, ax=axes[1], fraction=0.046)
-    axes[1].set_title(f"angle (degrees) between face and exact normals, {resolutions[1]}^2 mesh", fontsize=9)
+    axes[1].set_title(f"angle (degrees) between face and exact normals, {resolutions[1]}^2 mesh", fontsize=10)
     for rows, label, mk in ((monge, "Monge surface", "o"), (sphere_rows, "displaced sphere (Eq. 11)", "s")):
         h = np.array([r[0] for r in rows])
         axes[2].loglog(h, [r[1] for r in rows], mk + "-", label=f"{label}: median")
@@ -168,8 +168,8 @@ def normals(out, *, resolutions, subdivisions, shade, seed):
 
     axes[2].xaxis.set_minor_formatter(NullFormatter())
     axes[2].set_xlabel("mesh edge length"), axes[2].set_ylabel("angle (degrees)")
-    axes[2].legend(fontsize=7)
-    axes[2].set_title("face normals converge to the exact ones at second order", fontsize=9)
+    axes[2].legend(fontsize=10)
+    axes[2].set_title("face normals converge to the exact ones at second order", fontsize=10)
     slope = np.polyfit(np.log(h), np.log([r[1] for r in monge]), 1)[0]
     measured["Monge surface: fitted order of convergence of the median angle"] = float(slope)
     return Result([save_figure(fig, out / "normals.png")],

@@ -28,10 +28,10 @@ def one_over_f(out, *, size, octaves, cells, gains, seed):
         fields[f"lattice: fractal_sum, gain {g:g}, {used} octaves"] = f
     fit_band = (2 * cells, min(size / 4, cells * 2 ** (used - 1)))
     n = len(fields)
-    fig, axes = plt.subplots(1, n + 2, figsize=(4.2 * (n + 2), 4.2))
+    fig, axes = plt.subplots(1, n + 2, figsize=(2.8 * (n + 2), 3.6), layout="constrained")
     measured = {}
     for ax, (name, f) in zip(axes[:n], fields.items()):
-        ax.imshow(f, cmap="gray"), ax.set_title(name, fontsize=9), ax.axis("off")
+        ax.imshow(f, cmap="gray"), ax.set_title(name, fontsize=10), ax.axis("off")
     for k, (name, f) in enumerate(fields.items()):
         short = name.split(",")[0] + ("" if k == 0 else f" g={gains[k - 1]:g}")
         # the lattice sums do not tile the frame: every field is measured through a Hann window, so no
@@ -49,11 +49,11 @@ def one_over_f(out, *, size, octaves, cells, gains, seed):
     axes[n].axvspan(*fit_band, color="0.92", zorder=0)
     f0 = np.geomspace(*fit_band, 10)
     axes[n].loglog(f0, 0.3 * np.sqrt(rad.power[keep]).max() * f0[0] / f0, "k--", lw=1, label="1/f")
-    axes[n].set_xlabel("cycles/frame"), axes[n].set_ylabel("radial amplitude"), axes[n].legend(fontsize=8)
-    axes[n].set_title("radially averaged amplitude spectra (Hann window)", fontsize=9)
+    axes[n].set_xlabel("cycles/frame"), axes[n].set_ylabel("radial amplitude"), axes[n].legend(fontsize=10)
+    axes[n].set_title("radially averaged amplitude spectra (Hann window)", fontsize=10)
     axes[n + 1].set_xlabel("wave-vector orientation (degrees)"), axes[n + 1].set_ylabel("energy / mean")
-    axes[n + 1].set_xticks(range(0, 361, 90)), axes[n + 1].legend(fontsize=8)
-    axes[n + 1].set_title("energy against orientation (whitened)", fontsize=9)
+    axes[n + 1].set_xticks(range(0, 361, 90)), axes[n + 1].legend(fontsize=10)
+    axes[n + 1].set_title("energy against orientation (whitened)", fontsize=10)
     return Result([save_figure(fig, out / "one_over_f.png")],
                   f"{size} x {size} textures: one with a 1/f amplitude spectrum shaped in the Fourier domain and inverted "
                   f"(noiselab.spectral_noise), and fractal sums of cubic value noise over {cells:g} lattice cells "
@@ -75,14 +75,14 @@ def kernels(out, *, size, cells, seed):
 
     plt = pyplot()
     names = kernel_names()
-    fig, axes = plt.subplots(2, len(names) + 1, figsize=(2.6 * (len(names) + 1) + 1.5, 6.0), layout="constrained",
+    fig, axes = plt.subplots(2, len(names) + 1, figsize=(1.9 * (len(names) + 1) + 1.5, 5.0), layout="constrained",
                              gridspec_kw=dict(width_ratios=[1] * len(names) + [1.7]))
     measured, rolloff = {}, {}
     for r, basis in enumerate(("value", "gradient")):
         for c, k in enumerate(names):
             img = LatticeNoise(2, seed=seed, kernel=k, basis=basis).grid((size, size), [(0, cells), (0, cells)])
             axes[r, c].imshow(img, cmap="gray", vmin=-1, vmax=1)
-            axes[r, c].set_title(f"{basis} / {k}", fontsize=8), axes[r, c].axis("off")
+            axes[r, c].set_title(f"{basis} / {k}", fontsize=10), axes[r, c].axis("off")
             rad = analysis.radial_spectrum(img, log=True, window="hann")
             keep = rad.counts > 0
             axes[r, -1].loglog(rad.centers[keep] / cells, rad.power[keep], label=k, lw=1)
@@ -92,8 +92,8 @@ def kernels(out, *, size, cells, seed):
             rolloff[f"{basis}/{k}"] = float(2 * analysis.spectral_slope(img, band, window="hann"))
         measured[f"{basis}: power slope 1-4 cycles/cell"] = ", ".join(
             f"{k}: {rolloff[f'{basis}/{k}']:.1f}" for k in names)
-        axes[r, -1].set_title(f"{basis} noise: radial power (Hann window)", fontsize=9)
-        axes[r, -1].set_xlabel("cycles per lattice cell", fontsize=8), axes[r, -1].legend(fontsize=6)
+        axes[r, -1].set_title(f"{basis} noise: radial power (Hann window)", fontsize=10)
+        axes[r, -1].set_xlabel("cycles per lattice cell", fontsize=10), axes[r, -1].legend(fontsize=6)
     return Result([save_figure(fig, out / "kernels.png")],
                   f"LatticeNoise over {cells:g} x {cells:g} lattice cells, {size} x {size} pixels, for each kernel, with value "
                   "(Phillips) and gradient (Perlin) bases; right: radial power spectra against frequency in cycles per "
@@ -118,7 +118,7 @@ def measures(out, *, size):
               ("aliased", "power past the output's Nyquist\n(2x render)", True, "fraction of the power"),
               ("anisotropy", "anisotropy\n(0 = isotropic)", False, "anisotropy index"),
               ("ulichney_db", "Ulichney anisotropy\n(dotted: an isotropic field)", False, "dB")]
-    fig, axes = plt.subplots(1, len(panels), figsize=(3.2 * len(panels) + 2.2, 0.42 * len(rows) + 2.2),
+    fig, axes = plt.subplots(1, len(panels), figsize=(2.9 * len(panels) + 2.2, 0.42 * len(rows) + 2.2),
                              layout="constrained")
     measured = {}
     for ax, (key, title, log, unit) in zip(axes, panels):

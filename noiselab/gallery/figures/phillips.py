@@ -41,7 +41,7 @@ def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
     a_in = (xi >= lo) & (xi <= lo + length)
     axes[0].vlines(xi[a_in] - lo, 0, v[a_in], color="k", lw=1)
     axes[0].plot(xi[a_in] - lo, v[a_in], "k.", ms=3)
-    axes[0].set_title("(a) one random value per integer x, alternating above and below zero", fontsize=9, loc="left")
+    axes[0].set_title("(a) one random value per integer x, alternating above and below zero", fontsize=10, loc="left")
 
     def below(y, F):   # fraction of the power of y (over the whole measured stretch) below F cycle/unit
         return analysis.band_energy(y - y.mean(), (0.5, F * len(y) / per_unit), window="hann")
@@ -59,7 +59,7 @@ def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
         y = y / np.abs(y).max()                            # renormalised to [-1, 1]
         ax.plot(x[shown] - lo, y, "k", lw=1)
         ax.set_title(f"({tag}) (a) box-filtered at {F:g} cycle/unit (box of {1 / F:g} units, {passes} passes), "
-                     "renormalised", fontsize=9, loc="left")
+                     "renormalised", fontsize=10, loc="left")
         measured[f"({tag}) fraction of power below {F:g} cycle/unit"] = fractions[-1]
     for ax in axes:
         ax.axhline(0, color="0.6", lw=0.5)
@@ -99,10 +99,10 @@ def fig02(out, *, entries, table_size, seed):
     ax_p.set_xlim(0, entries), ax_p.set_ylim(0, 1), ax_p.axis("off")
     for i, p in enumerate(perm):
         ax_p.add_patch(plt.Rectangle((i, 0), 1, 1, fill=True, fc="#dde7f5" if i % 2 else "#f5e3dd", ec="k"))
-        ax_p.text(i + 0.5, 0.5, str(int(p)), ha="center", va="center", fontsize=8)
-        ax_p.text(i + 0.5, -0.12, str(i), ha="center", va="top", fontsize=7, color="0.4")
+        ax_p.text(i + 0.5, 0.5, str(int(p)), ha="center", va="center", fontsize=10)
+        ax_p.text(i + 0.5, -0.12, str(i), ha="center", va="top", fontsize=10, color="0.4")
     ax_p.set_title(f"(a) permutation table, first {entries} of {table_size} entries: lattice point i (grey) -> table "
-                   "index (in the box)", fontsize=9, pad=6)
+                   "index (in the box)", fontsize=10, pad=6)
     ax_t = fig.add_axes([0.67, 0.42, 0.30, 0.47])
     j = np.arange(table_size)
     ax_t.bar(j, noise.positive, width=1.0, color="#c0504d")
@@ -110,7 +110,7 @@ def fig02(out, *, entries, table_size, seed):
     ax_t.scatter(perm[::2], noise.positive[perm[::2]], color="k", s=12, zorder=3)
     ax_t.scatter(perm[1::2], noise.negative[perm[1::2]], color="k", s=12, zorder=3)
     ax_t.set_title("(b) random-number tables: (0, 1] (red), [-1, 0) (blue);\nblack: the entries the permutation picks",
-                   fontsize=9)
+                   fontsize=10)
     ax_t.set_xlabel("table index"), ax_t.set_ylim(-1.05, 1.05)
     ax_b = fig.add_axes([0.05, 0.08, 0.55, 0.58])
     ax_b.vlines(idx, 0, basis, color="k", lw=2, label="basis: table[sign of i][perm[i]]")
@@ -121,9 +121,9 @@ def fig02(out, *, entries, table_size, seed):
     ax_b.plot(xs, through, color="C2", lw=1.5, label="Catmull-Rom interpolation (passes through every stem)")
     ax_b.axhline(0, color="0.6", lw=0.5)
     ax_b.set_ylim(-1.1, 1.1)
-    ax_b.set_title("(c) the basis function: signs alternate with i", fontsize=9, loc="left")
+    ax_b.set_title("(c) the basis function: signs alternate with i", fontsize=10, loc="left")
     ax_b.set_xlabel("lattice point i")
-    ax_b.legend(fontsize=8, loc="lower left", bbox_to_anchor=(0.0, 1.06), ncol=2, frameon=False)
+    ax_b.legend(fontsize=10, loc="lower left", bbox_to_anchor=(0.0, 1.06), ncol=2, frameon=False)
     miss = float(np.max(np.abs(smooth(idx[:, None]) * smooth.bound - basis)))
     return Result([save_figure(fig, out / "fig02.png")],
                   "How noiselab.LatticeNoise builds Phillips' basis: two tables of random numbers (one on (0, 1], one on "
@@ -269,7 +269,7 @@ def fig05(out, *, amplitudes, frequencies, points, seed):
             base = noisy_circle(field, points, radius=1.0, amplitude=0.0, frequency=f, mode="xy", closed=True)
             rms[(a, f)] = float(np.sqrt(np.mean(np.sum((pts - base) ** 2, axis=1))))
             ax.set_title(f"({'abcdefghijkl'[r * len(frequencies) + c]}) a = {a:g}, F = {f:g}\n"
-                         f"{nb} bumps, RMS shift {rms[(a, f)]:.3f}", fontsize=9)
+                         f"{nb} bumps, RMS shift {rms[(a, f)]:.3f}", fontsize=10)
             step = np.linalg.norm(np.diff(pts, axis=0), axis=1).mean()
             gaps.append(np.linalg.norm(pts[0] - pts[-1]) / step)
     by_f = [float(np.mean([bumps[(a, f)] for a in amplitudes])) for f in frequencies]
@@ -347,7 +347,7 @@ def fig06(out, *, point, planes, xrange, kernel, checks, seed):
     xs = np.linspace(xrange[0], xrange[1] - 1, 400)
     ix = np.arange(xrange[0], xrange[1])
     ys = np.arange(*planes)
-    fig = plt.figure(figsize=(16, 4.8), layout="constrained")
+    fig = plt.figure(figsize=(14, 4.8), layout="constrained")
     gs = fig.add_gridspec(1, 3, width_ratios=[1, 1.3, 0.8])
     # (a) one plane
     ax = fig.add_subplot(gs[0])
@@ -357,7 +357,7 @@ def fig06(out, *, point, planes, xrange, kernel, checks, seed):
     ax.plot(xs, plane(iy, xs), color="C0", lw=1.5, label=f"smoothed ({kernel})")
     ax.axvline(px, color="C3", lw=0.8, ls="--")
     ax.axhline(0, color="0.6", lw=0.5)
-    ax.set_ylim(-1.15, 1.45), ax.set_xlabel("x"), ax.legend(fontsize=8, loc="upper left", ncol=1)
+    ax.set_ylim(-1.15, 1.45), ax.set_xlabel("x"), ax.legend(fontsize=10, loc="upper left", ncol=1)
     ax.set_title(f"(a) the 1-D basis function of plane y = {iy}", fontsize=10, loc="left")
     # (b) the planes, one per integer y, and the values at x = px across them
     ax3 = fig.add_subplot(gs[1], projection="3d")
@@ -384,9 +384,9 @@ def fig06(out, *, point, planes, xrange, kernel, checks, seed):
     axc.plot(yy, across, color="C3", lw=1.5, label="filtered across y")
     axc.plot([py], [value * noise.bound], "ko", ms=7)
     axc.annotate(f"noise({{{px:g}, {py:g}}}) = {value:.4f}", (py, value * noise.bound), xytext=(12, 28),
-                 textcoords="offset points", fontsize=9, arrowprops=dict(arrowstyle="->", lw=0.8))
+                 textcoords="offset points", fontsize=10, arrowprops=dict(arrowstyle="->", lw=0.8))
     axc.axhline(0, color="0.6", lw=0.5), axc.set_xlabel("y"), axc.set_ylim(-1.15, 1.45), axc.set_xticks(ys)
-    axc.legend(fontsize=8, loc="upper left")
+    axc.legend(fontsize=10, loc="upper left")
     axc.set_title(f"(c) across the planes at x = {px:g}, sampled at y = {py:g}", fontsize=10, loc="left")
     agree = "equal" if err < 1e-12 else "differ"
     return Result([save_figure(fig, out / "fig06.png")],
@@ -655,7 +655,7 @@ def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=
             ax.plot(x[:, 0], fractal_sum(noise, x, n), color="C0", lw=0.8, alpha=0.6, label=f"fracsum(x, {n}) (Fig. 12)")
         ax.plot(x[:, 0], y, "k", lw=0.9, label=f"turb(x, {n})" if kind != "fractal" else None)
         if kind != "fractal":
-            ax.legend(fontsize=9, loc="upper right", ncol=2)
+            ax.legend(fontsize=10, loc="upper right", ncol=2)
         ax.axhline(0, color="0.7", lw=0.5)
         ax.set_xlim(0, length)
         ax.set_title(f"n = {n} octave{'s' if n > 1 else ''}", fontsize=11, loc="left")

@@ -36,7 +36,7 @@ def opacity(out, *, frames, size, c, thickness, beta, seed):
     ax.set_xlabel("spatial frequency (cycles/frame)")
     ax.set_ylabel("speed (px/frame)")
     ax.set_title("Speed per band: near (coarse) flakes fall faster")
-    ax.legend(fontsize=9)
+    ax.legend(fontsize=10)
     files.append(save_figure(fig, out / "speed_per_band.png"))
     inside = (prof.centers >= band[0]) & (prof.centers <= band[1])
     return Result(files, f"The rendered opacity alpha = (rescaled inverse FFT of the thickened tent)^beta, "
