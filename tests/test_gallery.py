@@ -416,9 +416,41 @@ def test_docstring_examples_run():
     import doctest
 
     import noiselab.gallery
+    from noiselab.gallery import scenes
 
-    result = doctest.testmod(noiselab.gallery, optionflags=doctest.NORMALIZE_WHITESPACE)
-    assert result.attempted > 0 and result.failed == 0
+    for mod in (noiselab.gallery, scenes):
+        result = doctest.testmod(mod, optionflags=doctest.NORMALIZE_WHITESPACE)
+        assert result.attempted > 0 and result.failed == 0, mod.__name__
+
+
+def test_scenes_reject_bad_sizes_and_frames():
+    from noiselab.gallery import scenes
+
+    with pytest.raises(ValueError, match="height"):
+        scenes.house_scene(0, 64)
+    with pytest.raises(ValueError, match="width"):
+        scenes.city_scene(64, 10**6)
+    with pytest.raises(ValueError, match="frame must be"):
+        scenes.frame_with_crop(np.zeros((8, 8, 2), np.uint8))
+    with pytest.raises(ValueError, match="outside"):
+        scenes.frame_with_crop(np.zeros((8, 8), np.uint8), box=(6, 0))
+
+
+def test_a_periodic_background_wraps_and_the_crop_is_a_2x_enlargement():
+    from noiselab.gallery import scenes
+
+    pano = scenes.house_scene(64, 64, periodic=True)
+    plain = scenes.house_scene(64, 64)
+    # periodic: the left and right edge columns continue each other about as well as neighbouring columns do
+    step = lambda a, b: float(np.abs(a.astype(int) - b.astype(int)).mean())
+    inner = np.mean([step(pano[:, i], pano[:, i + 1]) for i in range(63)])
+    assert step(pano[:, -1], pano[:, 0]) < 3 * inner + 1
+    assert step(plain[:, -1], plain[:, 0]) > step(pano[:, -1], pano[:, 0])
+    frame = np.arange(64 * 64, dtype=np.uint16).reshape(64, 64) % 251
+    out = scenes.frame_with_crop(frame.astype(np.uint8), box=(10, 20), gap=4)
+    crop = out[:, 68:]
+    assert np.array_equal(crop[::2, ::2, 0], frame[10:42, 20:52])
+    assert np.array_equal(crop[1::2, 1::2, 0], frame[10:42, 20:52])
 
 
 def test_a_stimuli_figure_gets_its_own_section_on_the_papers_page(tmp_path):

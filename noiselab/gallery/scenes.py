@@ -16,6 +16,12 @@ import numpy as np
 from ._common import pyplot
 
 
+def _size(height, width):
+    from noiselab._core import check_int
+
+    return check_int("height", height, lo=16, hi=8192), check_int("width", width, lo=16, hi=8192)
+
+
 def _canvas(height, width):
     """A figure and axes whose data units are pixels, (0, 0) at the top left, y down."""
     plt = pyplot()
@@ -90,7 +96,21 @@ def house_scene(height, width, *, periodic=False, seed=0):
     -------
     numpy.ndarray
         ``(height, width, 3)`` uint8.
+
+    Raises
+    ------
+    ValueError
+        If ``height`` or ``width`` is not an int in [16, 8192].
+
+    Examples
+    --------
+    >>> img = house_scene(64, 96)
+    >>> img.shape, img.dtype.name
+    ((64, 96, 3), 'uint8')
+    >>> bool((house_scene(32, 32, periodic=True)[:, :1] != 0).any())
+    True
     """
+    height, width = _size(height, width)
     rng = np.random.default_rng(seed)
     H, W = float(height), float(width)
     P = W if periodic else None
@@ -153,9 +173,20 @@ def city_scene(height, width, *, periodic=False, seed=1):
     -------
     numpy.ndarray
         ``(height, width, 3)`` uint8.
+
+    Raises
+    ------
+    ValueError
+        If ``height`` or ``width`` is not an int in [16, 8192].
+
+    Examples
+    --------
+    >>> city_scene(48, 64).shape
+    (48, 64, 3)
     """
     from matplotlib.patches import Arc
 
+    height, width = _size(height, width)
     rng = np.random.default_rng(seed)
     H, W = float(height), float(width)
     P = W if periodic else None
@@ -226,13 +257,28 @@ def frame_with_crop(frame, box=None, gap=6, outline=(255, 200, 0)):
     -------
     numpy.ndarray
         ``(h, 2 w + gap, 3)`` uint8.
+
+    Raises
+    ------
+    ValueError
+        If ``frame`` is not ``(h, w)`` or ``(h, w, 3)`` with h, w >= 2, or the crop does not fit in it.
+
+    Examples
+    --------
+    >>> frame_with_crop(np.zeros((8, 8), np.uint8)).shape
+    (8, 22, 3)
     """
     from ._common import grey_to_rgb
 
-    f = grey_to_rgb(np.asarray(frame))
+    frame = np.asarray(frame)
+    if not (frame.ndim == 2 or (frame.ndim == 3 and frame.shape[2] == 3)) or min(frame.shape[:2]) < 2:
+        raise ValueError(f"frame must be (h, w) or (h, w, 3) with h, w >= 2, got shape {frame.shape}")
+    f = grey_to_rgb(frame)
     h, w = f.shape[:2]
     ch, cw = h // 2, w // 2
     y0, x0 = box if box is not None else (h // 4, w // 4)
+    if not (0 <= y0 <= h - ch and 0 <= x0 <= w - cw):
+        raise ValueError(f"box (y0, x0) = {box} puts the {ch} x {cw} crop outside the {h} x {w} frame")
     crop = f[y0:y0 + ch, x0:x0 + cw].repeat(2, axis=0).repeat(2, axis=1)
     marked = f.copy()
     t = max(1, h // 256)

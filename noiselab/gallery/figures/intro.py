@@ -95,12 +95,12 @@ def phillips_intro(out, *, entries, seed):
         ax.text(3.3 + 0.6 * k, 3.65, str(int(perm[k])), ha="center", va="center", fontsize=10)
         ax.text(3.3 + 0.6 * k, 3.15, str(k), ha="center", va="top", fontsize=10, color="0.4")
     _arrow(ax, (2.3, 2.5), (3.6, 3.25), None)
-    ax.text(3.1, 1.75, "random values", fontsize=11)
+    ax.text(3.1, 1.75, "random value table, read at P[i]: value[P[i]]", fontsize=11)
     for k in range(entries):
         fc = "#d5e8d4" if k in (2, 3, 4, 5) else "white"
         ax.add_patch(plt.Rectangle((3.0 + 0.6 * k, 0.8), 0.6, 0.7, fc=fc, ec="0.3"))
         ax.text(3.3 + 0.6 * k, 1.15, f"{vals[k]:+.1f}", ha="center", va="center", fontsize=10)
-    _arrow(ax, (5.4, 3.1), (5.4, 1.6), "value[P[i]]")
+    _arrow(ax, (5.4, 3.1), (5.4, 2.2), None)
     _box(ax, 9.6, 2.3, "kernel-weighted\nsum of the 4\nvalues: noise(x)", w=2.3, h=1.5, fc="#fbf3e6")
     _arrow(ax, (7.9, 1.15), (8.4, 2.0), None)
     ax2 = fig.add_axes((0.62, 0.15, 0.36, 0.68))
