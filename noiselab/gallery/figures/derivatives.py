@@ -149,15 +149,17 @@ def normals(out, *, resolutions, subdivisions, shade, seed):
         sphere_rows.append((edge, np.median(ang), ang.max()))
         measured[f"displaced sphere, icosphere({sub}), {len(sphere.vertices)} vertices: median / max angle "
                  "(degrees)"] = f"{np.median(ang):.3g} / {ang.max():.3g}"
-    fig, axes = plt.subplots(1, 3, figsize=(14, 4.6), gridspec_kw=dict(wspace=0.3))
+    fig, axes = plt.subplots(1, 3, figsize=(14, 5.0), layout="constrained")
     pts = grid_points((shade, shade), ext)
     z, nrm = monge_normals(field2, pts, amplitude=amp, return_heights=True)
     light = np.array([-0.6, 0.5, 0.4]) / np.linalg.norm([-0.6, 0.5, 0.4])
     axes[0].imshow(np.clip(nrm @ light, 0, 1), origin="lower", extent=(0, 4, 0, 4), cmap="gray")
-    axes[0].set_title(f"z = {amp} noise(x, y), Lambert-shaded with exact normals ({shade}^2)", fontsize=10)
+    axes[0].set_title(f"z = {amp} noise(x, y), Lambert-shaded\nwith exact normals ({shade}^2)", fontsize=10)
+    for ax in axes[:2]:
+        ax.set_xlabel("x (lattice cells)"), ax.set_ylabel("y (lattice cells)")
     im = axes[1].imshow(coarse_angles, origin="lower", extent=(0, 4, 0, 4), cmap="magma")
-    plt.colorbar(im, ax=axes[1], fraction=0.046)
-    axes[1].set_title(f"angle (degrees) between face and exact normals, {resolutions[1]}^2 mesh", fontsize=10)
+    plt.colorbar(im, ax=axes[1], fraction=0.046, label="angle (degrees)")
+    axes[1].set_title(f"angle between face and exact\nnormals, {resolutions[1]}^2 mesh", fontsize=10)
     for rows, label, mk in ((monge, "Monge surface", "o"), (sphere_rows, "displaced sphere (Eq. 11)", "s")):
         h = np.array([r[0] for r in rows])
         axes[2].loglog(h, [r[1] for r in rows], mk + "-", label=f"{label}: median")
@@ -167,9 +169,9 @@ def normals(out, *, resolutions, subdivisions, shade, seed):
     from matplotlib.ticker import NullFormatter
 
     axes[2].xaxis.set_minor_formatter(NullFormatter())
-    axes[2].set_xlabel("mesh edge length"), axes[2].set_ylabel("angle (degrees)")
+    axes[2].set_xlabel("mesh edge length (input units)"), axes[2].set_ylabel("angle (degrees)")
     axes[2].legend(fontsize=10)
-    axes[2].set_title("face normals converge to the exact ones at second order", fontsize=10)
+    axes[2].set_title("face normals converge to the\nexact ones at second order", fontsize=10)
     slope = np.polyfit(np.log(h), np.log([r[1] for r in monge]), 1)[0]
     measured["Monge surface: fitted order of convergence of the median angle"] = float(slope)
     return Result([save_figure(fig, out / "normals.png")],

@@ -31,7 +31,7 @@ def one_over_f(out, *, size, octaves, cells, gains, seed):
     fig, axes = plt.subplots(1, n + 2, figsize=(2.8 * (n + 2), 3.6), layout="constrained")
     measured = {}
     for ax, (name, f) in zip(axes[:n], fields.items()):
-        ax.imshow(f, cmap="gray"), ax.set_title(name, fontsize=10), ax.axis("off")
+        ax.imshow(f, cmap="gray"), ax.set_title(name.replace(", ", "\n", 1), fontsize=10), ax.axis("off")
     for k, (name, f) in enumerate(fields.items()):
         short = name.split(",")[0] + ("" if k == 0 else f" g={gains[k - 1]:g}")
         # the lattice sums do not tile the frame: every field is measured through a Hann window, so no
@@ -50,10 +50,10 @@ def one_over_f(out, *, size, octaves, cells, gains, seed):
     f0 = np.geomspace(*fit_band, 10)
     axes[n].loglog(f0, 0.3 * np.sqrt(rad.power[keep]).max() * f0[0] / f0, "k--", lw=1, label="1/f")
     axes[n].set_xlabel("cycles/frame"), axes[n].set_ylabel("radial amplitude"), axes[n].legend(fontsize=10)
-    axes[n].set_title("radially averaged amplitude spectra (Hann window)", fontsize=10)
+    axes[n].set_title("radially averaged amplitude\nspectra (Hann window)", fontsize=10)
     axes[n + 1].set_xlabel("wave-vector orientation (degrees)"), axes[n + 1].set_ylabel("energy / mean")
     axes[n + 1].set_xticks(range(0, 361, 90)), axes[n + 1].legend(fontsize=10)
-    axes[n + 1].set_title("energy against orientation (whitened)", fontsize=10)
+    axes[n + 1].set_title("energy against orientation\n(whitened)", fontsize=10)
     return Result([save_figure(fig, out / "one_over_f.png")],
                   f"{size} x {size} textures: one with a 1/f amplitude spectrum shaped in the Fourier domain and inverted "
                   f"(noiselab.spectral_noise), and fractal sums of cubic value noise over {cells:g} lattice cells "
@@ -92,8 +92,9 @@ def kernels(out, *, size, cells, seed):
             rolloff[f"{basis}/{k}"] = float(2 * analysis.spectral_slope(img, band, window="hann"))
         measured[f"{basis}: power slope 1-4 cycles/cell"] = ", ".join(
             f"{k}: {rolloff[f'{basis}/{k}']:.1f}" for k in names)
-        axes[r, -1].set_title(f"{basis} noise: radial power (Hann window)", fontsize=10)
-        axes[r, -1].set_xlabel("cycles per lattice cell", fontsize=10), axes[r, -1].legend(fontsize=6)
+        axes[r, -1].set_title(f"{basis} noise: radial power\n(Hann window)", fontsize=10)
+        axes[r, -1].set_ylabel("power", fontsize=10)
+        axes[r, -1].set_xlabel("cycles per lattice cell", fontsize=10), axes[r, -1].legend(fontsize=10, ncol=2)
     return Result([save_figure(fig, out / "kernels.png")],
                   f"LatticeNoise over {cells:g} x {cells:g} lattice cells, {size} x {size} pixels, for each kernel, with value "
                   "(Phillips) and gradient (Perlin) bases; right: radial power spectra against frequency in cycles per "
