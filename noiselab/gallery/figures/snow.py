@@ -290,8 +290,13 @@ def sheared_tent(out, *, C, s, grid, frames, size, pan, beta, seed):
                          f"{frames}-frame snow looping {length // frames} times) loops without the jump a cut strip "
                          f"makes: loop seam {seam:.2f} (1 = an ordinary step). {on_sheared:.1%} of the energy lies on the "
                          f"sheared tent against {on_plain:.1%} on the unsheared one; the best single velocity has "
-                         f"vx = {v[0]:.2f} px/frame for a pan of {pan}: slower than the background, as the thesis notes "
-                         "(the tent's compatibility limit s_l/pi ~ C).",
+                         f"vx = {v[0]:.2f} px/frame for a pan of {pan} px/frame: "
+                         + ("the snow drifts with the background (|vx - pan| < 0.1 px/frame), unlike the thesis's "
+                            "panningsnowscene, whose snow moved under 1 px/frame behind a 1 px/frame background "
+                            "(its s_l/pi ~ C limit); here the pan is given in px/frame and added to every flake."
+                            if abs(v[0] - pan) < 0.1 else
+                            "the snow does not keep up with the background (|vx - pan| >= 0.1 px/frame), as in the "
+                            "thesis's panningsnowscene."),
                   measured={"energy on the sheared tent": on_sheared,
                             "energy on the unsheared tent (for comparison)": on_plain,
                             "best single velocity (vx, vy) px/frame": [float(v[0]), float(v[1])],
