@@ -58,6 +58,15 @@ def luminance_for(field, *, mean, contrast, kind="rms") -> np.ndarray:
     >>> L.tolist()
     [25.0, 50.0, 75.0, 50.0]
     """
+    L, sd, zmin = _luminance(field, mean, contrast, kind)
+    if kind == "rms" and float(L.min()) < 0:
+        raise ValueError(f"contrast (RMS) = {contrast:g} makes the darkest pixel's luminance negative for this "
+                         f"field; the largest RMS contrast it allows is {-sd / zmin:.6g}")
+    return L
+
+
+def _luminance(field, mean, contrast, kind):
+    """:func:`luminance_for`'s luminance, negative where an RMS contrast asks for it; also the normalised sd and min."""
     f = check_finite_array("field", field)
     if f.size == 0:
         raise ValueError("field is empty")
@@ -81,16 +90,15 @@ def luminance_for(field, *, mean, contrast, kind="rms") -> np.ndarray:
         if sd == 0:
             raise ValueError("field must vary (its standard deviation is 0 in float64)")
         k = contrast / sd
-        if 1 + k * zmin < 0:
-            raise ValueError(f"contrast (RMS) = {contrast:g} makes the darkest pixel's luminance negative for this "
-                             f"field; the largest RMS contrast it allows is {-sd / zmin:.6g}")
     else:
         # (Lmax - Lmin) / (Lmax + Lmin) = k d / (2 + k s) = C  =>  k = 2 C / (d - C s); d - C s > 0 as zmin < 0 < zmax
         k = 2.0 * contrast / ((zmax - zmin) - contrast * (zmax + zmin))
     z *= k
     z += 1.0
     z *= mean
-    return np.maximum(z, 0.0)  # (rounding: 1 + k*zmin may be -1e-16 at Michelson contrast 1)
+    if kind == "michelson":
+        np.maximum(z, 0.0, out=z)  # (rounding: 1 + k*zmin may be -1e-16 at Michelson contrast 1; exactly it is >= 0)
+    return z, sd if kind == "rms" else None, zmin
 
 
 def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=None) -> np.ndarray:
@@ -163,7 +171,7 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
     if not lo <= mean <= hi:
         raise ValueError(f"mean = {mean:g} cd/m² is outside the display's range [{lo:g}, {hi:g}] cd/m² "
                          f"(luminance=(L_min, L_max))")
-    L = luminance_for(field, mean=mean, contrast=contrast, kind=kind)
+    L = _luminance(field, mean, contrast, kind)[0]  # (a negative luminance is out of range below)
     Lmin, Lmax = float(L.min()), float(L.max())
     if Lmin < lo or Lmax > hi:
         # the largest contrast that fits scales the deviations down to the nearer limit
