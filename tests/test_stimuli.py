@@ -391,5 +391,5 @@ def test_motion_cloud_bad_input():
         motion_cloud((4, 16, 16), sf_0=0.2, B_sf=0.0)
     with pytest.raises(ValueError, match=r"B_V \(px/frame\) must be in \[0"):
         motion_cloud((4, 16, 16), sf_0=0.2, B_sf=0.1, B_V=-1.0)
-    with pytest.raises(ValueError, match=r"B_theta \(radians\) must be > 0 or np.inf"):
+    with pytest.raises(ValueError, match=r"B_theta \(radians\) must be >= 1e-6 or np.inf"):
         motion_cloud((4, 16, 16), sf_0=0.2, B_sf=0.1, B_theta=0.0)

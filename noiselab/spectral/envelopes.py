@@ -32,6 +32,7 @@ Examples
 """
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
@@ -373,10 +374,11 @@ def log_gabor(*w, sf_0, B_sf):
     sf_0 = check_real("sf_0 (cycles/sample)", sf_0, lo=0.0, hi=0.5, lo_open=True)
     B_sf = check_real("B_sf (cycles/sample)", B_sf, lo=0.0, hi=_BOUND, lo_open=True)
     f = radial_frequency(*w) / (2 * np.pi)
-    width2 = np.log1p(B_sf / sf_0) ** 2
+    log_sf0 = math.log(sf_0)
+    width2 = (math.log(sf_0 + B_sf) - log_sf0) ** 2  # (logs apart: B_sf / sf_0 may overflow)
     pos = f > 0
-    with np.errstate(divide="ignore", under="ignore"):
-        out = np.exp(-0.5 * np.log(np.where(pos, f, 1.0) / sf_0) ** 2 / width2)
+    with np.errstate(divide="ignore", over="ignore", under="ignore"):
+        out = np.exp(-0.5 * (np.log(np.where(pos, f, 1.0)) - log_sf0) ** 2 / width2)
     return np.where(pos, out, 0.0)
 
 
@@ -396,7 +398,8 @@ def orientation(wy, wx, *, theta, B_theta):
     theta : float
         Mean orientation in radians.
     B_theta : float
-        Bandwidth in radians, > 0, or ``np.inf`` (every orientation).
+        Bandwidth in radians, ``>= 1e-6`` (narrower than any grid's angular
+        resolution), or ``np.inf`` (every orientation).
 
     Examples
     --------
@@ -410,7 +413,7 @@ def orientation(wy, wx, *, theta, B_theta):
     theta = check_real("theta (radians)", theta, lo=-_BOUND, hi=_BOUND)
     if isinstance(B_theta, (int, float, np.floating)) and B_theta == np.inf:
         return np.ones(np.broadcast_shapes(wy.shape, wx.shape))
-    B_theta = check_real("B_theta (radians)", B_theta, lo=0.0, hi=_BOUND, lo_open=True)
+    B_theta = check_real("B_theta (radians)", B_theta, lo=1e-6, hi=_BOUND)
     angle = np.arctan2(wy, wx)
     with np.errstate(under="ignore"):
         return np.exp((np.cos(2 * (angle - theta)) - 1.0) / (4.0 * B_theta ** 2))
@@ -444,6 +447,7 @@ def speed_envelope(wt, wy, wx, *, velocity, B_V):
     r = _radial((wy, wx))
     pos = r > 0
     d = wt + vx * wx + vy * wy
-    with np.errstate(under="ignore"):
-        out = np.exp(-0.5 * (d / (B_V * np.where(pos, r, 1.0))) ** 2)
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        q = d / (B_V * np.where(pos, r, 1.0))   # a tiny B_V: inf off the plane (weight 0), 0/0 on it (weight 1)
+        out = np.where(d == 0, 1.0, np.exp(-0.5 * q * q))
     return np.broadcast_to(np.where(pos, out, 1.0), shape).copy()

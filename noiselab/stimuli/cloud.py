@@ -23,9 +23,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._core import check_real, check_shape
+from .._core import check_memory, check_real, check_shape
 from ..spectral import envelopes as E
-from ..spectral import frequency_vectors, synthesize
+from ..spectral import frequency_vectors, half_spectrum_shape, synthesize
 
 __all__ = ["motion_cloud", "cloud_envelope"]
 
@@ -54,16 +54,19 @@ def cloud_envelope(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y
     if not isinstance(loggabor, (bool, np.bool_)):
         raise TypeError(f"loggabor must be True or False, got {loggabor!r}")
     if isinstance(B_theta, (int, float, np.floating)) and B_theta == 0:
-        raise ValueError("B_theta (radians) must be > 0 or np.inf (every orientation); got 0 (a single "
+        raise ValueError("B_theta (radians) must be >= 1e-6 or np.inf (every orientation); got 0 (a single "
                          "orientation has no energy on a discrete grid but along the axes)")
+    V_X = check_real("V_X (px/frame)", V_X, lo=-1e6, hi=1e6)
+    V_Y = check_real("V_Y (px/frame)", V_Y, lo=-1e6, hi=1e6)
     full = shape if len(shape) == 3 else (1,) + shape
+    check_memory(6 * 8 * int(np.prod(half_spectrum_shape(full), dtype=np.float64)), f"motion cloud of shape {shape}")
     wt, wy, wx = frequency_vectors(full)
     fr = E.radial_frequency(wy, wx) / (2 * np.pi)  # cycles/pixel, as MotionClouds' frequency_radius
     pos = fr > 0
     inv_f = np.where(pos, 1.0 / np.where(pos, fr, 1.0), 0.0)  # MotionClouds' clean_division: 1/0 -> 0
     env = E.orientation(wy, wx, theta=theta, B_theta=B_theta)
     if alpha != 0:
-        env = env * inv_f ** alpha
+        env = env * np.where(pos, np.where(pos, fr, 1.0) ** -alpha, 0.0)
     if B_sf == np.inf:
         env = env * (inv_f if loggabor else 1.0)
     elif loggabor:
@@ -101,9 +104,9 @@ def motion_cloud(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y=0
         Mean orientation of the wave vector, radians (0: waves along x,
         vertical stripes; y is down).
     B_theta : float
-        Orientation bandwidth, radians, > 0; ``np.inf`` (default): isotropic.
+        Orientation bandwidth, radians, ``>= 1e-6``; ``np.inf`` (default): isotropic.
     V_X, V_Y : float
-        Velocity of the motion plane, px/frame (x right, y down)
+        Velocity of the motion plane, px/frame (x right, y down), within +-1e6
         (``display.px_per_frame(deg_per_s)``).
     B_V : float
         Speed bandwidth, px/frame, >= 0 (0: a frozen texture, ``np.inf``:

@@ -425,13 +425,18 @@ def _scale(x, num, den):
 def _real(name, x):
     """A finite real number or array, as float or float64 array (conversions accept both)."""
     if isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, (bool, np.bool_)):
-        return check_real(name, x)
+        return check_real(name, x, lo=-_MAX_VALUE, hi=_MAX_VALUE)
     arr = as_array(name, x)
     if arr.dtype.kind not in "iuf":
         raise TypeError(f"{name} must be a real number or array, got dtype {arr.dtype}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite")
-    return arr.astype(np.float64)
+    arr = arr.astype(np.float64)
+    if not np.all(np.isfinite(arr)) or (arr.size and np.max(np.abs(arr)) > _MAX_VALUE):
+        raise ValueError(f"{name} must be finite, within +-{_MAX_VALUE:g}")
+    return arr
+
+
+# the largest magnitude a conversion takes: its product with any factor (at most 1e12) stays finite
+_MAX_VALUE = 1e100
 
 
 def _check_luminance(name, luminance, display):
