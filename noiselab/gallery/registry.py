@@ -108,6 +108,7 @@ def figure(group, name, *, seed, title, params=None, quick=None, uses=()):
 def specs(only=None) -> list[FigureSpec]:
     """Registered figures in registration order; ``only`` keeps a group name or one ``group/name``."""
     from . import figures  # noqa: F401  (importing registers every figure)
+    from .figures import stimuli  # noqa: F401  (issue 24: stimuli in physical units, Fig. 5.4 and 5.5)
 
     all_specs = list(REGISTRY.values())
     if not only:
