@@ -161,7 +161,7 @@ def test_rms_contrast_on_the_screen(display, dither, mean, contrast):
     assert abs(analysis.rms_contrast(L) / contrast - 1) < 0.02
 
 
-@pytest.mark.parametrize("display, dither", [(D8, False), (D10, True), (D10, False)])
+@pytest.mark.parametrize("display, dither", [(D8, True), (D8, False), (D10, True), (D10, False)])
 @pytest.mark.parametrize("mean, contrast", [(50.0, 0.176), (40.0, 0.5), (50.0, 0.98)])
 def test_michelson_contrast_on_the_screen(display, dither, mean, contrast):
     v = to_display(FIELD, display, mean=mean, contrast=contrast, kind="michelson", dither=dither, seed=2)

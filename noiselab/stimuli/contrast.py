@@ -121,7 +121,12 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
         True (default): random dithering between the two display values
         around each requested luminance, with probabilities that make the
         expected luminance of every pixel exactly the requested one. False:
-        the display value of the nearer luminance.
+        the display value of the nearer luminance. With ``kind="michelson"``
+        the darkest and the brightest pixel then get the pair of display
+        values (each just below or above its request) whose Michelson
+        contrast is nearest the request, and every other value is bounded by
+        them: the dither cannot widen the contrast by a step (only pixels
+        within one step of the two ends lose their exact expectation).
     seed : int or numpy.random.Generator
         The dither's random numbers (one uniform per pixel, in C order).
 
@@ -188,14 +193,45 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
     np.clip(v0, 0, display.levels - 2, out=v0)
     below = t[v0]
     p = (L - below) / (t[v0 + 1] - below)  # where L lies between the two values, in luminance
-    del L, below
+    del below
     if dither:
         u = as_generator(seed).random(p.shape)
         up = u < p       # E[luminance] = below + p * step = L exactly
     else:
         up = p >= 0.5    # the nearer luminance
     v0 += up
+    if kind == "michelson":
+        _michelson_ends(v0, L, t, float(contrast), display.levels)
     return v0.astype(np.uint8 if display.bits <= 8 else np.uint16)
+
+
+def _michelson_ends(v, L, t, contrast, levels):
+    """Fix the two pixels that set the Michelson contrast, in place, to the display values nearest the request.
+
+    Of the values just below and just above the darkest and the brightest
+    requested luminance, the pair whose Michelson contrast is nearest
+    ``contrast`` goes to those two pixels, and every other value is bounded
+    by it, so neither dithering nor rounding widens or narrows the contrast
+    by a step (only pixels within one step of the two ends lose their exact
+    expected luminance).
+    """
+    flat = L.reshape(-1)
+    i_lo, i_hi = int(np.argmin(flat)), int(np.argmax(flat))
+    e = np.clip(np.searchsorted(t, [flat[i_lo], flat[i_hi]], side="right") - 1, 0, levels - 2)
+    best = None
+    for lo_v in (int(e[0]), int(e[0]) + 1):
+        for hi_v in (int(e[1]), int(e[1]) + 1):
+            if hi_v <= lo_v:
+                continue
+            err = abs((t[hi_v] - t[lo_v]) / (t[hi_v] + t[lo_v]) - contrast)
+            if best is None or err < best[0]:
+                best = (err, lo_v, hi_v)
+    if best is None:
+        return
+    _, lo_v, hi_v = best
+    np.clip(v, lo_v, hi_v, out=v)
+    vf = v.reshape(-1)
+    vf[i_lo], vf[i_hi] = lo_v, hi_v
 
 
 def _contrast_of(L, kind, mean, room):
