@@ -170,7 +170,7 @@ def main(argv=None):
         *markdown_table(["stimulus", "format", "kind", "Michelson", "RMS", "mean (cd/m²)", "values changed"], trows,
                         align="lllrrrr"),
         "",
-        f"## Dithering below one display step (mean 40 cd/m², one step = {step:.3f} cd/m², 64 seeds)",
+        f"## Dithering below one display step (mean 40 cd/m², one step = {step:.3f} cd/m², 64 consecutive seeds 0..63)",
         "",
         *markdown_table(["RMS contrast", "request's range (steps)", "largest error of the seed mean (steps)",
                          "RMS of the seed mean", "RMS without dithering"], drows, align="rrrrr"),

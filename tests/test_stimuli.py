@@ -203,6 +203,15 @@ def test_dithering_keeps_the_expected_luminance_below_one_step():
     avg = np.mean([D8.luminance_of(to_display(x, D8, mean=mean, contrast=contrast, seed=s)) for s in range(64)],
                   axis=0)
     assert np.max(np.abs(avg - L_req)) < 0.2 * step
+    # 64 frames drawn from one Generator (independent offsets): unbiased, and within 0.2 step too
+    g = np.random.default_rng(11)
+    avg_g = np.mean([D8.luminance_of(to_display(x, D8, mean=mean, contrast=contrast, seed=g)) for _ in range(64)],
+                    axis=0)
+    assert abs(np.mean(avg_g - L_req)) < 0.02 * step and np.max(np.abs(avg_g - L_req)) < 0.2 * step
+    # within one image the thresholds are uniform and independent: a flat request half-way between two values
+    half = 0.5 * (D8.luminance_of(100) + D8.luminance_of(101))
+    flat = D8.luminance_of(to_display(np.r_[np.zeros(40000), 1.0], D8, mean=half, contrast=1e-9, seed=3))[:-1]
+    assert np.mean(flat == D8.luminance_of(101)) == pytest.approx(0.5, abs=0.01)
     # without dithering the contrast is lost or doubled: the image has at most two values
     flat = D8.luminance_of(to_display(x, D8, mean=mean, contrast=contrast, dither=False))
     assert np.unique(flat).size <= 2

@@ -10,6 +10,8 @@ requested one, so contrasts far below one display step survive on average
 """
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 
 from .._core import as_generator, check_finite_array, check_memory, check_real
@@ -128,7 +130,11 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
         them: the dither cannot widen the contrast by a step (only pixels
         within one step of the two ends lose their exact expectation).
     seed : int or numpy.random.Generator
-        The dither's random numbers (one uniform per pixel, in C order).
+        The dither: each pixel's threshold is uniform and independent of the
+        others; consecutive int seeds shift them along a golden-ratio (Weyl)
+        sequence, so the average of ``N`` frames dithered with seeds
+        ``s .. s+N-1`` is the request to about ``1/N`` of a step at every
+        pixel (temporal dithering).
 
     Returns
     -------
@@ -151,8 +157,9 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
     Measured on 8-bit and 10-bit gamma-2.2 displays (``tests/test_stimuli.py``):
     the RMS and Michelson contrast of ``luminance_of(to_display(...))`` are
     within 2 % of the request and the mean within 1 %; at an RMS contrast of
-    0.002 (under a third of a display step) the luminance averaged over 64
-    dither seeds is within 0.2 step of the request at every pixel.
+    0.002 (a request about one display step wide) the luminance averaged over
+    64 consecutive dither seeds is within 0.2 step of the request at every
+    pixel (``benchmarks/bench_stimuli.md``: 0.04 step at 128 x 128).
 
     Examples
     --------
@@ -195,14 +202,41 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
     p = (L - below) / (t[v0 + 1] - below)  # where L lies between the two values, in luminance
     del below
     if dither:
-        u = as_generator(seed).random(p.shape)
-        up = u < p       # E[luminance] = below + p * step = L exactly
+        up = _thresholds(p.shape, seed) < p   # E[luminance] = below + p * step = L exactly
     else:
         up = p >= 0.5    # the nearer luminance
     v0 += up
     if kind == "michelson":
         _michelson_ends(v0, L, t, float(contrast), display.levels)
     return v0.astype(np.uint8 if display.bits <= 8 else np.uint16)
+
+
+# the key of the fixed threshold pattern, and the 64-bit golden-ratio step of the offsets (Weyl sequence)
+_DITHER_KEY = 0x5EED_D174
+_GOLDEN = 0x9E3779B97F4A7C15
+
+
+def _thresholds(shape, seed):
+    """Dither thresholds, uniform on [0, 1): one fixed random pattern shifted (mod 1) by an offset of ``seed``.
+
+    Each pixel's threshold is uniform for any seed, and the pixels are
+    independent within an image. An int seed ``s`` gives the offset
+    ``frac(s * golden ratio)`` (exactly, in 64-bit integers): consecutive
+    seeds step along a Weyl sequence, so over ``N`` consecutive seeds (the
+    frames of a temporal dither) every pixel's thresholds are spread evenly
+    and its mean luminance is the request to about ``1/N`` of a step rather
+    than ``1/(2 sqrt(N))`` for independent draws. A Generator (or None) seed
+    draws the offset from it.
+    """
+    rng = as_generator(seed)   # checks the seed (and draws the offset when it is not an int)
+    if isinstance(seed, numbers.Integral) and not isinstance(seed, (bool, np.bool_)):
+        offset = ((int(seed) * _GOLDEN) % (1 << 64)) / float(1 << 64)
+    else:
+        offset = float(rng.random())
+    u = np.random.default_rng(_DITHER_KEY).random(shape)
+    u += offset
+    u -= np.floor(u)
+    return u
 
 
 def _michelson_ends(v, L, t, contrast, levels):
