@@ -97,7 +97,8 @@ def _display(args):
 
 def _field(args, display, rng):
     """The stimulus as a float field in pixels and frames, and the pixel-unit arguments it was made with."""
-    import noiselab
+    from ..snow import snow
+    from ..spectral import spectral_noise
     from ..stimuli import motion_cloud, phase_scramble
 
     n = display.pixels(args.size)
@@ -106,7 +107,7 @@ def _field(args, display, rng):
     if args.kind == "pink":
         band = None if args.band is None else display.band(args.band, n)
         used = dict(shape=(n, n), exponent=args.exponent, band=band)
-        return noiselab.spectral_noise(seed=rng, **used), used
+        return spectral_noise(seed=rng, **used), used
     if args.kind in ("bandpass", "cloud"):
         used = dict(shape=(n, n) if args.kind == "bandpass" else (frames, n, n),
                     sf_0=display.cycles_per_pixel(args.sf), B_sf=display.cycles_per_pixel(args.sf_bandwidth),
@@ -118,7 +119,7 @@ def _field(args, display, rng):
     if args.kind == "snow":
         band = display.band((1.0, 8.0) if args.band is None else args.band, n)
         used = dict(shape=(frames, n, n), c=display.snow_c(args.velocity[1], args.snow_frequency), band=band)
-        return noiselab.snow(seed=rng, **used), used
+        return snow(seed=rng, **used), used
     if args.image is None:
         raise ValueError("scramble needs --image FILE (the image to phase-scramble)")
     from ..analysis import to_grey

@@ -11,7 +11,7 @@ DISPLAY = dict(pixels_per_degree=32.0, frame_rate=60.0, luminance=(0.5, 100.0), 
 
 
 def _display():
-    from noiselab import Display
+    from noiselab.stimuli import Display
 
     return Display(**DISPLAY)
 
