@@ -12,6 +12,7 @@ Subpackages, one idea each:
 - ``noiselab.fractal``: fractal sums and turbulence over any noise
 - ``noiselab.fields``: curl noise (divergence-free flow) and domain warping, with exact derivatives
 - ``noiselab.geometry``: noise-displaced meshes, curves, surfaces, flow fields, rendering
+- ``noiselab.stimuli``: stimuli in physical units (degrees, seconds, cd/m², contrast) on a described display
 - ``noiselab.analysis``: spectra, slopes, isotropy, motion and seam measurements
 - ``noiselab.io``: atomic image, video, mesh and zarr I/O
 - ``noiselab.lab``: the laboratory (experiments, the timing harness)
@@ -50,13 +51,15 @@ _API = {
     "normal_angles": "noiselab.geometry.normals",
     # geometry
     "displace": "noiselab.geometry",
+    # stimuli in physical units
+    "Display": "noiselab.stimuli",
     # the laboratory's alternative snow generators
     "layered_lattice_snow": "noiselab.lab",
     "particle_snow": "noiselab.lab",
 }
 
-_SUBPACKAGES = ("spectral", "snow", "lattice", "fractal", "fields", "geometry", "analysis", "io", "lab", "scale",
-                "gallery", "cli")
+_SUBPACKAGES = ("spectral", "snow", "lattice", "fractal", "fields", "geometry", "stimuli", "analysis", "io", "lab",
+                "scale", "gallery", "cli")
 
 __all__ = sorted(_API) + list(_SUBPACKAGES)
 

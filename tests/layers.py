@@ -11,7 +11,8 @@ layer subpackages                                            what lives there
 1     ``spectral``, ``lattice``, ``analysis``, ``io``        the primitives (siblings do not import each
                                                              other, except that anyone may write with ``io``)
 2     ``snow``, ``fractal``                                  built from the primitives
-3     ``fields``, ``geometry``                               flow, warps, normals, meshes, shapes
+3     ``fields``, ``geometry``, ``stimuli``                  flow, warps, normals, meshes, shapes;
+                                                             stimuli in physical units
 4     ``lab``                                                the laboratory: experiments and measurements
 5     ``scale``                                              the dask path, beside the in-memory core
 6     ``gallery``                                            the figures
@@ -41,7 +42,7 @@ LAYERS = {
     "_core": 0,
     "spectral": 1, "lattice": 1, "analysis": 1, "io": 1,
     "snow": 2, "fractal": 2,
-    "fields": 3, "geometry": 3,
+    "fields": 3, "geometry": 3, "stimuli": 3,
     "lab": 4,
     "scale": 5,
     "gallery": 6,
@@ -49,7 +50,7 @@ LAYERS = {
 }
 LEAVES = {"io"}                       # any layer may import these
 ANALYSERS = {"analysis"}              # ... but no generator imports these
-GENERATORS = {"spectral", "lattice", "io", "snow", "fractal", "fields", "geometry"}
+GENERATORS = {"spectral", "lattice", "io", "snow", "fractal", "fields", "geometry", "stimuli"}
 DASK_MODULES = {"dask", "distributed"}
 TOP = {"__init__", "__main__"}       # the package root: lazy re-exports, above every layer
 

@@ -36,15 +36,23 @@ def test_failed_video_write_leaves_no_file(tmp_path):
 
 
 def test_to_uint8_maps_unit_interval_and_rejects_nan():
-    out = to_uint8(np.array([0.0, 0.5, 1.0, 1.5, -1.0]))
+    # issue 24: floats outside [0, 1] with no stated range are refused (they were clipped silently); clip=True
+    # or a stated range clips, as asked
+    out = to_uint8(np.array([0.0, 0.5, 1.0, 1.5, -1.0]), clip=True)
     np.testing.assert_array_equal(out, [0, 128, 255, 255, 0])
+    np.testing.assert_array_equal(to_uint8(np.array([0.0, 0.5, 1.0, 1.5, -1.0]), vmin=0, vmax=1), [0, 128, 255, 255, 0])
+    with pytest.raises(ValueError, match=r"float values must lie in \[0, 1\].*40 % of the values outside.*vmin/vmax"):
+        to_uint8(np.array([0.0, 0.5, 1.0, 1.5, -1.0]))
+    with pytest.raises(ValueError, match=r"must lie in \[0, 1\]"):
+        write_image("never_written.png", np.random.default_rng(0).standard_normal((8, 8)))
+    np.testing.assert_array_equal(to_uint8(np.array([1.0000001, -1e-7], np.float32)), [255, 0])  # float32 rounding
     with pytest.raises(ValueError, match="NaN"):
         to_uint8(np.array([np.nan]))
     with pytest.raises(ValueError, match=r"\[0, 255\]"):
         to_uint8(np.array([300]))
 
 
-@pytest.mark.parametrize("suffix", [".gif", ".mp4", ".npy", ""])
+@pytest.mark.parametrize("suffix", [".gif", ".mp4", ".mkv", ".npy", ""])
 def test_video_round_trip_preserves_shape_and_content(tmp_path, suffix):
     t = np.linspace(0, 1, 6, dtype=np.float32)[:, None, None]
     x = np.linspace(0, 1, 24, dtype=np.float32)[None, None, :]
@@ -56,6 +64,14 @@ def test_video_round_trip_preserves_shape_and_content(tmp_path, suffix):
     if suffix == ".npy":
         tol = 0
     assert np.abs(back - video).max() <= tol
+
+
+@pytest.mark.parametrize("suffix, kw", [(".mkv", {}), (".mp4", {"lossless": True})])
+@pytest.mark.parametrize("shape", [(4, 17, 23), (3, 16, 16, 3)])
+def test_lossless_video_keeps_every_grey_level(tmp_path, suffix, kw, shape):
+    video = np.random.default_rng(1).integers(0, 256, shape).astype(np.uint8)
+    back = read_video(write_video(tmp_path / f"v{suffix}", video, **kw))
+    np.testing.assert_array_equal(back, video)
 
 
 def test_image_round_trip_and_bad_suffix(tmp_path):

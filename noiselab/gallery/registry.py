@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import importlib
 import inspect
 import json
 from pathlib import Path
@@ -110,6 +111,7 @@ def figure(group, name, *, seed, title, params=None, quick=None, uses=(), look="
 def specs(only=None) -> list[FigureSpec]:
     """Registered figures in registration order; ``only`` keeps a group name or one ``group/name``."""
     from . import figures  # noqa: F401  (importing registers every figure)
+    importlib.import_module(f"{__package__}.figures.stimuli")   # issue 24's group, registered as figures/ does
 
     all_specs = list(REGISTRY.values())
     if not only:

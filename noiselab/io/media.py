@@ -3,7 +3,14 @@
 Array convention everywhere in noiselab: a video is ``(frames, height, width)``
 with an optional trailing colour axis of 3 (RGB); x runs right along columns,
 y down along rows. Float data are taken to be in [0, 1] (alpha, normalised
-intensity) unless ``vmin``/``vmax`` say otherwise.
+intensity) unless ``vmin``/``vmax`` say otherwise; float values outside [0, 1]
+with no range stated are an error, never clipped silently.
+
+Which formats keep a stimulus: ``.npy`` (the array itself), PNG and ``.mkv``
+(FFV1, lossless 8-bit) and ``.mp4`` with ``lossless=True`` (H.264 RGB,
+``-qp 0``) keep every grey level; the default ``.mp4`` (H.264 yuv420p,
+crf 10) and ``.gif`` are lossy previews (``benchmarks/bench_stimuli.md``
+measures the Michelson contrast after a round trip through each).
 """
 from __future__ import annotations
 
@@ -16,18 +23,30 @@ from .._core import check_finite_array, check_real
 from .atomic import atomic_output, hold_signals
 from .errors import InputError, cause, input_error, output_error
 
-VIDEO_SUFFIXES = (".mp4", ".gif", ".npy")
+VIDEO_SUFFIXES = (".mp4", ".mkv", ".gif", ".npy")
 IMAGE_SUFFIXES = (".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".npy")
 #: frames per second of every video noiselab writes unless told otherwise (CLI and library)
 DEFAULT_FPS = 25.0
 
 
-def to_uint8(array, vmin=None, vmax=None) -> np.ndarray:
+def to_uint8(array, vmin=None, vmax=None, *, clip=False) -> np.ndarray:
     """Map an array to uint8: ints in [0, 255] pass through, floats map [vmin, vmax] (default [0, 1]) to [0, 255].
 
-    Values outside the range are clipped (after the mapping); NaN or inf in
-    ``array`` and a non-finite ``vmin``/``vmax`` are a ``ValueError``, complex
-    or text arrays a ``TypeError``.
+    With no range stated, float values outside [0, 1] (beyond a float32
+    rounding of 1e-6) are a ``ValueError`` saying how many and what range to
+    state, unless ``clip=True``: a unit-variance noise field is never clipped
+    silently. Values outside a *stated* range ``[vmin, vmax]`` are clipped to
+    its ends (the caller chose the range). NaN or inf in ``array`` and a
+    non-finite ``vmin``/``vmax`` are a ``ValueError``, complex or text arrays
+    a ``TypeError``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> to_uint8(np.array([0.0, 0.5, 1.0])).tolist()
+    [0, 128, 255]
+    >>> to_uint8(np.array([-2.0, 0.0, 2.0]), vmin=-2, vmax=2).tolist()
+    [0, 128, 255]
     """
     if isinstance(array, (str, bytes)) or array is None:
         raise TypeError(f"array must be a real numeric array, got {type(array).__name__}")
@@ -40,6 +59,14 @@ def to_uint8(array, vmin=None, vmax=None) -> np.ndarray:
         if array.size and (array.min() < 0 or array.max() > 255):
             raise ValueError("integer image values must be in [0, 255]; pass vmin/vmax to rescale")
         return array.astype(np.uint8)
+    if vmin is None and vmax is None and not clip and array.size:
+        amin, amax = float(array.min()), float(array.max())
+        if amin < -1e-6 or amax > 1 + 1e-6:
+            out = int(np.count_nonzero((array < 0) | (array > 1)))
+            raise ValueError(f"array: float values must lie in [0, 1] to be written as 8-bit grey levels, got "
+                             f"[{amin:.4g}, {amax:.4g}] ({100 * out / array.size:.3g} % of the values outside); "
+                             f"state the range to map with vmin/vmax (e.g. vmin={amin:.4g}, vmax={amax:.4g}), "
+                             f"or pass clip=True to clip to [0, 1]")
     lo = 0.0 if vmin is None else check_real("vmin", vmin)
     hi = 1.0 if vmax is None else check_real("vmax", vmax)
     if not hi > lo:
@@ -59,7 +86,13 @@ def to_uint8(array, vmin=None, vmax=None) -> np.ndarray:
 
 
 def write_image(path, image, *, vmin=None, vmax=None) -> Path:
-    """Write one image (``(H, W)`` or ``(H, W, 3|4)``) to PNG/JPEG/TIFF, or the raw array to ``.npy``."""
+    """Write one image (``(H, W)`` or ``(H, W, 3|4)``) to PNG/JPEG/TIFF, or the raw array to ``.npy``.
+
+    Floats map ``[vmin, vmax]`` (default [0, 1]) to 0..255 through
+    :func:`to_uint8`: with no range stated, values outside [0, 1] are a
+    ``ValueError``, never clipped silently. PNG, TIFF, BMP and ``.npy`` are
+    lossless; JPEG is not.
+    """
     path = Path(path)
     image = np.asarray(image)
     suffix = path.suffix.lower()
@@ -98,13 +131,21 @@ def _frame_source(frames):
     return iter(frames), count
 
 
-def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_progress=None, quality=8) -> Path:
-    """Write a video to ``.mp4`` (H.264), ``.gif``, ``.npy``, or a folder of PNG frames.
+def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_progress=None, quality=8,
+                lossless=False) -> Path:
+    """Write a video to ``.mp4`` (H.264), ``.mkv`` (FFV1), ``.gif``, ``.npy``, or a folder of PNG frames.
 
     ``frames`` is an array ``(T, H, W[, 3])`` or any iterable of frames (a lazy
     frame iterator is streamed and never held in memory, except for ``.npy``).
     A path without a suffix is a folder that receives ``frame_00000.png``, ...
-    The file (or folder) appears only when writing succeeded.
+    The file (or folder) appears only when writing succeeded. Frames go
+    through :func:`to_uint8` (floats outside [0, 1] with no ``vmin``/``vmax``
+    are an error).
+
+    Lossless: ``.npy``, PNG frames, ``.mkv`` (FFV1, every grey level kept)
+    and ``.mp4`` with ``lossless=True`` (H.264 in RGB with ``-qp 0``). Lossy:
+    the default ``.mp4`` (yuv420p at ``quality``; it also maps grey levels to
+    the limited video range) and ``.gif``.
     """
     path = Path(path)
     fps = float(fps)
@@ -123,8 +164,11 @@ def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_pro
             for i, frame in enumerate(bar):
                 (tmp / f"frame_{i:05d}.png").write_bytes(_encode(to_uint8(frame, vmin, vmax), ".png"))
         return path
-    if suffix not in (".mp4", ".gif"):
-        raise ValueError(f"video path must end in .mp4, .gif or .npy, or be a folder for PNG frames; got {path.name!r}")
+    if suffix not in (".mp4", ".mkv", ".gif"):
+        raise ValueError(f"video path must end in .mp4, .mkv, .gif or .npy, or be a folder for PNG frames; got "
+                         f"{path.name!r}")
+    if not isinstance(lossless, (bool, np.bool_)):
+        raise TypeError(f"lossless must be True or False, got {lossless!r}")
     with atomic_output(path) as tmp:
         if suffix == ".gif":
             # GIF is a preview format: frames are small uint8, so they are
@@ -132,12 +176,23 @@ def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_pro
             gif = np.stack([to_uint8(frame, vmin, vmax) for frame in bar])
             Path(tmp).write_bytes(_encode(gif, ".gif", duration=1000.0 / fps, loop=0))
             return path
-        _write_mp4(tmp, bar, fps, quality, vmin, vmax)
+        _write_mp4(tmp, bar, fps, quality, vmin, vmax, codec="ffv1" if suffix == ".mkv" else
+                   "x264rgb" if lossless else "x264")
     return path
 
 
-def _write_mp4(path, frames, fps, quality, vmin, vmax):
-    """H.264 through imageio-ffmpeg's ffmpeg binary, with the arguments imageio's FFMPEG writer uses.
+def _codec_args(codec, quality, colour):
+    """ffmpeg's output arguments: lossy H.264 (yuv420p), lossless H.264 in RGB (``-qp 0``) or FFV1 (lossless)."""
+    if codec == "ffv1":
+        return ["-vcodec", "ffv1", "-level", "3", "-pix_fmt", "gbrp" if colour else "gray"]
+    if codec == "x264rgb":
+        return ["-vcodec", "libx264rgb", "-qp", "0", "-preset", "veryfast", "-pix_fmt", "rgb24"]
+    crf = int((1 - quality / 10.0) * 51)   # imageio-ffmpeg's quality -> crf (8 -> 10)
+    return ["-vcodec", "libx264", "-pix_fmt", "yuv420p", "-crf", str(crf)]
+
+
+def _write_mp4(path, frames, fps, quality, vmin, vmax, codec="x264"):
+    """H.264 or FFV1 through imageio-ffmpeg's ffmpeg binary, with the arguments imageio's FFMPEG writer uses.
 
     ffmpeg runs here rather than through imageio's writer because that writer
     ignores ffmpeg's exit status: on a full disk it returns normally and leaves
@@ -156,17 +211,17 @@ def _write_mp4(path, frames, fps, quality, vmin, vmax):
         for frame in frames:
             frame = to_uint8(frame, vmin, vmax)
             # yuv420p needs even sizes: odd frames are padded by one edge pixel.
-            if frame.shape[0] % 2 or frame.shape[1] % 2:
+            if codec == "x264" and (frame.shape[0] % 2 or frame.shape[1] % 2):
                 pad = [(0, frame.shape[0] % 2), (0, frame.shape[1] % 2)] + [(0, 0)] * (frame.ndim - 2)
                 frame = np.pad(frame, pad, mode="edge")
             if proc is None:
                 shape = frame.shape
                 pix_fmt = {2: "gray", 3: "rgb24"}[frame.ndim] if frame.ndim == 2 or frame.shape[-1] == 3 else "rgba"
-                crf = int((1 - quality / 10.0) * 51)   # imageio-ffmpeg's quality -> crf (8 -> 10)
                 rate = str(Fraction(fps).limit_denominator())
                 cmd = [imageio_ffmpeg.get_ffmpeg_exe(), "-y", "-f", "rawvideo", "-vcodec", "rawvideo",
                        "-s", f"{shape[1]}x{shape[0]}", "-pix_fmt", pix_fmt, "-r", rate, "-i", "-", "-an",
-                       "-vcodec", "libx264", "-pix_fmt", "yuv420p", "-crf", str(crf), "-v", "error", str(path)]
+                       *_codec_args(codec, quality, frame.ndim == 3), "-v", "error", "-f",
+                       "matroska" if codec == "ffv1" else "mp4", str(path)]
                 with hold_signals():   # never an ffmpeg running that `proc` does not name
                     proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=errlog)
             elif frame.shape != shape:

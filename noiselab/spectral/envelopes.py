@@ -32,6 +32,7 @@ Examples
 """
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
@@ -50,6 +51,9 @@ __all__ = [
     "thickened_tent",
     "sheared_tent",
     "unit_direction",
+    "log_gabor",
+    "orientation",
+    "speed_envelope",
 ]
 
 
@@ -333,3 +337,117 @@ def sheared_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, toleran
     wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
     tolerance = _tolerance(tolerance)
     return (np.abs(wt - tent_surface(wy, wx, c, direction, pan)) <= tolerance).astype(float)
+
+
+# ---------------------------------------------------------------- MotionClouds' envelopes (Leon et al. 2012)
+# Same formulas as MotionClouds' envelope_radial (log-Gabor), envelope_orientation and envelope_speed, in
+# frequency units that cancel (cycles/sample = rad/sample / 2 pi), each divided by its peak so that a narrow
+# orientation band (exp(1 / (4 B_theta**2)) is 1e43 at B_theta = 0.05) cannot overflow.
+
+
+def log_gabor(*w, sf_0, B_sf):
+    """Log-Gabor radial band: ``exp(-ln(f / sf_0)**2 / (2 ln((sf_0 + B_sf) / sf_0)**2))``, 0 at DC.
+
+    ``f = |w| / (2*pi)`` is the radial frequency in cycles/sample over the
+    given axes (pass the spatial ones). MotionClouds' ``envelope_radial``
+    (``loggabor=True``) is this times ``1/f``.
+
+    Parameters
+    ----------
+    *w : arrays
+        Angular frequencies in rad/sample (:func:`noiselab.spectral.frequency_vectors`).
+    sf_0 : float
+        Peak frequency in cycles/sample (cycles/pixel), in ``(0, 0.5]``;
+        :meth:`noiselab.Display.cycles_per_pixel` converts from cycles/deg.
+    B_sf : float
+        Bandwidth in cycles/sample, > 0: the band's log-width is
+        ``ln((sf_0 + B_sf) / sf_0)`` (``B_sf = sf_0`` is one octave's
+        standard deviation).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> w = 2 * np.pi * np.array([0.0, 0.0625, 0.125, 0.25])
+    >>> log_gabor(w, sf_0=0.125, B_sf=0.125).round(3).tolist()
+    [0.0, 0.607, 1.0, 0.607]
+    """
+    sf_0 = check_real("sf_0 (cycles/sample)", sf_0, lo=0.0, hi=0.5, lo_open=True)
+    B_sf = check_real("B_sf (cycles/sample)", B_sf, lo=0.0, hi=_BOUND, lo_open=True)
+    f = radial_frequency(*w) / (2 * np.pi)
+    log_sf0 = math.log(sf_0)
+    width2 = (math.log(sf_0 + B_sf) - log_sf0) ** 2  # (logs apart: B_sf / sf_0 may overflow)
+    pos = f > 0
+    with np.errstate(divide="ignore", over="ignore", under="ignore"):
+        out = np.exp(-0.5 * (np.log(np.where(pos, f, 1.0)) - log_sf0) ** 2 / width2)
+    return np.where(pos, out, 0.0)
+
+
+def orientation(wy, wx, *, theta, B_theta):
+    """Orientation band (von Mises): ``exp((cos(2 (angle - theta)) - 1) / (4 B_theta**2))``, peak 1.
+
+    ``angle = arctan2(wy, wx)`` is the direction of the wave vector with y
+    down the rows (MotionClouds' ``arctan2(fy, fx)`` on its ``(x, y)``
+    arrays): ``theta = 0`` keeps waves along x (vertical stripes),
+    ``theta = pi/2`` waves along y (horizontal stripes). ``B_theta`` (radians)
+    is about the standard deviation for narrow bands; ``np.inf`` is flat.
+
+    Parameters
+    ----------
+    wy, wx : arrays
+        Angular frequencies (rad/pixel) along y (rows) and x (columns).
+    theta : float
+        Mean orientation in radians.
+    B_theta : float
+        Bandwidth in radians, ``>= 1e-6`` (narrower than any grid's angular
+        resolution), or ``np.inf`` (every orientation).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> float(orientation(np.array(0.0), np.array(1.0), theta=0.0, B_theta=0.2))
+    1.0
+    >>> float(orientation(np.array(1.0), np.array(0.0), theta=0.0, B_theta=0.2))   # 90 degrees off: exp(-1/(2*0.04))
+    3.7266531720786777e-06
+    """
+    wy, wx = _frequencies((wy, wx), ("wy", "wx"))
+    theta = check_real("theta (radians)", theta, lo=-_BOUND, hi=_BOUND)
+    if isinstance(B_theta, (int, float, np.floating)) and B_theta == np.inf:
+        return np.ones(np.broadcast_shapes(wy.shape, wx.shape))
+    B_theta = check_real("B_theta (radians)", B_theta, lo=1e-6, hi=_BOUND)
+    angle = np.arctan2(wy, wx)
+    with np.errstate(under="ignore"):
+        return np.exp((np.cos(2 * (angle - theta)) - 1.0) / (4.0 * B_theta ** 2))
+
+
+def speed_envelope(wt, wy, wx, *, velocity, B_V):
+    """Gaussian band around the motion plane: ``exp(-(wt + vx wx + vy wy)**2 / (2 (B_V |w|)**2))``.
+
+    MotionClouds' ``envelope_speed``: energy near the plane of the velocity
+    ``(vx, vy)`` px/frame (the sign convention of :func:`motion_plane`), with
+    a thickness ``B_V`` (px/frame) that scales with the spatial radius
+    ``|w| = sqrt(wx**2 + wy**2)``. At ``|w| = 0`` the value is 1.
+    ``B_V = 0`` keeps only the ``wt = 0`` plane (a frozen texture);
+    ``B_V = np.inf`` every temporal frequency.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> wt, wx = np.array([-0.5, 0.0]), np.array([0.5, 0.5])
+    >>> speed_envelope(wt, np.zeros(2), wx, velocity=(1.0, 0.0), B_V=0.5).round(3).tolist()
+    [1.0, 0.135]
+    """
+    wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
+    vx, vy = _pair("velocity (px/frame)", velocity)
+    shape = np.broadcast_shapes(wt.shape, wy.shape, wx.shape)
+    if isinstance(B_V, (int, float, np.floating)) and B_V == np.inf:
+        return np.ones(shape)
+    B_V = check_real("B_V (px/frame)", B_V, lo=0.0, hi=_BOUND)
+    if B_V == 0:
+        return np.broadcast_to((wt == 0).astype(float), shape).copy()
+    r = _radial((wy, wx))
+    pos = r > 0
+    d = wt + vx * wx + vy * wy
+    with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+        q = d / (B_V * np.where(pos, r, 1.0))   # a tiny B_V: inf off the plane (weight 0), 0/0 on it (weight 1)
+        out = np.where(d == 0, 1.0, np.exp(-0.5 * q * q))
+    return np.broadcast_to(np.where(pos, out, 1.0), shape).copy()

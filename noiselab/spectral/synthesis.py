@@ -214,7 +214,7 @@ def _row_groups(counts, chunk=CHUNK):
 
 
 def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.float32, return_spectrum=False,
-               workers=None):
+               workers=None, normalize=None):
     """Real random field with the given amplitude envelope: ``irfftn(envelope * a * exp(i*phi))``.
 
     Parameters
@@ -242,6 +242,14 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
         FFT and the spectrum fill; the output is bit-identical for any count.
         Default (None): scipy's default (one thread unless set with
         ``scipy.fft.set_workers``).
+    normalize : {None, "expected", "sample"}
+        None (default): the field is ``irfftn(S)`` as drawn, its variance
+        whatever the envelope makes. ``"expected"``: field (and spectrum)
+        scaled so that the *ensemble* mean square is 1 (``sum`` of the
+        envelope squared over the full spectrum, Parseval; no random number
+        involved), as :func:`spectral_noise`'s default. ``"sample"``: this
+        field's mean square is exactly 1. Either is the variance when the
+        envelope is 0 at DC; the mean is scaled with the rest, never removed.
 
     Returns
     -------
@@ -275,6 +283,8 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     cdt = complex_dtype(dt)
     if amplitude not in AMPLITUDES:
         raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
+    if normalize is not None and normalize not in NORMALIZATIONS:
+        raise ValueError(f"normalize must be None or one of {NORMALIZATIONS}, got {normalize!r}")
     hshape = half_spectrum_shape(shape)
     n_out = int(np.prod(shape))
     n_half = int(np.prod(hshape))
@@ -326,9 +336,30 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
                 if not np.all(np.isfinite(spec.view(dt))):
                     raise ValueError(f"envelope is too large for the {cdt} spectrum: its maximum {emax:.3g}; "
                                      f"scale it down or use float64")
+    if normalize is not None:
+        g = _normal_gain(field, env, shape, emax, normalize)
+        field = (field.astype(np.float64) * g).astype(dt)
+        if return_spectrum:
+            spec = (spec.astype(np.complex128) * g).astype(cdt)
     if field.dtype != dt:
         field = field.astype(dt)
     return (field, spec) if return_spectrum else field
+
+
+def _normal_gain(field, env, shape, emax, normalize):
+    """The factor that gives ``synthesize``'s field a mean square of 1: expected (from the envelope) or of this sample."""
+    if normalize == "sample":
+        ms = float(np.mean(np.square(field, dtype=np.float64)))
+    else:
+        # E|S_k|**2 = env_k**2 (E[a**2] = 1); the half spectrum holds every cell twice but the self-conjugate columns
+        e = env / emax if emax > 0 else env
+        full = 2.0 * float(np.sum(np.square(e)))
+        for j in self_conjugate_columns(shape[-1]):
+            full -= float(np.sum(np.square(e[..., j])))
+        ms = full * (emax / float(np.prod(shape, dtype=np.float64))) ** 2 if emax > 0 else 0.0
+    if not ms > 0:
+        raise ValueError(f"normalize={normalize!r} needs a field with power: the envelope is 0 everywhere")
+    return 1.0 / np.sqrt(ms)
 
 
 def _envelope_array(envelope, shape, hshape):

@@ -1,0 +1,214 @@
+"""``noiselab stimulus``: the common vision-science stimuli in physical units, with a JSON sidecar.
+
+Kinds: ``pink`` (a 1/f**exponent patch), ``bandpass`` (log-Gabor band x
+orientation band), ``snow`` (falling snow as a luminance modulation),
+``cloud`` (a Motion Cloud) and ``scramble`` (a phase-scrambled image). Sizes
+are in degrees, durations in seconds, frequencies in cycles/deg, speeds in
+deg/s, luminance in cd/m² on the display the options describe; the output
+holds the integer display values (``noiselab.stimuli.to_display``) and
+``OUTPUT.json`` beside it every parameter, the display, the seed, the
+noiselab version and the mean and contrast measured on the values written.
+"""
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+NAME = "stimulus"
+HELP = ("a stimulus in physical units (deg, s, cycles/deg, deg/s, cd/m², contrast) on a described display: "
+        "1/f patch, band-pass oriented noise, snow, motion cloud or phase-scrambled image, with a JSON sidecar")
+KINDS = ("pink", "bandpass", "snow", "cloud", "scramble")
+MOVING = ("snow", "cloud")
+# what each output format keeps (benchmarks/bench_stimuli.md measures the contrast after a round trip)
+LOSSLESS = {".npy": True, ".png": True, ".mkv": True, ".mp4": False}
+
+
+def add_arguments(p):
+    p.add_argument("kind", choices=KINDS, help="which stimulus: " + ", ".join(KINDS))
+    d = p.add_argument_group("display")
+    d.add_argument("--ppd", type=float, default=None,
+                   help="pixels per degree (default: from --distance-cm/--screen-width-cm/--resolution-px, else 32)")
+    d.add_argument("--distance-cm", type=float, default=None, help="viewing distance in cm (with the next two)")
+    d.add_argument("--screen-width-cm", type=float, default=None, help="visible screen width in cm")
+    d.add_argument("--resolution-px", type=int, default=None, help="horizontal resolution in pixels")
+    d.add_argument("--frame-rate", type=float, default=60.0, help="display frame rate in Hz (default 60)")
+    d.add_argument("--luminance", type=float, nargs=2, default=(0.5, 100.0), metavar=("LMIN", "LMAX"),
+                   help="luminance in cd/m² at the lowest and highest display value (default 0.5 100)")
+    d.add_argument("--gamma", type=float, default=2.2, help="display gamma (default 2.2)")
+    d.add_argument("--bits", type=int, default=8, help="bits per display value, 1..16 (default 8)")
+    d.add_argument("--lut", default=None,
+                   help=".npy file of 2**bits measured luminances (cd/m², increasing), instead of the gamma law")
+    s = p.add_argument_group("stimulus")
+    s.add_argument("--size", type=float, default=8.0, help="width and height in degrees (default 8)")
+    s.add_argument("--duration", type=float, default=1.0, help="seconds, snow and cloud (default 1)")
+    s.add_argument("--mean", type=float, default=40.0, help="mean luminance in cd/m² (default 40)")
+    s.add_argument("--contrast", type=float, default=0.2, help="contrast (default 0.2)")
+    s.add_argument("--contrast-kind", choices=("rms", "michelson"), default="rms",
+                   help="rms: sd/mean of the luminance; michelson: (max-min)/(max+min) (default rms)")
+    s.add_argument("--no-dither", action="store_true", help="nearest display value instead of random dithering")
+    s.add_argument("--seed", type=int, default=0, help="random seed (default 0); same seed, same stimulus")
+    k = p.add_argument_group("spectrum")
+    k.add_argument("--exponent", type=float, default=1.0, help="pink: amplitude 1/f**exponent (default 1)")
+    k.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
+                   help="pink and snow: spatial band in cycles/deg (default: all for pink, 1 8 for snow)")
+    k.add_argument("--sf", type=float, default=4.0,
+                   help="bandpass and cloud: peak spatial frequency in cycles/deg (default 4)")
+    k.add_argument("--sf-bandwidth", type=float, default=2.0,
+                   help="bandpass and cloud: MotionClouds' B_sf in cycles/deg (default 2: a log-width of ln 1.5)")
+    k.add_argument("--orientation", type=float, default=0.0,
+                   help="bandpass and cloud: orientation of the wave vector in degrees, y down (default 0)")
+    k.add_argument("--orientation-bandwidth", type=float, default=None,
+                   help="bandpass and cloud: orientation bandwidth B_theta in degrees (default: every orientation)")
+    k.add_argument("--velocity", type=float, nargs=2, default=(1.0, 0.0), metavar=("VX", "VY"),
+                   help="cloud: velocity in deg/s, x right, y down (default 1 0); snow: the fall speed is VY")
+    k.add_argument("--speed-bandwidth", type=float, default=0.5,
+                   help="cloud: MotionClouds' B_V in deg/s (default 0.5)")
+    k.add_argument("--snow-frequency", type=float, default=4.0,
+                   help="snow: the spatial frequency (cycles/deg) whose flakes fall at VY deg/s (default 4)")
+    k.add_argument("--image", default=None, help="scramble: the image file (PNG, JPEG, NPY) to phase-scramble")
+    o = p.add_argument_group("output")
+    o.add_argument("--output", "-o", default="out/stimulus.png",
+                   help="file: .png (still), .mkv (lossless FFV1), .mp4 (lossy H.264 unless --lossless) or .npy "
+                        "(the display values); OUTPUT.json beside it (default out/stimulus.png)")
+    o.add_argument("--lossless", action="store_true", help=".mp4: H.264 in RGB with -qp 0 (lossless)")
+
+
+def _display(args):
+    from ..io import load_npy
+    from ..stimuli import Display
+
+    geometry = (args.distance_cm, args.screen_width_cm, args.resolution_px)
+    if any(g is not None for g in geometry):
+        if args.ppd is not None or any(g is None for g in geometry):
+            raise ValueError("give --ppd, or all three of --distance-cm, --screen-width-cm, --resolution-px")
+        return Display.from_geometry(distance_cm=args.distance_cm, screen_width_cm=args.screen_width_cm,
+                                     resolution_px=args.resolution_px, frame_rate=args.frame_rate,
+                                     luminance=tuple(args.luminance), gamma=args.gamma, bits=args.bits)
+    ppd = 32.0 if args.ppd is None else args.ppd
+    if args.lut is not None:
+        return Display.from_lut(load_npy(args.lut), ppd, frame_rate=args.frame_rate)
+    return Display(ppd, frame_rate=args.frame_rate, luminance=tuple(args.luminance), gamma=args.gamma,
+                   bits=args.bits)
+
+
+def _field(args, display, rng):
+    """The stimulus as a float field in pixels and frames, and the pixel-unit arguments it was made with."""
+    from ..snow import snow
+    from ..spectral import spectral_noise
+    from ..stimuli import motion_cloud, phase_scramble
+
+    n = display.pixels(args.size)
+    frames = display.frame_count(args.duration)
+    b_theta = np.inf if args.orientation_bandwidth is None else math.radians(args.orientation_bandwidth)
+    if args.kind == "pink":
+        band = None if args.band is None else display.band(args.band, n)
+        used = dict(shape=(n, n), exponent=args.exponent, band=band)
+        return spectral_noise(seed=rng, **used), used
+    if args.kind in ("bandpass", "cloud"):
+        used = dict(shape=(n, n) if args.kind == "bandpass" else (frames, n, n),
+                    sf_0=display.cycles_per_pixel(args.sf), B_sf=display.cycles_per_pixel(args.sf_bandwidth),
+                    theta=math.radians(args.orientation), B_theta=b_theta)
+        if args.kind == "cloud":
+            used.update(V_X=display.px_per_frame(args.velocity[0]), V_Y=display.px_per_frame(args.velocity[1]),
+                        B_V=display.px_per_frame(args.speed_bandwidth))
+        return motion_cloud(seed=rng, **used), used
+    if args.kind == "snow":
+        band = display.band((1.0, 8.0) if args.band is None else args.band, n)
+        used = dict(shape=(frames, n, n), c=display.snow_c(args.velocity[1], args.snow_frequency), band=band)
+        return snow(seed=rng, **used), used
+    if args.image is None:
+        raise ValueError("scramble needs --image FILE (the image to phase-scramble)")
+    from ..analysis import to_grey
+    from ..io import read_image
+
+    image = to_grey(read_image(args.image)).astype(np.float64)
+    return phase_scramble(image, seed=rng), dict(shape=image.shape, image=str(args.image))
+
+
+def _write(path, values, display, args):
+    import imageio.v3 as iio
+
+    from ..io import atomic_output, write_image, write_video
+
+    suffix = path.suffix.lower()
+    if suffix == ".npy":
+        write_image(path, values)   # the display values themselves
+    elif suffix == ".png":
+        if values.ndim != 2:
+            raise ValueError(f"{path.name}: a PNG holds one frame; write the {args.kind} video to .mkv, .mp4 or .npy")
+        if values.dtype == np.uint8:
+            write_image(path, values)
+        else:   # a 16-bit grey PNG keeps a 10- to 16-bit display's values
+            with atomic_output(path) as tmp:
+                Path(tmp).write_bytes(iio.imwrite("<bytes>", values, extension=".png"))
+    elif suffix in (".mkv", ".mp4"):
+        if values.dtype != np.uint8:
+            raise ValueError(f"{path.name}: videos hold 8-bit values; a {display.bits}-bit display's stimulus goes "
+                             f"to .npy (or --bits 8)")
+        video = values if values.ndim == 3 else values[None]
+        write_video(path, video, fps=display.frame_rate, lossless=args.lossless, show_progress=False)
+    else:
+        raise ValueError(f"output must end in .png, .mkv, .mp4 or .npy, got {path.name!r}")
+
+
+def _jsonable(x):
+    if isinstance(x, dict):
+        return {k: _jsonable(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_jsonable(v) for v in x]
+    if isinstance(x, (np.integer,)):
+        return int(x)
+    if isinstance(x, (np.floating, float)):
+        return None if not math.isfinite(x) else float(x)
+    return x
+
+
+def run(args):
+    from .. import __version__
+    from ..analysis import michelson_contrast, rms_contrast
+    from ..io import atomic_output, prepare_output
+    from ..stimuli import to_display
+
+    path = Path(args.output)
+    suffix = path.suffix.lower()
+    if suffix not in LOSSLESS:
+        raise ValueError(f"output must end in .png, .mkv, .mp4 or .npy, got {path.name!r}")
+    if suffix == ".png" and args.kind in MOVING:
+        raise ValueError(f"{path.name}: a PNG holds one frame; write the {args.kind} video to .mkv, .mp4 or .npy")
+    display = _display(args)
+    prepare_output(path)
+    rng = np.random.default_rng(args.seed)
+    field, used = _field(args, display, rng)
+    values = to_display(field, display, mean=args.mean, contrast=args.contrast, kind=args.contrast_kind,
+                        dither=not args.no_dither, seed=rng)
+    _write(path, values, display, args)
+    L = display.luminance_of(values)
+    measured = {"mean_cd_m2": float(L.mean()), "rms_contrast": rms_contrast(L),
+                "michelson_contrast": michelson_contrast(L)}
+    lossless = LOSSLESS[suffix] or (suffix == ".mp4" and args.lossless)
+    sidecar = {
+        "noiselab_version": __version__,
+        "command": ["noiselab"] + sys.argv[1:] if Path(sys.argv[0]).name in ("noiselab", "__main__.py") else None,
+        "kind": args.kind,
+        "seed": args.seed,
+        "parameters": {k: v for k, v in vars(args).items() if not k.startswith("_") and k != "command"},
+        "display": display.as_dict(),
+        "pixel_units": used,
+        "output": {"path": path.name, "format": suffix.lstrip("."), "lossless": lossless,
+                   "shape": list(values.shape), "dtype": str(values.dtype),
+                   "values": "display values: luminance = display's law (or lut) of each value"},
+        "measured_on_written_values": measured,
+    }
+    side = path.with_name(path.name + ".json")
+    with atomic_output(side) as tmp:
+        Path(tmp).write_text(json.dumps(_jsonable(sidecar), indent=2) + "\n")
+    print(f"noiselab stimulus: wrote {path} ({values.shape} {values.dtype}, "
+          f"{'lossless' if lossless else 'LOSSY: H.264 changes grey levels'}) and {side.name}; mean "
+          f"{measured['mean_cd_m2']:.4g} cd/m², RMS contrast {measured['rms_contrast']:.4g}, Michelson "
+          f"{measured['michelson_contrast']:.4g} (requested {args.contrast_kind} {args.contrast:g} at "
+          f"{args.mean:g} cd/m²)")
+    return 0

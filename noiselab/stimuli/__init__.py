@@ -1,0 +1,23 @@
+"""Stimuli in physical units: degrees, seconds, cd/m² and contrast on a described display.
+
+- :class:`Display`: a screen (pixels per degree, frame rate, luminance range
+  and gamma law or measured table, bit depth) and the unit conversions
+  between what an experiment states and what the generators take;
+- :func:`to_display`: a field shown at a mean luminance and an RMS or
+  Michelson contrast, as integer display values (seeded dithering);
+- :func:`phase_scramble`, :func:`amplitude_swap`: an image's amplitude
+  spectrum with random or another image's phases;
+- :func:`motion_cloud`: MotionClouds' ``envelope_gabor`` with its parameters,
+  in noiselab's ``(frames, height, width)``.
+
+Layer 3 (beside ``fields`` and ``geometry``): built on ``spectral``; a
+generator, so it measures what it needs itself rather than through
+``noiselab.analysis``.
+"""
+from .cloud import cloud_envelope, motion_cloud
+from .contrast import CONTRAST_KINDS, luminance_for, to_display
+from .display import Display
+from .scramble import amplitude_swap, phase_scramble
+
+__all__ = ["Display", "to_display", "luminance_for", "CONTRAST_KINDS", "phase_scramble", "amplitude_swap",
+           "motion_cloud", "cloud_envelope"]

@@ -1,0 +1,404 @@
+"""noiselab.stimuli (issue 24): the display, contrast on the screen, phase scrambling, motion clouds."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import scipy.fft
+
+import noiselab
+from noiselab import Display, analysis, spectral_noise, synthesize
+from noiselab.spectral import envelopes as E
+from noiselab.stimuli import (amplitude_swap, cloud_envelope, luminance_for, motion_cloud, phase_scramble,
+                              to_display)
+
+D8 = Display(32.0, frame_rate=60.0, luminance=(0.5, 100.0), gamma=2.2, bits=8)
+D10 = Display(32.0, frame_rate=60.0, luminance=(0.5, 100.0), gamma=2.2, bits=10)
+
+
+# ---------------------------------------------------------------- Display: units
+def test_display_is_frozen_and_exported():
+    assert noiselab.Display is Display
+    with pytest.raises(AttributeError):
+        D8.bits = 10
+    assert Display(32.0) == Display(32.0) and hash(Display(32.0)) == hash(Display(32.0))
+
+
+def _pairs(d):
+    return ((d.deg_to_px, d.px_to_deg), (d.px_to_deg, d.deg_to_px), (d.px_per_frame, d.deg_per_second),
+            (d.deg_per_second, d.px_per_frame), (d.cycles_per_pixel, d.cycles_per_degree),
+            (d.seconds_to_frames, d.frames_to_seconds), (d.frames_to_seconds, d.seconds_to_frames),
+            (lambda x: d.cycles_per_frame(x, 256), lambda y: d.cycles_per_degree_from_frame(y, 256)))
+
+
+def test_conversions_round_trip_exactly_for_power_of_two_factors():
+    for ppd in (16.0, 32.0, 64.0, 0.5):
+        for rate in (32.0, 64.0, 128.0):
+            d = Display(ppd, frame_rate=rate)
+            for x in (0.0, 0.1, 0.25, 1.0, 3.0, 7.5, 12.3, -4.4, 1e-7, 123456.789):
+                for f, g in _pairs(d):
+                    assert g(f(x)) == x
+
+
+def test_conversions_round_trip_on_lab_values():
+    # 6 pixel densities x 6 frame rates x 11 values x 7 conversions = 2,772 round trips (the figure in display.py)
+    total = exact = 0
+    for ppd in (16.0, 32.0, 40.0, 47.5, 60.0, 64.0):
+        for rate in (50.0, 60.0, 75.0, 100.0, 120.0, 144.0):
+            d = Display(ppd, frame_rate=rate)
+            for x in (0.0, 0.25, 1.0, 2.0, 3.0, 4.0, 7.5, 12.0, 0.1, 0.3, 1.7):
+                for f, g in _pairs(d)[:7]:
+                    back = g(f(x))
+                    total += 1
+                    exact += back == x
+                    assert abs(back - x) <= math.ulp(x)
+    assert total == 2772 and exact / total >= 0.97
+    # a whole number of pixels or frames comes back exactly from degrees and seconds
+    d = Display(40.0, frame_rate=144.0)
+    for n in range(1, 2000):
+        assert d.deg_to_px(d.px_to_deg(float(n))) == n and d.seconds_to_frames(d.frames_to_seconds(float(n))) == n
+
+
+def test_conversions_round_trip_within_one_ulp_for_any_float():
+    rng = np.random.default_rng(3)
+    worst = 0.0
+    for _ in range(2000):
+        d = Display(float(rng.uniform(5, 120)), frame_rate=float(rng.uniform(24, 240)))
+        x = float(rng.uniform(-50, 50))
+        for f, g in _pairs(d):
+            worst = max(worst, abs(g(f(x)) - x) / math.ulp(x))
+    assert worst <= 1.0
+    arr = np.linspace(-3, 3, 101)
+    d = Display(47.5, frame_rate=144.0)
+    assert np.max(np.abs(d.deg_per_second(d.px_per_frame(arr)) - arr) / np.spacing(np.abs(arr) + 1e-300)) <= 1.0
+
+
+def test_conversions_values():
+    d = Display(32.0, frame_rate=120.0)
+    assert d.cycles_per_pixel(4) == 0.125
+    assert d.cycles_per_frame(4, 256) == 32.0
+    assert d.band((2, 8), 256) == (16.0, 64.0)
+    assert d.px_per_frame(7.5) == 2.0
+    assert d.pixels(8) == 256 and d.frame_count(0.5) == 60
+    arr = d.deg_to_px(np.array([1.0, 2.0]))
+    assert arr.tolist() == [32.0, 64.0]
+    # snow's c moves flakes of 4 cycles/deg at the stated speed: c / |w| px/frame
+    c = d.snow_c(3.0, 4.0)
+    assert c / (2 * np.pi * d.cycles_per_pixel(4.0)) == pytest.approx(d.px_per_frame(3.0), rel=1e-12)
+
+
+def test_from_geometry_pixels_per_degree():
+    d = Display.from_geometry(distance_cm=57.0, screen_width_cm=40.0, resolution_px=1920)
+    assert d.pixels_per_degree == pytest.approx(1920 / 40.0 * 2 * 57.0 * math.tan(math.radians(0.5)), rel=1e-15)
+    # at 57 cm one centimetre is about one degree
+    assert d.pixels_per_degree == pytest.approx(48.0, rel=0.01)
+
+
+# ---------------------------------------------------------------- Display: luminance
+def test_gamma_law_and_inverse():
+    d = Display(32.0, luminance=(2.0, 90.0), gamma=2.2, bits=8)
+    v = np.arange(256)
+    L = d.luminance_of(v)
+    assert L[0] == 2.0 and L[-1] == 90.0
+    assert np.allclose(L, 2.0 + 88.0 * (v / 255) ** 2.2, rtol=1e-15, atol=0)
+    assert np.array_equal(d.value_of(L), v.astype(float))   # whole values come back exactly
+    assert np.all(np.diff(d.value_of(np.linspace(2.0, 90.0, 1001))) > 0)
+
+
+def test_from_lut():
+    lut = np.cumsum(np.linspace(0.1, 1.0, 16)) + 0.3
+    d = Display.from_lut(lut, 40.0, frame_rate=100.0)
+    assert d.bits == 4 and d.luminance == (lut[0], lut[-1]) and d.gamma is None
+    assert np.array_equal(d.luminance_of(np.arange(16)), lut)
+    assert d.value_of(lut[5]) == 5.0
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    (dict(bits=0), "bits must be an int in [1, 16]"),
+    (dict(bits=17), "bits must be an int in [1, 16]"),
+    (dict(luminance=(-1.0, 100.0)), "luminance (cd/m²)[0] must be in [0, 1e+12]"),
+    (dict(luminance=(50.0, 10.0)), "0 <= L_min < L_max"),
+    (dict(gamma=0.0), "gamma must be in [0.1, 10]"),
+    (dict(frame_rate=0.0), "frame_rate (Hz) must be in (0, 1e+09]"),
+])
+def test_display_bad_input_names_parameter_and_limit(kwargs, words):
+    with pytest.raises(ValueError) as exc:
+        Display(32.0, **kwargs)
+    assert words in str(exc.value)
+    with pytest.raises(ValueError, match=r"pixels_per_degree must be in \(0"):
+        Display(0.0)
+
+
+def test_lut_must_be_monotonic_and_sized():
+    with pytest.raises(ValueError, match=r"lut must be strictly increasing \(monotonic\): lut\[2\]"):
+        Display.from_lut([0.0, 1.0, 1.0, 2.0], 32.0)
+    with pytest.raises(ValueError, match=r"lut must hold 2\*\*bits entries for bits in 1..16"):
+        Display.from_lut([0.0, 1.0, 2.0], 32.0)
+    with pytest.raises(ValueError, match=r"lut must hold finite luminances in \[0"):
+        Display.from_lut([-1.0, 1.0], 32.0)
+
+
+def test_luminance_of_refuses_values_off_the_display():
+    with pytest.raises(ValueError, match=r"values must be display values in \[0, 255\] \(8 bits\)"):
+        D8.luminance_of([0, 256])
+    with pytest.raises(ValueError, match=r"within the display's range \[0.5, 100\] cd/m²"):
+        D8.value_of(120.0)
+
+
+# ---------------------------------------------------------------- to_display
+FIELD = spectral_noise((256, 256), exponent=1.0, band=(4, 64), seed=5, dtype=np.float64)
+
+
+@pytest.mark.parametrize("display", [D8, D10], ids=["8bit", "10bit"])
+@pytest.mark.parametrize("dither", [True, False])
+@pytest.mark.parametrize("mean, contrast", [(40.0, 0.05), (50.0, 0.2), (30.0, 0.15)])
+def test_rms_contrast_on_the_screen(display, dither, mean, contrast):
+    v = to_display(FIELD, display, mean=mean, contrast=contrast, kind="rms", dither=dither, seed=1)
+    assert v.dtype == (np.uint8 if display.bits <= 8 else np.uint16)
+    L = display.luminance_of(v)
+    assert abs(L.mean() / mean - 1) < 0.01
+    assert abs(analysis.rms_contrast(L) / contrast - 1) < 0.02
+
+
+@pytest.mark.parametrize("display, dither", [(D8, True), (D8, False), (D10, True), (D10, False)])
+@pytest.mark.parametrize("mean, contrast", [(50.0, 0.176), (40.0, 0.5), (50.0, 0.98)])
+def test_michelson_contrast_on_the_screen(display, dither, mean, contrast):
+    v = to_display(FIELD, display, mean=mean, contrast=contrast, kind="michelson", dither=dither, seed=2)
+    L = display.luminance_of(v)
+    assert abs(L.mean() / mean - 1) < 0.01
+    assert abs(analysis.michelson_contrast(L) / contrast - 1) < 0.02
+
+
+def test_michelson_8bit_dithered_within_two_percent_at_high_contrast():
+    v = to_display(FIELD, D8, mean=50.0, contrast=0.8, kind="michelson", seed=4)
+    L = D8.luminance_of(v)
+    assert abs(analysis.michelson_contrast(L) / 0.8 - 1) < 0.02 and abs(L.mean() / 50.0 - 1) < 0.01
+
+
+def test_luminance_for_is_exact():
+    for kind, c in (("rms", 0.2), ("michelson", 0.6), ("michelson", 1.0)):
+        L = luminance_for(FIELD, mean=37.0, contrast=c, kind=kind)
+        assert L.mean() == pytest.approx(37.0, rel=1e-12)
+        got = L.std() / L.mean() if kind == "rms" else (L.max() - L.min()) / (L.max() + L.min())
+        assert got == pytest.approx(c, rel=1e-12)
+
+
+def test_michelson_one_needs_a_black_display():
+    d = Display(32.0, luminance=(0.0, 100.0), bits=10)
+    L = d.luminance_of(to_display(FIELD, d, mean=40.0, contrast=1.0, kind="michelson", seed=0))
+    assert analysis.michelson_contrast(L) == 1.0 and abs(L.mean() / 40.0 - 1) < 0.01
+    with pytest.raises(ValueError, match=r"needs luminances \[0, .*the display's range is \[0.5, 100\]"):
+        to_display(FIELD, D8, mean=50.0, contrast=1.0, kind="michelson")
+    with pytest.raises(ValueError, match="makes the darkest pixel's luminance negative"):
+        luminance_for(FIELD, mean=50.0, contrast=0.5)
+
+
+def test_dithering_keeps_the_expected_luminance_below_one_step():
+    x = spectral_noise((48, 48), band=(2, 12), seed=9, dtype=np.float64)
+    mean, contrast = 40.0, 0.002
+    step = float(D8.step_at(mean))
+    L_req = luminance_for(x, mean=mean, contrast=contrast)
+    assert np.ptp(L_req) < step   # the whole request lies within one display step (or straddles one)
+    avg = np.mean([D8.luminance_of(to_display(x, D8, mean=mean, contrast=contrast, seed=s)) for s in range(64)],
+                  axis=0)
+    assert np.max(np.abs(avg - L_req)) < 0.2 * step
+    # 64 frames drawn from one Generator (independent offsets): unbiased, and within 0.2 step too
+    g = np.random.default_rng(11)
+    avg_g = np.mean([D8.luminance_of(to_display(x, D8, mean=mean, contrast=contrast, seed=g)) for _ in range(64)],
+                    axis=0)
+    assert abs(np.mean(avg_g - L_req)) < 0.02 * step and np.max(np.abs(avg_g - L_req)) < 0.2 * step
+    # within one image the thresholds are uniform and independent: a flat request half-way between two values
+    half = 0.5 * (D8.luminance_of(100) + D8.luminance_of(101))
+    flat = D8.luminance_of(to_display(np.r_[np.zeros(40000), 1.0], D8, mean=half, contrast=1e-9, seed=3))[:-1]
+    assert np.mean(flat == D8.luminance_of(101)) == pytest.approx(0.5, abs=0.01)
+    # without dithering the contrast is lost or doubled: the image has at most two values
+    flat = D8.luminance_of(to_display(x, D8, mean=mean, contrast=contrast, dither=False))
+    assert np.unique(flat).size <= 2
+
+
+def test_dither_is_seeded():
+    a = to_display(FIELD, D8, mean=40.0, contrast=0.1, seed=7)
+    b = to_display(FIELD, D8, mean=40.0, contrast=0.1, seed=7)
+    c = to_display(FIELD, D8, mean=40.0, contrast=0.1, seed=8)
+    assert np.array_equal(a, b) and not np.array_equal(a, c)
+
+
+def test_request_the_display_cannot_show():
+    with pytest.raises(ValueError) as exc:
+        to_display(FIELD, D8, mean=80.0, contrast=0.5, kind="rms")
+    msg = str(exc.value)
+    assert "display's range is [0.5, 100]" in msg and "largest rms contrast that fits" in msg
+    best = float(msg.rsplit(" ", 1)[1])
+    v = to_display(FIELD, D8, mean=80.0, contrast=best * 0.999, kind="rms")   # the stated limit fits
+    assert analysis.rms_contrast(D8.luminance_of(v)) == pytest.approx(best * 0.999, rel=0.02)
+    with pytest.raises(ValueError, match=r"mean = 120 cd/m² is outside the display's range \[0.5, 100\]"):
+        to_display(FIELD, D8, mean=120.0, contrast=0.1)
+    with pytest.raises(ValueError, match=r"contrast \(Michelson\) must be in \(0, 1\]"):
+        to_display(FIELD, D8, mean=50.0, contrast=1.2, kind="michelson")
+    with pytest.raises(ValueError, match=r"contrast \(Michelson\) must be in \(0, 1\]"):
+        to_display(FIELD, D8, mean=50.0, contrast=0.0, kind="michelson")
+    with pytest.raises(ValueError, match=r"contrast \(RMS\) must be in \(0"):
+        to_display(FIELD, D8, mean=50.0, contrast=-0.1)
+    with pytest.raises(ValueError, match="field must vary"):
+        to_display(np.ones((8, 8)), D8, mean=50.0, contrast=0.1)
+    with pytest.raises(TypeError, match="display must be a noiselab.Display"):
+        to_display(FIELD, (0, 100), mean=50.0, contrast=0.1)
+
+
+def test_to_display_on_a_snow_video():
+    video = noiselab.snow((8, 64, 64), seed=0)
+    v = to_display(video, D10, mean=30.0, contrast=0.176, kind="michelson", seed=0)
+    assert v.shape == video.shape
+    assert analysis.michelson_contrast(D10.luminance_of(v)) == pytest.approx(0.176, rel=0.02)
+
+
+# ---------------------------------------------------------------- phase scrambling
+def _corr(a, b):
+    a, b = a - a.mean(), b - b.mean()
+    return float(np.sum(a * b) / np.sqrt(np.sum(a * a) * np.sum(b * b)))
+
+
+@pytest.mark.parametrize("shape, axes", [((128, 128), None), ((127, 130), None), ((16, 32, 33), None),
+                                         ((6, 32, 32), (1, 2))])
+def test_phase_scramble_keeps_amplitude_and_mean(shape, axes):
+    rng = np.random.default_rng(0)
+    x = rng.random(shape) + 3.0   # a positive mean (the DC sign must survive)
+    s = phase_scramble(x, seed=1, axes=axes)
+    ax = tuple(range(len(shape))) if axes is None else axes
+    A, B = np.abs(scipy.fft.rfftn(x, axes=ax)), np.abs(scipy.fft.rfftn(s, axes=ax))
+    assert np.max(np.abs(A - B)) <= 1e-9 * np.max(A)
+    assert np.max(np.abs((A - B) / np.where(A > 0, A, 1))[A > 1e-6 * A.max()]) <= 1e-9
+    assert np.allclose(s.mean(axis=ax), x.mean(axis=ax), rtol=1e-12, atol=0)
+    assert abs(_corr(x, s)) < 0.05
+
+
+def test_phase_scramble_of_a_natural_like_image_decorrelates():
+    img = spectral_noise((128, 128), exponent=1.0, seed=3, dtype=np.float64) + 5.0
+    r = [_corr(img, phase_scramble(img, seed=s)) for s in range(40)]
+    assert abs(np.mean(r)) < 0.05          # over seeds the correlation averages out to 0
+    s = phase_scramble(img, seed=0)
+    assert s.mean() == pytest.approx(5.0, rel=1e-12)
+    assert analysis.spectral_slope(s, (4, 32)) == pytest.approx(analysis.spectral_slope(img, (4, 32)), abs=1e-6)
+
+
+def test_phase_scramble_seeded_and_dtype():
+    x = np.random.default_rng(1).random((32, 32)).astype(np.float32)
+    a, b = phase_scramble(x, seed=4), phase_scramble(x, seed=4)
+    assert a.dtype == np.float32 and np.array_equal(a, b)
+    assert not np.array_equal(a, phase_scramble(x, seed=5))
+
+
+def test_amplitude_swap():
+    rng = np.random.default_rng(2)
+    a = spectral_noise((64, 64), exponent=2.0, seed=1, dtype=np.float64) + 1.0
+    p = rng.random((64, 64))
+    s = amplitude_swap(a, p)
+    A, S, P = scipy.fft.rfftn(a), scipy.fft.rfftn(s), scipy.fft.rfftn(p)
+    assert np.max(np.abs(np.abs(S) - np.abs(A))) <= 1e-9 * np.abs(A).max()
+    keep = np.abs(A) > 1e-6 * np.abs(A).max()
+    keep[0, 0] = False
+    assert np.allclose(np.angle(S[keep] * np.conj(P[keep])), 0, atol=1e-6)
+    assert s.mean() == pytest.approx(a.mean(), rel=1e-12)
+    with pytest.raises(ValueError, match="must have one shape"):
+        amplitude_swap(a, p[:10])
+
+
+# ---------------------------------------------------------------- synthesize(normalize=)
+def test_synthesize_normalize():
+    env = lambda wy, wx: 1e-4 * E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.2))  # noqa: E731
+    raw = synthesize((64, 64), env, seed=0, dtype=np.float64)
+    assert raw.std() < 1e-3     # the envelope's scale: what the issue found
+    one = synthesize((64, 64), env, seed=0, dtype=np.float64, normalize="sample")
+    assert np.mean(one ** 2) == pytest.approx(1.0, rel=1e-12)
+    assert np.allclose(one / raw, (one / raw).flat[0])   # the same field, scaled
+    ens = np.mean([np.mean(synthesize((64, 64), env, seed=s, dtype=np.float64, normalize="expected") ** 2)
+                   for s in range(64)])
+    assert ens == pytest.approx(1.0, abs=0.03)
+    with pytest.raises(ValueError, match="normalize must be None or one of"):
+        synthesize((8, 8), env, normalize="peak")
+
+
+# ---------------------------------------------------------------- motion clouds
+def _mc_envelope(shape, **p):
+    """MotionClouds' own envelope_gabor on our half spectrum (T, H, W//2+1), from its (x, y, t) fftshifted grids."""
+    MC = pytest.importorskip("MotionClouds")
+    T, H, W = shape
+    fx, fy, ft = MC.get_grids(W, H, T)
+    env = MC.envelope_gabor(fx, fy, ft, **p)                     # (W, H, T), centred
+    env = np.fft.ifftshift(env).transpose(2, 1, 0)               # (T, H, W), numpy's order
+    return env[..., : W // 2 + 1]
+
+
+def _not_nyquist(shape):
+    T, H, W = shape
+    m = np.ones((T, H, W // 2 + 1), bool)
+    for ax, n in ((0, T), (1, H)):
+        if n % 2 == 0:
+            idx = [slice(None)] * 3
+            idx[ax] = n // 2
+            m[tuple(idx)] = False
+    if W % 2 == 0:
+        m[..., W // 2] = False   # MotionClouds puts the Nyquist cell at -0.5, rfft at +0.5: aliased, left out
+    return m
+
+
+CLOUDS = [
+    dict(sf_0=0.15, B_sf=0.08, theta=np.pi / 4, B_theta=np.pi / 12, V_X=1.0, V_Y=0.5, B_V=0.3),
+    dict(sf_0=0.1, B_sf=0.05, theta=0.0, B_theta=np.inf, V_X=-0.5, V_Y=1.5, B_V=0.5),
+    dict(sf_0=0.2, B_sf=0.1, theta=-1.0, B_theta=0.3, V_X=0.0, V_Y=0.0, B_V=0.2, loggabor=False),
+]
+
+
+@pytest.mark.parametrize("params", CLOUDS)
+def test_cloud_envelope_is_motionclouds_envelope_gabor(params):
+    shape = (16, 32, 24)
+    ours = cloud_envelope(shape, **params)
+    theirs = _mc_envelope(shape, **params)
+    m = _not_nyquist(shape)
+    scale = theirs[m].max() / ours[m].max()
+    assert np.allclose(ours[m] * scale, theirs[m], rtol=1e-9, atol=1e-12 * theirs[m].max())
+
+
+@pytest.mark.parametrize("params", CLOUDS[:2])
+def test_motion_cloud_ensemble_power_matches_motionclouds(params):
+    shape = (16, 32, 32)
+    n = 24
+    power = np.mean([np.abs(scipy.fft.rfftn(motion_cloud(shape, seed=s, dtype=np.float64, **params))) ** 2
+                     for s in range(n)], axis=0)
+    target = _mc_envelope(shape, **params) ** 2
+    m = _not_nyquist(shape)
+    target = target / target[m].sum() * power[m].sum()
+    strong = m & (target > 0.05 * target[m].max())
+    # each cell's power over 24 seeds of a complex Gaussian: relative sd 1/sqrt(24) = 0.2; pooled over the band
+    ratio = power[strong].sum() / target[strong].sum()
+    assert ratio == pytest.approx(1.0, abs=0.05)
+    assert np.corrcoef(power[m], target[m])[0, 1] > 0.95
+    assert np.median(power[strong] / target[strong]) == pytest.approx(1.0, abs=0.15)
+
+
+@pytest.mark.parametrize("v", [(1.0, 0.0), (0.0, 1.0), (-1.5, 0.75), (0.6, -1.2)])
+def test_best_velocity_reads_the_cloud_velocity_back(v):
+    z = motion_cloud((32, 64, 64), sf_0=0.12, B_sf=0.05, V_X=v[0], V_Y=v[1], B_V=0.05, seed=1, dtype=np.float64)
+    got = analysis.best_velocity(z)
+    assert np.allclose(got, v, atol=0.05), got
+
+
+def test_motion_cloud_unit_variance_and_still():
+    var = np.mean([motion_cloud((8, 32, 32), sf_0=0.125, B_sf=0.05, seed=s).var() for s in range(16)])
+    assert var == pytest.approx(1.0, abs=0.1)
+    still = motion_cloud((64, 64), sf_0=0.125, B_sf=0.05, theta=np.pi / 2, B_theta=0.2, seed=0, dtype=np.float64)
+    S = np.abs(scipy.fft.rfft2(still)) ** 2
+    # theta = pi/2: waves along y, so the energy sits on the ky axis side, not the kx one
+    assert S[1:20, :3].sum() > 20 * S[:3, 1:20].sum()
+
+
+def test_motion_cloud_bad_input():
+    with pytest.raises(ValueError, match=r"sf_0 \(cycles/pixel\) must be in \(0, 0.5\]"):
+        motion_cloud((4, 16, 16), sf_0=0.7, B_sf=0.1)
+    with pytest.raises(ValueError, match=r"B_sf \(cycles/pixel\) must be in \(0"):
+        motion_cloud((4, 16, 16), sf_0=0.2, B_sf=0.0)
+    with pytest.raises(ValueError, match=r"B_V \(px/frame\) must be in \[0"):
+        motion_cloud((4, 16, 16), sf_0=0.2, B_sf=0.1, B_V=-1.0)
+    with pytest.raises(ValueError, match=r"B_theta \(radians\) must be >= 1e-6 or np.inf"):
+        motion_cloud((4, 16, 16), sf_0=0.2, B_sf=0.1, B_theta=0.0)

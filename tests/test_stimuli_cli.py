@@ -1,0 +1,74 @@
+"""``noiselab stimulus`` (issue 24): physical units in, display values and a JSON sidecar out."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from noiselab import Display, analysis
+from noiselab.cli import main
+from noiselab.io import read_image, read_video
+
+
+def _run(tmp_path, *argv):
+    return main(["stimulus", *argv])
+
+
+@pytest.mark.parametrize("argv, suffix", [
+    (["pink", "--size", "4", "--band", "0.5", "8"], ".png"),
+    (["bandpass", "--size", "4", "--sf", "4", "--orientation", "45", "--orientation-bandwidth", "15"], ".npy"),
+    (["snow", "--size", "2", "--duration", "0.15"], ".mkv"),
+    (["cloud", "--size", "2", "--duration", "0.15", "--velocity", "2", "0"], ".npy"),
+])
+def test_stimulus_kinds_write_values_and_sidecar(tmp_path, argv, suffix, capsys):
+    out = tmp_path / f"s{suffix}"
+    assert _run(tmp_path, *argv, "--mean", "30", "--contrast", "0.15", "--seed", "3", "-o", str(out)) == 0
+    side = json.loads((tmp_path / f"s{suffix}.json").read_text())
+    assert side["seed"] == 3 and side["kind"] == argv[0] and side["noiselab_version"]
+    assert side["display"] == Display(32.0).as_dict()
+    assert side["parameters"]["mean"] == 30.0 and side["output"]["lossless"] is True
+    values = read_video(out) if suffix == ".mkv" else read_image(out)
+    L = Display(32.0).luminance_of(values)
+    assert L.mean() == pytest.approx(30.0, rel=0.01)
+    assert analysis.rms_contrast(L) == pytest.approx(0.15, rel=0.02)
+    assert side["measured_on_written_values"]["rms_contrast"] == pytest.approx(analysis.rms_contrast(L), rel=1e-9)
+    n = Display(32.0).pixels(float(argv[argv.index("--size") + 1]))
+    assert values.shape[-2:] == (n, n)
+
+
+def test_stimulus_is_repeatable_and_cloud_moves_at_the_stated_speed(tmp_path):
+    a, b = tmp_path / "a.npy", tmp_path / "b.npy"
+    args = ["cloud", "--size", "2", "--duration", "0.5", "--velocity", "1.875", "-0.9375", "--speed-bandwidth",
+            "0.05", "--sf", "4", "--sf-bandwidth", "1", "--frame-rate", "60", "--bits", "10"]
+    assert _run(tmp_path, *args, "-o", str(a)) == 0 and _run(tmp_path, *args, "-o", str(b)) == 0
+    va, vb = np.load(a), np.load(b)
+    assert va.dtype == np.uint16 and np.array_equal(va, vb)
+    v = analysis.best_velocity(Display(32.0, bits=10).luminance_of(va))
+    assert np.allclose(v, [1.875 * 32 / 60, -0.9375 * 32 / 60], atol=0.05)   # deg/s -> px/frame
+
+
+def test_phase_scrambled_image(tmp_path):
+    img = tmp_path / "img.npy"
+    np.save(img, np.random.default_rng(0).random((64, 48)))
+    out = tmp_path / "s.png"
+    assert _run(tmp_path, "scramble", "--image", str(img), "--contrast-kind", "michelson", "--contrast", "0.5",
+                "-o", str(out)) == 0
+    L = Display(32.0).luminance_of(read_image(out))
+    assert L.shape == (64, 48) and analysis.michelson_contrast(L) == pytest.approx(0.5, rel=0.02)
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["pink", "--mean", "90", "--contrast", "0.5"], "largest rms contrast that fits"),
+    (["pink", "--bits", "17"], "bits must be an int in [1, 16]"),
+    (["snow", "-o", "x.png"], "a PNG holds one frame"),
+    (["scramble"], "scramble needs --image"),
+    (["pink", "-o", "x.tif"], "output must end in .png, .mkv, .mp4 or .npy"),
+    (["pink", "--contrast-kind", "michelson", "--contrast", "1.5"], "contrast (Michelson) must be in (0, 1]"),
+    (["cloud", "--bits", "10", "--duration", "0.1", "--size", "1", "-o", "x.mkv"], "videos hold 8-bit values"),
+])
+def test_stimulus_errors_are_one_line_and_exit_2(tmp_path, argv, words, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert _run(tmp_path, *argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("noiselab stimulus: error: ") and words in err and err.count("\n") == 1
