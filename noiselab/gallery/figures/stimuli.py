@@ -36,7 +36,8 @@ def _texture(display, n, sf, theta_deg, bw_deg, seed):
 @figure("stimuli", "fig5_4", seed="Zhang 2003, Fig. 5.4 (after Singh & Anderson 2002)",
         title="Texture background with two low-contrast regions: texture continuing (left) and not (right)",
         params=dict(size_deg=8.0, mean=40.0, michelson_surround=0.6, transmittance=0.35, sf=3.0, seed=4),
-        quick=dict(size_deg=3.0), uses=STIM)
+        quick=dict(size_deg=3.0), uses=STIM,
+        look="the left region reads as a transparent layer over the texture; the right one, whose texture breaks, reads as a patch")
 def singh_anderson(out, *, size_deg, mean, michelson_surround, transmittance, sf, seed):
     from noiselab import analysis
     from noiselab.stimuli import luminance_for
@@ -93,7 +94,8 @@ def _square_wave(display, frames, n, period_deg, speed, direction):
 @figure("stimuli", "fig5_5", seed="Zhang 2003, Fig. 5.5 (after Stoner & Albright 1990)",
         title="Two square-wave gratings moving up-left and up-right, superimposed with a transmittance",
         params=dict(size_deg=6.0, duration=1.0, period_deg=1.0, speed=2.0, background=60.0, t_sw=0.5, seed=5),
-        quick=dict(size_deg=2.0, duration=0.25), uses=STIM)
+        quick=dict(size_deg=2.0, duration=0.25), uses=STIM,
+        look="where the gratings cross, the intersections' luminance decides whether they slide apart or move up together as a plaid")
 def stoner_albright(out, *, size_deg, duration, period_deg, speed, background, t_sw, seed):
     from noiselab import analysis
 
@@ -135,7 +137,8 @@ def stoner_albright(out, *, size_deg, duration, period_deg, speed, background, t
 @figure("stimuli", "fig6_2", seed="Zhang 2003, Fig. 6.2 and Eq. 6.1, restated in cd/m²",
         title="The motion-parallax transparency stimulus in cd/m² and Michelson contrast",
         params=dict(size_deg=8.0, duration=1.0, transmittance=0.3, seed=7), quick=dict(size_deg=2.0, duration=0.25),
-        uses=STIM + ("noiselab.snow",))
+        uses=STIM + ("noiselab.snow",),
+        look="the same parallax stimulus, now with its mean luminance in cd/m² and its veiled contrast as Michelson contrast")
 def parallax_in_cd(out, *, size_deg, duration, transmittance, seed):
     from noiselab import analysis
     from noiselab.snow import snow
