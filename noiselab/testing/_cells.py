@@ -91,4 +91,7 @@ def live_band(cells: Cells, lo: float, hi: float) -> tuple[float, float] | None:
             run_start = None
     if best is None:
         return None
-    return max(lo, best[0] - 0.5 if best[0] > 0 else lo), min(hi, best[1] + 0.5)
+    # the run's rings are one cycle/frame wide: its ends are the outermost cells with power in them
+    r = cells.radius[sel]
+    ok = (ring >= best[0]) & (ring <= best[1]) & (cells.power[sel] > cells.floor)
+    return max(lo, float(r[ok].min())), min(hi, float(r[ok].max()))

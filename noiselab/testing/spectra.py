@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize, special, stats
 
-from .._core import check_band, check_real
+from .._core import as_array, check_band, check_real
 from ..analysis import axis_artefacts, band_energy, power_spectrum
 from ._cells import independent_cells, live_band, ring_index
 
@@ -39,8 +39,10 @@ def _check_window(window):
 
 
 def _spectrum(name, field, ndim, window):
-    arr = np.asarray(field) if isinstance(field, np.ndarray) else field
-    nd = np.ndim(arr)
+    if isinstance(field, (str, bytes)) or field is None:
+        raise TypeError(f"{name} must be a numeric array, got {type(field).__name__}")
+    arr = as_array(name, field)
+    nd = arr.ndim
     if nd not in ndim:
         dims = " or ".join(f"{d}-D" for d in ndim)
         raise ValueError(f"{name} must be a {dims} array, got {nd}-D")
@@ -323,7 +325,7 @@ class IsotropyCheck:
     statistic : float
         The score statistic, chi-square with 4 dof for an isotropic Gaussian field.
     threshold : float
-        The value it was compared with (or nan when ``tolerance`` was given).
+        Its ``1 - false_alarm`` quantile (what it was compared with unless ``tolerance`` was given).
     error : float
         Standard error of each modulation component.
     cells : int
@@ -463,13 +465,12 @@ def assert_isotropic(field, *, band=None, tolerance=None, false_alarm=1e-3, wind
     se = float(np.sqrt(cells.variance_factor * np.mean(np.diag(np.linalg.inv(m)))))
     measured = (f"orientation modulation of the power {depth2:.3%} (2-fold, at {angle2:.0f} deg) and {depth4:.3%} "
                 f"(4-fold, axes) +- {se:.2%} each, {where}, from {n} independent cells")
+    thr = float(stats.chi2.isf(alpha_fa, 4))
     if tolerance is None:
-        thr = float(stats.chi2.isf(alpha_fa, 4))
         ok = stat <= thr
         how = (f"score statistic {stat:.1f}, allowed {thr:.1f}: the chi-square (4 dof) quantile of false_alarm="
                f"{alpha_fa:g} for exponential (Gaussian-field) cells")
     else:
-        thr = float("nan")
         ok = max(depth2, depth4) <= tolerance
         how = f"allowed depth {tolerance:g} (given tolerance; score statistic {stat:.1f})"
     msg = f"isotropy: {measured}; {how}"
