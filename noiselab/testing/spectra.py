@@ -8,7 +8,7 @@ import numpy as np
 from scipy import optimize, special, stats
 
 from .._core import as_array, check_band, check_real
-from ..analysis import axis_artefacts, band_energy, power_spectrum
+from ..analysis import PowerSpectrum, axis_artefacts, band_energy, power_spectrum
 from ._cells import independent_cells, live_band, ring_index
 
 __all__ = [
@@ -256,8 +256,9 @@ def assert_band_limited(field, band, *, max_leakage=None, window=None, axes=None
 
     Parameters
     ----------
-    field : array_like
-        1-, 2- or 3-D; for the spatial band of a video ``(frames, height, width)`` pass ``axes=(-2, -1)``.
+    field : array_like or PowerSpectrum
+        1-, 2- or 3-D; for the spatial band of a video ``(frames, height, width)`` pass ``axes=(-2, -1)``
+        (a :class:`noiselab.analysis.PowerSpectrum` is used as it is).
     band : (lo, hi)
         Cycles/frame, inclusive.
     max_leakage : float, optional
@@ -289,7 +290,10 @@ def assert_band_limited(field, band, *, max_leakage=None, window=None, axes=None
     ...
     AssertionError: band limit: ...
     """
-    spec = power_spectrum(field, window=_check_window(window), axes=axes)
+    if isinstance(field, PowerSpectrum):
+        spec = field  # computed once for several checks
+    else:
+        spec = power_spectrum(field, window=_check_window(window), axes=axes)
     if max_leakage is None:
         max_leakage = 1.4e-6 if spec.power.dtype == np.float32 else 1e-12
         how = f"default {max_leakage:g}: the rounding floor of {spec.power.dtype} arithmetic with a wide margin"
