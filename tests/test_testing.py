@@ -242,3 +242,15 @@ def test_strategies_import_only_with_the_test_suite():
     code = "import sys, noiselab.testing; print('hypothesis' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == "False"
+
+
+def test_the_guide_page_runs():
+    # docs/guide/testing.rst: every python block, in order, in one namespace (as a reader would paste them)
+    import pathlib
+    import re
+    src = (pathlib.Path(__file__).resolve().parents[1] / "docs" / "guide" / "testing.rst").read_text()
+    blocks = re.findall(r"\.\. code-block:: python\n\n((?:    .*\n|\n)+)", src)
+    assert len(blocks) >= 4
+    namespace = {}
+    for block in blocks:
+        exec("\n".join(line[4:] for line in block.splitlines()), namespace)
