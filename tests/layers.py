@@ -10,7 +10,7 @@ layer subpackages                                            what lives there
                                                              optional dependencies, dtypes, progress
 1     ``spectral``, ``lattice``, ``analysis``, ``io``        the primitives (siblings do not import each
                                                              other, except that anyone may write with ``io``)
-2     ``snow``, ``fractal``                                  built from the primitives
+2     ``snow``, ``fractal``, ``testing``                     built from the primitives; the assertions
 3     ``fields``, ``geometry``, ``stimuli``                  flow, warps, normals, meshes, shapes;
                                                              stimuli in physical units
 4     ``lab``                                                the laboratory: experiments and measurements
@@ -42,6 +42,9 @@ LAYERS = {
     "_core": 0,
     "spectral": 1, "lattice": 1, "analysis": 1, "io": 1,
     "snow": 2, "fractal": 2,
+    # testing (the spectral assertions) builds on analysis only: layer 2, the lowest above analysis; nothing
+    # below imports it (a generator must not lean on its own tests), so it is an analyser too
+    "testing": 2,
     "fields": 3, "geometry": 3, "stimuli": 3,
     "lab": 4,
     "scale": 5,
@@ -49,7 +52,7 @@ LAYERS = {
     "cli": 7,
 }
 LEAVES = {"io"}                       # any layer may import these
-ANALYSERS = {"analysis"}              # ... but no generator imports these
+ANALYSERS = {"analysis", "testing"}   # ... but no generator imports these
 GENERATORS = {"spectral", "lattice", "io", "snow", "fractal", "fields", "geometry", "stimuli"}
 DASK_MODULES = {"dask", "distributed"}
 TOP = {"__init__", "__main__"}       # the package root: lazy re-exports, above every layer

@@ -53,6 +53,7 @@ from noiselab import lattice as L
 from noiselab import snow as S
 from noiselab import spectral as SP
 from noiselab import stimuli as STIM
+from noiselab import testing as TST
 from noiselab.spectral import envelopes as E
 
 EXAMPLES = 25
@@ -675,6 +676,36 @@ TABLE += [
     _env_entry("speed_envelope", E.speed_envelope, W3, dict(velocity=(1.0, 0.5), B_V=0.5),
                dict(velocity="pair", B_V="real"), check=shaped(lambda kw: None, lo=0, hi=1),
                wnames=["wt", "wy", "wx"]),
+# the spectral assertions (noiselab.testing, issue 27): a valid call may pass (the measurement) or fail the
+# property (AssertionError, its message the result); bad input is a ValueError/TypeError naming the parameter
+def _asserting(func):
+    def call(**kw):
+        try:
+            return func(**kw)
+        except AssertionError as exc:
+            assert str(exc), "an assertion without a message"
+            return str(exc)
+    call.__module__ = func.__module__
+    return call
+
+
+PINK64 = SP.spectral_noise((64, 64), exponent=1.0, seed=1)
+TABLE += [
+    Entry("assert_power_law", _asserting(TST.assert_power_law), dict(field=PINK64, exponent=1.0),
+          dict(field="array", exponent="real", band="pair", tolerance="real", false_alarm="real", window="choice")),
+    Entry("assert_band_limited", _asserting(TST.assert_band_limited), dict(field=PINK64, band=(2, 16)),
+          dict(field="array", band="pair", max_leakage="real", window="choice")),
+    Entry("assert_isotropic", _asserting(TST.assert_isotropic), dict(field=PINK64),
+          dict(field="array", band="pair", tolerance="real", false_alarm="real", window="choice")),
+    Entry("assert_no_axis_artefacts", _asserting(TST.assert_no_axis_artefacts), dict(field=PINK64),
+          dict(field="array", band="pair", false_alarm="real", window="choice")),
+    Entry("assert_motion", _asserting(TST.assert_motion), dict(video=VID, velocity=(1.0, 0.0)),
+          dict(video="array", velocity="pair", min_energy="real", tol="real", band="pair", window="choice")),
+    Entry("assert_tent", _asserting(TST.assert_tent), dict(video=VID, c=1.0, band=(2, 8)),
+          dict(video="array", c="real", band="pair", direction="pair", pan="pair", thickness="real", tol="real",
+               min_energy="real", window="choice")),
+    Entry("assert_seamless", _asserting(TST.assert_seamless), dict(array=PINK64),
+          dict(array="array", axes="shape", period="shape", false_alarm="real")),
 ]
 
 # Parameters not fuzzed yet, and why: each is a bug to fix in that code, then its line here removed.
@@ -714,7 +745,7 @@ EXCLUDED = {
 
 ENTRIES = {e.name: e for e in TABLE}
 _SUBPACKAGES = ("spectral", "spectral.envelopes", "snow", "lattice", "fractal", "fields", "geometry", "stimuli",
-                "analysis", "io", "lab")
+                "analysis", "io", "lab", "testing")
 
 
 def _public_callables():

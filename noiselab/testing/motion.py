@@ -1,0 +1,172 @@
+"""Assertions about motion: energy on the motion plane of a velocity, or on Langer & Zhang's tent."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._core import check_real
+from ..analysis import motion_energy, tent_energy, video_spectrum
+
+__all__ = ["MotionCheck", "assert_motion", "assert_tent"]
+
+
+@dataclass(frozen=True)
+class MotionCheck:
+    """Energy on a motion surface.
+
+    Attributes
+    ----------
+    energy : float
+        Fraction of the video's power on the surface (within ``tol`` temporal cells).
+    opposite : float
+        The same fraction for the opposite motion (``-velocity``, or the tent falling up): what a sign error gives.
+    chance : float
+        The fraction a video whose power is spread evenly over temporal frequency would put there: ``(2 tol + 1) / T``.
+    min_energy : float
+    message : str
+    """
+
+    energy: float
+    opposite: float
+    chance: float
+    min_energy: float
+    message: str
+
+
+_WHY = ("a deterministic fraction of the spectrum: a video that moves so has all its power there whatever its "
+        "seed, up to its temporal bandwidth")
+
+
+def _judge(what, energy, opposite, chance, min_energy, given, extra=""):
+    how = f"given min_energy {min_energy:g}" if given else f"default min_energy {min_energy:g} ({_WHY})"
+    msg = (f"{what}: {energy:.6g} of the power lies on it (the opposite motion: {opposite:.3g}; chance for power "
+           f"spread evenly over temporal frequency: {chance:.3g}){extra}; required at least {how}")
+    if not energy >= min_energy:
+        raise AssertionError(msg)
+    return MotionCheck(energy=energy, opposite=opposite, chance=chance, min_energy=min_energy, message=msg)
+
+
+def _min_energy(min_energy):
+    if min_energy is None:
+        return 0.9, False
+    return check_real("min_energy", min_energy, lo=0.0, hi=1.0), True
+
+
+def assert_motion(video, velocity, *, min_energy=None, tol=1.0, band=None, window=None) -> MotionCheck:
+    """Assert that a video's power lies on the motion plane of ``velocity`` (px/frame): it moves that way.
+
+    An image translating with velocity ``v`` puts all its power on the plane
+    ``w_t = -v . w`` (:func:`noiselab.analysis.motion_energy`); a motion
+    cloud with a speed bandwidth spreads it around the plane. The fraction
+    within ``tol`` temporal-frequency cells of the plane is a property of
+    the spectrum, not a sampling estimate (every seed of a translating video
+    gives 1), so the threshold is a stated fraction: ``min_energy`` (default
+    0.9). The message reports the fraction for ``-velocity`` (a sign
+    error) and the chance level ``(2 tol + 1) / frames``.
+
+    Parameters
+    ----------
+    video : array_like
+        ``(frames, height, width)``, looping in time (or pass ``window="hann"`` and ``tol >= 1.5``).
+    velocity : (vx, vy)
+        Pixels/frame, x right, y down.
+    min_energy : float, optional
+        Fraction of the power required on the plane (0 to 1); default 0.9.
+    tol : float
+        Accepted distance from the plane in temporal-frequency cells.
+    band : (lo, hi), optional
+        Spatial band in cycles/frame (the fraction is still of the total power).
+    window : {None, "hann"}
+
+    Returns
+    -------
+    MotionCheck
+
+    Raises
+    ------
+    AssertionError
+        If less than ``min_energy`` of the power lies on the plane.
+    ValueError, TypeError
+        For bad input, naming the parameter.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from noiselab.testing import assert_motion
+    >>> img = np.random.default_rng(0).random((32, 32))
+    >>> video = np.stack([np.roll(img, (t, 2 * t), axis=(0, 1)) for t in range(32)])  # (vx, vy) = (2, 1)
+    >>> round(assert_motion(video, (2, 1)).energy, 6)
+    1.0
+    >>> assert_motion(video, (-2, -1))
+    Traceback (most recent call last):
+    ...
+    AssertionError: motion at (vx, vy) = (-2, -1) px/frame ...
+    """
+    spec = video_spectrum(video, window=window)
+    min_energy, given = _min_energy(min_energy)
+    energy = motion_energy(spec, velocity, tol=tol, band=band)
+    vx, vy = float(velocity[0]), float(velocity[1])
+    opposite = motion_energy(spec, (-vx, -vy), tol=tol, band=band)
+    chance = min(1.0, (2 * float(tol) + 1) / spec.shape[0])
+    where = "" if band is None else f" in the spatial band {band[0]:g}..{band[1]:g} cycles/frame"
+    return _judge(f"motion at (vx, vy) = ({vx:g}, {vy:g}) px/frame{where} (plane w_t = -v.w, within {float(tol):g} "
+                  "temporal cells)", energy, opposite, chance, min_energy, given)
+
+
+def assert_tent(video, c, band, *, direction=(0.0, 1.0), pan=(0.0, 0.0), thickness=0.1, tol=0.5, min_energy=None,
+                window=None) -> MotionCheck:
+    """Assert that a video's power inside ``band`` lies on Langer & Zhang's falling-snow tent.
+
+    The tent ``w_t = -((c / |w|) d + pan) . w`` (:func:`noiselab.analysis.tent_energy`):
+    layers whose speed is inversely proportional to their spatial frequency,
+    falling along ``direction``, with ``c`` in rad/frame. Like
+    :func:`assert_motion` the fraction is a property of the spectrum; the
+    default ``min_energy`` is 0.9 (noiselab's raw snow puts 1 - 1e-6 there, its
+    alpha matte 0.98).
+
+    Parameters
+    ----------
+    video : array_like
+        ``(frames, height, width)``.
+    c : float
+        Rad/frame, ``0 <= c <= pi``.
+    band : (lo, hi)
+        Spatial band, cycles/frame.
+    direction, pan : (x, y)
+        Fall direction (unit or not) and camera pan (px/frame).
+    thickness, tol : float
+        See :func:`noiselab.analysis.tent_energy`.
+    min_energy : float, optional
+        Default 0.9.
+    window : {None, "hann"}
+
+    Returns
+    -------
+    MotionCheck
+        ``opposite`` is the fraction on the tent of snow falling the other way.
+
+    Raises
+    ------
+    AssertionError
+        If less than ``min_energy`` of the power lies on the tent.
+    ValueError, TypeError
+        For bad input, naming the parameter.
+
+    Examples
+    --------
+    >>> import noiselab
+    >>> from noiselab.testing import assert_tent
+    >>> snow = noiselab.snow((16, 64, 64), seed=1, c=1.0, rescale=False)
+    >>> assert_tent(snow, 1.0, (2, 16)).energy > 0.999
+    True
+    """
+    spec = video_spectrum(video, window=window)
+    min_energy, given = _min_energy(min_energy)
+    energy = tent_energy(spec, c, band, direction, pan=pan, thickness=thickness, tol=tol)
+    d = np.asarray(direction, dtype=np.float64)
+    opposite = tent_energy(spec, c, band, (-d[0], -d[1]), pan=pan, thickness=thickness, tol=tol)
+    chance = min(1.0, (2 * float(tol) + 1) / spec.shape[0])  # a thin tent's
+    return _judge(f"tent c={float(c):g} rad/frame falling along ({d[0]:g}, {d[1]:g}), pan ({float(pan[0]):g}, "
+                  f"{float(pan[1]):g}) px/frame, in the band {float(band[0]):g}..{float(band[1]):g} cycles/frame",
+                  energy, opposite, chance, min_energy, given)

@@ -1,0 +1,256 @@
+"""noiselab.testing: the spectral assertions pass where a property holds and fail where it does not.
+
+The fields come from noiselab and from peers that noiselab did not make
+(powerbox: Gaussian random fields with a power spectrum ``k**-n``; colorednoise:
+1-D ``1/f**beta`` noise; MotionClouds: videos with a known velocity).
+Conventions: an amplitude exponent ``a`` is a power exponent ``2 a``
+(powerbox's ``pk = k**-2`` is ``a = 1``, colorednoise's ``beta = 1`` is
+``a = 0.5``); MotionClouds arrays are ``(x, y, t)``, turned into ``(t, y, x)``.
+"""
+import doctest
+import importlib
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from scipy import stats
+
+import colorednoise
+import MotionClouds as mc
+import powerbox
+
+import noiselab
+from noiselab import testing as T
+from noiselab.testing import strategies as nst
+
+
+def _powerbox(n, amp_exponent, seed, dim=2):
+    return powerbox.PowerBox(shape=(n,) * dim, size=(float(n),) * dim, pk=lambda k: k ** (-2.0 * amp_exponent),
+                             seed=seed).delta_x()
+
+
+def _motion_cloud(velocity, seed, shape=(32, 64, 64)):
+    t, h, w = shape
+    fx, fy, ft = mc.get_grids(w, h, t)
+    env = mc.envelope_gabor(fx, fy, ft, V_X=velocity[0], V_Y=velocity[1], B_V=0.1, sf_0=0.15, B_sf=0.1,
+                            B_theta=np.inf)
+    return np.transpose(mc.rectif(mc.random_cloud(env, seed=seed)), (2, 1, 0))
+
+
+@pytest.mark.parametrize("modname", ["noiselab.testing", "noiselab.testing.spectra", "noiselab.testing.motion",
+                                     "noiselab.testing.seams", "noiselab.testing.strategies"])
+def test_doctests(modname):
+    result = doctest.testmod(importlib.import_module(modname),
+                             optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0
+
+
+# ---------------------------------------------------------------- power law
+@pytest.mark.parametrize("exponent", [0.5, 1.0, 1.5])
+def test_power_law_on_powerbox_fields(exponent):
+    img = _powerbox(128, exponent, seed=int(exponent * 10))
+    check = T.assert_power_law(img, exponent)
+    assert abs(check.exponent - exponent) <= check.tolerance and check.cells > 1000
+    for wrong in (exponent - 0.2, exponent + 0.2):
+        with pytest.raises(AssertionError, match=rf"expected {wrong:g} within 3.29 SE"):
+            T.assert_power_law(img, wrong)
+
+
+def test_power_law_on_a_powerbox_volume():
+    vol = _powerbox(64, 1.5, seed=5, dim=3)
+    T.assert_power_law(vol, 1.5)
+    with pytest.raises(AssertionError):
+        T.assert_power_law(vol, 1.7)
+
+
+@pytest.mark.parametrize("beta", [1.0, 2.0])
+def test_power_law_on_colorednoise_series(beta):
+    series = colorednoise.powerlaw_psd_gaussian(beta, 4096, random_state=int(beta))
+    check = T.assert_power_law(series, beta / 2)  # a PSD exponent beta is an amplitude exponent beta / 2
+    assert check.band == (2.0, 1024.0)
+    with pytest.raises(AssertionError):
+        T.assert_power_law(series, beta / 2 + 0.2)
+
+
+def test_power_law_message_states_the_measurement_and_the_derivation():
+    img = noiselab.spectral_noise((128, 128), exponent=1.0, seed=4)
+    with pytest.raises(AssertionError) as info:
+        T.assert_power_law(img, 1.2, band=(4, 32))
+    msg = str(info.value)
+    for part in ("amplitude exponent", "over 4 <= f <= 32 cycles/frame", "expected 1.2", "false_alarm=0.001",
+                 "chi-square with 2 dof", "independent cells", "SE"):
+        assert part in msg, part
+    # a given tolerance replaces the statistical one
+    assert T.assert_power_law(img, 1.2, band=(4, 32), tolerance=0.3).tolerance == 0.3
+
+
+def test_power_law_of_a_band_limited_field_outside_its_band_fails():
+    img = noiselab.spectral_noise((128, 128), exponent=1.0, band=(8, 32), seed=6)
+    T.assert_power_law(img, 1.0, band=(8, 32))
+    assert T.assert_power_law(img, 1.0).band == (8.0, 32.0)  # the default band: where it has power
+    with pytest.raises(AssertionError, match="no power"):
+        T.assert_power_law(img, 1.0, band=(2, 32))
+
+
+def test_hann_window_for_fields_that_do_not_tile():
+    img = noiselab.spectral_noise((256, 256), exponent=2.0, seed=7)[:160, :160]
+    with pytest.raises(AssertionError):
+        T.assert_power_law(img, 2.0, band=(4, 40))  # the edge jump adds a 1/f^2 power cross
+    check = T.assert_power_law(img, 2.0, band=(4, 40), window="hann")
+    assert "Hann window" in check.message
+
+
+# ---------------------------------------------------------------- band limit
+def test_band_limit():
+    img = noiselab.spectral_noise((128, 128), band=(8, 32), seed=0)
+    assert T.assert_band_limited(img, (8, 32)).leakage < 1e-9
+    with pytest.raises(AssertionError, match=r"above"):
+        T.assert_band_limited(img, (8, 24))  # the upper edge is missing
+    with pytest.raises(AssertionError, match=r"below"):
+        T.assert_band_limited(img, (12, 32))
+    with pytest.raises(AssertionError):
+        T.assert_band_limited(_powerbox(128, 1.0, seed=1), (8, 32))  # a power law has no band
+    assert T.assert_band_limited(_powerbox(128, 1.0, seed=1), (8, 32), max_leakage=1.0).leakage > 0.1
+
+
+# ---------------------------------------------------------------- isotropy
+def test_isotropy_of_powerbox_and_stripes():
+    img = _powerbox(128, 1.0, seed=2)
+    check = T.assert_isotropic(img)
+    assert check.statistic <= check.threshold and check.depth2 < 0.1
+    y, x = np.mgrid[:128, :128]
+    stripes = np.sin(2 * np.pi * 8 * x / 128) + 0.01 * np.random.default_rng(0).standard_normal((128, 128))
+    with pytest.raises(AssertionError, match="isotropy"):
+        T.assert_isotropic(stripes)
+    with pytest.raises(AssertionError):
+        T.assert_isotropic(img + np.sin(2 * np.pi * 8 * y / 128) * img.std())  # stripes as strong as the noise
+
+
+def test_isotropy_sees_a_stretched_field():
+    # power modulated by 1 + 0.3 cos 2 theta: a 30 % anisotropy at 128 x 128 (SE about 2 %)
+    ky, kx = np.fft.fftfreq(128)[:, None], np.fft.rfftfreq(128)[None, :]
+    theta = np.arctan2(ky, kx)
+    gain = np.sqrt(1 + 0.3 * np.cos(2 * theta))
+    rng = np.random.default_rng(3)
+    spec = (rng.standard_normal(gain.shape) + 1j * rng.standard_normal(gain.shape)) * gain
+    img = np.fft.irfft2(spec, s=(128, 128))
+    with pytest.raises(AssertionError) as info:
+        T.assert_isotropic(img)
+    assert "2-fold, at 0 deg" in str(info.value) or "2-fold, at 180 deg" in str(info.value)
+    assert T.assert_isotropic(img, tolerance=0.4).depth2 == pytest.approx(0.3, abs=0.08)
+
+
+def test_lattice_noise_shows_its_axes():
+    lattice = noiselab.LatticeNoise(2, seed=3, kernel="cubic", period=16).grid((128, 128), [(0, 16), (0, 16)])
+    with pytest.raises(AssertionError, match="axis artefacts"):
+        T.assert_no_axis_artefacts(lattice)
+    with pytest.raises(AssertionError, match="4-fold"):
+        T.assert_isotropic(lattice, band=(2, 48))
+    check = T.assert_no_axis_artefacts(_powerbox(128, 1.0, seed=4))
+    assert check.interval[0] < 1 < check.interval[1]
+
+
+# ---------------------------------------------------------------- motion
+@pytest.mark.parametrize("velocity", [(1.0, 0.0), (0.0, -1.0)])
+def test_motion_clouds_move_at_their_velocity(velocity):
+    video = _motion_cloud(velocity, seed=1)
+    check = T.assert_motion(video, velocity)
+    assert check.energy > 0.9 and check.opposite < 0.2
+    with pytest.raises(AssertionError, match="opposite motion"):
+        T.assert_motion(video, (-velocity[0], -velocity[1]))  # the wrong sign
+    with pytest.raises(AssertionError):
+        T.assert_motion(video, (velocity[1], velocity[0]))  # the wrong direction
+
+
+def test_snow_lies_on_its_tent_and_not_on_the_upward_one():
+    snow = noiselab.snow((16, 64, 64), seed=1, c=1.0, rescale=False)
+    assert T.assert_tent(snow, 1.0, (2, 16), min_energy=0.999999).energy > 0.999999
+    with pytest.raises(AssertionError, match="tent"):
+        T.assert_tent(snow, 1.0, (2, 16), direction=(0, -1))
+
+
+# ---------------------------------------------------------------- seams
+def test_seams_of_tiles_and_loops():
+    tile = _powerbox(128, 1.5, seed=6)  # powerbox fields are periodic
+    check = T.assert_seamless(tile)
+    assert all(r < lim for r, lim in zip(check.ratio, check.limit))
+    with pytest.raises(AssertionError, match="SEAM"):
+        T.assert_seamless(tile[:100, :])  # a crop along y does not tile
+    T.assert_seamless(np.tile(tile, (2, 3)), period=(128, 128))
+    with pytest.raises(AssertionError, match="worst of 3 seams"):
+        T.assert_seamless(np.tile(tile[:, :100], (1, 3)), period=(128, 100))
+    loop = _motion_cloud((1.0, 0.0), seed=2)
+    T.assert_seamless(loop, axes=0)
+    with pytest.raises(AssertionError, match="axis 0"):
+        T.assert_seamless(loop[:27], axes=0)  # a cut loop
+
+
+# ---------------------------------------------------------------- calibration (the benchmark's short version)
+def _failures(check, make, seeds):
+    fails = 0
+    for s in seeds:
+        try:
+            check(make(s))
+        except AssertionError:
+            fails += 1
+    return fails
+
+
+@pytest.mark.parametrize("name", ["power_law", "isotropic", "axes", "seamless"])
+def test_false_alarm_rate_is_what_it_says(name):
+    # at false_alarm=0.05 a calibrated test fails 2 of 40 fields on average; more than the binomial's 1e-4
+    # upper quantile (9) would mean the derived tolerance is too tight (benchmarks/bench_testing.md: 200 seeds)
+    fa = 0.05
+    checks = {"power_law": lambda x: T.assert_power_law(x, 1.0, false_alarm=fa),
+              "isotropic": lambda x: T.assert_isotropic(x, false_alarm=fa),
+              "axes": lambda x: T.assert_no_axis_artefacts(x, false_alarm=fa),
+              "seamless": lambda x: T.assert_seamless(x, false_alarm=fa)}
+    fails = _failures(checks[name], lambda s: noiselab.spectral_noise((64, 64), exponent=1.0, seed=s), range(40))
+    assert fails <= stats.binom.isf(1e-4, 40, fa), fails
+
+
+@settings(max_examples=15, deadline=None, derandomize=True, database=None)
+@given(exponent=nst.exponents(lo=0.0, hi=2.0), seed=nst.seeds())
+def test_power_law_holds_for_drawn_exponents(exponent, seed):
+    img = noiselab.spectral_noise((64, 64), exponent=exponent, seed=seed)
+    T.assert_power_law(img, exponent, false_alarm=1e-6)
+    with pytest.raises(AssertionError):
+        T.assert_power_law(img, exponent + 0.5, false_alarm=1e-6)
+
+
+# ---------------------------------------------------------------- bad input
+@pytest.mark.parametrize("call, name", [
+    (lambda: T.assert_power_law(np.ones((2, 2)) * [1, 2], 1.0), "field"),
+    (lambda: T.assert_power_law(np.random.default_rng(0).random((32, 32)), float("nan")), "exponent"),
+    (lambda: T.assert_power_law(np.random.default_rng(0).random((32, 32)), 1.0, false_alarm=0.9), "false_alarm"),
+    (lambda: T.assert_power_law(np.random.default_rng(0).random((32, 32)), 1.0, band=(4, 40)), "band"),
+    (lambda: T.assert_isotropic(np.random.default_rng(0).random((4, 32, 32))), "field"),
+    (lambda: T.assert_band_limited(np.random.default_rng(0).random((32, 32)), (4, 8), max_leakage=-1), "max_leakage"),
+    (lambda: T.assert_motion(np.random.default_rng(0).random((8, 16, 16)), (1, "x")), "velocity"),
+    (lambda: T.assert_seamless(np.random.default_rng(0).random((16, 16)), axes=2), "axes"),
+    (lambda: T.assert_seamless(np.random.default_rng(0).random((16, 16)), period=5), "period"),
+    (lambda: T.assert_seamless(np.random.default_rng(0).random((4, 16))), "axis 0"),
+])
+def test_bad_input_is_an_error_naming_the_parameter(call, name):
+    with pytest.raises((ValueError, TypeError), match=name):
+        call()
+
+
+def test_strategies_import_only_with_the_test_suite():
+    import subprocess
+    import sys
+    code = "import sys, noiselab.testing; print('hypothesis' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"
+
+
+def test_the_guide_page_runs():
+    # docs/guide/testing.rst: every python block, in order, in one namespace (as a reader would paste them)
+    import pathlib
+    import re
+    src = (pathlib.Path(__file__).resolve().parents[1] / "docs" / "guide" / "testing.rst").read_text()
+    blocks = re.findall(r"\.\. code-block:: python\n\n((?:    .*\n|\n)+)", src)
+    assert len(blocks) >= 4
+    namespace = {}
+    for block in blocks:
+        exec("\n".join(line[4:] for line in block.splitlines()), namespace)
