@@ -676,6 +676,9 @@ TABLE += [
     _env_entry("speed_envelope", E.speed_envelope, W3, dict(velocity=(1.0, 0.5), B_V=0.5),
                dict(velocity="pair", B_V="real"), check=shaped(lambda kw: None, lo=0, hi=1),
                wnames=["wt", "wy", "wx"]),
+]
+
+
 # the spectral assertions (noiselab.testing, issue 27): a valid call may pass (the measurement) or fail the
 # property (AssertionError, its message the result); bad input is a ValueError/TypeError naming the parameter
 def _asserting(func):
