@@ -24,11 +24,12 @@ delegates the work to one module per part, each readable on its own:
 """
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
 
-from .._core import as_array, as_generator, check_int, check_real, dispatch, resolve_workers
+from .._core import as_array, as_generator, check_int, check_real, dispatch, float_dtype, resolve_workers
 from . import checks, tables
 from .derivatives import grid_jacobian, jacobian_views
 from .grid import check_grid, grid_coordinates
@@ -64,7 +65,12 @@ class LatticeNoise:
     period : int or sequence of int, optional
         Exact lattice period per axis: the noise then tiles with period
         ``period / frequency`` in input units. Without it the noise is
-        pseudo-periodic with the table's period n.
+        pseudo-periodic with the table's period n. An octave sum of a noise
+        with a period (:meth:`evaluate`, :func:`noiselab.fractal_sum`, ...)
+        keeps that tile as its only period: octave ``o`` gets the lattice
+        period ``period * lacunarity**o`` (a whole-number lacunarity, and the
+        finest octave's period at most ``table_size`` with the table hash,
+        2**32 with the integer hash; a ValueError otherwise).
     frequency, phase : float or sequence of dim_in floats
         ``F`` and ``phi`` of Eq. 2 (lattice cells per input unit, and offset in
         lattice cells).
@@ -187,6 +193,42 @@ class LatticeNoise:
             amps = self.scale * gain ** np.arange(octaves)
         return freqs, amps
 
+    def _octave_twins(self, octaves, lacunarity, gain):
+        """A tileable noise's octaves as single-octave noises, or None (not tileable, or one octave).
+
+        Octave ``o`` is this noise at frequency ``F L**o`` and amplitude
+        ``a g**o`` with the lattice period ``period * L**o``
+        (:func:`.checks.octave_periods`): at the base period it would repeat
+        ``L**o`` times inside the tile. Each twin is evaluated on its own
+        (one octave, float64) and the octaves are added in order, so every
+        path, window and chunking gives the same bits; the fused kernels sum
+        octaves that share one period, hence this loop outside them.
+        """
+        if not self.tileable or octaves == 1:
+            return None
+        periods = checks.octave_periods(self.period, octaves, lacunarity, self.table_size, self.hash)
+        freqs, amps = self._octave_arrays(octaves, lacunarity, gain)
+        twins = []
+        for o in range(octaves):
+            twin = copy.copy(self)
+            twin.period, twin._pmask = periods[o], tables.period_masks(periods[o])
+            twin.frequency, twin.scale = freqs[o], float(amps[o])
+            twin.amplitude = self.amplitude * gain ** o
+            twins.append(twin)
+        return twins
+
+    @staticmethod
+    def _add_octaves(twins, one):
+        """``sum one(twin)`` over the twins in order, in float64 (``one`` returns a fresh float64 array)."""
+        total = None
+        for twin in twins:
+            part = one(twin)
+            if total is None:
+                total = np.array(part, dtype=np.float64)
+            else:
+                total += part
+        return total
+
     def evaluate(self, points, *, octaves=1, lacunarity=2.0, gain=0.5, absval=False, dtype=None, workers=1,
                  name="points"):
         """The octave sum ``sum_o gain**o b(noise(lacunarity**o x))`` at points ``(..., dim_in)``.
@@ -224,6 +266,14 @@ class LatticeNoise:
     def _sum_at(self, points, octaves, lacunarity, gain, absval, dtype, workers, name):
         """:meth:`evaluate` with checked octave parameters (``__call__`` comes here directly)."""
         workers = resolve_workers(workers)
+        twins = self._octave_twins(octaves, lacunarity, gain)
+        if twins is not None:
+            out_dtype = output_dtype(as_array(name, points).dtype, dtype)
+            checks.check_amplitude(self.amplitude * checks.total_gain(octaves, gain), out_dtype,
+                                   "amplitude (times the sum of the octaves' gains)")
+            total = self._add_octaves(twins, lambda t: t._sum_at(points, 1, 2.0, 0.5, absval, np.float64, workers,
+                                                                 name))
+            return total.astype(out_dtype, copy=False)
         freqs, amps = self._octave_arrays(octaves, lacunarity, gain)
         raw = as_array(name, points)
         lead, flat = prepare_points(self, raw, name)
@@ -257,7 +307,16 @@ class LatticeNoise:
         """
         workers = resolve_workers(workers)
         checks.check_differentiable(self.kernel)
-        freqs, amps = self._octave_arrays(*checks.check_octaves(octaves, lacunarity, gain))
+        octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
+        twins = self._octave_twins(octaves, lacunarity, gain)
+        if twins is not None:
+            def one(twin):
+                value, jac = twin.evaluate_jacobian(points, absval=absval, workers=workers, name=name)
+                return np.concatenate([value.reshape(jac.shape[:-1] + (1,)), jac], axis=-1)
+            both = self._add_octaves(twins, one)
+            return both[..., 0].reshape(both.shape[:-2] + ((self.dim_out,) if self.dim_out > 1 else ())), \
+                both[..., 1:]
+        freqs, amps = self._octave_arrays(octaves, lacunarity, gain)
         lead, flat = prepare_points(self, points, name)
         checks.check_large(flat.shape[0] * self.dim_out * (self.dim_in + 1) * 8 * 2, "lattice noise jacobian")
         out = evaluate_points_jac(self, flat, freqs, amps, absval, name, workers)
@@ -281,6 +340,14 @@ class LatticeNoise:
         ((64, 48), True)
         """
         octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
+        twins = self._octave_twins(octaves, lacunarity, gain)
+        if twins is not None:
+            dtype = float_dtype(dtype)
+            checks.check_amplitude(self.amplitude * checks.total_gain(octaves, gain), dtype,
+                                   "amplitude (times the sum of the octaves' gains)")
+            total = self._add_octaves(twins, lambda t: render_grid(t, shape, extent, dtype=np.float64, window=window,
+                                                                   octaves=1, absval=bool(absval)))
+            return total.astype(dtype, copy=False)
         return render_grid(self, shape, extent, dtype=dtype, window=window, octaves=octaves, lacunarity=lacunarity,
                            gain=gain, absval=bool(absval))
 
@@ -302,6 +369,14 @@ class LatticeNoise:
         ((32, 16), (32, 16, 1, 2))
         """
         octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
+        twins = self._octave_twins(octaves, lacunarity, gain)
+        if twins is not None:
+            value = bool(value)
+            jac = self._add_octaves(twins, lambda t: grid_jacobian(t, shape, extent, window=window, absval=bool(absval),
+                                                                   value=False)[1])
+            val = self.evaluate_grid(shape, extent, window=window, octaves=octaves, lacunarity=lacunarity, gain=gain,
+                                     absval=absval) if value else None
+            return val, jac
         return grid_jacobian(self, shape, extent, window=window, octaves=octaves, lacunarity=lacunarity, gain=gain,
                              absval=bool(absval), value=bool(value))
 
