@@ -659,9 +659,11 @@ class NaiveLattice:
     ``test_naive``: the bound is checked on its own).
     """
 
-    def __init__(self, dim_in, dim_out=1, *, seed=0, kernel="cubic", basis="value", table_size=256, period=None,
+    def __init__(self, dim_in, dim_out=1, *, seed=0, kernel=None, basis="value", table_size=256, period=None,
                  frequency=1.0, phase=0.0, amplitude=1.0, alternation="table", hash="table"):
         d, n = dim_in, table_size
+        if kernel is None:  # Phillips' cubic B-spline for values, Perlin's quintic fade for gradients
+            kernel = "cubic" if basis == "value" else "quintic"
         self.d, self.c, self.n = d, dim_out, n
         self.kernel, self.basis, self.alternation, self.hash = kernel, basis, alternation, hash
         self.frequency = np.broadcast_to(np.asarray(frequency, dtype=float), (d,))

@@ -2,7 +2,7 @@
 
 Examples::
 
-    noiselab noise --output out/noise.png                                  # 512x512 image, cubic B-spline
+    noiselab noise --output out/noise.png                                  # 512x512 image, cubic B-spline value noise
     noiselab noise --size 256x256 --octaves 6 --kernel quintic -o out/fbm.png
     noiselab noise --dims 3 --size 48x128x128 --cells 3x6x6 --sum turbulence -o out/turb.mp4
     noiselab noise --dims 3 --size 64 --output out/volume.npy --dtype float32
@@ -37,8 +37,9 @@ def add_arguments(parser):
                              "default 1024 / 512x512 / 48x128x128")
     parser.add_argument("--cells", default="8",
                         help="lattice cells across the field per axis, e.g. 8 or 2x8x8 (default: %(default)s)")
-    parser.add_argument("--kernel", default="cubic",
-                        help=f"smoothing kernel: {', '.join(kernel_names())} (default: %(default)s)")
+    parser.add_argument("--kernel", default=None,
+                        help=f"smoothing kernel: {', '.join(kernel_names())} (default: cubic for --basis value, "
+                             "quintic, Perlin's, for --basis gradient)")
     parser.add_argument("--basis", default="value", choices=("value", "gradient"), help="lattice basis (default: value)")
     parser.add_argument("--octaves", type=int, default=1, help="octaves of the sum (default: 1)")
     parser.add_argument("--sum", dest="kind", default="fractal", choices=("fractal", "turbulence"),

@@ -18,13 +18,23 @@ from .._core import check_finite_array, check_int, check_memory, check_real
 from ._compiled import PERIOD_MAX
 from .kernels import KERNELS
 
-__all__ = ["BASES", "ALTERNATIONS", "HASHES", "check_choices", "check_table_size", "per_axis", "check_period", "check_large",
+__all__ = ["BASES", "ALTERNATIONS", "HASHES", "DEFAULT_KERNELS", "default_kernel", "check_choices", "check_table_size", "per_axis", "check_period", "check_large",
            "check_octaves", "octave_periods", "total_gain", "check_amplitude", "check_reach", "check_window", "check_differentiable",
            "check_scalar", "jac_bound", "check_jac_finite"]
 
 BASES = ("value", "gradient")
 ALTERNATIONS = ("table", "lattice")
 HASHES = ("table", "integer")
+
+
+# the kernel a basis gets when none is named (see LatticeNoise's ``kernel``): Phillips' cubic B-spline for
+# value noise, Perlin's quintic fade for gradient noise
+DEFAULT_KERNELS = {"value": "cubic", "gradient": "quintic"}
+
+
+def default_kernel(basis):
+    """The kernel ``basis`` gets when none is named (a checked basis)."""
+    return DEFAULT_KERNELS[basis]
 
 
 def check_choices(basis, alternation, hash):
