@@ -537,7 +537,7 @@ class PowerBand(NamedTuple):
     lo: float                    # cycles/frame: the lower edge, or 1 (the lowest ring) when none was found
     hi: float                    # cycles/frame: the upper edge, or N / 2 (Nyquist) when none was found
     limited: tuple[bool, bool]   # whether a lower / an upper edge was found
-    drop: tuple[float, float]    # decades the power falls past each edge (NaN where none was found)
+    drop: tuple[float, float]    # decades the power falls past each edge (0 where none was found)
 
 
 def power_band(field, *, drop=1.0, window=None, axes=None, workers=None) -> PowerBand:
@@ -576,7 +576,7 @@ def power_band(field, *, drop=1.0, window=None, axes=None, workers=None) -> Powe
     -------
     PowerBand
         ``(lo, hi)`` in cycles/frame, ``limited`` (an edge found below, above)
-        and ``drop`` (decades fallen past each edge, NaN where none).
+        and ``drop`` (decades fallen past each edge, 0 where none).
 
     Raises
     ------
@@ -600,25 +600,25 @@ def power_band(field, *, drop=1.0, window=None, axes=None, workers=None) -> Powe
     level = np.log10(np.maximum(rs.power, noise_floor(spec)))
     fmax = float(rs.frame_size) / 2.0
     if f.size < 3:
-        return PowerBand(1.0, fmax, (False, False), (float("nan"), float("nan")))
+        return PowerBand(1.0, fmax, (False, False), (0.0, 0.0))
     peak = int(np.argmax(level))
     # the highest level at or beyond each ring, outwards and inwards
     above = np.maximum.accumulate(level[::-1])[::-1]
     below = np.maximum.accumulate(level)
-    hi, hi_drop = fmax, float("nan")
+    hi, hi_drop, hi_found = fmax, 0.0, False
     for i in range(peak, f.size - 1):
         near = (f >= f[i] / 1.25) & (f <= f[i])
         inside = float(np.median(level[near]))
         fall = inside - float(above[i + 1])
         if fall - _STEEPEST * np.log10(f[i + 1] / np.median(f[near])) >= drop:
-            hi, hi_drop = float(f[i]), fall
+            hi, hi_drop, hi_found = float(f[i]), fall, True
             break
-    lo, lo_drop = 1.0, float("nan")
+    lo, lo_drop, lo_found = 1.0, 0.0, False
     for i in range(peak, 0, -1):
         near = (f >= f[i]) & (f <= 1.25 * f[i])
         inside = float(np.median(level[near]))
         fall = inside - float(below[i - 1])
         if fall - _STEEPEST * np.log10(np.median(f[near]) / f[i - 1]) >= drop:
-            lo, lo_drop = float(f[i]), fall
+            lo, lo_drop, lo_found = float(f[i]), fall, True
             break
-    return PowerBand(lo, hi, (not np.isnan(lo_drop), not np.isnan(hi_drop)), (lo_drop, hi_drop))
+    return PowerBand(lo, hi, (lo_found, hi_found), (lo_drop, hi_drop))
