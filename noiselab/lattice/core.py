@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from .._core import as_array, as_generator, check_int, check_real, dispatch, float_dtype, resolve_workers
+from .._core import as_array, as_generator, check_int, check_real, dispatch, resolve_workers
 from . import checks, tables
 from .derivatives import grid_jacobian, jacobian_views
 from .grid import check_grid, grid_coordinates
@@ -199,6 +199,13 @@ class LatticeNoise:
             amps = self.scale * gain ** np.arange(octaves)
         return freqs, amps
 
+    def _octave_periods(self, octaves, lacunarity):
+        """The lattice period of each octave ``(octaves, dim_in)`` of a tileable noise's sum, else None (all
+        octaves at ``period``): ``period * lacunarity**o`` (:func:`.checks.octave_periods`)."""
+        if not self.tileable or octaves == 1:
+            return None
+        return checks.octave_periods(self.period, octaves, lacunarity, self.table_size, self.hash)
+
     def _octave_twins(self, octaves, lacunarity, gain):
         """A tileable noise's octaves as single-octave noises, or None (not tileable, or one octave).
 
@@ -207,12 +214,13 @@ class LatticeNoise:
         (:func:`.checks.octave_periods`): at the base period it would repeat
         ``L**o`` times inside the tile. Each twin is evaluated on its own
         (one octave, float64) and the octaves are added in order, so every
-        path, window and chunking gives the same bits; the fused kernels sum
-        octaves that share one period, hence this loop outside them.
+        path, window and chunking gives the same bits. The points kernels
+        sum octaves that share one period, hence this loop outside them; the
+        grid passes take a period per octave (:func:`.grid_path.render_grid`).
         """
-        if not self.tileable or octaves == 1:
+        periods = self._octave_periods(octaves, lacunarity)
+        if periods is None:
             return None
-        periods = checks.octave_periods(self.period, octaves, lacunarity, self.table_size, self.hash)
         freqs, amps = self._octave_arrays(octaves, lacunarity, gain)
         twins = []
         for o in range(octaves):
@@ -346,16 +354,8 @@ class LatticeNoise:
         ((64, 48), True)
         """
         octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
-        twins = self._octave_twins(octaves, lacunarity, gain)
-        if twins is not None:
-            dtype = float_dtype(dtype)
-            checks.check_amplitude(self.amplitude * checks.total_gain(octaves, gain), dtype,
-                                   "amplitude (times the sum of the octaves' gains)")
-            total = self._add_octaves(twins, lambda t: render_grid(t, shape, extent, dtype=np.float64, window=window,
-                                                                   octaves=1, absval=bool(absval)))
-            return total.astype(dtype, copy=False)
         return render_grid(self, shape, extent, dtype=dtype, window=window, octaves=octaves, lacunarity=lacunarity,
-                           gain=gain, absval=bool(absval))
+                           gain=gain, absval=bool(absval), periods=self._octave_periods(octaves, lacunarity))
 
     def evaluate_grid_jacobian(self, shape, extent, *, window=None, octaves=1, lacunarity=2.0, gain=0.5,
                                absval=False, value=True):
@@ -375,16 +375,8 @@ class LatticeNoise:
         ((32, 16), (32, 16, 1, 2))
         """
         octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
-        twins = self._octave_twins(octaves, lacunarity, gain)
-        if twins is not None:
-            value = bool(value)
-            jac = self._add_octaves(twins, lambda t: grid_jacobian(t, shape, extent, window=window, absval=bool(absval),
-                                                                   value=False)[1])
-            val = self.evaluate_grid(shape, extent, window=window, octaves=octaves, lacunarity=lacunarity, gain=gain,
-                                     absval=absval) if value else None
-            return val, jac
         return grid_jacobian(self, shape, extent, window=window, octaves=octaves, lacunarity=lacunarity, gain=gain,
-                             absval=bool(absval), value=bool(value))
+                             absval=bool(absval), value=bool(value), periods=self._octave_periods(octaves, lacunarity))
 
     # ------------------------------------------------------- the user's calls
     def __call__(self, points, *, dtype=None, workers=1):
