@@ -152,6 +152,14 @@ def test_cli_tileable_noise_tiles_once(tmp_path):
     assert proc.returncode == 0, proc.stderr
     field = np.load(out)
     assert np.abs(shift_correlations(field)).max() < 0.1
+    assert "octave o at period cells x 2**o, table_size 256" in proc.stdout
+    # 64 cells and 4 visible octaves: the finest octave's period is 512 cells, so the table grows to 512
+    big = subprocess.run([sys.executable, "-m", "noiselab", "noise", "--size", "512x512", "--cells", "64",
+                          "--octaves", "4", "--tileable", "-o", str(tmp_path / "big.npy"), "--dtype", "float64"],
+                         capture_output=True, text=True)
+    assert big.returncode == 0 and "octaves used 4/4" in big.stdout and "table_size 512" in big.stdout, big
+    field = np.load(tmp_path / "big.npy")
+    assert np.abs(field[0] - field[-1]).mean() < 1.3 * np.abs(np.diff(field, axis=0)).mean()  # the seam is a step
     bad = subprocess.run([sys.executable, "-m", "noiselab", "noise", "--size", "64x64", "--octaves", "3",
                           "--tileable", "--lacunarity", "2.5", "-o", str(tmp_path / "b.npy")],
                          capture_output=True, text=True)
