@@ -16,6 +16,7 @@ would test nothing.
 """
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
@@ -658,9 +659,11 @@ class NaiveLattice:
     ``test_naive``: the bound is checked on its own).
     """
 
-    def __init__(self, dim_in, dim_out=1, *, seed=0, kernel="cubic", basis="value", table_size=256, period=None,
+    def __init__(self, dim_in, dim_out=1, *, seed=0, kernel=None, basis="value", table_size=256, period=None,
                  frequency=1.0, phase=0.0, amplitude=1.0, alternation="table", hash="table"):
         d, n = dim_in, table_size
+        if kernel is None:  # Phillips' cubic B-spline for values, Perlin's quintic fade for gradients
+            kernel = "cubic" if basis == "value" else "quintic"
         self.d, self.c, self.n = d, dim_out, n
         self.kernel, self.basis, self.alternation, self.hash = kernel, basis, alternation, hash
         self.frequency = np.broadcast_to(np.asarray(frequency, dtype=float), (d,))
@@ -668,6 +671,7 @@ class NaiveLattice:
         self.amplitude = float(amplitude)
         default = n if hash == "table" else 1 << 32
         self.period = np.broadcast_to(np.asarray(default if period is None else period, dtype=np.int64), (d,))
+        self.tileable = period is not None
         rng = np.random.default_rng(seed)
         self.positive = 1.0 - rng.random(n)
         self.negative = rng.random(n) - 1.0
@@ -746,9 +750,19 @@ class NaiveLattice:
         return np.stack([self.amplitude * self.frequency[b] * self.raw(x, derivative=b) / bound
                          for b in range(self.d)], axis=-1)
 
+    def octave(self, o, lacunarity):
+        """Octave ``o``'s noise: this one, or for a tileable noise the same tables with the lattice period
+        ``period * lacunarity**o``, so that octave ``o`` (at ``lacunarity**o x``) repeats once per tile."""
+        if not self.tileable:
+            return self
+        twin = copy.copy(self)
+        twin.period = self.period * int(lacunarity) ** o
+        return twin
+
     def at_octave(self, o, lacunarity):
-        """The same noise at ``lacunarity**o x``: a callable on points (for the octave sums)."""
-        return lambda x, bound: self(np.asarray(x, dtype=np.float64) * lacunarity ** o, bound)
+        """Octave ``o`` at ``lacunarity**o x`` (its own period when tileable): a callable on points."""
+        noise = self.octave(o, lacunarity)
+        return lambda x, bound: noise(np.asarray(x, dtype=np.float64) * lacunarity ** o, bound)
 
 
 def grid_points(shape, extent):
@@ -771,9 +785,10 @@ def fractal_gradient(noise, x, bound, octaves, lacunarity=2.0, gain=0.5, turbule
     total = 0.0
     for o in range(octaves):
         xo = np.asarray(x, dtype=np.float64) * lacunarity ** o
-        j = noise.jacobian(xo, bound) * lacunarity ** o
+        twin = noise.octave(o, lacunarity)
+        j = twin.jacobian(xo, bound) * lacunarity ** o
         if turbulence:
-            j = j * np.sign(noise(xo, bound))[:, :, None]
+            j = j * np.sign(twin(xo, bound))[:, :, None]
         total = total + gain ** o * j
     return total
 

@@ -534,3 +534,41 @@ def test_docstring_examples_hold(module):
     mod = importlib.import_module("noiselab.analysis" + module)
     result = doctest.testmod(mod, optionflags=doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_power_band_finds_the_edges_of_band_limited_fields():
+    """Band-limited noise, in float and quantised to 8 bits (a floor 5-6 decades above rounding), has its
+    band found to the ring; the drop past each edge is several decades."""
+    from noiselab import spectral_noise
+
+    for band, n in (((16, 80), 256), ((4, 12), 128), ((3, 6), 64), ((2, 100), 256)):
+        f = spectral_noise((n, n), exponent=1.0, band=band, seed=3)
+        f8 = np.round((f - f.min()) / (f.max() - f.min()) * 255) / 255
+        for field in (f, f8):
+            pb = A.power_band(field)
+            assert (pb.lo, pb.hi) == band and pb.limited == (True, True), (band, pb)
+            assert min(pb.drop) > 2.0
+    # power only near Nyquist: no upper edge, the band runs to N / 2
+    pb = A.power_band(spectral_noise((256, 256), exponent=0.0, band=(40, 128), seed=1))
+    assert (pb.lo, pb.hi, pb.limited) == (40.0, 128.0, (True, False)) and pb.drop[1] == 0
+    # a video's spatial band, from its spectrum over the frame axes
+    video = np.stack([spectral_noise((64, 64), band=(5, 20), seed=s) for s in range(4)])
+    pb = A.power_band(A.power_spectrum(video, axes=(-2, -1)))
+    assert (pb.lo, pb.hi) == (5.0, 20.0)
+
+
+@pytest.mark.parametrize("exponent", [-1.0, 0.0, 0.5, 1.0, 2.0, 3.0])
+@pytest.mark.parametrize("n", [64, 256, 1024])
+def test_power_band_keeps_the_full_band_of_a_power_law(exponent, n):
+    """1/f**k noise with no band limit (float, and 8-bit where the fine scales sink into quantisation):
+    no edge, the band is every ring 1 .. N / 2."""
+    f = power_law_field((n, n), exponent, seed=4)
+    f8 = np.round((f - f.min()) / (f.max() - f.min()) * 255) / 255
+    for field in (f, f8):
+        pb = A.power_band(field)
+        assert (pb.lo, pb.hi, pb.limited) == (1.0, n / 2, (False, False)), pb
+
+
+def test_power_band_refuses_bad_drop():
+    with pytest.raises(ValueError, match="drop"):
+        A.power_band(np.random.default_rng(0).random((16, 16)), drop=0)

@@ -124,3 +124,38 @@ def test_report_gives_the_literature_measures(tmp_path, capsys):
     sl = json.loads((tmp_path / "v.json").read_text())["quality"]["slice_leakage"]
     assert rc == 0 and sl["volume_outside"] < 1e-9 and 0.2 < sl["slice_outside"] < 0.3
     assert "2-D slices" in out
+
+
+def test_default_band_of_band_limited_snow_is_found_and_reported(tmp_path, capsys):
+    """Snow whose band is 12-48 cycles/frame, written to an 8-bit MP4: the default band is found from the
+    power (not 2 to a quarter of the width over the compression floor), and the slope and anisotropy over it
+    are those over the band given by hand."""
+    video = tmp_path / "s.mp4"
+    assert main(["snow", "--band", "12", "48", "--no-background", "--width", "128", "--height", "128",
+                 "--frames", "16", "--quiet", "-o", str(video)]) == 0
+    capsys.readouterr()
+    rc, out, _ = _run(capsys, video, "--json", tmp_path / "m.json")
+    assert rc == 0
+    assert re.search(r"band\s+12-48 cycles/frame, found where the field has power", out), out
+    m = json.loads((tmp_path / "m.json").read_text())
+    assert m["band"]["band"] == [12, 48] and m["slope"]["band"] == [12, 48]
+    assert abs(m["slope"]["amplitude"] + 1) < 0.1 and m["anisotropy"]["index"] < 0.05
+    rc, given, _ = _run(capsys, video, "--band", 12, 48, "--json", tmp_path / "g.json")
+    assert "band          12-48 cycles/frame, given (--band)" in given
+    g = json.loads((tmp_path / "g.json").read_text())
+    assert g["slope"]["amplitude"] == m["slope"]["amplitude"] and g["anisotropy"]["index"] == m["anisotropy"]["index"]
+
+
+def test_default_band_of_band_limited_noise_and_of_full_band_1_over_f(tmp_path, capsys):
+    import noiselab
+
+    np.save(tmp_path / "b.npy", noiselab.spectral_noise((256, 256), exponent=1.0, band=(16, 80), seed=2))
+    rc, out, _ = _run(capsys, tmp_path / "b.npy", "--json", tmp_path / "b.json")
+    m = json.loads((tmp_path / "b.json").read_text())
+    assert rc == 0 and m["band"]["band"] == [16, 80] and abs(m["slope"]["amplitude"] + 1) < 0.05, out
+    # 1/f with no band limit keeps the default band, and says so
+    np.save(tmp_path / "p.npy", power_law_field((256, 256), 1.0, seed=1).astype(np.float32))
+    rc, out, _ = _run(capsys, tmp_path / "p.npy", "--json", tmp_path / "p.json")
+    m = json.loads((tmp_path / "p.json").read_text())
+    assert rc == 0 and m["band"]["band"] == [2, 64] and "the power has no band edge" in out
+    assert abs(m["slope"]["amplitude"] + 1) < 0.05

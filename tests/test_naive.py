@@ -513,6 +513,43 @@ def test_fractal_sum_with_another_lacunarity_and_gain_and_vector_noise():
     assert_close(turbulence(noise, x, 5, lacunarity=2.5, gain=0.3), want)
 
 
+TILE_CASES = [(1, "cubic", "value", 3), (2, "quintic", "gradient", [4, 3]), (2, "catmull-rom", "value", 5),
+              (3, "quintic", "value", 3)]
+
+
+@pytest.mark.parametrize("hash", ["table", "integer"])
+@pytest.mark.parametrize("dim,kernel,basis,period", TILE_CASES)
+def test_tileable_octave_sums_take_a_period_per_octave(dim, kernel, basis, period, hash):
+    """A tileable noise's octave o has the lattice period ``period * lacunarity**o`` (the reference's
+    ``NaiveLattice.octave``): fractal sums, turbulence and their gradients, on points and grids."""
+    noise, ref = _pair(dim, seed=5, kernel=kernel, basis=basis, hash=hash, period=period, frequency=1.3, phase=0.2)
+    x = _points(50 if dim < 3 else 25, dim, -6, 6)
+    shape = {1: (40,), 2: (12, 14), 3: (6, 7, 5)}[dim]
+    extent = [(-1.5 + 0.2 * a, -1.5 + 0.2 * a + 0.07 * n) for a, n in enumerate(shape)]  # every octave visible
+    pts = naive.grid_points(shape, extent).reshape(-1, dim)
+    for lacunarity, octaves in ((2.0, 4), (3.0, 3)):
+        kw = dict(lacunarity=lacunarity)
+        for func, turb in ((fractal_sum, False), (turbulence, True)):
+            want = naive.fractal_sum(ref, x, noise.bound, octaves, lacunarity, turbulence=turb)[:, 0]
+            assert_close(func(noise, x, octaves, **kw), want)
+            want_grid = naive.fractal_sum(ref, pts, noise.bound, octaves, lacunarity, turbulence=turb)[:, 0]
+            got_grid, used = func(noise, Grid(shape, extent), octaves, return_octaves=True, **kw)
+            assert used == octaves
+            assert_close(got_grid, want_grid.reshape(shape))
+        for func, turb in ((fractal_gradient, False), (turbulence_gradient, True)):
+            want = naive.fractal_gradient(ref, x, noise.bound, octaves, lacunarity, turbulence=turb)[:, 0]
+            value, grad = func(noise, x, octaves, return_value=True, **kw)
+            assert_close(grad, want)
+            assert_close(value, naive.fractal_sum(ref, x, noise.bound, octaves, lacunarity, turbulence=turb)[:, 0])
+        want = naive.fractal_gradient(ref, pts, noise.bound, octaves, lacunarity)[:, 0].reshape(shape + (dim,))
+        assert_close(fractal_gradient(noise, Grid(shape, extent), octaves, **kw), want)
+    # the reference with one period for every octave (the old sum) is another function
+    old = naive.NaiveLattice(dim, seed=5, kernel=kernel, basis=basis, hash=hash, period=period, frequency=1.3,
+                             phase=0.2)
+    old.tileable = False
+    assert np.abs(naive.fractal_sum(old, x, noise.bound, 4)[:, 0] - fractal_sum(noise, x, 4)).max() > 0.01
+
+
 @pytest.mark.parametrize("hash", ["table", "integer"])
 @pytest.mark.parametrize("dim,kernel,basis", [(1, "quintic", "value"), (2, "cubic", "gradient"),
                                               (3, "catmull-rom", "value"), (4, "quadratic", "gradient")])

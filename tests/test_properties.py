@@ -142,7 +142,19 @@ def _mesh_variants():
     nanmesh = G.sphere(0).copy()
     nanmesh.vertices[0] = NAN
     flat = trimesh.Trimesh(vertices=np.zeros((3, 3)), faces=[[0, 1, 2]], process=False)
-    return [None, "mesh", np.zeros(3), np.zeros((4, 3)), empty, nanmesh, flat, [G.sphere(0)]]
+    return [None, "mesh", np.zeros(3), np.zeros((4, 3)), empty, nanmesh, flat, [G.sphere(0)], *HUGE_MESHES]
+
+
+def _huge_mesh(scale):
+    """The unit sphere scaled to coordinates of ``scale`` (edge lengths overflow float64 past about 1e154)."""
+    sphere = G.sphere(0)
+    return trimesh.Trimesh(vertices=sphere.vertices * scale, faces=sphere.faces, process=False)
+
+
+HUGE_MESHES = [_huge_mesh(1e300), _huge_mesh(1e200), _huge_mesh(1e150)]
+# images, videos and point sets of huge values (every array-taking entry gets each, see test_huge_values)
+HUGE_ARRAYS = [RNG.random((16, 16)) * 1e300, RNG.random((16, 16, 3)) * 1e300, RNG.random((4, 16, 16)) * 1e300,
+               np.full((16, 16, 3), np.finfo(np.float64).max), RNG.random((16, 16, 3)).astype(np.float32) * 3e38]
 
 
 KINDS = {
@@ -486,6 +498,8 @@ TABLE = [
     # ------------------------------------------------------------ analysis
     Entry("power_spectrum", A.power_spectrum, dict(field=IMG),
           dict(field="array", window="choice", axes="shape", window_axes="shape", min_size="int")),
+    Entry("power_band", A.power_band, dict(field=IMG),
+          dict(field="array", drop="real", window="choice", axes="shape")),
     Entry("radial_spectrum", A.radial_spectrum, dict(field=IMG),
           dict(field="array", bins="int", window="choice", axes="shape", fmax="real")),
     Entry("spatiotemporal_spectrum", A.spatiotemporal_spectrum, dict(video=VID),
@@ -869,4 +883,16 @@ FUZZED = [e for e in TABLE if any((e.name, p) not in PENDING for p in e.fuzz)]
 @given(data=st.data())
 def test_bad_input_gives_a_clear_error_or_the_right_answer(entry, data):
     param, value = data.draw(_case(entry), label="param, value")
+    run_case(entry, param, value)
+
+
+HUGE_CASES = [(e, p, v) for e in TABLE for p, kind in sorted(e.fuzz.items()) if (e.name, p) not in PENDING
+              for v in {"mesh": HUGE_MESHES, "array": HUGE_ARRAYS}.get(kind, [])]
+
+
+@pytest.mark.parametrize("entry, param, value", HUGE_CASES,
+                         ids=[f"{e.name}-{p}-{i}" for i, (e, p, _) in enumerate(HUGE_CASES)])
+def test_huge_values_give_a_clear_error_or_the_right_answer(entry, param, value):
+    """Meshes with coordinates of 1e150-1e300 and images, videos and points of values up to float64's largest,
+    for every mesh and array parameter (issue 25: they are among the cases, not left to the random draw)."""
     run_case(entry, param, value)

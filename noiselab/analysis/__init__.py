@@ -63,10 +63,12 @@ from ._common import noise_floor
 from .seams import loop_seam, tile_seam
 from .slope import OctaveEnergy, Slope, octave_energy, spectral_slope
 from .spectrum import (
+    PowerBand,
     PowerSpectrum,
     RadialSpectrum,
     SpatiotemporalSpectrum,
     band_energy,
+    power_band,
     power_spectrum,
     radial_spectrum,
     spatiotemporal_spectrum,
@@ -81,6 +83,8 @@ __all__ = [
     "spatiotemporal_spectrum",
     "band_energy",
     "noise_floor",
+    "PowerBand",
+    "power_band",
     "Slope",
     "spectral_slope",
     "OctaveEnergy",

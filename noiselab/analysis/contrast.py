@@ -31,8 +31,28 @@ def rms_contrast(x, mask=None) -> float:
 
 
 def to_grey(x) -> np.ndarray:
-    """Grey level of an RGB image or video (trailing axis of 3 or 4) with Rec. 709 luma weights; grey input passes through."""
+    """Grey level of an RGB image or video (trailing axis of 3 or 4) with Rec. 709 luma weights; grey input passes through.
+
+    float64 input gives float64 grey levels (any finite value, 1e300 included,
+    keeps its size), other input float32. The weights sum to 1, so a grey
+    level lies between its pixel's smallest and largest channel; where the
+    rounding of that weighted sum would pass the dtype's largest value (input
+    within an ulp of it) the result is that largest value.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> to_grey(np.full((2, 2, 3), 1e300))[0, 0]
+    np.float64(1e+300)
+    >>> to_grey(np.ones((2, 2, 3), np.uint8)).dtype
+    dtype('float32')
+    """
     arr = check_finite_array("x", x)
     if arr.ndim >= 3 and arr.shape[-1] in (3, 4):
-        arr = arr[..., :3].astype(np.float32) @ np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)
+        dtype = np.float64 if arr.dtype == np.float64 else np.float32
+        top = np.finfo(dtype).max
+        with np.errstate(over="ignore"):
+            arr = arr[..., :3].astype(dtype) @ np.array([0.2126, 0.7152, 0.0722], dtype=dtype)
+        if not np.isfinite(arr).all():  # only a rounding past the largest value (the input is finite)
+            np.clip(arr, -top, top, out=arr)
     return arr

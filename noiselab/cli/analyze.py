@@ -33,8 +33,9 @@ def add_arguments(parser):
                         help="how to read a 3-D .npy array: (frames, height, width) video (auto) or a volume; "
                              "RGB (trailing axis of 3) is turned to grey (default: auto)")
     parser.add_argument("--band", nargs=2, type=float, metavar=("LO", "HI"), default=None,
-                        help="band of the slope fit in cycles/frame (default: 2 to a quarter of the frame width, "
-                             "narrowed to where the field has power)")
+                        help="band of the slope fit and the anisotropy in cycles/frame (default: 2 to a quarter "
+                             "of the frame width, with each side moved to an edge where the field's power falls "
+                             "off by 10x or more (noiselab.analysis.power_band); the report says which band it used)")
     parser.add_argument("--window", default="auto", choices=("auto", "none", "hann"),
                         help="spatial taper before the FFT: auto = Hann when the field does not tile "
                              "(tile seam above 1.5), else none (default: auto)")
@@ -139,21 +140,32 @@ def load(path, kind="auto", max_frames=None):
 
 
 def _fit_band(spec, n_ref, band):
-    """The slope band: the one asked for, else the default narrowed to where the field has power."""
-    from ..analysis import radial_spectrum
-    from ..analysis import noise_floor
+    """The slope band and how it was found: ``(lo, hi, how)``, ``how`` a phrase for the report.
+
+    The band asked for; else the default (2 to a quarter of the frame width)
+    with each side replaced by an edge of :func:`noiselab.analysis.power_band`
+    where the field's spectrum falls off a cliff (a band-limited field:
+    snow, band-limited noise); a field with no edge keeps the default.
+    """
+    from ..analysis import power_band
     from ..analysis.slope import default_band
 
     if band is not None:
-        return tuple(band)
+        return float(band[0]), float(band[1]), "given (--band)"
     lo, hi = default_band(n_ref)
-    rs = radial_spectrum(spec)
-    live = rs.centers[rs.power > 10 * noise_floor(spec)]
-    if live.size:
-        lo, hi = max(lo, float(live.min())), min(hi, float(live.max()))
-        if hi <= lo * 1.5:  # power confined above N/4: use its own range
-            lo, hi = float(live.min()), float(live.max())
-    return lo, hi
+    pb = power_band(spec)
+    found = []
+    if pb.limited[0]:
+        lo = pb.lo
+        found.append(f"falls {pb.drop[0]:.1f} decades below {pb.lo:g}")
+    if pb.limited[1]:
+        hi = pb.hi
+        found.append(f"falls {pb.drop[1]:.1f} decades above {pb.hi:g}")
+    elif pb.limited[0] and lo >= hi / 1.5:  # power only above N/4: up to Nyquist
+        hi = pb.hi
+    if not found:
+        return lo, hi, "default: 2 to a quarter of the width (the power has no band edge)"
+    return lo, hi, "found where the field has power (power_band: the power " + " and ".join(found) + ")"
 
 
 def measure(data, kind, *, band=None, window="auto", bands_per_octave=2):
@@ -178,7 +190,8 @@ def measure(data, kind, *, band=None, window="auto", bands_per_octave=2):
     axes = (-2, -1) if kind == "video" else None
     spec = A.power_spectrum(data, window=window, axes=axes)
     n_ref = data.shape[-1]
-    lo, hi = _fit_band(spec, n_ref, band)
+    lo, hi, how = _fit_band(spec, n_ref, band)
+    out["band"] = {"band": [lo, hi], "how": how}
     try:
         fit = A.spectral_slope(spec, (lo, hi))
         out["slope"] = {"amplitude": float(fit), "error": fit.error, "power": fit.power_slope,
@@ -193,7 +206,8 @@ def measure(data, kind, *, band=None, window="auto", bands_per_octave=2):
         oe = A.octave_energy(spec, 1.0, n_ref / 2.0)
         out["octave_energy"] = {"edges": oe.edges.tolist(), "fraction": oe.energy.tolist(), "spread": oe.spread}
     if spatial and min(data.shape[-2:]) >= 8:
-        o = A.orientation_energy(spec)
+        # over the band found or given (a band-limited field's floor outside it is not the field's orientation)
+        o = A.orientation_energy(spec, None if how.startswith("default") else _orientation_band(lo, hi, data.shape))
         out["anisotropy"] = {"index": o.index, "m2": o.m2, "m4": o.m4, "dominant_deg": o.dominant,
                              "axis_ratio": o.axis_ratio, "angles_deg": o.angles.tolist(),
                              "energy": o.energy.tolist()}
@@ -221,6 +235,12 @@ def measure(data, kind, *, band=None, window="auto", bands_per_octave=2):
     return out
 
 
+def _orientation_band(lo, hi, shape):
+    """``(lo, hi)`` kept inside what orientation_energy resolves: at least 2 cycles/frame, at most Nyquist."""
+    lo, hi = max(lo, 2.0), min(hi, shape[-1] / 2.0)
+    return (lo, hi) if hi > lo else None
+
+
 def report(path, m) -> str:
     shape = " x ".join(map(str, m["shape"]))
     names = {"image": "(height x width)", "video": "(frames x height x width)", "volume": "(depth x height x width)",
@@ -234,6 +254,8 @@ def report(path, m) -> str:
     if m.get("tile_seam") is not None:
         win += f" (tile seam {m['tile_seam']:.2f}: {'tiles' if m['tile_seam'] <= 1.5 else 'does not tile'})"
     lines.append(f"  {'window':<14}{win}")
+    if "band" in m:
+        lines.append(f"  {'band':<14}{m['band']['band'][0]:g}-{m['band']['band'][1]:g} cycles/frame, {m['band']['how']}")
     s = m["slope"]
     if "amplitude" in s:
         lines.append(f"  {'1/f slope':<14}amplitude {s['amplitude']:+.3f} +- {s['error']:.3f}   "

@@ -2,7 +2,7 @@
 
 Examples::
 
-    noiselab noise --output out/noise.png                                  # 512x512 image, cubic B-spline
+    noiselab noise --output out/noise.png                                  # 512x512 image, cubic B-spline value noise
     noiselab noise --size 256x256 --octaves 6 --kernel quintic -o out/fbm.png
     noiselab noise --dims 3 --size 48x128x128 --cells 3x6x6 --sum turbulence -o out/turb.mp4
     noiselab noise --dims 3 --size 64 --output out/volume.npy --dtype float32
@@ -37,8 +37,9 @@ def add_arguments(parser):
                              "default 1024 / 512x512 / 48x128x128")
     parser.add_argument("--cells", default="8",
                         help="lattice cells across the field per axis, e.g. 8 or 2x8x8 (default: %(default)s)")
-    parser.add_argument("--kernel", default="cubic",
-                        help=f"smoothing kernel: {', '.join(kernel_names())} (default: %(default)s)")
+    parser.add_argument("--kernel", default=None,
+                        help=f"smoothing kernel: {', '.join(kernel_names())} (default: cubic for --basis value, "
+                             "quintic, Perlin's, for --basis gradient)")
     parser.add_argument("--basis", default="value", choices=("value", "gradient"), help="lattice basis (default: value)")
     parser.add_argument("--octaves", type=int, default=1, help="octaves of the sum (default: 1)")
     parser.add_argument("--sum", dest="kind", default="fractal", choices=("fractal", "turbulence"),
@@ -46,11 +47,15 @@ def add_arguments(parser):
     parser.add_argument("--lacunarity", type=float, default=2.0, help="frequency ratio between octaves (default: 2)")
     parser.add_argument("--gain", type=float, default=0.5, help="amplitude ratio between octaves (default: 0.5)")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default: 0)")
-    parser.add_argument("--table-size", type=int, default=256, help="permutation table size (default: 256)")
+    parser.add_argument("--table-size", type=int, default=None,
+                        help="permutation table size (default: 256; with --tileable, larger when the finest "
+                             "octave's period, cells x lacunarity**(octaves-1), needs it)")
     parser.add_argument("--alternation", default="table", choices=("table", "lattice"),
                         help="sign alternation of the value tables (default: table)")
     parser.add_argument("--tileable", action="store_true",
-                        help="make the field tile exactly (needs a whole number of cells per axis)")
+                        help="make the field tile exactly, with the tile as its only period (needs a whole "
+                             "number of cells per axis and, with octaves, a whole-number lacunarity: octave o "
+                             "repeats once per tile)")
     parser.add_argument("--range", dest="value_range", default="bound", choices=("bound", "data"),
                         help="grey mapping for images and videos: the guaranteed bound ([-1, 1] for one octave) "
                              "or the data's min..max (default: bound)")
@@ -91,9 +96,12 @@ def run(args) -> int:
         if any(abs(c - round(c)) > 1e-9 for c in cells):
             raise ValueError(f"--tileable needs a whole number of --cells per axis, got {cells}")
         period = [int(round(c)) for c in cells]
-    noise = LatticeNoise(dims, seed=args.seed, kernel=args.kernel, basis=args.basis, table_size=args.table_size,
-                         period=period, alternation=args.alternation)
     dtype = np.float32 if (suffix not in (".npy", ".zarr") or args.dtype == "float32") else np.float64
+    table_size = 256 if args.table_size is None else args.table_size
+    if period is not None and args.table_size is None:
+        table_size = _tile_table_size(period, shape, cells, args.octaves, args.lacunarity, args.gain, dtype)
+    noise = LatticeNoise(dims, seed=args.seed, kernel=args.kernel, basis=args.basis, table_size=table_size,
+                         period=period, alternation=args.alternation)
     grid = Grid(shape, [(0.0, c) for c in cells])
     summer = turbulence if args.kind == "turbulence" else fractal_sum
     if suffix == ".zarr" or args.chunks is not None or args.scheduler is not None:
@@ -117,9 +125,24 @@ def run(args) -> int:
         write_image(path, field, vmin=lo, vmax=hi)
     else:
         write_video(path, field, fps=args.fps, vmin=lo, vmax=hi)
+    tiled = "" if period is None else (f" tileable: period {period} cells, octave o at period cells x "
+                                       f"{args.lacunarity:g}**o, table_size {table_size}")
     print(f"noiselab noise: wrote {path} shape={field.shape} kernel={noise.kernel.name} basis={args.basis} "
-          f"{args.kind} octaves used {used}/{args.octaves} range [{field.min():.4f}, {field.max():.4f}]")
+          f"{args.kind} octaves used {used}/{args.octaves} range [{field.min():.4f}, {field.max():.4f}]{tiled}")
     return 0
+
+
+def _tile_table_size(period, shape, cells, octaves, lacunarity, gain, dtype):
+    """The table size a tileable sum needs: 256, or the finest visible octave's period (the table hash
+    repeats every table_size cells, so a longer octave period needs as many entries)."""
+    from ..fractal import octaves_used
+
+    if lacunarity != int(lacunarity) or lacunarity < 2:
+        return 256  # refused with the lacunarity's own message when the sum is made
+    spacing = [c / n if n > 1 else np.nan for c, n in zip(cells, shape)]
+    used = octaves_used(octaves, lacunarity=lacunarity, gain=gain, spacing=spacing, dtype=dtype)
+    need = max(period) * int(lacunarity) ** (used - 1)
+    return max(256, need + need % 2)
 
 
 def _plot_curve(path, values, cells, lo, hi):

@@ -1,9 +1,10 @@
 """``noiselab snow``: render falling snow (tent model) and composite it over a background.
 
 ``--frames N`` is the period of the snow and the number of frames written to
-every format; ``--loops K`` repeats the period K times in an MP4 only (a
-playback format that does not loop by itself; a GIF loops by itself, NPY and
-PNG frames hold the data once). A video background sets the length instead.
+every format (an MP4 of N frames lasts N / fps seconds); ``--loops K`` repeats
+the period K times in an MP4 only (a playback format that does not loop by
+itself; a GIF loops by itself, NPY and PNG frames hold the data once). A video
+background sets the length instead.
 """
 from __future__ import annotations
 
@@ -27,7 +28,7 @@ def add_arguments(p):
     g.add_argument("--frames", type=int, default=64,
                    help="frames in one period of the snow, and in the file (default 64); it loops seamlessly")
     g.add_argument("--loops", type=int, default=None,
-                   help="MP4 only: how many periods to write (default 2); a GIF loops by itself, NPY and PNG "
+                   help="MP4 only: how many periods to write (default 1: the file holds --frames frames); a GIF loops by itself, NPY and PNG "
                         "frames hold one period; a video background sets the length instead")
     g.add_argument("--tile", type=int, default=None, metavar="N",
                    help="render an N x N tile and repeat it over the frame (thesis 3.4; cheaper, periodic)")
@@ -116,7 +117,7 @@ def run(args) -> int:
     if args.loops not in (None, 1) and not mp4:
         raise ValueError(f"--loops applies to .mp4 output only (a GIF loops by itself; NPY and PNG frames hold "
                          f"one period of --frames {args.frames}), got --loops {args.loops} for {out.name!r}")
-    loops = (2 if args.loops is None else args.loops) if mp4 else 1
+    loops = (1 if args.loops is None else args.loops) if mp4 else 1  # the length asked for, no more
     if args.background and args.no_background:
         raise ValueError("--background and --no-background exclude each other")
     if out.suffix.lower() not in ("", ".mp4", ".gif", ".npy", ".zarr"):
@@ -195,6 +196,6 @@ def run(args) -> int:
 
     write_video(out, _Sized(frames, n_out), fps=args.fps, show_progress=args.progress)
     what = "opacity" if args.no_background else "snow scene"
-    print(f"wrote {what} to {out} ({n_out} frames of {W} x {H} px at {args.fps:g} fps; "
+    print(f"wrote {what} to {out} ({n_out} frames of {W} x {H} px at {args.fps:g} fps, {n_out / args.fps:.2f} s; "
           f"period {T} frames, rendered in {t_render:.2f} s)")
     return 0

@@ -6,7 +6,9 @@ r"""Fractal sums and turbulence over lattice noise (Phillips 2004, section 3, Eq
     \mathrm{turb}(x, n) = \sum_{o=0}^{n-1} g^o\, |\mathrm{noise}(L^o x)|
 
 with lacunarity ``L = 2`` and gain ``g = 1/2`` by default (the paper's
-``2^F`` and ``1/2^F``). ``x`` is either an array of points ``(..., dim_in)`` or
+``2^F`` and ``1/2^F``). A ``LatticeNoise`` with a ``period`` gives a sum that
+tiles with the noise's tile and has no shorter period: octave ``o`` takes the
+lattice period ``period * L**o`` (``L`` a whole number). ``x`` is either an array of points ``(..., dim_in)`` or
 a :class:`noiselab.lattice.Grid` (then the grid path of ``LatticeNoise`` is used,
 octave by octave, accumulating into one output array).
 
@@ -123,6 +125,7 @@ def _grid_spacing(shape, ext):
 def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, absval, workers=1,
          chunks=None):
     from ..lattice import Grid, LatticeNoise, grid_coordinates
+    from ..lattice.checks import octave_periods
     from ..lattice.grid import check_grid
 
     octaves = check_int("octaves", octaves, lo=1, hi=10_000)
@@ -144,6 +147,9 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
     freq = noise.frequency if isinstance(noise, LatticeNoise) else 1.0
     used = octaves_used(octaves, lacunarity=lacunarity, gain=gain, spacing=spacing, frequency=freq, dtype=out_dtype)
     norm = sum(gain ** o for o in range(used)) if normalize else 1.0
+    if isinstance(noise, LatticeNoise) and noise.tileable and used > 1:
+        # refused now rather than when a chunk is computed: a period per octave needs a whole lacunarity
+        octave_periods(noise.period, used, lacunarity, noise.table_size, noise.hash)
     if chunks is not None:
         if not is_grid:
             raise ValueError("chunks= needs x to be a Grid (chunked points: wrap them in dask.array.map_blocks)")

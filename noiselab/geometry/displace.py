@@ -233,6 +233,11 @@ def _stride(n_faces):
 
 
 def _report(max_edge, lengths, max_frequency, required):
+    if not math.isfinite(max_edge):
+        # a squared edge length past 1.8e308: coordinates beyond about 1e154 apart
+        raise ValueError("mesh edge lengths overflow float64 (its vertex coordinates are too large: an edge "
+                         "longer than about 1e154 has a squared length past 1.8e308); scale the mesh so that its "
+                         "coordinates stay within +-1e150")
     lengths = lengths[lengths > 0]
     if max_edge <= 0 or lengths.size == 0:
         raise ValueError("mesh has only zero-length edges; its resolution is undefined")
@@ -343,9 +348,11 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
             ratio = min(float(np.mean(pieces ** 2)) * 1.5, 4.0 ** min(report.subdivisions, 500))
         faces = int(len(mesh.faces) * ratio) if math.isfinite(ratio) else faces
     if faces > max_faces:
+        # past 1e15 the count is a power of ten (the uniform estimate 4**subdivisions can have thousands of digits)
+        count = f"{faces:,}" if faces < 10 ** 15 else f"10^{int((faces.bit_length() - 1) * math.log10(2))}"
         raise ValueError(
             f"reaching {report.required:g} samples per period at {report.max_frequency:g} cycles/unit needs "
-            f"about {faces:,} faces, more than max_faces={max_faces:,}; "
+            f"about {count} faces (longest edge {report.max_edge:.3g}), more than max_faces={max_faces:,}; "
             "lower the frequency or the octaves, or raise max_faces"
         )
     check_memory(faces * 3 * 8 * 6, "subdividing the mesh")

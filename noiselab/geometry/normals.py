@@ -202,7 +202,7 @@ def displaced_normals(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, *, o
     phase_v = check_real_vector("phase", phase, 3)
     if normals is None:
         base = vertex_normals(mesh, weld=True)
-        if len(mesh.faces) and mesh.is_watertight and mesh.is_winding_consistent and mesh.volume < 0:
+        if len(mesh.faces) and mesh.is_watertight and mesh.is_winding_consistent and _inside_out(vertices, mesh.faces):
             base = -base
     else:
         base = check_finite_array("normals", normals).astype(np.float64, copy=False)
@@ -224,6 +224,15 @@ def displaced_normals(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, *, o
     grad_h = ca * grad * (freq / fs)
     surface_grad = grad_h - np.einsum("ij,ij->i", grad_h, base)[:, None] * base
     return _unit((c0 + ca * value * (kappa / fs))[..., None] * base - surface_grad)
+
+
+def _inside_out(vertices, faces):
+    """Whether a closed mesh's signed volume is negative, from its vertices scaled to at most 1 (the sign does
+    not depend on the scale, and trimesh's volume overflows for coordinates past about 1e100)."""
+    big = float(np.max(np.abs(vertices), initial=0.0))
+    v = vertices / big if big > 0 else vertices
+    tri = v[np.asarray(faces, dtype=np.int64)]
+    return float(np.einsum("ij,ij->", tri[:, 0], np.cross(tri[:, 1], tri[:, 2]))) < 0
 
 
 def normal_angles(a, b):

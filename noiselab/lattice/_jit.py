@@ -1207,8 +1207,11 @@ def _make_pack_axis(DERIV):
     :func:`axis_dweights`)."""
 
     @nb.njit(cache=True, nogil=True)
-    def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv, last):
+    def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv, last):
         """Every octave's distinct taps and weights along one grid axis, packed for :func:`grid2d`.
+
+        ``periods`` (O,): the lattice period of each octave along this axis
+        (all equal, unless a tileable octave sum scales them by ``lacunarity**o``).
 
         Per octave: :func:`axis_weights` (or, with ``deriv``, :func:`axis_dweights`)
         and :func:`dense_taps`, as ``LatticeNoise._axis_taps`` computes them.
@@ -1235,6 +1238,7 @@ def _make_pack_axis(DERIV):
             wb = np.empty((noct, nn, taps))
         dense = np.zeros(noct, np.bool_)
         for o in range(noct):
+            period = periods[o]
             fis, fbase, w, rw = axis_weights(coords, freqs[o], phase, shift, left, taps, coef, period, grad)
             if DERIV:  # a constant: numba prunes the call when False
                 w, rw = axis_dweights(coords, freqs[o], phase, shift, left, taps, coef, dcoef, grad)
@@ -1268,7 +1272,7 @@ def _make_pack_axis(DERIV):
 _PACK_AXIS = {}
 
 
-def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv, last):
+def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv, last):
     """Every octave's distinct taps and weights along one grid axis, packed for :func:`grid2d`.
 
     The arguments and results of the kernel :func:`_make_pack_axis` compiles
@@ -1278,24 +1282,26 @@ def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, g
     fn = _PACK_AXIS.get(key)
     if fn is None:
         fn = _PACK_AXIS[key] = _make_pack_axis(key)
-    return fn(coords, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv, last)
+    return fn(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv, last)
 
 
-def grid2d_all(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, period, n, grad, deriv_axis, scales, perms,
+def grid2d_all(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv_axis, scales, perms,
                values, grads, absval, out64, out32, nq, tile):
     """:func:`pack_axis` for both axes, then :func:`grid2d` for every component, in one call.
 
-    ``freqs`` (O, 2), ``phase`` and ``period`` (2,), ``perms`` (C, n), ``out64``
+    ``freqs`` and ``periods`` (O, 2), ``phase`` (2,), ``perms`` (C, n), ``out64``
     and ``out32`` (C, nj * nq) and (C, 0), either way round. Returns False (and writes nothing) when an axis's taps need
     ``LatticeNoise._axis_taps``' sparse packing.
     """
     ok0, lat0, off0, pos0, base0, wa0, wb0, dense0 = pack_axis(
-        c0, np.ascontiguousarray(freqs[:, 0]), phase[0], shift, left, taps, coef, dcoef, int(period[0]), n, grad,
+        c0, np.ascontiguousarray(freqs[:, 0]), phase[0], shift, left, taps, coef, dcoef,
+        np.ascontiguousarray(periods[:, 0], dtype=np.int64), n, grad,
         bool(deriv_axis == 0), False)
     if not ok0:
         return False
     ok1, lat1, off1, pos1, base1, wa1, wb1, dense1 = pack_axis(
-        c1, np.ascontiguousarray(freqs[:, 1]), phase[1], shift, left, taps, coef, dcoef, int(period[1]), n, grad,
+        c1, np.ascontiguousarray(freqs[:, 1]), phase[1], shift, left, taps, coef, dcoef,
+        np.ascontiguousarray(periods[:, 1], dtype=np.int64), n, grad,
         bool(deriv_axis == 1), True)
     if not ok1:
         return False

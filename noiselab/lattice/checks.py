@@ -18,13 +18,23 @@ from .._core import check_finite_array, check_int, check_memory, check_real
 from ._compiled import PERIOD_MAX
 from .kernels import KERNELS
 
-__all__ = ["BASES", "ALTERNATIONS", "HASHES", "check_choices", "check_table_size", "per_axis", "check_period", "check_large",
-           "check_octaves", "total_gain", "check_amplitude", "check_reach", "check_window", "check_differentiable",
+__all__ = ["BASES", "ALTERNATIONS", "HASHES", "DEFAULT_KERNELS", "default_kernel", "check_choices", "check_table_size", "per_axis", "check_period", "check_large",
+           "check_octaves", "octave_periods", "total_gain", "check_amplitude", "check_reach", "check_window", "check_differentiable",
            "check_scalar", "jac_bound", "check_jac_finite"]
 
 BASES = ("value", "gradient")
 ALTERNATIONS = ("table", "lattice")
 HASHES = ("table", "integer")
+
+
+# the kernel a basis gets when none is named (see LatticeNoise's ``kernel``): Phillips' cubic B-spline for
+# value noise, Perlin's quintic fade for gradient noise
+DEFAULT_KERNELS = {"value": "cubic", "gradient": "quintic"}
+
+
+def default_kernel(basis):
+    """The kernel ``basis`` gets when none is named (a checked basis)."""
+    return DEFAULT_KERNELS[basis]
 
 
 def check_choices(basis, alternation, hash):
@@ -91,6 +101,32 @@ def check_octaves(octaves, lacunarity, gain):
     """``octaves`` an int in [1, 10000], ``lacunarity`` > 1, ``gain`` > 0 (as fractal sums take them)."""
     return (check_int("octaves", octaves, lo=1, hi=10_000), check_real("lacunarity", lacunarity, lo=1.0, lo_open=True),
             check_real("gain", gain, lo=0.0, lo_open=True))
+
+
+def octave_periods(period, octaves, lacunarity, table_size, hash):
+    """The lattice period of each octave of a tileable octave sum: ``(octaves, dim)`` int64, ``period * L**o``.
+
+    Octave ``o`` runs at ``lacunarity**o`` times the base frequency; with the
+    base period it would repeat ``lacunarity**o`` times inside the tile.
+    Scaling its lattice period by the same factor keeps the tile (``period /
+    frequency`` input units) its only period, which needs a whole-number
+    lacunarity. The table hash repeats every ``table_size`` cells whatever
+    the period, and the integer hash's words are 32-bit, so the finest
+    octave's period is bounded by those.
+    """
+    if lacunarity != math.floor(lacunarity):
+        raise ValueError(f"lacunarity must be a whole number (2, 3, ...) for an octave sum of a tileable noise "
+                         f"(period={period.tolist()}): octave o has lattice period period * lacunarity**o, "
+                         f"got lacunarity={lacunarity:g}")
+    factor = int(lacunarity) ** (octaves - 1)
+    finest = [int(p) * factor for p in period]
+    top, why = ((table_size, f"table_size={table_size} (the table hash repeats every table_size cells); "
+                             "use a larger table_size or hash='integer'")
+                if hash == "table" else (int(PERIOD_MAX), "2**32 (the integer hash's lattice words are 32-bit)"))
+    if max(finest) > top:
+        raise ValueError(f"period * lacunarity**(octaves-1) = {finest} cells for the finest of octaves={octaves} "
+                         f"(period={period.tolist()}, lacunarity={lacunarity:g}) exceeds {why}, or use fewer octaves")
+    return np.array([[int(p) * int(lacunarity) ** o for p in period] for o in range(octaves)], dtype=np.int64)
 
 
 def total_gain(octaves, gain):

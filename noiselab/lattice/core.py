@@ -24,6 +24,7 @@ delegates the work to one module per part, each readable on its own:
 """
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
@@ -50,10 +51,16 @@ class LatticeNoise:
         Output components; each has its own permutation table (Phillips 2.3.1).
     seed : int or numpy.random.Generator, default 0
         Seeds the value tables, the gradients and the permutations.
-    kernel : str, default "cubic"
+    kernel : str, optional
         ``"box"``, ``"linear"``, ``"quadratic"``, ``"cubic"`` (B-splines of
         order 1-4, i.e. 1-4 box filters), ``"catmull-rom"`` (interpolating
         cubic) or ``"quintic"`` (Perlin's fade); see :mod:`noiselab.lattice.kernels`.
+        Default per basis: ``"cubic"`` for value noise (Phillips' smoothest
+        B-spline: an interpolating kernel gives value noise its full variance
+        at the lattice points only, a visible lattice pattern), ``"quintic"``
+        for gradient noise (Perlin's 2002 noise, what a user of gradient noise
+        expects: the cubic B-spline spreads each gradient over 4 cells, which
+        costs twice the time and leaves a range of about +-0.62 of the bound).
     basis : {"value", "gradient"}, default "value"
         ``"value"``: Phillips' random values. ``"gradient"``: Perlin's gradient
         noise, ``sum_i K(x - i) g_i . (x - i)`` with unit gradients ``g_i``
@@ -64,7 +71,12 @@ class LatticeNoise:
     period : int or sequence of int, optional
         Exact lattice period per axis: the noise then tiles with period
         ``period / frequency`` in input units. Without it the noise is
-        pseudo-periodic with the table's period n.
+        pseudo-periodic with the table's period n. An octave sum of a noise
+        with a period (:meth:`evaluate`, :func:`noiselab.fractal_sum`, ...)
+        keeps that tile as its only period: octave ``o`` gets the lattice
+        period ``period * lacunarity**o`` (a whole-number lacunarity, and the
+        finest octave's period at most ``table_size`` with the table hash,
+        2**32 with the integer hash; a ValueError otherwise).
     frequency, phase : float or sequence of dim_in floats
         ``F`` and ``phi`` of Eq. 2 (lattice cells per input unit, and offset in
         lattice cells).
@@ -144,12 +156,12 @@ class LatticeNoise:
     (5, 2)
     """
 
-    def __init__(self, dim_in, dim_out=1, *, seed=0, kernel="cubic", basis="value", table_size=256,
+    def __init__(self, dim_in, dim_out=1, *, seed=0, kernel=None, basis="value", table_size=256,
                  period=None, frequency=1.0, phase=0.0, amplitude=1.0, alternation="table", hash="table"):
         self.dim_in = d = check_int("dim_in", dim_in, lo=1, hi=32)
         self.dim_out = check_int("dim_out", dim_out, lo=1)
-        self.kernel: Kernel = get_kernel(kernel)
         checks.check_choices(basis, alternation, hash)
+        self.kernel: Kernel = get_kernel(checks.default_kernel(basis) if kernel is None else kernel)
         self.basis, self.alternation, self.hash = basis, alternation, hash
         self.table_size = n = checks.check_table_size(table_size)
         # permutations (int64 and the doubled uint64 copy) and the 3-D hash tables, per component
@@ -186,6 +198,50 @@ class LatticeNoise:
             freqs = self.frequency[None, :] * (lacunarity ** np.arange(octaves))[:, None]
             amps = self.scale * gain ** np.arange(octaves)
         return freqs, amps
+
+    def _octave_periods(self, octaves, lacunarity):
+        """The lattice period of each octave ``(octaves, dim_in)`` of a tileable noise's sum, else None (all
+        octaves at ``period``): ``period * lacunarity**o`` (:func:`.checks.octave_periods`)."""
+        if not self.tileable or octaves == 1:
+            return None
+        return checks.octave_periods(self.period, octaves, lacunarity, self.table_size, self.hash)
+
+    def _octave_twins(self, octaves, lacunarity, gain):
+        """A tileable noise's octaves as single-octave noises, or None (not tileable, or one octave).
+
+        Octave ``o`` is this noise at frequency ``F L**o`` and amplitude
+        ``a g**o`` with the lattice period ``period * L**o``
+        (:func:`.checks.octave_periods`): at the base period it would repeat
+        ``L**o`` times inside the tile. Each twin is evaluated on its own
+        (one octave, float64) and the octaves are added in order, so every
+        path, window and chunking gives the same bits. The points kernels
+        sum octaves that share one period, hence this loop outside them; the
+        grid passes take a period per octave (:func:`.grid_path.render_grid`).
+        """
+        periods = self._octave_periods(octaves, lacunarity)
+        if periods is None:
+            return None
+        freqs, amps = self._octave_arrays(octaves, lacunarity, gain)
+        twins = []
+        for o in range(octaves):
+            twin = copy.copy(self)
+            twin.period, twin._pmask = periods[o], tables.period_masks(periods[o])
+            twin.frequency, twin.scale = freqs[o], float(amps[o])
+            twin.amplitude = self.amplitude * gain ** o
+            twins.append(twin)
+        return twins
+
+    @staticmethod
+    def _add_octaves(twins, one):
+        """``sum one(twin)`` over the twins in order, in float64 (``one`` returns a fresh float64 array)."""
+        total = None
+        for twin in twins:
+            part = one(twin)
+            if total is None:
+                total = np.array(part, dtype=np.float64)
+            else:
+                total += part
+        return total
 
     def evaluate(self, points, *, octaves=1, lacunarity=2.0, gain=0.5, absval=False, dtype=None, workers=1,
                  name="points"):
@@ -224,6 +280,14 @@ class LatticeNoise:
     def _sum_at(self, points, octaves, lacunarity, gain, absval, dtype, workers, name):
         """:meth:`evaluate` with checked octave parameters (``__call__`` comes here directly)."""
         workers = resolve_workers(workers)
+        twins = self._octave_twins(octaves, lacunarity, gain)
+        if twins is not None:
+            out_dtype = output_dtype(as_array(name, points).dtype, dtype)
+            checks.check_amplitude(self.amplitude * checks.total_gain(octaves, gain), out_dtype,
+                                   "amplitude (times the sum of the octaves' gains)")
+            total = self._add_octaves(twins, lambda t: t._sum_at(points, 1, 2.0, 0.5, absval, np.float64, workers,
+                                                                 name))
+            return total.astype(out_dtype, copy=False)
         freqs, amps = self._octave_arrays(octaves, lacunarity, gain)
         raw = as_array(name, points)
         lead, flat = prepare_points(self, raw, name)
@@ -257,7 +321,16 @@ class LatticeNoise:
         """
         workers = resolve_workers(workers)
         checks.check_differentiable(self.kernel)
-        freqs, amps = self._octave_arrays(*checks.check_octaves(octaves, lacunarity, gain))
+        octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
+        twins = self._octave_twins(octaves, lacunarity, gain)
+        if twins is not None:
+            def one(twin):
+                value, jac = twin.evaluate_jacobian(points, absval=absval, workers=workers, name=name)
+                return np.concatenate([value.reshape(jac.shape[:-1] + (1,)), jac], axis=-1)
+            both = self._add_octaves(twins, one)
+            return both[..., 0].reshape(both.shape[:-2] + ((self.dim_out,) if self.dim_out > 1 else ())), \
+                both[..., 1:]
+        freqs, amps = self._octave_arrays(octaves, lacunarity, gain)
         lead, flat = prepare_points(self, points, name)
         checks.check_large(flat.shape[0] * self.dim_out * (self.dim_in + 1) * 8 * 2, "lattice noise jacobian")
         out = evaluate_points_jac(self, flat, freqs, amps, absval, name, workers)
@@ -282,7 +355,7 @@ class LatticeNoise:
         """
         octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
         return render_grid(self, shape, extent, dtype=dtype, window=window, octaves=octaves, lacunarity=lacunarity,
-                           gain=gain, absval=bool(absval))
+                           gain=gain, absval=bool(absval), periods=self._octave_periods(octaves, lacunarity))
 
     def evaluate_grid_jacobian(self, shape, extent, *, window=None, octaves=1, lacunarity=2.0, gain=0.5,
                                absval=False, value=True):
@@ -303,7 +376,7 @@ class LatticeNoise:
         """
         octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
         return grid_jacobian(self, shape, extent, window=window, octaves=octaves, lacunarity=lacunarity, gain=gain,
-                             absval=bool(absval), value=bool(value))
+                             absval=bool(absval), value=bool(value), periods=self._octave_periods(octaves, lacunarity))
 
     # ------------------------------------------------------- the user's calls
     def __call__(self, points, *, dtype=None, workers=1):

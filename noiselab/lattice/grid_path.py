@@ -20,6 +20,7 @@ they spread over many cells, the distinct ones (:func:`axis_taps`).
 """
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
@@ -29,8 +30,9 @@ from . import checks
 from ._compiled import inthash, jit
 from .grid import check_grid, coordinates
 from .points_path import evaluate_points, evaluate_points_jac
+from .tables import period_masks
 
-__all__ = ["render_grid", "finish_grid", "is_separable", "grid_scattered", "axis_taps", "block_hash", "int_prefix",
+__all__ = ["render_grid", "with_period", "finish_grid", "is_separable", "grid_scattered", "axis_taps", "block_hash", "int_prefix",
            "grid_separable", "grid_fused_2d", "contract_rest", "FUSED_2D", "TILE_2D", "RING_BYTES"]
 
 # Past 2**52 lattice cells a float64 coordinate has no fractional bits: the
@@ -48,8 +50,12 @@ RING_BYTES = 256 << 10
 
 
 def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0, gain=0.5, absval=False,
-                deriv_axis=None, octave_start=0, out=None):
+                deriv_axis=None, octave_start=0, out=None, periods=None):
     """Octaves ``octave_start .. octaves-1`` of the octave sum on a window of the grid: ``window shape (+ (dim_out,))``.
+
+    ``periods``: the lattice period of every octave, ``(octaves, dim_in)``
+    (a tileable noise's octave sum, :func:`.checks.octave_periods`); default
+    ``noise.period`` for all. Every pass below takes its octave's period.
 
     ``deriv_axis``: the partial derivative along that input axis instead (the
     same passes, with the kernel's derivative on that axis). ``out``: a
@@ -80,7 +86,8 @@ def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0,
             raise ValueError(f"extent times the frequency (and lacunarity**octave) overflows float64 "
                              f"({freq.max():.3g} lattice cells per unit); keep |x * frequency| below 1.7e308")
         exact = reach < SEPARABLE_LIMIT
-        (separable if exact and is_separable(noise.kernel.taps, full, freq) else sparse).append((freq, amp))
+        period = noise.period if periods is None else periods[o]
+        (separable if exact and is_separable(noise.kernel.taps, full, freq) else sparse).append((freq, amp, period))
     # the separable pass writes every sample unless it accumulates |.| (turbulence)
     writes_all = bool(separable) and not absval
     if out is None:
@@ -91,10 +98,20 @@ def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0,
             out[...] = 0.0
     if separable:
         grid_separable(noise, sub, full, separable, out, absval, deriv_axis)
-    for freq, amp in sparse:
+    for freq, amp, period in sparse:
         # grids sparser than this octave's lattice: per-point path, added
-        grid_scattered(noise, sub, freq, amp, out, absval, deriv_axis)
+        grid_scattered(with_period(noise, period), sub, freq, amp, out, absval, deriv_axis)
     return finish_grid(out)
+
+
+def with_period(noise, period):
+    """``noise``, or a shallow copy of it with another lattice period (one octave of a tileable sum)."""
+    if np.array_equal(period, noise.period):
+        return noise
+    twin = copy.copy(noise)
+    twin.period = np.asarray(period, dtype=np.int64)
+    twin._pmask = period_masks(twin.period)
+    return twin
 
 
 def finish_grid(out):
@@ -136,14 +153,15 @@ def grid_scattered(noise, sub, freq, amp, out, absval, deriv_axis=None):
             flat_out[c, j] += vals[:, c].astype(out.dtype)
 
 
-def axis_taps(noise, coords_a, freq_a, a, grad, deriv=False):
+def axis_taps(noise, coords_a, freq_a, a, grad, deriv=False, period=None):
     """Weights, tap positions and the reduced lattice indices of the distinct taps along one axis.
 
     ``deriv``: the weights' derivatives along this axis in input units
     instead (:func:`_jit.axis_dweights`), for the derivative grids.
+    ``period``: the octave's lattice period along this axis (default ``noise.period[a]``).
     """
     k = noise.kernel
-    period = int(noise.period[a])
+    period = int(noise.period[a] if period is None else period)
     fis, base, w, rw = jit.axis_weights(coords_a, freq_a, noise.phase[a], k.shift, k.left, k.taps, k.coef, period,
                                         grad)
     if deriv:
@@ -157,7 +175,7 @@ def axis_taps(noise, coords_a, freq_a, a, grad, deriv=False):
     rel = (fis - fis[j0]).astype(np.int64)[:, None] + np.arange(k.taps)
     uniq, inv = np.unique(rel, return_inverse=True)
     pos = inv.reshape(rel.shape).astype(np.int64)
-    lattice = (base[j0] + uniq) % noise.period[a]
+    lattice = (base[j0] + uniq) % period
     return lattice, pos, w, rw
 
 
@@ -186,14 +204,15 @@ def _octave_batches(noise, full, octaves, nterm):
     budget = max(64 << 20, 2 * 8 * full[0].shape[0] * post_full)
     taps = noise.kernel.taps
     batches, cur, used = [], [], 0
-    for freq, amp in octaves:
+    for octave in octaves:
+        freq = octave[0]
         span = abs(full[0][-1] - full[0][0]) * freq[0] if full[0].shape[0] > 1 else 0.0
         rows = min(full[0].shape[0] * taps, span + taps + 1)
         need = 8 * rows * post_full * nterm
         if cur and used + need > budget:
             batches.append(cur)
             cur, used = [], 0
-        cur.append((freq, amp))
+        cur.append(octave)
         used += need
     batches.append(cur)
     return batches
@@ -216,14 +235,14 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
     post = int(np.prod([c.shape[0] for c in sub[1:]], dtype=np.int64))
     nj = sub[0].shape[0]
     for bi, batch in enumerate(batches):
-        axes_per_octave = [[axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis) for a in range(d)]
-                           for freq, _ in batch]
+        axes_per_octave = [[axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis, period=per[a])
+                            for a in range(d)] for freq, _, per in batch]
         rows = sum(len(axes[0][0]) for axes in axes_per_octave) * nterm
         for c in range(noise.dim_out):
             inter_all = np.empty((rows, post))
             poss, ws, scales = [], [], []
             row0 = 0
-            for (freq, amp), axes in zip(batch, axes_per_octave):
+            for (freq, amp, _), axes in zip(batch, axes_per_octave):
                 lattices = [ax[0] for ax in axes]
                 bshape = tuple(len(lat) for lat in lattices)
                 block = np.empty(int(np.prod(bshape, dtype=np.int64)))
@@ -271,8 +290,9 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
     grad = noise.basis == "gradient"
     k = noise.kernel
     n = noise.table_size
-    freqs = np.array([freq for freq, _ in octaves], dtype=np.float64)
-    scales = np.array([amp for _, amp in octaves], dtype=np.float64)
+    freqs = np.array([freq for freq, _, _ in octaves], dtype=np.float64)
+    scales = np.array([amp for _, amp, _ in octaves], dtype=np.float64)
+    periods = np.array([per for _, _, per in octaves], dtype=np.int64)
     nq = out.shape[2]
     tile = TILE_2D
     if tile is None:  # the widest tile whose ring fits the budget, the row split into equal tiles
@@ -289,7 +309,7 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
     else:
         out64, out32 = flat, np.empty((noise.dim_out, 0), np.float32)
     dax = -1 if deriv_axis is None else int(deriv_axis)
-    if jit.grid2d_all(sub[0], sub[1], freqs, noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, noise.period,
+    if jit.grid2d_all(sub[0], sub[1], freqs, noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, periods,
                       n, grad, dax, scales, noise.perms, noise.values, noise.gradients, bool(absval), out64, out32,
                       nq, tile):
         return
@@ -298,9 +318,10 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
     for a in range(2):
         ok, lat, off, pos, base, wa, wb, dense = jit.pack_axis(
             sub[a], np.ascontiguousarray(freqs[:, a]), noise.phase[a], k.shift, k.left, k.taps, k.coef, k.dcoef,
-            int(noise.period[a]), n, grad, a == deriv_axis, a == 1)
+            np.ascontiguousarray(periods[:, a]), n, grad, a == deriv_axis, a == 1)
         if not ok:  # taps spread over many cells: axis_taps' sparse branch, packed alike
-            axis = [axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis) for freq in freqs]
+            axis = [axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis, period=per[a])
+                    for freq, per in zip(freqs, periods)]
             lat = np.concatenate([np.asarray(ax[0], dtype=np.int64) for ax in axis]) % n
             off = np.zeros(len(axis) + 1, np.int64)
             off[1:] = np.cumsum([len(ax[0]) for ax in axis])
@@ -311,8 +332,8 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
             if a == 1:
                 wa, wb = wa.transpose(0, 2, 1), wb.transpose(0, 2, 1)
             wa, wb = np.ascontiguousarray(wa), np.ascontiguousarray(wb)
-            dense = np.array([noise.period[1] % n == 0 and bool((np.diff(ax[0]) % noise.period[1] == 1).all())
-                              for ax in axis])
+            dense = np.array([per[1] % n == 0 and bool((np.diff(ax[0]) % per[1] == 1).all())
+                              for ax, per in zip(axis, periods)])
         packed.append((lat, off, pos, wa, wb) if a == 0 else (lat, off, base, dense, wa, wb))
     for c in range(noise.dim_out):
         jit.grid2d(*packed[0], *packed[1], scales, noise.perms[c], noise.values, noise.gradients, 1 if grad else 0,
