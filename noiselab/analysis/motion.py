@@ -143,7 +143,7 @@ def _surface_energy(spec: PowerSpectrum, grid: _Grid, kt_pred: np.ndarray, regio
 
 
 def motion_energy(video, velocity=(0.0, 0.0), *, tol=1.0, band=None, window=None) -> float:
-    """Fraction of a video's spectral power on the motion plane ``w_t = -v . w`` of ``velocity = (vx, vy)``.
+    """Fraction of a video's spectral power on the motion plane ``w_t = -v·w`` of ``velocity = (vx, vy)``.
 
     Parameters
     ----------

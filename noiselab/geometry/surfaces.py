@@ -53,7 +53,7 @@ def grid_points(shape, extent):
 
     Returns
     -------
-    ndarray (*shape, d), float64
+    ndarray of shape ``(*shape, d)``, float64
         ``points[i, j] = (y_i, x_j)`` (3-D: ``points[k, i, j] = (z_k, y_i, x_j)``):
         the coordinate along every array axis, in axis order, computed as
         ``LatticeNoise.grid`` computes it (``start + i * ((stop - start) / n)``).
