@@ -70,9 +70,7 @@ numpydoc_xref_param_type = False
 numpydoc_validation_checks = set()
 
 myst_enable_extensions = ["colon_fence"]
-# guide/index.md ends with a glob (``*``) so that pages other branches add under docs/guide/ appear by
-# themselves; until there is one, the glob matches nothing, which is not a fault
-suppress_warnings = ["toc.empty_glob"]
+
 myst_heading_anchors = 3
 
 sphinx_gallery_conf = {
