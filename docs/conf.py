@@ -58,6 +58,8 @@ html_theme_options = {
     "secondary_sidebar_items": ["page-toc"],
 }
 html_sidebars = {"**": ["sidebar-nav-bs"]}
+# without a default the theme's script logs a console error ("invalid theme mode") on a first visit
+html_context = {"default_mode": "light"}
 html_show_sourcelink = False
 
 autosummary_generate = True

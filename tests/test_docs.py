@@ -100,7 +100,7 @@ def test_every_public_name_has_an_api_page(site):
         for name in module.__all__:
             dotted = f"noiselab.{package}.{name}"
             page = site / "api" / "generated" / f"{dotted}.html"
-            if not page.is_file() or dotted not in _parse(page).ids:
+            if not page.is_file() or not {dotted, f"module-{dotted}"} & _parse(page).ids:
                 missing.append(dotted)
     assert not missing, f"public names without an API page: {missing}"
     top = _parse(site / "api" / "noiselab.html")
@@ -114,6 +114,8 @@ def test_every_public_name_has_an_api_page(site):
 def test_no_internal_link_anchor_or_image_is_broken(site):
     broken, checked = [], 0
     for page_path in sorted(site.rglob("*.html")):
+        if page_path.parent.name == "_static":   # the theme's own templates, copied as they are
+            continue
         page = _parse(page_path)
         for ref, kind in [(r, "link") for r in page.refs] + [(s, "image") for s in page.images]:
             parts = urlsplit(ref)

@@ -15,6 +15,23 @@ def rms_contrast(x, mask=None) -> float:
     The usual definition for luminance images (the root-mean-square of the
     Weber contrast ``(L - mean) / mean``); positive mean required.
 
+    Parameters
+    ----------
+    x : array_like
+        Finite intensities (luminances) with a positive mean.
+    mask : array_like of bool, optional
+        Only the intensities where it is True (broadcast against ``x``).
+
+    Returns
+    -------
+    float
+        ``std / mean`` (>= 0).
+
+    Raises
+    ------
+    ValueError
+        For non-finite intensities, a mask that selects nothing or a mean that is not positive.
+
     Examples
     --------
     >>> rms_contrast([50, 150])
@@ -31,7 +48,30 @@ def rms_contrast(x, mask=None) -> float:
 
 
 def to_grey(x) -> np.ndarray:
-    """Grey level of an RGB image or video (trailing axis of 3 or 4) with Rec. 709 luma weights; grey input passes through."""
+    """Grey level of an RGB image or video (trailing axis of 3 or 4) with Rec. 709 luma weights; grey input passes through.
+
+    Parameters
+    ----------
+    x : array_like
+        A finite image or video; RGB(A) when its last axis has 3 or 4 entries
+        and it has at least 3 dimensions (alpha is ignored).
+
+    Returns
+    -------
+    ndarray
+        ``0.2126 R + 0.7152 G + 0.0722 B``, or ``x`` itself for grey input.
+
+    Raises
+    ------
+    ValueError
+        For a non-finite array.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> to_grey(np.ones((2, 2, 3))).shape
+    (2, 2)
+    """
     arr = check_finite_array("x", x)
     if arr.ndim >= 3 and arr.shape[-1] in (3, 4):
         arr = arr[..., :3].astype(np.float32) @ np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)

@@ -82,6 +82,18 @@ def grid_coordinates(shape, extent):
     Both evaluation paths, every window and every octave use exactly this
     formula, so the same sample always gets the same coordinate bits.
 
+    Parameters
+    ----------
+    shape : tuple of int
+        Samples per axis.
+    extent : sequence of (start, stop)
+        One pair per axis, stop excluded.
+
+    Returns
+    -------
+    list of ndarray of float64
+        One array of ``shape[a]`` coordinates per axis.
+
     Examples
     --------
     >>> [c.tolist() for c in grid_coordinates((4,), [(0, 2)])]

@@ -497,6 +497,23 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         chunks (for fields bigger than the cluster's memory). The caller
         removes it after computing. Default: dask's in-memory rechunk.
 
+    Returns
+    -------
+    ndarray of ``dtype``, shape ``shape``
+        The field (a lazy ``dask.array.Array`` with ``chunks``): zero mean and
+        unit variance over the ensemble (``"expected"``) or exactly
+        (``"sample"``).
+
+    Raises
+    ------
+    ValueError
+        For an impossible shape, an exponent outside ``[-8, 8]``, a band past
+        the Nyquist frequency or holding no frequency of the grid, ``dc=True``
+        with a band that does not start at 0, an unknown ``amplitude`` or
+        ``normalize``.
+    MemoryError
+        When the field would not fit (estimated before allocating).
+
     Notes
     -----
     The same field as ``synthesize(shape, annulus * power_law, ...)`` rescaled,
