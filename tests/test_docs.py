@@ -185,13 +185,20 @@ def test_the_site_opens_in_headless_chromium_without_a_console_error(site):
 # --- the docstrings' Examples, as doctests --------------------------------------
 
 def _public_modules():
-    """Every module of the documented packages (the command line and the gallery's figures excepted)."""
-    names = []
+    """Every public module of the documented packages (the command line and the gallery excepted), and every
+    module, private ones included, that defines a name of a public package's ``__all__``."""
+    names = set()
     for info in pkgutil.walk_packages([str(ROOT / "noiselab")], prefix="noiselab."):
         parts = info.name.split(".")
-        if parts[1] in ("cli", "gallery", "_core") or any(p.startswith("_") for p in parts[1:]):
+        if parts[1] in ("cli", "gallery") or any(p.startswith("_") for p in parts[1:]):
             continue
-        names.append(info.name)
+        names.add(info.name)
+    for package in [n for n in names if n.count(".") == 1]:
+        module = importlib.import_module(package)
+        for name in getattr(module, "__all__", ()):
+            defined_in = getattr(getattr(module, name), "__module__", None)
+            if defined_in and defined_in.startswith("noiselab.") and not defined_in.startswith("noiselab.gallery"):
+                names.add(defined_in)
     return sorted(names)
 
 
