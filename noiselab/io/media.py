@@ -438,7 +438,7 @@ def iter_video(path, *, max_frames=None):
     Examples
     --------
     >>> import os, tempfile, numpy as np
-    >>> p = write_video(os.path.join(tempfile.mkdtemp(), "v.gif"), np.zeros((3, 8, 8)))
+    >>> p = write_video(os.path.join(tempfile.mkdtemp(), "v.gif"), np.random.default_rng(0).random((3, 8, 8)))
     >>> [f.shape[:2] for f in iter_video(p)]   # as decoded: a GIF's grey frames come as RGB
     [(8, 8), (8, 8), (8, 8)]
     """
