@@ -52,7 +52,14 @@ def site(tmp_path_factory):
     assert argv[:3] == [".venv/bin/python", "-m", "sphinx"] and argv[-2:] == ["docs", "docs/_build/html"]
     cmd = [sys.executable, *argv[1:-1], "-d", str(out / "doctrees"), str(out / "html"), "-q"]
     env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""), MPLBACKEND="Agg")
-    proc = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, timeout=900)
+    # the build writes its generated pages into docs/ (api/, benchmarks/, auto_examples/): one build at a
+    # time when pytest-xdist runs this module in two workers
+    import fcntl
+
+    (DOCS / "_build").mkdir(exist_ok=True)
+    with open(DOCS / "_build" / ".test-lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        proc = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, timeout=900)
     assert proc.returncode == 0, f"sphinx -W failed:\n{proc.stderr[-6000:]}\n{proc.stdout[-2000:]}"
     return out / "html"
 

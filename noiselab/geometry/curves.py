@@ -126,6 +126,28 @@ def trajectory(field, t, amplitude=1.0, frequency=1.0, phase=0.0, *, dims=None):
     ``field`` maps ``(n, 1)`` to ``(n, d)`` (e.g. ``LatticeNoise(1, 2)``);
     ``dims`` keeps the first ``dims`` components (default all, at least 2).
 
+    Parameters
+    ----------
+    field : callable or LatticeNoise
+        Maps ``(n, 1)`` points to ``(n, d)`` values (e.g. ``LatticeNoise(1, 2)``).
+    t : array_like (n,)
+        The path parameter.
+    amplitude : float
+        Scale of the output.
+    frequency, phase : float
+        Applied to ``t`` before the field.
+    dims : int, optional
+        Output components kept (2 or 3; default all).
+
+    Returns
+    -------
+    ndarray (n, dims)
+
+    Raises
+    ------
+    ValueError
+        For a non-finite ``t`` or ``dims`` larger than the field's components.
+
     Examples
     --------
     >>> import numpy as np

@@ -131,6 +131,17 @@ def vertex_normals(mesh, *, weld=False) -> np.ndarray:
     ``weld=True`` gives vertices at exactly the same position (copies split
     at a seam) their common normal.
 
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+    weld : bool, default False
+        Give coincident vertices their common normal.
+
+    Returns
+    -------
+    ndarray (n_vertices, 3) of float64
+        Unit normals (zero where undefined).
+
     Examples
     --------
     >>> import trimesh
