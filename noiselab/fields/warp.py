@@ -101,6 +101,12 @@ def warp(noise, warp_noise, amount=1.0):
         It is a noise itself: warp it again, or pass it to :func:`curl_noise`
         or :func:`noiselab.fractal.fractal_gradient`.
 
+    Raises
+    ------
+    ValueError
+        For a ``warp_noise`` that does not map the noise's input space to
+        itself, or a non-finite ``amount``.
+
     Examples
     --------
     >>> import numpy as np

@@ -217,6 +217,12 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
     -------
     ndarray (a lazy dask array with ``chunks``), or (array, int) with ``return_octaves``
 
+    Raises
+    ------
+    ValueError
+        For points whose last axis is not ``dim_in``, octaves outside
+        ``[1, 10000]``, ``lacunarity <= 1`` or ``gain <= 0``.
+
     Examples
     --------
     >>> from noiselab.lattice import LatticeNoise, Grid
@@ -343,6 +349,12 @@ def fractal_gradient(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize
     -------
     ndarray ``(..., dim_in)`` for scalar noise, ``(..., dim_out, dim_in)`` for vector noise
     (with ``value`` first and the octave count last when asked for).
+
+    Raises
+    ------
+    ValueError
+        For the arguments :func:`fractal_sum` refuses, or a kernel without a
+        continuous first derivative (box, linear).
 
     Examples
     --------

@@ -451,6 +451,13 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
         vertex moved (``amplitude * s``; for ``direction="vector"``, the
         displacement's component along the normal).
 
+    Raises
+    ------
+    ValueError
+        For a mesh without faces, a field that does not take 3-D points, a
+        non-finite amplitude, frequency or phase, or (``on_aliasing="raise"``)
+        a mesh too coarse for the field's highest frequency.
+
     Examples
     --------
     >>> import numpy as np, trimesh

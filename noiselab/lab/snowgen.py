@@ -155,6 +155,12 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
     -------
     ndarray, shape (T, H, W), ``dtype``; in [0, 1] unless ``rescale=False``.
 
+    Raises
+    ------
+    ValueError
+        For an impossible shape, ``c`` outside ``[0, pi]``, a band past
+        Nyquist, or ``layers`` outside ``[1, 256]``.
+
     Examples
     --------
     >>> a = layered_lattice_snow((4, 64, 64), seed=0, layers=3)
@@ -277,6 +283,11 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
     Returns
     -------
     ndarray (T, H, W) in [0, 1], or (ndarray, dict) with ``return_flakes``.
+
+    Raises
+    ------
+    ValueError
+        For an impossible shape, ``c`` outside ``[0, pi]`` or a band past Nyquist.
 
     Examples
     --------

@@ -207,6 +207,16 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
     amplitude is split evenly over those bins, so the spatial spectrum does
     not depend on the thickness.
 
+    Raises
+    ------
+    ValueError
+        For an impossible shape, ``c`` outside ``[0, pi]``, a band past the
+        spatial Nyquist frequency, a zero direction, or (``on_alias="raise"``)
+        a ``c`` or pan whose tent passes the temporal Nyquist frequency (the
+        message names the largest allowed value).
+    MemoryError
+        When the video would not fit (estimated before allocating).
+
     Examples
     --------
     >>> a = snow((16, 64, 64), seed=0)

@@ -261,6 +261,12 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     the dtype is a ``ValueError``.
     Timings against a bare ``irfftn``: ``benchmarks/bench_spectral.md``.
 
+    Raises
+    ------
+    ValueError
+        For an impossible shape, or an envelope that is not finite or does not
+        broadcast to the half spectrum.
+
     Examples
     --------
     >>> import numpy as np, scipy.fft
