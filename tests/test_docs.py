@@ -4,8 +4,9 @@ One full HTML build per test session (the README's command, verbatim but for
 the interpreter and the output folder): the HTML builder is the one readers
 get, it resolves every cross-reference (``-W`` turns an unresolved one into a
 failure) and sphinx-gallery executes every example, so no faster builder would
-check less. On the 2-core development machine it takes about 75 s of wall time
-from a clean tree (numba's cache warm). The tests then read the built site:
+check less. On the shared 2-core development machine it takes 77 to 115 s of
+wall time from a clean tree (numba's cache warm; 33 s of CPU, 31 s of it the
+examples). The tests then read the built site:
 every public name has its API page, every benchmark report its rendered page,
 every example its figure and download link, no internal link, anchor or image
 is broken, and pages open in headless Chromium without a console error.
