@@ -95,6 +95,28 @@ def noisy_circle(field, n=720, radius=1.0, amplitude=0.1, frequency=1.0, phase=0
 
     Returns ``(n, 2)`` points at ``theta = 2 pi k / n`` (the first point is not repeated).
 
+    Parameters
+    ----------
+    field : callable or LatticeNoise
+        Takes 2-D points with ``closed=True`` (1-D with ``closed=False``);
+        scalar output for ``mode="radial"``, 2 components for ``mode="xy"``.
+    n : int, default 720
+        Points on the circle.
+    radius : float, default 1
+        Radius of the undistorted circle.
+    amplitude : float, default 0.1
+        Size of the distortion.
+    frequency, phase : float
+        Noise units per radian, and offset.
+    mode : {"radial", "xy"}, default "radial"
+        Push each point along its radius, or displace it in x and y.
+    closed : bool, default True
+        Sample the field on a circle of its input space, so the curve closes.
+
+    Returns
+    -------
+    ndarray (n, 2)
+
     Examples
     --------
     >>> import numpy as np

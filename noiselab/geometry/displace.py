@@ -326,6 +326,29 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
     The refined mesh carries geometry only (colours and texture coordinates
     are not interpolated onto the new vertices).
 
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+    max_frequency : float
+        The field's highest frequency in cycles per unit.
+    samples_per_period : float, default 4
+        Samples wanted per period of ``max_frequency``.
+    method : {"adaptive", "midpoint", "loop"}, default "adaptive"
+    max_faces : int, default 50_000_000
+        The most faces the result may have.
+
+    Returns
+    -------
+    trimesh.Trimesh
+        A new mesh (a copy when nothing needed splitting).
+
+    Raises
+    ------
+    ValueError
+        For an unknown method, or a result past ``max_faces``.
+    MemoryError
+        When the refined mesh would not fit.
+
     Examples
     --------
     >>> import trimesh
@@ -521,6 +544,22 @@ def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0,
 
     ``field`` takes 4-D points (x, y, z, t). The normals and the resolution
     check are computed once. Extra keyword arguments go to :func:`displace`.
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+    field : callable
+        Takes 4-D points ``(x, y, z, t)``.
+    times : sequence of float
+    amplitude, frequency, phase
+        As for :func:`displace`.
+    **kwargs
+        Further arguments of :func:`displace`.
+
+    Yields
+    ------
+    trimesh.Trimesh
+        The displaced mesh at each time.
 
     Examples
     --------

@@ -81,6 +81,19 @@ def squashed_sphere(squash=0.05, subdivisions=4, radius=1.0, axis=2):
     The result is an oblate spheroid with semi-axis ``radius * (1 - squash)``
     along ``axis``.
 
+    Parameters
+    ----------
+    squash : float, default 0.05
+        Fraction removed along ``axis``, in ``[0, 1)``.
+    subdivisions : int, default 4
+        Icosphere levels.
+    radius : float, default 1
+    axis : {0, 1, 2}, default 2
+
+    Returns
+    -------
+    trimesh.Trimesh
+
     Examples
     --------
     >>> s = squashed_sphere(0.05)
