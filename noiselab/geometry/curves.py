@@ -243,6 +243,26 @@ def trajectory_frames(points, *, tail=25, size=256, marker_size=60.0, limits=Non
 
     Returns ``(frames, height, width, 3)`` uint8; writes a GIF/MP4 when ``path`` is given.
 
+    Parameters
+    ----------
+    points : array_like (n, 2)
+        The trajectory, one sample per frame.
+    tail : int, default 25
+        Earlier samples drawn behind the point.
+    size : int, default 256
+        Frame size in pixels.
+    marker_size : float, default 60
+        Marker area (matplotlib points squared).
+    limits : ((xmin, xmax), (ymin, ymax)), optional
+        Default: fitted to the trajectory.
+    path : str or Path, optional
+        Also write the animation there (GIF, MP4, ...).
+    fps : float, default 25
+
+    Returns
+    -------
+    ndarray (n, size, size, 3) of uint8
+
     Examples
     --------
     >>> import numpy as np

@@ -321,6 +321,24 @@ def height_map_image(heights, path=None, *, vmin=None, vmax=None) -> np.ndarray:
     ``heights`` is drawn as it is stored: row 0 (``y0`` of :func:`height_map`)
     at the top, x to the right. ``vmin``/``vmax`` default to the array's range.
 
+    Parameters
+    ----------
+    heights : array_like (H, W)
+        Finite heights.
+    path : str or Path, optional
+        Also write the image there (PNG, ...).
+    vmin, vmax : float, optional
+        Heights mapped to black and white (default: the array's range).
+
+    Returns
+    -------
+    ndarray (H, W) of uint8
+
+    Raises
+    ------
+    ValueError
+        For non-finite heights or an array that is not 2-D.
+
     Examples
     --------
     >>> import numpy as np

@@ -47,6 +47,17 @@ def lattice_peak(kernel="catmull-rom", basis="gradient") -> float:
     the Catmull-Rom kernel 80 % of its power lies within a factor 1.9 of
     frequency (the narrowest of the kernels; cubic B-spline: 2.6).
 
+    Parameters
+    ----------
+    kernel : str, default "catmull-rom"
+        A kernel name of :func:`noiselab.lattice.kernel_names`.
+    basis : {"value", "gradient"}, default "gradient"
+
+    Returns
+    -------
+    float
+        Cycles per lattice cell.
+
     Examples
     --------
     >>> 0.4 < lattice_peak("catmull-rom", "gradient") < 0.7
