@@ -60,7 +60,7 @@ def flow_field(field, shape=(16, 16), extent=((0.0, 4.0), (0.0, 4.0)), amplitude
 
     Returns
     -------
-    points, vectors : ndarray (*shape, d)
+    points, vectors : ndarray of shape ``(*shape, d)``
 
     Examples
     --------
