@@ -9,7 +9,9 @@
 # Either way `.venv/bin/noiselab` and `.venv/bin/python` run the installed noiselab,
 # so the distribution's Python is never touched (PEP 668).
 # Usage: ./install.sh            # the package and its run-time dependencies
-#        ./install.sh test       # ... plus the test extras (pytest, hypothesis, dask, chromium)
+#        ./install.sh test       # ... plus the test extras (pytest, hypothesis, dask, the docs tools, chromium)
+#        ./install.sh docs       # ... plus the documentation tools (sphinx, numpydoc, sphinx-gallery, theme)
+#        ./install.sh dask       # ... plus dask, distributed and zarr
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -18,8 +20,8 @@ die() { echo "install.sh: error: $*" >&2; exit 1; }
 
 extras="${1:-}"
 case "$extras" in
-    "" | test | dask) ;;
-    *) die "unknown extra '$extras' (expected nothing, 'test' or 'dask')" ;;
+    "" | test | dask | docs) ;;
+    *) die "unknown extra '$extras' (expected nothing, 'test', 'docs' or 'dask')" ;;
 esac
 
 # --- which environment -------------------------------------------------------

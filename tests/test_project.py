@@ -89,3 +89,26 @@ def test_install_sh_installs_into_an_active_virtualenv_and_links_dot_venv(tmp_pa
     version = subprocess.run([str(repo / ".venv" / "bin" / "noiselab"), "--version"], env=env, capture_output=True,
                              text=True)
     assert version.stdout.strip().startswith("noiselab "), version.stderr
+
+
+def test_readme_is_a_two_minute_read_of_at_most_150_lines():
+    """Everything else lives on the documentation site (docs/, DEVELOPERS.md says where)."""
+    lines = (ROOT / "README.md").read_text().splitlines()
+    assert len(lines) <= 150, len(lines)
+    text = "\n".join(lines)
+    for heading in ("## Quick start", "## Falling snow", "## Lattice noise", "## Measuring noise", "## Where things are",
+                    "## Citing the seeds"):
+        assert heading in text, heading
+
+
+def test_install_sh_offers_the_docs_extra_and_the_test_extra_includes_it():
+    import tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["optional-dependencies"]
+    assert {re.split(r"[<>=\[ ]", r)[0] for r in extras["docs"]} >= {"sphinx", "numpydoc", "sphinx-gallery",
+                                                                      "pydata-sphinx-theme", "myst-parser"}
+    assert "noiselab[docs]" in extras["test"]
+    script = (ROOT / "install.sh").read_text()
+    assert re.search(r'^\s*"" \| test \| dask \| docs\) ;;$', script, re.M)
+    proc = subprocess.run(["bash", str(ROOT / "install.sh"), "nonsense"], capture_output=True, text=True)
+    assert proc.returncode == 1 and "'docs'" in proc.stderr

@@ -1,7 +1,10 @@
-"""The README is a contract: every fenced Python and shell example in it runs as written.
+"""The README and the user guide are a contract: every fenced Python and shell example in them runs as written.
 
-The blocks run in README order in one scratch folder (as a reader would run
-them, so a later block may use a file an earlier one wrote), Python blocks
+The README's blocks run in README order in one scratch folder (as a reader would run
+them, so a later block may use a file an earlier one wrote); the documentation
+site's pages (``docs/**/*.md`` and ``docs/**/*.rst``, the pages generated at
+build time excepted) run the same way, page after page in the order of
+:func:`docs_pages`, in a second scratch folder. Python blocks
 with this interpreter, shell blocks with bash (``set -euo pipefail``) and this
 interpreter's folder first on PATH (so ``python3`` is the one under test).
 Only the quick start's two set-up lines are left out: CI runs them itself
@@ -38,19 +41,65 @@ SMALL_RUNS = {
 _SUBCOMMAND = re.compile(r"\bnoiselab[ .](" + "|".join(SMALL_RUNS) + r")\b")
 
 
+DOCS = ROOT / "docs"
+#: the guide's pages in reading order (the README's order before they moved); other pages follow by name
+DOCS_ORDER = ["getting_started", "guide/conventions", "guide/layout", "guide/snow", "guide/lattice",
+              "guide/derivatives", "guide/scale", "guide/analysis", "guide/geometry", "guide/gallery",
+              "guide/laboratory", "guide/cli"]
+#: folders of docs/ written at build time (conf.py, sphinx-gallery): not pages anyone wrote
+DOCS_GENERATED = {"_build", "api", "benchmarks", "auto_examples", "_templates", "examples"}
+
+
+def _keep(lang, code):
+    if lang == "bash":
+        code = "\n".join(line for line in code.splitlines() if line.strip() not in SETUP_LINES)
+    return code if code.strip() else None
+
+
 def readme_blocks(text=None):
-    """(line number, language, code) of every fenced python/shell block of the README, in order."""
+    """(line number, language, code) of every fenced python/shell block of the README (or any Markdown), in order."""
     text = (ROOT / "README.md").read_text() if text is None else text
     blocks = []
     for m in re.finditer(r"^```([A-Za-z]*)[^\n]*\n(.*?)^```\s*$", text, re.M | re.S):
         lang = LANGUAGES.get(m.group(1).lower())
-        if lang is None:
-            continue
-        code = m.group(2)
-        if lang == "bash":
-            code = "\n".join(line for line in code.splitlines() if line.strip() not in SETUP_LINES)
-        if code.strip():
+        code = _keep(lang, m.group(2)) if lang else None
+        if code:
             blocks.append((text.count("\n", 0, m.start()) + 1, lang, code))
+    return blocks
+
+
+def rst_blocks(text):
+    """(line number, language, code) of every ``.. code-block:: python|bash`` (or ``code``) block of a reST page."""
+    import textwrap
+
+    blocks = []
+    for m in re.finditer(r"^([ \t]*)\.\. (?:code-block|code|sourcecode)::[ \t]*(\w+)[ \t]*\n((?:\1[ \t]+:.*\n)*)"
+                         r"((?:[ \t]*\n|\1[ \t]+.*\n)*)", text, re.M):
+        lang = LANGUAGES.get(m.group(2).lower())
+        code = _keep(lang, textwrap.dedent(m.group(4)).strip("\n") + "\n") if lang else None
+        if code:
+            blocks.append((text.count("\n", 0, m.start()) + 1, lang, code))
+    return blocks
+
+
+def docs_pages():
+    """The documentation site's hand-written pages (relative to docs/, no suffix), in reading order."""
+    found = {}
+    for path in sorted(DOCS.rglob("*")):
+        rel = path.relative_to(DOCS)
+        if path.suffix in (".md", ".rst") and rel.parts[0] not in DOCS_GENERATED:
+            found[rel.with_suffix("").as_posix()] = path
+    order = [name for name in DOCS_ORDER if name in found] + sorted(set(found) - set(DOCS_ORDER))
+    return [(name, found[name]) for name in order]
+
+
+def docs_blocks():
+    """(page:line, language, code) of every runnable block of the site's pages, page after page."""
+    blocks = []
+    for name, path in docs_pages():
+        text = path.read_text()
+        found = readme_blocks(text) if path.suffix == ".md" else rst_blocks(text)
+        blocks += [(f"docs/{path.relative_to(DOCS)}:{line}", lang, code) for line, lang, code in found]
     return blocks
 
 
@@ -82,10 +131,10 @@ def test_small_run_appends_the_table_options_to_noiselab_commands_only():
         small_run("noiselab bench | tee log")
 
 
-def test_every_small_run_rule_rewrites_a_readme_line():
-    """The table follows the README: a rule for a command the README no longer shows is stale."""
+def test_every_small_run_rule_rewrites_a_readme_or_guide_line():
+    """The table follows the README and the guide: a rule for a command neither shows any more is stale."""
     used = set()
-    for _, lang, code in readme_blocks():
+    for _, lang, code in readme_blocks() + docs_blocks():
         if lang == "bash":
             used |= small_run(code)[1]
     assert used == set(SMALL_RUNS)
@@ -114,13 +163,27 @@ def _child_cpu():
     return r.ru_utime + r.ru_stime
 
 
-def test_every_readme_example_runs_as_written(tmp_path):
-    blocks = readme_blocks()
-    assert len(blocks) >= 5
+def test_rst_block_extraction_reads_code_block_directives_only():
+    sample = ("Title\n=====\n\n.. code-block:: python\n   :caption: x\n\n   import os\n   print(1)\n\n"
+              "text\n\n.. code-block:: text\n\n   not run\n\n.. code-block:: bash\n\n   echo hi\n"
+              "   ./install.sh test && .venv/bin/python -m pytest\n")
+    assert rst_blocks(sample) == [(4, "python", "import os\nprint(1)\n"), (16, "bash", "echo hi")]
+
+
+def test_the_guide_pages_are_found_in_reading_order_and_hold_the_moved_examples():
+    names = [name for name, _ in docs_pages()]
+    assert names[:len(DOCS_ORDER)] == DOCS_ORDER, names
+    blocks = docs_blocks()
+    assert {lang for _, lang, _ in blocks} == {"python", "bash"}
+    assert len(blocks) >= 25, len(blocks)   # what the README held before it shrank, and the getting-started page's
+
+
+def _run_blocks(blocks, tmp_path, what):
     env = _env()
     failures, timings = [], []
     for line, lang, code in blocks:
-        script = tmp_path / f"readme_line_{line}.{'py' if lang == 'python' else 'sh'}"
+        label = re.sub(r"\W+", "_", f"{what}_line_{line}").lower()
+        script = tmp_path / f"{label}.{'py' if lang == 'python' else 'sh'}"
         script.write_text(code if lang == "python" else "set -euo pipefail\n" + small_run(code)[0] + "\n")
         cmd = [sys.executable, str(script)] if lang == "python" else ["bash", str(script)]
         t0, c0 = time.perf_counter(), _child_cpu()
@@ -128,6 +191,17 @@ def test_every_readme_example_runs_as_written(tmp_path):
         timings.append((line, round(time.perf_counter() - t0, 1), round(_child_cpu() - c0, 1)))
         if proc.returncode != 0:
             tail = "\n".join((proc.stderr or proc.stdout).strip().splitlines()[-6:])
-            failures.append(f"README.md line {line} ({lang}, run as {script.name}) exited {proc.returncode}:\n{tail}")
-    print("README line, wall s, CPU s:", timings)
-    assert not failures, "\n\n".join(failures) + f"\n(README line, wall s, CPU s: {timings})"
+            failures.append(f"{what} line {line} ({lang}, run as {script.name}) exited {proc.returncode}:\n{tail}")
+    print(f"{what} line, wall s, CPU s:", timings)
+    assert not failures, "\n\n".join(failures) + f"\n({what} line, wall s, CPU s: {timings})"
+
+
+def test_every_readme_example_runs_as_written(tmp_path):
+    blocks = readme_blocks()
+    assert len(blocks) >= 5
+    _run_blocks(blocks, tmp_path, "README.md")
+
+
+def test_every_guide_example_runs_as_written(tmp_path):
+    """The examples that moved from the README into the guide keep running, in one folder, page after page."""
+    _run_blocks(docs_blocks(), tmp_path, "docs")

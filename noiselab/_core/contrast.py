@@ -47,6 +47,17 @@ def michelson_contrast(x, mask=None) -> float:
         Pixels to use, broadcastable to ``x`` (e.g. an ``(H, W)`` region for a
         ``(T, H, W)`` video).
 
+    Returns
+    -------
+    float
+        In ``[0, 1]``.
+
+    Raises
+    ------
+    ValueError
+        For negative or non-finite intensities, a mask selecting nothing, or
+        all-zero intensities.
+
     Examples
     --------
     >>> michelson_contrast([50, 150])

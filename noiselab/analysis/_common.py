@@ -124,6 +124,16 @@ def noise_floor(spec) -> float:
     power outside its band, not zero; measuring a slope or an orientation
     there would measure the arithmetic.
 
+    Parameters
+    ----------
+    spec : PowerSpectrum
+        From :func:`noiselab.analysis.power_spectrum` (its dtype sets ``eps``).
+
+    Returns
+    -------
+    float
+        The power per cell under which a cell is taken as rounding noise.
+
     Examples
     --------
     >>> import numpy as np

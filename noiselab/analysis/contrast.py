@@ -15,6 +15,23 @@ def rms_contrast(x, mask=None) -> float:
     The usual definition for luminance images (the root-mean-square of the
     Weber contrast ``(L - mean) / mean``); positive mean required.
 
+    Parameters
+    ----------
+    x : array_like
+        Finite intensities (luminances) with a positive mean.
+    mask : array_like of bool, optional
+        Only the intensities where it is True (broadcast against ``x``).
+
+    Returns
+    -------
+    float
+        ``std / mean`` (>= 0).
+
+    Raises
+    ------
+    ValueError
+        For non-finite intensities, a mask that selects nothing or a mean that is not positive.
+
     Examples
     --------
     >>> rms_contrast([50, 150])
@@ -38,6 +55,22 @@ def to_grey(x) -> np.ndarray:
     level lies between its pixel's smallest and largest channel; where the
     rounding of that weighted sum would pass the dtype's largest value (input
     within an ulp of it) the result is that largest value.
+
+    Parameters
+    ----------
+    x : array_like
+        A finite image or video; RGB(A) when its last axis has 3 or 4 entries
+        and it has at least 3 dimensions (alpha is ignored).
+
+    Returns
+    -------
+    ndarray
+        ``0.2126 R + 0.7152 G + 0.0722 B``, or ``x`` itself for grey input.
+
+    Raises
+    ------
+    ValueError
+        For a non-finite array.
 
     Examples
     --------

@@ -187,6 +187,29 @@ def anisotropy(image, band=None, *, nbins=36, window=None) -> float:
     the index unchanged and turns :attr:`Orientation.dominant` with it. For
     the figure the blue-noise literature quotes, see :func:`ring_anisotropy`.
 
+    Parameters
+    ----------
+    image : array_like (H, W)
+        A finite 2-D field.
+    band : (lo, hi), optional
+        Radial band in cycles/frame (default: 2 to a quarter of the frame,
+        where the field has power above the rounding floor).
+    nbins : int, default 36
+        Orientation bins over 180 degrees.
+    window : {None, "hann"}, optional
+        Spatial taper before the FFT; ``"hann"`` for fields that do not tile.
+
+    Returns
+    -------
+    float
+        In ``[0, 1]``.
+
+    Raises
+    ------
+    ValueError
+        For a non-finite image, or a band that is empty or past the
+        Nyquist frequency.
+
     Examples
     --------
     >>> import numpy as np

@@ -69,6 +69,35 @@ def video_spectrum(video, *, window=None, remove_static=False, workers=None) -> 
     zero. (The kt = 0 plane alone would not do with a window: a tapered
     still leaks into the neighbouring temporal bins.) ``workers``: FFT
     threads, scipy.fft's meaning (-1: every core); same result for any count.
+
+    Parameters
+    ----------
+    video : array_like (T, H, W)
+        A finite grey video of at least 2 frames.
+    window : {None, "hann"}, optional
+        Temporal taper.
+    remove_static : bool, default False
+        Subtract each pixel's temporal mean first.
+    workers : int, optional
+        FFT threads.
+
+    Returns
+    -------
+    PowerSpectrum
+        To pass to :func:`best_velocity`, :func:`band_speeds`, :func:`speed_profile`, ...
+
+    Raises
+    ------
+    ValueError
+        For a video that is not a finite 3-D array.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> video = np.random.default_rng(0).random((8, 16, 16))
+    >>> spec = video_spectrum(video, window="hann")
+    >>> best_velocity(spec).shape
+    (2,)
     """
     if isinstance(video, PowerSpectrum):
         if len(video.shape) != 3 or video.axes != (0, 1, 2):
@@ -143,7 +172,7 @@ def _surface_energy(spec: PowerSpectrum, grid: _Grid, kt_pred: np.ndarray, regio
 
 
 def motion_energy(video, velocity=(0.0, 0.0), *, tol=1.0, band=None, window=None) -> float:
-    """Fraction of a video's spectral power on the motion plane ``w_t = -v . w`` of ``velocity = (vx, vy)``.
+    """Fraction of a video's spectral power on the motion plane ``w_t = -v·w`` of ``velocity = (vx, vy)``.
 
     Parameters
     ----------
@@ -258,7 +287,32 @@ def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), thickne
 
 def sheared_tent_energy(video, c, band, direction=(0.0, 1.0), pan=(0.0, 0.0), *, thickness=0.1, tol=0.5,
                         window=None) -> float:
-    """Fraction of the power on the sheared tent of a panning camera (see :func:`tent_energy`)."""
+    """Fraction of the power on the sheared tent of a panning camera (see :func:`tent_energy`).
+
+    Parameters
+    ----------
+    video, c, band, direction, thickness, tol, window
+        As for :func:`tent_energy`.
+    pan : (ux, uy), default (0, 0)
+        The camera's pan in px/frame (thesis Eq. 4.2).
+
+    Returns
+    -------
+    float
+        In ``[0, 1]``.
+
+    Raises
+    ------
+    ValueError
+        For the arguments :func:`tent_energy` refuses, or a non-finite pan.
+
+    Examples
+    --------
+    >>> from noiselab.snow import snow
+    >>> video = snow((16, 64, 64), seed=0, c=1.0, band=(4, 16), pan=(1.0, 0.0))
+    >>> sheared_tent_energy(video, 1.0, (4, 16), pan=(1.0, 0.0)) > 0.9
+    True
+    """
     return tent_energy(video, c, band, direction, pan=pan, thickness=thickness, tol=tol, window=window)
 
 
@@ -315,6 +369,27 @@ def best_velocity(video, *, band=None, window="hann", remove_static=False) -> np
     consecutive frames keeps the exact phase of its step. ``remove_static``:
     see :func:`video_spectrum`.
 
+    Parameters
+    ----------
+    video : array_like (T, H, W) or PowerSpectrum
+        A finite grey video of at least 2 frames (or its :func:`video_spectrum`).
+    band : (lo, hi), optional
+        Spatial frequencies counted, in cycles/frame (default all).
+    window : {"hann", None}, default "hann"
+        Temporal taper.
+    remove_static : bool, default False
+        Subtract each pixel's temporal mean first.
+
+    Returns
+    -------
+    ndarray (2,)
+        ``(vx, vy)`` in px/frame, x right, y down.
+
+    Raises
+    ------
+    ValueError
+        For a video that is not finite and 3-D, or a band that is empty or past Nyquist.
+
     Examples
     --------
     >>> import numpy as np
@@ -332,7 +407,30 @@ def best_velocity(video, *, band=None, window="hann", remove_static=False) -> np
 
 
 def octave_bands(lo, hi, per_octave=2):
-    """Log-spaced bands ``[(f0, f1), (f1, f2), ...]`` from ``lo`` to ``hi`` cycles/frame, ``per_octave`` per octave."""
+    """Log-spaced bands ``[(f0, f1), (f1, f2), ...]`` from ``lo`` to ``hi`` cycles/frame, ``per_octave`` per octave.
+
+    Parameters
+    ----------
+    lo, hi : float
+        Limits in cycles/frame, ``0 < lo < hi``.
+    per_octave : int, default 2
+        Bands per octave (>= 1).
+
+    Returns
+    -------
+    list of (float, float)
+        Contiguous bands covering ``[lo, hi]``.
+
+    Raises
+    ------
+    ValueError
+        For ``lo <= 0``, ``hi <= lo`` or ``per_octave < 1``.
+
+    Examples
+    --------
+    >>> [(round(lo, 6), round(hi, 6)) for lo, hi in octave_bands(4, 16, per_octave=1)]
+    [(4.0, 8.0), (8.0, 16.0)]
+    """
     lo = check_real("lo", lo, lo=0.0, lo_open=True)
     hi = check_real("hi", hi, lo=lo, lo_open=True)
     per_octave = check_real("per_octave", per_octave, lo=0.0, lo_open=True)
@@ -402,6 +500,40 @@ def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octa
     Nyquist, keeping only those holding at least ``min_energy`` of the power. Explicit
     bands must all hold power (else ``ValueError`` naming the band). ``workers``:
     FFT threads, scipy.fft's meaning (-1: every core); same result for any count.
+
+    Parameters
+    ----------
+    video : array_like (T, H, W) or PowerSpectrum
+        A finite grey video (or its :func:`video_spectrum`).
+    bands : sequence of (lo, hi), optional
+        Spatial-frequency bands in cycles/frame (default: see above).
+    window : {"hann", None}, default "hann"
+        Temporal taper.
+    min_energy : float, default 0.001
+        Smallest share of the power a default band must hold to be kept.
+    per_octave : int, default 2
+        Default bands per octave.
+    remove_static : bool, default False
+        Subtract each pixel's temporal mean first.
+    workers : int, optional
+        FFT threads.
+
+    Returns
+    -------
+    SpeedProfile
+        ``bands``, ``centers``, ``velocity`` (px/frame per band), ``coherence``, ``energy``.
+
+    Raises
+    ------
+    ValueError
+        For a video that is not finite and 3-D, or an explicit band without power.
+
+    Examples
+    --------
+    >>> from noiselab.snow import snow
+    >>> profile = speed_profile(snow((16, 64, 64), seed=0, c=1.0, band=(4, 16)), [(4, 8), (8, 16)])
+    >>> bool(profile.velocity[0, 1] > profile.velocity[1, 1] > 0)   # near (low-frequency) flakes fall faster
+    True
     """
     spec = video_spectrum(video, window=window, remove_static=remove_static, workers=workers)
     g = _Grid(spec.shape)
@@ -452,6 +584,30 @@ def band_speeds(video, bands, *, window="hann", remove_static=False, workers=Non
     speed of a band near ``f`` cycles/frame is ``c N / (2 pi f)``: speed x
     frequency is constant (motion parallax). ``workers``: FFT threads,
     scipy.fft's meaning (-1: every core); same result for any count.
+
+    Parameters
+    ----------
+    video : array_like (T, H, W) or PowerSpectrum
+        A finite grey video (or its :func:`video_spectrum`).
+    bands : sequence of (lo, hi)
+        Spatial-frequency bands in cycles/frame.
+    window : {"hann", None}, default "hann"
+        Temporal taper.
+    remove_static : bool, default False
+        Subtract each pixel's temporal mean first.
+    workers : int, optional
+        FFT threads.
+
+    Returns
+    -------
+    ndarray (len(bands), 2)
+        ``(vx, vy)`` per band in px/frame.
+
+    Raises
+    ------
+    ValueError
+        For a video that is not finite and 3-D, or a band holding no power
+        (named in the message).
 
     Examples
     --------

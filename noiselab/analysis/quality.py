@@ -255,6 +255,23 @@ def shell_slice_below(lo, hi, exponent=0.0) -> float:
     / int k**(2 - 2e) dk`` over ``[lo, hi]``. For a flat spectrum in closed
     form: ``(hi**3 - (hi**2 - lo**2)**1.5 - lo**3) / (hi**3 - lo**3)``.
 
+    Parameters
+    ----------
+    lo, hi : float
+        The power law's band, ``0 < lo < hi``.
+    exponent : float, default 0
+        Amplitude exponent ``e`` (power ``|k|**(-2 e)``).
+
+    Returns
+    -------
+    float
+        In ``[0, 1]``.
+
+    Raises
+    ------
+    ValueError
+        For ``lo <= 0`` or ``hi <= lo``.
+
     Examples
     --------
     >>> round(shell_slice_below(8, 16), 4)
@@ -792,6 +809,32 @@ def tent_energy_per_band(video, c, band, direction=(0.0, 1.0), *, per_octave=1, 
     frequency cell of the video, or none with power) has fraction 0 and share
     0. A ``band`` holding no spatial frequency of the video at all is a
     ValueError.
+
+    Parameters
+    ----------
+    video : array_like (T, H, W)
+        A finite grey video.
+    c : float
+        Tent constant in rad/frame (``0 <= c <= pi``).
+    band : (lo, hi)
+        Spatial band in cycles/frame, split into ``per_octave`` bands per octave.
+    direction : (dx, dy), default (0, 1)
+        Fall direction (x right, y down).
+    per_octave : int, default 1
+        Bands per octave.
+    thickness, tol, window
+        As for :func:`noiselab.analysis.tent_energy`.
+
+    Returns
+    -------
+    BandMotion
+        Per band: its limits, the fraction of its power on the tent, its share of the total power.
+
+    Raises
+    ------
+    ValueError
+        For a video that is not finite and 3-D, ``c`` outside ``[0, pi]``, or
+        a band holding no spatial frequency of the video.
 
     Examples
     --------

@@ -27,6 +27,21 @@ def loop_seam(video) -> float:
     when looping the video jumps. Needs at least 3 frames and a video that
     changes in time.
 
+    Parameters
+    ----------
+    video : array_like (T, H, W[, 3])
+        A finite video of at least 3 frames that changes in time.
+
+    Returns
+    -------
+    float
+        The ratio (>= 0); 1 for a seamless loop.
+
+    Raises
+    ------
+    ValueError
+        For fewer than 3 frames, a non-finite video or one that never changes.
+
     Examples
     --------
     >>> import numpy as np

@@ -180,6 +180,30 @@ def octave_energy(field, lo=1.0, hi=None, *, window=None, axes=None) -> OctaveEn
     1/f**2): its ``spread`` is near 0. (In 3-D the equal-energy law is
     amplitude ~ f**-1.5; for a video's spatial spectrum pass ``axes=(-2, -1)``.)
 
+    Parameters
+    ----------
+    field : array_like or PowerSpectrum
+        1-, 2- or 3-D finite field.
+    lo : float, default 1
+        Lower edge of the first octave in cycles/frame (> 0).
+    hi : float, optional
+        Upper limit in cycles/frame (default Nyquist, N/2).
+    window : {None, "hann"}, optional
+        Spatial taper before the FFT; ``"hann"`` for fields that do not tile.
+    axes : tuple of int, optional
+        The axes whose radial frequency counts (default all).
+
+    Returns
+    -------
+    OctaveEnergy
+        ``edges``, ``energy`` (fraction of the total in each octave) and
+        ``spread`` (their relative spread; 0 for equal energy per octave).
+
+    Raises
+    ------
+    ValueError
+        For a non-finite field, ``lo <= 0`` or ``hi <= lo``.
+
     Examples
     --------
     >>> import numpy as np

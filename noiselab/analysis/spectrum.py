@@ -457,6 +457,27 @@ def spatiotemporal_spectrum(video, *, bins=None, log=False, window=None) -> Spat
     has the same radius and the opposite temporal frequency), so a motion
     that is asymmetric in time is kept.
 
+    Parameters
+    ----------
+    video : array_like (T, H, W)
+        A finite grey video (at least 2 frames).
+    bins : int or array_like, optional
+        Radial bins (count or edges) in cycles/frame; default one per integer frequency.
+    log : bool, default False
+        Log-spaced radial bins.
+    window : {None, "hann"}, optional
+        Spatial taper before the FFT.
+
+    Returns
+    -------
+    SpatiotemporalSpectrum
+        ``power`` (temporal x radial), ``temporal`` (cycles/video) and ``centers`` (cycles/frame).
+
+    Raises
+    ------
+    ValueError
+        For an array that is not a finite 3-D video.
+
     Examples
     --------
     >>> import numpy as np
@@ -505,6 +526,27 @@ def band_energy(field, band, *, window=None, axes=None) -> float:
     """Fraction of the field's power whose radial frequency lies in ``band = (lo, hi)`` cycles/frame (lo <= f <= hi).
 
     For a video pass ``axes=(-2, -1)`` to band-limit the spatial frequency only.
+
+    Parameters
+    ----------
+    field : array_like or PowerSpectrum
+        1-, 2- or 3-D finite field.
+    band : (lo, hi)
+        In cycles/frame, ``0 <= lo < hi``.
+    window : {None, "hann"}, optional
+        Spatial taper before the FFT; ``"hann"`` for fields that do not tile.
+    axes : tuple of int, optional
+        The axes whose radial frequency counts (default all).
+
+    Returns
+    -------
+    float
+        In ``[0, 1]``; 0 for a field without power.
+
+    Raises
+    ------
+    ValueError
+        For a non-finite field or a band that is not ``0 <= lo < hi``.
 
     Examples
     --------

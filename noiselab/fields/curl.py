@@ -61,6 +61,12 @@ def curl_noise(noise, points, *, octaves=1, lacunarity=2.0, gain=0.5):
     (``tests/test_derivatives.py`` measures it, against O(1) for plain
     vector noise: ``noiselab/gallery/figures/derivatives.py``).
 
+    Raises
+    ------
+    ValueError
+        For a noise that is neither a 2-D scalar potential nor a 3-D vector
+        potential, or a kernel without a continuous first derivative.
+
     Examples
     --------
     >>> import numpy as np

@@ -18,7 +18,31 @@ __all__ = ["warp", "Warped"]
 
 
 class Warped:
-    """``noise(x + amount * warp_noise(x))``: a domain-warped noise with its exact Jacobian (see :func:`warp`)."""
+    """``noise(x + amount * warp_noise(x))``: a domain-warped noise with its exact Jacobian (see :func:`warp`).
+
+    Parameters
+    ----------
+    noise : LatticeNoise or Warped
+        The warped noise (``dim_in``, ``dim_out``, ``jacobian``).
+    warp_noise : LatticeNoise or Warped
+        The displacement, mapping the noise's input space to itself
+        (``dim_in = dim_out = noise.dim_in``).
+    amount : float or sequence of float, default 1
+        Displacement scale, one number or one per input axis.
+
+    Raises
+    ------
+    ValueError
+        For a ``warp_noise`` of the wrong dimensions or a non-finite ``amount``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from noiselab.lattice import LatticeNoise
+    >>> w = Warped(LatticeNoise(2, seed=1), LatticeNoise(2, 2, seed=2), amount=0.5)
+    >>> w(np.zeros((3, 2))).shape, w.gradient(np.zeros((3, 2))).shape
+    ((3,), (3, 2))
+    """
 
     def __init__(self, noise, warp_noise, amount=1.0):
         check_noise("noise", noise)
@@ -100,6 +124,12 @@ def warp(noise, warp_noise, amount=1.0):
         (scalar noise) ``gradient(points)``, both accepting ``return_value``.
         It is a noise itself: warp it again, or pass it to :func:`curl_noise`
         or :func:`noiselab.fractal.fractal_gradient`.
+
+    Raises
+    ------
+    ValueError
+        For a ``warp_noise`` that does not map the noise's input space to
+        itself, or a non-finite ``amount``.
 
     Examples
     --------

@@ -63,6 +63,17 @@ def octaves_used(octaves, *, lacunarity=2.0, gain=0.5, spacing=None, frequency=1
     dtype : float32 or float64
         Output precision that decides which amplitudes are below resolution.
 
+    Returns
+    -------
+    int
+        The octaves actually summed, at most ``octaves``.
+
+    Raises
+    ------
+    ValueError
+        For ``lacunarity <= 1``, ``gain <= 0`` or a spacing or frequency
+        that is not positive and finite.
+
     Examples
     --------
     >>> octaves_used(60)                       # amplitude 2**-o below float64 resolution
@@ -212,6 +223,12 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
     -------
     ndarray (a lazy dask array with ``chunks``), or (array, int) with ``return_octaves``
 
+    Raises
+    ------
+    ValueError
+        For points whose last axis is not ``dim_in``, octaves outside
+        ``[1, 10000]``, ``lacunarity <= 1`` or ``gain <= 0``.
+
     Examples
     --------
     >>> from noiselab.lattice import LatticeNoise, Grid
@@ -229,6 +246,22 @@ def turbulence(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False
 
     Same parameters as :func:`fractal_sum`; the result is >= 0 (in [0, 1] with
     ``normalize=True``). For vector noise the magnitude is taken per component.
+
+    Parameters
+    ----------
+    noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, workers, chunks
+        As for :func:`fractal_sum`.
+
+    Returns
+    -------
+    ndarray (a lazy dask array with ``chunks``), or (array, int) with ``return_octaves``
+        The turbulence, >= 0, and the number of octaves used.
+
+    Raises
+    ------
+    ValueError
+        For the arguments :func:`fractal_sum` refuses (octaves below 1,
+        lacunarity <= 1, gain <= 0, points of the wrong dimension, ...).
 
     Examples
     --------
@@ -323,6 +356,12 @@ def fractal_gradient(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize
     ndarray ``(..., dim_in)`` for scalar noise, ``(..., dim_out, dim_in)`` for vector noise
     (with ``value`` first and the octave count last when asked for).
 
+    Raises
+    ------
+    ValueError
+        For the arguments :func:`fractal_sum` refuses, or a kernel without a
+        continuous first derivative (box, linear).
+
     Examples
     --------
     >>> import numpy as np
@@ -345,6 +384,23 @@ def turbulence_gradient(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normal
     with ``sign(0) = 0``, i.e. the average of the two one-sided derivatives.
     Off the zero sets (almost everywhere) it is the exact gradient. Same
     parameters and returns as :func:`fractal_gradient`.
+
+    Parameters
+    ----------
+    noise, x, octaves, lacunarity, gain, normalize, return_value, return_octaves, spacing, workers
+        As for :func:`fractal_gradient`.
+
+    Returns
+    -------
+    ndarray (..., dim_in) or (..., dim_out, dim_in)
+        The gradient (Jacobian for vector noise); with ``return_value`` first
+        the turbulence itself, with ``return_octaves`` last the octaves used.
+
+    Raises
+    ------
+    ValueError
+        For the arguments :func:`fractal_gradient` refuses, or a kernel
+        without a continuous first derivative (box, linear).
 
     Examples
     --------

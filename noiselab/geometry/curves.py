@@ -95,6 +95,28 @@ def noisy_circle(field, n=720, radius=1.0, amplitude=0.1, frequency=1.0, phase=0
 
     Returns ``(n, 2)`` points at ``theta = 2 pi k / n`` (the first point is not repeated).
 
+    Parameters
+    ----------
+    field : callable or LatticeNoise
+        Takes 2-D points with ``closed=True`` (1-D with ``closed=False``);
+        scalar output for ``mode="radial"``, 2 components for ``mode="xy"``.
+    n : int, default 720
+        Points on the circle.
+    radius : float, default 1
+        Radius of the undistorted circle.
+    amplitude : float, default 0.1
+        Size of the distortion.
+    frequency, phase : float
+        Noise units per radian, and offset.
+    mode : {"radial", "xy"}, default "radial"
+        Push each point along its radius, or displace it in x and y.
+    closed : bool, default True
+        Sample the field on a circle of its input space, so the curve closes.
+
+    Returns
+    -------
+    ndarray (n, 2)
+
     Examples
     --------
     >>> import numpy as np
@@ -125,6 +147,28 @@ def trajectory(field, t, amplitude=1.0, frequency=1.0, phase=0.0, *, dims=None):
 
     ``field`` maps ``(n, 1)`` to ``(n, d)`` (e.g. ``LatticeNoise(1, 2)``);
     ``dims`` keeps the first ``dims`` components (default all, at least 2).
+
+    Parameters
+    ----------
+    field : callable or LatticeNoise
+        Maps ``(n, 1)`` points to ``(n, d)`` values (e.g. ``LatticeNoise(1, 2)``).
+    t : array_like (n,)
+        The path parameter.
+    amplitude : float
+        Scale of the output.
+    frequency, phase : float
+        Applied to ``t`` before the field.
+    dims : int, optional
+        Output components kept (2 or 3; default all).
+
+    Returns
+    -------
+    ndarray (n, dims)
+
+    Raises
+    ------
+    ValueError
+        For a non-finite ``t`` or ``dims`` larger than the field's components.
 
     Examples
     --------
@@ -198,6 +242,26 @@ def trajectory_frames(points, *, tail=25, size=256, marker_size=60.0, limits=Non
     """Animate a 2-D trajectory (figure 4): one frame per sample, the point plus a ``tail`` of earlier samples.
 
     Returns ``(frames, height, width, 3)`` uint8; writes a GIF/MP4 when ``path`` is given.
+
+    Parameters
+    ----------
+    points : array_like (n, 2)
+        The trajectory, one sample per frame.
+    tail : int, default 25
+        Earlier samples drawn behind the point.
+    size : int, default 256
+        Frame size in pixels.
+    marker_size : float, default 60
+        Marker area (matplotlib points squared).
+    limits : ((xmin, xmax), (ymin, ymax)), optional
+        Default: fitted to the trajectory.
+    path : str or Path, optional
+        Also write the animation there (GIF, MP4, ...).
+    fps : float, default 25
+
+    Returns
+    -------
+    ndarray (n, size, size, 3) of uint8
 
     Examples
     --------

@@ -131,6 +131,17 @@ def vertex_normals(mesh, *, weld=False) -> np.ndarray:
     ``weld=True`` gives vertices at exactly the same position (copies split
     at a seam) their common normal.
 
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+    weld : bool, default False
+        Give coincident vertices their common normal.
+
+    Returns
+    -------
+    ndarray (n_vertices, 3) of float64
+        Unit normals (zero where undefined).
+
     Examples
     --------
     >>> import trimesh
@@ -320,6 +331,29 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
     The refined mesh carries geometry only (colours and texture coordinates
     are not interpolated onto the new vertices).
 
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+    max_frequency : float
+        The field's highest frequency in cycles per unit.
+    samples_per_period : float, default 4
+        Samples wanted per period of ``max_frequency``.
+    method : {"adaptive", "midpoint", "loop"}, default "adaptive"
+    max_faces : int, default 50_000_000
+        The most faces the result may have.
+
+    Returns
+    -------
+    trimesh.Trimesh
+        A new mesh (a copy when nothing needed splitting).
+
+    Raises
+    ------
+    ValueError
+        For an unknown method, or a result past ``max_faces``.
+    MemoryError
+        When the refined mesh would not fit.
+
     Examples
     --------
     >>> import trimesh
@@ -447,6 +481,13 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
         vertex moved (``amplitude * s``; for ``direction="vector"``, the
         displacement's component along the normal).
 
+    Raises
+    ------
+    ValueError
+        For a mesh without faces, a field that does not take 3-D points, a
+        non-finite amplitude, frequency or phase, or (``on_aliasing="raise"``)
+        a mesh too coarse for the field's highest frequency.
+
     Examples
     --------
     >>> import numpy as np, trimesh
@@ -510,6 +551,22 @@ def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0,
 
     ``field`` takes 4-D points (x, y, z, t). The normals and the resolution
     check are computed once. Extra keyword arguments go to :func:`displace`.
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+    field : callable
+        Takes 4-D points ``(x, y, z, t)``.
+    times : sequence of float
+    amplitude, frequency, phase
+        As for :func:`displace`.
+    **kwargs
+        Further arguments of :func:`displace`.
+
+    Yields
+    ------
+    trimesh.Trimesh
+        The displaced mesh at each time.
 
     Examples
     --------

@@ -23,7 +23,23 @@ __all__ = ["octave_field", "sampled_field", "evaluate_field", "field_max_frequen
 
 
 def field_max_frequency(field) -> float:
-    """Highest frequency of ``field`` in cycles per input unit (its ``max_frequency``, else 1)."""
+    """Highest frequency of ``field`` in cycles per input unit (its ``max_frequency``, else 1).
+
+    Parameters
+    ----------
+    field : callable
+        A field, e.g. a :class:`~noiselab.lattice.LatticeNoise` or an :func:`octave_field`.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> field_max_frequency(lambda p: p[:, 0])
+    1.0
+    """
     value = getattr(field, "max_frequency", None)
     if value is None and hasattr(field, "dim_in") and hasattr(field, "table_size"):
         # a noiselab.LatticeNoise: its own frequency F (lattice cells per input unit, per axis)
@@ -42,6 +58,33 @@ def evaluate_field(field, points, *, name="field", components=None, chunk_size=1
     ``(n, m)`` the field gives when ``components`` is None. Chunking bounds
     the field's temporaries; pointwise fields give the same values for any
     chunking.
+
+    Parameters
+    ----------
+    field : callable
+        Points ``(n, k)`` to values.
+    points : array_like (n, k)
+    name : str, default "field"
+        How error messages call the field.
+    components : int, optional
+        The number of output components expected.
+    chunk_size : int, default 1_048_576
+        Points per call.
+
+    Returns
+    -------
+    ndarray of float64, (n,) or (n, components)
+
+    Raises
+    ------
+    ValueError
+        For output of the wrong shape or with NaN or inf values.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> evaluate_field(lambda p: p.sum(axis=1), np.ones((5, 3)), components=1).tolist()
+    [3.0, 3.0, 3.0, 3.0, 3.0]
     """
     if not callable(field):
         raise TypeError(f"{name} must be callable on points of shape (n, k), got {type(field).__name__}")
@@ -217,6 +260,32 @@ def sampled_field(values, extent=None, *, periodic=True, order=3, vector=False, 
     unit) tells the resolution checks the field's band, e.g. a spectral noise
     of band ``(lo, hi)`` cycles per frame over an extent of width ``w`` has
     ``hi / w``; by default the grid's Nyquist frequency is assumed.
+
+    Parameters
+    ----------
+    values : array_like
+        One axis per input dimension (plus a trailing component axis with ``vector``).
+    extent : sequence of (start, stop), optional
+        One pair per input axis, stop excluded (default ``(0, n)``).
+    periodic : bool, default True
+        Wrap the grid; otherwise clamp points to its edge.
+    order : int, default 3
+        Spline order (1 linear, 3 cubic).
+    vector : bool, default False
+        The last axis of ``values`` holds components.
+    max_frequency : float, optional
+        The field's highest frequency in cycles per input unit (default: the grid's Nyquist).
+
+    Returns
+    -------
+    callable
+        A field: points ``(n, k)`` to values ``(n,)`` (``(n, m)`` with ``vector``),
+        with a ``max_frequency`` attribute.
+
+    Raises
+    ------
+    ValueError
+        For non-finite values, an extent of the wrong length or an order out of range.
 
     Examples
     --------

@@ -45,6 +45,23 @@ def flow_field(field, shape=(16, 16), extent=((0.0, 4.0), (0.0, 4.0)), amplitude
     ``vectors = amplitude * field(frequency * points + phase)[:, :d]``, in the
     same order: component ``k`` is the velocity along array axis ``k``.
 
+    Parameters
+    ----------
+    field : callable or LatticeNoise
+        Maps points ``(n, d)`` to vectors ``(n, >= d)``.
+    shape : (ny, nx) or (nz, ny, nx), default (16, 16)
+        Samples per array axis.
+    extent : ((y0, y1), (x0, x1)) or ((z0, z1), (y0, y1), (x0, x1))
+        The grid's span, stops excluded.
+    amplitude : float
+        Vector scale.
+    frequency, phase : float or sequence of float
+        Applied to the points before the field.
+
+    Returns
+    -------
+    points, vectors : ndarray of shape ``(*shape, d)``
+
     Examples
     --------
     >>> import numpy as np
@@ -76,6 +93,36 @@ def streamlines(field, seeds, *, step=0.01, n_steps=200, amplitude=1.0, frequenc
     the array-axis order of :func:`flow_field`.
 
     Returns ``(m, n_steps + 1, d)`` positions, the seeds first.
+
+    Parameters
+    ----------
+    field : callable or LatticeNoise
+        Maps points ``(n, d)`` to velocities ``(n, d)`` (extra components are ignored).
+    seeds : array_like (m, d)
+        Start positions.
+    step : float, default 0.01
+        Step size in the field's input units (per unit of speed).
+    n_steps : int, default 200
+        Steps per streamline.
+    amplitude : float
+        Velocity scale.
+    frequency, phase : float or sequence of float
+        Applied to the positions before the field.
+    method : {"rk4", "solve_ivp"}, default "rk4"
+        Fixed-step Runge-Kutta for all seeds at once, or scipy's adaptive RK45 per seed.
+    normalize : bool, default False
+        Follow the direction only (unit speed).
+
+    Returns
+    -------
+    ndarray (m, n_steps + 1, d)
+        Positions, the seeds first.
+
+    Raises
+    ------
+    ValueError
+        For non-finite seeds, a step or step count out of range, an unknown
+        method, or a field that returns fewer components than the seeds have.
 
     Examples
     --------

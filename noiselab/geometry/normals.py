@@ -117,6 +117,12 @@ def monge_normals(field, points, amplitude=1.0, frequency=1.0, phase=0.0, *, oct
     through by that product, so a huge one (1e300) gives the limit, a
     horizontal normal against the gradient, instead of overflowing.
 
+    Raises
+    ------
+    ValueError
+        For a field that does not take 2-D points, or a kernel without a
+        continuous first derivative.
+
     Examples
     --------
     >>> import numpy as np
@@ -184,6 +190,12 @@ def displaced_normals(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, *, o
     is undefined: ``(1 + h kappa) n = grad_S h = 0``). Computed divided through by
     ``max(1, |amplitude| * F)``, ``F`` the largest frequency or ``|curvature|``, so that no term overflows.
 
+    Raises
+    ------
+    ValueError
+        For a mesh without faces, a field that does not take 3-D points, or a
+        kernel without a continuous first derivative.
+
     Examples
     --------
     >>> import numpy as np, trimesh
@@ -241,6 +253,21 @@ def normal_angles(a, b):
     Computed as ``atan2(|a x b|, a . b)`` of the vectors scaled to unit
     length (any length works, 1e-300 to 1e300), accurate for small angles
     too; a zero vector (an undefined normal) gives 0.
+
+    Parameters
+    ----------
+    a, b : array_like (..., 3)
+        Normals (any length), broadcastable against each other.
+
+    Returns
+    -------
+    ndarray (...)
+        Angles in degrees, in ``[0, 180]``.
+
+    Raises
+    ------
+    ValueError
+        For non-finite vectors, or shapes that do not broadcast.
 
     Examples
     --------

@@ -353,6 +353,16 @@ def render_sequence(meshes, path=None, *, fps=25.0, size=512, view="iso", azimut
 def figure_to_array(fig, *, close=True) -> np.ndarray:
     """Draw a matplotlib figure (Agg) and return it as a ``(height, width, 3)`` uint8 array.
 
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    close : bool, default True
+        Close the figure afterwards (pyplot figures only).
+
+    Returns
+    -------
+    ndarray (height, width, 3) of uint8
+
     Examples
     --------
     >>> from matplotlib.figure import Figure

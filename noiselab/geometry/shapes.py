@@ -37,6 +37,23 @@ def sphere(subdivisions=4, radius=1.0, center=(0.0, 0.0, 0.0)):
     ``subdivisions`` levels give ``10 * 4**k + 2`` vertices (level 4: 2562,
     level 6: 40962, level 8: 655362) and edges about ``1.05 * radius / 2**k``.
 
+    Parameters
+    ----------
+    subdivisions : int, default 4
+        Subdivision levels of the icosahedron (>= 0).
+    radius : float, default 1
+        Radius (> 0).
+    center : (x, y, z), default (0, 0, 0)
+
+    Returns
+    -------
+    trimesh.Trimesh
+
+    Raises
+    ------
+    ValueError
+        For a negative level, a non-positive radius or a non-finite centre.
+
     Examples
     --------
     >>> s = sphere(3)
@@ -64,6 +81,19 @@ def squashed_sphere(squash=0.05, subdivisions=4, radius=1.0, axis=2):
     The result is an oblate spheroid with semi-axis ``radius * (1 - squash)``
     along ``axis``.
 
+    Parameters
+    ----------
+    squash : float, default 0.05
+        Fraction removed along ``axis``, in ``[0, 1)``.
+    subdivisions : int, default 4
+        Icosphere levels.
+    radius : float, default 1
+    axis : {0, 1, 2}, default 2
+
+    Returns
+    -------
+    trimesh.Trimesh
+
     Examples
     --------
     >>> s = squashed_sphere(0.05)
@@ -84,6 +114,23 @@ def plane(resolution=64, size=2.0):
 
     Normals point up (+z), so :func:`displace` turns it into a Monge surface
     z = s(x, y, 0) (figures 8, 14, 15) of 3-D noise.
+
+    Parameters
+    ----------
+    resolution : int, default 64
+        Vertices per side (>= 2).
+    size : float, default 2
+        Side length (> 0).
+
+    Returns
+    -------
+    trimesh.Trimesh
+        ``resolution**2`` vertices, ``2 (resolution - 1)**2`` faces.
+
+    Raises
+    ------
+    ValueError
+        For a resolution below 2 or a size that is not positive.
 
     Examples
     --------
@@ -107,6 +154,28 @@ def sphere_for_noise(max_frequency, radius=1.0, *, samples_per_period=4.0, max_s
     Picks the fewest subdivisions whose longest edge gives at least
     ``samples_per_period`` samples per period; rebuilding the icosphere (rather
     than subdividing a coarse one) keeps every vertex exactly on the sphere.
+
+    Parameters
+    ----------
+    max_frequency : float
+        Highest frequency of the field in cycles per unit.
+    radius : float, default 1
+        The sphere's radius (> 0).
+    samples_per_period : float, default 4
+        Samples wanted per period of ``max_frequency``.
+    max_subdivisions : int, default 9
+        The most subdivisions allowed (level 9: 2.6 million vertices).
+
+    Returns
+    -------
+    trimesh.Trimesh
+        A watertight icosphere.
+
+    Raises
+    ------
+    ValueError
+        For a non-positive radius, or when even ``max_subdivisions``
+        levels are too coarse.
 
     Examples
     --------
@@ -138,6 +207,22 @@ def normalize(mesh, size=2.0):
     units long, the airplane 1500): a unit-frequency noise then means the
     same thing on every model.
 
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+    size : float, default 2
+        Largest extent of the result (> 0).
+
+    Returns
+    -------
+    trimesh.Trimesh
+        A copy; ``mesh`` is unchanged.
+
+    Raises
+    ------
+    ValueError
+        For a size that is not positive or a mesh of zero extent.
+
     Examples
     --------
     >>> import trimesh
@@ -163,6 +248,22 @@ def load_model(name="ant", *, size=2.0):
     ``name`` is one of :data:`BUNDLED_MODELS` (``"ant"``, a watertight
     stand-in for the paper's cow; ``"airplane"``, open; ``"nut"``;
     ``"sphere"``). ``size=None`` keeps the file's own units.
+
+    Parameters
+    ----------
+    name : str, default "ant"
+        One of :data:`BUNDLED_MODELS`.
+    size : float or None, default 2
+        Largest extent after :func:`normalize`; None keeps the file's units.
+
+    Returns
+    -------
+    trimesh.Trimesh
+
+    Raises
+    ------
+    ValueError
+        For a name that is not bundled (the message lists them) or a size that is not positive.
 
     Examples
     --------

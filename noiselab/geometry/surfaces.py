@@ -53,7 +53,7 @@ def grid_points(shape, extent):
 
     Returns
     -------
-    ndarray (*shape, d), float64
+    ndarray of shape ``(*shape, d)``, float64
         ``points[i, j] = (y_i, x_j)`` (3-D: ``points[k, i, j] = (z_k, y_i, x_j)``):
         the coordinate along every array axis, in axis order, computed as
         ``LatticeNoise.grid`` computes it (``start + i * ((stop - start) / n)``).
@@ -137,6 +137,40 @@ def height_map(field, shape=(256, 256), extent=((0.0, 4.0), (0.0, 4.0)), amplitu
     ``noise.grid(shape, extent)``. A grid too coarse for the highest octave
     warns (:class:`AliasingWarning`), or raises with ``on_aliasing="raise"``.
 
+    Parameters
+    ----------
+    field : callable or LatticeNoise
+        Maps points ``(n, 2)`` in ``(y, x)`` order to ``(n,)`` values.
+    shape : (ny, nx)
+        Samples per axis (rows, columns).
+    extent : ((y0, y1), (x0, x1))
+        The grid's span in field units, stops excluded.
+    amplitude : float
+        Height scale.
+    frequency, phase : float or (fy, fx)
+        Applied to the points before the field: ``s(frequency * p + phase)``.
+    octaves : int, default 1
+        Octaves of the fractal sum or turbulence (1: the field itself).
+    kind : {"fractal", "turbulence"}, default "fractal"
+        How the octaves combine (Phillips Eq. 9 or 10).
+    lacunarity, gain : float
+        Frequency and amplitude ratios between octaves.
+    samples_per_period : float, default 4
+        Samples per period of the highest octave below which the grid aliases.
+    on_aliasing : {"warn", "raise", "ignore"}, default "warn"
+        What a grid too coarse for the highest octave does.
+
+    Returns
+    -------
+    ndarray (ny, nx) of float64
+
+    Raises
+    ------
+    ValueError
+        For a shape, extent, amplitude, frequency or octave count out of range,
+        a field of the wrong dimension, or (``on_aliasing="raise"``) a grid too
+        coarse for the highest octave.
+
     Examples
     --------
     >>> import numpy as np
@@ -180,6 +214,41 @@ def monge_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), ampl
     triangles per cell, wound so that normals point up (+z).
     ``vertex_attributes["height"]`` holds z. The mesh is open (a sheet), not
     watertight.
+
+    Parameters
+    ----------
+    field : callable or LatticeNoise
+        Maps points ``(n, 2)`` in ``(y, x)`` order to ``(n,)`` values.
+    shape : (ny, nx)
+        Samples per axis (rows, columns).
+    extent : ((y0, y1), (x0, x1))
+        The grid's span in field units, stops excluded.
+    amplitude : float
+        Height scale.
+    frequency, phase : float or (fy, fx)
+        Applied to the points before the field: ``s(frequency * p + phase)``.
+    octaves : int, default 1
+        Octaves of the fractal sum or turbulence (1: the field itself).
+    kind : {"fractal", "turbulence"}, default "fractal"
+        How the octaves combine (Phillips Eq. 9 or 10).
+    lacunarity, gain : float
+        Frequency and amplitude ratios between octaves.
+    samples_per_period : float, default 4
+        Samples per period of the highest octave below which the grid aliases.
+    on_aliasing : {"warn", "raise", "ignore"}, default "warn"
+        What a grid too coarse for the highest octave does.
+
+    Returns
+    -------
+    trimesh.Trimesh
+        ``ny * nx`` vertices ``(y, x, z)``, ``2 (ny - 1)(nx - 1)`` faces.
+
+    Raises
+    ------
+    ValueError
+        For a shape, extent, amplitude, frequency or octave count out of range,
+        a field of the wrong dimension, or (``on_aliasing="raise"``) a grid too
+        coarse for the highest octave.
 
     Examples
     --------
@@ -251,6 +320,24 @@ def height_map_image(heights, path=None, *, vmin=None, vmax=None) -> np.ndarray:
 
     ``heights`` is drawn as it is stored: row 0 (``y0`` of :func:`height_map`)
     at the top, x to the right. ``vmin``/``vmax`` default to the array's range.
+
+    Parameters
+    ----------
+    heights : array_like (H, W)
+        Finite heights.
+    path : str or Path, optional
+        Also write the image there (PNG, ...).
+    vmin, vmax : float, optional
+        Heights mapped to black and white (default: the array's range).
+
+    Returns
+    -------
+    ndarray (H, W) of uint8
+
+    Raises
+    ------
+    ValueError
+        For non-finite heights or an array that is not 2-D.
 
     Examples
     --------

@@ -72,6 +72,30 @@ def prepare_output(path, *, directory=False, make_parents=True, probe=True, crea
     ``create=False`` checks only: missing folders are not made, the probe runs
     in the nearest folder that exists.
 
+    Parameters
+    ----------
+    path : str or Path
+        The output file (or folder, with ``directory``).
+    directory : bool, default False
+        The output is a folder.
+    make_parents : bool, default True
+        Create missing parent folders (with ``create``).
+    probe : bool, default True
+        Create and remove a temporary file beside the target.
+    create : bool, default True
+        Make missing folders; False only checks.
+
+    Returns
+    -------
+    Path
+        ``path`` as a :class:`pathlib.Path`.
+
+    Raises
+    ------
+    noiselab.io.OutputError
+        When the output cannot be written there (an ``OSError``: a read-only
+        file system, no permission, a folder where a file is wanted, ...).
+
     Examples
     --------
     >>> import os, tempfile
@@ -134,6 +158,16 @@ def exchange_paths(a, b) -> bool:
     Returns False where the system or file system cannot (then nothing was
     changed). Used to replace an output folder: at every moment either the old
     or the new folder is at the target's name.
+
+    Parameters
+    ----------
+    a, b : str or Path
+        Two existing paths on one file system.
+
+    Returns
+    -------
+    bool
+        True when they were swapped, False when the system cannot (nothing changed).
 
     Examples
     --------

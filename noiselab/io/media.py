@@ -40,6 +40,27 @@ def to_uint8(array, vmin=None, vmax=None, *, clip=False) -> np.ndarray:
     non-finite ``vmin``/``vmax`` are a ``ValueError``, complex or text arrays
     a ``TypeError``.
 
+    Parameters
+    ----------
+    array : array_like
+        Integers in [0, 255], or floats.
+    vmin, vmax : float, optional
+        The float range mapped to [0, 255] (default [0, 1]); values outside a stated range are clipped.
+    clip : bool, default False
+        Clip floats outside [0, 1] when no range is stated (otherwise a ``ValueError``).
+
+    Returns
+    -------
+    ndarray of uint8
+
+    Raises
+    ------
+    ValueError
+        For NaN or inf in ``array``, a non-finite ``vmin`` / ``vmax``, or floats outside [0, 1]
+        with no range stated and ``clip=False``.
+    TypeError
+        For complex or text arrays.
+
     Examples
     --------
     >>> import numpy as np
@@ -92,6 +113,33 @@ def write_image(path, image, *, vmin=None, vmax=None) -> Path:
     :func:`to_uint8`: with no range stated, values outside [0, 1] are a
     ``ValueError``, never clipped silently. PNG, TIFF, BMP and ``.npy`` are
     lossless; JPEG is not.
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.png``, ``.jpg``, ``.tif`` (any format imageio writes) or ``.npy``.
+    image : array_like (H, W) or (H, W, 3|4)
+        Mapped to uint8 by :func:`to_uint8` (not for ``.npy``, which stores the array as is).
+    vmin, vmax : float, optional
+        The float range mapped to [0, 255] (default [0, 1]).
+
+    Returns
+    -------
+    Path
+        The written file (written atomically; missing folders are created).
+
+    Raises
+    ------
+    ValueError
+        For a non-finite image, one of the wrong shape, or floats outside [0, 1] with no range stated.
+    noiselab.io.OutputError
+        When the file cannot be written (an ``OSError``).
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> write_image(os.path.join(tempfile.mkdtemp(), "a.png"), np.zeros((4, 4))).name
+    'a.png'
     """
     path = Path(path)
     image = np.asarray(image)
@@ -146,6 +194,42 @@ def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_pro
     and ``.mp4`` with ``lossless=True`` (H.264 in RGB with ``-qp 0``). Lossy:
     the default ``.mp4`` (yuv420p at ``quality``; it also maps grey levels to
     the limited video range) and ``.gif``.
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.mp4``, ``.mkv``, ``.gif``, ``.npy``, or a path without suffix (a folder of PNG frames).
+    frames : array_like (T, H, W[, 3]) or iterable of frames
+        Mapped to uint8 by :func:`to_uint8` (not for ``.npy``).
+    fps : float, default 25
+        Frames per second (MP4 and GIF).
+    vmin, vmax : float, optional
+        The float range mapped to [0, 255] (default [0, 1]).
+    show_progress : bool, optional
+        A progress bar (default: when stderr is a terminal).
+    quality : int, default 8
+        MP4 quality, 0 to 10 (lossy MP4 only).
+    lossless : bool, default False
+        For ``.mp4``: H.264 in RGB with ``-qp 0`` instead of the lossy default.
+
+    Returns
+    -------
+    Path
+        The written file or folder.
+
+    Raises
+    ------
+    ValueError
+        For floats outside [0, 1] with no range stated, non-finite frames,
+        frames of changing shape or an unknown suffix.
+    noiselab.io.OutputError
+        When the output cannot be written (an ``OSError``).
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> write_video(os.path.join(tempfile.mkdtemp(), "v.npy"), np.zeros((2, 4, 4))).suffix
+    '.npy'
     """
     path = Path(path)
     fps = float(fps)
@@ -267,7 +351,31 @@ def _check_readable(path, what):
 
 
 def load_npy(path) -> np.ndarray:
-    """``numpy.load`` of a ``.npy`` file (no pickles), with one-line ``InputError`` for a file numpy cannot read."""
+    """``numpy.load`` of a ``.npy`` file (no pickles), with one-line ``InputError`` for a file numpy cannot read.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.npy`` file.
+
+    Returns
+    -------
+    ndarray
+
+    Raises
+    ------
+    FileNotFoundError
+        For a missing file.
+    noiselab.io.InputError
+        For a file numpy cannot read, or one holding pickled objects.
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> p = os.path.join(tempfile.mkdtemp(), "a.npy"); np.save(p, np.arange(3))
+    >>> load_npy(p).tolist()
+    [0, 1, 2]
+    """
     path = Path(path)
     _check_readable(path, "array file")
     try:
@@ -309,6 +417,32 @@ def read_image(path, *, as_float=False) -> np.ndarray:
     A missing file is a ``FileNotFoundError``; a file that cannot be decoded
     (truncated, empty, not an image, no read permission) an ``InputError``
     (a ``ValueError``) naming the file and the cause.
+
+    Parameters
+    ----------
+    path : str or Path
+        An image file imageio reads, or a ``.npy`` array.
+    as_float : bool, default False
+        Return uint8 images as float32 in [0, 1].
+
+    Returns
+    -------
+    ndarray
+        ``(H, W)`` grey or ``(H, W, 3|4)`` colour, as decoded (or as stored in the ``.npy``).
+
+    Raises
+    ------
+    FileNotFoundError
+        For a missing file.
+    noiselab.io.InputError
+        For a file that cannot be decoded (a ``ValueError``).
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> p = write_image(os.path.join(tempfile.mkdtemp(), "ramp.png"), np.linspace(0, 1, 12).reshape(3, 4))
+    >>> read_image(p).shape, read_image(p, as_float=True).dtype
+    ((3, 4), dtype('float32'))
     """
     path = Path(path)
     _check_readable(path, "image file")
@@ -337,6 +471,30 @@ def iter_video(path, *, max_frames=None):
     through this). Frames come as decoded (uint8, RGB or grey, alpha dropped).
     Unreadable files raise ``InputError`` naming the file (for a folder, the
     bad frame) and the cause.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.mp4`` or ``.gif`` file, or a folder of PNG frames.
+    max_frames : int, optional
+        Yield at most this many frames.
+
+    Yields
+    ------
+    ndarray (H, W) or (H, W, 3) of uint8
+        Each frame as decoded (a GIF or MP4 stores grey frames as RGB).
+
+    Raises
+    ------
+    noiselab.io.InputError
+        For a file or frame that cannot be decoded.
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> p = write_video(os.path.join(tempfile.mkdtemp(), "v.gif"), np.random.default_rng(0).random((3, 8, 8)))
+    >>> [f.shape[:2] for f in iter_video(p)]   # as decoded: a GIF's grey frames come as RGB
+    [(8, 8), (8, 8), (8, 8)]
     """
     path = Path(path)
     if path.is_dir():
@@ -369,6 +527,34 @@ def read_video(path, *, as_float=False, max_frames=None) -> np.ndarray:
     Grey videos stored as RGB (equal channels, as GIF and MP4 store them) come
     back with the colour axis dropped. Unreadable input raises ``InputError``
     (a ``ValueError``) naming the file and the cause.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.mp4``, ``.gif`` or ``.npy`` file, or a folder of PNG frames.
+    as_float : bool, default False
+        Return uint8 frames as float32 in [0, 1].
+    max_frames : int, optional
+        Read at most this many frames.
+
+    Returns
+    -------
+    ndarray (T, H, W) or (T, H, W, 3)
+
+    Raises
+    ------
+    FileNotFoundError
+        For a missing file.
+    noiselab.io.InputError
+        For a file or frame that cannot be decoded (a ``ValueError``).
+
+    Examples
+    --------
+    >>> import os, tempfile, numpy as np
+    >>> frames = np.random.default_rng(0).random((4, 8, 8))
+    >>> p = write_video(os.path.join(tempfile.mkdtemp(), "v.gif"), frames)
+    >>> read_video(p).shape
+    (4, 8, 8)
     """
     path = Path(path)
     if path.suffix.lower() == ".npy" and not path.is_dir():

@@ -23,6 +23,26 @@ def write_mesh(path, mesh, *, make_parents=True) -> Path:
     also keeps per-vertex attributes such as ``displacement``.
     ``make_parents`` creates missing parent folders.
 
+    Parameters
+    ----------
+    path : str or Path
+        Its suffix picks the format: ``.ply``, ``.obj``, ``.stl``, ``.glb`` or ``.off``.
+    mesh : trimesh.Trimesh
+    make_parents : bool, default True
+        Create missing parent folders.
+
+    Returns
+    -------
+    Path
+        The written file.
+
+    Raises
+    ------
+    ValueError
+        For an unknown suffix or a mesh without faces.
+    noiselab.io.OutputError
+        When the file cannot be written (an ``OSError``).
+
     Examples
     --------
     >>> import trimesh, tempfile, os
@@ -52,6 +72,22 @@ def read_mesh(path):
     """Read a mesh file (any format trimesh reads) as one ``trimesh.Trimesh`` (a scene's meshes are joined).
 
     A file holding no faces (a point cloud) is a ``ValueError``.
+
+    Parameters
+    ----------
+    path : str or Path
+        PLY, OBJ, STL, GLB, OFF or any format trimesh reads.
+
+    Returns
+    -------
+    trimesh.Trimesh
+
+    Raises
+    ------
+    FileNotFoundError
+        For a missing file.
+    noiselab.io.InputError
+        For a file that cannot be decoded or holds no faces (a ``ValueError``).
 
     Examples
     --------

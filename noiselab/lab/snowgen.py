@@ -47,6 +47,17 @@ def lattice_peak(kernel="catmull-rom", basis="gradient") -> float:
     the Catmull-Rom kernel 80 % of its power lies within a factor 1.9 of
     frequency (the narrowest of the kernels; cubic B-spline: 2.6).
 
+    Parameters
+    ----------
+    kernel : str, default "catmull-rom"
+        A kernel name of :func:`noiselab.lattice.kernel_names`.
+    basis : {"value", "gradient"}, default "gradient"
+
+    Returns
+    -------
+    float
+        Cycles per lattice cell.
+
     Examples
     --------
     >>> 0.4 < lattice_peak("catmull-rom", "gradient") < 0.7
@@ -154,6 +165,12 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
     Returns
     -------
     ndarray, shape (T, H, W), ``dtype``; in [0, 1] unless ``rescale=False``.
+
+    Raises
+    ------
+    ValueError
+        For an impossible shape, ``c`` outside ``[0, pi]``, a band past
+        Nyquist, or ``layers`` outside ``[1, 256]``.
 
     Examples
     --------
@@ -277,6 +294,11 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
     Returns
     -------
     ndarray (T, H, W) in [0, 1], or (ndarray, dict) with ``return_flakes``.
+
+    Raises
+    ------
+    ValueError
+        For an impossible shape, ``c`` outside ``[0, pi]`` or a band past Nyquist.
 
     Examples
     --------

@@ -107,6 +107,13 @@ class LatticeNoise:
         stock kernel it runs SIMD kernels: float32 points give float32
         output computed in float32 (see Notes, Precision).
 
+    Raises
+    ------
+    ValueError
+        For ``dim_in`` outside ``[1, 32]``, an unknown kernel, basis, hash or
+        alternation, an odd or too small ``table_size``, a period below 1,
+        or a non-finite frequency, phase or amplitude.
+
     Notes
     -----
     **Range.** Every component lies in ``[-a, a]`` with no clipping: the sum is

@@ -24,6 +24,20 @@ class Grid(NamedTuple):
     ``extent`` holds one ``(start, stop)`` pair per input axis in the noise's
     input units, stop excluded as in ``numpy.arange``: sample ``j`` along axis
     ``a`` sits at ``start + j * (stop - start) / shape[a]``.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        Samples per input axis, in the noise's axis order (``(ny, nx)`` for images).
+    extent : sequence of (start, stop)
+        One pair per input axis, stop excluded.
+
+    Examples
+    --------
+    >>> from noiselab.lattice import LatticeNoise
+    >>> grid = Grid((64, 128), ((0, 2), (0, 4)))
+    >>> LatticeNoise(2, seed=0).grid(*grid).shape
+    (64, 128)
     """
 
     shape: tuple
@@ -81,6 +95,18 @@ def grid_coordinates(shape, extent):
 
     Both evaluation paths, every window and every octave use exactly this
     formula, so the same sample always gets the same coordinate bits.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        Samples per axis.
+    extent : sequence of (start, stop)
+        One pair per axis, stop excluded.
+
+    Returns
+    -------
+    list of ndarray of float64
+        One array of ``shape[a]`` coordinates per axis.
 
     Examples
     --------

@@ -215,12 +215,41 @@ _ALIASES = {
 
 
 def kernel_names() -> list[str]:
-    """The canonical kernel names."""
+    """The canonical kernel names.
+
+    Returns
+    -------
+    list of str
+        The names :func:`get_kernel` and ``LatticeNoise(kernel=...)`` accept
+        besides their aliases.
+
+    Examples
+    --------
+    >>> "quintic" in kernel_names() and "cubic" in kernel_names()
+    True
+    """
     return list(KERNELS)
 
 
 def get_kernel(kernel) -> Kernel:
     """Return the :class:`Kernel` for a name (or alias), or ``kernel`` itself if it is one.
+
+    Parameters
+    ----------
+    kernel : str or Kernel
+        A name of :func:`kernel_names` or an alias (``"bspline1"`` to
+        ``"bspline4"``, ...), any case; a :class:`Kernel` passes through.
+
+    Returns
+    -------
+    Kernel
+
+    Raises
+    ------
+    TypeError
+        For anything but a string or a :class:`Kernel`.
+    ValueError
+        For an unknown name (the message lists the allowed ones).
 
     Examples
     --------

@@ -57,6 +57,12 @@ def composite(alpha, background, intensity=250):
         never wraps around), float32 in [0, 1] for a float background.
         Shape: alpha's frames times the background's frame shape.
 
+    Raises
+    ------
+    ValueError
+        For alpha outside ``[0, 1]`` or non-finite, or a background whose shape
+        does not match the snow (the message lists the accepted shapes).
+
     Examples
     --------
     >>> import numpy as np
@@ -146,6 +152,12 @@ def parallax_composite(foreground, mask, *, transmittance=0.3, veil=255.0, veile
     contrast : dict
         ``{"veiled": c1, "clear": c2}``: Michelson contrast of each region,
         measured on the exact (unrounded) composite over all frames.
+
+    Raises
+    ------
+    ValueError
+        For a mask that leaves one region empty, ``transmittance`` outside
+        ``[0, 1]``, ``veil`` outside ``[0, 255]``, or shapes that do not match.
 
     Examples
     --------

@@ -24,6 +24,30 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None, workers=None):
     threads (scipy.fft's meaning, -1 every core), the field split in fixed
     chunks: the same values for any count.
 
+    Parameters
+    ----------
+    field : ndarray of float32 or float64, C-contiguous
+        Overwritten with the opacity.
+    beta : float, default 1.5
+        Exponent of the opacity curve (> 0); 1 keeps the rescaled field linear.
+    lo, hi : float, optional
+        The field's minimum and maximum, if known (both or neither; ``lo <= hi``).
+    workers : int, optional
+        Threads (scipy.fft's meaning); the values do not depend on the count.
+
+    Returns
+    -------
+    ndarray
+        ``field`` itself, now in ``[0, 1]``.
+
+    Raises
+    ------
+    TypeError
+        For a field that is not float32 or float64.
+    ValueError
+        For a non-contiguous or non-finite field, only one of ``lo`` and
+        ``hi``, ``beta <= 0``, or a range that overflows the dtype.
+
     Examples
     --------
     >>> import numpy as np
@@ -183,6 +207,16 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
     amplitude is split evenly over those bins, so the spatial spectrum does
     not depend on the thickness.
 
+    Raises
+    ------
+    ValueError
+        For an impossible shape, ``c`` outside ``[0, pi]``, a band past the
+        spatial Nyquist frequency, a zero direction, or (``on_alias="raise"``)
+        a ``c`` or pan whose tent passes the temporal Nyquist frequency (the
+        message names the largest allowed value).
+    MemoryError
+        When the video would not fit (estimated before allocating).
+
     Examples
     --------
     >>> a = snow((16, 64, 64), seed=0)
@@ -223,6 +257,23 @@ def snow_spectrum(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thicknes
     ``scipy.fft.irfftn(S, s=shape)`` equals ``snow(..., rescale=False)`` to
     float precision; for analysis and tests (it is dense, so it costs the full
     spectrum's memory).
+
+    Parameters
+    ----------
+    shape, seed, c, band, thickness, direction, pan, exponent, amplitude, dtype, on_alias
+        As for :func:`snow` (the same checks, the same random draws).
+
+    Returns
+    -------
+    ndarray of complex64 or complex128, shape ``(T, H, W // 2 + 1)``
+        The dense half spectrum; zero off the thickened tent and outside the band.
+
+    Raises
+    ------
+    ValueError
+        For the arguments :func:`snow` refuses (a ``c`` or pan that aliases
+        past the temporal Nyquist frequency with ``on_alias="raise"``, a band
+        past the spatial Nyquist frequency, a zero direction, ...).
 
     Examples
     --------

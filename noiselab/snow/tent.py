@@ -325,6 +325,29 @@ def flake_speeds(c=1.0, band=None, width=512, height=None):
     >= 1 or None) is accepted for symmetry with ``snow``'s shape and does not
     change the speeds.
 
+    Parameters
+    ----------
+    c : float, default 1
+        Tent constant in rad/frame, ``0 <= c <= pi``.
+    band : (lo, hi), optional
+        Band in cycles/frame, ``0 < lo < hi <= width / 2``; default
+        ``(width / 32, width / 4)``, as :func:`noiselab.snow.snow`.
+    width : int, default 512
+        Frame width in pixels (>= 1).
+    height : int, optional
+        Accepted for symmetry with ``snow``'s shape (>= 1); no effect.
+
+    Returns
+    -------
+    near, far : float
+        Speeds in px/frame of the flakes at ``band[0]`` and at ``band[1]``.
+
+    Raises
+    ------
+    ValueError
+        For ``c`` outside ``[0, pi]``, a width or height below 1, or a band
+        outside ``(0, width / 2]`` (or so low that the speed overflows).
+
     Examples
     --------
     >>> near, far = flake_speeds(1.0, (16, 128), 512)

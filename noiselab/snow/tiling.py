@@ -43,6 +43,27 @@ def tile(alpha, reps):
     still ``(H, W)`` takes ``reps = (ry, rx)``. For outputs too big to hold,
     use :func:`iter_tiled_frames`.
 
+    Parameters
+    ----------
+    alpha : ndarray (T, H, W) or (H, W)
+        A periodic video or still, finite and non-empty.
+    reps : int or tuple of int
+        ``(rt, ry, rx)`` for a video, ``(ry, rx)`` for a still, or one int for
+        every axis; each >= 1.
+
+    Returns
+    -------
+    ndarray
+        ``(rt*T, ry*H, rx*W)`` (or ``(ry*H, rx*W)``), the dtype of ``alpha``.
+
+    Raises
+    ------
+    ValueError
+        For an array of another dimension, an empty or non-finite one, a
+        repetition below 1 or of the wrong length.
+    MemoryError
+        When the tiled array would not fit (estimated before allocating).
+
     Examples
     --------
     >>> import numpy as np
@@ -78,6 +99,13 @@ def iter_tiled_frames(alpha, reps=(1, 1), *, n_frames=None, start=0, crop=None):
     Yields
     ------
     ndarray (H*ry, W*rx) or ``crop``
+
+    Raises
+    ------
+    ValueError
+        For an ``alpha`` that is not a finite, non-empty ``(T, H, W)`` video, a
+        repetition below 1, a negative ``n_frames`` or a ``crop`` larger than
+        the tiled frame.
 
     Examples
     --------

@@ -249,7 +249,7 @@ def nonparallel_optical_snow(wt, wy, wx, direction, speeds, pan, *, tolerance):
 
 
 def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
-    """Temporal frequency (rad/frame) of the (sheared) tent: ``wt = -c*(d . w)/|w| - pan . w``.
+    """Temporal frequency (rad/frame) of the (sheared) tent: ``wt = -c*(d·w)/|w| - pan·w``.
 
     ``c`` is the thesis's tent constant in rad/frame; a flake at spatial
     frequency ``|w|`` rad/px moves along ``d`` at ``c/|w|`` px/frame, plus the

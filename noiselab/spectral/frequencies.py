@@ -25,6 +25,16 @@ __all__ = ["frequency_vectors", "half_spectrum_shape"]
 def half_spectrum_shape(shape) -> tuple[int, ...]:
     """Shape of the ``rfftn`` half spectrum of a real array of ``shape``.
 
+    Parameters
+    ----------
+    shape : tuple of int
+        Shape of the real array.
+
+    Returns
+    -------
+    tuple of int
+        ``shape`` with its last entry ``n`` replaced by ``n // 2 + 1``.
+
     Examples
     --------
     >>> half_spectrum_shape((64, 512, 512))

@@ -269,6 +269,12 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     the dtype is a ``ValueError``.
     Timings against a bare ``irfftn``: ``benchmarks/bench_spectral.md``.
 
+    Raises
+    ------
+    ValueError
+        For an impossible shape, or an envelope that is not finite or does not
+        broadcast to the half spectrum.
+
     Examples
     --------
     >>> import numpy as np, scipy.fft
@@ -527,6 +533,23 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         two transposes as zarr arrays, so no worker ever holds more than its
         chunks (for fields bigger than the cluster's memory). The caller
         removes it after computing. Default: dask's in-memory rechunk.
+
+    Returns
+    -------
+    ndarray of ``dtype``, shape ``shape``
+        The field (a lazy ``dask.array.Array`` with ``chunks``): zero mean and
+        unit variance over the ensemble (``"expected"``) or exactly
+        (``"sample"``).
+
+    Raises
+    ------
+    ValueError
+        For an impossible shape, an exponent outside ``[-8, 8]``, a band past
+        the Nyquist frequency or holding no frequency of the grid, ``dc=True``
+        with a band that does not start at 0, an unknown ``amplitude`` or
+        ``normalize``.
+    MemoryError
+        When the field would not fit (estimated before allocating).
 
     Notes
     -----
