@@ -34,13 +34,14 @@ single FFT axis cannot be split by separable passes).
 Snow (``snow(..., chunks=)``), the pruned FFT of :mod:`noiselab.snow.tent`
 kept:
 
-1. the tent's random coefficients (about 1 % of the video's cells) are drawn
+1. the tent's sparse spectrum (about 1 % of the video's cells) is drawn
    on the client exactly as in memory; the columns are ordered by kx, so a
    slab of kx holds a contiguous run of columns;
-2. per kx slab: the ``(T, columns)`` matrix, ``ifft`` along t on the tent's
-   columns only, the columns back at their ``(ky, kx)`` cells, ``ifft`` along y
-   on the slab's kx columns only (the band's kx columns; nothing past the
-   band's largest kx exists);
+2. per kx slab, a few frames at a time: the direct inverse DFT along t of
+   each tent column (its few bins), the values at their ``(ky, kx)`` cells,
+   ``ifft`` along y on the slab's kx columns only (the band's kx columns;
+   nothing past the band's largest kx exists): :func:`noiselab.snow.tent.y_pass`,
+   as in memory;
 3. transpose to ``(t, y)`` chunks with kx whole: ``irfft`` along x.
 
 The rescale to [0, 1] and ``alpha ** beta`` need the raw field's global
@@ -60,7 +61,7 @@ import scipy.fft
 
 from .._core import as_generator, dispatch, float_dtype, require_dask
 from ..snow.render import rescale_opacity
-from ..snow.tent import self_conjugate_planes, tent_coefficients, tent_columns, y_pass
+from ..snow.tent import assemble, tent_columns, y_pass
 from ..spectral import plan, spectral_noise
 
 __all__ = ["chunked_spectral_noise", "chunked_snow"]
@@ -290,46 +291,30 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dt
 # ------------------------------------------------------------------ snow
 
 
-def _snow_plan(cols, coef, C_planes, plane_cols, T, H, K, ckx, dt, cdt):
-    """Per kx slab: its columns (local), its entries (local column, bin, coefficient) and plane overrides."""
+def _snow_plan(cols, spec, K, ckx):
+    """Per kx slab: its columns' ``(ky, local kx)`` cells and their sparse spectra, the columns in kx-major order."""
     order = np.lexsort((np.arange(cols.ky.size), cols.kx))  # kx-major, then the in-memory order
     kx_sorted = cols.kx[order]
-    rank = np.empty_like(order)
-    rank[order] = np.arange(order.size)
-    ent_rank = rank[cols.entry_col]
-    eorder = np.argsort(ent_rank, kind="stable")
-    ent_rank_sorted = ent_rank[eorder]
     kx_blocks = _blocks(K, ckx)
     kst = _starts(kx_blocks)
     pieces = []
-    plane_rank = rank[plane_cols] if plane_cols.size else plane_cols
     for b in range(len(kx_blocks)):
         k0, k1 = int(kst[b]), int(kst[b + 1])
         a, z = np.searchsorted(kx_sorted, [k0, k1])
-        e0, e1 = np.searchsorted(ent_rank_sorted, [a, z])
-        ent = eorder[e0:e1]
-        pm = (plane_rank >= a) & (plane_rank < z)
-        pieces.append(dict(
-            ky=cols.ky[order[a:z]].astype(np.int64), kx=(kx_sorted[a:z] - k0).astype(np.int64), k=k1 - k0,
-            lcol=(ent_rank[ent] - a).astype(np.int64), bins=cols.entry_bin[ent].astype(np.int64), coef=coef[ent],
-            pcol=(plane_rank[pm] - a).astype(np.int64), pval=np.ascontiguousarray(C_planes[:, pm]),
-        ))
+        pieces.append(dict(ky=cols.ky[order[a:z]].astype(np.int64), kx=(kx_sorted[a:z] - k0).astype(np.int64),
+                           k=k1 - k0, spec=spec.take(order[a:z])))
     return kx_blocks, pieces
 
 
 def _snow_slab(piece, T, H, cdt, *after):
     """t-pass on the slab's tent columns, the columns at their (ky, kx) cells, y-pass: ``(T, H, k)`` complex."""
-    C = np.zeros((T, piece["ky"].size), dtype=cdt)
-    C[piece["bins"], piece["lcol"]] = piece["coef"]
-    if piece["pcol"].size:
-        C[:, piece["pcol"]] = piece["pval"]
-    if T > 1:
-        C = scipy.fft.ifft(C, axis=0, overwrite_x=True, workers=1)
     k = piece["k"]
     B = np.empty((T, H, k), dtype=cdt)
+    spec = piece["spec"]
+    prep = spec.prepare(piece["ky"], piece["kx"], k)
     tb = int(max(1, _CACHE // max(1, H * k * np.dtype(cdt).itemsize)))
     for t0 in range(0, T, tb):  # a few frames at a time, in cache, as in memory
-        y_pass(C, t0, piece["ky"], piece["kx"], B[t0:t0 + tb])
+        y_pass(spec, t0, piece["ky"], piece["kx"], B[t0:t0 + tb], prep)
     return B
 
 
@@ -376,10 +361,9 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1
-    coef = tent_coefficients(cols, as_generator(seed), amplitude, dt)  # as assemble() draws them
-    plane_cols, plane_vals = self_conjugate_planes(cols, coef, cdt)
+    spec = assemble(cols, as_generator(seed), amplitude, dt)  # the in-memory path's sparse spectrum
     ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, T * H * cdt.itemsize))
-    kx_blocks, pieces = _snow_plan(cols, coef, plane_vals, plane_cols, T, H, K, ckx, dt, cdt)
+    kx_blocks, pieces = _snow_plan(cols, spec, K, ckx)
     tok = uuid.uuid4().hex[:12]
     ty = out_chunks[:2] if spill is None else _regular(out_chunks[:2])
     s2_chunks = ty + ((W,),)
