@@ -67,17 +67,30 @@ from ..spectral import plan, spectral_noise
 __all__ = ["chunked_spectral_noise", "chunked_snow"]
 
 _TARGET = 16 << 20  # bytes of a stage's chunk when the caller's chunk does not fix it
+# "auto" output chunks: this size, not dask's array.chunk-size (128 MiB). A worker holds about 3 output chunks
+# at once (the x-pass's input, its output, zarr's copy): 128 MiB chunks took a 600 MiB worker past its nanny's 95 %
+# (issue 26; benchmarks/bench_dask.md, "within the workers' memory")
+_AUTO = 32 << 20
+# the transposed stages' chunks (spectrum slabs, snow's t/y slabs) are at most this, whatever the output chunk
+_SLAB_MAX = 32 << 20
 
 
 def _out_chunks(chunks, shape, dtype):
+    import dask
+
     from .lattice import normalize_grid_chunks
 
-    return normalize_grid_chunks(chunks, shape, 1, dtype)
+    if isinstance(chunks, str) and chunks == "auto":
+        # the last pass makes whole rows: an "auto" chunk cut along the last axis made a task hold rows of
+        # several chunks (a (128, 256, 1024) x-pass for (128, 256, 256) chunks of a 512 MiB video)
+        chunks = ("auto",) * (len(shape) - 1) + (-1,)
+    with dask.config.set({"array.chunk-size": _AUTO}):
+        return normalize_grid_chunks(chunks, shape, 1, dtype)
 
 
 def _slab_bytes(out_chunks, dt):
-    """Bytes of a transposed stage's chunk: twice the caller's largest output chunk, at least 1 MiB."""
-    return max(1 << 20, 2 * int(np.prod([max(c) for c in out_chunks])) * np.dtype(dt).itemsize)
+    """Bytes of a transposed stage's chunk: twice the caller's largest output chunk, 1 MiB to ``_SLAB_MAX``."""
+    return min(_SLAB_MAX, max(1 << 20, 2 * int(np.prod([max(c) for c in out_chunks])) * np.dtype(dt).itemsize))
 
 
 def _blocks(n, size):
@@ -381,19 +394,27 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     name = f"snow-alpha-{tok}"
     lohi = f"snow-lohi-{tok}"
     if spill is not None:
-        # the t- and y-passes once, spilled; the x-pass twice (extremes, then the rescale), read back chunk by chunk
+        # the t- and y-passes once, spilled; the x-pass twice (extremes, then the rescale), each x-pass task reading
+        # its own block (a nested task: separate read tasks all became ready together and a worker held every
+        # block it had read, past its memory limit; issue 26)
         dsk = {}
         path, done = _spill_write(stage1("s"), s2_chunks[:2] + ((K,),), spill, dsk)
-        ra = _array(dsk, _spill_read(path, done, ty + ((K,),), cdt, f"snow-read-a-{tok}", dsk), ty + ((K,),), cdt)
+        blocks = list(itertools.product(range(len(ty[0])), range(len(ty[1]))))
+
+        def read(i, j, *after):
+            return (_read_block, path, _regions(ty + ((K,),), (i, j, 0)), done) + after
+
         if not rescale:
-            out = ra.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
-            return out.rechunk(out_chunks)
-        mm = ra.map_blocks(_snow_extremes, W, dt, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
-        dsk = _graph(mm)
-        dsk[lohi] = (_reduce_extremes, list(mm.__dask_keys__()))
-        rb = _spill_read(path, done, ty + ((K,),), cdt, f"snow-read-b-{tok}", dsk, after=(lohi,))
-        for i, j in itertools.product(range(len(ty[0])), range(len(ty[1]))):
-            dsk[(name, i, j, 0)] = (_snow_rescale, (rb, i, j, 0), W, dt, float(beta), lohi)
+            raw = f"snow-raw-x-{tok}"
+            for i, j in blocks:
+                dsk[(raw, i, j, 0)] = (_last_pass, read(i, j), W, dt)
+            return _array(dsk, raw, s2_chunks, dt).rechunk(out_chunks)
+        mm = f"snow-extremes-{tok}"
+        for i, j in blocks:
+            dsk[(mm, i, j, 0)] = (_snow_extremes, read(i, j), W, dt)
+        dsk[lohi] = (_reduce_extremes, [(mm, i, j, 0) for i, j in blocks])
+        for i, j in blocks:
+            dsk[(name, i, j, 0)] = (_snow_rescale, read(i, j, lohi), W, dt, float(beta), lohi)
         return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)
     if not rescale:
         s1 = stage1("raw").rechunk(ty + ((K,),))
