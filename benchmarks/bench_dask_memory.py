@@ -71,7 +71,7 @@ def run_case(client, name, lazy, path, out_mib):
     peaks = client.run(_peak)
     joined, left = client.run_on_scheduler(_worker_events)
     # a restarted worker's peak is its own since it started: growth over the first worker's baseline
-    growth = {w: (peaks[w] - base.get(w, min(base.values()))) / 1024 for w in peaks}
+    growth = {w: (peaks[w] - base.get(w, min(base.values(), default=peaks[w]))) / 1024 for w in peaks}
     chunk_mib = float(np.prod([max(c) for c in lazy.chunks])) * lazy.dtype.itemsize / 2**20
     row = {"name": name, "failed": failed, "shape": lazy.shape, "chunk": tuple(max(c) for c in lazy.chunks), "chunk_mib": chunk_mib,
             "restarts": joined - joined0, "left": left - left0, "wall_s": wall,
@@ -113,16 +113,21 @@ def main(argv=None):
             client.register_plugin(_worker_events_plugin())
             client.run(lambda: __import__("noiselab.scale.spectral") and None)  # imports and kernels, before the baseline
             client.submit(lambda: snow((4, 32, 32), seed=0).sum(), pure=False).result()
-            lazy = snow(shape, seed=3, chunks=chunks, spill=tmp / "spill")
-            rows.append(run_case(client, "snow, spill (as `noiselab snow -o x.zarr`)", lazy, tmp / "a.zarr",
-                                 out_mib))
-            shutil.rmtree(tmp / "spill", ignore_errors=True)
-            lazy = snow(shape, seed=3, chunks=chunks)
-            rows.append(run_case(client, "snow, rechunk in memory", lazy, tmp / "b.zarr", out_mib))
-            lazy = spectral_noise(shape, seed=3, chunks=chunks)
-            rows.append(run_case(client, "spectral_noise (3-D)", lazy, tmp / "c.zarr", out_mib))
-            lazy = spectral_noise(shape, seed=3, chunks=chunks, spill=tmp / "spill2")
-            rows.append(run_case(client, "spectral_noise (3-D), spill", lazy, tmp / "d.zarr", out_mib))
+            client.run(lambda: None)
+            n_workers = args.workers
+
+            def case(name, lazy, target):
+                client.wait_for_workers(n_workers, timeout=120)  # restarted workers back first
+                rows.append(run_case(client, name, lazy, target, out_mib))
+
+            # the spilled paths first (what `noiselab snow -o x.zarr` runs), then dask's in-memory rechunk
+            case("snow, spill (as `noiselab snow -o x.zarr`)", snow(shape, seed=3, chunks=chunks, spill=tmp / "s1"),
+                 tmp / "a.zarr")
+            case("spectral_noise (3-D), spill", spectral_noise(shape, seed=3, chunks=chunks, spill=tmp / "s2"),
+                 tmp / "b.zarr")
+            case("snow, rechunk in memory", snow(shape, seed=3, chunks=chunks), tmp / "c.zarr")
+            case("spectral_noise (3-D), rechunk in memory", spectral_noise(shape, seed=3, chunks=chunks),
+                 tmp / "d.zarr")
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     cmd = "python3 benchmarks/bench_dask_memory.py" + "".join(
@@ -141,8 +146,8 @@ def main(argv=None):
     for r in rows:
         lines.append(f"| {r['name']} | {'x'.join(map(str, r['chunk']))} | {r['chunk_mib']:.0f} | **{r['restarts']}**"
                      + (f" (failed: {r['failed']})" if r["failed"] else "") + " | "
-                     + ", ".join(f"{g:.0f}" for g in r["growth_mib"])
-                     + f" | {r['growth_mib'][0] / r['chunk_mib']:.1f}x | "
+                     + (", ".join(f"{g:.0f}" for g in r["growth_mib"]) or "-")
+                     + (f" | {r['growth_mib'][0] / r['chunk_mib']:.1f}x | " if r["growth_mib"] else " | - | ")
                      + ", ".join(f"{b:.0f}" for b in r["before_mib"]) + f" | {r['wall_s']:.1f} |")
     lines.append("")
     text = "\n".join(lines)
