@@ -284,8 +284,7 @@ def snow_memory(shape, chunk_list, tmp):
 def snow_plate(repeats, tmp, shape=(512, 4096, 4096), out_chunk=(16, 512, 4096), ckx=16):
     """Per-task costs of a 4096 x 4096 x 512 snow plate: the client's plan, one t/y slab, one x-pass chunk, spill I/O."""
     from noiselab.scale import spectral as S
-    from noiselab.snow.tent import self_conjugate_planes, tent_columns
-    from noiselab.spectral.synthesis import draw_coefficients
+    from noiselab.snow.tent import assemble, tent_columns
     import noiselab._core.validate as V
 
     T, H, W = shape
@@ -293,10 +292,8 @@ def snow_plate(repeats, tmp, shape=(512, 4096, 4096), out_chunk=(16, 512, 4096),
     cols = tent_columns(shape, c=1.0, band=(W / 32, W / 4), thickness=0.1, direction=(0.0, 1.0), pan=(0.0, 0.0),
                         exponent=1.0)
     K = int(cols.kx.max()) + 1
-    coef = draw_coefficients(cols.n_cells, V.as_generator(3), "uniform", np.float32)
-    coef *= cols.weight.astype(np.float32)
-    pcols, pvals = self_conjugate_planes(cols, coef, np.dtype(np.complex64))  # as the chunked snow does
-    kx_blocks, pieces = S._snow_plan(cols, coef, pvals, pcols, T, H, K, ckx, np.float32, np.dtype(np.complex64))
+    spec = assemble(cols, V.as_generator(3), "uniform", np.float32)  # as the chunked snow does
+    kx_blocks, pieces = S._snow_plan(cols, spec, K, ckx)
     t_plan = time.perf_counter() - t0
     piece = pieces[len(pieces) // 2]
     slab = S._snow_slab(piece, T, H, np.dtype(np.complex64))
@@ -317,8 +314,8 @@ def snow_plate(repeats, tmp, shape=(512, 4096, 4096), out_chunk=(16, 512, 4096),
                 n_slabs=len(kx_blocks), t_plan=t_plan, t_slab=t_slab, slab_mib=slab.nbytes / 2 ** 20, t_x=t_x,
                 x_in_mib=B.nbytes / 2 ** 20, x_out_mib=int(np.prod(out_chunk)) * 4 / 2 ** 20, t_w=t_w, t_r=t_r,
                 read_mib=int(np.prod(out_chunk[:2])) * ckx * 8 / 2 ** 20,
-                coef_mib=(coef.nbytes + sum(p["ky"].nbytes + p["kx"].nbytes + p["lcol"].nbytes + p["bins"].nbytes
-                                            for p in pieces)) / 2 ** 20)
+                coef_mib=sum(p["ky"].nbytes + p["kx"].nbytes + p["spec"].ptr.nbytes + p["spec"].bins.nbytes
+                             + p["spec"].vals.nbytes for p in pieces) / 2 ** 20)
 
 
 def snow_main(args):

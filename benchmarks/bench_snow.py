@@ -63,9 +63,9 @@ def timing(shape, rounds, workers):
         sw = Stopwatch()
         cols = sw("build", lambda: tent_columns(shape, c=1.0, band=band, thickness=0.1, direction=(0, 1), pan=(0, 0),
                                                 exponent=1.0))
-        C = sw("build", lambda: assemble(cols, np.random.default_rng(r), "uniform", np.float32))
+        spec = sw("build", lambda: assemble(cols, np.random.default_rng(r), "uniform", np.float32))
         out = np.empty(shape, np.float32)
-        lo, hi = sw("fft", lambda: pruned_irfftn(C, cols, out, workers=w))
+        lo, hi = sw("fft", lambda: pruned_irfftn(spec, cols, out, workers=w))
         sw("rescale", lambda: rescale_opacity(out, 1.5, lo=lo, hi=hi))
         return Laps({f"{k}@{w}": v for k, v in sw.laps.items()})
 

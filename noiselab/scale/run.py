@@ -127,3 +127,33 @@ def compute(*objs, scheduler=None, progress=None):
         with ProgressBar(out=sys.stderr):
             return dask.compute(*objs, scheduler=scheduler)
     return dask.compute(*objs, scheduler=scheduler)
+
+
+def _worker_events_plugin():
+    """A ``distributed`` scheduler plugin counting the workers that join and leave (internal: tests, benchmarks).
+
+    Registered on a running cluster, every join is a worker started after it
+    (a nanny's restart is one leave and one join); read the counts with
+    :func:`_worker_events` through ``client.run_on_scheduler``.
+    """
+    from distributed.diagnostics.plugin import SchedulerPlugin
+
+    class WorkerEvents(SchedulerPlugin):
+        name = "noiselab-worker-events"
+
+        def __init__(self):
+            self.joined, self.left = 0, 0
+
+        def add_worker(self, scheduler=None, worker=None, **kw):
+            self.joined += 1
+
+        def remove_worker(self, scheduler=None, worker=None, **kw):
+            self.left += 1
+
+    return WorkerEvents()
+
+
+def _worker_events(dask_scheduler=None):
+    """``(joined, left)`` counted by :func:`_worker_events_plugin` (run with ``client.run_on_scheduler``)."""
+    p = dask_scheduler.plugins["noiselab-worker-events"]
+    return p.joined, p.left

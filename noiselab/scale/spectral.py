@@ -34,13 +34,14 @@ single FFT axis cannot be split by separable passes).
 Snow (``snow(..., chunks=)``), the pruned FFT of :mod:`noiselab.snow.tent`
 kept:
 
-1. the tent's random coefficients (about 1 % of the video's cells) are drawn
+1. the tent's sparse spectrum (about 1 % of the video's cells) is drawn
    on the client exactly as in memory; the columns are ordered by kx, so a
    slab of kx holds a contiguous run of columns;
-2. per kx slab: the ``(T, columns)`` matrix, ``ifft`` along t on the tent's
-   columns only, the columns back at their ``(ky, kx)`` cells, ``ifft`` along y
-   on the slab's kx columns only (the band's kx columns; nothing past the
-   band's largest kx exists);
+2. per kx slab, a few frames at a time: the direct inverse DFT along t of
+   each tent column (its few bins), the values at their ``(ky, kx)`` cells,
+   ``ifft`` along y on the slab's kx columns only (the band's kx columns;
+   nothing past the band's largest kx exists): :func:`noiselab.snow.tent.y_pass`,
+   as in memory;
 3. transpose to ``(t, y)`` chunks with kx whole: ``irfft`` along x.
 
 The rescale to [0, 1] and ``alpha ** beta`` need the raw field's global
@@ -60,23 +61,36 @@ import scipy.fft
 
 from .._core import as_generator, dispatch, float_dtype, require_dask
 from ..snow.render import rescale_opacity
-from ..snow.tent import self_conjugate_planes, tent_coefficients, tent_columns, y_pass
+from ..snow.tent import assemble, tent_columns, y_pass
 from ..spectral import plan, spectral_noise
 
 __all__ = ["chunked_spectral_noise", "chunked_snow"]
 
 _TARGET = 16 << 20  # bytes of a stage's chunk when the caller's chunk does not fix it
+# "auto" output chunks: this size, not dask's array.chunk-size (128 MiB). A worker holds about 3 output chunks
+# at once (the x-pass's input, its output, zarr's copy): 128 MiB chunks took a 600 MiB worker past its nanny's 95 %
+# (issue 26; benchmarks/bench_dask.md, "within the workers' memory")
+_AUTO = 32 << 20
+# the transposed stages' chunks (spectrum slabs, snow's t/y slabs) are at most this, whatever the output chunk
+_SLAB_MAX = 32 << 20
 
 
 def _out_chunks(chunks, shape, dtype):
+    import dask
+
     from .lattice import normalize_grid_chunks
 
-    return normalize_grid_chunks(chunks, shape, 1, dtype)
+    if isinstance(chunks, str) and chunks == "auto":
+        # the last pass makes whole rows: an "auto" chunk cut along the last axis made a task hold rows of
+        # several chunks (a (128, 256, 1024) x-pass for (128, 256, 256) chunks of a 512 MiB video)
+        chunks = ("auto",) * (len(shape) - 1) + (-1,)
+    with dask.config.set({"array.chunk-size": _AUTO}):
+        return normalize_grid_chunks(chunks, shape, 1, dtype)
 
 
 def _slab_bytes(out_chunks, dt):
-    """Bytes of a transposed stage's chunk: twice the caller's largest output chunk, at least 1 MiB."""
-    return max(1 << 20, 2 * int(np.prod([max(c) for c in out_chunks])) * np.dtype(dt).itemsize)
+    """Bytes of a transposed stage's chunk: twice the caller's largest output chunk, 1 MiB to ``_SLAB_MAX``."""
+    return min(_SLAB_MAX, max(1 << 20, 2 * int(np.prod([max(c) for c in out_chunks])) * np.dtype(dt).itemsize))
 
 
 def _blocks(n, size):
@@ -290,46 +304,30 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dt
 # ------------------------------------------------------------------ snow
 
 
-def _snow_plan(cols, coef, C_planes, plane_cols, T, H, K, ckx, dt, cdt):
-    """Per kx slab: its columns (local), its entries (local column, bin, coefficient) and plane overrides."""
+def _snow_plan(cols, spec, K, ckx):
+    """Per kx slab: its columns' ``(ky, local kx)`` cells and their sparse spectra, the columns in kx-major order."""
     order = np.lexsort((np.arange(cols.ky.size), cols.kx))  # kx-major, then the in-memory order
     kx_sorted = cols.kx[order]
-    rank = np.empty_like(order)
-    rank[order] = np.arange(order.size)
-    ent_rank = rank[cols.entry_col]
-    eorder = np.argsort(ent_rank, kind="stable")
-    ent_rank_sorted = ent_rank[eorder]
     kx_blocks = _blocks(K, ckx)
     kst = _starts(kx_blocks)
     pieces = []
-    plane_rank = rank[plane_cols] if plane_cols.size else plane_cols
     for b in range(len(kx_blocks)):
         k0, k1 = int(kst[b]), int(kst[b + 1])
         a, z = np.searchsorted(kx_sorted, [k0, k1])
-        e0, e1 = np.searchsorted(ent_rank_sorted, [a, z])
-        ent = eorder[e0:e1]
-        pm = (plane_rank >= a) & (plane_rank < z)
-        pieces.append(dict(
-            ky=cols.ky[order[a:z]].astype(np.int64), kx=(kx_sorted[a:z] - k0).astype(np.int64), k=k1 - k0,
-            lcol=(ent_rank[ent] - a).astype(np.int64), bins=cols.entry_bin[ent].astype(np.int64), coef=coef[ent],
-            pcol=(plane_rank[pm] - a).astype(np.int64), pval=np.ascontiguousarray(C_planes[:, pm]),
-        ))
+        pieces.append(dict(ky=cols.ky[order[a:z]].astype(np.int64), kx=(kx_sorted[a:z] - k0).astype(np.int64),
+                           k=k1 - k0, spec=spec.take(order[a:z])))
     return kx_blocks, pieces
 
 
 def _snow_slab(piece, T, H, cdt, *after):
     """t-pass on the slab's tent columns, the columns at their (ky, kx) cells, y-pass: ``(T, H, k)`` complex."""
-    C = np.zeros((T, piece["ky"].size), dtype=cdt)
-    C[piece["bins"], piece["lcol"]] = piece["coef"]
-    if piece["pcol"].size:
-        C[:, piece["pcol"]] = piece["pval"]
-    if T > 1:
-        C = scipy.fft.ifft(C, axis=0, overwrite_x=True, workers=1)
     k = piece["k"]
     B = np.empty((T, H, k), dtype=cdt)
+    spec = piece["spec"]
+    prep = spec.prepare(piece["ky"], piece["kx"], k)
     tb = int(max(1, _CACHE // max(1, H * k * np.dtype(cdt).itemsize)))
     for t0 in range(0, T, tb):  # a few frames at a time, in cache, as in memory
-        y_pass(C, t0, piece["ky"], piece["kx"], B[t0:t0 + tb])
+        y_pass(spec, t0, piece["ky"], piece["kx"], B[t0:t0 + tb], prep)
     return B
 
 
@@ -376,10 +374,9 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1
-    coef = tent_coefficients(cols, as_generator(seed), amplitude, dt)  # as assemble() draws them
-    plane_cols, plane_vals = self_conjugate_planes(cols, coef, cdt)
+    spec = assemble(cols, as_generator(seed), amplitude, dt)  # the in-memory path's sparse spectrum
     ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, T * H * cdt.itemsize))
-    kx_blocks, pieces = _snow_plan(cols, coef, plane_vals, plane_cols, T, H, K, ckx, dt, cdt)
+    kx_blocks, pieces = _snow_plan(cols, spec, K, ckx)
     tok = uuid.uuid4().hex[:12]
     ty = out_chunks[:2] if spill is None else _regular(out_chunks[:2])
     s2_chunks = ty + ((W,),)
@@ -397,19 +394,27 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     name = f"snow-alpha-{tok}"
     lohi = f"snow-lohi-{tok}"
     if spill is not None:
-        # the t- and y-passes once, spilled; the x-pass twice (extremes, then the rescale), read back chunk by chunk
+        # the t- and y-passes once, spilled; the x-pass twice (extremes, then the rescale), each x-pass task reading
+        # its own block (a nested task: separate read tasks all became ready together and a worker held every
+        # block it had read, past its memory limit; issue 26)
         dsk = {}
         path, done = _spill_write(stage1("s"), s2_chunks[:2] + ((K,),), spill, dsk)
-        ra = _array(dsk, _spill_read(path, done, ty + ((K,),), cdt, f"snow-read-a-{tok}", dsk), ty + ((K,),), cdt)
+        blocks = list(itertools.product(range(len(ty[0])), range(len(ty[1]))))
+
+        def read(i, j, *after):
+            return (_read_block, path, _regions(ty + ((K,),), (i, j, 0)), done) + after
+
         if not rescale:
-            out = ra.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
-            return out.rechunk(out_chunks)
-        mm = ra.map_blocks(_snow_extremes, W, dt, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
-        dsk = _graph(mm)
-        dsk[lohi] = (_reduce_extremes, list(mm.__dask_keys__()))
-        rb = _spill_read(path, done, ty + ((K,),), cdt, f"snow-read-b-{tok}", dsk, after=(lohi,))
-        for i, j in itertools.product(range(len(ty[0])), range(len(ty[1]))):
-            dsk[(name, i, j, 0)] = (_snow_rescale, (rb, i, j, 0), W, dt, float(beta), lohi)
+            raw = f"snow-raw-x-{tok}"
+            for i, j in blocks:
+                dsk[(raw, i, j, 0)] = (_last_pass, read(i, j), W, dt)
+            return _array(dsk, raw, s2_chunks, dt).rechunk(out_chunks)
+        mm = f"snow-extremes-{tok}"
+        for i, j in blocks:
+            dsk[(mm, i, j, 0)] = (_snow_extremes, read(i, j), W, dt)
+        dsk[lohi] = (_reduce_extremes, [(mm, i, j, 0) for i, j in blocks])
+        for i, j in blocks:
+            dsk[(name, i, j, 0)] = (_snow_rescale, read(i, j, lohi), W, dt, float(beta), lohi)
         return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)
     if not rescale:
         s1 = stage1("raw").rechunk(ty + ((K,),))

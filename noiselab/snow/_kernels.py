@@ -1,4 +1,4 @@
-"""Hot loop of the snow renderer (numba, cached): the in-place opacity map."""
+"""Hot loops of the snow renderer (numba, cached): the in-place opacity map, the sparse t-pass, the x-pass copy."""
 from __future__ import annotations
 
 import numpy as np
@@ -28,19 +28,29 @@ def rescale_power(flat, lo, scale, beta):
 
 
 @njit(cache=True, nogil=True)
-def scatter_columns(C, t0, ky, kx, B):
-    """``B[t] = 0`` then ``B[t, ky[j], kx[j]] = C[t0 + t, j]`` for every frame ``t`` of the block ``B``.
+def t_pass_scatter(dest, bins, vals, tw, t0, B):
+    """``B[t] = 0``, then ``B[t].flat[dest[e]] += vals[e] * tw[(bins[e] * (t0 + t)) % T]`` over every entry ``e``.
 
-    The y-pass input of one block of frames: the spectrum columns put back at
-    their ``(ky, kx)`` cells, zeros elsewhere, in one pass (numpy's fancy
-    scatter after a ``zeros`` was slower in a scratch timing, loaded machine).
+    The t-pass of the sparse columns (an inverse DFT along t, ``tw`` its
+    twiddles with the ``1/T``, in ``B``'s precision) for each frame ``t`` of
+    the block ``B``, scattered straight into the y-pass input (``dest``: each
+    entry's cell ``ky * K + kx``): a column has a few bins, so the direct sum
+    costs less than an FFT of the dense ``(T, columns)`` array, without that
+    array. Each cell sums its entries in their order: the same bits whichever
+    block a frame is in and however the columns are split.
     """
-    nt, H, K = B.shape
-    zero = B.dtype.type(0)
+    nt = B.shape[0]
+    T = tw.size
+    rot = np.empty(T, dtype=B.dtype)
     for t in range(nt):
-        for i in range(H):
-            for k in range(K):
-                B[t, i, k] = zero
-        for j in range(ky.size):
-            B[t, ky[j], kx[j]] = C[t0 + t, j]
-
+        Bf = B[t].reshape(-1)
+        Bf[:] = 0
+        step = (t0 + t) % T
+        m = 0
+        for b in range(T):  # rot[b] = tw[(b * (t0 + t)) % T], without a division per entry
+            rot[b] = tw[m]
+            m += step
+            if m >= T:
+                m -= T
+        for e in range(dest.size):
+            Bf[dest[e]] += vals[e] * rot[bins[e]]

@@ -238,13 +238,14 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1
     item = dt.itemsize
-    check_memory(T * H * W * item + 2 * T * cols.ky.size * 2 * item + 3 * (8 << 20) + nw * 3 * H * K * 2 * item,
+    # the output, the sparse spectrum (a bin, a value and a sort key per cell) and one block's scratch per thread
+    check_memory(T * H * W * item + 4 * cols.n_cells * (16 + 2 * item) + nw * (2 * H * K * 2 * item + (1 << 18)),
                  f"snow{(T, H, W)}")
     rng = as_generator(seed)
-    C = assemble(cols, rng, amplitude, dt)
+    spec = assemble(cols, rng, amplitude, dt)
     out = np.empty((T, H, W), dtype=dt)
     with progress(total=T, desc="snow", enabled=show_progress, unit="frame") as bar:
-        lo, hi = pruned_irfftn(C, cols, out, bar=bar, workers=workers)
+        lo, hi = pruned_irfftn(spec, cols, out, bar=bar, workers=workers)
     if rescale:
         rescale_opacity(out, beta, lo=lo, hi=hi, workers=nw)
     return out
@@ -290,5 +291,4 @@ def snow_spectrum(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thicknes
     dt = float_dtype(dtype)
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
-    C = assemble(cols, as_generator(seed), amplitude, dt)
-    return to_half_spectrum(C, cols)
+    return to_half_spectrum(assemble(cols, as_generator(seed), amplitude, dt), cols)

@@ -13,20 +13,23 @@ half-spectrum cells. So:
    temporal bins that overlap the thickened surface. Random numbers are drawn
    for those cells only.
 2. **Pruned inverse FFT.** The inverse 3-D FFT is three passes of 1-D
-   transforms. Along t, only the band's (ky, kx) columns are transformed (a
-   ``(T, n_cells)`` array instead of ``(T, H, W//2+1)``); along y, only the kx
-   columns inside the band (``kx <= hi``: about half); the last pass (``irfft``
-   along x, complex-to-real) is the full one, written straight into the output
-   a few frames at a time. This beats a bare ``irfftn`` of the same output
-   (figures in ``benchmarks/bench_snow.md``).
+   transforms. Along t, each (ky, kx) column holds energy in a few temporal
+   bins only (2.3 on average for the default scene), so the t-pass is a
+   direct sum over those bins, evaluated frame by frame while the frame's
+   y-pass input is scattered (:class:`ColumnSpectra`: no ``(T, columns)``
+   array, which held 12 MiB beside a 64 MiB video); along y, only the kx
+   columns inside the band (``kx <= hi``: about half); the last pass
+   (``irfft`` along x, complex-to-real) is the full one, written straight
+   into the output a few rows at a time. This beats a bare ``irfftn`` of the
+   same output (figures in ``benchmarks/bench_snow.md``).
 
 The tent itself is :func:`noiselab.spectral.envelopes.tent_surface` (its
 unchecked form ``tent_surface_terms``), evaluated at the band's spatial
 cells only, with the amplitude of
 :func:`~noiselab.spectral.envelopes.power_law`: the cells that carry energy
 are the cells of ``thickened_tent(..., tolerance=pi/T) * annulus(...)``
-(tested). :func:`y_pass`, :func:`tent_columns`, :func:`tent_coefficients` and
-:func:`self_conjugate_planes` are the internal interface shared by the
+(tested). :func:`y_pass`, :func:`tent_columns`, :func:`tent_coefficients`,
+:func:`self_conjugate_planes` and :func:`column_spectra` are the internal interface shared by the
 in-memory and dask paths (:mod:`noiselab.scale.spectral`).
 
 Units: spatial frequencies in cycles/pixel internally (band limits are given in
@@ -48,8 +51,8 @@ from ..spectral.envelopes import tent_surface_terms, unit_direction
 from ..spectral.plan import complex_dtype, self_conjugate_columns
 from . import _kernels
 
-__all__ = ["TentColumns", "tent_columns", "largest_c", "tent_coefficients", "self_conjugate_planes", "assemble",
-           "to_half_spectrum", "y_pass", "pruned_irfftn", "flake_speeds"]
+__all__ = ["TentColumns", "ColumnSpectra", "tent_columns", "largest_c", "tent_coefficients", "self_conjugate_planes",
+           "column_spectra", "assemble", "to_half_spectrum", "y_pass", "pruned_irfftn", "flake_speeds"]
 
 @dataclass
 class TentColumns:
@@ -219,79 +222,141 @@ def self_conjugate_planes(cols: TentColumns, coef, cdt):
     return np.concatenate(out_cols), np.concatenate(out_vals, axis=1)
 
 
+@dataclass
+class ColumnSpectra:
+    """The temporal spectrum of every tent column, sparse (compressed by column).
+
+    Column ``j`` holds ``vals[ptr[j]:ptr[j+1]]`` at the temporal bins
+    ``bins[ptr[j]:ptr[j+1]]`` (increasing, ``0 .. T-1``); every other bin is
+    0. :func:`y_pass` evaluates its inverse DFT along t frame by frame.
+    """
+
+    T: int
+    ptr: np.ndarray   # (columns + 1,) int64
+    bins: np.ndarray  # (entries,) int64
+    vals: np.ndarray  # (entries,) complex64 or complex128
+
+    @property
+    def n_columns(self) -> int:
+        return int(self.ptr.size - 1)
+
+    def prepare(self, ky, kx, K):
+        """``(dest, tw)`` for :func:`y_pass`: each entry's cell ``ky * K + kx`` of a frame of width ``K``, and
+        ``exp(2j*pi*m/T) / T`` (``ifft``'s kernel and normalisation, ``m = 0 .. T-1``) in the values' precision."""
+        col = np.repeat(np.arange(self.n_columns), np.diff(self.ptr))
+        dest = (np.asarray(ky, dtype=np.int64)[col] * int(K) + np.asarray(kx, dtype=np.int64)[col])
+        tw = (np.exp(2j * np.pi * np.arange(self.T) / self.T) / self.T).astype(self.vals.dtype)
+        return dest, tw
+
+    def take(self, sel):
+        """The columns ``sel`` (an index array), in that order, as a new :class:`ColumnSpectra`."""
+        sel = np.asarray(sel, dtype=np.int64)
+        lens = self.ptr[sel + 1] - self.ptr[sel]
+        ptr = np.zeros(sel.size + 1, dtype=np.int64)
+        np.cumsum(lens, out=ptr[1:])
+        idx = np.repeat(self.ptr[sel] - ptr[:-1], lens) + np.arange(int(ptr[-1]), dtype=np.int64)
+        return ColumnSpectra(self.T, ptr, self.bins[idx], self.vals[idx])
+
+    def dense(self):
+        """The ``(T, columns)`` array (for tests and small cases)."""
+        C = np.zeros((self.T, self.n_columns), dtype=self.vals.dtype)
+        C[self.bins, np.repeat(np.arange(self.n_columns), np.diff(self.ptr))] = self.vals
+        return C
+
+
+def column_spectra(cols: TentColumns, coef, plane_cols, plane_vals):
+    """The :class:`ColumnSpectra` of the tent: ``coef`` on its cells, the self-conjugate planes' columns replaced.
+
+    ``plane_cols``/``plane_vals`` come from :func:`self_conjugate_planes`
+    (whole columns, Hermitian; their nonzero bins are kept).
+    """
+    T = cols.shape[0]
+    n = cols.ky.size
+    keep = ~np.isin(cols.entry_col, plane_cols)
+    pb, pc = np.nonzero(plane_vals)
+    col = np.concatenate([cols.entry_col[keep], np.asarray(plane_cols, dtype=np.int64)[pc]]).astype(np.int64)
+    bins = np.concatenate([cols.entry_bin[keep], pb]).astype(np.int64)
+    vals = np.concatenate([coef[keep], plane_vals[pb, pc]])
+    order = np.argsort(col * T + bins)  # by column, then bin (distinct keys: one sort of one int64 array)
+    ptr = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(col, minlength=n), out=ptr[1:])
+    return ColumnSpectra(T, ptr, bins[order], np.ascontiguousarray(vals[order]))
+
+
 def assemble(cols: TentColumns, rng, amplitude, dtype):
-    """Random coefficients on the tent cells: the ``(T, n_columns)`` spectrum columns, Hermitian on the self-conjugate planes."""
-    T, H, W = cols.shape
+    """Random coefficients on the tent cells, Hermitian on the self-conjugate planes: the :class:`ColumnSpectra`."""
     cdt = complex_dtype(dtype)
     coef = tent_coefficients(cols, rng, amplitude, dtype)
-    C = np.zeros((T, cols.ky.size), dtype=cdt)
-    C[cols.entry_bin, cols.entry_col] = coef
     plane_cols, plane_vals = self_conjugate_planes(cols, coef, cdt)
-    C[:, plane_cols] = plane_vals
-    return C
+    return column_spectra(cols, coef, plane_cols, plane_vals)
 
 
-def to_half_spectrum(C, cols: TentColumns):
-    """Scatter the spectrum columns into the dense ``rfftn`` half spectrum ``(T, H, W//2 + 1)``."""
+def to_half_spectrum(spec: ColumnSpectra, cols: TentColumns):
+    """Scatter the columns' spectra into the dense ``rfftn`` half spectrum ``(T, H, W//2 + 1)``."""
     T, H, W = cols.shape
-    S = np.zeros((T, H, W // 2 + 1), dtype=C.dtype)
-    S[:, cols.ky, cols.kx] = C
+    S = np.zeros((T, H, W // 2 + 1), dtype=spec.vals.dtype)
+    col = np.repeat(np.arange(spec.n_columns), np.diff(spec.ptr))
+    S[spec.bins, cols.ky[col], cols.kx[col]] = spec.vals
     return S
 
 
-def y_pass(C, t0, ky, kx, B):
-    """The y-pass of a block of frames: ``B`` (``(frames, H, K)``) from frames ``t0 ..`` of the t-passed columns ``C``.
+def y_pass(spec: ColumnSpectra, t0, ky, kx, B, prep=None):
+    """The t- and y-passes of a block of frames: ``B`` (``(frames, H, K)``) for frames ``t0 ..`` of ``spec``.
 
-    Scatters the columns ``C[t0 + t, j]`` (``(T, columns)``, already inverse
-    transformed along t) to their ``(ky[j], kx[j])`` cells of ``B``, zeros
-    elsewhere, then inverse-transforms ``B`` along y, in place (one thread);
-    returns ``B``. The in-memory renderer (:func:`pruned_irfftn`) and the
-    chunked one (:mod:`noiselab.scale.spectral`) compute every block with it,
-    so their bits agree.
+    Evaluates every column's inverse DFT along t at the block's frames (a
+    sum over its few bins, in ``B``'s precision), scatters the values to
+    their ``(ky[j], kx[j])`` cells of ``B``, zeros elsewhere, then
+    inverse-transforms ``B`` along y, in place (one thread); returns ``B``.
+    ``prep``: ``spec.prepare(ky, kx, B.shape[2])``, computed if not given
+    (pass it when calling block after block). The in-memory renderer (:func:`pruned_irfftn`) and the chunked one
+    (:mod:`noiselab.scale.spectral`) compute every block with it, so their
+    bits agree.
 
     Examples
     --------
     >>> import numpy as np
-    >>> C = np.ones((2, 1), np.complex128)                    # one column, two frames
-    >>> B = y_pass(C, 0, np.array([0]), np.array([1]), np.empty((2, 4, 2), np.complex128))
-    >>> B[0, :, 1].real                                      # ky = 0 along y: a constant 1/H
+    >>> spec = ColumnSpectra(2, np.array([0, 1]), np.array([0]), np.array([2.0 + 0j]))  # one column, DC only
+    >>> B = y_pass(spec, 0, np.array([0]), np.array([1]), np.empty((2, 4, 2), np.complex128))
+    >>> B[0, :, 1].real                                      # 2 / T along t, then ky = 0 along y: 1/H
     array([0.25, 0.25, 0.25, 0.25])
     """
-    _kernels.scatter_columns(C, t0, ky, kx, B)
+    dest, tw = spec.prepare(ky, kx, B.shape[2]) if prep is None else prep
+    _kernels.t_pass_scatter(dest, spec.bins, spec.vals, tw, t0, B)
     out = scipy.fft.ifft(B, axis=1, overwrite_x=True, workers=1)
     if out is not B:  # pocketfft writes a contiguous complex block in place; copy if it did not
         B[...] = out
     return B
 
 
-def pruned_irfftn(C, cols: TentColumns, out, *, chunk_bytes=1 << 18, bar=None, workers=None):
+def pruned_irfftn(spec: ColumnSpectra, cols: TentColumns, out, *, chunk_bytes=1 << 18, bar=None, workers=None):
     """``irfftn`` of the sparse columns into ``out`` (T, H, W), transforming only what carries energy.
 
-    Equal to ``scipy.fft.irfftn(to_half_spectrum(C, cols), s=(T, H, W))`` to
-    float precision (tested). ``C`` is overwritten. Returns the output's
-    minimum and maximum, taken block by block while the block is in cache.
+    Equal to ``scipy.fft.irfftn(to_half_spectrum(spec, cols), s=(T, H, W))``
+    to float precision (tested). Returns the output's minimum and maximum,
+    taken block by block while the block is in cache.
 
-    The t-pass runs once on the tent's columns (``workers`` threads inside
-    scipy); then each block of frames (about ``chunk_bytes`` of y-pass input)
-    is scattered back to its ``(ky, kx)`` cells, transformed along y on the
-    band's kx columns and along x (complex-to-real) into ``out``, the blocks
-    shared among ``workers`` threads. A block is computed the same way
-    whichever thread takes it, so the bits do not depend on ``workers``; the
-    only full-size array is ``out`` (plus one block's scratch per thread).
+    Each block of frames (about ``chunk_bytes`` of y-pass input) gets its
+    t-pass (a direct sum over each column's few bins) and is scattered to its
+    ``(ky, kx)`` cells, transformed along y on the band's kx columns and
+    along x (complex-to-real) into ``out``, the blocks shared among
+    ``workers`` threads. A block is computed the same way whichever thread
+    takes it, so the bits do not depend on ``workers``; the only full-size
+    array is ``out`` (plus one block's scratch per thread).
     """
     nw = resolve_workers(workers)
     T, H, W = cols.shape
-    C = scipy.fft.ifft(C, axis=0, overwrite_x=True, workers=nw) if T > 1 else C
     K = int(cols.kx.max()) + 1
     ky = cols.ky.astype(np.int64)
     kx = cols.kx.astype(np.int64)
-    tc = int(max(1, min(T, chunk_bytes // max(1, H * K * C.itemsize))))
+    prep = spec.prepare(ky, kx, K)
+    item = spec.vals.itemsize
+    tc = int(max(1, min(T, chunk_bytes // max(1, H * K * item))))
     blocks = [(t0, min(T, t0 + tc)) for t0 in range(0, T, tc)]
     rows = int(max(1, min(H, chunk_bytes // max(1, W * out.itemsize))))
 
     def render(blk):
         t0, t1 = blk
-        B = y_pass(C, t0, ky, kx, np.empty((t1 - t0, H, K), dtype=C.dtype))
+        B = y_pass(spec, t0, ky, kx, np.empty((t1 - t0, H, K), dtype=spec.vals.dtype), prep)
         # x-pass: scipy's irfft into a small scratch (a slab of rows) then a copy, faster than numpy's irfft
         # straight into out (scipy vectorises across rows); min and max while the slab is in cache
         blo, bhi = np.inf, -np.inf

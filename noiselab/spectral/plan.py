@@ -46,6 +46,9 @@ __all__ = ["AMPLITUDE_MODES", "CHUNK", "complex_dtype", "self_conjugate_columns"
 
 AMPLITUDE_MODES = {"uniform": 0, "rayleigh": 1, "fixed": 2}  # amplitude law -> kernel mode
 CHUNK = 1 << 14  # coefficients drawn per chunk of rows (their float32 scratch stays in cache; 2**14 measured best)
+# below this peak the free-memory check is skipped: it reads /proc and the cgroup files (0.2 ms, 3 % of a 1024^2
+# inverse FFT, benchmarks/bench_spectral.md 2026-11-25), and numpy's own MemoryError is as clear for so small a need
+CHECK_FROM = 64 << 20
 
 
 def complex_dtype(dtype):
@@ -118,9 +121,9 @@ def noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="expe
     lead = [np.zeros(1)] * (2 - len(lead)) + lead
     q0, q1 = lead
     bshape = tuple(ix.size for ix in index) + (K,)
-    if check:  # the in-memory path (the chunked one holds a chunk at a time)
-        check_memory(int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * CHUNK,
-                     f"spectral_noise{shape}")
+    peak = int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * CHUNK
+    if check and peak >= CHECK_FROM:  # the in-memory path (the chunked one holds a chunk at a time)
+        check_memory(peak, f"spectral_noise{shape}")
     wxsq = np.ascontiguousarray(wsq[-1][:K])
     # weight of a half-spectrum cell in the full spectrum's power, halved: 1 where it stands for two cells, 1/2
     # on the self-conjugate planes (sample power: 0 there, their power is added once they are Hermitian)
