@@ -13,7 +13,7 @@ import numpy as np
 
 from .._core import progress
 from .._core import check_finite_array, check_real
-from .atomic import atomic_output, hold_signals
+from .atomic import atomic_output, forget_process, hold_signals, track_process
 from .errors import InputError, cause, input_error, output_error
 
 VIDEO_SUFFIXES = (".mp4", ".gif", ".npy")
@@ -167,8 +167,9 @@ def _write_mp4(path, frames, fps, quality, vmin, vmax):
                 cmd = [imageio_ffmpeg.get_ffmpeg_exe(), "-y", "-f", "rawvideo", "-vcodec", "rawvideo",
                        "-s", f"{shape[1]}x{shape[0]}", "-pix_fmt", pix_fmt, "-r", rate, "-i", "-", "-an",
                        "-vcodec", "libx264", "-pix_fmt", "yuv420p", "-crf", str(crf), "-v", "error", str(path)]
-                with hold_signals():   # never an ffmpeg running that `proc` does not name
-                    proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=errlog)
+                with hold_signals():   # never an ffmpeg running that `proc` (and a stopping signal) does not know
+                    proc = track_process(subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL,
+                                                          stderr=errlog))
             elif frame.shape != shape:
                 raise ValueError(f"all frames must have one shape: frame of shape {frame.shape} after {shape}")
             try:
@@ -194,6 +195,8 @@ def _write_mp4(path, frames, fps, quality, vmin, vmax):
         if proc is not None and proc.poll() is None:   # interrupted: stop the encoder before the file is removed
             proc.kill()
             proc.wait()
+        if proc is not None:
+            forget_process(proc)
         errlog.close()
 
 
