@@ -86,6 +86,15 @@ def track_process(proc):
 
     Start the process inside :func:`hold_signals` and record it there; call
     :func:`forget_process` once it has ended. Returns ``proc``.
+
+    Examples
+    --------
+    >>> import subprocess, sys
+    >>> with hold_signals():
+    ...     proc = track_process(subprocess.Popen([sys.executable, "-c", "pass"]))
+    >>> proc.wait()
+    0
+    >>> forget_process(proc)
     """
     _processes.append(proc)
     return proc
@@ -116,6 +125,15 @@ def remove_temporaries() -> None:
     inside :func:`hold_signals` or in single steps). A process is stopped and
     waited for before its file is removed, so it cannot create the file again.
     Outputs already renamed into place are not recorded any more and stay.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> writing = atomic_output(os.path.join(d, "a.txt"))
+    >>> tmp = writing.__enter__()           # a write under way ...
+    >>> remove_temporaries(); os.listdir(d)  # ... when a stopping signal comes
+    []
     """
     for proc in list(_processes):
         _stop_process(proc)
