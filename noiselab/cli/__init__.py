@@ -110,7 +110,14 @@ def _is_the_program() -> bool:
     return os.path.basename(argv0) == "noiselab" or argv0.endswith(os.path.join("noiselab", "__main__.py"))
 
 
+def _name_in(argv) -> str:
+    """``noiselab CMD`` for the message, CMD the first word of ``argv`` (default ``sys.argv[1:]``) not an option."""
+    words = [a for a in (sys.argv[1:] if argv is None else argv) if not str(a).startswith("-")]
+    return f"noiselab {words[0]}" if words else "noiselab"
+
+
 if _is_the_program():   # handled from here on, not only once main() runs: the imports below take time
+    _command = _name_in(None)
     _install_handlers()
 
 import argparse  # noqa: E402
@@ -139,11 +146,6 @@ def build_parser() -> argparse.ArgumentParser:
         module.add_arguments(p)
         p.set_defaults(_run=module.run)
     return parser
-
-
-def _name_in(argv) -> str:
-    words = [a for a in (sys.argv[1:] if argv is None else argv) if not str(a).startswith("-")]
-    return f"noiselab {words[0]}" if words else "noiselab"
 
 
 def main(argv=None) -> int:
