@@ -10,8 +10,9 @@ final rename. A clean outcome is
 - exit status 128 + the signal with exactly the one line
   ``noiselab CMD: interrupted (SIGINT)|terminated by SIGxxx; temporary files removed``
   on stderr, or the default death by the signal (status -signal) with nothing
-  on stderr (a signal before the handlers exist), or status 0 when the run
-  ended first;
+  on stderr (a signal before the handlers exist: while the interpreter starts,
+  or after the work, while it shuts down and has put the default handlers
+  back; the output is then complete), or status 0 when the run ended first;
 - never a traceback, ``Exception ignored``, a crash (SIGSEGV) or another status,
   with one exception that noiselab cannot change: a SIGINT while the
   interpreter itself starts (``site`` importing its path hooks, the first
