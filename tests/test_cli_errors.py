@@ -360,16 +360,55 @@ def test_io_docstring_examples_run(modname):
     assert result.attempted > 0 and result.failed == 0
 
 
-def test_a_signal_inside_a_held_step_waits_for_its_end(tmp_path, monkeypatch):
-    """The window between creating a temporary file (or starting ffmpeg) and recording it is closed."""
-    from noiselab.cli import Terminated, _on_signal
-    from noiselab.io import atomic
+class _Exited(Exception):
+    """What the handler's os._exit raises in these in-process tests."""
+
+
+@pytest.fixture
+def handler_without_exit(monkeypatch):
+    """The command line's signal handler, called in this process: os._exit raises, no real signal or child is touched."""
+    import noiselab.cli as cli
+
+    def fake_exit(code):
+        raise _Exited(code)
 
     monkeypatch.setattr(signal, "signal", lambda *a: None)   # the handler's own re-arming is not under test
+    monkeypatch.setattr(os, "_exit", fake_exit)
+    monkeypatch.setattr(cli, "_children", lambda: [])
+    monkeypatch.setattr(cli, "_command", "noiselab test")
+    return cli._on_signal
+
+
+def test_a_signal_inside_a_held_step_waits_for_its_end(monkeypatch, handler_without_exit):
+    """The window between creating a temporary file (or starting ffmpeg) and recording it is closed."""
+    from noiselab.io import atomic
+
     steps = []
-    with pytest.raises(Terminated) as info:
+    with pytest.raises(_Exited) as info:
         with atomic.hold_signals():
-            _on_signal(signal.SIGTERM, None)   # arrives mid-step: no exception yet
+            handler_without_exit(signal.SIGTERM, None)   # arrives mid-step: nothing happens yet
             steps.append("finished")
-            monkeypatch.setattr(signal, "raise_signal", lambda s: _on_signal(s, None))
-    assert steps == ["finished"] and info.value.signum == signal.SIGTERM
+            monkeypatch.setattr(signal, "raise_signal", lambda s: handler_without_exit(s, None))
+    assert steps == ["finished"] and info.value.args == (128 + signal.SIGTERM,)
+
+
+def test_the_handler_stops_the_encoder_removes_temporaries_and_says_one_line(tmp_path, capfd, handler_without_exit):
+    """What the handler does before it exits, in order: stop the encoder, remove the temporaries, one line."""
+    from noiselab.io import atomic
+
+    (tmp_path / "done.png").write_bytes(b"old")
+    encoder = atomic.track_process(subprocess.Popen(["sleep", "60"]))
+    try:
+        with pytest.raises(_Exited) as info:
+            with atomic.atomic_output(tmp_path / "v.mp4") as tmp, atomic.atomic_output(tmp_path / "f",
+                                                                                     directory=True) as folder:
+                (folder / "frame_00000.png").write_bytes(b"x")
+                assert tmp.exists() and _listing(tmp_path) != ["done.png"]
+                handler_without_exit(signal.SIGHUP, None)
+        assert info.value.args == (128 + signal.SIGHUP,)
+        assert not os.path.exists(f"/proc/{encoder.pid}")   # killed and reaped (no zombie) by the handler
+    finally:
+        encoder.kill()
+    assert _listing(tmp_path) == ["done.png"]
+    assert capfd.readouterr().err.splitlines()[-1:] == ["noiselab test: terminated by SIGHUP; temporary files removed"]
+    assert atomic._temporaries == {} and atomic._processes == []

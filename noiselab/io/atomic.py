@@ -4,8 +4,14 @@ Every failure to write (a full disk, a read-only file system, no permission,
 an output that is an existing folder, a parent that is a regular file)
 becomes an :class:`~noiselab.io.errors.OutputError` naming the target and the
 cause, and the temporary file or folder is removed, also when the run is
-interrupted (``KeyboardInterrupt``; the command line turns SIGTERM and SIGHUP
-into the same).
+interrupted: by a ``KeyboardInterrupt`` in library use, and by SIGINT, SIGTERM
+or SIGHUP under the command line, whose handler calls
+:func:`remove_temporaries` and exits at once (``os._exit``) instead of raising
+through whatever library code was running (an exception thrown into numba's
+compiler or a half-built imageio writer broke them). For that, every
+temporary file or folder and every encoder process is recorded here from the
+moment it exists (:func:`hold_signals` closes the gap between creating it and
+recording it) until it is renamed into place or removed.
 """
 from __future__ import annotations
 
@@ -15,15 +21,21 @@ import ctypes.util
 import errno
 import os
 import shutil
+import signal
 import tempfile
 from pathlib import Path
 
 from .errors import OutputError, output_error
 
-__all__ = ["atomic_output", "prepare_output", "exchange_paths", "hold_signals", "defer_signal"]
+__all__ = ["atomic_output", "prepare_output", "exchange_paths", "hold_signals", "defer_signal", "scratch_folder",
+           "track_process", "forget_process", "remove_temporaries"]
 
 _held = 0
 _deferred = []
+# what a stopping signal must remove: temporary path -> True for a folder
+_temporaries = {}
+# child processes writing into a temporary (ffmpeg): stopped before their file is removed
+_processes = []
 
 
 @contextlib.contextmanager
@@ -42,8 +54,6 @@ def hold_signals():
     finally:
         _held -= 1
         if not _held and _deferred:
-            import signal
-
             signal.raise_signal(_deferred.pop())
 
 
@@ -53,6 +63,113 @@ def defer_signal(signum) -> bool:
         _deferred[:] = [signum]
         return True
     return False
+
+
+def _record(path, directory):
+    _temporaries[str(path)] = directory
+
+
+def _forget(path):
+    _temporaries.pop(str(path), None)
+
+
+def _remove(path, directory):
+    if directory:
+        shutil.rmtree(path, ignore_errors=True)
+    else:
+        with contextlib.suppress(OSError):
+            os.unlink(path)
+
+
+def track_process(proc):
+    """Record a child process that writes into a temporary file, so a stopping signal ends it first.
+
+    Start the process inside :func:`hold_signals` and record it there; call
+    :func:`forget_process` once it has ended. Returns ``proc``.
+
+    Examples
+    --------
+    >>> import subprocess, sys
+    >>> with hold_signals():
+    ...     proc = track_process(subprocess.Popen([sys.executable, "-c", "pass"]))
+    >>> proc.wait()
+    0
+    >>> forget_process(proc)
+    """
+    _processes.append(proc)
+    return proc
+
+
+def forget_process(proc) -> None:
+    """Drop a process recorded by :func:`track_process` (it has ended, or been stopped and waited for)."""
+    with contextlib.suppress(ValueError):
+        _processes.remove(proc)
+
+
+def _stop_process(proc):
+    # os.kill and os.waitpid, not Popen.kill/wait: the handler may have interrupted the main thread
+    # inside Popen.wait, which holds a lock that a second wait() would wait on forever
+    if proc.returncode is not None:
+        return
+    with contextlib.suppress(OSError):
+        os.kill(proc.pid, signal.SIGKILL)
+    with contextlib.suppress(OSError):
+        os.waitpid(proc.pid, 0)
+
+
+def remove_temporaries() -> None:
+    """Stop the recorded encoder processes and remove every recorded temporary file and folder.
+
+    What the command line's SIGINT/SIGTERM/SIGHUP handler calls before it
+    exits; safe at any moment of the main thread (the records change only
+    inside :func:`hold_signals` or in single steps). A process is stopped and
+    waited for before its file is removed, so it cannot create the file again.
+    Outputs already renamed into place are not recorded any more and stay.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> writing = atomic_output(os.path.join(d, "a.txt"))
+    >>> tmp = writing.__enter__()           # a write under way ...
+    >>> remove_temporaries(); os.listdir(d)  # ... when a stopping signal comes
+    []
+    """
+    for proc in list(_processes):
+        _stop_process(proc)
+    _processes.clear()
+    for path, directory in list(_temporaries.items()):
+        _remove(path, directory)
+    _temporaries.clear()
+
+
+@contextlib.contextmanager
+def scratch_folder(beside, suffix=".scratch.tmp"):
+    """A temporary folder next to ``beside`` (hidden, named after it), removed afterwards, also when stopped.
+
+    For intermediate data that must not outlive the run (a spilled transpose),
+    recorded like :func:`atomic_output`'s temporaries so that a stopping
+    signal removes it too.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> with scratch_folder(os.path.join(d, "out.zarr")) as tmp:
+    ...     os.path.isdir(tmp) and tmp.name.startswith(".out.zarr.")
+    True
+    >>> os.listdir(d)
+    []
+    """
+    beside = Path(beside)
+    with hold_signals():
+        tmp = Path(tempfile.mkdtemp(prefix=f".{beside.name}.", suffix=suffix, dir=beside.parent))
+        _record(tmp, True)
+    try:
+        yield tmp
+    finally:
+        _remove(tmp, True)
+        _forget(tmp)
 
 
 def _first_existing(path: Path) -> Path:
@@ -129,9 +246,10 @@ def prepare_output(path, *, directory=False, make_parents=True, probe=True, crea
         raise OutputError(path, "it is an existing folder", errno.EISDIR)
     if probe:
         try:
-            fd, name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".probe", dir=parent)
-            os.close(fd)
-            os.unlink(name)
+            with hold_signals():   # a stopping signal waits for the probe to be gone
+                fd, name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".probe", dir=parent)
+                os.close(fd)
+                os.unlink(name)
         except OSError as exc:
             raise output_error(path, exc) from None
     return path
@@ -189,24 +307,33 @@ def exchange_paths(a, b) -> bool:
     raise OSError(code, os.strerror(code), str(a), None, str(b))
 
 
-def _replace_folder(tmp: Path, path: Path) -> None:
+def _replace_folder(tmp: Path, path: Path):
+    """Put the folder ``tmp`` at ``path``; return the recorded temporary name of the old folder (or None).
+
+    Called inside :func:`hold_signals`: a stopping signal comes either before
+    (the old output stays) or after (the new one is in place, and the old one
+    at a recorded name that the caller, or the signal handler, removes).
+    """
     if not os.path.lexists(path):
         os.replace(tmp, path)
-        return
-    if exchange_paths(tmp, path):     # the new folder is at `path`, the old one at `tmp`
-        shutil.rmtree(tmp, ignore_errors=True)
-        return
+        _forget(tmp)
+        return None
+    if exchange_paths(tmp, path):     # the new folder is at `path`, the old one at `tmp`, still recorded
+        return tmp
     # no atomic exchange here (not Linux, or a file system without it): move the old folder
     # aside and the new one in; for that instant neither is at `path`
     old = Path(tempfile.mkdtemp(prefix=f".{path.name}.old.", dir=path.parent))
+    _record(old, True)
     os.replace(path, old / path.name)
     try:
         os.replace(tmp, path)
     except BaseException:
         os.replace(old / path.name, path)
+        _remove(old, True)
+        _forget(old)
         raise
-    finally:
-        shutil.rmtree(old, ignore_errors=True)
+    _forget(tmp)
+    return old
 
 
 def _ours(exc, tmp: Path) -> bool:
@@ -240,7 +367,7 @@ def atomic_output(path, *, directory=False):
     parent = path.parent if str(path.parent) else Path(".")
     tmp = None
     try:
-        with hold_signals():   # an interruption must not fall between creating the file and knowing its name
+        with hold_signals():   # an interruption must not fall between creating the file and recording it
             try:
                 if directory:
                     tmp = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent))
@@ -249,6 +376,7 @@ def atomic_output(path, *, directory=False):
                                                 dir=parent)
                     os.close(fd)
                     tmp = Path(name)
+                _record(tmp, directory)
             except OSError as exc:
                 raise output_error(path, exc) from None
         yield tmp
@@ -257,20 +385,23 @@ def atomic_output(path, *, directory=False):
         umask = os.umask(0)
         os.umask(umask)
         os.chmod(tmp, (0o777 if directory else 0o666) & ~umask)
-        if directory:
-            _replace_folder(tmp, path)
-        else:
-            os.replace(tmp, path)
+        with hold_signals():   # the rename and its record change together: a signal sees the old or the new state
+            if directory:
+                old = _replace_folder(tmp, path)
+            else:
+                os.replace(tmp, path)
+                _forget(tmp)
+                old = None
     except BaseException as exc:
         if tmp is None:
             raise
-        if directory:
-            shutil.rmtree(tmp, ignore_errors=True)
-        else:
-            with contextlib.suppress(FileNotFoundError):
-                tmp.unlink()
+        _remove(tmp, directory)
+        _forget(tmp)
         if isinstance(exc, OutputError) and exc.path.startswith(str(tmp)):   # a writer named our temporary
             raise OutputError(path, exc.reason, exc.errno) from exc
         if isinstance(exc, OSError) and not isinstance(exc, OutputError) and _ours(exc, tmp):
             raise output_error(path, exc) from exc
         raise
+    if old is not None:   # the replaced folder, moved aside (still recorded until it is gone)
+        _remove(old, True)
+        _forget(old)

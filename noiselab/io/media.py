@@ -20,7 +20,7 @@ import numpy as np
 
 from .._core import progress
 from .._core import check_finite_array, check_real
-from .atomic import atomic_output, hold_signals
+from .atomic import atomic_output, forget_process, hold_signals, track_process
 from .errors import InputError, cause, input_error, output_error
 
 VIDEO_SUFFIXES = (".mp4", ".mkv", ".gif", ".npy")
@@ -309,8 +309,9 @@ def _write_mp4(path, frames, fps, quality, vmin, vmax, codec="x264"):
                        "-s", f"{shape[1]}x{shape[0]}", "-pix_fmt", pix_fmt, "-r", rate, "-i", "-", "-an",
                        *_codec_args(codec, quality, frame.ndim == 3), "-v", "error", "-f",
                        "matroska" if codec == "ffv1" else "mp4", str(path)]
-                with hold_signals():   # never an ffmpeg running that `proc` does not name
-                    proc = subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=errlog)
+                with hold_signals():   # never an ffmpeg running that `proc` (and a stopping signal) does not know
+                    proc = track_process(subprocess.Popen(cmd, stdin=subprocess.PIPE, stdout=subprocess.DEVNULL,
+                                                          stderr=errlog))
             elif frame.shape != shape:
                 raise ValueError(f"all frames must have one shape: frame of shape {frame.shape} after {shape}")
             try:
@@ -336,6 +337,8 @@ def _write_mp4(path, frames, fps, quality, vmin, vmax, codec="x264"):
         if proc is not None and proc.poll() is None:   # interrupted: stop the encoder before the file is removed
             proc.kill()
             proc.wait()
+        if proc is not None:
+            forget_process(proc)
         errlog.close()
 
 

@@ -11,6 +11,14 @@ folder named by a hash of the files the generator reads (``_generate.py``,
 generator, a new kernel or a new hash constant gives a new folder, so a
 stale module is never used; an unchanged one is written once per machine.
 
+A file found in the cache is compared with the generator's text (a few
+milliseconds, once per module and process): one that differs (truncated,
+overwritten, damaged on disk) is written anew, or, where its folder cannot be
+written, passed over for the next folder, and the ``noiselab`` logger says so
+in one warning line. A signal that stops the process while a file is written
+leaves no temporary file (the write is a held step of
+:func:`noiselab.io.atomic.hold_signals`).
+
 The folder is ``$NUMBA_CACHE_DIR/noiselab-kernels-<hash>`` when
 ``NUMBA_CACHE_DIR`` is set, else ``$XDG_CACHE_HOME/noiselab/kernels-<hash>``
 (``~/.cache`` by default), else, when neither can be written, one under the
@@ -35,6 +43,8 @@ import tempfile
 import threading
 import types
 from pathlib import Path
+
+from .._core.jitcache import warn_once
 
 # module name -> the generator function that writes its source (called with load()'s extra arguments)
 GENERATORS = {"points": "generate", "jacobians": "generate_jacobians", "intpoints": "generate_int",
@@ -64,10 +74,13 @@ def source_hash() -> str:
 
 
 def _writable(folder: Path) -> bool:
+    from ..io.atomic import hold_signals
+
     try:
         folder.mkdir(parents=True, exist_ok=True)
-        probe = tempfile.NamedTemporaryFile(dir=folder, prefix=".probe-", delete=True)
-        probe.close()
+        with hold_signals():   # a stopping signal waits for the probe to be gone
+            probe = tempfile.NamedTemporaryFile(dir=folder, prefix=".probe-", delete=True)
+            probe.close()
         return True
     except OSError:
         return False
@@ -96,26 +109,25 @@ def cache_folder() -> Path:
                   "(set NUMBA_CACHE_DIR to a writable folder)")
 
 
-def _write(target: Path, text: str) -> None:
-    """Write ``text`` to ``target`` atomically (temporary file + os.replace) unless it already holds it."""
-    data = text.encode()
-    try:
-        if target.read_bytes() == data:
-            return
-    except OSError:
-        pass
-    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.stem}-", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.utime(tmp, (_STAMP, _STAMP))
-        os.replace(tmp, target)
-    except BaseException:
+def _write(target: Path, data: bytes) -> None:
+    """Write ``data`` to ``target`` atomically (temporary file + os.replace)."""
+    from ..io.atomic import hold_signals
+
+    # held: a stopping signal (the command line's handler exits at once) waits for the
+    # temporary file to be renamed or removed, so none is left in the cache folder
+    with hold_signals():
+        fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.stem}-", suffix=".tmp")
         try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
+            with os.fdopen(fd, "wb") as f:
+                f.write(data)
+            os.utime(tmp, (_STAMP, _STAMP))
+            os.replace(tmp, target)
+        except BaseException:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
+            raise
 
 
 def _stem(name, args):
@@ -142,16 +154,22 @@ def path(name: str, *args) -> Path | None:
     when none can: :func:`load` then runs the kernels uncached.
     """
     _check_name(name)
-    text, failed = None, []
+    data = _source(name, args).encode()
+    failed = []
     for folder in candidate_folders():
         target = folder / f"{_stem(name, args)}.py"
-        if target.exists():
-            return target
         try:
-            if text is None:
-                text = _source(name, args)
+            found = target.read_bytes()
+        except OSError:   # missing (the usual first use), a folder, unreadable
+            found = None
+        if found == data:
+            return target
+        if found is not None or os.path.lexists(target):
+            warn_once(f"the generated lattice kernels {target} differ from the generator's text (damaged?); "
+                      "written anew")
+        try:
             folder.mkdir(parents=True, exist_ok=True)
-            _write(target, text)
+            _write(target, data)
             return target
         except OSError as exc:
             failed.append(f"{folder} ({exc.strerror or exc})")

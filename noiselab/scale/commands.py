@@ -106,9 +106,7 @@ def write_snow_zarr(args, shape, path):
     store carries the command's parameters, the seed, the noiselab version and
     the units, with dims ``(t, y, x)`` in frames and pixels.
     """
-    import shutil
-    import tempfile
-
+    from ..io.atomic import scratch_folder
     from ..io.zarr import write_zarr
     from ..snow import snow
 
@@ -120,8 +118,7 @@ def write_snow_zarr(args, shape, path):
     chunks = _parse_chunks(args.chunks, 3)
     band = None if args.band is None else tuple(args.band)
     path.parent.mkdir(parents=True, exist_ok=True)
-    spill = tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".spill.tmp", dir=path.parent)
-    try:
+    with scratch_folder(path, suffix=".spill.tmp") as spill:   # removed afterwards, also when a signal stops the run
         try:
             alpha = snow(shape, seed=args.seed, c=args.c, band=band, thickness=args.thickness,
                          direction=tuple(args.direction), pan=tuple(args.pan), beta=args.beta,
@@ -144,8 +141,6 @@ def write_snow_zarr(args, shape, path):
                        scheduler=args.scheduler, progress=args.progress)
         except (ImportError, FileExistsError) as exc:
             raise ValueError(str(exc)) from None
-    finally:
-        shutil.rmtree(spill, ignore_errors=True)
     chunk_shape = tuple(max(c) for c in alpha.chunks)
     print(f"noiselab snow: wrote {path} shape={alpha.shape} chunks={chunk_shape} opacity of one period "
           f"({T} frames of {W} x {H} px), seed {args.seed}")
