@@ -185,6 +185,12 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
                          f"(luminance=(L_min, L_max))")
     L = _luminance(field, mean, contrast, kind)[0]  # (a negative luminance is out of range below)
     Lmin, Lmax = float(L.min()), float(L.max())
+    # a request that exactly fills the range (e.g. the largest contrast this error reports) may land a rounding
+    # past an end: within 1e-9 of the range it is that end, not a refusal
+    slack = 1e-9 * (hi - lo)
+    if lo - slack <= Lmin < lo or hi < Lmax <= hi + slack:
+        L = np.clip(L, lo, hi)
+        Lmin, Lmax = max(Lmin, lo), min(Lmax, hi)
     if Lmin < lo or Lmax > hi:
         # the largest contrast that fits scales the deviations down to the nearer limit
         room = min((hi - mean) / (Lmax - mean) if Lmax > mean else np.inf,
