@@ -99,6 +99,13 @@ def docs_blocks():
     for name, path in docs_pages():
         text = path.read_text()
         found = readme_blocks(text) if path.suffix == ".md" else rst_blocks(text)
+        if path.suffix == ".rst":
+            # an .rst page is one session, as a reader follows it (names defined in one block are used in the
+            # next): its python blocks run as one script, at the first block's place
+            py = [code for _, lang, code in found if lang == "python"]
+            first = next((i for i, (_, lang, _) in enumerate(found) if lang == "python"), None)
+            found = [(line, lang, "\n".join(py) if i == first else code)
+                     for i, (line, lang, code) in enumerate(found) if lang != "python" or i == first]
         blocks += [(f"docs/{path.relative_to(DOCS)}:{line}", lang, code) for line, lang, code in found]
     return blocks
 
