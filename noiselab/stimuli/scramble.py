@@ -26,6 +26,29 @@ def _field(name, x):
     return arr.astype(np.float32 if arr.dtype == np.float32 else np.float64, copy=False)
 
 
+def _power_of_two_scaled(arr):
+    """``(arr / m, m)`` in float64 with ``m`` a power of two within 2x of ``max|arr|`` (the scaled field is below 2).
+
+    The spectra of fields near float64's largest value overflow (a sum of
+    N values); both operations are linear in the amplitude, so they run on
+    the scaled field and the result is scaled back. A power of two keeps every
+    value's bits: the scaling is exact.
+    """
+    peak = float(np.max(np.abs(arr)))
+    m = 1.0 if peak == 0.0 else float(np.ldexp(1.0, int(np.frexp(peak)[1]) - 1))   # 2**1024 would overflow
+    return arr.astype(np.float64) / m, m
+
+
+def _scaled_back(y, m, dtype, name):
+    """``y * m`` as ``dtype``, or a ValueError naming ``name`` when that passes the dtype's range."""
+    with np.errstate(over="ignore"):
+        out = (y * m).astype(dtype, copy=False)
+    if not np.all(np.isfinite(out)):
+        raise ValueError(f"{name}'s values are too large: the result passes {np.dtype(dtype).name}'s range "
+                         f"(largest |{name}| about {m:.3g}; scale {name} down, the operation is linear)")
+    return out
+
+
 def _axes(axes, ndim):
     return tuple(range(ndim)) if axes is None else check_axes("axes", axes, ndim)
 
@@ -80,12 +103,13 @@ def phase_scramble(x, *, seed=None, axes=None, workers=None) -> np.ndarray:
     mag = np.abs(P)
     # phases of a real field's spectrum: conjugate-symmetric by construction; |P| = 0 has probability 0
     phase = np.divide(P, mag, out=np.ones_like(P), where=mag > 0)
-    S = scipy.fft.rfftn(arr.astype(np.float64), axes=ax, workers=workers)
+    scaled, m = _power_of_two_scaled(arr)
+    S = scipy.fft.rfftn(scaled, axes=ax, workers=workers)
     out = np.abs(S) * phase
     dc = _dc_index(S.shape, ax)
     out[dc] = S[dc]  # the mean, sign included (a random phase of 0 or pi would flip it)
     shape = [arr.shape[i] for i in ax]
-    return scipy.fft.irfftn(out, s=shape, axes=ax, workers=workers).astype(arr.dtype, copy=False)
+    return _scaled_back(scipy.fft.irfftn(out, s=shape, axes=ax, workers=workers), m, arr.dtype, "x")
 
 
 def amplitude_swap(amplitude_from, phase_from, *, axes=None, workers=None) -> np.ndarray:
@@ -123,8 +147,9 @@ def amplitude_swap(amplitude_from, phase_from, *, axes=None, workers=None) -> np
         raise ValueError(f"amplitude_from and phase_from must have one shape, got {a.shape} and {p.shape}")
     ax = _axes(axes, a.ndim)
     check_memory(a.size * 8 * 6, f"amplitude_swap of shape {a.shape}")
-    A = scipy.fft.rfftn(a.astype(np.float64), axes=ax, workers=workers)
-    P = scipy.fft.rfftn(p.astype(np.float64), axes=ax, workers=workers)
+    a_scaled, m = _power_of_two_scaled(a)
+    A = scipy.fft.rfftn(a_scaled, axes=ax, workers=workers)
+    P = scipy.fft.rfftn(_power_of_two_scaled(p)[0], axes=ax, workers=workers)   # only its phases count
     mag = np.abs(P)
     phase = np.divide(P, mag, out=np.zeros_like(P), where=mag > 0)
     out = np.abs(A) * phase
@@ -132,4 +157,4 @@ def amplitude_swap(amplitude_from, phase_from, *, axes=None, workers=None) -> np
     out[dc] = A[dc]
     dt = np.float32 if a.dtype == np.float32 and p.dtype == np.float32 else np.float64
     shape = [a.shape[i] for i in ax]
-    return scipy.fft.irfftn(out, s=shape, axes=ax, workers=workers).astype(dt, copy=False)
+    return _scaled_back(scipy.fft.irfftn(out, s=shape, axes=ax, workers=workers), m, dt, "amplitude_from")
