@@ -44,7 +44,7 @@ import scipy.fft
 
 from .._core import check_memory, check_real
 from ._common import check_band, check_tol, check_vector, check_video, frequency_index, half_weight, ref_size
-from .spectrum import PowerSpectrum, power_spectrum
+from .spectrum import PowerSpectrum, check_power_range, power_spectrum
 
 __all__ = [
     "motion_energy",
@@ -108,6 +108,7 @@ def video_spectrum(video, *, window=None, remove_static=False, workers=None) -> 
     if window not in (None, "hann"):
         raise ValueError(f"window must be None or 'hann', got {window!r}")
     arr = check_video("video", video)
+    check_power_range("video", arr)  # named here: power_spectrum would call it a field
     if remove_static:
         scale = float(np.max(np.abs(arr)))
         arr = arr - np.mean(arr, axis=0, dtype=np.float64).astype(arr.dtype)

@@ -81,6 +81,10 @@ def _luminance(field, mean, contrast, kind):
         contrast = check_real("contrast (RMS)", contrast, lo=0.0, lo_open=True, hi=1e6)
     check_memory(f.size * 8 * 3, f"luminance of a field of shape {f.shape}")
     z = f.astype(np.float64)
+    biggest = float(np.abs(z).max())
+    if biggest > 2.0 ** 512:
+        # the mean's sum would overflow: scale by a power of two (exact), which the normalisation below undoes
+        z = np.ldexp(z, -int(np.frexp(biggest)[1]))
     z -= z.mean()
     zmin, zmax = float(z.min()), float(z.max())
     if zmax - zmin == 0 or not np.isfinite(zmax - zmin):
