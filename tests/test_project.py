@@ -19,7 +19,7 @@ def _quick_start_commands():
 def test_readme_has_exactly_two_setup_commands():
     commands = _quick_start_commands()
     assert commands == ["./install.sh && .venv/bin/noiselab gallery",
-                        "./install.sh test && .venv/bin/python -m pytest"], commands
+                        "./install.sh test && .venv/bin/python -m pytest -n auto --dist loadfile"], commands
 
 
 def test_install_sh_never_pip_installs_into_the_system_python():
