@@ -318,7 +318,13 @@ class Display:
 
     @cached_property
     def table(self) -> np.ndarray:
-        """The luminance (cd/m², float64) of every display value ``0 .. 2**bits - 1``, increasing."""
+        """The luminance (cd/m², float64) of every display value ``0 .. 2**bits - 1``, never decreasing.
+
+        A gamma law's darkest levels may round to one float64 luminance at steep
+        gammas (gamma 8 over 0.5-100 cd/m², 8 bits: levels 0 and 1 are both
+        0.5, their true difference 6e-18 cd/m²); a measured table is strictly
+        increasing (:meth:`from_lut` checks it).
+        """
         if self.lut is not None:
             t = np.asarray(self.lut, dtype=np.float64)
         else:
