@@ -80,6 +80,18 @@ def mix32(h):
     return _U32(h * _M2)
 
 
+@nb.njit(cache=True, nogil=True)
+def mix32_linked(h):
+    """:func:`mix32` as a function numba compiles once and links into its callers (where LLVM inlines it).
+
+    The generated SIMD kernels hash up to 64 corners per point: with
+    ``inline="always"`` numba copies and re-types ``mix32``'s IR at every one
+    of them (seconds of a first call's compilation); a linked call is typed
+    once, and the machine code is the same.
+    """
+    return mix32(h)
+
+
 @nb.njit(cache=True, nogil=True, inline="always")
 def hash_value(h):
     """The lattice value of a prefix word: ``int32(mix32(h)) / 2**31`` in [-1, 1)."""

@@ -5,7 +5,9 @@ hash's ``points``, the Jacobians' ``jacobians`` and the integer hash's
 ``intpoints``). numba's on-disk cache (``cache=True``) needs each kernel to
 live in a real file, so :func:`load` writes the module's source into a cache
 folder named by a hash of the files the generator reads (``_generate.py``,
-``kernels.py``, ``_inthash.py``), then imports it from there with
+``kernels.py``, ``_inthash.py``) and of the hand-written functions the
+integer hash's modules call (``_intdriver.py``: numba's cache of a caller
+does not notice a changed callee), then imports it from there with
 :mod:`importlib` as ``noiselab.lattice._<name>`` (its relative imports of
 ``._jit`` and ``._inthash`` work as they did in the package). A new
 generator, a new kernel or a new hash constant gives a new folder, so a
@@ -50,7 +52,7 @@ from .._core.jitcache import warn_once
 GENERATORS = {"points": "generate", "jacobians": "generate_jacobians", "intpoints": "generate_int",
               "intpart": "generate_int_part"}
 # the files whose content decides the generated text
-_INPUTS = ("_generate.py", "kernels.py", "_inthash.py")
+_INPUTS = ("_generate.py", "kernels.py", "_inthash.py", "_intdriver.py")
 _STAMP = 1_000_000_000  # the fixed mtime of a written module (see the module docstring)
 _LOADED = {}
 _LOCK = threading.RLock()  # one import per module when threads (workers=) ask at once
