@@ -228,7 +228,7 @@ def eval_points(pts, out, freqs, amps, phase, shift, left, taps, coef, period, p
             out[p, c] = acc[c]
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
     mask = period - 1 if (period & (period - 1)) == 0 else -1
     """Per-sample tap weights and reduced first-tap indices along one grid axis.
@@ -453,7 +453,7 @@ def final_pass_direct(inter, pos, w, scales, out):
                             o[q] += wk * rk[q]
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def dense_taps(fis, base, taps, period):
     """Distinct lattice taps of one grid axis, by marking offsets from the smallest floor index.
 
@@ -473,7 +473,9 @@ def dense_taps(fis, base, taps, period):
         if r > span:
             span = r
     span += taps
-    index = np.full(span, -1, np.int64)
+    index = np.empty(span, np.int64)  # (np.full: one more overload to compile)
+    for r in range(span):
+        index[r] = -1
     for j in range(nn):
         r = np.int64(fis[j] - lo)
         for k in range(taps):
@@ -777,7 +779,7 @@ def eval_points_jac(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef
                 out[p, c, a] = acc[c, a]
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def axis_dweights(coords, freq, phase, shift, left, taps, coef, dcoef, grad):
     """Derivatives along one grid axis of :func:`axis_weights`' ``w`` and ``rw``, in input units.
 
@@ -836,102 +838,116 @@ def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
     return sig, codegen
 
 
-@nb.njit(cache=True, nogil=True)
-def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3,
-                  b0, b1, b2, b3):
-    """One octave of :func:`grid2d`'s axis-0 pass: ``dst[doff + q] = (prev[poff + q] +) T0[q] (+ T1[q])``.
+def _make_axis0(GRAD):
+    """:func:`_axis0_octave` for one basis (``grad`` a compile-time constant).
 
-    ``T0 = sum_k a_k R[x_k + q]`` (the value term, or the gradient's first
-    term), ``T1 = sum_k b_k R[x_k + dy + q]`` (the gradient's second term).
-    The sums are :func:`final_pass`'s: for 2 and 4 taps each term's tap sum
-    is added to the running sum, for 1 and 3 taps every tap product is.
-    Offsets and ``nt`` are uint64; ``dst`` and ``prev`` are different arrays
-    (so that the loop vectorises). Not inlined: :func:`_make_grid2d`'s kernel
-    passes ``grad`` as a literal constant, so numba compiles one function per
-    basis and output dtype, the other basis's branches pruned before LLVM sees
-    them (inlined, every branch was copied into each of its three call sites:
-    seconds of compilation).
+    Passed as an argument, ``grad`` was a run-time bool: the kernel compiled
+    all 16 loops of both bases, and each :func:`grid2d` that linked it
+    optimised them again (LLVM prunes the other basis only after inlining).
     """
-    if taps == 4 and grad:
-        y0 = x0 + dy
-        y1 = x1 + dy
-        y2 = x2 + dy
-        y3 = x3 + dy
-        if has_prev:
-            for q in range(nt):
-                dst[doff + q] = ((prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q]))
-                                 + (b0 * R[y0 + q] + b1 * R[y1 + q] + b2 * R[y2 + q] + b3 * R[y3 + q]))
-        else:
-            for q in range(nt):
-                dst[doff + q] = ((a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q])
-                                 + (b0 * R[y0 + q] + b1 * R[y1 + q] + b2 * R[y2 + q] + b3 * R[y3 + q]))
-    elif taps == 2 and grad:
-        y0 = x0 + dy
-        y1 = x1 + dy
-        if has_prev:
-            for q in range(nt):
-                dst[doff + q] = (prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q])) + (b0 * R[y0 + q] + b1 * R[y1 + q])
-        else:
-            for q in range(nt):
-                dst[doff + q] = (a0 * R[x0 + q] + a1 * R[x1 + q]) + (b0 * R[y0 + q] + b1 * R[y1 + q])
-    elif taps == 4:
-        if has_prev:
-            for q in range(nt):
-                dst[doff + q] = prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q])
-        else:
-            for q in range(nt):
-                dst[doff + q] = a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q]
-    elif taps == 2:
-        if has_prev:
-            for q in range(nt):
-                dst[doff + q] = prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q])
-        else:
-            for q in range(nt):
-                dst[doff + q] = a0 * R[x0 + q] + a1 * R[x1 + q]
-    elif taps == 3:  # every tap product added to the running sum by itself
-        if grad:
+
+    @nb.njit(cache=True, nogil=True)
+    def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, x0, x1, x2, x3, dy, a0, a1, a2, a3,
+                      b0, b1, b2, b3):
+        """One octave of :func:`grid2d`'s axis-0 pass: ``dst[doff + q] = (prev[poff + q] +) T0[q] (+ T1[q])``.
+
+        ``T0 = sum_k a_k R[x_k + q]`` (the value term, or the gradient's first
+        term), ``T1 = sum_k b_k R[x_k + dy + q]`` (the gradient's second term).
+        The sums are :func:`final_pass`'s: for 2 and 4 taps each term's tap sum
+        is added to the running sum, for 1 and 3 taps every tap product is.
+        Offsets and ``nt`` are uint64; ``dst`` and ``prev`` are different arrays
+        (so that the loop vectorises). Not inlined by numba (that copied every
+        branch into each call site: seconds of compilation); :func:`grid2d`
+        calls it at one site per output dtype.
+        """
+        grad = GRAD
+        if taps == 4 and grad:
             y0 = x0 + dy
             y1 = x1 + dy
             y2 = x2 + dy
+            y3 = x3 + dy
             if has_prev:
                 for q in range(nt):
-                    dst[doff + q] = (((((prev[poff + q] + a0 * R[x0 + q]) + a1 * R[x1 + q]) + a2 * R[x2 + q])
-                                      + b0 * R[y0 + q]) + b1 * R[y1 + q]) + b2 * R[y2 + q]
+                    dst[doff + q] = ((prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q]))
+                                     + (b0 * R[y0 + q] + b1 * R[y1 + q] + b2 * R[y2 + q] + b3 * R[y3 + q]))
             else:
                 for q in range(nt):
-                    dst[doff + q] = ((((a0 * R[x0 + q] + a1 * R[x1 + q]) + a2 * R[x2 + q]) + b0 * R[y0 + q])
-                                     + b1 * R[y1 + q]) + b2 * R[y2 + q]
-        elif has_prev:
-            for q in range(nt):
-                dst[doff + q] = ((prev[poff + q] + a0 * R[x0 + q]) + a1 * R[x1 + q]) + a2 * R[x2 + q]
-        else:
-            for q in range(nt):
-                dst[doff + q] = (a0 * R[x0 + q] + a1 * R[x1 + q]) + a2 * R[x2 + q]
-    else:  # one tap
-        if grad:
+                    dst[doff + q] = ((a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q])
+                                     + (b0 * R[y0 + q] + b1 * R[y1 + q] + b2 * R[y2 + q] + b3 * R[y3 + q]))
+        elif taps == 2 and grad:
             y0 = x0 + dy
+            y1 = x1 + dy
             if has_prev:
                 for q in range(nt):
-                    dst[doff + q] = (prev[poff + q] + a0 * R[x0 + q]) + b0 * R[y0 + q]
+                    dst[doff + q] = (prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q])) + (b0 * R[y0 + q] + b1 * R[y1 + q])
             else:
                 for q in range(nt):
-                    dst[doff + q] = a0 * R[x0 + q] + b0 * R[y0 + q]
-        elif has_prev:
-            for q in range(nt):
-                dst[doff + q] = prev[poff + q] + a0 * R[x0 + q]
-        else:
-            for q in range(nt):
-                dst[doff + q] = a0 * R[x0 + q]
+                    dst[doff + q] = (a0 * R[x0 + q] + a1 * R[x1 + q]) + (b0 * R[y0 + q] + b1 * R[y1 + q])
+        elif taps == 4:
+            if has_prev:
+                for q in range(nt):
+                    dst[doff + q] = prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q])
+            else:
+                for q in range(nt):
+                    dst[doff + q] = a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q]
+        elif taps == 2:
+            if has_prev:
+                for q in range(nt):
+                    dst[doff + q] = prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q])
+            else:
+                for q in range(nt):
+                    dst[doff + q] = a0 * R[x0 + q] + a1 * R[x1 + q]
+        elif taps == 3:  # every tap product added to the running sum by itself
+            if grad:
+                y0 = x0 + dy
+                y1 = x1 + dy
+                y2 = x2 + dy
+                if has_prev:
+                    for q in range(nt):
+                        dst[doff + q] = (((((prev[poff + q] + a0 * R[x0 + q]) + a1 * R[x1 + q]) + a2 * R[x2 + q])
+                                          + b0 * R[y0 + q]) + b1 * R[y1 + q]) + b2 * R[y2 + q]
+                else:
+                    for q in range(nt):
+                        dst[doff + q] = ((((a0 * R[x0 + q] + a1 * R[x1 + q]) + a2 * R[x2 + q]) + b0 * R[y0 + q])
+                                         + b1 * R[y1 + q]) + b2 * R[y2 + q]
+            elif has_prev:
+                for q in range(nt):
+                    dst[doff + q] = ((prev[poff + q] + a0 * R[x0 + q]) + a1 * R[x1 + q]) + a2 * R[x2 + q]
+            else:
+                for q in range(nt):
+                    dst[doff + q] = (a0 * R[x0 + q] + a1 * R[x1 + q]) + a2 * R[x2 + q]
+        else:  # one tap
+            if grad:
+                y0 = x0 + dy
+                if has_prev:
+                    for q in range(nt):
+                        dst[doff + q] = (prev[poff + q] + a0 * R[x0 + q]) + b0 * R[y0 + q]
+                else:
+                    for q in range(nt):
+                        dst[doff + q] = a0 * R[x0 + q] + b0 * R[y0 + q]
+            elif has_prev:
+                for q in range(nt):
+                    dst[doff + q] = prev[poff + q] + a0 * R[x0 + q]
+            else:
+                for q in range(nt):
+                    dst[doff + q] = a0 * R[x0 + q]
+
+    return _axis0_octave
 
 
-@nb.njit(cache=True, nogil=True, inline="always")
+_axis0_value = _make_axis0(False)
+_axis0_grad = _make_axis0(True)
+
+
+@nb.njit(cache=True, nogil=True)
 def _row_range(rows, o, a, b):
     """``(min, max)`` of ``rows[o, a:b]`` as a loop over the row (no array view in grid2d's hot loops)."""
     lo = rows[o, a]
     hi = lo
     for q in range(a, b):
-        lo = min(lo, rows[o, q])
-        hi = max(hi, rows[o, q])
+        v = rows[o, q]
+        lo = v if v < lo else lo  # not min/max: each compiles an overload of its own
+        hi = v if v > hi else hi
     return lo, hi
 
 
@@ -945,6 +961,8 @@ def _make_grid2d(GRAD, USE32):
     grid and 3.8 times slower for all of them (the test suite): 63 s against
     17 s CPU for the 16 grids of ``bench_coldstart.py``'s ``grid2-all``.
     """
+
+    axis0 = _axis0_grad if GRAD else _axis0_value  # a closure constant, as GRAD and USE32
 
     @nb.njit(cache=True, nogil=True)
     def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
@@ -991,14 +1009,16 @@ def _make_grid2d(GRAD, USE32):
             S *= 2
         smask = S - 1
         L = 8
-        tile = (min(max(tile, L), nq) + L - 1) // L * L  # whole blocks of eight lanes (the ring rows are padded)
+        tile = L if tile < L else tile  # (not min/max: each is one more overload to compile)
+        tile = ((nq if nq < tile else tile) + L - 1) // L * L  # whole blocks of eight lanes (the ring rows are padded)
         ring = np.empty(noct * S * nterm * tile)  # rows (octave, slot, term) of tile columns
         tags = np.empty((noct, S), np.int64)
         bufs = np.empty(2 * tile)  # two running sums of a row (acc at 0, tmp at tile); no array is chosen at run
         # time in the loops below (each such choice costs an atomic reference count)
         width = 1
         for o in range(noct):
-            width = max(width, off1[o + 1] - off1[o])
+            cnt = off1[o + 1] - off1[o]
+            width = cnt if cnt > width else width
         lmin = np.empty(noct, np.int64)
         lmax = np.empty(noct, np.int64)
         use_ext = False
@@ -1024,17 +1044,19 @@ def _make_grid2d(GRAD, USE32):
         mmax = taps
         for o in range(noct):
             for qa in range(0, nq, L):
-                lo_, hi_ = _row_range(base1, o, qa, min(qa + L, nq))
-                mmax = max(mmax, hi_ - lo_ + taps)
+                lo_, hi_ = _row_range(base1, o, qa, qa + L if qa + L < nq else nq)
+                mmax = hi_ - lo_ + taps if hi_ - lo_ + taps > mmax else mmax
         expand = mmax <= 4 * L  # else (columns sparser than the lattice) a plain per-column loop
         if not expand:
             mmax = 1
-        E = np.zeros(noct * nterm * nblk_max * mmax * L)
+        # not zeroed here (np.zeros is one more overload to compile): each block's rows are zeroed
+        # below before its weights are written, and expand_dot8 reads no further
+        E = np.empty(noct * nterm * nblk_max * mmax * L)
         bB = np.empty((noct, nblk_max), np.int64)
         bM = np.empty((noct, nblk_max), np.int64)
         u = np.uint64
         for q0 in range(0, nq, tile):
-            q1 = min(q0 + tile, nq)
+            q1 = q0 + tile if q0 + tile < nq else nq
             nt = q1 - q0
             for o in range(noct):
                 lo, hi = _row_range(base1, o, q0, q1)
@@ -1046,7 +1068,7 @@ def _make_grid2d(GRAD, USE32):
                     # the axis-1 weights spread out: block of 8 columns x (its taps), zero off each column's taps
                     for blk in range((nt + L - 1) // L):
                         qa = q0 + blk * L
-                        qb = min(qa + L, q1)
+                        qb = qa + L if qa + L < q1 else q1
                         lo_, hi_ = _row_range(base1, o, qa, qb)
                         mb = hi_ - lo_ + taps
                         bB[o, blk] = lo_ - lo
@@ -1135,19 +1157,26 @@ def _make_grid2d(GRAD, USE32):
                         a2 = wa0[o, j, 2 % taps] * sc; a3 = wa0[o, j, 3 % taps] * sc
                     b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1 % taps] * sc
                     b2 = wa0[o, j, 2 % taps] * sc; b3 = wa0[o, j, 3 % taps] * sc
-                    if not absval and o == noct - 1:
-                        if USE32:  # a constant: numba prunes the other branch, so compiles one output dtype
-                            _axis0_octave(out32, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring,
-                                          ntu, taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
-                        else:
-                            _axis0_octave(out64, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring,
-                                          ntu, taps, grad, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                    direct = not absval and o == noct - 1  # the last octave straight into the output row
+                    poff = u(0 if o % 2 == 1 else tile)
+                    if USE32 and direct:  # a constant: numba prunes this call when False
+                        axis0(out32, u(j * nq + q0), bufs, poff, o > 0, ring, ntu, taps,
+                              x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
                     else:
-                        # turbulence: each octave into tmp, |.| summed into acc; else acc and tmp in turn
+                        # one call site for both float64 destinations (each site is a copy of the loops
+                        # for LLVM to optimise); choosing the array costs one reference count per row
+                        # and octave. Turbulence: each octave into tmp, |.| summed into acc; else acc and
+                        # tmp in turn.
                         into_tmp = absval or o % 2 == 1
-                        _axis0_octave(bufs, u(tile if into_tmp else 0), bufs, u(0 if into_tmp else tile),
-                                      o > 0 and not absval, ring, ntu, taps, grad, x0, x1, x2, x3, dy,
-                                      a0, a1, a2, a3, b0, b1, b2, b3)
+                        if direct and not USE32:
+                            dst = out64
+                            doff = u(j * nq + q0)
+                        else:
+                            dst = bufs
+                            doff = u(tile if into_tmp else 0)
+                            poff = u(0 if into_tmp else tile)
+                        axis0(dst, doff, bufs, poff, o > 0 and not absval, ring, ntu, taps,
+                              x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
                         if absval and o == 0:
                             for q in range(nt):
                                 bufs[q] = abs(bufs[tile + q])
@@ -1197,8 +1226,8 @@ def _span(x):
     for j in range(x.shape[0]):
         v = x[j]
         nan = nan or v != v
-        lo = min(lo, v)
-        hi = max(hi, v)
+        lo = v if v < lo else lo  # no NaN is left when the span is used
+        hi = v if v > hi else hi
     return np.nan if nan else hi - lo
 
 
@@ -1227,7 +1256,8 @@ def _make_pack_axis(DERIV):
         nn = coords.shape[0]
         cap = noct * (4 * taps * nn + 64 + taps)
         lat = np.empty(cap, np.int64)
-        off = np.zeros(noct + 1, np.int64)
+        off = np.empty(noct + 1, np.int64)  # (np.zeros: one more overload to compile)
+        off[0] = 0
         pos = np.empty((noct, nn, taps), np.int64)
         base = np.empty((noct, nn), np.int64)
         if last:
@@ -1236,7 +1266,7 @@ def _make_pack_axis(DERIV):
         else:
             wa = np.empty((noct, nn, taps))
             wb = np.empty((noct, nn, taps))
-        dense = np.zeros(noct, np.bool_)
+        dense = np.empty(noct, np.bool_)  # every octave's entry is written before True is returned
         for o in range(noct):
             period = periods[o]
             fis, fbase, w, rw = axis_weights(coords, freqs[o], phase, shift, left, taps, coef, period, grad)
