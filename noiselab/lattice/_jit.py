@@ -856,9 +856,9 @@ def _make_axis0(GRAD):
         The sums are :func:`final_pass`'s: for 2 and 4 taps each term's tap sum
         is added to the running sum, for 1 and 3 taps every tap product is.
         Offsets and ``nt`` are uint64; ``dst`` and ``prev`` are different arrays
-        (so that the loop vectorises). Not inlined by numba (that copied every
-        branch into each call site: seconds of compilation); :func:`grid2d`
-        calls it at one site per output dtype.
+        (so that the loop vectorises). Not inlined by numba (its IR inliner
+        deep-copies every branch into each call site: seconds of compilation;
+        with one call site it still compiled 0.3 s slower than linking).
         """
         grad = GRAD
         if taps == 4 and grad:
@@ -1157,26 +1157,20 @@ def _make_grid2d(GRAD, USE32):
                         a2 = wa0[o, j, 2 % taps] * sc; a3 = wa0[o, j, 3 % taps] * sc
                     b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1 % taps] * sc
                     b2 = wa0[o, j, 2 % taps] * sc; b3 = wa0[o, j, 3 % taps] * sc
-                    direct = not absval and o == noct - 1  # the last octave straight into the output row
-                    poff = u(0 if o % 2 == 1 else tile)
-                    if USE32 and direct:  # a constant: numba prunes this call when False
-                        axis0(out32, u(j * nq + q0), bufs, poff, o > 0, ring, ntu, taps,
-                              x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
-                    else:
-                        # one call site for both float64 destinations (each site is a copy of the loops
-                        # for LLVM to optimise); choosing the array costs one reference count per row
-                        # and octave. Turbulence: each octave into tmp, |.| summed into acc; else acc and
-                        # tmp in turn.
-                        into_tmp = absval or o % 2 == 1
-                        if direct and not USE32:
-                            dst = out64
-                            doff = u(j * nq + q0)
+                    if not absval and o == noct - 1:  # the last octave straight into the output row
+                        if USE32:  # a constant: numba prunes the other branch, so compiles one output dtype
+                            axis0(out32, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu,
+                                  taps, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
                         else:
-                            dst = bufs
-                            doff = u(tile if into_tmp else 0)
-                            poff = u(0 if into_tmp else tile)
-                        axis0(dst, doff, bufs, poff, o > 0 and not absval, ring, ntu, taps,
-                              x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                            axis0(out64, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu,
+                                  taps, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
+                    else:
+                        # turbulence: each octave into tmp, |.| summed into acc; else acc and tmp in turn (no
+                        # array is chosen at run time: each choice costs an atomic reference count)
+                        into_tmp = absval or o % 2 == 1
+                        axis0(bufs, u(tile if into_tmp else 0), bufs, u(0 if into_tmp else tile),
+                              o > 0 and not absval, ring, ntu, taps, x0, x1, x2, x3, dy,
+                              a0, a1, a2, a3, b0, b1, b2, b3)
                         if absval and o == 0:
                             for q in range(nt):
                                 bufs[q] = abs(bufs[tile + q])
