@@ -962,8 +962,6 @@ def _make_grid2d(GRAD, USE32):
     17 s CPU for the 16 grids of ``bench_coldstart.py``'s ``grid2-all``.
     """
 
-    axis0 = _axis0_grad if GRAD else _axis0_value  # a closure constant, as GRAD and USE32
-
     @nb.njit(cache=True, nogil=True)
     def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
                absval, out64, out32, nq, tile):
@@ -1003,6 +1001,10 @@ def _make_grid2d(GRAD, USE32):
         noct, nj, taps = pos0.shape
         n = perm.shape[0]
         grad = GRAD
+        # chosen here, not held in the closure: numba's cache key pickles the closure's values, and a
+        # dispatcher pickles with a new id in every process (the cache never hit). numba prunes the
+        # other choice before typing (GRAD is a constant).
+        axis0 = _axis0_grad if GRAD else _axis0_value
         nterm = 2 if grad else 1
         S = 1
         while S < taps:
