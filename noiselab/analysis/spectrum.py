@@ -121,16 +121,17 @@ def _hann(n: int, dtype) -> np.ndarray:
     return (0.5 - 0.5 * np.cos(2.0 * np.pi * np.arange(n) / n)).astype(dtype)
 
 
-def check_power_range(name, arr) -> float:
-    """Largest ``|value|`` of ``arr``; a ValueError naming ``name`` when its square would leave float64's range."""
-    biggest = max(abs(float(arr.min())), abs(float(arr.max())))
+def check_power_range(name, arr) -> tuple[float, float]:
+    """``(min, max)`` of ``arr``; a ValueError naming ``name`` when a value's square would leave float64's range."""
+    lo, hi = float(arr.min()), float(arr.max())
+    biggest = max(abs(lo), abs(hi))
     if biggest > 1e150:
         raise ValueError(f"{name} values reach {biggest:.3g}: their power (value squared) would overflow float64; "
                          f"|{name}| must stay below 1e150 (rescale it)")
     if biggest < 1e-150:
         raise ValueError(f"{name} values are at most {biggest:.3g} in magnitude: their power (value squared) would "
                          f"underflow float64; |{name}| must reach 1e-150 (rescale it)")
-    return biggest
+    return lo, hi
 
 
 def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=4, workers=None) -> PowerSpectrum:
@@ -177,8 +178,8 @@ def power_spectrum(field, *, window=None, axes=None, window_axes=None, min_size=
     nd = arr.ndim
     axes = tuple(range(nd)) if axes is None else check_axes("axes", axes, nd)
     window_axes = axes if window_axes is None else check_axes("window_axes", window_axes, nd)
-    lo_val, hi_val = float(arr.min()), float(arr.max())
-    biggest = check_power_range("field", arr)
+    lo_val, hi_val = check_power_range("field", arr)
+    biggest = max(abs(lo_val), abs(hi_val))
     if arr.dtype == np.float32 and (biggest * np.sqrt(arr.size) > 1e18 or biggest < 1e-15):
         arr = arr.astype(np.float64)  # |FFT|**2 would overflow float32: transform these values in float64
     cdt = np.complex64 if arr.dtype == np.float32 else np.complex128

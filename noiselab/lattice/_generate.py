@@ -920,7 +920,7 @@ def _fast_weights(kernel, a, F, b):
     return L
 
 
-def _fast_corners(d, kernel, basis, F, b, out="O", lim="lim"):
+def _fast_corners(d, kernel, basis, F, b):
     """The float part of a point (weights, corner values, nested sum into ``O[i]``), shared by both bodies.
 
     Expects ``s{a} = t{a} - 1/2`` and, for the gradient basis, ``t{a}`` (type
@@ -975,8 +975,8 @@ def _fast_corners(d, kernel, basis, F, b, out="O", lim="lim"):
         return " + ".join(f"w{level}_{k} * ({nested(prefix + (k,), level + 1)})" for k in range(taps))
 
     L.append(f"{b}v = amp * ({nested((), 0)})")
-    L.append(f"{b}v = v if v <= {lim} else {lim}")
-    L.append(f"{b}{out}[i] = v if v >= -{lim} else -{lim}")
+    L.append(f"{b}v = v if v <= lim else lim")
+    L.append(f"{b}O[i] = v if v >= -lim else -lim")
     return L
 
 

@@ -16,6 +16,7 @@ import numpy as np
 
 from .._core import as_generator, check_finite_array, check_memory, check_real
 from .display import Display
+from .scramble import _power_of_two_scaled
 
 __all__ = ["to_display", "luminance_for", "CONTRAST_KINDS"]
 
@@ -80,11 +81,9 @@ def _luminance(field, mean, contrast, kind):
     else:
         contrast = check_real("contrast (RMS)", contrast, lo=0.0, lo_open=True, hi=1e6)
     check_memory(f.size * 8 * 3, f"luminance of a field of shape {f.shape}")
-    z = f.astype(np.float64)
-    biggest = float(np.abs(z).max())
-    if biggest > 2.0 ** 512:
-        # the mean's sum would overflow: scale by a power of two (exact), which the normalisation below undoes
-        z = np.ldexp(z, -int(np.frexp(biggest)[1]))
+    # scaled by a power of two (exact; the normalisation below undoes it): the mean's sum of a field near
+    # float64's largest value would overflow
+    z = _power_of_two_scaled(f)[0]
     z -= z.mean()
     zmin, zmax = float(z.min()), float(z.max())
     if zmax - zmin == 0 or not np.isfinite(zmax - zmin):
