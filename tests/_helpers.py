@@ -2,6 +2,10 @@
 import numpy as np
 import scipy.fft
 
+#: the README's two set-up commands, in order (the main job; the test suite, which ``.ci/run`` runs verbatim)
+SETUP_COMMANDS = ("./install.sh && .venv/bin/noiselab gallery",
+                  "./install.sh test && .venv/bin/python -m pytest -n auto --dist loadfile")
+
 
 def phase_correlation_shift(a, b):
     """Integer shift (dx, dy) taking image ``a`` to image ``b``, by phase correlation (x right, y down)."""

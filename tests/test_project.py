@@ -5,6 +5,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from _helpers import SETUP_COMMANDS
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -18,8 +19,7 @@ def _quick_start_commands():
 
 def test_readme_has_exactly_two_setup_commands():
     commands = _quick_start_commands()
-    assert commands == ["./install.sh && .venv/bin/noiselab gallery",
-                        "./install.sh test && .venv/bin/python -m pytest -n auto --dist loadfile"], commands
+    assert commands == list(SETUP_COMMANDS), commands
 
 
 def test_install_sh_never_pip_installs_into_the_system_python():

@@ -26,10 +26,10 @@ import time
 from pathlib import Path
 
 import pytest
+from _helpers import SETUP_COMMANDS
 
 ROOT = Path(__file__).resolve().parents[1]
-SETUP_LINES = {"./install.sh && .venv/bin/noiselab gallery",
-               "./install.sh test && .venv/bin/python -m pytest -n auto --dist loadfile"}
+SETUP_LINES = set(SETUP_COMMANDS)
 LANGUAGES = {"python": "python", "py": "python", "bash": "bash", "sh": "bash", "shell": "bash", "console": "bash"}
 
 #: what the test appends to each shell line that runs ``noiselab SUBCOMMAND`` (or ``python3 -m noiselab.SUBCOMMAND``)
@@ -149,8 +149,7 @@ def test_every_small_run_rule_rewrites_a_readme_or_guide_line():
 
 
 def test_block_extraction_finds_both_languages_and_leaves_out_only_the_setup_lines():
-    sample = ("x\n```bash\n./install.sh && .venv/bin/noiselab gallery\n"
-              "./install.sh test && .venv/bin/python -m pytest -n auto --dist loadfile\n"
+    sample = ("x\n```bash\n" + "\n".join(SETUP_COMMANDS) + "\n"
               "```\n```python\nprint(1)\n```\n```text\nnot run\n```\n```bash\necho hi\n```\n")
     assert readme_blocks(sample) == [(6, "python", "print(1)\n"), (12, "bash", "echo hi")]
     langs = {lang for _, lang, _ in readme_blocks()}
@@ -175,7 +174,7 @@ def _child_cpu():
 def test_rst_block_extraction_reads_code_block_directives_only():
     sample = ("Title\n=====\n\n.. code-block:: python\n   :caption: x\n\n   import os\n   print(1)\n\n"
               "text\n\n.. code-block:: text\n\n   not run\n\n.. code-block:: bash\n\n   echo hi\n"
-              "   ./install.sh test && .venv/bin/python -m pytest -n auto --dist loadfile\n")
+              f"   {SETUP_COMMANDS[1]}\n")
     assert rst_blocks(sample) == [(4, "python", "import os\nprint(1)\n"), (16, "bash", "echo hi")]
 
 
