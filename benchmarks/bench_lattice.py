@@ -475,11 +475,10 @@ def targets_section(repeats, lines, npts=1_000_000):
     grid = Grid(shape, [(0.0, float(cells)), (0.0, float(cells))])
     lines.append(f"\n### {n} x {n} grid, {cells} lattice cells per side, 6-octave fBm (`fractal_sum(noise, Grid, 6)`)\n")
     lines.append("pyfastnoisesimd: `ValueFractal` / `PerlinFractal`, FBM, 6 octaves, lacunarity 2, gain 0.5, "
-                 "`genAsGrid`, float32, 1 worker. `used`: octaves `fractal_sum` evaluates. Grids take no `workers=`: "
-                 "`w2 dask` is the wall-clock speed-up of the chunked path (`chunks=(n // 2, n)`, dask's threaded "
-                 "scheduler) with `num_workers=2` over `num_workers=1`, float32.\n")
+                 "`genAsGrid`, float32, 1 worker. `used`: octaves `fractal_sum` evaluates. `w2`: "
+                 "`fractal_sum(..., workers=2)` (two bands of rows on two threads) against `workers=1`, float32.\n")
     lines.append("| noise | hash | used | f64 pts/s | x FNS | x floor | f32 pts/s | x FNS | x floor | err32 | FNS pts/s "
-                 "| w2 dask wall (cores) |")
+                 "| w2 wall (cores) |")
     lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for basis in ("value", "gradient"):
         for hname in ("table", "integer"):
@@ -493,19 +492,57 @@ def targets_section(repeats, lines, npts=1_000_000):
             t = bench(cands, repeats, clock=time.thread_time)
             _, used = fractal_sum(noise, grid, 6, return_octaves=True)
             err32 = _max_err(fractal_sum(noise, grid, 6, dtype=np.float32), fractal_sum(noise, grid, 6))
-            try:
-                lazy = fractal_sum(noise, grid, 6, dtype=np.float32, chunks=(n // 2, n))
-                w2 = _scaling({"one": lambda lazy=lazy: lazy.compute(scheduler="threads", num_workers=1),
-                               "two": lambda lazy=lazy: lazy.compute(scheduler="threads", num_workers=2)}, repeats)
-            except Exception as exc:  # noqa: BLE001 -- dask missing: reported in the cell
-                w2 = f"n/a ({type(exc).__name__})"
+            w2 = _scaling({"one": lambda noise=noise: fractal_sum(noise, grid, 6, dtype=np.float32),
+                           "two": lambda noise=noise: fractal_sum(noise, grid, 6, dtype=np.float32, workers=2)},
+                          repeats)
             c64, c32 = _target_cell(t, "f64", n * n, "fns"), _target_cell(t, "f32", n * n, "fns")
             fns_rate = f"{n * n / t['fns']:.3g}" if "fns" in t else "n/a"
             lines.append(f"| {n}^2 fBm, quintic {basis} | {hname} | {used} | {' | '.join(c64)} | {' | '.join(c32)} "
                          f"| {err32:.1e} | {fns_rate} | {w2} |")
             summary[("grid", "quintic", basis, hname)] = (t, err32, w2)
+    grid3_rows(repeats, lines, fns, summary)
     lines.append("")
     return summary
+
+
+TARGET_GRID3 = (128, 8)  # 128^3 samples over 8 lattice cells per side: all 6 octaves resolved
+
+
+def grid3_rows(repeats, lines, fns, summary):
+    """3-D grids, one octave and a 6-octave fBm, both hashes, against pyfastnoisesimd's 3-D ``genAsGrid``."""
+    n, cells = TARGET_GRID3
+    shape = (n, n, n)
+    grid = Grid(shape, [(0.0, float(cells))] * 3)
+    lines.append(f"\n### {n}^3 grid, {cells} lattice cells per side, one octave and 6-octave fBm\n")
+    lines.append("`noise.grid(...)` for one octave, `fractal_sum(noise, Grid, 6)` for six; pyfastnoisesimd's "
+                 "`Value`/`Perlin` (`ValueFractal`/`PerlinFractal` for six octaves), `genAsGrid`, float32, 1 worker; "
+                 "`w2` as above.\n")
+    lines.append("| noise | hash | octaves | f64 pts/s | x FNS | x floor | f32 pts/s | x FNS | x floor | err32 "
+                 "| FNS pts/s | w2 wall (cores) |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    size = n ** 3
+    for octaves in (1, 6):
+        for basis in ("value", "gradient"):
+            for hname in ("table", "integer"):
+                noise = _hashed(3, "quintic", basis, hname)
+
+                def call(dtype=np.float64, workers=1, noise=noise, octaves=octaves):
+                    return fractal_sum(noise, grid, octaves, dtype=dtype, workers=workers)
+
+                cands = {"floor64": lambda: np.full(shape, 0.5), "floor32": lambda: np.full(shape, 0.5, np.float32),
+                         "f64": call, "f32": lambda call=call: call(np.float32)}
+                if fns is not None:
+                    f = _fns_noise(fns, basis, octaves, cells, n)
+                    cands["fns"] = lambda f=f: f.genAsGrid(list(shape))
+                t = bench(cands, repeats, clock=time.thread_time)
+                err32 = _max_err(call(np.float32), call())
+                w2 = _scaling({"one": lambda call=call: call(np.float32),
+                               "two": lambda call=call: call(np.float32, 2)}, repeats)
+                c64, c32 = _target_cell(t, "f64", size, "fns"), _target_cell(t, "f32", size, "fns")
+                fns_rate = f"{size / t['fns']:.3g}" if "fns" in t else "n/a"
+                lines.append(f"| {n}^3, quintic {basis} | {hname} | {octaves} | {' | '.join(c64)} "
+                             f"| {' | '.join(c32)} | {err32:.1e} | {fns_rate} | {w2} |")
+                summary[("grid3", octaves, basis, hname)] = (t, err32, w2)
 
 
 def _splice(path, head, section):

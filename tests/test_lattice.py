@@ -497,3 +497,53 @@ def test_default_kernel_is_chosen_per_basis():
     assert np.array_equal(default(x), LatticeNoise(3, basis="gradient", seed=2, kernel="quintic")(x))
     # the quintic default reaches further into its bound than the cubic B-spline did (0.76 against 0.57 here)
     assert np.abs(default(x)).max() > 0.7 > np.abs(LatticeNoise(3, basis="gradient", seed=2, kernel="cubic")(x)).max()
+
+
+@pytest.mark.parametrize("dim,dim_out,hash_", [(2, 1, "table"), (2, 1, "integer"), (2, 2, "table"), (3, 1, "table"),
+                                               (3, 3, "integer")])
+def test_grid_workers_split_into_bands_and_keep_the_bits(monkeypatch, dim, dim_out, hash_):
+    from noiselab import fractal_sum, turbulence
+    from noiselab.lattice import grid_path
+
+    bands = []
+    real = grid_path.render_bands
+
+    def counting(render, window, out, n):  # the split must really happen, else equality proves nothing
+        bands.append(n)
+        return real(render, window, out, n)
+
+    monkeypatch.setattr(grid_path, "MIN_BAND", 1)
+    monkeypatch.setattr(grid_path, "render_bands", counting)
+    noise = LatticeNoise(dim, dim_out, seed=5, kernel="quintic", hash=hash_)
+    shape = (37, 29, 11)[:dim]
+    ext = [(0, 3), (1, 4.5), (-2, 0)][:dim]
+    for dtype in (np.float32, np.float64):
+        one = noise.grid(shape, ext, dtype=dtype)
+        assert np.array_equal(noise.grid(shape, ext, dtype=dtype, workers=3), one)
+        assert bands[-1] == 3
+    win = [(5, 30)] + [(0, s) for s in shape[1:]]  # a window is split alike
+    assert np.array_equal(noise.grid(shape, ext, window=win, workers=-1), one[5:30])
+    g = Grid(shape, ext)
+    assert np.array_equal(fractal_sum(noise, g, 5, workers=2), fractal_sum(noise, g, 5))
+    assert np.array_equal(turbulence(noise, g, 4, workers=4), turbulence(noise, g, 4))
+    assert bands[-1] == 4
+    if dim_out == 1:
+        h, grad = noise.gradient_grid(shape, ext, return_value=True)
+        h2, grad2 = noise.gradient_grid(shape, ext, return_value=True, workers=2)
+        assert np.array_equal(h, h2) and np.array_equal(grad, grad2)
+    # more threads than rows: one band a row
+    assert np.array_equal(noise.grid((3,) + shape[1:], ext, workers=8), noise.grid((3,) + shape[1:], ext))
+    assert bands[-1] == 3
+
+
+def test_grid_workers_is_validated_and_small_grids_stay_on_one_thread(monkeypatch):
+    from noiselab.lattice import grid_path
+
+    calls = []
+    monkeypatch.setattr(grid_path, "render_bands", lambda *a: calls.append(a))
+    noise = LatticeNoise(2, seed=1)
+    small = noise.grid((64, 64), [(0, 4), (0, 4)], workers=2)  # 4,096 samples: below one band
+    assert calls == [] and small.shape == (64, 64)
+    for bad in (0, -1000, 1.5, True):
+        with pytest.raises((ValueError, TypeError), match="workers"):
+            noise.grid((8, 8), [(0, 1), (0, 1)], workers=bad)

@@ -172,7 +172,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
     if isinstance(noise, LatticeNoise):
         octave_sum = dict(octaves=used, lacunarity=lacunarity, gain=gain, absval=absval, dtype=out_dtype)
         if is_grid:
-            result = noise.evaluate_grid(shape, ext, **octave_sum)
+            result = noise.evaluate_grid(shape, ext, workers=workers, **octave_sum)
         else:
             result = noise.evaluate(raw, workers=workers, name="x", **octave_sum)
         if normalize:
@@ -212,8 +212,10 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
         Sample spacing of scattered points (e.g. mesh edge length) to skip
         octaves past their Nyquist as on a grid.
     workers : int, default 1
-        Threads for scattered points (``LatticeNoise`` only; bit-identical to
-        one worker); grids are evaluated on one thread.
+        Threads (``LatticeNoise`` only; scipy.fft's meaning): scattered points
+        split into blocks, a grid into bands of its first axis (see
+        :meth:`noiselab.lattice.LatticeNoise.grid`); bit-identical to one
+        worker.
     chunks : int, "auto" or one entry per axis, optional
         With a Grid: return a lazy ``dask.array.Array`` in these chunks,
         bit-identical to the in-memory result for any chunking (see
@@ -297,7 +299,7 @@ def _jacobian_sum(noise, x, octaves, lacunarity, gain, normalize, return_value, 
     norm = sum(gain ** o for o in range(used)) if normalize else 1.0
     if lattice and is_grid:
         value, jac = noise.evaluate_grid_jacobian(shape, ext, octaves=used, lacunarity=lacunarity, gain=gain,
-                                                  absval=absval, value=bool(return_value))
+                                                  absval=absval, value=bool(return_value), workers=workers)
     elif lattice:
         value, jac = noise.evaluate_jacobian(as_array("x", x), octaves=used, lacunarity=lacunarity, gain=gain,
                                              absval=absval, workers=workers, name="x")

@@ -344,12 +344,12 @@ class LatticeNoise:
         return jacobian_views(out, lead, self.dim_out, self.dim_in)
 
     def evaluate_grid(self, shape, extent, *, window=None, octaves=1, lacunarity=2.0, gain=0.5, absval=False,
-                      dtype=np.float64):
+                      dtype=np.float64, workers=1):
         """:meth:`evaluate` on a regular grid (as :meth:`grid`), by the separable passes.
 
-        ``shape``, ``extent``, ``window`` and ``dtype`` as for :meth:`grid`;
-        ``octaves``, ``lacunarity``, ``gain`` and ``absval`` as for
-        :meth:`evaluate`. Returns the window's shape (``+ (dim_out,)``).
+        ``shape``, ``extent``, ``window``, ``dtype`` and ``workers`` as for
+        :meth:`grid`; ``octaves``, ``lacunarity``, ``gain`` and ``absval`` as
+        for :meth:`evaluate`. Returns the window's shape (``+ (dim_out,)``).
 
         Examples
         --------
@@ -362,10 +362,11 @@ class LatticeNoise:
         """
         octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
         return render_grid(self, shape, extent, dtype=dtype, window=window, octaves=octaves, lacunarity=lacunarity,
-                           gain=gain, absval=bool(absval), periods=self._octave_periods(octaves, lacunarity))
+                           gain=gain, absval=bool(absval), periods=self._octave_periods(octaves, lacunarity),
+                           workers=resolve_workers(workers))
 
     def evaluate_grid_jacobian(self, shape, extent, *, window=None, octaves=1, lacunarity=2.0, gain=0.5,
-                               absval=False, value=True):
+                               absval=False, value=True, workers=1):
         """:meth:`evaluate_jacobian` on a regular grid: ``(value or None, jacobian)``.
 
         One set of separable grid passes per input axis with the kernel's
@@ -383,7 +384,8 @@ class LatticeNoise:
         """
         octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
         return grid_jacobian(self, shape, extent, window=window, octaves=octaves, lacunarity=lacunarity, gain=gain,
-                             absval=bool(absval), value=bool(value), periods=self._octave_periods(octaves, lacunarity))
+                             absval=bool(absval), value=bool(value), periods=self._octave_periods(octaves, lacunarity),
+                             workers=resolve_workers(workers))
 
     # ------------------------------------------------------- the user's calls
     def __call__(self, points, *, dtype=None, workers=1):
@@ -453,14 +455,14 @@ class LatticeNoise:
         value, jac = self.evaluate_jacobian(points, workers=workers)
         return (value, jac[..., 0, :]) if return_value else jac[..., 0, :]
 
-    def jacobian_grid(self, shape, extent, *, window=None, return_value=False):
+    def jacobian_grid(self, shape, extent, *, window=None, return_value=False, workers=1):
         """:meth:`jacobian` on a regular grid (as :meth:`grid`): shape ``shape + (dim_out, dim_in)``.
 
         Evaluated by the grid's separable passes with the kernel's derivative
         on one axis (one set of passes per input axis); agrees with
         :meth:`jacobian` on :meth:`grid_points` to rounding (tested).
-        ``window`` as in :meth:`grid`; ``return_value`` also returns
-        :meth:`grid`'s values, as ``(value, jacobian)``.
+        ``window`` and ``workers`` as in :meth:`grid`; ``return_value`` also
+        returns :meth:`grid`'s values, as ``(value, jacobian)``.
 
         Examples
         --------
@@ -468,10 +470,11 @@ class LatticeNoise:
         >>> noise.jacobian_grid((32, 16), [(0, 4), (0, 2)]).shape
         (32, 16, 2, 2)
         """
-        val, jac = self.evaluate_grid_jacobian(shape, extent, window=window, value=bool(return_value))
+        val, jac = self.evaluate_grid_jacobian(shape, extent, window=window, value=bool(return_value),
+                                               workers=workers)
         return (val, jac) if return_value else jac
 
-    def gradient_grid(self, shape, extent, *, window=None, return_value=False):
+    def gradient_grid(self, shape, extent, *, window=None, return_value=False, workers=1):
         """:meth:`gradient` on a regular grid (as :meth:`grid`): shape ``shape + (dim_in,)``.
 
         See :meth:`jacobian_grid`.
@@ -484,7 +487,8 @@ class LatticeNoise:
         ((64, 64), (64, 64, 2))
         """
         checks.check_scalar(self.dim_out, "gradient_grid")
-        val, jac = self.evaluate_grid_jacobian(shape, extent, window=window, value=bool(return_value))
+        val, jac = self.evaluate_grid_jacobian(shape, extent, window=window, value=bool(return_value),
+                                               workers=workers)
         jac = jac[..., 0, :]
         return (val, jac) if return_value else jac
 
@@ -495,7 +499,7 @@ class LatticeNoise:
         coords = grid_coordinates(shape, extent)
         return np.stack(np.meshgrid(*coords, indexing="ij"), axis=-1) if coords else np.zeros((0,))
 
-    def grid(self, shape, extent, *, dtype=np.float64, window=None, chunks=None):
+    def grid(self, shape, extent, *, dtype=np.float64, window=None, chunks=None, workers=1):
         """Evaluate on a regular grid by separability.
 
         Parameters
@@ -516,6 +520,13 @@ class LatticeNoise:
             ``window=`` path: bit-identical to the in-memory grid for any
             chunking, and a chunk needs only its own memory. Needs the extra
             ``pip install noiselab[dask]``; see :mod:`noiselab.scale`.
+        workers : int, default 1
+            Threads (scipy.fft's meaning: -1 is every core). The grid's first
+            axis is split into that many bands, each a ``window`` of the full
+            grid rendered on a pooled thread (the kernels release the GIL), so
+            the result is bit-identical for any count. A band has at least
+            32,768 samples, so a small grid uses fewer threads. With
+            ``chunks``, dask's scheduler places the chunks instead.
 
         Returns
         -------
@@ -534,4 +545,4 @@ class LatticeNoise:
         """
         if chunks is not None:
             return dispatch.chunked("lattice_grid")(self, shape, extent, dtype=dtype, chunks=chunks, window=window)
-        return self.evaluate_grid(shape, extent, dtype=dtype, window=window)
+        return self.evaluate_grid(shape, extent, dtype=dtype, window=window, workers=workers)

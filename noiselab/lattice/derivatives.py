@@ -26,10 +26,11 @@ __all__ = ["grid_jacobian", "jacobian_views"]
 
 
 def grid_jacobian(noise, shape, extent, *, window=None, octaves=1, lacunarity=2.0, gain=0.5, absval=False,
-                  value=True, periods=None):
+                  value=True, periods=None, workers=1):
     """Value (or None) and Jacobian ``window shape + (dim_out, dim_in)`` of the octave sum on a grid.
 
-    ``periods``: a lattice period per octave (:func:`.grid_path.render_grid`).
+    ``periods``: a lattice period per octave; ``workers``: threads, resolved
+    (both as in :func:`.grid_path.render_grid`).
 
     One set of grid passes per input axis with the kernel's derivative on
     that axis (and one for the value). Turbulence (``absval``) is summed
@@ -44,7 +45,7 @@ def grid_jacobian(noise, shape, extent, *, window=None, octaves=1, lacunarity=2.
     checks.check_reach(np.ascontiguousarray(ext.T), freqs, noise.phase, "extent")  # before any allocation
     size = math.prod(shape)
     checks.check_large(size * noise.dim_out * (noise.dim_in + 2) * 8, "lattice noise jacobian grid")
-    kw = dict(dtype=np.float64, window=window, lacunarity=lacunarity, gain=gain, periods=periods)
+    kw = dict(dtype=np.float64, window=window, lacunarity=lacunarity, gain=gain, periods=periods, workers=workers)
     d = noise.dim_in
     # one contiguous (dim_out, *shape) block per input axis, written in
     # place by the grid passes; returned as a (*shape, dim_out, dim_in) view
