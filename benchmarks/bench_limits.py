@@ -1,0 +1,219 @@
+"""What limits lattice noise on scattered 3-D points: lower bounds measured beside noiselab and pyfastnoisesimd.
+
+Issue 22 asks for pyfastnoisesimd's speed on 1e6 random 3-D points; noiselab's
+table hash reaches 0.1-0.4x of it and the integer hash 0.5-0.8x
+(``bench_lattice.md``). This script times, in the same interleaved rounds,
+three kernels that do *less* than noiselab's and so bound what any
+implementation of the same construction can reach here:
+
+- ``lookups``: the table hash's memory reads alone. Phillips' construction
+  hashes a corner ``(i, j, k)`` as ``perm[perm[perm[i] + j] + k]`` and reads
+  its value from a table: for quintic value noise (2 taps a axis) that is
+  2 + 4 + 8 permutation reads and 8 value reads a point, each address
+  depending on the read before it. The kernel does these reads and sums the
+  eight values, nothing else (no weights, no fractional parts).
+- ``int-minimal``: the shortest integer-hash value noise numba compiles:
+  float32 in and out, floor, quintic fade, the eight corners hashed with
+  noiselab's formula (``mix32(key ^ i M0 ^ j M1 ^ k M2)``), trilinear blend; no
+  period, no exact split, no chunking. What numba and LLVM make of the
+  simplest loop with the same arithmetic.
+- ``int-fused`` and ``int-driver``: noiselab's own integer-hash kernel in
+  stages (its generated module, from the kernel cache): ``int-fused`` is the
+  loop that splits and sums the corners, run once over the whole
+  coordinate arrays (structure of arrays, as ``int-minimal``);
+  ``int-driver`` is the compiled driver that ``LatticeNoise.__call__``
+  runs, on the ``(N, 3)`` points, into an output allocated once. The
+  differences ``integer`` - ``int-driver`` (the Python call: checks, output
+  allocation) and ``int-driver`` - ``int-fused`` (the driver: chunks of 256
+  points transposed to three arrays, per-chunk calls) locate the rest.
+- the write floor (``np.full``) as everywhere in the benchmarks.
+
+Run: ``benchmarks/.venv-peers/bin/python benchmarks/bench_limits.py [--repeats 7]``;
+writes ``benchmarks/bench_limits.md``.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from pathlib import Path
+
+import numba as nb
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from noiselab import LatticeNoise  # noqa: E402
+from noiselab.lab.measure import interleaved, run_info  # noqa: E402
+
+NPTS = 1_000_000
+_M0, _M1, _M2 = np.uint32(0x9E3779B9), np.uint32(0x3C6EF373), np.uint32(0xDAA66D2D)
+_C1, _C2 = np.uint32(0x85EBCA6B), np.uint32(0xC2B2AE35)
+_S16, _S13 = np.uint32(16), np.uint32(13)
+_U32 = np.uint32
+
+
+@nb.njit(nogil=True)
+def table_lookups(pts, perm, vals, out):
+    """The reads of Phillips' table hash for quintic 3-D value noise (14 dependent permutation reads, 8 values)."""
+    for p in range(pts.shape[0]):
+        i0 = np.int64(np.floor(pts[p, 0])) & 255
+        i1 = np.int64(np.floor(pts[p, 1])) & 255
+        i2 = np.int64(np.floor(pts[p, 2])) & 255
+        s = 0.0
+        for a in range(2):
+            h1 = perm[(i0 + a) & 255]
+            for b in range(2):
+                h2 = perm[(h1 + i1 + b) & 255]
+                for c in range(2):
+                    s += vals[perm[(h2 + i2 + c) & 255]]
+        out[p] = s
+
+
+@nb.njit(inline="always")
+def _corner(key, a, b, c):
+    h = _U32(key ^ _U32(a * _M0) ^ _U32(b * _M1) ^ _U32(c * _M2))
+    h = _U32(h ^ (h >> _S16))
+    h = _U32(h * _C1)
+    h = _U32(h ^ (h >> _S13))
+    h = _U32(h * _C2)
+    return np.float32(np.int32(h)) * np.float32(4.656612873077393e-10)
+
+
+@nb.njit(inline="always")
+def _fade(t):
+    return t * t * t * (t * (t * np.float32(6.0) - np.float32(15.0)) + np.float32(10.0))
+
+
+@nb.njit(nogil=True)
+def int_minimal(x, y, z, key, out):
+    """The shortest integer-hash quintic value noise: float32 structure-of-arrays in, float32 out."""
+    for p in range(x.shape[0]):
+        fx, fy, fz = np.floor(x[p]), np.floor(y[p]), np.floor(z[p])
+        tx, ty, tz = _fade(x[p] - fx), _fade(y[p] - fy), _fade(z[p] - fz)
+        i, j, k = _U32(np.int32(fx)), _U32(np.int32(fy)), _U32(np.int32(fz))
+        i1, j1, k1 = _U32(i + _U32(1)), _U32(j + _U32(1)), _U32(k + _U32(1))
+        v00 = _corner(key, i, j, k) + tz * (_corner(key, i, j, k1) - _corner(key, i, j, k))
+        v01 = _corner(key, i, j1, k) + tz * (_corner(key, i, j1, k1) - _corner(key, i, j1, k))
+        v10 = _corner(key, i1, j, k) + tz * (_corner(key, i1, j, k1) - _corner(key, i1, j, k))
+        v11 = _corner(key, i1, j1, k) + tz * (_corner(key, i1, j1, k1) - _corner(key, i1, j1, k))
+        v0 = v00 + ty * (v01 - v00)
+        v1 = v10 + ty * (v11 - v10)
+        out[p] = v0 + tx * (v1 - v0)
+
+
+def _fns_value(pts32):
+    try:
+        np.product = np.prod  # pyfastnoisesimd 0.4.2 calls np.product, removed in NumPy 2
+        import pyfastnoisesimd as fns
+    except ImportError:
+        return None
+    aligned = fns.empty_coords(pts32.shape[0])
+    aligned[:] = pts32.T
+    f = fns.Noise(seed=1, numWorkers=1)
+    f.noiseType = fns.NoiseType.Value
+    f.frequency = 1.0
+    return lambda: f.genFromCoords(aligned)
+
+
+def _int_stages(noise, pts32, soa):
+    """``int-fused`` and ``int-driver`` (see the module docstring): noiselab's generated 3-D quintic value kernel."""
+    from noiselab.lattice import _kerncache
+
+    mod = _kerncache.load("intpart", 3, "quintic", "value")
+    one, zero, inf = np.float32(1.0), np.float32(0.0), np.float32(np.inf)
+    mask = np.uint32(0xFFFFFFFF)  # the default period, 2**32 cells
+    key = noise._keys[0]
+    out_f, out_d = np.empty(NPTS, np.float32), np.empty(NPTS, np.float32)
+    freqs, amps, phase = np.ones((1, 3)), np.ones(1), np.zeros(3)
+    return {
+        "int-fused": lambda: mod._fused_d3_quintic_value_s32f32(*soa, out_f, NPTS, key, one, zero, one, zero, one, zero,
+                                                                 mask, mask, mask, one, inf),
+        "int-driver": lambda: mod.fast_d3_quintic_value_s32f32(pts32, out_d, freqs, amps, phase, noise._keys,
+                                                               noise._pmask, noise.period, 10.0, False),
+    }
+
+
+def measure(repeats):
+    rng = np.random.default_rng(0)
+    pts32 = rng.uniform(0.0, 100.0, (NPTS, 3)).astype(np.float32)
+    pts = pts32.astype(np.float64)
+    soa = [np.ascontiguousarray(pts32[:, a]) for a in range(3)]
+    table = LatticeNoise(3, seed=1, kernel="quintic")
+    integer = LatticeNoise(3, seed=1, kernel="quintic", hash="integer")
+    perm = np.ascontiguousarray(table.perms[0])
+    vals = np.ascontiguousarray(table.values[0])
+    out64, out32 = np.empty(NPTS), np.empty(NPTS, np.float32)
+    key = np.uint32(0x2545F491)
+    cands = {
+        "floor32": lambda: np.full(NPTS, 0.5, np.float32),
+        "table": lambda: table(pts),
+        "lookups": lambda: table_lookups(pts, perm, vals, out64),
+        "integer": lambda: integer(pts32),
+        "int-minimal": lambda: int_minimal(*soa, key, out32),
+    }
+    cands.update(_int_stages(integer, pts32, soa))
+    fns = _fns_value(pts32)
+    if fns is not None:
+        cands["fns"] = fns
+    return interleaved(cands, repeats=repeats, timer=time.thread_time)  # its warm-up round compiles
+
+
+def report(t, repeats, load, cmd):
+    info = run_info(cmd, ["pyfastnoisesimd"], load=load)
+    rate = {k: NPTS / t[k] for k in t}
+    names = [k for k in ("table", "lookups", "integer", "int-driver", "int-fused", "int-minimal", "fns", "floor32")
+             if k in rate]
+    lines = ["# What limits lattice noise on scattered 3-D points\n",
+             f"- date: {info['date']}",
+             f"- command: `{cmd}`",
+             f"- machine: {info['machine']}, {info['cores']} cores ({info['cpu']}), shared with other jobs; "
+             f"load average (1 min) at start {load:.1f}, at the end {os.getloadavg()[0]:.1f}",
+             "- versions: " + ", ".join(f"{k} {v}" for k, v in info["versions"].items()),
+             f"- timing: one thread, CPU time of the calling thread (`time.thread_time`), median of {repeats} "
+             "interleaved rounds; `x FNS` and `x floor` are medians of the per-round ratios\n",
+             "1,000,000 random points in [0, 100)^3, quintic value noise. The candidates are described in the "
+             "script's docstring: `table` and `integer` are noiselab (`LatticeNoise(3, kernel=\"quintic\")` on "
+             "float64 points; the same with `hash=\"integer\"` on float32 points); `lookups` does only the table "
+             "hash's reads; `int-minimal` is the shortest integer-hash kernel numba compiles; `fns` is "
+             "pyfastnoisesimd's `Value` (1 worker, its own aligned coordinates).\n",
+             "| candidate | pts/s | x FNS | x floor | time / `lookups` |",
+             "|---|---|---|---|---|"]
+    for k in names:
+        xf = f"{t.ratio('fns', k):.2f}" if "fns" in rate else "n/a"
+        lines.append(f"| {k} | {rate[k]:.3g} | {xf} | {t.ratio('floor32', k):.3f} | {t.ratio(k, 'lookups'):.2f} |")
+    lines += ["", "Reading (the figures of this run):", ""]
+    if "fns" in rate:
+        lines.append(f"- The table hash's reads alone run at {t.ratio('fns', 'lookups'):.2f}x pyfastnoisesimd: no "
+                     "implementation of Phillips' nested permutation reaches 1x on these points, whatever its "
+                     f"arithmetic. noiselab's table kernel takes {t.ratio('table', 'lookups'):.2f}x the time of its "
+                     "reads: the reads are most of its time.")
+        lines.append(f"- The integer hash has no reads. The simplest numba kernel with its arithmetic runs at "
+                     f"{t.ratio('fns', 'int-minimal'):.2f}x pyfastnoisesimd. noiselab's corner loop alone "
+                     f"(`int-fused`) takes {t.ratio('int-fused', 'int-minimal'):.2f}x that time (the period masks, "
+                     "the clamp to the proved bound, the count that sends a chunk to the exact split); the driver "
+                     f"(`int-driver`) {t.ratio('int-driver', 'int-fused'):.2f}x the corner loop's (transposing "
+                     "chunks of 256 points, a call per chunk); the Python call (`integer`) "
+                     f"{t.ratio('integer', 'int-driver'):.2f}x the driver's (checks, the output's allocation and "
+                     "first touch).")
+    lines.append("")
+    return lines
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=7)
+    ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
+    args = ap.parse_args(argv)
+    cmd = "benchmarks/.venv-peers/bin/python benchmarks/bench_limits.py" + (
+        f" --repeats {args.repeats}" if args.repeats != 7 else "")
+    load = os.getloadavg()[0]
+    t = measure(args.repeats)
+    lines = report(t, args.repeats, load, cmd)
+    Path(args.output).write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
