@@ -13,10 +13,11 @@
   (the hashed block of lattice values), :func:`contract_last` /
   :func:`contract_mid` (one separable pass per axis), and :func:`final_pass` /
   :func:`final_pass_direct` (the last pass, fused over octaves).
-- 2-D grids with the table hash: :func:`grid2d_all` (:func:`pack_axis` for
-  both axes, then :func:`grid2d` per component): every octave in one pass,
-  tile by tile, with the general path's sums (the same bits); its axis-1
-  contraction runs eight columns at a time (:func:`expand_dot8`).
+- 2-D grids: :func:`pack_grid2d` (:func:`pack_axis` for both axes), then
+  :func:`grid2d` per component: every octave in one pass, tile by tile,
+  with the general path's sums (the same bits); its axis-1 contraction runs
+  eight columns at a time (:func:`expand_dot8`). Both hashes: the integer
+  hash's variant gets its lattice rows from ``_intgrid``.
 
 All arithmetic is float64; only the final store may round to float32. The
 specialisations are kept few so that a cold cache compiles quickly.
@@ -951,12 +952,35 @@ def _row_range(rows, o, a, b):
     return lo, hi
 
 
-def _make_grid2d(GRAD, USE32):
-    """:func:`grid2d`'s compiled kernel for one basis and output dtype (compile-time constants).
+def int_row_values(ext, at, word, words, start, m):
+    """The integer hash's values of one lattice row: ``ext[at + l] = hash_value(word ^ words[start + l])``, l < m.
 
-    With ``grad`` and the output dtype frozen in the closure numba prunes the
-    other basis's and dtype's code before compiling (numba caches each variant
-    on disk: closure values are part of its cache key). The tap count stays a
+    Called only by the compiled :func:`grid2d` (the integer-hash variants):
+    numba compiles the implementation that ``_intgrid`` registers for it with
+    ``@overload``, since the hash lives in ``_inthash``, which imports this module.
+    """
+    raise NotImplementedError("compiled only: the integer-hash grid kernel's row of lattice values (_intgrid)")
+
+
+def int_row_gradients(ext, at0, at1, word, words, start, m, grads):
+    """The integer hash's gradients of one lattice row: ``ext[at_b + l] = grads[hash_index(word ^ words[start + l]), b]``.
+
+    As :func:`int_row_values` (compiled only; the implementation is ``_intgrid``'s).
+    """
+    raise NotImplementedError("compiled only: the integer-hash grid kernel's row of lattice gradients (_intgrid)")
+
+
+def _make_grid2d(GRAD, USE32, INT):
+    """:func:`grid2d`'s compiled kernel for one basis, output dtype and hash (compile-time constants).
+
+    With ``grad``, the output dtype and the hash (``INT``: the integer hash)
+    frozen in the closure numba prunes the other bases', dtypes' and hashes'
+    code before compiling (numba caches each variant on disk: closure values
+    are part of its cache key), so the table-hash variants compile no integer
+    hash code. The integer-hash variants call :func:`int_row_values` /
+    :func:`int_row_gradients`, compiled from ``_intgrid``'s implementation
+    (numba's cache of this kernel does not notice a change there: clear the
+    cache after editing it, as for any callee in another file). The tap count stays a
     run-time value: a kernel per tap count as well compiled no faster for one
     grid and 3.8 times slower for all of them (the test suite): 63 s against
     17 s CPU for the 16 grids of ``bench_coldstart.py``'s ``grid2-all``.
@@ -965,11 +989,15 @@ def _make_grid2d(GRAD, USE32):
     @nb.njit(cache=True, nogil=True)
     def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
                absval, out64, out32, nq, tile):
-        """A 2-D grid of table-hashed lattice noise, every octave fused, in tiles of ``tile`` columns.
+        """A 2-D grid of lattice noise, every octave fused, in tiles of ``tile`` columns.
 
         Octave ``o`` has the distinct lattice taps ``lat0[off0[o]:off0[o + 1]]``
         along axis 0 and ``lat1[off1[o]:off1[o + 1]]`` along axis 1 (reduced
-        modulo the table size n), each output row's taps ``pos0[o]`` (nj, taps)
+        modulo the table size n; with the integer hash ``INT``, the taps'
+        words instead, uint32: ``key ^ (j_0 M_0)`` along axis 0 and ``j_1 M_1``
+        along axis 1, whose xor a lattice point's value or gradient hashes,
+        and ``perm``, ``values`` and ``dense1`` are unused (``dense1`` all
+        False)), each output row's taps ``pos0[o]`` (nj, taps)
         in the first and each column's first tap ``base1[o]`` (nq,) in the second
         (a sample's taps are consecutive distinct taps); ``dense1[o]``: the axis-1
         taps are consecutive lattice points modulo n. Weights per axis: ``wa``
@@ -984,7 +1012,8 @@ def _make_grid2d(GRAD, USE32):
         kernel for both dtypes): written, or with ``absval`` (turbulence) added to.
 
         The arithmetic is that of the general separable path (``hash_expand``,
-        ``gather_gradients``, ``contract_last``, ``final_pass``), tap by tap and
+        ``gather_gradients``, or the integer hash's ``block_values`` and
+        ``block_gradients``, ``contract_last``, ``final_pass``), tap by tap and
         term by term in the same order, so the bits are the same. A lattice row
         ``r`` of octave ``o`` is hashed and contracted along axis 1 only when an
         output row first needs it, into a ring of ``2**ceil(log2 taps)`` rows per
@@ -1095,11 +1124,19 @@ def _make_grid2d(GRAD, USE32):
                         # lattice row r: its values against this tile's axis-1 taps lo .. lo + m - 1
                         lo = lmin[o]
                         m = lmax[o] + 1 - lo
-                        i0 = lat0[off0[o] + r]
-                        h1 = perm[i0]
-                        p0 = i0 & 1
-                        first = lat1[off1[o] + lo]
-                        if use_ext and dense1[o]:
+                        if INT:  # a constant: the table-hash variants compile none of this
+                            # the integer hash's words: lat0 holds key ^ j_0 M_0, lat1 holds j_1 M_1
+                            v0 = vbase
+                            v1 = vbase + width
+                            if grad:
+                                int_row_gradients(ext, v0, v1, lat0[off0[o] + r], lat1, off1[o] + lo, m, grads)
+                            else:
+                                int_row_values(ext, v0, lat0[off0[o] + r], lat1, off1[o] + lo, m)
+                        elif use_ext and dense1[o]:
+                            i0 = lat0[off0[o] + r]
+                            h1 = perm[i0]
+                            p0 = i0 & 1
+                            first = lat1[off1[o] + lo]
                             s0 = h1 + first
                             s0 = s0 - n if s0 >= n else s0
                             if grad:
@@ -1109,6 +1146,9 @@ def _make_grid2d(GRAD, USE32):
                                 v0 = ((p0 + first + s0) & 1) * ext_len + s0
                                 v1 = v0
                         else:
+                            i0 = lat0[off0[o] + r]
+                            h1 = perm[i0]
+                            p0 = i0 & 1
                             v0 = vbase
                             v1 = vbase + width
                             for l in range(m):
@@ -1196,14 +1236,15 @@ _GRID2D = {}
 
 def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
            absval, out64, out32, nq, tile):
-    """A 2-D grid of table-hashed lattice noise, every octave fused (the compiled kernel for this basis and dtype).
+    """A 2-D grid of lattice noise, every octave fused (the compiled kernel for this basis, dtype and hash).
 
     The arguments and the result are those of the kernel :func:`_make_grid2d`
     compiles (its docstring): ``basis`` 0 (value) or 1 (gradient), the
-    output float32 when ``out32`` is not empty.
+    output float32 when ``out32`` is not empty, the integer hash when
+    ``lat0`` holds its uint32 words (``_intgrid.grid2d`` makes them).
     Only the variant called is compiled.
     """
-    key = (basis == 1, out32.shape[0] > 0)
+    key = (basis == 1, out32.shape[0] > 0, lat0.dtype == np.uint32)
     fn = _GRID2D.get(key)
     if fn is None:
         fn = _GRID2D[key] = _make_grid2d(*key)
@@ -1311,27 +1352,23 @@ def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, 
     return fn(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv, last)
 
 
-def grid2d_all(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv_axis, scales, perms,
-               values, grads, absval, out64, out32, nq, tile):
-    """:func:`pack_axis` for both axes, then :func:`grid2d` for every component, in one call.
+def pack_grid2d(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv_axis):
+    """:func:`pack_axis` for both axes: :func:`grid2d`'s first eleven arguments, or None.
 
-    ``freqs`` and ``periods`` (O, 2), ``phase`` (2,), ``perms`` (C, n), ``out64``
-    and ``out32`` (C, nj * nq) and (C, 0), either way round. Returns False (and writes nothing) when an axis's taps need
-    ``LatticeNoise._axis_taps``' sparse packing.
+    ``c0``, ``c1`` the axes' coordinates, ``freqs`` and ``periods`` (O, 2),
+    ``phase`` (2,). None when an axis's taps need ``grid_path.axis_taps``'
+    sparse packing.
     """
     ok0, lat0, off0, pos0, base0, wa0, wb0, dense0 = pack_axis(
         c0, np.ascontiguousarray(freqs[:, 0]), phase[0], shift, left, taps, coef, dcoef,
         np.ascontiguousarray(periods[:, 0], dtype=np.int64), n, grad,
         bool(deriv_axis == 0), False)
     if not ok0:
-        return False
+        return None
     ok1, lat1, off1, pos1, base1, wa1, wb1, dense1 = pack_axis(
         c1, np.ascontiguousarray(freqs[:, 1]), phase[1], shift, left, taps, coef, dcoef,
         np.ascontiguousarray(periods[:, 1], dtype=np.int64), n, grad,
         bool(deriv_axis == 1), True)
     if not ok1:
-        return False
-    for c in range(perms.shape[0]):
-        grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perms[c], values, grads,
-               1 if grad else 0, absval, out64[c], out32[c], nq, tile)
-    return True
+        return None
+    return lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1
