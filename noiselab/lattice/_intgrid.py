@@ -17,6 +17,7 @@ that LLVM vectorises, computed once per lattice row and tile, in cache.
 """
 from __future__ import annotations
 
+import numba as nb
 import numpy as np
 from numba.extending import overload
 
@@ -26,6 +27,7 @@ from ._inthash import block_prefix, hash_index, hash_value
 __all__ = ["grid2d"]
 
 _U32 = np.uint32
+_U64 = np.uint64
 _NO_PERM = np.empty(0, np.int64)
 _NO_VALUES = np.empty((2, 0))
 
@@ -33,19 +35,43 @@ _NO_VALUES = np.empty((2, 0))
 @overload(jit.int_row_values)
 def _int_row_values(ext, at, word, words, start, m):
     def impl(ext, at, word, words, start, m):
-        for l in range(m):
-            ext[at + l] = hash_value(_U32(word ^ words[start + l]))
+        # unsigned offsets: no negative-index wrap, so the loop vectorises with plain loads and stores
+        dst = _U64(at)
+        src = _U64(start)
+        for l in range(_U64(m)):
+            ext[dst + l] = hash_value(_U32(word ^ words[src + l]))
     return impl
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _pick8(g, t0, t1, t2, t3, t4, t5, t6, t7):
+    """``(t0, ..., t7)[g]`` for ``0 <= g < 8`` by selects on g's bits (a vectorised loop needs no gather)."""
+    odd = (g & 1) != 0
+    p01 = t1 if odd else t0
+    p23 = t3 if odd else t2
+    p45 = t5 if odd else t4
+    p67 = t7 if odd else t6
+    q0 = p23 if (g & 2) != 0 else p01
+    q1 = p67 if (g & 2) != 0 else p45
+    return q1 if g >= 4 else q0
 
 
 @overload(jit.int_row_gradients)
 def _int_row_gradients(ext, at0, at1, word, words, start, m, grads):
     def impl(ext, at0, at1, word, words, start, m, grads):
-        n = grads.shape[0]
-        for l in range(m):
-            g = hash_index(_U32(word ^ words[start + l]), n)
-            ext[at0 + l] = grads[g, 0]
-            ext[at1 + l] = grads[g, 1]
+        # the 2-D set's 8 gradients held in registers and picked by selects: a gather from the table
+        # (which LLVM cannot prove apart from ext) kept the loop scalar, at about three times the cost
+        x0 = grads[0, 0]; x1 = grads[1, 0]; x2 = grads[2, 0]; x3 = grads[3, 0]
+        x4 = grads[4, 0]; x5 = grads[5, 0]; x6 = grads[6, 0]; x7 = grads[7, 0]
+        y0 = grads[0, 1]; y1 = grads[1, 1]; y2 = grads[2, 1]; y3 = grads[3, 1]
+        y4 = grads[4, 1]; y5 = grads[5, 1]; y6 = grads[6, 1]; y7 = grads[7, 1]
+        dst0 = _U64(at0)
+        dst1 = _U64(at1)
+        src = _U64(start)
+        for l in range(_U64(m)):
+            g = hash_index(_U32(word ^ words[src + l]), 8)
+            ext[dst0 + l] = _pick8(g, x0, x1, x2, x3, x4, x5, x6, x7)
+            ext[dst1 + l] = _pick8(g, y0, y1, y2, y3, y4, y5, y6, y7)
     return impl
 
 
@@ -59,6 +85,7 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
     the axis multipliers and ``grads`` the gradient set (``L``, 2). The rest
     as for :func:`._jit.grid2d`.
     """
+    assert grads.shape == (8, 2)  # the 2-D gradient set (:func:`._inthash.gradient_set`), picked by selects
     words0 = block_prefix(key, lat0, mult[0], True, key[0])
     words1 = block_prefix(key, lat1, mult[1], True, _U32(0))
     jit.grid2d(words0, off0, pos0, wa0, wb0, words1, off1, base1, np.zeros(dense1.shape[0], np.bool_), wa1, wb1,
