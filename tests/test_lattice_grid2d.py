@@ -52,6 +52,7 @@ def test_fused_kernel_equals_the_general_separable_path(name, basis, hash, monke
         for x, y in zip(a, b):
             assert x.dtype == y.dtype and x.shape == y.shape
             np.testing.assert_array_equal(x, y)
+            np.testing.assert_array_equal(np.signbit(x), np.signbit(y))  # the bits: a zero's sign too
         for x in (a[0], a[2]):  # the range bound holds on the fused path too (one octave, float64 and float32)
             assert np.abs(x).max() <= noise.amplitude
 

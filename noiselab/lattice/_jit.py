@@ -811,7 +811,13 @@ def axis_dweights(coords, freq, phase, shift, left, taps, coef, dcoef, grad):
 # ---------------------------------------------------------------- fused 2-D grids
 @intrinsic
 def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
-    """``row[ridx + p] = sum_m E[e0 + 8 m + p] * v[B + m]`` (m = 0 .. M-1, in order; p < 8), one vector of 8 lanes."""
+    """``row[ridx + p] = sum_m E[e0 + 8 m + p] * v[B + m]`` (m = 0 .. M-1, in order; p < 8), one vector of 8 lanes.
+
+    A NaN in ``E`` marks no term: its product is not added (a lane's sum
+    starts at -0.0, which added to x gives x). So the sum is the bare tap sum
+    ``p_0 + p_1 + ...`` bit for bit, the sign of a zero included (an added
+    product ``0 * v`` is -0.0 or +0.0 by the sign of v, and -0.0 + +0.0 = +0.0).
+    """
     sig = types.void(row, ridx, E, e0, v, B, M)
 
     def codegen(context, builder, signature, args):
@@ -820,7 +826,7 @@ def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
         vty = ir.VectorType(dty, 8)
         i64 = ir.IntType(64)
         acc = cgutils.alloca_once(builder, vty)
-        builder.store(ir.Constant(vty, [0.0] * 8), acc)
+        builder.store(ir.Constant(vty, [-0.0] * 8), acc)
         Eary = context.make_array(signature.args[2])(context, builder, E_v)
         vary = context.make_array(signature.args[4])(context, builder, v_v)
         rary = context.make_array(signature.args[0])(context, builder, row_v)
@@ -831,7 +837,9 @@ def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
             s = builder.load(builder.gep(vary.data, [builder.add(B_v, m)]))
             sv = builder.insert_element(ir.Constant(vty, ir.Undefined), s, ir.Constant(ir.IntType(32), 0))
             sv = builder.shuffle_vector(sv, ir.Constant(vty, ir.Undefined), ir.Constant(ir.VectorType(ir.IntType(32), 8), [0] * 8))
-            builder.store(builder.fadd(builder.load(acc), builder.fmul(sv, e)), acc)
+            cur = builder.load(acc)
+            keep = builder.fcmp_unordered("uno", e, e)  # NaN: no term here
+            builder.store(builder.select(keep, cur, builder.fadd(cur, builder.fmul(sv, e))), acc)
         rptr = builder.gep(rary.data, [ridx_v])
         builder.store(builder.load(acc), builder.bitcast(rptr, vty.as_pointer()), align=8)
         return context.get_dummy_value()
@@ -1020,8 +1028,8 @@ def _make_grid2d(GRAD, USE32, INT):
         octave that stays in cache (rows are never held as a block in memory).
         The axis-1 contraction runs eight columns at a time (:func:`expand_dot8`)
         over the block's lattice values with the weights spread out to each
-        column's offset (zeros elsewhere): adding the zero products changes no
-        bit, so it equals the four-tap sum. The hot loops index flat arrays with
+        column's offset (NaN elsewhere, which adds no term): it equals the
+        tap sum bit for bit, a zero's sign included. The hot loops index flat arrays with
         unsigned offsets (no negative-index wrap: they vectorise) and make no array
         views (each costs an atomic reference count). Each sample depends only on its row
         and column, not on the tile, so any window is the same slice of the
@@ -1080,7 +1088,7 @@ def _make_grid2d(GRAD, USE32, INT):
         expand = mmax <= 4 * L  # else (columns sparser than the lattice) a plain per-column loop
         if not expand:
             mmax = 1
-        # not zeroed here (np.zeros is one more overload to compile): each block's rows are zeroed
+        # not filled here (np.full is one more overload to compile): each block's rows are set to NaN
         # below before its weights are written, and expand_dot8 reads no further
         E = np.empty(noct * nterm * nblk_max * mmax * L)
         bB = np.empty((noct, nblk_max), np.int64)
@@ -1108,7 +1116,7 @@ def _make_grid2d(GRAD, USE32, INT):
                             e0 = ((o * nterm + b) * nblk_max + blk) * mmax * L
                             wsrc = wb1 if b == 1 else wa1
                             for x in range(mb * L):
-                                E[e0 + x] = 0.0
+                                E[e0 + x] = np.nan  # no tap of this column (expand_dot8 adds nothing)
                             for q in range(qa, qb):
                                 d = base1[o, q] - lo_
                                 for k in range(taps):
