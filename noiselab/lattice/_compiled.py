@@ -30,7 +30,8 @@ from . import _kerncache
 from .kernels import KERNELS, Kernel
 
 __all__ = ["jit", "inthash", "intgrid", "PERIOD_MAX", "has_table_points", "table_points_kernel",
-           "unrolled_points_kernel", "int_simd_kernels", "int_simd_factor", "unrolled_jacobian_kernel", "table_jacobian_kernel"]
+           "unrolled_points_kernel", "int_simd_kernels", "int_simd_factor", "unrolled_jacobian_kernel",
+           "table_jacobian_kernel"]
 
 # without ``period``, the integer hash reduces lattice indices modulo 2**32 per axis (its words are 32-bit)
 PERIOD_MAX = inthash.PERIOD_MAX

@@ -327,7 +327,8 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
 
 
 def _pack_sparse(noise, sub, freqs, periods, n, grad, deriv_axis):
-    """:func:`_jit.pack_grid2d`'s result where an axis's taps spread over many cells (:func:`axis_taps`' sparse branch)."""
+    """:func:`_jit.pack_grid2d`'s result where an axis's taps spread over many cells (:func:`axis_taps`' sparse
+    branch for that axis)."""
     k = noise.kernel
     packed = []
     for a in range(2):
