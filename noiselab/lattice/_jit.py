@@ -971,8 +971,8 @@ def int_row_values(ext, at, word, words, start, m):
 
 
 def int_row_gradients(ext, at0, at1, word, words, start, m, grads):
-    """The integer hash's gradients of one lattice row: ``ext[at_b + l] = grads[hash_index(word ^ words[start + l]), b]``
-    for ``b = 0, 1``.
+    """The integer hash's gradients of one lattice row, ``b = 0, 1``:
+    ``ext[at_b + l] = grads[hash_index(word ^ words[start + l]), b]``.
 
     As :func:`int_row_values` (compiled only; the implementation is ``_intgrid``'s).
     """
