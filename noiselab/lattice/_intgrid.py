@@ -14,6 +14,8 @@ module gives numba their implementations (``@overload``; the integer-hash
 variants of the kernel are compiled only after this module is imported,
 through :mod:`._compiled`). Each row is one loop of 32-bit integer arithmetic
 that LLVM vectorises, computed once per lattice row and tile, in cache.
+numba's on-disk cache of the kernel (keyed by ``_jit.py``) does not notice
+an edit of this file: clear ``NUMBA_CACHE_DIR`` after one.
 """
 from __future__ import annotations
 
