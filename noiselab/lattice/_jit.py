@@ -995,6 +995,8 @@ def _make_grid2d(GRAD, USE32, INT):
     17 s CPU for the 16 grids of ``bench_coldstart.py``'s ``grid2-all``.
     """
 
+    TABLE = not INT
+
     @nb.njit(cache=True, nogil=True)
     def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
                absval, out64, out32, nq, tile):
@@ -1069,7 +1071,7 @@ def _make_grid2d(GRAD, USE32, INT):
         # the extended tables (when used), then room for a row's lattice values hashed one by one
         vbase = 2 * ext_len if use_ext else 0
         ext = np.empty(vbase + 2 * width)
-        if use_ext:
+        if TABLE and use_ext:  # (TABLE a constant: the integer-hash variants compile no table code)
             for x in range(ext_len):
                 xm = x % n
                 h = perm[xm]
