@@ -2,7 +2,8 @@
 
 Everything numba compiles lives in the kernel modules: :mod:`._jit` (the
 generic per-point kernels and the grid passes), :mod:`._inthash` (the
-integer hash and its generic kernels), and the specialised families that
+integer hash and its generic kernels), :mod:`._intgrid` (the integer hash
+in the fused 2-D grid kernel), and the specialised families that
 ``_generate.py`` writes and :mod:`._kerncache` generates on first use into a
 cache folder (never into git): ``points`` (unrolled per dimension and tap
 count, and the 3-D kernels over precombined hash tables), ``jacobians``
@@ -10,10 +11,10 @@ count, and the 3-D kernels over precombined hash tables), ``jacobians``
 kernels, one module per dimension, kernel and basis, loaded on first
 lookup). The rest of the
 lattice code (:mod:`.tables`, :mod:`.points_path`, :mod:`.grid_path`,
-:mod:`.derivatives`) reaches them only through this module: ``jit`` and
-``inthash`` for the generic kernels, and the functions below for the
-specialised ones, so a change in where or how the kernels are built touches
-these lines only.
+:mod:`.derivatives`) reaches them only through this module: ``jit``,
+``inthash`` and ``intgrid`` for the generic kernels, and the functions below
+for the specialised ones, so a change in where or how the kernels are built
+touches these lines only.
 
 Each generated module is loaded on first use: its kernels cost import (and
 generation) time that a user of another path does not need to pay.
@@ -22,13 +23,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import _intgrid as intgrid
 from . import _inthash as inthash
 from . import _jit as jit
 from . import _kerncache
 from .kernels import KERNELS, Kernel
 
-__all__ = ["jit", "inthash", "PERIOD_MAX", "has_table_points", "table_points_kernel", "unrolled_points_kernel",
-           "int_simd_kernels", "int_simd_factor", "unrolled_jacobian_kernel", "table_jacobian_kernel"]
+__all__ = ["jit", "inthash", "intgrid", "PERIOD_MAX", "has_table_points", "table_points_kernel",
+           "unrolled_points_kernel", "int_simd_kernels", "int_simd_factor", "unrolled_jacobian_kernel",
+           "table_jacobian_kernel"]
 
 # without ``period``, the integer hash reduces lattice indices modulo 2**32 per axis (its words are 32-bit)
 PERIOD_MAX = inthash.PERIOD_MAX

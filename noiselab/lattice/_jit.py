@@ -13,10 +13,11 @@
   (the hashed block of lattice values), :func:`contract_last` /
   :func:`contract_mid` (one separable pass per axis), and :func:`final_pass` /
   :func:`final_pass_direct` (the last pass, fused over octaves).
-- 2-D grids with the table hash: :func:`grid2d_all` (:func:`pack_axis` for
-  both axes, then :func:`grid2d` per component): every octave in one pass,
-  tile by tile, with the general path's sums (the same bits); its axis-1
-  contraction runs eight columns at a time (:func:`expand_dot8`).
+- 2-D grids: :func:`pack_grid2d` (:func:`pack_axis` for both axes), then
+  :func:`grid2d` per component: every octave in one pass, tile by tile,
+  with the general path's sums (the same bits); its axis-1 contraction runs
+  eight columns at a time (:func:`expand_dot8`). Both hashes: the integer
+  hash's variant gets its lattice rows from ``_intgrid``.
 
 All arithmetic is float64; only the final store may round to float32. The
 specialisations are kept few so that a cold cache compiles quickly.
@@ -810,7 +811,13 @@ def axis_dweights(coords, freq, phase, shift, left, taps, coef, dcoef, grad):
 # ---------------------------------------------------------------- fused 2-D grids
 @intrinsic
 def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
-    """``row[ridx + p] = sum_m E[e0 + 8 m + p] * v[B + m]`` (m = 0 .. M-1, in order; p < 8), one vector of 8 lanes."""
+    """``row[ridx + p] = sum_m E[e0 + 8 m + p] * v[B + m]`` (m = 0 .. M-1, in order; p < 8), one vector of 8 lanes.
+
+    A NaN in ``E`` marks no term: its product is not added (a lane's sum
+    starts at -0.0, which added to x gives x). So the sum is the bare tap sum
+    ``p_0 + p_1 + ...`` bit for bit, the sign of a zero included (an added
+    product ``0 * v`` is -0.0 or +0.0 by the sign of v, and -0.0 + +0.0 = +0.0).
+    """
     sig = types.void(row, ridx, E, e0, v, B, M)
 
     def codegen(context, builder, signature, args):
@@ -819,7 +826,7 @@ def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
         vty = ir.VectorType(dty, 8)
         i64 = ir.IntType(64)
         acc = cgutils.alloca_once(builder, vty)
-        builder.store(ir.Constant(vty, [0.0] * 8), acc)
+        builder.store(ir.Constant(vty, [-0.0] * 8), acc)
         Eary = context.make_array(signature.args[2])(context, builder, E_v)
         vary = context.make_array(signature.args[4])(context, builder, v_v)
         rary = context.make_array(signature.args[0])(context, builder, row_v)
@@ -830,7 +837,9 @@ def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
             s = builder.load(builder.gep(vary.data, [builder.add(B_v, m)]))
             sv = builder.insert_element(ir.Constant(vty, ir.Undefined), s, ir.Constant(ir.IntType(32), 0))
             sv = builder.shuffle_vector(sv, ir.Constant(vty, ir.Undefined), ir.Constant(ir.VectorType(ir.IntType(32), 8), [0] * 8))
-            builder.store(builder.fadd(builder.load(acc), builder.fmul(sv, e)), acc)
+            cur = builder.load(acc)
+            keep = builder.fcmp_unordered("uno", e, e)  # NaN: no term here
+            builder.store(builder.select(keep, cur, builder.fadd(cur, builder.fmul(sv, e))), acc)
         rptr = builder.gep(rary.data, [ridx_v])
         builder.store(builder.load(acc), builder.bitcast(rptr, vty.as_pointer()), align=8)
         return context.get_dummy_value()
@@ -951,25 +960,55 @@ def _row_range(rows, o, a, b):
     return lo, hi
 
 
-def _make_grid2d(GRAD, USE32):
-    """:func:`grid2d`'s compiled kernel for one basis and output dtype (compile-time constants).
+def int_row_values(ext, at, word, words, start, m):
+    """The integer hash's values of one lattice row: ``ext[at + l] = hash_value(word ^ words[start + l])``, l < m.
 
-    With ``grad`` and the output dtype frozen in the closure numba prunes the
-    other basis's and dtype's code before compiling (numba caches each variant
-    on disk: closure values are part of its cache key). The tap count stays a
+    Called only by the compiled :func:`grid2d` (the integer-hash variants):
+    numba compiles the implementation that ``_intgrid`` registers for it with
+    ``@overload``, since the hash lives in ``_inthash``, which imports this module.
+    """
+    raise NotImplementedError("compiled only: the integer-hash grid kernel's row of lattice values (_intgrid)")
+
+
+def int_row_gradients(ext, at0, at1, word, words, start, m, grads):
+    """The integer hash's gradients of one lattice row, ``b = 0, 1``:
+    ``ext[at_b + l] = grads[hash_index(word ^ words[start + l]), b]``.
+
+    As :func:`int_row_values` (compiled only; the implementation is ``_intgrid``'s).
+    """
+    raise NotImplementedError("compiled only: the integer-hash grid kernel's row of lattice gradients (_intgrid)")
+
+
+def _make_grid2d(GRAD, USE32, INT):
+    """:func:`grid2d`'s compiled kernel for one basis, output dtype and hash (compile-time constants).
+
+    With ``grad``, the output dtype and the hash (``INT``: the integer hash)
+    frozen in the closure numba prunes the other bases', dtypes' and hashes'
+    code before compiling (numba caches each variant on disk: closure values
+    are part of its cache key), so the table-hash variants compile no integer
+    hash code. The integer-hash variants call :func:`int_row_values` /
+    :func:`int_row_gradients`, compiled from ``_intgrid``'s implementation
+    (numba's cache of this kernel does not notice a change there: clear the
+    cache after editing it, as for any callee in another file). The tap count stays a
     run-time value: a kernel per tap count as well compiled no faster for one
     grid and 3.8 times slower for all of them (the test suite): 63 s against
     17 s CPU for the 16 grids of ``bench_coldstart.py``'s ``grid2-all``.
     """
 
+    TABLE = not INT
+
     @nb.njit(cache=True, nogil=True)
     def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
                absval, out64, out32, nq, tile):
-        """A 2-D grid of table-hashed lattice noise, every octave fused, in tiles of ``tile`` columns.
+        """A 2-D grid of lattice noise, every octave fused, in tiles of ``tile`` columns.
 
         Octave ``o`` has the distinct lattice taps ``lat0[off0[o]:off0[o + 1]]``
         along axis 0 and ``lat1[off1[o]:off1[o + 1]]`` along axis 1 (reduced
-        modulo the table size n), each output row's taps ``pos0[o]`` (nj, taps)
+        modulo the table size n; with the integer hash ``INT``, the taps'
+        words instead, uint32: ``key ^ (j_0 M_0)`` along axis 0 and ``j_1 M_1``
+        along axis 1, whose xor a lattice point's value or gradient hashes,
+        and ``perm``, ``values`` and ``dense1`` are unused (``dense1`` all
+        False)), each output row's taps ``pos0[o]`` (nj, taps)
         in the first and each column's first tap ``base1[o]`` (nq,) in the second
         (a sample's taps are consecutive distinct taps); ``dense1[o]``: the axis-1
         taps are consecutive lattice points modulo n. Weights per axis: ``wa``
@@ -984,15 +1023,16 @@ def _make_grid2d(GRAD, USE32):
         kernel for both dtypes): written, or with ``absval`` (turbulence) added to.
 
         The arithmetic is that of the general separable path (``hash_expand``,
-        ``gather_gradients``, ``contract_last``, ``final_pass``), tap by tap and
+        ``gather_gradients``, or the integer hash's ``block_values`` and
+        ``block_gradients``, ``contract_last``, ``final_pass``), tap by tap and
         term by term in the same order, so the bits are the same. A lattice row
         ``r`` of octave ``o`` is hashed and contracted along axis 1 only when an
         output row first needs it, into a ring of ``2**ceil(log2 taps)`` rows per
         octave that stays in cache (rows are never held as a block in memory).
         The axis-1 contraction runs eight columns at a time (:func:`expand_dot8`)
         over the block's lattice values with the weights spread out to each
-        column's offset (zeros elsewhere): adding the zero products changes no
-        bit, so it equals the four-tap sum. The hot loops index flat arrays with
+        column's offset (NaN elsewhere, which adds no term): it equals the
+        tap sum bit for bit, a zero's sign included. The hot loops index flat arrays with
         unsigned offsets (no negative-index wrap: they vectorise) and make no array
         views (each costs an atomic reference count). Each sample depends only on its row
         and column, not on the tile, so any window is the same slice of the
@@ -1031,7 +1071,7 @@ def _make_grid2d(GRAD, USE32):
         # the extended tables (when used), then room for a row's lattice values hashed one by one
         vbase = 2 * ext_len if use_ext else 0
         ext = np.empty(vbase + 2 * width)
-        if use_ext:
+        if TABLE and use_ext:  # (TABLE a constant: the integer-hash variants compile no table code)
             for x in range(ext_len):
                 xm = x % n
                 h = perm[xm]
@@ -1051,7 +1091,7 @@ def _make_grid2d(GRAD, USE32):
         expand = mmax <= 4 * L  # else (columns sparser than the lattice) a plain per-column loop
         if not expand:
             mmax = 1
-        # not zeroed here (np.zeros is one more overload to compile): each block's rows are zeroed
+        # not filled here (np.full is one more overload to compile): each block's rows are set to NaN
         # below before its weights are written, and expand_dot8 reads no further
         E = np.empty(noct * nterm * nblk_max * mmax * L)
         bB = np.empty((noct, nblk_max), np.int64)
@@ -1079,7 +1119,7 @@ def _make_grid2d(GRAD, USE32):
                             e0 = ((o * nterm + b) * nblk_max + blk) * mmax * L
                             wsrc = wb1 if b == 1 else wa1
                             for x in range(mb * L):
-                                E[e0 + x] = 0.0
+                                E[e0 + x] = np.nan  # no tap of this column (expand_dot8 adds nothing)
                             for q in range(qa, qb):
                                 d = base1[o, q] - lo_
                                 for k in range(taps):
@@ -1095,11 +1135,19 @@ def _make_grid2d(GRAD, USE32):
                         # lattice row r: its values against this tile's axis-1 taps lo .. lo + m - 1
                         lo = lmin[o]
                         m = lmax[o] + 1 - lo
-                        i0 = lat0[off0[o] + r]
-                        h1 = perm[i0]
-                        p0 = i0 & 1
-                        first = lat1[off1[o] + lo]
-                        if use_ext and dense1[o]:
+                        if INT:  # a constant: the table-hash variants compile none of this
+                            # the integer hash's words: lat0 holds key ^ j_0 M_0, lat1 holds j_1 M_1
+                            v0 = vbase
+                            v1 = vbase + width
+                            if grad:
+                                int_row_gradients(ext, v0, v1, lat0[off0[o] + r], lat1, off1[o] + lo, m, grads)
+                            else:
+                                int_row_values(ext, v0, lat0[off0[o] + r], lat1, off1[o] + lo, m)
+                        elif use_ext and dense1[o]:
+                            i0 = lat0[off0[o] + r]
+                            h1 = perm[i0]
+                            p0 = i0 & 1
+                            first = lat1[off1[o] + lo]
                             s0 = h1 + first
                             s0 = s0 - n if s0 >= n else s0
                             if grad:
@@ -1109,6 +1157,9 @@ def _make_grid2d(GRAD, USE32):
                                 v0 = ((p0 + first + s0) & 1) * ext_len + s0
                                 v1 = v0
                         else:
+                            i0 = lat0[off0[o] + r]
+                            h1 = perm[i0]
+                            p0 = i0 & 1
                             v0 = vbase
                             v1 = vbase + width
                             for l in range(m):
@@ -1196,14 +1247,15 @@ _GRID2D = {}
 
 def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
            absval, out64, out32, nq, tile):
-    """A 2-D grid of table-hashed lattice noise, every octave fused (the compiled kernel for this basis and dtype).
+    """A 2-D grid of lattice noise, every octave fused (the compiled kernel for this basis, dtype and hash).
 
     The arguments and the result are those of the kernel :func:`_make_grid2d`
     compiles (its docstring): ``basis`` 0 (value) or 1 (gradient), the
-    output float32 when ``out32`` is not empty.
+    output float32 when ``out32`` is not empty, the integer hash when
+    ``lat0`` holds its uint32 words (``_intgrid.grid2d`` makes them).
     Only the variant called is compiled.
     """
-    key = (basis == 1, out32.shape[0] > 0)
+    key = (basis == 1, out32.shape[0] > 0, lat0.dtype == np.uint32)
     fn = _GRID2D.get(key)
     if fn is None:
         fn = _GRID2D[key] = _make_grid2d(*key)
@@ -1311,27 +1363,23 @@ def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, 
     return fn(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv, last)
 
 
-def grid2d_all(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv_axis, scales, perms,
-               values, grads, absval, out64, out32, nq, tile):
-    """:func:`pack_axis` for both axes, then :func:`grid2d` for every component, in one call.
+def pack_grid2d(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv_axis):
+    """:func:`pack_axis` for both axes: :func:`grid2d`'s first eleven arguments, or None.
 
-    ``freqs`` and ``periods`` (O, 2), ``phase`` (2,), ``perms`` (C, n), ``out64``
-    and ``out32`` (C, nj * nq) and (C, 0), either way round. Returns False (and writes nothing) when an axis's taps need
-    ``LatticeNoise._axis_taps``' sparse packing.
+    ``c0``, ``c1`` the axes' coordinates, ``freqs`` and ``periods`` (O, 2),
+    ``phase`` (2,). None when an axis's taps need ``grid_path.axis_taps``'
+    sparse packing.
     """
     ok0, lat0, off0, pos0, base0, wa0, wb0, dense0 = pack_axis(
         c0, np.ascontiguousarray(freqs[:, 0]), phase[0], shift, left, taps, coef, dcoef,
         np.ascontiguousarray(periods[:, 0], dtype=np.int64), n, grad,
         bool(deriv_axis == 0), False)
     if not ok0:
-        return False
+        return None
     ok1, lat1, off1, pos1, base1, wa1, wb1, dense1 = pack_axis(
         c1, np.ascontiguousarray(freqs[:, 1]), phase[1], shift, left, taps, coef, dcoef,
         np.ascontiguousarray(periods[:, 1], dtype=np.int64), n, grad,
         bool(deriv_axis == 1), True)
     if not ok1:
-        return False
-    for c in range(perms.shape[0]):
-        grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perms[c], values, grads,
-               1 if grad else 0, absval, out64[c], out32[c], nq, tile)
-    return True
+        return None
+    return lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1

@@ -8,8 +8,9 @@ and chunk chooses alike:
   kernel applied one axis at a time to the block of lattice values the grid
   covers, axes ``d-1 .. 1`` contracted into rows (:func:`contract_rest`),
   then one fused pass along axis 0; octaves are batched within a memory
-  budget. 2-D grids with the table hash run every octave in one fused
-  kernel, tile by tile (:func:`grid_fused_2d`), with the same bits;
+  budget. 2-D grids, with either hash, run every octave in one fused
+  kernel, tile by tile (:func:`grid_fused_2d`), with the same bits (the
+  integer hash's lattice rows hashed in the kernel, :mod:`._intgrid`);
 - the **scattered** path (:func:`grid_scattered`), row by row through
   :func:`.points_path.evaluate_points`, for grids sparser than the octave's
   lattice (:func:`is_separable`) and past 2**52 lattice cells, where a
@@ -27,7 +28,7 @@ import numpy as np
 
 from .._core import float_dtype, map_blocks
 from . import checks
-from ._compiled import inthash, jit
+from ._compiled import PERIOD_MAX, intgrid, inthash, jit
 from .grid import check_grid, coordinates
 from .points_path import evaluate_points, evaluate_points_jac
 from .tables import period_masks
@@ -40,7 +41,7 @@ __all__ = ["render_grid", "with_period", "finish_grid", "is_separable", "grid_sc
 # grid's first tap) is then replaced by the per-point path, which reduces
 # every index exactly (fmod), so both paths give the same samples.
 SEPARABLE_LIMIT = float(2 ** 52)
-# 2-D grids with the table hash take the fused kernel (a test turns it off to compare with the general path)
+# 2-D grids take the fused kernel, either hash (a test turns it off to compare with the general path)
 FUSED_2D = True
 # columns per tile of the fused 2-D pass (None: as many as keep its ring of contracted lattice rows,
 # octaves x 2**ceil(log2 taps) rows x gradient terms x tile float64, within RING_BYTES: measured
@@ -266,7 +267,7 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
     d = noise.dim_in
     grad = noise.basis == "gradient"
     integer = noise.hash == "integer"
-    if d == 2 and not integer and FUSED_2D:
+    if d == 2 and FUSED_2D:
         grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis)
         return
     nterm = d if grad else 1
@@ -321,14 +322,17 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
 
 
 def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
-    """The separable pass of a 2-D grid with the table hash: every octave in one kernel (:func:`_jit.grid2d`).
+    """The separable pass of a 2-D grid, either hash: every octave in one kernel (:func:`_jit.grid2d`).
 
     The same arithmetic, term by term, as the general path (the same
-    bits), without the lattice block or octave batches in memory.
+    bits), without the lattice block or octave batches in memory. The
+    integer hash's lattice indices are packed whole (below its period, at
+    most 2**32) and hashed row by row in the kernel (:mod:`._intgrid`).
     """
     grad = noise.basis == "gradient"
+    integer = noise.hash == "integer"
     k = noise.kernel
-    n = noise.table_size
+    n = PERIOD_MAX if integer else noise.table_size  # the integer hash reduces by the period only
     freqs = np.array([freq for freq, _, _ in octaves], dtype=np.float64)
     scales = np.array([amp for _, amp, _ in octaves], dtype=np.float64)
     periods = np.array([per for _, _, per in octaves], dtype=np.int64)
@@ -348,11 +352,23 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
     else:
         out64, out32 = flat, np.empty((noise.dim_out, 0), np.float32)
     dax = -1 if deriv_axis is None else int(deriv_axis)
-    if jit.grid2d_all(sub[0], sub[1], freqs, noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, periods,
-                      n, grad, dax, scales, noise.perms, noise.values, noise.gradients, bool(absval), out64, out32,
-                      nq, tile):
-        return
-    # an axis whose taps spread over many cells: packed here, axis_taps' sparse branch for that axis
+    packed = jit.pack_grid2d(sub[0], sub[1], freqs, noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, periods,
+                             n, grad, dax)
+    if packed is None:
+        packed = _pack_sparse(noise, sub, freqs, periods, n, grad, deriv_axis)
+    for c in range(noise.dim_out):
+        if integer:
+            intgrid.grid2d(*packed, scales, noise._keys[c:c + 1], noise._mult, noise._int_grads, 1 if grad else 0,
+                           bool(absval), out64[c], out32[c], nq, tile)
+        else:
+            jit.grid2d(*packed, scales, noise.perms[c], noise.values, noise.gradients, 1 if grad else 0,
+                       bool(absval), out64[c], out32[c], nq, tile)
+
+
+def _pack_sparse(noise, sub, freqs, periods, n, grad, deriv_axis):
+    """:func:`_jit.pack_grid2d`'s result where an axis's taps spread over many cells (:func:`axis_taps`' sparse
+    branch for that axis)."""
+    k = noise.kernel
     packed = []
     for a in range(2):
         ok, lat, off, pos, base, wa, wb, dense = jit.pack_axis(
@@ -373,10 +389,8 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
             wa, wb = np.ascontiguousarray(wa), np.ascontiguousarray(wb)
             dense = np.array([per[1] % n == 0 and bool((np.diff(ax[0]) % per[1] == 1).all())
                               for ax, per in zip(axis, periods)])
-        packed.append((lat, off, pos, wa, wb) if a == 0 else (lat, off, base, dense, wa, wb))
-    for c in range(noise.dim_out):
-        jit.grid2d(*packed[0], *packed[1], scales, noise.perms[c], noise.values, noise.gradients, 1 if grad else 0,
-                   bool(absval), out64[c], out32[c], nq, tile)
+        packed.extend((lat, off, pos, wa, wb) if a == 0 else (lat, off, base, dense, wa, wb))
+    return tuple(packed)
 
 
 def contract_rest(block, axes, use_r, target):
