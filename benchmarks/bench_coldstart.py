@@ -53,6 +53,11 @@ PATHS = {
     "int32": ("`LatticeNoise(3, hash=\"integer\")(pts.astype(np.float32))`, 1e5 points",
               "pts = np.random.default_rng(0).random((100_000, 3)) * 32\n"
               "nl.LatticeNoise(3, hash=\"integer\")(pts.astype(np.float32))"),
+    "intfbm2": ("`fractal_sum(LatticeNoise(2, kernel=\"quintic\", hash=\"integer\"), Grid((512, 512), ((0, 16), "
+                "(0, 16))), 6, dtype=np.float32)`",
+                "from noiselab.lattice import Grid\n"
+                "nl.fractal_sum(nl.LatticeNoise(2, kernel='quintic', hash='integer'), "
+                "Grid((512, 512), ((0, 16), (0, 16))), 6, dtype=np.float32)"),
 }
 
 # printed by the child after the call: the number of compiled (or cache-loaded) specialisations
