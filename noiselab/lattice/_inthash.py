@@ -47,7 +47,7 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
-from ._jit import _reduce, _wrap
+from ._jit import _next_corner, _reduce, _wrap
 
 CHUNK = 256
 PERIOD_MAX = 1 << 32  # lattice coordinates are hashed as 32-bit words
@@ -420,16 +420,9 @@ def _make_int_points(DERIV):
                                 T0[i] += wd[i] * v
                                 if DERIV:
                                     _add_grad_derivs(T, DP, wd[i], grads, g, v, i, d)
-                        a = d - 1
-                        while a >= 0:
-                            cnt[a] += 1
-                            if cnt[a] < taps:
-                                break
-                            cnt[a] = 0
-                            a -= 1
-                        if a < 0:
+                        level = _next_corner(cnt, taps)
+                        if level < 0:
                             break
-                        level = a
                     amp = amps[o]
                     acc = ACC[c]
                     for i in range(m):

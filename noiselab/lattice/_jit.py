@@ -87,6 +87,23 @@ def _hash(h, j, n, nmask):
     return s
 
 
+@nb.njit(cache=True, nogil=True)
+def _next_corner(cnt, taps):
+    """Advance the odometer ``cnt`` over the ``taps**d`` corners (last axis fastest).
+
+    Returns the first axis whose tap changed (the levels from there on are
+    recomputed), or -1 after the last corner.
+    """
+    a = cnt.shape[0] - 1
+    while a >= 0:
+        cnt[a] += 1
+        if cnt[a] < taps:
+            return a
+        cnt[a] = 0
+        a -= 1
+    return -1
+
+
 def _make_eval_points(DERIV):
     """:func:`eval_points` (``DERIV`` False) or :func:`eval_points_jac` (True): one source, two compiled kernels.
 
@@ -143,16 +160,17 @@ def _make_eval_points(DERIV):
         noct = freqs.shape[0]
         nq = d + 1 if DERIV else 1  # the value, then (DERIV) one derivative per axis
         w = np.empty((d, 4))
-        dw = np.empty((d, 4))
         r = np.empty((d, 4))
         jj = np.empty((d, 4), np.int64)
         cnt = np.zeros(d, np.int64)
         hs = np.zeros(d + 1, np.int64)
         par = np.zeros(d + 1, np.int64)
         prod = np.ones(d + 1)
-        dprod = np.zeros((d + 1, d))
-        D = np.zeros(d)
-        acc = np.zeros((ncomp, nq))
+        if DERIV:  # (the value kernel allocates, and compiles, none of these)
+            dw = np.empty((d, 4))
+            dprod = np.zeros((d + 1, d))
+            D = np.zeros(d)
+        acc = np.empty((ncomp, nq))  # zeroed per point
         vals0 = values[0]
         vals1 = values[1]
         for p in range(npts):
@@ -293,16 +311,9 @@ def _make_eval_points(DERIV):
                                     for a in range(d):
                                         D[a] += dprod[d, a] * v + prod[d] * grads[h, a]
                             total += prod[d] * v
-                            a = d - 1
-                            while a >= 0:
-                                cnt[a] += 1
-                                if cnt[a] < taps:
-                                    break
-                                cnt[a] = 0
-                                a -= 1
-                            if a < 0:
+                            level = _next_corner(cnt, taps)
+                            if level < 0:
                                 break
-                            level = a
                     amp = amps[o]
                     if absval:
                         acc[c, 0] += amp * abs(total)
