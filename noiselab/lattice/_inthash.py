@@ -319,6 +319,7 @@ def _make_int_points(DERIV):
         W = np.empty((d, taps, CHUNK))
         if DERIV:
             DW = np.empty((d, taps, CHUNK))
+            V = np.empty(CHUNK)  # the corner's values (value basis)
         else:
             DW = np.empty((1, 1, 1))  # not read
         R = np.empty((d, taps, CHUNK))
@@ -380,10 +381,15 @@ def _make_int_points(DERIV):
                         if basis == 0:
                             for i in range(m):
                                 v = hash_value(hd[i])
-                                T0[i] += wd[i] * v
                                 if DERIV:
-                                    for b in range(d):
-                                        T[1 + b, i] += DP[b, i] * v
+                                    V[i] = v
+                                T0[i] += wd[i] * v
+                            if DERIV:  # one loop per axis: each vectorises
+                                for b in range(d):
+                                    tb = T[1 + b]
+                                    db = DP[b]
+                                    for i in range(m):
+                                        tb[i] += db[i] * V[i]
                         elif d == 1:
                             r0 = R[0, cnt[0]]
                             for i in range(m):
