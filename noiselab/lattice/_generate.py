@@ -54,11 +54,12 @@ def _function(d: int, taps: int, deriv: bool = False) -> str:
     splits coordinates and evaluates the tap weights (with ``deriv`` also
     their derivatives ``DW``) (straight-line float code that vectorises);
     (2) per point, the nested permutation hash and the weighted sum, unrolled
-    over the ``taps**d`` neighbours and written out level by level as
-    temporaries: at level ``L`` (axis ``L``, innermost last) ``s = sum_k w_k
-    s_k`` is the partial value. With ``deriv`` (see ``_jit.eval_points_jac``)
-    also ``e_a = sum_k w_k e_{k,a}`` for axes ``a > L`` and ``e_L = sum_k
-    (dw_k s_k [+ w_k e_{k,L}])``; in the gradient basis the leaves also carry
+    over the ``taps**d`` neighbours level by level: at level ``L`` (axis
+    ``L``, innermost last) ``s = sum_k w_k s_k`` is the partial value (one
+    nested expression; with ``deriv`` a temporary, read again by the
+    derivatives). With ``deriv`` (see ``_jit.eval_points_jac``) also ``e_a =
+    sum_k w_k e_{k,a}`` for axes ``a > L`` and ``e_L = sum_k (dw_k s_k [+
+    w_k e_{k,L}])``; in the gradient basis the leaves also carry
     ``e_a = g_a`` (``d(g . r)/dt_a``), summed on every level. ``out`` is
     then ``(N, C, d + 1)``: value, then the derivatives in input units
     (times ``amps[o] * freqs[o, a]``); turbulence multiplies them by
@@ -170,7 +171,8 @@ def _function(d: int, taps: int, deriv: bool = False) -> str:
         a_(f"{b5}for k0 in range({taps}):")
         a_(f"{b6}hk = perms[c, Q[0, k0, i]]")
         a_(f"{b6}pk = par ^ (k0 & 1)")
-        a_(f"{b6}w0k = W[0, k0, i]; dw0k = DW[0, k0, i]" if deriv else f"{b6}w0k = W[0, k0, i]")
+        if deriv:
+            a_(f"{b6}w0k = W[0, k0, i]; dw0k = DW[0, k0, i]")
     for level in range(first, d):
         for ks in itertools.product(range(taps), repeat=level + 1 - first):
             name = "h" + "".join(map(str, ks))
@@ -183,6 +185,13 @@ def _function(d: int, taps: int, deriv: bool = False) -> str:
 
     def body(grad, out_lines, pad):
         """Emit the sums for one basis; returns the names of the value and of the per-axis derivatives."""
+        def named(var, expr):
+            """``var``, assigned ``expr``, where the derivatives read it again (``deriv``); else ``(expr)`` inline."""
+            if not deriv:
+                return f"({expr})"
+            out_lines.append(f"{pad}{var} = {expr}")
+            return var
+
         def emit(prefix, level):
             tag = "".join(map(str, prefix))
             kids = []
@@ -200,16 +209,13 @@ def _function(d: int, taps: int, deriv: bool = False) -> str:
                             else:
                                 gs[a] = f"grads[{h}, {a}]"
                         rs = ["R[0, k0, i]" if (loop0 and a == 0) else f"R[{a}, {ks[a - first]}, i]" for a in range(d)]
-                        out_lines.append(f"{pad}{v} = " + " + ".join(f"{gs[a]} * {rs[a]}" for a in range(d)))
-                        kids.append((v, gs if deriv else {}))
+                        kids.append((named(v, " + ".join(f"{gs[a]} * {rs[a]}" for a in range(d))), gs))
                     else:
                         odd = sum(ks) % 2
-                        out_lines.append(f"{pad}{v} = values[{parity0}{' ^ 1' if odd else ''}, {h}]")
-                        kids.append((v, {}))
+                        kids.append((named(v, f"values[{parity0}{' ^ 1' if odd else ''}, {h}]"), {}))
                 else:
                     kids.append(emit(ks, level + 1))
-            s = f"s{level}_{tag}"
-            out_lines.append(f"{pad}{s} = " + " + ".join(f"w{level}_{k} * {kid[0]}" for k, kid in enumerate(kids)))
+            s = named(f"s{level}_{tag}", " + ".join(f"w{level}_{k} * {kid[0]}" for k, kid in enumerate(kids)))
             derivs = {}
             axes = (range(d) if grad else range(level, d)) if deriv else ()
             for a in axes:
@@ -232,16 +238,19 @@ def _function(d: int, taps: int, deriv: bool = False) -> str:
         lines = []
         s, derivs = body(basis == 1, lines, pad)
         L.extend(lines)
-        if loop0:
+        if loop0 and not deriv:  # the first axis's weight applied once, after either basis's sum
+            a_(f"{pad}inner = {s}")
+        elif loop0:
             a_(f"{pad}total += w0k * {s}")
-            if deriv:
-                a_(f"{pad}D0 += dw0k * {s}" + (f" + w0k * {derivs[0]}" if basis == 1 else ""))
-                for a in range(1, d):
-                    a_(f"{pad}D{a} += w0k * {derivs[a]}")
+            a_(f"{pad}D0 += dw0k * {s}" + (f" + w0k * {derivs[0]}" if basis == 1 else ""))
+            for a in range(1, d):
+                a_(f"{pad}D{a} += w0k * {derivs[a]}")
         else:
             a_(f"{pad}total = {s}")
             for a in range(d if deriv else 0):
                 a_(f"{pad}D{a} = {derivs[a]}")
+    if loop0 and not deriv:
+        a_(f"{b6}total += W[0, k0, i] * inner")
     _store_octave(a_, b5, d, deriv, "c, {q}i")
     a_(f"{lvl(2)}for i in range(m):")
     a_(f"{lvl(3)}for c in range(ncomp):")
@@ -255,7 +264,9 @@ def _store_octave(a_, pad, d, deriv, index):
     ``index`` is ACC's index with ``{q}`` where the value/derivative slot goes (``deriv`` only).
     """
     at = lambda q: index.format(q=f"{q}, " if deriv else "")  # noqa: E731
-    a_(f"{pad}amp = amps[o]")
+    amp = "amp" if deriv else "amps[o]"
+    if deriv:
+        a_(f"{pad}amp = amps[o]")
     a_(f"{pad}if absval:")
     if deriv:
         a_(f"{pad}    sg = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)")
@@ -264,7 +275,7 @@ def _store_octave(a_, pad, d, deriv, index):
         a_(f"{pad}    " + "; ".join(f"D{a} = sg * D{a}" for a in range(d)))
     for op, head in (("=", "if o == 0"), ("+=", "else")):
         a_(f"{pad}{head}:")
-        a_(f"{pad}    ACC[{at(0)}] {op} amp * total")
+        a_(f"{pad}    ACC[{at(0)}] {op} {amp} * total")
         for a in range(d if deriv else 0):
             a_(f"{pad}    ACC[{at(a + 1)}] {op} (amp * freqs[o, {a}]) * D{a}")
 
@@ -461,15 +472,16 @@ def _function_tables(d: int, taps: int, kernel=None, deriv: bool = False) -> str
         for k0 in range(taps):
             for k1 in range(taps):
                 a_(f"{b6}h = np.uint64(H2[c, q0_{k0} + q1_{k1}]) + q2")
-                a_(f"{b6}ww = w0_{k0} * w1_{k1}" + (f"; w0d = dw0_{k0} * w1_{k1}; w1d = w0_{k0} * dw1_{k1}"
-                                                     if deriv else ""))
+                if deriv:
+                    a_(f"{b6}ww = w0_{k0} * w1_{k1}; w0d = dw0_{k0} * w1_{k1}; w1d = w0_{k0} * dw1_{k1}")
+                ww = "ww" if deriv else f"w0_{k0} * w1_{k1}"
                 if basis == 0:
-                    a_(f"{b6}acc = axpy_lanes(acc, ww, tab, h)")
+                    a_(f"{b6}acc = axpy_lanes(acc, {ww}, tab, h)")
                     if deriv:
                         a_(f"{b6}a0 = axpy_lanes(a0, w0d, tab, h)")
                         a_(f"{b6}a1 = axpy_lanes(a1, w1d, tab, h)")
                 elif not deriv:
-                    a_(f"{b6}acc = grad_axpy_lanes(acc, ww, r0_{k0}, r1_{k1}, r2, tab, h, stride)")
+                    a_(f"{b6}acc = grad_axpy_lanes(acc, {ww}, r0_{k0}, r1_{k1}, r2, tab, h, stride)")
                 else:
                     a_(f"{b6}h1 = h + stride; h2 = h + stride2")
                     a_(f"{b6}P = axpy_lanes(axpy_lanes(P, ww * r0_{k0}, tab, h), ww * r1_{k1}, tab, h1)")
