@@ -139,7 +139,7 @@ def test_simd_kernels_agree_with_the_generic_one(dim, basis):
             factor = _intpoints.FACTOR[basis][dim - 1]
             for absval in (False, True):
                 generic = np.empty((700, 2))
-                _inthash.int_points(pts, generic, freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef,
+                _inthash.int_points(pts, generic, freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef,
                                     noise.period, noise._pmask, noise._keys, noise._mult, noise._int_grads,
                                     int(basis == "gradient"), absval)
                 variants = [("s64f64", np.float64, 1e-13)]

@@ -7,9 +7,9 @@ in the fused 2-D grid kernel), and the specialised families that
 ``_generate.py`` writes and :mod:`._kerncache` generates on first use into a
 cache folder (never into git): ``points`` (unrolled per dimension and tap
 count, and the 3-D kernels over precombined hash tables), ``jacobians``
-(their derivative twins) and ``intpoints`` (the integer hash's SIMD
-kernels, one module per dimension, kernel and basis, loaded on first
-lookup). The rest of the
+(the same templates written with their derivative lines) and ``intpoints``
+(the integer hash's SIMD kernels, one module per dimension, kernel and
+basis, loaded on first lookup). The rest of the
 lattice code (:mod:`.tables`, :mod:`.points_path`, :mod:`.grid_path`,
 :mod:`.derivatives`) reaches them only through this module: ``jit``,
 ``inthash`` and ``intgrid`` for the generic kernels, and the functions below

@@ -35,8 +35,9 @@ This module holds the definition (:func:`mix32`, :func:`hash_value`,
 :func:`hash_index`, :func:`gradient_set`), the grid path's block hashing
 (:func:`block_prefix`, :func:`block_values`, :func:`block_gradients`) and the
 generic scattered kernels for any dimension and kernel (:func:`int_points`,
-:func:`int_points_jac`). Every point's arithmetic is one fixed sequence, so
-results do not depend on chunking or threads.
+and :func:`int_points_jac`, the same source compiled with its derivative
+flag: :func:`_make_int_points`). Every point's arithmetic is one fixed
+sequence, so results do not depend on chunking or threads.
 """
 from __future__ import annotations
 
@@ -46,7 +47,7 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
-from ._jit import _reduce, _wrap
+from ._jit import _next_corner, _reduce, _wrap
 
 CHUNK = 256
 PERIOD_MAX = 1 << 32  # lattice coordinates are hashed as 32-bit words
@@ -273,218 +274,189 @@ def _axis_setup(pts, p0, m, a, f, ph, shift, left, taps, coef, dcoef, per, msk, 
             M[a, k, i] = prime(_wrap(b + k, per, msk), mult_a)
 
 
-@nb.njit(cache=True, nogil=True)
-def int_points(pts, out, freqs, amps, phase, shift, left, taps, coef, period, pmask,
-               keys, mult, grads, basis, absval):
-    """Lattice noise with the integer hash at scattered points (any dimension; octaves fused).
+@nb.njit(cache=True, nogil=True, inline="always")
+def _add_grad_derivs(T, DP, wp, grads, g, v, i, d):
+    """``T[1 + b, i] += DP[b, i] v + wp g_b`` for every axis b: a gradient corner's derivative terms."""
+    for b in range(d):
+        T[1 + b, i] += DP[b, i] * v + wp * grads[g, b]
 
-    ``pts`` (N, d) float64; ``out`` (N, C) written; ``keys`` (C,) uint32 per
-    component; ``mult`` (d,) uint32 odd multipliers; ``grads`` (L, d) the
-    gradient set (:func:`gradient_set`). The other arguments are those of ``_jit.eval_points``.
-    Per chunk and octave: each axis's weights and hashed tap offsets
-    ``M[a, k] = ((j + k) mod period) * M_a`` (uint32); then the corners in odometer
-    order, the prefix words (xor) and weight products carried level by level, each
-    level one vectorisable loop over the chunk.
+
+def _make_int_points(DERIV):
+    """:func:`int_points` (``DERIV`` False) or :func:`int_points_jac` (True): one source, two compiled kernels.
+
+    ``DERIV`` is a constant of the closure: numba prunes the derivative
+    branches before typing, so the value kernel compiles no derivative code
+    (a boolean is safe in numba's cache key; a function closed over is not).
     """
-    npts, d = pts.shape
-    ncomp = keys.shape[0]
-    n = grads.shape[0]
-    noct = freqs.shape[0]
-    W = np.empty((d, taps, CHUNK))
-    R = np.empty((d, taps, CHUNK))
-    M = np.empty((d, taps, CHUNK), np.uint32)
-    HP = np.empty((d + 1, CHUNK), np.uint32)
-    WP = np.empty((d + 1, CHUNK))
-    T = np.empty(CHUNK)
-    ACC = np.empty((ncomp, CHUNK))
-    cnt = np.zeros(d, np.int64)
-    dummy = np.empty((1, 1, 1))
-    for p0 in range(0, npts, CHUNK):
-        m = min(CHUNK, npts - p0)
-        for o in range(noct):
-            for a in range(d):
-                _axis_setup(pts, p0, m, a, freqs[o, a], phase[a], shift, left, taps, coef, coef, period[a],
-                            pmask[a], mult[a], W, dummy, R, M, False)
-            for c in range(ncomp):
-                key = keys[c]
-                for i in range(m):
-                    T[i] = 0.0
-                for a in range(d):
-                    cnt[a] = 0
-                level = 0
-                while True:
-                    for a in range(level, d):
-                        k = cnt[a]
-                        Ma = M[a, k]
-                        Wa = W[a, k]
-                        if a == 0:
-                            h1 = HP[1]
-                            w1 = WP[1]
-                            for i in range(m):
-                                h1[i] = _U32(key ^ Ma[i])
-                                w1[i] = Wa[i]
-                        else:
-                            h0 = HP[a]
-                            w0 = WP[a]
-                            h1 = HP[a + 1]
-                            w1 = WP[a + 1]
-                            for i in range(m):
-                                h1[i] = _U32(h0[i] ^ Ma[i])
-                                w1[i] = w0[i] * Wa[i]
-                    hd = HP[d]
-                    wd = WP[d]
-                    if basis == 0:
-                        for i in range(m):
-                            T[i] += wd[i] * hash_value(hd[i])
-                    elif d == 1:
-                        r0 = R[0, cnt[0]]
-                        for i in range(m):
-                            g = hash_index(hd[i], n)
-                            T[i] += wd[i] * (grads[g, 0] * r0[i])
-                    elif d == 2:
-                        r0 = R[0, cnt[0]]
-                        r1 = R[1, cnt[1]]
-                        for i in range(m):
-                            g = hash_index(hd[i], n)
-                            T[i] += wd[i] * (grads[g, 0] * r0[i] + grads[g, 1] * r1[i])
-                    elif d == 3:
-                        r0 = R[0, cnt[0]]
-                        r1 = R[1, cnt[1]]
-                        r2 = R[2, cnt[2]]
-                        for i in range(m):
-                            g = hash_index(hd[i], n)
-                            T[i] += wd[i] * (grads[g, 0] * r0[i] + grads[g, 1] * r1[i] + grads[g, 2] * r2[i])
-                    else:
-                        for i in range(m):
-                            g = hash_index(hd[i], n)
-                            v = 0.0
-                            for a in range(d):
-                                v += grads[g, a] * R[a, cnt[a], i]
-                            T[i] += wd[i] * v
-                    a = d - 1
-                    while a >= 0:
-                        cnt[a] += 1
-                        if cnt[a] < taps:
-                            break
-                        cnt[a] = 0
-                        a -= 1
-                    if a < 0:
-                        break
-                    level = a
-                amp = amps[o]
-                acc = ACC[c]
-                for i in range(m):
-                    v = abs(T[i]) if absval else T[i]
-                    if o == 0:
-                        acc[i] = amp * v
-                    else:
-                        acc[i] += amp * v
-        for i in range(m):
-            for c in range(ncomp):
-                out[p0 + i, c] = ACC[c, i]
 
-
-@nb.njit(cache=True, nogil=True)
-def int_points_jac(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
+    @nb.njit(cache=True, nogil=True)
+    def int_points(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
                    keys, mult, grads, basis, absval):
-    """Values and Jacobians with the integer hash at scattered points (any dimension; octaves fused).
+        """Lattice noise with the integer hash (and with ``DERIV`` its Jacobian) at scattered points.
 
-    ``out`` (N, C, d + 1) float64 as in ``_jit.eval_points_jac``; the other
-    arguments as in :func:`int_points`. A corner's term ``prod_a w_a v``
-    differentiates along axis ``b`` to ``w_b' prod_{a != b} w_a v`` (plus, in
-    the gradient basis, ``prod_a w_a g_b``).
-    """
-    npts, d = pts.shape
-    ncomp = keys.shape[0]
-    n = grads.shape[0]
-    noct = freqs.shape[0]
-    W = np.empty((d, taps, CHUNK))
-    DW = np.empty((d, taps, CHUNK))
-    R = np.empty((d, taps, CHUNK))
-    M = np.empty((d, taps, CHUNK), np.uint32)
-    H = np.empty(CHUNK, np.uint32)
-    WP = np.empty(CHUNK)
-    DP = np.empty((d, CHUNK))
-    V = np.empty(CHUNK)
-    T = np.empty((d + 1, CHUNK))
-    ACC = np.empty((ncomp, d + 1, CHUNK))
-    cnt = np.zeros(d, np.int64)
-    for p0 in range(0, npts, CHUNK):
-        m = min(CHUNK, npts - p0)
-        for o in range(noct):
-            for a in range(d):
-                _axis_setup(pts, p0, m, a, freqs[o, a], phase[a], shift, left, taps, coef, dcoef, period[a],
-                            pmask[a], mult[a], W, DW, R, M, True)
-            for c in range(ncomp):
-                key = keys[c]
-                for q in range(d + 1):
-                    for i in range(m):
-                        T[q, i] = 0.0
+        Any dimension; octaves fused. ``pts`` (N, d) float64; ``out`` written:
+        (N, C), or with ``DERIV`` (N, C, d + 1) float64 as in
+        ``_jit.eval_points_jac`` (the value, then its derivative along each
+        input axis); ``keys`` (C,) uint32 per component; ``mult`` (d,) uint32
+        odd multipliers; ``grads`` (L, d) the gradient set
+        (:func:`gradient_set`). The other arguments are those of
+        ``_jit.eval_points`` (``dcoef`` is read only with ``DERIV``).
+
+        Per chunk and octave: each axis's weights and hashed tap offsets
+        ``M[a, k] = ((j + k) mod period) * M_a`` (uint32); then the corners in
+        odometer order, the prefix words (xor) and weight products carried
+        level by level, each level one vectorisable loop over the chunk. A
+        corner's term ``prod_a w_a v`` differentiates along axis ``b`` to
+        ``w_b' prod_{a != b} w_a v`` (plus, in the gradient basis, ``prod_a
+        w_a g_b``); the product is formed per corner, ``w_0`` first and
+        ``w_b'`` second (``DP``).
+        """
+        npts, d = pts.shape
+        ncomp = keys.shape[0]
+        n = grads.shape[0]
+        noct = freqs.shape[0]
+        nq = d + 1 if DERIV else 1  # the value, then (DERIV) one derivative per axis
+        W = np.empty((d, taps, CHUNK))
+        if DERIV:
+            DW = np.empty((d, taps, CHUNK))
+            V = np.empty(CHUNK)  # the corner's values (value basis)
+        else:
+            DW = np.empty((1, 1, 1))  # not read
+        R = np.empty((d, taps, CHUNK))
+        M = np.empty((d, taps, CHUNK), np.uint32)
+        HP = np.empty((d + 1, CHUNK), np.uint32)
+        WP = np.empty((d + 1, CHUNK))
+        DP = np.empty((d, CHUNK))
+        T = np.empty((nq, CHUNK))
+        ACC = np.empty((ncomp, nq, CHUNK))
+        cnt = np.zeros(d, np.int64)
+        for p0 in range(0, npts, CHUNK):
+            m = min(CHUNK, npts - p0)
+            for o in range(noct):
                 for a in range(d):
-                    cnt[a] = 0
-                while True:
-                    # the corner's prefix word and weight products (value and each axis's derivative)
-                    k = cnt[0]
-                    for i in range(m):
-                        H[i] = _U32(key ^ M[0, k, i])
-                        WP[i] = W[0, k, i]
-                        DP[0, i] = DW[0, k, i]
-                    for b in range(1, d):
-                        DP[b, :m] = WP[:m] * DW[b, cnt[b], :m]
-                    for a in range(1, d):
-                        k = cnt[a]
+                    _axis_setup(pts, p0, m, a, freqs[o, a], phase[a], shift, left, taps, coef, dcoef, period[a],
+                                pmask[a], mult[a], W, DW, R, M, DERIV)
+                for c in range(ncomp):
+                    key = keys[c]
+                    for q in range(nq):
                         for i in range(m):
-                            H[i] = _U32(H[i] ^ M[a, k, i])
-                        for b in range(d):
-                            if b != a:
-                                for i in range(m):
-                                    DP[b, i] *= W[a, k, i]
-                        for i in range(m):
-                            WP[i] *= W[a, k, i]
-                    if basis == 0:
-                        for i in range(m):
-                            V[i] = hash_value(H[i])
-                        for i in range(m):
-                            T[0, i] += WP[i] * V[i]
-                        for b in range(d):
-                            for i in range(m):
-                                T[1 + b, i] += DP[b, i] * V[i]
-                    else:
-                        for i in range(m):
-                            g = hash_index(H[i], n)
-                            v = 0.0
-                            for a in range(d):
-                                v += grads[g, a] * R[a, cnt[a], i]
-                            T[0, i] += WP[i] * v
-                            for b in range(d):
-                                T[1 + b, i] += DP[b, i] * v + WP[i] * grads[g, b]
-                    a = d - 1
-                    while a >= 0:
-                        cnt[a] += 1
-                        if cnt[a] < taps:
-                            break
+                            T[q, i] = 0.0
+                    T0 = T[0]
+                    for a in range(d):
                         cnt[a] = 0
-                        a -= 1
-                    if a < 0:
-                        break
-                amp = amps[o]
-                for i in range(m):
-                    tot = T[0, i]
-                    sg = 1.0
-                    if absval:
-                        sg = 1.0 if tot > 0.0 else (-1.0 if tot < 0.0 else 0.0)
-                        tot = abs(tot)
-                    if o == 0:
-                        ACC[c, 0, i] = amp * tot
-                    else:
-                        ACC[c, 0, i] += amp * tot
-                    for b in range(d):
-                        db = (amp * freqs[o, b]) * (sg * T[1 + b, i])
-                        if o == 0:
-                            ACC[c, 1 + b, i] = db
+                    level = 0
+                    while True:
+                        for a in range(level, d):
+                            k = cnt[a]
+                            Ma = M[a, k]
+                            Wa = W[a, k]
+                            if a == 0:
+                                h1 = HP[1]
+                                w1 = WP[1]
+                                for i in range(m):
+                                    h1[i] = _U32(key ^ Ma[i])
+                                    w1[i] = Wa[i]
+                            else:
+                                h0 = HP[a]
+                                w0 = WP[a]
+                                h1 = HP[a + 1]
+                                w1 = WP[a + 1]
+                                for i in range(m):
+                                    h1[i] = _U32(h0[i] ^ Ma[i])
+                                    w1[i] = w0[i] * Wa[i]
+                        hd = HP[d]
+                        wd = WP[d]
+                        if DERIV:  # DP[b] = w_0 w_b' w_1 ... (w_0' w_1 ... for b = 0), the product skipping w_b
+                            for b in range(d):
+                                db = DP[b]
+                                W0 = W[0, cnt[0]]
+                                DWb = DW[b, cnt[b]]
+                                for i in range(m):
+                                    db[i] = DWb[i] if b == 0 else W0[i] * DWb[i]
+                                for a in range(1, d):
+                                    if a != b:
+                                        Wa = W[a, cnt[a]]
+                                        for i in range(m):
+                                            db[i] *= Wa[i]
+                        if basis == 0:
+                            for i in range(m):
+                                v = hash_value(hd[i])
+                                if DERIV:
+                                    V[i] = v
+                                T0[i] += wd[i] * v
+                            if DERIV:  # one loop per axis: each vectorises
+                                for b in range(d):
+                                    tb = T[1 + b]
+                                    db = DP[b]
+                                    for i in range(m):
+                                        tb[i] += db[i] * V[i]
+                        elif d == 1:
+                            r0 = R[0, cnt[0]]
+                            for i in range(m):
+                                g = hash_index(hd[i], n)
+                                v = grads[g, 0] * r0[i]
+                                T0[i] += wd[i] * v
+                                if DERIV:
+                                    _add_grad_derivs(T, DP, wd[i], grads, g, v, i, d)
+                        elif d == 2:
+                            r0 = R[0, cnt[0]]
+                            r1 = R[1, cnt[1]]
+                            for i in range(m):
+                                g = hash_index(hd[i], n)
+                                v = grads[g, 0] * r0[i] + grads[g, 1] * r1[i]
+                                T0[i] += wd[i] * v
+                                if DERIV:
+                                    _add_grad_derivs(T, DP, wd[i], grads, g, v, i, d)
+                        elif d == 3:
+                            r0 = R[0, cnt[0]]
+                            r1 = R[1, cnt[1]]
+                            r2 = R[2, cnt[2]]
+                            for i in range(m):
+                                g = hash_index(hd[i], n)
+                                v = grads[g, 0] * r0[i] + grads[g, 1] * r1[i] + grads[g, 2] * r2[i]
+                                T0[i] += wd[i] * v
+                                if DERIV:
+                                    _add_grad_derivs(T, DP, wd[i], grads, g, v, i, d)
                         else:
-                            ACC[c, 1 + b, i] += db
-        for i in range(m):
-            for c in range(ncomp):
-                for q in range(d + 1):
-                    out[p0 + i, c, q] = ACC[c, q, i]
+                            for i in range(m):
+                                g = hash_index(hd[i], n)
+                                v = 0.0
+                                for a in range(d):
+                                    v += grads[g, a] * R[a, cnt[a], i]
+                                T0[i] += wd[i] * v
+                                if DERIV:
+                                    _add_grad_derivs(T, DP, wd[i], grads, g, v, i, d)
+                        level = _next_corner(cnt, taps)
+                        if level < 0:
+                            break
+                    amp = amps[o]
+                    acc = ACC[c]
+                    for i in range(m):
+                        tot = T0[i]
+                        v = abs(tot) if absval else tot
+                        if o == 0:
+                            acc[0, i] = amp * v
+                        else:
+                            acc[0, i] += amp * v
+                        if DERIV:  # turbulence: the sign of the octave's value (0 at 0)
+                            sg = (1.0 if tot > 0.0 else (-1.0 if tot < 0.0 else 0.0)) if absval else 1.0
+                            for b in range(d):
+                                db = (amp * freqs[o, b]) * (sg * T[1 + b, i])
+                                if o == 0:
+                                    acc[1 + b, i] = db
+                                else:
+                                    acc[1 + b, i] += db
+            for i in range(m):
+                for c in range(ncomp):
+                    if DERIV:
+                        for q in range(nq):
+                            out[p0 + i, c, q] = ACC[c, q, i]
+                    else:
+                        out[p0 + i, c] = ACC[c, 0, i]
+
+    return int_points
+
+
+# the integer hash at scattered points (any dimension), and the same with its Jacobian: two instances of one source
+int_points = _make_int_points(False)
+int_points_jac = _make_int_points(True)

@@ -8,6 +8,8 @@
   pass over the points. Dimensions 1-3 use the unrolled kernels of
   ``_points.py`` instead (3-D: over precombined hash tables, with the
   last axis's taps summed by :func:`axpy_lanes` / :func:`grad_axpy_lanes`).
+  :func:`eval_points_jac` (values and Jacobians) is the same source compiled
+  with its derivative flag (:func:`_make_eval_points`).
 - the grid path: :func:`axis_weights` and :func:`dense_taps` (per-axis
   weights and distinct taps), :func:`hash_expand` / :func:`hash_expand_values`
   (the hashed block of lattice values), :func:`contract_last` /
@@ -87,146 +89,257 @@ def _hash(h, j, n, nmask):
 
 
 @nb.njit(cache=True, nogil=True)
-def eval_points(pts, out, freqs, amps, phase, shift, left, taps, coef, period, pmask,
-                perms, values, grads, basis, absval):
-    """Evaluate (fractal sums of) lattice noise at scattered points.
+def _next_corner(cnt, taps):
+    """Advance the odometer ``cnt`` over the ``taps**d`` corners (last axis fastest).
 
-    Parameters
-    ----------
-    pts : (N, d) float64
-    out : (N, C) float32 or float64, written (not accumulated)
-    freqs : (O, d) float64, per-octave per-axis frequency
-    amps : (O,) float64, per-octave amplitude (including range normalisation)
-    phase : (d,) float64
-    shift, left, taps, coef : the kernel (see ``kernels.Kernel``)
-    period : (d,) int64, lattice period per axis
-    pmask : (d,) int64, period - 1 for powers of two, else -1
-    perms : (C, n) int64, one permutation per output component
-    values : (2, n) float64, value table by lattice parity (both rows equal
-        unless the sign alternates with the lattice position)
-    grads : (n, d) float64 unit gradients (gradient basis only)
-    basis : 0 value noise, 1 gradient noise
-    absval : sum |octave| (turbulence) instead of octave
-
-    Dimensions 1 to 3 have unrolled neighbour loops; higher dimensions walk
-    the ``taps**d`` neighbours with an odometer that re-hashes only the
-    levels whose tap changed.
+    Returns the first axis whose tap changed (the levels from there on are
+    recomputed), or -1 after the last corner.
     """
-    npts, d = pts.shape
-    ncomp = perms.shape[0]
-    n = perms.shape[1]
-    nmask = n - 1 if (n & (n - 1)) == 0 else -1
-    noct = freqs.shape[0]
-    w = np.empty((d, 4))
-    r = np.empty((d, 4))
-    jj = np.empty((d, 4), np.int64)
-    cnt = np.zeros(d, np.int64)
-    hs = np.zeros(d + 1, np.int64)
-    par = np.zeros(d + 1, np.int64)
-    prod = np.ones(d + 1)
-    acc = np.zeros(ncomp)
-    vals0 = values[0]
-    vals1 = values[1]
-    for p in range(npts):
-        for c in range(ncomp):
-            acc[c] = 0.0
-        for o in range(noct):
-            for a in range(d):
-                u = pts[p, a] * freqs[o, a] + phase[a] + shift
-                fi = np.floor(u)
-                t = u - fi
-                per = period[a]
-                msk = pmask[a]
-                b = _reduce(fi, left, per, msk)
-                # powers first: independent products instead of a serial Horner chain
-                t2 = t * t
-                t3 = t2 * t
-                t4 = t2 * t2
-                t5 = t4 * t
-                for k in range(taps):
-                    w[a, k] = ((coef[k, 0] + coef[k, 1] * t) + (coef[k, 2] * t2 + coef[k, 3] * t3)
-                               + (coef[k, 4] * t4 + coef[k, 5] * t5))
-                    r[a, k] = t - shift + (left - k)
-                    jj[a, k] = _wrap(b + k, per, msk)
+    a = cnt.shape[0] - 1
+    while a >= 0:
+        cnt[a] += 1
+        if cnt[a] < taps:
+            return a
+        cnt[a] = 0
+        a -= 1
+    return -1
+
+
+def _make_eval_points(DERIV):
+    """:func:`eval_points` (``DERIV`` False) or :func:`eval_points_jac` (True): one source, two compiled kernels.
+
+    ``DERIV`` is a constant of the closure: numba prunes the derivative
+    branches before typing, so the value kernel compiles (and runs) no
+    derivative code. A boolean is safe in numba's cache key (it is pickled
+    with the closure); a function closed over is not (see :func:`_make_axis0`).
+    """
+
+    @nb.njit(cache=True, nogil=True)
+    def eval_points(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
+                    perms, values, grads, basis, absval):
+        """Evaluate (fractal sums of) lattice noise, and with ``DERIV`` its Jacobian, at scattered points.
+
+        Parameters
+        ----------
+        pts : (N, d) float64
+        out : written (not accumulated): (N, C) float32 or float64, the
+            values; with ``DERIV`` (N, C, d + 1) float64, ``out[p, c, 0]`` the
+            value and ``out[p, c, 1 + a]`` its derivative along input axis
+            ``a`` in input units
+        freqs : (O, d) float64, per-octave per-axis frequency
+        amps : (O,) float64, per-octave amplitude (including range normalisation)
+        phase : (d,) float64
+        shift, left, taps, coef : the kernel (see ``kernels.Kernel``)
+        dcoef : the tap polynomials' derivatives (``dcoef[k, p] = (p + 1)
+            coef[k, p + 1]``; read only with ``DERIV``)
+        period : (d,) int64, lattice period per axis
+        pmask : (d,) int64, period - 1 for powers of two, else -1
+        perms : (C, n) int64, one permutation per output component
+        values : (2, n) float64, value table by lattice parity (both rows equal
+            unless the sign alternates with the lattice position)
+        grads : (n, d) float64 unit gradients (gradient basis only)
+        basis : 0 value noise, 1 gradient noise
+        absval : sum |octave| (turbulence) instead of octave
+
+        Dimensions 1 to 3 have unrolled neighbour loops; higher dimensions walk
+        the ``taps**d`` neighbours with an odometer that re-hashes only the
+        levels whose tap changed.
+
+        The derivative: a tensor-product term ``prod_a w_a(t_a) v``
+        differentiates one factor at a time: along axis ``b`` it is
+        ``w_b'(t_b) prod_{a != b} w_a v``, plus, in the gradient basis
+        (``v = g . r`` with ``dr_a / dt_b = [a == b]``), ``prod_a w_a g_b``.
+        ``t_a = F_a x_a + phi_a + shift - floor(...)``, so ``d/dx_a = F_a
+        d/dt_a``. Turbulence's ``|n|`` differentiates to ``sign(n) n'`` (0
+        where ``n == 0``: the crease has no derivative there). The values are
+        the same sums with or without ``DERIV``.
+        """
+        npts, d = pts.shape
+        ncomp = perms.shape[0]
+        n = perms.shape[1]
+        nmask = n - 1 if (n & (n - 1)) == 0 else -1
+        noct = freqs.shape[0]
+        nq = d + 1 if DERIV else 1  # the value, then (DERIV) one derivative per axis
+        w = np.empty((d, 4))
+        r = np.empty((d, 4))
+        jj = np.empty((d, 4), np.int64)
+        cnt = np.zeros(d, np.int64)
+        hs = np.zeros(d + 1, np.int64)
+        par = np.zeros(d + 1, np.int64)
+        prod = np.ones(d + 1)
+        if DERIV:  # (the value kernel allocates, and compiles, none of these)
+            dw = np.empty((d, 4))
+            dprod = np.zeros((d + 1, d))
+            D = np.zeros(d)
+        acc = np.empty((ncomp, nq))  # zeroed per point
+        vals0 = values[0]
+        vals1 = values[1]
+        for p in range(npts):
             for c in range(ncomp):
-                perm = perms[c]
-                total = 0.0
-                if d == 1:
-                    for k0 in range(taps):
-                        j0 = jj[0, k0]
-                        h = perm[_hash(0, j0, n, nmask)]
-                        if basis == 0:
-                            v = vals0[h] if (j0 & 1) == 0 else vals1[h]
-                        else:
-                            v = grads[h, 0] * r[0, k0]
-                        total += w[0, k0] * v
-                elif d == 2:
-                    for k0 in range(taps):
-                        j0 = jj[0, k0]
-                        h1 = perm[_hash(0, j0, n, nmask)]
-                        s1 = 0.0
-                        for k1 in range(taps):
-                            j1 = jj[1, k1]
-                            h = perm[_hash(h1, j1, n, nmask)]
+                for q in range(nq):
+                    acc[c, q] = 0.0
+            for o in range(noct):
+                for a in range(d):
+                    u = pts[p, a] * freqs[o, a] + phase[a] + shift
+                    fi = np.floor(u)
+                    t = u - fi
+                    per = period[a]
+                    msk = pmask[a]
+                    b = _reduce(fi, left, per, msk)
+                    # powers first: independent products instead of a serial Horner chain
+                    t2 = t * t
+                    t3 = t2 * t
+                    t4 = t2 * t2
+                    t5 = t4 * t
+                    for k in range(taps):
+                        w[a, k] = ((coef[k, 0] + coef[k, 1] * t) + (coef[k, 2] * t2 + coef[k, 3] * t3)
+                                   + (coef[k, 4] * t4 + coef[k, 5] * t5))
+                        if DERIV:
+                            dw[a, k] = ((dcoef[k, 0] + dcoef[k, 1] * t) + (dcoef[k, 2] * t2 + dcoef[k, 3] * t3)
+                                        + dcoef[k, 4] * t4)
+                        r[a, k] = t - shift + (left - k)
+                        jj[a, k] = _wrap(b + k, per, msk)
+                for c in range(ncomp):
+                    perm = perms[c]
+                    total = 0.0
+                    if DERIV:
+                        for a in range(d):
+                            D[a] = 0.0
+                    # d <= 3: per level the partial value s (and with DERIV: the derivative along
+                    # this level's axis, sNdN, and along the axes above it, eN.., summed likewise)
+                    if d == 1:
+                        for k0 in range(taps):
+                            j0 = jj[0, k0]
+                            h = perm[_hash(0, j0, n, nmask)]
                             if basis == 0:
-                                v = vals0[h] if ((j0 + j1) & 1) == 0 else vals1[h]
+                                v = vals0[h] if (j0 & 1) == 0 else vals1[h]
+                                if DERIV:
+                                    D[0] += dw[0, k0] * v
                             else:
-                                v = grads[h, 0] * r[0, k0] + grads[h, 1] * r[1, k1]
-                            s1 += w[1, k1] * v
-                        total += w[0, k0] * s1
-                elif d == 3:
-                    for k0 in range(taps):
-                        j0 = jj[0, k0]
-                        h1 = perm[_hash(0, j0, n, nmask)]
-                        s1 = 0.0
-                        for k1 in range(taps):
-                            j1 = jj[1, k1]
-                            h2 = perm[_hash(h1, j1, n, nmask)]
-                            s2 = 0.0
-                            for k2 in range(taps):
-                                j2 = jj[2, k2]
-                                h = perm[_hash(h2, j2, n, nmask)]
+                                v = grads[h, 0] * r[0, k0]
+                                if DERIV:
+                                    D[0] += dw[0, k0] * v + w[0, k0] * grads[h, 0]
+                            total += w[0, k0] * v
+                    elif d == 2:
+                        for k0 in range(taps):
+                            j0 = jj[0, k0]
+                            h1 = perm[_hash(0, j0, n, nmask)]
+                            s1 = 0.0
+                            s1d1 = 0.0
+                            e0 = 0.0
+                            for k1 in range(taps):
+                                j1 = jj[1, k1]
+                                h = perm[_hash(h1, j1, n, nmask)]
                                 if basis == 0:
-                                    v = vals0[h] if ((j0 + j1 + j2) & 1) == 0 else vals1[h]
+                                    v = vals0[h] if ((j0 + j1) & 1) == 0 else vals1[h]
+                                    if DERIV:
+                                        s1d1 += dw[1, k1] * v
                                 else:
-                                    v = grads[h, 0] * r[0, k0] + grads[h, 1] * r[1, k1] + grads[h, 2] * r[2, k2]
-                                s2 += w[2, k2] * v
-                            s1 += w[1, k1] * s2
-                        total += w[0, k0] * s1
-                else:
-                    for a in range(d):
-                        cnt[a] = 0
-                    level = 0
-                    while True:
-                        for a in range(level, d):
-                            j = jj[a, cnt[a]]
-                            hs[a + 1] = perm[_hash(hs[a], j, n, nmask)]
-                            par[a + 1] = par[a] + j
-                            prod[a + 1] = prod[a] * w[a, cnt[a]]
-                        h = hs[d]
-                        if basis == 0:
-                            v = vals0[h] if (par[d] & 1) == 0 else vals1[h]
-                        else:
-                            v = 0.0
-                            for a in range(d):
-                                v += grads[h, a] * r[a, cnt[a]]
-                        total += prod[d] * v
-                        a = d - 1
-                        while a >= 0:
-                            cnt[a] += 1
-                            if cnt[a] < taps:
-                                break
+                                    v = grads[h, 0] * r[0, k0] + grads[h, 1] * r[1, k1]
+                                    if DERIV:
+                                        s1d1 += dw[1, k1] * v + w[1, k1] * grads[h, 1]
+                                        e0 += w[1, k1] * grads[h, 0]
+                                s1 += w[1, k1] * v
+                            total += w[0, k0] * s1
+                            if DERIV:
+                                D[0] += dw[0, k0] * s1 + w[0, k0] * e0
+                                D[1] += w[0, k0] * s1d1
+                    elif d == 3:
+                        for k0 in range(taps):
+                            j0 = jj[0, k0]
+                            h1 = perm[_hash(0, j0, n, nmask)]
+                            s1 = 0.0
+                            s1d1 = 0.0
+                            s1d2 = 0.0
+                            e10 = 0.0
+                            for k1 in range(taps):
+                                j1 = jj[1, k1]
+                                h2 = perm[_hash(h1, j1, n, nmask)]
+                                s2 = 0.0
+                                s2d2 = 0.0
+                                e20 = 0.0
+                                e21 = 0.0
+                                for k2 in range(taps):
+                                    j2 = jj[2, k2]
+                                    h = perm[_hash(h2, j2, n, nmask)]
+                                    if basis == 0:
+                                        v = vals0[h] if ((j0 + j1 + j2) & 1) == 0 else vals1[h]
+                                        if DERIV:
+                                            s2d2 += dw[2, k2] * v
+                                    else:
+                                        v = grads[h, 0] * r[0, k0] + grads[h, 1] * r[1, k1] + grads[h, 2] * r[2, k2]
+                                        if DERIV:
+                                            s2d2 += dw[2, k2] * v + w[2, k2] * grads[h, 2]
+                                            e20 += w[2, k2] * grads[h, 0]
+                                            e21 += w[2, k2] * grads[h, 1]
+                                    s2 += w[2, k2] * v
+                                s1 += w[1, k1] * s2
+                                if DERIV:
+                                    s1d1 += dw[1, k1] * s2 + w[1, k1] * e21
+                                    s1d2 += w[1, k1] * s2d2
+                                    e10 += w[1, k1] * e20
+                            total += w[0, k0] * s1
+                            if DERIV:
+                                D[0] += dw[0, k0] * s1 + w[0, k0] * e10
+                                D[1] += w[0, k0] * s1d1
+                                D[2] += w[0, k0] * s1d2
+                    else:
+                        for a in range(d):
                             cnt[a] = 0
-                            a -= 1
-                        if a < 0:
-                            break
-                        level = a
-                if absval:
-                    acc[c] += amps[o] * abs(total)
+                        level = 0
+                        while True:
+                            for a in range(level, d):
+                                kk = cnt[a]
+                                j = jj[a, kk]
+                                hs[a + 1] = perm[_hash(hs[a], j, n, nmask)]
+                                par[a + 1] = par[a] + j
+                                prod[a + 1] = prod[a] * w[a, kk]
+                                if DERIV:  # the weight product with factor q differentiated
+                                    for q in range(a):
+                                        dprod[a + 1, q] = dprod[a, q] * w[a, kk]
+                                    dprod[a + 1, a] = prod[a] * dw[a, kk]
+                            h = hs[d]
+                            if basis == 0:
+                                v = vals0[h] if (par[d] & 1) == 0 else vals1[h]
+                                if DERIV:
+                                    for a in range(d):
+                                        D[a] += dprod[d, a] * v
+                            else:
+                                v = 0.0
+                                for a in range(d):
+                                    v += grads[h, a] * r[a, cnt[a]]
+                                if DERIV:
+                                    for a in range(d):
+                                        D[a] += dprod[d, a] * v + prod[d] * grads[h, a]
+                            total += prod[d] * v
+                            level = _next_corner(cnt, taps)
+                            if level < 0:
+                                break
+                    amp = amps[o]
+                    if absval:
+                        acc[c, 0] += amp * abs(total)
+                        if DERIV:
+                            sgn = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
+                            for a in range(d):
+                                acc[c, 1 + a] += (amp * freqs[o, a]) * (sgn * D[a])
+                    else:
+                        acc[c, 0] += amp * total
+                        if DERIV:
+                            for a in range(d):
+                                acc[c, 1 + a] += (amp * freqs[o, a]) * D[a]
+            for c in range(ncomp):
+                if DERIV:
+                    for q in range(nq):
+                        out[p, c, q] = acc[c, q]
                 else:
-                    acc[c] += amps[o] * total
-        for c in range(ncomp):
-            out[p, c] = acc[c]
+                    out[p, c] = acc[c, 0]
+
+    return eval_points
+
+
+# lattice noise at scattered points (any dimension), and the same with its Jacobian: two instances of one source
+eval_points = _make_eval_points(False)
+eval_points_jac = _make_eval_points(True)
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
@@ -591,195 +704,6 @@ def grad_axpy_lanes(typingctx, acc, w, r0, r1, r2, arr, idx, stride):
 
 
 # ---------------------------------------------------------------- derivatives
-@nb.njit(cache=True, nogil=True)
-def eval_points_jac(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
-                    perms, values, grads, basis, absval):
-    """Lattice noise and its Jacobian at scattered points (fractal sums fused), any dimension.
-
-    ``out`` : (N, C, d + 1) float64, written: ``out[p, c, 0]`` is the value
-    (as :func:`eval_points` computes it) and ``out[p, c, 1 + a]`` its
-    derivative along input axis ``a`` in input units. ``dcoef`` holds the
-    tap polynomials' derivatives (``dcoef[k, p] = (p + 1) coef[k, p + 1]``).
-    The other arguments are those of :func:`eval_points`.
-
-    A tensor-product term ``prod_a w_a(t_a) v`` differentiates one factor
-    at a time: along axis ``b`` it is ``w_b'(t_b) prod_{a != b} w_a v``, plus,
-    in the gradient basis (``v = g . r`` with ``dr_a / dt_b = [a == b]``),
-    ``prod_a w_a g_b``. ``t_a = F_a x_a + phi_a + shift - floor(...)``, so
-    ``d/dx_a = F_a d/dt_a``. Turbulence's ``|n|`` differentiates to
-    ``sign(n) n'`` (0 where ``n == 0``: the crease has no derivative there).
-    """
-    npts, d = pts.shape
-    ncomp = perms.shape[0]
-    n = perms.shape[1]
-    nmask = n - 1 if (n & (n - 1)) == 0 else -1
-    noct = freqs.shape[0]
-    w = np.empty((d, 4))
-    dw = np.empty((d, 4))
-    r = np.empty((d, 4))
-    jj = np.empty((d, 4), np.int64)
-    cnt = np.zeros(d, np.int64)
-    hs = np.zeros(d + 1, np.int64)
-    par = np.zeros(d + 1, np.int64)
-    prod = np.ones(d + 1)
-    dprod = np.zeros((d + 1, d))
-    D = np.zeros(d)
-    acc = np.zeros((ncomp, d + 1))
-    vals0 = values[0]
-    vals1 = values[1]
-    grad = basis == 1
-    for p in range(npts):
-        for c in range(ncomp):
-            for a in range(d + 1):
-                acc[c, a] = 0.0
-        for o in range(noct):
-            for a in range(d):
-                u = pts[p, a] * freqs[o, a] + phase[a] + shift
-                fi = np.floor(u)
-                t = u - fi
-                per = period[a]
-                msk = pmask[a]
-                b = _reduce(fi, left, per, msk)
-                t2 = t * t
-                t3 = t2 * t
-                t4 = t2 * t2
-                t5 = t4 * t
-                for k in range(taps):
-                    w[a, k] = ((coef[k, 0] + coef[k, 1] * t) + (coef[k, 2] * t2 + coef[k, 3] * t3)
-                               + (coef[k, 4] * t4 + coef[k, 5] * t5))
-                    dw[a, k] = ((dcoef[k, 0] + dcoef[k, 1] * t) + (dcoef[k, 2] * t2 + dcoef[k, 3] * t3)
-                                + dcoef[k, 4] * t4)
-                    r[a, k] = t - shift + (left - k)
-                    jj[a, k] = _wrap(b + k, per, msk)
-            for c in range(ncomp):
-                perm = perms[c]
-                total = 0.0
-                for a in range(d):
-                    D[a] = 0.0
-                if d == 1:
-                    for k0 in range(taps):
-                        j0 = jj[0, k0]
-                        h = perm[_hash(0, j0, n, nmask)]
-                        if not grad:
-                            v = vals0[h] if (j0 & 1) == 0 else vals1[h]
-                            D[0] += dw[0, k0] * v
-                        else:
-                            g0 = grads[h, 0]
-                            v = g0 * r[0, k0]
-                            D[0] += dw[0, k0] * v + w[0, k0] * g0
-                        total += w[0, k0] * v
-                elif d == 2:
-                    for k0 in range(taps):
-                        j0 = jj[0, k0]
-                        h1 = perm[_hash(0, j0, n, nmask)]
-                        s1 = 0.0
-                        s1d1 = 0.0
-                        e0 = 0.0
-                        for k1 in range(taps):
-                            j1 = jj[1, k1]
-                            h = perm[_hash(h1, j1, n, nmask)]
-                            if not grad:
-                                v = vals0[h] if ((j0 + j1) & 1) == 0 else vals1[h]
-                                s1d1 += dw[1, k1] * v
-                            else:
-                                g0 = grads[h, 0]
-                                g1 = grads[h, 1]
-                                v = g0 * r[0, k0] + g1 * r[1, k1]
-                                s1d1 += dw[1, k1] * v + w[1, k1] * g1
-                                e0 += w[1, k1] * g0
-                            s1 += w[1, k1] * v
-                        total += w[0, k0] * s1
-                        D[0] += dw[0, k0] * s1 + w[0, k0] * e0
-                        D[1] += w[0, k0] * s1d1
-                elif d == 3:
-                    for k0 in range(taps):
-                        j0 = jj[0, k0]
-                        h1 = perm[_hash(0, j0, n, nmask)]
-                        s1 = 0.0
-                        s1d1 = 0.0
-                        s1d2 = 0.0
-                        e10 = 0.0
-                        for k1 in range(taps):
-                            j1 = jj[1, k1]
-                            h2 = perm[_hash(h1, j1, n, nmask)]
-                            s2 = 0.0
-                            s2d2 = 0.0
-                            e20 = 0.0
-                            e21 = 0.0
-                            for k2 in range(taps):
-                                j2 = jj[2, k2]
-                                h = perm[_hash(h2, j2, n, nmask)]
-                                if not grad:
-                                    v = vals0[h] if ((j0 + j1 + j2) & 1) == 0 else vals1[h]
-                                    s2d2 += dw[2, k2] * v
-                                else:
-                                    g0 = grads[h, 0]
-                                    g1 = grads[h, 1]
-                                    g2 = grads[h, 2]
-                                    v = g0 * r[0, k0] + g1 * r[1, k1] + g2 * r[2, k2]
-                                    s2d2 += dw[2, k2] * v + w[2, k2] * g2
-                                    e20 += w[2, k2] * g0
-                                    e21 += w[2, k2] * g1
-                                s2 += w[2, k2] * v
-                            s1 += w[1, k1] * s2
-                            s1d1 += dw[1, k1] * s2 + w[1, k1] * e21
-                            s1d2 += w[1, k1] * s2d2
-                            e10 += w[1, k1] * e20
-                        total += w[0, k0] * s1
-                        D[0] += dw[0, k0] * s1 + w[0, k0] * e10
-                        D[1] += w[0, k0] * s1d1
-                        D[2] += w[0, k0] * s1d2
-                else:
-                    for a in range(d):
-                        cnt[a] = 0
-                    level = 0
-                    while True:
-                        for a in range(level, d):
-                            kk = cnt[a]
-                            j = jj[a, kk]
-                            hs[a + 1] = perm[_hash(hs[a], j, n, nmask)]
-                            par[a + 1] = par[a] + j
-                            prod[a + 1] = prod[a] * w[a, kk]
-                            for q in range(a):
-                                dprod[a + 1, q] = dprod[a, q] * w[a, kk]
-                            dprod[a + 1, a] = prod[a] * dw[a, kk]
-                        h = hs[d]
-                        if not grad:
-                            v = vals0[h] if (par[d] & 1) == 0 else vals1[h]
-                            for a in range(d):
-                                D[a] += dprod[d, a] * v
-                        else:
-                            v = 0.0
-                            for a in range(d):
-                                v += grads[h, a] * r[a, cnt[a]]
-                            for a in range(d):
-                                D[a] += dprod[d, a] * v + prod[d] * grads[h, a]
-                        total += prod[d] * v
-                        a = d - 1
-                        while a >= 0:
-                            cnt[a] += 1
-                            if cnt[a] < taps:
-                                break
-                            cnt[a] = 0
-                            a -= 1
-                        if a < 0:
-                            break
-                        level = a
-                amp = amps[o]
-                if absval:
-                    sgn = 1.0 if total > 0.0 else (-1.0 if total < 0.0 else 0.0)
-                    acc[c, 0] += amp * abs(total)
-                    for a in range(d):
-                        acc[c, 1 + a] += (amp * freqs[o, a]) * (sgn * D[a])
-                else:
-                    acc[c, 0] += amp * total
-                    for a in range(d):
-                        acc[c, 1 + a] += (amp * freqs[o, a]) * D[a]
-        for c in range(ncomp):
-            for a in range(d + 1):
-                out[p, c, a] = acc[c, a]
-
-
 @nb.njit(cache=True, nogil=True, inline="always")
 def axis_dweights(coords, freq, phase, shift, left, taps, coef, dcoef, grad):
     """Derivatives along one grid axis of :func:`axis_weights`' ``w`` and ``rw``, in input units.

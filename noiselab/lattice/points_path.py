@@ -16,8 +16,10 @@ gives the same bits). The families, first that applies:
 Families 1-2 read float32 points and store the output dtype themselves, and
 count non-finite inputs instead of checking them first; 3-4 compute and
 write float64. :func:`evaluate_points_jac` is the same choice among the
-value-and-Jacobian twins (float64; the integer hash's generic kernel, the
-3-D table kernels, the unrolled ones, the generic one). These functions
+same kernels compiled with their derivative flag (value and Jacobian, float64;
+the integer hash's generic kernel, the 3-D table kernels, the unrolled ones,
+the generic one): each family is one source whose derivative lines are
+compiled (or, for the generated families, written) only for the Jacobian. These functions
 read a noise's tables and change nothing but its cache of hash tables
 (:func:`~.tables.cached_hash_tables`).
 """
@@ -129,8 +131,8 @@ def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", work
                                                   bool(absval)), workers)
         else:
             bad = run_split(jit.eval_points, flat, out, (freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef,
-                                                         noise.period, noise._pmask, noise.perms, noise.values,
-                                                         noise.gradients, basis, bool(absval)), workers)
+                                                         k.dcoef, noise.period, noise._pmask, noise.perms,
+                                                         noise.values, noise.gradients, basis, bool(absval)), workers)
         if own and bad:
             check_finite_array(name, flat)  # raises for NaN or inf input
             raise ValueError(f"{name} times the frequency (and lacunarity**octave) overflows float64")
@@ -142,8 +144,9 @@ def _evaluate_int(noise, fast, flat, out, freqs, amps, absval, workers):
     k = noise.kernel
     if fast is None:  # any dimension, any kernel: the generic kernel (float64, checked by the caller)
         run_split(inthash.int_points, flat, out,
-                  (freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef, noise.period, noise._pmask,
-                   noise._keys, noise._mult, noise._int_grads, int(noise.basis == "gradient"), bool(absval)),
+                  (freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, noise.period,
+                   noise._pmask, noise._keys, noise._mult, noise._int_grads, int(noise.basis == "gradient"),
+                   bool(absval)),
                   workers)
         return 0
     if out.dtype == np.float64:
