@@ -523,3 +523,36 @@ def test_hermitian_plane_support_must_be_a_bool_array_of_the_planes_shape():
     with pytest.raises(ValueError, match=r"support must have the plane's shape \(4,\)"):
         nl.spectral.hermitian_plane(plane, np.ones(3, bool))
     np.testing.assert_array_equal(nl.spectral.hermitian_plane(plane, plane != 0), nl.spectral.hermitian_plane(plane))
+
+
+def test_map_blocks_keeps_order_uses_the_calling_thread_and_raises_after_every_thread_stops():
+    import threading
+    import time
+
+    from noiselab._core import map_blocks
+
+    caller = threading.get_ident()
+    seen = []
+
+    def work(b):
+        seen.append(threading.get_ident())
+        time.sleep(0.01 * (b % 3))  # blocks finish out of order
+        return b * b
+
+    assert map_blocks(work, range(7), 3) == [b * b for b in range(7)]
+    assert caller in seen and len(set(seen)) > 1  # the caller works beside the pool
+    assert map_blocks(work, [5], 4) == [25]
+    done = []
+
+    def fail(b):
+        if b == 0:
+            raise ValueError("block 0 failed")
+        time.sleep(0.05)
+        done.append(b)
+
+    with pytest.raises(ValueError, match="block 0 failed"):
+        map_blocks(fail, range(6), 2)
+    finished = list(done)
+    assert len(finished) <= 1  # after the failure no thread took another block ...
+    time.sleep(0.2)
+    assert done == finished  # ... and none was still running when the error surfaced

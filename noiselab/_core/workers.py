@@ -61,11 +61,45 @@ def thread_pool(n: int) -> ThreadPoolExecutor:
 
 
 def map_blocks(fn, blocks, n: int) -> list:
-    """``[fn(b) for b in blocks]``, on ``n`` pooled threads when there is more than one block."""
+    """``[fn(b) for b in blocks]`` on ``n`` threads: the calling thread and ``n - 1`` pooled ones.
+
+    The threads take the blocks in turn from one queue, so the caller works
+    instead of waiting, and a call with two blocks hands one block to the
+    pool, not two (a hand-off costs about 0.1 ms, the time of a 512² grid's
+    octave). Which thread computes a block never changes its result. Once a
+    block raises, no thread starts another; the exception is raised when
+    every thread has stopped.
+    """
     blocks = list(blocks)
-    if n <= 1 or len(blocks) <= 1:
+    k = min(n, len(blocks))
+    if k <= 1:
         return [fn(b) for b in blocks]
-    return list(thread_pool(min(n, len(blocks))).map(fn, blocks))
+    results = [None] * len(blocks)
+    queue = iter(range(len(blocks)))
+    lock = threading.Lock()
+    failed = []  # once a block fails, no thread starts another
+
+    def work():
+        while True:
+            with lock:
+                i = None if failed else next(queue, None)
+            if i is None:
+                return
+            try:
+                results[i] = fn(blocks[i])
+            except BaseException:
+                failed.append(i)
+                raise
+
+    helpers = [thread_pool(k - 1).submit(work) for _ in range(k - 1)]
+    try:
+        work()
+    finally:
+        errors = [f.exception() for f in helpers]  # waits for every helper
+    for err in errors:
+        if err is not None:
+            raise err
+    return results
 
 
 def run_split(kernel, points, out, rest, n: int, *, min_block: int = 4096):
