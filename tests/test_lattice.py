@@ -542,8 +542,12 @@ def test_grid_workers_is_validated_and_small_grids_stay_on_one_thread(monkeypatc
     calls = []
     monkeypatch.setattr(grid_path, "render_bands", lambda *a: calls.append(a))
     noise = LatticeNoise(2, seed=1)
-    small = noise.grid((64, 64), [(0, 4), (0, 4)], workers=2)  # 4,096 samples: below one band
-    assert calls == [] and small.shape == (64, 64)
+    small = noise.grid((512, 512), [(0, 4), (0, 4)], workers=2)  # 262,144 samples x 1 octave: below one band
+    assert calls == [] and small.shape == (512, 512)
+    noise.grid((1024, 1024), [(0, 4), (0, 4)], workers=2)  # 1 Mi samples x 1 octave: still one band
+    assert calls == []
+    noise.evaluate_grid((1024, 1024), [(0, 4), (0, 4)], octaves=4, workers=2)  # 4 Mi sample-octaves: two bands
+    assert len(calls) == 1 and calls[0][-1] == 2
     for bad in (0, -1000, 1.5, True):
         with pytest.raises((ValueError, TypeError), match="workers"):
             noise.grid((8, 8), [(0, 1), (0, 1)], workers=bad)

@@ -524,9 +524,11 @@ class LatticeNoise:
             Threads (scipy.fft's meaning: -1 is every core). The grid's first
             axis is split into that many bands, each a ``window`` of the full
             grid rendered on a pooled thread (the kernels release the GIL), so
-            the result is bit-identical for any count. A band has at least
-            32,768 samples, so a small grid uses fewer threads. With
-            ``chunks``, dask's scheduler places the chunks instead.
+            the result is bit-identical for any count. A band gets at least
+            2**21 samples x octaves (a 1024² grid of two octaves), so a
+            small grid uses fewer threads: below that, a second thread
+            measured slower than one. With ``chunks``, dask's scheduler
+            places the chunks instead.
 
         Returns
         -------

@@ -48,9 +48,12 @@ FUSED_2D = True
 # on 512^2 and 1024^2 grids, wider tiles are faster up to the L2 cache); a test sets it small
 TILE_2D = None
 RING_BYTES = 256 << 10
-# samples per thread below which ``workers`` > 1 does not split a grid: a pooled
-# thread costs about 0.1 ms, the time of about 50,000 quintic samples
-MIN_BAND = 1 << 15
+# the least work (samples x octaves) a band of a ``workers`` split gets: measured on
+# 2-D quintic fBm (benchmarks/bench_lattice.md, "workers=2 on bigger calls"), two
+# threads ran a 512^2 grid of 6 octaves or a 1024^2 grid of one octave slower than
+# one (0.6-0.9x: a band repeats the column set-up and the Python call, about
+# 0.2 ms), a 1024^2 grid of 6 octaves 1.26x and a 2048^2 grid of 6 octaves 1.7-1.8x
+MIN_BAND = 1 << 21
 
 
 def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0, gain=0.5, absval=False,
@@ -82,7 +85,7 @@ def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0,
                            "amplitude (times the sum of the octaves' gains)")
     if size == 0:
         return finish_grid(np.zeros((noise.dim_out,) + out_shape, dtype=dtype))
-    bands = min(workers, out_shape[0], size // MIN_BAND)
+    bands = min(workers, out_shape[0], size * (octaves - octave_start) // MIN_BAND)
     if bands > 1:
         if out is None:
             out = np.empty((noise.dim_out,) + out_shape, dtype=dtype)
