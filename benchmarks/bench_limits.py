@@ -194,8 +194,8 @@ def report(t, repeats, load, cmd):
                      "kernel that makes these reads reaches 1x on these points, whatever its arithmetic (the plain "
                      "nested permutation would read 22 entries a point, not 12). noiselab's table kernel takes "
                      f"{t.ratio('table', 'lookups'):.2f}x the time of its reads, so they are about {share:.0f} % of "
-                     "its time; the rest is its float64 arithmetic, which a faster table kernel could cut to at "
-                     f"most the reads' {t.ratio('fns', 'lookups'):.2f}x.")
+                     "its time; the rest is its float64 arithmetic. With no arithmetic at all it would still run at "
+                     f"the reads' {t.ratio('fns', 'lookups'):.2f}x.")
         lines.append(f"- The integer hash has no reads. The simplest numba kernel with its arithmetic runs at "
                      f"{t.ratio('fns', 'int-minimal'):.2f}x pyfastnoisesimd. noiselab's corner loop alone "
                      f"(`int-fused`) takes {t.ratio('int-fused', 'int-minimal'):.2f}x that time (the period masks, "
