@@ -144,3 +144,37 @@ def test_write_zarr_of_a_numpy_array_checks_before_writing(tmp_path):
     out = write_zarr(tmp_path / "c.zarr", np.arange(6.0).reshape(2, 3), chunks=(5, -1))
     back = read_zarr(out)
     assert back.chunksize == (2, 3) and np.array_equal(back.compute(), np.arange(6.0).reshape(2, 3))
+
+
+def test_a_removed_temporary_folder_stays_removed_while_threads_still_write_into_it(tmp_path):
+    # a chunked run's threads keep writing chunks (making missing parents, as a zarr store does)
+    # after the signal handler removed the folder: the file at its name makes every such write fail
+    import threading
+
+    from noiselab.io.atomic import remove_and_block
+
+    folder = tmp_path / ".out.zarr.x.spill.tmp"
+    folder.mkdir()
+    started, errors, writes = threading.Event(), [], [0]
+
+    def writer():
+        k = 0
+        while True:
+            try:
+                (folder / "c" / str(k % 7)).mkdir(parents=True, exist_ok=True)
+                (folder / "c" / str(k % 7) / "0").write_bytes(b"chunk")
+            except OSError as exc:
+                errors.append(exc)
+                return
+            writes[0] += 1
+            k += 1
+            started.set()
+
+    thread = threading.Thread(target=writer)
+    thread.start()
+    assert started.wait(10)
+    assert remove_and_block(folder) == [folder]
+    thread.join(10)
+    assert not thread.is_alive() and errors  # the writer failed on the file, it did not rebuild the folder
+    assert folder.is_file() and [p.name for p in tmp_path.iterdir()] == [folder.name]
+    folder.unlink()

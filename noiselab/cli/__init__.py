@@ -71,9 +71,12 @@ def _on_signal(signum, frame):
         return   # inside a step that must finish first (creating and recording a temporary): later
     for s in _SIGNALS:   # a second signal must not cut the clean-up short
         signal.signal(s, signal.SIG_IGN)
+    blockers = []
     try:
         if atomic is not None and getattr(atomic, "remove_temporaries", None):
-            atomic.remove_temporaries()
+            # files hold the removed folders' names until the very end: threads of a chunked run may
+            # still be writing chunks, and a zarr store would make the folders again
+            blockers = atomic.remove_temporaries(keep_blockers=True)
         for pid in _children():   # other helpers (a peer benchmark) end with us, as with a terminal's Ctrl-C
             with contextlib.suppress(OSError):
                 os.kill(pid, signal.SIGTERM)
@@ -84,6 +87,9 @@ def _on_signal(signum, frame):
         with contextlib.suppress(OSError):
             os.write(2, f"{lead}{_stop_message(signum)}\n".encode())
     finally:
+        for path in blockers:
+            with contextlib.suppress(OSError):
+                os.unlink(path)
         # no exception unwinds through the interrupted code, no destructor or exit handler
         # runs: the process ends here
         os._exit(128 + signum)

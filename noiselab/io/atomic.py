@@ -28,7 +28,7 @@ from pathlib import Path
 from .errors import OutputError, output_error
 
 __all__ = ["atomic_output", "prepare_output", "exchange_paths", "hold_signals", "defer_signal", "scratch_folder",
-           "track_process", "forget_process", "remove_temporaries"]
+           "track_process", "forget_process", "remove_temporaries", "remove_and_block"]
 
 _held = 0
 _deferred = []
@@ -117,8 +117,13 @@ def _stop_process(proc):
         os.waitpid(proc.pid, 0)
 
 
-def remove_temporaries() -> None:
+def remove_temporaries(*, keep_blockers=False) -> list:
     """Stop the recorded encoder processes and remove every recorded temporary file and folder.
+
+    A folder's name is held by an empty file while the other folders go
+    (:func:`remove_and_block`); the files are removed at the end, or, with
+    ``keep_blockers``, left to the caller, which removes the returned paths
+    just before the process exits (the command line's signal handler).
 
     What the command line's SIGINT/SIGTERM/SIGHUP handler calls before it
     exits; safe at any moment of the main thread (the records change only
@@ -132,15 +137,59 @@ def remove_temporaries() -> None:
     >>> d = tempfile.mkdtemp()
     >>> writing = atomic_output(os.path.join(d, "a.txt"))
     >>> tmp = writing.__enter__()           # a write under way ...
-    >>> remove_temporaries(); os.listdir(d)  # ... when a stopping signal comes
+    >>> remove_temporaries()                 # ... when a stopping signal comes
+    []
+    >>> os.listdir(d)
     []
     """
     for proc in list(_processes):
         _stop_process(proc)
     _processes.clear()
+    blockers = []
     for path, directory in list(_temporaries.items()):
-        _remove(path, directory)
+        if directory:
+            blockers += remove_and_block(path)
+        else:
+            _remove(path, directory)
     _temporaries.clear()
+    if keep_blockers:
+        return blockers
+    for path in blockers:
+        _remove(path, False)
+    return []
+
+
+def remove_and_block(path, tries=100) -> list:
+    """Remove the folder ``path`` and put an empty file at its name; ``[path]`` when the file is there, else ``[]``.
+
+    The threads of a chunked run (dask's) may still be writing into a
+    temporary folder when a stopping signal removes it, and a zarr store
+    makes a chunk's missing parent folders, so it would build the folder
+    again behind the removal. While a file holds the folder's name, every
+    such write fails. The caller removes the file just before the process
+    exits (:func:`remove_temporaries`). A folder built again between the
+    removal and the file is removed again, up to ``tries`` times.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> os.makedirs(os.path.join(d, "t.tmp", "c", "0"))
+    >>> remove_and_block(os.path.join(d, "t.tmp")) == [os.path.join(d, "t.tmp")]
+    True
+    >>> os.path.isfile(os.path.join(d, "t.tmp"))
+    True
+    """
+    for _ in range(tries):
+        shutil.rmtree(path, ignore_errors=True)
+        try:
+            os.close(os.open(path, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o600))
+        except FileExistsError:
+            continue   # a writing thread made the folder again
+        except OSError:
+            return []
+        return [path]
+    return []
 
 
 @contextlib.contextmanager
