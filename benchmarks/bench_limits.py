@@ -47,6 +47,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from bench_lattice import _fns_points, _peer  # noqa: E402  (pyfastnoisesimd as bench_lattice runs it)
 from noiselab import LatticeNoise  # noqa: E402
 from noiselab.lab.measure import interleaved, run_info  # noqa: E402
 from noiselab.lattice.tables import hash_tables  # noqa: E402
@@ -107,20 +108,6 @@ def int_minimal(x, y, z, key, out):
         out[p] = v0 + tx * (v1 - v0)
 
 
-def _fns_value(pts32):
-    try:
-        np.product = np.prod  # pyfastnoisesimd 0.4.2 calls np.product, removed in NumPy 2
-        import pyfastnoisesimd as fns
-    except ImportError:
-        return None
-    aligned = fns.empty_coords(pts32.shape[0])
-    aligned[:] = pts32.T
-    f = fns.Noise(seed=1, numWorkers=1)
-    f.noiseType = fns.NoiseType.Value
-    f.frequency = 1.0
-    return lambda: f.genFromCoords(aligned)
-
-
 def _int_stages(noise, pts32, soa):
     """``int-fused`` and ``int-driver`` (see the module docstring): noiselab's generated 3-D quintic value kernel."""
     from noiselab.lattice import _kerncache
@@ -158,9 +145,9 @@ def measure(repeats):
         "int-minimal": lambda: int_minimal(*soa, key, out32),
     }
     cands.update(_int_stages(integer, pts32, soa))
-    fns = _fns_value(pts32)
+    fns = _peer("fns")
     if fns is not None:
-        cands["fns"] = fns
+        cands["fns"] = _fns_points(fns, fns.NoiseType.Value, pts32)
     return interleaved(cands, repeats=repeats, timer=time.thread_time)  # its warm-up round compiles
 
 
