@@ -81,7 +81,7 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
            out64, out32, nq, tile):
     """:func:`._jit.grid2d` with the integer hash: one component of a 2-D grid, every octave fused.
 
-    The first eleven arguments are :func:`._jit.pack_grid2d`'s (lattice
+    The first eleven arguments are both axes packed by :func:`._jit.pack_axis` (lattice
     indices reduced modulo each octave's period, kept whole: packed with
     ``n = 2**32``); ``key`` is the component's ``(1,)`` uint32 key, ``mult``
     the axis multipliers and ``grads`` the gradient set (``L``, 2). The rest

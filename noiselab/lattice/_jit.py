@@ -15,7 +15,7 @@
   (the hashed block of lattice values), :func:`contract_last` /
   :func:`contract_mid` (one separable pass per axis), and :func:`final_pass` /
   :func:`final_pass_direct` (the last pass, fused over octaves).
-- 2-D grids: :func:`pack_grid2d` (:func:`pack_axis` for both axes), then
+- 2-D grids: :func:`pack_axis` for both axes (``grid_path`` packs them), then
   :func:`grid2d` per component: every octave in one pass, tile by tile,
   with the general path's sums (the same bits); its axis-1 contraction runs
   eight columns at a time (:func:`expand_dot8`). Both hashes: the integer
@@ -1285,25 +1285,3 @@ def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, 
     if fn is None:
         fn = _PACK_AXIS[key] = _make_pack_axis(key)
     return fn(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv, last)
-
-
-def pack_grid2d(c0, c1, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv_axis):
-    """:func:`pack_axis` for both axes: :func:`grid2d`'s first eleven arguments, or None.
-
-    ``c0``, ``c1`` the axes' coordinates, ``freqs`` and ``periods`` (O, 2),
-    ``phase`` (2,). None when an axis's taps need ``grid_path.axis_taps``'
-    sparse packing.
-    """
-    ok0, lat0, off0, pos0, base0, wa0, wb0, dense0 = pack_axis(
-        c0, np.ascontiguousarray(freqs[:, 0]), phase[0], shift, left, taps, coef, dcoef,
-        np.ascontiguousarray(periods[:, 0], dtype=np.int64), n, grad,
-        bool(deriv_axis == 0), False)
-    if not ok0:
-        return None
-    ok1, lat1, off1, pos1, base1, wa1, wb1, dense1 = pack_axis(
-        c1, np.ascontiguousarray(freqs[:, 1]), phase[1], shift, left, taps, coef, dcoef,
-        np.ascontiguousarray(periods[:, 1], dtype=np.int64), n, grad,
-        bool(deriv_axis == 1), True)
-    if not ok1:
-        return None
-    return lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1

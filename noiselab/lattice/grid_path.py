@@ -354,11 +354,7 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
         out64, out32 = np.empty((noise.dim_out, 0)), flat
     else:
         out64, out32 = flat, np.empty((noise.dim_out, 0), np.float32)
-    dax = -1 if deriv_axis is None else int(deriv_axis)
-    packed = jit.pack_grid2d(sub[0], sub[1], freqs, noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, periods,
-                             n, grad, dax)
-    if packed is None:
-        packed = _pack_sparse(noise, sub, freqs, periods, n, grad, deriv_axis)
+    packed = _pack_axes(noise, sub, freqs, periods, n, grad, deriv_axis)
     for c in range(noise.dim_out):
         if integer:
             intgrid.grid2d(*packed, scales, noise._keys[c:c + 1], noise._mult, noise._int_grads, 1 if grad else 0,
@@ -368,9 +364,9 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
                        bool(absval), out64[c], out32[c], nq, tile)
 
 
-def _pack_sparse(noise, sub, freqs, periods, n, grad, deriv_axis):
-    """:func:`_jit.pack_grid2d`'s result where an axis's taps spread over many cells (:func:`axis_taps`' sparse
-    branch for that axis)."""
+def _pack_axes(noise, sub, freqs, periods, n, grad, deriv_axis):
+    """:func:`_jit.grid2d`'s first eleven arguments: both axes packed by :func:`_jit.pack_axis`, or, for an axis
+    whose taps spread over many cells, by :func:`axis_taps`' sparse branch, packed alike."""
     k = noise.kernel
     packed = []
     for a in range(2):
