@@ -5,6 +5,7 @@
 - :mod:`.deps`: the optional dask extra, imported in one place with an install hint;
 - :mod:`.progress`: tqdm progress bars, silent unless asked for or on a terminal;
 - :mod:`.contrast`: the Michelson contrast, shared by the snow compositor and the analysers;
+- :mod:`.renamed`: renamed parameters, the old spelling kept for one release with a DeprecationWarning;
 - :mod:`.dispatch`: the registry through which ``chunks=`` reaches the dask layer;
 - :mod:`.jitcache`: numba's compile cache made forgiving (installed here, before any kernel is defined).
 
@@ -13,6 +14,7 @@ Internal: any noiselab subpackage may import these names; users should not.
 from . import dispatch, jitcache
 from .deps import EXTRA_HINT, require_dask
 from .progress import progress
+from .renamed import renamed_parameters
 from .validate import (MAX_ELEMENTS, as_array, as_generator, available_memory, check_axes, check_band, check_finite_array,
                        check_int, check_memory, check_real, check_real_array, check_real_sequence,
                        check_real_vector, check_shape, float_dtype, memory_limits)
@@ -21,6 +23,6 @@ from .workers import map_blocks, resolve_workers, run_split, thread_pool
 __all__ = ["dispatch", "EXTRA_HINT", "require_dask", "progress", "MAX_ELEMENTS", "as_array", "as_generator",
            "available_memory", "check_axes", "check_band", "check_finite_array", "check_int", "check_memory", "check_real",
            "check_real_array", "check_real_sequence", "check_real_vector", "check_shape", "float_dtype",
-           "memory_limits", "map_blocks", "resolve_workers", "run_split", "thread_pool"]
+           "memory_limits", "renamed_parameters", "map_blocks", "resolve_workers", "run_split", "thread_pool"]
 
 jitcache.install()   # before any subpackage defines a cache=True kernel (numba is patched when it is imported)

@@ -35,26 +35,26 @@ __all__ = [
 MAX_ELEMENTS = 1 << 60
 
 
-def as_generator(seed) -> np.random.Generator:
-    """Return a ``numpy.random.Generator`` for ``seed``.
+def as_generator(rng, name="rng") -> np.random.Generator:
+    """Return a ``numpy.random.Generator`` for ``rng``, as SPEC 7 has it.
 
-    ``seed`` may be a non-negative int (the same int always gives the same
-    stream, across processes and platforms: PCG64 via ``default_rng``) or an
+    ``rng`` may be a non-negative int (the same int always gives the same
+    stream, across processes and platforms: PCG64 via ``default_rng``), an
     existing ``Generator`` (used as is, so a caller can thread one stream
-    through several calls). ``None`` draws fresh OS entropy and is therefore
-    not repeatable; it is accepted only because numpy accepts it.
+    through several calls) or ``None`` (fresh OS entropy: not repeatable).
+    ``name`` is the parameter's name in the error messages.
     """
-    if isinstance(seed, np.random.Generator):
-        return seed
-    if seed is None:
+    if isinstance(rng, np.random.Generator):
+        return rng
+    if rng is None:
         return np.random.default_rng()
-    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, numbers.Integral):
+    if isinstance(rng, (bool, np.bool_)) or not isinstance(rng, numbers.Integral):
         raise TypeError(
-            f"seed must be a non-negative int or a numpy.random.Generator, got {type(seed).__name__}"
+            f"{name} must be a non-negative int, a numpy.random.Generator or None, got {type(rng).__name__}"
         )
-    if seed < 0:
-        raise ValueError(f"seed must be a non-negative int, got {seed}")
-    return np.random.default_rng(int(seed))
+    if rng < 0:
+        raise ValueError(f"{name} must be a non-negative int, got {rng}")
+    return np.random.default_rng(int(rng))
 
 
 def check_real(name, value, *, lo=None, hi=None, lo_open=False, hi_open=False) -> float:
