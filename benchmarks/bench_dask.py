@@ -220,7 +220,7 @@ def snow_overhead(shape, chunks, repeats, tmp):
 
     The chunked variants compute their chunks (what a zarr write streams); one also assembles them into one array.
     """
-    from noiselab.snow import snow
+    from noiselab.snowfall import snow
 
     snow((8, 64, 64), seed=0, chunks=(4, 32, 64)).compute(scheduler="synchronous")  # warm
     variants = {
@@ -266,7 +266,7 @@ def snow_overhead(shape, chunks, repeats, tmp):
 
 def snow_memory(shape, chunk_list, tmp):
     """A fresh 1-worker cluster per chunk writes the snow to zarr (spilled transposes); the worker's peak RSS growth."""
-    from noiselab.snow import snow
+    from noiselab.snowfall import snow
 
     rows = []
     kw = dict(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None, memory_limit="8GiB")
@@ -284,7 +284,7 @@ def snow_memory(shape, chunk_list, tmp):
 def snow_plate(repeats, tmp, shape=(512, 4096, 4096), out_chunk=(16, 512, 4096), ckx=16):
     """Per-task costs of a 4096 x 4096 x 512 snow plate: the client's plan, one t/y slab, one x-pass chunk, spill I/O."""
     from noiselab.scale import spectral as S
-    from noiselab.snow.tent import assemble, tent_columns
+    from noiselab.snowfall.tent import assemble, tent_columns
     import noiselab._core.validate as V
 
     T, H, W = shape

@@ -97,7 +97,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     import distributed
 
-    from noiselab.snow import snow
+    from noiselab.snowfall import snow
     from noiselab.spectral import spectral_noise
 
     chunks = "auto" if args.chunks == "auto" else tuple(int(x) for x in args.chunks.split("x"))

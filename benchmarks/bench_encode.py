@@ -64,7 +64,7 @@ def main(argv=None):
     parser.add_argument("--frames", type=int, default=64)
     parser.add_argument("--repeats", type=int, default=5)
     args = parser.parse_args(argv)
-    from noiselab.snow import composite, snow
+    from noiselab.snowfall import composite, snow
 
     snow((8, 64, 64), seed=0)   # compile outside the timings
     tmp = tempfile.mkdtemp()

@@ -30,10 +30,10 @@ import scipy.fft
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from noiselab.snow import snow  # noqa: E402
-from noiselab.snow.render import rescale_opacity  # noqa: E402
+from noiselab.snowfall import snow  # noqa: E402
+from noiselab.snowfall.render import rescale_opacity  # noqa: E402
 from noiselab.lab.measure import Laps, Stopwatch, header_lines, interleaved, load_average, run_info  # noqa: E402
-from noiselab.snow.tent import assemble, pruned_irfftn, tent_columns  # noqa: E402
+from noiselab.snowfall.tent import assemble, pruned_irfftn, tent_columns  # noqa: E402
 
 PEER_PY = ROOT / "benchmarks" / ".venv-peers" / "bin" / "python"
 

@@ -34,7 +34,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from noiselab.lab.measure import Stopwatch, header_lines, interleaved, load_average, run_info  # noqa: E402
-from noiselab.snow import snow  # noqa: E402
+from noiselab.snowfall import snow  # noqa: E402
 from noiselab.spectral import spectral_noise  # noqa: E402
 
 SPECTRAL = [(1024, 1024), (128, 128, 128), (4096, 4096)]
@@ -129,7 +129,7 @@ def snow_memory(workers):
     res = {}
     for w in workers:
         res[("snow", w)] = {"traced_mib": peak_memory(lambda: snow(SNOW, seed=0, workers=w)) / 2**20,
-                            "rss_mib": peak_rss("from noiselab.snow import snow", f"snow({SNOW}, seed=0, workers={w})"),
+                            "rss_mib": peak_rss("from noiselab.snowfall import snow", f"snow({SNOW}, seed=0, workers={w})"),
                             "out_mib": float(np.prod(SNOW)) * 4 / 2**20}
         res[("floor", w)] = {"traced_mib": peak_memory(lambda: scipy.fft.irfftn(S, s=SNOW, workers=w)) / 2**20,
                              "rss_mib": peak_rss(f"import numpy as np, scipy.fft\nS = np.ones({S.shape}, np.complex64)",

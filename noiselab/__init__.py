@@ -7,7 +7,8 @@ the rest.
 Subpackages, one idea each:
 
 - ``noiselab.spectral``: spectral synthesis on the real-FFT half spectrum and its envelopes
-- ``noiselab.snow``: Langer & Zhang's falling snow (tent model), compositing, tiling
+- ``noiselab.snowfall``: Langer & Zhang's falling snow (tent model), compositing, tiling; its function
+  ``snow`` is ``noiselab.snow``
 - ``noiselab.lattice``: Phillips' permutation-table lattice noise and its kernels
 - ``noiselab.fractal``: fractal sums and turbulence over any noise
 - ``noiselab.fields``: curl noise (divergence-free flow) and domain warping, with exact derivatives
@@ -32,11 +33,11 @@ _API = {
     "spectral_noise": "noiselab.spectral",
     "synthesize": "noiselab.spectral",
     # falling snow
-    "snow": "noiselab.snow",
-    "composite": "noiselab.snow",
-    "parallax_composite": "noiselab.snow",
-    "tile": "noiselab.snow",
-    "iter_tiled_frames": "noiselab.snow",
+    "snow": "noiselab.snowfall",
+    "composite": "noiselab.snowfall",
+    "parallax_composite": "noiselab.snowfall",
+    "tile": "noiselab.snowfall",
+    "iter_tiled_frames": "noiselab.snowfall",
     # lattice noise
     "LatticeNoise": "noiselab.lattice",
     "fractal_sum": "noiselab.fractal",
@@ -58,17 +59,14 @@ _API = {
     "particle_snow": "noiselab.lab",
 }
 
-_SUBPACKAGES = ("spectral", "snow", "lattice", "fractal", "fields", "geometry", "stimuli", "analysis", "io", "lab",
+_SUBPACKAGES = ("spectral", "snowfall", "lattice", "fractal", "fields", "geometry", "stimuli", "analysis", "io", "lab",
                 "scale", "gallery", "cli")
 
 __all__ = sorted(_API) + list(_SUBPACKAGES)
 
 
 def __getattr__(name):
-    if name in _SUBPACKAGES and name in _API:
-        # a subpackage sharing its name with a function (``snow``) wins; it is callable
-        return importlib.import_module(f"noiselab.{name}")
-    if name in _API:
+    if name in _API:   # (no public name is also a subpackage's: ``noiselab.snow`` is a function)
         value = getattr(importlib.import_module(_API[name]), name)
         globals()[name] = value
         return value

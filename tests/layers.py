@@ -10,7 +10,7 @@ layer subpackages                                            what lives there
                                                              optional dependencies, dtypes, progress
 1     ``spectral``, ``lattice``, ``analysis``, ``io``        the primitives (siblings do not import each
                                                              other, except that anyone may write with ``io``)
-2     ``snow``, ``fractal``, ``testing``                     built from the primitives; the assertions
+2     ``snowfall``, ``fractal``, ``testing``                     built from the primitives; the assertions
 3     ``fields``, ``geometry``, ``stimuli``                  flow, warps, normals, meshes, shapes;
                                                              stimuli in physical units
 4     ``lab``                                                the laboratory: experiments and measurements
@@ -41,7 +41,7 @@ PACKAGE_DIR = Path(__file__).resolve().parents[1] / "noiselab"
 LAYERS = {
     "_core": 0,
     "spectral": 1, "lattice": 1, "analysis": 1, "io": 1,
-    "snow": 2, "fractal": 2,
+    "snowfall": 2, "fractal": 2,
     # testing (the spectral assertions) builds on analysis only: layer 2, the lowest above analysis; nothing
     # below imports it (a generator must not lean on its own tests), so it is an analyser too
     "testing": 2,
@@ -53,14 +53,16 @@ LAYERS = {
 }
 LEAVES = {"io"}                       # any layer may import these
 ANALYSERS = {"analysis", "testing"}   # ... but no generator imports these
-GENERATORS = {"spectral", "lattice", "io", "snow", "fractal", "fields", "geometry", "stimuli"}
+GENERATORS = {"spectral", "lattice", "io", "snowfall", "fractal", "fields", "geometry", "stimuli"}
 DASK_MODULES = {"dask", "distributed"}
-TOP = {"__init__", "__main__"}       # the package root: lazy re-exports, above every layer
+# the package root (lazy re-exports) and the deprecated alias module ``noiselab.snow`` of ``noiselab.snowfall``
+# (for one release): above every layer
+TOP = {"__init__", "__main__", "snow"}
 
 
 @dataclass
 class Import:
-    importer: str        # dotted module name, e.g. noiselab.snow.render
+    importer: str        # dotted module name, e.g. noiselab.snowfall.render
     target: str          # dotted module imported (a name imported from a module counts as that module)
     names: tuple         # names imported from it (empty for ``import x``)
     line: int
@@ -96,7 +98,7 @@ def module_name(path: Path, root: Path = PACKAGE_DIR) -> str:
 
 
 def subpackage(module: str) -> str:
-    """``noiselab.snow.render`` -> ``snow``; ``noiselab`` and ``noiselab.__main__`` -> ``__init__``/``__main__``."""
+    """``noiselab.snowfall.render`` -> ``snow``; ``noiselab`` and ``noiselab.__main__`` -> ``__init__``/``__main__``."""
     parts = module.split(".")
     if len(parts) == 1:
         return "__init__"

@@ -299,7 +299,7 @@ def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
 
 def tent_spectrum(shape, seed=0, c=1.0, band=None, thickness=0.1, direction=(0.0, 1.0), pan=(0.0, 0.0),
                   exponent=1.0, amplitude="uniform", on_alias="drop"):
-    """The falling-snow half spectrum of :func:`noiselab.snow.snow_spectrum`, cell by cell ([LZ], [Z] ch. 3-4).
+    """The falling-snow half spectrum of :func:`noiselab.snowfall.snow_spectrum`, cell by cell ([LZ], [Z] ch. 3-4).
 
     - Band ([Z] 3.2.2): the spatial cells with ``lo <= |f| <= hi`` (cycles per
       frame *width*, inclusive; default ``(W/32, W/4)``, i.e. 16..128 cycles/frame

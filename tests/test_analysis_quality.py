@@ -166,7 +166,7 @@ def test_variance_striping_of_linear_value_noise_matches_its_kernel():
 
 # ---------------------------------------------------------------- motion per band
 def test_tent_energy_per_band_of_snow_and_of_a_still():
-    from noiselab.snow import snow
+    from noiselab.snowfall import snow
 
     video = snow((16, 64, 64), seed=17, band=(4, 16), c=1.0, rescale=False, dtype=np.float64)
     m = A.tent_energy_per_band(video, 1.0, (4, 16))

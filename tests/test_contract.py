@@ -16,7 +16,7 @@ from noiselab._core import validate as V
 from noiselab import analysis as A
 from noiselab import geometry as G
 from noiselab import io as IO
-from noiselab import snow as S
+from noiselab import snowfall as S
 from noiselab.fractal import octaves_used
 from noiselab.lattice import Grid
 from noiselab.spectral import envelopes as E

@@ -15,7 +15,7 @@ import pytest
 
 from noiselab.io import read_zarr, write_zarr
 from noiselab.scale.run import _worker_events, _worker_events_plugin
-from noiselab.snow import snow
+from noiselab.snowfall import snow
 from noiselab.spectral import spectral_noise
 
 import dask.array as da  # the test extras install noiselab[dask]

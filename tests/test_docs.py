@@ -101,7 +101,7 @@ def _parse(path, cache={}):
 def test_every_public_name_has_an_api_page(site):
     conf = _conf()
     packages = conf.public_packages()
-    assert {"analysis", "geometry", "io", "lattice", "spectral", "snow", "fractal", "scale", "fields"} <= set(packages)
+    assert {"analysis", "geometry", "io", "lattice", "spectral", "snowfall", "fractal", "scale", "fields"} <= set(packages)
     missing = []
     for package in packages:
         module = importlib.import_module(f"noiselab.{package}")

@@ -298,8 +298,8 @@ def test_up_to_date_figures_are_not_rebuilt(tmp_path):
 
 def test_hash_follows_the_modules_a_figure_uses():
     spec = registry.specs("snow/opacity")[0]
-    assert "noiselab.snow" in spec.uses
-    v = registry.module_version("noiselab.snow")
+    assert "noiselab.snowfall" in spec.uses
+    v = registry.module_version("noiselab.snowfall")
     assert v != "missing" and v != registry.module_version("noiselab.lattice")
     assert registry.module_version("noiselab.no_such_module") == "missing"
     # a helper shared by several figures is part of each one's hash (so changing it rebuilds them)

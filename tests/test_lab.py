@@ -202,7 +202,7 @@ def test_texture_quality_tells_spectral_from_striped():
 
 
 def test_parallax_error_of_tent_snow_is_small():
-    from noiselab.snow import snow
+    from noiselab.snowfall import snow
 
     a = snow(SHAPE, seed=0, band=BAND, c=1.0)
     centres, speed, law, err = parallax_error(a, 1.0, BAND)

@@ -60,10 +60,10 @@ def test_the_checker_finds_each_kind_of_violation(tmp_path):
     _write(pkg, {
         "__init__.py": "",
         "_core/__init__.py": "def _helper(): pass\n",
-        "spectral/__init__.py": "from ..snow import thing\nfrom .._core import _helper\n",   # upward; _core exempt
+        "spectral/__init__.py": "from ..snowfall import thing\nfrom .._core import _helper\n",   # upward; _core exempt
         "spectral/synthesis.py": "def _plan(): pass\nclass Noise:\n    def _grid(self): pass\n",
-        "snow/__init__.py": "from ..spectral.synthesis import _plan\nthing = 1\n",                # private
-        "snow/render.py": "def f(noise):\n    return noise._grid()\n",                            # private attribute
+        "snowfall/__init__.py": "from ..spectral.synthesis import _plan\nthing = 1\n",                # private
+        "snowfall/render.py": "def f(noise):\n    return noise._grid()\n",                            # private attribute
         "fractal/__init__.py": "def f():\n    import dask.array\n    from ..scale import x\n",   # core -> dask (x2), upward
         "scale/__init__.py": "x = 1\n",
         "lattice/__init__.py": "from ..analysis import spectrum\n",                               # generator -> analyser
@@ -75,16 +75,16 @@ def test_the_checker_finds_each_kind_of_violation(tmp_path):
     rep = layers.check(pkg)
     assert rep.cycles == [["noiselab.lab.a", "noiselab.lab.b"]]
     assert {(i.importer, i.target) for i in rep.upward} == {
-        ("noiselab.spectral", "noiselab.snow"), ("noiselab.fractal", "noiselab.scale"),
+        ("noiselab.spectral", "noiselab.snowfall"), ("noiselab.fractal", "noiselab.scale"),
         ("noiselab.lattice", "noiselab.analysis")}                                               # siblings too
     assert sorted(i.target for i in rep.core_to_dask) == ["dask.array", "noiselab.scale"]
-    assert [(i.importer, i.names) for i in rep.private] == [("noiselab.snow", ("_plan",))]
-    assert [(m, name) for m, _, name, _ in rep.private_attributes] == [("noiselab.snow.render", "_grid")]
+    assert [(i.importer, i.names) for i in rep.private] == [("noiselab.snowfall", ("_plan",))]
+    assert [(m, name) for m, _, name, _ in rep.private_attributes] == [("noiselab.snowfall.render", "_grid")]
     assert [i.importer for i in rep.generator_to_analyser] == ["noiselab.lattice"]
     assert rep.unknown_packages == ["extra"]
 
 
-@pytest.mark.parametrize("module", ["noiselab.spectral", "noiselab.lattice", "noiselab.snow", "noiselab.fractal",
+@pytest.mark.parametrize("module", ["noiselab.spectral", "noiselab.lattice", "noiselab.snowfall", "noiselab.fractal",
                                     "noiselab.io", "noiselab.analysis", "noiselab.geometry"])
 def test_importing_the_core_loads_no_dask(module):
     """In a fresh interpreter, the in-memory core loads neither the scale-out layer nor dask."""

@@ -1,6 +1,6 @@
 """The fast paths equal the slow, readable references of ``tests/naive.py`` on random inputs.
 
-Only public, user-facing names are called (``noiselab.spectral``, ``noiselab.snow``,
+Only public, user-facing names are called (``noiselab.spectral``, ``noiselab.snowfall``,
 ``noiselab.analysis``, ``noiselab.LatticeNoise`` and its public attributes,
 ``noiselab.fractal_sum``, ...). Tolerances: 1e-12 in float64 (relative to the
 field's scale where a field is not O(1)); float32 within the bound its
@@ -15,7 +15,7 @@ import naive
 from noiselab import LatticeNoise, fractal_gradient, fractal_sum, snow, turbulence, turbulence_gradient
 from noiselab.analysis import motion_energy, radial_spectrum, spectral_slope, tent_energy
 from noiselab.lattice import KERNELS, Grid
-from noiselab.snow import snow_spectrum
+from noiselab.snowfall import snow_spectrum
 from noiselab.spectral import draw_coefficients, envelopes, hermitian_plane, spectral_noise, synthesize
 
 RNG = np.random.default_rng(20260501)

@@ -50,7 +50,7 @@ from noiselab import geometry as G
 from noiselab import io as IO
 from noiselab import lab as LAB
 from noiselab import lattice as L
-from noiselab import snow as S
+from noiselab import snowfall as S
 from noiselab import spectral as SP
 from noiselab import stimuli as STIM
 from noiselab import testing as TST
@@ -770,7 +770,7 @@ EXCLUDED = {
 }
 
 ENTRIES = {e.name: e for e in TABLE}
-_SUBPACKAGES = ("spectral", "spectral.envelopes", "snow", "lattice", "fractal", "fields", "geometry", "stimuli",
+_SUBPACKAGES = ("spectral", "spectral.envelopes", "snowfall", "lattice", "fractal", "fields", "geometry", "stimuli",
                 "analysis", "io", "lab", "testing")
 
 

@@ -7,8 +7,8 @@ import pytest
 import scipy.fft
 
 import noiselab
-from noiselab.snow import flake_speeds, iter_tiled_frames, rescale_opacity, snow, snow_spectrum, tile
-from noiselab.snow.tent import tent_columns
+from noiselab.snowfall import flake_speeds, iter_tiled_frames, rescale_opacity, snow, snow_spectrum, tile
+from noiselab.snowfall.tent import tent_columns
 from noiselab.spectral import envelopes as E
 from noiselab.spectral import frequency_vectors
 from _helpers import phase_correlation_shift
@@ -26,9 +26,35 @@ def test_output_is_float32_opacity_in_unit_range():
     a = snow((8, 32, 48), seed=0)
     assert a.shape == (8, 32, 48) and a.dtype == np.float32
     assert a.min() == 0.0 and a.max() == 1.0
-    # the issue's spelling: noiselab.snow(...) (the subpackage is callable)
-    assert noiselab.snow((8, 32, 48), seed=0).tobytes() == a.tobytes()
-    assert noiselab.snow.composite is noiselab.composite
+    assert noiselab.snow((8, 32, 48), seed=0).tobytes() == a.tobytes()   # the top-level function
+    assert noiselab.snowfall.composite is noiselab.composite
+
+
+_LAYOUT = """
+import sys, types, warnings
+import noiselab
+import noiselab.snowfall.background                  # the subpackage, imported before the function is asked for
+assert noiselab.snow is noiselab.snowfall.snow, noiselab.snow
+assert type(noiselab.snowfall) is types.ModuleType   # a plain module: no class swapped
+with warnings.catch_warnings(record=True) as caught:
+    warnings.simplefilter("always")
+    from noiselab.snow import composite               # the old path, for one release
+    import noiselab.snow.tent
+assert composite is noiselab.snowfall.composite
+assert sys.modules["noiselab.snow.tent"] is sys.modules["noiselab.snowfall.tent"]
+assert [w.category for w in caught] == [DeprecationWarning], [str(w.message) for w in caught]
+assert "noiselab.snowfall" in str(caught[0].message)
+print("ok")
+"""
+
+
+def test_noiselab_snow_is_the_function_and_the_subpackage_is_snowfall():
+    """``noiselab.snow`` is the function whatever was imported first; the old subpackage path warns and works."""
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-c", _LAYOUT], capture_output=True, text=True)
+    assert out.stdout.strip() == "ok", out.stderr
 
 
 @pytest.mark.parametrize("shape", [(8, 32, 32), (7, 33, 31), (5, 9, 7), (1, 8, 8), (4, 8, 8), (6, 16, 10), (3, 1, 16)])

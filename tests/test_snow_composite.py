@@ -7,8 +7,8 @@ import pytest
 
 from noiselab.cli import main
 from noiselab.io import read_image, read_video, write_image, write_video
-from noiselab.snow import composite, michelson_contrast, parallax_composite, snow
-from noiselab.snow.background import default_background
+from noiselab.snowfall import composite, michelson_contrast, parallax_composite, snow
+from noiselab.snowfall.background import default_background
 
 
 def test_composite_equation_3_6_uint8_grey():

@@ -179,8 +179,8 @@ def test_power_law_and_annulus():
 
 @pytest.mark.parametrize("modname", [
     "noiselab.spectral.frequencies", "noiselab.spectral.envelopes", "noiselab.spectral.synthesis",
-    "noiselab.snow.render", "noiselab.snow.tent", "noiselab.snow.composite", "noiselab.snow.tiling",
-    "noiselab.snow.background",
+    "noiselab.snowfall.render", "noiselab.snowfall.tent", "noiselab.snowfall.composite", "noiselab.snowfall.tiling",
+    "noiselab.snowfall.background",
 ])
 def test_docstring_examples_hold(modname):
     import doctest
@@ -440,7 +440,7 @@ def test_workers_is_validated():
 
 def test_analysers_give_the_same_bits_for_any_worker_count():
     from noiselab import analysis as A
-    from noiselab.snow import snow
+    from noiselab.snowfall import snow
 
     img = spectral_noise((96, 128), seed=1)
     video = snow((16, 64, 64), seed=2)
@@ -456,7 +456,7 @@ def test_analysers_give_the_same_bits_for_any_worker_count():
 # --- issue 21: one band validator, one unit per name, the plan shared with the dask path ---
 def test_one_band_validator_gives_one_message_everywhere():
     import noiselab.analysis as A
-    from noiselab.snow import flake_speeds, snow
+    from noiselab.snowfall import flake_speeds, snow
 
     img = spectral_noise((64, 64), band=(2, 16), seed=0)
     nyquist = "band[1] = 40 cycles/frame is past the Nyquist frequency 32 cycles/frame"

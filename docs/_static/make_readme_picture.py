@@ -13,7 +13,7 @@ from PIL import Image  # noqa: E402
 
 import noiselab  # noqa: E402
 from noiselab.lattice import Grid  # noqa: E402
-from noiselab.snow.background import default_background  # noqa: E402
+from noiselab.snowfall.background import default_background  # noqa: E402
 
 alpha = noiselab.snow((32, 160, 160), seed=1)
 frame = noiselab.composite(alpha, default_background(160, 160))[0]

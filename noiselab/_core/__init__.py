@@ -7,11 +7,12 @@
 - :mod:`.contrast`: the Michelson contrast, shared by the snow compositor and the analysers;
 - :mod:`.renamed`: renamed parameters, the old spelling kept for one release with a DeprecationWarning;
 - :mod:`.dispatch`: the registry through which ``chunks=`` reaches the dask layer;
-- :mod:`.jitcache`: numba's compile cache made forgiving (installed here, before any kernel is defined).
+- :mod:`.jitcache`: where numba's compile cache keeps noiselab's kernels, and how to clear a damaged one
+  (numba's cache is used as numba documents it: importing noiselab changes nothing in numba).
 
 Internal: any noiselab subpackage may import these names; users should not.
 """
-from . import dispatch, jitcache
+from . import dispatch
 from .deps import EXTRA_HINT, require_dask
 from .progress import progress
 from .renamed import renamed_parameters
@@ -24,5 +25,3 @@ __all__ = ["dispatch", "EXTRA_HINT", "require_dask", "progress", "MAX_ELEMENTS",
            "available_memory", "check_axes", "check_band", "check_finite_array", "check_int", "check_memory", "check_real",
            "check_real_array", "check_real_sequence", "check_real_vector", "check_shape", "float_dtype",
            "memory_limits", "renamed_parameters", "map_blocks", "resolve_workers", "run_split", "thread_pool"]
-
-jitcache.install()   # before any subpackage defines a cache=True kernel (numba is patched when it is imported)

@@ -1,9 +1,9 @@
 """Michelson contrast, the one formula shared by a generator and an analyser (internal).
 
-:func:`noiselab.snow.parallax_composite` reports the Michelson contrast of
+:func:`noiselab.snowfall.parallax_composite` reports the Michelson contrast of
 its two regions (thesis Eq. 6.1) and :mod:`noiselab.analysis` measures it;
 a generator never imports an analyser, so the definition lives here, in the
-shared base, and both ``noiselab.snow.michelson_contrast`` and
+shared base, and both ``noiselab.snowfall.michelson_contrast`` and
 ``noiselab.analysis.michelson_contrast`` are this function.
 """
 from __future__ import annotations

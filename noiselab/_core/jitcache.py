@@ -1,47 +1,45 @@
-"""numba's on-disk compile cache made forgiving: a damaged, unwritable or missing cache costs a compilation, not a crash.
+"""Where numba's compile cache keeps noiselab's compiled kernels, and how to clear it.
 
-numba (checked with 0.68) fails inside a kernel's first call, or at import,
-when its cache is not as it expects:
+noiselab's hot kernels are numba functions with ``cache=True``: numba writes
+their machine code to disk on the first call and loads it in later processes,
+as numba documents (https://numba.readthedocs.io/en/stable/developer/caching.html).
+noiselab does not change how numba's cache works: importing noiselab leaves
+numba's classes and Python's import machinery as they were.
 
-- a damaged index or data file (``*.nbi``, ``*.nbc``: truncated by a full
-  disk, overwritten, copied half) raises pickle's ``EOFError`` or
-  ``UnpicklingError`` from the first call;
-- a cache that cannot be saved (a full disk, a folder made read-only)
-  raises ``OSError`` after the kernel was compiled;
-- with no writable folder at all (a read-only install with a read-only home)
-  every ``cache=True`` kernel raises ``RuntimeError: cannot cache function
-  ...: no locator available`` when its module is imported;
-- two processes that compile different signatures of one kernel at once on
-  an empty cache can leave the index naming the other one's data file
-  (numba numbers data files by reading the index, then writing it; the two
-  writes race), so a later process would load code compiled for other types.
+numba keeps a kernel's files (``*.nbi`` index, ``*.nbc`` data) in the first
+of these folders it can write:
 
-:func:`install` wraps ``numba.core.caching.Cache``'s constructor, loader and
-saver so that each of these becomes a compilation without the cache (the
-loaded code is checked to be for the types asked for; a damaged index is
-removed, so the next save writes a sound one), and the ``noiselab`` logger
-says so in one line, once per process (:func:`warn_once`). The results are
-the same, cached or not.
+- ``$NUMBA_CACHE_DIR/<folder>_<sha1 of the folder's path>`` when
+  ``NUMBA_CACHE_DIR`` is set;
+- the ``__pycache__`` folder beside the kernel's source file;
+- the user-wide cache, ``~/.cache/numba/<folder>_<sha1 of the folder's path>`` on Linux.
 
-noiselab's ``_core`` calls :func:`install` on import; numba itself is patched
-when it is imported (a one-shot import hook), so importing noiselab does
-not import numba.
+A cache damaged on disk (a file truncated by a full disk, copied half) makes
+numba raise from a kernel's first call (``EOFError``, ``UnpicklingError``).
+The cure is to remove noiselab's cache files, which :func:`clear_cache` does
+(from the command line: ``noiselab cache --clear``; ``noiselab cache``
+lists the folders), or to point ``NUMBA_CACHE_DIR`` at an empty folder. The
+next call compiles the kernels again (seconds) and fills the cache anew.
 """
 from __future__ import annotations
 
-import contextlib
-import importlib.abc
+import hashlib
 import logging
 import os
-import sys
+import shutil
 import threading
+from pathlib import Path
 
-__all__ = ["install", "warn_once"]
+__all__ = ["cache_folders", "clear_cache", "warn_once", "CACHE_HINT"]
 
 _log = logging.getLogger("noiselab")
-_TARGET = "numba.core.caching"
 _warned = []
 _lock = threading.Lock()
+_PACKAGE = Path(__file__).resolve().parents[1]   # the noiselab package folder
+_SUFFIXES = (".nbi", ".nbc")
+
+CACHE_HINT = ("numba's compile cache of noiselab's kernels may be damaged: run `noiselab cache --clear` "
+              "(or set NUMBA_CACHE_DIR to an empty folder) and run again")
 
 
 def warn_once(message: str) -> bool:
@@ -67,117 +65,87 @@ def warn_once(message: str) -> bool:
     return True
 
 
-def _reason(exc) -> str:
-    text = str(exc).splitlines()[0] if str(exc) else ""
-    return f"{type(exc).__name__}: {text}"[:160] if text else type(exc).__name__
+def _source_folders() -> list:
+    """noiselab's package folders that hold Python source (where ``cache=True`` kernels can live)."""
+    return sorted({p.parent for p in _PACKAGE.rglob("*.py") if "__pycache__" not in p.parts})
 
 
-def _drop_index(cache) -> None:
-    """Remove a cache's index file, so that the next save starts a sound one (its data files get overwritten)."""
-    with contextlib.suppress(AttributeError, OSError):
-        os.unlink(cache._cache_file._index_path)
+def _subpath(folder: Path) -> str:
+    """numba's name for a source folder inside a cache root: the folder's name and the SHA-1 of its path."""
+    folder = os.path.abspath(folder)
+    return f"{os.path.basename(folder)}_{hashlib.sha1(folder.encode()).hexdigest()}"
 
 
-def _patch(caching) -> None:
-    Cache = caching.Cache
-    if getattr(Cache, "_noiselab_guarded", False):
-        return
-    init, load, save = Cache.__init__, Cache.load_overload, Cache.save_overload
-
-    def __init__(self, py_func):
-        try:
-            init(self, py_func)
-        except RuntimeError as exc:
-            if "no locator available" not in str(exc):
-                raise
-            warn_once(f"no folder can hold numba's compile cache (tried NUMBA_CACHE_DIR, the package's __pycache__ "
-                      f"and the home folder, for {getattr(py_func, '__module__', '?')}): kernels are compiled anew "
-                      "in every process; set NUMBA_CACHE_DIR to a writable folder")
-            self.__class__ = caching.NullCache   # what numba uses for cache=False: loads nothing, saves nothing
-
-    def load_overload(self, sig, target_context):
-        try:
-            cres = load(self, sig, target_context)
-        except Exception as exc:   # a damaged file: pickle's, numba's or llvmlite's error while rebuilding
-            _drop_index(self)
-            warn_once(f"numba's compile cache in {self.cache_path} held a damaged file ({_reason(exc)}); "
-                      "the kernel is compiled anew and the cache rewritten")
-            return None
-        if cres is not None and not _same_types(sig, cres):   # another process's entry, crossed in the race
-            _drop_index(self)
-            warn_once(f"numba's compile cache in {self.cache_path} named code compiled for other types (two "
-                      "processes saved at once); the kernel is compiled anew and the cache rewritten")
-            return None
-        return cres
-
-    def save_overload(self, sig, data):
-        try:
-            save(self, sig, data)
-        except Exception as exc:   # a full disk, a folder made read-only, a damaged index read back
-            warn_once(f"numba's compile cache in {self.cache_path} could not be written ({_reason(exc)}); "
-                      "this kernel is compiled anew in the next process")
-
-    Cache.__init__, Cache.load_overload, Cache.save_overload = __init__, load_overload, save_overload
-    Cache._noiselab_guarded = True
-
-
-def _same_types(sig, cres) -> bool:
-    """Whether a loaded compile result is for the argument types ``sig`` asked for."""
+def _user_wide_root() -> Path | None:
     try:
-        from numba.core import sigutils
-
-        args, _ = sigutils.normalize_signature(sig)
-        return tuple(cres.signature.args) == tuple(args)
-    except Exception:   # not a result this check understands (another cache implementation): trust numba
-        return True
-
-
-class _Loader(importlib.abc.Loader):
-    """numba.core.caching's own loader, patching the module once it has run."""
-
-    def __init__(self, loader):
-        self._loader = loader
-
-    def create_module(self, spec):
-        return self._loader.create_module(spec)
-
-    def exec_module(self, module):
-        self._loader.exec_module(module)
-        _patch(module)
-
-    def __getattr__(self, name):   # get_source, get_filename, ...: the real loader's
-        return getattr(self._loader, name)
-
-
-class _Hook(importlib.abc.MetaPathFinder):
-    """Finds numba.core.caching through the other finders and hands it to :class:`_Loader`; then steps aside."""
-
-    def find_spec(self, name, path=None, target=None):
-        if name != _TARGET:
-            return None
-        with contextlib.suppress(ValueError):
-            sys.meta_path.remove(self)
-        for finder in sys.meta_path:
-            spec = finder.find_spec(name, path, target) if hasattr(finder, "find_spec") else None
-            if spec is not None:
-                if spec.loader is not None and hasattr(spec.loader, "exec_module"):
-                    spec.loader = _Loader(spec.loader)
-                return spec
+        from numba.misc.appdirs import AppDirs   # read numba's own answer; nothing is changed
+    except ImportError:   # pragma: no cover - another numba layout
         return None
+    return Path(AppDirs(appname="numba", appauthor=False).user_cache_dir)
 
 
-def install() -> None:
-    """Guard numba's cache now if numba is imported, else as soon as it is (idempotent).
+def cache_folders(*, existing: bool = True) -> list:
+    """The folders where numba (and noiselab's generated kernels) keep noiselab's compiled code.
+
+    Parameters
+    ----------
+    existing : bool, optional
+        Only the folders that exist now (default); False lists every place
+        numba would look.
+
+    Returns
+    -------
+    list of pathlib.Path
 
     Examples
     --------
-    >>> install(); install()   # once is enough; again changes nothing
-    >>> import numba.core.caching
-    >>> numba.core.caching.Cache._noiselab_guarded
+    >>> all(isinstance(p, Path) for p in cache_folders(existing=False))
     True
     """
-    module = sys.modules.get(_TARGET)
-    if module is not None and hasattr(module, "Cache"):
-        _patch(module)
-    elif module is None and not any(isinstance(f, _Hook) for f in sys.meta_path):
-        sys.meta_path.insert(0, _Hook())
+    folders = []
+    roots = []
+    env = os.environ.get("NUMBA_CACHE_DIR")
+    if env:
+        roots.append(Path(env))
+        # noiselab's generated kernel modules and numba's files for them
+        folders += sorted(Path(env).glob("noiselab-kernels-*")) if Path(env).is_dir() else []
+    user = _user_wide_root()
+    if user is not None:
+        roots.append(user)
+    for src in _source_folders():
+        folders.append(src / "__pycache__")
+        folders += [root / _subpath(src) for root in roots]
+    xdg = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "noiselab"
+    folders.append(xdg)
+    return [f for f in folders if not existing or f.is_dir()]
+
+
+def clear_cache() -> list:
+    """Remove noiselab's compiled-kernel cache files; the next call compiles the kernels anew (seconds).
+
+    The cure for a cache damaged on disk (numba raises ``EOFError`` or an
+    unpickling error from a kernel's first call). Python's own ``*.pyc``
+    files in ``__pycache__`` are kept; only numba's ``*.nbi``/``*.nbc`` files
+    go there, and noiselab's own cache folders are removed whole.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files and folders removed.
+
+    Examples
+    --------
+    >>> isinstance(clear_cache(), list)   # doctest: +SKIP
+    True
+    """
+    removed = []
+    for folder in cache_folders():
+        if folder.name == "__pycache__":
+            for f in sorted(folder.iterdir()):
+                if f.suffix in _SUFFIXES:
+                    f.unlink(missing_ok=True)
+                    removed.append(f)
+        else:
+            shutil.rmtree(folder, ignore_errors=True)
+            removed.append(folder)
+    return removed

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._core import check_finite_array
-from .._core.contrast import masked_values, michelson_contrast  # one definition, shared with noiselab.snow
+from .._core.contrast import masked_values, michelson_contrast  # one definition, shared with noiselab.snowfall
 
 __all__ = ["michelson_contrast", "rms_contrast", "to_grey"]
 

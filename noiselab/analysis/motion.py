@@ -309,7 +309,7 @@ def sheared_tent_energy(video, c, band, direction=(0.0, 1.0), pan=(0.0, 0.0), *,
 
     Examples
     --------
-    >>> from noiselab.snow import snow
+    >>> from noiselab.snowfall import snow
     >>> video = snow((16, 64, 64), seed=0, c=1.0, band=(4, 16), pan=(1.0, 0.0))
     >>> sheared_tent_energy(video, 1.0, (4, 16), pan=(1.0, 0.0)) > 0.9
     True
@@ -531,7 +531,7 @@ def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octa
 
     Examples
     --------
-    >>> from noiselab.snow import snow
+    >>> from noiselab.snowfall import snow
     >>> profile = speed_profile(snow((16, 64, 64), seed=0, c=1.0, band=(4, 16)), [(4, 8), (8, 16)])
     >>> bool(profile.velocity[0, 1] > profile.velocity[1, 1] > 0)   # near (low-frequency) flakes fall faster
     True

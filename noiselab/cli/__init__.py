@@ -179,6 +179,16 @@ def main(argv=None) -> int:
                 signal.signal(s, handler)
 
 
+def _from_numba_cache(exc) -> bool:
+    """Whether ``exc`` was raised while numba read its on-disk compile cache (a damaged ``*.nbi``/``*.nbc``)."""
+    tb = exc.__traceback__
+    while tb is not None:
+        if tb.tb_frame.f_code.co_filename.replace(os.sep, "/").endswith("numba/core/caching.py"):
+            return True
+        tb = tb.tb_next
+    return False
+
+
 def _run(args, describe) -> int:
     try:
         return int(args._run(args) or 0)
@@ -186,7 +196,14 @@ def _run(args, describe) -> int:
         with contextlib.suppress(OSError):
             os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 128 + signal.SIGPIPE
-    except (ValueError, TypeError, OSError, MemoryError, EOFError) as exc:
+    except Exception as exc:
+        if _from_numba_cache(exc):   # a damaged compile cache: say how to clear it, not what pickle saw
+            from .._core.jitcache import CACHE_HINT
+
+            print(f"noiselab {args.command}: error: {CACHE_HINT} ({type(exc).__name__}: {exc})", file=sys.stderr)
+            return 2
+        if not isinstance(exc, (ValueError, TypeError, OSError, MemoryError, EOFError)):
+            raise
         print(f"noiselab {args.command}: error: {describe(exc)}", file=sys.stderr)
         return 2
     except Terminated as exc:

@@ -103,8 +103,8 @@ def _load_background(path):
 
 def run(args) -> int:
     from ..io import write_video
-    from ..snow import composite, iter_tiled_frames, snow
-    from ..snow.background import default_background
+    from ..snowfall import composite, iter_tiled_frames, snow
+    from ..snowfall.background import default_background
 
     from ..io import prepare_output
 

@@ -97,7 +97,7 @@ def _display(args):
 
 def _field(args, display, rng):
     """The stimulus as a float field in pixels and frames, and the pixel-unit arguments it was made with."""
-    from ..snow import snow
+    from ..snowfall import snow
     from ..spectral import spectral_noise
     from ..stimuli import motion_cloud, phase_scramble
 

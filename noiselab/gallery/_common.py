@@ -75,7 +75,7 @@ def moon(n):
 
 def alpha_to_rgb_composite(alpha, background, intensity=250):
     """Eq. 3.6 over an RGB background, as uint8."""
-    from noiselab.snow import composite
+    from noiselab.snowfall import composite
 
     out = composite(alpha, background, intensity=intensity)
     out = np.asarray(out)

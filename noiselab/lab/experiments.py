@@ -17,7 +17,7 @@ Scenes
     octaves up to the sampling Nyquist (``fractal_sum`` skips the rest).
 Falling snow
     ``(T, H, W)`` frames, band ``(W/32, W/4)`` cycles/frame, ``c = 1``
-    rad/frame, straight down: :func:`noiselab.snow.snow` (tent IFFT),
+    rad/frame, straight down: :func:`noiselab.snowfall.snow` (tent IFFT),
     :func:`layered_lattice_snow`, :func:`particle_snow`.
 """
 from __future__ import annotations
@@ -171,7 +171,7 @@ def snow_band(W):
 
 def snow_methods(shape, *, layers=8, flakes=None, blur=False):
     """name -> callable(seed) for the snow scene; ``blur`` adds motion-blurred particles."""
-    from ..snow import snow
+    from ..snowfall import snow
     from .snowgen import layered_lattice_snow, particle_snow
 
     band = snow_band(shape[2])
@@ -263,7 +263,7 @@ def snow_scaling(cfg: Config):
 
 def flake_scaling(cfg: Config):
     """Particle snow time as the flake count grows (fixed frames), against the IFFT snow of the same size."""
-    from ..snow import snow
+    from ..snowfall import snow
     from .snowgen import particle_snow
 
     shape = tuple(cfg.flake_shape)
@@ -335,7 +335,7 @@ def _spectral_deviation(frame, band, per_octave=4):
 
 def sweep_tiles(cfg):
     """Tiled snow: render a (T, s, s) tile and tile it to the frame; error = parallax RMS error (and repeats)."""
-    from ..snow import snow, tile
+    from ..snowfall import snow, tile
 
     T, H, W = cfg.pareto_shape
     band = snow_band(W)
@@ -365,7 +365,7 @@ def sweep_tiles(cfg):
 
 def sweep_precision(cfg):
     """float32 against float64: snow and 2-D spectral noise (max |difference| of the output)."""
-    from ..snow import snow
+    from ..snowfall import snow
     from ..spectral import spectral_noise
 
     shape = tuple(cfg.pareto_shape)

@@ -83,7 +83,7 @@ def video_cases(n, frames):
         return np.ascontiguousarray(np.transpose(z, (2, 1, 0)))  # (x, y, t) -> (t, y, x)
 
     def noiselab_snow():
-        from noiselab.snow import snow
+        from noiselab.snowfall import snow
 
         return snow((frames, m, m), seed=0)
 

@@ -14,7 +14,7 @@ One octave (2-D, ``N x N``)
 One octave (3-D, ``n**3``)
     The same in a volume (``c = n / 8``), for the slices (Cook & DeRose).
 Falling snow
-    :func:`noiselab.snow.snow` and the lab's two alternatives over three seeds.
+    :func:`noiselab.snowfall.snow` and the lab's two alternatives over three seeds.
 """
 from __future__ import annotations
 
@@ -248,8 +248,8 @@ def quality_experiment(cfg):
 def motion_experiment(cfg, seeds=QUALITY_SEEDS):
     """Falling snow: each octave band's share of power on the tent, mean and spread over seeds; envelope error."""
     from ..analysis import envelope_error, tent_energy_per_band
-    from ..snow import snow
-    from ..snow.render import snow_spectrum
+    from ..snowfall import snow
+    from ..snowfall.render import snow_spectrum
     from .experiments import snow_band, snow_methods
 
     shape = tuple(cfg.pareto_shape)

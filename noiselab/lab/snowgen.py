@@ -9,7 +9,7 @@
   speed (both ``1/depth``), splatted as anti-aliased discs.
 
 Both take the same ``shape``, ``band`` (cycles/frame), ``c`` (rad/frame) and
-``direction`` as :func:`noiselab.snow.snow`, so the three methods render the
+``direction`` as :func:`noiselab.snowfall.snow`, so the three methods render the
 same scene and the analysers (:mod:`noiselab.analysis`) can compare them.
 """
 from __future__ import annotations
@@ -22,7 +22,7 @@ import numpy as np
 
 from .._core import as_generator, check_band, check_int, check_memory, check_real, check_shape, float_dtype
 from ..lattice import LatticeNoise
-from ..snow import rescale_opacity
+from ..snowfall import rescale_opacity
 from ..spectral.envelopes import unit_direction
 
 __all__ = ["layered_lattice_snow", "particle_snow", "layer_plan", "lattice_peak"]
@@ -127,7 +127,7 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
     inversely proportional to its spatial frequency, the tent's law sampled at
     ``layers`` depths. Amplitude ``f_k**(1 - exponent)`` per layer gives the
     1/f amplitude spectrum of the thesis for ``exponent=1``. The sum is
-    rescaled to [0, 1] and raised to ``beta`` as :func:`noiselab.snow.snow` does.
+    rescaled to [0, 1] and raised to ``beta`` as :func:`noiselab.snowfall.snow` does.
 
     What it cannot do (measured in ``benchmarks/RESULTS.md``): each layer's
     spectrum is about an octave wide, so frequencies between layer centres
@@ -145,7 +145,7 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
         Tent constant in rad/frame, ``0 <= c <= pi``.
     band : (lo, hi), optional
         Band in cycles/frame (per frame width), ``0 < lo < hi <= W/2``;
-        default ``(W/32, W/4)`` as for :func:`noiselab.snow.snow`.
+        default ``(W/32, W/4)`` as for :func:`noiselab.snowfall.snow`.
     layers : int
         Depth layers, 1..256 (more layers: a closer approximation, linear cost).
     direction : (dx, dy)
@@ -154,13 +154,13 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
         Lattice kernel (see :mod:`noiselab.lattice.kernels`); Catmull-Rom gives
         the narrowest layer spectrum.
     exponent, beta, dtype, rescale
-        As for :func:`noiselab.snow.snow`.
+        As for :func:`noiselab.snowfall.snow`.
     start : int
         Index of the first frame (>= 0). Every frame is computed on its own,
         so with ``rescale=False`` frames ``start .. start+T-1`` are
         bit-identical to the same frames of a longer render: a long video can
         be rendered in pieces of bounded memory (rescale them with one shared
-        range, e.g. :func:`noiselab.snow.rescale_opacity` with ``lo``/``hi``).
+        range, e.g. :func:`noiselab.snowfall.rescale_opacity` with ``lo``/``hi``).
 
     Returns
     -------
@@ -277,7 +277,7 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
         Band in cycles/frame, ``0 < lo < hi <= W/2``; default ``(W/32, W/4)``.
     flakes : int, optional
         Number of flakes, 1..10**8; default ``H * W / 16`` (16384 at 512 x
-        512), which gives a mean opacity near that of :func:`noiselab.snow.snow`
+        512), which gives a mean opacity near that of :func:`noiselab.snowfall.snow`
         with the default band (about 0.35; see ``benchmarks/RESULTS.md``).
     direction : (dx, dy)
         Fall direction in image coordinates (x right, y down).

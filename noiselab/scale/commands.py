@@ -108,7 +108,7 @@ def write_snow_zarr(args, shape, path):
     """
     from ..io.atomic import scratch_folder
     from ..io.zarr import write_zarr
-    from ..snow import snow
+    from ..snowfall import snow
 
     if path.suffix.lower() != ".zarr":
         raise ValueError(f"--chunks and --scheduler need .zarr output, got {path.name!r}")

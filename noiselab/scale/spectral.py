@@ -6,7 +6,7 @@
 imports this module. What both paths compute the same way comes from their
 internal interfaces: :mod:`noiselab.spectral.plan` (the plan, the slab fill,
 the Hermitian gain, the leading-axis inverse FFT) and
-:mod:`noiselab.snow.tent` (the tent's columns and coefficients, the y-pass).
+:mod:`noiselab.snowfall.tent` (the tent's columns and coefficients, the y-pass).
 
 The inverse FFT is global, and ``dask.array.fft`` transforms only an axis
 that sits in one chunk, so it is done here the way distributed FFTs do it:
@@ -31,7 +31,7 @@ Hermitian and computes the gain; the second pass fills the slabs again and
 feeds the FFT. The spectrum is never held whole. 1-D noise is one task (a
 single FFT axis cannot be split by separable passes).
 
-Snow (``snow(..., chunks=)``), the pruned FFT of :mod:`noiselab.snow.tent`
+Snow (``snow(..., chunks=)``), the pruned FFT of :mod:`noiselab.snowfall.tent`
 kept:
 
 1. the tent's sparse spectrum (about 1 % of the video's cells) is drawn
@@ -40,7 +40,7 @@ kept:
 2. per kx slab, a few frames at a time: the direct inverse DFT along t of
    each tent column (its few bins), the values at their ``(ky, kx)`` cells,
    ``ifft`` along y on the slab's kx columns only (the band's kx columns;
-   nothing past the band's largest kx exists): :func:`noiselab.snow.tent.y_pass`,
+   nothing past the band's largest kx exists): :func:`noiselab.snowfall.tent.y_pass`,
    as in memory;
 3. transpose to ``(t, y)`` chunks with kx whole: ``irfft`` along x.
 
@@ -60,8 +60,8 @@ import numpy as np
 import scipy.fft
 
 from .._core import as_generator, dispatch, float_dtype, require_dask
-from ..snow.render import rescale_opacity
-from ..snow.tent import assemble, tent_columns, y_pass
+from ..snowfall.render import rescale_opacity
+from ..snowfall.tent import assemble, tent_columns, y_pass
 from ..spectral import plan, spectral_noise
 
 __all__ = ["chunked_spectral_noise", "chunked_snow"]
@@ -351,7 +351,7 @@ def _snow_rescale(B, W, dt, beta, lohi):
 @dispatch.register("snow")
 def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, beta, exponent, amplitude, dtype,
                  on_alias, rescale, spill=None):
-    """:func:`noiselab.snow.snow` as a lazy dask array in ``chunks`` (see the module notes).
+    """:func:`noiselab.snowfall.snow` as a lazy dask array in ``chunks`` (see the module notes).
 
     Called by ``snow`` when ``chunks`` is given, after it validated the
     arguments. Equal to the in-memory video to float rounding.
@@ -359,7 +359,7 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     Examples
     --------
     >>> import numpy as np
-    >>> from noiselab.snow import snow
+    >>> from noiselab.snowfall import snow
     >>> lazy = snow((8, 48, 64), seed=1, chunks=(3, 20, 64))
     >>> lazy.chunks
     ((3, 3, 2), (20, 20, 8), (64,))

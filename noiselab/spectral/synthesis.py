@@ -30,7 +30,7 @@ writing the spectrum does, any chunking gives the same values, and float32
 and float64 fields of one seed share them (they agree to float32 precision).
 Same seed, same bits on one machine; the bits changed from the earlier
 ``rng.random`` + ``cos``/``sin`` draws. :func:`draw_coefficients` keeps that
-earlier scheme (``noiselab.snow`` uses it for its few cells).
+earlier scheme (``noiselab.snowfall`` uses it for its few cells).
 """
 from __future__ import annotations
 
@@ -558,7 +558,7 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
     evaluated cell by cell while the coefficients are written, each row's band
     is one kx interval, and only the block of rows and columns the band can
     reach is stored and transformed (a pruned inverse FFT, as in
-    :mod:`noiselab.snow`). Mean and variance are set on the spectrum (DC is 0
+    :mod:`noiselab.snowfall`). Mean and variance are set on the spectrum (DC is 0
     unless ``dc``; Parseval gives the variance), so the field needs no pass
     after the FFT. Timings (ratio to a bare ``irfftn`` of the output at equal
     workers, and peak memory): ``benchmarks/bench_spectral.md``.

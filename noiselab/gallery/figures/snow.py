@@ -5,7 +5,7 @@ import numpy as np
 
 from ..registry import Result, figure
 
-SNOW = ("noiselab.snow", "noiselab.spectral", "noiselab.analysis", "noiselab.io", "noiselab.gallery.scenes")
+SNOW = ("noiselab.snowfall", "noiselab.spectral", "noiselab.analysis", "noiselab.io", "noiselab.gallery.scenes")
 
 
 @figure("snow", "opacity", seed="Zhang 2003, video 'snow' (Sec. 3.5 I)", title="The opacity function alpha(x, y, t) itself",
@@ -14,7 +14,7 @@ SNOW = ("noiselab.snow", "noiselab.spectral", "noiselab.analysis", "noiselab.io"
         quick=dict(frames=8, size=64), uses=SNOW)
 def opacity(out, *, frames, size, c, thickness, beta, seed):
     from noiselab import analysis
-    from noiselab.snow import snow, flake_speeds
+    from noiselab.snowfall import snow, flake_speeds
 
     from .._common import pyplot, save_figure, save_video
 
@@ -87,7 +87,7 @@ def _composite_with_crop(alpha, background, box, intensity=250):
         quick=dict(frames=8, size=64), uses=SNOW)
 def winter_scene(out, *, frames, size, c, beta, intensity, direction, seed):
     from noiselab import analysis
-    from noiselab.snow import snow
+    from noiselab.snowfall import snow
 
     from .._common import save_image, save_video
     from ..scenes import house_scene
@@ -121,7 +121,7 @@ def winter_scene(out, *, frames, size, c, beta, intensity, direction, seed):
         uses=SNOW)
 def tent_plot(out, *, C, grid, frames, size, seed):
     from noiselab import analysis
-    from noiselab.snow import snow
+    from noiselab.snowfall import snow
 
     from .._common import pyplot, save_figure
 
@@ -177,7 +177,7 @@ def city_background(out, *, size):
 
 def _tiling(out, tile, frames, size, c, beta, direction, seed, seeds):
     from noiselab import analysis
-    from noiselab.snow import snow, iter_tiled_frames
+    from noiselab.snowfall import snow, iter_tiled_frames
 
     from .._common import save_image, save_video
     from ..scenes import city_scene
@@ -250,7 +250,7 @@ def tiling_64(out, *, tile, frames, size, c, beta, direction, seeds, seed):
         quick=dict(grid=21, frames=8, size=32), uses=SNOW)
 def sheared_tent(out, *, C, s, grid, frames, size, pan, beta, seed):
     from noiselab import analysis
-    from noiselab.snow import snow
+    from noiselab.snowfall import snow
 
     from .._common import pyplot, save_figure, save_video
     from ..scenes import house_scene
@@ -328,7 +328,7 @@ def backgrounds(out, *, size):
         look="the snow seems to pass behind a light veil over the white regions of each pattern",
         params=dict(frames=64, size=512, c=1.0, transmittance=0.3, seed=7), quick=dict(frames=8, size=64), uses=SNOW)
 def parallax(out, *, frames, size, c, transmittance, seed):
-    from noiselab.snow import parallax_composite, snow
+    from noiselab.snowfall import parallax_composite, snow
 
     from .._common import checkerboard, disc, moon, save_video
 
@@ -367,7 +367,7 @@ def parallax(out, *, frames, size, c, transmittance, seed):
         params=dict(frames=64, size=512, c=1.0, transmittance=0.3, seed=8), quick=dict(frames=8, size=64), uses=SNOW)
 def motion_inconsistent(out, *, frames, size, c, transmittance, seed):
     from noiselab import analysis
-    from noiselab.snow import parallax_composite, snow
+    from noiselab.snowfall import parallax_composite, snow
 
     from .._common import disc, save_video
 

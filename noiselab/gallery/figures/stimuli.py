@@ -137,11 +137,11 @@ def stoner_albright(out, *, size_deg, duration, period_deg, speed, background, t
 @figure("stimuli", "fig6_2", seed="Zhang 2003, Fig. 6.2 and Eq. 6.1, restated in cd/m²",
         title="The motion-parallax transparency stimulus in cd/m² and Michelson contrast",
         params=dict(size_deg=8.0, duration=1.0, transmittance=0.3, seed=7), quick=dict(size_deg=2.0, duration=0.25),
-        uses=STIM + ("noiselab.snow",),
+        uses=STIM + ("noiselab.snowfall",),
         look="the same parallax stimulus, now with its mean luminance in cd/m² and its veiled contrast as Michelson contrast")
 def parallax_in_cd(out, *, size_deg, duration, transmittance, seed):
     from noiselab import analysis
-    from noiselab.snow import snow
+    from noiselab.snowfall import snow
 
     from .._common import disc, save_image, save_video
 

@@ -25,19 +25,3 @@ __all__ = [
     "flake_speeds",
 ]
 
-
-# ``noiselab.snow`` is both this subpackage and the function ``snow`` (the
-# issue's ``noiselab.snow(shape=...)``). Python binds the subpackage to the
-# parent's attribute as soon as anything imports it, so the subpackage itself
-# is made callable: ``noiselab.snow(...)`` renders snow and
-# ``noiselab.snow.composite`` still works, whichever was imported first.
-import sys as _sys  # noqa: E402
-import types as _types  # noqa: E402
-
-
-class _CallableModule(_types.ModuleType):
-    def __call__(self, *args, **kwargs):
-        return snow(*args, **kwargs)
-
-
-_sys.modules[__name__].__class__ = _CallableModule
