@@ -169,7 +169,7 @@ def write_benchmark_pages(folder=HERE / "benchmarks"):
     index = ["# Benchmarks", "",
              "Each page is a report written by the script beside it in `benchmarks/` (the command that made it is",
              "in its header), included here as it is in the repository. `RESULTS.md` is the laboratory's run",
-             "(`noiselab bench --publish`); the guide's {doc}`../guide/laboratory` explains how to read it.", "",
+             "(`python3 benchmarks/lab_run.py --publish`); the guide's {doc}`../guide/laboratory` explains how to read it.", "",
              "```{toctree}", ":maxdepth: 1", ""] + order + ["```", ""]
     _write_if_changed(folder / "index.md", "\n".join(index))
 

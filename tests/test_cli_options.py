@@ -1,7 +1,8 @@
 """Consistency of the command line: help on every option, one default fps, --frames N gives N frames,
-and the published benchmark results are only written by an explicit --publish."""
+and the published benchmark results are written only by benchmarks/lab_run.py --publish."""
 import argparse
 import inspect
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -67,61 +68,64 @@ def test_aliasing_error_names_the_command_line_flags(tmp_path, capsys):
 
 # ----------------------------------------------------------------------------- bench
 
-@pytest.fixture
-def fake_checkout(tmp_path, monkeypatch):
-    """A scratch git checkout holding the published results, without a peer environment; run from inside it."""
-    import noiselab.lab.checkout as checkout
+def _lab_run():
+    """``benchmarks/lab_run.py``, the checkout's publisher of ``benchmarks/RESULTS.md``, as a module."""
+    import importlib.util
 
-    root = tmp_path / "checkout"
-    published = root / "benchmarks"
-    (published / "results").mkdir(parents=True)
-    (published / "RESULTS.md").write_text("published\n")
-    (root / "noiselab").mkdir()
-    (root / "noiselab" / "__init__.py").write_text("")
-    (root / "pyproject.toml").write_text("[project]\nname = 'noiselab'\n")
-    monkeypatch.setattr(checkout, "package_parent", lambda: tmp_path / "site-packages")   # an installed noiselab
-    monkeypatch.chdir(root)
-    return root
+    path = Path(__file__).resolve().parents[1] / "benchmarks" / "lab_run.py"
+    spec = importlib.util.spec_from_file_location("lab_run", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
-@pytest.fixture
-def fake_published(fake_checkout):
-    """The published results (``benchmarks/`` of the scratch checkout)."""
-    return fake_checkout / "benchmarks"
-
-
-def test_bench_writes_to_out_bench_by_default(fake_published, capsys):
+def test_bench_writes_to_out_bench_by_default(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
     assert main(["bench", "--dry-run"]) == 0
     out = capsys.readouterr().out
     assert str(Path("out") / "bench" / "RESULTS.md") in out and "benchmarks" not in out.split("would run")[1]
-    assert "WARNING: section 4 (the peers) will be skipped" in out
+    assert "WARNING: section 4 (the peers) will be skipped" in out and "--peers-python" in out
 
 
-def test_bench_publish_refuses_without_the_peers(fake_published, capsys):
-    rc = main(["bench", "--publish"])
-    err = capsys.readouterr().err
-    assert rc == 2 and "refusing to publish without section 4 (the peers)" in err and "--allow-missing-peers" in err
-    assert (fake_published / "RESULTS.md").read_text() == "published\n"
-    assert main(["bench", "--publish", "--quick"]) == 2
-    assert main(["bench", "--allow-missing-peers"]) == 2
-    capsys.readouterr()
-    assert main(["bench", "--publish", "--allow-missing-peers", "--dry-run"]) == 0
+def test_the_package_writes_into_no_checkout():
+    """The published report's writer lives in benchmarks/, not in the package: no checkout finder, no --publish."""
+    import importlib.util
+
+    from noiselab.cli import build_parser
+
+    assert importlib.util.find_spec("noiselab.lab.checkout") is None
+    sub = next(a for a in build_parser()._actions if a.__class__.__name__ == "_SubParsersAction")
+    options = {o for action in sub.choices["bench"]._actions for o in action.option_strings}
+    assert "--publish" not in options and "--peers-python" in options
+
+
+def test_lab_run_publish_refuses_before_running_anything(tmp_path, capsys):
+    lab_run = _lab_run()
+    published, missing = tmp_path / "benchmarks", tmp_path / "no-peers" / "python"
+    for argv, needle in ((["--publish"], r"refusing to publish without section 4 \(the peers\)"),
+                         (["--publish", "--no-peers"], "--no-peers"),
+                         (["--publish", "--quick", "--allow-missing-peers"], "quick"),
+                         (["--publish", "--output", "x", "--allow-missing-peers"], "drop --output"),
+                         (["--allow-missing-peers"], "only applies with --publish")):
+        with pytest.raises(ValueError, match=needle):
+            lab_run.publish_argv(argv, published=published, peers_python=missing)
+    argv = lab_run.publish_argv(["--publish", "--allow-missing-peers", "--dry-run"], published=published,
+                                peers_python=missing)
+    assert argv[-2:] == ["--output", str(published)] and argv[:2] == ["--peers-python", str(missing)]
+    assert main(["bench", *argv]) == 0
     out = capsys.readouterr().out
-    assert "WARNING: section 4 (the peers) will be skipped" in out and str(fake_published / "RESULTS.md") in out
+    assert "WARNING: section 4 (the peers) will be skipped" in out and str(published / "RESULTS.md") in out
+    assert not published.exists()   # a dry run writes nothing
+    assert lab_run.publish_argv(["--quick"], published=published, peers_python=missing)[-1] == "--quick"
 
 
-def test_run_all_refuses_to_publish_before_running_anything(fake_published, monkeypatch):
+def test_run_all_without_a_peer_interpreter_names_the_option(tmp_path):
     import noiselab.lab.run as lab_run
 
-    monkeypatch.setattr(lab_run, "machine_info", lambda: pytest.fail("an experiment ran"))
-    with pytest.raises(lab_run.PublishError, match="peer environment missing"):
-        lab_run.run_all(publish=True)
-    with pytest.raises(lab_run.PublishError, match="--no-peers"):
-        lab_run.run_all(publish=True, peers=False)
-    with pytest.raises(lab_run.PublishError, match="quick"):
-        lab_run.run_all(publish=True, quick=True, allow_missing_peers=True)
+    assert "--peers-python" in lab_run.peers_missing_reason(None)
+    assert "setup_peers.sh" in lab_run.peers_missing_reason(tmp_path / "python")
+    assert lab_run.peers_missing_reason(sys.executable) is None
     assert lab_run.default_output() == Path("out") / "bench"
-    assert (fake_published / "RESULTS.md").read_text() == "published\n"
 
 
 def test_analyze_streams_video_frames_into_one_grey_array(tmp_path):
@@ -149,39 +153,12 @@ def test_analyze_streams_video_frames_into_one_grey_array(tmp_path):
     assert peak < 1.5 * data.nbytes, (peak, data.nbytes)   # reading it all first would take 3x (RGB uint8 + float32)
 
 
-def test_bench_publish_finds_the_checkout_from_a_subfolder(fake_checkout, capsys, monkeypatch):
-    monkeypatch.chdir(fake_checkout / "benchmarks" / "results")
-    assert main(["bench", "--publish", "--allow-missing-peers", "--dry-run"]) == 0
-    assert str(fake_checkout / "benchmarks" / "RESULTS.md") in capsys.readouterr().out
-
-
-def test_bench_publish_without_a_checkout_is_one_line_and_status_2(tmp_path, capsys, monkeypatch):
-    import noiselab.lab.checkout as checkout
-    import noiselab.lab.run as lab_run
-
-    monkeypatch.setattr(checkout, "package_parent", lambda: tmp_path / "site-packages")
-    monkeypatch.chdir(tmp_path)
-    for argv in (["bench", "--publish"], ["bench", "--publish", "--allow-missing-peers", "--dry-run"]):
-        rc = main(argv)
-        err = capsys.readouterr().err
-        assert rc == 2 and err.count("\n") == 1, err
-        assert err.startswith("noiselab bench: error: ") and "git checkout" in err and str(tmp_path) in err
-    assert not (tmp_path / "benchmarks").exists() and not (tmp_path / "out").exists()
-    monkeypatch.setattr(lab_run, "machine_info", lambda: pytest.fail("an experiment ran"))
-    with pytest.raises(checkout.CheckoutNotFound, match="git checkout"):
-        lab_run.run_all(publish=True, allow_missing_peers=True)
-    assert "no checkout was found" in lab_run.peers_missing_reason()
-
-
 def test_bench_dry_run_from_any_folder_writes_nothing_and_names_its_output(tmp_path, capsys, monkeypatch):
-    import noiselab.lab.checkout as checkout
-
-    monkeypatch.setattr(checkout, "package_parent", lambda: tmp_path / "site-packages")
     monkeypatch.chdir(tmp_path)
     assert main(["bench", "--quick", "--output", "lab", "--dry-run"]) == 0
     out = capsys.readouterr().out
     assert f"would run the quick laboratory and write {Path('lab') / 'RESULTS.md'}" in out
-    assert "WARNING: section 4 (the peers) will be skipped" in out and "no checkout was found" in out
+    assert "WARNING: section 4 (the peers) will be skipped" in out and "--peers-python" in out
     assert list(tmp_path.iterdir()) == []   # a dry run creates not even the folder
 
 

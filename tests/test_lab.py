@@ -261,7 +261,7 @@ def test_bench_cli_rejects_a_file_as_output(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("modname", ["noiselab.lab.snowgen", "noiselab.lab.measure", "noiselab.lab.experiments",
-                                     "noiselab.lab.run", "noiselab.lab.checkout"])
+                                     "noiselab.lab.run"])
 def test_docstring_examples_run(modname):
     import doctest
     import importlib

@@ -9,9 +9,8 @@
 - :mod:`noiselab.lab.experiments`: the experiments, each returning rows of a
   results table.
 - :mod:`noiselab.lab.run`: runs them all and writes ``RESULTS.md`` and its
-  plots where ``--output`` says (``noiselab bench`` or ``python benchmarks/lab_run.py``);
-  ``--publish`` writes the published ``benchmarks/RESULTS.md`` of the git checkout.
-- :mod:`noiselab.lab.checkout`: finds that checkout (and the peers' environment in it).
+  plots where ``--output`` says (``noiselab bench``); the package writes into no git checkout
+  (the published ``benchmarks/RESULTS.md`` is written by the checkout's ``benchmarks/lab_run.py --publish``).
 """
 from .snowgen import layer_plan, lattice_peak, layered_lattice_snow, particle_snow
 

@@ -187,17 +187,17 @@ def update_results(path=None, *, quick=False, log=print):
 
     The section replaces a previous one (from its heading to the next ``## ``
     heading) or goes before ``## Notes``; the raw numbers go to
-    ``results/hashes.json`` beside it. ``python3 -m noiselab.lab.hashes``.
+    ``results/hashes.json`` beside it. ``python3 -m noiselab.lab.hashes [RESULTS.md]`` (default
+    ``out/bench/RESULTS.md``; the checkout's published report is ``benchmarks/RESULTS.md``).
     """
     import json
     import os
     from pathlib import Path
 
     from .experiments import Config
-    from .checkout import published_dir
     from .measure import machine_info
 
-    path = Path(path) if path is not None else published_dir() / "RESULTS.md"
+    path = Path(path) if path is not None else Path("out") / "bench" / "RESULTS.md"
     load = os.getloadavg()[0]
     res = hash_experiment(Config.quick_config() if quick else Config.full())
     res["load"] = load
@@ -224,4 +224,5 @@ def update_results(path=None, *, quick=False, log=print):
 if __name__ == "__main__":
     import sys
 
-    update_results(quick="--quick" in sys.argv)
+    paths = [a for a in sys.argv[1:] if not a.startswith("--")]
+    update_results(paths[0] if paths else None, quick="--quick" in sys.argv)

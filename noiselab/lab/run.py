@@ -1,17 +1,16 @@
 """Run every laboratory experiment and write ``RESULTS.md`` with its plots.
 
-One command runs it all; an ordinary run writes to ``out/bench/`` under the
-current folder (or ``--output DIR``), from an installed noiselab anywhere; only
-``--publish`` replaces the published ``benchmarks/RESULTS.md`` of the git
-checkout (:mod:`noiselab.lab.checkout` finds it)::
+One command runs it all; a run writes to ``out/bench/`` under the current
+folder (or ``--output DIR``), from an installed noiselab anywhere. The package
+never writes into a git checkout: the published ``benchmarks/RESULTS.md`` is
+written by the checkout's own script, ``python benchmarks/lab_run.py --publish``::
 
     noiselab bench                  # -> out/bench/RESULTS.md
-    noiselab bench --publish        # -> benchmarks/RESULTS.md of the checkout (needs the peers)
     noiselab bench --quick --output /tmp/lab   # CI-size smoke run
 
-The peers run in their own environment (``benchmarks/.venv-peers`` of the
-checkout) in a subprocess (:mod:`noiselab.lab.peers`); without that
-environment the peer section says so.
+The peers run in their own environment (an interpreter with them installed,
+``--peers-python``; ``benchmarks/.venv-peers/bin/python`` in a checkout) in a
+subprocess (:mod:`noiselab.lab.peers`); without one the peer section says so.
 """
 from __future__ import annotations
 
@@ -25,18 +24,13 @@ from pathlib import Path
 
 import numpy as np
 
-from . import checkout
 from .experiments import (CAPABILITIES, Config, flake_scaling, pareto_sweeps, scaling_fits, snow_experiment,
                           snow_scaling, texture_experiment, texture_scaling)
 from .measure import fit_exponent, machine_info
 from .hashes import hash_experiment, hash_section
 from .quality import quality_experiment, quality_section
 
-__all__ = ["run_all", "md_table", "default_output", "PublishError"]
-
-
-class PublishError(ValueError):
-    """Publishing would drop a section of the published results (the peers) without being told to."""
+__all__ = ["run_all", "md_table", "default_output"]
 
 
 def default_output(quick=False) -> Path:
@@ -44,14 +38,13 @@ def default_output(quick=False) -> Path:
     return Path("out") / ("bench-quick" if quick else "bench")
 
 
-def peers_missing_reason():
-    """Why the peers cannot run here (a string), or None when their environment exists."""
-    python = checkout.peer_python()
-    if python is None:
-        return ("peer environment missing: it is benchmarks/.venv-peers of the noiselab git checkout, and no "
-                "checkout was found")
-    if not python.exists():
-        return f"peer environment missing ({python}): run `bash benchmarks/setup_peers.sh`"
+def peers_missing_reason(peers_python=None):
+    """Why the peers cannot run with the interpreter ``peers_python`` (a string), or None when it exists."""
+    if peers_python is None:
+        return ("no peer interpreter given (--peers-python: an environment with the peers installed, "
+                "benchmarks/.venv-peers/bin/python in a checkout after `bash benchmarks/setup_peers.sh`)")
+    if not Path(peers_python).exists():
+        return f"peer interpreter missing ({peers_python}): run `bash benchmarks/setup_peers.sh`"
     return None
 
 
@@ -236,16 +229,17 @@ def plot_peers(prows, path):
 
 # ----------------------------------------------------------------------------- peers
 
-def run_peers(n, frames, repeats, timeout=900):
-    """Run :mod:`noiselab.lab.peers` in the peer environment; returns (info, rows) or (None, reason)."""
-    reason = peers_missing_reason()
+def run_peers(n, frames, repeats, timeout=900, peers_python=None):
+    """Run :mod:`noiselab.lab.peers` with the peers' interpreter; returns (info, rows) or (None, reason)."""
+    reason = peers_missing_reason(peers_python)
     if reason:
         return None, reason
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "peers.json"
         # the peers' interpreter imports this very noiselab (the one running), whichever folder holds it
-        env = dict(os.environ, PYTHONPATH=str(checkout.package_parent()) + os.pathsep + os.environ.get("PYTHONPATH", ""))
-        cmd = [str(checkout.peer_python()), "-m", "noiselab.lab.peers", "--n", str(n), "--frames", str(frames),
+        package_parent = str(Path(__file__).resolve().parents[2])
+        env = dict(os.environ, PYTHONPATH=package_parent + os.pathsep + os.environ.get("PYTHONPATH", ""))
+        cmd = [str(peers_python), "-m", "noiselab.lab.peers", "--n", str(n), "--frames", str(frames),
                "--repeats", str(repeats), "--json", str(out)]
         try:
             proc = subprocess.run(cmd, cwd=tmp, env=env, capture_output=True, text=True, timeout=timeout)
@@ -264,7 +258,7 @@ def _strip(rows):
     return [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows]
 
 
-def run_all(*, quick=False, output=None, peers=True, log=print, publish=False, allow_missing_peers=False):
+def run_all(*, quick=False, output=None, peers=True, peers_python=None, log=print, command=None):
     """Run the experiments and write ``RESULTS.md``, ``results.json`` and the plots.
 
     Parameters
@@ -273,15 +267,15 @@ def run_all(*, quick=False, output=None, peers=True, log=print, publish=False, a
         CI-size run (seconds, tiny sizes); the numbers are not meaningful.
     output : path, optional
         Folder for ``RESULTS.md``; plots and JSON go to ``output/results/``.
-        Default :func:`default_output` (``out/bench``); never the published results.
+        Default :func:`default_output` (``out/bench``).
     peers : bool
-        Also run the peers (needs ``benchmarks/.venv-peers``).
-    publish : bool
-        Write to the published ``benchmarks/`` of the git checkout instead (not
-        with ``quick`` or ``output``; :class:`~noiselab.lab.checkout.CheckoutNotFound`
-        without a checkout). Refused with :class:`PublishError` when the peers were not
-        run or failed, unless ``allow_missing_peers``; then the skipped section
-        is logged loudly.
+        Also run the peers (with ``peers_python``).
+    peers_python : path, optional
+        The interpreter of an environment with the peers installed; without
+        it the peer section is skipped and says why.
+    command : str, optional
+        The command named in the report's header as the one that regenerates
+        it (default: the ``noiselab bench`` command of this run).
 
     Returns
     -------
@@ -289,18 +283,8 @@ def run_all(*, quick=False, output=None, peers=True, log=print, publish=False, a
     ``sweeps``, ``peers``), ``info``, the written ``path`` and ``skipped``
     (section -> reason).
     """
-    if publish and quick:
-        raise PublishError("a quick run is never published (its numbers only show that the pipeline works)")
-    if publish and output is not None:
-        raise PublishError("publishing writes to benchmarks/ of the git checkout; drop the output folder")
-    published = checkout.published_dir() if publish else None   # no checkout: say so before anything runs
-    if publish and not allow_missing_peers:
-        reason = "peers not run (--no-peers)" if not peers else peers_missing_reason()
-        if reason:
-            raise PublishError(f"refusing to publish without section 4 (the peers): {reason}; "
-                               "run without --publish, or add --allow-missing-peers")
     cfg = Config.quick_config() if quick else Config.full()
-    out_dir = published if publish else Path(output) if output is not None else default_output(quick)
+    out_dir = Path(output) if output is not None else default_output(quick)
     res_dir = out_dir / "results"
     res_dir.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
@@ -322,7 +306,7 @@ def run_all(*, quick=False, output=None, peers=True, log=print, publish=False, a
     if peers:
         t0 = time.perf_counter()
         n = 128 if quick else 512
-        pinfo, prows = run_peers(n, 8 if quick else 32, cfg.repeats)
+        pinfo, prows = run_peers(n, 8 if quick else 32, cfg.repeats, peers_python=peers_python)
         results["peer_info"], results["peers"] = pinfo, prows
         status = f"{len(prows)} cases" if isinstance(prows, list) else f"NOT RUN: {prows}"
         log(f"lab: peers done in {time.perf_counter() - t0:.1f} s ({status})")
@@ -331,12 +315,6 @@ def run_all(*, quick=False, output=None, peers=True, log=print, publish=False, a
     skipped = {}
     if not isinstance(results["peers"], list):
         skipped["4. the peers"] = results["peers"]
-    if publish and skipped and not allow_missing_peers:
-        out_dir = default_output(quick)
-        res_dir = out_dir / "results"
-        res_dir.mkdir(parents=True, exist_ok=True)
-        log(f"lab: NOT PUBLISHED: the peers failed ({skipped['4. the peers']}); writing to {out_dir} instead")
-        publish = False
     for section, why in skipped.items():
         log(f"lab: SKIPPED section {section}: {why}")
     results["skipped"] = skipped
@@ -352,13 +330,12 @@ def run_all(*, quick=False, output=None, peers=True, log=print, publish=False, a
 
     with atomic_output(res_dir / "results.json") as tmp:
         Path(tmp).write_text(json.dumps(_json_ready(results), indent=1, default=str))
-    md = render_markdown(results, quick=quick)
+    md = render_markdown(results, quick=quick, command=command)
     path = out_dir / "RESULTS.md"
     with atomic_output(path) as tmp:
         Path(tmp).write_text(md)
     results["path"] = path
-    results["published"] = publish
-    log(f"lab: wrote {path} ({results['elapsed_s']:.0f} s)" + (" (the published results)" if publish else ""))
+    log(f"lab: wrote {path} ({results['elapsed_s']:.0f} s)")
     return results
 
 
@@ -381,9 +358,9 @@ def _winner(rows, key, best="min"):
     return (min if best == "min" else max)(rs, key=lambda r: r[key])
 
 
-def render_markdown(res, *, quick=False):
+def render_markdown(res, *, quick=False, command=None):
     info = res["info"]
-    cmd = "python3 -m noiselab bench --quick" if quick else "python3 -m noiselab bench --publish"
+    cmd = command or ("python3 -m noiselab bench --quick" if quick else "python3 -m noiselab bench")
     L = []
     L.append("# noiselab laboratory results\n")
     for section, why in res.get("skipped", {}).items():
