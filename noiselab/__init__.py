@@ -59,6 +59,10 @@ _API = {
     "particle_snow": "noiselab.lab",
 }
 
+# the modules whose import registers the dask implementations that ``chunks=`` calls reach through
+# ``noiselab._core.dispatch`` (the core names no layer above it; the root, which knows them all, does)
+_DISPATCH_PROVIDERS = ("noiselab.scale",)
+
 _SUBPACKAGES = ("spectral", "snowfall", "lattice", "fractal", "fields", "geometry", "stimuli", "analysis", "io", "lab",
                 "scale", "gallery", "cli")
 

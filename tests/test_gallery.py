@@ -308,6 +308,45 @@ def test_hash_follows_the_modules_a_figure_uses():
     assert "_tiling" in registry.function_sources(registry.specs("snow/fig3_4")[0].func)
 
 
+def _direct_imports(spec):
+    """The units (subpackages; gallery modules) that a figure's own code and helpers import or reach."""
+    import ast
+    import textwrap
+
+    found = set()
+    for source in registry.function_sources(spec.func).values():
+        found |= registry._imported(ast.parse(textwrap.dedent(source)), spec.func.__module__, False)
+    return {registry._unit(m) for m in found}
+
+
+def test_the_modules_of_a_figure_are_read_from_its_code():
+    """Every module a figure's code imports, and every module those import, enters its hash; ``uses`` agrees."""
+    for spec in registry.specs():
+        modules = set(registry.figure_modules(spec))
+        direct = _direct_imports(spec) - {"noiselab.gallery.registry"}
+        assert direct <= modules, (spec.key, direct - modules)
+        assert {registry._unit(u) for u in spec.uses} <= modules, spec.key
+        # the hand list names every subpackage the figure calls (a wrong list is caught here)
+        named = {registry._unit(u) for u in spec.uses}
+        missing = {u for u in direct if not u.startswith("noiselab.gallery")} - named
+        assert not missing, f"{spec.key}: uses= lacks {sorted(missing)}"
+    curl = registry.specs("derivatives/curl_flow")[0]
+    closure = set(registry.figure_modules(curl))
+    assert {"noiselab.fields", "noiselab.lattice", "noiselab._core"} <= closure   # fields imports lattice, _core
+    assert "noiselab.cli" not in closure and "noiselab.gallery.figures.snow" not in closure
+
+
+def test_a_change_in_a_module_a_figure_reaches_rebuilds_it(monkeypatch):
+    """Changing the source of a module the figure reaches only through another (fields -> lattice) changes its hash."""
+    spec = registry.specs("derivatives/curl_flow")[0]
+    before = registry.content_hash(spec, quick=True)
+    real = registry.module_version
+    monkeypatch.setattr(registry, "module_version", lambda m: real(m) + ("x" if m == "noiselab.lattice" else ""))
+    assert registry.content_hash(spec, quick=True) != before
+    monkeypatch.setattr(registry, "module_version", lambda m: real(m) + ("x" if m == "noiselab.cli" else ""))
+    assert registry.content_hash(spec, quick=True) == before   # an unrelated module: no rebuild
+
+
 def test_only_builds_only_that_group(tmp_path):
     report = build_mod.build(tmp_path, only="lab", quick=True, show_progress=False)
     assert set(report["built"]) == {s.key for s in registry.specs("lab")}

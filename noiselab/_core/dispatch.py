@@ -1,30 +1,46 @@
 """One place where a public function chooses between its in-memory and its dask implementation.
 
 The in-memory core (``spectral``, ``lattice``, ``snow``, ``fractal``, ``io``)
-never imports the scale-out layer, dask or distributed. A public function that
-takes ``chunks=`` computes in memory when ``chunks`` is None and otherwise
-asks :func:`chunked` for the dask implementation registered under its name.
-The scale-out layer (:mod:`noiselab.scale`, above the core) registers its
-implementations with :func:`register` when it is imported; :func:`chunked`
-imports it on first need, by the name in ``SCALE_OUT``, so the core holds a
-name, not an import. This is xarray-spatial's ``ArrayTypeFunctionMapping``
-turned around: there the public function imports both implementations; here
-the dask side is a layer above, so it registers itself.
+never imports the scale-out layer, dask or distributed, and names neither. A
+public function that takes ``chunks=`` computes in memory when ``chunks`` is
+None and otherwise asks :func:`chunked` for the dask implementation
+registered under its name. The scale-out layer (above the core) registers its
+implementations with :func:`register` when it is imported.
+
+Which package that is, the core does not say: the package root declares it.
+``noiselab/__init__.py`` is the one module that knows every layer (its
+``_API`` table maps each top-level name to its subpackage), and Python
+imports it before any subpackage, so it also holds ``_DISPATCH_PROVIDERS``:
+the modules whose import fills this registry. :func:`chunked` imports them
+on first need. An entry point in ``pyproject.toml`` would do the same through
+the installed metadata, but then an editable install would need installing
+again for the registry to change, and any installed distribution could
+register implementations of noiselab's functions; the root's table needs
+neither. This is xarray-spatial's ``ArrayTypeFunctionMapping`` turned
+around: there the public function imports both implementations; here the
+dask side is a layer above, so it registers itself.
 
 Examples
 --------
 >>> from noiselab._core import dispatch
->>> dispatch.chunked("spectral_noise").__module__
-'noiselab.scale.spectral'
+>>> fn = dispatch.chunked("spectral_noise")   # loads the scale-out layer, which registers its functions
+>>> dispatch.registered()["spectral_noise"] is fn
+True
 """
 from __future__ import annotations
 
 import importlib
+import sys
 
-__all__ = ["SCALE_OUT", "register", "chunked", "registered"]
+__all__ = ["providers", "register", "chunked", "registered"]
 
-SCALE_OUT = "noiselab.scale"    # the package whose import registers every dask implementation
 _REGISTRY: dict = {}
+
+
+def providers() -> tuple:
+    """The modules whose import registers the dask implementations, as the package root declares them."""
+    root = sys.modules.get(__name__.partition(".")[0])   # the package root, imported before any subpackage
+    return tuple(getattr(root, "_DISPATCH_PROVIDERS", ()))
 
 
 def register(name: str):
@@ -45,7 +61,8 @@ def chunked(name: str):
     installed (raised by the scale-out layer's own import of dask).
     """
     if name not in _REGISTRY:
-        importlib.import_module(SCALE_OUT)
+        for module in providers():
+            importlib.import_module(module)
     try:
         return _REGISTRY[name]
     except KeyError:

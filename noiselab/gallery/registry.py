@@ -20,11 +20,14 @@ in :data:`noiselab.gallery.figures.GROUP_MODULES`.
 """
 from __future__ import annotations
 
+import ast
 import dataclasses
+import functools
 import hashlib
 import importlib
 import inspect
 import json
+import textwrap
 from pathlib import Path
 from typing import Callable
 
@@ -88,8 +91,10 @@ def figure(group, name, *, seed, title, params=None, quick=None, uses=(), look="
     ``seed`` names the figure of a seed document it reproduces (for example
     ``"Phillips 2004, Fig. 12"``) or says it is the lab's own; ``params`` are
     passed to the function as keywords; ``quick`` overrides some of them for a
-    fast build; ``uses`` lists the noiselab modules it calls (their source is
-    part of the content hash, so a change there rebuilds the figure); ``look``
+    fast build; ``uses`` names the noiselab subpackages it calls, for the
+    reader (the modules whose source enters the content hash are read from
+    the figure's code and the import graph, :func:`figure_modules`; ``uses``
+    only adds to them, and a test holds it to the code); ``look``
     is one line for the reader: what to look for in the figure.
     """
     params = dict(params or {})
@@ -177,11 +182,116 @@ def function_sources(func) -> dict:
     return dict(sorted(seen.items()))
 
 
+def _unit(module: str) -> str:
+    """The unit whose source is hashed: a gallery module itself, else its whole subpackage (``noiselab.spectral``)."""
+    parts = module.split(".")
+    if parts[:2] == ["noiselab", "gallery"]:
+        return module if len(parts) > 2 else "noiselab.gallery._common"
+    return ".".join(parts[:2])
+
+
+@functools.lru_cache(maxsize=None)
+def _top_level_names() -> dict:
+    """The package root's table of top-level names (name -> defining module), read from its source."""
+    tree = ast.parse((_ROOT / "noiselab" / "__init__.py").read_text(encoding="utf-8"))
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "_API" for t in node.targets):
+            return ast.literal_eval(node.value)
+    return {}
+
+
+def _imported(tree, module: str, is_package: bool) -> set:
+    """The noiselab modules that the code in ``tree`` (of ``module``) imports or reaches as ``noiselab.X``."""
+    api = _top_level_names()
+    package = module if is_package else module.rpartition(".")[0]
+    found = set()
+
+    def add(name, attrs=()):
+        if name == "noiselab":   # the root: a subpackage or a top-level name (its defining module)
+            for a in attrs:
+                if a in api:
+                    found.add(api[a])
+                elif (_ROOT / "noiselab" / a).is_dir() or (_ROOT / "noiselab" / f"{a}.py").is_file():
+                    found.add(f"noiselab.{a}")
+        elif name.startswith("noiselab."):
+            found.add(name)
+            for a in attrs:   # ``from noiselab.gallery import scenes``: a module, when there is one
+                if (_ROOT / Path(*name.split(".")) / f"{a}.py").is_file():
+                    found.add(f"{name}.{a}")
+
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                add(alias.name)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                name = ".".join(base + ([node.module] if node.module else []))
+            else:
+                name = node.module or ""
+            add(name, [a.name for a in node.names])
+        elif (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == "noiselab"):
+            add("noiselab", [node.attr])
+        elif (isinstance(node, ast.Call) and isinstance(node.func, (ast.Attribute, ast.Name))
+              and getattr(node.func, "attr", getattr(node.func, "id", "")) == "import_module" and node.args
+              and isinstance(node.args[0], ast.Constant) and isinstance(node.args[0].value, str)):
+            add(node.args[0].value)
+    return found
+
+
+def _files(unit: str) -> list:
+    path = _ROOT / Path(*unit.split("."))
+    return sorted(path.rglob("*.py")) if path.is_dir() else [path.with_suffix(".py")]
+
+
+@functools.lru_cache(maxsize=None)
+def module_closure(unit: str) -> frozenset:
+    """``unit`` and every unit its code imports, transitively (read from the source; nothing is imported)."""
+    seen, todo = set(), [unit]
+    while todo:
+        u = todo.pop()
+        if u in seen:
+            continue
+        seen.add(u)
+        for f in _files(u):
+            if not f.is_file():
+                continue
+            rel = f.relative_to(_ROOT).with_suffix("")
+            name = ".".join(rel.parts[:-1] if rel.name == "__init__" else rel.parts)
+            tree = ast.parse(f.read_text(encoding="utf-8"))
+            todo += [_unit(m) for m in _imported(tree, name, rel.name == "__init__") if _unit(m) not in seen]
+    return frozenset(seen)
+
+
+def figure_modules(spec: FigureSpec) -> list:
+    """The noiselab modules whose source decides a figure: what its code imports, transitively, and ``uses``.
+
+    Read from the figure function and the module-local helpers it calls
+    (:func:`function_sources`) and from its module's top-level imports, then
+    closed over the import graph of the package's source, so a change in any
+    module the figure reaches rebuilds it (a subpackage counts whole; a
+    gallery module counts alone). ``uses=`` of :func:`figure` adds to this.
+    """
+    module = spec.func.__module__
+    file = Path(inspect.getsourcefile(spec.func))
+    top = ast.parse(file.read_text(encoding="utf-8"))
+    direct = _imported(ast.Module(body=[n for n in top.body if isinstance(n, (ast.Import, ast.ImportFrom))],
+                                  type_ignores=[]), module, False)
+    for source in function_sources(spec.func).values():
+        direct |= _imported(ast.parse(textwrap.dedent(source)), module, False)
+    units = {_unit(m) for m in direct | set(spec.uses) | {"noiselab.gallery._common"}}
+    units -= {_unit("noiselab.gallery.registry")}   # the registry itself: how figures are filed, not drawn
+    closure = set()
+    for u in units:
+        closure |= module_closure(u)
+    return sorted(closure - {"noiselab.gallery.registry"})
+
+
 def content_hash(spec: FigureSpec, quick: bool = False) -> str:
-    """Hash of (function source and its module-local helpers, parameters, noiselab version and source of the modules it uses)."""
+    """Hash of (function source and its module-local helpers, parameters, noiselab version and source of the modules it reaches)."""
     from noiselab import __version__
 
-    modules = sorted(set(spec.uses) | {"noiselab.gallery._common"})
+    modules = figure_modules(spec)
     payload = {
         "key": spec.key,
         "source": function_sources(spec.func),

@@ -7,7 +7,7 @@ import numpy as np
 
 from ..registry import Result, figure
 
-USES = ("noiselab.lattice", "noiselab.fractal", "noiselab.geometry")
+USES = ("noiselab.lattice", "noiselab.fractal", "noiselab.fields", "noiselab.geometry")
 
 
 def _fd_divergence(field, x, h=1e-5):

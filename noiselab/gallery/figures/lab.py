@@ -151,7 +151,7 @@ def measures(out, *, size):
         seed="The lab's own comparison (Phillips 2004, Sec. 2.4.1 nested permutation)",
         title="The hash question: Phillips' nested permutation table against an arithmetic integer hash",
         params=dict(cells=256, spc=2, seeds=8, kernel="catmull-rom", seed=23), quick=dict(cells=32, seeds=3),
-        uses=USES)
+        uses=USES + ("noiselab.lab",))
 def hashes(out, *, cells, spc, seeds, kernel, seed):
     from noiselab import analysis
     from noiselab.lattice import LatticeNoise
