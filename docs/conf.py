@@ -4,21 +4,40 @@ Build it with ``.venv/bin/python -m sphinx -W -b html docs docs/_build/html``
 (``./install.sh docs`` or ``./install.sh test`` installs the tools). Warnings
 are errors.
 
-Three parts of the site are generated here at build time, never written by hand:
+The build leaves the source tree untouched. It reads a copy of ``docs/`` that
+it owns, beside its output folder (``docs/_build/.html-source/docs`` for the
+command above; one per output folder), kept in step with ``docs/`` file by
+file (unchanged files keep their times, so a second build is incremental),
+and generates its pages there, never written by hand:
 
 - ``api/``: one page per public package, listing the package's ``__all__``
   through autosummary (a new subpackage with ``__all__`` appears by itself),
-  and the top-level names of ``noiselab._API``;
+  and the top-level names of ``noiselab._API``; a class page lists its
+  methods and attributes, each with its docstring, and every page ends with
+  the examples that use the name (sphinx-gallery's backreferences);
 - ``benchmarks/``: one page per ``benchmarks/*.md`` report and
   ``benchmarks/RESULTS.md``, each a MyST ``include`` of the file itself;
 - ``guide/cli.md``'s option tables come from the command's own argparse parser
-  (``cli_help.txt``).
+  (``cli_help.txt``);
+- ``auto_examples/``: sphinx-gallery's pages, one section per subfolder of
+  ``docs/examples/``.
+
+So two builds from one checkout into two output folders can run at once.
+
+Links to numpy, scipy, dask, trimesh, pyvista and matplotlib (intersphinx)
+need those projects' ``objects.inv`` inventories; the build never fetches
+them (it runs offline). It uses the ones found in ``$NOISELAB_INTERSPHINX``
+(a folder of ``<project>.inv`` files; ``python docs/fetch_inventories.py``
+fills ``~/.cache/noiselab/intersphinx``, the default, where the internet is
+reachable), and builds without the links for the others.
 """
 from __future__ import annotations
 
 import importlib
 import os
 import pkgutil
+import re
+import shutil
 import sys
 from pathlib import Path
 
@@ -38,14 +57,16 @@ version = release = noiselab.__version__
 extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
+    "sphinx.ext.intersphinx",
+    "sphinx.ext.viewcode",
     "numpydoc",
     "myst_parser",
     "sphinx_gallery.gen_gallery",
 ]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
-exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "examples/README.txt", "examples/*.py",
-                    "auto_examples/*.ipynb", "auto_examples/*.py", "auto_examples/*.zip",
-                    "auto_examples/*.md5", "auto_examples/*.json"]
+exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "examples/**", "fetch_inventories.py",
+                    "auto_examples/**.ipynb", "auto_examples/**.py", "auto_examples/**.zip",
+                    "auto_examples/**.md5", "auto_examples/**.json", "auto_examples/**.txt"]
 templates_path = ["_templates"]
 
 # the site is read offline (and tested in a browser without internet): no CDN scripts
@@ -64,7 +85,7 @@ html_show_sourcelink = False
 
 autosummary_generate = True
 autosummary_imported_members = True
-autodoc_default_options = {"members": False}
+autodoc_default_options = {}   # each page says what it shows (the class template lists the members)
 autodoc_typehints = "none"
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
@@ -75,9 +96,17 @@ myst_enable_extensions = ["colon_fence"]
 
 myst_heading_anchors = 3
 
+# the gallery's sections, in reading order (each a subfolder of docs/examples with its README.txt)
+EXAMPLE_SECTIONS = ["spectral", "snow", "lattice", "geometry", "stimuli", "measuring", "scale"]
+
 sphinx_gallery_conf = {
     "examples_dirs": "examples",
     "gallery_dirs": "auto_examples",
+    "subsection_order": [f"examples/{name}" for name in EXAMPLE_SECTIONS],
+    # "Examples using X" on each API page: which examples call which noiselab names
+    "backreferences_dir": "api/generated/backreferences",
+    "doc_module": ("noiselab",),
+    "reference_url": {"noiselab": None},
     "filename_pattern": r"/plot_",
     "download_all_examples": False,
     "remove_config_comments": True,
@@ -86,6 +115,36 @@ sphinx_gallery_conf = {
     "matplotlib_animations": False,
     "image_scrapers": ("matplotlib",),
 }
+
+
+# --- links to the libraries noiselab works with (offline: local inventories only) ------------
+
+INTERSPHINX = {
+    "python": "https://docs.python.org/3/",
+    "numpy": "https://numpy.org/doc/stable/",
+    "scipy": "https://docs.scipy.org/doc/scipy/",
+    "dask": "https://docs.dask.org/en/stable/",
+    "trimesh": "https://trimesh.org/",
+    "pyvista": "https://docs.pyvista.org/",
+    "matplotlib": "https://matplotlib.org/stable/",
+}
+
+
+def inventory_folder() -> Path:
+    """Where the build looks for ``<project>.inv`` files: ``$NOISELAB_INTERSPHINX``, else the user's cache."""
+    env = os.environ.get("NOISELAB_INTERSPHINX")
+    return Path(env) if env else Path.home() / ".cache" / "noiselab" / "intersphinx"
+
+
+def intersphinx_from(folder) -> dict:
+    """The intersphinx mapping for the inventories present in ``folder``: never a URL to fetch."""
+    folder = Path(folder)
+    return {name: (url, str(folder / f"{name}.inv")) for name, url in INTERSPHINX.items()
+            if (folder / f"{name}.inv").is_file()}
+
+
+intersphinx_mapping = intersphinx_from(inventory_folder())
+intersphinx_timeout = 1
 
 
 # --- the API reference -------------------------------------------------------
@@ -117,8 +176,9 @@ def _first_line(module):
     return doc[0].rstrip(".") if doc else module.__name__
 
 
-def write_api_pages(folder=HERE / "api"):
-    folder.mkdir(exist_ok=True)
+def write_api_pages(folder):
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
     packages = public_packages()
     pages = ["noiselab"]
     covered = set()
@@ -151,8 +211,9 @@ def write_api_pages(folder=HERE / "api"):
 
 # --- the benchmark reports -----------------------------------------------------
 
-def write_benchmark_pages(folder=HERE / "benchmarks"):
-    folder.mkdir(exist_ok=True)
+def write_benchmark_pages(folder):
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
     reports = sorted((ROOT / "benchmarks").glob("*.md"))
     names = []
     for report in reports:
@@ -176,7 +237,7 @@ def write_benchmark_pages(folder=HERE / "benchmarks"):
 
 # --- the command line ----------------------------------------------------------
 
-def write_cli_help(path=HERE / "guide" / "cli_help.txt"):
+def write_cli_help(path):
     """Every subcommand's ``--help``, as argparse prints it (included by ``guide/cli.md``)."""
     import contextlib
     import io
@@ -201,6 +262,81 @@ def _write_if_changed(path, text):
         path.write_text(text)
 
 
-write_api_pages()
-write_benchmark_pages()
-write_cli_help()
+# --- the build's own copy of the sources ------------------------------------------
+
+# made by the build, never copied from docs/ (a tree built in place by an older conf.py may hold them)
+GENERATED = ("_build", "api", "benchmarks", "auto_examples", "guide/cli_help.txt", "sg_execution_times.rst",
+             "sg_api_usage.rst", "__pycache__")
+
+
+def _generated(rel: Path) -> bool:
+    text = rel.as_posix()
+    return any(text == g or text.startswith(g + "/") for g in GENERATED)
+
+
+def sync_sources(src: Path, dst: Path) -> None:
+    """Make ``dst`` hold the files of ``src`` (generated paths aside), copying only what differs.
+
+    Copies keep their modification times, so Sphinx rebuilds only the pages
+    whose source changed; files gone from ``src`` go from ``dst``.
+    """
+    wanted = set()
+    for path in sorted(src.rglob("*")):
+        rel = path.relative_to(src)
+        if _generated(rel) or not path.is_file():
+            continue
+        wanted.add(rel)
+        target = dst / rel
+        st = path.stat()
+        if target.is_file() and (target.stat().st_size, target.stat().st_mtime_ns) == (st.st_size, st.st_mtime_ns):
+            continue
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(path, target)
+    if dst.is_dir():
+        for path in sorted(dst.rglob("*"), reverse=True):
+            rel = path.relative_to(dst)
+            if path.is_file() and not _generated(rel) and rel not in wanted:
+                path.unlink()
+
+
+def build_sources(outdir) -> Path:
+    """The build's copy of ``docs/`` for output folder ``outdir``, synced and with its generated pages."""
+    owned = Path(outdir).resolve().parent / f".{Path(outdir).name}-source"
+    src = owned / "docs"
+    sync_sources(HERE, src)
+    link = owned / "benchmarks"   # the reports' includes and images: ../../benchmarks/ from a page
+    if not link.exists():
+        link.symlink_to(ROOT / "benchmarks", target_is_directory=True)
+    write_api_pages(src / "api")
+    write_benchmark_pages(src / "benchmarks")
+    write_cli_help(src / "guide" / "cli_help.txt")
+    return src
+
+
+_BACKLINK = re.compile(r'href="([^"]*api/generated/)([\w.]+)\.html#([\w.]+)"')
+
+
+def _fix_source_backlinks(app, pagename, templatename, context, doctree):
+    """On a ``[source]`` page, point each "[docs]" link at the anchor of the page it opens.
+
+    A function documented under two public names (``noiselab.analysis.michelson_contrast``
+    and ``noiselab.snowfall.michelson_contrast``, one object) gets one entry in viewcode's
+    table, whose page and anchor can come from the two names; an API page's anchor is its
+    own full name.
+    """
+    if not pagename.startswith("_modules/") or "body" not in context:
+        return
+
+    def fix(match):
+        folder, page, anchor = match.groups()
+        if anchor != page and anchor.rsplit(".", 1)[-1] == page.rsplit(".", 1)[-1]:
+            anchor = page
+        return f'href="{folder}{page}.html#{anchor}"'
+
+    context["body"] = _BACKLINK.sub(fix, context["body"])
+
+
+def setup(app):
+    # read the build's own copy (Sphinx takes the source folder from here on: the project is made after setup)
+    app.srcdir = build_sources(app.outdir)
+    app.connect("html-page-context", _fix_source_backlinks)

@@ -139,3 +139,50 @@ def test_a_chunked_call_reaches_the_dask_implementation_through_the_registry():
     out = subprocess.run([sys.executable, "-c", code], env=dict(os.environ, PYTHONPATH=str(ROOT)),
                          capture_output=True, text=True, timeout=300)
     assert out.stdout.split() == ["dask", "True"], out.stderr
+
+
+def dynamic_reaches(path, module):
+    """``(line, target)`` for each ``import_module("noiselab.X")``/``__import__`` literal and each ``noiselab.X``
+    reached as an attribute of the root package, in the code of one module (inside functions too)."""
+    import noiselab
+
+    tree = ast.parse(path.read_text())
+    roots = {a.asname or a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names
+             if a.name == "noiselab"}
+    found = []
+    for node in ast.walk(tree):
+        if (isinstance(node, ast.Call) and getattr(node.func, "attr", getattr(node.func, "id", None))
+                in ("import_module", "__import__") and node.args and isinstance(node.args[0], ast.Constant)
+                and str(node.args[0].value).startswith("noiselab.")):
+            found.append((node.lineno, node.args[0].value))
+        elif isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in roots:
+            target = noiselab._API.get(node.attr, f"noiselab.{node.attr}")
+            found.append((node.lineno, target))
+    return found
+
+
+def _upward(module, targets):
+    own = LEVEL.get(module.split(".")[1], 0)
+    return [(line, t) for line, t in targets if LEVEL.get(t.split(".")[1] if t.count(".") else "", 0) > own]
+
+
+def test_no_module_reaches_a_layer_above_it_dynamically():
+    """What import-linter cannot read: a literal ``import_module`` or ``noiselab.X`` on the root, anywhere in a module."""
+    offenders = []
+    for path in sorted((ROOT / "noiselab").rglob("*.py")):
+        rel = path.relative_to(ROOT).with_suffix("")
+        parts = rel.parts[:-1] if rel.name == "__init__" else rel.parts
+        if len(parts) < 2 or parts[1] not in LEVEL:   # the root and the deprecated alias sit above every layer
+            continue
+        module = ".".join(parts)
+        offenders += [f"{module}:{line} -> {t}" for line, t in _upward(module, dynamic_reaches(path, module))]
+    assert offenders == []
+
+
+def test_the_dynamic_check_finds_both_kinds(tmp_path):
+    source = tmp_path / "m.py"
+    source.write_text("import importlib\nimport noiselab\n\ndef f():\n    importlib.import_module('noiselab.cli')\n"
+                      "    return noiselab.gallery, noiselab.snow, noiselab.LatticeNoise\n")
+    found = dynamic_reaches(source, "noiselab.lattice.m")
+    assert sorted(t for _, t in _upward("noiselab.lattice.m", found)) == ["noiselab.cli", "noiselab.gallery",
+                                                                           "noiselab.snowfall"]
