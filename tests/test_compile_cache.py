@@ -213,6 +213,8 @@ def test_a_damaged_cache_is_named_and_cleared_by_noiselab_cache(tmp_path, warm_c
     """A truncated index makes numba fail; the command says to clear the cache; after ``--clear`` it runs."""
     cache, home = warm_cache
     out_file = tmp_path / "curve.npy"
+    rc, _, err = _run(cache, home, args=[*_CLI_RUN, str(out_file)])   # the command's own kernels, cached
+    assert rc == 0, err
     _damage(cache, "*.nbi", "half")
     rc, _, err = _run(cache, home, args=[*_CLI_RUN, str(out_file)])
     assert rc == 2 and len(err) == 1, err   # numba raises reading the damaged index: one line naming the cure
