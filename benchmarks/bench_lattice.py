@@ -1,6 +1,6 @@
 """Lattice noise: speed against the floor and the installed peers, and precision at large coordinates.
 
-Run with the peers' environment (see DEVELOPERS.md)::
+Run with the peers' environment (see CONTRIBUTING.md)::
 
     benchmarks/.venv-peers/bin/python benchmarks/bench_lattice.py [--quick]
 

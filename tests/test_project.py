@@ -1,4 +1,5 @@
 """The project's own promises: the README's set-up commands and what CI runs."""
+import os
 import re
 import subprocess
 import sys
@@ -92,7 +93,7 @@ def test_install_sh_installs_into_an_active_virtualenv_and_links_dot_venv(tmp_pa
 
 
 def test_readme_is_a_two_minute_read_of_at_most_150_lines():
-    """Everything else lives on the documentation site (docs/, DEVELOPERS.md says where)."""
+    """Everything else lives on the documentation site (docs/, CONTRIBUTING.md says where)."""
     lines = (ROOT / "README.md").read_text().splitlines()
     assert len(lines) <= 150, len(lines)
     text = "\n".join(lines)
@@ -112,3 +113,22 @@ def test_install_sh_offers_the_docs_extra_and_the_test_extra_includes_it():
     assert re.search(r'^\s*"" \| test \| dask \| docs\) ;;$', script, re.M)
     proc = subprocess.run(["bash", str(ROOT / "install.sh"), "nonsense"], capture_output=True, text=True)
     assert proc.returncode == 1 and "'docs'" in proc.stderr
+
+
+def test_the_contributor_guide_is_contributing_md():
+    """The guide is where GitHub and contributors look for it, and nothing points to an older name."""
+    old = "DEVELOPERS" + ".md"
+    guide = ROOT / "CONTRIBUTING.md"
+    assert guide.is_file() and "## Ground rules" in guide.read_text()
+    assert "`CONTRIBUTING.md`" in (ROOT / "README.md").read_text()
+    assert not (ROOT / old).exists()
+    skip = {".git", ".venv", "_build", "out", ".venv-peers", "__pycache__", ".pytest_cache"}
+    stale = []
+    for folder, dirs, files in os.walk(ROOT):
+        dirs[:] = [d for d in dirs if d not in skip]
+        for name in files:
+            path = Path(folder) / name
+            if path.suffix in (".md", ".py", ".toml", ".sh", ".txt", ".rst", ".cfg") and old in path.read_text(
+                    errors="replace"):
+                stale.append(str(path.relative_to(ROOT)))
+    assert stale == []

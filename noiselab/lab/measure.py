@@ -1,6 +1,6 @@
 """The one timing harness of the project, and the laboratory's other measurements (peak memory, machine, fits).
 
-Timing rule (DEVELOPERS.md): every candidate is timed in the same process as
+Timing rule (CONTRIBUTING.md): every candidate is timed in the same process as
 its reference (a floor, a peer, the previous version), in interleaved rounds
 (a, b, c, a, b, c, ...), after an untimed warm-up, and reported as the median
 of at least 5 rounds together with the median of the per-round ratios; ratios
