@@ -36,8 +36,9 @@ ax.set_ylabel("w_y (rad/px)")
 ax.set_zlabel("w_t (rad/frame)")
 ax.set_title("tent surface (grey), band (blue)")
 
-video = noiselab.snow((32, 64, 64), seed=0, c=c, band=(4, 16), direction=direction, rescale=False)
-print("share of the field's power on the tent:", round(analysis.tent_energy(video, c, (4, 16), direction), 3))
+video = noiselab.snow((32, 64, 64), rng=0, c=c, band=(4, 16), direction_yx=direction[::-1], rescale=False)
+print("share of the field's power on the tent:",
+      round(analysis.tent_energy(video, c, (4, 16), direction_yx=direction[::-1]), 3))
 ax2 = fig.add_subplot(1, 2, 2)
 ky = np.fft.fftfreq(64) * 2 * np.pi
 section = np.fft.fftshift(np.abs(np.fft.fftn(video - video.mean()))[:, :, 0] ** 2)   # the w_x = 0 plane

@@ -14,7 +14,7 @@ Internal: any noiselab subpackage may import these names; users should not.
 from . import dispatch, jitcache
 from .deps import EXTRA_HINT, require_dask
 from .progress import progress
-from .renamed import renamed_parameters
+from .renamed import array_order, keyword_only, renamed_parameters, swap_pair
 from .validate import (MAX_ELEMENTS, as_array, as_generator, available_memory, check_axes, check_band, check_finite_array,
                        check_int, check_memory, check_real, check_real_array, check_real_sequence,
                        check_real_vector, check_shape, float_dtype, memory_limits)
@@ -23,6 +23,7 @@ from .workers import map_blocks, resolve_workers, run_split, thread_pool
 __all__ = ["dispatch", "EXTRA_HINT", "require_dask", "progress", "MAX_ELEMENTS", "as_array", "as_generator",
            "available_memory", "check_axes", "check_band", "check_finite_array", "check_int", "check_memory", "check_real",
            "check_real_array", "check_real_sequence", "check_real_vector", "check_shape", "float_dtype",
-           "memory_limits", "renamed_parameters", "map_blocks", "resolve_workers", "run_split", "thread_pool"]
+           "memory_limits", "renamed_parameters", "keyword_only", "array_order", "swap_pair", "map_blocks",
+           "resolve_workers", "run_split", "thread_pool"]
 
 jitcache.install()   # before any subpackage defines a cache=True kernel (numba is patched when it is imported)

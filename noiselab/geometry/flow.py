@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._core import check_finite_array, check_int, check_real, check_real_vector
+from .._core import check_finite_array, check_int, check_real, check_real_vector, renamed_parameters
 from .fields import evaluate_field
 from .surfaces import _amplified, _extent, _scaled, grid_points
 
@@ -176,8 +176,9 @@ def streamlines(field, seeds, *, step=0.01, n_steps=200, amplitude=1.0, frequenc
     return out
 
 
+@renamed_parameters(seed="rng")
 def quiver_image(field, path=None, *, shape=(20, 20), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=1.0,
-                 frequency=1.0, phase=0.0, size=512, color="black", streamline_seeds=0, seed=0,
+                 frequency=1.0, phase=0.0, size=512, color="black", streamline_seeds=0, rng=0,
                  n_steps=100, step=0.02) -> np.ndarray:
     """A 2-D flow field as arrows (figure 9), matplotlib; optional streamlines from random seeds.
 
@@ -206,7 +207,7 @@ def quiver_image(field, path=None, *, shape=(20, 20), extent=((0.0, 4.0), (0.0, 
     ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
     n_seeds = check_int("streamline_seeds", streamline_seeds, lo=0, hi=100_000)
     if n_seeds:
-        rng = as_generator(seed)
+        rng = as_generator(rng)
         seeds = ext[:, 0] + rng.random((n_seeds, 2)) * (ext[:, 1] - ext[:, 0])
         lines = streamlines(field, seeds, step=step, n_steps=n_steps, amplitude=amplitude, frequency=frequency,
                             phase=phase)

@@ -139,7 +139,7 @@ def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alia
     if T > 1 and peak > np.pi * (1 + 1e-9) and on_alias == "raise":
         cmax = largest_c(a, b, thickness)
         msg = (
-            f"temporal aliasing: c={c:g} rad/frame with thickness={thickness:g} and pan={tuple(pan)} puts energy at "
+            f"temporal aliasing: c={c:g} rad/frame with thickness={thickness:g} and pan_yx={(pan[1], pan[0])} puts energy at "
             f"{peak:.4g} rad/frame, past the temporal Nyquist frequency pi={np.pi:.4f} rad/frame; that motion would "
             f"wrap around and reverse. "
         )

@@ -57,6 +57,26 @@ __all__ = [
 ]
 
 
+def unit_direction_yx(name, direction_yx) -> tuple[float, float]:
+    """A fall direction given in array order ``(dy, dx)``, as the unit ``(dx, dy)`` of :func:`unit_direction`.
+
+    Errors name ``name`` and the array order.
+    """
+    if isinstance(direction_yx, (str, bytes, set, frozenset, dict)) or not hasattr(direction_yx, "__len__"):
+        raise TypeError(f"{name} must be a pair (dy, dx) of real numbers, got {direction_yx!r}")
+    if len(direction_yx) != 2:
+        raise ValueError(f"{name} must be a pair (dy, dx), got {direction_yx!r}")
+    try:
+        d = np.asarray(direction_yx, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise TypeError(f"{name} must be a pair (dy, dx) of real numbers, got {direction_yx!r}") from None
+    if not np.all(np.isfinite(d)):
+        raise ValueError(f"{name} must be finite, got {direction_yx!r}")
+    if not np.any(d):
+        raise ValueError(f"{name} must be a non-zero vector (dy, dx), got {direction_yx!r}")
+    return unit_direction((d[1], d[0]))
+
+
 def unit_direction(direction) -> tuple[float, float]:
     """``direction = (dx, dy)`` in image coordinates (x right, y down), normalised to unit length.
 

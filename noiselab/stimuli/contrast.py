@@ -14,7 +14,7 @@ import numbers
 
 import numpy as np
 
-from .._core import as_generator, check_finite_array, check_memory, check_real
+from .._core import as_generator, check_finite_array, check_memory, check_real, renamed_parameters
 from .display import Display
 from .scramble import _power_of_two_scaled
 
@@ -106,7 +106,8 @@ def _luminance(field, mean, contrast, kind):
     return z, sd if kind == "rms" else None, zmin
 
 
-def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=None) -> np.ndarray:
+@renamed_parameters(seed="rng")
+def to_display(field, display, *, mean, contrast, kind="rms", dither=True, rng=None) -> np.ndarray:
     """Integer display values that show ``field`` at mean luminance ``mean`` (cd/m²) and the given contrast.
 
     Parameters
@@ -132,7 +133,7 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
         contrast is nearest the request, and every other value is bounded by
         them: the dither cannot widen the contrast by a step (only pixels
         within one step of the two ends lose their exact expectation).
-    seed : int or numpy.random.Generator
+    rng : int, numpy.random.Generator or None
         The dither: each pixel's threshold is uniform and independent of the
         others; consecutive int seeds shift them along a golden-ratio (Weyl)
         sequence, so the average of ``N`` frames dithered with seeds
@@ -169,8 +170,8 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
     >>> import numpy as np
     >>> from noiselab import Display, spectral_noise
     >>> d = Display(32.0, luminance=(0.5, 100.0), gamma=2.2, bits=8)
-    >>> x = spectral_noise((128, 128), band=d.band((1, 8), 128), seed=0)
-    >>> v = to_display(x, d, mean=40.0, contrast=0.2, seed=1)
+    >>> x = spectral_noise((128, 128), band=d.band((1, 8), 128), rng=0)
+    >>> v = to_display(x, d, mean=40.0, contrast=0.2, rng=1)
     >>> v.dtype, v.shape
     (dtype('uint8'), (128, 128))
     >>> L = d.luminance_of(v)
@@ -211,7 +212,7 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
     p = (L - below) / (t[v0 + 1] - below)  # where L lies between the two values, in luminance
     del below
     if dither:
-        up = _thresholds(p.shape, seed) < p   # E[luminance] = below + p * step = L exactly
+        up = _thresholds(p.shape, rng) < p   # E[luminance] = below + p * step = L exactly
     else:
         up = p >= 0.5    # the nearer luminance
     v0 += up
