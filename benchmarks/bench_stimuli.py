@@ -67,7 +67,7 @@ def kinds(size_deg, duration):
     # snow: flakes of 4 cycles/deg fall at 2 deg/s; Michelson 0.176 (thesis Eq. 6.1's contrast)
     c = d.snow_c(2.0, 4.0)
     alpha = noiselab.snow((T, n, n), c=c, band=d.band((1, 8), n), rng=3)
-    v = to_display(alpha, d, mean=mean, contrast=0.176, kind="michelson", rng=3)
+    v = to_display(alpha, d, mean=mean, contrast=0.176, contrast_kind="michelson", rng=3)
     L, m, r, mich = _measured(v)
     f4 = d.cycles_per_frame(4, n)
     vy = A.band_speeds(L, [(f4 / 2 ** 0.25, f4 * 2 ** 0.25)])[0][1]
@@ -86,7 +86,7 @@ def kinds(size_deg, duration):
     # phase-scrambled image: the 1/f patch's luminance, scrambled, shown at Michelson 0.5
     img = DISPLAY.luminance_of(to_display(x, d, mean=mean, contrast=rms, rng=1))
     s = phase_scramble(img, rng=5)
-    v = to_display(s, d, mean=mean, contrast=0.5, kind="michelson", rng=5)
+    v = to_display(s, d, mean=mean, contrast=0.5, contrast_kind="michelson", rng=5)
     L, m, _, mich = _measured(v)
     amp = np.abs(np.fft.rfft2(s)), np.abs(np.fft.rfft2(img))
     err = float(np.max(np.abs(amp[0] - amp[1])) / amp[1].max())
@@ -104,7 +104,7 @@ def round_trips(size_deg, duration):
     alpha = noiselab.snow((T, n, n), c=d.snow_c(2.0, 4.0), band=d.band((1, 8), n), rng=3)
     rows = []
     for label, mich in (("snow, Michelson 0.176", 0.176), ("snow, Michelson 0.05", 0.05)):
-        v = to_display(alpha, d, mean=40.0, contrast=mich, kind="michelson", rng=7)
+        v = to_display(alpha, d, mean=40.0, contrast=mich, contrast_kind="michelson", rng=7)
         _, m0, r0, c0 = _measured(v)
         rows.append((label, "(written values)", "lossless", f"{c0:.4f}", f"{r0:.4f}", f"{m0:.3f}", "0"))
         with tempfile.TemporaryDirectory() as tmp:

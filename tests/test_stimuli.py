@@ -154,7 +154,7 @@ FIELD = spectral_noise((256, 256), exponent=1.0, band=(4, 64), rng=5, dtype=np.f
 @pytest.mark.parametrize("dither", [True, False])
 @pytest.mark.parametrize("mean, contrast", [(40.0, 0.05), (50.0, 0.2), (30.0, 0.15)])
 def test_rms_contrast_on_the_screen(display, dither, mean, contrast):
-    v = to_display(FIELD, display, mean=mean, contrast=contrast, kind="rms", dither=dither, rng=1)
+    v = to_display(FIELD, display, mean=mean, contrast=contrast, contrast_kind="rms", dither=dither, rng=1)
     assert v.dtype == (np.uint8 if display.bits <= 8 else np.uint16)
     L = display.luminance_of(v)
     assert abs(L.mean() / mean - 1) < 0.01
@@ -164,21 +164,21 @@ def test_rms_contrast_on_the_screen(display, dither, mean, contrast):
 @pytest.mark.parametrize("display, dither", [(D8, True), (D8, False), (D10, True), (D10, False)])
 @pytest.mark.parametrize("mean, contrast", [(50.0, 0.176), (40.0, 0.5), (50.0, 0.98)])
 def test_michelson_contrast_on_the_screen(display, dither, mean, contrast):
-    v = to_display(FIELD, display, mean=mean, contrast=contrast, kind="michelson", dither=dither, rng=2)
+    v = to_display(FIELD, display, mean=mean, contrast=contrast, contrast_kind="michelson", dither=dither, rng=2)
     L = display.luminance_of(v)
     assert abs(L.mean() / mean - 1) < 0.01
     assert abs(analysis.michelson_contrast(L) / contrast - 1) < 0.02
 
 
 def test_michelson_8bit_dithered_within_two_percent_at_high_contrast():
-    v = to_display(FIELD, D8, mean=50.0, contrast=0.8, kind="michelson", rng=4)
+    v = to_display(FIELD, D8, mean=50.0, contrast=0.8, contrast_kind="michelson", rng=4)
     L = D8.luminance_of(v)
     assert abs(analysis.michelson_contrast(L) / 0.8 - 1) < 0.02 and abs(L.mean() / 50.0 - 1) < 0.01
 
 
 def test_luminance_for_is_exact():
     for kind, c in (("rms", 0.2), ("michelson", 0.6), ("michelson", 1.0)):
-        L = luminance_for(FIELD, mean=37.0, contrast=c, kind=kind)
+        L = luminance_for(FIELD, mean=37.0, contrast=c, contrast_kind=kind)
         assert L.mean() == pytest.approx(37.0, rel=1e-12)
         got = L.std() / L.mean() if kind == "rms" else (L.max() - L.min()) / (L.max() + L.min())
         assert got == pytest.approx(c, rel=1e-12)
@@ -186,10 +186,10 @@ def test_luminance_for_is_exact():
 
 def test_michelson_one_needs_a_black_display():
     d = Display(32.0, luminance=(0.0, 100.0), bits=10)
-    L = d.luminance_of(to_display(FIELD, d, mean=40.0, contrast=1.0, kind="michelson", rng=0))
+    L = d.luminance_of(to_display(FIELD, d, mean=40.0, contrast=1.0, contrast_kind="michelson", rng=0))
     assert analysis.michelson_contrast(L) == 1.0 and abs(L.mean() / 40.0 - 1) < 0.01
     with pytest.raises(ValueError, match=r"needs luminances \[0, .*the display's range is \[0.5, 100\]"):
-        to_display(FIELD, D8, mean=50.0, contrast=1.0, kind="michelson")
+        to_display(FIELD, D8, mean=50.0, contrast=1.0, contrast_kind="michelson")
     with pytest.raises(ValueError, match="makes the darkest pixel's luminance negative"):
         luminance_for(FIELD, mean=50.0, contrast=0.5)
 
@@ -226,18 +226,18 @@ def test_dither_is_seeded():
 
 def test_request_the_display_cannot_show():
     with pytest.raises(ValueError) as exc:
-        to_display(FIELD, D8, mean=80.0, contrast=0.5, kind="rms")
+        to_display(FIELD, D8, mean=80.0, contrast=0.5, contrast_kind="rms")
     msg = str(exc.value)
     assert "display's range is [0.5, 100]" in msg and "largest rms contrast that fits" in msg
     best = float(msg.rsplit(" ", 1)[1])
-    v = to_display(FIELD, D8, mean=80.0, contrast=best * 0.999, kind="rms")   # the stated limit fits
+    v = to_display(FIELD, D8, mean=80.0, contrast=best * 0.999, contrast_kind="rms")   # the stated limit fits
     assert analysis.rms_contrast(D8.luminance_of(v)) == pytest.approx(best * 0.999, rel=0.02)
     with pytest.raises(ValueError, match=r"mean = 120 cd/m² is outside the display's range \[0.5, 100\]"):
         to_display(FIELD, D8, mean=120.0, contrast=0.1)
     with pytest.raises(ValueError, match=r"contrast \(Michelson\) must be in \(0, 1\]"):
-        to_display(FIELD, D8, mean=50.0, contrast=1.2, kind="michelson")
+        to_display(FIELD, D8, mean=50.0, contrast=1.2, contrast_kind="michelson")
     with pytest.raises(ValueError, match=r"contrast \(Michelson\) must be in \(0, 1\]"):
-        to_display(FIELD, D8, mean=50.0, contrast=0.0, kind="michelson")
+        to_display(FIELD, D8, mean=50.0, contrast=0.0, contrast_kind="michelson")
     with pytest.raises(ValueError, match=r"contrast \(RMS\) must be in \(0"):
         to_display(FIELD, D8, mean=50.0, contrast=-0.1)
     with pytest.raises(ValueError, match="field must vary"):
@@ -248,7 +248,7 @@ def test_request_the_display_cannot_show():
 
 def test_to_display_on_a_snow_video():
     video = noiselab.snow((8, 64, 64), rng=0)
-    v = to_display(video, D10, mean=30.0, contrast=0.176, kind="michelson", rng=0)
+    v = to_display(video, D10, mean=30.0, contrast=0.176, contrast_kind="michelson", rng=0)
     assert v.shape == video.shape
     assert analysis.michelson_contrast(D10.luminance_of(v)) == pytest.approx(0.176, rel=0.02)
 

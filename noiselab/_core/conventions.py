@@ -157,7 +157,7 @@ WORDS = {
               "axis's frequencies, its one argument")),
     'azimuth': Word(
         'Camera turns (degrees) about the view-up and the horizontal axis, and zoom (applied after the fit).',
-        unit='',
+        unit='degrees',
         type='float',
         default=0.0,
         keyword_only=True),
@@ -169,19 +169,19 @@ WORDS = {
         keyword_only=False),
     'B_sf': Word(
         'Radial bandwidth, cycles/pixel, > 0 (``np.inf``: no band, a 1/f spectrum with ``loggabor``).',
-        unit='',
+        unit='cycles/pixel',
         type='float',
         default=REQUIRED,
         keyword_only=True),
     'B_theta': Word(
         'Orientation bandwidth, radians, ``>= 1e-6``; ``np.inf`` (default): isotropic.',
-        unit='',
+        unit='radians',
         type='float',
         default=math.inf,
         keyword_only=True),
     'B_V': Word(
         'Speed bandwidth, px/frame, >= 0 (0: a frozen texture, ``np.inf``: every frame independent).',
-        unit='',
+        unit='px/frame',
         type='float',
         default=0.5,
         keyword_only=True),
@@ -210,7 +210,7 @@ WORDS = {
         keyword_only=False),
     'bands': Word(
         'Spatial-frequency bands in cycles/frame.',
-        unit='',
+        unit='cycles/frame',
         type='sequence of (lo, hi)',
         default=VARIES,
         keyword_only=False,
@@ -267,7 +267,7 @@ WORDS = {
         keyword_only=False),
     'chunk_size': Word(
         'Points per call.',
-        unit='',
+        unit='points',
         type='int, default 1_048_576',
         default=1048576,
         keyword_only=True),
@@ -336,10 +336,16 @@ WORDS = {
         default=None,
         keyword_only=True),
     'contrast': Word(
-        '``kind="rms"``: standard deviation over mean of the luminance, > 0.',
-        unit='',
+        '``contrast_kind="rms"``: standard deviation over mean of the luminance, > 0.',
+        unit='fraction',
         type='float',
         default=REQUIRED,
+        keyword_only=True),
+    'contrast_kind': Word(
+        'See noiselab.stimuli.to_display.',
+        unit='',
+        type='{"rms", "michelson"}',
+        default='rms',
         keyword_only=True),
     'coords': Word(
         '``dim -> 1-D array`` of coordinates, written as arrays beside the data.',
@@ -416,7 +422,7 @@ WORDS = {
     'degrees': Word(
         ("``theta`` in degrees and ``frequency`` in cycles per degree (the paper's units: figure 3 is a 5-degree "
          'arc at 2 cycles per degree).'),
-        unit='',
+        unit='degrees',
         type='bool',
         default=VARIES,
         keyword_only=None,
@@ -471,7 +477,7 @@ WORDS = {
         keyword_only=False),
     'distance_cm': Word(
         'Eye to screen, cm, > 0.',
-        unit='',
+        unit='cm',
         type='float',
         default=REQUIRED,
         keyword_only=True),
@@ -484,7 +490,7 @@ WORDS = {
         keyword_only=True),
     'drop': Word(
         'Decades of power (1: a factor of 10) that an edge must fall by, in (0, 30].',
-        unit='',
+        unit='dB (power_band) or fraction',
         type='float, default 1',
         default=1.0,
         keyword_only=True),
@@ -499,7 +505,7 @@ WORDS = {
               'draw_coefficients keeps its fourth place by position')),
     'elevation': Word(
         'Camera turns (degrees) about the view-up and the horizontal axis, and zoom (applied after the fit).',
-        unit='',
+        unit='degrees',
         type='float',
         default=0.0,
         keyword_only=True),
@@ -562,7 +568,7 @@ WORDS = {
     'fmax': Word(
         ('Upper limit in cycles/frame; default ``N / 2`` (the inscribed Nyquist circle; the corners beyond it hold'
          ' an incomplete annulus).'),
-        unit='',
+        unit='cycles/frame',
         type='float, optional',
         default=None,
         keyword_only=True),
@@ -574,13 +580,13 @@ WORDS = {
         keyword_only=False),
     'fps': Word(
         'Frames per second (MP4 and GIF).',
-        unit='',
+        unit='frames/s',
         type='float, default 25',
         default=25.0,
         keyword_only=True),
     'frame_rate': Word(
         'Frames per second (Hz), > 0.',
-        unit='',
+        unit='Hz',
         type='float',
         default=60.0,
         keyword_only=None),
@@ -601,7 +607,7 @@ WORDS = {
         note="positional after amplitude in the geometry functions (Phillips' a, F, phi)"),
     'gain': Word(
         'Octaves summed (>= 1; one is ``__call__``), their frequency (> 1) and amplitude (> 0) ratios.',
-        unit='',
+        unit='amplitude ratio between octaves',
         type='int, float, float; default 1, 2, 0.5',
         default=0.5,
         keyword_only=True),
@@ -663,7 +669,7 @@ WORDS = {
     'intensity': Word(
         ('Snow intensity on the 0..255 scale (thesis: 250, below saturation); used as ``intensity/255`` for float '
          'backgrounds.'),
-        unit='',
+        unit='display value',
         type='float',
         default=250,
         keyword_only=False),
@@ -678,12 +684,11 @@ WORDS = {
         'How the octaves combine (Phillips Eq.',
         unit='',
         type='{"fractal", "turbulence"}, default "fractal"',
-        default=VARIES,
-        keyword_only=None,
-        note="the default is each function's own (a size, a shape, a name: what that function is for)"),
+        default='fractal',
+        keyword_only=None),
     'lacunarity': Word(
         'Octaves summed (>= 1; one is ``__call__``), their frequency (> 1) and amplitude (> 0) ratios.',
-        unit='',
+        unit='frequency ratio between octaves',
         type='int, float, float; default 1, 2, 0.5',
         default=2.0,
         keyword_only=True),
@@ -746,7 +751,7 @@ WORDS = {
         keyword_only=True),
     'luminance': Word(
         'Luminance in cd/m² at the lowest and the highest display value, ``0 <= L_min < L_max``.',
-        unit='',
+        unit='cd/m²',
         type='(L_min, L_max)',
         default=VARIES,
         keyword_only=None,
@@ -793,7 +798,7 @@ WORDS = {
     'max_frequency': Word(
         ("Highest frequency of the displacement, in cycles per unit of the mesh's coordinates: ``frequency * "
          'lacunarity**(octaves - 1)`` for an octave sum of a unit-frequency lattice noise.'),
-        unit='',
+        unit='cycles per input unit',
         type='float in (0, 1e300]',
         default=VARIES,
         keyword_only=None,
@@ -818,7 +823,7 @@ WORDS = {
         keyword_only=True),
     'mean': Word(
         "Mean luminance, cd/m², inside the display's ``luminance`` range.",
-        unit='',
+        unit="cd/m² (stimuli) or the field's unit",
         type='float',
         default=REQUIRED,
         keyword_only=True),
@@ -964,7 +969,7 @@ WORDS = {
         keyword_only=False),
     'opacity': Word(
         "Opacity of a flake's core, in (0, 1].",
-        unit='',
+        unit='fraction',
         type='float',
         default=0.9,
         keyword_only=True),
@@ -1001,14 +1006,14 @@ WORDS = {
         note="the default is each function's own (a size, a shape, a name: what that function is for)"),
     'per_octave': Word(
         'Default bands per octave.',
-        unit='',
+        unit='bands per octave',
         type='int, default 2',
         default=VARIES,
         keyword_only=None,
         note="the default is each function's own (a size, a shape, a name: what that function is for)"),
     'period': Word(
         'Exact lattice period per axis: the noise then tiles with period ``period / frequency`` in input units.',
-        unit='',
+        unit='samples (analysis) or lattice cells (LatticeNoise)',
         type='int or sequence of int, optional',
         default=VARIES,
         keyword_only=None,
@@ -1046,7 +1051,7 @@ WORDS = {
         keyword_only=False),
     'pixels_per_degree': Word(
         'Pixels per degree of visual angle at the centre of the screen, > 0.',
-        unit='',
+        unit='px/degree',
         type='float',
         default=REQUIRED,
         keyword_only=False),
@@ -1088,7 +1093,7 @@ WORDS = {
         keyword_only=False),
     'quality': Word(
         'MP4 quality, 0 to 10 (lossy MP4 only).',
-        unit='',
+        unit="imageio's 0-10 scale",
         type='int, default 8',
         default=8,
         keyword_only=True),
@@ -1100,7 +1105,7 @@ WORDS = {
         keyword_only=True),
     'radius': Word(
         'Radius of the undistorted circle.',
-        unit='',
+        unit='mesh units',
         type='float, default 1',
         default=1.0,
         keyword_only=False),
@@ -1131,7 +1136,7 @@ WORDS = {
         keyword_only=False),
     'resolution_px': Word(
         'Pixels across that width, >= 1.',
-        unit='',
+        unit='px',
         type='int',
         default=REQUIRED,
         keyword_only=True),
@@ -1182,7 +1187,7 @@ WORDS = {
               " lattice engine's rework lands (then rng=None)")),
     'samples_per_period': Word(
         'Samples per period of the highest octave below which the grid aliases.',
-        unit='',
+        unit='samples',
         type='float, default 4',
         default=4.0,
         keyword_only=True),
@@ -1212,7 +1217,7 @@ WORDS = {
         keyword_only=True),
     'screen_width_cm': Word(
         'Visible width of the picture, cm, > 0.',
-        unit='',
+        unit='cm',
         type='float',
         default=REQUIRED,
         keyword_only=True),
@@ -1237,7 +1242,7 @@ WORDS = {
     'sf_0': Word(
         ('Peak spatial frequency, cycles/pixel, in ``(0, 0.5]`` (``display.cycles_per_pixel(cpd)`` from '
          'cycles/deg).'),
-        unit='',
+        unit='cycles/pixel',
         type='float',
         default=REQUIRED,
         keyword_only=True),
@@ -1262,7 +1267,7 @@ WORDS = {
         keyword_only=True),
     'size': Word(
         "Largest extent after :func:`normalize`; None keeps the file's units.",
-        unit='',
+        unit='px (images) or mesh units (meshes)',
         type='float or None, default 2',
         default=VARIES,
         keyword_only=None,
@@ -1294,7 +1299,7 @@ WORDS = {
         keyword_only=True),
     'spacing': Word(
         'Sample spacing of scattered points (e.g.',
-        unit='',
+        unit='input units',
         type='float, optional',
         default=VARIES,
         keyword_only=None,
@@ -1332,7 +1337,7 @@ WORDS = {
         keyword_only=True),
     'step': Word(
         "Step size in the field's input units (per unit of speed).",
-        unit='',
+        unit='input units',
         type='float, default 0.01',
         default=VARIES,
         keyword_only=True,
@@ -1370,7 +1375,7 @@ WORDS = {
         keyword_only=False),
     'table_size': Word(
         'Entries n of the permutation table and of each value table (even, >= 2).',
-        unit='',
+        unit='entries',
         type='int, default 256',
         default=256,
         keyword_only=True),
@@ -1389,14 +1394,14 @@ WORDS = {
         keyword_only=False),
     'theta': Word(
         "Angles in radians, measured from +y towards +x (the paper's ``{sin, cos}``).",
-        unit='',
+        unit='radians',
         type='array (n,)',
         default=VARIES,
         keyword_only=None,
         note="the default is each function's own (a size, a shape, a name: what that function is for)"),
     'thickness': Word(
         'Relative thickness of the tent, in [0, 1]: the tent constant spreads over ``c*(1 - thickness) ..',
-        unit='',
+        unit='relative (fraction of c)',
         type='float',
         default=0.1,
         keyword_only=True),
@@ -1436,7 +1441,7 @@ WORDS = {
         note="the default is each function's own (a size, a shape, a name: what that function is for)"),
     'transmittance': Word(
         'Fraction of the foreground seen through the veil.',
-        unit='',
+        unit='fraction',
         type='float in [0, 1]',
         default=0.3,
         keyword_only=True),
@@ -1455,14 +1460,14 @@ WORDS = {
     'V_X': Word(
         ('Velocity of the motion plane, px/frame (x right, y down), within +-1e6 '
          '(``display.px_per_frame(deg_per_s)``).'),
-        unit='',
+        unit='px/frame',
         type='float',
         default=0.0,
         keyword_only=True),
     'V_Y': Word(
         ('Velocity of the motion plane, px/frame (x right, y down), within +-1e6 '
          '(``display.px_per_frame(deg_per_s)``).'),
-        unit='',
+        unit='px/frame',
         type='float',
         default=0.0,
         keyword_only=True),
@@ -1499,7 +1504,7 @@ WORDS = {
         keyword_only=True),
     'veil': Word(
         'Luminance of the veil.',
-        unit='',
+        unit='display value',
         type='float in [0, 255]',
         default=255.0,
         keyword_only=True),

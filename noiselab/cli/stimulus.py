@@ -192,7 +192,7 @@ def run(args):
     prepare_output(path)
     rng = np.random.default_rng(args.seed)
     field, used = _field(args, display, rng)
-    values = to_display(field, display, mean=args.mean, contrast=args.contrast, kind=args.contrast_kind,
+    values = to_display(field, display, mean=args.mean, contrast=args.contrast, contrast_kind=args.contrast_kind,
                         dither=not args.no_dither, rng=rng)
     _write(path, values, display, args)
     L = display.luminance_of(values)

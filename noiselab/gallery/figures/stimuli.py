@@ -22,7 +22,7 @@ def _show(luminance, display, seed):
 
     lo, hi = float(luminance.min()), float(luminance.max())
     return to_display(luminance, display, mean=float(luminance.mean()), contrast=(hi - lo) / (hi + lo),
-                      kind="michelson", rng=seed)
+                      contrast_kind="michelson", rng=seed)
 
 
 def _texture(display, n, sf, theta_deg, bw_deg, seed):
@@ -47,9 +47,9 @@ def singh_anderson(out, *, size_deg, mean, michelson_surround, transmittance, sf
     d = _display()
     n = d.pixels(size_deg)
     bg = luminance_for(_texture(d, n, sf, 45.0, 20.0, seed), mean=mean, contrast=michelson_surround,
-                       kind="michelson")
+                       contrast_kind="michelson")
     other = luminance_for(_texture(d, n, 1.6 * sf, -30.0, 20.0, seed + 1), mean=mean, contrast=michelson_surround,
-                          kind="michelson")
+                          contrast_kind="michelson")
     y, x = np.mgrid[0:n, 0:n]
     inside_y = (y > n * 0.3) & (y < n * 0.7)
     left = inside_y & (x > n * 0.08) & (x < n * 0.44)
