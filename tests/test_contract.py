@@ -276,11 +276,11 @@ def test_envelopes_validate_their_parameters():
     with pytest.raises(ValueError, match=r"exponent=1100 makes \|w\|\*\*\(-exponent\) overflow"):
         E.power_law(w, exponent=1100)
     with pytest.raises(ValueError, match=r"c \(rad/frame\) must be finite"):
-        E.tent(w, w, w, c=np.nan, tolerance=1.0)
-    with pytest.raises(TypeError, match=r"tolerance \(rad/frame\) must be a real number, got str"):
-        E.tent(w, w, w, c=1.0, tolerance="x")
-    with pytest.raises(ValueError, match=r"pan \(px/frame\) must hold 2 real numbers, got 1"):
-        E.sheared_tent(w, w, w, c=1.0, pan=(1,), tolerance=1.0)
+        E.tent(w, w, w, c=np.nan, tol=1.0)
+    with pytest.raises(TypeError, match=r"tol \(rad/frame\) must be a real number, got str"):
+        E.tent(w, w, w, c=1.0, tol="x")
+    with pytest.raises(ValueError, match=r"pan_yx \(px/frame\) must hold 2 real numbers, got 1"):
+        E.sheared_tent(w, w, w, c=1.0, pan_yx=(1,), tol=1.0)
     with pytest.raises(ValueError, match="annulus needs lo <= hi"):
         E.annulus(w, band_cycles_per_sample=(0.3, 0.1))
     with pytest.raises(ValueError, match=r"wx must be finite"):
@@ -288,7 +288,7 @@ def test_envelopes_validate_their_parameters():
     with pytest.raises(TypeError, match="direction must be a pair"):
         E.unit_direction("ab")
     with pytest.raises(ValueError, match="thickness must be in"):
-        E.thickened_tent(w, w, w, c=1.0, thickness=2.0, tolerance=0.1)
+        E.thickened_tent(w, w, w, c=1.0, thickness=2.0, tol=0.1)
     with pytest.raises(ValueError, match="must broadcast together"):
         E.radial_frequency(np.ones(3), np.ones(4))
 

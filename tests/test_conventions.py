@@ -24,6 +24,7 @@ import noiselab
 from noiselab import lab as LAB
 from noiselab import snow as SNOW
 from noiselab import spectral as SP
+from noiselab.spectral import envelopes as E
 from noiselab import stimuli as STIM
 import noiselab.testing
 from noiselab.gallery import scenes
@@ -31,6 +32,7 @@ from noiselab._core.conventions import REQUIRED, VARIES, WORDS
 from noiselab.snow.background import default_background
 
 DISPLAY = STIM.Display(32.0)
+_W3 = SP.frequency_vectors((4, 8, 8))
 IMG = np.linspace(0.0, 1.0, 256).reshape(16, 16)
 
 # (name, function, the other arguments of a small call, its documented rng default)
@@ -129,6 +131,8 @@ def _pink():
     return SP.spectral_noise((64, 64), exponent=1.0, rng=1)
 
 
+
+
 def _sine(p):
     return np.sin(p[:, 0]) * np.cos(p[:, 1])
 
@@ -160,6 +164,10 @@ OLD_AND_NEW = [
      lambda: noiselab.testing.assert_power_law(_pink(), 1.0, tol=0.5).tolerance, "tolerance"),
     ("assert_isotropic tolerance", lambda: noiselab.testing.assert_isotropic(_pink(), tolerance=0.5).depth2,
      lambda: noiselab.testing.assert_isotropic(_pink(), tol=0.5).depth2, "tolerance"),
+    ("envelopes.tent tolerance", lambda: E.tent(*_W3, c=1.0, tolerance=0.5), lambda: E.tent(*_W3, c=1.0, tol=0.5),
+     "tolerance"),
+    ("envelopes.motion_plane tolerance", lambda: E.motion_plane(*_W3, velocity_yx=(0.0, 1.0), tolerance=0.5),
+     lambda: E.motion_plane(*_W3, velocity_yx=(0.0, 1.0), tol=0.5), "tolerance"),
     ("detect_period axis by position",
      lambda: noiselab.analysis.detect_period(np.tile(_pink(), (2, 1)), 0).period,
      lambda: noiselab.analysis.detect_period(np.tile(_pink(), (2, 1)), axis=0).period, "axis"),
@@ -285,6 +293,17 @@ XY_OLD_AND_NEW = [
      lambda: noiselab.analysis.tent_energy_per_band(_falling_video(), 1.0, (2, 8), direction_yx=(1.0, 1.0)).fraction),
     ("assert_motion velocity by position", lambda: noiselab.testing.assert_motion(_moving_video(), (2, 1)).energy,
      lambda: noiselab.testing.assert_motion(_moving_video(), velocity_yx=(1, 2)).energy),
+    ("envelopes.thickened_tent direction, pan by position",
+     lambda: E.thickened_tent(*_W3, 1.0, (0.5, 1.0), (0.2, 0.0), thickness=0.1, tol=0.5),
+     lambda: E.thickened_tent(*_W3, 1.0, direction_yx=(1.0, 0.5), pan_yx=(0.0, 0.2), thickness=0.1, tol=0.5)),
+    ("envelopes.tent_surface direction, pan", lambda: E.tent_surface(*_W3[1:], 1.0, direction=(1.0, 0.0), pan=(0, 1)),
+     lambda: E.tent_surface(*_W3[1:], 1.0, direction_yx=(0.0, 1.0), pan_yx=(1, 0))),
+    ("envelopes.motion_plane velocity by position", lambda: E.motion_plane(*_W3, (2.0, -1.0), tol=0.5),
+     lambda: E.motion_plane(*_W3, velocity_yx=(-1.0, 2.0), tol=0.5)),
+    ("envelopes.optical_snow direction, speeds by position", lambda: E.optical_snow(*_W3, (0, 1), (0.5, 2.0), tol=0.5),
+     lambda: E.optical_snow(*_W3, direction_yx=(1, 0), speeds=(0.5, 2.0), tol=0.5)),
+    ("envelopes.speed_envelope velocity", lambda: E.speed_envelope(*_W3, velocity=(1.0, 0.5), B_V=0.5),
+     lambda: E.speed_envelope(*_W3, velocity_yx=(0.5, 1.0), B_V=0.5)),
     ("assert_tent direction, pan",
      lambda: noiselab.testing.assert_tent(_falling_video(), 1.0, (2, 8), direction=(1, 1), pan=(0.5, 0)).energy,
      lambda: noiselab.testing.assert_tent(_falling_video(), 1.0, (2, 8), direction_yx=(1, 1), pan_yx=(0, 0.5)).energy),
@@ -538,3 +557,14 @@ def test_the_stimulus_command_says_its_units_and_array_order(tmp_path):
     assert main(pink + [str(out["new"]), "--band-cpd", "1", "4"]) == 0
     assert main(pink + [str(out["old"]), "--band", "1", "4"]) == 0
     assert np.load(out["new"]).tobytes() == np.load(out["old"]).tobytes()
+
+
+def test_2d_curl_noise_is_the_documented_formula_in_array_order():
+    """``curl_noise`` on (y, x) points returns (v_y, v_x) = (dpsi/dx, -dpsi/dy), as its docstring says."""
+    noise = _lattice2()
+    pts = np.random.default_rng(4).uniform(0.0, 4.0, (50, 2))   # (y, x)
+    grad = noise.gradient(pts)                                   # (dpsi/dy, dpsi/dx): one per point axis
+    v = noiselab.curl_noise(noise, pts)
+    np.testing.assert_allclose(v[:, 0], grad[:, 1], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(v[:, 1], -grad[:, 0], rtol=0, atol=1e-12)
+    assert "(v_y, v_x) = (dpsi/dx, -dpsi/dy)" in " ".join(noiselab.curl_noise.__doc__.split())

@@ -183,14 +183,16 @@ def test_tent_spectrum_and_snow_equal_reference(shape, kw, amplitude):
 def test_envelopes_equal_reference(c, direction, pan):
     wt, wy, wx = naive.frequency_vectors((6, 10, 12))
     surf, along = naive.tent_surface(wy, wx, c, direction, pan)
-    assert_close(envelopes.tent_surface(wy, wx, c, direction, pan), surf)
+    assert_close(envelopes.tent_surface(wy, wx, c, direction_yx=direction[::-1], pan_yx=pan[::-1]), surf)
     tol = np.pi / 6
     want = (np.abs(wt - surf) <= tol).astype(float)
-    assert np.array_equal(envelopes.sheared_tent(wt, wy, wx, c, direction, pan, tolerance=tol), want)
+    sheared = envelopes.sheared_tent(wt, wy, wx, c, direction_yx=direction[::-1], pan_yx=pan[::-1], tol=tol)
+    assert np.array_equal(sheared, want)
     if pan == (0.0, 0.0):
-        assert np.array_equal(envelopes.tent(wt, wy, wx, c, direction, tolerance=tol), want)
+        assert np.array_equal(envelopes.tent(wt, wy, wx, c, direction_yx=direction[::-1], tol=tol), want)
     thick = (np.abs(wt - surf) <= tol + 0.3 * c * along).astype(float)
-    assert np.array_equal(envelopes.thickened_tent(wt, wy, wx, c, direction, pan, thickness=0.3, tolerance=tol), thick)
+    assert np.array_equal(envelopes.thickened_tent(wt, wy, wx, c, thickness=0.3, tol=tol,
+                                                     **yx(dict(direction=direction, pan=pan))), thick)
     cells, law = naive.noise_envelope((6, 10, 12), 1.5, (2, 4), False)  # band (2, 4) cycles per 12 samples
     got = envelopes.annulus(wt, wy, wx, band_cycles_per_sample=(2 / 12, 4 / 12)) * envelopes.power_law(wt, wy, wx, exponent=1.5)
     assert np.array_equal(got > 0, cells)

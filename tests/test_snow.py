@@ -48,8 +48,8 @@ def test_energy_only_on_the_thickened_tent_inside_the_band():
     S = snow_spectrum(shape, rng=1, band=(6, 20), dtype=np.float64, **yx(kw))
     wt, wy, wx = frequency_vectors(shape)
     dense = (E.annulus(wy, wx, band_cycles_per_sample=(6 / 64, 20 / 64))
-             * E.thickened_tent(wt, wy, wx, kw["c"], kw["direction"], kw["pan"],
-                                thickness=kw["thickness"], tolerance=np.pi / shape[0]))
+             * E.thickened_tent(wt, wy, wx, kw["c"], **yx(dict(direction=kw["direction"], pan=kw["pan"])),
+                                thickness=kw["thickness"], tol=np.pi / shape[0]))
     np.testing.assert_array_equal(S != 0, dense > 0)
     # about 1 % of the spectrum carries energy at the default band
     frac = (snow_spectrum((64, 256, 256), rng=0) != 0).mean()
@@ -69,13 +69,15 @@ def test_snow_cells_are_the_envelopes_tent_surface_cells(shape, kw):
     S = snow_spectrum(shape, rng=2, band=band, amplitude_distribution="fixed", dtype=np.float64, **yx(kw))
     wt, wy, wx = frequency_vectors(shape)
     dense = (E.annulus(wy, wx, band_cycles_per_sample=(band[0] / W, band[1] / W))
-             * E.thickened_tent(wt, wy, wx, kw["c"], kw["direction"], kw["pan"], thickness=kw["thickness"],
-                                tolerance=np.pi / T))
+             * E.thickened_tent(wt, wy, wx, kw["c"], **yx(dict(direction=kw["direction"], pan=kw["pan"])),
+                                thickness=kw["thickness"],
+                                tol=np.pi / T))
     assert dense.any()
     np.testing.assert_array_equal(S != 0, dense > 0)
     # the unchecked form snow calls is tent_surface, bit for bit, and its terms are the surface's parts
     wt_s, a, b, _ = E.tent_surface_terms(wy[0], wx[0], kw["c"], E.unit_direction(kw["direction"]), kw["pan"])
-    np.testing.assert_array_equal(wt_s, E.tent_surface(wy[0], wx[0], kw["c"], kw["direction"], kw["pan"]))
+    np.testing.assert_array_equal(wt_s, E.tent_surface(wy[0], wx[0], kw["c"],
+                                                          **yx(dict(direction=kw["direction"], pan=kw["pan"]))))
     np.testing.assert_array_equal(wt_s, -kw["c"] * a - b)
     # (the band stays off the Nyquist row and column, where a pan's surface is not odd under k -> -k)
     # and the amplitude of each spatial column is the envelope's power law, split over its temporal bins
@@ -263,7 +265,7 @@ def test_drop_mode_leaves_out_the_wrapped_cells():
     assert 0 < kept
     # every kept cell is within half a bin plus the thickness of the unwrapped tent
     wt, wy, wx = frequency_vectors(shape)
-    near = E.thickened_tent(wt, wy, wx, 3.0, (0, 1), thickness=0.1, tolerance=np.pi / 64 + 1e-9)
+    near = E.thickened_tent(wt, wy, wx, 3.0, direction_yx=(1, 0), thickness=0.1, tol=np.pi / 64 + 1e-9)
     # (the Nyquist bin, +pi and -pi at once, is left out of the comparison)
     carrying = S != 0
     carrying[32] = False

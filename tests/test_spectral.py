@@ -151,7 +151,7 @@ _displacement = phase_correlation_shift
 
 def test_motion_plane_envelope_translates_with_its_velocity():
     T = 16
-    env = lambda wt, wy, wx: (E.motion_plane(wt, wy, wx, (2.0, -1.0), tolerance=np.pi / T)  # noqa: E731
+    env = lambda wt, wy, wx: (E.motion_plane(wt, wy, wx, velocity_yx=(-1.0, 2.0), tol=np.pi / T)  # noqa: E731
                               * E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.3)))
     v = synthesize((T, 64, 64), env, rng=0, dtype=np.float64)
     assert _displacement(v[0], v[1]) == (2, -1)
@@ -159,11 +159,11 @@ def test_motion_plane_envelope_translates_with_its_velocity():
 
 def test_optical_snow_wedge_holds_its_planes_only():
     wt, wy, wx = frequency_vectors((32, 32, 32))
-    m = E.optical_snow(wt, wy, wx, (0, 1), (0.5, 2.0), tolerance=1e-9)
+    m = E.optical_snow(wt, wy, wx, direction_yx=(1, 0), speeds=(0.5, 2.0), tol=1e-9)
     # a cell on the s = 1 plane is inside, one on s = 4 is outside
     ky, kt_in, kt_out = 3, -3, -12  # wt = -s * wy at wy = 2*pi*3/32
     assert m[kt_in % 32, ky, 0] == 1 and m[kt_out % 32, ky, 0] == 0
-    n = E.nonparallel_optical_snow(wt, wy, wx, (0, 1), (1.0, 1.0), pan=(1.0, 0.0), tolerance=1e-9)
+    n = E.nonparallel_optical_snow(wt, wy, wx, direction_yx=(1, 0), speeds=(1.0, 1.0), pan_yx=(0.0, 1.0), tol=1e-9)
     # velocity (1, 1): wt = -(wx + wy)
     assert n[(-(2 + 3)) % 32, 3, 2] == 1 and n[(-3) % 32, 3, 2] == 0
 

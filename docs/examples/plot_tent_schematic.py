@@ -22,7 +22,7 @@ c, direction = 1.0, (0.0, 1.0)
 w = np.linspace(-np.pi / 2, np.pi / 2, 61)
 wy, wx = np.meshgrid(w, w, indexing="ij")
 radius = np.hypot(wx, wy)
-wt = np.where(radius > 0, tent_surface(wy, wx, c, direction), np.nan)
+wt = np.where(radius > 0, tent_surface(wy, wx, c, direction_yx=direction[::-1]), np.nan)
 inside = (radius >= 2 * np.pi * 4 / 64) & (radius <= 2 * np.pi * 16 / 64)   # the band, 4..16 cycles per 64 px
 
 fig = plt.figure(figsize=(9, 4))

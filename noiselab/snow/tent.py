@@ -27,7 +27,7 @@ The tent itself is :func:`noiselab.spectral.envelopes.tent_surface` (its
 unchecked form ``tent_surface_terms``), evaluated at the band's spatial
 cells only, with the amplitude of
 :func:`~noiselab.spectral.envelopes.power_law`: the cells that carry energy
-are the cells of ``thickened_tent(..., tolerance=pi/T) * annulus(...)``
+are the cells of ``thickened_tent(..., tol=pi/T) * annulus(...)``
 (tested). :func:`y_pass`, :func:`tent_columns`, :func:`tent_coefficients`,
 :func:`self_conjugate_planes` and :func:`column_spectra` are the internal interface shared by the
 in-memory and dask paths (:mod:`noiselab.scale.spectral`).

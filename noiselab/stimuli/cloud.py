@@ -74,9 +74,9 @@ def cloud_envelope(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y
     else:
         env = env * np.exp(-0.5 * (fr - sf_0) ** 2 / B_sf ** 2)
     if full[0] > 1:
-        env = env * E.speed_envelope(wt, wy, wx, velocity=(V_X, V_Y), B_V=B_V)
+        env = env * E.speed_envelope(wt, wy, wx, velocity_yx=(V_Y, V_X), B_V=B_V)
     else:
-        E.speed_envelope(wt, wy, wx, velocity=(V_X, V_Y), B_V=B_V)  # checks the arguments all the same
+        E.speed_envelope(wt, wy, wx, velocity_yx=(V_Y, V_X), B_V=B_V)  # checks the arguments all the same
     env = np.broadcast_to(env, full[:-1] + (full[-1] // 2 + 1,))
     top = float(env.max())
     if not top > 0:
