@@ -5,7 +5,9 @@
 - :mod:`.deps`: the optional dask extra, imported in one place with an install hint;
 - :mod:`.progress`: tqdm progress bars, silent unless asked for or on a terminal;
 - :mod:`.contrast`: the Michelson contrast, shared by the snow compositor and the analysers;
-- :mod:`.renamed`: renamed parameters, the old spelling kept for one release with a DeprecationWarning;
+- :mod:`.renamed`: renamed parameters, the old spelling kept for one release with a DeprecationWarning (and pairs
+  moved to array order, and parameters made keyword-only);
+- :mod:`.conventions`: the conventions table, every parameter word of the public API (data only);
 - :mod:`.dispatch`: the registry through which ``chunks=`` reaches the dask layer;
 - :mod:`.jitcache`: numba's compile cache made forgiving (installed here, before any kernel is defined).
 

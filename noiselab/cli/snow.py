@@ -52,9 +52,10 @@ def add_arguments(p):
                    help="the same in (x, y) order (the older spelling; --pan 1 0 = --pan-yx 0 1)")
     t.add_argument("--beta", type=float, default=1.5, help="opacity exponent alpha**beta (default 1.5)")
     t.add_argument("--exponent", type=float, default=1.0, help="amplitude 1/f**exponent (default 1)")
-    t.add_argument("--amplitude-distribution", "--amplitude", dest="amplitude", choices=("uniform", "rayleigh", "fixed"),
-                   default="uniform", help="random amplitude law, snow(amplitude_distribution=) (default uniform, as "
-                   "the thesis; --amplitude is the old spelling)")
+    t.add_argument("--amplitude-distribution", "--amplitude", dest="amplitude",
+                   choices=("uniform", "rayleigh", "fixed"), default="uniform",
+                   help="random amplitude law, snow(amplitude_distribution=) (default uniform, as the thesis; "
+                        "--amplitude is the old spelling)")
     t.add_argument("--on-alias", choices=("raise", "drop"), default="raise",
                    help="energy past the temporal Nyquist (pi rad/frame, e.g. --c above 2.856): error (default) "
                         "or drop those cells")
