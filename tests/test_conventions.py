@@ -137,6 +137,10 @@ def _sine(p):
     return np.sin(p[:, 0]) * np.cos(p[:, 1])
 
 
+def _sine2(p):
+    return np.stack([np.sin(p[:, 1]), np.cos(p[:, 0])], axis=-1)
+
+
 # (what, the old spelling's call, the new spelling's call, the deprecated word)
 OLD_AND_NEW = [
     ("snow show_progress", lambda: SNOW.snow((2, 16, 16), rng=1, show_progress=False),
@@ -177,6 +181,8 @@ OLD_AND_NEW = [
      lambda: STIM.to_display(IMG, DISPLAY, mean=40.0, contrast=0.2, contrast_kind="michelson", rng=1), "kind"),
     ("luminance_for kind", lambda: STIM.luminance_for(IMG, mean=40.0, contrast=0.2, kind="michelson"),
      lambda: STIM.luminance_for(IMG, mean=40.0, contrast=0.2, contrast_kind="michelson"), "kind"),
+    ("streamlines normalize", lambda: noiselab.geometry.streamlines(_sine2, [[0.5, 0.5]], n_steps=5, normalize=True),
+     lambda: noiselab.geometry.streamlines(_sine2, [[0.5, 0.5]], n_steps=5, unit_speed=True), "normalize"),
     ("plot_curves axes", lambda: noiselab.geometry.plot_curves(np.eye(2), size=32, axes=True),
      lambda: noiselab.geometry.plot_curves(np.eye(2), size=32, show_axes=True), "axes"),
     ("octave_energy lo, hi", lambda: noiselab.analysis.octave_energy(_pink(), 4, 32).energy,

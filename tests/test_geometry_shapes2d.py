@@ -248,7 +248,7 @@ def test_streamlines_rk4_and_solve_ivp_agree_and_follow_the_flow():
     iv = streamlines(rotation, seeds, step=0.05, n_steps=126, method="solve_ivp")
     np.testing.assert_allclose(np.linalg.norm(rk, axis=2), np.broadcast_to([[1.0], [0.5]], (2, 127)), atol=1e-6)   # circles
     np.testing.assert_allclose(rk, iv, atol=1e-4)
-    unit = streamlines(lambda p: 5.0 * rotation(p), seeds, step=0.01, n_steps=10, normalize=True)
+    unit = streamlines(lambda p: 5.0 * rotation(p), seeds, step=0.01, n_steps=10, unit_speed=True)
     np.testing.assert_allclose(np.linalg.norm(np.diff(unit, axis=1), axis=2), 0.01, rtol=1e-3)
     with pytest.raises(ValueError, match="seeds must have shape"):
         streamlines(rotation, np.zeros((3, 5)))

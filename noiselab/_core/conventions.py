@@ -927,14 +927,15 @@ WORDS = {
         default=REQUIRED,
         keyword_only=False),
     'normalize': Word(
-        ('``"expected"`` (default): the spectrum is scaled by the analytic variance, so the *ensemble* has unit '
-         'variance and exactly the requested power at every frequency (the mean power spectrum over seeds follows '
-         "the law; one field's variance scatters around 1, the more the steeper the law)."),
+        ("Scale the output's values to a standard range: spectral fields to unit variance ('expected': over the "
+         "ensemble, 'sample': this field; None: as drawn), fractal sums by the sum of the octave gains into [-1, "
+         '1] (True or False).'),
         unit='',
-        type='{"expected", "sample"}',
+        type="{'expected', 'sample', None} (spectral) or bool (fractal)",
         default=VARIES,
         keyword_only=True,
-        note="the default is each function's own (a size, a shape, a name: what that function is for)"),
+        note=("'expected' where a unit-variance field is the promise (spectral_noise, motion_cloud), None in "
+              "synthesize (the envelope's own scale), False in the fractal sums (Phillips' Eq. 9 is unnormalised)")),
     'normals': Word(
         ('Base unit normals; default the welded area-weighted vertex normals ``displace`` uses (flipped outwards '
          'for an inside-out closed mesh).'),
@@ -1444,6 +1445,12 @@ WORDS = {
         unit='fraction',
         type='float in [0, 1]',
         default=0.3,
+        keyword_only=True),
+    'unit_speed': Word(
+        'Follow the direction only (unit speed).',
+        unit='',
+        type='bool, default False',
+        default=False,
         keyword_only=True),
     'units': Word(
         "Provenance: the data's units (e.g.",
