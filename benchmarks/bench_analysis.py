@@ -51,7 +51,7 @@ def power_law_field(n, alpha, seed):
 
 
 def timing(shape, rounds):
-    video = noiselab.snow(shape, seed=0)  # a realistic input: falling snow, float32
+    video = noiselab.snow(shape, rng=0)  # a realistic input: falling snow, float32
     c, band = 1.0, (shape[-1] / 32, shape[-1] / 4)
     bands = A.octave_bands(*band, per_octave=2)
     spec = A.video_spectrum(video)
@@ -66,7 +66,7 @@ def timing(shape, rounds):
         "anisotropy(video) (frames averaged)": lambda: A.anisotropy(video),
         "loop_seam(video)": lambda: A.loop_seam(video),
         "on a spectrum: tent_energy": lambda: A.tent_energy(spec, c, band),
-        "on a spectrum: motion_energy": lambda: A.motion_energy(spec, (0, 1)),
+        "on a spectrum: motion_energy": lambda: A.motion_energy(spec, velocity_yx=(1, 0)),
         "on a spectrum: speed_profile (6 bands)": lambda: A.speed_profile(hann, bands),
         "on a spectrum: spatiotemporal_spectrum": lambda: A.spatiotemporal_spectrum(spec),
         "on a spectrum: radial_spectrum (3-D)": lambda: A.radial_spectrum(spec),
@@ -114,8 +114,8 @@ def generator_figures():
     T, H, W = 32, 128, 128
     band = (W / 32, W / 4)
     tol = 0.5 + 0.1 * 1.0 * T / (2 * np.pi)
-    raw = noiselab.snow((T, H, W), seed=1, c=1.0, thickness=0.1, rescale=False)
-    alpha = noiselab.snow((T, H, W), seed=1, c=1.0, thickness=0.1)
+    raw = noiselab.snow((T, H, W), rng=1, c=1.0, thickness=0.1, rescale=False)
+    alpha = noiselab.snow((T, H, W), rng=1, c=1.0, thickness=0.1)
     rows.append(("snow raw field: power on the tent (c=1, thickness 0.1), 32x128x128", f"{A.tent_energy(raw, 1.0, band, tol=tol):.12f}"))
     rows.append(("snow opacity (beta 1.5): power on the tent", f"{A.tent_energy(alpha, 1.0, band, tol=tol):.4f}"))
     rows.append(("snow opacity: power inside the band 4..32 cycles/frame", f"{A.band_energy(alpha, band, axes=(-2, -1)):.4f}"))
@@ -124,9 +124,9 @@ def generator_figures():
     rows.append(("snow: best single velocity (px/frame)", "({:+.3f}, {:+.3f})".format(*A.best_velocity(raw))))
     rows.append(("snow opacity: loop seam / tile seam", f"{A.loop_seam(alpha):.3f} / {A.tile_seam(alpha):.3f}"))
     for e in (0.5, 1.0, 2.0):
-        img = noiselab.spectral_noise((512, 512), exponent=e, seed=int(10 * e))
+        img = noiselab.spectral_noise((512, 512), exponent=e, rng=int(10 * e))
         rows.append((f"spectral_noise exponent {e:g}: amplitude slope 4..128 at 512x512", f"{float(A.spectral_slope(img, (4, 128))):+.4f}"))
-    rows.append(("spectral_noise 512x512: anisotropy", f"{A.anisotropy(noiselab.spectral_noise((512, 512), seed=9)):.4f}"))
+    rows.append(("spectral_noise 512x512: anisotropy", f"{A.anisotropy(noiselab.spectral_noise((512, 512), rng=9)):.4f}"))
     for k in ("box", "linear", "quadratic", "cubic", "catmull-rom", "quintic"):
         img = noiselab.LatticeNoise(2, seed=3, kernel=k, period=8).grid((256, 256), [(0, 8), (0, 8)])
         o = A.orientation_energy(img)

@@ -100,7 +100,7 @@ def main(argv=None):
     r, t = ratio(lambda: noise.gradient_grid((1024, 1024), [(0, 64), (0, 64)]), no_jac_finite, repeats)
     rows.append(("LatticeNoise(2).gradient_grid 1024 x 1024", r, t))
     wt, wy, wx = frequency_vectors((64, 256, 256))
-    r, t = ratio(lambda: env.tent(wt, wy, wx, c=1.0, tolerance=np.pi / 64), no_env_checks, repeats)
+    r, t = ratio(lambda: env.tent(wt, wy, wx, c=1.0, tol=np.pi / 64), no_env_checks, repeats)
     rows.append(("envelopes.tent on a (64, 256, 129) half spectrum", r, t))
     field = rng.standard_normal((1024, 1024))
     # the range check's two passes, against the whole spectrum

@@ -222,24 +222,24 @@ def snow_overhead(shape, chunks, repeats, tmp):
     """
     from noiselab.snowfall import snow
 
-    snow((8, 64, 64), seed=0, chunks=(4, 32, 64)).compute(scheduler="synchronous")  # warm
+    snow((8, 64, 64), rng=0, chunks=(4, 32, 64)).compute(scheduler="synchronous")  # warm
     variants = {
         "in memory": lambda r: None,
-        "chunked, rechunk in memory, assembled into one array": lambda r: snow(shape, seed=3, chunks=chunks),
-        "chunked, rechunk in memory, chunks": lambda r: snow(shape, seed=3, chunks=chunks),
-        "chunked, transposes spilled to zarr, chunks": lambda r: snow(shape, seed=3, chunks=chunks,
+        "chunked, rechunk in memory, assembled into one array": lambda r: snow(shape, rng=3, chunks=chunks),
+        "chunked, rechunk in memory, chunks": lambda r: snow(shape, rng=3, chunks=chunks),
+        "chunked, transposes spilled to zarr, chunks": lambda r: snow(shape, rng=3, chunks=chunks,
                                                                       spill=tmp / f"spill{r}"),
-        "chunked raw (rescale=False), chunks": lambda r: snow(shape, seed=3, chunks=chunks, rescale=False),
+        "chunked raw (rescale=False), chunks": lambda r: snow(shape, rng=3, chunks=chunks, rescale=False),
     }
-    ref = snow(shape, seed=3, workers=1)
-    raw = snow(shape, seed=3, workers=1, rescale=False)
+    ref = snow(shape, rng=3, workers=1)
+    raw = snow(shape, rng=3, workers=1, rescale=False)
 
     def candidate(k):
         def run(r):
             lazy = variants[k](max(r, 0))  # the graph is built outside the lap
             if lazy is None:
                 c = time.process_time()
-                out = snow(shape, seed=3, workers=1)
+                out = snow(shape, rng=3, workers=1)
                 c = time.process_time() - c
                 assert np.array_equal(out, ref)
             elif "assembled" in k:
@@ -272,9 +272,9 @@ def snow_memory(shape, chunk_list, tmp):
     kw = dict(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None, memory_limit="8GiB")
     for ch in chunk_list:
         with distributed.LocalCluster(**kw) as cluster, distributed.Client(cluster, set_as_default=False) as client:
-            _write(tmp / "warm.zarr", snow((8, 64, 64), seed=0, chunks=(4, 32, 64), spill=tmp / "w"), client)
+            _write(tmp / "warm.zarr", snow((8, 64, 64), rng=0, chunks=(4, 32, 64), spill=tmp / "w"), client)
             before = list(client.run(_reset_peak).values())[0]
-            lazy = snow(shape, seed=3, chunks=ch, spill=tmp / f"m{ch[0]}")
+            lazy = snow(shape, rng=3, chunks=ch, spill=tmp / f"m{ch[0]}")
             _write(tmp / "m.zarr", lazy, client)
             after = list(client.run(_peak).values())[0]
         rows.append((ch, int(np.prod(ch)) * 4 / 2 ** 20, (after - before) / 1024, before / 1024))
@@ -342,7 +342,7 @@ def snow_main(args):
                        "process, in interleaved rounds (`noiselab.lab.measure.interleaved`), which the load disturbs "
                        "least"), "",
          "## S1. Overhead of the chunked snow on one thread", "",
-         f"`snow({shape}, seed=3)` in memory (`workers=1`) against `snow(..., chunks={chunks})` computed with dask's "
+         f"`snow({shape}, rng=3)` in memory (`workers=1`) against `snow(..., chunks={chunks})` computed with dask's "
          f"synchronous scheduler (one thread), paired and alternated, median of {repeats}; every result is "
          f"checked bit-identical to the in-memory one. 'chunks': the chunks computed (what a zarr write streams), "
          f"'assembled': also copied into one array. The rescale needs the raw field's global extremes: with the "
@@ -355,7 +355,7 @@ def snow_main(args):
           f"output in; its median was 0.47 s and 0.91 s in two earlier runs, {ov[0][1]:.2f} s in this one), so the "
           "ratios scatter (see min and max); the chunked paths allocate one chunk at a time.",
           "", "## S2. Peak memory per worker against the chunk", "",
-          f"A fresh 1-worker cluster per chunk writes `snow({mshape}, seed=3, chunks=C, spill=...)` "
+          f"A fresh 1-worker cluster per chunk writes `snow({mshape}, rng=3, chunks=C, spill=...)` "
           f"({whole:.0f} MiB of float32) to zarr; the worker's peak RSS growth (as in section 3).", "",
           "| chunk C | chunk (MiB) | worker peak growth (MiB) | growth / chunk | worker RSS before (MiB) |",
           "| --- | --- | --- | --- | --- |"]

@@ -64,7 +64,7 @@ def run_case(client, name, lazy, path, out_mib):
     t0 = time.perf_counter()
     failed = None
     try:
-        write_zarr(path, lazy, dims=tuple("tyx"[-lazy.ndim:]), seed=0)
+        write_zarr(path, lazy, dims=tuple("tyx"[-lazy.ndim:]), rng=0)
     except Exception as exc:  # a task whose workers all died (KilledWorker): reported, the next case runs
         failed = type(exc).__name__
     wall = time.perf_counter() - t0
@@ -112,7 +112,7 @@ def main(argv=None):
                 distributed.Client(cluster) as client:
             client.register_plugin(_worker_events_plugin())
             client.run(lambda: __import__("noiselab.scale.spectral") and None)  # imports and kernels, before the baseline
-            client.submit(lambda: snow((4, 32, 32), seed=0).sum(), pure=False).result()
+            client.submit(lambda: snow((4, 32, 32), rng=0).sum(), pure=False).result()
             n_workers = args.workers
 
             def case(name, lazy, target):
@@ -124,12 +124,12 @@ def main(argv=None):
                 rows.append(run_case(client, name, lazy, target, out_mib))
 
             # the spilled paths first (what `noiselab snow -o x.zarr` runs), then dask's in-memory rechunk
-            case("snow, spill (as `noiselab snow -o x.zarr`)", snow(shape, seed=3, chunks=chunks, spill=tmp / "s1"),
+            case("snow, spill (as `noiselab snow -o x.zarr`)", snow(shape, rng=3, chunks=chunks, spill=tmp / "s1"),
                  tmp / "a.zarr")
-            case("spectral_noise (3-D), spill", spectral_noise(shape, seed=3, chunks=chunks, spill=tmp / "s2"),
+            case("spectral_noise (3-D), spill", spectral_noise(shape, rng=3, chunks=chunks, spill=tmp / "s2"),
                  tmp / "b.zarr")
-            case("snow, rechunk in memory", snow(shape, seed=3, chunks=chunks), tmp / "c.zarr")
-            case("spectral_noise (3-D), rechunk in memory", spectral_noise(shape, seed=3, chunks=chunks),
+            case("snow, rechunk in memory", snow(shape, rng=3, chunks=chunks), tmp / "c.zarr")
+            case("spectral_noise (3-D), rechunk in memory", spectral_noise(shape, rng=3, chunks=chunks),
                  tmp / "d.zarr")
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

@@ -66,7 +66,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     from noiselab.snowfall import composite, snow
 
-    snow((8, 64, 64), seed=0)   # compile outside the timings
+    snow((8, 64, 64), rng=0)   # compile outside the timings
     tmp = tempfile.mkdtemp()
     print(f"# bench_encode: {args.frames} frames, CPU seconds, median of {args.repeats}; load {os.getloadavg()[0]:.1f}")
     for n in args.sizes:
@@ -76,7 +76,7 @@ def main(argv=None):
         enc = {k: [] for k in PRESETS}
         bg = np.linspace(0.1, 0.9, n * n, dtype=np.float32).reshape(n, n)
         for _ in range(args.repeats):
-            t, alpha = _cpu(lambda: snow(shape, seed=1))
+            t, alpha = _cpu(lambda: snow(shape, rng=1))
             rows["synthesis"].append(t)
             rows["irfftn floor"].append(_cpu(lambda: scipy.fft.irfftn(spec, s=shape))[0])
             t, frames = _cpu(lambda: [(composite(a, bg) * 255 + 0.5).astype(np.uint8) for a in alpha])

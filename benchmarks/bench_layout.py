@@ -47,8 +47,8 @@ vector3 = LatticeNoise(3, 3, kernel="quintic", seed=2)
 grid512 = Grid((512, 512), ((0, 32), (0, 32)))
 
 CASES = {
-    "spectral_noise 1024^2 float32": lambda: spectral_noise((1024, 1024), seed=1, dtype=np.float32),
-    "snow 32x256x256": lambda: noiselab.snow((32, 256, 256), seed=1),
+    "spectral_noise 1024^2 float32": lambda: spectral_noise((1024, 1024), rng=1, dtype=np.float32),
+    "snow 32x256x256": lambda: noiselab.snow((32, 256, 256), rng=1),
     "3-D value points 1e6 (table hash)": lambda: value3(pts3),
     "3-D gradient points 1e6 (table hash)": lambda: gradient3(pts3),
     "3-D value points 1e6 (integer hash, float32)": lambda: integer3(pts3_32),

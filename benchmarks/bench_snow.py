@@ -56,7 +56,7 @@ def timing(shape, rounds, workers):
     """
     S32 = _random_half_spectrum(shape, np.float32)
     S64 = S32.astype(np.complex128)
-    snow((4, 32, 32), seed=0)  # numba warm-up
+    snow((4, 32, 32), rng=0)  # numba warm-up
     band = (shape[2] / 32, shape[2] / 4)
 
     def stages(r, w):
@@ -77,9 +77,9 @@ def timing(shape, rounds, workers):
     cands = {}
     for w in workers:
         cands.update({f"floor32@{w}": lambda r, w=w: floor(S32, w),
-                      f"snow32@{w}": lambda r, w=w: snow(shape, seed=max(r, 0), workers=w),
+                      f"snow32@{w}": lambda r, w=w: snow(shape, rng=max(r, 0), workers=w),
                       f"floor64@{w}": lambda r, w=w: floor(S64, w),
-                      f"snow64@{w}": lambda r, w=w: snow(shape, seed=max(r, 0), dtype=np.float64, workers=w),
+                      f"snow64@{w}": lambda r, w=w: snow(shape, rng=max(r, 0), dtype=np.float64, workers=w),
                       f"stages@{w}": lambda r, w=w: stages(max(r, 0), w)})
     t = interleaved(cands, repeats=rounds, order="alternate", round_arg=True)
     res = {"timings": t}
@@ -126,7 +126,7 @@ def memory_case(case, shape, workers=1):
     """Run in a fresh subprocess: peak RSS and tracemalloc peak of one case, above the post-import baseline."""
     import tracemalloc
 
-    snow((4, 32, 32), seed=0)
+    snow((4, 32, 32), rng=0)
     if case.startswith("floor"):
         dt = np.float32 if case == "floor32" else np.float64
         S = _random_half_spectrum(shape, dt)
@@ -136,8 +136,8 @@ def memory_case(case, shape, workers=1):
         run = lambda: scipy.fft.irfftn(S, s=shape, workers=workers)  # noqa: E731
     else:
         dt = np.float32 if case == "snow32" else np.float64
-        snow((4, 32, 32), seed=0, workers=workers)
-        run = lambda: snow(shape, seed=0, dtype=dt, workers=workers)  # noqa: E731
+        snow((4, 32, 32), rng=0, workers=workers)
+        run = lambda: snow(shape, rng=0, dtype=dt, workers=workers)  # noqa: E731
     try:
         with open("/proc/self/clear_refs", "w") as fh:
             fh.write("5")  # reset VmHWM to the current RSS
@@ -168,8 +168,8 @@ def memory(shape, workers):
 
 
 def accuracy(shape):
-    a32 = snow(shape, seed=0)
-    a64 = snow(shape, seed=0, dtype=np.float64)
+    a32 = snow(shape, rng=0)
+    a64 = snow(shape, rng=0, dtype=np.float64)
     d = np.abs(a32.astype(np.float64) - a64)
     return {"max_abs_diff": float(d.max()), "mean_abs_diff": float(d.mean())}
 

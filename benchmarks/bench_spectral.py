@@ -118,18 +118,18 @@ def _peak(f):
 def run(rounds, quick, before_rev, workers):
     before = _before_module(before_rev) if before_rev else None
     cases = _cases(quick)
-    spectral_noise((8, 8), seed=0)  # numba warm-up (cached kernels load)
-    synthesize((8, 8), lambda wy, wx: 1.0 + 0 * wy * wx, seed=0)
+    spectral_noise((8, 8), rng=0)  # numba warm-up (cached kernels load)
+    synthesize((8, 8), lambda wy, wx: 1.0 + 0 * wy * wx, rng=0)
     contenders = {
-        "spectral_noise": lambda shape, band, dt, r, w: spectral_noise(shape, band=band, seed=r, dtype=dt,
+        "spectral_noise": lambda shape, band, dt, r, w: spectral_noise(shape, band=band, rng=r, dtype=dt,
                                                                        workers=w),
-        "synthesize": lambda shape, band, dt, r, w: synthesize(shape, _synth_env(shape, band), seed=r,
-                                                               amplitude="rayleigh", dtype=dt, workers=w),
+        "synthesize": lambda shape, band, dt, r, w: synthesize(shape, _synth_env(shape, band), rng=r,
+                                                               amplitude_distribution="rayleigh", dtype=dt, workers=w),
     }
     if before is not None:
         # the earlier version has no workers: it runs single-threaded (compare it at 1 worker)
         contenders["spectral_noise before"] = lambda shape, band, dt, r, w: before.spectral_noise(
-            shape, band=band, seed=r, dtype=dt)
+            shape, band=band, rng=r, dtype=dt)
     floors = {c: _half_spectrum(c[0], c[2]) for c in cases}
     names = ["floor", *contenders]
 
@@ -148,10 +148,10 @@ def run(rounds, quick, before_rev, workers):
     rows = []
     for c in cases:
         shape, band, dt = c
-        peak = _peak(lambda: spectral_noise(shape, band=band, seed=0, dtype=dt)) / 2**20
+        peak = _peak(lambda: spectral_noise(shape, band=band, rng=0, dtype=dt)) / 2**20
         serial = serial_share(shape, band, dt, rounds)
         peak_floor = _peak(lambda: scipy.fft.irfftn(floors[c], s=shape)) / 2**20
-        peak_before = (_peak(lambda: before.spectral_noise(shape, band=band, seed=0, dtype=dt)) / 2**20
+        peak_before = (_peak(lambda: before.spectral_noise(shape, band=band, rng=0, dtype=dt)) / 2**20
                        if before is not None else None)
         t = timings[c]
         for w in workers:
@@ -188,7 +188,7 @@ def serial_share(shape, band, dt, rounds):
         sw = Stopwatch()
         SY.map_blocks, SY._pruned_irfftn = wrap(orig[0], "fill", sw), wrap(orig[1], "fft", sw)
         try:
-            SY.spectral_noise(shape, band=band, seed=max(r, 0), dtype=dt, workers=1)
+            SY.spectral_noise(shape, band=band, rng=max(r, 0), dtype=dt, workers=1)
         finally:
             SY.map_blocks, SY._pruned_irfftn = orig
         return Laps(fill=sw.laps.get("fill", 0.0), fft=sw.laps.get("fft", 0.0))
@@ -205,9 +205,9 @@ def exponent_sweep(rounds, before_rev, path, argv):
     shape = (1024, 1024)
     S = _half_spectrum(shape, np.float32)
     exps = (1.0, 1.5, 2.0, 0.5, 1.3, 2.7)
-    runs = {"spectral_noise": lambda e, r: spectral_noise(shape, exponent=e, seed=r, workers=1)}
+    runs = {"spectral_noise": lambda e, r: spectral_noise(shape, exponent=e, rng=r, workers=1)}
     if before is not None:
-        runs["before"] = lambda e, r: before.spectral_noise(shape, exponent=e, seed=r)
+        runs["before"] = lambda e, r: before.spectral_noise(shape, exponent=e, rng=r)
     cands = {(e, k): (lambda r, e=e, k=k: scipy.fft.irfftn(S, s=shape, workers=1) if k == "floor"
                       else runs[k](e, max(r, 0))) for e in exps for k in ["floor", *runs]}
     t = interleaved(cands, repeats=rounds, round_arg=True)

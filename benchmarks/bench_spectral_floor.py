@@ -77,7 +77,7 @@ def stages(shape, rounds):
         SY.hermitian_gain = lambda *a, **k: sw("gain", lambda: orig[2](*a, **k))
         SY._pruned_irfftn = lambda *a, **k: sw("fft", lambda: orig[3](*a, **k))
         try:
-            sw("call", lambda: SY.spectral_noise(shape, seed=max(r, 0), workers=1))
+            sw("call", lambda: SY.spectral_noise(shape, rng=max(r, 0), workers=1))
         finally:
             SY.noise_plan, SY.map_blocks, SY.hermitian_gain, SY._pruned_irfftn = orig
         return sw.laps
@@ -88,14 +88,14 @@ def stages(shape, rounds):
 
 
 def spectral(workers, rounds):
-    spectral_noise((8, 8), seed=0)
+    spectral_noise((8, 8), rng=0)
     out = []
     for shape in SPECTRAL:
         S = _half(shape)
         cands = {}
         for w in workers:
             cands[("floor", w)] = lambda r, w=w, S=S, shape=shape: scipy.fft.irfftn(S, s=shape, workers=w)
-            cands[("spectral_noise", w)] = lambda r, w=w, shape=shape: spectral_noise(shape, seed=max(r, 0), workers=w)
+            cands[("spectral_noise", w)] = lambda r, w=w, shape=shape: spectral_noise(shape, rng=max(r, 0), workers=w)
         wall, cpu = _both_clocks(cands, rounds)
         st = stages(shape, rounds)
         for w in workers:
@@ -109,12 +109,12 @@ def spectral(workers, rounds):
 
 
 def snow_timing(workers, rounds):
-    snow((4, 32, 32), seed=0)
+    snow((4, 32, 32), rng=0)
     S = _half(SNOW)
     cands = {}
     for w in workers:
         cands[("floor", w)] = lambda r, w=w: scipy.fft.irfftn(S, s=SNOW, workers=w)
-        cands[("snow", w)] = lambda r, w=w: snow(SNOW, seed=max(r, 0), workers=w)
+        cands[("snow", w)] = lambda r, w=w: snow(SNOW, rng=max(r, 0), workers=w)
     wall, cpu = _both_clocks(cands, rounds)
     return [{"workers": w, "floor_wall_ms": 1e3 * wall[("floor", w)], "floor_cpu_ms": 1e3 * cpu[("floor", w)],
              "wall": wall.ratio(("snow", w), ("floor", w)), "cpu": cpu.ratio(("snow", w), ("floor", w))}
@@ -128,8 +128,8 @@ def snow_memory(workers):
     S = _half(SNOW)
     res = {}
     for w in workers:
-        res[("snow", w)] = {"traced_mib": peak_memory(lambda: snow(SNOW, seed=0, workers=w)) / 2**20,
-                            "rss_mib": peak_rss("from noiselab.snowfall import snow", f"snow({SNOW}, seed=0, workers={w})"),
+        res[("snow", w)] = {"traced_mib": peak_memory(lambda: snow(SNOW, rng=0, workers=w)) / 2**20,
+                            "rss_mib": peak_rss("from noiselab.snowfall import snow", f"snow({SNOW}, rng=0, workers={w})"),
                             "out_mib": float(np.prod(SNOW)) * 4 / 2**20}
         res[("floor", w)] = {"traced_mib": peak_memory(lambda: scipy.fft.irfftn(S, s=SNOW, workers=w)) / 2**20,
                              "rss_mib": peak_rss(f"import numpy as np, scipy.fft\nS = np.ones({S.shape}, np.complex64)",

@@ -49,16 +49,16 @@ def kinds(size_deg, duration):
     rows = []
     mean, rms = 40.0, 0.2
     # 1/f patch: amplitude slope -1 over 0.5..8 cycles/deg
-    x = noiselab.spectral_noise((n, n), exponent=1.0, band=d.band((0.5, 8), n), seed=1)
-    v = to_display(x, d, mean=mean, contrast=rms, seed=1)
+    x = noiselab.spectral_noise((n, n), exponent=1.0, band=d.band((0.5, 8), n), rng=1)
+    v = to_display(x, d, mean=mean, contrast=rms, rng=1)
     L, m, r, _ = _measured(v)
     slope = A.spectral_slope(L, d.band((1, 6), n))
     rows.append(("1/f patch", f"mean {mean:g} cd/m², RMS {rms:g}, slope -1 (1..6 cycles/deg)",
                  f"mean {m:.3f}, RMS {r:.4f}, slope {float(slope):+.3f}"))
     # band-pass oriented noise: 4 cycles/deg, 45 deg +- 15 deg
     z = motion_cloud((n, n), sf_0=d.cycles_per_pixel(4), B_sf=d.cycles_per_pixel(2), theta=math.radians(45),
-                     B_theta=math.radians(15), seed=2)
-    v = to_display(z, d, mean=mean, contrast=rms, seed=2)
+                     B_theta=math.radians(15), rng=2)
+    v = to_display(z, d, mean=mean, contrast=rms, rng=2)
     L, m, r, _ = _measured(v)
     o = A.orientation_energy(L - L.mean(), d.band((2, 8), n))
     peak = float(o.angles[np.argmax(o.energy)])
@@ -66,8 +66,8 @@ def kinds(size_deg, duration):
                  f"mean {m:.3f}, RMS {r:.4f}, peak of orientation_energy {peak:.1f} deg (bin centre, wave vector)"))
     # snow: flakes of 4 cycles/deg fall at 2 deg/s; Michelson 0.176 (thesis Eq. 6.1's contrast)
     c = d.snow_c(2.0, 4.0)
-    alpha = noiselab.snow((T, n, n), c=c, band=d.band((1, 8), n), seed=3)
-    v = to_display(alpha, d, mean=mean, contrast=0.176, kind="michelson", seed=3)
+    alpha = noiselab.snow((T, n, n), c=c, band=d.band((1, 8), n), rng=3)
+    v = to_display(alpha, d, mean=mean, contrast=0.176, contrast_kind="michelson", rng=3)
     L, m, r, mich = _measured(v)
     f4 = d.cycles_per_frame(4, n)
     vy = A.band_speeds(L, [(f4 / 2 ** 0.25, f4 * 2 ** 0.25)])[0][1]
@@ -76,17 +76,17 @@ def kinds(size_deg, duration):
     # motion cloud at (1.875, -0.9375) deg/s
     V = (1.875, -0.9375)
     z = motion_cloud((T, n, n), sf_0=d.cycles_per_pixel(4), B_sf=d.cycles_per_pixel(1), V_X=d.px_per_frame(V[0]),
-                     V_Y=d.px_per_frame(V[1]), B_V=d.px_per_frame(0.1), seed=4)
-    v = to_display(z, d, mean=mean, contrast=rms, seed=4)
+                     V_Y=d.px_per_frame(V[1]), B_V=d.px_per_frame(0.1), rng=4)
+    v = to_display(z, d, mean=mean, contrast=rms, rng=4)
     L, m, r, _ = _measured(v)
     bv = A.best_velocity(L)
     rows.append(("motion cloud", f"mean 40, RMS 0.2, velocity ({V[0]:g}, {V[1]:g}) deg/s",
                  f"mean {m:.3f}, RMS {r:.4f}, velocity ({d.deg_per_second(bv[0]):.4f}, "
                  f"{d.deg_per_second(bv[1]):.4f}) deg/s"))
     # phase-scrambled image: the 1/f patch's luminance, scrambled, shown at Michelson 0.5
-    img = DISPLAY.luminance_of(to_display(x, d, mean=mean, contrast=rms, seed=1))
-    s = phase_scramble(img, seed=5)
-    v = to_display(s, d, mean=mean, contrast=0.5, kind="michelson", seed=5)
+    img = DISPLAY.luminance_of(to_display(x, d, mean=mean, contrast=rms, rng=1))
+    s = phase_scramble(img, rng=5)
+    v = to_display(s, d, mean=mean, contrast=0.5, contrast_kind="michelson", rng=5)
     L, m, _, mich = _measured(v)
     amp = np.abs(np.fft.rfft2(s)), np.abs(np.fft.rfft2(img))
     err = float(np.max(np.abs(amp[0] - amp[1])) / amp[1].max())
@@ -101,10 +101,10 @@ def round_trips(size_deg, duration):
     d = DISPLAY
     n, T = d.pixels(size_deg), d.frame_count(duration)
     n -= n % 2  # even sizes: the default MP4's yuv420p would pad an odd frame
-    alpha = noiselab.snow((T, n, n), c=d.snow_c(2.0, 4.0), band=d.band((1, 8), n), seed=3)
+    alpha = noiselab.snow((T, n, n), c=d.snow_c(2.0, 4.0), band=d.band((1, 8), n), rng=3)
     rows = []
     for label, mich in (("snow, Michelson 0.176", 0.176), ("snow, Michelson 0.05", 0.05)):
-        v = to_display(alpha, d, mean=40.0, contrast=mich, kind="michelson", seed=7)
+        v = to_display(alpha, d, mean=40.0, contrast=mich, contrast_kind="michelson", rng=7)
         _, m0, r0, c0 = _measured(v)
         rows.append((label, "(written values)", "lossless", f"{c0:.4f}", f"{r0:.4f}", f"{m0:.3f}", "0"))
         with tempfile.TemporaryDirectory() as tmp:
@@ -127,12 +127,12 @@ def round_trips(size_deg, duration):
 
 
 def dithering(n, seeds):
-    x = noiselab.spectral_noise((n, n), band=(2, n // 4), seed=9, dtype=np.float64)
+    x = noiselab.spectral_noise((n, n), band=(2, n // 4), rng=9, dtype=np.float64)
     rows = []
     for contrast in (0.001, 0.002, 0.004):
         step = float(DISPLAY.step_at(40.0))
         req = luminance_for(x, mean=40.0, contrast=contrast)
-        avg = np.mean([DISPLAY.luminance_of(to_display(x, DISPLAY, mean=40.0, contrast=contrast, seed=s))
+        avg = np.mean([DISPLAY.luminance_of(to_display(x, DISPLAY, mean=40.0, contrast=contrast, rng=s))
                        for s in range(seeds)], axis=0)
         nodither = DISPLAY.luminance_of(to_display(x, DISPLAY, mean=40.0, contrast=contrast, dither=False))
         rows.append((f"{contrast:g}", f"{np.ptp(req) / step:.2f}", f"{np.max(np.abs(avg - req)) / step:.3f}",

@@ -45,7 +45,7 @@ from noiselab.lab.measure import header_lines, markdown_table, run_info  # noqa:
 
 # ----------------------------------------------------------------------------- fields
 def spectral(shape, exponent=1.0, band=None):
-    return lambda s: noiselab.spectral_noise(shape, exponent=exponent, band=band, seed=s)
+    return lambda s: noiselab.spectral_noise(shape, exponent=exponent, band=band, rng=s)
 
 
 def pbox(n, amp_exponent, dim=2):
@@ -85,11 +85,11 @@ def crop(make, keep):
 
 
 def snow_alpha(shape=(16, 64, 64)):
-    return lambda s: noiselab.snow(shape, seed=s, c=1.0)
+    return lambda s: noiselab.snow(shape, rng=s, c=1.0)
 
 
 def snow_raw(shape=(16, 64, 64)):
-    return lambda s: noiselab.snow(shape, seed=s, c=1.0, rescale=False)
+    return lambda s: noiselab.snow(shape, rng=s, c=1.0, rescale=False)
 
 
 # ----------------------------------------------------------------------------- cases
@@ -142,9 +142,9 @@ def threshold_cases():
         ("assert_band_limited", "noiselab spectral_noise 128^2, band 8..32", spectral((128, 128), 1.0, (8, 32)),
          lambda x: T.assert_band_limited(x, (8, 32))),
         ("assert_motion", "MotionClouds 32 x 64^2, v = (1, 0), B_V 0.1", cloud((1.0, 0.0)),
-         lambda x: T.assert_motion(x, (1.0, 0.0))),
+         lambda x: T.assert_motion(x, velocity_yx=(0.0, 1.0))),
         ("assert_motion", "MotionClouds 32 x 64^2, v = (0.5, -0.5), B_V 0.1", cloud((0.5, -0.5)),
-         lambda x: T.assert_motion(x, (0.5, -0.5))),
+         lambda x: T.assert_motion(x, velocity_yx=(-0.5, 0.5))),
         ("assert_tent", "noiselab snow (raw) 16 x 64^2, c = 1, band 2..16", snow_raw(),
          lambda x: T.assert_tent(x, 1.0, (2, 16))),
     ]
@@ -195,11 +195,11 @@ def power_cases():
         ("assert_seamless", "cut loop: snow alpha 16 frames cut to 13", crop(snow_alpha(), (13,)),
          lambda x: T.assert_seamless(x, axes=0)),
         ("assert_motion", "wrong velocity sign: MotionClouds v = (1, 0) asserted as (-1, 0)", cloud((1.0, 0.0)),
-         lambda x: T.assert_motion(x, (-1.0, 0.0))),
+         lambda x: T.assert_motion(x, velocity_yx=(0.0, -1.0))),
         ("assert_motion", "wrong direction: MotionClouds v = (1, 0) asserted as (0, 1)", cloud((1.0, 0.0)),
-         lambda x: T.assert_motion(x, (0.0, 1.0))),
+         lambda x: T.assert_motion(x, velocity_yx=(1.0, 0.0))),
         ("assert_tent", "snow falling up: raw snow asserted with direction (0, -1)", snow_raw(),
-         lambda x: T.assert_tent(x, 1.0, (2, 16), direction=(0, -1))),
+         lambda x: T.assert_tent(x, 1.0, (2, 16), direction_yx=(-1, 0))),
     ]
     return cases
 

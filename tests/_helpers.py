@@ -15,3 +15,14 @@ def phase_correlation_shift(a, b):
     iy, ix = np.unravel_index(np.argmax(r), r.shape)
     H, W = r.shape
     return int((ix + W // 2) % W - W // 2), int((iy + H // 2) % H - H // 2)
+
+
+def yx(kw):
+    """``kw`` with its ``direction``/``pan``/``velocity`` pairs, in (x, y) order as the envelopes and the slow
+    references take them, turned into the public API's array-order keywords (``direction_yx=(dy, dx)``, ...)."""
+    out = dict(kw)
+    for old in ("direction", "pan", "velocity"):
+        if old in out:
+            value = out.pop(old)
+            out[f"{old}_yx"] = (value[1], value[0])
+    return out

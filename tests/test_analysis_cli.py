@@ -108,7 +108,7 @@ def test_report_gives_the_literature_measures(tmp_path, capsys):
     import noiselab
 
     # a tiled FFT field with stripes added: the period, the axis excess and Ulichney's dB must all show it
-    field = noiselab.spectral_noise((64, 64), seed=3, dtype=np.float64)
+    field = noiselab.spectral_noise((64, 64), rng=3, dtype=np.float64)
     striped = np.tile(field, (1, 3)) + 2.0 * np.sin(2 * np.pi * np.arange(192) / 16)[None, :]
     np.save(tmp_path / "s.npy", striped)
     rc, out, _ = _run(capsys, tmp_path / "s.npy", "--json", tmp_path / "s.json")
@@ -119,7 +119,7 @@ def test_report_gives_the_literature_measures(tmp_path, capsys):
     q = json.loads((tmp_path / "s.json").read_text())["quality"]
     assert q["period_x"] == 64 and q["range"]["max"] == pytest.approx(float(striped.max()))
     # a band-limited volume: nothing outside its band, a quarter of its slices' power under it (Cook & DeRose)
-    np.save(tmp_path / "v.npy", noiselab.spectral_noise((48, 48, 48), exponent=0.0, band=(6, 12), seed=4))
+    np.save(tmp_path / "v.npy", noiselab.spectral_noise((48, 48, 48), exponent=0.0, band=(6, 12), rng=4))
     rc, out, _ = _run(capsys, tmp_path / "v.npy", "--as", "volume", "--band", 6, 12, "--json", tmp_path / "v.json")
     sl = json.loads((tmp_path / "v.json").read_text())["quality"]["slice_leakage"]
     assert rc == 0 and sl["volume_outside"] < 1e-9 and 0.2 < sl["slice_outside"] < 0.3
@@ -149,7 +149,7 @@ def test_default_band_of_band_limited_snow_is_found_and_reported(tmp_path, capsy
 def test_default_band_of_band_limited_noise_and_of_full_band_1_over_f(tmp_path, capsys):
     import noiselab
 
-    np.save(tmp_path / "b.npy", noiselab.spectral_noise((256, 256), exponent=1.0, band=(16, 80), seed=2))
+    np.save(tmp_path / "b.npy", noiselab.spectral_noise((256, 256), exponent=1.0, band=(16, 80), rng=2))
     rc, out, _ = _run(capsys, tmp_path / "b.npy", "--json", tmp_path / "b.json")
     m = json.loads((tmp_path / "b.json").read_text())
     assert rc == 0 and m["band"]["band"] == [16, 80] and abs(m["slope"]["amplitude"] + 1) < 0.05, out

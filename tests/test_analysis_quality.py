@@ -37,7 +37,7 @@ def test_lattice_noise_aliases_and_the_spectral_field_does_not():
     assert aliased["box"] > 0.05 and aliased["box"] > 10 * aliased["linear"] > 100 * aliased["cubic"] > 0
     from scipy.signal import resample
 
-    spec = noiselab.spectral_noise((128, 128), band=(4, 60), seed=3, dtype=np.float64)
+    spec = noiselab.spectral_noise((128, 128), band=(4, 60), rng=3, dtype=np.float64)
     fine_spec = resample(resample(spec, 256, axis=0), 256, axis=1)  # the same trigonometric field, twice as dense
     leak = A.band_leakage(fine_spec, (4, 60), oversample=2)
     assert leak.aliased < 1e-20 and leak.inside == pytest.approx(1.0)
@@ -52,7 +52,7 @@ def test_band_leakage_rejects_a_band_past_the_output():
 
 # ---------------------------------------------------------------- slices (Cook & DeRose)
 def test_a_slice_of_a_band_limited_volume_is_not_band_limited():
-    vol = noiselab.spectral_noise((48, 48, 48), exponent=0.0, band=(6, 12), seed=4, dtype=np.float64)
+    vol = noiselab.spectral_noise((48, 48, 48), exponent=0.0, band=(6, 12), rng=4, dtype=np.float64)
     s = A.slice_leakage(vol, (6, 12))
     assert s.volume.below < 1e-12 and s.volume.inside == pytest.approx(1.0)
     # known answer: the share of the shell's cells whose in-plane radius is under 6
@@ -77,10 +77,10 @@ def test_shell_slice_below_closed_form_and_trend():
 # ---------------------------------------------------------------- envelope error
 def test_envelope_error_is_zero_for_the_exact_envelope_and_sampling_noise_for_a_draw():
     target = lambda f: np.where((f >= 4) & (f <= 64), f ** -2.0, 0.0)  # noqa: E731
-    exact = noiselab.spectral_noise((128, 128), exponent=1.0, band=(4, 64), amplitude="fixed", seed=5, dtype=np.float64)
+    exact = noiselab.spectral_noise((128, 128), exponent=1.0, band=(4, 64), amplitude_distribution="fixed", rng=5, dtype=np.float64)
     e = A.envelope_error(exact, target)
     assert e.rms_db < 1e-6 and e.outside < 1e-20
-    drawn = noiselab.spectral_noise((128, 128), exponent=1.0, band=(4, 64), seed=5)
+    drawn = noiselab.spectral_noise((128, 128), exponent=1.0, band=(4, 64), rng=5)
     e = A.envelope_error(drawn, target)
     assert e.rms_db < 2.5 * e.noise_db and e.max_db < 5 * e.noise_db
     # white noise against 1/f**2: measured / target grows as f**2, i.e. as the target level falls
@@ -93,7 +93,7 @@ def test_envelope_error_is_zero_for_the_exact_envelope_and_sampling_noise_for_a_
 
 
 def test_envelope_error_takes_an_array_target_of_either_layout():
-    x = noiselab.spectral_noise((64, 64), exponent=0.0, band=(2, 32), amplitude="fixed", seed=7, dtype=np.float64)
+    x = noiselab.spectral_noise((64, 64), exponent=0.0, band=(2, 32), amplitude_distribution="fixed", rng=7, dtype=np.float64)
     full = np.ones((64, 64))
     half = np.ones((64, 33))
     assert A.envelope_error(x, full).rms_db == pytest.approx(A.envelope_error(x, half).rms_db, abs=1e-12)
@@ -116,7 +116,7 @@ def test_value_statistics_against_uniform_values():
 
 # ---------------------------------------------------------------- periods
 def test_detect_period_finds_the_fft_domain_and_the_lattice_table():
-    img = noiselab.spectral_noise((64, 64), seed=9)
+    img = noiselab.spectral_noise((64, 64), rng=9)
     tiled = np.tile(img, (1, 3))
     assert A.detect_period(tiled, axis=1).period == 64
     assert A.detect_period(np.tile(img, (3, 1)), axis=0).period == 64
@@ -147,7 +147,7 @@ def test_axis_artefacts_isotropic_striped_and_lattice():
     past = A.axis_artefacts(lat, (32, 128))  # past twice the lattice frequency, the tails run along the axes
     assert past.axis_excess > 3
     for s in (13, 14):  # about 450 axis cells: 1 +- 0.05
-        assert A.axis_artefacts(noiselab.spectral_noise((256, 256), seed=s), (16, 128)).axis_excess == pytest.approx(1, abs=0.2)
+        assert A.axis_artefacts(noiselab.spectral_noise((256, 256), rng=s), (16, 128)).axis_excess == pytest.approx(1, abs=0.2)
 
 
 def test_variance_striping_of_linear_value_noise_matches_its_kernel():
@@ -158,7 +158,7 @@ def test_variance_striping_of_linear_value_noise_matches_its_kernel():
     assert A.variance_striping(line, 16) == pytest.approx((s.max() - s.min()) / s.mean(), abs=0.05)
     img = noiselab.LatticeNoise(2, seed=15, kernel="linear", table_size=1 << 12).grid((512, 512), [(0, 64), (0, 64)])
     assert A.variance_striping(img, 8, axis=1) == pytest.approx((s[::2].max() - s[::2].min()) / s[::2].mean(), abs=0.1)
-    stationary = noiselab.spectral_noise((1 << 18,), exponent=0.0, seed=16)
+    stationary = noiselab.spectral_noise((1 << 18,), exponent=0.0, rng=16)
     assert A.variance_striping(stationary, 16) < 0.1
     with pytest.raises(ValueError, match="period"):
         A.variance_striping(line, 1)
@@ -168,11 +168,11 @@ def test_variance_striping_of_linear_value_noise_matches_its_kernel():
 def test_tent_energy_per_band_of_snow_and_of_a_still():
     from noiselab.snowfall import snow
 
-    video = snow((16, 64, 64), seed=17, band=(4, 16), c=1.0, rescale=False, dtype=np.float64)
+    video = snow((16, 64, 64), rng=17, band=(4, 16), c=1.0, rescale=False, dtype=np.float64)
     m = A.tent_energy_per_band(video, 1.0, (4, 16))
     assert m.bands.shape == (2, 2) and np.all(m.fraction > 0.999)
     assert m.share.sum() == pytest.approx(A.band_energy(video, (4, 16), axes=(-2, -1)), abs=1e-9)
-    still = np.repeat(noiselab.spectral_noise((64, 64), band=(4, 16), seed=18)[None], 16, axis=0)
+    still = np.repeat(noiselab.spectral_noise((64, 64), band=(4, 16), rng=18)[None], 16, axis=0)
     rng = np.random.default_rng(19)
     moving_still = still + 1e-3 * rng.standard_normal(still.shape)
     assert np.all(A.tent_energy_per_band(moving_still, 1.0, (4, 16)).fraction < 0.2)

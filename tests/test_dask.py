@@ -166,7 +166,7 @@ def test_zarr_round_trip_on_the_cluster_keeps_data_attributes_dims_and_coords(cl
     lazy = fractal_sum(noise, grid, 5, dtype="float32", chunks=((10, 14), 7, 18))  # uneven: regrouped for zarr
     coords = {"x": np.arange(18) / 9.0}
     out = write_zarr(tmp_path / "vol.zarr", lazy, dims=("z", "y", "x"), coords=coords, units="amplitude",
-                     params={"octaves": 5, "kernel": "quintic", "frequency": noise.frequency}, seed=11,
+                     params={"octaves": 5, "kernel": "quintic", "frequency": noise.frequency}, rng=11,
                      attrs={"note": "test"})
     assert out == tmp_path / "vol.zarr" and sorted(os.listdir(tmp_path)) == ["vol.zarr"]
     back = read_zarr(out)

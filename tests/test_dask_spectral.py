@@ -43,7 +43,7 @@ NOISE = {
     "2d-even-band-at-nyquist": ((48, 40), dict(band=(4, 20), normalize="sample"), (13, 40)),
     "2d-full-dc": ((30, 32), dict(dc=True, band=(0, 16), exponent=2.0), (7, 9)),
     "3d-odd-full": ((17, 19, 15), dict(exponent=1.5), (5, 19, 15)),
-    "3d-even-band-at-nyquist": ((16, 20, 24), dict(band=(2, 12), amplitude="uniform"), (6, 7, 24)),
+    "3d-even-band-at-nyquist": ((16, 20, 24), dict(band=(2, 12), amplitude_distribution="uniform"), (6, 7, 24)),
     "3d-sample-float64": ((12, 14, 18), dict(band=(1, 6), normalize="sample", dtype="float64"), (12, 5, 9)),
     "1d": ((257,), dict(exponent=1.0, dc=True), (100,)),
 }
@@ -52,14 +52,14 @@ NOISE = {
 @pytest.mark.parametrize("case", sorted(NOISE))
 def test_chunked_spectral_noise_equals_in_memory(client, case, tmp_path):
     shape, kw, chunks = NOISE[case]
-    ref = spectral_noise(shape, seed=11, **kw)
-    lazy = spectral_noise(shape, seed=11, chunks=chunks, **kw)
+    ref = spectral_noise(shape, rng=11, **kw)
+    lazy = spectral_noise(shape, rng=11, chunks=chunks, **kw)
     assert isinstance(lazy, da.Array) and lazy.dtype == ref.dtype and lazy.shape == ref.shape
     assert lazy.npartitions > 1
     got = client.compute(lazy).result()
     assert _close(got, ref)
     # through zarr arrays on disk: the same values
-    spilled = spectral_noise(shape, seed=11, chunks=chunks, spill=tmp_path, **kw)
+    spilled = spectral_noise(shape, rng=11, chunks=chunks, spill=tmp_path, **kw)
     assert np.array_equal(client.compute(spilled).result(), got)
 
 
@@ -68,8 +68,8 @@ SNOW = {
     "even": ((8, 48, 64), dict(), (3, 20, 64)),
     "odd": ((9, 47, 63), dict(), (4, 13, 20)),
     "band-at-nyquist": ((6, 32, 40), dict(band=(4, 20), c=0.5), (6, 11, 13)),
-    "pan": ((9, 40, 36), dict(pan=(0.4, -0.3), direction=(0.3, 1.0)), (5, 40, 7)),
-    "still-T1": ((1, 40, 41), dict(amplitude="rayleigh"), (1, 16, 16)),
+    "pan": ((9, 40, 36), dict(pan_yx=(-0.3, 0.4), direction_yx=(1.0, 0.3)), (5, 40, 7)),
+    "still-T1": ((1, 40, 41), dict(amplitude_distribution="rayleigh"), (1, 16, 16)),
     "float64-thick": ((10, 32, 32), dict(dtype="float64", thickness=0.5), (4, 32, 32)),
 }
 
@@ -78,13 +78,13 @@ SNOW = {
 @pytest.mark.parametrize("spill", [False, True])
 def test_chunked_snow_equals_in_memory(client, case, spill, tmp_path):
     shape, kw, chunks = SNOW[case]
-    ref = snow(shape, seed=5, **kw)
-    lazy = snow(shape, seed=5, chunks=chunks, spill=tmp_path if spill else None, **kw)
+    ref = snow(shape, rng=5, **kw)
+    lazy = snow(shape, rng=5, chunks=chunks, spill=tmp_path if spill else None, **kw)
     assert isinstance(lazy, da.Array) and lazy.dtype == ref.dtype and lazy.npartitions > 1
     got = client.compute(lazy).result()
     assert _close(got, ref) and float(got.min()) == 0.0 and float(got.max()) == 1.0
-    raw_ref = snow(shape, seed=5, rescale=False, **kw)
-    raw = snow(shape, seed=5, chunks=chunks, rescale=False, spill=tmp_path if spill else None, **kw)
+    raw_ref = snow(shape, rng=5, rescale=False, **kw)
+    raw = snow(shape, rng=5, chunks=chunks, rescale=False, spill=tmp_path if spill else None, **kw)
     assert _close(client.compute(raw).result(), raw_ref)
 
 
@@ -92,11 +92,11 @@ def test_a_snow_video_bigger_than_a_workers_memory_is_written_and_right(client, 
     shape = (48, 1024, 2048)  # 384 MiB of float32, more than a worker's 352 MiB limit
     assert np.prod(shape) * 4 > LIMIT
     workers = set(client.scheduler_info()["workers"])
-    lazy = snow(shape, seed=9, chunks=(8, 128, 2048), spill=tmp_path / "spill")
-    write_zarr(tmp_path / "big.zarr", lazy, dims=("t", "y", "x"), seed=9)
+    lazy = snow(shape, rng=9, chunks=(8, 128, 2048), spill=tmp_path / "spill")
+    write_zarr(tmp_path / "big.zarr", lazy, dims=("t", "y", "x"), rng=9)
     # no worker was restarted for memory (a restarted worker comes back under a new address)
     assert set(client.scheduler_info()["workers"]) == workers
-    ref = snow(shape, seed=9)
+    ref = snow(shape, rng=9)
     stored = read_zarr(tmp_path / "big.zarr")  # lazy, chunk by chunk
     for t0 in range(0, shape[0], 8):
         assert np.array_equal(np.asarray(stored[t0:t0 + 8]), ref[t0:t0 + 8])
@@ -108,12 +108,12 @@ def test_auto_chunked_snow_written_by_memory_limited_workers_restarts_none(clien
     352 MiB (about 110 MiB above the imports): the video is about the same multiple of a worker's headroom."""
     client.register_plugin(_worker_events_plugin())
     shape = (32, 1024, 1024)  # 128 MiB of float32
-    lazy = snow(shape, seed=2, chunks="auto", spill=tmp_path / "spill")  # as `noiselab snow -o x.zarr` does
+    lazy = snow(shape, rng=2, chunks="auto", spill=tmp_path / "spill")  # as `noiselab snow -o x.zarr` does
     assert max(lazy.chunks[-1]) == shape[-1] and lazy.npartitions > 2  # whole rows: the x-pass makes them
-    write_zarr(tmp_path / "v.zarr", lazy, dims=("t", "y", "x"), seed=2)
+    write_zarr(tmp_path / "v.zarr", lazy, dims=("t", "y", "x"), rng=2)
     assert client.run_on_scheduler(_worker_events) == (0, 0)  # no worker restarted or lost
     stored = read_zarr(tmp_path / "v.zarr")
-    ref = snow(shape, seed=2)
+    ref = snow(shape, rng=2)
     assert np.array_equal(np.asarray(stored[:4]), ref[:4]) and np.array_equal(np.asarray(stored[-4:]), ref[-4:])
 
 
@@ -129,20 +129,20 @@ def test_cli_writes_snow_zarr_on_the_cluster(client, tmp_path, capsys):
     attrs = x.attrs["noiselab"] if "noiselab" in x.attrs else x.attrs
     text = repr(attrs)
     assert "noiselab snow" in text and "seed" in text
-    ref = snow((6, 32, 40), seed=4, pan=(0.2, 0.0))
+    ref = snow((6, 32, 40), rng=4, pan_yx=(0.0, 0.2))
     assert _close(np.asarray(x.values), ref)
     assert [p.name for p in tmp_path.iterdir()] == ["snow.zarr"]  # the spill folder is gone
 
 
 def test_bad_chunked_arguments_name_the_parameter(tmp_path):
     with pytest.raises(ValueError, match="spill= .* pass chunks="):
-        snow((4, 16, 16), seed=0, spill=tmp_path)
+        snow((4, 16, 16), rng=0, spill=tmp_path)
     with pytest.raises(ValueError, match="spill= .* pass chunks="):
-        spectral_noise((16, 16), seed=0, spill=tmp_path)
+        spectral_noise((16, 16), rng=0, spill=tmp_path)
     with pytest.raises(ValueError, match=r"chunks\[0\] must be >= 1"):
-        snow((4, 16, 16), seed=0, chunks=(0, 16, 16))
+        snow((4, 16, 16), rng=0, chunks=(0, 16, 16))
     with pytest.raises(ValueError, match="one entry per grid axis"):
-        spectral_noise((16, 16), seed=0, chunks=(4, 4, 4))
+        spectral_noise((16, 16), rng=0, chunks=(4, 4, 4))
 
 
 def test_docstring_examples_run():

@@ -171,7 +171,7 @@ def test_captions_carry_seed_figure_parameters_and_measurements(quick_gallery):
     for spec in _cards():
         key = spec.key.replace("/", "-")
         # the heading carries the figure number and the title; one line says what to look for
-        assert heads[key].startswith(f"{spec.seed}: {spec.title}"), (spec.key, heads[key][:80])
+        assert heads[key].startswith(f"{spec.source}: {spec.title}"), (spec.key, heads[key][:80])
         if spec.group in ("snow", "phillips", "lab", "derivatives"):   # (a group added later may have none yet)
             assert spec.look, spec.key
         assert looks[key] == (f"What to look for: {spec.look}." if spec.look else ""), spec.key
@@ -418,7 +418,7 @@ def test_bench_dry_run_from_an_installed_noiselab_in_any_folder(tmp_path):
 
 
 def test_a_failing_figure_is_reported_and_leaves_no_half_written_folder(tmp_path):
-    @registry.figure("zz_broken", "boom", seed="Test, Fig. 0", title="broken", params=dict(n=1))
+    @registry.figure("zz_broken", "boom", source="Test, Fig. 0", title="broken", params=dict(n=1))
     def boom(out, *, n):
         (out / "partial.png").write_bytes(b"not a png")
         raise ValueError("deliberate failure")
@@ -493,7 +493,7 @@ def test_a_stimuli_figure_gets_its_own_section_on_the_papers_page(tmp_path):
     """Figures whose id starts with stimuli/ (another module adds them) land in a 'stimuli' section of index.html."""
     from noiselab.gallery import html as page_html
 
-    @registry.figure("stimuli", "zz_probe", seed="Zhang 2003, Fig. 0.0", title="probe", params=dict(n=4))
+    @registry.figure("stimuli", "zz_probe", source="Zhang 2003, Fig. 0.0", title="probe", params=dict(n=4))
     def probe(out, *, n):
         from noiselab.io import write_image
 

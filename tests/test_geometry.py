@@ -93,14 +93,14 @@ def test_zero_area_faces_and_unreferenced_vertices_are_handled():
     normals = vertex_normals(mesh)
     assert np.all(np.isfinite(normals))
     np.testing.assert_array_equal(normals[-1], 0.0)
-    out = displace(mesh, constant(1.0), amplitude=0.1, on_aliasing="ignore")
+    out = displace(mesh, constant(1.0), amplitude=0.1, on_alias="ignore")
     assert np.all(np.isfinite(out.vertices))
     np.testing.assert_array_equal(out.vertices[-1], [5.0, 5.0, 5.0])    # no normal, no move
     np.testing.assert_allclose(np.linalg.norm(out.vertices[:-1], axis=1), 1.1, atol=0.02)
 
 
 def test_area_weighted_normals_of_a_flat_sheet_point_up():
-    m = noiselab.geometry.monge_surface(constant(0.0), (6, 5), on_aliasing="ignore")
+    m = noiselab.geometry.monge_surface(constant(0.0), (6, 5), on_alias="ignore")
     np.testing.assert_allclose(vertex_normals(m), np.tile([0.0, 0.0, 1.0], (30, 1)), atol=1e-12)
 
 
@@ -133,7 +133,7 @@ def test_point_cloud_and_faceless_mesh_are_clear_errors():
     (dict(phase=[0.0, np.inf, 0.0]), "phase must be finite"),
     (dict(octaves=0), r"octaves must be an int in \[1, 64\]"),
     (dict(kind="fbm"), "kind must be"),
-    (dict(on_aliasing="maybe"), "on_aliasing must be"),
+    (dict(on_alias="maybe"), "on_alias must be"),
     (dict(gain=1.5), r"gain must be in \(0, 1\]"),
 ])
 def test_bad_parameters_name_the_parameter(kwargs, match):
@@ -143,11 +143,11 @@ def test_bad_parameters_name_the_parameter(kwargs, match):
 
 def test_bad_field_output_is_a_clear_error():
     with pytest.raises(ValueError, match="field must return"):
-        displace(sphere(2), lambda p: np.zeros((len(p), 2, 2)), on_aliasing="ignore")
+        displace(sphere(2), lambda p: np.zeros((len(p), 2, 2)), on_alias="ignore")
     with pytest.raises(ValueError, match="scalar per point"):
-        displace(sphere(2), lambda p: np.zeros((len(p), 3)), on_aliasing="ignore")
+        displace(sphere(2), lambda p: np.zeros((len(p), 3)), on_alias="ignore")
     with pytest.raises(ValueError, match="NaN or inf"):
-        displace(sphere(2), lambda p: np.full(len(p), np.nan), on_aliasing="ignore")
+        displace(sphere(2), lambda p: np.full(len(p), np.nan), on_alias="ignore")
     with pytest.raises(TypeError, match="callable"):
         displace(sphere(2), 3.0)
 
@@ -201,7 +201,7 @@ def test_displace_by_lattice_fractal_sum_is_repeatable_and_bounded():
 
 def test_turbulence_only_pushes_outwards():
     out = displace(sphere(4), noiselab.LatticeNoise(3, seed=2), 0.1, 1.0, octaves=3, kind="turbulence",
-                   on_aliasing="ignore")
+                   on_alias="ignore")
     assert np.linalg.norm(out.vertices, axis=1).min() >= 1.0 - 1e-3
 
 
@@ -228,7 +228,7 @@ def test_aliasing_is_reported_counting_the_highest_octave():
     with pytest.warns(AliasingWarning, match="samples per period"):
         displace(mesh, waves, 0.1, frequency=2.0, octaves=3)     # top octave at 8 cycles/unit
     with pytest.raises(ValueError, match="too coarse"):
-        displace(mesh, waves, 0.1, frequency=2.0, octaves=3, on_aliasing="raise")
+        displace(mesh, waves, 0.1, frequency=2.0, octaves=3, on_alias="raise")
 
 
 def test_resolution_report_numbers():
@@ -291,7 +291,7 @@ def test_squashed_sphere_is_five_percent_lower_and_keeps_it_under_small_noise():
 def test_bundled_model_loads_offline_and_displaces():
     ant = load_model("ant")
     assert ant.is_watertight and max(ant.extents) == pytest.approx(2.0)
-    out = displace(ant, noiselab.LatticeNoise(3, seed=1), amplitude=0.05, frequency=2.0, on_aliasing="ignore")
+    out = displace(ant, noiselab.LatticeNoise(3, seed=1), amplitude=0.05, frequency=2.0, on_alias="ignore")
     moved = np.linalg.norm(out.vertices - ant.vertices, axis=1)
     assert moved.max() <= 0.05 + 1e-12 and moved.max() > 0.005
     with pytest.raises(ValueError, match="cow"):
@@ -312,7 +312,7 @@ def test_mesh_round_trip(tmp_path, suffix):
 
 def test_vertex_colors_survive_ply_and_glb(tmp_path):
     surf = noiselab.geometry.colored_surface(
-        lambda p: np.stack([np.sin(p[:, 0]), np.cos(p[:, 1])], axis=1), (16, 16), on_aliasing="ignore")
+        lambda p: np.stack([np.sin(p[:, 0]), np.cos(p[:, 1])], axis=1), (16, 16), on_alias="ignore")
     for suffix in (".ply", ".glb"):
         back = read_mesh(write_mesh(tmp_path / f"c{suffix}", surf))
         np.testing.assert_array_equal(back.visual.vertex_colors, surf.visual.vertex_colors)
@@ -335,7 +335,7 @@ def test_numba_face_pass_matches_the_numpy_reference():
     import importlib
 
     D = importlib.import_module("noiselab.geometry.displace")
-    mesh = displace(load_model("ant"), waves, 0.05, on_aliasing="ignore")
+    mesh = displace(load_model("ant"), waves, 0.05, on_alias="ignore")
     v, f = D._arrays(mesh)
     sums, volume, longest, lengths = D.face_pass(v, f, 1)
     unit = D.unit_rows(sums.copy())
@@ -356,8 +356,8 @@ def test_seams_are_welded_so_the_surface_does_not_crack():
     soup = sphere(3)
     soup.unmerge_vertices()                      # every face has its own corners, like an STL or a UV seam
     assert len(soup.vertices) == 3 * len(soup.faces)
-    welded = displace(soup, waves, 0.1, on_aliasing="ignore")
-    cracked = displace(soup, waves, 0.1, weld=False, on_aliasing="ignore")
+    welded = displace(soup, waves, 0.1, on_alias="ignore")
+    cracked = displace(soup, waves, 0.1, weld=False, on_alias="ignore")
     merged = welded.copy()
     merged.merge_vertices()
     assert len(merged.vertices) == len(sphere(3).vertices) and merged.is_watertight
@@ -367,7 +367,7 @@ def test_seams_are_welded_so_the_surface_does_not_crack():
     assert gaps.max() > 1e-3                     # without welding the copies move apart
     inverted = soup.copy()
     inverted.invert()
-    out = displace(inverted, constant(1.0), 0.1, on_aliasing="ignore")
+    out = displace(inverted, constant(1.0), 0.1, on_alias="ignore")
     np.testing.assert_allclose(np.linalg.norm(out.vertices, axis=1), 1.1, atol=0.02)   # still outwards
 
 
@@ -382,7 +382,7 @@ def test_results_do_not_depend_on_chunking_or_per_axis_frequency_is_used():
 
 
 def test_spectral_noise_volume_displaces_a_sphere_smoothly():
-    vol = noiselab.spectral_noise((32, 32, 32), exponent=1.0, band=(1, 4), seed=0, dtype=np.float64)
+    vol = noiselab.spectral_noise((32, 32, 32), exponent=1.0, band=(1, 4), rng=0, dtype=np.float64)
     # band 1..4 cycles per 3 units: 4/3 cycles/unit at most, which an icosphere of level 4 samples well
     field = sampled_field(vol / np.abs(vol).max(), extent=[(-1.5, 1.5)] * 3, max_frequency=4 / 3)
     mesh = sphere(4)
@@ -437,9 +437,9 @@ def test_texture_coordinates_and_colours_are_kept():
     mesh = sphere(2)
     uv = np.random.default_rng(0).random((len(mesh.vertices), 2))
     mesh.visual = trimesh.visual.TextureVisuals(uv=uv)
-    out = displace(mesh, waves, 0.1, on_aliasing="ignore")
+    out = displace(mesh, waves, 0.1, on_alias="ignore")
     np.testing.assert_array_equal(out.visual.uv, uv)
     painted = sphere(2)
     painted.visual.face_colors = [255, 0, 0, 255]
-    out = displace(painted, waves, 0.1, on_aliasing="ignore")
+    out = displace(painted, waves, 0.1, on_alias="ignore")
     np.testing.assert_array_equal(out.visual.face_colors[:, :3], np.tile([255, 0, 0], (len(out.faces), 1)))

@@ -116,7 +116,7 @@ def test_grid_and_height_map_take_shape_and_extent_in_array_axis_order():
     pts = grid_points((3, 5), ((10, 13), (0, 5)))              # (ny, nx), ((y0, y1), (x0, x1))
     assert pts.shape == (3, 5, 2)
     np.testing.assert_array_equal(pts[2, 4], [12.0, 4.0])       # (y, x) at [row, column]
-    h = height_map(lambda p: 10 * p[:, 0] + p[:, 1], (3, 5), ((0, 3), (0, 5)), on_aliasing="ignore")
+    h = height_map(lambda p: 10 * p[:, 0] + p[:, 1], (3, 5), ((0, 3), (0, 5)), on_alias="ignore")
     np.testing.assert_array_equal(h[0], np.arange(5.0))          # x along columns
     np.testing.assert_array_equal(h[:, 0], [0.0, 10.0, 20.0])   # y along rows
     p3 = grid_points((2, 3, 4), ((0, 2), (0, 3), (0, 4)))
@@ -139,7 +139,7 @@ def test_height_map_of_lattice_noise_is_its_grid_with_the_same_shape_and_extent(
     from noiselab.fractal import fractal_sum
     from noiselab.lattice import Grid
 
-    np.testing.assert_allclose(height_map(noise, shape, extent, octaves=3, on_aliasing="ignore"),
+    np.testing.assert_allclose(height_map(noise, shape, extent, octaves=3, on_alias="ignore"),
                                fractal_sum(noise, Grid(shape, extent), 3), rtol=0, atol=1e-12)
     # the same order reads it back: a sampled field over the same extent interpolates the heights
     from noiselab.geometry import sampled_field
@@ -156,7 +156,7 @@ def test_monge_surface_flow_field_and_normals_follow_the_array_axis_order():
     np.testing.assert_array_equal(m.vertices[:, :2], grid_points(shape, extent).reshape(-1, 2))
     np.testing.assert_allclose(m.vertices[:, 2].reshape(shape), 0.5 * noise.grid(shape, extent), atol=1e-12)
     assert np.all(m.face_normals[:, 2] > 0)
-    hue = colored_surface(noiselab.LatticeNoise(2, 2, seed=2), shape, extent, amplitude=0.5, on_aliasing="ignore")
+    hue = colored_surface(noiselab.LatticeNoise(2, 2, seed=2), shape, extent, amplitude=0.5, on_alias="ignore")
     np.testing.assert_allclose(hue.vertices[:, 2].reshape(shape),
                                0.5 * noiselab.LatticeNoise(2, 2, seed=2).grid(shape, extent)[..., 0], atol=1e-12)
     # flow fields: vectors (v_y, v_x) at points (y, x), the lattice's vector grid in 2-D and 3-D
@@ -248,7 +248,7 @@ def test_streamlines_rk4_and_solve_ivp_agree_and_follow_the_flow():
     iv = streamlines(rotation, seeds, step=0.05, n_steps=126, method="solve_ivp")
     np.testing.assert_allclose(np.linalg.norm(rk, axis=2), np.broadcast_to([[1.0], [0.5]], (2, 127)), atol=1e-6)   # circles
     np.testing.assert_allclose(rk, iv, atol=1e-4)
-    unit = streamlines(lambda p: 5.0 * rotation(p), seeds, step=0.01, n_steps=10, normalize=True)
+    unit = streamlines(lambda p: 5.0 * rotation(p), seeds, step=0.01, n_steps=10, unit_speed=True)
     np.testing.assert_allclose(np.linalg.norm(np.diff(unit, axis=1), axis=2), 0.01, rtol=1e-3)
     with pytest.raises(ValueError, match="seeds must have shape"):
         streamlines(rotation, np.zeros((3, 5)))

@@ -109,7 +109,7 @@ def test_write_zarr_of_a_numpy_array_needs_neither_dask_nor_the_scale_layer(tmp_
         import zarr
         from noiselab.io import write_zarr
         out = write_zarr({str(tmp_path / "n.zarr")!r}, np.arange(12, dtype="f4").reshape(3, 4), dims=("y", "x"),
-                         coords={{"x": np.arange(4) / 2}}, units="m", seed=3, params={{"k": np.int64(2)}},
+                         coords={{"x": np.arange(4) / 2}}, units="m", rng=3, params={{"k": np.int64(2)}},
                          chunks=(2, -1))
         arr = zarr.open_group(str(out), mode="r")["data"]
         print(json.dumps({{"loaded": sorted(m for m in sys.modules if m.split(".")[0] == "dask"

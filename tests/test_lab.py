@@ -20,7 +20,7 @@ BAND = (8.0, 32.0)
 
 @pytest.fixture(scope="module")
 def layered():
-    return layered_lattice_snow(SHAPE, seed=3, band=BAND, c=1.0, layers=8)
+    return layered_lattice_snow(SHAPE, rng=3, band=BAND, c=1.0, layers=8)
 
 
 def test_layered_range_dtype_and_shape(layered):
@@ -43,10 +43,10 @@ def test_layered_obeys_parallax_law(layered):
 
 
 def test_layered_direction_and_c():
-    a = layered_lattice_snow((12, 64, 64), seed=1, band=(4, 16), c=0.8, direction=(1, 0), layers=4)
+    a = layered_lattice_snow((12, 64, 64), rng=1, band=(4, 16), c=0.8, direction_yx=(0, 1), layers=4)
     v = band_speeds(a, [(4, 8), (8, 16)])
     assert np.all(v[:, 0] > 0) and np.all(np.abs(v[:, 1]) < 0.2 * v[:, 0])
-    frozen = layered_lattice_snow((4, 32, 32), seed=1, c=0.0, layers=2)
+    frozen = layered_lattice_snow((4, 32, 32), rng=1, c=0.0, layers=2)
     assert np.array_equal(frozen[0], frozen[3])
 
 
@@ -65,9 +65,9 @@ def test_layer_plan_speeds_fall_with_frequency():
 
 
 def test_layered_same_seed_same_bits():
-    a = layered_lattice_snow((3, 48, 40), seed=7, layers=3)
-    b = layered_lattice_snow((3, 48, 40), seed=np.random.default_rng(7), layers=3)
-    c = layered_lattice_snow((3, 48, 40), seed=8, layers=3)
+    a = layered_lattice_snow((3, 48, 40), rng=7, layers=3)
+    b = layered_lattice_snow((3, 48, 40), rng=np.random.default_rng(7), layers=3)
+    c = layered_lattice_snow((3, 48, 40), rng=8, layers=3)
     assert np.array_equal(a, b)
     assert not np.array_equal(a, c)
 
@@ -76,7 +76,7 @@ def test_layered_same_seed_same_bits():
 
 @pytest.fixture(scope="module")
 def particles():
-    return particle_snow(SHAPE, seed=2, band=BAND, c=1.0, flakes=600, return_flakes=True)
+    return particle_snow(SHAPE, rng=2, band=BAND, c=1.0, flakes=600, return_flakes=True)
 
 
 def test_particles_flakes_table(particles):
@@ -102,13 +102,13 @@ def test_particles_move_down_faster_when_near(particles):
 
 
 def test_single_flake_moves_by_its_speed():
-    a, fl = particle_snow((6, 64, 64), seed=5, band=(4, 8), flakes=1, return_flakes=True)
+    a, fl = particle_snow((6, 64, 64), rng=5, band=(4, 8), flakes=1, return_flakes=True)
     ys = [np.average(np.arange(64), weights=a[t].sum(axis=1)) for t in range(2)]
     assert ys[1] - ys[0] == pytest.approx(fl["speed"][0], abs=0.15) or fl["y"][0] > 64 - 12
 
 
 def test_motion_blur_spreads_a_flake_along_its_motion_and_keeps_its_coverage():
-    kw = dict(seed=5, band=(4, 8), flakes=1, opacity=0.5, return_flakes=True)
+    kw = dict(rng=5, band=(4, 8), flakes=1, opacity=0.5, return_flakes=True)
     sharp, fl = particle_snow((6, 64, 64), **kw)
     blurred, _ = particle_snow((6, 64, 64), motion_blur=True, **kw)
     assert fl["speed"][0] > 1.0  # moves more than a pixel per frame
@@ -121,10 +121,10 @@ def test_motion_blur_spreads_a_flake_along_its_motion_and_keeps_its_coverage():
 
 
 def test_particles_same_seed_same_bits():
-    a = particle_snow((3, 40, 48), seed=11, flakes=80)
-    b = particle_snow((3, 40, 48), seed=11, flakes=80)
+    a = particle_snow((3, 40, 48), rng=11, flakes=80)
+    b = particle_snow((3, 40, 48), rng=11, flakes=80)
     assert np.array_equal(a, b)
-    assert not np.array_equal(a, particle_snow((3, 40, 48), seed=12, flakes=80))
+    assert not np.array_equal(a, particle_snow((3, 40, 48), rng=12, flakes=80))
 
 
 # ----------------------------------------------------------------------------- bad input
@@ -138,9 +138,9 @@ def test_particles_same_seed_same_bits():
     ({"band": (8, 4)}, "empty"),
     ({"band": (4, 40)}, "band"),
     ({"band": (0, 8)}, "band"),
-    ({"direction": (0, 0)}, "direction"),
+    ({"direction_yx": (0, 0)}, "direction_yx"),
     ({"dtype": np.int32}, "dtype"),
-    ({"seed": -1}, "seed"),
+    ({"rng": -1}, "rng"),
 ])
 def test_bad_input_is_a_clear_error(fn, kwargs, match):
     args = {"shape": (4, 32, 32), **kwargs}
@@ -194,7 +194,7 @@ def test_knee_is_cheapest_point_under_threshold():
 def test_texture_quality_tells_spectral_from_striped():
     from noiselab.spectral import spectral_noise
 
-    iso = texture_quality(spectral_noise((128, 128), exponent=1.0, band=(4, 64), seed=0), 4.0, 2)
+    iso = texture_quality(spectral_noise((128, 128), exponent=1.0, band=(4, 64), rng=0), 4.0, 2)
     assert abs(iso["slope_error"]) < 0.15 and iso["anisotropy"] < 0.1 and iso["band_leakage"] < 1e-6
     rows = np.random.default_rng(0).standard_normal((1, 128)) * np.ones((128, 1))
     striped = texture_quality(rows + 1e-3 * np.random.default_rng(1).standard_normal((128, 128)), 4.0, 2)
@@ -204,7 +204,7 @@ def test_texture_quality_tells_spectral_from_striped():
 def test_parallax_error_of_tent_snow_is_small():
     from noiselab.snowfall import snow
 
-    a = snow(SHAPE, seed=0, band=BAND, c=1.0)
+    a = snow(SHAPE, rng=0, band=BAND, c=1.0)
     centres, speed, law, err = parallax_error(a, 1.0, BAND)
     assert err < 0.1 and np.all(np.diff(speed) < 0)
 
@@ -281,15 +281,15 @@ def test_spectral_deviation_tells_1_over_f_from_white():
     from noiselab.lab.experiments import _spectral_deviation
     from noiselab.spectral import spectral_noise
 
-    pink = spectral_noise((256, 256), exponent=1.0, band=(8, 64), seed=0, amplitude="fixed")
+    pink = spectral_noise((256, 256), exponent=1.0, band=(8, 64), rng=0, amplitude_distribution="fixed")
     white = np.random.default_rng(0).standard_normal((256, 256))
     assert _spectral_deviation(pink, (8, 64)) < 0.3
     assert _spectral_deviation(white, (8, 64)) > 3.0
 
 
 def test_layered_frames_render_in_pieces():
-    full = layered_lattice_snow((8, 32, 48), seed=4, layers=3, rescale=False, dtype=np.float64)
-    piece = layered_lattice_snow((3, 32, 48), seed=4, layers=3, rescale=False, dtype=np.float64, start=5)
+    full = layered_lattice_snow((8, 32, 48), rng=4, layers=3, rescale=False, dtype=np.float64)
+    piece = layered_lattice_snow((3, 32, 48), rng=4, layers=3, rescale=False, dtype=np.float64, start=5)
     assert np.array_equal(full[5:8], piece)
     with pytest.raises(ValueError, match="start"):
         layered_lattice_snow((2, 32, 32), start=-1)

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import naive
+from _helpers import yx
 from noiselab import LatticeNoise, fractal_gradient, fractal_sum, snow, turbulence, turbulence_gradient
 from noiselab.analysis import motion_energy, radial_spectrum, spectral_slope, tent_energy
 from noiselab.lattice import KERNELS, Grid
@@ -88,12 +89,12 @@ def test_synthesize_equals_reference_on_a_random_envelope(shape, amplitude):
     env = RNG.random(hshape) * (RNG.random(hshape) > 0.3)  # random amplitudes, random support (asymmetric)
     seed = int(RNG.integers(1 << 30))
     want_f, want_S = naive.synthesize(shape, env, seed, amplitude)
-    f, S = synthesize(shape, env, seed=seed, amplitude=amplitude, dtype=np.float64, return_spectrum=True)
+    f, S = synthesize(shape, env, rng=seed, amplitude_distribution=amplitude, dtype=np.float64, return_spectrum=True)
     assert f.dtype == np.float64 and S.dtype == np.complex128
     assert_close(S, want_S)
     assert_close(f, want_f)
     # float32 draws the same coefficients: the field agrees to float32 precision
-    f32 = synthesize(shape, env, seed=seed, amplitude=amplitude, dtype=np.float32)
+    f32 = synthesize(shape, env, rng=seed, amplitude_distribution=amplitude, dtype=np.float32)
     assert f32.dtype == np.float32
     assert_close(f32, want_f, tol=1e-6)
 
@@ -106,7 +107,7 @@ def test_synthesize_equals_reference_on_a_callable_envelope(shape):
         return envelopes.annulus(*w, band_cycles_per_sample=(1.5 / n, 0.4)) * envelopes.power_law(*w, exponent=1.3)
 
     want_f, _ = naive.synthesize(shape, env, 5, "rayleigh")
-    assert_close(synthesize(shape, env, seed=5, amplitude="rayleigh", dtype=np.float64), want_f)
+    assert_close(synthesize(shape, env, rng=5, amplitude_distribution="rayleigh", dtype=np.float64), want_f)
     # the coefficients with exact (not float32) math give the same field to float32 precision
     exact_f, _ = naive.synthesize(shape, env, 5, "rayleigh", parts=naive.coefficient_parts_exact)
     assert_close(want_f, exact_f, tol=1e-5)
@@ -128,10 +129,11 @@ def test_spectral_noise_equals_reference(shape, case):
         kw["band"] = (kw["band"][0], min(kw["band"][1], shape[-1] / 2))
     seed = int(RNG.integers(1 << 30))
     want = naive.spectral_noise(shape, seed=seed, **kw)
-    got = spectral_noise(shape, seed=seed, dtype=np.float64, **kw)
+    api = {("amplitude_distribution" if k == "amplitude" else k): v for k, v in kw.items()}
+    got = spectral_noise(shape, rng=seed, dtype=np.float64, **api)
     assert got.dtype == np.float64
     assert_close(got, want)
-    got32 = spectral_noise(shape, seed=seed, dtype=np.float32, **kw)
+    got32 = spectral_noise(shape, rng=seed, dtype=np.float32, **api)
     assert_close(got32, want, tol=1e-5)
 
 
@@ -158,7 +160,7 @@ TENT_CASES = [
 def test_tent_support_and_amplitudes_equal_reference(shape, kw):
     # amplitude="fixed": |S| is the envelope itself, independent of the order of the draws
     want = naive.tent_spectrum(shape, seed=1, amplitude="fixed", **kw)
-    got = snow_spectrum(shape, seed=1, amplitude="fixed", dtype=np.float64, **kw)
+    got = snow_spectrum(shape, rng=1, amplitude_distribution="fixed", dtype=np.float64, **yx(kw))
     assert got.shape == want.shape
     assert np.array_equal(got != 0, want != 0), "the tent's cells differ"
     assert (want != 0).any()
@@ -169,10 +171,10 @@ def test_tent_support_and_amplitudes_equal_reference(shape, kw):
 @pytest.mark.parametrize("shape,kw", TENT_CASES[:6])
 def test_tent_spectrum_and_snow_equal_reference(shape, kw, amplitude):
     want = naive.tent_spectrum(shape, seed=7, amplitude=amplitude, **kw)
-    assert_close(snow_spectrum(shape, seed=7, amplitude=amplitude, dtype=np.float64, **kw), want)
+    assert_close(snow_spectrum(shape, rng=7, amplitude_distribution=amplitude, dtype=np.float64, **yx(kw)), want)
     raw = np.fft.irfftn(want, s=shape, axes=(0, 1, 2))
-    assert_close(snow(shape, seed=7, amplitude=amplitude, dtype=np.float64, rescale=False, **kw), raw)
-    alpha = snow(shape, seed=7, amplitude=amplitude, dtype=np.float64, beta=1.5, **kw)
+    assert_close(snow(shape, rng=7, amplitude_distribution=amplitude, dtype=np.float64, rescale=False, **yx(kw)), raw)
+    alpha = snow(shape, rng=7, amplitude_distribution=amplitude, dtype=np.float64, beta=1.5, **yx(kw))
     assert_close(alpha, naive.rescale_opacity(raw, 1.5))
 
 
@@ -181,14 +183,16 @@ def test_tent_spectrum_and_snow_equal_reference(shape, kw, amplitude):
 def test_envelopes_equal_reference(c, direction, pan):
     wt, wy, wx = naive.frequency_vectors((6, 10, 12))
     surf, along = naive.tent_surface(wy, wx, c, direction, pan)
-    assert_close(envelopes.tent_surface(wy, wx, c, direction, pan), surf)
+    assert_close(envelopes.tent_surface(wy, wx, c, direction_yx=direction[::-1], pan_yx=pan[::-1]), surf)
     tol = np.pi / 6
     want = (np.abs(wt - surf) <= tol).astype(float)
-    assert np.array_equal(envelopes.sheared_tent(wt, wy, wx, c, direction, pan, tolerance=tol), want)
+    sheared = envelopes.sheared_tent(wt, wy, wx, c, direction_yx=direction[::-1], pan_yx=pan[::-1], tol=tol)
+    assert np.array_equal(sheared, want)
     if pan == (0.0, 0.0):
-        assert np.array_equal(envelopes.tent(wt, wy, wx, c, direction, tolerance=tol), want)
+        assert np.array_equal(envelopes.tent(wt, wy, wx, c, direction_yx=direction[::-1], tol=tol), want)
     thick = (np.abs(wt - surf) <= tol + 0.3 * c * along).astype(float)
-    assert np.array_equal(envelopes.thickened_tent(wt, wy, wx, c, direction, pan, thickness=0.3, tolerance=tol), thick)
+    assert np.array_equal(envelopes.thickened_tent(wt, wy, wx, c, thickness=0.3, tol=tol,
+                                                     **yx(dict(direction=direction, pan=pan))), thick)
     cells, law = naive.noise_envelope((6, 10, 12), 1.5, (2, 4), False)  # band (2, 4) cycles per 12 samples
     got = envelopes.annulus(wt, wy, wx, band_cycles_per_sample=(2 / 12, 4 / 12)) * envelopes.power_law(wt, wy, wx, exponent=1.5)
     assert np.array_equal(got > 0, cells)
@@ -268,7 +272,7 @@ def _video(shape, velocity, seed):
 ])
 def test_motion_energy_equals_reference(velocity, tol, band, window):
     video = _video((8, 12, 16), (1, 2), seed=5)
-    got = motion_energy(video, velocity, tol=tol, band=band, window=window)
+    got = motion_energy(video, velocity_yx=velocity[::-1], tol=tol, band=band, window=window)
     assert abs(got - naive.motion_energy(video, velocity, tol, band, window)) <= TOL
 
 
@@ -278,7 +282,7 @@ def test_tent_energy_equals_reference(kw):
     shape = (8, 16, 16)
     video = np.fft.irfftn(naive.tent_spectrum(shape, seed=2, c=0.9, band=(2, 7)), s=shape, axes=(0, 1, 2))
     video = video / video.std() + 0.2 * np.random.default_rng(1).random(shape)
-    got = tent_energy(video, 0.9, (2, 7), **kw)
+    got = tent_energy(video, 0.9, (2, 7), **yx(kw))
     assert abs(got - naive.tent_energy(video, 0.9, (2, 7), **kw)) <= TOL
     assert naive.tent_energy(video, 0.9, (2, 7)) > 0.5  # most of the power is on the tent it was built on
 

@@ -11,7 +11,7 @@ from noiselab.snowfall import flake_speeds, iter_tiled_frames, rescale_opacity, 
 from noiselab.snowfall.tent import tent_columns
 from noiselab.spectral import envelopes as E
 from noiselab.spectral import frequency_vectors
-from _helpers import phase_correlation_shift
+from _helpers import phase_correlation_shift, yx
 
 
 _displacement = phase_correlation_shift
@@ -23,10 +23,10 @@ def _mean_displacement(v, steps=6):
 
 
 def test_output_is_float32_opacity_in_unit_range():
-    a = snow((8, 32, 48), seed=0)
+    a = snow((8, 32, 48), rng=0)
     assert a.shape == (8, 32, 48) and a.dtype == np.float32
     assert a.min() == 0.0 and a.max() == 1.0
-    assert noiselab.snow((8, 32, 48), seed=0).tobytes() == a.tobytes()   # the top-level function
+    assert noiselab.snow((8, 32, 48), rng=0).tobytes() == a.tobytes()   # the top-level function
     assert noiselab.snowfall.composite is noiselab.composite
 
 
@@ -59,9 +59,9 @@ def test_noiselab_snow_is_the_function_and_the_subpackage_is_snowfall():
 
 @pytest.mark.parametrize("shape", [(8, 32, 32), (7, 33, 31), (5, 9, 7), (1, 8, 8), (4, 8, 8), (6, 16, 10), (3, 1, 16)])
 def test_pruned_inverse_fft_equals_irfftn_of_the_spectrum(shape):
-    kw = dict(seed=4, dtype=np.float64, c=0.8, direction=(1, 2), pan=(0.2, -0.1), band=(1, shape[2] / 2))
-    S = snow_spectrum(shape, **kw)
-    raw = snow(shape, rescale=False, **kw)
+    kw = dict(rng=4, dtype=np.float64, c=0.8, direction=(1, 2), pan=(0.2, -0.1), band=(1, shape[2] / 2))
+    S = snow_spectrum(shape, **yx(kw))
+    raw = snow(shape, rescale=False, **yx(kw))
     ref = scipy.fft.irfftn(S, s=shape)
     np.testing.assert_allclose(raw, ref, rtol=0, atol=1e-14 * max(1.0, np.abs(ref).max()))
     # and the spectrum is exactly Hermitian where it must be: the round trip
@@ -71,14 +71,14 @@ def test_pruned_inverse_fft_equals_irfftn_of_the_spectrum(shape):
 def test_energy_only_on_the_thickened_tent_inside_the_band():
     shape = (32, 64, 64)
     kw = dict(c=1.3, thickness=0.2, direction=(np.cos(0.4), np.sin(0.4)), pan=(0.3, 0.1))
-    S = snow_spectrum(shape, seed=1, band=(6, 20), dtype=np.float64, **kw)
+    S = snow_spectrum(shape, rng=1, band=(6, 20), dtype=np.float64, **yx(kw))
     wt, wy, wx = frequency_vectors(shape)
     dense = (E.annulus(wy, wx, band_cycles_per_sample=(6 / 64, 20 / 64))
-             * E.thickened_tent(wt, wy, wx, kw["c"], kw["direction"], kw["pan"],
-                                thickness=kw["thickness"], tolerance=np.pi / shape[0]))
+             * E.thickened_tent(wt, wy, wx, kw["c"], **yx(dict(direction=kw["direction"], pan=kw["pan"])),
+                                thickness=kw["thickness"], tol=np.pi / shape[0]))
     np.testing.assert_array_equal(S != 0, dense > 0)
     # about 1 % of the spectrum carries energy at the default band
-    frac = (snow_spectrum((64, 256, 256), seed=0) != 0).mean()
+    frac = (snow_spectrum((64, 256, 256), rng=0) != 0).mean()
     assert 0.003 < frac < 0.02, frac
 
 
@@ -92,16 +92,18 @@ def test_snow_cells_are_the_envelopes_tent_surface_cells(shape, kw):
     # its spectrum's support is the dense envelope's, thickened tent x annulus, cell for cell
     T, H, W = shape
     band = (4, 20)
-    S = snow_spectrum(shape, seed=2, band=band, amplitude="fixed", dtype=np.float64, **kw)
+    S = snow_spectrum(shape, rng=2, band=band, amplitude_distribution="fixed", dtype=np.float64, **yx(kw))
     wt, wy, wx = frequency_vectors(shape)
     dense = (E.annulus(wy, wx, band_cycles_per_sample=(band[0] / W, band[1] / W))
-             * E.thickened_tent(wt, wy, wx, kw["c"], kw["direction"], kw["pan"], thickness=kw["thickness"],
-                                tolerance=np.pi / T))
+             * E.thickened_tent(wt, wy, wx, kw["c"], **yx(dict(direction=kw["direction"], pan=kw["pan"])),
+                                thickness=kw["thickness"],
+                                tol=np.pi / T))
     assert dense.any()
     np.testing.assert_array_equal(S != 0, dense > 0)
     # the unchecked form snow calls is tent_surface, bit for bit, and its terms are the surface's parts
     wt_s, a, b, _ = E.tent_surface_terms(wy[0], wx[0], kw["c"], E.unit_direction(kw["direction"]), kw["pan"])
-    np.testing.assert_array_equal(wt_s, E.tent_surface(wy[0], wx[0], kw["c"], kw["direction"], kw["pan"]))
+    np.testing.assert_array_equal(wt_s, E.tent_surface(wy[0], wx[0], kw["c"],
+                                                          **yx(dict(direction=kw["direction"], pan=kw["pan"]))))
     np.testing.assert_array_equal(wt_s, -kw["c"] * a - b)
     # (the band stays off the Nyquist row and column, where a pan's surface is not odd under k -> -k)
     # and the amplitude of each spatial column is the envelope's power law, split over its temporal bins
@@ -112,7 +114,7 @@ def test_snow_cells_are_the_envelopes_tent_surface_cells(shape, kw):
 
 
 def test_spatial_spectrum_is_1_over_f_with_equal_energy_per_octave():
-    S = snow_spectrum((32, 256, 256), seed=3, dtype=np.float64, amplitude="fixed", thickness=0.3)
+    S = snow_spectrum((32, 256, 256), rng=3, dtype=np.float64, amplitude_distribution="fixed", thickness=0.3)
     P = (np.abs(S) ** 2).sum(axis=0)                    # spatial power, summed over temporal bins
     fy = np.fft.fftfreq(256)[:, None] * 256
     fx = np.fft.rfftfreq(256)[None, :] * 256
@@ -132,7 +134,7 @@ def test_flakes_move_along_the_fall_direction(direction):
     # one ring of spatial frequency, speed c/|w| = 3 px/frame
     f = 8.0
     c = 3.0 * 2 * np.pi * f / 128
-    v = snow((24, 128, 128), seed=2, c=c, band=(f, f + 0.5), thickness=0, direction=direction,
+    v = snow((24, 128, 128), rng=2, c=c, band=(f, f + 0.5), thickness=0, direction_yx=direction[::-1],
              rescale=False, dtype=np.float64)
     d = np.asarray(direction, float) / np.hypot(*direction)
     measured = _mean_displacement(v)
@@ -143,7 +145,7 @@ def test_near_flakes_fall_faster_in_proportion_to_inverse_frequency():
     speeds = {}
     c = 1.2
     for f in (6.0, 24.0):
-        v = snow((32, 128, 128), seed=5, c=c, band=(f, f * 1.05), thickness=0, rescale=False, dtype=np.float64)
+        v = snow((32, 128, 128), rng=5, c=c, band=(f, f * 1.05), thickness=0, rescale=False, dtype=np.float64)
         speeds[f] = _mean_displacement(v, steps=12)[1]
     expect = {f: c * 128 / (2 * np.pi * f) for f in speeds}
     assert speeds[6.0] > 2.5 * speeds[24.0]
@@ -154,7 +156,7 @@ def test_near_flakes_fall_faster_in_proportion_to_inverse_frequency():
 def test_pan_adds_the_camera_velocity_to_every_flake():
     f = 8.0
     c = 2.0 * 2 * np.pi * f / 128  # 2 px/frame down
-    v = snow((24, 128, 128), seed=1, c=c, band=(f, f + 0.5), thickness=0, pan=(-2.0, 0.0),
+    v = snow((24, 128, 128), rng=1, c=c, band=(f, f + 0.5), thickness=0, pan_yx=(0.0, -2.0),
              rescale=False, dtype=np.float64)
     assert np.allclose(_mean_displacement(v), (-2.0, 2.0), atol=0.6)
 
@@ -166,17 +168,17 @@ def test_flake_speeds_documented_numbers():
 
 
 def test_loop_is_seamless():
-    a = snow((16, 64, 64), seed=7)
+    a = snow((16, 64, 64), rng=7)
     steps = [np.abs(a[t + 1] - a[t]).mean() for t in range(15)]
     wrap = np.abs(a[0] - a[-1]).mean()
     assert min(steps) * 0.8 < wrap < max(steps) * 1.25
     # a non-periodic splice (two different videos) is a visible jump
-    b = snow((16, 64, 64), seed=8)
+    b = snow((16, 64, 64), rng=8)
     assert np.abs(b[0] - a[-1]).mean() > 1.5 * max(steps)
 
 
 def test_tile_is_seamless_in_space_and_time():
-    a = snow((8, 32, 32), seed=1)
+    a = snow((8, 32, 32), rng=1)
     t = tile(a, (2, 2, 3))
     assert t.shape == (16, 64, 96)
     np.testing.assert_array_equal(t[8:, 32:, 64:], a)
@@ -188,7 +190,7 @@ def test_tile_is_seamless_in_space_and_time():
 
 
 def test_iter_tiled_frames_is_lazy_and_matches_tile():
-    a = snow((4, 16, 16), seed=2)
+    a = snow((4, 16, 16), rng=2)
     it = iter_tiled_frames(a, (3, 2, 2))
     assert inspect.isgenerator(it)
     frames = np.stack(list(it))
@@ -203,30 +205,30 @@ def test_iter_tiled_frames_is_lazy_and_matches_tile():
 
 
 def test_still_frame():
-    S = snow_spectrum((1, 32, 32), seed=0, dtype=np.float64)
+    S = snow_spectrum((1, 32, 32), rng=0, dtype=np.float64)
     assert S.shape == (1, 32, 17) and (S != 0).sum() > 0
-    a = snow((1, 32, 32), seed=0)
+    a = snow((1, 32, 32), rng=0)
     assert a.shape == (1, 32, 32) and a.min() == 0 and a.max() == 1
 
 
 def test_tiny_frames_and_odd_sizes():
     for shape in [(4, 8, 8), (3, 8, 9), (5, 9, 8)]:
-        a = snow(shape, seed=0)
+        a = snow(shape, rng=0)
         assert a.shape == shape and np.isfinite(a).all() and a.max() == 1
 
 
 def test_c_zero_is_frozen_snow():
-    a = snow((6, 32, 32), seed=0, c=0.0)
+    a = snow((6, 32, 32), rng=0, c=0.0)
     assert np.array_equal(a[0], a[3]) or np.abs(a - a[0]).max() < 1e-6
-    S = snow_spectrum((6, 32, 32), seed=0, c=0.0)
+    S = snow_spectrum((6, 32, 32), rng=0, c=0.0)
     assert np.all(S[1:] == 0)
 
 
 def test_band_touching_nyquist():
     shape = (8, 32, 32)
-    S = snow_spectrum(shape, seed=1, band=(4, 16), dtype=np.float64)
+    S = snow_spectrum(shape, rng=1, band=(4, 16), dtype=np.float64)
     assert np.any(S[:, :, 16] != 0)     # the Nyquist column carries energy
-    raw = snow(shape, seed=1, band=(4, 16), rescale=False, dtype=np.float64)
+    raw = snow(shape, rng=1, band=(4, 16), rescale=False, dtype=np.float64)
     np.testing.assert_allclose(scipy.fft.rfftn(raw), S, atol=1e-12 * np.abs(S).max())
 
 
@@ -248,9 +250,10 @@ def test_band_errors():
     (dict(thickness=-1), "thickness must be in \\[0, 1\\]"),
     (dict(beta=0), "beta must be in \\(0, inf\\)"),
     (dict(beta=float("nan")), "beta must be finite"),
-    (dict(direction=(0, 0)), "non-zero"),
-    (dict(direction=(float("nan"), 1)), "direction must be finite"),
-    (dict(pan=(float("inf"), 0)), "pan must be a finite pair"),
+    (dict(direction_yx=(0, 0)), r"direction_yx must be a non-zero vector \(dy, dx\)"),
+    (dict(direction_yx=(1, float("nan"))), "direction_yx must be finite"),
+    (dict(direction_yx=(1, 2, 3)), r"direction_yx must be a pair \(dy, dx\)"),
+    (dict(pan_yx=(0, float("inf"))), "pan_yx must be a finite pair"),
     (dict(on_alias="wrap"), "on_alias"),
     (dict(dtype=np.int32), "float32 or float64"),
 ])
@@ -259,13 +262,13 @@ def test_bad_parameters_are_named(kw, match):
         snow((4, 16, 16), **kw)
 
 
-def test_bad_shapes_and_seed():
+def test_bad_shapes_and_rng():
     with pytest.raises(ValueError, match="3 entries"):
         snow((16, 16))
     with pytest.raises(ValueError, match=r"shape\[0\]"):
         snow((0, 16, 16))
-    with pytest.raises(ValueError, match="seed"):
-        snow((2, 8, 8), seed=-1)
+    with pytest.raises(ValueError, match="rng"):
+        snow((2, 8, 8), rng=-1)
 
 
 def test_temporal_aliasing_is_detected_with_the_largest_allowed_c():
@@ -274,7 +277,7 @@ def test_temporal_aliasing_is_detected_with_the_largest_allowed_c():
     assert "on_alias='drop'" in str(err.value)
     snow((8, 32, 32), c=np.pi / 1.1, thickness=0.1)  # the limit itself is fine
     with pytest.raises(ValueError, match="largest pan speed"):
-        snow((8, 32, 32), c=1.0, pan=(20.0, 0.0))
+        snow((8, 32, 32), c=1.0, pan_yx=(0.0, 20.0))
 
 
 def test_drop_mode_leaves_out_the_wrapped_cells():
@@ -282,13 +285,13 @@ def test_drop_mode_leaves_out_the_wrapped_cells():
     cols = tent_columns(shape, c=3.0, band=(2, 16), thickness=0.1, direction=(0, 1), pan=(0, 0),
                         exponent=1.0, on_alias="drop")
     assert cols.dropped > 0
-    S = snow_spectrum(shape, c=3.0, thickness=0.1, on_alias="drop", seed=0, dtype=np.float64)
+    S = snow_spectrum(shape, c=3.0, thickness=0.1, on_alias="drop", rng=0, dtype=np.float64)
     kept = (S != 0).sum()
-    ref = (snow_spectrum(shape, c=np.pi / 1.1, thickness=0.1, seed=0) != 0).sum()
+    ref = (snow_spectrum(shape, c=np.pi / 1.1, thickness=0.1, rng=0) != 0).sum()
     assert 0 < kept
     # every kept cell is within half a bin plus the thickness of the unwrapped tent
     wt, wy, wx = frequency_vectors(shape)
-    near = E.thickened_tent(wt, wy, wx, 3.0, (0, 1), thickness=0.1, tolerance=np.pi / 64 + 1e-9)
+    near = E.thickened_tent(wt, wy, wx, 3.0, direction_yx=(1, 0), thickness=0.1, tol=np.pi / 64 + 1e-9)
     # (the Nyquist bin, +pi and -pi at once, is left out of the comparison)
     carrying = S != 0
     carrying[32] = False
@@ -297,12 +300,12 @@ def test_drop_mode_leaves_out_the_wrapped_cells():
 
 
 def test_same_seed_same_bits_float32_close_to_float64():
-    a = snow((8, 32, 32), seed=9)
-    b = snow((8, 32, 32), seed=9)
-    g = snow((8, 32, 32), seed=np.random.default_rng(9))
+    a = snow((8, 32, 32), rng=9)
+    b = snow((8, 32, 32), rng=9)
+    g = snow((8, 32, 32), rng=np.random.default_rng(9))
     assert a.tobytes() == b.tobytes() == g.tobytes()
-    assert not np.array_equal(a, snow((8, 32, 32), seed=10))
-    d = snow((8, 32, 32), seed=9, dtype=np.float64)
+    assert not np.array_equal(a, snow((8, 32, 32), rng=10))
+    d = snow((8, 32, 32), rng=9, dtype=np.float64)
     assert d.dtype == np.float64 and np.abs(d - a).max() < 1e-4
 
 
@@ -311,13 +314,13 @@ def test_bit_identical_for_any_worker_count(workers):
     # frames are rendered in blocks shared among threads; each block is computed the same way by any thread,
     # and the t-pass is scipy's with workers: same bits for any count (odd sizes, many blocks, float64)
     for shape, kw in [((24, 96, 80), {}), ((20, 256, 256), {}), ((7, 33, 31), dict(dtype=np.float64, band=(1, 15))),
-                      ((40, 64, 64), dict(rescale=False, pan=(0.3, 0.1)))]:
-        a = snow(shape, seed=5, workers=1, **kw)
-        b = snow(shape, seed=5, workers=workers, **kw)
+                      ((40, 64, 64), dict(rescale=False, pan_yx=(0.1, 0.3)))]:
+        a = snow(shape, rng=5, workers=1, **kw)
+        b = snow(shape, rng=5, workers=workers, **kw)
         assert a.tobytes() == b.tobytes(), shape
-    assert snow((8, 32, 32), seed=1).tobytes() == snow((8, 32, 32), seed=1, workers=workers).tobytes()
+    assert snow((8, 32, 32), rng=1).tobytes() == snow((8, 32, 32), rng=1, workers=workers).tobytes()
     with scipy.fft.set_workers(2):  # None follows scipy's default, set_workers included
-        assert snow((8, 32, 32), seed=1).tobytes() == snow((8, 32, 32), seed=1, workers=1).tobytes()
+        assert snow((8, 32, 32), rng=1).tobytes() == snow((8, 32, 32), rng=1, workers=1).tobytes()
     with pytest.raises(ValueError, match="workers must be"):
         snow((8, 32, 32), workers=0)
 
@@ -338,9 +341,9 @@ def test_peak_memory_stays_within_1_3_outputs(workers):
     import tracemalloc
 
     shape = (64, 512, 512)  # the benchmark's scene: 64 MiB of float32 output
-    snow((2, 16, 16), seed=0)
+    snow((2, 16, 16), rng=0)
     tracemalloc.start()
-    a = snow(shape, seed=0, workers=workers)
+    a = snow(shape, rng=0, workers=workers)
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
     assert peak <= 1.3 * a.nbytes, peak / a.nbytes
@@ -348,7 +351,7 @@ def test_peak_memory_stays_within_1_3_outputs(workers):
 
 def test_default_snow_falls_down_in_its_spectrum_and_images():
     shape = (16, 128, 128)
-    a = snow(shape, seed=3).astype(np.float64)
+    a = snow(shape, rng=3).astype(np.float64)
     F = np.abs(np.fft.fftn(a - a.mean())) ** 2
     wt = np.fft.fftfreq(16)[:, None, None]
     wy = np.fft.fftfreq(128)[None, :, None]

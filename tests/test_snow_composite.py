@@ -28,7 +28,7 @@ def test_composite_never_wraps_uint8():
 
 
 def test_composite_rgb_broadcasts_alpha_over_colour():
-    a = snow((3, 16, 16), seed=0)
+    a = snow((3, 16, 16), rng=0)
     bg = np.zeros((16, 16, 3), np.uint8)
     bg[..., 0], bg[..., 1], bg[..., 2] = 10, 100, 200
     out = composite(a, bg)
@@ -69,7 +69,7 @@ def test_composite_errors():
 
 
 def test_parallax_composite_michelson_contrasts_of_eq_6_1():
-    fg = snow((4, 32, 32), seed=1, beta=1.0)          # spans exactly [0, 1]
+    fg = snow((4, 32, 32), rng=1, beta=1.0)          # spans exactly [0, 1]
     mask = np.zeros((32, 32), bool)
     mask[8:24, 8:24] = True
     video, contrast = parallax_composite(fg, mask)
@@ -88,7 +88,7 @@ def test_parallax_composite_michelson_contrasts_of_eq_6_1():
     # the veiled region really is 255*0.7 + 0.3*I_fg
     np.testing.assert_allclose(video[:, 8:24, 8:24], np.rint(178.5 + 0.3 * 255 * fg[:, 8:24, 8:24]), atol=1)
     # a different foreground under the veil (motion-inconsistent experiment)
-    fg2 = snow((4, 32, 32), seed=1, beta=1.0, direction=(1, 0))
+    fg2 = snow((4, 32, 32), rng=1, beta=1.0, direction_yx=(0, 1))
     v2, _ = parallax_composite(fg, mask, veiled_foreground=fg2)
     np.testing.assert_array_equal(v2[:, 0:8], video[:, 0:8])
     assert not np.array_equal(v2[:, 8:24, 8:24], video[:, 8:24, 8:24])
@@ -119,7 +119,7 @@ def test_cli_snow_png_frames_and_alpha_only(tmp_path):
                  "--no-background", "--output", str(out), "--quiet"]) == 0
     files = sorted(out.iterdir())
     assert [f.name for f in files] == ["frame_00000.png", "frame_00001.png", "frame_00002.png"]
-    alpha = snow((3, 16, 16), seed=0)
+    alpha = snow((3, 16, 16), rng=0)
     np.testing.assert_array_equal(read_image(files[1]), np.rint(alpha[1] * 255).astype(np.uint8))
 
 

@@ -16,7 +16,7 @@ def _ones(*w):
 
 @pytest.mark.parametrize("shape", SHAPES)
 def test_round_trip_reproduces_the_prescribed_spectrum(shape):
-    field, S = synthesize(shape, _ones, seed=3, dtype=np.float64, amplitude="fixed", return_spectrum=True)
+    field, S = synthesize(shape, _ones, rng=3, dtype=np.float64, amplitude_distribution="fixed", return_spectrum=True)
     assert field.shape == shape and field.dtype == np.float64
     # the FFT of the output is the spectrum we built, to float precision
     np.testing.assert_allclose(scipy.fft.rfftn(field), S, rtol=0, atol=1e-12)
@@ -26,7 +26,7 @@ def test_round_trip_reproduces_the_prescribed_spectrum(shape):
 
 @pytest.mark.parametrize("shape", [(6, 8), (5, 7), (4, 6, 8)])
 def test_round_trip_float32(shape):
-    field, S = synthesize(shape, _ones, seed=1, dtype=np.float32, amplitude="fixed", return_spectrum=True)
+    field, S = synthesize(shape, _ones, rng=1, dtype=np.float32, amplitude_distribution="fixed", return_spectrum=True)
     assert field.dtype == np.float32 and S.dtype == np.complex64
     np.testing.assert_allclose(scipy.fft.rfftn(field.astype(np.float64)), S, rtol=0, atol=2e-5)
 
@@ -35,7 +35,7 @@ def test_plane_power_is_neither_lost_nor_doubled():
     # Parseval on the full spectrum: the field's sum of squares equals the
     # prescribed power, counting interior half-spectrum cells twice
     shape = (6, 8)
-    field, S = synthesize(shape, _ones, seed=5, dtype=np.float64, amplitude="fixed", return_spectrum=True)
+    field, S = synthesize(shape, _ones, rng=5, dtype=np.float64, amplitude_distribution="fixed", return_spectrum=True)
     weight = np.full(S.shape, 2.0)
     weight[:, 0] = 1
     weight[:, -1] = 1  # Nyquist column of an even width
@@ -56,7 +56,7 @@ def test_expected_power_equals_envelope_squared_on_every_cell(amplitude):
     n = 3000
     rng = np.random.default_rng(0)
     for _ in range(n):
-        _, S = synthesize(shape, env, seed=rng, dtype=np.float64, amplitude=amplitude, return_spectrum=True)
+        _, S = synthesize(shape, env, rng=rng, dtype=np.float64, amplitude_distribution=amplitude, return_spectrum=True)
         acc += np.abs(S) ** 2
     ratio = acc / n / target
     # planes (kx = 0 and kx = 3, Nyquist) included: no cell at half or double power
@@ -83,10 +83,10 @@ def test_frequency_vectors_are_broadcast_not_meshgrids():
 
 def test_same_seed_bit_identical_and_generator_accepted():
     env = lambda wy, wx: E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.4))  # noqa: E731
-    a = synthesize((16, 16), env, seed=11)
-    b = synthesize((16, 16), env, seed=11)
-    c = synthesize((16, 16), env, seed=np.random.default_rng(11))
-    d = synthesize((16, 16), env, seed=12)
+    a = synthesize((16, 16), env, rng=11)
+    b = synthesize((16, 16), env, rng=11)
+    c = synthesize((16, 16), env, rng=np.random.default_rng(11))
+    d = synthesize((16, 16), env, rng=12)
     assert a.tobytes() == b.tobytes() == c.tobytes()
     assert not np.array_equal(a, d)
 
@@ -97,7 +97,7 @@ def test_synthesize_rejects_bad_envelopes():
     with pytest.raises(ValueError, match="non-negative"):
         synthesize((8, 8), lambda wy, wx: -np.ones((8, 5)))
     with pytest.raises(ValueError, match="amplitude"):
-        synthesize((8, 8), _ones, amplitude="gaussian")
+        synthesize((8, 8), _ones, amplitude_distribution="gaussian")
     with pytest.raises(ValueError, match=r"shape\[1\]"):
         synthesize((8, 0), _ones)
 
@@ -118,20 +118,20 @@ def _radial_power_slope(field, lo, hi):
 
 @pytest.mark.parametrize("exponent", [0.5, 1.0, 2.0])
 def test_spectral_noise_power_slope(exponent):
-    x = spectral_noise((256, 256), exponent=exponent, seed=2, normalize="sample")
+    x = spectral_noise((256, 256), exponent=exponent, rng=2, normalize="sample")
     slope = _radial_power_slope(x, 4 / 256, 100 / 256)
     assert abs(slope + 2 * exponent) < 0.15, slope
     assert abs(float(x.std()) - 1) < 1e-5 and abs(float(x.mean())) < 1e-5
 
 
 def test_spectral_noise_band_and_dimensions():
-    x = spectral_noise((128, 128), band=(8, 16), seed=0, dtype=np.float64)
+    x = spectral_noise((128, 128), band=(8, 16), rng=0, dtype=np.float64)
     P = np.abs(np.fft.fft2(x)) ** 2
     r = np.hypot(np.fft.fftfreq(128)[:, None], np.fft.fftfreq(128)[None, :]) * 128
     inside = (r >= 8) & (r <= 16)
     assert P[~inside].max() < 1e-18 * P[inside].max()
     for shape in [(100,), (9, 10, 11)]:
-        y = spectral_noise(shape, seed=1)
+        y = spectral_noise(shape, rng=1)
         assert y.shape == shape and y.dtype == np.float32
 
 
@@ -151,19 +151,19 @@ _displacement = phase_correlation_shift
 
 def test_motion_plane_envelope_translates_with_its_velocity():
     T = 16
-    env = lambda wt, wy, wx: (E.motion_plane(wt, wy, wx, (2.0, -1.0), tolerance=np.pi / T)  # noqa: E731
+    env = lambda wt, wy, wx: (E.motion_plane(wt, wy, wx, velocity_yx=(-1.0, 2.0), tol=np.pi / T)  # noqa: E731
                               * E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.3)))
-    v = synthesize((T, 64, 64), env, seed=0, dtype=np.float64)
+    v = synthesize((T, 64, 64), env, rng=0, dtype=np.float64)
     assert _displacement(v[0], v[1]) == (2, -1)
 
 
 def test_optical_snow_wedge_holds_its_planes_only():
     wt, wy, wx = frequency_vectors((32, 32, 32))
-    m = E.optical_snow(wt, wy, wx, (0, 1), (0.5, 2.0), tolerance=1e-9)
+    m = E.optical_snow(wt, wy, wx, direction_yx=(1, 0), speeds=(0.5, 2.0), tol=1e-9)
     # a cell on the s = 1 plane is inside, one on s = 4 is outside
     ky, kt_in, kt_out = 3, -3, -12  # wt = -s * wy at wy = 2*pi*3/32
     assert m[kt_in % 32, ky, 0] == 1 and m[kt_out % 32, ky, 0] == 0
-    n = E.nonparallel_optical_snow(wt, wy, wx, (0, 1), (1.0, 1.0), pan=(1.0, 0.0), tolerance=1e-9)
+    n = E.nonparallel_optical_snow(wt, wy, wx, direction_yx=(1, 0), speeds=(1.0, 1.0), pan_yx=(0.0, 1.0), tol=1e-9)
     # velocity (1, 1): wt = -(wx + wy)
     assert n[(-(2 + 3)) % 32, 3, 2] == 1 and n[(-3) % 32, 3, 2] == 0
 
@@ -203,8 +203,8 @@ def test_spectral_noise_is_synthesize_with_annulus_times_power_law(shape, band):
     n = shape[-1]
     lo, hi = (band[0] / n, band[1] / n) if band else (0.0, 0.5 * np.sqrt(len(shape)) + 1.0)
     env = lambda *w: E.annulus(*w, band_cycles_per_sample=(lo, hi)) * E.power_law(*w, exponent=1.5)  # noqa: E731
-    _, S = synthesize(shape, env, seed=7, amplitude="rayleigh", dtype=np.float64, return_spectrum=True)
-    x = spectral_noise(shape, exponent=1.5, band=band, seed=7, dtype=np.float64)
+    _, S = synthesize(shape, env, rng=7, amplitude_distribution="rayleigh", dtype=np.float64, return_spectrum=True)
+    x = spectral_noise(shape, exponent=1.5, band=band, rng=7, dtype=np.float64)
     X = scipy.fft.rfftn(x)
     scale = np.sqrt(np.sum(np.abs(X) ** 2) / np.sum(np.abs(S) ** 2))
     np.testing.assert_allclose(X, S * scale, rtol=0, atol=1e-12 * np.abs(X).max())
@@ -214,10 +214,10 @@ def test_spectral_noise_is_synthesize_with_annulus_times_power_law(shape, band):
 @pytest.mark.parametrize("shape,band", NOISE_CASES)
 def test_spectrum_side_normalisation_gives_zero_mean_unit_variance_exactly(shape, band):
     # normalize="sample": the spectrum is scaled by N / sqrt(sum |S|^2) before the FFT (Parseval, DC = 0)
-    x = spectral_noise(shape, band=band, seed=3, dtype=np.float64, normalize="sample")
+    x = spectral_noise(shape, band=band, rng=3, dtype=np.float64, normalize="sample")
     assert abs(float(x.mean())) < 1e-14
     assert abs(float(x.std()) - 1.0) < 1e-13
-    y = spectral_noise(shape, band=band, seed=3, dtype=np.float32, normalize="sample")
+    y = spectral_noise(shape, band=band, rng=3, dtype=np.float32, normalize="sample")
     assert abs(float(y.mean(dtype=np.float64))) < 1e-6
     assert abs(float(y.std(dtype=np.float64)) - 1.0) < 2e-6
     # float32 and float64 share their draws: the same field to float32 precision
@@ -238,17 +238,17 @@ def test_pruned_inverse_fft_equals_irfftn_of_the_full_spectrum():
 
 
 def test_spectral_noise_same_seed_same_bits_and_band_edges():
-    a = spectral_noise((48, 40), band=(3, 12), seed=21)
-    b = spectral_noise((48, 40), band=(3, 12), seed=np.random.default_rng(21))
-    c = spectral_noise((48, 40), band=(3, 12), seed=22)
+    a = spectral_noise((48, 40), band=(3, 12), rng=21)
+    b = spectral_noise((48, 40), band=(3, 12), rng=np.random.default_rng(21))
+    c = spectral_noise((48, 40), band=(3, 12), rng=22)
     assert a.tobytes() == b.tobytes() and not np.array_equal(a, c)
     # return_spectrum and the in-place FFT path give the same bits
     env = lambda wy, wx: E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.4))  # noqa: E731
-    f1 = synthesize((16, 18), env, seed=4)
-    f2, _ = synthesize((16, 18), env, seed=4, return_spectrum=True)
+    f1 = synthesize((16, 18), env, rng=4)
+    f2, _ = synthesize((16, 18), env, rng=4, return_spectrum=True)
     assert f1.tobytes() == f2.tobytes()
     # the band edges are inclusive, as the annulus says: 12 cycles/frame exactly is kept
-    x = spectral_noise((64, 64), band=(4, 12), seed=0, dtype=np.float64)
+    x = spectral_noise((64, 64), band=(4, 12), rng=0, dtype=np.float64)
     P = np.abs(np.fft.fft2(x)) ** 2
     assert P[0, 12] > 0 and P[12, 0] > 0 and P[0, 4] > 0 and P[0, 13] < 1e-20 and P[0, 3] < 1e-20
 
@@ -288,7 +288,7 @@ def test_synthesize_follows_its_documented_draws_on_dense_and_sparse_rows():
     env[3, 2] = 0.0          # a sparse row
     env[5, :] = 0.0          # an empty row
     env[7, 1:4] = [0.5, 2.0, 0.0]
-    _, S = synthesize(shape, env, seed=9, amplitude="rayleigh", dtype=np.float64, return_spectrum=True)
+    _, S = synthesize(shape, env, rng=9, amplitude_distribution="rayleigh", dtype=np.float64, return_spectrum=True)
     sup = env > 0
     a2, c, s = _draws(stream_key(np.random.default_rng(9)), 0, int(sup.sum()), AMPLITUDE_MODES["rayleigh"])
     z = np.sqrt(a2.astype(np.float64)) * (c + 1j * s.astype(np.float64)) / np.abs(c + 1j * s.astype(np.float64))
@@ -303,7 +303,7 @@ def test_synthesize_follows_its_documented_draws_on_dense_and_sparse_rows():
 
 def _ensemble_power(shape, exponent, seeds, **kw):
     """Mean |fftn|**2 over seeds, the law's expected |X|**2 at unit variance, and |f| of every cell."""
-    X = np.mean([np.abs(np.fft.fftn(spectral_noise(shape, exponent=exponent, seed=s, dtype=np.float64, **kw))) ** 2
+    X = np.mean([np.abs(np.fft.fftn(spectral_noise(shape, exponent=exponent, rng=s, dtype=np.float64, **kw))) ** 2
                  for s in range(seeds)], axis=0)
     f = np.sqrt(sum(np.meshgrid(*[np.fft.fftfreq(n) ** 2 for n in shape], indexing="ij")))
     law = np.where(f > 0, np.where(f > 0, f, 1) ** (-2.0 * exponent), 0.0)
@@ -329,7 +329,7 @@ def test_round_trip_power_is_the_law_on_average(shape, exponent, seeds):
         sd = np.sqrt(np.sum(target[m] ** 2) / seeds) / target[m].sum() * np.sqrt(2)
         assert abs(ratio - 1) < 5 * sd + 0.01, (a, b, ratio, sd)
     # colorednoise's variance test: the realisations' variance is 1 on average (E[x**2] = 1, not each field's)
-    v = [spectral_noise(shape, exponent=exponent, seed=s, dtype=np.float64).var() for s in range(seeds)]
+    v = [spectral_noise(shape, exponent=exponent, rng=s, dtype=np.float64).var() for s in range(seeds)]
     assert abs(np.mean(v) - 1) < 5 * np.std(v) / np.sqrt(seeds)
 
 
@@ -340,7 +340,7 @@ def test_sample_normalisation_keeps_each_field_at_unit_variance_and_biases_the_e
         X, target, f = _ensemble_power((64,), 1.0, 400, normalize=normalize)
         high = f >= 0.25
         assert lo < X[high].sum() / target[high].sum() < hi, normalize
-    x = spectral_noise((64,), exponent=1.0, seed=1, normalize="sample", dtype=np.float64)
+    x = spectral_noise((64,), exponent=1.0, rng=1, normalize="sample", dtype=np.float64)
     assert abs(x.var() - 1) < 1e-13
     with pytest.raises(ValueError, match="normalize must be one of"):
         spectral_noise((64,), normalize="max")
@@ -349,26 +349,26 @@ def test_sample_normalisation_keeps_each_field_at_unit_variance_and_biases_the_e
 def test_dc_term_kept_on_request_with_the_lowest_ring_amplitude():
     # a 1/f**2 random walk (exponent 1 in 1-D) has a displacement: dc=True keeps DC, with the law taken flat
     # below the lowest nonzero frequency, so |S(0)| = |S(1/n)| when every cell has amplitude exactly the law
-    x = spectral_noise((256,), exponent=1.0, dc=True, seed=3, amplitude="fixed", dtype=np.float64)
+    x = spectral_noise((256,), exponent=1.0, dc=True, rng=3, amplitude_distribution="fixed", dtype=np.float64)
     S = np.abs(np.fft.rfft(x))
     assert S[0] > 0 and abs(S[0] / S[1] - 1) < 1e-12 and abs(S[2] / S[1] - 2 ** -1.0) < 1e-12
     # non-square 2-D: the lowest ring is 1/24 cycles/sample, the (0, 1) cell along the 24-sample axis
-    y = spectral_noise((16, 24), exponent=2.0, dc=True, seed=3, amplitude="fixed", dtype=np.float64)
+    y = spectral_noise((16, 24), exponent=2.0, dc=True, rng=3, amplitude_distribution="fixed", dtype=np.float64)
     Y = np.abs(np.fft.fft2(y))
     assert abs(Y[0, 0] / Y[0, 1] - 1) < 1e-12 and Y[0, 0] > Y[1, 0]
     # the band must start at 0; a blue law is 0 at DC and stays 0
-    z = spectral_noise((64,), exponent=-1.0, dc=True, band=(0, 32), seed=0, amplitude="fixed", dtype=np.float64)
+    z = spectral_noise((64,), exponent=-1.0, dc=True, band=(0, 32), rng=0, amplitude_distribution="fixed", dtype=np.float64)
     assert abs(np.fft.rfft(z)[0]) < 1e-12 * np.abs(np.fft.rfft(z)).max()
     with pytest.raises(ValueError, match="dc=True .* band"):
         spectral_noise((64,), dc=True, band=(1, 8))
     with pytest.raises(TypeError, match="dc must be"):
         spectral_noise((64,), dc="yes")
     # the ensemble: E[x**2] = 1 with DC in, and the walk's mean varies from field to field
-    walks = np.stack([spectral_noise((128,), exponent=1.0, dc=True, seed=s, dtype=np.float64) for s in range(300)])
+    walks = np.stack([spectral_noise((128,), exponent=1.0, dc=True, rng=s, dtype=np.float64) for s in range(300)])
     m2 = np.mean(walks ** 2, axis=1)
     assert abs(m2.mean() - 1) < 5 * m2.std() / np.sqrt(300)
     assert walks.mean(axis=1).std() > 0.3
-    no_dc = spectral_noise((128,), exponent=1.0, seed=0, dtype=np.float64)
+    no_dc = spectral_noise((128,), exponent=1.0, rng=0, dtype=np.float64)
     assert abs(no_dc.mean()) < 1e-14
 
 
@@ -379,11 +379,11 @@ def test_dc_term_kept_on_request_with_the_lowest_ring_amplitude():
 def test_steep_exponents_are_right_in_float32(shape, exponent):
     # the float32 power sum used to overflow (all zeros, or std 2.9e13 at 2048**2): the law is now evaluated
     # relative to the band's loudest end and the sums are float64, so float32 gives the float64 field
-    x32 = spectral_noise(shape, exponent=exponent, seed=4, dtype=np.float32)
-    x64 = spectral_noise(shape, exponent=exponent, seed=4, dtype=np.float64)
+    x32 = spectral_noise(shape, exponent=exponent, rng=4, dtype=np.float32)
+    x64 = spectral_noise(shape, exponent=exponent, rng=4, dtype=np.float64)
     assert np.all(np.isfinite(x32)) and np.abs(x32).max() > 0
     np.testing.assert_allclose(x32, x64, rtol=0, atol=1e-5 * np.abs(x64).max())
-    y32 = spectral_noise(shape, exponent=exponent, seed=4, dtype=np.float32, normalize="sample")
+    y32 = spectral_noise(shape, exponent=exponent, rng=4, dtype=np.float32, normalize="sample")
     assert abs(float(y32.std(dtype=np.float64)) - 1) < 1e-4
 
 
@@ -394,21 +394,21 @@ def test_empty_band_and_single_sample_shape_are_refused():
         spectral_noise((1, 1))
     with pytest.raises(ValueError, match="no nonzero frequency"):
         spectral_noise((1,))
-    assert spectral_noise((1, 2), seed=0).shape == (1, 2)  # one nonzero frequency is enough
+    assert spectral_noise((1, 2), rng=0).shape == (1, 2)  # one nonzero frequency is enough
 
 
 def test_synthesize_huge_and_tiny_envelopes_are_scaled_or_refused():
     env = lambda wy, wx: E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.3))  # noqa: E731
-    ref, S = synthesize((32, 32), env, seed=1, dtype=np.float64, return_spectrum=True)
+    ref, S = synthesize((32, 32), env, rng=1, dtype=np.float64, return_spectrum=True)
     for k in (1e300, 1e-300):
-        big, Sb = synthesize((32, 32), lambda wy, wx: k * env(wy, wx), seed=1, dtype=np.float64,
+        big, Sb = synthesize((32, 32), lambda wy, wx: k * env(wy, wx), rng=1, dtype=np.float64,
                              return_spectrum=True)
         np.testing.assert_allclose(big, k * ref, rtol=1e-12, atol=0)
         np.testing.assert_allclose(Sb, k * S, rtol=1e-12, atol=0)
-    small = synthesize((32, 32), lambda wy, wx: 1e-35 * env(wy, wx), seed=1, dtype=np.float32)
+    small = synthesize((32, 32), lambda wy, wx: 1e-35 * env(wy, wx), rng=1, dtype=np.float32)
     np.testing.assert_allclose(small, 1e-35 * ref, rtol=1e-5, atol=1e-40)
     with pytest.raises(ValueError, match="envelope is too large for float32"):
-        synthesize((32, 32), lambda wy, wx: 1e300 * env(wy, wx), seed=1)
+        synthesize((32, 32), lambda wy, wx: 1e300 * env(wy, wx), rng=1)
 
 
 # --- issue 17: workers ---
@@ -420,13 +420,13 @@ def test_output_is_bit_identical_for_any_worker_count(workers):
              ((64, 80), (2, 12))]
     for shape, band in cases:
         for normalize in ("expected", "sample"):
-            a = spectral_noise(shape, band=band, seed=5, normalize=normalize, workers=1)
-            b = spectral_noise(shape, band=band, seed=5, normalize=normalize, workers=workers)
+            a = spectral_noise(shape, band=band, rng=5, normalize=normalize, workers=1)
+            b = spectral_noise(shape, band=band, rng=5, normalize=normalize, workers=workers)
             assert a.tobytes() == b.tobytes(), (shape, band, normalize)
     env = lambda wt, wy, wx: E.annulus(wt, wy, wx, band_cycles_per_sample=(0.02, 0.4))  # noqa: E731
-    a = synthesize((48, 64, 80), env, seed=2, workers=1)
-    assert a.tobytes() == synthesize((48, 64, 80), env, seed=2, workers=workers).tobytes()
-    assert a.tobytes() == synthesize((48, 64, 80), env, seed=2).tobytes()
+    a = synthesize((48, 64, 80), env, rng=2, workers=1)
+    assert a.tobytes() == synthesize((48, 64, 80), env, rng=2, workers=workers).tobytes()
+    assert a.tobytes() == synthesize((48, 64, 80), env, rng=2).tobytes()
 
 
 def test_workers_is_validated():
@@ -442,8 +442,8 @@ def test_analysers_give_the_same_bits_for_any_worker_count():
     from noiselab import analysis as A
     from noiselab.snowfall import snow
 
-    img = spectral_noise((96, 128), seed=1)
-    video = snow((16, 64, 64), seed=2)
+    img = spectral_noise((96, 128), rng=1)
+    video = snow((16, 64, 64), rng=2)
     assert A.power_spectrum(img, workers=1).power.tobytes() == A.power_spectrum(img, workers=2).power.tobytes()
     r1, r2 = A.radial_spectrum(img, workers=1), A.radial_spectrum(img, workers=-1)
     assert r1.power.tobytes() == r2.power.tobytes()
@@ -458,7 +458,7 @@ def test_one_band_validator_gives_one_message_everywhere():
     import noiselab.analysis as A
     from noiselab.snowfall import flake_speeds, snow
 
-    img = spectral_noise((64, 64), band=(2, 16), seed=0)
+    img = spectral_noise((64, 64), band=(2, 16), rng=0)
     nyquist = "band[1] = 40 cycles/frame is past the Nyquist frequency 32 cycles/frame"
     for call in (lambda b: spectral_noise((64, 64), band=b), lambda b: snow((2, 64, 64), band=b),
                  lambda b: flake_speeds(1.0, b, 64), lambda b: A.spectral_slope(img, b)):
@@ -471,7 +471,7 @@ def test_one_band_validator_gives_one_message_everywhere():
         with pytest.raises(ValueError, match=r"band must be a \(lo, hi\) pair in cycles/frame"):
             call((1, 2, 3))
     # the generators' bands may start at 0 (DC stays out unless dc=True); an analyser's log bins need lo > 0
-    assert spectral_noise((64, 64), band=(0, 8), seed=0).shape == (64, 64)
+    assert spectral_noise((64, 64), band=(0, 8), rng=0).shape == (64, 64)
     with pytest.raises(ValueError, match=r"band\[0\] \(cycles/frame\) must be in \(0, inf\)"):
         A.spectral_slope(img, (0, 8))
 
@@ -493,7 +493,7 @@ def test_annulus_band_says_its_unit_and_the_old_keywords_still_work():
         E.annulus(w, band=(0.1, 0.3))
     # spectral_noise's band in cycles/frame is annulus's in cycles/sample times the width
     shape, band = (48, 64), (3, 11)
-    x = spectral_noise(shape, band=band, seed=2, dtype=np.float64)
+    x = spectral_noise(shape, band=band, rng=2, dtype=np.float64)
     ring = E.annulus(*frequency_vectors(shape), band_cycles_per_sample=(band[0] / 64, band[1] / 64))
     P = np.abs(scipy.fft.rfftn(x)) ** 2
     assert P[ring == 0].max() < 1e-20 * P.max() and np.all(P[ring > 0] > 0)

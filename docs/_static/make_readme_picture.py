@@ -15,7 +15,7 @@ import noiselab  # noqa: E402
 from noiselab.lattice import Grid  # noqa: E402
 from noiselab.snowfall.background import default_background  # noqa: E402
 
-alpha = noiselab.snow((32, 160, 160), seed=1)
+alpha = noiselab.snow((32, 160, 160), rng=1)
 frame = noiselab.composite(alpha, default_background(160, 160))[0]
 terrain = noiselab.fractal_sum(noiselab.LatticeNoise(2, seed=2, kernel="quintic", basis="gradient"),
                                Grid((160, 160), ((0, 4), (0, 4))), 6)

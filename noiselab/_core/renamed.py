@@ -11,7 +11,7 @@ import functools
 import inspect
 import warnings
 
-__all__ = ["renamed_parameters"]
+__all__ = ["renamed_parameters", "keyword_only", "array_order", "swap_pair"]
 
 # the release that removes the old spellings
 REMOVED_IN = "0.3"
@@ -53,6 +53,128 @@ def renamed_parameters(**old_to_new):
             return function(*args, **kwargs)
 
         wrapper.__renamed_parameters__ = dict(old_to_new)
+        return wrapper
+
+    return decorate
+
+
+def keyword_only(*names):
+    """Decorator: ``names``, now keyword-only, still taken by position for one release with a DeprecationWarning.
+
+    The old positional order of ``names`` follows the last positional
+    parameter of the new signature. The wrapped function's signature shows
+    them keyword-only.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> @keyword_only("axis")
+    ... def period(x, *, axis=-1):
+    ...     return axis
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     period([1], 0), period([1], axis=0), caught[0].category.__name__
+    (0, 0, 'DeprecationWarning')
+    """
+    def decorate(function):
+        parameters = inspect.signature(function).parameters
+        for name in names:
+            if name not in parameters or parameters[name].kind is not inspect.Parameter.KEYWORD_ONLY:
+                raise TypeError(f"{function.__qualname__} has no keyword-only parameter {name!r}")
+        n_positional = sum(p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) for p in parameters.values())
+
+        @functools.wraps(function)
+        def wrapper(*args, **kwargs):
+            if len(args) > n_positional:
+                extra = args[n_positional:]
+                if len(extra) > len(names):
+                    raise TypeError(f"{function.__qualname__}() takes {n_positional} positional arguments but "
+                                    f"{len(args)} were given")
+                for name, value in zip(names, extra):
+                    if name in kwargs:
+                        raise TypeError(f"{function.__qualname__}() got multiple values for argument {name!r}")
+                    warnings.warn(f"{function.__qualname__}(): passing {name} by position is deprecated and will "
+                                  f"stop working in noiselab {REMOVED_IN}; pass {name}= as a keyword",
+                                  DeprecationWarning, stacklevel=2)
+                    kwargs[name] = value
+                args = args[:n_positional]
+            return function(*args, **kwargs)
+
+        wrapper.__keyword_only__ = tuple(names)
+        return wrapper
+
+    return decorate
+
+
+def swap_pair(name, value):
+    """``value``, a pair, in the other order: ``(x, y)`` <-> ``(y, x)``; a ``TypeError``/``ValueError`` naming ``name``.
+
+    Examples
+    --------
+    >>> swap_pair("direction_yx", (1.0, 0.0))
+    (0.0, 1.0)
+    """
+    if isinstance(value, (str, bytes, set, frozenset, dict)) or not hasattr(value, "__len__"):
+        raise TypeError(f"{name} must be a pair of real numbers in array order (y, x), got {value!r}")
+    if len(value) != 2:
+        raise ValueError(f"{name} must be a pair in array order (y, x), got {len(value)} entries: {value!r}")
+    return (value[1], value[0])
+
+
+def array_order(*pairs, positional=()):
+    """Decorator: ``old=(x, y)`` keywords replaced by ``new=(y, x)`` ones in array order, the old kept for one release.
+
+    ``pairs`` are ``(old, new)`` names. An old keyword still works with a
+    ``DeprecationWarning`` that names the new one: its pair is swapped into
+    array order, never reinterpreted. ``positional`` names the old keywords
+    that an old call could pass by position, in that order, after the new
+    signature's positional parameters (they are warned about and swapped the
+    same way). Passing an old and its new spelling together is a ``TypeError``.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> @array_order(("velocity", "velocity_yx"))
+    ... def speed(*, velocity_yx=(0.0, 0.0)):
+    ...     return velocity_yx
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     speed(velocity=(2.0, 1.0)), speed(velocity_yx=(1.0, 2.0)), caught[0].category.__name__
+    ((1.0, 2.0), (1.0, 2.0), 'DeprecationWarning')
+    """
+    old_to_new = dict(pairs)
+
+    def decorate(function):
+        parameters = inspect.signature(function).parameters
+        for old, new in old_to_new.items():
+            if new not in parameters or old in parameters:
+                raise TypeError(f"{function.__qualname__} has no parameter {new!r} to replace {old!r} with")
+        n_positional = sum(p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) for p in parameters.values())
+
+        @functools.wraps(function)
+        def wrapper(*args, **kwargs):
+            if len(args) > n_positional:
+                extra = args[n_positional:]
+                if len(extra) > len(positional):
+                    raise TypeError(f"{function.__qualname__}() takes {n_positional} positional arguments but "
+                                    f"{len(args)} were given")
+                for old, value in zip(positional, extra):
+                    if old in kwargs:
+                        raise TypeError(f"{function.__qualname__}() got multiple values for argument {old!r}")
+                    kwargs[old] = value
+                args = args[:n_positional]
+            for old, new in old_to_new.items():
+                if old in kwargs:
+                    if new in kwargs:
+                        raise TypeError(f"{function.__qualname__}() got both {old}= (deprecated, (x, y) order) and "
+                                        f"{new}=; pass {new}= only")
+                    warnings.warn(f"{function.__qualname__}(): {old}=(x, y) is deprecated and will be removed in "
+                                  f"noiselab {REMOVED_IN}; pass {new}=(y, x) instead (array order, like shapes)",
+                                  DeprecationWarning, stacklevel=2)
+                    kwargs[new] = swap_pair(old, kwargs.pop(old))
+            return function(*args, **kwargs)
+
+        wrapper.__array_order__ = dict(old_to_new)
         return wrapper
 
     return decorate

@@ -84,17 +84,18 @@ def check_band(name, band, fmax, *, allow_none=False):
     return validate.check_band(name, band, fmax, lo_open=True, allow_none=allow_none)
 
 
-def check_vector(name, value, *, nonzero=False) -> np.ndarray:
-    """Validate a 2-vector ``(x, y)`` of finite reals."""
+def check_vector(name, value, *, nonzero=False, order="xy") -> np.ndarray:
+    """Validate a 2-vector of finite reals; returned as ``(x, y)`` (``order="yx"``: given in array order ``(y, x)``)."""
+    pair = "(y, x)" if order == "yx" else "(x, y)"
     if isinstance(value, (str, bytes, set, frozenset, dict)):
-        raise TypeError(f"{name} must be an ordered (x, y) pair, got a {type(value).__name__}")
+        raise TypeError(f"{name} must be an ordered {pair} pair, got a {type(value).__name__}")
     if not hasattr(value, "__len__") or len(value) != 2:
-        raise ValueError(f"{name} must be an (x, y) pair, got {value!r}")
+        raise ValueError(f"{name} must be a {pair} pair, got {value!r}")
     # within +-1e100 so that products with frequencies cannot overflow
     vec = np.array([check_real(f"{name}[{i}]", v, lo=-1e100, hi=1e100) for i, v in enumerate(value)], dtype=np.float64)
     if nonzero and not np.any(vec):
         raise ValueError(f"{name} must not be (0, 0)")
-    return vec
+    return vec[::-1].copy() if order == "yx" else vec
 
 
 def frequency_index(n: int, *, half: bool = False) -> np.ndarray:

@@ -42,7 +42,7 @@ import math
 import numpy as np
 import scipy.fft
 
-from .._core import check_memory, check_real
+from .._core import array_order, check_memory, check_real
 from ._common import check_band, check_tol, check_vector, check_video, frequency_index, half_weight, ref_size
 from .spectrum import PowerSpectrum, check_power_range, power_spectrum
 
@@ -172,15 +172,17 @@ def _surface_energy(spec: PowerSpectrum, grid: _Grid, kt_pred: np.ndarray, regio
     return on / total
 
 
-def motion_energy(video, velocity=(0.0, 0.0), *, tol=1.0, band=None, window=None) -> float:
-    """Fraction of a video's spectral power on the motion plane ``w_t = -v·w`` of ``velocity = (vx, vy)``.
+@array_order(("velocity", "velocity_yx"), positional=("velocity",))
+def motion_energy(video, *, velocity_yx=(0.0, 0.0), tol=1.0, band=None, window=None) -> float:
+    """Fraction of a video's spectral power on the motion plane ``w_t = -v·w`` of ``velocity_yx = (vy, vx)``.
 
     Parameters
     ----------
     video : array_like or PowerSpectrum
         ``(frames, height, width)``; or its :func:`video_spectrum`.
-    velocity : (vx, vy)
-        Pixels/frame, +y down.
+    velocity_yx : (vy, vx)
+        Pixels/frame in array order (+y down the rows, +x right).
+        ``velocity=(vx, vy)`` (also by position) is the old spelling, until 0.3.
     tol : float
         Accepted distance from the plane along ``w_t``, in temporal-frequency
         cells (cycles/video), modulo the temporal period.
@@ -193,7 +195,7 @@ def motion_energy(video, velocity=(0.0, 0.0), *, tol=1.0, band=None, window=None
 
     Returns
     -------
-    float in [0, 1]; 1 for an image translating at ``velocity`` (integer or
+    float in [0, 1]; 1 for an image translating at ``velocity_yx`` (integer or
     sub-pixel, when the translation loops over the video).
 
     Examples
@@ -201,11 +203,11 @@ def motion_energy(video, velocity=(0.0, 0.0), *, tol=1.0, band=None, window=None
     >>> import numpy as np
     >>> img = np.random.default_rng(0).random((32, 32))
     >>> video = np.stack([np.roll(img, (t, 2 * t), axis=(0, 1)) for t in range(32)])  # loops after 32 frames
-    >>> round(motion_energy(video, (2, 1), tol=0.5), 6)
+    >>> round(motion_energy(video, velocity_yx=(1, 2), tol=0.5), 6)
     1.0
     """
     spec = video_spectrum(video, window=window)
-    v = check_vector("velocity", velocity)
+    v = check_vector("velocity_yx", velocity_yx, order="yx")
     tol = check_tol("tol", tol)
     g = _Grid(spec.shape)
     kt_pred = -g.t * (v[0] * g.kx / g.w + v[1] * g.ky / g.h)
@@ -223,14 +225,15 @@ def _tent_kt(g: _Grid, c, direction, pan):
     return wt * g.t / (2 * np.pi)
 
 
-def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), thickness=0.1, tol=0.5, window=None,
+@array_order(("direction", "direction_yx"), ("pan", "pan_yx"), positional=("direction",))
+def tent_energy(video, c, band, *, direction_yx=(1.0, 0.0), pan_yx=(0.0, 0.0), thickness=0.1, tol=0.5, window=None,
                 workers=None) -> float:
     """Fraction of a video's power on the falling-snow tent inside ``band``.
 
     The tent (Langer & Zhang Eq. 3.3, numpy's FFT sign): ``w_t = -(c / |w|) d . w``,
     i.e. the layer of spatial frequency ``|w|`` rad/px moves at ``c / |w|``
-    px/frame along the unit fall direction ``d`` (default ``(0, 1)``: straight
-    down). With ``pan`` (px/frame) the sheared tent ``w_t = -((c / |w|) d + pan) . w``.
+    px/frame along the unit fall direction ``d`` (default ``direction_yx=(1, 0)``:
+    straight down). With ``pan_yx`` (px/frame) the sheared tent ``w_t = -((c / |w|) d + pan) . w``.
 
     Parameters
     ----------
@@ -241,10 +244,12 @@ def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), thickne
         ``c N / (2 pi f)`` px/frame.
     band : (lo, hi)
         Spatial band in cycles/frame; only cells with ``lo <= f <= hi`` count.
-    direction : (dx, dy)
-        Fall direction in image coordinates (+y down), any length.
-    pan : (px, py)
-        Camera pan as an image velocity in px/frame (sheared tent).
+    direction_yx : (dy, dx)
+        Fall direction in array order (+y down, +x right), any length.
+        ``direction=(dx, dy)`` (also by position) is the old spelling, until 0.3.
+    pan_yx : (uy, ux)
+        Camera pan as an image velocity in px/frame, array order (sheared
+        tent). ``pan=(ux, uy)`` is the old spelling, until 0.3.
     thickness : float
         Relative thickness of the tent (thesis 3.2.1), in [0, 1]: ``c`` spread over
         ``c (1 +- thickness)``, i.e. a half-width of ``thickness c |d . w| / |w|``
@@ -273,8 +278,8 @@ def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), thickne
     """
     spec = video_spectrum(video, window=window, workers=workers)
     c = check_real("c", c, lo=0.0, hi=np.pi)
-    d = check_vector("direction", direction, nonzero=True)
-    p = check_vector("pan", pan)
+    d = check_vector("direction_yx", direction_yx, nonzero=True, order="yx")
+    p = check_vector("pan_yx", pan_yx, order="yx")
     thickness = check_real("thickness", thickness, lo=0.0, hi=1.0)
     tol = check_tol("tol", tol)
     g = _Grid(spec.shape)
@@ -286,16 +291,17 @@ def tent_energy(video, c, band, direction=(0.0, 1.0), *, pan=(0.0, 0.0), thickne
     return _surface_energy(spec, g, _tent_kt(g, c, d, p), g.band_mask(band), tol_cells)
 
 
-def sheared_tent_energy(video, c, band, direction=(0.0, 1.0), pan=(0.0, 0.0), *, thickness=0.1, tol=0.5,
+@array_order(("direction", "direction_yx"), ("pan", "pan_yx"), positional=("direction", "pan"))
+def sheared_tent_energy(video, c, band, *, direction_yx=(1.0, 0.0), pan_yx=(0.0, 0.0), thickness=0.1, tol=0.5,
                         window=None) -> float:
     """Fraction of the power on the sheared tent of a panning camera (see :func:`tent_energy`).
 
     Parameters
     ----------
-    video, c, band, direction, thickness, tol, window
+    video, c, band, direction_yx, thickness, tol, window
         As for :func:`tent_energy`.
-    pan : (ux, uy), default (0, 0)
-        The camera's pan in px/frame (thesis Eq. 4.2).
+    pan_yx : (uy, ux), default (0, 0)
+        The camera's pan in px/frame, array order (thesis Eq. 4.2).
 
     Returns
     -------
@@ -310,11 +316,12 @@ def sheared_tent_energy(video, c, band, direction=(0.0, 1.0), pan=(0.0, 0.0), *,
     Examples
     --------
     >>> from noiselab.snowfall import snow
-    >>> video = snow((16, 64, 64), seed=0, c=1.0, band=(4, 16), pan=(1.0, 0.0))
-    >>> sheared_tent_energy(video, 1.0, (4, 16), pan=(1.0, 0.0)) > 0.9
+    >>> video = snow((16, 64, 64), rng=0, c=1.0, band=(4, 16), pan_yx=(0.0, 1.0))
+    >>> sheared_tent_energy(video, 1.0, (4, 16), pan_yx=(0.0, 1.0)) > 0.9
     True
     """
-    return tent_energy(video, c, band, direction, pan=pan, thickness=thickness, tol=tol, window=window)
+    return tent_energy(video, c, band, direction_yx=direction_yx, pan_yx=pan_yx, thickness=thickness, tol=tol,
+                       window=window)
 
 
 def _lag_one(spec: PowerSpectrum) -> np.ndarray:
@@ -532,7 +539,7 @@ def speed_profile(video, bands=None, *, window="hann", min_energy=1e-3, per_octa
     Examples
     --------
     >>> from noiselab.snowfall import snow
-    >>> profile = speed_profile(snow((16, 64, 64), seed=0, c=1.0, band=(4, 16)), [(4, 8), (8, 16)])
+    >>> profile = speed_profile(snow((16, 64, 64), rng=0, c=1.0, band=(4, 16)), [(4, 8), (8, 16)])
     >>> bool(profile.velocity[0, 1] > profile.velocity[1, 1] > 0)   # near (low-frequency) flakes fall faster
     True
     """

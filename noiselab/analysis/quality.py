@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft
 
-from .._core import as_array, check_int, check_real, check_real_sequence
+from .._core import array_order, as_array, check_int, check_real, check_real_sequence, keyword_only
 from ._common import check_band, check_field, half_weight, noise_floor
 from .spectrum import PowerSpectrum, _radial_frequency, _slabs, as_spectrum, power_spectrum
 
@@ -231,7 +231,7 @@ def slice_leakage(volume, band, *, axis=0, window=None) -> SliceLeakage:
     Examples
     --------
     >>> import noiselab
-    >>> vol = noiselab.spectral_noise((64, 64, 64), exponent=0.0, band=(8, 16), seed=0)
+    >>> vol = noiselab.spectral_noise((64, 64, 64), exponent=0.0, band=(8, 16), rng=0)
     >>> s = slice_leakage(vol, (8, 16))
     >>> round(s.volume.below, 6), round(s.slices.below, 2)   # none under 8 in 3-D, a quarter in 2-D
     (0.0, 0.24)
@@ -409,7 +409,7 @@ def envelope_error(field, target, *, groups=16, support=1e-6, window=None) -> En
     Examples
     --------
     >>> import noiselab
-    >>> x = noiselab.spectral_noise((256, 256), exponent=1.0, band=(4, 128), seed=0)
+    >>> x = noiselab.spectral_noise((256, 256), exponent=1.0, band=(4, 128), rng=0)
     >>> err = envelope_error(x, lambda f: np.where((f >= 4) & (f <= 128), f ** -2.0, 0.0))
     >>> bool(err.rms_db < 2 * err.noise_db), err.outside < 1e-9
     (True, True)
@@ -568,7 +568,8 @@ class Period:
     best_lag: int
 
 
-def detect_period(field, axis=-1, *, tol=1e-6, max_lag=None, min_lag=1) -> Period:
+@keyword_only("axis")
+def detect_period(field, *, axis=-1, tol=1e-6, max_lag=None, min_lag=1) -> Period:
     """Detect an exact repeat along one axis (a lattice's table period, an FFT field's domain).
 
     For every lag ``L`` from ``min_lag`` to ``max_lag`` (default: half the
@@ -798,7 +799,8 @@ class BandMotion:
     share: np.ndarray
 
 
-def tent_energy_per_band(video, c, band, direction=(0.0, 1.0), *, per_octave=1, thickness=0.1, tol=0.5,
+@array_order(("direction", "direction_yx"), positional=("direction",))
+def tent_energy_per_band(video, c, band, *, direction_yx=(1.0, 0.0), per_octave=1, thickness=0.1, tol=0.5,
                          window=None) -> BandMotion:
     """Fraction of each band's power on the falling-snow tent (:func:`noiselab.analysis.tent_energy`, band by band).
 
@@ -818,8 +820,9 @@ def tent_energy_per_band(video, c, band, direction=(0.0, 1.0), *, per_octave=1, 
         Tent constant in rad/frame (``0 <= c <= pi``).
     band : (lo, hi)
         Spatial band in cycles/frame, split into ``per_octave`` bands per octave.
-    direction : (dx, dy), default (0, 1)
-        Fall direction (x right, y down).
+    direction_yx : (dy, dx), default (1, 0)
+        Fall direction in array order (y down, x right); ``direction=(dx, dy)``
+        (also by position) is the old spelling, until 0.3.
     per_octave : int, default 1
         Bands per octave.
     thickness, tol, window
@@ -863,7 +866,7 @@ def tent_energy_per_band(video, c, band, direction=(0.0, 1.0), *, per_octave=1, 
     for b in bands:
         s = float(spatial[g.band_mask(b)].sum()) / total if total > 0 else 0.0
         # a sub-band without power (no cell in it, or none with power) has nothing to measure: fraction 0
-        on = tent_energy(spec, c, b, direction, thickness=thickness, tol=tol) if s > 0 else 0.0
+        on = tent_energy(spec, c, b, direction_yx=direction_yx, thickness=thickness, tol=tol) if s > 0 else 0.0
         frac.append(on / s if s > 0 else 0.0)
         share.append(s)
     return BandMotion(bands=np.array(bands), fraction=np.array(frac), share=np.array(share))

@@ -1,6 +1,9 @@
 """1/f checks: the log-log slope of the radial spectrum over a band, and the energy per octave."""
 from __future__ import annotations
 
+import functools
+import numbers
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -172,8 +175,31 @@ class OctaveEnergy:
         return float(10 * np.log10(self.energy.max() / self.energy.min())) if self.energy.min() > 0 else float("inf")
 
 
-def octave_energy(field, lo=1.0, hi=None, *, window=None, axes=None) -> OctaveEnergy:
-    """Fraction of the power in each octave band ``[lo 2**i, lo 2**(i+1))`` up to ``hi`` (default Nyquist, N/2).
+def _octave_band(function):
+    """``octave_energy``'s old split band (``lo, hi`` by position or keyword), kept for one release as ``band=``."""
+    @functools.wraps(function)
+    def wrapper(field, *args, **kwargs):
+        old = dict(zip(("lo", "hi"), args)) if args and isinstance(args[0], numbers.Real) else {}
+        if len(args) > 2 or (args and not old and len(args) > 1):
+            raise TypeError(f"octave_energy() takes 2 positional arguments (field, band), got {1 + len(args)}")
+        for name in ("lo", "hi"):
+            if name in kwargs:
+                if name in old:
+                    raise TypeError(f"octave_energy() got multiple values for {name}")
+                old[name] = kwargs.pop(name)
+        if old:
+            if "band" in kwargs:
+                raise TypeError("octave_energy() got both lo=/hi= (deprecated) and band=; pass band= only")
+            warnings.warn("octave_energy(): lo and hi are deprecated and will be removed in noiselab 0.3; pass "
+                          "band=(lo, hi) instead (hi=None: the Nyquist frequency)", DeprecationWarning, stacklevel=2)
+            return function(field, band=(old.get("lo", 1.0), old.get("hi")), **kwargs)
+        return function(field, *args, **kwargs)
+    return wrapper
+
+
+@_octave_band
+def octave_energy(field, band=None, *, window=None, axes=None) -> OctaveEnergy:
+    """Fraction of the power in each octave band ``[lo 2**i, lo 2**(i+1))`` of ``band = (lo, hi)``.
 
     A 2-D field whose amplitude falls as 1/f puts the same power in every
     octave (the annulus area grows as f while the power per cell falls as
@@ -184,10 +210,10 @@ def octave_energy(field, lo=1.0, hi=None, *, window=None, axes=None) -> OctaveEn
     ----------
     field : array_like or PowerSpectrum
         1-, 2- or 3-D finite field.
-    lo : float, default 1
-        Lower edge of the first octave in cycles/frame (> 0).
-    hi : float, optional
-        Upper limit in cycles/frame (default Nyquist, N/2).
+    band : (lo, hi), optional
+        In cycles/frame: ``lo`` (> 0) the lower edge of the first octave,
+        ``hi`` the upper limit (``None``: the Nyquist frequency, N/2).
+        Default ``(1, N/2)``.
     window : {None, "hann"}, optional
         Spatial taper before the FFT; ``"hann"`` for fields that do not tile.
     axes : tuple of int, optional
@@ -210,18 +236,22 @@ def octave_energy(field, lo=1.0, hi=None, *, window=None, axes=None) -> OctaveEn
     >>> ky, kx = np.fft.fftfreq(128)[:, None], np.fft.rfftfreq(128)[None, :]
     >>> f = np.hypot(kx, ky); f[0, 0] = 1
     >>> img = np.fft.irfft2(np.exp(2j * np.pi * np.random.default_rng(0).random(f.shape)) / f, s=(128, 128))
-    >>> oe = octave_energy(img, 4, 64)
+    >>> oe = octave_energy(img, (4, 64))
     >>> len(oe.energy), oe.spread < 0.1
     (4, True)
     """
     spec = as_spectrum(field, window=window, axes=axes)
     n_ref = spec.shape[spec.axes[-1]]
-    lo = check_real("lo", lo, lo=0.0, lo_open=True)
-    hi = n_ref / 2.0 if hi is None else check_real("hi", hi, lo=0.0, lo_open=True)
-    check_band("(lo, hi)", (lo, hi), n_ref / 2.0)
+    if band is None:
+        band = (1.0, None)
+    if isinstance(band, (str, bytes, set, frozenset, dict)) or not hasattr(band, "__len__") or len(band) != 2:
+        raise TypeError(f"band must be a (lo, hi) pair in cycles/frame, got {band!r}")
+    lo = check_real("band[0] (lo)", band[0], lo=0.0, lo_open=True)
+    hi = n_ref / 2.0 if band[1] is None else check_real("band[1] (hi)", band[1], lo=0.0, lo_open=True)
+    check_band("band", (lo, hi), n_ref / 2.0)
     n_oct = int(np.floor(np.log2(hi) - np.log2(lo) + 1e-9))  # logs apart: hi / lo overflows for tiny lo
     if n_oct < 1:
-        raise ValueError(f"(lo, hi) = ({lo:g}, {hi:g}) cycles/frame spans less than one octave")
+        raise ValueError(f"band = ({lo:g}, {hi:g}) cycles/frame spans less than one octave")
     edges = np.ldexp(lo, np.arange(n_oct + 1))  # lo * 2**k exactly, without overflowing 2**k
     bins = edges.copy()
     bins[-1] *= 1 + 1e-12

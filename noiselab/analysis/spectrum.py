@@ -636,10 +636,10 @@ def power_band(field, *, drop=1.0, window=None, axes=None, workers=None) -> Powe
     --------
     >>> import numpy as np
     >>> from noiselab.spectral import spectral_noise
-    >>> pb = power_band(spectral_noise((128, 128), exponent=1.0, band=(8, 24), seed=1))
+    >>> pb = power_band(spectral_noise((128, 128), exponent=1.0, band=(8, 24), rng=1))
     >>> pb.lo, pb.hi, pb.limited
     (8.0, 24.0, (True, True))
-    >>> power_band(spectral_noise((128, 128), exponent=1.0, seed=1)).limited
+    >>> power_band(spectral_noise((128, 128), exponent=1.0, rng=1)).limited
     (False, False)
     """
     drop = check_real("drop", drop, lo=0.0, lo_open=True, hi=30.0)

@@ -203,7 +203,7 @@ def measure(data, kind, *, band=None, window="auto", bands_per_octave=2):
     rs = A.radial_spectrum(spec, log=True)
     out["radial"] = {"frequency": rs.centers.tolist(), "amplitude": rs.amplitude.tolist()}
     if n_ref >= 8:
-        oe = A.octave_energy(spec, 1.0, n_ref / 2.0)
+        oe = A.octave_energy(spec, (1.0, n_ref / 2.0))
         out["octave_energy"] = {"edges": oe.edges.tolist(), "fraction": oe.energy.tolist(), "spread": oe.spread}
     if spatial and min(data.shape[-2:]) >= 8:
         # over the band found or given (a band-limited field's floor outside it is not the field's orientation)

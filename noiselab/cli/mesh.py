@@ -140,7 +140,7 @@ def run(args) -> int:
     args._max_frequency = frequency * lacunarity ** (octaves - 1)
 
     mesh = _load(args)
-    on_aliasing = "warn" if args.resolution == "auto" else args.resolution
+    on_alias = "warn" if args.resolution == "auto" else args.resolution
     if args.resolution == "auto":
         report = geo.resolution_report(mesh, args._max_frequency, samples_per_period=args.samples_per_period)
         if not report.ok:
@@ -151,7 +151,7 @@ def run(args) -> int:
     kind = "fractal" if args.field == "noise" else args.field
     common = dict(amplitude=args.amplitude, frequency=frequency, phase=args.phase, octaves=octaves, kind=kind,
                   lacunarity=lacunarity, gain=args.gain, samples_per_period=args.samples_per_period,
-                  on_aliasing=on_aliasing, direction=args.direction)
+                  on_alias=on_alias, direction=args.direction)
     t0 = 0.0 if args.time is None else args.time
     displaced = geo.displace(mesh, field, time=t0 if use_time else None, **common)
     s = displaced.vertex_attributes["displacement"]

@@ -40,14 +40,22 @@ def add_arguments(p):
     t.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
                    help="spatial band in cycles per frame width (default W/32 W/4: 16 128 at 512 px); HI <= W/2")
     t.add_argument("--thickness", type=float, default=0.1, help="relative tent thickness 0..1 (spread of c; default 0.1)")
-    t.add_argument("--direction", type=float, nargs=2, default=(0.0, 1.0), metavar=("DX", "DY"),
-                   help="fall direction, x right, y down (default 0 1: straight down)")
-    t.add_argument("--pan", type=float, nargs=2, default=(0.0, 0.0), metavar=("UX", "UY"),
-                   help="image velocity px/frame added by a panning camera (sheared tent; default 0 0)")
+    t.add_argument("--direction-yx", type=float, nargs=2, default=None, metavar=("DY", "DX"),
+                   help="fall direction in array order, y down, x right, as snow(direction_yx=) (default 1 0: "
+                        "straight down)")
+    t.add_argument("--direction", type=float, nargs=2, default=None, metavar=("DX", "DY"),
+                   help="the same in (x, y) order (the older spelling; --direction 1 2 = --direction-yx 2 1)")
+    t.add_argument("--pan-yx", type=float, nargs=2, default=None, metavar=("UY", "UX"),
+                   help="image velocity px/frame, array order, added by a panning camera (sheared tent), as "
+                        "snow(pan_yx=) (default 0 0)")
+    t.add_argument("--pan", type=float, nargs=2, default=None, metavar=("UX", "UY"),
+                   help="the same in (x, y) order (the older spelling; --pan 1 0 = --pan-yx 0 1)")
     t.add_argument("--beta", type=float, default=1.5, help="opacity exponent alpha**beta (default 1.5)")
     t.add_argument("--exponent", type=float, default=1.0, help="amplitude 1/f**exponent (default 1)")
-    t.add_argument("--amplitude", choices=("uniform", "rayleigh", "fixed"), default="uniform",
-                   help="random amplitude law (default uniform, as the thesis)")
+    t.add_argument("--amplitude-distribution", "--amplitude", dest="amplitude",
+                   choices=("uniform", "rayleigh", "fixed"), default="uniform",
+                   help="random amplitude law, snow(amplitude_distribution=) (default uniform, as the thesis; "
+                        "--amplitude is the old spelling)")
     t.add_argument("--on-alias", choices=("raise", "drop"), default="raise",
                    help="energy past the temporal Nyquist (pi rad/frame, e.g. --c above 2.856): error (default) "
                         "or drop those cells")
@@ -77,7 +85,7 @@ def _cli_words(message):
     for old, new in (("pass on_alias='drop'", "add --on-alias drop"), ('on_alias="drop"', "--on-alias drop"),
                      ("on_alias='drop'", "--on-alias drop"), ("largest allowed c ", "largest allowed --c "),
                      ("Largest allowed c ", "Largest allowed --c "), ("temporal aliasing: c=", "temporal aliasing: --c "),
-                     ("and pan=", "and --pan "), (" with thickness=", " with --thickness ")):
+                     ("and pan_yx=", "and --pan-yx "), (" with thickness=", " with --thickness ")):
         message = message.replace(old, new)
     return message
 
@@ -101,6 +109,16 @@ def _load_background(path):
     return bg
 
 
+def _array_order(args):
+    """``--direction-yx``/``--pan-yx`` from either spelling (the (x, y) flags swapped, never reinterpreted)."""
+    for new, old, default in (("direction_yx", "direction", (1.0, 0.0)), ("pan_yx", "pan", (0.0, 0.0))):
+        yx, xy = getattr(args, new, None), getattr(args, old, None)
+        if yx is not None and xy is not None:
+            raise ValueError(f"--{new.replace('_', '-')} and --{old} say the same thing in two orders; pass one")
+        setattr(args, new, tuple(yx) if yx is not None else tuple(xy[::-1]) if xy is not None else default)
+        setattr(args, old, None)
+
+
 def run(args) -> int:
     from ..io import write_video
     from ..snowfall import composite, iter_tiled_frames, snow
@@ -110,6 +128,7 @@ def run(args) -> int:
 
     if args.frames < 1:
         raise ValueError(f"--frames must be >= 1, got {args.frames}")
+    _array_order(args)
     out = Path(args.output)
     mp4 = out.suffix.lower() == ".mp4"
     if args.loops is not None and args.loops < 1:
@@ -162,10 +181,10 @@ def run(args) -> int:
         band = tuple(b * tw / W for b in band)  # keep the flakes' size in pixels
     t0 = time.perf_counter()
     try:
-        alpha = snow((T, th, tw), seed=args.seed, c=args.c, band=band, thickness=args.thickness,
-                     direction=tuple(args.direction), pan=tuple(args.pan), beta=args.beta, exponent=args.exponent,
-                     amplitude=args.amplitude, dtype=args.dtype, on_alias=args.on_alias, show_progress=args.progress,
-                     workers=args.workers)
+        alpha = snow((T, th, tw), rng=args.seed, c=args.c, band=band, thickness=args.thickness,
+                     direction_yx=args.direction_yx, pan_yx=args.pan_yx, beta=args.beta, exponent=args.exponent,
+                     amplitude_distribution=args.amplitude, dtype=args.dtype, on_alias=args.on_alias,
+                     progress=args.progress, workers=args.workers)
     except ValueError as exc:   # name the flags a command-line user types, not the Python keywords
         raise ValueError(_cli_words(str(exc))) from None
     t_render = time.perf_counter() - t0
@@ -194,7 +213,7 @@ def run(args) -> int:
         def __len__(self):
             return self.n
 
-    write_video(out, _Sized(frames, n_out), fps=args.fps, show_progress=args.progress)
+    write_video(out, _Sized(frames, n_out), fps=args.fps, progress=args.progress)
     what = "opacity" if args.no_background else "snow scene"
     print(f"wrote {what} to {out} ({n_out} frames of {W} x {H} px at {args.fps:g} fps, {n_out / args.fps:.2f} s; "
           f"period {T} frames, rendered in {t_render:.2f} s)")

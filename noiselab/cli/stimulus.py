@@ -53,8 +53,9 @@ def add_arguments(p):
     s.add_argument("--seed", type=int, default=0, help="random seed (default 0); same seed, same stimulus")
     k = p.add_argument_group("spectrum")
     k.add_argument("--exponent", type=float, default=1.0, help="pink: amplitude 1/f**exponent (default 1)")
-    k.add_argument("--band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
-                   help="pink and snow: spatial band in cycles/deg (default: all for pink, 1 8 for snow)")
+    k.add_argument("--band-cpd", "--band", dest="band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
+                   help="pink and snow: spatial band in cycles/deg, Display.band(band_cycles_per_degree=) (default: "
+                        "all for pink, 1 8 for snow; --band is the older spelling)")
     k.add_argument("--sf", type=float, default=4.0,
                    help="bandpass and cloud: peak spatial frequency in cycles/deg (default 4)")
     k.add_argument("--sf-bandwidth", type=float, default=2.0,
@@ -63,8 +64,11 @@ def add_arguments(p):
                    help="bandpass and cloud: orientation of the wave vector in degrees, y down (default 0)")
     k.add_argument("--orientation-bandwidth", type=float, default=None,
                    help="bandpass and cloud: orientation bandwidth B_theta in degrees (default: every orientation)")
-    k.add_argument("--velocity", type=float, nargs=2, default=(1.0, 0.0), metavar=("VX", "VY"),
-                   help="cloud: velocity in deg/s, x right, y down (default 1 0); snow: the fall speed is VY")
+    k.add_argument("--velocity-yx", type=float, nargs=2, default=None, metavar=("VY", "VX"),
+                   help="cloud: velocity in deg/s in array order, y down, x right (default 0 1); snow: the fall "
+                        "speed is VY")
+    k.add_argument("--velocity", type=float, nargs=2, default=None, metavar=("VX", "VY"),
+                   help="the same in (x, y) order (the older spelling; --velocity 1 0 = --velocity-yx 0 1)")
     k.add_argument("--speed-bandwidth", type=float, default=0.5,
                    help="cloud: MotionClouds' B_V in deg/s (default 0.5)")
     k.add_argument("--snow-frequency", type=float, default=4.0,
@@ -107,7 +111,7 @@ def _field(args, display, rng):
     if args.kind == "pink":
         band = None if args.band is None else display.band(args.band, n)
         used = dict(shape=(n, n), exponent=args.exponent, band=band)
-        return spectral_noise(seed=rng, **used), used
+        return spectral_noise(rng=rng, **used), used
     if args.kind in ("bandpass", "cloud"):
         used = dict(shape=(n, n) if args.kind == "bandpass" else (frames, n, n),
                     sf_0=display.cycles_per_pixel(args.sf), B_sf=display.cycles_per_pixel(args.sf_bandwidth),
@@ -115,18 +119,18 @@ def _field(args, display, rng):
         if args.kind == "cloud":
             used.update(V_X=display.px_per_frame(args.velocity[0]), V_Y=display.px_per_frame(args.velocity[1]),
                         B_V=display.px_per_frame(args.speed_bandwidth))
-        return motion_cloud(seed=rng, **used), used
+        return motion_cloud(rng=rng, **used), used
     if args.kind == "snow":
         band = display.band((1.0, 8.0) if args.band is None else args.band, n)
         used = dict(shape=(frames, n, n), c=display.snow_c(args.velocity[1], args.snow_frequency), band=band)
-        return snow(seed=rng, **used), used
+        return snow(rng=rng, **used), used
     if args.image is None:
         raise ValueError("scramble needs --image FILE (the image to phase-scramble)")
     from ..analysis import to_grey
     from ..io import read_image
 
     image = to_grey(read_image(args.image)).astype(np.float64)
-    return phase_scramble(image, seed=rng), dict(shape=image.shape, image=str(args.image))
+    return phase_scramble(image, rng=rng), dict(shape=image.shape, image=str(args.image))
 
 
 def _write(path, values, display, args):
@@ -150,7 +154,7 @@ def _write(path, values, display, args):
             raise ValueError(f"{path.name}: videos hold 8-bit values; a {display.bits}-bit display's stimulus goes "
                              f"to .npy (or --bits 8)")
         video = values if values.ndim == 3 else values[None]
-        write_video(path, video, fps=display.frame_rate, lossless=args.lossless, show_progress=False)
+        write_video(path, video, fps=display.frame_rate, lossless=args.lossless, progress=False)
     else:
         raise ValueError(f"output must end in .png, .mkv, .mp4 or .npy, got {path.name!r}")
 
@@ -173,6 +177,11 @@ def run(args):
     from ..io import atomic_output, prepare_output
     from ..stimuli import to_display
 
+    if args.velocity_yx is not None and args.velocity is not None:
+        raise ValueError("--velocity-yx and --velocity say the same thing in two orders; pass one")
+    # (vx, vy) from here on, as MotionClouds' V_X, V_Y
+    args.velocity = (tuple(args.velocity_yx[::-1]) if args.velocity_yx is not None
+                     else tuple(args.velocity) if args.velocity is not None else (1.0, 0.0))
     path = Path(args.output)
     suffix = path.suffix.lower()
     if suffix not in LOSSLESS:
@@ -183,8 +192,8 @@ def run(args):
     prepare_output(path)
     rng = np.random.default_rng(args.seed)
     field, used = _field(args, display, rng)
-    values = to_display(field, display, mean=args.mean, contrast=args.contrast, kind=args.contrast_kind,
-                        dither=not args.no_dither, seed=rng)
+    values = to_display(field, display, mean=args.mean, contrast=args.contrast, contrast_kind=args.contrast_kind,
+                        dither=not args.no_dither, rng=rng)
     _write(path, values, display, args)
     L = display.luminance_of(values)
     measured = {"mean_cd_m2": float(L.mean()), "rms_contrast": rms_contrast(L),

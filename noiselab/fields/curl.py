@@ -1,7 +1,7 @@
 """Curl noise: a divergence-free velocity field from lattice noise's exact derivatives.
 
-Bridson, Hourihan & Nordenstam 2007: in 2-D the rotated gradient
-``(dpsi/dy, -dpsi/dx)`` of a scalar potential ``psi``; in 3-D the curl of a
+Bridson, Hourihan & Nordenstam 2007: in 2-D the rotated gradient of a scalar
+potential ``psi`` (in array order, ``(v_y, v_x) = (dpsi/dx, -dpsi/dy)``); in 3-D the curl of a
 3-component potential. Its divergence is a difference of equal mixed
 partials, zero up to rounding: no sources or sinks in a flow stimulus.
 """
@@ -39,9 +39,11 @@ def curl_noise(noise, points, *, octaves=1, lacunarity=2.0, gain=0.5):
     Parameters
     ----------
     noise : LatticeNoise or Warped
-        2-D: a scalar potential ``psi`` (``dim_in=2, dim_out=1``), giving
-        ``v = (dpsi/dy, -dpsi/dx)`` (the streamfunction's velocity, tangent to
-        the contours of ``psi``). 3-D: a vector potential ``A``
+        2-D: a scalar potential ``psi`` (``dim_in=2, dim_out=1``) of points
+        in array order ``(y, x)``, giving the velocity in the same order,
+        ``(v_y, v_x) = (dpsi/dx, -dpsi/dy)``: component ``i`` is along point
+        axis ``i``, ``v[..., 0] = dpsi/dp_1`` and ``v[..., 1] = -dpsi/dp_0``
+        (the streamfunction's velocity, tangent to the contours of ``psi``). 3-D: a vector potential ``A``
         (``dim_in=3, dim_out=3``), giving ``v = curl A``. The kernel needs a
         continuous first derivative (not ``box`` or ``linear``).
     points : array (..., 2 or 3), or Grid
@@ -51,7 +53,8 @@ def curl_noise(noise, points, *, octaves=1, lacunarity=2.0, gain=0.5):
 
     Returns
     -------
-    ndarray ``(..., dim_in)``: the velocity, in potential units per input unit.
+    ndarray ``(..., dim_in)``: the velocity, in potential units per input unit, one component per point
+    axis in the points' order.
 
     Notes
     -----

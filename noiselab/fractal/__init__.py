@@ -133,7 +133,7 @@ def _grid_spacing(shape, ext):
     steps[steps == 0] = np.nan  # every sample of that axis at one point: nothing to alias along it
     return steps
 
-def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, absval, workers=1,
+def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, spacing, absval, workers=None,
          chunks=None):
     from ..lattice import Grid, LatticeNoise, grid_coordinates
     from ..lattice.checks import octave_periods
@@ -186,7 +186,7 @@ def _sum(noise, x, octaves, lacunarity, gain, normalize, dtype, return_octaves, 
 
 
 def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False, dtype=None,
-                return_octaves=False, spacing=None, workers=1, chunks=None):
+                return_octaves=False, spacing=None, workers=None, chunks=None):
     """Fractal sum of octaves (Phillips Eq. 9): ``sum_o gain**o * noise(lacunarity**o * x)``.
 
     Parameters
@@ -211,8 +211,10 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
     spacing : float, optional
         Sample spacing of scattered points (e.g. mesh edge length) to skip
         octaves past their Nyquist as on a grid.
-    workers : int, default 1
-        Threads (``LatticeNoise`` only; scipy.fft's meaning): scattered points
+    workers : int, optional
+        Threads (``LatticeNoise`` only; scipy.fft's meaning, default None:
+        scipy's current default, one thread unless a ``scipy.fft.set_workers``
+        block says otherwise; -1 every core): scattered points
         split into blocks, a grid into bands of its first axis (see
         :meth:`noiselab.lattice.LatticeNoise.grid`); bit-identical to one
         worker.
@@ -243,7 +245,7 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
 
 
 def turbulence(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False, dtype=None,
-               return_octaves=False, spacing=None, workers=1, chunks=None):
+               return_octaves=False, spacing=None, workers=None, chunks=None):
     """Turbulence (Phillips Eq. 10): ``sum_o gain**o * |noise(lacunarity**o * x)|``.
 
     Same parameters as :func:`fractal_sum`; the result is >= 0 (in [0, 1] with
@@ -335,7 +337,7 @@ def _jacobian_sum(noise, x, octaves, lacunarity, gain, normalize, return_value, 
 
 
 def fractal_gradient(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False, return_value=False,
-                     return_octaves=False, spacing=None, workers=1):
+                     return_octaves=False, spacing=None, workers=None):
     r"""Exact gradient of :func:`fractal_sum`: ``sum_o gain**o lacunarity**o noise'(lacunarity**o x)``.
 
     Parameters
@@ -377,7 +379,7 @@ def fractal_gradient(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize
 
 
 def turbulence_gradient(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False, return_value=False,
-                        return_octaves=False, spacing=None, workers=1):
+                        return_octaves=False, spacing=None, workers=None):
     r"""Gradient of :func:`turbulence` where it is differentiable: ``sum_o gain**o lacunarity**o sign(n_o) n_o'``.
 
     ``n_o = noise(lacunarity**o x)``. Turbulence has a crease wherever an

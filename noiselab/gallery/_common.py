@@ -46,7 +46,7 @@ def save_video(out, stem, frames, *, fps=25.0, vmin=None, vmax=None, poster_fram
 
     out = Path(out)
     frames = np.asarray(frames)
-    mp4 = write_video(out / f"{stem}.mp4", frames, fps=fps, vmin=vmin, vmax=vmax, show_progress=False)
+    mp4 = write_video(out / f"{stem}.mp4", frames, fps=fps, vmin=vmin, vmax=vmax, progress=False)
     poster = save_image(out / f"{stem}_poster.png", to_uint8(frames[poster_frame], vmin, vmax))
     return [mp4, poster]
 

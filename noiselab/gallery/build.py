@@ -58,7 +58,7 @@ def build_figure(out: Path, spec, quick: bool) -> dict:
     folder = out / spec.group / spec.name
     folder.parent.mkdir(parents=True, exist_ok=True)
     params = spec.parameters(quick)
-    man = {"key": spec.key, "seed": spec.seed, "title": spec.title, "params": params,
+    man = {"key": spec.key, "source": spec.source, "title": spec.title, "params": params,
            "quick": quick, "hash": content_hash(spec, quick)}
     t0 = time.perf_counter()
     try:
@@ -162,7 +162,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args) -> int:
     if args.list:
         for spec in specs(args.only):
-            print(f"{spec.key:32s} {spec.seed}: {spec.title}")
+            print(f"{spec.key:32s} {spec.source}: {spec.title}")
         return 0
     report = build(args.out, only=args.only, quick=args.quick, force=args.force,
                    show_progress=args.show_progress, log=lambda m: print(m, file=sys.stderr))

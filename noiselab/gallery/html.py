@@ -215,7 +215,7 @@ def page_of(group: str) -> str:
 
 def _card(spec, man, root):
     anchor = html.escape(spec.key.replace("/", "-"))
-    head = (f'<h3>{html.escape(spec.seed)}: {html.escape(spec.title)} '
+    head = (f'<h3>{html.escape(spec.source)}: {html.escape(spec.title)} '
             f'<a class="anchor" href="#{anchor}" title="link to this figure">#</a>'
             f' <a class="anchor" href="#contents" title="back to the contents">contents</a></h3>')
     if man is None:
@@ -270,7 +270,7 @@ def render_pages(root: Path, entries, *, summary="") -> dict:
         other = [p for p in PAGE_TITLES if p != page][0]
         toc = []
         for g in groups:
-            items = "".join(f'<li><a href="#{html.escape(spec.key.replace("/", "-"))}">{html.escape(spec.seed)}: '
+            items = "".join(f'<li><a href="#{html.escape(spec.key.replace("/", "-"))}">{html.escape(spec.source)}: '
                             f'{html.escape(spec.title)}</a></li>' for spec, _ in entries
                             if spec.group == g and spec.name != INTRO)
             toc.append(f'<li><a href="#{html.escape(g)}">{html.escape(GROUP_TITLES.get(g, g))}</a><ol>{items}</ol></li>')

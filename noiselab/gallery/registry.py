@@ -2,7 +2,7 @@
 
 A figure function draws one figure (or video) of the gallery::
 
-    @figure("snow", "fig3_2", seed="Zhang 2003, Fig. 3.2", title="The tent surface",
+    @figure("snow", "fig3_2", source="Zhang 2003, Fig. 3.2", title="The tent surface",
             params=dict(c=1.0, n=48), quick=dict(n=16), uses=("noiselab.spectral",))
     def tent(out, *, c, n):
         path = out / "tent.png"
@@ -30,6 +30,8 @@ import json
 import textwrap
 from pathlib import Path
 from typing import Callable
+
+from noiselab._core import renamed_parameters
 
 __all__ = ["Result", "FigureSpec", "figure", "REGISTRY", "specs", "content_hash", "module_version"]
 
@@ -59,11 +61,11 @@ class Result:
 
 @dataclasses.dataclass(frozen=True)
 class FigureSpec:
-    """A registered figure: its group, id, seed figure, title, parameters and function."""
+    """A registered figure: its group, id, source (the seed figure it reproduces), title, parameters and function."""
 
     group: str
     name: str
-    seed: str
+    source: str
     title: str
     params: dict
     quick: dict
@@ -85,10 +87,11 @@ class FigureSpec:
 REGISTRY: dict[str, FigureSpec] = {}
 
 
-def figure(group, name, *, seed, title, params=None, quick=None, uses=(), look=""):
+@renamed_parameters(seed="source")
+def figure(group, name, *, source, title, params=None, quick=None, uses=(), look=""):
     """Register a figure function under ``group/name``.
 
-    ``seed`` names the figure of a seed document it reproduces (for example
+    ``source`` names the figure of a seed document it reproduces (for example
     ``"Phillips 2004, Fig. 12"``) or says it is the lab's own; ``params`` are
     passed to the function as keywords; ``quick`` overrides some of them for a
     fast build; ``uses`` names the noiselab subpackages it calls, for the
@@ -104,7 +107,7 @@ def figure(group, name, *, seed, title, params=None, quick=None, uses=(), look="
         raise ValueError(f"figure {group}/{name}: quick overrides unknown parameters {sorted(unknown)}")
 
     def register(func):
-        spec = FigureSpec(group, name, seed, title, params, quick, tuple(uses), func, look)
+        spec = FigureSpec(group, name, source, title, params, quick, tuple(uses), func, look)
         if spec.key in REGISTRY:
             raise ValueError(f"figure {spec.key} is registered twice")
         REGISTRY[spec.key] = spec

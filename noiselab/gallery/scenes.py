@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from noiselab._core import as_generator, renamed_parameters
+
 from ._common import pyplot
 
 
@@ -80,7 +82,8 @@ def _pine(ax, x, base, h, z, period=None, dark=(22, 66, 42)):
               (236, 242, 250), z + 0.01 * k + 0.005, period)
 
 
-def house_scene(height, width, *, periodic=False, seed=0):
+@renamed_parameters(seed="rng")
+def house_scene(height, width, *, periodic=False, rng=0):
     """A red house on a sunny winter day, snow on the ground and none falling: RGB uint8 ``(height, width, 3)``.
 
     Parameters
@@ -89,7 +92,7 @@ def house_scene(height, width, *, periodic=False, seed=0):
         Size in pixels.
     periodic : bool
         Draw the scene periodic in x with period ``width`` (for a panning loop).
-    seed : int
+    rng : int, numpy.random.Generator or None
         Places the far forest and the small trees.
 
     Returns
@@ -111,7 +114,7 @@ def house_scene(height, width, *, periodic=False, seed=0):
     True
     """
     height, width = _size(height, width)
-    rng = np.random.default_rng(seed)
+    rng = as_generator(rng)
     H, W = float(height), float(width)
     P = W if periodic else None
     plt, fig, ax = _canvas(height, width)
@@ -157,7 +160,8 @@ def house_scene(height, width, *, periodic=False, seed=0):
     return _finish(plt, fig)
 
 
-def city_scene(height, width, *, periodic=False, seed=1):
+@renamed_parameters(seed="rng")
+def city_scene(height, width, *, periodic=False, rng=1):
     """A harbour city on a sunny day (towers, a tower with a turret, shell roofs, a steel arch bridge): RGB uint8.
 
     Parameters
@@ -166,7 +170,7 @@ def city_scene(height, width, *, periodic=False, seed=1):
         Size in pixels.
     periodic : bool
         Periodic in x with period ``width``.
-    seed : int
+    rng : int, numpy.random.Generator or None
         Places and colours the towers.
 
     Returns
@@ -187,7 +191,7 @@ def city_scene(height, width, *, periodic=False, seed=1):
     from matplotlib.patches import Arc
 
     height, width = _size(height, width)
-    rng = np.random.default_rng(seed)
+    rng = as_generator(rng)
     H, W = float(height), float(width)
     P = W if periodic else None
     plt, fig, ax = _canvas(height, width)

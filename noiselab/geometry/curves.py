@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._core import check_finite_array, check_int, check_real
+from .._core import check_finite_array, check_int, check_real, renamed_parameters
 from .fields import evaluate_field
 
 __all__ = ["noisy_arc", "noisy_circle", "trajectory", "plot_curves", "trajectory_frames"]
@@ -191,12 +191,15 @@ def trajectory(field, t, amplitude=1.0, frequency=1.0, phase=0.0, *, dims=None):
     return amplitude * out
 
 
+@renamed_parameters(axes="show_axes")
 def plot_curves(curves, path=None, *, size=512, closed=False, colors="black", linewidth=1.5, limits=None,
-                background="white", axes=False) -> np.ndarray:
+                background="white", show_axes=False) -> np.ndarray:
     """Draw 2-D curves (each ``(n, 2)``) with matplotlib, equal aspect; return the RGB image, write it if ``path``.
 
     ``closed`` joins each curve's end to its start. ``limits`` is
     ``((xmin, xmax), (ymin, ymax))``; default fits all curves with a margin.
+    ``show_axes`` draws matplotlib's axes (``axes=`` is its old spelling, until
+    0.3: ``axes`` elsewhere means array axes).
 
     Examples
     --------
@@ -233,7 +236,7 @@ def plot_curves(curves, path=None, *, size=512, closed=False, colors="black", li
         limits = ((lo[0] - pad, hi[0] + pad), (lo[1] - pad, hi[1] + pad))
     ax.set_xlim(*limits[0])
     ax.set_ylim(*limits[1])
-    if not axes:
+    if not show_axes:
         ax.axis("off")
     return _save_array(figure_to_array(fig, close=False), path)
 

@@ -19,7 +19,7 @@ import warnings
 
 import numpy as np
 
-from .._core import check_finite_array, check_int, check_memory, check_real, check_real_vector
+from .._core import check_finite_array, check_int, check_memory, check_real, check_real_vector, renamed_parameters
 from ._kernels import face_pass, unit_rows
 from ._mesh import AliasingWarning, as_trimesh  # noqa: F401  (defined in the leaf module _mesh; re-exported here)
 from .fields import evaluate_field, field_max_frequency, octave_field
@@ -402,13 +402,13 @@ def subdivide_for_noise(mesh, max_frequency, *, samples_per_period=4.0, method="
     return trimesh.Trimesh(v, f, process=False)
 
 
-def _check_resolution(max_edge, lengths, field, frequency, octaves, lacunarity, samples_per_period, on_aliasing):
-    if on_aliasing == "ignore":
+def _check_resolution(max_edge, lengths, field, frequency, octaves, lacunarity, samples_per_period, on_alias):
+    if on_alias == "ignore":
         return None
     report = _report(max_edge, lengths, _highest_frequency(field, frequency, octaves, lacunarity),
                      check_real("samples_per_period", samples_per_period, lo=1.0, hi=1e6))
     if not report.ok:
-        if on_aliasing == "raise":
+        if on_alias == "raise":
             raise ValueError(report.message())
         warnings.warn(report.message(), AliasingWarning, stacklevel=3)
     return report
@@ -426,9 +426,10 @@ def _outward(normals, volume, faces):
     return normals
 
 
+@renamed_parameters(on_aliasing="on_alias")
 def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *, octaves=1, kind="fractal",
              lacunarity=2.0, gain=0.5, normals=None, weld=True, direction="normal", samples_per_period=4.0,
-             on_aliasing="warn", chunk_size=1 << 20):
+             on_alias="warn", chunk_size=1 << 20):
     """Displace every vertex of ``mesh`` along its normal by a field of its position (Eq. 11).
 
     ``p' = p + amplitude * s(frequency * p + phase [, time]) * n_p`` where
@@ -468,7 +469,7 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
         Give vertices at exactly the same position (split at UV or crease
         seams, or an unmerged STL soup) one common normal, so that the
         displaced surface does not crack open along seams (default True).
-    samples_per_period, on_aliasing
+    samples_per_period, on_alias
         Resolution check: "warn" (:class:`AliasingWarning`), "raise" or
         "ignore" when the longest edge gives fewer than ``samples_per_period``
         samples per period of the highest octave.
@@ -485,7 +486,7 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
     ------
     ValueError
         For a mesh without faces, a field that does not take 3-D points, a
-        non-finite amplitude, frequency or phase, or (``on_aliasing="raise"``)
+        non-finite amplitude, frequency or phase, or (``on_alias="raise"``)
         a mesh too coarse for the field's highest frequency.
 
     Examples
@@ -507,8 +508,8 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
     phase_v = _as_vector("phase", phase, 3)
     if time is not None:
         time = check_real("time", time)
-    if on_aliasing not in ("warn", "raise", "ignore"):
-        raise ValueError(f"on_aliasing must be 'warn', 'raise' or 'ignore', got {on_aliasing!r}")
+    if on_alias not in ("warn", "raise", "ignore"):
+        raise ValueError(f"on_alias must be 'warn', 'raise' or 'ignore', got {on_alias!r}")
     if direction not in ("normal", "vector"):
         raise ValueError(f"direction must be 'normal' (Eq. 11) or 'vector' (3-component field), got {direction!r}")
     source = octave_field(field, octaves, kind, lacunarity=lacunarity, gain=gain)
@@ -516,16 +517,16 @@ def displace(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, time=None, *,
     # peak: normals, points, field output and new vertices (n x 3 float64 each), 3 edge lengths per face
     check_memory(len(vertices) * 8 * 3 * 5 + len(faces) * 8 * 4, "displacing the mesh")
     unit, volume, max_edge, lengths, welded = _normals(
-        vertices, faces, 0 if on_aliasing == "ignore" else _stride(len(faces)), weld and normals is None)
+        vertices, faces, 0 if on_alias == "ignore" else _stride(len(faces)), weld and normals is None)
     if normals is None:
         n = _outward(unit, volume, welded)
     else:
         n = check_finite_array("normals", normals).astype(np.float64)
         if n.shape != vertices.shape:
             raise ValueError(f"normals must have shape {vertices.shape}, got {n.shape}")
-    if on_aliasing != "ignore":
+    if on_alias != "ignore":
         _check_resolution(max_edge, lengths, field, freq, octaves if kind != "noise" else 1,
-                          check_real("lacunarity", lacunarity), samples_per_period, on_aliasing)
+                          check_real("lacunarity", lacunarity), samples_per_period, on_alias)
     del lengths
     points = vertices * freq + phase_v
     if time is not None:
@@ -585,7 +586,13 @@ def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0,
         v, f = _arrays(mesh)
         unit, volume, _, _, welded = _normals(v, f, 0, kwargs.get("weld", True))
         normals = _outward(unit, volume, welded)
-    on_aliasing = kwargs.pop("on_aliasing", "warn")
+    if "on_aliasing" in kwargs:   # the old spelling, kept for one release like displace's own
+        if "on_alias" in kwargs:
+            raise TypeError("displace_frames() got both on_aliasing= (deprecated) and on_alias=; pass on_alias= only")
+        warnings.warn("displace_frames(): on_aliasing= is deprecated and will be removed in noiselab 0.3; pass "
+                      "on_alias= instead", DeprecationWarning, stacklevel=2)
+        kwargs["on_alias"] = kwargs.pop("on_aliasing")
+    on_alias = kwargs.pop("on_alias", "warn")
     for i, t in enumerate(times):
         yield displace(mesh, field, amplitude, frequency, phase, float(t), normals=normals,
-                       on_aliasing=on_aliasing if i == 0 else "ignore", **kwargs)
+                       on_alias=on_alias if i == 0 else "ignore", **kwargs)

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._core import check_finite_array, check_int, check_real, check_real_vector
+from .._core import check_finite_array, check_int, check_real, check_real_vector, renamed_parameters
 from .fields import evaluate_field
 from .surfaces import _amplified, _extent, _scaled, grid_points
 
@@ -78,8 +78,9 @@ def flow_field(field, shape=(16, 16), extent=((0.0, 4.0), (0.0, 4.0)), amplitude
     return pts, vec.reshape(pts.shape)
 
 
+@renamed_parameters(normalize="unit_speed")
 def streamlines(field, seeds, *, step=0.01, n_steps=200, amplitude=1.0, frequency=1.0, phase=0.0,
-                method="rk4", normalize=False):
+                method="rk4", unit_speed=False):
     """Trace streamlines from ``seeds`` (m, d) through the flow ``amplitude * field(frequency * p + phase)``.
 
     ``method="rk4"`` takes ``n_steps`` classical Runge-Kutta steps of size
@@ -87,7 +88,7 @@ def streamlines(field, seeds, *, step=0.01, n_steps=200, amplitude=1.0, frequenc
     fast, and exact for the sampled positions up to O(step^4)).
     ``method="solve_ivp"`` integrates each seed with scipy's adaptive RK45 to
     rtol 1e-6 and reports it at the same times (slower; a reference).
-    ``normalize=True`` follows the direction only (unit speed), so that
+    ``unit_speed=True`` follows the direction only, so that
     streamlines have equal length whatever the local speed. Seeds and
     positions are in the field's input order: ``(y, x)`` (``(z, y, x)``) for
     the array-axis order of :func:`flow_field`.
@@ -110,8 +111,9 @@ def streamlines(field, seeds, *, step=0.01, n_steps=200, amplitude=1.0, frequenc
         Applied to the positions before the field.
     method : {"rk4", "solve_ivp"}, default "rk4"
         Fixed-step Runge-Kutta for all seeds at once, or scipy's adaptive RK45 per seed.
-    normalize : bool, default False
-        Follow the direction only (unit speed).
+    unit_speed : bool, default False
+        Follow the direction only (unit speed). (``normalize=`` is the old
+        spelling, until 0.3: ``normalize`` elsewhere scales a field's values.)
 
     Returns
     -------
@@ -143,7 +145,7 @@ def streamlines(field, seeds, *, step=0.01, n_steps=200, amplitude=1.0, frequenc
         raise ValueError(f"method must be 'rk4' or 'solve_ivp', got {method!r}")
     d = seeds.shape[1]
     vel = _velocity(field, d, amplitude, frequency, phase)
-    if normalize:
+    if unit_speed:
         raw = vel
 
         def vel(p):
@@ -176,8 +178,9 @@ def streamlines(field, seeds, *, step=0.01, n_steps=200, amplitude=1.0, frequenc
     return out
 
 
+@renamed_parameters(seed="rng")
 def quiver_image(field, path=None, *, shape=(20, 20), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=1.0,
-                 frequency=1.0, phase=0.0, size=512, color="black", streamline_seeds=0, seed=0,
+                 frequency=1.0, phase=0.0, size=512, color="black", streamline_seeds=0, rng=0,
                  n_steps=100, step=0.02) -> np.ndarray:
     """A 2-D flow field as arrows (figure 9), matplotlib; optional streamlines from random seeds.
 
@@ -206,7 +209,7 @@ def quiver_image(field, path=None, *, shape=(20, 20), extent=((0.0, 4.0), (0.0, 
     ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
     n_seeds = check_int("streamline_seeds", streamline_seeds, lo=0, hi=100_000)
     if n_seeds:
-        rng = as_generator(seed)
+        rng = as_generator(rng)
         seeds = ext[:, 0] + rng.random((n_seeds, 2)) * (ext[:, 1] - ext[:, 0])
         lines = streamlines(field, seeds, step=step, n_steps=n_steps, amplitude=amplitude, frequency=frequency,
                             phase=phase)

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .._core import check_int, check_real
+from .._core import check_int, check_real, renamed_parameters
 from ._mesh import require_pyvista, as_trimesh, pyvista_to_trimesh, trimesh_to_pyvista
 from .displace import vertex_normals
 
@@ -247,10 +247,11 @@ def render_stereo_pair(meshes, path=None, *, separation=5.0, cross=True, size=38
     return _save_array(image, path)
 
 
+@renamed_parameters(show_progress="progress")
 def render_turntable(meshes, path=None, *, frames=36, fps=25.0, degrees=360.0, size=512, view="iso",
                      elevation=0.0, zoom=1.0, colors=None, scalars=None, cmap="viridis", clim=None,
                      background="white", smooth_shading=True, show_edges=False, style="surface",
-                     show_progress=None) -> np.ndarray:
+                     progress=None) -> np.ndarray:
     """Render a turntable: the camera turns ``degrees`` about the view-up axis over ``frames`` frames.
 
     Returns the frames ``(frames, height, width, 3)`` uint8 and writes them to
@@ -263,7 +264,7 @@ def render_turntable(meshes, path=None, *, frames=36, fps=25.0, degrees=360.0, s
     >>> render_turntable(load_model("ant"), frames=3, size=32).shape
     (3, 32, 32, 3)
     """
-    from .._core import progress
+    from .._core import progress as progress_bar
 
     frames = check_int("frames", frames, lo=1, hi=100_000)
     degrees = check_real("degrees", degrees, lo=-3600.0, hi=3600.0)
@@ -273,7 +274,7 @@ def render_turntable(meshes, path=None, *, frames=36, fps=25.0, degrees=360.0, s
     try:
         _set_camera(plotter, view, 0.0, elevation, zoom)
         step = degrees / frames
-        for i in progress(range(frames), desc="turntable", enabled=show_progress, unit="frame"):
+        for i in progress_bar(range(frames), desc="turntable", enabled=progress, unit="frame"):
             if i:
                 plotter.camera.Azimuth(step)
                 plotter.reset_camera_clipping_range()
@@ -289,9 +290,10 @@ def render_turntable(meshes, path=None, *, frames=36, fps=25.0, degrees=360.0, s
     return video
 
 
+@renamed_parameters(show_progress="progress")
 def render_sequence(meshes, path=None, *, fps=25.0, size=512, view="iso", azimuth=0.0, elevation=0.0,
                     zoom=1.0, color=None, scalars=None, cmap="viridis", clim=None, background="white",
-                    smooth_shading=True, spin=0.0, show_progress=None) -> np.ndarray:
+                    smooth_shading=True, spin=0.0, progress=None) -> np.ndarray:
     """Render a time-varying shape: an iterable of meshes with the same faces (e.g. :func:`displace_frames`).
 
     The camera is fitted to the first mesh and then held fixed (``spin``
@@ -308,14 +310,14 @@ def render_sequence(meshes, path=None, *, fps=25.0, size=512, view="iso", azimut
     >>> render_sequence(boil, size=32).shape
     (2, 32, 32, 3)
     """
-    from .._core import progress
+    from .._core import progress as progress_bar
 
     spin = check_real("spin", spin)
     out = []
     plotter = polys = None
     first_faces = None
     try:
-        for i, mesh in enumerate(progress(meshes, desc="frames", enabled=show_progress, unit="frame")):
+        for i, mesh in enumerate(progress_bar(meshes, desc="frames", enabled=progress, unit="frame")):
             mesh = as_trimesh(mesh, name=f"meshes[{i}]")
             if plotter is None:
                 plotter, polys = _plotter([mesh], size=size, colors=color, scalars=scalars, cmap=cmap, clim=clim,

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from .._core import check_int, check_real
+from .._core import check_int, check_real, keyword_only
 from ._mesh import require_pyvista, as_trimesh, pyvista_to_trimesh, trimesh_to_pyvista  # noqa: F401  (re-exported)
 from .displace import resolution_report
 from .surfaces import _grid_mesh, grid_points
@@ -75,7 +75,8 @@ def sphere(subdivisions=4, radius=1.0, center=(0.0, 0.0, 0.0)):
     return mesh
 
 
-def squashed_sphere(squash=0.05, subdivisions=4, radius=1.0, axis=2):
+@keyword_only("axis")
+def squashed_sphere(squash=0.05, subdivisions=4, radius=1.0, *, axis=2):
     """A sphere squashed by the fraction ``squash`` along ``axis`` (figure 19: 5% vertically).
 
     The result is an oblate spheroid with semi-axis ``radius * (1 - squash)``

@@ -22,7 +22,8 @@ import warnings
 
 import numpy as np
 
-from .._core import check_finite_array, check_int, check_memory, check_real, check_real_sequence, check_real_vector, check_shape
+from .._core import (check_finite_array, check_int, check_memory, check_real, check_real_sequence, check_real_vector,
+                     check_shape, renamed_parameters)
 from .fields import evaluate_field, field_max_frequency, octave_field
 
 __all__ = ["grid_points", "height_map", "monge_surface", "colored_surface", "height_map_image"]
@@ -71,8 +72,8 @@ def grid_points(shape, extent):
     return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)
 
 
-def _check_grid_resolution(shape, ext, max_frequency, samples_per_period, on_aliasing):
-    if on_aliasing == "ignore" or max_frequency == 0:
+def _check_grid_resolution(shape, ext, max_frequency, samples_per_period, on_alias):
+    if on_alias == "ignore" or max_frequency == 0:
         return
     from ._mesh import AliasingWarning
 
@@ -83,22 +84,22 @@ def _check_grid_resolution(shape, ext, max_frequency, samples_per_period, on_ali
                f"highest frequency {max_frequency:g} cycles/unit (>= {samples_per_period:g} needed); use a shape "
                f"of at least {int(np.ceil(samples_per_period * max_frequency * spacing * max(shape)))} "
                "samples per axis, or fewer octaves")
-        if on_aliasing == "raise":
+        if on_alias == "raise":
             raise ValueError(msg)
         warnings.warn(msg, AliasingWarning, stacklevel=3)
 
 
 def _sample(field, shape, extent, amplitude, frequency, phase, octaves, kind, lacunarity, gain,
-            components, samples_per_period, on_aliasing):
+            components, samples_per_period, on_alias):
     shape = check_shape("shape", shape, ndim=2, min_size=2)
     ext = _extent(extent)
     amplitude = check_real("amplitude", amplitude)
     frequency = check_real("frequency", frequency, lo=0.0)
     phase = check_real_vector("phase", phase, 2)
-    if on_aliasing not in ("warn", "raise", "ignore"):
-        raise ValueError(f"on_aliasing must be 'warn', 'raise' or 'ignore', got {on_aliasing!r}")
+    if on_alias not in ("warn", "raise", "ignore"):
+        raise ValueError(f"on_alias must be 'warn', 'raise' or 'ignore', got {on_alias!r}")
     source = octave_field(field, octaves, kind, lacunarity=lacunarity, gain=gain)
-    _check_grid_resolution(shape, ext, frequency * field_max_frequency(source), samples_per_period, on_aliasing)
+    _check_grid_resolution(shape, ext, frequency * field_max_frequency(source), samples_per_period, on_alias)
     pts = grid_points(shape, ext)
     scaled = _scaled("extent", pts.reshape(-1, 2), frequency, phase)
     values = evaluate_field(source, scaled, components=components)
@@ -124,9 +125,10 @@ def _amplified(values, amplitude):
     return out
 
 
+@renamed_parameters(on_aliasing="on_alias")
 def height_map(field, shape=(256, 256), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=1.0, frequency=1.0,
                phase=0.0, *, octaves=1, kind="fractal", lacunarity=2.0, gain=0.5, samples_per_period=4.0,
-               on_aliasing="warn") -> np.ndarray:
+               on_alias="warn") -> np.ndarray:
     """Heights ``amplitude * s(frequency * (y, x) + phase)`` on a grid: a ``(ny, nx)`` float64 array.
 
     ``s`` is ``field`` (2-D input, scalar output) or its fractal sum /
@@ -135,7 +137,7 @@ def height_map(field, shape=(256, 256), extent=((0.0, 4.0), (0.0, 4.0)), amplitu
     stop excluded; the field takes points ``(y, x)`` in the same array-axis
     order (``phase`` too), so for a ``LatticeNoise`` this is
     ``noise.grid(shape, extent)``. A grid too coarse for the highest octave
-    warns (:class:`AliasingWarning`), or raises with ``on_aliasing="raise"``.
+    warns (:class:`AliasingWarning`), or raises with ``on_alias="raise"``.
 
     Parameters
     ----------
@@ -157,7 +159,7 @@ def height_map(field, shape=(256, 256), extent=((0.0, 4.0), (0.0, 4.0)), amplitu
         Frequency and amplitude ratios between octaves.
     samples_per_period : float, default 4
         Samples per period of the highest octave below which the grid aliases.
-    on_aliasing : {"warn", "raise", "ignore"}, default "warn"
+    on_alias : {"warn", "raise", "ignore"}, default "warn"
         What a grid too coarse for the highest octave does.
 
     Returns
@@ -168,18 +170,18 @@ def height_map(field, shape=(256, 256), extent=((0.0, 4.0), (0.0, 4.0)), amplitu
     ------
     ValueError
         For a shape, extent, amplitude, frequency or octave count out of range,
-        a field of the wrong dimension, or (``on_aliasing="raise"``) a grid too
+        a field of the wrong dimension, or (``on_alias="raise"``) a grid too
         coarse for the highest octave.
 
     Examples
     --------
     >>> import numpy as np
-    >>> h = height_map(lambda p: np.sin(p[:, 1]), (4, 8), ((0, 4), (0, 8)), on_aliasing="ignore")
+    >>> h = height_map(lambda p: np.sin(p[:, 1]), (4, 8), ((0, 4), (0, 8)), on_alias="ignore")
     >>> h.shape, bool(np.allclose(h[0], np.sin(np.arange(8))))
     ((4, 8), True)
     """
     return _sample(field, shape, extent, amplitude, frequency, phase, octaves, kind, lacunarity, gain, 1,
-                   samples_per_period, on_aliasing)[1]
+                   samples_per_period, on_alias)[1]
 
 
 def _grid_faces(h, w):
@@ -201,9 +203,10 @@ def _grid_mesh(pts, heights):
     return mesh
 
 
+@renamed_parameters(on_aliasing="on_alias")
 def monge_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=0.5, frequency=1.0,
                   phase=0.0, *, octaves=1, kind="fractal", lacunarity=2.0, gain=0.5, samples_per_period=4.0,
-                  on_aliasing="warn"):
+                  on_alias="warn"):
     """A Monge-form surface z = amplitude * s(y, x) (Eq. 8) as a triangle mesh (figures 8, 14, 15).
 
     ``shape`` ``(ny, nx)`` and ``extent`` ``((y0, y1), (x0, x1))`` in
@@ -235,7 +238,7 @@ def monge_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), ampl
         Frequency and amplitude ratios between octaves.
     samples_per_period : float, default 4
         Samples per period of the highest octave below which the grid aliases.
-    on_aliasing : {"warn", "raise", "ignore"}, default "warn"
+    on_alias : {"warn", "raise", "ignore"}, default "warn"
         What a grid too coarse for the highest octave does.
 
     Returns
@@ -247,18 +250,18 @@ def monge_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), ampl
     ------
     ValueError
         For a shape, extent, amplitude, frequency or octave count out of range,
-        a field of the wrong dimension, or (``on_aliasing="raise"``) a grid too
+        a field of the wrong dimension, or (``on_alias="raise"``) a grid too
         coarse for the highest octave.
 
     Examples
     --------
     >>> import numpy as np
-    >>> m = monge_surface(lambda p: np.sin(p[:, 0]), (8, 8), on_aliasing="ignore")
+    >>> m = monge_surface(lambda p: np.sin(p[:, 0]), (8, 8), on_alias="ignore")
     >>> len(m.vertices), len(m.faces), bool(m.face_normals[:, 2].min() > 0)
     (64, 98, True)
     """
     pts, heights = _sample(field, shape, extent, amplitude, frequency, phase, octaves, kind, lacunarity, gain, 1,
-                           samples_per_period, on_aliasing)
+                           samples_per_period, on_alias)
     return _grid_mesh(pts, heights)
 
 
@@ -267,9 +270,10 @@ def _unit(values, value_range):
     return np.clip((values - lo) / (hi - lo), 0.0, 1.0)
 
 
+@renamed_parameters(on_aliasing="on_alias")
 def colored_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), amplitude=0.5, frequency=1.0,
                     phase=0.0, *, color="hue", value_range=(-1.0, 1.0), saturation=0.85, value=0.95,
-                    samples_per_period=4.0, on_aliasing="warn"):
+                    samples_per_period=4.0, on_alias="warn"):
     """A surface whose height and colour both come from one vector-valued field (figure 11).
 
     ``color="hue"``: the field returns 2 components, the first is the height,
@@ -286,7 +290,7 @@ def colored_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), am
     --------
     >>> import numpy as np
     >>> f = lambda p: np.stack([np.sin(p[:, 0]), np.cos(p[:, 1])], axis=1)
-    >>> m = colored_surface(f, (8, 8), on_aliasing="ignore")
+    >>> m = colored_surface(f, (8, 8), on_alias="ignore")
     >>> m.visual.vertex_colors.shape
     (64, 4)
     """
@@ -301,7 +305,7 @@ def colored_surface(field, shape=(128, 128), extent=((0.0, 4.0), (0.0, 4.0)), am
     value = check_real("value", value, lo=0.0, hi=1.0)
     comps = 2 if color == "hue" else 4
     pts, out = _sample(field, shape, extent, 1.0, frequency, phase, 1, "fractal", 2.0, 0.5, comps,
-                       samples_per_period, on_aliasing)
+                       samples_per_period, on_alias)
     amplitude = check_real("amplitude", amplitude)
     mesh = _grid_mesh(pts, amplitude * out[..., 0])
     if color == "hue":

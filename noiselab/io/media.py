@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .._core import progress
-from .._core import check_finite_array, check_real
+from .._core import check_finite_array, check_real, renamed_parameters
+from .._core import progress as progress_bar
 from .atomic import atomic_output, forget_process, hold_signals, track_process
 from .errors import InputError, cause, input_error, output_error
 
@@ -179,7 +179,8 @@ def _frame_source(frames):
     return iter(frames), count
 
 
-def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_progress=None, quality=8,
+@renamed_parameters(show_progress="progress")
+def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, progress=None, quality=8,
                 lossless=False) -> Path:
     """Write a video to ``.mp4`` (H.264), ``.mkv`` (FFV1), ``.gif``, ``.npy``, or a folder of PNG frames.
 
@@ -205,7 +206,7 @@ def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_pro
         Frames per second (MP4 and GIF).
     vmin, vmax : float, optional
         The float range mapped to [0, 255] (default [0, 1]).
-    show_progress : bool, optional
+    progress : bool, optional
         A progress bar (default: when stderr is a terminal).
     quality : int, default 8
         MP4 quality, 0 to 10 (lossy MP4 only).
@@ -237,7 +238,7 @@ def write_video(path, frames, *, fps=DEFAULT_FPS, vmin=None, vmax=None, show_pro
         raise ValueError(f"fps must be a positive finite number, got {fps}")
     suffix = path.suffix.lower()
     it, count = _frame_source(frames)
-    bar = progress(it, total=count, desc=f"writing {path.name}", enabled=show_progress, unit="frame")
+    bar = progress_bar(it, total=count, desc=f"writing {path.name}", enabled=progress, unit="frame")
     if suffix == ".npy":
         data = frames if isinstance(frames, np.ndarray) else np.stack(list(bar))
         with atomic_output(path) as tmp:

@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import __version__  # the root's metadata: it imports no subpackage when it loads
-from .._core import deps, dispatch
+from .._core import deps, dispatch, renamed_parameters
 from .atomic import atomic_output
 
 __all__ = ["write_zarr", "read_zarr", "zarr_store", "is_dask_array", "import_zarr"]
@@ -172,8 +172,9 @@ def zarr_store(path, shape, dtype, chunks, *, name=_DEFAULT_NAME, dims=None, coo
             zarr.consolidate_metadata(str(tmp))
 
 
+@renamed_parameters(seed="rng")
 def write_zarr(path, data, *, name=_DEFAULT_NAME, dims=None, coords=None, attrs=None, units=None,
-               params=None, seed=None, chunks=None, scheduler=None, progress=None):
+               params=None, rng=None, chunks=None, scheduler=None, progress=None):
     """Write ``data`` to the zarr store ``path`` atomically, with provenance in the attributes.
 
     Parameters
@@ -196,9 +197,11 @@ def write_zarr(path, data, *, name=_DEFAULT_NAME, dims=None, coords=None, attrs=
         ``dim -> 1-D array`` of coordinates, written as arrays beside the data.
     attrs : dict, optional
         Further JSON-like attributes.
-    units, params, seed : optional
+    units, params, rng : optional
         Provenance: the data's units (e.g. ``"noise amplitude"``), the
-        parameters that made it (a JSON-like dict), the seed.
+        parameters that made it (a JSON-like dict), the int ``rng=`` that
+        drew it (stored as the ``"seed"`` attribute; a ``Generator`` has no
+        record and is refused).
     chunks : int or tuple, optional
         The store's chunk shape. For a numpy array: an int (every axis) or one
         entry per axis (``-1``: the whole axis); default: zarr's choice. For a
@@ -221,12 +224,14 @@ def write_zarr(path, data, *, name=_DEFAULT_NAME, dims=None, coords=None, attrs=
     >>> import os, tempfile
     >>> from noiselab.lattice import LatticeNoise
     >>> vol = LatticeNoise(3, seed=1).grid((32, 32, 32), [(0, 4)] * 3, chunks=16, dtype="float32")
-    >>> out = write_zarr(os.path.join(tempfile.mkdtemp(), "vol.zarr"), vol, dims=("z", "y", "x"), seed=1)
+    >>> out = write_zarr(os.path.join(tempfile.mkdtemp(), "vol.zarr"), vol, dims=("z", "y", "x"), rng=1)
     >>> back = read_zarr(out)
     >>> back.shape, back.dtype.name, bool((back == vol).all().compute())
     ((32, 32, 32), 'float32', True)
     """
-    store = dict(name=name, dims=dims, coords=coords, attrs=attrs, units=units, params=params, seed=seed)
+    if rng is not None and (isinstance(rng, (bool, np.bool_)) or not isinstance(rng, numbers.Integral)):
+        raise TypeError(f"rng must be the int (or None) that drew the data, to be recorded; got {type(rng).__name__}")
+    store = dict(name=name, dims=dims, coords=coords, attrs=attrs, units=units, params=params, seed=rng)
     if is_dask_array(data):
         return dispatch.chunked("write_zarr")(path, data, chunks=chunks, scheduler=scheduler, progress=progress,
                                               **store)

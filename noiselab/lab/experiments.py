@@ -79,7 +79,7 @@ def texture_methods(n, dim, f0):
     from ..spectral import spectral_noise
 
     methods = {"spectral (IFFT)": ("spectral", lambda s: spectral_noise((n,) * dim, exponent=dim / 2,
-                                                                       band=(f0, n / 2), seed=s))}
+                                                                       band=(f0, n / 2), rng=s))}
     for k in kernel_names():
         methods[f"value noise, {k}"] = ("lattice", lambda s, k=k: _lattice_texture(n, dim, f0, k, "value", s))
     for k in ("quintic", "catmull-rom"):
@@ -96,7 +96,7 @@ def texture_quality(x, f0, dim):
     n = x.shape[-1]
     target = -dim / 2.0
     slope = float(spectral_slope(x, band=(2 * f0, n / 4)))
-    oe = octave_energy(x, lo=f0, hi=n / 2)
+    oe = octave_energy(x, (f0, n / 2))
     if dim == 2:
         aniso = float(anisotropy(x, band=(f0, n / 2)))
     else:
@@ -139,7 +139,7 @@ def texture_scaling(cfg: Config):
     rows = []
     f0 = cfg.texture_f0
     for n in cfg.texture_sizes:
-        cases = {"spectral (IFFT)": lambda n=n: spectral_noise((n, n), exponent=1.0, band=(f0, n / 2), seed=0),
+        cases = {"spectral (IFFT)": lambda n=n: spectral_noise((n, n), exponent=1.0, band=(f0, n / 2), rng=0),
                  "value noise, cubic": lambda n=n: _lattice_texture(n, 2, f0, "cubic", "value", 0),
                  "gradient noise, quintic": lambda n=n: _lattice_texture(n, 2, f0, "quintic", "gradient", 0)}
         timing = time_against_floor(cases, fft_floor((n, n)), repeats=cfg.repeats)
@@ -176,13 +176,13 @@ def snow_methods(shape, *, layers=8, flakes=None, blur=False):
 
     band = snow_band(shape[2])
     methods = {
-        "tent IFFT (noiselab.snow)": lambda s: snow(shape, seed=s, band=band, c=1.0),
-        f"layered lattice ({layers} layers)": lambda s: layered_lattice_snow(shape, seed=s, band=band, c=1.0,
+        "tent IFFT (noiselab.snow)": lambda s: snow(shape, rng=s, band=band, c=1.0),
+        f"layered lattice ({layers} layers)": lambda s: layered_lattice_snow(shape, rng=s, band=band, c=1.0,
                                                                              layers=layers),
-        "particles (Reeves)": lambda s: particle_snow(shape, seed=s, band=band, c=1.0, flakes=flakes),
+        "particles (Reeves)": lambda s: particle_snow(shape, rng=s, band=band, c=1.0, flakes=flakes),
     }
     if blur:
-        methods["particles, motion-blurred (Reeves)"] = lambda s: particle_snow(shape, seed=s, band=band, c=1.0,
+        methods["particles, motion-blurred (Reeves)"] = lambda s: particle_snow(shape, rng=s, band=band, c=1.0,
                                                                                 flakes=flakes, motion_blur=True)
     return methods
 
@@ -268,8 +268,8 @@ def flake_scaling(cfg: Config):
 
     shape = tuple(cfg.flake_shape)
     band = snow_band(shape[2])
-    cases = {n: (lambda n=n: particle_snow(shape, seed=0, band=band, flakes=n)) for n in cfg.flake_counts}
-    cases["tent"] = lambda: snow(shape, seed=0, band=band)
+    cases = {n: (lambda n=n: particle_snow(shape, rng=0, band=band, flakes=n)) for n in cfg.flake_counts}
+    cases["tent"] = lambda: snow(shape, rng=0, band=band)
     timing = time_against_floor(cases, fft_floor(shape, np.float32), repeats=cfg.repeats)
     rows = []
     for n in cfg.flake_counts:
@@ -343,7 +343,7 @@ def sweep_tiles(cfg):
     cases = {}
     for s in sizes:
         b = (band[0] * s / W, band[1] * s / W)
-        cases[s] = (lambda s=s, b=b: tile(snow((T, s, s), seed=0, band=b), (1, W // s, W // s)))
+        cases[s] = (lambda s=s, b=b: tile(snow((T, s, s), rng=0, band=b), (1, W // s, W // s)))
     timing = _timed(cases, fft_floor((T, H, W)), cfg.repeats)
     pts = []
     base = None
@@ -370,10 +370,10 @@ def sweep_precision(cfg):
 
     shape = tuple(cfg.pareto_shape)
     n = cfg.texture_n2
-    cases = {("snow", "float32"): lambda: snow(shape, seed=0, dtype=np.float32),
-             ("snow", "float64"): lambda: snow(shape, seed=0, dtype=np.float64),
-             ("noise", "float32"): lambda: spectral_noise((n, n), seed=0, dtype=np.float32),
-             ("noise", "float64"): lambda: spectral_noise((n, n), seed=0, dtype=np.float64)}
+    cases = {("snow", "float32"): lambda: snow(shape, rng=0, dtype=np.float32),
+             ("snow", "float64"): lambda: snow(shape, rng=0, dtype=np.float64),
+             ("noise", "float32"): lambda: spectral_noise((n, n), rng=0, dtype=np.float32),
+             ("noise", "float64"): lambda: spectral_noise((n, n), rng=0, dtype=np.float64)}
     timing = _timed(cases, fft_floor(shape), cfg.repeats)
     sweeps = []
     for what, label in (("snow", f"snow {'x'.join(map(str, shape))}"), ("noise", f"spectral_noise {n}x{n}")):
@@ -446,7 +446,7 @@ def sweep_layers(cfg):
     shape = tuple(cfg.pareto_shape)
     band = snow_band(shape[2])
     counts = (2, 4, 8, 16) if not cfg.quick else (2, 4)
-    cases = {k: (lambda k=k: layered_lattice_snow(shape, seed=0, band=band, layers=k)) for k in counts}
+    cases = {k: (lambda k=k: layered_lattice_snow(shape, rng=0, band=band, layers=k)) for k in counts}
     timing = _timed(cases, fft_floor(shape), cfg.repeats)
     pts = []
     for k in counts:

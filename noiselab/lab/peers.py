@@ -50,7 +50,7 @@ def spectral_cases(n):
     def noiselab_spectral():
         from noiselab.spectral import spectral_noise
 
-        return spectral_noise((n, n), exponent=1.0, band=(1, n / 2), seed=0)
+        return spectral_noise((n, n), exponent=1.0, band=(1, n / 2), rng=0)
 
     def powerbox():
         import powerbox as pb
@@ -85,7 +85,7 @@ def video_cases(n, frames):
     def noiselab_snow():
         from noiselab.snowfall import snow
 
-        return snow((frames, m, m), seed=0)
+        return snow((frames, m, m), rng=0)
 
     return {"MotionClouds": motionclouds, "noiselab snow": noiselab_snow}
 
@@ -220,7 +220,7 @@ def image_quality(img, target_slope, band):
     x = x / sd
     s = float(spectral_slope(x, band=band))
     q.update({"slope": s, "slope_error": s - target_slope, "anisotropy": float(anisotropy(x, band=band)),
-              "octave_ripple_db": octave_energy(x, lo=band[0], hi=band[1]).db_range})
+              "octave_ripple_db": octave_energy(x, band).db_range})
     from noiselab.analysis import axis_artefacts, band_leakage
 
     art = axis_artefacts(x, band, window="hann")  # peers' fields do not tile: the window keeps the edge off the axes
@@ -234,7 +234,7 @@ def video_quality(v):
 
     v = np.asarray(v, dtype=np.float64)
     vel = best_velocity(v)
-    return {"best_velocity": [float(vel[0]), float(vel[1])], "motion_energy_v(0,1)": float(motion_energy(v, (0, 1))),
+    return {"best_velocity": [float(vel[0]), float(vel[1])], "motion_energy_v(0,1)": float(motion_energy(v, velocity_yx=(1, 0))),
             "loop_seam": float(loop_seam(v))}
 
 

@@ -133,7 +133,7 @@ def octave_generators(n, dim=2):
     gens = {}
 
     def spectral(seed, m, lo=c0 / np.sqrt(2), hi=c0 * np.sqrt(2)):
-        x = spectral_noise((n,) * dim, exponent=0.0, band=(lo, hi), seed=seed, dtype=np.float64)
+        x = spectral_noise((n,) * dim, exponent=0.0, band=(lo, hi), rng=seed, dtype=np.float64)
         if m == n:
             return x
         from scipy.signal import resample
@@ -176,7 +176,7 @@ def _period_of(family, info, n, seed=0):
         p = detect_period(line, tol=1e-9)
         return {"period": None if p.period is None else p.period / spc, "period_unit": "cells",
                 "period_expected": float(table)}
-    x = spectral_noise((n,), exponent=0.0, band=(1, n / 2), seed=seed, dtype=np.float64)
+    x = spectral_noise((n,), exponent=0.0, band=(1, n / 2), rng=seed, dtype=np.float64)
     p = detect_period(np.tile(x, 2), tol=1e-9)  # wider than its domain, an FFT field can only repeat
     return {"period": p.period, "period_unit": "samples", "period_expected": float(n)}
 
@@ -256,8 +256,8 @@ def motion_experiment(cfg, seeds=QUALITY_SEEDS):
     band = snow_band(shape[2])
     methods = dict(snow_methods(shape))
     methods = {"tent IFFT, linear field (rescale=False)":
-               lambda s: snow(shape, seed=s, band=band, c=1.0, rescale=False, dtype=np.float64), **methods}
-    target = np.abs(snow_spectrum(shape, seed=0, band=band, c=1.0, amplitude="fixed", dtype=np.float64)) ** 2
+               lambda s: snow(shape, rng=s, band=band, c=1.0, rescale=False, dtype=np.float64), **methods}
+    target = np.abs(snow_spectrum(shape, rng=0, band=band, c=1.0, amplitude_distribution="fixed", dtype=np.float64)) ** 2
     rows = []
     for name, fn in methods.items():
         fr, env, off = [], [], []

@@ -9,7 +9,7 @@
   speed (both ``1/depth``), splatted as anti-aliased discs.
 
 Both take the same ``shape``, ``band`` (cycles/frame), ``c`` (rad/frame) and
-``direction`` as :func:`noiselab.snowfall.snow`, so the three methods render the
+``direction_yx`` as :func:`noiselab.snowfall.snow`, so the three methods render the
 same scene and the analysers (:mod:`noiselab.analysis`) can compare them.
 """
 from __future__ import annotations
@@ -20,22 +20,23 @@ import math
 import numba
 import numpy as np
 
-from .._core import as_generator, check_band, check_int, check_memory, check_real, check_shape, float_dtype
+from .._core import (array_order, as_generator, check_band, check_int, check_memory, check_real, check_shape,
+                     float_dtype, renamed_parameters)
 from ..lattice import LatticeNoise
 from ..snowfall import rescale_opacity
-from ..spectral.envelopes import unit_direction
+from ..spectral.envelopes import unit_direction_yx
 
 __all__ = ["layered_lattice_snow", "particle_snow", "layer_plan", "lattice_peak"]
 
 
-def _check_scene(shape, c, band, direction):
+def _check_scene(shape, c, band, direction_yx):
     shape = check_shape("shape", shape, ndim=3)
     T, H, W = shape
     c = check_real("c (rad/frame)", c, lo=0.0, hi=math.pi)
     if band is None:
         band = (W / 32, W / 4)
     lo, hi = check_band("band", band, W / 2, lo_open=True, width=W)
-    return shape, c, (lo, hi), unit_direction(direction)
+    return shape, c, (lo, hi), unit_direction_yx("direction_yx", direction_yx)
 
 
 def lattice_peak(kernel="catmull-rom", basis="gradient") -> float:
@@ -115,7 +116,9 @@ def layer_plan(shape=(64, 512, 512), *, c=1.0, band=None, layers=8, kernel="catm
     return {"frequency": freq, "cells_x": cells_x, "cells_y": cells_y, "speed": speed, "amplitude": amp}
 
 
-def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, layers=8, direction=(0.0, 1.0),
+@array_order(("direction", "direction_yx"))
+@renamed_parameters(seed="rng")
+def layered_lattice_snow(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, layers=8, direction_yx=(1.0, 0.0),
                          kernel="catmull-rom", exponent=1.0, beta=1.5, dtype=np.float32, rescale=True, start=0):
     """Falling snow from depth layers of band-pass lattice noise, each translating at its own speed.
 
@@ -123,7 +126,7 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
     scene: ``layers`` layers of gradient (Perlin) noise, each tiling the frame
     (whole lattice periods across it), centred at frequencies spaced evenly in
     log frequency across ``band``; layer ``k`` translates rigidly along
-    ``direction`` at ``c / |w_k|`` px/frame (``|w_k| = 2 pi f_k / W``): speed
+    ``direction_yx`` at ``c / |w_k|`` px/frame (``|w_k| = 2 pi f_k / W``): speed
     inversely proportional to its spatial frequency, the tent's law sampled at
     ``layers`` depths. Amplitude ``f_k**(1 - exponent)`` per layer gives the
     1/f amplitude spectrum of the thesis for ``exponent=1``. The sum is
@@ -139,7 +142,7 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
     ----------
     shape : (T, H, W)
         Frames, height, width.
-    seed : int or numpy.random.Generator
+    rng : int, numpy.random.Generator or None
         Same seed, same bits.
     c : float
         Tent constant in rad/frame, ``0 <= c <= pi``.
@@ -148,8 +151,9 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
         default ``(W/32, W/4)`` as for :func:`noiselab.snowfall.snow`.
     layers : int
         Depth layers, 1..256 (more layers: a closer approximation, linear cost).
-    direction : (dx, dy)
-        Fall direction in image coordinates (x right, y down).
+    direction_yx : (dy, dx)
+        Fall direction in array order (y down, x right), as :func:`noiselab.snowfall.snow`;
+        ``direction=(dx, dy)`` is the old spelling (until 0.3).
     kernel : str
         Lattice kernel (see :mod:`noiselab.lattice.kernels`); Catmull-Rom gives
         the narrowest layer spectrum.
@@ -174,17 +178,17 @@ def layered_lattice_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, l
 
     Examples
     --------
-    >>> a = layered_lattice_snow((4, 64, 64), seed=0, layers=3)
+    >>> a = layered_lattice_snow((4, 64, 64), rng=0, layers=3)
     >>> a.shape, a.dtype, float(a.min()), float(a.max())
     ((4, 64, 64), dtype('float32'), 0.0, 1.0)
     """
-    (T, H, W), c, band, (dx, dy) = _check_scene(shape, c, band, direction)
+    (T, H, W), c, band, (dx, dy) = _check_scene(shape, c, band, direction_yx)
     beta = check_real("beta", beta, lo=0.0, lo_open=True)
     start = check_int("start", start, lo=0)
     dt = float_dtype(dtype)
     plan = layer_plan((T, H, W), c=c, band=band, layers=layers, kernel=kernel, exponent=exponent)
     check_memory(T * H * W * dt.itemsize + 4 * H * W * 8, f"layered_lattice_snow{(T, H, W)}")
-    rng = as_generator(seed)
+    rng = as_generator(rng)
     layer_seeds = rng.integers(0, 2**63 - 1, size=len(plan["speed"]))
     layers_ = []
     for k in range(len(plan["speed"])):
@@ -247,7 +251,9 @@ def _splat(x0, y0, vx, vy, radius, opacity, nsub, T, H, W, trans):
     return trans
 
 
-def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=None, direction=(0.0, 1.0),
+@array_order(("direction", "direction_yx"))
+@renamed_parameters(seed="rng")
+def particle_snow(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, flakes=None, direction_yx=(1.0, 0.0),
                   opacity=0.9, motion_blur=False, dtype=np.float32, return_flakes=False):
     """Falling snow as a particle system (Reeves 1983): flakes with depth, size and speed, splatted as discs.
 
@@ -256,7 +262,7 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
     a diameter ``D = W / (2 lo z)`` px (a disc of diameter ``D`` is matched to
     the frequency ``f = W / (2 D)`` cycles/frame, so ``band`` maps to
     diameters ``W/(2 hi) .. W/(2 lo)``) and a speed ``c W / (2 pi f) = c D / pi``
-    px/frame along ``direction``: the tent's parallax law, flake by flake.
+    px/frame along ``direction_yx``: the tent's parallax law, flake by flake.
     Flakes wrap around the frame (a torus, like the periodic IFFT snow) and
     are splatted as anti-aliased discs; white flakes of opacity ``opacity``
     composite by the over operator, ``alpha = 1 - prod(1 - opacity * coverage)``,
@@ -269,7 +275,7 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
     ----------
     shape : (T, H, W)
         Frames, height, width.
-    seed : int or numpy.random.Generator
+    rng : int, numpy.random.Generator or None
         Same seed, same bits (frames are rendered in parallel, each by one thread).
     c : float
         Tent constant in rad/frame, ``0 <= c <= pi``.
@@ -279,8 +285,9 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
         Number of flakes, 1..10**8; default ``H * W / 16`` (16384 at 512 x
         512), which gives a mean opacity near that of :func:`noiselab.snowfall.snow`
         with the default band (about 0.35; see ``benchmarks/RESULTS.md``).
-    direction : (dx, dy)
-        Fall direction in image coordinates (x right, y down).
+    direction_yx : (dy, dx)
+        Fall direction in array order (y down, x right), as :func:`noiselab.snowfall.snow`;
+        ``direction=(dx, dy)`` is the old spelling (until 0.3).
     opacity : float
         Opacity of a flake's core, in (0, 1].
     motion_blur : bool
@@ -302,18 +309,18 @@ def particle_snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, flakes=N
 
     Examples
     --------
-    >>> a, fl = particle_snow((4, 64, 64), seed=0, flakes=50, return_flakes=True)
+    >>> a, fl = particle_snow((4, 64, 64), rng=0, flakes=50, return_flakes=True)
     >>> a.shape, bool(0 <= a.min() and a.max() <= 1), len(fl["speed"])
     ((4, 64, 64), True, 50)
     """
-    (T, H, W), c, (lo, hi), (dx, dy) = _check_scene(shape, c, band, direction)
+    (T, H, W), c, (lo, hi), (dx, dy) = _check_scene(shape, c, band, direction_yx)
     opacity = check_real("opacity", opacity, lo=0.0, hi=1.0, lo_open=True)
     if flakes is None:
         flakes = max(1, H * W // 16)
     n = check_int("flakes", flakes, lo=1, hi=10**8)
     dt = float_dtype(dtype)
     check_memory(T * H * W * dt.itemsize + n * 64, f"particle_snow{(T, H, W)} with {n} flakes")
-    rng = as_generator(seed)
+    rng = as_generator(rng)
     zmax = hi / lo
     u = rng.random(n)
     depth = (1.0 + u * (zmax**3 - 1.0)) ** (1.0 / 3.0)  # inverse CDF of p(z) ~ z**2 on [1, zmax]

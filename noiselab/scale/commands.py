@@ -85,7 +85,7 @@ def write_noise_zarr(args, noise, grid, summer, dtype, path):
     coords = dict(zip(names, grid_coordinates(grid.shape, grid.extent)))
     path.parent.mkdir(parents=True, exist_ok=True)
     try:
-        write_zarr(path, field, dims=names, coords=coords, params=params, seed=args.seed,
+        write_zarr(path, field, dims=names, coords=coords, params=params, rng=args.seed,
                    units="noise amplitude (dimensionless); coordinates in lattice cells",
                    attrs={"value_bound": [lo, hi]}, scheduler=args.scheduler)
     except (ImportError, FileExistsError) as exc:
@@ -120,9 +120,9 @@ def write_snow_zarr(args, shape, path):
     path.parent.mkdir(parents=True, exist_ok=True)
     with scratch_folder(path, suffix=".spill.tmp") as spill:   # removed afterwards, also when a signal stops the run
         try:
-            alpha = snow(shape, seed=args.seed, c=args.c, band=band, thickness=args.thickness,
-                         direction=tuple(args.direction), pan=tuple(args.pan), beta=args.beta,
-                         exponent=args.exponent, amplitude=args.amplitude, dtype=args.dtype,
+            alpha = snow(shape, rng=args.seed, c=args.c, band=band, thickness=args.thickness,
+                         direction_yx=tuple(args.direction_yx), pan_yx=tuple(args.pan_yx), beta=args.beta,
+                         exponent=args.exponent, amplitude_distribution=args.amplitude, dtype=args.dtype,
                          on_alias=args.on_alias, chunks=chunks, spill=spill)
         except ImportError as exc:
             raise ValueError(str(exc)) from None
@@ -130,13 +130,13 @@ def write_snow_zarr(args, shape, path):
         params = {
             "command": "noiselab snow", "shape": [T, H, W], "c": args.c,
             "band": list(band) if band is not None else [W / 32, W / 4], "thickness": args.thickness,
-            "direction": list(args.direction), "pan": list(args.pan), "beta": args.beta,
+            "direction_yx": list(args.direction_yx), "pan_yx": list(args.pan_yx), "beta": args.beta,
             "exponent": args.exponent, "amplitude": args.amplitude, "on_alias": args.on_alias, "dtype": args.dtype,
         }
         coords = {"t": np.arange(T, dtype=np.float64), "y": np.arange(H, dtype=np.float64),
                   "x": np.arange(W, dtype=np.float64)}
         try:
-            write_zarr(path, alpha, dims=("t", "y", "x"), coords=coords, params=params, seed=args.seed,
+            write_zarr(path, alpha, dims=("t", "y", "x"), coords=coords, params=params, rng=args.seed,
                        units="opacity in [0, 1]; t in frames (one period, it loops), y and x in pixels",
                        scheduler=args.scheduler, progress=args.progress)
         except (ImportError, FileExistsError) as exc:

@@ -240,7 +240,7 @@ def _one_piece(shape, kw):
 
 
 @dispatch.register("spectral_noise")
-def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dtype, normalize, dc, spill=None):
+def chunked_spectral_noise(shape, chunks, *, exponent, band, rng, amplitude, dtype, normalize, dc, spill=None):
     """:func:`noiselab.spectral.spectral_noise` as a lazy dask array in ``chunks`` (see the module notes).
 
     Called by ``spectral_noise`` when ``chunks`` is given, after it validated
@@ -250,10 +250,10 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dt
     --------
     >>> import numpy as np
     >>> from noiselab.spectral import spectral_noise
-    >>> lazy = spectral_noise((40, 36), band=(2, 12), seed=3, chunks=(16, 20))
+    >>> lazy = spectral_noise((40, 36), band=(2, 12), rng=3, chunks=(16, 20))
     >>> lazy.chunks
     ((16, 16, 8), (20, 16))
-    >>> ref = spectral_noise((40, 36), band=(2, 12), seed=3)
+    >>> ref = spectral_noise((40, 36), band=(2, 12), rng=3)
     >>> float(np.max(np.abs(lazy.compute() - ref))) < 1e-5
     True
     """
@@ -265,10 +265,10 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, seed, amplitude, dt
     dt = float_dtype(dtype)
     out_chunks = _out_chunks(chunks, shape, dt)
     if len(shape) == 1:  # one FFT axis: one task
-        kw = dict(exponent=exponent, band=band, seed=seed, amplitude=amplitude, dtype=dt, normalize=normalize, dc=dc)
+        kw = dict(exponent=exponent, band=band, rng=rng, amplitude=amplitude, dtype=dt, normalize=normalize, dc=dc)
         x = da.from_delayed(delayed(_one_piece, pure=True)(shape, kw), shape, dtype=dt)
         return x.rechunk(out_chunks)
-    p = plan.noise_plan(shape, exponent, band, seed, amplitude, dt, normalize=normalize, dc=dc, check=False)
+    p = plan.noise_plan(shape, exponent, band, rng, amplitude, dt, normalize=normalize, dc=dc, check=False)
     tok = uuid.uuid4().hex[:12]  # a fresh graph per call (the plan holds arrays; no reliable cheap token)
     b0 = p.bshape[0]
     rest = int(np.prod(p.bshape[1:]))
@@ -349,7 +349,7 @@ def _snow_rescale(B, W, dt, beta, lohi):
 
 
 @dispatch.register("snow")
-def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, beta, exponent, amplitude, dtype,
+def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta, exponent, amplitude, dtype,
                  on_alias, rescale, spill=None):
     """:func:`noiselab.snowfall.snow` as a lazy dask array in ``chunks`` (see the module notes).
 
@@ -360,10 +360,10 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     --------
     >>> import numpy as np
     >>> from noiselab.snowfall import snow
-    >>> lazy = snow((8, 48, 64), seed=1, chunks=(3, 20, 64))
+    >>> lazy = snow((8, 48, 64), rng=1, chunks=(3, 20, 64))
     >>> lazy.chunks
     ((3, 3, 2), (20, 20, 8), (64,))
-    >>> float(np.max(np.abs(lazy.compute() - snow((8, 48, 64), seed=1)))) < 1e-6
+    >>> float(np.max(np.abs(lazy.compute() - snow((8, 48, 64), rng=1)))) < 1e-6
     True
     """
     require_dask()
@@ -374,7 +374,7 @@ def chunked_snow(shape, chunks, *, seed, c, band, thickness, direction, pan, bet
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1
-    spec = assemble(cols, as_generator(seed), amplitude, dt)  # the in-memory path's sparse spectrum
+    spec = assemble(cols, as_generator(rng), amplitude, dt)  # the in-memory path's sparse spectrum
     ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, T * H * cdt.itemsize))
     kx_blocks, pieces = _snow_plan(cols, spec, K, ckx)
     tok = uuid.uuid4().hex[:12]

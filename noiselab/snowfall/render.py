@@ -5,10 +5,12 @@ import math
 
 import numpy as np
 
-from .._core import (as_array, as_generator, check_finite_array, check_memory, check_real, check_real_sequence,
-                     check_shape, dispatch, float_dtype, progress, resolve_workers, thread_pool)
-from ..spectral import AMPLITUDES
-from ..spectral.envelopes import unit_direction
+from .._core import progress as progress_bar
+from .._core import (array_order, as_array, as_generator, check_finite_array, check_memory, check_real, check_real_sequence,
+                     check_shape, dispatch, float_dtype, renamed_parameters, resolve_workers, swap_pair,
+                     thread_pool)
+from ..spectral.synthesis import check_distribution
+from ..spectral.envelopes import unit_direction_yx
 from . import _kernels
 from .tent import assemble, pruned_irfftn, tent_columns, to_half_spectrum
 
@@ -99,20 +101,20 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None, workers=None):
     return field
 
 
-def _check_params(shape, c, band, thickness, direction, pan, beta, exponent, amplitude, on_alias):
+def _check_params(shape, c, band, thickness, direction_yx, pan_yx, beta, exponent, amplitude, on_alias):
+    """The checked parameters; ``direction`` and ``pan`` come back in the tent code's (x, y) order."""
     shape = check_shape("shape", shape, ndim=3)
     T, H, W = shape
     c = check_real("c (rad/frame)", c, lo=0, hi=np.pi)
     thickness = check_real("thickness", thickness, lo=0, hi=1)
     beta = check_real("beta", beta, lo=0, lo_open=True)
     exponent = check_real("exponent", exponent, lo=-8, hi=8)
-    direction = unit_direction(direction)
+    direction = unit_direction_yx("direction_yx", direction_yx)
     try:
-        p = check_real_sequence("pan", pan, length=2, lo=-1e100, hi=1e100)
+        p = swap_pair("pan_yx", check_real_sequence("pan_yx", pan_yx, length=2, lo=-1e100, hi=1e100))
     except (TypeError, ValueError) as exc:
-        raise type(exc)(f"pan must be a finite pair (ux, uy) in px/frame: {exc}") from None
-    if amplitude not in AMPLITUDES:
-        raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
+        raise type(exc)(f"pan_yx must be a finite pair (uy, ux) in px/frame: {exc}") from None
+    check_distribution(amplitude)
     if on_alias not in ("raise", "drop"):
         raise ValueError(f"on_alias must be 'raise' or 'drop', got {on_alias!r}")
     if band is None:
@@ -120,9 +122,11 @@ def _check_params(shape, c, band, thickness, direction, pan, beta, exponent, amp
     return shape, c, band, thickness, direction, (float(p[0]), float(p[1])), beta, exponent
 
 
-def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, direction=(0.0, 1.0),
-         pan=(0.0, 0.0), beta=1.5, exponent=1.0, amplitude="uniform", dtype=np.float32,
-         on_alias="raise", rescale=True, show_progress=False, workers=None, chunks=None, spill=None):
+@array_order(("direction", "direction_yx"), ("pan", "pan_yx"))
+@renamed_parameters(seed="rng", show_progress="progress", amplitude="amplitude_distribution")
+def snow(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, thickness=0.1, direction_yx=(1.0, 0.0),
+         pan_yx=(0.0, 0.0), beta=1.5, exponent=1.0, amplitude_distribution="uniform", dtype=np.float32,
+         on_alias="raise", rescale=True, progress=None, workers=None, chunks=None, spill=None):
     """Falling-snow opacity ``alpha(t, y, x)`` in [0, 1] from the tent model (Langer & Zhang 2003).
 
     Energy sits on the thickened tent ``wt = -c*(d . w)/|w| - pan . w`` inside
@@ -134,8 +138,9 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
     ----------
     shape : (T, H, W)
         Frames, height, width. ``T = 1`` gives a still.
-    seed : int or numpy.random.Generator
-        Same seed, same bits.
+    rng : int, numpy.random.Generator or None
+        The random state (SPEC 7): the same int, the same bits; a
+        ``Generator`` is drawn from; ``None`` (default) is fresh entropy.
     c : float
         Tent constant in rad/frame, ``0 <= c <= pi`` (thesis Eq. 3.3). A flake
         at spatial frequency ``|w|`` rad/px moves at ``c/|w|`` px/frame: with
@@ -152,17 +157,20 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
         over ``c*(1 - thickness) .. c*(1 + thickness)`` (a range of speeds per
         spatial frequency, thesis 3.2.1). 0 is the thin tent (one temporal bin
         per spatial frequency).
-    direction : (dx, dy)
-        Fall direction in image coordinates (x right, y down), any angle;
-        default ``(0, 1)``, straight down.
-    pan : (ux, uy)
-        Image velocity in px/frame that a panning camera adds to every flake
-        (the sheared tent, Eq. 4.2); ``(0, 0)`` for a still camera.
+    direction_yx : (dy, dx)
+        Fall direction in array order (y down the rows, x right along the
+        columns), any angle and length; default ``(1, 0)``, straight down.
+        (``direction=(dx, dy)``, the old (x, y) spelling, works until 0.3
+        with a ``DeprecationWarning``.)
+    pan_yx : (uy, ux)
+        Image velocity in px/frame, array order, that a panning camera adds
+        to every flake (the sheared tent, Eq. 4.2); ``(0, 0)`` for a still
+        camera. (``pan=(ux, uy)``: the old spelling, until 0.3.)
     beta : float
         Opacity exponent, ``alpha ** beta`` after rescaling (thesis: 1.5).
     exponent : float
         Amplitude ``1/|w|**exponent``; 1 is the thesis's 1/f.
-    amplitude : {"uniform", "rayleigh", "fixed"}
+    amplitude_distribution : {"uniform", "rayleigh", "fixed"}
         Random amplitude law (thesis: uniform).
     dtype : float32 or float64
         Output dtype; float32 (default) computes in complex64.
@@ -172,7 +180,7 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
         the largest allowed ``c`` (and pan); ``"drop"`` leaves those cells out.
     rescale : bool
         ``False`` returns the raw zero-mean field (the inverse FFT itself).
-    show_progress : bool or None
+    progress : bool or None
         Progress bar over the frames of the final FFT pass.
     workers : int, optional
         Threads, with scipy.fft's meaning (-1: every core): the t-pass runs on
@@ -219,20 +227,21 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
 
     Examples
     --------
-    >>> a = snow((16, 64, 64), seed=0)
+    >>> a = snow((16, 64, 64), rng=0)
     >>> a.shape, a.dtype, float(a.min()), float(a.max())
     ((16, 64, 64), dtype('float32'), 0.0, 1.0)
     """
     (T, H, W), c, band, thickness, direction, pan, beta, exponent = _check_params(
-        shape, c, band, thickness, direction, pan, beta, exponent, amplitude, on_alias)
+        shape, c, band, thickness, direction_yx, pan_yx, beta, exponent, amplitude_distribution, on_alias)
     nw = resolve_workers(workers)
     dt = float_dtype(dtype)
     if spill is not None and chunks is None:
         raise ValueError("spill= is the chunked path's scratch directory: pass chunks= too")
     if chunks is not None:  # lazy, on dask: the implementation noiselab.scale.spectral registers
-        return dispatch.chunked("snow")((T, H, W), chunks, seed=seed, c=c, band=band, thickness=thickness,
+        return dispatch.chunked("snow")((T, H, W), chunks, rng=rng, c=c, band=band, thickness=thickness,
                                         direction=direction, pan=pan, beta=beta, exponent=exponent,
-                                        amplitude=amplitude, dtype=dt, on_alias=on_alias, rescale=rescale,
+                                        amplitude=amplitude_distribution, dtype=dt, on_alias=on_alias,
+                                        rescale=rescale,
                                         spill=spill)
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
@@ -241,18 +250,21 @@ def snow(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, di
     # the output, the sparse spectrum (a bin, a value and a sort key per cell) and one block's scratch per thread
     check_memory(T * H * W * item + 4 * cols.n_cells * (16 + 2 * item) + nw * (2 * H * K * 2 * item + (1 << 18)),
                  f"snow{(T, H, W)}")
-    rng = as_generator(seed)
-    spec = assemble(cols, rng, amplitude, dt)
+    rng = as_generator(rng)
+    spec = assemble(cols, rng, amplitude_distribution, dt)
     out = np.empty((T, H, W), dtype=dt)
-    with progress(total=T, desc="snow", enabled=show_progress, unit="frame") as bar:
+    with progress_bar(total=T, desc="snow", enabled=progress, unit="frame") as bar:
         lo, hi = pruned_irfftn(spec, cols, out, bar=bar, workers=workers)
     if rescale:
         rescale_opacity(out, beta, lo=lo, hi=hi, workers=nw)
     return out
 
 
-def snow_spectrum(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thickness=0.1, direction=(0.0, 1.0),
-                  pan=(0.0, 0.0), exponent=1.0, amplitude="uniform", dtype=np.float32, on_alias="raise"):
+@array_order(("direction", "direction_yx"), ("pan", "pan_yx"))
+@renamed_parameters(seed="rng", amplitude="amplitude_distribution")
+def snow_spectrum(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, thickness=0.1, direction_yx=(1.0, 0.0),
+                  pan_yx=(0.0, 0.0), exponent=1.0, amplitude_distribution="uniform", dtype=np.float32,
+                  on_alias="raise"):
     """The half spectrum ``S`` (``(T, H, W//2 + 1)``) that :func:`snow` inverts for the same arguments.
 
     ``scipy.fft.irfftn(S, s=shape)`` equals ``snow(..., rescale=False)`` to
@@ -261,7 +273,7 @@ def snow_spectrum(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thicknes
 
     Parameters
     ----------
-    shape, seed, c, band, thickness, direction, pan, exponent, amplitude, dtype, on_alias
+    shape, rng, c, band, thickness, direction_yx, pan_yx, exponent, amplitude_distribution, dtype, on_alias
         As for :func:`snow` (the same checks, the same random draws).
 
     Returns
@@ -279,16 +291,16 @@ def snow_spectrum(shape=(64, 512, 512), *, seed=None, c=1.0, band=None, thicknes
     Examples
     --------
     >>> import numpy as np, scipy.fft
-    >>> S = snow_spectrum((8, 32, 32), seed=0, dtype=np.float64)
+    >>> S = snow_spectrum((8, 32, 32), rng=0, dtype=np.float64)
     >>> S.shape, round(float((S != 0).mean()), 3)   # the share of cells that carry energy
     ((8, 32, 17), 0.025)
-    >>> raw = snow((8, 32, 32), seed=0, dtype=np.float64, rescale=False)
+    >>> raw = snow((8, 32, 32), rng=0, dtype=np.float64, rescale=False)
     >>> bool(np.allclose(scipy.fft.irfftn(S, s=(8, 32, 32)), raw))
     True
     """
     (T, H, W), c, band, thickness, direction, pan, _, exponent = _check_params(
-        shape, c, band, thickness, direction, pan, 1.0, exponent, amplitude, on_alias)
+        shape, c, band, thickness, direction_yx, pan_yx, 1.0, exponent, amplitude_distribution, on_alias)
     dt = float_dtype(dtype)
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
-    return to_half_spectrum(assemble(cols, as_generator(seed), amplitude, dt), cols)
+    return to_half_spectrum(assemble(cols, as_generator(rng), amplitude_distribution, dt), cols)

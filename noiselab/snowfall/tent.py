@@ -27,7 +27,7 @@ The tent itself is :func:`noiselab.spectral.envelopes.tent_surface` (its
 unchecked form ``tent_surface_terms``), evaluated at the band's spatial
 cells only, with the amplitude of
 :func:`~noiselab.spectral.envelopes.power_law`: the cells that carry energy
-are the cells of ``thickened_tent(..., tolerance=pi/T) * annulus(...)``
+are the cells of ``thickened_tent(..., tol=pi/T) * annulus(...)``
 (tested). :func:`y_pass`, :func:`tent_columns`, :func:`tent_coefficients`,
 :func:`self_conjugate_planes` and :func:`column_spectra` are the internal interface shared by the
 in-memory and dask paths (:mod:`noiselab.scale.spectral`).
@@ -139,7 +139,7 @@ def tent_columns(shape, *, c, band, thickness, direction, pan, exponent, on_alia
     if T > 1 and peak > np.pi * (1 + 1e-9) and on_alias == "raise":
         cmax = largest_c(a, b, thickness)
         msg = (
-            f"temporal aliasing: c={c:g} rad/frame with thickness={thickness:g} and pan={tuple(pan)} puts energy at "
+            f"temporal aliasing: c={c:g} rad/frame with thickness={thickness:g} and pan_yx={(pan[1], pan[0])} puts energy at "
             f"{peak:.4g} rad/frame, past the temporal Nyquist frequency pi={np.pi:.4f} rad/frame; that motion would "
             f"wrap around and reverse. "
         )

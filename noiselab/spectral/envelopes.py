@@ -6,8 +6,12 @@ Every function takes angular frequencies in **rad/sample** (as returned by
 broadcasts against them. Their other parameters say their unit in their name
 or in their error messages: :func:`annulus`'s ``band_cycles_per_sample``
 (cycles/sample, the radius ``|w| / (2*pi)``; ``spectral_noise`` and ``snow``
-take bands in cycles/frame, ``W`` times that), ``c`` and ``tolerance`` in
-rad/frame, velocities in px/frame. Masks are float arrays of 0 and 1, so that
+take bands in cycles/frame, ``W`` times that), ``c`` and ``tol`` in
+rad/frame, velocities in px/frame. Pairs of per-axis components are in array
+order, like the frequency vectors: ``direction_yx = (dy, dx)``,
+``pan_yx = (uy, ux)``, ``velocity_yx = (vy, vx)`` (the old ``(x, y)``
+keywords and positions still work until 0.3, with a ``DeprecationWarning``).
+Masks are float arrays of 0 and 1, so that
 ``annulus(...) * power_law(...) * tent(...)`` is the snow envelope.
 
 Sign convention (numpy's FFT, checked by measuring motion in the tests): a
@@ -15,10 +19,10 @@ pattern translating with image velocity ``v = (vx, vy)`` pixels/frame has its
 energy on the motion plane ``wt = -(vx*wx + vy*wy)`` (Watson & Ahumada, thesis
 Eq. 2.8). The thesis writes its tent (Eq. 3.3) without the minus sign, for
 its own transform convention; here the signs are chosen so that flakes move
-along ``+direction``.
+along ``+direction_yx``.
 
 "On a surface" means the frequency cell overlaps it: a cell of temporal
-frequency ``wt`` carries energy when ``|wt - surface| <= tolerance``; pass half
+frequency ``wt`` carries energy when ``|wt - surface| <= tol``; pass half
 a temporal bin (``pi / T``) for the thesis's "cells overlapping the surface".
 
 Examples
@@ -26,7 +30,7 @@ Examples
 >>> import numpy as np
 >>> from noiselab.spectral import frequency_vectors
 >>> wt, wy, wx = frequency_vectors((64, 128, 128))
->>> env = annulus(wy, wx, band_cycles_per_sample=(4/128, 32/128)) * power_law(wy, wx) * tent(wt, wy, wx, c=1.0, tolerance=np.pi/64)
+>>> env = annulus(wy, wx, band_cycles_per_sample=(4/128, 32/128)) * power_law(wy, wx) * tent(wt, wy, wx, c=1.0, tol=np.pi/64)
 >>> env.shape
 (64, 128, 65)
 """
@@ -37,7 +41,7 @@ import warnings
 
 import numpy as np
 
-from .._core import check_finite_array, check_real, check_real_sequence
+from .._core import array_order, check_finite_array, check_real, check_real_sequence, renamed_parameters
 
 __all__ = [
     "radial_frequency",
@@ -55,6 +59,26 @@ __all__ = [
     "orientation",
     "speed_envelope",
 ]
+
+
+def unit_direction_yx(name, direction_yx) -> tuple[float, float]:
+    """A fall direction given in array order ``(dy, dx)``, as the unit ``(dx, dy)`` of :func:`unit_direction`.
+
+    Errors name ``name`` and the array order.
+    """
+    if isinstance(direction_yx, (str, bytes, set, frozenset, dict)) or not hasattr(direction_yx, "__len__"):
+        raise TypeError(f"{name} must be a pair (dy, dx) of real numbers, got {direction_yx!r}")
+    if len(direction_yx) != 2:
+        raise ValueError(f"{name} must be a pair (dy, dx), got {direction_yx!r}")
+    try:
+        d = np.asarray(direction_yx, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise TypeError(f"{name} must be a pair (dy, dx) of real numbers, got {direction_yx!r}") from None
+    if not np.all(np.isfinite(d)):
+        raise ValueError(f"{name} must be finite, got {direction_yx!r}")
+    if not np.any(d):
+        raise ValueError(f"{name} must be a non-zero vector (dy, dx), got {direction_yx!r}")
+    return unit_direction((d[1], d[0]))
 
 
 def unit_direction(direction) -> tuple[float, float]:
@@ -114,8 +138,8 @@ def _frequencies(w, names=None):
 _BOUND = 1e100
 
 
-def _tolerance(tolerance):
-    return check_real("tolerance (rad/frame)", tolerance, lo=0.0, hi=_BOUND)
+def _tolerance(tol):
+    return check_real("tol (rad/frame)", tol, lo=0.0, hi=_BOUND)
 
 
 def _pair(name, value):
@@ -217,43 +241,62 @@ def _annulus_band(band, deprecated):
     return lo, hi
 
 
-def motion_plane(wt, wy, wx, velocity, *, tolerance):
-    """Energy on the motion plane ``wt = -(vx*wx + vy*wy)`` (Eq. 2.8), ``velocity = (vx, vy)`` px/frame."""
+def _pair_yx(name, value):
+    """A checked pair given in array order ``(y, x)``, returned as ``(x, y)`` for the formulas below."""
+    y, x = _pair(name, value)
+    return x, y
+
+
+@array_order(("velocity", "velocity_yx"), positional=("velocity",))
+@renamed_parameters(tolerance="tol")
+def motion_plane(wt, wy, wx, *, velocity_yx, tol):
+    """Energy on the motion plane ``wt = -(vx*wx + vy*wy)`` (Eq. 2.8), ``velocity_yx = (vy, vx)`` px/frame."""
     wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
-    vx, vy = _pair("velocity (px/frame)", velocity)
-    tolerance = _tolerance(tolerance)
-    return (np.abs(wt + vx * wx + vy * wy) <= tolerance).astype(float)
+    vx, vy = _pair_yx("velocity_yx (px/frame)", velocity_yx)
+    tol = _tolerance(tol)
+    return (np.abs(wt + vx * wx + vy * wy) <= tol).astype(float)
 
 
-def optical_snow(wt, wy, wx, direction, speeds, *, tolerance):
+@array_order(("direction", "direction_yx"), positional=("direction", "speeds"))
+@renamed_parameters(tolerance="tol")
+def optical_snow(wt, wy, wx, *, direction_yx, speeds, tol):
     """Parallel optical snow (Eq. 2.12): motion planes ``wt = -s*(d . w)`` for ``s`` in ``speeds = (smin, smax)`` px/frame.
 
+    ``direction_yx = (dy, dx)``, array order.
+
     The family of planes fills a wedge around the line ``d . w = 0``; a cell
-    is kept when it lies within ``tolerance`` of one of the planes.
+    is kept when it lies within ``tol`` of one of the planes.
     """
-    return nonparallel_optical_snow(wt, wy, wx, direction, speeds, pan=(0.0, 0.0), tolerance=tolerance)
+    return nonparallel_optical_snow(wt, wy, wx, direction_yx=direction_yx, speeds=speeds, pan_yx=(0.0, 0.0), tol=tol)
 
 
-def nonparallel_optical_snow(wt, wy, wx, direction, speeds, pan, *, tolerance):
-    """Non-parallel optical snow (Eq. 2.14): velocities ``u + s*d``, ``s`` in ``speeds``, ``u = pan`` px/frame."""
+@array_order(("direction", "direction_yx"), ("pan", "pan_yx"), positional=("direction", "speeds", "pan"))
+@renamed_parameters(tolerance="tol")
+def nonparallel_optical_snow(wt, wy, wx, *, direction_yx, speeds, pan_yx, tol):
+    """Non-parallel optical snow (Eq. 2.14): velocities ``u + s*d``, ``s`` in ``speeds``, ``u = pan`` px/frame.
+
+    ``direction_yx = (dy, dx)`` and ``pan_yx = (uy, ux)``, array order.
+    """
     wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
-    dx, dy = unit_direction(direction)
+    dx, dy = unit_direction_yx("direction_yx", direction_yx)
     smin, smax = sorted(_pair("speeds (px/frame)", speeds))
-    ux, uy = _pair("pan (px/frame)", pan)
-    tolerance = _tolerance(tolerance)
+    ux, uy = _pair_yx("pan_yx (px/frame)", pan_yx)
+    tol = _tolerance(tol)
     wv = dx * wx + dy * wy
     base = wt + ux * wx + uy * wy  # = -s * wv on the family
     lo = -np.maximum(smin * wv, smax * wv)
     hi = -np.minimum(smin * wv, smax * wv)
-    return ((base >= lo - tolerance) & (base <= hi + tolerance)).astype(float)
+    return ((base >= lo - tol) & (base <= hi + tol)).astype(float)
 
 
-def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
+@array_order(("direction", "direction_yx"), ("pan", "pan_yx"), positional=("direction", "pan"))
+def tent_surface(wy, wx, c, *, direction_yx=(1.0, 0.0), pan_yx=(0.0, 0.0)):
     """Temporal frequency (rad/frame) of the (sheared) tent: ``wt = -c*(d·w)/|w| - pan·w``.
 
     ``c`` is the thesis's tent constant in rad/frame; a flake at spatial
-    frequency ``|w|`` rad/px moves along ``d`` at ``c/|w|`` px/frame, plus the
-    pan velocity. At DC the tent term is taken as 0.
+    frequency ``|w|`` rad/px moves along ``d`` (``direction_yx = (dy, dx)``,
+    array order) at ``c/|w|`` px/frame, plus the pan velocity
+    (``pan_yx = (uy, ux)``). At DC the tent term is taken as 0.
 
     Examples
     --------
@@ -264,8 +307,8 @@ def tent_surface(wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0)):
     """
     wy, wx = _frequencies((wy, wx), ("wy", "wx"))
     c = check_real("c (rad/frame)", c, lo=-_BOUND, hi=_BOUND)
-    direction = unit_direction(direction)
-    pan = _pair("pan (px/frame)", pan)
+    direction = unit_direction_yx("direction_yx", direction_yx)
+    pan = _pair_yx("pan_yx (px/frame)", pan_yx)
     return tent_surface_terms(wy, wx, c, direction, pan)[0]
 
 
@@ -273,7 +316,8 @@ def tent_surface_terms(wy, wx, c, direction, pan):
     """:func:`tent_surface` and its two terms, for checked input (internal interface shared with ``noiselab.snow``).
 
     ``wy``, ``wx``: finite float64 arrays (rad/px); ``c`` a float;
-    ``direction`` a unit vector; ``pan`` a pair of floats (px/frame): nothing
+    ``direction`` a unit vector and ``pan`` a pair of floats (px/frame), both
+    in the formulas' (x, y) order (an internal interface): nothing
     is checked (:func:`tent_surface` checks, then calls this). Returns
     ``(wt, a, b, r)``: the surface ``wt = -c*a - b`` (rad/frame), its slope
     in ``c``, ``a = (d . w)/|w|`` (0 at DC), the pan's shear ``b = pan . w``
@@ -298,14 +342,18 @@ def tent_surface_terms(wy, wx, c, direction, pan):
     return -c * a - b, a, b, r
 
 
-def tent(wt, wy, wx, c, direction=(0.0, 1.0), *, tolerance):
-    """The thin tent (Eq. 3.3), cells within ``tolerance`` rad/frame of :func:`tent_surface`."""
+@array_order(("direction", "direction_yx"), positional=("direction",))
+@renamed_parameters(tolerance="tol")
+def tent(wt, wy, wx, c, *, direction_yx=(1.0, 0.0), tol):
+    """The thin tent (Eq. 3.3), cells within ``tol`` rad/frame of :func:`tent_surface`."""
     wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
-    tolerance = _tolerance(tolerance)
-    return (np.abs(wt - tent_surface(wy, wx, c, direction)) <= tolerance).astype(float)
+    tol = _tolerance(tol)
+    return (np.abs(wt - tent_surface(wy, wx, c, direction_yx=direction_yx)) <= tol).astype(float)
 
 
-def thickened_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, thickness, tolerance):
+@array_order(("direction", "direction_yx"), ("pan", "pan_yx"), positional=("direction", "pan"))
+@renamed_parameters(tolerance="tol")
+def thickened_tent(wt, wy, wx, c, *, direction_yx=(1.0, 0.0), pan_yx=(0.0, 0.0), thickness, tol):
     """Thickened (and optionally sheared) tent (thesis 3.2.1): a small range of tent constants.
 
     The tent is spread over the constants ``c*(1 - thickness) .. c*(1 + thickness)``
@@ -317,26 +365,29 @@ def thickened_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, thick
     wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
     c = check_real("c (rad/frame)", c, lo=-_BOUND, hi=_BOUND)
     thickness = check_real("thickness", thickness, lo=0.0, hi=1.0)
-    tolerance = _tolerance(tolerance)
-    dx, dy = unit_direction(direction)
+    tol = _tolerance(tol)
+    dx, dy = unit_direction_yx("direction_yx", direction_yx)
     r = _radial((wy, wx))
     wv = dx * wx + dy * wy
     pos = r > 0
     ratio = np.where(pos, np.abs(wv) / np.where(pos, r, 1.0), 0.0)  # (no division by 0: DC divides by 1)
     half = thickness * abs(c) * ratio
-    return (np.abs(wt - tent_surface(wy, wx, c, direction, pan)) <= tolerance + half).astype(float)
+    surface = tent_surface(wy, wx, c, direction_yx=direction_yx, pan_yx=pan_yx)
+    return (np.abs(wt - surface) <= tol + half).astype(float)
 
 
-def sheared_tent(wt, wy, wx, c, direction=(0.0, 1.0), pan=(0.0, 0.0), *, tolerance):
+@array_order(("direction", "direction_yx"), ("pan", "pan_yx"), positional=("direction", "pan"))
+@renamed_parameters(tolerance="tol")
+def sheared_tent(wt, wy, wx, c, *, direction_yx=(1.0, 0.0), pan_yx=(0.0, 0.0), tol):
     """Sheared tent for a panning camera (Eq. 4.2/4.3, any pan vector): tent plus the plane ``-pan . w``.
 
-    ``pan = (ux, uy)`` is the image velocity (px/frame) the camera adds to every
-    flake: a camera panning right makes the world, snow included, drift left,
-    ``pan = (-s, 0)``.
+    ``pan_yx = (uy, ux)`` is the image velocity (px/frame, array order) the
+    camera adds to every flake: a camera panning right makes the world, snow
+    included, drift left, ``pan_yx = (0, -s)``.
     """
     wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
-    tolerance = _tolerance(tolerance)
-    return (np.abs(wt - tent_surface(wy, wx, c, direction, pan)) <= tolerance).astype(float)
+    tol = _tolerance(tol)
+    return (np.abs(wt - tent_surface(wy, wx, c, direction_yx=direction_yx, pan_yx=pan_yx)) <= tol).astype(float)
 
 
 # ---------------------------------------------------------------- MotionClouds' envelopes (Leon et al. 2012)
@@ -419,11 +470,12 @@ def orientation(wy, wx, *, theta, B_theta):
         return np.exp((np.cos(2 * (angle - theta)) - 1.0) / (4.0 * B_theta ** 2))
 
 
-def speed_envelope(wt, wy, wx, *, velocity, B_V):
+@array_order(("velocity", "velocity_yx"))
+def speed_envelope(wt, wy, wx, *, velocity_yx, B_V):
     """Gaussian band around the motion plane: ``exp(-(wt + vx wx + vy wy)**2 / (2 (B_V |w|)**2))``.
 
     MotionClouds' ``envelope_speed``: energy near the plane of the velocity
-    ``(vx, vy)`` px/frame (the sign convention of :func:`motion_plane`), with
+    ``velocity_yx = (vy, vx)`` px/frame, array order (the sign convention of :func:`motion_plane`), with
     a thickness ``B_V`` (px/frame) that scales with the spatial radius
     ``|w| = sqrt(wx**2 + wy**2)``. At ``|w| = 0`` the value is 1.
     ``B_V = 0`` keeps only the ``wt = 0`` plane (a frozen texture);
@@ -433,11 +485,11 @@ def speed_envelope(wt, wy, wx, *, velocity, B_V):
     --------
     >>> import numpy as np
     >>> wt, wx = np.array([-0.5, 0.0]), np.array([0.5, 0.5])
-    >>> speed_envelope(wt, np.zeros(2), wx, velocity=(1.0, 0.0), B_V=0.5).round(3).tolist()
+    >>> speed_envelope(wt, np.zeros(2), wx, velocity_yx=(0.0, 1.0), B_V=0.5).round(3).tolist()
     [1.0, 0.135]
     """
     wt, wy, wx = _frequencies((wt, wy, wx), ("wt", "wy", "wx"))
-    vx, vy = _pair("velocity (px/frame)", velocity)
+    vx, vy = _pair_yx("velocity_yx (px/frame)", velocity_yx)
     shape = np.broadcast_shapes(wt.shape, wy.shape, wx.shape)
     if isinstance(B_V, (int, float, np.floating)) and B_V == np.inf:
         return np.ones(shape)

@@ -78,7 +78,7 @@ def stream_key(rng):
     return np.uint64(rng.integers(0, 2 ** 64, dtype=np.uint64))
 
 
-def noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, check=True):
+def noise_plan(shape, exponent, band, rng, amplitude, dtype, *, normalize="expected", dc=False, check=True):
     """Everything the fill of :func:`spectral_noise`'s spectrum block decides before it allocates the block.
 
     Validates the band (cycles/frame, ``0 <= lo < hi <= shape[-1]/2``),
@@ -164,7 +164,7 @@ def noise_plan(shape, exponent, band, seed, amplitude, dtype, *, normalize="expe
         raise ValueError(f"band ({lo * n:g}, {hi * n:g}) cycles/frame holds no frequency of a "
                          f"{' x '.join(map(str, shape))} grid (frequency steps are 1 cycle/frame along the last "
                          f"axis, {n}/length along the others); widen the band")
-    rng = as_generator(seed)
+    rng = as_generator(rng)
     return SimpleNamespace(shape=tuple(shape), dt=dt, cdt=cdt, n=n, index=index, K=K, bshape=bshape, q0=q0, q1=q1,
                            wxsq=wxsq, kbeg=kbeg, kend=kend, counts=counts, R=R, Kr=Kr, weight=weight, sample=sample,
                            exponent=float(exponent), qfloor=float(qfloor), inv_qref=float(inv_qref),

@@ -40,7 +40,7 @@ import numpy as np
 import scipy.fft
 
 from .._core import (as_array, as_generator, check_int, check_memory, check_real, check_shape, dispatch,
-                     float_dtype, map_blocks, resolve_workers)
+                     float_dtype, map_blocks, renamed_parameters, resolve_workers)
 from . import _kernels
 from .frequencies import frequency_vectors, half_spectrum_shape
 from .plan import (AMPLITUDE_MODES, CHUNK, complex_dtype, hermitian_gain, leading_ifft, noise_plan,
@@ -51,7 +51,15 @@ __all__ = ["synthesize", "spectral_noise", "NORMALIZATIONS", "draw_coefficients"
 AMPLITUDES = ("uniform", "rayleigh", "fixed")
 
 
-def draw_coefficients(n, rng, amplitude="uniform", dtype=np.float32) -> np.ndarray:
+def check_distribution(amplitude_distribution):
+    """The random amplitude law's name, checked (``amplitude_distribution=``: one of :data:`AMPLITUDES`)."""
+    if not isinstance(amplitude_distribution, str) or amplitude_distribution not in AMPLITUDES:
+        raise ValueError(f"amplitude_distribution must be one of {AMPLITUDES}, got {amplitude_distribution!r}")
+    return amplitude_distribution
+
+
+@renamed_parameters(amplitude="amplitude_distribution")
+def draw_coefficients(n, rng=None, amplitude_distribution="uniform", dtype=np.float32) -> np.ndarray:
     """``n`` random complex coefficients ``a * exp(i*phi)`` with ``E[|.|**2] = 1`` (see the module notes).
 
     The draws happen in one fixed order (all amplitudes, then all phases), so
@@ -61,10 +69,13 @@ def draw_coefficients(n, rng, amplitude="uniform", dtype=np.float32) -> np.ndarr
     ----------
     n : int
         How many coefficients, ``n >= 0``.
-    rng : numpy.random.Generator or int
-        The generator drawn from (advanced by the draws), or a non-negative
-        int seed (a fresh ``default_rng(seed)``: the same seed, the same values).
-    amplitude : {"uniform", "rayleigh", "fixed"}
+    rng : int, numpy.random.Generator or None
+        The generator drawn from (advanced by the draws), a non-negative int
+        (a fresh ``default_rng(rng)``: the same int, the same values) or
+        ``None`` (fresh entropy, not repeatable; the default, as SPEC 7 has it).
+    amplitude_distribution : {"uniform", "rayleigh", "fixed"}
+        The law of the random amplitude ``a`` (``E[a**2] = 1``): uniform on
+        ``[0, sqrt(3))``, Rayleigh (complex Gaussian coefficients) or 1.
     dtype : float32 or float64
         Precision of the parts: complex64 or complex128 out.
 
@@ -76,17 +87,12 @@ def draw_coefficients(n, rng, amplitude="uniform", dtype=np.float32) -> np.ndarr
     (dtype('complex64'), 1.0)
     """
     n = check_int("n", n, lo=0)
-    if amplitude not in AMPLITUDES:
-        raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
+    amplitude = check_distribution(amplitude_distribution)
     fdt = float_dtype(dtype)
     cdt = complex_dtype(fdt)
-    if rng is None or isinstance(rng, (bool, np.bool_)) or not isinstance(rng, (np.random.Generator, int, np.integer)):
-        raise TypeError(f"rng must be a numpy.random.Generator or a non-negative int seed, got {type(rng).__name__}")
-    if not isinstance(rng, np.random.Generator) and rng < 0:
-        raise ValueError(f"rng must be a numpy.random.Generator or a non-negative int seed, got {rng}")
+    rng = as_generator(rng)   # checked before the memory estimate: a bad rng is named first
     # peak: the float64 amplitudes and phases, one float64 temporary (cos or sin), and the output
     check_memory(n * (3 * 8 + cdt.itemsize), f"draw_coefficients(n={n})")
-    rng = as_generator(rng)
     if amplitude == "uniform":
         a = rng.random(n, dtype=np.float64) * np.sqrt(3.0)
     elif amplitude == "rayleigh":
@@ -213,7 +219,8 @@ def _row_groups(counts, chunk=CHUNK):
     return [(int(a), int(b), int(m)) for a, b, m in zip(bounds[:-1], bounds[1:], n)]
 
 
-def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.float32, return_spectrum=False,
+@renamed_parameters(seed="rng", amplitude="amplitude_distribution")
+def synthesize(shape, envelope, *, rng=None, amplitude_distribution="uniform", dtype=np.float32, return_spectrum=False,
                workers=None, normalize=None):
     """Real random field with the given amplitude envelope: ``irfftn(envelope * a * exp(i*phi))``.
 
@@ -226,10 +233,10 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
         :func:`frequency_vectors` (rad/sample, one per axis) and returns the
         amplitude, broadcastable to the half spectrum ``(..., W//2 + 1)``; or
         that amplitude array itself. Must be finite and non-negative.
-    seed : int or numpy.random.Generator
+    rng : int, numpy.random.Generator or None
         Random phases and amplitudes, drawn only on the envelope's support,
         one 64-bit word of the generator per supported cell, in C order.
-    amplitude : {"uniform", "rayleigh", "fixed"}
+    amplitude_distribution : {"uniform", "rayleigh", "fixed"}
         Distribution of the random amplitude (``E[a**2] = 1``).
     dtype : float32 or float64
         Output dtype (the spectrum is complex64 or complex128). The random
@@ -280,15 +287,14 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     >>> import numpy as np, scipy.fft
     >>> from noiselab.spectral import envelopes as E
     >>> env = lambda wy, wx: E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.3))
-    >>> f, S = synthesize((32, 32), env, seed=1, dtype=np.float64, return_spectrum=True)
+    >>> f, S = synthesize((32, 32), env, rng=1, dtype=np.float64, return_spectrum=True)
     >>> bool(np.allclose(scipy.fft.rfftn(f), S))
     True
     """
     shape = check_shape("shape", shape)
     dt = float_dtype(dtype)
     cdt = complex_dtype(dt)
-    if amplitude not in AMPLITUDES:
-        raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
+    amplitude = check_distribution(amplitude_distribution)
     if normalize is not None and normalize not in NORMALIZATIONS:
         raise ValueError(f"normalize must be None or one of {NORMALIZATIONS}, got {normalize!r}")
     hshape = half_spectrum_shape(shape)
@@ -312,7 +318,7 @@ def synthesize(shape, envelope, *, seed=None, amplitude="uniform", dtype=np.floa
     rescale = emax > 0 and not (float(fi.tiny) / float(fi.eps) <= emax <= float(fi.max) / (8.0 * n_half))
     if rescale:
         env2 = env2 / emax
-    rng = as_generator(seed)
+    rng = as_generator(rng)
     mode = AMPLITUDE_MODES[amplitude]
     spec = np.empty(hshape, dtype=cdt)
     spec2 = spec.reshape(R, K)
@@ -406,7 +412,7 @@ def _envelope_array(envelope, shape, hshape):
 _MIN_PARALLEL = 1 << 16
 
 
-def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize="expected", dc=False, workers=1):
+def _noise_spectrum(shape, exponent, band, rng, amplitude, dtype, *, normalize="expected", dc=False, workers=1):
     """The half spectrum of :func:`spectral_noise`, normalised, on the block of cells the band can reach.
 
     Returns ``(block, index)``: ``block`` has shape ``(len(index[0]), ..., K)``
@@ -414,7 +420,7 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     ``K`` the kept kx columns ``0..K-1``; every cell outside the block is 0.
     Before the scaling, the coefficients are the ones :func:`synthesize` draws
     for the envelope ``annulus((lo, hi) / n) * power_law(exponent)`` with the same
-    seed (the same cells, the same order, the same words), divided by the
+    ``rng`` (the same cells, the same order, the same words), divided by the
     power law's value at the band's loudest end. The block is then scaled so
     that the field has unit variance: expected over the ensemble
     (``normalize="expected"``: ``sum`` of the envelope squared, which needs no
@@ -422,7 +428,7 @@ def _noise_spectrum(shape, exponent, band, seed, amplitude, dtype, *, normalize=
     Row groups are filled on ``workers`` threads; each group's coefficients
     are fixed by its position in the stream, so the bits do not depend on it.
     """
-    p = noise_plan(shape, exponent, band, seed, amplitude, dtype, normalize=normalize, dc=dc)
+    p = noise_plan(shape, exponent, band, rng, amplitude, dtype, normalize=normalize, dc=dc)
     dt, cdt, n, index, K, bshape = p.dt, p.cdt, p.n, p.index, p.K, p.bshape
     q0, q1, wxsq, kbeg, kend, counts, R, Kr, weight, sample = (p.q0, p.q1, p.wxsq, p.kbeg, p.kend, p.counts, p.R,
                                                                p.Kr, p.weight, p.sample)
@@ -473,7 +479,8 @@ def _pruned_irfftn(block, index, shape, workers=None):
 NORMALIZATIONS = ("expected", "sample")
 
 
-def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayleigh", dtype=np.float32,
+@renamed_parameters(seed="rng", amplitude="amplitude_distribution")
+def spectral_noise(shape, *, exponent=1.0, band=None, rng=None, amplitude_distribution="rayleigh", dtype=np.float32,
                    normalize="expected", dc=False, workers=None, chunks=None, spill=None):
     """Isotropic band-limited ``1/f**exponent`` noise in 1, 2 or 3 dimensions, zero mean and unit variance.
 
@@ -483,8 +490,9 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         ``(n,)``, ``(H, W)`` or ``(D, H, W)``; isotropic in samples (pixels).
         At least one axis of 2 samples or more.
     exponent : float
-        Amplitude falls as ``f**-exponent``, ``-8 <= exponent <= 8`` (1:
-        pink/"1/f"; 2: brown, a random walk's ``1/f**2`` power). In 2-D,
+        The *amplitude* exponent: amplitude falls as ``f**-exponent``, power
+        as ``f**(-2 exponent)``, ``-8 <= exponent <= 8`` (1: a 1/f image, a
+        random walk's ``1/f**2`` power in 1-D; 2: power ``1/f**4``). In 2-D,
         ``exponent=1`` gives equal energy per octave. Any accepted exponent is
         right in float32 too: the law is evaluated relative to its value at
         the band's loudest end, so no power overflows or underflows to 0.
@@ -493,9 +501,11 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
         ``shape[-1]`` samples), inclusive; ``hi`` at most the Nyquist frequency
         ``shape[-1]/2``. Default: every frequency (DC only with ``dc=True``).
         A band holding no frequency of the grid is a ``ValueError``.
-    seed : int or numpy.random.Generator
-    amplitude : {"rayleigh", "uniform", "fixed"}
-        Default: complex Gaussian coefficients, i.e. a Gaussian field.
+    rng : int, numpy.random.Generator or None
+        The random state (SPEC 7): the same int, the same bits; a
+        ``Generator`` is drawn from; ``None`` (default) is fresh entropy.
+    amplitude_distribution : {"rayleigh", "uniform", "fixed"}
+        The law of the random amplitudes. Default: complex Gaussian coefficients, i.e. a Gaussian field.
     dtype : float32 or float64
     normalize : {"expected", "sample"}
         ``"expected"`` (default): the spectrum is scaled by the analytic
@@ -546,7 +556,7 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
     ValueError
         For an impossible shape, an exponent outside ``[-8, 8]``, a band past
         the Nyquist frequency or holding no frequency of the grid, ``dc=True``
-        with a band that does not start at 0, an unknown ``amplitude`` or
+        with a band that does not start at 0, an unknown ``amplitude_distribution`` or
         ``normalize``.
     MemoryError
         When the field would not fit (estimated before allocating).
@@ -566,20 +576,19 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
     Examples
     --------
     >>> import numpy as np
-    >>> x = spectral_noise((64, 64), exponent=1.0, band=(2, 16), seed=0)
+    >>> x = spectral_noise((64, 64), exponent=1.0, band=(2, 16), rng=0)
     >>> x.shape, x.dtype, abs(float(x.mean())) < 1e-6
     ((64, 64), dtype('float32'), True)
-    >>> y = spectral_noise((64, 64), exponent=1.0, band=(2, 16), seed=0, normalize="sample")
+    >>> y = spectral_noise((64, 64), exponent=1.0, band=(2, 16), rng=0, normalize="sample")
     >>> round(float(y.std()), 3)
     1.0
-    >>> walks = np.stack([spectral_noise((256,), exponent=1.0, dc=True, seed=s) for s in range(200)])
+    >>> walks = np.stack([spectral_noise((256,), exponent=1.0, dc=True, rng=s) for s in range(200)])
     >>> round(float(np.mean(walks ** 2)), 1)   # E[x**2] = 1 over the ensemble
     1.0
     """
     shape = check_shape("shape", shape, ndim={1, 2, 3})
     exponent = check_real("exponent", exponent, lo=-8, hi=8)
-    if amplitude not in AMPLITUDES:
-        raise ValueError(f"amplitude must be one of {AMPLITUDES}, got {amplitude!r}")
+    amplitude = check_distribution(amplitude_distribution)
     if normalize not in NORMALIZATIONS:
         raise ValueError(f"normalize must be one of {NORMALIZATIONS}, got {normalize!r}")
     if not isinstance(dc, (bool, np.bool_)):
@@ -589,10 +598,10 @@ def spectral_noise(shape, *, exponent=1.0, band=None, seed=None, amplitude="rayl
     if spill is not None and chunks is None:
         raise ValueError("spill= is the chunked path's scratch directory: pass chunks= too")
     if chunks is not None:  # lazy, on dask: the implementation noiselab.scale.spectral registers
-        return dispatch.chunked("spectral_noise")(shape, chunks, exponent=exponent, band=band, seed=seed,
+        return dispatch.chunked("spectral_noise")(shape, chunks, exponent=exponent, band=band, rng=rng,
                                                   amplitude=amplitude, dtype=dt, normalize=normalize, dc=bool(dc),
                                                   spill=spill)
-    block, index = _noise_spectrum(shape, exponent, band, seed, amplitude, dt, normalize=normalize, dc=bool(dc),
+    block, index = _noise_spectrum(shape, exponent, band, rng, amplitude, dt, normalize=normalize, dc=bool(dc),
                                    workers=nw)
     field = _pruned_irfftn(block, index, shape, workers=workers)
     if field.dtype != dt:

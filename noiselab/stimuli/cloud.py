@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._core import check_memory, check_real, check_shape
+from .._core import check_memory, check_real, check_shape, renamed_parameters
 from ..spectral import envelopes as E
 from ..spectral import frequency_vectors, half_spectrum_shape, synthesize
 
@@ -74,9 +74,9 @@ def cloud_envelope(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y
     else:
         env = env * np.exp(-0.5 * (fr - sf_0) ** 2 / B_sf ** 2)
     if full[0] > 1:
-        env = env * E.speed_envelope(wt, wy, wx, velocity=(V_X, V_Y), B_V=B_V)
+        env = env * E.speed_envelope(wt, wy, wx, velocity_yx=(V_Y, V_X), B_V=B_V)
     else:
-        E.speed_envelope(wt, wy, wx, velocity=(V_X, V_Y), B_V=B_V)  # checks the arguments all the same
+        E.speed_envelope(wt, wy, wx, velocity_yx=(V_Y, V_X), B_V=B_V)  # checks the arguments all the same
     env = np.broadcast_to(env, full[:-1] + (full[-1] // 2 + 1,))
     top = float(env.max())
     if not top > 0:
@@ -86,7 +86,8 @@ def cloud_envelope(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y
     return env if len(shape) == 3 else env[0]
 
 
-def motion_cloud(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y=0.0, B_V=0.5, seed=None,
+@renamed_parameters(seed="rng")
+def motion_cloud(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y=0.0, B_V=0.5, rng=None,
                  alpha=0.0, loggabor=True, dtype=np.float32, normalize="expected", workers=None):
     """A Motion Cloud: MotionClouds' ``envelope_gabor`` with random phases, ``(frames, height, width)``.
 
@@ -111,7 +112,7 @@ def motion_cloud(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y=0
     B_V : float
         Speed bandwidth, px/frame, >= 0 (0: a frozen texture, ``np.inf``:
         every frame independent).
-    seed : int or numpy.random.Generator
+    rng : int, numpy.random.Generator or None
     alpha : float
         Extra ``1/f**alpha`` colour (MotionClouds' ``envelope_color``), default 0.
     loggabor : bool
@@ -147,12 +148,12 @@ def motion_cloud(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y=0
     >>> from noiselab import Display
     >>> d = Display(32.0, frame_rate=60.0)
     >>> z = motion_cloud((32, 64, 64), sf_0=d.cycles_per_pixel(4.0), B_sf=0.05, theta=np.pi / 4,
-    ...                  B_theta=np.radians(15), V_X=d.px_per_frame(1.875), seed=0)
+    ...                  B_theta=np.radians(15), V_X=d.px_per_frame(1.875), rng=0)
     >>> z.shape, z.dtype
     ((32, 64, 64), dtype('float32'))
     """
     env = cloud_envelope(shape, sf_0=sf_0, B_sf=B_sf, theta=theta, B_theta=B_theta, V_X=V_X, V_Y=V_Y, B_V=B_V,
                          alpha=alpha, loggabor=loggabor)
     shape = check_shape("shape", shape, ndim={2, 3})
-    return synthesize(shape, env, seed=seed, amplitude="rayleigh", dtype=dtype, normalize=normalize,
+    return synthesize(shape, env, rng=rng, amplitude_distribution="rayleigh", dtype=dtype, normalize=normalize,
                       workers=workers)

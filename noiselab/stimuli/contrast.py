@@ -14,7 +14,7 @@ import numbers
 
 import numpy as np
 
-from .._core import as_generator, check_finite_array, check_memory, check_real
+from .._core import as_generator, check_finite_array, check_memory, check_real, renamed_parameters
 from .display import Display
 from .scramble import _power_of_two_scaled
 
@@ -23,12 +23,13 @@ __all__ = ["to_display", "luminance_for", "CONTRAST_KINDS"]
 CONTRAST_KINDS = ("rms", "michelson")
 
 
-def luminance_for(field, *, mean, contrast, kind="rms") -> np.ndarray:
+@renamed_parameters(kind="contrast_kind")
+def luminance_for(field, *, mean, contrast, contrast_kind="rms") -> np.ndarray:
     """The luminance (cd/m², float64) a field is shown at: mean ``mean`` and contrast ``contrast`` exactly.
 
     The field's own mean is removed and its deviations scaled by one factor:
     ``L = mean * (1 + k * (field - field.mean()))``, with ``k`` such that
-    ``std(L) / mean(L) = contrast`` (``kind="rms"``) or
+    ``std(L) / mean(L) = contrast`` (``contrast_kind="rms"``) or
     ``(max L - min L) / (max L + min L) = contrast`` (``"michelson"``); the
     mean is ``mean`` in both (for a field whose extremes are not symmetric
     about its mean the Michelson midpoint ``(max + min) / 2`` is not the
@@ -42,7 +43,7 @@ def luminance_for(field, *, mean, contrast, kind="rms") -> np.ndarray:
         Mean luminance, cd/m², > 0.
     contrast : float
         RMS contrast (> 0) or Michelson contrast (in ``(0, 1]``).
-    kind : {"rms", "michelson"}
+    contrast_kind : {"rms", "michelson"}
 
     Returns
     -------
@@ -57,10 +58,11 @@ def luminance_for(field, *, mean, contrast, kind="rms") -> np.ndarray:
     Examples
     --------
     >>> import numpy as np
-    >>> L = luminance_for(np.array([-1.0, 0.0, 1.0, 0.0]), mean=50.0, contrast=0.5, kind="michelson")
+    >>> L = luminance_for(np.array([-1.0, 0.0, 1.0, 0.0]), mean=50.0, contrast=0.5, contrast_kind="michelson")
     >>> L.tolist()
     [25.0, 50.0, 75.0, 50.0]
     """
+    kind = contrast_kind
     L, sd, zmin = _luminance(field, mean, contrast, kind)
     if kind == "rms" and float(L.min()) < 0:
         raise ValueError(f"contrast (RMS) = {contrast:g} makes the darkest pixel's luminance negative for this "
@@ -75,7 +77,7 @@ def _luminance(field, mean, contrast, kind):
         raise ValueError("field is empty")
     mean = check_real("mean (cd/m²)", mean, lo=0.0, lo_open=True, hi=1e12)
     if kind not in CONTRAST_KINDS:
-        raise ValueError(f"kind must be one of {CONTRAST_KINDS}, got {kind!r}")
+        raise ValueError(f"contrast_kind must be one of {CONTRAST_KINDS}, got {kind!r}")
     if kind == "michelson":
         contrast = check_real("contrast (Michelson)", contrast, lo=0.0, hi=1.0, lo_open=True)
     else:
@@ -106,7 +108,8 @@ def _luminance(field, mean, contrast, kind):
     return z, sd if kind == "rms" else None, zmin
 
 
-def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=None) -> np.ndarray:
+@renamed_parameters(seed="rng", kind="contrast_kind")
+def to_display(field, display, *, mean, contrast, contrast_kind="rms", dither=True, rng=None) -> np.ndarray:
     """Integer display values that show ``field`` at mean luminance ``mean`` (cd/m²) and the given contrast.
 
     Parameters
@@ -119,20 +122,20 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
     mean : float
         Mean luminance, cd/m², inside the display's ``luminance`` range.
     contrast : float
-        ``kind="rms"``: standard deviation over mean of the luminance, > 0.
-        ``kind="michelson"``: ``(max - min) / (max + min)``, in ``(0, 1]``.
-    kind : {"rms", "michelson"}
+        ``contrast_kind="rms"``: standard deviation over mean of the luminance, > 0.
+        ``contrast_kind="michelson"``: ``(max - min) / (max + min)``, in ``(0, 1]``.
+    contrast_kind : {"rms", "michelson"}
     dither : bool
         True (default): random dithering between the two display values
         around each requested luminance, with probabilities that make the
         expected luminance of every pixel exactly the requested one. False:
-        the display value of the nearer luminance. With ``kind="michelson"``
+        the display value of the nearer luminance. With ``contrast_kind="michelson"``
         the darkest and the brightest pixel then get the pair of display
         values (each just below or above its request) whose Michelson
         contrast is nearest the request, and every other value is bounded by
         them: the dither cannot widen the contrast by a step (only pixels
         within one step of the two ends lose their exact expectation).
-    seed : int or numpy.random.Generator
+    rng : int, numpy.random.Generator or None
         The dither: each pixel's threshold is uniform and independent of the
         others; consecutive int seeds shift them along a golden-ratio (Weyl)
         sequence, so the average of ``N`` frames dithered with seeds
@@ -169,8 +172,8 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
     >>> import numpy as np
     >>> from noiselab import Display, spectral_noise
     >>> d = Display(32.0, luminance=(0.5, 100.0), gamma=2.2, bits=8)
-    >>> x = spectral_noise((128, 128), band=d.band((1, 8), 128), seed=0)
-    >>> v = to_display(x, d, mean=40.0, contrast=0.2, seed=1)
+    >>> x = spectral_noise((128, 128), band=d.band((1, 8), 128), rng=0)
+    >>> v = to_display(x, d, mean=40.0, contrast=0.2, rng=1)
     >>> v.dtype, v.shape
     (dtype('uint8'), (128, 128))
     >>> L = d.luminance_of(v)
@@ -186,6 +189,7 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
     if not lo <= mean <= hi:
         raise ValueError(f"mean = {mean:g} cd/m² is outside the display's range [{lo:g}, {hi:g}] cd/m² "
                          f"(luminance=(L_min, L_max))")
+    kind = contrast_kind
     L = _luminance(field, mean, contrast, kind)[0]  # (a negative luminance is out of range below)
     Lmin, Lmax = float(L.min()), float(L.max())
     # a request that exactly fills the range (e.g. the largest contrast this error reports) may land a rounding
@@ -211,7 +215,7 @@ def to_display(field, display, *, mean, contrast, kind="rms", dither=True, seed=
     p = (L - below) / (t[v0 + 1] - below)  # where L lies between the two values, in luminance
     del below
     if dither:
-        up = _thresholds(p.shape, seed) < p   # E[luminance] = below + p * step = L exactly
+        up = _thresholds(p.shape, rng) < p   # E[luminance] = below + p * step = L exactly
     else:
         up = p >= 0.5    # the nearer luminance
     v0 += up

@@ -251,7 +251,7 @@ class Display:
         >>> d = Display(32.0)
         >>> d.band((2, 8), 256)
         (16.0, 64.0)
-        >>> x = noiselab.spectral_noise((256, 256), band=d.band((2, 8), 256), seed=0)
+        >>> x = noiselab.spectral_noise((256, 256), band=d.band((2, 8), 256), rng=0)
         """
         lo, hi = check_real_sequence("band (cycles/deg)", band_cycles_per_degree, length=2, lo=0.0)
         return self.cycles_per_frame(lo, size), self.cycles_per_frame(hi, size)
@@ -284,7 +284,7 @@ class Display:
         >>> c = d.snow_c(2.0, 4.0)        # 4 cycles/deg flakes fall at 2 deg/s
         >>> round(c, 4)
         0.8378
-        >>> video = noiselab.snow((8, 64, 64), c=c, band=d.band((1, 8), 64), seed=0)
+        >>> video = noiselab.snow((8, 64, 64), c=c, band=d.band((1, 8), 64), rng=0)
         """
         w = 2.0 * math.pi * self.cycles_per_pixel(check_real("cycles_per_degree", cycles_per_degree, lo=0.0))
         return float(self.px_per_frame(check_real("deg_per_second", deg_per_second)) * w)

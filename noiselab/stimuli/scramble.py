@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.fft
 
-from .._core import as_generator, check_axes, check_finite_array, check_memory
+from .._core import as_generator, check_axes, check_finite_array, check_memory, renamed_parameters
 
 __all__ = ["phase_scramble", "amplitude_swap"]
 
@@ -58,14 +58,15 @@ def _dc_index(shape, axes):
     return tuple(0 if i in axes else slice(None) for i in range(len(shape)))
 
 
-def phase_scramble(x, *, seed=None, axes=None, workers=None) -> np.ndarray:
+@renamed_parameters(seed="rng")
+def phase_scramble(x, *, rng=None, axes=None, workers=None) -> np.ndarray:
     """``x`` with its amplitude spectrum kept and its phases replaced by random ones (real output).
 
     Parameters
     ----------
     x : array_like
         An image ``(H, W)``, a video ``(T, H, W)`` or any real array.
-    seed : int or numpy.random.Generator
+    rng : int, numpy.random.Generator or None
         The random phases: those of the spectrum of a white Gaussian field of
         ``x``'s shape drawn from ``seed``.
     axes : int or tuple of int, optional
@@ -87,7 +88,7 @@ def phase_scramble(x, *, seed=None, axes=None, workers=None) -> np.ndarray:
     --------
     >>> import numpy as np, scipy.fft
     >>> img = np.random.default_rng(0).random((64, 64))
-    >>> s = phase_scramble(img, seed=1)
+    >>> s = phase_scramble(img, rng=1)
     >>> bool(np.allclose(np.abs(scipy.fft.rfftn(s)), np.abs(scipy.fft.rfftn(img))))
     True
     >>> round(float(s.mean() - img.mean()), 12)
@@ -96,7 +97,7 @@ def phase_scramble(x, *, seed=None, axes=None, workers=None) -> np.ndarray:
     arr = _field("x", x)
     ax = _axes(axes, arr.ndim)
     check_memory(arr.size * 8 * 6, f"phase_scramble of shape {arr.shape}")
-    rng = as_generator(seed)
+    rng = as_generator(rng)
     noise = rng.standard_normal(arr.shape)
     P = scipy.fft.rfftn(noise, axes=ax, workers=workers)
     del noise

@@ -24,7 +24,7 @@ Examples
 --------
 >>> import noiselab
 >>> from noiselab.testing import assert_power_law, assert_isotropic
->>> img = noiselab.spectral_noise((128, 128), exponent=1.0, seed=3)
+>>> img = noiselab.spectral_noise((128, 128), exponent=1.0, rng=3)
 >>> fit = assert_power_law(img, 1.0)
 >>> abs(fit.exponent - 1.0) <= fit.tolerance
 True

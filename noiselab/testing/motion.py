@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._core import check_real
+from .._core import array_order, check_real
 from ..analysis import motion_energy, tent_energy, video_spectrum
 
 __all__ = ["MotionCheck", "assert_motion", "assert_tent"]
@@ -53,8 +53,9 @@ def _min_energy(min_energy):
     return check_real("min_energy", min_energy, lo=0.0, hi=1.0), True
 
 
-def assert_motion(video, velocity, *, min_energy=None, tol=1.0, band=None, window=None) -> MotionCheck:
-    """Assert that a video's power lies on the motion plane of ``velocity`` (px/frame): it moves that way.
+@array_order(("velocity", "velocity_yx"), positional=("velocity",))
+def assert_motion(video, *, velocity_yx, min_energy=None, tol=1.0, band=None, window=None) -> MotionCheck:
+    """Assert that a video's power lies on the motion plane of ``velocity_yx`` (px/frame): it moves that way.
 
     An image translating with velocity ``v`` puts all its power on the plane
     ``w_t = -v . w`` (:func:`noiselab.analysis.motion_energy`); a motion
@@ -62,15 +63,16 @@ def assert_motion(video, velocity, *, min_energy=None, tol=1.0, band=None, windo
     within ``tol`` temporal-frequency cells of the plane is a property of
     the spectrum, not a sampling estimate (every seed of a translating video
     gives 1), so the threshold is a stated fraction: ``min_energy`` (default
-    0.9). The message reports the fraction for ``-velocity`` (a sign
+    0.9). The message reports the fraction for ``-velocity_yx`` (a sign
     error) and the chance level ``(2 tol + 1) / frames``.
 
     Parameters
     ----------
     video : array_like
         ``(frames, height, width)``, looping in time (or pass ``window="hann"`` and ``tol >= 1.5``).
-    velocity : (vx, vy)
-        Pixels/frame, x right, y down.
+    velocity_yx : (vy, vx)
+        Pixels/frame in array order, y down, x right. ``velocity=(vx, vy)``
+        (also by position) is the old spelling, until 0.3.
     min_energy : float, optional
         Fraction of the power required on the plane (0 to 1); default 0.9.
     tol : float
@@ -95,32 +97,33 @@ def assert_motion(video, velocity, *, min_energy=None, tol=1.0, band=None, windo
     >>> import numpy as np
     >>> from noiselab.testing import assert_motion
     >>> img = np.random.default_rng(0).random((32, 32))
-    >>> video = np.stack([np.roll(img, (t, 2 * t), axis=(0, 1)) for t in range(32)])  # (vx, vy) = (2, 1)
-    >>> round(assert_motion(video, (2, 1)).energy, 6)
+    >>> video = np.stack([np.roll(img, (t, 2 * t), axis=(0, 1)) for t in range(32)])  # (vy, vx) = (1, 2)
+    >>> round(assert_motion(video, velocity_yx=(1, 2)).energy, 6)
     1.0
-    >>> assert_motion(video, (-2, -1))
+    >>> assert_motion(video, velocity_yx=(-1, -2))
     Traceback (most recent call last):
     ...
-    AssertionError: motion at (vx, vy) = (-2, -1) px/frame ...
+    AssertionError: motion at (vy, vx) = (-1, -2) px/frame ...
     """
     spec = video_spectrum(video, window=window)
     min_energy, given = _min_energy(min_energy)
-    energy = motion_energy(spec, velocity, tol=tol, band=band)
-    vx, vy = float(velocity[0]), float(velocity[1])
-    opposite = motion_energy(spec, (-vx, -vy), tol=tol, band=band)
+    energy = motion_energy(spec, velocity_yx=velocity_yx, tol=tol, band=band)
+    vy, vx = float(velocity_yx[0]), float(velocity_yx[1])
+    opposite = motion_energy(spec, velocity_yx=(-vy, -vx), tol=tol, band=band)
     chance = min(1.0, (2 * float(tol) + 1) / spec.shape[0])
     where = "" if band is None else f" in the spatial band {band[0]:g}..{band[1]:g} cycles/frame"
-    return _judge(f"motion at (vx, vy) = ({vx:g}, {vy:g}) px/frame{where} (plane w_t = -v.w, within {float(tol):g} "
+    return _judge(f"motion at (vy, vx) = ({vy:g}, {vx:g}) px/frame{where} (plane w_t = -v.w, within {float(tol):g} "
                   "temporal cells)", energy, opposite, chance, min_energy, given)
 
 
-def assert_tent(video, c, band, *, direction=(0.0, 1.0), pan=(0.0, 0.0), thickness=0.1, tol=0.5, min_energy=None,
+@array_order(("direction", "direction_yx"), ("pan", "pan_yx"))
+def assert_tent(video, c, band, *, direction_yx=(1.0, 0.0), pan_yx=(0.0, 0.0), thickness=0.1, tol=0.5, min_energy=None,
                 window=None) -> MotionCheck:
     """Assert that a video's power inside ``band`` lies on Langer & Zhang's falling-snow tent.
 
     The tent ``w_t = -((c / |w|) d + pan) . w`` (:func:`noiselab.analysis.tent_energy`):
     layers whose speed is inversely proportional to their spatial frequency,
-    falling along ``direction``, with ``c`` in rad/frame. Like
+    falling along ``direction_yx``, with ``c`` in rad/frame. Like
     :func:`assert_motion` the fraction is a property of the spectrum; the
     default ``min_energy`` is 0.9 (noiselab's raw snow puts 1 - 1e-6 there, its
     alpha matte 0.98).
@@ -133,8 +136,9 @@ def assert_tent(video, c, band, *, direction=(0.0, 1.0), pan=(0.0, 0.0), thickne
         Rad/frame, ``0 <= c <= pi``.
     band : (lo, hi)
         Spatial band, cycles/frame.
-    direction, pan : (x, y)
-        Fall direction (unit or not) and camera pan (px/frame).
+    direction_yx, pan_yx : (y, x)
+        Fall direction (unit or not) and camera pan (px/frame), array order.
+        ``direction=``/``pan=`` in (x, y) order are the old spellings, until 0.3.
     thickness, tol : float
         See :func:`noiselab.analysis.tent_energy`.
     min_energy : float, optional
@@ -157,16 +161,16 @@ def assert_tent(video, c, band, *, direction=(0.0, 1.0), pan=(0.0, 0.0), thickne
     --------
     >>> import noiselab
     >>> from noiselab.testing import assert_tent
-    >>> snow = noiselab.snow((16, 64, 64), seed=1, c=1.0, rescale=False)
+    >>> snow = noiselab.snow((16, 64, 64), rng=1, c=1.0, rescale=False)
     >>> assert_tent(snow, 1.0, (2, 16)).energy > 0.999
     True
     """
     spec = video_spectrum(video, window=window)
     min_energy, given = _min_energy(min_energy)
-    energy = tent_energy(spec, c, band, direction, pan=pan, thickness=thickness, tol=tol)
-    d = np.asarray(direction, dtype=np.float64)
-    opposite = tent_energy(spec, c, band, (-d[0], -d[1]), pan=pan, thickness=thickness, tol=tol)
+    energy = tent_energy(spec, c, band, direction_yx=direction_yx, pan_yx=pan_yx, thickness=thickness, tol=tol)
+    d = np.asarray(direction_yx, dtype=np.float64)
+    opposite = tent_energy(spec, c, band, direction_yx=(-d[0], -d[1]), pan_yx=pan_yx, thickness=thickness, tol=tol)
     chance = min(1.0, (2 * float(tol) + 1) / spec.shape[0])  # a thin tent's
-    return _judge(f"tent c={float(c):g} rad/frame falling along ({d[0]:g}, {d[1]:g}), pan ({float(pan[0]):g}, "
-                  f"{float(pan[1]):g}) px/frame, in the band {float(band[0]):g}..{float(band[1]):g} cycles/frame",
+    return _judge(f"tent c={float(c):g} rad/frame falling along (y, x) = ({d[0]:g}, {d[1]:g}), pan (y, x) = "
+                  f"({float(pan_yx[0]):g}, {float(pan_yx[1]):g}) px/frame, in the band {float(band[0]):g}..{float(band[1]):g} cycles/frame",
                   energy, opposite, chance, min_energy, given)

@@ -102,7 +102,7 @@ def assert_seamless(array, axes=None, *, period=None, false_alarm=1e-3) -> SeamC
     --------
     >>> import noiselab
     >>> from noiselab.testing import assert_seamless
-    >>> tile = noiselab.spectral_noise((128, 128), exponent=1.5, seed=0)
+    >>> tile = noiselab.spectral_noise((128, 128), exponent=1.5, rng=0)
     >>> max(assert_seamless(tile).ratio) < 1.5
     True
     >>> assert_seamless(tile[:100, :100])

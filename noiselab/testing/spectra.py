@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize, special, stats
 
-from .._core import as_array, check_band, check_real
+from .._core import as_array, check_band, check_real, renamed_parameters
 from ..analysis import PowerSpectrum, axis_artefacts, band_energy, power_spectrum
 from ._cells import independent_cells, live_band, ring_index
 
@@ -130,7 +130,8 @@ def _default_slope_band(n_ref):
     return 2.0, n_ref / 4.0
 
 
-def assert_power_law(field, exponent, *, band=None, tolerance=None, false_alarm=1e-3, window=None) -> PowerLawCheck:
+@renamed_parameters(tolerance="tol")
+def assert_power_law(field, exponent, *, band=None, tol=None, false_alarm=1e-3, window=None) -> PowerLawCheck:
     """Assert that the amplitude spectrum of ``field`` falls as ``f**-exponent`` over ``band``.
 
     The exponent is measured by Whittle's maximum likelihood over the
@@ -139,7 +140,7 @@ def assert_power_law(field, exponent, *, band=None, tolerance=None, false_alarm=
     freedom), with its standard error from the Fisher information,
     ``1 / sqrt(4 sum (log f - mean log f)**2)`` (times 35/18 per axis in
     variance with a Hann window, which correlates neighbouring cells). With
-    ``tolerance=None`` the field passes when the estimate lies within
+    ``tol=None`` the field passes when the estimate lies within
     ``z SE`` of ``exponent``, ``z`` the two-sided normal quantile of
     ``false_alarm``: a Gaussian field whose spectrum truly is that power law
     fails with probability ``false_alarm``.
@@ -155,7 +156,7 @@ def assert_power_law(field, exponent, *, band=None, tolerance=None, false_alarm=
         Cycles/frame (cycles per width of the last axis). Default: from 2
         cycles/frame to a quarter of the width, clipped to where the field
         has power.
-    tolerance : float, optional
+    tol : float, optional
         Allowed ``|measured - exponent|``, instead of the statistical one
         (for fields that follow the law only approximately).
     false_alarm : float
@@ -178,7 +179,7 @@ def assert_power_law(field, exponent, *, band=None, tolerance=None, false_alarm=
     --------
     >>> import noiselab
     >>> from noiselab.testing import assert_power_law
-    >>> img = noiselab.spectral_noise((128, 128), exponent=1.0, seed=0)
+    >>> img = noiselab.spectral_noise((128, 128), exponent=1.0, rng=0)
     >>> check = assert_power_law(img, 1.0)
     >>> abs(check.exponent - 1) < check.tolerance
     True
@@ -190,8 +191,7 @@ def assert_power_law(field, exponent, *, band=None, tolerance=None, false_alarm=
     spec = _spectrum("field", field, (1, 2, 3), window)
     expected = check_real("exponent", exponent, lo=-20.0, hi=20.0)
     alpha_fa = check_false_alarm(false_alarm)
-    if tolerance is not None:
-        tolerance = check_real("tolerance", tolerance, lo=0.0, hi=40.0)
+    given = None if tol is None else check_real("tol", tol, lo=0.0, hi=40.0)
     cells = independent_cells(spec)
     (lo, hi), origin = _band(cells, band, _default_slope_band, "power law")
     est, se, n, dead = power_law_fit(cells, lo, hi)
@@ -203,13 +203,13 @@ def assert_power_law(field, exponent, *, band=None, tolerance=None, false_alarm=
         raise AssertionError(f"power law: only {n} independent cell(s) {where}; a slope needs at least 3 at two "
                              "radii: widen the band or use a larger field")
     win = f", x{cells.variance_factor:.3g} in variance for the Hann window" if cells.variance_factor != 1 else ""
-    if tolerance is None:
+    if given is None:
         z = two_sided_z(alpha_fa)
         tol = z * se
         how = (f"within {z:.2f} SE = {tol:.3g} (false_alarm={alpha_fa:g}, two-sided; SE from the Fisher "
                f"information of {n} independent cells, each cell's power chi-square with 2 dof{win})")
     else:
-        tol = tolerance
+        tol = given
         how = f"within the given tolerance {tol:g} (statistical SE {se:.2g}{win})"
     off = est - expected
     msg = (f"power law: amplitude exponent {est:.4f} +- {se:.4f} (Whittle fit {where}), expected {expected:g} "
@@ -282,7 +282,7 @@ def assert_band_limited(field, band, *, max_leakage=None, window=None, axes=None
     --------
     >>> import noiselab
     >>> from noiselab.testing import assert_band_limited
-    >>> img = noiselab.spectral_noise((128, 128), band=(8, 32), seed=0)
+    >>> img = noiselab.spectral_noise((128, 128), band=(8, 32), rng=0)
     >>> assert_band_limited(img, (8, 32)).leakage < 1e-9
     True
     >>> assert_band_limited(img, (8, 16))
@@ -329,7 +329,7 @@ class IsotropyCheck:
     statistic : float
         The score statistic, chi-square with 4 dof for an isotropic Gaussian field.
     threshold : float
-        Its ``1 - false_alarm`` quantile (what it was compared with unless ``tolerance`` was given).
+        Its ``1 - false_alarm`` quantile (what it was compared with unless ``tol`` was given).
     error : float
         Standard error of each modulation component.
     cells : int
@@ -477,7 +477,8 @@ def _simulated_null(geometry, variance_factor):
     return var / (2 * mean), 2 * mean**2 / var
 
 
-def assert_isotropic(field, *, band=None, tolerance=None, false_alarm=1e-3, window=None) -> IsotropyCheck:
+@renamed_parameters(tolerance="tol")
+def assert_isotropic(field, *, band=None, tol=None, false_alarm=1e-3, window=None) -> IsotropyCheck:
     """Assert that no orientation dominates the spectrum of an image.
 
     Every independent cell of the band is whitened by the field's radial
@@ -501,7 +502,7 @@ def assert_isotropic(field, *, band=None, tolerance=None, false_alarm=1e-3, wind
     band : (lo, hi), optional
         Cycles/frame; default from 2 cycles/frame to Nyquist (N/2), clipped to
         where the image has power.
-    tolerance : float, optional
+    tol : float, optional
         Largest allowed modulation depth (``max(depth2, depth4)``) instead of
         the statistical test (for fields that are not Gaussian, or to accept a
         known small anisotropy).
@@ -524,7 +525,7 @@ def assert_isotropic(field, *, band=None, tolerance=None, false_alarm=1e-3, wind
     --------
     >>> import numpy as np, noiselab
     >>> from noiselab.testing import assert_isotropic
-    >>> img = noiselab.spectral_noise((128, 128), exponent=1.0, seed=1)
+    >>> img = noiselab.spectral_noise((128, 128), exponent=1.0, rng=1)
     >>> assert_isotropic(img).depth2 < 0.1
     True
     >>> stripes = img + np.sin(2 * np.pi * 8 * np.arange(128) / 128)
@@ -535,8 +536,7 @@ def assert_isotropic(field, *, band=None, tolerance=None, false_alarm=1e-3, wind
     """
     spec = _spectrum("field", field, (2,), window)
     alpha_fa = check_false_alarm(false_alarm)
-    if tolerance is not None:
-        tolerance = check_real("tolerance", tolerance, lo=0.0, hi=1e6)
+    tol = None if tol is None else check_real("tol", tol, lo=0.0, hi=1e6)
     cells = independent_cells(spec)
     (lo, hi), origin = _band(cells, band, lambda n: (2.0, n / 2.0), "isotropy")
     fit = orientation_modulation(cells, lo, hi)
@@ -553,13 +553,13 @@ def assert_isotropic(field, *, band=None, tolerance=None, false_alarm=1e-3, wind
     thr = float(scale * stats.chi2.isf(alpha_fa, dof))
     law = ("chi-square with 4 dof" if dof == 4.0 else
            f"{scale:.2f} x chi-square with {dof:.1f} dof, moments simulated for {n} exponential cells")
-    if tolerance is None:
+    if tol is None:
         ok = stat <= thr
         how = (f"score statistic {stat:.1f}, allowed {thr:.1f}: the 1 - false_alarm quantile (false_alarm="
                f"{alpha_fa:g}) of its law for exponential (Gaussian-field) cells, {law}")
     else:
-        ok = max(depth2, depth4) <= tolerance
-        how = f"allowed depth {tolerance:g} (given tolerance; score statistic {stat:.1f})"
+        ok = max(depth2, depth4) <= tol
+        how = f"allowed depth {tol:g} (given tolerance; score statistic {stat:.1f})"
     msg = f"isotropy: {measured}; {how}"
     if not ok:
         raise AssertionError(msg)
@@ -657,7 +657,7 @@ def assert_no_axis_artefacts(field, *, band=None, false_alarm=1e-3, window=None)
     --------
     >>> import numpy as np, noiselab
     >>> from noiselab.testing import assert_no_axis_artefacts
-    >>> img = noiselab.spectral_noise((128, 128), exponent=1.0, seed=2)
+    >>> img = noiselab.spectral_noise((128, 128), exponent=1.0, rng=2)
     >>> 0.5 < assert_no_axis_artefacts(img).axis_excess < 1.5
     True
     >>> rows = img + 0.3 * np.random.default_rng(0).standard_normal((1, 128))   # every row the same profile

@@ -14,14 +14,14 @@ import numpy as np
 import noiselab
 from noiselab import analysis
 
-rough = noiselab.spectral_noise((256, 256), exponent=1.5, seed=0)
+rough = noiselab.spectral_noise((256, 256), exponent=1.5, rng=0)
 y, x = np.mgrid[:256, :256]
 stripes = np.sin(2 * np.pi * (x + 0.3 * y) / 16) + 0.3 * rough
 for name, image in (("1/f^1.5", rough), ("stripes", stripes)):
     print(f"{name}: amplitude slope {float(analysis.spectral_slope(image)):.2f}, "
           f"anisotropy {analysis.anisotropy(image):.3f}")
 
-video = noiselab.snow((32, 128, 128), seed=2, direction=(1, 1))
+video = noiselab.snow((32, 128, 128), rng=2, direction_yx=(1, 1))
 profile = analysis.speed_profile(video)
 print("snow: best velocity", np.round(analysis.best_velocity(video), 2), "px/frame")
 

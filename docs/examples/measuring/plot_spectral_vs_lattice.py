@@ -15,7 +15,7 @@ from noiselab import analysis
 from noiselab.lattice import Grid
 
 size = 256
-spectral = noiselab.spectral_noise((size, size), exponent=1.0, band=(2, 64), seed=0)
+spectral = noiselab.spectral_noise((size, size), exponent=1.0, band=(2, 64), rng=0)
 lattice = noiselab.fractal_sum(noiselab.LatticeNoise(2, seed=0, kernel="quintic", basis="gradient"),
                                Grid((size, size), ((0, 4), (0, 4))), 5)
 

@@ -25,7 +25,7 @@ volume = noiselab.fractal_sum(noise, grid, 4, dtype="float32", chunks=(32, 32, 3
 store = Path(tempfile.mkdtemp()) / "fbm.zarr"
 with LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as cluster, \
         Client(cluster):
-    write_zarr(store, volume, dims=("z", "y", "x"), seed=1, params={"octaves": 4}, units="amplitude")
+    write_zarr(store, volume, dims=("z", "y", "x"), rng=1, params={"octaves": 4}, units="amplitude")
 back = read_zarr(store)
 same = np.array_equal(np.asarray(back), noiselab.fractal_sum(noise, grid, 4, dtype="float32"))
 print(volume.chunksize, "chunks; equal to the in-memory sum:", same)

@@ -13,7 +13,7 @@ import matplotlib.pyplot as plt
 import noiselab
 from noiselab import analysis
 
-tile = noiselab.snow((16, 64, 64), seed=3)                          # one 64 px tile, 16-frame loop
+tile = noiselab.snow((16, 64, 64), rng=3)                          # one 64 px tile, 16-frame loop
 frames = list(noiselab.iter_tiled_frames(tile, (2, 3), n_frames=40))   # 40 frames of 128 x 192: 2.5 loops
 print(len(frames), frames[0].shape)
 print("loop seam:", round(float(analysis.loop_seam(tile)), 3))

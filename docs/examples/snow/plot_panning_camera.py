@@ -12,8 +12,8 @@ import matplotlib.pyplot as plt
 import noiselab
 from noiselab import analysis
 
-still_camera = noiselab.snow((32, 128, 128), seed=4, c=1.0)
-panning = noiselab.snow((32, 128, 128), seed=4, c=1.0, pan=(1.5, 0.0))
+still_camera = noiselab.snow((32, 128, 128), rng=4, c=1.0)
+panning = noiselab.snow((32, 128, 128), rng=4, c=1.0, pan_yx=(0.0, 1.5))
 for name, video in (("still", still_camera), ("panning", panning)):
     vx, vy = analysis.best_velocity(video)
     print(f"{name}: best velocity ({vx:.2f}, {vy:.2f}) px/frame")

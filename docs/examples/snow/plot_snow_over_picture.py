@@ -18,7 +18,7 @@ y, x = np.mgrid[:height, :width] / np.array([height, width])[:, None, None]
 picture = np.stack([0.35 + 0.4 * y, 0.45 + 0.3 * y, 0.75 - 0.2 * y], axis=-1)   # a sky, RGB floats in [0, 1]
 picture[y > 0.7 + 0.08 * np.sin(12 * x)] = (0.25, 0.3, 0.2)                    # and a hill
 
-alpha = noiselab.snow((16, height, width), seed=1, direction=(1, 2))   # falls down and to the right
+alpha = noiselab.snow((16, height, width), rng=1, direction_yx=(2, 1))   # falls down and to the right
 video = noiselab.composite(alpha, picture)                           # uint8 (16, 128, 192, 3)
 
 fig, axes = plt.subplots(1, 3, figsize=(9, 2.4))

@@ -22,7 +22,7 @@ c, direction = 1.0, (0.0, 1.0)
 w = np.linspace(-np.pi / 2, np.pi / 2, 61)
 wy, wx = np.meshgrid(w, w, indexing="ij")
 radius = np.hypot(wx, wy)
-wt = np.where(radius > 0, tent_surface(wy, wx, c, direction), np.nan)
+wt = np.where(radius > 0, tent_surface(wy, wx, c, direction_yx=direction[::-1]), np.nan)
 inside = (radius >= 2 * np.pi * 4 / 64) & (radius <= 2 * np.pi * 16 / 64)   # the band, 4..16 cycles per 64 px
 
 fig = plt.figure(figsize=(9, 4))
@@ -36,8 +36,9 @@ ax.set_ylabel("w_y (rad/px)")
 ax.set_zlabel("w_t (rad/frame)")
 ax.set_title("tent surface (grey), band (blue)")
 
-video = noiselab.snow((32, 64, 64), seed=0, c=c, band=(4, 16), direction=direction, rescale=False)
-print("share of the field's power on the tent:", round(analysis.tent_energy(video, c, (4, 16), direction), 3))
+video = noiselab.snow((32, 64, 64), rng=0, c=c, band=(4, 16), direction_yx=direction[::-1], rescale=False)
+print("share of the field's power on the tent:",
+      round(analysis.tent_energy(video, c, (4, 16), direction_yx=direction[::-1]), 3))
 ax2 = fig.add_subplot(1, 2, 2)
 ky = np.fft.fftfreq(64) * 2 * np.pi
 section = np.fft.fftshift(np.abs(np.fft.fftn(video - video.mean()))[:, :, 0] ** 2)   # the w_x = 0 plane

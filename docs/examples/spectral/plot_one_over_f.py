@@ -13,7 +13,7 @@ from noiselab import analysis
 
 fig, axes = plt.subplots(1, 4, figsize=(11, 2.8))
 for ax, exponent in zip(axes[:3], (0.5, 1.0, 1.5)):
-    field = noiselab.spectral_noise((256, 256), exponent=exponent, band=(4, 64), seed=0)
+    field = noiselab.spectral_noise((256, 256), exponent=exponent, band=(4, 64), rng=0)
     slope = analysis.spectral_slope(field, band=(4, 64))
     print(f"exponent {exponent}: fitted amplitude slope {float(slope):.2f} (law {-exponent})")
     ax.imshow(field, cmap="gray")

@@ -15,7 +15,7 @@ import numpy as np
 
 import noiselab
 
-foreground = noiselab.snow((8, 128, 128), seed=5, beta=1.0)   # the thesis rescales without the exponent
+foreground = noiselab.snow((8, 128, 128), rng=5, beta=1.0)   # the thesis rescales without the exponent
 yy, xx = np.mgrid[:128, :128]
 disc = (yy - 64) ** 2 + (xx - 64) ** 2 < 40 ** 2                 # the veiled region
 

@@ -16,7 +16,7 @@ def _fd_divergence(field, x, h=1e-5):
 
 
 @figure("derivatives", "curl_flow", look="left, no colour (zero divergence) and closed streamlines; right, red sources and blue sinks",
-        seed="Phillips 2004, Figs. 9-10; Bridson et al. 2007",
+        source="Phillips 2004, Figs. 9-10; Bridson et al. 2007",
         title="Curl noise: a divergence-free flow field beside plain vector noise",
         params=dict(samples=256, cells=4.0, arrows=24, seed=7), quick=dict(samples=64, arrows=12), uses=USES)
 def curl_flow(out, *, samples, cells, arrows, seed):
@@ -60,7 +60,7 @@ def curl_flow(out, *, samples, cells, arrows, seed):
 
 
 @figure("derivatives", "warp", look="the pattern folds and swirls as warps compose; the shading comes from the exact chain-rule gradient",
-        seed="the lab's own (domain warping, Quilez 2002)",
+        source="the lab's own (domain warping, Quilez 2002)",
         title="Domain warping and its exact gradient",
         params=dict(samples=384, cells=4.0, amount=0.8, seed=3), quick=dict(samples=96), uses=USES)
 def warp_figure(out, *, samples, cells, amount, seed):
@@ -107,7 +107,7 @@ def warp_figure(out, *, samples, cells, amount, seed):
 
 
 @figure("derivatives", "normals", look="the face normals approach the exact ones as the mesh is refined; the exact ones need no mesh",
-        seed="Phillips 2004, Figs. 8, 14-20",
+        source="Phillips 2004, Figs. 8, 14-20",
         title="Exact normals from the noise gradient against normals from the mesh's faces",
         params=dict(resolutions=(16, 32, 64, 128, 256), subdivisions=(2, 3, 4, 5, 6), shade=512, seed=1),
         quick=dict(resolutions=(16, 32, 64), subdivisions=(2, 3, 4), shade=128), uses=USES)

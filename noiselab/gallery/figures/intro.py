@@ -23,7 +23,7 @@ def _arrow(ax, a, b, text=None):
         ax.text((a[0] + b[0]) / 2, (a[1] + b[1]) / 2 + 0.25, text, ha="center", va="bottom", fontsize=11, color="0.25")
 
 
-@figure("snow", "intro", seed="Langer & Zhang 2003 (schematic)", title="How falling snow is made: the tent, then one inverse FFT",
+@figure("snow", "intro", source="Langer & Zhang 2003 (schematic)", title="How falling snow is made: the tent, then one inverse FFT",
         look="the tent: each spatial frequency (w_x, w_y) has one temporal frequency, so big flakes fall fast",
         params=dict(c=1.0, band=(16, 128), size=512, grid=81), quick=dict(grid=31), uses=())
 def snow_intro(out, *, c, band, size, grid):
@@ -69,7 +69,7 @@ def snow_intro(out, *, c, band, size, grid):
                                                                   c * size / (2 * np.pi * band[1])]})
 
 
-@figure("phillips", "intro", seed="Phillips 2004 (schematic)", title="How lattice noise is made: two table look-ups, then smoothing",
+@figure("phillips", "intro", source="Phillips 2004 (schematic)", title="How lattice noise is made: two table look-ups, then smoothing",
         look="an integer lattice point picks a random value through the permutation table; the kernel smooths between them",
         params=dict(entries=8, seed=1), quick=dict(), uses=("noiselab.lattice",))
 def phillips_intro(out, *, entries, seed):

@@ -9,7 +9,7 @@ USES = ("noiselab.spectral", "noiselab.lattice", "noiselab.fractal", "noiselab.a
 
 
 @figure("lab", "one_over_f", look="the spectral texture and the gain-1 fractal sum share a -1 slope; gain 1/2 falls as -2",
-        seed="The lab's own comparison (no seed figure)",
+        source="The lab's own comparison (no seed figure)",
         title="1/f texture: spectral synthesis beside lattice fractal sums, with radial spectra and anisotropy",
         params=dict(size=512, octaves=8, cells=4.0, gains=(1.0, 0.5), seed=21), quick=dict(size=64, octaves=4), uses=USES)
 def one_over_f(out, *, size, octaves, cells, gains, seed):
@@ -21,7 +21,7 @@ def one_over_f(out, *, size, octaves, cells, gains, seed):
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    fields = {"spectral: spectral_noise, 1/f": spectral_noise((size, size), exponent=1.0, seed=seed, dtype=np.float64)}
+    fields = {"spectral: spectral_noise, 1/f": spectral_noise((size, size), exponent=1.0, rng=seed, dtype=np.float64)}
     for g in gains:
         f, used = fractal_sum(LatticeNoise(2, seed=seed), Grid((size, size), [(0, cells), (0, cells)]), octaves,
                               gain=g, normalize=True, return_octaves=True)
@@ -64,7 +64,7 @@ def one_over_f(out, *, size, octaves, cells, gains, seed):
 
 
 @figure("lab", "kernels", look="the steeper the spectrum falls past one cycle per cell, the smoother the texture looks",
-        seed="The lab's own comparison (Phillips 2004, Sec. 2.1.1 smoothing filters)",
+        source="The lab's own comparison (Phillips 2004, Sec. 2.1.1 smoothing filters)",
         title="Value and gradient noise for every smoothing kernel: images and radial spectra",
         params=dict(size=256, cells=8.0, seed=22), quick=dict(size=64), uses=USES)
 def kernels(out, *, size, cells, seed):
@@ -103,7 +103,7 @@ def kernels(out, *, size, cells, seed):
 
 
 @figure("lab", "measures", look="shorter bars are better in the first three panels; in the last, the nearer the dotted line, the more isotropic",
-        seed="Lagae et al. 2010 (band-limitedness, anisotropy); Cook & DeRose 2005; Ulichney 1987",
+        source="Lagae et al. 2010 (band-limitedness, anisotropy); Cook & DeRose 2005; Ulichney 1987",
         title="One octave asked of every generator: leakage, aliasing, anisotropy and Ulichney's dB",
         params=dict(size=256), quick=dict(size=64), uses=USES + ("noiselab.lab",))
 def measures(out, *, size):
@@ -148,7 +148,7 @@ def measures(out, *, size):
 
 
 @figure("lab", "hashes", look="with the permutation every row averages the same; a 1-D line repeats after the table size, not with the integer hash",
-        seed="The lab's own comparison (Phillips 2004, Sec. 2.4.1 nested permutation)",
+        source="The lab's own comparison (Phillips 2004, Sec. 2.4.1 nested permutation)",
         title="The hash question: Phillips' nested permutation table against an arithmetic integer hash",
         params=dict(cells=256, spc=2, seeds=8, kernel="catmull-rom", seed=23), quick=dict(cells=32, seeds=3),
         uses=USES + ("noiselab.lab",))

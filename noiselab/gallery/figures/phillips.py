@@ -15,7 +15,7 @@ def _range(a):
 
 
 @figure("phillips", "fig01", look="the same random values, smoothed more and more: the wider the box, the slower the wiggles",
-        seed="Phillips 2004, Fig. 1", title="One alternating random basis (a), box-filtered and renormalised (b)-(d)",
+        source="Phillips 2004, Fig. 1", title="One alternating random basis (a), box-filtered and renormalised (b)-(d)",
         params=dict(length=100, per_unit=20, freqs=(1 / 20, 1 / 10, 1 / 5), passes=3, measure_length=4000, seed=1),
         quick=dict(per_unit=8, measure_length=800), uses=NOISE)
 def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
@@ -80,7 +80,7 @@ def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
 
 
 @figure("phillips", "fig02", look="each lattice point looks up a table entry through the permutation; the stems are those entries",
-        seed="Phillips 2004, Fig. 2", title="Diagram: random-number tables, permutation table, basis function",
+        source="Phillips 2004, Fig. 2", title="Diagram: random-number tables, permutation table, basis function",
         params=dict(entries=16, table_size=256, seed=1), quick=dict(entries=8), uses=NOISE)
 def fig02(out, *, entries, table_size, seed):
     from noiselab.lattice import LatticeNoise
@@ -135,7 +135,7 @@ def fig02(out, *, entries, table_size, seed):
                    "basis range": _range(basis), "largest |curve - stem| at the lattice points": miss})
 
 
-@figure("phillips", "fig03", seed="Phillips 2004, Fig. 3", title="A 5 degree arc with increasing noise amplitude (Eq. 3)",
+@figure("phillips", "fig03", source="Phillips 2004, Fig. 3", title="A 5 degree arc with increasing noise amplitude (Eq. 3)",
         look="the bumps stay where they are from row to row; only their height grows",
         params=dict(arc_deg=5.0, cycles_per_degree=2.0, amplitudes=(0.0, 0.0005, 0.001, 0.002, 0.004), points=800, seed=2),
         quick=dict(points=200), uses=GEOM)
@@ -189,7 +189,7 @@ def _spread(pts):
     return float(np.sqrt(max(ev[0], 0.0) / ev[1]))
 
 
-@figure("phillips", "fig04", seed="Phillips 2004, Fig. 4", title="A random trajectory: 1-D input (time), 2-D output (x, y)",
+@figure("phillips", "fig04", source="Phillips 2004, Fig. 4", title="A random trajectory: 1-D input (time), 2-D output (x, y)",
         look="the dot wanders in both x and y; its 1-second tail shows where it came from",
         params=dict(seconds=2.0, fps=50, cycles_per_second=1.5, tail_seconds=1.0, size=320, panels=4, candidates=16,
                     seeds=64, seed=3),
@@ -238,7 +238,7 @@ def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, c
 
 
 @figure("phillips", "fig05", look="to the right more bumps (frequency), downwards bigger ones (amplitude); every curve closes",
-        seed="Phillips 2004, Fig. 5", title="Circles distorted in x and y by 2-D noise output",
+        source="Phillips 2004, Fig. 5", title="Circles distorted in x and y by 2-D noise output",
         params=dict(amplitudes=(0.1, 0.2, 0.4), frequencies=(1.0, 2.0, 4.0), points=1440, seed=4),
         quick=dict(points=360), uses=GEOM)
 def fig05(out, *, amplitudes, frequencies, points, seed):
@@ -301,7 +301,7 @@ def _taps_1d(kernel, x):
 
 
 @figure("phillips", "fig06", look="2-D noise is 1-D noise along x on every integer row, then smoothed again across the rows",
-        seed="Phillips 2004, Fig. 6", title="2-D noise from planes of 1-D basis functions, one per integer y",
+        source="Phillips 2004, Fig. 6", title="2-D noise from planes of 1-D basis functions, one per integer y",
         params=dict(point=(14.0, 1.0), planes=(-1, 4), xrange=(9, 20), kernel="cubic", checks=200, seed=6),
         quick=dict(checks=20), uses=NOISE)
 def fig06(out, *, point, planes, xrange, kernel, checks, seed):
@@ -415,7 +415,7 @@ def _anisotropy_words(value):
 ISOTROPY_SEED = 16   # the seed Fig. 20 picks its kernel with: Figs. 7 and 8 use the same pick
 
 
-@figure("phillips", "fig07", seed="Phillips 2004, Fig. 7", title="2-D noise varying over time (3-D input, scalar output)",
+@figure("phillips", "fig07", source="Phillips 2004, Fig. 7", title="2-D noise varying over time (3-D input, scalar output)",
         look="each blob drifts and changes shape slowly from one frame to the next; the video loops without a jump",
         params=dict(frames=80, size=256, cells=4.0, cells_per_frame=0.05, panels=4, step=4, seed=5),
         quick=dict(frames=20, size=64, cells_per_frame=0.2, step=1), uses=NOISE)
@@ -488,7 +488,7 @@ def _render_tiles(meshes, path, labels, columns=3, cell=300, **kw):
     return save_figure(fig, path)
 
 
-@figure("phillips", "fig08", seed="Phillips 2004, Fig. 8", title="A Monge surface z = noise(x, y) and its depth map",
+@figure("phillips", "fig08", source="Phillips 2004, Fig. 8", title="A Monge surface z = noise(x, y) and its depth map",
         look="the same hills twice: as a lit surface and as a grey-level depth map (lighter = higher)",
         params=dict(grid=160, cells=4.0, amplitude=1.6, size=480, seed=6), quick=dict(grid=32, size=160), uses=GEOM)
 def fig08(out, *, grid, cells, amplitude, size, seed):
@@ -519,7 +519,7 @@ def fig08(out, *, grid, cells, amplitude, size, seed):
 
 
 @figure("phillips", "fig09", look="arrows that turn smoothly from place to place; the grey streamlines follow them",
-        seed="Phillips 2004, Fig. 9", title="A 2-D flow field: 2-D input, 2-D output",
+        source="Phillips 2004, Fig. 9", title="A 2-D flow field: 2-D input, 2-D output",
         params=dict(arrows=20, cells=4.0, size=512, streamlines=60, seed=7), quick=dict(arrows=10, size=200, streamlines=10),
         uses=GEOM)
 def fig09(out, *, arrows, cells, size, streamlines, seed):
@@ -528,7 +528,7 @@ def fig09(out, *, arrows, cells, size, streamlines, seed):
 
     field = LatticeNoise(2, 2, seed=seed)
     ext = ((0.0, cells), (0.0, cells))
-    quiver_image(field, out / "fig09.png", shape=(arrows, arrows), extent=ext, size=size, streamline_seeds=streamlines, seed=seed)
+    quiver_image(field, out / "fig09.png", shape=(arrows, arrows), extent=ext, size=size, streamline_seeds=streamlines, rng=seed)
     _, vec = flow_field(field, (64, 64), ext)
     ang = np.arctan2(vec[..., 0], vec[..., 1])   # vectors are (v_y, v_x), in array-axis order
     return Result([out / "fig09.png"], f"At each (x, y) a 2-vector from 2-output noise, over {cells:g} x {cells:g} cells; "
@@ -537,7 +537,7 @@ def fig09(out, *, arrows, cells, size, streamlines, seed):
                    "mean resultant length of directions (0 = no preferred direction)": float(np.hypot(np.cos(ang).mean(), np.sin(ang).mean()))})
 
 
-@figure("phillips", "fig10", seed="Phillips 2004, Fig. 10", title="A 3-D vector field, as a cross-fusible stereo pair",
+@figure("phillips", "fig10", source="Phillips 2004, Fig. 10", title="A 3-D vector field, as a cross-fusible stereo pair",
         look="cross your eyes until the two boxes fuse into one: the arrows then stand at different depths",
         params=dict(glyphs=5, cells=3.0, size=900, eye_deg=5.0, seed=8), quick=dict(glyphs=3, size=360), uses=GEOM)
 def fig10(out, *, glyphs, cells, size, eye_deg, seed):
@@ -576,7 +576,7 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
                   {f"v{c} range": _range(vec[..., i]) for i, c in enumerate("zyx")})
 
 
-@figure("phillips", "fig11", seed="Phillips 2004, Fig. 11", title="Height and colour from one vector-valued noise",
+@figure("phillips", "fig11", source="Phillips 2004, Fig. 11", title="Height and colour from one vector-valued noise",
         look="hills and valleys whose colour changes independently of their height",
         params=dict(grid=128, cells=3.0, amplitude=1.2, size=520, seeds=32, seed=9), quick=dict(grid=24, size=200, seeds=8),
         uses=GEOM)
@@ -594,7 +594,7 @@ def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
     vr_rgb = tuple(float(q) for q in np.percentile(f_rgb.grid((grid, grid), ext)[..., 1:], [2, 98]))
     hue = colored_surface(f_hue, (grid, grid), ext, amplitude=amplitude, color="hue", value_range=vr_hue)
     rgb = colored_surface(f_rgb, (grid, grid), ext, amplitude=amplitude, color="rgb", value_range=vr_rgb,
-                          on_aliasing="ignore")
+                          on_alias="ignore")
     imgs = [render_mesh(m, size=size, elevation=30, azimuth=20) for m in (hue, rgb)]
     pair = np.concatenate([imgs[0], np.full((imgs[0].shape[0], 12, 3), 255, np.uint8), imgs[1]], axis=1)
     cols = np.asarray(rgb.visual.vertex_colors)[:, :3].astype(float)
@@ -688,7 +688,7 @@ def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=
 
 
 @figure("phillips", "fig12", look="the large-scale shape stays; each octave adds finer, smaller wiggles on top",
-        seed="Phillips 2004, Fig. 12", title="Fractal sums of n = 1..5 octaves (Eq. 9)",
+        source="Phillips 2004, Fig. 12", title="Fractal sums of n = 1..5 octaves (Eq. 9)",
         params=dict(octaves=5, length=10.0, samples=4096, cells=8.0, seeds=16, seed=10), quick=dict(samples=1024, seeds=4),
         uses=NOISE)
 def fig12(out, *, octaves, length, samples, cells, seeds, seed):
@@ -698,7 +698,7 @@ def fig12(out, *, octaves, length, samples, cells, seeds, seed):
                   measured)
 
 
-@figure("phillips", "fig13", seed="Phillips 2004, Fig. 13", title="Turbulence: 5 octaves of |noise| (Eq. 10)",
+@figure("phillips", "fig13", source="Phillips 2004, Fig. 13", title="Turbulence: 5 octaves of |noise| (Eq. 10)",
         look="every octave's zero crossings become sharp creases; grey-blue: the signed sum of the same octaves (Fig. 12)",
         params=dict(octaves=5, length=10.0, samples=8192, cells=8.0, zoom=(2.0, 3.5), seed=10), quick=dict(samples=2048),
         uses=NOISE)
@@ -717,11 +717,11 @@ def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed, see
 
     noise = LatticeNoise(2, seed=seed)
     ext = ((0.0, cells), (0.0, cells))
-    meshes = [monge_surface(noise, (grid, grid), ext, amplitude=amplitude, octaves=n, kind=kind, on_aliasing="ignore")
+    meshes = [monge_surface(noise, (grid, grid), ext, amplitude=amplitude, octaves=n, kind=kind, on_alias="ignore")
               for n in range(1, octaves + 1)]
     _render_tiles(meshes, out / "surfaces.png", [f"({'abcdefgh'[n - 1]}) n = {n}" for n in range(1, octaves + 1)],
                   cell=size // 3, elevation=10, scalars="height", cmap="gist_earth", clim=(-amplitude * 1.2, amplitude * 1.2))
-    h = height_map(noise, (grid, grid), ext, octaves=octaves, kind=kind, on_aliasing="ignore")
+    h = height_map(noise, (grid, grid), ext, octaves=octaves, kind=kind, on_alias="ignore")
     aniso = analysis.anisotropy(h, window="hann")
     spp = (grid - 1) / (cells * 2 ** (octaves - 1))
     measured = {f"n = {octaves}: range": _range(h), "anisotropy (Hann window)": aniso,
@@ -732,7 +732,7 @@ def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed, see
     if kind == "fractal":
         band = (cells / 2, min(grid / 4, cells * 2 ** (octaves - 1) / 4))
         slopes = [analysis.spectral_slope(height_map(LatticeNoise(2, seed=seed + k), (grid, grid), ext, octaves=octaves,
-                                                     kind=kind, on_aliasing="ignore"), band, window="hann")
+                                                     kind=kind, on_alias="ignore"), band, window="hann")
                   for k in range(seeds)]
         s2, stats, target = _slope_sentence(slopes, 2)
         sentence += f" Spectrum: {s2}."
@@ -741,7 +741,7 @@ def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed, see
 
 
 @figure("phillips", "fig14", look="the same hills in every panel, with finer and finer roughness as octaves are added",
-        seed="Phillips 2004, Fig. 14", title="Fractal-sum surfaces, n = 1..5 octaves",
+        source="Phillips 2004, Fig. 14", title="Fractal-sum surfaces, n = 1..5 octaves",
         params=dict(octaves=5, grid=320, cells=3.0, amplitude=0.5, size=900, seeds=8, seed=11),
         quick=dict(grid=32, size=300, seeds=3), uses=GEOM)
 def fig14(out, *, octaves, grid, cells, amplitude, size, seeds, seed):
@@ -751,7 +751,7 @@ def fig14(out, *, octaves, grid, cells, amplitude, size, seeds, seed):
 
 
 @figure("phillips", "fig15", look="sharp creases along the valleys, where each octave's noise changes sign",
-        seed="Phillips 2004, Fig. 15", title="Turbulence surfaces, n = 1..5 octaves",
+        source="Phillips 2004, Fig. 15", title="Turbulence surfaces, n = 1..5 octaves",
         params=dict(octaves=5, grid=320, cells=3.0, amplitude=0.5, size=900, seed=11), quick=dict(grid=32, size=300), uses=GEOM)
 def fig15(out, *, octaves, grid, cells, amplitude, size, seed):
     files, measured, sentence = _octave_surfaces(out, "turbulence", octaves, grid, cells, amplitude, size, seed)
@@ -772,7 +772,7 @@ def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_fr
         top = max(min(f * 2 ** (n - 1), max_frequency), min_frequency)   # min_frequency: a smooth silhouette
         mesh = base if base is not None else sphere_for_noise(top, radius, samples_per_period=samples_per_period,
                                                                         max_subdivisions=max_subdivisions)
-        d = displace(mesh, field, amplitude=a, frequency=f, octaves=n, kind=kind, on_aliasing="ignore")
+        d = displace(mesh, field, amplitude=a, frequency=f, octaves=n, kind=kind, on_alias="ignore")
         meshes.append(d)
         if a:
             ranges.append(np.asarray(d.vertex_attributes["displacement"]) / a)
@@ -780,7 +780,7 @@ def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_fr
 
 
 @figure("phillips", "fig16", look="top row: the same bumps growing taller; bottom row: more and smaller bumps",
-        seed="Phillips 2004, Fig. 16", title="Unit spheres displaced by noise (Eq. 11): amplitude, then frequency",
+        source="Phillips 2004, Fig. 16", title="Unit spheres displaced by noise (Eq. 11): amplitude, then frequency",
         params=dict(amplitudes=(0.1, 0.2, 0.3, 0.4), frequency=2.0, frequencies=(1.0, 2.0, 4.0, 8.0), amplitude=0.25,
                     size=1000, seed=12),
         quick=dict(frequencies=(1.0, 2.0, 3.0, 4.0), size=400), uses=GEOM)
@@ -809,7 +809,7 @@ def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
                    "vertices per sphere": [len(m.vertices) for m in first + second]})
 
 
-@figure("phillips", "fig17", seed="Phillips 2004, Fig. 17", title="Spheres displaced by fractal (left) and turbulent (right) sums, n = 1..6",
+@figure("phillips", "fig17", source="Phillips 2004, Fig. 17", title="Spheres displaced by fractal (left) and turbulent (right) sums, n = 1..6",
         look="each added octave adds finer wrinkles on top of the same large bumps; turbulence only pushes outwards",
         params=dict(octaves=6, frequency=1.0, amplitude=0.3, samples_per_period=6.0, size=900, seed=13),
         quick=dict(octaves=3, size=360), uses=GEOM)
@@ -827,7 +827,7 @@ def fig17(out, *, octaves, frequency, amplitude, samples_per_period, size, seed)
 
     def displaced(kind):
         for n in range(1, octaves + 1):
-            d = displace(base, field, amplitude=amplitude, frequency=frequency, octaves=n, kind=kind, on_aliasing="ignore")
+            d = displace(base, field, amplitude=amplitude, frequency=frequency, octaves=n, kind=kind, on_alias="ignore")
             ranges[kind].append(np.asarray(d.vertex_attributes["displacement"]) / amplitude)
             yield d
 
@@ -852,7 +852,7 @@ def fig17(out, *, octaves, frequency, amplitude, samples_per_period, size, seed)
                    "vertices per sphere": len(base.vertices)})
 
 
-@figure("phillips", "fig18", seed="Phillips 2004, Fig. 18", title="Any mesh: a cow displaced with s = 0 to 0.5 in steps of 0.1",
+@figure("phillips", "fig18", source="Phillips 2004, Fig. 18", title="Any mesh: a cow displaced with s = 0 to 0.5 in steps of 0.1",
         look="the cow's smooth hide crumples more and more as s grows, until at 0.5 it folds into itself",
         params=dict(amplitudes=(0.0, 0.1, 0.2, 0.3, 0.4, 0.5), length=4.0, frequency=3.0, resolution=110, size=960, seed=14),
         quick=dict(amplitudes=(0.0, 0.25, 0.5), resolution=48, size=360), uses=GEOM)
@@ -887,7 +887,7 @@ def fig18(out, *, amplitudes, length, frequency, resolution, size, seed):
                    "flipped faces per s": flips, "faces": len(base.faces)})
 
 
-@figure("phillips", "fig19", seed="Phillips 2004, Fig. 19", title="Squashed spheres (5%) with noise from 0 to 10% of the radius",
+@figure("phillips", "fig19", source="Phillips 2004, Fig. 19", title="Squashed spheres (5%) with noise from 0 to 10% of the radius",
         look="the first is smooth, the second gently dented, the third clearly lumpy: RMS 0, 5 and 10% of the radius",
         params=dict(squash=0.05, levels=(0.0, 0.05, 0.1), frequency=2.0, size=960, seed=15), quick=dict(size=360), uses=GEOM)
 def fig19(out, *, squash, levels, frequency, size, seed):
@@ -898,12 +898,12 @@ def fig19(out, *, squash, levels, frequency, size, seed):
     field = LatticeNoise(3, seed=seed)
     # "noise up to 10 % of the radius of curvature, on average": the RMS displacement, not the amplitude; the
     # unit-amplitude displacement's RMS on this mesh calibrates the amplitude of each level
-    unit = np.asarray(displace(base, field, amplitude=1.0, frequency=frequency, on_aliasing="ignore")
+    unit = np.asarray(displace(base, field, amplitude=1.0, frequency=frequency, on_alias="ignore")
                       .vertex_attributes["displacement"])
     unit_rms = float(np.sqrt(np.mean(unit ** 2)))
     meshes, rms = [], []
     for lev in levels:
-        d = displace(base, field, amplitude=lev / unit_rms, frequency=frequency, on_aliasing="ignore")
+        d = displace(base, field, amplitude=lev / unit_rms, frequency=frequency, on_alias="ignore")
         meshes.append(d)
         rms.append(float(np.sqrt(np.mean(np.asarray(d.vertex_attributes["displacement"]) ** 2))))
     z = [float(np.ptp(m.vertices[:, 2]) / np.ptp(m.vertices[:, 0])) for m in meshes]
@@ -955,7 +955,7 @@ def _most_isotropic(seed, trial_size=256, trial_seeds=3):
 
 
 @figure("phillips", "fig20", look="the same amplitude everywhere: only the size of the blobs changes, from few large to many small",
-        seed="Phillips 2004, Fig. 20", title="Stimuli: constant amplitude, frequency increasing",
+        source="Phillips 2004, Fig. 20", title="Stimuli: constant amplitude, frequency increasing",
         params=dict(frequencies=(0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0), amplitude=0.12,
                     candidates=(("value", "cubic"), ("value", "quintic"), ("gradient", "cubic"), ("gradient", "catmull-rom"),
                                 ("gradient", "quintic")),

@@ -8,7 +8,7 @@ from ..registry import Result, figure
 SNOW = ("noiselab.snowfall", "noiselab.spectral", "noiselab.analysis", "noiselab.io", "noiselab.gallery.scenes")
 
 
-@figure("snow", "opacity", seed="Zhang 2003, video 'snow' (Sec. 3.5 I)", title="The opacity function alpha(x, y, t) itself",
+@figure("snow", "opacity", source="Zhang 2003, video 'snow' (Sec. 3.5 I)", title="The opacity function alpha(x, y, t) itself",
         look="big flakes fall fast, small ones slowly: the measured speeds follow the tent's c N / (2 pi f) line",
         params=dict(frames=64, size=512, c=1.0, thickness=0.1, beta=1.5, seed=1),
         quick=dict(frames=8, size=64), uses=SNOW)
@@ -18,11 +18,11 @@ def opacity(out, *, frames, size, c, thickness, beta, seed):
 
     from .._common import pyplot, save_figure, save_video
 
-    alpha = snow((frames, size, size), seed=seed, c=c, thickness=thickness, beta=beta)
+    alpha = snow((frames, size, size), rng=seed, c=c, thickness=thickness, beta=beta)
     band = (size / 32, size / 4)
     files = save_video(out, "opacity", alpha)
     spec = analysis.video_spectrum(alpha)
-    on_tent = analysis.tent_energy(spec, c, band, (0, 1))
+    on_tent = analysis.tent_energy(spec, c, band, direction_yx=(1, 0))
     prof = analysis.speed_profile(alpha)
     seam = analysis.loop_seam(alpha)
     near, far = flake_speeds(c, band, size)
@@ -81,7 +81,7 @@ def _composite_with_crop(alpha, background, box, intensity=250):
     return out
 
 
-@figure("snow", "fig3_1", seed="Zhang 2003, Fig. 3.1", title="Falling snow composited over a house on a winter day",
+@figure("snow", "fig3_1", source="Zhang 2003, Fig. 3.1", title="Falling snow composited over a house on a winter day",
         look="the flakes in the 2x crop: large fast ones in front, small slow ones behind, all falling down and to the right",
         params=dict(frames=64, size=512, c=1.0, beta=3.0, intensity=250, direction=(0.4, 1.0), seed=2),
         quick=dict(frames=8, size=64), uses=SNOW)
@@ -93,7 +93,7 @@ def winter_scene(out, *, frames, size, c, beta, intensity, direction, seed):
     from ..scenes import house_scene
 
     bg = house_scene(size, size)
-    alpha = snow((frames, size, size), seed=seed, c=c, beta=beta, direction=direction)
+    alpha = snow((frames, size, size), rng=seed, c=c, beta=beta, direction_yx=direction[::-1])  # params: (dx, dy)
     video = _composite_with_crop(alpha, bg, (int(0.36 * size), int(0.3 * size)), intensity)
     files = [save_image(out / "a_background.png", bg)] + save_video(out, "house", video)
     speeds, angle = _speeds(alpha, size)
@@ -107,7 +107,8 @@ def winter_scene(out, *, frames, size, c, beta, intensity, direction, seed):
                          f"right, the outlined quarter enlarged 2x (nearest neighbour). The fall direction asked is "
                          f"{_asked_angle(direction):+.0f} degrees from straight down (+ = to the right); measured on alpha, "
                          f"{angle:+.0f}. The video loops seamlessly.",
-                  measured={"energy on the tent": analysis.tent_energy(alpha, c, (size / 32, size / 4), direction),
+                  measured={"energy on the tent": analysis.tent_energy(alpha, c, (size / 32, size / 4),
+                                                                         direction_yx=direction[::-1]),
                             "speed per band of alpha (cycles/frame: px/frame)": speeds,
                             "fall direction, degrees from down (asked, measured)": [_asked_angle(direction), angle],
                             "mean opacity alpha": float(alpha.mean()),
@@ -115,7 +116,7 @@ def winter_scene(out, *, frames, size, c, beta, intensity, direction, seed):
                             "background RMS contrast": analysis.rms_contrast(analysis.to_grey(bg))})
 
 
-@figure("snow", "fig3_2", seed="Zhang 2003, Fig. 3.2", title="The tent surface w_t = C w_y / |w| (C = 1)",
+@figure("snow", "fig3_2", source="Zhang 2003, Fig. 3.2", title="The tent surface w_t = C w_y / |w| (C = 1)",
         look="a surface that depends only on the direction of (w_x, w_y): every velocity's motion plane, tilted by 1/speed",
         params=dict(C=1.0, grid=61, frames=32, size=64, seed=3), quick=dict(grid=21, frames=8, size=32),
         uses=SNOW)
@@ -138,7 +139,7 @@ def tent_plot(out, *, C, grid, frames, size, seed):
     ax.set_box_aspect(None, zoom=0.85)
     ax.set_title(f"(a) the tent, Eq. 3.3, C = {C:g}")
     # what a rendered video actually holds: its power in the (w_y, w_t) plane at w_x = 0
-    alpha = snow((frames, size, size), seed=seed, c=C, thickness=0.0, band=(size / 16, size / 2.5), beta=1.0)
+    alpha = snow((frames, size, size), rng=seed, c=C, thickness=0.0, band=(size / 16, size / 2.5), beta=1.0)
     P = np.abs(np.fft.fftn(alpha - alpha.mean())) ** 2
     sl = np.fft.fftshift(P[:, :, 0], axes=(0, 1))
     ax2 = fig.add_axes([0.58, 0.13, 0.38, 0.76])
@@ -156,7 +157,7 @@ def tent_plot(out, *, C, grid, frames, size, seed):
                   measured={"energy on the tent": tent})
 
 
-@figure("snow", "fig3_3", seed="Zhang 2003, Fig. 3.3", title="The city background (the thesis's 'sydney'), 512 x 512",
+@figure("snow", "fig3_3", source="Zhang 2003, Fig. 3.3", title="The city background (the thesis's 'sydney'), 512 x 512",
         look="a crisp, sunny scene with dark edges everywhere: the flakes of Fig. 3.4 will be seen against it",
         params=dict(size=512), quick=dict(size=64), uses=("noiselab.analysis", "noiselab.io", "noiselab.gallery.scenes"))
 def city_background(out, *, size):
@@ -183,7 +184,7 @@ def _tiling(out, tile, frames, size, c, beta, direction, seed, seeds):
     from ..scenes import city_scene
 
     reps = size // tile
-    alpha = snow((frames, tile, tile), seed=seed, c=c, beta=beta, direction=direction)
+    alpha = snow((frames, tile, tile), rng=seed, c=c, beta=beta, direction_yx=direction[::-1])  # params: (dx, dy)
     tiled = np.stack(list(iter_tiled_frames(alpha, (reps, reps))))
     video = _composite_with_crop(tiled, city_scene(size, size), (int(0.3 * size), int(0.3 * size)))
     zoom = max(1, 256 // tile)     # the tile enlarged with nearest neighbour, so its flakes can be counted
@@ -192,7 +193,8 @@ def _tiling(out, tile, frames, size, c, beta, direction, seed, seeds):
     # the seam statistic (tile_seam: RMS step across the tile edges / RMS step beside them, the larger of x and y)
     # is noisy and, being a max of two ratios, biased above 1: one value says nothing on its own, so it is compared
     # with the same statistic on interior lines (the tile rolled by half a tile), over this tile and `seeds` others
-    tiles = [alpha] + [snow((frames, tile, tile), seed=seed + 1000 + k, c=c, direction=direction) for k in range(seeds)]
+    tiles = [alpha] + [snow((frames, tile, tile), rng=seed + 1000 + k, c=c, direction_yx=direction[::-1])
+                       for k in range(seeds)]
     seam = np.array([analysis.tile_seam(a) for a in tiles])
     inner = np.array([analysis.tile_seam(np.roll(a, (tile // 2, tile // 2), axis=(1, 2))) for a in tiles])
     diff = seam - inner
@@ -206,7 +208,8 @@ def _tiling(out, tile, frames, size, c, beta, direction, seed, seeds):
                 "speed per band of the tile (cycles/tile: px/frame)": speeds,
                 "fall direction, degrees from down (asked, measured)": [_asked_angle(direction), angle],
                 "loop seam (1 = seamless)": analysis.loop_seam(tiled),
-                "energy on the tent (one tile)": analysis.tent_energy(alpha, c, (tile / 32, tile / 4), direction)}
+                "energy on the tent (one tile)": analysis.tent_energy(alpha, c, (tile / 32, tile / 4),
+                                                                   direction_yx=direction[::-1])}
     verdict = (f"the edges score {seam.mean():.3f} against {inner.mean():.3f} on interior lines (the statistic is biased "
                f"above 1 for any line), a difference of {diff.mean():+.3f} +- {se:.3f} (standard error over {len(tiles)} tiles): "
                + ("no seam measurable (|difference| < 2 standard errors)" if abs(diff.mean()) < 2 * se
@@ -214,7 +217,7 @@ def _tiling(out, tile, frames, size, c, beta, direction, seed, seeds):
     return files, measured, verdict, angle
 
 
-@figure("snow", "fig3_4", seed="Zhang 2003, Fig. 3.4", title="Tiling XYT: the city under 4 x 4 snow tiles of 128 x 128",
+@figure("snow", "fig3_4", source="Zhang 2003, Fig. 3.4", title="Tiling XYT: the city under 4 x 4 snow tiles of 128 x 128",
         look="no tile edges anywhere, and snow falling down and to the left, unlike the house's",
         params=dict(tile=128, frames=64, size=512, c=1.0, beta=3.0, direction=(-0.4, 1.0), seeds=4, seed=4),
         quick=dict(tile=32, frames=8, size=128, seeds=2), uses=SNOW)
@@ -230,7 +233,7 @@ def tiling_128(out, *, tile, frames, size, c, beta, direction, seeds, seed):
                          "coarsest flakes (32 px): too long to be noticed, as the thesis finds.", measured)
 
 
-@figure("snow", "fig3_5", seed="Zhang 2003, Fig. 3.5", title="Tiling failure: 8 x 8 tiles of 64 x 64 repeat visibly",
+@figure("snow", "fig3_5", source="Zhang 2003, Fig. 3.5", title="Tiling failure: 8 x 8 tiles of 64 x 64 repeat visibly",
         look="the same flakes repeating on a 64-pixel grid (clearest in the 2x crop): a pattern, not snowfall",
         params=dict(tile=64, frames=64, size=512, c=1.0, beta=3.0, direction=(-0.4, 1.0), seeds=4, seed=4),
         quick=dict(tile=16, frames=8, size=128, seeds=2), uses=SNOW)
@@ -244,7 +247,7 @@ def tiling_64(out, *, tile, frames, size, c, beta, direction, seeds, seed):
                          "judgement is not).", measured)
 
 
-@figure("snow", "fig4_1", seed="Zhang 2003, Fig. 4.1", title="The sheared tent for a panning camera, and the panning video",
+@figure("snow", "fig4_1", source="Zhang 2003, Fig. 4.1", title="The sheared tent for a panning camera, and the panning video",
         look="the house slides right 1 px per frame and the snow drifts right with it; the loop has no jump",
         params=dict(C=1.0, s=0.3, grid=61, frames=64, size=256, pan=1, beta=3.0, seed=6),
         quick=dict(grid=21, frames=8, size=32), uses=SNOW)
@@ -267,7 +270,7 @@ def sheared_tent(out, *, C, s, grid, frames, size, pan, beta, seed):
     ax.set_zlabel(r"$\omega_t$ (rad/frame)")
     ax.set_title(f"Eq. 4.3: C = {C:g}, s_l = {s:g}")
     files = [save_figure(fig, out / "sheared_tent.png")]
-    alpha = snow((frames, size, size), seed=seed, c=C, beta=beta, pan=(pan, 0.0))
+    alpha = snow((frames, size, size), rng=seed, c=C, beta=beta, pan_yx=(0.0, pan))
     # the background is a panorama periodic in x with period `size`; panning `pan` whole px per frame, it comes
     # back to where it started after size/pan frames, and the snow (periodic in `frames`) loops within that, so the
     # whole video loops without a jump (a background cut from a longer strip jumps back by pan*frames px instead)
@@ -280,7 +283,7 @@ def sheared_tent(out, *, C, s, grid, frames, size, pan, beta, seed):
     files += save_video(out, "panning", video)
     band = (size / 32, size / 4)
     v = analysis.best_velocity(alpha, band=band)
-    on_sheared = analysis.sheared_tent_energy(alpha, C, band, (0, 1), (pan, 0.0))
+    on_sheared = analysis.sheared_tent_energy(alpha, C, band, direction_yx=(1, 0), pan_yx=(0.0, pan))
     on_plain = analysis.tent_energy(alpha, C, band)
     seam = analysis.loop_seam(analysis.to_grey(video[:, :, :size]))
     return Result(files, f"Left: the sheared tent of Eq. 4.3 (C = {C:g}, s_l = {s:g}). Right: snow rendered on the sheared "
@@ -304,7 +307,7 @@ def sheared_tent(out, *, C, s, grid, frames, size, pan, beta, seed):
                             "loop seam of the panning composite (1 = seamless)": seam})
 
 
-@figure("snow", "fig6_1", seed="Zhang 2003, Fig. 6.1", title="The background images of the transparency stimuli",
+@figure("snow", "fig6_1", source="Zhang 2003, Fig. 6.1", title="The background images of the transparency stimuli",
         look="black and white only: the white regions will be veiled (low contrast), the black ones left clear",
         params=dict(size=512), quick=dict(size=64), uses=("noiselab.io",))
 def backgrounds(out, *, size):
@@ -324,7 +327,7 @@ def backgrounds(out, *, size):
                   measured={f"{k}: white fraction": v for k, v in whites.items()})
 
 
-@figure("snow", "fig6_2", seed="Zhang 2003, Fig. 6.2", title="Motion-parallax transparency stimuli: checkerboard, moon, disc",
+@figure("snow", "fig6_2", source="Zhang 2003, Fig. 6.2", title="Motion-parallax transparency stimuli: checkerboard, moon, disc",
         look="the snow seems to pass behind a light veil over the white regions of each pattern",
         params=dict(frames=64, size=512, c=1.0, transmittance=0.3, seed=7), quick=dict(frames=8, size=64), uses=SNOW)
 def parallax(out, *, frames, size, c, transmittance, seed):
@@ -332,7 +335,7 @@ def parallax(out, *, frames, size, c, transmittance, seed):
 
     from .._common import checkerboard, disc, moon, save_video
 
-    fg = snow((frames, size, size), seed=seed, c=c, beta=1.0)   # the thesis rescales to [0, 255] without beta
+    fg = snow((frames, size, size), rng=seed, c=c, beta=1.0)   # the thesis rescales to [0, 255] without beta
     panels = [np.rint(255 * fg).astype(np.uint8)]
     measured, ranges = {}, []
     for name, bg in (("checkerboard", checkerboard(size)), ("moon", moon(size)), ("disc", disc(size))):
@@ -362,7 +365,7 @@ def parallax(out, *, frames, size, c, transmittance, seed):
                          "measure 1, as in the thesis.", measured)
 
 
-@figure("snow", "fig6_3", seed="Zhang 2003, Fig. 6.3", title="Motion-inconsistent stimulus: the disc falls down-left, the surround down-right",
+@figure("snow", "fig6_3", source="Zhang 2003, Fig. 6.3", title="Motion-inconsistent stimulus: the disc falls down-left, the surround down-right",
         look="play it: inside the disc the snow falls down-left, around it down-right, yet the disc still looks veiled",
         params=dict(frames=64, size=512, c=1.0, transmittance=0.3, seed=8), quick=dict(frames=8, size=64), uses=SNOW)
 def motion_inconsistent(out, *, frames, size, c, transmittance, seed):
@@ -371,8 +374,8 @@ def motion_inconsistent(out, *, frames, size, c, transmittance, seed):
 
     from .._common import disc, save_video
 
-    surround = snow((frames, size, size), seed=seed, c=c, beta=1.0, direction=(1.0, 1.0))
-    centre = snow((frames, size, size), seed=seed, c=c, beta=1.0, direction=(-1.0, 1.0))
+    surround = snow((frames, size, size), rng=seed, c=c, beta=1.0, direction_yx=(1.0, 1.0))
+    centre = snow((frames, size, size), rng=seed, c=c, beta=1.0, direction_yx=(1.0, -1.0))
     mask = disc(size, 0.3) > 0.5
     video, contrast = parallax_composite(surround, mask, transmittance=transmittance, veiled_foreground=centre)
     files = save_video(out, "motion_inconsistent", video)

@@ -22,7 +22,7 @@ def _show(luminance, display, seed):
 
     lo, hi = float(luminance.min()), float(luminance.max())
     return to_display(luminance, display, mean=float(luminance.mean()), contrast=(hi - lo) / (hi + lo),
-                      kind="michelson", seed=seed)
+                      contrast_kind="michelson", rng=seed)
 
 
 def _texture(display, n, sf, theta_deg, bw_deg, seed):
@@ -30,10 +30,10 @@ def _texture(display, n, sf, theta_deg, bw_deg, seed):
     from noiselab.stimuli import motion_cloud
 
     return motion_cloud((n, n), sf_0=display.cycles_per_pixel(sf), B_sf=display.cycles_per_pixel(sf / 2),
-                        theta=np.radians(theta_deg), B_theta=np.radians(bw_deg), seed=seed, dtype=np.float64)
+                        theta=np.radians(theta_deg), B_theta=np.radians(bw_deg), rng=seed, dtype=np.float64)
 
 
-@figure("stimuli", "fig5_4", seed="Zhang 2003, Fig. 5.4 (after Singh & Anderson 2002)",
+@figure("stimuli", "fig5_4", source="Zhang 2003, Fig. 5.4 (after Singh & Anderson 2002)",
         title="Texture background with two low-contrast regions: texture continuing (left) and not (right)",
         params=dict(size_deg=8.0, mean=40.0, michelson_surround=0.6, transmittance=0.35, sf=3.0, seed=4),
         quick=dict(size_deg=3.0), uses=STIM,
@@ -47,9 +47,9 @@ def singh_anderson(out, *, size_deg, mean, michelson_surround, transmittance, sf
     d = _display()
     n = d.pixels(size_deg)
     bg = luminance_for(_texture(d, n, sf, 45.0, 20.0, seed), mean=mean, contrast=michelson_surround,
-                       kind="michelson")
+                       contrast_kind="michelson")
     other = luminance_for(_texture(d, n, 1.6 * sf, -30.0, 20.0, seed + 1), mean=mean, contrast=michelson_surround,
-                          kind="michelson")
+                          contrast_kind="michelson")
     y, x = np.mgrid[0:n, 0:n]
     inside_y = (y > n * 0.3) & (y < n * 0.7)
     left = inside_y & (x > n * 0.08) & (x < n * 0.44)
@@ -91,7 +91,7 @@ def _square_wave(display, frames, n, period_deg, speed, direction):
     return (phase % 1.0) < 0.5
 
 
-@figure("stimuli", "fig5_5", seed="Zhang 2003, Fig. 5.5 (after Stoner & Albright 1990)",
+@figure("stimuli", "fig5_5", source="Zhang 2003, Fig. 5.5 (after Stoner & Albright 1990)",
         title="Two square-wave gratings moving up-left and up-right, superimposed with a transmittance",
         params=dict(size_deg=6.0, duration=1.0, period_deg=1.0, speed=2.0, background=60.0, t_sw=0.5, seed=5),
         quick=dict(size_deg=2.0, duration=0.25), uses=STIM,
@@ -134,7 +134,7 @@ def stoner_albright(out, *, size_deg, duration, period_deg, speed, background, t
                                           f"({to_deg(vb[0]):.3f}, {to_deg(vb[1]):.3f})"})
 
 
-@figure("stimuli", "fig6_2", seed="Zhang 2003, Fig. 6.2 and Eq. 6.1, restated in cd/m²",
+@figure("stimuli", "fig6_2", source="Zhang 2003, Fig. 6.2 and Eq. 6.1, restated in cd/m²",
         title="The motion-parallax transparency stimulus in cd/m² and Michelson contrast",
         params=dict(size_deg=8.0, duration=1.0, transmittance=0.3, seed=7), quick=dict(size_deg=2.0, duration=0.25),
         uses=STIM + ("noiselab.snowfall",),
@@ -148,7 +148,7 @@ def parallax_in_cd(out, *, size_deg, duration, transmittance, seed):
     d = _display()
     n, frames = d.pixels(size_deg), d.frame_count(duration)
     lo, hi = d.luminance
-    fg = snow((frames, n, n), seed=seed, c=d.snow_c(2.0, 4.0), band=d.band((1.0, 8.0), n), beta=1.0)
+    fg = snow((frames, n, n), rng=seed, c=d.snow_c(2.0, 4.0), band=d.band((1.0, 8.0), n), beta=1.0)
     veiled = disc(n) > 0.5
     # Eq. 6.1 with the display's own range for the thesis's 0..255: the parallax spans L_min..L_max, and the
     # veil (L_max) lets a fraction `transmittance` of it through over the disc
