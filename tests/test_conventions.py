@@ -498,7 +498,7 @@ def test_pending_lattice_entries_are_real_and_only_the_lattice():
 def test_the_walk_reaches_every_kind_of_public_callable():
     """Functions, constructors and methods of the root, the subpackages and noiselab.testing; results are not inputs."""
     names = {qual for qual, _ in public_callables()}
-    for qual in ("noiselab.spectral_noise", "noiselab.snowfall.snow", "noiselab.LatticeNoise.grid",
+    for qual in ("noiselab.spectral_noise", "noiselab.snow", "noiselab.snowfall.snow_spectrum", "noiselab.LatticeNoise.grid",
                  "noiselab.Display.band", "noiselab.analysis.motion_energy", "noiselab.testing.assert_tent",
                  "noiselab.geometry.height_map", "noiselab.io.write_video", "noiselab.fields.Warped.gradient"):
         assert qual in names, qual

@@ -958,7 +958,7 @@ WORDS = {
         type='str',
         default='warn',
         keyword_only=True,
-        per_function={'noiselab.snowfall.snow': ('raise', True),
+        per_function={'noiselab.snow': ('raise', True),
                       'noiselab.snowfall.snow_spectrum': ('raise', True)},
         note=('snow refuses by default: aliased snow moves backwards, a wrong video, where an undersampled mesh is'
               ' only coarse (warned)')),
