@@ -1,4 +1,4 @@
-"""What the bad-input checks of issue 11 cost on the hot paths.
+"""What the bad-input checks cost on the hot paths.
 
     python3 benchmarks/bench_contract.py [--repeats 7]
 
@@ -109,7 +109,7 @@ def main(argv=None):
     rows.append(("power_spectrum 1024 x 1024: min+max / whole call", 1 + t.ratio("minmax", "call"), t["call"]))
 
     lines = [
-        "# Cost of the bad-input checks (issue 11)",
+        "# Cost of the bad-input checks",
         "",
         *header_lines(info, timing="one thread"),
         "",

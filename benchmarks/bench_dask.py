@@ -337,7 +337,7 @@ def snow_main(args):
         elapsed = time.perf_counter() - t0
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    L = [SNOW_MARK, "", "# Snow on dask (the spectral half of issue 13)", "",
+    L = [SNOW_MARK, "", "# Snow on dask (the spectral half)", "",
          *header_lines(info, timing=f"{elapsed:.0f} s; ratios are CPU-time ratios measured side by side in one "
                        "process, in interleaved rounds (`noiselab.lab.measure.interleaved`), which the load disturbs "
                        "least"), "",

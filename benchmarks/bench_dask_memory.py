@@ -1,4 +1,4 @@
-"""Benchmark: chunked snow and spectral noise written to zarr by memory-limited dask workers (issue 26).
+"""Benchmark: chunked snow and spectral noise written to zarr by memory-limited dask workers.
 
 Run from the repository root::
 
@@ -136,7 +136,7 @@ def main(argv=None):
     cmd = "python3 benchmarks/bench_dask_memory.py" + "".join(
         f" --{k} {v}" for k, v in (("mib", args.mib), ("limit", args.limit), ("workers", args.workers),
                                    ("chunks", args.chunks)) if v != ap.get_default(k))
-    lines = ["", "# Chunked snow and spectral noise within the workers' memory (issue 26)", "",
+    lines = ["", "# Chunked snow and spectral noise within the workers' memory", "",
              *header_lines(run_info(cmd, ["dask", "distributed", "zarr", "noiselab"], load=load0)),
              f"- cluster: `LocalCluster` of {args.workers} worker processes, 1 thread each, memory_limit "
              f"{args.limit:g} MiB each (the nanny restarts a worker past 95 %); load average (1 min) at the end "

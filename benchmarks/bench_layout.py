@@ -1,4 +1,4 @@
-"""Did the one-way house (issue 21) cost speed? The same public calls, before and after, side by side.
+"""Did the one-way house cost speed? The same public calls, before and after, side by side.
 
     python3 benchmarks/bench_layout.py [--before a776ea5] [--repeats 7]
 
@@ -102,7 +102,7 @@ def unpack(rev: str, into: Path) -> Path:
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--before", default="a776ea5", help="the commit to compare with (default: main before issue 21)")
+    ap.add_argument("--before", default="a776ea5", help="the commit to compare with (default: main before the one-way layers)")
     ap.add_argument("--repeats", type=int, default=7, help="timed rounds (>= 5)")
     args = ap.parse_args(argv)
     command = "python3 benchmarks/bench_layout.py" + "".join(
@@ -127,7 +127,7 @@ def main(argv=None):
         finally:
             for w in workers.values():
                 w.close()
-    lines = ["# The one-way house: speed before and after (issue 21)", ""] + header_lines(info) + [
+    lines = ["# The one-way house: speed before and after", ""] + header_lines(info) + [
         "",
         f"Before: commit `{args.before}` (main before the layering); after: commit `{rev}`. Each version runs "
         "in its own worker process, one thread; both get the same case in each round (rotating order, 2 warm-up "

@@ -262,7 +262,7 @@ def main(argv=None):
             f"| {w} | `snow` float64 | {t['snow64_s']:.3f} | {t['ratio64']:.2f} "
             f"({t['ratio64_vs_floor32']:.2f} x the float32 floor) |",
         ]
-    lines += ["", "Target (issue 17): `snow` float32 at most 0.7 x the floor at every worker count.", ""]
+    lines += ["", "Target: `snow` float32 at most 0.7 x the floor at every worker count.", ""]
     for w in workers:
         t = tm[w]
         lines += [f"{w} worker(s): per-round float32 ratios {t['ratios32']}; stages of `snow` (float32) as fractions "
@@ -309,7 +309,7 @@ def main(argv=None):
                          f"{m['traced_peak_mib']:.0f} | {m['traced_peak_mib'] / out_mib:.2f} |")
     lines += [
         "",
-        "Target (issue 17): `snow` float32 at most 1.27 x the float32 output (tracemalloc), at every worker count.",
+        "Target: `snow` float32 at most 1.27 x the float32 output (tracemalloc), at every worker count.",
         "",
         "## float32 against float64 (same seed)",
         "",

@@ -1,4 +1,4 @@
-"""Benchmark (issue 26): ``spectral_noise`` and ``snow`` against a bare ``irfftn``, CPU time and wall time side by side.
+"""Benchmark: ``spectral_noise`` and ``snow`` against a bare ``irfftn``, CPU time and wall time side by side.
 
 Run from the repository root::
 
@@ -168,7 +168,7 @@ def main(argv=None):
         load0 = load_average()
         rows = spectral(a.workers, a.rounds)
         lines = _section(
-            "## Issue 26: at the floor, CPU time and wall time (`bench_spectral_floor.py`)", cmd, load0,
+            "## At the floor, CPU time and wall time (`bench_spectral_floor.py`)", cmd, load0,
             f"float32, full band, `exponent=1`; ratio = median over {a.rounds} interleaved rounds of "
             "spectral_noise / floor in the same round (floor = `scipy.fft.irfftn` of a complex64 half spectrum "
             "to the same output, same `workers`); CPU = `time.process_time` (all threads of the process), "
@@ -187,7 +187,7 @@ def main(argv=None):
         rows = snow_timing(a.workers, a.rounds)
         mem = snow_memory(a.workers)
         lines = _section(
-            "## Issue 26: snow at the pruned-FFT limit, CPU and wall time, memory (`bench_spectral_floor.py`)", cmd,
+            "## Snow at the pruned-FFT limit, CPU and wall time, memory (`bench_spectral_floor.py`)", cmd,
             load0, f"`snow({SNOW})` float32, default scene; ratio = median over {a.rounds} interleaved rounds of "
             "snow / floor in the same round (floor = `scipy.fft.irfftn` of a complex64 `(T, H, W//2+1)` spectrum, "
             "same `workers`). Memory: the `tracemalloc` peak of one call (numpy arrays, `noiselab.lab.measure."

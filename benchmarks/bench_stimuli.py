@@ -1,4 +1,4 @@
-"""Benchmark: stimuli in physical units (issue 24): requested against measured, and what each file format keeps.
+"""Benchmark: stimuli in physical units: requested against measured, and what each file format keeps.
 
 Run from the repository root::
 
@@ -11,7 +11,7 @@ Run from the repository root::
    ``display.luminance_of(values)``, the luminance the screen shows.
 2. The same display values written to each output format and read back:
    the Michelson and RMS contrast and the mean luminance after the round
-   trip (the issue's report: a snow stimulus at Michelson 0.176 read back
+   trip (a user's report: a snow stimulus at Michelson 0.176 read back
    from its MP4 at 0.186).
 3. Dithering below one display step: the luminance averaged over 64 seeds
    against the request, per pixel.

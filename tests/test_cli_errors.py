@@ -38,7 +38,7 @@ def _listing(folder):
 # ----------------------------------------------------------------------------- inputs
 
 def _bad_inputs(d):
-    """name -> path of each kind of corrupt input the issue lists."""
+    """name -> path of each kind of corrupt input noiselab refuses."""
     d.mkdir(exist_ok=True)
     rng = np.random.default_rng(0)
     write_image(d / "good.png", rng.random((32, 32)))

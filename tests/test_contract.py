@@ -1,8 +1,8 @@
-"""The bad-input contract (issue 11): every reproducer of the fuzzing run, kept as a plain regression test.
+"""The bad-input contract: every reproducer of the fuzzing run, kept as a plain regression test.
 
 Each case gives a ValueError/TypeError that names the parameter, a
 MemoryError that states the size (refused *before* allocating), or the
-right answer. The spectral_noise/synthesize cases of the issue live with the
+right answer. The spectral_noise/synthesize cases live with the
 spectral synthesis tests.
 """
 import contextlib
@@ -349,7 +349,7 @@ def test_allocations_are_estimated_before_they_happen():
             S.iter_tiled_frames(np.zeros((1, 4, 4)), (2**16, 2**16))
 
 
-# ------------------------------------ the functions of issues 15 and 16 (follow-up)
+# ------------------------------------ analysis.quality and the derivatives
 def test_derivative_paths_refuse_coordinate_and_derivative_overflow():
     far = np.full((1, 2), 1e10)
     with pytest.raises(ValueError, match="points times the frequency"):
@@ -462,7 +462,7 @@ def test_envelope_error_depends_on_the_target_shape_not_its_scale():
         np.testing.assert_allclose(e.target_level, base.target_level * scale, rtol=1e-9)
 
 
-# ------------------------------------ the spectral engine's building blocks (issue 11, the last PENDING lines)
+# ------------------------------------ the spectral engine's building blocks (the last PENDING lines)
 def test_synthesize_envelope_a_str_is_a_type_error_naming_envelope():
     with pytest.raises(TypeError, match="envelope must be a callable or a real amplitude array"):
         nl.spectral.synthesize((8, 8), "annulus", rng=0)

@@ -71,7 +71,7 @@ def test_chunked_fractal_sums_and_turbulence_are_bit_identical(client, case):
     spec, shape, extent, chunks = CASES[case]
     noise = _noise(spec)
     grid = Grid(shape, extent)
-    # a tileable noise's octave o has period * lacunarity**o cells, which needs a whole lacunarity (issue 25)
+    # a tileable noise's octave o has period * lacunarity**o cells, which needs a whole lacunarity
     lacunarity = 3.0 if noise.tileable else 2.3
     for summer, kw in ((fractal_sum, dict(octaves=7, dtype="float32")),
                        (turbulence, dict(octaves=5, normalize=True, lacunarity=lacunarity, gain=0.6))):

@@ -103,7 +103,7 @@ def test_a_snow_video_bigger_than_a_workers_memory_is_written_and_right(client, 
 
 
 def test_auto_chunked_snow_written_by_memory_limited_workers_restarts_none(client, tmp_path):
-    """Issue 26 at the suite's scale: the full-size run (512 MiB by 2 workers of 600 MiB, about 350 MiB above a
+    """Chunked snow within the workers' memory at the suite's scale: the full-size run (512 MiB by 2 workers of 600 MiB, about 350 MiB above a
     worker's ~250 MiB of imports) is in benchmarks/bench_dask.md; here 128 MiB by this module's 2 workers of
     352 MiB (about 110 MiB above the imports): the video is about the same multiple of a worker's headroom."""
     client.register_plugin(_worker_events_plugin())

@@ -166,7 +166,7 @@ def test_captions_carry_seed_figure_parameters_and_measurements(quick_gallery):
     heads = {f["id"]: " ".join(f["head"].split()) for f in page.figures}
     looks = {f["id"]: " ".join(f["look"].split()) for f in page.figures}
     every = " | ".join(heads.values())
-    for seed in SEED_FIGURES:   # every seed figure the issue lists is reproduced, named in a heading
+    for seed in SEED_FIGURES:   # every figure of the seed documents is reproduced, named in a heading
         assert seed in every, seed
     for spec in _cards():
         key = spec.key.replace("/", "-")

@@ -126,7 +126,7 @@ def test_grid_and_height_map_take_shape_and_extent_in_array_axis_order():
 
 
 def test_height_map_of_lattice_noise_is_its_grid_with_the_same_shape_and_extent():
-    # one order for shapes and extents (issue 21): the same numbers give the same field, not its transpose
+    # one order for shapes and extents: the same numbers give the same field, not its transpose
     noise = noiselab.LatticeNoise(2, seed=9)
     shape, extent = (32, 48), ((0.0, 4.0), (1.0, 7.0))            # non-square shape and extent
     ref = noise.grid(shape, extent)

@@ -36,7 +36,7 @@ def test_failed_video_write_leaves_no_file(tmp_path):
 
 
 def test_to_uint8_maps_unit_interval_and_rejects_nan():
-    # issue 24: floats outside [0, 1] with no stated range are refused (they were clipped silently); clip=True
+    # floats outside [0, 1] with no stated range are refused (they were clipped silently); clip=True
     # or a stated range clips, as asked
     out = to_uint8(np.array([0.0, 0.5, 1.0, 1.5, -1.0]), clip=True)
     np.testing.assert_array_equal(out, [0, 128, 255, 255, 0])

@@ -132,3 +132,26 @@ def test_the_contributor_guide_is_contributing_md():
                     errors="replace"):
                 stale.append(str(path.relative_to(ROOT)))
     assert stale == []
+
+
+def test_docs_reports_and_code_speak_of_noiselab_not_of_its_issue_tracker():
+    """A reader of the docs, a benchmark report or a comment meets noiselab's own targets and reasons.
+
+    Tracker numbers and "the issue asks" mean nothing to a user (and the tracker is not public): every
+    target is stated as noiselab's, with the figure and the command that measured it.
+    """
+    tracker = re.compile(r"\b[Ii]ssues? (?:#?\d+)|\bthe issue\b|[Ii]ssue's\b")
+    skip = {".git", ".venv", "_build", "out", ".venv-peers", "__pycache__", ".pytest_cache", "results"}
+    found = []
+    for top in ("README.md", "CONTRIBUTING.md", "docs", "benchmarks", "noiselab", "tests"):
+        paths = [ROOT / top] if (ROOT / top).is_file() else []
+        for folder, dirs, files in os.walk(ROOT / top):
+            dirs[:] = [d for d in dirs if d not in skip and not d.startswith(".")]
+            paths += [Path(folder) / name for name in files]
+        for path in paths:
+            if path.suffix not in (".md", ".py", ".rst", ".txt") or path == Path(__file__):
+                continue
+            for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+                if tracker.search(line):
+                    found.append(f"{path.relative_to(ROOT)}:{number}: {line.strip()[:100]}")
+    assert found == [], "\n".join(found)

@@ -1,4 +1,4 @@
-"""Property-based bad-input suite (issue 11): every public function, driven with bad values.
+"""Property-based bad-input suite: every public function, driven with bad values.
 
 Each public function has one entry in :data:`TABLE`: a call with valid
 arguments, the parameters to corrupt and the *kind* of bad values each takes,
@@ -21,7 +21,7 @@ do file I/O, an entry in :data:`EXCLUDED` with the reason):
 cannot drift. To cover a new function, add a line to ``TABLE``.
 
 Examples are derandomized (the same on every run and machine, no database);
-the count per entry is ``EXAMPLES`` (the closing note of issue 11 gives the total).
+the count per entry is ``EXAMPLES`` (the run's header gives the total).
 """
 from __future__ import annotations
 
@@ -567,7 +567,7 @@ def _unit_rows(upward=False, allow_zero=False):
     return check
 
 
-# the functions issues 15 (analysis.quality) and 16 (derivatives) added
+# analysis.quality and the derivatives
 VID3 = RNG.random((4, 16, 16))
 TABLE += [
     Entry("axis_artefacts", A.axis_artefacts, dict(image=IMG), dict(image="array", band="pair", window="choice"),
@@ -621,7 +621,7 @@ TABLE += [
                          np.testing.assert_array_less(-1e-12, np.asarray(r)))),
 ]
 
-# the spectral engine's building blocks (spectral/synthesis.py, issue 17)
+# the spectral engine's building blocks (spectral/synthesis.py)
 TABLE += [
     Entry("hermitian_plane", SP.hermitian_plane, dict(plane=RNG.standard_normal((4, 5)) + 1j),
           dict(plane="array", support="array"), shaped(lambda kw: np.shape(kw["plane"]))),
@@ -630,7 +630,7 @@ TABLE += [
           shaped(lambda kw: (kw["n"],))),
 ]
 
-# stimuli in physical units (issue 24)
+# stimuli in physical units
 DISPLAY = STIM.Display(32.0, frame_rate=60.0, luminance=(0.5, 100.0), gamma=2.2, bits=8)
 
 
@@ -705,7 +705,7 @@ TABLE += [
 ]
 
 
-# the spectral assertions (noiselab.testing, issue 27): a valid call may pass (the measurement) or fail the
+# the spectral assertions (noiselab.testing): a valid call may pass (the measurement) or fail the
 # property (AssertionError, its message the result); bad input is a ValueError/TypeError naming the parameter
 def _asserting(func):
     def call(**kw):
@@ -800,7 +800,7 @@ def test_every_public_function_has_an_entry():
     api_missing = sorted(n for n in noiselab._API if not _covered(n))
     assert not api_missing, f"noiselab._API names must be driven by the suite, not excluded: {api_missing}"
     covered = sorted(n for n in public if _covered(n))
-    # the size the closing note of issue 11 reports
+    # the size of the run
     fuzzed = sum(1 for e in TABLE for p in e.fuzz if (e.name, p) not in PENDING)
     print(f"\n{len(covered)} public functions covered ({len(TABLE)} entries, {fuzzed} parameters fuzzed, "
           f"{len(PENDING)} pending; {len(FUZZED)} fuzzed entries x {EXAMPLES} examples = "
@@ -906,5 +906,5 @@ HUGE_CASES = [(e, p, v) for e in TABLE for p, kind in sorted(e.fuzz.items()) if 
                          ids=[f"{e.name}-{p}-{i}" for i, (e, p, _) in enumerate(HUGE_CASES)])
 def test_huge_values_give_a_clear_error_or_the_right_answer(entry, param, value):
     """Meshes with coordinates of 1e150-1e300 and images, videos and points of values up to float64's largest,
-    for every mesh and array parameter (issue 25: they are among the cases, not left to the random draw)."""
+    for every mesh and array parameter (they are among the cases, not left to the random draw)."""
     run_case(entry, param, value)

@@ -88,7 +88,7 @@ def test_energy_only_on_the_thickened_tent_inside_the_band():
     ((9, 40, 48), dict(c=0.0, thickness=0.1, direction=(0.0, 1.0), pan=(0.3, 0.2))),
 ])
 def test_snow_cells_are_the_envelopes_tent_surface_cells(shape, kw):
-    # snow.tent evaluates spectral.envelopes.tent_surface at the band's cells (issue 21: no second derivation);
+    # snow.tent evaluates spectral.envelopes.tent_surface at the band's cells (no second derivation);
     # its spectrum's support is the dense envelope's, thickened tent x annulus, cell for cell
     T, H, W = shape
     band = (4, 20)
@@ -337,7 +337,7 @@ def test_rescale_opacity_constant_field_and_nan():
 
 @pytest.mark.parametrize("workers", [1, 2])
 def test_peak_memory_stays_within_1_3_outputs(workers):
-    # issue 17: frame blocks end to end, no second full-size array, whatever the worker count
+    # frame blocks end to end, no second full-size array, whatever the worker count
     import tracemalloc
 
     shape = (64, 512, 512)  # the benchmark's scene: 64 MiB of float32 output

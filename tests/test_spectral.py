@@ -299,7 +299,7 @@ def test_synthesize_follows_its_documented_draws_on_dense_and_sparse_rows():
     np.testing.assert_allclose(S, ref, rtol=0, atol=1e-12)
 
 
-# --- issue 15 part 1: an unbiased ensemble (the round-trip power tests of powerbox and colorednoise, ported) ---
+# --- an unbiased ensemble (the round-trip power tests of powerbox and colorednoise, ported) ---
 
 def _ensemble_power(shape, exponent, seeds, **kw):
     """Mean |fftn|**2 over seeds, the law's expected |X|**2 at unit variance, and |f| of every cell."""
@@ -372,7 +372,7 @@ def test_dc_term_kept_on_request_with_the_lowest_ring_amplitude():
     assert abs(no_dc.mean()) < 1e-14
 
 
-# --- issue 11: silent wrong output from the spectral engine ---
+# --- silent wrong output from the spectral engine ---
 
 @pytest.mark.parametrize("shape,exponent", [((4096,), 8.0), ((65536,), 5.0), ((512, 512), 8.0), ((8192,), -8.0),
                                             ((4096,), 7.3), ((64, 64, 64), 6.5)])
@@ -411,7 +411,7 @@ def test_synthesize_huge_and_tiny_envelopes_are_scaled_or_refused():
         synthesize((32, 32), lambda wy, wx: 1e300 * env(wy, wx), rng=1)
 
 
-# --- issue 17: workers ---
+# --- workers ---
 
 @pytest.mark.parametrize("workers", [2, 3, -1])
 def test_output_is_bit_identical_for_any_worker_count(workers):
@@ -453,7 +453,7 @@ def test_analysers_give_the_same_bits_for_any_worker_count():
     assert A.band_speeds(video, bands, workers=1).tobytes() == A.band_speeds(video, bands, workers=-1).tobytes()
 
 
-# --- issue 21: one band validator, one unit per name, the plan shared with the dask path ---
+# --- one band validator, one unit per name, the plan shared with the dask path ---
 def test_one_band_validator_gives_one_message_everywhere():
     import noiselab.analysis as A
     from noiselab.snowfall import flake_speeds, snow

@@ -4,7 +4,7 @@ Each check states the property the method promises (the seed papers) and
 measures it on the generator's output with the same instruments a user
 would point at any other image or video (their closed-form tests are in
 ``test_analysis.py``). Where a property matches one of the assertions of
-:mod:`noiselab.testing` (issue 27), the check uses it: the power-law
+:mod:`noiselab.testing`, the check uses it: the power-law
 exponent, isotropy, axis artefacts and seams are judged with tolerances
 derived from the estimators' sampling laws at ``false_alarm=1e-3``; band
 limits and the energy on a tent are stated fractions (``min_energy``,

@@ -1,4 +1,4 @@
-"""noiselab.stimuli (issue 24): the display, contrast on the screen, phase scrambling, motion clouds."""
+"""noiselab.stimuli: the display, contrast on the screen, phase scrambling, motion clouds."""
 from __future__ import annotations
 
 import math
@@ -308,7 +308,7 @@ def test_amplitude_swap():
 def test_synthesize_normalize():
     env = lambda wy, wx: 1e-4 * E.annulus(wy, wx, band_cycles_per_sample=(0.05, 0.2))  # noqa: E731
     raw = synthesize((64, 64), env, rng=0, dtype=np.float64)
-    assert raw.std() < 1e-3     # the envelope's scale: what the issue found
+    assert raw.std() < 1e-3     # the envelope's scale: what a user's check found
     one = synthesize((64, 64), env, rng=0, dtype=np.float64, normalize="sample")
     assert np.mean(one ** 2) == pytest.approx(1.0, rel=1e-12)
     assert np.allclose(one / raw, (one / raw).flat[0])   # the same field, scaled

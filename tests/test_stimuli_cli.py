@@ -1,4 +1,4 @@
-"""``noiselab stimulus`` (issue 24): physical units in, display values and a JSON sidecar out."""
+"""``noiselab stimulus``: physical units in, display values and a JSON sidecar out."""
 from __future__ import annotations
 
 import json

@@ -119,7 +119,7 @@ def figure(group, name, *, source, title, params=None, quick=None, uses=(), look
 def specs(only=None) -> list[FigureSpec]:
     """Registered figures in registration order; ``only`` keeps a group name or one ``group/name``."""
     from . import figures  # noqa: F401  (importing registers every figure)
-    importlib.import_module(f"{__package__}.figures.stimuli")   # issue 24's group, registered as figures/ does
+    importlib.import_module(f"{__package__}.figures.stimuli")   # the stimuli group, registered as figures/ does
 
     all_specs = list(REGISTRY.values())
     if not only:

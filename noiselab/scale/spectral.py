@@ -69,7 +69,7 @@ __all__ = ["chunked_spectral_noise", "chunked_snow"]
 _TARGET = 16 << 20  # bytes of a stage's chunk when the caller's chunk does not fix it
 # "auto" output chunks: this size, not dask's array.chunk-size (128 MiB). A worker holds about 3 output chunks
 # at once (the x-pass's input, its output, zarr's copy): 128 MiB chunks took a 600 MiB worker past its nanny's 95 %
-# (issue 26; benchmarks/bench_dask.md, "within the workers' memory")
+# (benchmarks/bench_dask.md, "within the workers' memory")
 _AUTO = 32 << 20
 # the transposed stages' chunks (spectrum slabs, snow's t/y slabs) are at most this, whatever the output chunk
 _SLAB_MAX = 32 << 20
@@ -396,7 +396,7 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
     if spill is not None:
         # the t- and y-passes once, spilled; the x-pass twice (extremes, then the rescale), each x-pass task reading
         # its own block (a nested task: separate read tasks all became ready together and a worker held every
-        # block it had read, past its memory limit; issue 26)
+        # block it had read, past its memory limit)
         dsk = {}
         path, done = _spill_write(stage1("s"), s2_chunks[:2] + ((K,),), spill, dsk)
         blocks = list(itertools.product(range(len(ty[0])), range(len(ty[1]))))

@@ -515,7 +515,7 @@ def spectral_noise(shape, *, exponent=1.0, band=None, rng=None, amplitude_distri
         steeper the law). ``"sample"``: each field is rescaled to exactly
         zero mean and unit sample variance (the earlier default); one field's
         slope is unchanged, but averaged over seeds the power is no longer the
-        law (1.50x too high at high frequency for 1-D ``k**-2``, issue 15:
+        law (1.50x too high at high frequency for 1-D ``k**-2``:
         dividing by the sample variance biases the ensemble).
     dc : bool
         Keep the DC term (the band must start at 0): the field gets a random

@@ -1,4 +1,4 @@
-"""Stimuli in physical units (issue 24): thesis Fig. 5.4 and 5.5 at stated contrasts on a stated display."""
+"""Stimuli in physical units: thesis Fig. 5.4 and 5.5 at stated contrasts on a stated display."""
 from __future__ import annotations
 
 import numpy as np
