@@ -1,4 +1,4 @@
-"""The compile caches (numba's ``*.nbi``/``*.nbc`` files and noiselab's generated kernel modules) never break a run.
+"""The compile cache (numba's ``*.nbi``/``*.nbc`` files) never breaks a run.
 
 A cold cache, one cache filled by several processes at once, a read-only
 cache (and a read-only install and home), and a cache whose files were
@@ -8,9 +8,9 @@ is repaired by the run that meets it (the next run prints nothing and loads
 everything: no cache file changes).
 
 Each case runs a small lattice-noise evaluation in a fresh process with its
-own ``NUMBA_CACHE_DIR`` (the generated ``_points`` module and numba's files
-for it and for ``lattice/_jit.py`` land there); a cold run compiles for about
-3 s of CPU time.
+own ``NUMBA_CACHE_DIR`` (numba's files for ``lattice/_jit.py``, where every
+lattice kernel is compiled, land there); a cold run compiles for a few
+seconds of CPU time.
 """
 import hashlib
 import os
@@ -109,7 +109,7 @@ def test_a_cold_cache_is_filled_then_used(warm_cache):
     cache, home = warm_cache
     files = _snapshot(cache)
     assert any(f.endswith(".nbi") for f in files) and any(f.endswith(".nbc") for f in files)
-    assert any(Path(f).name == "_points.py" for f in files)   # the generated module, beside numba's files
+    assert not any(f.endswith(".py") for f in files)   # numba's files only: no source is written at run time
     _assert_clean(_run(cache, home), "float64")   # warm: nothing printed, nothing compiled or written
     assert _snapshot(cache) == files
 
@@ -202,12 +202,12 @@ def _damage(cache, pattern, how):
 
 
 @pytest.mark.parametrize("pattern, how", [("*.nbi", "empty"), ("*.nbi", "half"), ("*.nbc", "half"),
-                                          ("*.nbc", "garbage"), ("_points.py", "half")])
+                                          ("*.nbc", "garbage")])
 def test_a_damaged_cache_is_recompiled_and_repaired(tmp_path, warm_cache, pattern, how):
-    """Truncated or overwritten numba index/data files, a truncated generated module: recompiled, then repaired."""
+    """Truncated or overwritten numba index/data files: recompiled, then repaired."""
     cache, home = warm_cache
     _damage(cache, pattern, how)
-    _assert_clean(_run(cache, home), "float64", warnings=1, needle="compile" if pattern != "_points.py" else "kernels")
+    _assert_clean(_run(cache, home), "float64", warnings=1, needle="compile")
     files = _snapshot(cache)
     _assert_clean(_run(cache, home), "float64")   # repaired: nothing printed, nothing written
     assert _snapshot(cache) == files

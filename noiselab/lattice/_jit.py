@@ -1,44 +1,58 @@
-"""numba kernels for lattice noise (compiled once, cached on disk).
+"""The lattice engine: every compiled kernel of lattice noise, in this one module.
 
-- :func:`eval_points`: scattered points, any dimension. Every point splits
-  each coordinate into a lattice index and a fraction, evaluates the tap
-  weights, and walks the ``taps**d`` lattice neighbours with the nested
-  permutation hash ``h_{a+1} = P[(h_a + j_a) mod n]`` (Phillips 2.4.1),
-  summing weight x value. Several octaves (fractal sums) are fused into one
-  pass over the points. Dimensions 1-3 use the unrolled kernels of
-  ``_points.py`` instead (3-D: over precombined hash tables, with the
-  last axis's taps summed by :func:`axpy_lanes` / :func:`grad_axpy_lanes`).
-  :func:`eval_points_jac` (values and Jacobians) is the same source compiled
-  with its derivative flag (:func:`_make_eval_points`).
-- the grid path: :func:`axis_weights` and :func:`dense_taps` (per-axis
-  weights and distinct taps), :func:`hash_expand` / :func:`hash_expand_values`
+numba's on-disk cache (``cache=True``) checks the source file a kernel is
+defined in, so every kernel and every helper it calls live here: an edit
+anywhere in this file recompiles them all, and nothing here depends on
+compiled code elsewhere. There is no generated source and no hand-written
+LLVM IR; every kernel runs as plain Python under ``NUMBA_DISABLE_JIT=1``
+with the same values (``tests/test_lattice_engine.py``).
+
+The kernel families are factories: closures over compile-time constants
+(dimension, tap count, derivative flag, period flag, basis, output dtype,
+hash), which numba folds before compiling and keys its cache by, so a
+first call compiles the one variant it needs, with constant-trip loops that
+LLVM unrolls.
+
+- points: :func:`points_kernel` returns the per-point kernel for a hash,
+  dimension, tap count, derivative flag and period flag:
+  :func:`_make_points` (the table hash: Phillips' nested permutation
+  ``h_{a+1} = P[(h_a + j_a) mod n]``, 2.4.1) and :func:`_make_int_points`
+  (the integer hash, 256 points at a time, each level of the corner walk one
+  vectorisable loop). Octaves are fused into one pass over the points.
+- the separable grid passes: :func:`axis_weights` / :func:`axis_dweights`
+  and :func:`dense_taps` (per-axis weights and distinct taps),
+  :func:`hash_expand` / :func:`hash_expand_values` / :func:`block_prefix`
   (the hashed block of lattice values), :func:`contract_last` /
-  :func:`contract_mid` (one separable pass per axis), and :func:`final_pass` /
+  :func:`contract_mid` (one pass per axis) and :func:`final_pass` /
   :func:`final_pass_direct` (the last pass, fused over octaves).
-- 2-D grids: :func:`pack_axis` for both axes (``grid_path`` packs them), then
-  :func:`grid2d` per component: every octave in one pass, tile by tile,
-  with the general path's sums (the same bits); its axis-1 contraction runs
-  eight columns at a time (:func:`expand_dot8`). Both hashes: the integer
-  hash's variant gets its lattice rows from ``_intgrid``.
+- 2-D grids: :func:`pack_axis` for both axes, then :func:`grid2d` (or
+  :func:`int_grid2d`) per component: every octave in one pass, tile by
+  tile, with the separable path's sums (the same bits).
 
-All arithmetic is float64; only the final store may round to float32. The
-specialisations are kept few so that a cold cache compiles quickly.
+Every tap weight is :func:`_weight` of the kernel's coefficients (data from
+:mod:`.kernels`), written once. All arithmetic is float64; only the final
+store may round to float32.
 """
 from __future__ import annotations
 
-import math
-
 import numba as nb
 import numpy as np
-from llvmlite import ir
-from numba import types
-from numba.core import cgutils
-from numba.extending import intrinsic
 
 # Beyond 2**52 a float64 has no fractional bits; beyond 2**62 it no longer
 # fits an int64. Lattice indices are reduced modulo the period with fmod
 # (exact for floats) before any conversion to int64.
 _INT_SAFE = 4.0e15
+# the integer hash (its definition: :mod:`._inthash`)
+CHUNK = 256  # points per block of the integer hash's kernel
+PERIOD_MAX = 1 << 32  # lattice coordinates are hashed as 32-bit words
+_TO_UNIT = 1.0 / 2147483648.0  # 2**-31: int32 range onto [-1, 1)
+_U32 = np.uint32
+_U64 = np.uint64
+_M1 = np.uint32(0x85EBCA6B)
+_M2 = np.uint32(0xC2B2AE35)
+_S16 = np.uint32(16)
+_S13 = np.uint32(13)
+_S32 = np.uint64(32)
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
@@ -105,13 +119,64 @@ def _next_corner(cnt, taps):
     return -1
 
 
-def _make_eval_points(DERIV):
-    """:func:`eval_points` (``DERIV`` False) or :func:`eval_points_jac` (True): one source, two compiled kernels.
+@nb.njit(cache=True, nogil=True, inline="always")
+def _weight(coef, k, t, t2, t3, t4, t5):
+    """Tap ``k``'s weight at fraction ``t``: ``sum_p coef[k, p] t**p`` (``t2 .. t5`` its powers).
 
-    ``DERIV`` is a constant of the closure: numba prunes the derivative
-    branches before typing, so the value kernel compiles (and runs) no
-    derivative code. A boolean is safe in numba's cache key (it is pickled
-    with the closure); a function closed over is not (see :func:`_make_axis0`).
+    The one place a weight polynomial is evaluated (points, grids, both
+    hashes), so every path rounds alike. Summed from the powers in pairs
+    rather than by Horner's rule: independent products, a shorter chain.
+    """
+    return (coef[k, 0] + coef[k, 1] * t) + (coef[k, 2] * t2 + coef[k, 3] * t3) + (coef[k, 4] * t4 + coef[k, 5] * t5)
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _dweight(dcoef, k, t, t2, t3, t4):
+    """The derivative of :func:`_weight` (``dcoef``: :attr:`.kernels.Kernel.dcoef`)."""
+    return (dcoef[k, 0] + dcoef[k, 1] * t) + (dcoef[k, 2] * t2 + dcoef[k, 3] * t3) + dcoef[k, 4] * t4
+
+
+# ---------------------------------------------------------------- the integer hash
+@nb.njit(cache=True, nogil=True, inline="always")
+def mix32(h):
+    """MurmurHash3's fmix32 less its last xor-shift (a bijection of uint32).
+
+    Every step is truncated to 32 bits: numba widens uint32 arithmetic to 64
+    bits, and the truncations let LLVM keep 32-bit lanes.
+    """
+    h = _U32(h ^ (h >> _S16))
+    h = _U32(h * _M1)
+    h = _U32(h ^ (h >> _S13))
+    return _U32(h * _M2)
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def hash_value(h):
+    """The lattice value of a prefix word: ``int32(mix32(h)) / 2**31`` in [-1, 1)."""
+    return np.float64(np.int32(mix32(h))) * _TO_UNIT
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def hash_index(h, n):
+    """The gradient index of a prefix word: ``(mix32(h) * n) >> 32`` (the top bits; ``h >> 28`` for n = 16)."""
+    return np.int64((np.uint64(mix32(h)) * np.uint64(n)) >> _S32)
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def prime(j, mult):
+    """An axis's share of the prefix word: ``(j * M_a) mod 2**32`` for an index ``j`` (reduced or not: mod 2**32)."""
+    return _U32(_U32(j) * mult)
+
+
+def _make_points(DIM, TAPS, DERIV, PERIODIC):
+    """The table hash's point kernel for ``DIM`` input axes and ``TAPS`` taps (compile-time constants).
+
+    ``DERIV``: values and Jacobians (else values). ``PERIODIC`` False: every
+    axis's period is the table size n, so a tap's index needs no reduction of
+    its own (the hash reduces ``h + j`` modulo n, and n is even, so the
+    parity is the same). numba prunes the branches these constants rule out
+    before typing; numbers and booleans are safe in numba's cache key (pickled
+    with the closure), a function closed over is not (see :func:`_make_axis0`).
     """
 
     @nb.njit(cache=True, nogil=True)
@@ -141,9 +206,10 @@ def _make_eval_points(DERIV):
         basis : 0 value noise, 1 gradient noise
         absval : sum |octave| (turbulence) instead of octave
 
-        Dimensions 1 to 3 have unrolled neighbour loops; higher dimensions walk
-        the ``taps**d`` neighbours with an odometer that re-hashes only the
-        levels whose tap changed.
+        ``taps`` is ignored (``TAPS`` is compiled in). Dimensions 1 to 3 have
+        nested neighbour loops of constant trip count (LLVM unrolls them);
+        higher dimensions walk the ``taps**d`` neighbours with an odometer
+        that re-hashes only the levels whose tap changed.
 
         The derivative: a tensor-product term ``prod_a w_a(t_a) v``
         differentiates one factor at a time: along axis ``b`` it is
@@ -154,7 +220,8 @@ def _make_eval_points(DERIV):
         where ``n == 0``: the crease has no derivative there). The values are
         the same sums with or without ``DERIV``.
         """
-        npts, d = pts.shape
+        npts = pts.shape[0]
+        d = DIM
         ncomp = perms.shape[0]
         n = perms.shape[1]
         nmask = n - 1 if (n & (n - 1)) == 0 else -1
@@ -191,14 +258,12 @@ def _make_eval_points(DERIV):
                     t3 = t2 * t
                     t4 = t2 * t2
                     t5 = t4 * t
-                    for k in range(taps):
-                        w[a, k] = ((coef[k, 0] + coef[k, 1] * t) + (coef[k, 2] * t2 + coef[k, 3] * t3)
-                                   + (coef[k, 4] * t4 + coef[k, 5] * t5))
+                    for k in range(TAPS):
+                        w[a, k] = _weight(coef, k, t, t2, t3, t4, t5)
                         if DERIV:
-                            dw[a, k] = ((dcoef[k, 0] + dcoef[k, 1] * t) + (dcoef[k, 2] * t2 + dcoef[k, 3] * t3)
-                                        + dcoef[k, 4] * t4)
+                            dw[a, k] = _dweight(dcoef, k, t, t2, t3, t4)
                         r[a, k] = t - shift + (left - k)
-                        jj[a, k] = _wrap(b + k, per, msk)
+                        jj[a, k] = _wrap(b + k, per, msk) if PERIODIC else b + k
                 for c in range(ncomp):
                     perm = perms[c]
                     total = 0.0
@@ -207,8 +272,8 @@ def _make_eval_points(DERIV):
                             D[a] = 0.0
                     # d <= 3: per level the partial value s (and with DERIV: the derivative along
                     # this level's axis, sNdN, and along the axes above it, eN.., summed likewise)
-                    if d == 1:
-                        for k0 in range(taps):
+                    if DIM == 1:
+                        for k0 in range(TAPS):
                             j0 = jj[0, k0]
                             h = perm[_hash(0, j0, n, nmask)]
                             if basis == 0:
@@ -220,14 +285,14 @@ def _make_eval_points(DERIV):
                                 if DERIV:
                                     D[0] += dw[0, k0] * v + w[0, k0] * grads[h, 0]
                             total += w[0, k0] * v
-                    elif d == 2:
-                        for k0 in range(taps):
+                    elif DIM == 2:
+                        for k0 in range(TAPS):
                             j0 = jj[0, k0]
                             h1 = perm[_hash(0, j0, n, nmask)]
                             s1 = 0.0
                             s1d1 = 0.0
                             e0 = 0.0
-                            for k1 in range(taps):
+                            for k1 in range(TAPS):
                                 j1 = jj[1, k1]
                                 h = perm[_hash(h1, j1, n, nmask)]
                                 if basis == 0:
@@ -244,22 +309,22 @@ def _make_eval_points(DERIV):
                             if DERIV:
                                 D[0] += dw[0, k0] * s1 + w[0, k0] * e0
                                 D[1] += w[0, k0] * s1d1
-                    elif d == 3:
-                        for k0 in range(taps):
+                    elif DIM == 3:
+                        for k0 in range(TAPS):
                             j0 = jj[0, k0]
                             h1 = perm[_hash(0, j0, n, nmask)]
                             s1 = 0.0
                             s1d1 = 0.0
                             s1d2 = 0.0
                             e10 = 0.0
-                            for k1 in range(taps):
+                            for k1 in range(TAPS):
                                 j1 = jj[1, k1]
                                 h2 = perm[_hash(h1, j1, n, nmask)]
                                 s2 = 0.0
                                 s2d2 = 0.0
                                 e20 = 0.0
                                 e21 = 0.0
-                                for k2 in range(taps):
+                                for k2 in range(TAPS):
                                     j2 = jj[2, k2]
                                     h = perm[_hash(h2, j2, n, nmask)]
                                     if basis == 0:
@@ -312,7 +377,7 @@ def _make_eval_points(DERIV):
                                     for a in range(d):
                                         D[a] += dprod[d, a] * v + prod[d] * grads[h, a]
                             total += prod[d] * v
-                            level = _next_corner(cnt, taps)
+                            level = _next_corner(cnt, TAPS)
                             if level < 0:
                                 break
                     amp = amps[o]
@@ -337,19 +402,242 @@ def _make_eval_points(DERIV):
     return eval_points
 
 
-# lattice noise at scattered points (any dimension), and the same with its Jacobian: two instances of one source
-eval_points = _make_eval_points(False)
-eval_points_jac = _make_eval_points(True)
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _axis_setup(pts, p0, m, a, f, ph, shift, left, taps, coef, dcoef, per, msk, mult_a, W, DW, R, M, jac,
+                periodic):
+    """Weights (and derivatives), signed distances and hashed tap offsets of one axis for a chunk."""
+    for i in range(m):
+        u = pts[p0 + i, a] * f + ph + shift  # same rounding as the grid path
+        fi = np.floor(u)
+        t = u - fi
+        t2 = t * t
+        t3 = t2 * t
+        t4 = t2 * t2
+        t5 = t4 * t
+        for k in range(taps):
+            W[a, k, i] = _weight(coef, k, t, t2, t3, t4, t5)
+            R[a, k, i] = t - shift + (left - k)
+            if jac:
+                DW[a, k, i] = _dweight(dcoef, k, t, t2, t3, t4)
+    for i in range(m):
+        u = pts[p0 + i, a] * f + ph + shift
+        b = _reduce(np.floor(u), left, per, msk)
+        for k in range(taps):
+            # without a period (2**32) the word's own wrap reduces the index: no reduction of its own
+            M[a, k, i] = prime(_wrap(b + k, per, msk) if periodic else b + k, mult_a)
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
+def _add_grad_derivs(T, DP, wp, grads, g, v, i, d):
+    """``T[1 + b, i] += DP[b, i] v + wp g_b`` for every axis b: a gradient corner's derivative terms."""
+    for b in range(d):
+        T[1 + b, i] += DP[b, i] * v + wp * grads[g, b]
+
+
+def _make_int_points(DIM, TAPS, DERIV, PERIODIC):
+    """The integer hash's point kernel for ``DIM`` axes and ``TAPS`` taps (as :func:`_make_points`).
+
+    ``PERIODIC`` False: every period is 2**32, which the 32-bit words reduce by themselves.
+    """
+
+    @nb.njit(cache=True, nogil=True)
+    def int_points(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
+                   keys, mult, grads, basis, absval):
+        """Lattice noise with the integer hash (and with ``DERIV`` its Jacobian) at scattered points.
+
+        Any dimension; octaves fused. ``pts`` (N, d) float64; ``out`` written:
+        (N, C), or with ``DERIV`` (N, C, d + 1) float64 as the
+        table hash's kernel (the value, then its derivative along each
+        input axis); ``keys`` (C,) uint32 per component; ``mult`` (d,) uint32
+        odd multipliers; ``grads`` (L, d) the gradient set
+        (:func:`._inthash.gradient_set`). The other arguments are those of
+        the table hash's kernel (:func:`_make_points`; ``dcoef`` is read only with ``DERIV``).
+
+        Per chunk and octave: each axis's weights and hashed tap offsets
+        ``M[a, k] = ((j + k) mod period) * M_a`` (uint32); then the corners in
+        odometer order, the prefix words (xor) and weight products carried
+        level by level, each level one vectorisable loop over the chunk. A
+        corner's term ``prod_a w_a v`` differentiates along axis ``b`` to
+        ``w_b' prod_{a != b} w_a v`` (plus, in the gradient basis, ``prod_a
+        w_a g_b``); the product is formed per corner, ``w_0`` first and
+        ``w_b'`` second (``DP``).
+        """
+        npts = pts.shape[0]
+        d = DIM
+        ncomp = keys.shape[0]
+        n = grads.shape[0]
+        noct = freqs.shape[0]
+        nq = d + 1 if DERIV else 1  # the value, then (DERIV) one derivative per axis
+        W = np.empty((d, TAPS, CHUNK))
+        if DERIV:
+            DW = np.empty((d, TAPS, CHUNK))
+            V = np.empty(CHUNK)  # the corner's values (value basis)
+        else:
+            DW = np.empty((1, 1, 1))  # not read
+        R = np.empty((d, TAPS, CHUNK))
+        M = np.empty((d, TAPS, CHUNK), np.uint32)
+        HP = np.empty((d + 1, CHUNK), np.uint32)
+        WP = np.empty((d + 1, CHUNK))
+        DP = np.empty((d, CHUNK))
+        T = np.empty((nq, CHUNK))
+        ACC = np.empty((ncomp, nq, CHUNK))
+        cnt = np.zeros(d, np.int64)
+        for p0 in range(0, npts, CHUNK):
+            m = min(CHUNK, npts - p0)
+            for o in range(noct):
+                for a in range(d):
+                    _axis_setup(pts, p0, m, a, freqs[o, a], phase[a], shift, left, TAPS, coef, dcoef, period[a],
+                                pmask[a], mult[a], W, DW, R, M, DERIV, PERIODIC)
+                for c in range(ncomp):
+                    key = keys[c]
+                    for q in range(nq):
+                        for i in range(m):
+                            T[q, i] = 0.0
+                    T0 = T[0]
+                    for a in range(d):
+                        cnt[a] = 0
+                    level = 0
+                    while True:
+                        for a in range(level, d):
+                            k = cnt[a]
+                            Ma = M[a, k]
+                            Wa = W[a, k]
+                            if a == 0:
+                                h1 = HP[1]
+                                w1 = WP[1]
+                                for i in range(m):
+                                    h1[i] = _U32(key ^ Ma[i])
+                                    w1[i] = Wa[i]
+                            else:
+                                h0 = HP[a]
+                                w0 = WP[a]
+                                h1 = HP[a + 1]
+                                w1 = WP[a + 1]
+                                for i in range(m):
+                                    h1[i] = _U32(h0[i] ^ Ma[i])
+                                    w1[i] = w0[i] * Wa[i]
+                        hd = HP[d]
+                        wd = WP[d]
+                        if DERIV:  # DP[b] = w_0 w_b' w_1 ... (w_0' w_1 ... for b = 0), the product skipping w_b
+                            for b in range(d):
+                                db = DP[b]
+                                W0 = W[0, cnt[0]]
+                                DWb = DW[b, cnt[b]]
+                                for i in range(m):
+                                    db[i] = DWb[i] if b == 0 else W0[i] * DWb[i]
+                                for a in range(1, d):
+                                    if a != b:
+                                        Wa = W[a, cnt[a]]
+                                        for i in range(m):
+                                            db[i] *= Wa[i]
+                        if basis == 0:
+                            for i in range(m):
+                                v = hash_value(hd[i])
+                                if DERIV:
+                                    V[i] = v
+                                T0[i] += wd[i] * v
+                            if DERIV:  # one loop per axis: each vectorises
+                                for b in range(d):
+                                    tb = T[1 + b]
+                                    db = DP[b]
+                                    for i in range(m):
+                                        tb[i] += db[i] * V[i]
+                        elif DIM == 1:
+                            r0 = R[0, cnt[0]]
+                            for i in range(m):
+                                g = hash_index(hd[i], n)
+                                v = grads[g, 0] * r0[i]
+                                T0[i] += wd[i] * v
+                                if DERIV:
+                                    _add_grad_derivs(T, DP, wd[i], grads, g, v, i, d)
+                        elif DIM == 2:
+                            r0 = R[0, cnt[0]]
+                            r1 = R[1, cnt[1]]
+                            for i in range(m):
+                                g = hash_index(hd[i], n)
+                                v = grads[g, 0] * r0[i] + grads[g, 1] * r1[i]
+                                T0[i] += wd[i] * v
+                                if DERIV:
+                                    _add_grad_derivs(T, DP, wd[i], grads, g, v, i, d)
+                        elif DIM == 3:
+                            r0 = R[0, cnt[0]]
+                            r1 = R[1, cnt[1]]
+                            r2 = R[2, cnt[2]]
+                            for i in range(m):
+                                g = hash_index(hd[i], n)
+                                v = grads[g, 0] * r0[i] + grads[g, 1] * r1[i] + grads[g, 2] * r2[i]
+                                T0[i] += wd[i] * v
+                                if DERIV:
+                                    _add_grad_derivs(T, DP, wd[i], grads, g, v, i, d)
+                        else:
+                            for i in range(m):
+                                g = hash_index(hd[i], n)
+                                v = 0.0
+                                for a in range(d):
+                                    v += grads[g, a] * R[a, cnt[a], i]
+                                T0[i] += wd[i] * v
+                                if DERIV:
+                                    _add_grad_derivs(T, DP, wd[i], grads, g, v, i, d)
+                        level = _next_corner(cnt, TAPS)
+                        if level < 0:
+                            break
+                    amp = amps[o]
+                    acc = ACC[c]
+                    for i in range(m):
+                        tot = T0[i]
+                        v = abs(tot) if absval else tot
+                        if o == 0:
+                            acc[0, i] = amp * v
+                        else:
+                            acc[0, i] += amp * v
+                        if DERIV:  # turbulence: the sign of the octave's value (0 at 0)
+                            sg = (1.0 if tot > 0.0 else (-1.0 if tot < 0.0 else 0.0)) if absval else 1.0
+                            for b in range(d):
+                                db = (amp * freqs[o, b]) * (sg * T[1 + b, i])
+                                if o == 0:
+                                    acc[1 + b, i] = db
+                                else:
+                                    acc[1 + b, i] += db
+            for i in range(m):
+                for c in range(ncomp):
+                    if DERIV:
+                        for q in range(nq):
+                            out[p0 + i, c, q] = ACC[c, q, i]
+                    else:
+                        out[p0 + i, c] = ACC[c, 0, i]
+
+    return int_points
+
+
+_POINTS = {}
+
+
+def points_kernel(integer, dim, taps, deriv, periodic):
+    """The compiled point kernel for this hash, dimension, tap count, derivative flag and period flag.
+
+    Its arguments: ``(pts, out, freqs, amps, phase, shift, left, taps, coef,
+    dcoef, period, pmask, perms, values, grads, basis, absval)`` for the table
+    hash (:func:`_make_points`), ``(..., pmask, keys, mult, grads, basis,
+    absval)`` for the integer hash (:func:`_make_int_points`). Made on first
+    request; numba compiles it on its first call (or loads it from its cache).
+    """
+    key = (bool(integer), int(dim), int(taps), bool(deriv), bool(periodic))
+    fn = _POINTS.get(key)
+    if fn is None:
+        fn = _POINTS[key] = (_make_int_points if integer else _make_points)(*key[1:])
+    return fn
+
+
+# ---------------------------------------------------------------- grids
+@nb.njit(cache=True, nogil=True, inline="always")
 def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
-    mask = period - 1 if (period & (period - 1)) == 0 else -1
     """Per-sample tap weights and reduced first-tap indices along one grid axis.
 
     Returns ``fi`` (float floor index), ``base`` ((floor - left) mod period),
     ``w`` (N, taps) weights and, if ``grad``, ``rw`` (N, taps) = weight x signed distance.
     """
+    mask = period - 1 if (period & (period - 1)) == 0 else -1
     nn = coords.shape[0]
     fis = np.empty(nn)
     base = np.empty(nn, np.int64)
@@ -366,8 +654,7 @@ def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
         t4 = t2 * t2
         t5 = t4 * t
         for k in range(taps):
-            s = ((coef[k, 0] + coef[k, 1] * t) + (coef[k, 2] * t2 + coef[k, 3] * t3)
-                 + (coef[k, 4] * t4 + coef[k, 5] * t5))
+            s = _weight(coef, k, t, t2, t3, t4, t5)
             w[j, k] = s
             if grad:
                 rw[j, k] = s * (t - shift + (left - k))
@@ -629,79 +916,6 @@ def hash_expand_values(h, par, lat, perm, n, first, values, out):
 
 
 # ---------------------------------------------------------------- vector helpers
-# numba leaves LLVM's SLP vectoriser off, so the straight-line sum over the
-# last axis's taps (contiguous table entries) stays scalar; these intrinsics
-# write it as one short vector operation. Every lane does the same IEEE
-# multiply and add as the scalar code would (no reassociation, no FMA), so
-# the results are bit-identical to the scalar expressions.
-
-def _vector(builder, vty, values):
-    v = ir.Constant(vty, ir.Undefined)
-    for k, x in enumerate(values):
-        v = builder.insert_element(v, x, ir.Constant(ir.IntType(32), k))
-    return v
-
-
-def _lanes(builder, v, width):
-    return [builder.extract_element(v, ir.Constant(ir.IntType(32), k)) for k in range(width)]
-
-
-def _load(context, builder, aryty, ary_v, idx, vty):
-    ary = context.make_array(aryty)(context, builder, ary_v)
-    ptr = builder.gep(ary.data, [idx])
-    return builder.load(builder.bitcast(ptr, vty.as_pointer()), align=8)
-
-
-@intrinsic
-def axpy_lanes(typingctx, acc, w, arr, idx):
-    """``acc[k] + w * arr[idx + k]`` for every lane k of the float64 tuple ``acc`` (1-D contiguous ``arr``)."""
-    if not (isinstance(acc, types.UniTuple) and acc.dtype == types.float64):
-        return None
-    width = acc.count
-    sig = acc(acc, w, arr, idx)
-
-    def codegen(context, builder, signature, args):
-        acc_v, w_v, arr_v, idx_v = args
-        vty = ir.VectorType(ir.DoubleType(), width)
-        v = _load(context, builder, signature.args[2], arr_v, idx_v, vty)
-        a = _vector(builder, vty, [builder.extract_value(acc_v, k) for k in range(width)])
-        wv = _vector(builder, vty, [w_v] * width)
-        r = builder.fadd(a, builder.fmul(wv, v))
-        return context.make_tuple(builder, signature.return_type, _lanes(builder, r, width))
-
-    return sig, codegen
-
-
-@intrinsic
-def grad_axpy_lanes(typingctx, acc, w, r0, r1, r2, arr, idx, stride):
-    """``acc[k] + w * ((g0 * r0 + g1 * r1) + g2 * r2[k])`` with ``g_a = arr[a * stride + idx + k]``.
-
-    The gradient dot product of the scalar kernels, lane k being tap k of the
-    last axis; ``r2`` is a float64 tuple of the last axis's signed distances.
-    """
-    if not (isinstance(acc, types.UniTuple) and acc.dtype == types.float64):
-        return None
-    width = acc.count
-    sig = acc(acc, w, r0, r1, r2, arr, idx, stride)
-
-    def codegen(context, builder, signature, args):
-        acc_v, w_v, r0_v, r1_v, r2_v, arr_v, idx_v, stride_v = args
-        vty = ir.VectorType(ir.DoubleType(), width)
-        aryty = signature.args[5]
-        g0 = _load(context, builder, aryty, arr_v, idx_v, vty)
-        i1 = builder.add(idx_v, stride_v)
-        g1 = _load(context, builder, aryty, arr_v, i1, vty)
-        g2 = _load(context, builder, aryty, arr_v, builder.add(i1, stride_v), vty)
-        dot = builder.fadd(builder.fmul(g0, _vector(builder, vty, [r0_v] * width)),
-                           builder.fmul(g1, _vector(builder, vty, [r1_v] * width)))
-        dot = builder.fadd(dot, builder.fmul(g2, _vector(builder, vty, [builder.extract_value(r2_v, k)
-                                                                        for k in range(width)])))
-        a = _vector(builder, vty, [builder.extract_value(acc_v, k) for k in range(width)])
-        r = builder.fadd(a, builder.fmul(_vector(builder, vty, [w_v] * width), dot))
-        return context.make_tuple(builder, signature.return_type, _lanes(builder, r, width))
-
-    return sig, codegen
-
 
 # ---------------------------------------------------------------- derivatives
 @nb.njit(cache=True, nogil=True, inline="always")
@@ -723,52 +937,68 @@ def axis_dweights(coords, freq, phase, shift, left, taps, coef, dcoef, grad):
         t4 = t2 * t2
         t5 = t4 * t
         for k in range(taps):
-            s = ((coef[k, 0] + coef[k, 1] * t) + (coef[k, 2] * t2 + coef[k, 3] * t3)
-                 + (coef[k, 4] * t4 + coef[k, 5] * t5))
-            ds = ((dcoef[k, 0] + dcoef[k, 1] * t) + (dcoef[k, 2] * t2 + dcoef[k, 3] * t3) + dcoef[k, 4] * t4)
+            s = _weight(coef, k, t, t2, t3, t4, t5)
+            ds = _dweight(dcoef, k, t, t2, t3, t4)
             dw[j, k] = freq * ds
             if grad:
                 drw[j, k] = freq * (ds * (t - shift + (left - k)) + s)
     return dw, drw
 
+@nb.njit(cache=True, nogil=True)
+def block_prefix(h, lat, mult, first, key):
+    """One axis of the prefix over a block: ``h'[m * nl + l] = h[m] ^ (lat[l] * mult)`` (uint32).
+
+    ``first``: ``h' = key ^ (lat * mult)`` (``h`` is ignored).
+    """
+    nl = lat.shape[0]
+    m = 1 if first else h.shape[0]
+    out = np.empty(m * nl, np.uint32)
+    for i in range(m):
+        hb = key if first else h[i]
+        for l in range(nl):
+            out[i * nl + l] = _U32(hb ^ prime(lat[l], mult))
+    return out
+
+
+@nb.njit(cache=True, nogil=True)
+def block_values(h, out):
+    """``out[m] = hash_value(h[m])`` over a block's prefix words."""
+    for i in range(h.shape[0]):
+        out[i] = hash_value(h[i])
+
+
+@nb.njit(cache=True, nogil=True)
+def block_gradients(h, grads, b, out):
+    """``out[m] = grads[hash_index(h[m]), b]`` (component b of the gradient block)."""
+    n = grads.shape[0]
+    for i in range(h.shape[0]):
+        out[i] = grads[hash_index(h[i], n), b]
+
 
 # ---------------------------------------------------------------- fused 2-D grids
-@intrinsic
-def expand_dot8(typingctx, row, ridx, E, e0, v, B, M):
-    """``row[ridx + p] = sum_m E[e0 + 8 m + p] * v[B + m]`` (m = 0 .. M-1, in order; p < 8), one vector of 8 lanes.
+@nb.njit(cache=True, nogil=True)
+def _dot8(row, ridx, E, e0, v, B, M):
+    """``row[ridx + p] = sum_m E[e0 + 8 m + p] * v[B + m]`` (m = 0 .. M-1, in order; p < 8), eight columns at once.
 
-    A NaN in ``E`` marks no term: its product is not added (a lane's sum
+    A NaN in ``E`` marks no term: its product is not added (a column's sum
     starts at -0.0, which added to x gives x). So the sum is the bare tap sum
     ``p_0 + p_1 + ...`` bit for bit, the sign of a zero included (an added
     product ``0 * v`` is -0.0 or +0.0 by the sign of v, and -0.0 + +0.0 = +0.0).
+    The eight running sums are held in ``row`` itself (columns ``ridx ..
+    ridx + 7``), the inner loop over them a select per lane.
     """
-    sig = types.void(row, ridx, E, e0, v, B, M)
+    dst = _U64(ridx)
+    for p in range(8):
+        row[dst + p] = -0.0
+    src = _U64(e0)
+    for m in range(_U64(M)):
+        s = v[_U64(B) + m]
+        at = src + m * _U64(8)
+        for p in range(8):
+            e = E[at + p]
+            cur = row[dst + p]
+            row[dst + p] = cur if e != e else cur + s * e
 
-    def codegen(context, builder, signature, args):
-        row_v, ridx_v, E_v, e0_v, v_v, B_v, M_v = args
-        dty = ir.DoubleType()
-        vty = ir.VectorType(dty, 8)
-        i64 = ir.IntType(64)
-        acc = cgutils.alloca_once(builder, vty)
-        builder.store(ir.Constant(vty, [-0.0] * 8), acc)
-        Eary = context.make_array(signature.args[2])(context, builder, E_v)
-        vary = context.make_array(signature.args[4])(context, builder, v_v)
-        rary = context.make_array(signature.args[0])(context, builder, row_v)
-        with cgutils.for_range(builder, M_v) as loop:
-            m = loop.index
-            eptr = builder.gep(Eary.data, [builder.add(e0_v, builder.mul(m, ir.Constant(i64, 8)))])
-            e = builder.load(builder.bitcast(eptr, vty.as_pointer()), align=8)
-            s = builder.load(builder.gep(vary.data, [builder.add(B_v, m)]))
-            sv = builder.insert_element(ir.Constant(vty, ir.Undefined), s, ir.Constant(ir.IntType(32), 0))
-            sv = builder.shuffle_vector(sv, ir.Constant(vty, ir.Undefined), ir.Constant(ir.VectorType(ir.IntType(32), 8), [0] * 8))
-            cur = builder.load(acc)
-            keep = builder.fcmp_unordered("uno", e, e)  # NaN: no term here
-            builder.store(builder.select(keep, cur, builder.fadd(cur, builder.fmul(sv, e))), acc)
-        rptr = builder.gep(rary.data, [ridx_v])
-        builder.store(builder.load(acc), builder.bitcast(rptr, vty.as_pointer()), align=8)
-        return context.get_dummy_value()
-
-    return sig, codegen
 
 
 def _make_axis0(GRAD):
@@ -884,23 +1114,46 @@ def _row_range(rows, o, a, b):
     return lo, hi
 
 
-def int_row_values(ext, at, word, words, start, m):
-    """The integer hash's values of one lattice row: ``ext[at + l] = hash_value(word ^ words[start + l])``, l < m.
+@nb.njit(cache=True, nogil=True, inline="always")
+def _int_row_values(ext, at, word, words, start, m):
+    """The integer hash's values of one lattice row: ``ext[at + l] = hash_value(word ^ words[start + l])``, l < m."""
+    # unsigned offsets: no negative-index wrap, so the loop vectorises with plain loads and stores
+    dst = _U64(at)
+    src = _U64(start)
+    for l in range(_U64(m)):
+        ext[dst + l] = hash_value(_U32(word ^ words[src + l]))
 
-    Called only by the compiled :func:`grid2d` (the integer-hash variants):
-    numba compiles the implementation that ``_intgrid`` registers for it with
-    ``@overload``, since the hash lives in ``_inthash``, which imports this module.
-    """
-    raise NotImplementedError("compiled only: the integer-hash grid kernel's row of lattice values (_intgrid)")
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _pick8(g, t0, t1, t2, t3, t4, t5, t6, t7):
+    """``(t0, ..., t7)[g]`` for ``0 <= g < 8`` by selects on g's bits (a vectorised loop needs no gather)."""
+    odd = (g & 1) != 0
+    p01 = t1 if odd else t0
+    p23 = t3 if odd else t2
+    p45 = t5 if odd else t4
+    p67 = t7 if odd else t6
+    q0 = p23 if (g & 2) != 0 else p01
+    q1 = p67 if (g & 2) != 0 else p45
+    return q1 if g >= 4 else q0
 
 
-def int_row_gradients(ext, at0, at1, word, words, start, m, grads):
+@nb.njit(cache=True, nogil=True, inline="always")
+def _int_row_gradients(ext, at0, at1, word, words, start, m, grads):
     """The integer hash's gradients of one lattice row, ``b = 0, 1``:
-    ``ext[at_b + l] = grads[hash_index(word ^ words[start + l]), b]``.
-
-    As :func:`int_row_values` (compiled only; the implementation is ``_intgrid``'s).
-    """
-    raise NotImplementedError("compiled only: the integer-hash grid kernel's row of lattice gradients (_intgrid)")
+    ``ext[at_b + l] = grads[hash_index(word ^ words[start + l]), b]``."""
+    # the 2-D set's 8 gradients held in registers and picked by selects: a gather from the table
+    # (which LLVM cannot prove apart from ext) kept the loop scalar, at about three times the cost
+    x0 = grads[0, 0]; x1 = grads[1, 0]; x2 = grads[2, 0]; x3 = grads[3, 0]
+    x4 = grads[4, 0]; x5 = grads[5, 0]; x6 = grads[6, 0]; x7 = grads[7, 0]
+    y0 = grads[0, 1]; y1 = grads[1, 1]; y2 = grads[2, 1]; y3 = grads[3, 1]
+    y4 = grads[4, 1]; y5 = grads[5, 1]; y6 = grads[6, 1]; y7 = grads[7, 1]
+    dst0 = _U64(at0)
+    dst1 = _U64(at1)
+    src = _U64(start)
+    for l in range(_U64(m)):
+        g = hash_index(_U32(word ^ words[src + l]), 8)
+        ext[dst0 + l] = _pick8(g, x0, x1, x2, x3, x4, x5, x6, x7)
+        ext[dst1 + l] = _pick8(g, y0, y1, y2, y3, y4, y5, y6, y7)
 
 
 def _make_grid2d(GRAD, USE32, INT):
@@ -910,10 +1163,8 @@ def _make_grid2d(GRAD, USE32, INT):
     frozen in the closure numba prunes the other bases', dtypes' and hashes'
     code before compiling (numba caches each variant on disk: closure values
     are part of its cache key), so the table-hash variants compile no integer
-    hash code. The integer-hash variants call :func:`int_row_values` /
-    :func:`int_row_gradients`, compiled from ``_intgrid``'s implementation
-    (numba's cache of this kernel does not notice a change there: clear the
-    cache after editing it, as for any callee in another file). The tap count stays a
+    hash code. The integer-hash variants hash their lattice rows with
+    :func:`_int_row_values` / :func:`_int_row_gradients`. The tap count stays a
     run-time value: a kernel per tap count as well compiled no faster for one
     grid and 3.8 times slower for all of them (the test suite): 63 s against
     17 s CPU for the 16 grids of ``bench_coldstart.py``'s ``grid2-all``.
@@ -953,7 +1204,7 @@ def _make_grid2d(GRAD, USE32, INT):
         ``r`` of octave ``o`` is hashed and contracted along axis 1 only when an
         output row first needs it, into a ring of ``2**ceil(log2 taps)`` rows per
         octave that stays in cache (rows are never held as a block in memory).
-        The axis-1 contraction runs eight columns at a time (:func:`expand_dot8`)
+        The axis-1 contraction runs eight columns at a time (:func:`_dot8`)
         over the block's lattice values with the weights spread out to each
         column's offset (NaN elsewhere, which adds no term): it equals the
         tap sum bit for bit, a zero's sign included. The hot loops index flat arrays with
@@ -1016,7 +1267,7 @@ def _make_grid2d(GRAD, USE32, INT):
         if not expand:
             mmax = 1
         # not filled here (np.full is one more overload to compile): each block's rows are set to NaN
-        # below before its weights are written, and expand_dot8 reads no further
+        # below before its weights are written, and _dot8 reads no further
         E = np.empty(noct * nterm * nblk_max * mmax * L)
         bB = np.empty((noct, nblk_max), np.int64)
         bM = np.empty((noct, nblk_max), np.int64)
@@ -1043,7 +1294,7 @@ def _make_grid2d(GRAD, USE32, INT):
                             e0 = ((o * nterm + b) * nblk_max + blk) * mmax * L
                             wsrc = wb1 if b == 1 else wa1
                             for x in range(mb * L):
-                                E[e0 + x] = np.nan  # no tap of this column (expand_dot8 adds nothing)
+                                E[e0 + x] = np.nan  # no tap of this column (_dot8 adds nothing)
                             for q in range(qa, qb):
                                 d = base1[o, q] - lo_
                                 for k in range(taps):
@@ -1064,9 +1315,9 @@ def _make_grid2d(GRAD, USE32, INT):
                             v0 = vbase
                             v1 = vbase + width
                             if grad:
-                                int_row_gradients(ext, v0, v1, lat0[off0[o] + r], lat1, off1[o] + lo, m, grads)
+                                _int_row_gradients(ext, v0, v1, lat0[off0[o] + r], lat1, off1[o] + lo, m, grads)
                             else:
-                                int_row_values(ext, v0, lat0[off0[o] + r], lat1, off1[o] + lo, m)
+                                _int_row_values(ext, v0, lat0[off0[o] + r], lat1, off1[o] + lo, m)
                         elif use_ext and dense1[o]:
                             i0 = lat0[off0[o] + r]
                             h1 = perm[i0]
@@ -1102,7 +1353,7 @@ def _make_grid2d(GRAD, USE32, INT):
                                 vb = v1 if b == 1 else v0
                                 ebase = (o * nterm + b) * nblk_max * mmax * L
                                 for blk in range((nt + L - 1) // L):
-                                    expand_dot8(ring, row0 + b * tile + blk * L, E, ebase + blk * mmax * L, ext,
+                                    _dot8(ring, row0 + b * tile + blk * L, E, ebase + blk * mmax * L, ext,
                                                 vb + bB[o, blk], bM[o, blk])
                         else:
                             # contract_last's sums, column by column
@@ -1176,7 +1427,7 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
     The arguments and the result are those of the kernel :func:`_make_grid2d`
     compiles (its docstring): ``basis`` 0 (value) or 1 (gradient), the
     output float32 when ``out32`` is not empty, the integer hash when
-    ``lat0`` holds its uint32 words (``_intgrid.grid2d`` makes them).
+    ``lat0`` holds its uint32 words (:func:`int_grid2d` makes them).
     Only the variant called is compiled.
     """
     key = (basis == 1, out32.shape[0] > 0, lat0.dtype == np.uint32)
@@ -1185,6 +1436,26 @@ def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scal
         fn = _GRID2D[key] = _make_grid2d(*key)
     fn(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
        absval, out64, out32, nq, tile)
+
+
+_NO_PERM = np.empty(0, np.int64)
+_NO_VALUES = np.empty((2, 0))
+
+
+def int_grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, key, mult, grads, basis,
+               absval, out64, out32, nq, tile):
+    """:func:`grid2d` with the integer hash: one component of a 2-D grid, every octave fused.
+
+    The first eleven arguments are both axes packed by :func:`pack_axis` (lattice
+    indices reduced modulo each octave's period, kept whole: packed with
+    ``n = 2**32``); ``key`` is the component's ``(1,)`` uint32 key, ``mult``
+    the axis multipliers and ``grads`` the gradient set (8, 2). The rest as for :func:`grid2d`.
+    """
+    assert grads.shape == (8, 2)  # the 2-D gradient set (:func:`._inthash.gradient_set`), picked by selects
+    words0 = block_prefix(key, lat0, mult[0], True, key[0])
+    words1 = block_prefix(key, lat1, mult[1], True, _U32(0))
+    grid2d(words0, off0, pos0, wa0, wb0, words1, off1, base1, np.zeros(dense1.shape[0], np.bool_), wa1, wb1,
+           scales, _NO_PERM, _NO_VALUES, grads, basis, absval, out64, out32, nq, tile)
 
 
 @nb.njit(cache=True, nogil=True, inline="always")

@@ -10,7 +10,7 @@ and chunk chooses alike:
   then one fused pass along axis 0; octaves are batched within a memory
   budget. 2-D grids, with either hash, run every octave in one fused
   kernel, tile by tile (:func:`grid_fused_2d`), with the same bits (the
-  integer hash's lattice rows hashed in the kernel, :mod:`._intgrid`);
+  integer hash's lattice rows hashed in the kernel, :func:`._jit.int_grid2d`);
 - the **scattered** path (:func:`grid_scattered`), row by row through
   :func:`.points_path.evaluate_points`, for grids sparser than the octave's
   lattice (:func:`is_separable`) and past 2**52 lattice cells, where a
@@ -28,7 +28,7 @@ import numpy as np
 
 from .._core import float_dtype, map_blocks
 from . import checks
-from ._compiled import PERIOD_MAX, intgrid, inthash, jit
+from . import _jit as jit
 from .grid import check_grid, coordinates
 from .points_path import evaluate_points, evaluate_points_jac
 from .tables import period_masks
@@ -237,7 +237,7 @@ def int_prefix(key, mult, lattices):
     """
     h = key
     for a, lat in enumerate(lattices):
-        h = inthash.block_prefix(h, np.ascontiguousarray(lat, dtype=np.int64), mult[a], a == 0, key[0])
+        h = jit.block_prefix(h, np.ascontiguousarray(lat, dtype=np.int64), mult[a], a == 0, key[0])
     return h
 
 
@@ -290,9 +290,9 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
                 bshape = tuple(len(lat) for lat in lattices)
                 block = np.empty(int(np.prod(bshape, dtype=np.int64)))
                 if integer:
-                    h = int_prefix(noise._keys[c:c + 1], noise._mult, lattices)
+                    h = int_prefix(noise.keys[c:c + 1], noise._mult, lattices)
                     if not grad:
-                        inthash.block_values(h, block)
+                        jit.block_values(h, block)
                 elif grad:
                     h, par = block_hash(noise.perms[c], noise.table_size, lattices)
                 else:
@@ -302,7 +302,7 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
                                            noise.perms[c], noise.table_size, d == 1, noise.values, block)
                 for b in range(nterm):
                     if grad and integer:
-                        inthash.block_gradients(h, noise._int_grads, b, block)
+                        jit.block_gradients(h, noise._int_grads, b, block)
                     elif grad:
                         jit.gather_gradients(h, noise.gradients, b, block)
                     target = inter_all[row0:row0 + bshape[0]]
@@ -330,12 +330,12 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
     The same arithmetic, term by term, as the general path (the same
     bits), without the lattice block or octave batches in memory. The
     integer hash's lattice indices are packed whole (below its period, at
-    most 2**32) and hashed row by row in the kernel (:mod:`._intgrid`).
+    most 2**32) and hashed row by row in the kernel (:func:`_jit.int_grid2d`).
     """
     grad = noise.basis == "gradient"
     integer = noise.hash == "integer"
     k = noise.kernel
-    n = PERIOD_MAX if integer else noise.table_size  # the integer hash reduces by the period only
+    n = jit.PERIOD_MAX if integer else noise.table_size  # the integer hash reduces by the period only
     freqs = np.array([freq for freq, _, _ in octaves], dtype=np.float64)
     scales = np.array([amp for _, amp, _ in octaves], dtype=np.float64)
     periods = np.array([per for _, _, per in octaves], dtype=np.int64)
@@ -357,7 +357,7 @@ def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
     packed = _pack_axes(noise, sub, freqs, periods, n, grad, deriv_axis)
     for c in range(noise.dim_out):
         if integer:
-            intgrid.grid2d(*packed, scales, noise._keys[c:c + 1], noise._mult, noise._int_grads, 1 if grad else 0,
+            jit.int_grid2d(*packed, scales, noise.keys[c:c + 1], noise._mult, noise._int_grads, 1 if grad else 0,
                            bool(absval), out64[c], out32[c], nq, tile)
         else:
             jit.grid2d(*packed, scales, noise.perms[c], noise.values, noise.gradients, 1 if grad else 0,
