@@ -50,8 +50,10 @@ def _env(cache, home, package=HERE):
 
 
 def _start(cache, home, dtype="float64", prefix=(), package=HERE):
+    # run outside the checkout: ``python -c`` puts the working folder first on sys.path, and from the
+    # repository root that would import the checkout's noiselab instead of ``package``
     return subprocess.Popen([*prefix, sys.executable, "-c", _RUN, dtype], env=_env(cache, home, package),
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=str(cache.parent))
 
 
 def _finish(proc):

@@ -69,6 +69,30 @@ def test_points_in_rows_or_columns_give_the_same_bits(hash_):
         noise(rows, axis=2)
 
 
+# ----------------------------------------------------------------- the folded tables
+@pytest.mark.parametrize("kw", [{}, {"basis": "gradient"}, {"kernel": "catmull-rom", "dim_out": 2},
+                                {"alternation": "lattice"}, {"table_size": 20, "kernel": "quadratic"},
+                                {"basis": "gradient", "table_size": 30}])
+def test_folded_tables_give_the_per_point_kernels_bits(kw, monkeypatch):
+    # many 3-D points read the folded tables (pair_tables), few the permutation itself: the same bits
+    from noiselab.lattice import points_path
+
+    noise = LatticeNoise(3, seed=2, **kw)
+    pts = RNG.uniform(-300, 300, (3000, 3))
+    pts[::7] += 1e13   # past 2**52: the exact reduction
+    results = []
+    for least in (1 << 40, 0):
+        monkeypatch.setattr(points_path, "PAIRS_MIN", least)
+        results.append([noise.evaluate(pts, octaves=3), noise.evaluate(pts, octaves=2, absval=True)])
+    for a, b in zip(*results):
+        np.testing.assert_array_equal(a, b)
+        np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
+    # and a changed value table reaches the folded tables (they are built from the live tables at each call)
+    noise.values[:] = -noise.values
+    noise.gradients[:] = -noise.gradients
+    np.testing.assert_array_equal(noise.evaluate(pts, octaves=3), -results[1][0])
+
+
 # ----------------------------------------------------------------- plain Python
 _CASE = """
 import sys
@@ -89,6 +113,11 @@ for h in ("table", "integer"):
         out += [nl.LatticeNoise(3, seed=3, hash=h).grid((5, 4, 3), [(0, 2), (0, 2), (0, 1)])]
         out += list(n2g.evaluate_grid_jacobian((6, 5), [(0, 2), (0, 2)], octaves=2))
     out += [nl.LatticeNoise(5, seed=3, hash=h, kernel="linear")(x[:, :1].repeat(5, axis=1))]
+from noiselab.lattice import points_path
+for least in (0, 1 << 40):   # 3-D table-hash values over the folded tables, and without them
+    points_path.PAIRS_MIN = least
+    for kw in ({}, {"basis": "gradient"}, {"alternation": "lattice", "table_size": 20}):
+        out += [nl.LatticeNoise(3, 2, seed=5, **kw).evaluate(x, octaves=2)]
 np.savez(sys.argv[1], *out)
 """
 

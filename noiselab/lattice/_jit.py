@@ -168,13 +168,17 @@ def prime(j, mult):
     return _U32(_U32(j) * mult)
 
 
-def _make_points(DIM, TAPS, DERIV, PERIODIC):
+def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
     """The table hash's point kernel for ``DIM`` input axes and ``TAPS`` taps (compile-time constants).
 
     ``DERIV``: values and Jacobians (else values). ``PERIODIC`` False: every
     axis's period is the table size n, so a tap's index needs no reduction of
     its own (the hash reduces ``h + j`` modulo n, and n is even, so the
-    parity is the same). numba prunes the branches these constants rule out
+    parity is the same). ``PAIRS`` (3-D values without a period): the tables
+    are :func:`pair_tables`' in place of ``perms``, ``values`` and ``grads``
+    (the first two hash levels one read, the last folded into the values):
+    the same sums of the same values, so the same bits, with about half the
+    table reads. numba prunes the branches these constants rule out
     before typing; numbers and booleans are safe in numba's cache key (pickled
     with the closure), a function closed over is not (see :func:`_make_axis0`).
     """
@@ -241,6 +245,10 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC):
         acc = np.empty((ncomp, nq))  # zeroed per point
         vals0 = values[0]
         vals1 = values[1]
+        if PAIRS:  # the table size n and the folded tables' run S = 2n + 4, from their shapes
+            sp = values.shape[1] // 2 if basis == 0 else grads.shape[1] // 3
+            np_ = (sp - 4) // 2
+            pmask_ = np_ - 1 if (np_ & (np_ - 1)) == 0 else -1
         for p in range(npts):
             for c in range(ncomp):
                 for q in range(nq):
@@ -309,6 +317,22 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC):
                             if DERIV:
                                 D[0] += dw[0, k0] * s1 + w[0, k0] * e0
                                 D[1] += w[0, k0] * s1d1
+                    elif PAIRS:  # (3-D): perms holds H2, values VL, grads G (pair_tables)
+                        for k0 in range(TAPS):
+                            row = _hash(0, jj[0, k0], np_, pmask_) * np_
+                            s1 = 0.0
+                            for k1 in range(TAPS):
+                                hb = np.int64(perm[row + _hash(0, jj[1, k1], np_, pmask_)])
+                                s2 = 0.0
+                                for k2 in range(TAPS):
+                                    x = hb + jj[2, k2]
+                                    if basis == 0:
+                                        v = values[c, x]
+                                    else:
+                                        v = grads[c, x] * r[0, k0] + grads[c, sp + x] * r[1, k1] + grads[c, 2 * sp + x] * r[2, k2]
+                                    s2 += w[2, k2] * v
+                                s1 += w[1, k1] * s2
+                            total += w[0, k0] * s1
                     elif DIM == 3:
                         for k0 in range(TAPS):
                             j0 = jj[0, k0]
@@ -613,20 +637,51 @@ def _make_int_points(DIM, TAPS, DERIV, PERIODIC):
 _POINTS = {}
 
 
-def points_kernel(integer, dim, taps, deriv, periodic):
+def points_kernel(integer, dim, taps, deriv, periodic, pairs=False):
     """The compiled point kernel for this hash, dimension, tap count, derivative flag and period flag.
 
     Its arguments: ``(pts, out, freqs, amps, phase, shift, left, taps, coef,
     dcoef, period, pmask, perms, values, grads, basis, absval)`` for the table
     hash (:func:`_make_points`), ``(..., pmask, keys, mult, grads, basis,
-    absval)`` for the integer hash (:func:`_make_int_points`). Made on first
+    absval)`` for the integer hash (:func:`_make_int_points`); ``pairs``: the
+    3-D table kernel over :func:`pair_tables`. Made on first
     request; numba compiles it on its first call (or loads it from its cache).
     """
-    key = (bool(integer), int(dim), int(taps), bool(deriv), bool(periodic))
+    key = (bool(integer), int(dim), int(taps), bool(deriv), bool(periodic), bool(pairs))
     fn = _POINTS.get(key)
     if fn is None:
-        fn = _POINTS[key] = (_make_int_points if integer else _make_points)(*key[1:])
+        fn = _POINTS[key] = _make_int_points(*key[1:5]) if integer else _make_points(*key[1:])
     return fn
+
+
+def pair_tables(perms, values, gradients, basis):
+    """The 3-D table-hash kernel's folded tables ``(H2, VL, G)``, built from the live tables at each call.
+
+    ``H2[c, q0 * n + q1] = P_c[(P_c[q0] + q1) mod n]`` (two hash levels in one
+    read), for value noise plus the parity row's offset ``S ((q0 + q1 + h) & 1)``;
+    ``VL[c, r S + x] = values[(r + x) & 1, P_c[x mod n]]`` for ``x < S = 2n + 4``
+    (the last level folded into the values, run on past 2n so that ``h + j``
+    needs no reduction); ``G[c, a S + x] = gradients[P_c[x mod n], a]``.
+    Only the basis's table is filled (the other is empty).
+    """
+    dim_out, n = perms.shape
+    S = 2 * n + 4
+    q = np.arange(n)
+    x = np.arange(S)
+    H2 = np.empty((dim_out, n * n), dtype=np.uint16)
+    VL = np.empty((dim_out, 2 * S if basis == 0 else 0))
+    G = np.empty((dim_out, 3 * S if basis == 1 else 0))
+    for c in range(dim_out):
+        P = perms[c]
+        h = P[(P[q][:, None] + q[None, :]) % n]
+        if basis == 0:
+            h = h + S * ((q[:, None] + q[None, :] + h) & 1)
+            for r in range(2):
+                VL[c, r * S:(r + 1) * S] = values[(r + x) & 1, P[x % n]]
+        else:
+            G[c] = gradients[P[x % n]].T.ravel()
+        H2[c] = h.ravel()
+    return H2, VL, G
 
 
 # ---------------------------------------------------------------- grids

@@ -6,7 +6,8 @@ read in place, without a copy) as ``(N, dim_in)`` rows;
 :func:`evaluate_points` and :func:`evaluate_points_jac` run the one point
 kernel of :mod:`._jit` that fits the noise (:func:`._jit.points_kernel`:
 hash, dimension, tap count, derivative flag, and whether any axis has a
-period of its own) over blocks of points on ``workers`` threads
+period of its own; 3-D table-hash values over many points read folded
+tables, :data:`PAIRS_MIN`) over blocks of points on ``workers`` threads
 (:func:`noiselab._core.run_split`: every point's arithmetic is the same
 whatever the split, so any worker count gives the same bits). These
 functions read a noise's tables and change nothing.
@@ -72,23 +73,46 @@ def shape_out(out, lead, dim_out):
     return out.reshape(tuple(lead) + (dim_out,))
 
 
-def kernel_args(noise, freqs, amps, absval):
+# 3-D table-hash values without a period read folded tables (:func:`._jit.pair_tables`, the same bits)
+# from this many points on (building them takes about 0.3 ms for n = 256), and up to this many entries
+# (n * n per component: 2 MiB for n = 1024)
+PAIRS_MIN = 1 << 15
+MAX_PAIR_ENTRIES = 1 << 20
+
+
+def _periodic(noise):
+    """Whether any axis has a period other than the hash's own (n for the table hash, 2**32 for the integer)."""
+    free = jit.PERIOD_MAX if noise.hash == "integer" else noise.table_size
+    return bool((noise.period != free).any())
+
+
+def _pairs(noise, npts, deriv):
+    """Whether the 3-D table-hash value kernel reads folded tables for this call."""
+    return (noise.hash == "table" and noise.dim_in == 3 and not deriv and npts >= PAIRS_MIN
+            and not _periodic(noise) and noise.table_size ** 2 * noise.dim_out <= MAX_PAIR_ENTRIES)
+
+
+def kernel_args(noise, freqs, amps, absval, pairs=False):
     """The point kernel's arguments after ``(points, out)`` (:func:`._jit.points_kernel`)."""
     k = noise.kernel
+    basis = int(noise.basis == "gradient")
     head = (np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
             noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, noise.period, noise._pmask)
     if noise.hash == "integer":
         tail = (noise.keys, noise._mult, noise._int_grads)
+    elif pairs:
+        tail = jit.pair_tables(noise.perms, noise.values, noise.gradients, basis)
     else:
         tail = (noise.perms, noise.values, noise.gradients)
-    return head + tail + (int(noise.basis == "gradient"), bool(absval))
+    return head + tail + (basis, bool(absval))
 
 
-def _kernel(noise, deriv):
-    """The compiled point kernel for this noise (one per hash, dimension, taps, derivative and period flag)."""
-    integer = noise.hash == "integer"
-    free = jit.PERIOD_MAX if integer else noise.table_size  # the period an axis has without ``period``
-    return jit.points_kernel(integer, noise.dim_in, noise.kernel.taps, deriv, bool((noise.period != free).any()))
+def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
+    """The point kernel for this noise and call over ``flat`` into ``out``, on ``workers`` threads."""
+    pairs = _pairs(noise, flat.shape[0], deriv)
+    kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv, _periodic(noise),
+                               pairs)
+    run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval, pairs), workers)
 
 
 def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", workers=1):
@@ -101,7 +125,7 @@ def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", work
     out = np.empty((flat.shape[0], noise.dim_out))
     if flat.shape[0]:
         checks.check_reach(flat, freqs, noise.phase, name)  # NaN, inf and overflowing x * frequency
-        run_split(_kernel(noise, False), flat, out, kernel_args(noise, freqs, amps, absval), workers)
+        _run(noise, flat, out, freqs, amps, absval, False, workers)
     return out if out.dtype == dtype else out.astype(dtype)
 
 
@@ -117,6 +141,6 @@ def evaluate_points_jac(noise, flat, freqs, amps, absval, name="points", workers
     out = np.empty((flat.shape[0], noise.dim_out, noise.dim_in + 1))
     if flat.shape[0]:
         checks.check_reach(flat, freqs, noise.phase, name)  # as for values: x * frequency + phase must stay finite
-        run_split(_kernel(noise, True), flat, out, kernel_args(noise, freqs, amps, absval), workers)
+        _run(noise, flat, out, freqs, amps, absval, True, workers)
         checks.check_jac_finite(out, f"at the given {name}", checks.jac_bound(freqs, amps))
     return out
