@@ -9,9 +9,8 @@ in a fresh Python process (``import noiselab`` included) and is measured as
 the CPU time (user + system) of that child process, from
 ``resource.getrusage(RUSAGE_CHILDREN)`` before and after: CPU time does not
 grow when the shared machine is busy, wall time does. "cold" is a process
-whose ``NUMBA_CACHE_DIR`` (and the generated-kernel cache, which lives under
-it) is a new empty folder: everything the call needs is generated and
-compiled. "warm" is a second process on the same folder: numba loads the
+whose ``NUMBA_CACHE_DIR`` is a new empty folder: everything the call needs
+is compiled. "warm" is a second process on the same folder: numba loads the
 machine code from its cache. The child also reports how many numba
 specialisations it compiled or loaded (``len(fn.signatures)`` summed over
 every dispatcher in ``noiselab.lattice``'s modules and in their dicts of
@@ -204,7 +203,7 @@ def main(argv=None):
     lines = [f"# Time to a first result{(' (' + args.label + ')') if args.label else ''}", ""]
     lines += header_lines(info)
     lines += ["", "CPU seconds (user + system) of a fresh process: `import noiselab`, then the call. "
-              "Cold: an empty numba cache (and generated-kernel cache); warm: a second process on the same cache. "
+              "Cold: an empty numba cache; warm: a second process on the same cache. "
               f"`import noiselab` alone: {base:.1f} s. Specialisations: numba signatures compiled "
               "(cold) or loaded (warm) by `noiselab.lattice`'s kernels.", ""]
     lines += markdown_table(["first call", "cold (s CPU)", "warm (s CPU)", "specialisations"], rows, "lrrr")

@@ -9,10 +9,15 @@ thread CPU time, one thread, median of ``--repeats`` interleaved rounds
 (``noiselab.lab.measure.interleaved``), and the per-round ratio general /
 special (above 1: the special path pays). The paths:
 
-- the fused 2-D grid kernel (``grid_path.FUSED_2D``) against the general
-  separable passes (lattice block, contractions, last pass) on 2-D grids;
-- the points path on a grid's points (``noise(noise.grid_points(...))``)
-  against the separable grid, 3-D: what a grid would cost without a grid path.
+- the separable grid passes against the points path on the grid's points
+  (``noise.evaluate(noise.grid_points(...))``), 2-D and 3-D: what a grid
+  would cost without a grid path;
+- 3-D table-hash values over folded tables (``points_path.PAIRS_MIN``: many
+  points) against the per-point kernel on the same points (the same bits).
+
+The fused 2-D grid kernel this script measured first (a run at commit
+c825318, kept in ``bench_lattice_paths.md``) ran at 0.72-0.79x the separable
+passes once its hand-written vector intrinsic was gone, and was removed.
 """
 from __future__ import annotations
 
@@ -31,35 +36,40 @@ import numpy as np  # noqa: E402
 
 import noiselab as nl  # noqa: E402
 from noiselab.lab.measure import header_lines, interleaved, markdown_table, run_info  # noqa: E402
-from noiselab.lattice import Grid, grid_path  # noqa: E402
-
-
-def _fused(flag, fn):
-    def run():
-        old = grid_path.FUSED_2D
-        grid_path.FUSED_2D = flag
-        try:
-            return fn()
-        finally:
-            grid_path.FUSED_2D = old
-    return run
 
 
 def cases():
-    g2 = Grid((512, 512), ((0, 32), (0, 32)))
+    from noiselab.lattice import points_path
+
     out = []
-    for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"})):
-        for h in ("table", "integer"):
-            n = nl.LatticeNoise(2, hash=h, **kw)
-            call = (lambda n: lambda: nl.fractal_sum(n, g2, octaves=6))(n)
-            out.append((f"512^2 6-octave fBm, {h} hash, {label}: fused 2-D kernel vs separable passes",
-                        _fused(True, call), _fused(False, call)))
-    shape, ext = (64, 64, 64), [(0, 8)] * 3
-    for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"})):
+    for d, shape, cells in ((2, (512, 512), 32), (3, (64, 64, 64), 8)):
+        ext = [(0, cells)] * d
+        for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"})):
+            for h in ("table", "integer"):
+                n = nl.LatticeNoise(d, hash=h, **kw)
+                pts = n.grid_points(shape, ext)
+                octaves = 6 if d == 2 else 1
+                out.append((f"{shape} grid, {octaves} octave(s), {h} hash, {label}: separable passes vs points path",
+                            (lambda n, o, s, e: lambda: n.evaluate_grid(s, e, octaves=o))(n, octaves, shape, ext),
+                            (lambda n, p, o: lambda: n.evaluate(p, octaves=o))(n, pts, octaves)))
+    pts = np.random.default_rng(0).random((1_000_000, 3)) * 32
+
+    def with_least(least, fn):
+        def run():
+            old = points_path.PAIRS_MIN
+            points_path.PAIRS_MIN = least
+            try:
+                return fn()
+            finally:
+                points_path.PAIRS_MIN = old
+        return run
+
+    for label, kw in (("value cubic", {}), ("value catmull-rom", {"kernel": "catmull-rom"}),
+                      ("gradient quintic", {"basis": "gradient"})):
         n = nl.LatticeNoise(3, **kw)
-        pts = n.grid_points(shape, ext)
-        out.append((f"64^3 grid, table hash, {label}: separable grid vs points path",
-                    (lambda n: lambda: n.grid(shape, ext))(n), (lambda n, p: lambda: n(p))(n, pts)))
+        call = (lambda n: lambda: n(pts))(n)
+        out.append((f"1e6 3-D points, table hash, {label}: folded tables vs per-point kernel",
+                    with_least(0, call), with_least(1 << 40, call)))
     return out
 
 

@@ -124,7 +124,7 @@ np.savez(sys.argv[1], *out)
 
 def test_every_kernel_runs_as_plain_python_with_the_same_bits(tmp_path):
     # NUMBA_DISABLE_JIT=1 runs every kernel's Python source: points (both hashes, with and without a period,
-    # Jacobians, both layouts), the 2-D fused grid, the separable 3-D grid and the grid Jacobians
+    # Jacobians, both layouts, the folded 3-D tables), 2-D and 3-D grids by the separable passes and the grid Jacobians
     results = []
     for flag in ("0", "1"):
         env = dict(os.environ, NUMBA_DISABLE_JIT=flag, PYTHONPATH=str(HERE))

@@ -24,10 +24,8 @@ LLVM unrolls.
   :func:`hash_expand` / :func:`hash_expand_values` / :func:`block_prefix`
   (the hashed block of lattice values), :func:`contract_last` /
   :func:`contract_mid` (one pass per axis) and :func:`final_pass` /
-  :func:`final_pass_direct` (the last pass, fused over octaves).
-- 2-D grids: :func:`pack_axis` for both axes, then :func:`grid2d` (or
-  :func:`int_grid2d`) per component: every octave in one pass, tile by
-  tile, with the separable path's sums (the same bits).
+  :func:`final_pass_direct` (the last pass, fused over octaves), for any
+  dimension and either hash.
 
 Every tap weight is :func:`_weight` of the kernel's coefficients (data from
 :mod:`.kernels`), written once. All arithmetic is float64; only the final
@@ -174,13 +172,14 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
     ``DERIV``: values and Jacobians (else values). ``PERIODIC`` False: every
     axis's period is the table size n, so a tap's index needs no reduction of
     its own (the hash reduces ``h + j`` modulo n, and n is even, so the
-    parity is the same). ``PAIRS`` (3-D values without a period): the tables
-    are :func:`pair_tables`' in place of ``perms``, ``values`` and ``grads``
-    (the first two hash levels one read, the last folded into the values):
-    the same sums of the same values, so the same bits, with about half the
-    table reads. numba prunes the branches these constants rule out
+    parity is the same). ``PAIRS`` (3-D value noise without a period): the
+    tables are :func:`pair_tables`' in place of ``perms`` and ``values`` (the
+    first two hash levels one read, the last folded into the values): the
+    same sums of the same values, so the same bits, with about half the
+    table reads (1.23x faster for 4 taps, ``benchmarks/bench_lattice_paths.md``;
+    1.01x for gradient noise, which does not take it). numba prunes the branches these constants rule out
     before typing; numbers and booleans are safe in numba's cache key (pickled
-    with the closure), a function closed over is not (see :func:`_make_axis0`).
+    with the closure), a function closed over is not (it pickles with a new id in every process).
     """
 
     @nb.njit(cache=True, nogil=True)
@@ -245,9 +244,8 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
         acc = np.empty((ncomp, nq))  # zeroed per point
         vals0 = values[0]
         vals1 = values[1]
-        if PAIRS:  # the table size n and the folded tables' run S = 2n + 4, from their shapes
-            sp = values.shape[1] // 2 if basis == 0 else grads.shape[1] // 3
-            np_ = (sp - 4) // 2
+        if PAIRS:  # the table size n, from the folded values' run 2 (2n + 4)
+            np_ = (values.shape[1] // 2 - 4) // 2
             pmask_ = np_ - 1 if (np_ & (np_ - 1)) == 0 else -1
         for p in range(npts):
             for c in range(ncomp):
@@ -317,7 +315,7 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
                             if DERIV:
                                 D[0] += dw[0, k0] * s1 + w[0, k0] * e0
                                 D[1] += w[0, k0] * s1d1
-                    elif PAIRS:  # (3-D): perms holds H2, values VL, grads G (pair_tables)
+                    elif PAIRS:  # (3-D values): perms holds H2, values VL (pair_tables)
                         for k0 in range(TAPS):
                             row = _hash(0, jj[0, k0], np_, pmask_) * np_
                             s1 = 0.0
@@ -325,12 +323,7 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
                                 hb = np.int64(perm[row + _hash(0, jj[1, k1], np_, pmask_)])
                                 s2 = 0.0
                                 for k2 in range(TAPS):
-                                    x = hb + jj[2, k2]
-                                    if basis == 0:
-                                        v = values[c, x]
-                                    else:
-                                        v = grads[c, x] * r[0, k0] + grads[c, sp + x] * r[1, k1] + grads[c, 2 * sp + x] * r[2, k2]
-                                    s2 += w[2, k2] * v
+                                    s2 += w[2, k2] * values[c, hb + jj[2, k2]]
                                 s1 += w[1, k1] * s2
                             total += w[0, k0] * s1
                     elif DIM == 3:
@@ -644,7 +637,7 @@ def points_kernel(integer, dim, taps, deriv, periodic, pairs=False):
     dcoef, period, pmask, perms, values, grads, basis, absval)`` for the table
     hash (:func:`_make_points`), ``(..., pmask, keys, mult, grads, basis,
     absval)`` for the integer hash (:func:`_make_int_points`); ``pairs``: the
-    3-D table kernel over :func:`pair_tables`. Made on first
+    3-D table-hash value kernel over :func:`pair_tables`. Made on first
     request; numba compiles it on its first call (or loads it from its cache).
     """
     key = (bool(integer), int(dim), int(taps), bool(deriv), bool(periodic), bool(pairs))
@@ -654,38 +647,32 @@ def points_kernel(integer, dim, taps, deriv, periodic, pairs=False):
     return fn
 
 
-def pair_tables(perms, values, gradients, basis):
-    """The 3-D table-hash kernel's folded tables ``(H2, VL, G)``, built from the live tables at each call.
+def pair_tables(perms, values):
+    """The 3-D table-hash value kernel's folded tables ``(H2, VL)``, built from the live tables at each call.
 
-    ``H2[c, q0 * n + q1] = P_c[(P_c[q0] + q1) mod n]`` (two hash levels in one
-    read), for value noise plus the parity row's offset ``S ((q0 + q1 + h) & 1)``;
+    ``H2[c, q0 * n + q1] = P_c[(P_c[q0] + q1) mod n] + S ((q0 + q1 + h) & 1)``
+    (two hash levels in one read, plus the parity row's offset);
     ``VL[c, r S + x] = values[(r + x) & 1, P_c[x mod n]]`` for ``x < S = 2n + 4``
     (the last level folded into the values, run on past 2n so that ``h + j``
-    needs no reduction); ``G[c, a S + x] = gradients[P_c[x mod n], a]``.
-    Only the basis's table is filled (the other is empty).
+    needs no reduction).
     """
     dim_out, n = perms.shape
     S = 2 * n + 4
     q = np.arange(n)
     x = np.arange(S)
     H2 = np.empty((dim_out, n * n), dtype=np.uint16)
-    VL = np.empty((dim_out, 2 * S if basis == 0 else 0))
-    G = np.empty((dim_out, 3 * S if basis == 1 else 0))
+    VL = np.empty((dim_out, 2 * S))
     for c in range(dim_out):
         P = perms[c]
         h = P[(P[q][:, None] + q[None, :]) % n]
-        if basis == 0:
-            h = h + S * ((q[:, None] + q[None, :] + h) & 1)
-            for r in range(2):
-                VL[c, r * S:(r + 1) * S] = values[(r + x) & 1, P[x % n]]
-        else:
-            G[c] = gradients[P[x % n]].T.ravel()
-        H2[c] = h.ravel()
-    return H2, VL, G
+        H2[c] = (h + S * ((q[:, None] + q[None, :] + h) & 1)).ravel()
+        for r in range(2):
+            VL[c, r * S:(r + 1) * S] = values[(r + x) & 1, P[x % n]]
+    return H2, VL
 
 
 # ---------------------------------------------------------------- grids
-@nb.njit(cache=True, nogil=True, inline="always")
+@nb.njit(cache=True, nogil=True)
 def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
     """Per-sample tap weights and reduced first-tap indices along one grid axis.
 
@@ -909,7 +896,7 @@ def final_pass_direct(inter, pos, w, scales, out):
                             o[q] += wk * rk[q]
 
 
-@nb.njit(cache=True, nogil=True, inline="always")
+@nb.njit(cache=True, nogil=True)
 def dense_taps(fis, base, taps, period):
     """Distinct lattice taps of one grid axis, by marking offsets from the smallest floor index.
 
@@ -973,7 +960,7 @@ def hash_expand_values(h, par, lat, perm, n, first, values, out):
 # ---------------------------------------------------------------- vector helpers
 
 # ---------------------------------------------------------------- derivatives
-@nb.njit(cache=True, nogil=True, inline="always")
+@nb.njit(cache=True, nogil=True)
 def axis_dweights(coords, freq, phase, shift, left, taps, coef, dcoef, grad):
     """Derivatives along one grid axis of :func:`axis_weights`' ``w`` and ``rw``, in input units.
 
@@ -1028,586 +1015,3 @@ def block_gradients(h, grads, b, out):
     n = grads.shape[0]
     for i in range(h.shape[0]):
         out[i] = grads[hash_index(h[i], n), b]
-
-
-# ---------------------------------------------------------------- fused 2-D grids
-@nb.njit(cache=True, nogil=True)
-def _dot8(row, ridx, E, e0, v, B, M):
-    """``row[ridx + p] = sum_m E[e0 + 8 m + p] * v[B + m]`` (m = 0 .. M-1, in order; p < 8), eight columns at once.
-
-    A NaN in ``E`` marks no term: its product is not added (a column's sum
-    starts at -0.0, which added to x gives x). So the sum is the bare tap sum
-    ``p_0 + p_1 + ...`` bit for bit, the sign of a zero included (an added
-    product ``0 * v`` is -0.0 or +0.0 by the sign of v, and -0.0 + +0.0 = +0.0).
-    The eight running sums are held in ``row`` itself (columns ``ridx ..
-    ridx + 7``), the inner loop over them a select per lane.
-    """
-    dst = _U64(ridx)
-    for p in range(8):
-        row[dst + p] = -0.0
-    src = _U64(e0)
-    for m in range(_U64(M)):
-        s = v[_U64(B) + m]
-        at = src + m * _U64(8)
-        for p in range(8):
-            e = E[at + p]
-            cur = row[dst + p]
-            row[dst + p] = cur if e != e else cur + s * e
-
-
-
-def _make_axis0(GRAD):
-    """:func:`_axis0_octave` for one basis (``grad`` a compile-time constant).
-
-    Passed as an argument, ``grad`` was a run-time bool: the kernel compiled
-    all 16 loops of both bases, and each :func:`grid2d` that linked it
-    optimised them again (LLVM prunes the other basis only after inlining).
-    """
-
-    @nb.njit(cache=True, nogil=True)
-    def _axis0_octave(dst, doff, prev, poff, has_prev, R, nt, taps, x0, x1, x2, x3, dy, a0, a1, a2, a3,
-                      b0, b1, b2, b3):
-        """One octave of :func:`grid2d`'s axis-0 pass: ``dst[doff + q] = (prev[poff + q] +) T0[q] (+ T1[q])``.
-
-        ``T0 = sum_k a_k R[x_k + q]`` (the value term, or the gradient's first
-        term), ``T1 = sum_k b_k R[x_k + dy + q]`` (the gradient's second term).
-        The sums are :func:`final_pass`'s: for 2 and 4 taps each term's tap sum
-        is added to the running sum, for 1 and 3 taps every tap product is.
-        Offsets and ``nt`` are uint64; ``dst`` and ``prev`` are different arrays
-        (so that the loop vectorises). Not inlined by numba (its IR inliner
-        deep-copies every branch into each call site: seconds of compilation;
-        with one call site it still compiled 0.3 s slower than linking).
-        """
-        grad = GRAD
-        if taps == 4 and grad:
-            y0 = x0 + dy
-            y1 = x1 + dy
-            y2 = x2 + dy
-            y3 = x3 + dy
-            if has_prev:
-                for q in range(nt):
-                    dst[doff + q] = ((prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q]))
-                                     + (b0 * R[y0 + q] + b1 * R[y1 + q] + b2 * R[y2 + q] + b3 * R[y3 + q]))
-            else:
-                for q in range(nt):
-                    dst[doff + q] = ((a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q])
-                                     + (b0 * R[y0 + q] + b1 * R[y1 + q] + b2 * R[y2 + q] + b3 * R[y3 + q]))
-        elif taps == 2 and grad:
-            y0 = x0 + dy
-            y1 = x1 + dy
-            if has_prev:
-                for q in range(nt):
-                    dst[doff + q] = (prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q])) + (b0 * R[y0 + q] + b1 * R[y1 + q])
-            else:
-                for q in range(nt):
-                    dst[doff + q] = (a0 * R[x0 + q] + a1 * R[x1 + q]) + (b0 * R[y0 + q] + b1 * R[y1 + q])
-        elif taps == 4:
-            if has_prev:
-                for q in range(nt):
-                    dst[doff + q] = prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q])
-            else:
-                for q in range(nt):
-                    dst[doff + q] = a0 * R[x0 + q] + a1 * R[x1 + q] + a2 * R[x2 + q] + a3 * R[x3 + q]
-        elif taps == 2:
-            if has_prev:
-                for q in range(nt):
-                    dst[doff + q] = prev[poff + q] + (a0 * R[x0 + q] + a1 * R[x1 + q])
-            else:
-                for q in range(nt):
-                    dst[doff + q] = a0 * R[x0 + q] + a1 * R[x1 + q]
-        elif taps == 3:  # every tap product added to the running sum by itself
-            if grad:
-                y0 = x0 + dy
-                y1 = x1 + dy
-                y2 = x2 + dy
-                if has_prev:
-                    for q in range(nt):
-                        dst[doff + q] = (((((prev[poff + q] + a0 * R[x0 + q]) + a1 * R[x1 + q]) + a2 * R[x2 + q])
-                                          + b0 * R[y0 + q]) + b1 * R[y1 + q]) + b2 * R[y2 + q]
-                else:
-                    for q in range(nt):
-                        dst[doff + q] = ((((a0 * R[x0 + q] + a1 * R[x1 + q]) + a2 * R[x2 + q]) + b0 * R[y0 + q])
-                                         + b1 * R[y1 + q]) + b2 * R[y2 + q]
-            elif has_prev:
-                for q in range(nt):
-                    dst[doff + q] = ((prev[poff + q] + a0 * R[x0 + q]) + a1 * R[x1 + q]) + a2 * R[x2 + q]
-            else:
-                for q in range(nt):
-                    dst[doff + q] = (a0 * R[x0 + q] + a1 * R[x1 + q]) + a2 * R[x2 + q]
-        else:  # one tap
-            if grad:
-                y0 = x0 + dy
-                if has_prev:
-                    for q in range(nt):
-                        dst[doff + q] = (prev[poff + q] + a0 * R[x0 + q]) + b0 * R[y0 + q]
-                else:
-                    for q in range(nt):
-                        dst[doff + q] = a0 * R[x0 + q] + b0 * R[y0 + q]
-            elif has_prev:
-                for q in range(nt):
-                    dst[doff + q] = prev[poff + q] + a0 * R[x0 + q]
-            else:
-                for q in range(nt):
-                    dst[doff + q] = a0 * R[x0 + q]
-
-    return _axis0_octave
-
-
-_axis0_value = _make_axis0(False)
-_axis0_grad = _make_axis0(True)
-
-
-@nb.njit(cache=True, nogil=True)
-def _row_range(rows, o, a, b):
-    """``(min, max)`` of ``rows[o, a:b]`` as a loop over the row (no array view in grid2d's hot loops)."""
-    lo = rows[o, a]
-    hi = lo
-    for q in range(a, b):
-        v = rows[o, q]
-        lo = v if v < lo else lo  # not min/max: each compiles an overload of its own
-        hi = v if v > hi else hi
-    return lo, hi
-
-
-@nb.njit(cache=True, nogil=True, inline="always")
-def _int_row_values(ext, at, word, words, start, m):
-    """The integer hash's values of one lattice row: ``ext[at + l] = hash_value(word ^ words[start + l])``, l < m."""
-    # unsigned offsets: no negative-index wrap, so the loop vectorises with plain loads and stores
-    dst = _U64(at)
-    src = _U64(start)
-    for l in range(_U64(m)):
-        ext[dst + l] = hash_value(_U32(word ^ words[src + l]))
-
-
-@nb.njit(cache=True, nogil=True, inline="always")
-def _pick8(g, t0, t1, t2, t3, t4, t5, t6, t7):
-    """``(t0, ..., t7)[g]`` for ``0 <= g < 8`` by selects on g's bits (a vectorised loop needs no gather)."""
-    odd = (g & 1) != 0
-    p01 = t1 if odd else t0
-    p23 = t3 if odd else t2
-    p45 = t5 if odd else t4
-    p67 = t7 if odd else t6
-    q0 = p23 if (g & 2) != 0 else p01
-    q1 = p67 if (g & 2) != 0 else p45
-    return q1 if g >= 4 else q0
-
-
-@nb.njit(cache=True, nogil=True, inline="always")
-def _int_row_gradients(ext, at0, at1, word, words, start, m, grads):
-    """The integer hash's gradients of one lattice row, ``b = 0, 1``:
-    ``ext[at_b + l] = grads[hash_index(word ^ words[start + l]), b]``."""
-    # the 2-D set's 8 gradients held in registers and picked by selects: a gather from the table
-    # (which LLVM cannot prove apart from ext) kept the loop scalar, at about three times the cost
-    x0 = grads[0, 0]; x1 = grads[1, 0]; x2 = grads[2, 0]; x3 = grads[3, 0]
-    x4 = grads[4, 0]; x5 = grads[5, 0]; x6 = grads[6, 0]; x7 = grads[7, 0]
-    y0 = grads[0, 1]; y1 = grads[1, 1]; y2 = grads[2, 1]; y3 = grads[3, 1]
-    y4 = grads[4, 1]; y5 = grads[5, 1]; y6 = grads[6, 1]; y7 = grads[7, 1]
-    dst0 = _U64(at0)
-    dst1 = _U64(at1)
-    src = _U64(start)
-    for l in range(_U64(m)):
-        g = hash_index(_U32(word ^ words[src + l]), 8)
-        ext[dst0 + l] = _pick8(g, x0, x1, x2, x3, x4, x5, x6, x7)
-        ext[dst1 + l] = _pick8(g, y0, y1, y2, y3, y4, y5, y6, y7)
-
-
-def _make_grid2d(GRAD, USE32, INT):
-    """:func:`grid2d`'s compiled kernel for one basis, output dtype and hash (compile-time constants).
-
-    With ``grad``, the output dtype and the hash (``INT``: the integer hash)
-    frozen in the closure numba prunes the other bases', dtypes' and hashes'
-    code before compiling (numba caches each variant on disk: closure values
-    are part of its cache key), so the table-hash variants compile no integer
-    hash code. The integer-hash variants hash their lattice rows with
-    :func:`_int_row_values` / :func:`_int_row_gradients`. The tap count stays a
-    run-time value: a kernel per tap count as well compiled no faster for one
-    grid and 3.8 times slower for all of them (the test suite): 63 s against
-    17 s CPU for the 16 grids of ``bench_coldstart.py``'s ``grid2-all``.
-    """
-
-    TABLE = not INT
-
-    @nb.njit(cache=True, nogil=True)
-    def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
-               absval, out64, out32, nq, tile):
-        """A 2-D grid of lattice noise, every octave fused, in tiles of ``tile`` columns.
-
-        Octave ``o`` has the distinct lattice taps ``lat0[off0[o]:off0[o + 1]]``
-        along axis 0 and ``lat1[off1[o]:off1[o + 1]]`` along axis 1 (reduced
-        modulo the table size n; with the integer hash ``INT``, the taps'
-        words instead, uint32: ``key ^ (j_0 M_0)`` along axis 0 and ``j_1 M_1``
-        along axis 1, whose xor a lattice point's value or gradient hashes,
-        and ``perm``, ``values`` and ``dense1`` are unused (``dense1`` all
-        False)), each output row's taps ``pos0[o]`` (nj, taps)
-        in the first and each column's first tap ``base1[o]`` (nq,) in the second
-        (a sample's taps are consecutive distinct taps); ``dense1[o]``: the axis-1
-        taps are consecutive lattice points modulo n. Weights per axis: ``wa``
-        (the kernel) and ``wb`` (kernel x signed distance, the gradient basis's
-        ramp), ``wa0[o]`` (nj, taps) and ``wa1[o]`` (taps, nq) (:func:`pack_axis`).
-        ``scales[o]``: the octave's amplitude. For dense axis-1 taps the last hash
-        level is folded into a table run on past n (gradient: its two
-        components; value: the values by parity row, as in
-        ``LatticeNoise._hash_tables``), so a lattice row's values are a
-        contiguous run of it. The flattened output (nj * nq,) is ``out64``
-        (float64) or ``out32`` (float32), the other one empty (one compiled
-        kernel for both dtypes): written, or with ``absval`` (turbulence) added to.
-
-        The arithmetic is that of the general separable path (``hash_expand``,
-        ``gather_gradients``, or the integer hash's ``block_values`` and
-        ``block_gradients``, ``contract_last``, ``final_pass``), tap by tap and
-        term by term in the same order, so the bits are the same. A lattice row
-        ``r`` of octave ``o`` is hashed and contracted along axis 1 only when an
-        output row first needs it, into a ring of ``2**ceil(log2 taps)`` rows per
-        octave that stays in cache (rows are never held as a block in memory).
-        The axis-1 contraction runs eight columns at a time (:func:`_dot8`)
-        over the block's lattice values with the weights spread out to each
-        column's offset (NaN elsewhere, which adds no term): it equals the
-        tap sum bit for bit, a zero's sign included. The hot loops index flat arrays with
-        unsigned offsets (no negative-index wrap: they vectorise) and make no array
-        views (each costs an atomic reference count). Each sample depends only on its row
-        and column, not on the tile, so any window is the same slice of the
-        full grid, bit for bit.
-        """
-        noct, nj, taps = pos0.shape
-        n = perm.shape[0]
-        grad = GRAD
-        # chosen here, not held in the closure: numba's cache key pickles the closure's values, and a
-        # dispatcher pickles with a new id in every process (the cache never hit). numba prunes the
-        # other choice before typing (GRAD is a constant).
-        axis0 = _axis0_grad if GRAD else _axis0_value
-        nterm = 2 if grad else 1
-        S = 1
-        while S < taps:
-            S *= 2
-        smask = S - 1
-        L = 8
-        tile = L if tile < L else tile  # (not min/max: each is one more overload to compile)
-        tile = ((nq if nq < tile else tile) + L - 1) // L * L  # whole blocks of eight lanes (the ring rows are padded)
-        ring = np.empty(noct * S * nterm * tile)  # rows (octave, slot, term) of tile columns
-        tags = np.empty((noct, S), np.int64)
-        bufs = np.empty(2 * tile)  # two running sums of a row (acc at 0, tmp at tile); no array is chosen at run
-        # time in the loops below (each such choice costs an atomic reference count)
-        width = 1
-        for o in range(noct):
-            cnt = off1[o + 1] - off1[o]
-            width = cnt if cnt > width else width
-        lmin = np.empty(noct, np.int64)
-        lmax = np.empty(noct, np.int64)
-        use_ext = False
-        for o in range(noct):
-            use_ext = use_ext or dense1[o]
-        use_ext = use_ext and n <= 1 << 16
-        ext_len = n + width
-        # the extended tables (when used), then room for a row's lattice values hashed one by one
-        vbase = 2 * ext_len if use_ext else 0
-        ext = np.empty(vbase + 2 * width)
-        if TABLE and use_ext:  # (TABLE a constant: the integer-hash variants compile no table code)
-            for x in range(ext_len):
-                xm = x % n
-                h = perm[xm]
-                if grad:
-                    ext[x] = grads[h, 0]
-                    ext[ext_len + x] = grads[h, 1]
-                else:
-                    ext[x] = values[x & 1, h]
-                    ext[ext_len + x] = values[(1 + x) & 1, h]
-        nblk_max = tile // L
-        # widest block of eight columns, in lattice taps: (largest first-tap span within the block) + taps
-        mmax = taps
-        for o in range(noct):
-            for qa in range(0, nq, L):
-                lo_, hi_ = _row_range(base1, o, qa, qa + L if qa + L < nq else nq)
-                mmax = hi_ - lo_ + taps if hi_ - lo_ + taps > mmax else mmax
-        expand = mmax <= 4 * L  # else (columns sparser than the lattice) a plain per-column loop
-        if not expand:
-            mmax = 1
-        # not filled here (np.full is one more overload to compile): each block's rows are set to NaN
-        # below before its weights are written, and _dot8 reads no further
-        E = np.empty(noct * nterm * nblk_max * mmax * L)
-        bB = np.empty((noct, nblk_max), np.int64)
-        bM = np.empty((noct, nblk_max), np.int64)
-        u = np.uint64
-        for q0 in range(0, nq, tile):
-            q1 = q0 + tile if q0 + tile < nq else nq
-            nt = q1 - q0
-            for o in range(noct):
-                lo, hi = _row_range(base1, o, q0, q1)
-                lmin[o] = lo
-                lmax[o] = hi + taps - 1
-                for s in range(S):
-                    tags[o, s] = -1
-                if expand:
-                    # the axis-1 weights spread out: block of 8 columns x (its taps), zero off each column's taps
-                    for blk in range((nt + L - 1) // L):
-                        qa = q0 + blk * L
-                        qb = qa + L if qa + L < q1 else q1
-                        lo_, hi_ = _row_range(base1, o, qa, qb)
-                        mb = hi_ - lo_ + taps
-                        bB[o, blk] = lo_ - lo
-                        bM[o, blk] = mb
-                        for b in range(nterm):
-                            e0 = ((o * nterm + b) * nblk_max + blk) * mmax * L
-                            wsrc = wb1 if b == 1 else wa1
-                            for x in range(mb * L):
-                                E[e0 + x] = np.nan  # no tap of this column (_dot8 adds nothing)
-                            for q in range(qa, qb):
-                                d = base1[o, q] - lo_
-                                for k in range(taps):
-                                    E[e0 + (d + k) * L + (q - qa)] = wsrc[o, k, q]
-            for j in range(nj):
-                for o in range(noct):
-                    for k in range(taps):
-                        r = pos0[o, j, k]
-                        slot = r & smask
-                        if tags[o, slot] == r:
-                            continue
-                        tags[o, slot] = r
-                        # lattice row r: its values against this tile's axis-1 taps lo .. lo + m - 1
-                        lo = lmin[o]
-                        m = lmax[o] + 1 - lo
-                        if INT:  # a constant: the table-hash variants compile none of this
-                            # the integer hash's words: lat0 holds key ^ j_0 M_0, lat1 holds j_1 M_1
-                            v0 = vbase
-                            v1 = vbase + width
-                            if grad:
-                                _int_row_gradients(ext, v0, v1, lat0[off0[o] + r], lat1, off1[o] + lo, m, grads)
-                            else:
-                                _int_row_values(ext, v0, lat0[off0[o] + r], lat1, off1[o] + lo, m)
-                        elif use_ext and dense1[o]:
-                            i0 = lat0[off0[o] + r]
-                            h1 = perm[i0]
-                            p0 = i0 & 1
-                            first = lat1[off1[o] + lo]
-                            s0 = h1 + first
-                            s0 = s0 - n if s0 >= n else s0
-                            if grad:
-                                v0 = s0
-                                v1 = ext_len + s0
-                            else:
-                                v0 = ((p0 + first + s0) & 1) * ext_len + s0
-                                v1 = v0
-                        else:
-                            i0 = lat0[off0[o] + r]
-                            h1 = perm[i0]
-                            p0 = i0 & 1
-                            v0 = vbase
-                            v1 = vbase + width
-                            for l in range(m):
-                                i1 = lat1[off1[o] + lo + l]
-                                s = h1 + i1
-                                s = s - n if s >= n else s
-                                h = perm[s]
-                                if grad:
-                                    ext[v0 + l] = grads[h, 0]
-                                    ext[v1 + l] = grads[h, 1]
-                                else:
-                                    ext[v0 + l] = values[(p0 + i1) & 1, h]
-                        row0 = ((o * S + slot) * nterm) * tile
-                        if expand:
-                            for b in range(nterm):
-                                vb = v1 if b == 1 else v0
-                                ebase = (o * nterm + b) * nblk_max * mmax * L
-                                for blk in range((nt + L - 1) // L):
-                                    _dot8(ring, row0 + b * tile + blk * L, E, ebase + blk * mmax * L, ext,
-                                                vb + bB[o, blk], bM[o, blk])
-                        else:
-                            # contract_last's sums, column by column
-                            for b in range(nterm):
-                                vb = v1 if b == 1 else v0
-                                wsrc = wb1 if b == 1 else wa1
-                                for q in range(nt):
-                                    c = vb + base1[o, q0 + q] - lo
-                                    sa = wsrc[o, 0, q0 + q] * ext[c]  # left to right, as contract_last sums
-                                    for kk in range(1, taps):
-                                        sa += wsrc[o, kk, q0 + q] * ext[c + kk]
-                                    ring[row0 + b * tile + q] = sa
-                # the axis-0 pass: octave by octave, each octave's terms in order, each a tap sum added to the
-                # running sum (between two buffers; the last octave straight into the output row)
-                ntu = u(nt)
-                dy = u(tile if grad else 0)  # the second term's rows follow the first's
-                for o in range(noct):
-                    sc = scales[o]
-                    rb = o * S * nterm * tile
-                    x0 = u(rb + (pos0[o, j, 0] & smask) * nterm * tile)
-                    x1 = u(rb + (pos0[o, j, 1 % taps] & smask) * nterm * tile)
-                    x2 = u(rb + (pos0[o, j, 2 % taps] & smask) * nterm * tile)
-                    x3 = u(rb + (pos0[o, j, 3 % taps] & smask) * nterm * tile)
-                    if grad:
-                        a0 = wb0[o, j, 0] * sc; a1 = wb0[o, j, 1 % taps] * sc
-                        a2 = wb0[o, j, 2 % taps] * sc; a3 = wb0[o, j, 3 % taps] * sc
-                    else:
-                        a0 = wa0[o, j, 0] * sc; a1 = wa0[o, j, 1 % taps] * sc
-                        a2 = wa0[o, j, 2 % taps] * sc; a3 = wa0[o, j, 3 % taps] * sc
-                    b0 = wa0[o, j, 0] * sc; b1 = wa0[o, j, 1 % taps] * sc
-                    b2 = wa0[o, j, 2 % taps] * sc; b3 = wa0[o, j, 3 % taps] * sc
-                    if not absval and o == noct - 1:  # the last octave straight into the output row
-                        if USE32:  # a constant: numba prunes the other branch, so compiles one output dtype
-                            axis0(out32, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu,
-                                  taps, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
-                        else:
-                            axis0(out64, u(j * nq + q0), bufs, u(0 if o % 2 == 1 else tile), o > 0, ring, ntu,
-                                  taps, x0, x1, x2, x3, dy, a0, a1, a2, a3, b0, b1, b2, b3)
-                    else:
-                        # turbulence: each octave into tmp, |.| summed into acc; else acc and tmp in turn (no
-                        # array is chosen at run time: each choice costs an atomic reference count)
-                        into_tmp = absval or o % 2 == 1
-                        axis0(bufs, u(tile if into_tmp else 0), bufs, u(0 if into_tmp else tile),
-                              o > 0 and not absval, ring, ntu, taps, x0, x1, x2, x3, dy,
-                              a0, a1, a2, a3, b0, b1, b2, b3)
-                        if absval and o == 0:
-                            for q in range(nt):
-                                bufs[q] = abs(bufs[tile + q])
-                        elif absval:
-                            for q in range(nt):
-                                bufs[q] += abs(bufs[tile + q])
-                if absval:
-                    ob = j * nq + q0
-                    if USE32:
-                        for q in range(nt):
-                            out32[ob + q] += bufs[q]
-                    else:
-                        for q in range(nt):
-                            out64[ob + q] += bufs[q]
-
-    return grid2d
-
-
-_GRID2D = {}
-
-
-def grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
-           absval, out64, out32, nq, tile):
-    """A 2-D grid of lattice noise, every octave fused (the compiled kernel for this basis, dtype and hash).
-
-    The arguments and the result are those of the kernel :func:`_make_grid2d`
-    compiles (its docstring): ``basis`` 0 (value) or 1 (gradient), the
-    output float32 when ``out32`` is not empty, the integer hash when
-    ``lat0`` holds its uint32 words (:func:`int_grid2d` makes them).
-    Only the variant called is compiled.
-    """
-    key = (basis == 1, out32.shape[0] > 0, lat0.dtype == np.uint32)
-    fn = _GRID2D.get(key)
-    if fn is None:
-        fn = _GRID2D[key] = _make_grid2d(*key)
-    fn(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, perm, values, grads, basis,
-       absval, out64, out32, nq, tile)
-
-
-_NO_PERM = np.empty(0, np.int64)
-_NO_VALUES = np.empty((2, 0))
-
-
-def int_grid2d(lat0, off0, pos0, wa0, wb0, lat1, off1, base1, dense1, wa1, wb1, scales, key, mult, grads, basis,
-               absval, out64, out32, nq, tile):
-    """:func:`grid2d` with the integer hash: one component of a 2-D grid, every octave fused.
-
-    The first eleven arguments are both axes packed by :func:`pack_axis` (lattice
-    indices reduced modulo each octave's period, kept whole: packed with
-    ``n = 2**32``); ``key`` is the component's ``(1,)`` uint32 key, ``mult``
-    the axis multipliers and ``grads`` the gradient set (8, 2). The rest as for :func:`grid2d`.
-    """
-    assert grads.shape == (8, 2)  # the 2-D gradient set (:func:`._inthash.gradient_set`), picked by selects
-    words0 = block_prefix(key, lat0, mult[0], True, key[0])
-    words1 = block_prefix(key, lat1, mult[1], True, _U32(0))
-    grid2d(words0, off0, pos0, wa0, wb0, words1, off1, base1, np.zeros(dense1.shape[0], np.bool_), wa1, wb1,
-           scales, _NO_PERM, _NO_VALUES, grads, basis, absval, out64, out32, nq, tile)
-
-
-@nb.njit(cache=True, nogil=True, inline="always")
-def _span(x):
-    """``x.max() - x.min()`` (NaN if any is NaN, 0 if empty) as a loop: numba's max and min compile slowly."""
-    if x.shape[0] == 0:
-        return 0.0
-    lo = x[0]
-    hi = x[0]
-    nan = False
-    for j in range(x.shape[0]):
-        v = x[j]
-        nan = nan or v != v
-        lo = v if v < lo else lo  # no NaN is left when the span is used
-        hi = v if v > hi else hi
-    return np.nan if nan else hi - lo
-
-
-def _make_pack_axis(DERIV):
-    """:func:`pack_axis`'s compiled kernel with ``deriv`` a constant (a plain grid never compiles
-    :func:`axis_dweights`)."""
-
-    @nb.njit(cache=True, nogil=True)
-    def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv, last):
-        """Every octave's distinct taps and weights along one grid axis, packed for :func:`grid2d`.
-
-        ``periods`` (O,): the lattice period of each octave along this axis
-        (all equal, unless a tileable octave sum scales them by ``lacunarity**o``).
-
-        Per octave: :func:`axis_weights` (or, with ``deriv``, :func:`axis_dweights`)
-        and :func:`dense_taps`, as ``LatticeNoise._axis_taps`` computes them.
-        Returns ``ok`` (False when an octave's taps span too many cells for
-        :func:`dense_taps`: the caller then packs ``_axis_taps``' sparse result),
-        ``lat`` (the distinct taps modulo n, octave after octave), ``off``
-        (octave o's taps are ``lat[off[o]:off[o + 1]]``), ``pos`` (O, N, taps),
-        ``base`` (O, N) = ``pos[:, :, 0]``, the weights ``wa``, ``wb`` (O, N, taps),
-        or (O, taps, N) with ``last``, and ``dense`` (O,): the taps are
-        consecutive lattice points modulo n (and the period a multiple of n).
-        """
-        noct = freqs.shape[0]
-        nn = coords.shape[0]
-        cap = noct * (4 * taps * nn + 64 + taps)
-        lat = np.empty(cap, np.int64)
-        off = np.empty(noct + 1, np.int64)  # (np.zeros: one more overload to compile)
-        off[0] = 0
-        pos = np.empty((noct, nn, taps), np.int64)
-        base = np.empty((noct, nn), np.int64)
-        if last:
-            wa = np.empty((noct, taps, nn))
-            wb = np.empty((noct, taps, nn))
-        else:
-            wa = np.empty((noct, nn, taps))
-            wb = np.empty((noct, nn, taps))
-        dense = np.empty(noct, np.bool_)  # every octave's entry is written before True is returned
-        for o in range(noct):
-            period = periods[o]
-            fis, fbase, w, rw = axis_weights(coords, freqs[o], phase, shift, left, taps, coef, period, grad)
-            if DERIV:  # a constant: numba prunes the call when False
-                w, rw = axis_dweights(coords, freqs[o], phase, shift, left, taps, coef, dcoef, grad)
-            span = _span(fis)
-            if not span <= 4 * taps * nn + 64:
-                return False, lat[:0], off, pos, base, wa, wb, dense
-            lattice, p = dense_taps(fis, fbase, taps, period)
-            cnt = lattice.shape[0]
-            consecutive = period % n == 0
-            for i in range(cnt):
-                lat[off[o] + i] = lattice[i] % n
-                if i > 0 and (lattice[i] - lattice[i - 1]) % period != 1:
-                    consecutive = False
-            off[o + 1] = off[o] + cnt
-            dense[o] = consecutive
-            for j in range(nn):
-                base[o, j] = p[j, 0]
-                for k in range(taps):
-                    pos[o, j, k] = p[j, k]
-                    if last:
-                        wa[o, k, j] = w[j, k]
-                        wb[o, k, j] = rw[j, k]
-                    else:
-                        wa[o, j, k] = w[j, k]
-                        wb[o, j, k] = rw[j, k]
-        return True, lat[:off[noct]], off, pos, base, wa, wb, dense
-
-    return pack_axis
-
-
-_PACK_AXIS = {}
-
-
-def pack_axis(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv, last):
-    """Every octave's distinct taps and weights along one grid axis, packed for :func:`grid2d`.
-
-    The arguments and results of the kernel :func:`_make_pack_axis` compiles
-    for this ``deriv`` (its docstring).
-    """
-    key = bool(deriv)
-    fn = _PACK_AXIS.get(key)
-    if fn is None:
-        fn = _PACK_AXIS[key] = _make_pack_axis(key)
-    return fn(coords, freqs, phase, shift, left, taps, coef, dcoef, periods, n, grad, deriv, last)

@@ -6,7 +6,7 @@ read in place, without a copy) as ``(N, dim_in)`` rows;
 :func:`evaluate_points` and :func:`evaluate_points_jac` run the one point
 kernel of :mod:`._jit` that fits the noise (:func:`._jit.points_kernel`:
 hash, dimension, tap count, derivative flag, and whether any axis has a
-period of its own; 3-D table-hash values over many points read folded
+period of its own; 3-D table-hash value noise over many points reads folded
 tables, :data:`PAIRS_MIN`) over blocks of points on ``workers`` threads
 (:func:`noiselab._core.run_split`: every point's arithmetic is the same
 whatever the split, so any worker count gives the same bits). These
@@ -73,9 +73,9 @@ def shape_out(out, lead, dim_out):
     return out.reshape(tuple(lead) + (dim_out,))
 
 
-# 3-D table-hash values without a period read folded tables (:func:`._jit.pair_tables`, the same bits)
-# from this many points on (building them takes about 0.3 ms for n = 256), and up to this many entries
-# (n * n per component: 2 MiB for n = 1024)
+# 3-D table-hash value noise without a period reads folded tables (:func:`._jit.pair_tables`, the same
+# bits; 1.23x faster for 4 taps, benchmarks/bench_lattice_paths.md) from this many points on (building them
+# takes about 0.3 ms for n = 256), and up to this many entries (n * n per component: 2 MiB for n = 1024)
 PAIRS_MIN = 1 << 15
 MAX_PAIR_ENTRIES = 1 << 20
 
@@ -88,8 +88,8 @@ def _periodic(noise):
 
 def _pairs(noise, npts, deriv):
     """Whether the 3-D table-hash value kernel reads folded tables for this call."""
-    return (noise.hash == "table" and noise.dim_in == 3 and not deriv and npts >= PAIRS_MIN
-            and not _periodic(noise) and noise.table_size ** 2 * noise.dim_out <= MAX_PAIR_ENTRIES)
+    return (noise.hash == "table" and noise.basis == "value" and noise.dim_in == 3 and not deriv
+            and npts >= PAIRS_MIN and not _periodic(noise) and noise.table_size ** 2 * noise.dim_out <= MAX_PAIR_ENTRIES)
 
 
 def kernel_args(noise, freqs, amps, absval, pairs=False):
@@ -101,7 +101,7 @@ def kernel_args(noise, freqs, amps, absval, pairs=False):
     if noise.hash == "integer":
         tail = (noise.keys, noise._mult, noise._int_grads)
     elif pairs:
-        tail = jit.pair_tables(noise.perms, noise.values, noise.gradients, basis)
+        tail = jit.pair_tables(noise.perms, noise.values) + (noise.gradients,)
     else:
         tail = (noise.perms, noise.values, noise.gradients)
     return head + tail + (basis, bool(absval))
