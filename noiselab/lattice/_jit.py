@@ -7,18 +7,19 @@ compiled code elsewhere. There is no generated source and no hand-written
 LLVM IR; every kernel runs as plain Python under ``NUMBA_DISABLE_JIT=1``
 with the same values (``tests/test_lattice_engine.py``).
 
-The kernel families are factories: closures over compile-time constants
-(dimension, tap count, derivative flag, period flag, basis, output dtype,
-hash), which numba folds before compiling and keys its cache by, so a
-first call compiles the one variant it needs, with constant-trip loops that
-LLVM unrolls.
+The point kernels are factories: closures over compile-time constants
+(dimension, tap count, derivative flag, period flag, folded tables), which
+numba folds before compiling and keys its cache by, so a first call
+compiles the one variant it needs, with constant-trip loops that LLVM
+unrolls.
 
-- points: :func:`points_kernel` returns the per-point kernel for a hash,
-  dimension, tap count, derivative flag and period flag:
-  :func:`_make_points` (the table hash: Phillips' nested permutation
-  ``h_{a+1} = P[(h_a + j_a) mod n]``, 2.4.1) and :func:`_make_int_points`
-  (the integer hash, 256 points at a time, each level of the corner walk one
-  vectorisable loop). Octaves are fused into one pass over the points.
+- points: :func:`points_kernel` returns the kernel for a hash, dimension,
+  tap count, derivative flag and period flag: :func:`_make_points` (the
+  table hash: Phillips' nested permutation ``h_{a+1} = P[(h_a + j_a) mod n]``,
+  2.4.1; for 3-D value noise over many points, over :func:`pair_tables`)
+  and :func:`_make_int_points` (the integer hash, 256 points at a time, each
+  level of the corner walk one loop over them). Octaves are fused into one
+  pass over the points.
 - the separable grid passes: :func:`axis_weights` / :func:`axis_dweights`
   and :func:`dense_taps` (per-axis weights and distinct taps),
   :func:`hash_expand` / :func:`hash_expand_values` / :func:`block_prefix`
