@@ -9,9 +9,8 @@ in a fresh Python process (``import noiselab`` included) and is measured as
 the CPU time (user + system) of that child process, from
 ``resource.getrusage(RUSAGE_CHILDREN)`` before and after: CPU time does not
 grow when the shared machine is busy, wall time does. "cold" is a process
-whose ``NUMBA_CACHE_DIR`` (and the generated-kernel cache, which lives under
-it) is a new empty folder: everything the call needs is generated and
-compiled. "warm" is a second process on the same folder: numba loads the
+whose ``NUMBA_CACHE_DIR`` is a new empty folder: everything the call needs
+is compiled. "warm" is a second process on the same folder: numba loads the
 machine code from its cache. The child also reports how many numba
 specialisations it compiled or loaded (``len(fn.signatures)`` summed over
 every dispatcher in ``noiselab.lattice``'s modules and in their dicts of
@@ -32,6 +31,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+# the checkout the children import noiselab from (`--root`: another tree, e.g. an export of an older commit)
+SOURCE = ROOT
 
 from noiselab.lab.measure import header_lines, markdown_table, run_info  # noqa: E402
 
@@ -106,13 +107,22 @@ from noiselab.lattice import Grid
 from noiselab.lab.measure import interleaved
 pts = np.random.default_rng(0).random((1_000_000, 3)) * 32
 p32 = pts.astype(np.float32)
-n3, n2, ni = nl.LatticeNoise(3), nl.LatticeNoise(2), nl.LatticeNoise(3, hash="integer")
-n2g = nl.LatticeNoise(2, basis="gradient", kernel="quintic")
-g = Grid((512, 512), ((0, 32), (0, 32)))
-cands = {"points3 (1e6 points)": lambda: n3(pts), "grid2": lambda: n2.grid((512, 512), [(0, 32), (0, 32)]),
-         "fbm2": lambda: nl.fractal_sum(n2, g, octaves=6),
-         "fbm2, gradient quintic": lambda: nl.fractal_sum(n2g, g, octaves=6),
-         "int32 (1e6 points)": lambda: ni(p32), "floor": lambda: np.full(1_000_000, 1.0)}
+cands = {}
+for h in ("table", "integer"):
+    for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"}),
+                      ("value catmull-rom", {"kernel": "catmull-rom"})):
+        noise = nl.LatticeNoise(3, hash=h, **kw)
+        cands[f"1e6 3-D points, {h} hash, {label}"] = (lambda n: lambda: n(pts))(noise)
+ni = nl.LatticeNoise(3, hash="integer")
+cands["1e6 3-D float32 points, integer hash, value cubic"] = lambda: ni(p32)
+n2, n2g, n3 = nl.LatticeNoise(2), nl.LatticeNoise(2, basis="gradient"), nl.LatticeNoise(3)
+n3g = nl.LatticeNoise(3, basis="gradient")
+g2, g3 = Grid((512, 512), ((0, 32), (0, 32))), Grid((128, 128, 128), ((0, 16), (0, 16), (0, 16)))
+cands["512^2 6-octave fBm, value cubic"] = lambda: nl.fractal_sum(n2, g2, octaves=6)
+cands["512^2 6-octave fBm, gradient quintic"] = lambda: nl.fractal_sum(n2g, g2, octaves=6)
+cands["128^3 6-octave fBm, value cubic"] = lambda: nl.fractal_sum(n3, g3, octaves=6)
+cands["128^3 6-octave fBm, gradient quintic"] = lambda: nl.fractal_sum(n3g, g3, octaves=6)
+cands["floor"] = lambda: np.full(1_000_000, 1.0)
 t = interleaved(cands, repeats=REPEATS, timer=time.thread_time)
 for k in cands:
     print("SPEED", repr((k, t[k], t.ratio("floor", k))))
@@ -121,9 +131,9 @@ for k in cands:
 
 def warm_speed(repeats, cache_dir):
     """Warm run times in one process (thread CPU, medians) and their ratio to the floor (1e6 float64 writes)."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(SOURCE), NUMBA_NUM_THREADS="1")
     code = "import numpy as np\nimport noiselab as nl\n" + SPEED.replace("REPEATS", str(repeats))
-    proc = subprocess.run([sys.executable, "-c", code], env=env, cwd=ROOT, capture_output=True, text=True)
+    proc = subprocess.run([sys.executable, "-c", code], env=env, cwd=SOURCE, capture_output=True, text=True)
     if proc.returncode:
         raise RuntimeError(f"child failed:\n{proc.stderr}")
     import ast
@@ -132,9 +142,9 @@ def warm_speed(repeats, cache_dir):
 
 def compile_times(code, cache_dir):
     """The child's slowest numba compilations: ``[(cpu seconds, function name)]``, callees included in callers."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(SOURCE), NUMBA_NUM_THREADS="1")
     proc = subprocess.run([sys.executable, "-c", LISTEN + "import numpy as np\nimport noiselab as nl\n" + code + REPORT],
-                          env=env, cwd=ROOT, capture_output=True, text=True)
+                          env=env, cwd=SOURCE, capture_output=True, text=True)
     if proc.returncode:
         raise RuntimeError(f"child failed:\n{proc.stderr}")
     return [(float(line.split()[1]), line.split()[2]) for line in proc.stdout.splitlines() if line.startswith("COMPILE")]
@@ -142,11 +152,11 @@ def compile_times(code, cache_dir):
 
 def run_child(code, cache_dir):
     """CPU seconds (user + system) of one fresh process running ``code``, and its specialisation count."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(ROOT), NUMBA_NUM_THREADS="1",
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(SOURCE), NUMBA_NUM_THREADS="1",
                OMP_NUM_THREADS="1")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     proc = subprocess.run([sys.executable, "-c", "import numpy as np\nimport noiselab as nl\n" + code + COUNT],
-                          env=env, cwd=ROOT, capture_output=True, text=True)
+                          env=env, cwd=SOURCE, capture_output=True, text=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode:
         raise RuntimeError(f"child failed:\n{proc.stderr}")
@@ -164,8 +174,12 @@ def main(argv=None):
     parser.add_argument("--speed", type=int, default=0, metavar="REPEATS",
                         help="also time the warm calls in one process (REPEATS interleaved rounds, >= 5)")
     parser.add_argument("--label", default="", help="a note for the table's title (e.g. before/after)")
+    parser.add_argument("--root", default=str(ROOT),
+                        help="the checkout whose noiselab the children import (default: this one)")
     parser.add_argument("--output", default=str(Path(__file__).with_suffix(".md")), help="Markdown file to write")
     args = parser.parse_args(argv)
+    global SOURCE
+    SOURCE = Path(args.root).resolve()
     command = "python benchmarks/bench_coldstart.py " + shlex.join(argv if argv is not None else sys.argv[1:])
     info = run_info(command.strip())
     base = run_child("", Path(tempfile.mkdtemp(prefix="nl-cold-")))[0]  # `import noiselab` alone
@@ -189,7 +203,7 @@ def main(argv=None):
     lines = [f"# Time to a first result{(' (' + args.label + ')') if args.label else ''}", ""]
     lines += header_lines(info)
     lines += ["", "CPU seconds (user + system) of a fresh process: `import noiselab`, then the call. "
-              "Cold: an empty numba cache (and generated-kernel cache); warm: a second process on the same cache. "
+              "Cold: an empty numba cache; warm: a second process on the same cache. "
               f"`import noiselab` alone: {base:.1f} s. Specialisations: numba signatures compiled "
               "(cold) or loaded (warm) by `noiselab.lattice`'s kernels.", ""]
     lines += markdown_table(["first call", "cold (s CPU)", "warm (s CPU)", "specialisations"], rows, "lrrr")
@@ -213,7 +227,7 @@ def main(argv=None):
         finally:
             shutil.rmtree(cache, ignore_errors=True)
         lines += ["", f"Warm speed: one process, {args.speed} interleaved rounds, median thread CPU time; "
-                  "x floor = time of writing 1e6 float64 (`np.full`) / time of the call, paired per round.", ""]
+                  "x floor = time of writing 1e6 float64 (`np.full`) / time of the call, paired per round (one thread, `NUMBA_NUM_THREADS=1`; points float64 unless said).", ""]
         lines += markdown_table(["call", "ms", "x floor"], [[k, f"{t * 1e3:.2f}", f"{r:.3f}"] for k, t, r in rows],
                                 "lrr")
         print("\n".join(lines[-len(rows) - 2:]), flush=True)

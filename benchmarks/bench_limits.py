@@ -8,27 +8,20 @@ implementation of the same construction can reach here:
 
 - ``lookups``: the table hash's memory reads alone. Phillips' construction
   hashes a corner ``(i, j, k)`` as ``perm[perm[perm[i] + j] + k]`` and reads
-  its value from a table; noiselab's 3-D kernels read the first two levels
-  from one precombined ``n x n`` table and the last level folded into the
-  values (:func:`noiselab.lattice.tables.hash_tables`): for quintic value
-  noise (2 taps an axis) 4 reads of the 128 KiB pair table and 8 value
-  reads a point, the value addresses depending on the pair reads. The
-  kernel does exactly these reads, on noiselab's own tables, and sums the
-  eight values: no weights, no fractional parts.
+  its value from a table. The fewest reads it can take: the first two
+  levels from one precombined ``n x n`` table and the last level folded
+  into the values (:func:`_pair_tables`): for quintic value noise (2 taps an
+  axis) 4 reads of the 128 KiB pair table and 8 value reads a point, the
+  value addresses depending on the pair reads. The kernel does exactly
+  these reads, on tables built from noiselab's, and sums the eight values:
+  no weights, no fractional parts.
 - ``int-minimal``: the shortest integer-hash value noise numba compiles:
   float32 in and out, floor, quintic fade, the eight corners hashed with
   noiselab's formula (``mix32(key ^ i M0 ^ j M1 ^ k M2)``), trilinear blend; no
   period, no exact split, no chunking. What numba and LLVM make of the
   simplest loop with the same arithmetic.
-- ``int-fused`` and ``int-driver``: noiselab's own integer-hash kernel in
-  stages (its generated module, from the kernel cache): ``int-fused`` is the
-  loop that splits and sums the corners, run once over the whole
-  coordinate arrays (structure of arrays, as ``int-minimal``);
-  ``int-driver`` is the compiled driver that ``LatticeNoise.__call__``
-  runs, on the ``(N, 3)`` points, into an output allocated once. The
-  differences ``integer`` - ``int-driver`` (the Python call: checks, output
-  allocation) and ``int-driver`` - ``int-fused`` (the driver: chunks of 256
-  points transposed to three arrays, per-chunk calls) locate the rest.
+- ``integer-columns``: noiselab's integer hash on the same points given as
+  ``(3, N)`` columns (``axis=0``, structure of arrays as ``int-minimal``).
 - the write floor (``np.full``) as everywhere in the benchmarks.
 
 Run: ``benchmarks/.venv-peers/bin/python benchmarks/bench_limits.py [--repeats 7]``;
@@ -50,13 +43,25 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from bench_lattice import _fns_points, _peer  # noqa: E402  (pyfastnoisesimd as bench_lattice runs it)
 from noiselab import LatticeNoise  # noqa: E402
 from noiselab.lab.measure import interleaved, run_info  # noqa: E402
-from noiselab.lattice.tables import hash_tables  # noqa: E402
 
 NPTS = 1_000_000
 _M0, _M1, _M2 = np.uint32(0x9E3779B9), np.uint32(0x3C6EF373), np.uint32(0xDAA66D2D)
 _C1, _C2 = np.uint32(0x85EBCA6B), np.uint32(0xC2B2AE35)
 _S16, _S13 = np.uint32(16), np.uint32(13)
 _U32 = np.uint32
+
+
+def _pair_tables(perm, values):
+    """``H2[q0 * n + q1] = P[(P[q0] + q1) mod n]`` plus the parity row offset, and ``VL`` (the last level folded
+    into the values, run on past 2n so that the last axis's taps are contiguous): the fewest reads of the table
+    hash."""
+    n = perm.shape[0]
+    S = 2 * n + 4
+    q, x = np.arange(n), np.arange(S)
+    h = perm[(perm[q][:, None] + q[None, :]) % n]
+    h = h + S * ((q[:, None] + q[None, :] + h) & 1)
+    vl = np.concatenate([values[(r + x) & 1, perm[x % n]] for r in range(2)])
+    return np.ascontiguousarray(h.ravel().astype(np.uint16)), vl
 
 
 @nb.njit(nogil=True)
@@ -108,24 +113,6 @@ def int_minimal(x, y, z, key, out):
         out[p] = v0 + tx * (v1 - v0)
 
 
-def _int_stages(noise, pts32, soa):
-    """``int-fused`` and ``int-driver`` (see the module docstring): noiselab's generated 3-D quintic value kernel."""
-    from noiselab.lattice import _kerncache
-
-    mod = _kerncache.load("intpart", 3, "quintic", "value")
-    one, zero, inf = np.float32(1.0), np.float32(0.0), np.float32(np.inf)
-    mask = np.uint32(0xFFFFFFFF)  # the default period, 2**32 cells
-    key = noise._keys[0]
-    out_f, out_d = np.empty(NPTS, np.float32), np.empty(NPTS, np.float32)
-    freqs, amps, phase = np.ones((1, 3)), np.ones(1), np.zeros(3)
-    return {
-        "int-fused": lambda: mod._fused_d3_quintic_value_s32f32(*soa, out_f, NPTS, key, one, zero, one, zero, one, zero,
-                                                                 mask, mask, mask, one, inf),
-        "int-driver": lambda: mod.fast_d3_quintic_value_s32f32(pts32, out_d, freqs, amps, phase, noise._keys,
-                                                               noise._pmask, noise.period, 10.0, False),
-    }
-
-
 def measure(repeats):
     rng = np.random.default_rng(0)
     pts32 = rng.uniform(0.0, 100.0, (NPTS, 3)).astype(np.float32)
@@ -133,8 +120,8 @@ def measure(repeats):
     soa = [np.ascontiguousarray(pts32[:, a]) for a in range(3)]
     table = LatticeNoise(3, seed=1, kernel="quintic")
     integer = LatticeNoise(3, seed=1, kernel="quintic", hash="integer")
-    h2, vl, _ = hash_tables(table.perms, table.values, table.gradients, 0)
-    h2, vl = np.ascontiguousarray(h2[0]), np.ascontiguousarray(vl[0])
+    h2, vl = _pair_tables(table.perms[0], table.values)
+    cols = np.ascontiguousarray(pts32.T)
     out64, out32 = np.empty(NPTS), np.empty(NPTS, np.float32)
     key = np.uint32(0x2545F491)
     cands = {
@@ -144,7 +131,7 @@ def measure(repeats):
         "integer": lambda: integer(pts32),
         "int-minimal": lambda: int_minimal(*soa, key, out32),
     }
-    cands.update(_int_stages(integer, pts32, soa))
+    cands["integer-columns"] = lambda: integer(cols, axis=0)
     fns = _peer("fns")
     if fns is not None:
         cands["fns"] = _fns_points(fns, fns.NoiseType.Value, pts32)
@@ -154,7 +141,7 @@ def measure(repeats):
 def report(t, repeats, load, cmd):
     info = run_info(cmd, ["pyfastnoisesimd"], load=load)
     rate = {k: NPTS / t[k] for k in t}
-    names = [k for k in ("table", "lookups", "integer", "int-driver", "int-fused", "int-minimal", "fns", "floor32")
+    names = [k for k in ("table", "lookups", "integer", "integer-columns", "int-minimal", "fns", "floor32")
              if k in rate]
     lines = ["# What limits lattice noise on scattered 3-D points\n",
              f"- date: {info['date']}",
@@ -184,13 +171,9 @@ def report(t, repeats, load, cmd):
                      "its time; the rest is its float64 arithmetic. With no arithmetic at all it would still run at "
                      f"the reads' {t.ratio('fns', 'lookups'):.2f}x.")
         lines.append(f"- The integer hash has no reads. The simplest numba kernel with its arithmetic runs at "
-                     f"{t.ratio('fns', 'int-minimal'):.2f}x pyfastnoisesimd. noiselab's corner loop alone "
-                     f"(`int-fused`) takes {t.ratio('int-fused', 'int-minimal'):.2f}x that time (the period masks, "
-                     "the clamp to the proved bound, the count that sends a chunk to the exact split); the driver "
-                     f"(`int-driver`) {t.ratio('int-driver', 'int-fused'):.2f}x the corner loop's (transposing "
-                     "chunks of 256 points, a call per chunk); the Python call (`integer`) "
-                     f"{t.ratio('integer', 'int-driver'):.2f}x the driver's (checks, the output's allocation and "
-                     "first touch).")
+                     f"{t.ratio('fns', 'int-minimal'):.2f}x pyfastnoisesimd; noiselab's (`integer`, float64 "
+                     f"arithmetic, any period) takes {t.ratio('integer', 'int-minimal'):.2f}x its time, "
+                     f"{t.ratio('integer-columns', 'int-minimal'):.2f}x with `(3, N)` columns.")
     lines.append("")
     return lines
 

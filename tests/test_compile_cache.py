@@ -94,7 +94,10 @@ def _env(cache, home, package=HERE):
 
 def _run(cache, home, dtype="float64", prefix=(), package=HERE, code=_RUN, args=None):
     argv = [*prefix, sys.executable, "-c", code, dtype] if args is None else [*prefix, sys.executable, *args]
-    proc = subprocess.run(argv, env=_env(cache, home, package), capture_output=True, text=True, timeout=600)
+    # run outside the checkout: ``python -c`` puts the working folder first on sys.path, and from the
+    # repository root that would import the checkout's noiselab instead of ``package``
+    proc = subprocess.run(argv, env=_env(cache, home, package), capture_output=True, text=True, timeout=600,
+                          cwd=str(cache.parent))
     return proc.returncode, proc.stdout.strip(), [ln for ln in proc.stderr.splitlines() if ln.strip()]
 
 
@@ -139,6 +142,7 @@ def test_a_cold_cache_is_filled_then_used(warm_cache):
     cache, home = warm_cache
     files = _snapshot(cache)
     assert any(f.endswith(".nbi") for f in files) and any(f.endswith(".nbc") for f in files)
+    assert not any(f.endswith(".py") for f in files)   # numba's files only: no source is written at run time
     _assert_clean(_run(cache, home), "float64")   # warm: nothing compiled or written
     assert _snapshot(cache) == files
 

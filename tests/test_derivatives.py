@@ -60,14 +60,6 @@ def _compare(noise, x, h, tol_smooth, tol_knot):
 
 
 # ------------------------------------------------------------------ kernels
-def test_generated_jacobian_kernels_match_their_generator():
-    """``_jacobians.py`` is generated on first use into the kernel cache (numba caches need a file): it is what the
-    generator writes."""
-    from noiselab.lattice import _generate, _kerncache
-
-    assert _kerncache.path("jacobians").read_text() == _generate.generate_jacobians()
-
-
 def test_kernel_continuity_classes_and_derivative_polynomials():
     assert {n: k.continuity for n, k in KERNELS.items()} == {
         "box": -1, "linear": 0, "quadratic": 1, "cubic": 2, "catmull-rom": 1, "quintic": 2}

@@ -42,7 +42,7 @@ def _mix32_py(h):
 
 def _word(noise, c, j):
     """``mix32(key_c ^ j_0 M_0 ^ ... )`` for one lattice point (indices reduced mod 2**32)."""
-    h = int(noise._keys[c])
+    h = int(noise.keys[c])
     for a, ja in enumerate(j):
         h ^= ((int(ja) % (1 << 32)) * int(noise._mult[a])) & 0xFFFFFFFF
     return _mix32_py(h)
@@ -118,72 +118,8 @@ def test_grid_and_points_agree(dim, basis):
         np.testing.assert_allclose(noise.grid(shape, ext), noise(noise.grid_points(shape, ext)), atol=1e-12)
 
 
-@pytest.mark.parametrize("basis", ["value", "gradient"])
-@pytest.mark.parametrize("dim", [1, 2, 3])
-def test_simd_kernels_agree_with_the_generic_one(dim, basis):
-    # the generated SIMD kernels (every stock kernel; float64 and float32 arithmetic; fused octaves,
-    # turbulence, vector output, periods that are and are not powers of two) against the generic kernel
-    from noiselab.lattice import _kerncache
-
-    _intpoints = _kerncache.load("intpoints")
-
-    pts = RNG.uniform(-40, 40, (700, dim))
-    freqs, amps = np.array([[1.0] * dim, [2.5] * dim]), np.array([0.7, 0.3])
-    # every stock kernel in 1-D and 2-D; in 3-D one kernel per tap count up to 3 (4-tap 3-D kernels are
-    # compared through the public call in the range, grid and derivative tests: their compile is the slowest)
-    names = list(KERNELS) if dim < 3 else ["box", "quadratic", "quintic"]
-    for name in names:
-        for period in (None, [6, 8, 16][:dim]):
-            noise = _int(dim, 2, seed=4, kernel=name, basis=basis, period=period)
-            k = noise.kernel
-            factor = _intpoints.FACTOR[basis][dim - 1]
-            for absval in (False, True):
-                generic = np.empty((700, 2))
-                _inthash.int_points(pts, generic, freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef,
-                                    noise.period, noise._pmask, noise._keys, noise._mult, noise._int_grads,
-                                    int(basis == "gradient"), absval)
-                variants = [("s64f64", np.float64, 1e-13)]
-                if name in ("quadratic", "catmull-rom"):   # float32 arithmetic too (one shifted, one 4-tap kernel)
-                    variants.append(("s64f32", np.float32, 2e-6))
-                for variant, dtype, tol in variants:
-                    fast = np.empty((700, 2), dtype)
-                    bad = _intpoints.INT_KERNELS[(dim, name, basis, variant)](
-                        pts, fast, freqs, amps * factor, noise.phase, noise._keys, noise._pmask, noise.period,
-                        noise.bound * amps.sum(), absval)
-                    assert bad == 0
-                    np.testing.assert_allclose(fast, generic, atol=tol, err_msg=f"{name} {variant} {period}")
-
-
-@pytest.mark.parametrize("basis", ["value", "gradient"])
-@pytest.mark.parametrize("dim", [1, 2, 3])
-def test_float32_split_gives_the_same_bits_as_the_float64_split(dim, basis):
-    # float32 points at power-of-two frequencies take the all-float32 kernel; its split is exact, so the
-    # result equals the float64-split float32 kernel's bit for bit
-    from noiselab.lattice import _kerncache
-
-    _intpoints = _kerncache.load("intpoints")
-
-    pts = (RNG.uniform(-300, 300, (2000, dim)) * 64).round().astype(np.float32) / np.float32(64)
-    pts[::7] = RNG.uniform(-1, 1, (len(pts[::7]), dim)).astype(np.float32) * 1e-30   # tiny: fraction near 1
-    pts[::13] *= np.float32(-1.0)
-    freqs, amps = np.array([[1.0] * dim, [4.0] * dim]), np.array([0.6, 0.4])
-    for name in (("quintic", "catmull-rom") if dim == 2 else ("quintic",)):   # a 2-tap and a 4-tap kernel
-        noise = _int(dim, seed=2, kernel=name, basis=basis)
-        factor = _intpoints.FACTOR[basis][dim - 1]
-        outs = []
-        for variant in ("s32f32", "s64f32"):
-            out = np.empty((len(pts), 1), np.float32)
-            _intpoints.INT_KERNELS[(dim, name, basis, variant)](pts, out, freqs, amps * factor, noise.phase,
-                                                                noise._keys, noise._pmask, noise.period, 1.0, False)
-            outs.append(out)
-        np.testing.assert_array_equal(outs[0], outs[1])
-        # and the public call picks the float32 kernel for float32 points
-        np.testing.assert_array_equal(noise(pts), _int(dim, seed=2, kernel=name, basis=basis)(pts.astype(np.float64),
-                                                                                               dtype=np.float32))
-
-
 def test_float32_output_error_against_float64():
-    # float32 arithmetic after the exact split: a few float32 ulps of the float64 result, never out of range
+    # float32 output is the float64 result rounded once: half a float32 ulp of it, never out of range
     for dim in (1, 2, 3):
         pts = RNG.uniform(-1e4, 1e4, (20000, dim))
         for name in (("catmull-rom", "quintic") if dim == 2 else ("quintic",)):   # 4-tap in 2-D (compile time)
@@ -191,7 +127,7 @@ def test_float32_output_error_against_float64():
                 noise = _int(dim, seed=1, kernel=name, basis=basis, frequency=0.37, phase=0.2)
                 v64, v32 = noise(pts), noise(pts, dtype=np.float32)
                 assert v32.dtype == np.float32 and np.abs(v32).max() <= 1.0
-                assert np.abs(v32 - v64).max() < 8e-7, (dim, name, basis, np.abs(v32 - v64).max())
+                np.testing.assert_array_equal(v32, v64.astype(np.float32))
 
 
 def test_chunkings_threads_and_windows_are_bit_identical():
@@ -298,117 +234,3 @@ def test_bad_hash_parameters_name_them():
                 _int(dim, kernel="quintic", basis="gradient")(bad)
     with pytest.raises(ValueError, match="overflows"):
         _int(3, frequency=1e300)(np.full((20, 3), 1e10))
-
-
-def test_generated_integer_kernels_match_their_generator():
-    # the module the integer hash runs is the generator's text of today, read from the kernel cache, not git
-    import sys
-    from pathlib import Path
-
-    from noiselab.lattice import _generate, _kerncache
-
-    # (the text is read from the cache files, not from the loaded modules: a test that simulated a full disk
-    # earlier in the process may have left a module loaded from memory, which has no file)
-    mod = _kerncache.load("intpoints")
-    file = _kerncache.path("intpoints")
-    assert file.read_text() == _generate.generate_int()
-    # one module per (dimension, kernel, basis), generated and imported on its first lookup
-    fast = mod.INT_KERNELS[(2, "catmull-rom", "gradient", "s64f64")]
-    part = sys.modules[fast.py_func.__module__]
-    assert part.__name__.endswith("._intpart_2_catmull_rom_gradient")
-    assert (_kerncache.path("intpart", 2, "catmull-rom", "gradient").read_text()
-            == _generate.generate_int_part(2, "catmull-rom", "gradient"))
-    assert {key[:3] for key in part.INT_KERNELS} == {(2, "catmull-rom", "gradient")}
-    with pytest.raises(KeyError):
-        mod.INT_KERNELS[(4, "cubic", "value", "s64f64")]
-    assert _kerncache.source_hash() in file.parent.name
-    assert file.parent != Path(_generate.__file__).parent
-
-
-_RACE = """
-import sys
-from noiselab.lattice import _kerncache
-print(_kerncache.path("points"))
-"""
-
-
-def test_kernel_cache_is_written_atomically_by_racing_processes(tmp_path):
-    # four processes write the generated module into one empty cache at once: every one succeeds, the file
-    # holds the generator's text, no temporary file is left and its mtime is the fixed stamp (numba's cache
-    # keys on it, so whichever process wrote it the compiled kernels stay valid)
-    import os
-    import subprocess
-    import sys
-    from pathlib import Path
-
-    from noiselab.lattice import _generate, _kerncache
-
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), PYTHONPATH=str(Path(_generate.__file__).parents[2]))
-    procs = [subprocess.Popen([sys.executable, "-c", _RACE], env=env, stdout=subprocess.PIPE, text=True)
-             for _ in range(4)]
-    outs = [p.communicate()[0].strip() for p in procs]
-    assert [p.returncode for p in procs] == [0] * 4
-    assert len(set(outs)) == 1
-    target = Path(outs[0])
-    assert target.parent.parent == tmp_path and target.parent.name == f"noiselab-kernels-{_kerncache.source_hash()}"
-    assert target.read_text() == _generate.generate()
-    assert os.stat(target).st_mtime == _kerncache._STAMP
-    assert not [f for f in os.listdir(target.parent) if f.endswith(".tmp")]
-
-
-def test_kernel_cache_falls_back_when_a_folder_cannot_be_written(tmp_path, monkeypatch):
-    # NUMBA_CACHE_DIR under a plain file cannot hold a folder: the user cache is used; when it cannot
-    # either, the temporary directory
-    from noiselab.lattice import _kerncache
-
-    blocker = tmp_path / "file"
-    blocker.write_text("")
-    monkeypatch.setenv("NUMBA_CACHE_DIR", str(blocker / "numba"))
-    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "xdg"))
-    assert _kerncache.cache_folder().parent == tmp_path / "xdg" / "noiselab"
-    monkeypatch.setenv("XDG_CACHE_HOME", str(blocker / "xdg"))
-    monkeypatch.setattr(_kerncache.tempfile, "tempdir", str(tmp_path / "tmp"))
-    assert _kerncache.cache_folder().parent == tmp_path / "tmp"
-    with pytest.raises(ValueError, match="name must be one of"):
-        _kerncache.path("nothing")
-
-
-_FULL_DISK = """
-import os, tempfile
-import numpy as np
-real = tempfile.mkstemp
-def mkstemp(*args, **kwargs):            # every temporary file is a link to /dev/full: writes fail with ENOSPC
-    fd, name = real(*args, **kwargs)
-    os.close(fd); os.unlink(name); os.symlink("/dev/full", name)
-    return os.open(name, os.O_WRONLY), name
-tempfile.mkstemp = mkstemp
-from noiselab import LatticeNoise
-from noiselab.lattice import _kerncache
-pts = np.random.default_rng(0).uniform(-9, 9, (500, 3))
-np.save(os.environ["OUT"], LatticeNoise(3, seed=4)(pts))
-mod = _kerncache.load("points")
-print(getattr(mod, "__file__", None), any(f.endswith(".py") for _, _, fs in os.walk(os.environ["NUMBA_CACHE_DIR"])
-                                          for f in fs))
-"""
-
-
-def test_kernel_cache_on_a_full_disk_runs_uncached_with_the_same_values(tmp_path):
-    # no folder can take the generated module (every write fails with ENOSPC): the kernels run from memory,
-    # uncached, silently (a command keeps its one output line), and give the same values as the cached ones
-    import os
-    import subprocess
-    import sys
-    from pathlib import Path
-
-    from noiselab.lattice import _generate
-
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"), XDG_CACHE_HOME=str(tmp_path / "xdg"),
-               TMPDIR=str(tmp_path / "tmp"), OUT=str(tmp_path / "full.npy"),
-               PYTHONPATH=str(Path(_generate.__file__).parents[2]))
-    (tmp_path / "tmp").mkdir()
-    run = subprocess.run([sys.executable, "-c", _FULL_DISK], env=env, capture_output=True, text=True, timeout=600)
-    assert run.returncode == 0, run.stderr
-    assert run.stdout.split() == ["None", "False"]           # loaded from memory; no module file left anywhere
-    assert run.stderr.strip() == ""                          # nothing printed
-    pts = np.random.default_rng(0).uniform(-9, 9, (500, 3))
-    np.testing.assert_array_equal(np.load(tmp_path / "full.npy"), LatticeNoise(3, seed=4)(pts))

@@ -346,22 +346,16 @@ def _want(ref, noise, x):
 
 
 def _check_float32(noise, x, want):
-    """float32 points give float32 output: a rounding of the float64 result (table hash), or float32
-    arithmetic within the documented 8e-7 x amplitude (integer hash, tests/test_inthash.py and README)."""
+    """float32 points give float32 output: a rounding of the float64 result (either hash: every path computes
+    in float64 and rounds once)."""
     got = noise(x.astype(np.float32))
     x32 = x.astype(np.float32).astype(np.float64)
     assert got.dtype == np.float32
     want32 = want(x32)
-    if noise.hash == "table":
-        assert np.all(np.abs(got - want32) <= np.spacing(np.abs(want32).astype(np.float32)) + 1e-12)
-    else:
-        assert_close(got, want32, tol=8e-7 * noise.amplitude, scale=1.0)
+    assert np.all(np.abs(got - want32) <= np.spacing(np.abs(want32).astype(np.float32)) + 1e-12)
     got = noise(x, dtype=np.float32)
     assert got.dtype == np.float32
-    if noise.hash == "table":
-        assert np.all(np.abs(got - want(x)) <= np.spacing(np.abs(want(x)).astype(np.float32)) + 1e-12)
-    else:
-        assert_close(got, want(x), tol=8e-7 * noise.amplitude, scale=1.0)
+    assert np.all(np.abs(got - want(x)) <= np.spacing(np.abs(want(x)).astype(np.float32)) + 1e-12)
 
 
 @pytest.mark.parametrize("hash", ["table", "integer"])

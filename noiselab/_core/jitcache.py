@@ -24,45 +24,17 @@ next call compiles the kernels again (seconds) and fills the cache anew.
 from __future__ import annotations
 
 import hashlib
-import logging
 import os
 import shutil
-import threading
 from pathlib import Path
 
-__all__ = ["cache_folders", "clear_cache", "warn_once", "CACHE_HINT"]
+__all__ = ["cache_folders", "clear_cache", "CACHE_HINT"]
 
-_log = logging.getLogger("noiselab")
-_warned = []
-_lock = threading.Lock()
 _PACKAGE = Path(__file__).resolve().parents[1]   # the noiselab package folder
 _SUFFIXES = (".nbi", ".nbc")
 
 CACHE_HINT = ("numba's compile cache of noiselab's kernels may be damaged: run `noiselab cache --clear` "
               "(or set NUMBA_CACHE_DIR to an empty folder) and run again")
-
-
-def warn_once(message: str) -> bool:
-    """Log ``message`` as a warning on the ``noiselab`` logger, unless one was logged already; True if logged.
-
-    Without a logging configuration Python prints a warning as the bare
-    message on stderr: one line. A cache problem is said once per process,
-    however many kernels it touches.
-
-    Examples
-    --------
-    >>> import logging
-    >>> logging.getLogger("noiselab").disabled = True   # (silence the doctest's stderr)
-    >>> warn_once("first") in (True, False), warn_once("second")
-    (True, False)
-    >>> logging.getLogger("noiselab").disabled = False
-    """
-    with _lock:
-        if _warned:
-            return False
-        _warned.append(message)
-    _log.warning("noiselab: %s", message)
-    return True
 
 
 def _source_folders() -> list:

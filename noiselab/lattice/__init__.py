@@ -14,7 +14,7 @@ calls), :mod:`.tables` (random tables and hashes), :mod:`.points_path`
 (scattered points), :mod:`.grid_path` (grids), :mod:`.derivatives`
 (Jacobians), :mod:`.checks` (argument checks), :mod:`.grid` (``Grid``,
 ``check_grid``, ``grid_coordinates``), :mod:`.kernels` (the smoothing
-kernels), :mod:`._compiled` (where the compiled kernels are imported).
+kernels), :mod:`._jit` (every compiled kernel: the lattice engine).
 """
 from .core import LatticeNoise
 from .grid import Grid, grid_coordinates

@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from .._core import check_finite_array, check_int, check_memory, check_real
-from ._compiled import PERIOD_MAX
+from ._jit import PERIOD_MAX
 from .kernels import KERNELS
 
 __all__ = ["BASES", "ALTERNATIONS", "HASHES", "DEFAULT_KERNELS", "default_kernel", "check_choices", "check_table_size", "per_axis", "check_period", "check_large",

@@ -12,15 +12,13 @@ Classic gradient (Perlin) noise is offered as a second basis.
 delegates the work to one module per part, each readable on its own:
 
 - :mod:`.tables`: the random tables (values, gradients, permutations,
-  integer-hash keys) and the precombined hash tables;
-- :mod:`.points_path`: scattered points, the choice among the kernel
-  families and the threads;
+  integer-hash keys);
+- :mod:`.points_path`: scattered points in either layout, the kernel and the threads;
 - :mod:`.grid_path`: regular grids (separable passes, the fused 2-D kernel,
   the scattered fallback, windows);
 - :mod:`.derivatives`: Jacobians on grids and the shapes of the results;
 - :mod:`.checks`: argument and overflow checks; :mod:`.grid`: ``Grid``
-  and its coordinates; :mod:`._compiled`: where the compiled kernels are
-  imported.
+  and its coordinates; :mod:`._jit`: every compiled kernel (the engine).
 """
 from __future__ import annotations
 
@@ -103,9 +101,7 @@ class LatticeNoise:
         directions; 4-D and up: the random unit gradients). No permutation,
         so no 256-cell period (the default period is 2**32 cells per axis, the
         most it allows) and no row/column artefacts of the nested
-        permutation; ``alternation`` must be ``"table"``. In 1-3-D with a
-        stock kernel it runs SIMD kernels: float32 points give float32
-        output computed in float32 (see Notes, Precision).
+        permutation; ``alternation`` must be ``"table"``.
 
     Raises
     ------
@@ -130,6 +126,18 @@ class LatticeNoise:
     catmull-rom, quintic); see also :func:`noiselab.curl_noise`,
     :func:`noiselab.warp` and :func:`noiselab.fractal.fractal_gradient`.
 
+    **Tables.** ``perms`` (``(dim_out, table_size)`` int64, one permutation
+    per component) and ``keys`` (``(dim_out,)`` uint32, the integer hash's
+    keys) are read-only arrays whose flag cannot be set back: every path
+    (points, grids, derivatives) reads these same arrays, so they cannot
+    drift apart after construction. ``values`` and ``gradients`` are read
+    where they are, by every path alike.
+
+    **Layout.** Points are ``(..., dim_in)`` by default; ``axis=0`` takes
+    them as ``(dim_in, ...)`` (structure of arrays, as SIMD libraries take
+    them). Two-dimensional float64 points are read in place in either
+    layout, and the result is bit-identical.
+
     **Evaluation interface.** :meth:`evaluate` and :meth:`evaluate_grid` (and
     their Jacobian twins) sum octaves ``sum_o gain**o b(noise(lacunarity**o x))``
     on points or grids; ``__call__``, :meth:`grid` and the derivative methods
@@ -140,13 +148,8 @@ class LatticeNoise:
     reduced modulo the period before it becomes an int64 (``fmod`` past 2**52),
     so inputs up to 1e12 and beyond stay continuous, and float32 inputs are
     promoted. The output is float64 (float32 for float32 input unless ``dtype``
-    says otherwise). With ``hash="integer"`` (1-3-D, stock kernels) float32
-    output is computed in float32 after the exact float64 split (the split
-    itself is float32 when that is exact: zero phase, power-of-two
-    frequencies >= 1, kernels without a half-cell shift); its error against
-    the float64 computation is a few float32 ulps (``benchmarks/bench_lattice.md``,
-    integer-hash section), and the result is clamped to the proved bound,
-    which absorbs only that rounding.
+    says otherwise); every path computes in float64, and float32 output is
+    the float64 result rounded once.
 
     Examples
     --------
@@ -171,8 +174,8 @@ class LatticeNoise:
         self.kernel: Kernel = get_kernel(checks.default_kernel(basis) if kernel is None else kernel)
         self.basis, self.alternation, self.hash = basis, alternation, hash
         self.table_size = n = checks.check_table_size(table_size)
-        # permutations (int64 and the doubled uint64 copy) and the 3-D hash tables, per component
-        checks.check_large(self.dim_out * n * (8 * 3 + 2 * min(n, 1024) + 64) + n * d * 8,
+        # the value tables and one int64 permutation per component, the gradients
+        checks.check_large(self.dim_out * n * 8 + n * (d + 4) * 8,
                            f"LatticeNoise(dim_out={self.dim_out}, table_size={n})")
         self.tileable = period is not None
         self.period = checks.check_period(period, d, n, hash, alternation)
@@ -182,14 +185,13 @@ class LatticeNoise:
         self.amplitude = check_real("amplitude", amplitude, lo=0.0, lo_open=True)
         self.seed = seed
         drawn = tables.draw_tables(as_generator(seed), n, d, self.dim_out, hash == "integer")
-        self.positive, self.negative, self.gradients, self._keys, self.perms = drawn
-        self._perms2 = tables.doubled_permutations(self.perms)
+        # perms and keys are read-only (tables.frozen): every path reads these very arrays
+        self.positive, self.negative, self.gradients, self.keys, self.perms = drawn
         self.values = tables.signed_values(self.positive, self.negative, alternation)
         self._mult = tables.axis_multipliers(d)
         self._int_grads = tables.int_gradients(d, self.gradients)  # fixed and small in 1-3-D
         self.bound = self.kernel.value_bound(d) if basis == "value" else self.kernel.gradient_bound(d)
         self.scale = self.amplitude / self.bound  # a * basis / bound, so |output| <= a
-        self._tables_cache = None  # the 3-D kernels' hash tables (tables.cached_hash_tables)
 
     def __repr__(self):
         return (f"LatticeNoise(dim_in={self.dim_in}, dim_out={self.dim_out}, seed={self.seed!r}, "
@@ -251,7 +253,7 @@ class LatticeNoise:
         return total
 
     def evaluate(self, points, *, octaves=1, lacunarity=2.0, gain=0.5, absval=False, dtype=None, workers=1,
-                 name="points"):
+                 name="points", axis=-1):
         """The octave sum ``sum_o gain**o b(noise(lacunarity**o x))`` at points ``(..., dim_in)``.
 
         Parameters
@@ -266,6 +268,9 @@ class LatticeNoise:
             As for ``__call__`` (``workers``: scipy.fft's meaning, bit-identical for any count).
         name : str, default "points"
             The points' name in error messages (for callers that take them under another name).
+        axis : int, default -1
+            The axis of ``points`` that holds the coordinates (0: ``(dim_in, ...)`` columns); the
+            other axes, in order, are the result's shape.
 
         Returns
         -------
@@ -282,9 +287,9 @@ class LatticeNoise:
         True
         """
         octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
-        return self._sum_at(points, octaves, lacunarity, gain, absval, dtype, workers, name)
+        return self._sum_at(points, octaves, lacunarity, gain, absval, dtype, workers, name, axis)
 
-    def _sum_at(self, points, octaves, lacunarity, gain, absval, dtype, workers, name):
+    def _sum_at(self, points, octaves, lacunarity, gain, absval, dtype, workers, name, axis=-1):
         """:meth:`evaluate` with checked octave parameters (``__call__`` comes here directly)."""
         workers = resolve_workers(workers)
         twins = self._octave_twins(octaves, lacunarity, gain)
@@ -293,11 +298,11 @@ class LatticeNoise:
             checks.check_amplitude(self.amplitude * checks.total_gain(octaves, gain), out_dtype,
                                    "amplitude (times the sum of the octaves' gains)")
             total = self._add_octaves(twins, lambda t: t._sum_at(points, 1, 2.0, 0.5, absval, np.float64, workers,
-                                                                 name))
+                                                                 name, axis))
             return total.astype(out_dtype, copy=False)
         freqs, amps = self._octave_arrays(octaves, lacunarity, gain)
         raw = as_array(name, points)
-        lead, flat = prepare_points(self, raw, name)
+        lead, flat = prepare_points(self, raw, name, axis)
         dtype = output_dtype(raw.dtype, dtype)
         checks.check_amplitude(self.amplitude * checks.total_gain(octaves, gain), dtype,
                                "amplitude" if octaves == 1 else "amplitude (times the sum of the octaves' gains)")
@@ -305,7 +310,7 @@ class LatticeNoise:
         return shape_out(evaluate_points(self, flat, freqs, amps, absval, dtype, name, workers), lead, self.dim_out)
 
     def evaluate_jacobian(self, points, *, octaves=1, lacunarity=2.0, gain=0.5, absval=False, workers=1,
-                          name="points"):
+                          name="points", axis=-1):
         """The octave sum and its exact Jacobian at points: ``(value, jacobian)``, computed in one pass.
 
         Parameters as :meth:`evaluate`; with ``absval`` each octave's
@@ -332,13 +337,13 @@ class LatticeNoise:
         twins = self._octave_twins(octaves, lacunarity, gain)
         if twins is not None:
             def one(twin):
-                value, jac = twin.evaluate_jacobian(points, absval=absval, workers=workers, name=name)
+                value, jac = twin.evaluate_jacobian(points, absval=absval, workers=workers, name=name, axis=axis)
                 return np.concatenate([value.reshape(jac.shape[:-1] + (1,)), jac], axis=-1)
             both = self._add_octaves(twins, one)
             return both[..., 0].reshape(both.shape[:-2] + ((self.dim_out,) if self.dim_out > 1 else ())), \
                 both[..., 1:]
         freqs, amps = self._octave_arrays(octaves, lacunarity, gain)
-        lead, flat = prepare_points(self, points, name)
+        lead, flat = prepare_points(self, points, name, axis)
         checks.check_large(flat.shape[0] * self.dim_out * (self.dim_in + 1) * 8 * 2, "lattice noise jacobian")
         out = evaluate_points_jac(self, flat, freqs, amps, absval, name, workers)
         return jacobian_views(out, lead, self.dim_out, self.dim_in)
@@ -388,19 +393,21 @@ class LatticeNoise:
                              workers=resolve_workers(workers))
 
     # ------------------------------------------------------- the user's calls
-    def __call__(self, points, *, dtype=None, workers=1):
+    def __call__(self, points, *, dtype=None, workers=1, axis=-1):
         """Evaluate at points of shape ``(..., dim_in)``; returns ``(...)`` or ``(..., dim_out)``.
 
         For ``dim_in == 1`` an array whose last axis is not 1 (or a scalar) is
-        taken as that many scalar inputs. ``dtype`` (float32 or float64) picks
+        taken as that many scalar inputs. ``axis=0`` takes the points as
+        ``(dim_in, ...)`` columns instead (see Notes, Layout; same bits).
+        ``dtype`` (float32 or float64) picks
         the output precision; the computation is float64 either way.
         ``workers`` > 1 splits the points into that many contiguous blocks
         evaluated on threads (the kernels release the GIL); every point's
         arithmetic is the same, so the result is bit-identical to one worker.
         """
-        return self._sum_at(points, 1, 2.0, 0.5, False, dtype, workers, "points")
+        return self._sum_at(points, 1, 2.0, 0.5, False, dtype, workers, "points", axis)
 
-    def jacobian(self, points, *, return_value=False, workers=1):
+    def jacobian(self, points, *, return_value=False, workers=1, axis=-1):
         r"""The exact Jacobian ``d noise_c / d x_a`` at points ``(..., dim_in)``: shape ``(..., dim_out, dim_in)``.
 
         In input units (:mod:`noiselab.lattice.derivatives`). It needs a kernel
@@ -415,6 +422,8 @@ class LatticeNoise:
             Also return the noise values (computed in the same pass), as ``(value, jacobian)``.
         workers : int, default 1
             Threads over blocks of points (bit-identical to one worker).
+        axis : int, default -1
+            The axis of ``points`` that holds the coordinates (as in :meth:`evaluate`).
 
         Returns
         -------
@@ -434,10 +443,10 @@ class LatticeNoise:
         >>> noise.jacobian(np.zeros((5, 3))).shape
         (5, 3, 3)
         """
-        value, jac = self.evaluate_jacobian(points, workers=workers)
+        value, jac = self.evaluate_jacobian(points, workers=workers, axis=axis)
         return (value, jac) if return_value else jac
 
-    def gradient(self, points, *, return_value=False, workers=1):
+    def gradient(self, points, *, return_value=False, workers=1, axis=-1):
         """The exact gradient of scalar noise (``dim_out == 1``) at points ``(..., dim_in)``: shape ``(..., dim_in)``.
 
         :meth:`jacobian` of a one-component noise, without the component
@@ -452,7 +461,7 @@ class LatticeNoise:
         ((1,), (1, 2))
         """
         checks.check_scalar(self.dim_out, "gradient")
-        value, jac = self.evaluate_jacobian(points, workers=workers)
+        value, jac = self.evaluate_jacobian(points, workers=workers, axis=axis)
         return (value, jac[..., 0, :]) if return_value else jac[..., 0, :]
 
     def jacobian_grid(self, shape, extent, *, window=None, return_value=False, workers=1):

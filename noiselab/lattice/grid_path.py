@@ -8,9 +8,7 @@ and chunk chooses alike:
   kernel applied one axis at a time to the block of lattice values the grid
   covers, axes ``d-1 .. 1`` contracted into rows (:func:`contract_rest`),
   then one fused pass along axis 0; octaves are batched within a memory
-  budget. 2-D grids, with either hash, run every octave in one fused
-  kernel, tile by tile (:func:`grid_fused_2d`), with the same bits (the
-  integer hash's lattice rows hashed in the kernel, :mod:`._intgrid`);
+  budget. Every dimension and both hashes take these passes;
 - the **scattered** path (:func:`grid_scattered`), row by row through
   :func:`.points_path.evaluate_points`, for grids sparser than the octave's
   lattice (:func:`is_separable`) and past 2**52 lattice cells, where a
@@ -28,26 +26,19 @@ import numpy as np
 
 from .._core import float_dtype, map_blocks
 from . import checks
-from ._compiled import PERIOD_MAX, intgrid, inthash, jit
+from . import _jit as jit
 from .grid import check_grid, coordinates
 from .points_path import evaluate_points, evaluate_points_jac
 from .tables import period_masks
 
-__all__ = ["render_grid", "with_period", "finish_grid", "is_separable", "grid_scattered", "axis_taps", "block_hash", "int_prefix",
-           "grid_separable", "grid_fused_2d", "contract_rest", "FUSED_2D", "TILE_2D", "RING_BYTES"]
+__all__ = ["render_grid", "with_period", "finish_grid", "is_separable", "grid_scattered", "axis_taps", "block_hash",
+           "int_prefix", "grid_separable", "contract_rest"]
 
 # Past 2**52 lattice cells a float64 coordinate has no fractional bits: the
 # separable grid pass (which works with lattice indices relative to the
 # grid's first tap) is then replaced by the per-point path, which reduces
 # every index exactly (fmod), so both paths give the same samples.
 SEPARABLE_LIMIT = float(2 ** 52)
-# 2-D grids take the fused kernel, either hash (a test turns it off to compare with the general path)
-FUSED_2D = True
-# columns per tile of the fused 2-D pass (None: as many as keep its ring of contracted lattice rows,
-# octaves x 2**ceil(log2 taps) rows x gradient terms x tile float64, within RING_BYTES: measured
-# on 512^2 and 1024^2 grids, wider tiles are faster up to the L2 cache); a test sets it small
-TILE_2D = None
-RING_BYTES = 256 << 10
 # the least work (samples x octaves) a band of a ``workers`` split gets: measured on
 # 2-D quintic fBm (benchmarks/bench_lattice.md, "workers=2 on bigger calls"), two
 # threads ran a 512^2 grid of 6 octaves or a 1024^2 grid of one octave slower than
@@ -237,7 +228,7 @@ def int_prefix(key, mult, lattices):
     """
     h = key
     for a, lat in enumerate(lattices):
-        h = inthash.block_prefix(h, np.ascontiguousarray(lat, dtype=np.int64), mult[a], a == 0, key[0])
+        h = jit.block_prefix(h, np.ascontiguousarray(lat, dtype=np.int64), mult[a], a == 0, key[0])
     return h
 
 
@@ -270,9 +261,6 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
     d = noise.dim_in
     grad = noise.basis == "gradient"
     integer = noise.hash == "integer"
-    if d == 2 and FUSED_2D:
-        grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis)
-        return
     nterm = d if grad else 1
     batches = _octave_batches(noise, full, octaves, nterm)
     post = int(np.prod([c.shape[0] for c in sub[1:]], dtype=np.int64))
@@ -290,9 +278,9 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
                 bshape = tuple(len(lat) for lat in lattices)
                 block = np.empty(int(np.prod(bshape, dtype=np.int64)))
                 if integer:
-                    h = int_prefix(noise._keys[c:c + 1], noise._mult, lattices)
+                    h = int_prefix(noise.keys[c:c + 1], noise._mult, lattices)
                     if not grad:
-                        inthash.block_values(h, block)
+                        jit.block_values(h, block)
                 elif grad:
                     h, par = block_hash(noise.perms[c], noise.table_size, lattices)
                 else:
@@ -302,7 +290,7 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
                                            noise.perms[c], noise.table_size, d == 1, noise.values, block)
                 for b in range(nterm):
                     if grad and integer:
-                        inthash.block_gradients(h, noise._int_grads, b, block)
+                        jit.block_gradients(h, noise._int_grads, b, block)
                     elif grad:
                         jit.gather_gradients(h, noise.gradients, b, block)
                     target = inter_all[row0:row0 + bshape[0]]
@@ -322,74 +310,6 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
                 jit.final_pass_direct(inter_all, poss, ws, scales, target)
             else:
                 jit.final_pass(inter_all, poss, ws, scales, group_start, target, mode)
-
-
-def grid_fused_2d(noise, sub, octaves, out, absval, deriv_axis):
-    """The separable pass of a 2-D grid, either hash: every octave in one kernel (:func:`_jit.grid2d`).
-
-    The same arithmetic, term by term, as the general path (the same
-    bits), without the lattice block or octave batches in memory. The
-    integer hash's lattice indices are packed whole (below its period, at
-    most 2**32) and hashed row by row in the kernel (:mod:`._intgrid`).
-    """
-    grad = noise.basis == "gradient"
-    integer = noise.hash == "integer"
-    k = noise.kernel
-    n = PERIOD_MAX if integer else noise.table_size  # the integer hash reduces by the period only
-    freqs = np.array([freq for freq, _, _ in octaves], dtype=np.float64)
-    scales = np.array([amp for _, amp, _ in octaves], dtype=np.float64)
-    periods = np.array([per for _, _, per in octaves], dtype=np.int64)
-    nq = out.shape[2]
-    tile = TILE_2D
-    if tile is None:  # the widest tile whose ring fits the budget, the row split into equal tiles
-        slots = 1 << max(0, (k.taps - 1).bit_length())
-        most = max(64, RING_BYTES // (8 * len(octaves) * slots * (2 if grad else 1)))
-        tiles = -(-nq // most)
-        tile = -(-nq // tiles)
-    tile = -(-tile // 8) * 8
-    assert out.flags.c_contiguous
-    flat = out.reshape(noise.dim_out, -1)
-    # one compiled kernel for both output dtypes: the other output array is empty
-    if out.dtype == np.float32:
-        out64, out32 = np.empty((noise.dim_out, 0)), flat
-    else:
-        out64, out32 = flat, np.empty((noise.dim_out, 0), np.float32)
-    packed = _pack_axes(noise, sub, freqs, periods, n, grad, deriv_axis)
-    for c in range(noise.dim_out):
-        if integer:
-            intgrid.grid2d(*packed, scales, noise._keys[c:c + 1], noise._mult, noise._int_grads, 1 if grad else 0,
-                           bool(absval), out64[c], out32[c], nq, tile)
-        else:
-            jit.grid2d(*packed, scales, noise.perms[c], noise.values, noise.gradients, 1 if grad else 0,
-                       bool(absval), out64[c], out32[c], nq, tile)
-
-
-def _pack_axes(noise, sub, freqs, periods, n, grad, deriv_axis):
-    """:func:`_jit.grid2d`'s first eleven arguments: both axes packed by :func:`_jit.pack_axis`, or, for an axis
-    whose taps spread over many cells, by :func:`axis_taps`' sparse branch, packed alike."""
-    k = noise.kernel
-    packed = []
-    for a in range(2):
-        ok, lat, off, pos, base, wa, wb, dense = jit.pack_axis(
-            sub[a], np.ascontiguousarray(freqs[:, a]), noise.phase[a], k.shift, k.left, k.taps, k.coef, k.dcoef,
-            np.ascontiguousarray(periods[:, a]), n, grad, a == deriv_axis, a == 1)
-        if not ok:  # taps spread over many cells: axis_taps' sparse branch, packed alike
-            axis = [axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis, period=per[a])
-                    for freq, per in zip(freqs, periods)]
-            lat = np.concatenate([np.asarray(ax[0], dtype=np.int64) for ax in axis]) % n
-            off = np.zeros(len(axis) + 1, np.int64)
-            off[1:] = np.cumsum([len(ax[0]) for ax in axis])
-            pos = np.ascontiguousarray(np.stack([ax[1] for ax in axis]), dtype=np.int64)
-            base = np.ascontiguousarray(pos[:, :, 0])
-            wa = np.stack([ax[2] for ax in axis])
-            wb = np.stack([ax[3] for ax in axis])
-            if a == 1:
-                wa, wb = wa.transpose(0, 2, 1), wb.transpose(0, 2, 1)
-            wa, wb = np.ascontiguousarray(wa), np.ascontiguousarray(wb)
-            dense = np.array([per[1] % n == 0 and bool((np.diff(ax[0]) % per[1] == 1).all())
-                              for ax, per in zip(axis, periods)])
-        packed.extend((lat, off, pos, wa, wb) if a == 0 else (lat, off, base, dense, wa, wb))
-    return tuple(packed)
 
 
 def contract_rest(block, axes, use_r, target):

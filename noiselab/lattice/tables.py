@@ -4,11 +4,9 @@
 Phillips' construction needs (the positive and negative value tables, the
 unit gradients, one permutation per output component) and, for the integer
 hash, a 32-bit key per component; :func:`signed_values` arranges the value
-tables as the two alternations read them; :func:`period_masks` and
-:func:`doubled_permutations` are the kernels' fast forms of the period and
-permutation; :func:`hash_tables` precombines the nested permutation with
-the values (or gradients) for the 3-D scattered kernels, and
-:func:`cached_hash_tables` keeps them on a noise until its tables change.
+tables as the two alternations read them; :func:`period_masks` is the
+kernels' fast form of the period; :func:`frozen` makes the one read-only
+copy of a table that every path reads.
 """
 from __future__ import annotations
 
@@ -16,10 +14,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._compiled import inthash
+from . import _inthash as inthash
 
-__all__ = ["Tables", "draw_tables", "signed_values", "doubled_permutations", "period_masks", "axis_multipliers",
-           "int_gradients", "hash_tables", "cached_hash_tables"]
+__all__ = ["Tables", "draw_tables", "signed_values", "period_masks", "axis_multipliers", "int_gradients", "frozen"]
 
 
 class Tables(NamedTuple):
@@ -28,8 +25,8 @@ class Tables(NamedTuple):
     positive: np.ndarray    # (n,) on (0, 1]
     negative: np.ndarray    # (n,) on [-1, 0)
     gradients: np.ndarray   # (n, dim_in) unit vectors
-    keys: np.ndarray        # (dim_out,) uint32 integer-hash keys (zeros for the table hash)
-    perms: np.ndarray       # (dim_out, n) int64 permutations
+    keys: np.ndarray        # (dim_out,) uint32 integer-hash keys (zeros for the table hash), read-only
+    perms: np.ndarray       # (dim_out, n) int64 permutations, read-only
 
 
 def draw_tables(rng, n, dim_in, dim_out, integer_hash):
@@ -56,7 +53,7 @@ def draw_tables(rng, n, dim_in, dim_out, integer_hash):
     keys = inthash.component_keys(rng.integers(0, 1 << 63, size=dim_out, dtype=np.int64)) \
         if integer_hash else np.zeros(dim_out, np.uint32)
     perms = np.stack([rng.permutation(n) for _ in range(dim_out)]).astype(np.int64)
-    return Tables(positive, negative, np.ascontiguousarray(gradients), keys, perms)
+    return Tables(positive, negative, np.ascontiguousarray(gradients), frozen(keys), frozen(perms))
 
 
 def signed_values(positive, negative, alternation):
@@ -70,11 +67,6 @@ def signed_values(positive, negative, alternation):
         interleaved = np.where(np.arange(positive.shape[0]) % 2 == 0, positive, negative)
         return np.stack([interleaved, interleaved])
     return np.stack([positive, negative])
-
-
-def doubled_permutations(perms):
-    """``[P, P]`` per component as uint64, so that ``P2[P[i] + j]`` needs no ``mod n`` for ``j < n``."""
-    return np.ascontiguousarray(np.concatenate([perms, perms], axis=1), dtype=np.uint64)
 
 
 def period_masks(period):
@@ -92,55 +84,17 @@ def int_gradients(dim_in, gradients):
     return inthash.gradient_set(dim_in, gradients)
 
 
-def hash_tables(perms, values, gradients, basis):
-    """Precombined hash tables for the 3-D scattered kernels: ``(H2, VL, G)``.
+def frozen(table):
+    """A read-only copy of ``table`` whose flag cannot be set back: a view of an immutable ``bytes`` buffer.
 
-    ``H2[c, q0 * n + q1] = P_c[(P_c[q0] + q1) mod n]`` (the first two
-    nested levels in one load), plus, for value noise (``basis == 0``), the
-    parity row offset ``S * ((q0 + q1 + h) & 1)``; ``VL[c, r * S + x] =
-    values[(r + x) & 1, P_c[x mod n]]`` for ``x < S = 2n + 4``: the last
-    level folded into the values, and run on past 2n so that the last
-    axis's taps ``x, x + 1, ...`` are contiguous without a wrap (the last
-    axis's period must be n). ``G[c, a * S + x] = gradients[P_c[x mod n], a]``
-    likewise (``basis == 1``).
+    The permutations and integer-hash keys are frozen, so that points, grids
+    and every other path read one copy that cannot change after construction.
 
     Examples
     --------
-    >>> perms = np.array([[1, 0, 3, 2]])
-    >>> H2, VL, G = hash_tables(perms, np.ones((2, 4)), np.ones((4, 3)), 1)
-    >>> H2.shape, G.shape, H2.dtype.name
-    ((1, 16), (1, 36), 'uint16')
+    >>> p = frozen(np.arange(4))
+    >>> p.flags.writeable
+    False
     """
-    dim_out, n = perms.shape
-    S = 2 * n + 4
-    q = np.arange(n)
-    x = np.arange(S)
-    H2 = np.empty((dim_out, n * n), dtype=np.uint16)
-    VL = np.zeros((dim_out, 2 * S))
-    G = np.zeros((dim_out, gradients.shape[1] * S))
-    for c, P in enumerate(perms):
-        h = P[(P[q][:, None] + q[None, :]) % n]
-        if basis == 0:
-            h = h + S * ((q[:, None] + q[None, :] + h) & 1)
-            for r in range(2):
-                VL[c, r * S:(r + 1) * S] = values[(r + x) & 1, P[x % n]]
-        else:
-            G[c] = gradients[P[x % n]].T.ravel()
-        H2[c] = h.ravel()
-    return H2, VL, G
-
-
-def cached_hash_tables(noise, basis):
-    """:func:`hash_tables` of ``noise``'s current tables, kept on it until they change.
-
-    Rebuilt whenever the permutations, values or gradients change (they are
-    public attributes), so the tables never go stale.
-    """
-    src = noise.values if basis == 0 else noise.gradients
-    key = (basis, noise.perms.tobytes(), src.tobytes())
-    cache = getattr(noise, "_tables_cache", None)
-    if cache is not None and cache[0] == key:
-        return cache[1]
-    tables = hash_tables(noise.perms, noise.values, noise.gradients, basis)
-    noise._tables_cache = (key, tables)
-    return tables
+    table = np.ascontiguousarray(table)
+    return np.frombuffer(table.tobytes(), dtype=table.dtype).reshape(table.shape)

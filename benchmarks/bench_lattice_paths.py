@@ -1,0 +1,97 @@
+"""Which lattice paths pay: each remaining grid path against the general one it replaces, side by side.
+
+Run from the repository root::
+
+    python benchmarks/bench_lattice_paths.py [--repeats 7]
+
+Prints a Markdown table (and writes ``benchmarks/bench_lattice_paths.md``):
+thread CPU time, one thread, median of ``--repeats`` interleaved rounds
+(``noiselab.lab.measure.interleaved``), and the per-round ratio general /
+special (above 1: the special path pays). The paths:
+
+- the separable grid passes against the points path on the grid's points
+  (``noise.evaluate(noise.grid_points(...))``), 2-D and 3-D: what a grid
+  would cost without a grid path;
+- 3-D table-hash values over folded tables (``points_path.PAIRS_MIN``: many
+  points) against the per-point kernel on the same points (the same bits).
+
+The fused 2-D grid kernel this script measured first (a run at commit
+c825318, kept in ``bench_lattice_paths.md``) ran at 0.72-0.79x the separable
+passes once its hand-written vector intrinsic was gone, and was removed.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import shlex
+import sys
+import time
+from pathlib import Path
+
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+import numpy as np  # noqa: E402
+
+import noiselab as nl  # noqa: E402
+from noiselab.lab.measure import header_lines, interleaved, markdown_table, run_info  # noqa: E402
+
+
+def cases():
+    from noiselab.lattice import points_path
+
+    out = []
+    for d, shape, cells in ((2, (512, 512), 32), (3, (64, 64, 64), 8)):
+        ext = [(0, cells)] * d
+        for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"})):
+            for h in ("table", "integer"):
+                n = nl.LatticeNoise(d, hash=h, **kw)
+                pts = n.grid_points(shape, ext)
+                octaves = 6 if d == 2 else 1
+                out.append((f"{shape} grid, {octaves} octave(s), {h} hash, {label}: separable passes vs points path",
+                            (lambda n, o, s, e: lambda: n.evaluate_grid(s, e, octaves=o))(n, octaves, shape, ext),
+                            (lambda n, p, o: lambda: n.evaluate(p, octaves=o))(n, pts, octaves)))
+    pts = np.random.default_rng(0).random((1_000_000, 3)) * 32
+
+    def with_least(least, fn):
+        def run():
+            old = points_path.PAIRS_MIN
+            points_path.PAIRS_MIN = least
+            try:
+                return fn()
+            finally:
+                points_path.PAIRS_MIN = old
+        return run
+
+    for label, kw in (("value cubic", {}), ("value catmull-rom", {"kernel": "catmull-rom"}),
+                      ("gradient quintic", {"basis": "gradient"})):
+        n = nl.LatticeNoise(3, **kw)
+        call = (lambda n: lambda: n(pts))(n)
+        out.append((f"1e6 3-D points, table hash, {label}: folded tables vs per-point kernel",
+                    with_least(0, call), with_least(1 << 40, call)))
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=7)
+    ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
+    args = ap.parse_args(argv)
+    command = "python benchmarks/bench_lattice_paths.py " + shlex.join(argv if argv is not None else sys.argv[1:])
+    info = run_info(command.strip())
+    rows = []
+    for what, special, general in cases():
+        t = interleaved({"special": special, "general": general}, repeats=args.repeats, timer=time.thread_time)
+        rows.append([what, f"{t['special'] * 1e3:.2f}", f"{t['general'] * 1e3:.2f}",
+                     f"{t.ratio('general', 'special'):.2f}"])
+        print(rows[-1], flush=True)
+    lines = ["# Which lattice paths pay", ""] + header_lines(info) + [
+        "", "Thread CPU time, one thread, median of the interleaved rounds; ratio = general / special per round.", ""]
+    lines += markdown_table(["path (special vs general)", "special (ms)", "general (ms)", "ratio"], rows, "lrrr")
+    Path(args.output).write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,179 @@
+"""The lattice engine's own guarantees: read-only tables shared by every path, points in either layout, the
+kernels as plain Python, and numba's cache following every edit of the engine's source."""
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from noiselab import LatticeNoise, fractal_sum
+from noiselab.lattice import Grid
+
+RNG = np.random.default_rng(33)
+HERE = Path(__file__).resolve().parent.parent
+
+
+# ----------------------------------------------------------------- tables
+@pytest.mark.parametrize("hash_", ["table", "integer"])
+def test_permutations_and_keys_are_read_only_for_good(hash_):
+    noise = LatticeNoise(2, 2, seed=1, hash=hash_)
+    for table in (noise.perms, noise.keys):
+        assert not table.flags.writeable
+        with pytest.raises(ValueError, match="read-only"):
+            table[...] = table[..., ::-1]
+        with pytest.raises(ValueError):
+            table.setflags(write=True)   # not a flag one can set back: the buffer itself is immutable
+    with pytest.raises(ValueError, match="read-only"):
+        noise.perms[0, :2] = noise.perms[0, 1::-1]
+
+
+def test_points_and_grids_read_one_table():
+    # a changed table once made points (a copy taken at construction) and grids (the live table) disagree by
+    # 0.56 on a 16^2 grid; now the table cannot change, and a changed value table reaches both paths alike
+    noise = LatticeNoise(2, seed=2, kernel="quintic")
+    shape, ext = (16, 16), [(0, 4), (0, 4)]
+    with pytest.raises(ValueError):
+        noise.perms[0] = noise.perms[0][::-1]
+    noise.values[:] = noise.values[:, ::-1].copy()
+    grid = noise.grid(shape, ext)
+    np.testing.assert_allclose(noise(noise.grid_points(shape, ext)), grid, rtol=0, atol=1e-12)
+    assert np.abs(grid - LatticeNoise(2, seed=2, kernel="quintic").grid(shape, ext)).max() > 0.1
+
+
+# ----------------------------------------------------------------- layout
+@pytest.mark.parametrize("hash_", ["table", "integer"])
+def test_points_in_rows_or_columns_give_the_same_bits(hash_):
+    noise = LatticeNoise(3, 2, seed=4, hash=hash_, kernel="quintic", basis="gradient")
+    rows = RNG.uniform(-20, 20, (3000, 3))
+    cols = np.ascontiguousarray(rows.T)           # structure of arrays, (3, N)
+    want = noise(rows)
+    np.testing.assert_array_equal(noise(cols, axis=0), want)
+    np.testing.assert_array_equal(noise(cols, axis=-2, workers=3), want)
+    np.testing.assert_array_equal(noise(cols.astype(np.float32), axis=0), noise(rows.astype(np.float32)))
+    np.testing.assert_array_equal(noise.evaluate(cols, octaves=3, axis=0), noise.evaluate(rows, octaves=3))
+    for a, b in zip(noise.evaluate_jacobian(cols, axis=0), noise.evaluate_jacobian(rows)):
+        np.testing.assert_array_equal(a, b)
+    # N == d is the ambiguous case: the keyword decides, nothing is guessed
+    square = RNG.uniform(-5, 5, (3, 3))
+    np.testing.assert_array_equal(noise(square, axis=0), noise(square.T))
+    assert not np.array_equal(noise(square, axis=0), noise(square))
+    # leading axes keep their order: (d, a, b) -> (a, b)
+    block = RNG.uniform(-5, 5, (3, 4, 5))
+    np.testing.assert_array_equal(noise(block, axis=0), noise(np.moveaxis(block, 0, -1)))
+    with pytest.raises(ValueError, match="axis 0"):
+        noise(rows, axis=0)
+    with pytest.raises(ValueError, match="axis must be"):
+        noise(rows, axis=2)
+
+
+# ----------------------------------------------------------------- the folded tables
+@pytest.mark.parametrize("kw", [{}, {"basis": "gradient"}, {"kernel": "catmull-rom", "dim_out": 2},
+                                {"alternation": "lattice"}, {"table_size": 20, "kernel": "quadratic"},
+                                {"basis": "gradient", "table_size": 30}])
+def test_folded_tables_give_the_per_point_kernels_bits(kw, monkeypatch):
+    # many 3-D points read the folded tables (pair_tables), few the permutation itself: the same bits
+    from noiselab.lattice import points_path
+
+    noise = LatticeNoise(3, seed=2, **kw)
+    pts = RNG.uniform(-300, 300, (3000, 3))
+    pts[::7] += 1e13   # past 2**52: the exact reduction
+    results = []
+    for least in (1 << 40, 0):
+        monkeypatch.setattr(points_path, "PAIRS_MIN", least)
+        results.append([noise.evaluate(pts, octaves=3), noise.evaluate(pts, octaves=2, absval=True)])
+    for a, b in zip(*results):
+        np.testing.assert_array_equal(a, b)
+        np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
+    # and a changed value table reaches the folded tables (they are built from the live tables at each call)
+    noise.values[:] = -noise.values
+    noise.gradients[:] = -noise.gradients
+    np.testing.assert_array_equal(noise.evaluate(pts, octaves=3), -results[1][0])
+
+
+# ----------------------------------------------------------------- plain Python
+_CASE = """
+import sys
+import numpy as np
+import noiselab as nl
+from noiselab.lattice import Grid
+x = np.random.default_rng(1).uniform(-9, 9, (40, 3))
+out = []
+for h in ("table", "integer"):
+    for kw in ({}, {"basis": "gradient", "kernel": "catmull-rom"}, {"period": (3, 4, 5), "kernel": "quintic"}):
+        n3 = nl.LatticeNoise(3, 2, seed=3, hash=h, **kw)
+        out += [n3.evaluate(x, octaves=2), n3(x.T, axis=0)]
+        out += list(n3.evaluate_jacobian(x, octaves=2, absval=True))
+        kw2 = dict(kw, period=(3, 4)) if "period" in kw else kw
+        n2g = nl.LatticeNoise(2, seed=3, hash=h, **kw2)
+        out += [nl.fractal_sum(n2g, Grid((9, 7), ((0, 3), (-1, 2))), 3), n2g.grid((6, 5), [(0, 2), (0, 2)],
+                                                                                  dtype=np.float32)]
+        out += [nl.LatticeNoise(3, seed=3, hash=h).grid((5, 4, 3), [(0, 2), (0, 2), (0, 1)])]
+        out += list(n2g.evaluate_grid_jacobian((6, 5), [(0, 2), (0, 2)], octaves=2))
+    out += [nl.LatticeNoise(5, seed=3, hash=h, kernel="linear")(x[:, :1].repeat(5, axis=1))]
+from noiselab.lattice import points_path
+for least in (0, 1 << 40):   # 3-D table-hash values over the folded tables, and without them
+    points_path.PAIRS_MIN = least
+    for kw in ({}, {"basis": "gradient"}, {"alternation": "lattice", "table_size": 20}):
+        out += [nl.LatticeNoise(3, 2, seed=5, **kw).evaluate(x, octaves=2)]
+np.savez(sys.argv[1], *out)
+"""
+
+
+def test_every_kernel_runs_as_plain_python_with_the_same_bits(tmp_path):
+    # NUMBA_DISABLE_JIT=1 runs every kernel's Python source: points (both hashes, with and without a period,
+    # Jacobians, both layouts, the folded 3-D tables), 2-D and 3-D grids by the separable passes and the grid Jacobians
+    results = []
+    for flag in ("0", "1"):
+        env = dict(os.environ, NUMBA_DISABLE_JIT=flag, PYTHONPATH=str(HERE))
+        subprocess.run([sys.executable, "-c", _CASE, str(tmp_path / f"jit{flag}.npz")], env=env, check=True,
+                       cwd=tmp_path, timeout=900)
+        data = np.load(tmp_path / f"jit{flag}.npz")
+        results.append([data[k] for k in sorted(data.files, key=lambda s: int(s.split("_")[1]))])
+    assert len(results[0]) == len(results[1]) > 40
+    for compiled, plain in zip(*results):
+        assert compiled.dtype == plain.dtype and compiled.shape == plain.shape
+        np.testing.assert_array_equal(compiled, plain)
+        np.testing.assert_array_equal(np.signbit(compiled), np.signbit(plain))
+
+
+# ----------------------------------------------------------------- the compile cache
+_EVAL = """
+import numpy as np
+from noiselab import LatticeNoise
+x = np.random.default_rng(0).uniform(-9, 9, (200, 3))
+print(repr(float(LatticeNoise(3, seed=1)(x).sum())))
+"""
+
+
+def _engine_source(package):
+    """The module whose helpers the point kernels call (today's engine, or the tree before it)."""
+    return package / "noiselab" / "lattice" / "_jit.py"
+
+
+def test_an_edit_of_the_engine_reaches_a_warm_cache(tmp_path):
+    # the kernels are cached by numba against their source file: an edit of a helper they call (here the
+    # index reduction: every lattice index one cell over) must show in the next process, same cache folder
+    package = tmp_path / "install"
+    shutil.copytree(HERE / "noiselab", package / "noiselab", ignore=shutil.ignore_patterns("__pycache__"))
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"), PYTHONPATH=str(package))
+
+    def run():
+        proc = subprocess.run([sys.executable, "-c", _EVAL], env=env, cwd=tmp_path, capture_output=True,
+                              text=True, timeout=600)
+        assert proc.returncode == 0, proc.stderr
+        return float(proc.stdout.split()[-1])
+
+    before = run()
+    assert run() == before   # warm, same source: the same values
+    source = _engine_source(package)
+    text = source.read_text()
+    old = "        i = np.int64(fi) - left\n"
+    assert text.count(old) == 1
+    source.write_text(text.replace(old, "        i = np.int64(fi) - left + 1  # edited\n"))
+    shifted = LatticeNoise(3, seed=1, phase=1.0)(np.random.default_rng(0).uniform(-9, 9, (200, 3))).sum()
+    after = run()
+    assert after != before
+    assert after == pytest.approx(float(shifted), abs=1e-9)   # the edit's effect: the lattice moved one cell
