@@ -72,7 +72,7 @@ def bench(cands: dict, repeats: int, clock=None) -> Times:
 
 # --------------------------------------------------------------------------- grids
 GRID_HEAD = "## 2-D grids against pyfastnoisesimd and the floor"
-# (n, lattice cells per side): the issue's 1024^2 grid of 16 cells, and the denser 512^2 grid of 32 cells
+# (n, lattice cells per side): the target's 1024^2 grid of 16 cells, and the denser 512^2 grid of 32 cells
 # that the lab's peer comparison renders (noiselab/lab/peers.py, CELLS_1)
 GRID_SETTINGS = ((1024, 16), (512, 32))
 
@@ -399,9 +399,9 @@ def hash_section(repeats, lines, npts=1_000_000):
     return summary
 
 
-# ------------------------------------------------------------------ issue 22's targets
-TARGET_HEAD = "## Issue 22's targets: pyfastnoisesimd on one thread, the write floor, and `workers=2`"
-# (kernel, basis, pyfastnoisesimd's like-for-like noise) of issue 22's 3-D points rows
+# ------------------------------------------------------------------ noiselab's speed targets
+TARGET_HEAD = "## The speed targets: pyfastnoisesimd on one thread, the write floor, and `workers=2`"
+# (kernel, basis, pyfastnoisesimd's like-for-like noise) of the targets' 3-D points rows
 TARGET_POINTS = (("quintic", "value", "Value"), ("quintic", "gradient", "Perlin"), ("catmull-rom", "value", "Cubic"))
 TARGET_GRID = (512, 16)  # 512^2 samples over 16 lattice cells per side: fractal_sum keeps all 6 octaves
 
@@ -435,7 +435,7 @@ def _scaling(cands, repeats):
 
 
 def targets_section(repeats, lines, npts=1_000_000):
-    """Issue 22's speed targets, both hashes: 3-D points and 512^2 6-octave fBm grids against pyfastnoisesimd."""
+    """The speed targets, both hashes: 3-D points and 512^2 6-octave fBm grids against pyfastnoisesimd."""
     fns = _peer("fns")
     rng = np.random.default_rng(0)
     pts32 = rng.uniform(0.0, 100.0, (npts, 3)).astype(np.float32)
@@ -693,7 +693,7 @@ def build_parser():
     ap.add_argument("--grid-only", action="store_true",
                     help="run only the 2-D grid section and replace it in the output file (the rest is kept)")
     ap.add_argument("--targets-only", action="store_true",
-                    help="run only issue 22's targets section (both hashes, pyfastnoisesimd, floor, workers=2) and "
+                    help="run only noiselab's speed targets section (both hashes, pyfastnoisesimd, floor, workers=2) and "
                          "replace it in the output file (the rest is kept)")
     return ap
 

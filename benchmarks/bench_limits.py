@@ -1,6 +1,6 @@
 """What limits lattice noise on scattered 3-D points: lower bounds measured beside noiselab and pyfastnoisesimd.
 
-Issue 22 asks for pyfastnoisesimd's speed on 1e6 random 3-D points; noiselab's
+noiselab's target is pyfastnoisesimd's speed on 1e6 random 3-D points; noiselab's
 table hash reaches 0.1-0.4x of it and the integer hash 0.5-0.8x
 (``bench_lattice.md``). This script times, in the same interleaved rounds,
 three kernels that do *less* than noiselab's and so bound what any
