@@ -128,12 +128,12 @@ def generator_figures():
         rows.append((f"spectral_noise exponent {e:g}: amplitude slope 4..128 at 512x512", f"{float(A.spectral_slope(img, (4, 128))):+.4f}"))
     rows.append(("spectral_noise 512x512: anisotropy", f"{A.anisotropy(noiselab.spectral_noise((512, 512), rng=9)):.4f}"))
     for k in ("box", "linear", "quadratic", "cubic", "catmull-rom", "quintic"):
-        img = noiselab.LatticeNoise(2, seed=3, kernel=k, period=8).grid((256, 256), [(0, 8), (0, 8)])
+        img = noiselab.LatticeNoise(2, rng=3, kernel=k, period=8).grid((256, 256), [(0, 8), (0, 8)])
         o = A.orientation_energy(img)
         rows.append((f"lattice value noise, {k}: power beyond the lattice frequency / anisotropy (m2, m4)",
                      f"{A.band_energy(img, (8, 128 * np.sqrt(2))):.2e} / {o.index:.3f} ({o.m2:.3f}, {o.m4:.3f})"))
     for g in (0.5, 2**-0.5, 1.0):
-        img = noiselab.fractal_sum(noiselab.LatticeNoise(2, seed=4, kernel="cubic"), Grid((256, 256), [(0, 4), (0, 4)]), 8, gain=g)
+        img = noiselab.fractal_sum(noiselab.LatticeNoise(2, rng=4, kernel="cubic"), Grid((256, 256), [(0, 4), (0, 4)]), 8, gain=g)
         rows.append((f"fractal_sum (cubic) gain {g:.3f}: slope 8..64, Hann (expected {np.log2(g) - 1:+.2f})",
                      f"{float(A.spectral_slope(img, (8, 64), window='hann')):+.3f}"))
     return rows

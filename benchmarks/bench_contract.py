@@ -86,17 +86,17 @@ def main(argv=None):
     rng = np.random.default_rng(0)
     rows = []
     for dim, kernel in [(1, "linear"), (2, "linear"), (2, "cubic"), (4, "cubic")]:
-        noise = LatticeNoise(dim, kernel=kernel, seed=1)
+        noise = LatticeNoise(dim, kernel=kernel, rng=1)
         pts = rng.uniform(-100, 100, (1_000_000 // dim, dim))
         r, t = ratio(lambda: noise(pts), no_reach, repeats)
         rows.append((f"LatticeNoise({dim}, kernel={kernel!r}) on {len(pts):,} points", r, t))
     # the derivative paths: the finiteness check of the derivative (one pass over it)
     for dim in (2, 3):
-        noise = LatticeNoise(dim, seed=1)
+        noise = LatticeNoise(dim, rng=1)
         pts = rng.uniform(-100, 100, (1_000_000 // dim, dim))
         r, t = ratio(lambda: noise.gradient(pts), no_jac_finite, repeats)
         rows.append((f"LatticeNoise({dim}).gradient on {len(pts):,} points", r, t))
-    noise = LatticeNoise(2, seed=1)
+    noise = LatticeNoise(2, rng=1)
     r, t = ratio(lambda: noise.gradient_grid((1024, 1024), [(0, 64), (0, 64)]), no_jac_finite, repeats)
     rows.append(("LatticeNoise(2).gradient_grid 1024 x 1024", r, t))
     wt, wy, wx = frequency_vectors((64, 256, 256))

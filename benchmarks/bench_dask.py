@@ -52,7 +52,7 @@ CELLS = 8.0
 
 
 def _volume(n):
-    return LatticeNoise(3, seed=1), Grid((n, n, n), [(0.0, CELLS)] * 3)
+    return LatticeNoise(3, rng=1), Grid((n, n, n), [(0.0, CELLS)] * 3)
 
 
 def _timed(fn):
@@ -176,7 +176,7 @@ def memory(n, chunk_sizes, tmp):
 
 def per_chunk(repeats, tmp, n_big=2048, chunks=(128, 256)):
     """Render and write costs of one chunk of the 2048^3 grid, for each chunk size."""
-    noise = LatticeNoise(3, seed=1)
+    noise = LatticeNoise(3, rng=1)
     grid = Grid((n_big,) * 3, [(0.0, 64.0)] * 3)  # 64 lattice cells per side
     rows = []
     for chunk in chunks:
@@ -447,7 +447,7 @@ def write_report(args, n, repeats, ov, sc, mem, whole_mib, pc, elapsed):
                       "ratios are medians of the per-round ratios (robust to the load, absolute times are not). "
                       "Every chunked result was checked bit-identical to the in-memory one."),
         "",
-        f"Field: `fractal_sum(LatticeNoise(3, seed=1), Grid(({n}, {n}, {n}), [(0, {CELLS:g})] * 3), {OCTAVES}, "
+        f"Field: `fractal_sum(LatticeNoise(3, rng=1), Grid(({n}, {n}, {n}), [(0, {CELLS:g})] * 3), {OCTAVES}, "
         "dtype='float32')` (value noise, cubic B-spline).",
         "",
         "## 1. Overhead of the chunked path on one worker",
@@ -516,7 +516,7 @@ def write_report(args, n, repeats, ov, sc, mem, whole_mib, pc, elapsed):
         "",
         f"## 4. Paper sketch: a {pc[0]['n_big']}^3 volume on a {nodes}-node cluster",
         "",
-        f"Measured here, per chunk of `fractal_sum(LatticeNoise(3, seed=1), Grid(({pc[0]['n_big']},) * 3, "
+        f"Measured here, per chunk of `fractal_sum(LatticeNoise(3, rng=1), Grid(({pc[0]['n_big']},) * 3, "
         f"[(0, 64)] * 3), {OCTAVES}, dtype='float32', chunks=C)` ({pc[0]['used']} octaves used, an interior "
         "chunk, one thread), and the zstd-compressed write of that chunk to the local disk:",
         "",

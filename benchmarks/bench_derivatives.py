@@ -79,7 +79,7 @@ def scattered(repeats, quick, lines, summary):
     for d in (1, 2, 3):
         for kernel in ("cubic", "quintic"):
             for basis in ("value", "gradient"):
-                noise = LatticeNoise(d, seed=1, kernel=kernel, basis=basis)
+                noise = LatticeNoise(d, rng=1, kernel=kernel, basis=basis)
                 x = np.random.default_rng(d).uniform(-50, 50, (npts, d))
                 t = _bench({"value": lambda: noise(x),
                             "value+gradient": lambda: noise.gradient(x, return_value=True),
@@ -105,7 +105,7 @@ def grids(repeats, quick, lines, summary):
         floor_ratio = floor.ratio("value+gradient", "value")
         for kernel in ("cubic", "quintic"):
             for basis in ("value", "gradient"):
-                noise = LatticeNoise(d, seed=1, kernel=kernel, basis=basis)
+                noise = LatticeNoise(d, rng=1, kernel=kernel, basis=basis)
                 t = _bench({"value": lambda: noise.grid(shape, ext),
                             "value+gradient": lambda: noise.gradient_grid(shape, ext, return_value=True),
                             "finite differences": lambda: _fd_grid(noise, shape, ext, 1e-5),
@@ -118,7 +118,7 @@ def grids(repeats, quick, lines, summary):
 
 def accuracy(lines):
     """Gradient error of finite differences against the exact gradient, at two steps."""
-    noise = LatticeNoise(3, seed=1, kernel="quintic")
+    noise = LatticeNoise(3, rng=1, kernel="quintic")
     lines += ["", "## Accuracy of the finite-difference gradient (3-D quintic, 20000 points)", "",
               "| coordinates | step h | max error / max abs gradient |", "|---|---|---|"]
     for base in (0.0, 1e9):

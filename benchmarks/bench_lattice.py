@@ -125,7 +125,7 @@ def grid_section(repeats, quick, lines):
         lines.append("|---|---|---|---|---|---|---|---|---|---|")
         for kname in kernels:
             for basis in ("value", "gradient"):
-                noise = LatticeNoise(2, seed=1, kernel=kname, basis=basis)
+                noise = LatticeNoise(2, rng=1, kernel=kname, basis=basis)
                 cands = {"floor_float64": lambda: np.full(shape, 0.5),
                          "floor_float32": lambda: np.full(shape, 0.5, dtype=np.float32)}
                 if fns is not None:
@@ -170,7 +170,7 @@ def grid_section(repeats, quick, lines):
     lines.append("|---|---|---|---|---|")
     cands = {"floor": lambda: np.full(shape, 0.5)}
     notes = {}
-    noise = LatticeNoise(2, seed=1, kernel="quintic")
+    noise = LatticeNoise(2, rng=1, kernel="quintic")
     cands["noiselab value quintic (float64)"] = lambda: noise.grid(shape, grid.extent)
     xs = np.arange(shape[1]) * (cells / shape[1])
     fnl = _peer("fnl")
@@ -240,7 +240,7 @@ def scattered_section(repeats, quick, lines):
     kernels = ["cubic", "quintic"] if quick else kernel_names()
     for kname in kernels:
         for basis in ("value", "gradient"):
-            noise = LatticeNoise(3, seed=1, kernel=kname, basis=basis)
+            noise = LatticeNoise(3, rng=1, kernel=kname, basis=basis)
             cands = {"floor": lambda: np.full(npts, 0.5),
                      "f64": lambda noise=noise: noise(pts),
                      "f32": lambda noise=noise: noise(pts32)}
@@ -267,7 +267,7 @@ def scattered_section(repeats, quick, lines):
     lines.append("| kernel | evaluation | octaves used | pts/s | x 1 octave | x FNL |")
     lines.append("|---|---|---|---|---|---|")
     for kname in ("quintic", "cubic"):
-        noise = LatticeNoise(3, seed=1, kernel=kname)
+        noise = LatticeNoise(3, rng=1, kernel=kname)
         _, used60 = fractal_sum(noise, pts[:10], 60, return_octaves=True)
         _, used6 = fractal_sum(noise, pts[:10], 6, return_octaves=True)
         cands = {"one": lambda noise=noise: noise(pts),
@@ -368,9 +368,9 @@ def hash_section(repeats, lines, npts=1_000_000):
     for d, kname, basis, peer in rows:
         pts32 = rng.uniform(0.0, 100.0, (npts, d)).astype(np.float32)
         pts = pts32.astype(np.float64)
-        table = LatticeNoise(d, seed=1, kernel=kname, basis=basis)
-        integer = LatticeNoise(d, seed=1, kernel=kname, basis=basis, hash="integer")
-        general = LatticeNoise(d, seed=1, kernel=kname, basis=basis, hash="integer", frequency=0.37)
+        table = LatticeNoise(d, rng=1, kernel=kname, basis=basis)
+        integer = LatticeNoise(d, rng=1, kernel=kname, basis=basis, hash="integer")
+        general = LatticeNoise(d, rng=1, kernel=kname, basis=basis, hash="integer", frequency=0.37)
         cands = {"floor": lambda: np.full(npts, 0.5, np.float32), "table": lambda: table(pts),
                  "integer": lambda: integer(pts), "integer32": lambda: integer(pts32),
                  "general32": lambda: general(pts32)}
@@ -407,7 +407,7 @@ TARGET_GRID = (512, 16)  # 512^2 samples over 16 lattice cells per side: fractal
 
 
 def _hashed(dim, kname, basis, hname):
-    return LatticeNoise(dim, seed=1, kernel=kname, basis=basis, **({} if hname == "table" else {"hash": hname}))
+    return LatticeNoise(dim, rng=1, kernel=kname, basis=basis, **({} if hname == "table" else {"hash": hname}))
 
 
 def _target_cell(t, key, n, fkey):
@@ -633,7 +633,7 @@ def precision_section(lines):
 
     rows = {}
     for kname, basis in (("cubic", "value"), ("quintic", "value"), ("quintic", "gradient")):
-        noise = LatticeNoise(3, seed=1, kernel=kname, basis=basis)
+        noise = LatticeNoise(3, rng=1, kernel=kname, basis=basis)
         rows[f"noiselab {basis} {kname} (float64)"] = \
             lambda x, noise=noise: noise(np.stack([x, np.full_like(x, 0.3), np.full_like(x, 0.7)], axis=-1))
     nz = _peer("noise")

@@ -39,11 +39,11 @@ from noiselab.lattice import Grid
 rng = np.random.default_rng(0)
 pts3 = rng.uniform(-50, 50, (1_000_000, 3))
 pts3_32 = pts3.astype(np.float32)
-value3 = LatticeNoise(3, kernel="quintic", seed=1)
-gradient3 = LatticeNoise(3, kernel="quintic", basis="gradient", seed=1)
-integer3 = LatticeNoise(3, kernel="quintic", hash="integer", seed=1)
-plane = LatticeNoise(2, seed=1)
-vector3 = LatticeNoise(3, 3, kernel="quintic", seed=2)
+value3 = LatticeNoise(3, kernel="quintic", rng=1)
+gradient3 = LatticeNoise(3, kernel="quintic", basis="gradient", rng=1)
+integer3 = LatticeNoise(3, kernel="quintic", hash="integer", rng=1)
+plane = LatticeNoise(2, rng=1)
+vector3 = LatticeNoise(3, 3, kernel="quintic", rng=2)
 grid512 = Grid((512, 512), ((0, 32), (0, 32)))
 
 CASES = {

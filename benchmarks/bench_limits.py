@@ -118,8 +118,8 @@ def measure(repeats):
     pts32 = rng.uniform(0.0, 100.0, (NPTS, 3)).astype(np.float32)
     pts = pts32.astype(np.float64)
     soa = [np.ascontiguousarray(pts32[:, a]) for a in range(3)]
-    table = LatticeNoise(3, seed=1, kernel="quintic")
-    integer = LatticeNoise(3, seed=1, kernel="quintic", hash="integer")
+    table = LatticeNoise(3, rng=1, kernel="quintic")
+    integer = LatticeNoise(3, rng=1, kernel="quintic", hash="integer")
     h2, vl = _pair_tables(table.perms[0], table.values)
     cols = np.ascontiguousarray(pts32.T)
     out64, out32 = np.empty(NPTS), np.empty(NPTS, np.float32)

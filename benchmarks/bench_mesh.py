@@ -63,7 +63,7 @@ def main(argv=None):
     v = np.asarray(base.vertices).copy()
     f = np.asarray(base.faces).copy()
     n_vertices, n_faces = len(v), len(f)
-    noise = noiselab.LatticeNoise(3, seed=0)
+    noise = noiselab.LatticeNoise(3, rng=0)
     field = octave_field(noise, args.octaves)
     frequency, amplitude = 2.0, 0.1
     info = run_info(command, ["trimesh", "pyvista", "vtk"])
@@ -157,7 +157,7 @@ def main(argv=None):
         "",
         *header_lines(info),
         f"- mesh: `trimesh.creation.uv_sphere(count=[{args.count}, {args.count}])`: {n_vertices:,} vertices, {n_faces:,} faces (watertight; its pole fans are thin triangles)",
-        f"- field: `LatticeNoise(3, seed=0)` (value noise, cubic B-spline kernel, float64), {args.octaves}-octave fractal sum (Eq. 9), frequency {frequency}, amplitude {amplitude}",
+        f"- field: `LatticeNoise(3, rng=0)` (value noise, cubic B-spline kernel, float64), {args.octaves}-octave fractal sum (Eq. 9), frequency {frequency}, amplitude {amplitude}",
         f"- {args.repeats} rounds (`noiselab.lab.measure.interleaved`, each round one call timing every row as a lap), "
         "each measuring every row once; time = median over rounds; ratio = median over "
         "rounds of (row / floor in the same round); the floor's own spread over rounds: "

@@ -184,7 +184,7 @@ def power_cases():
          lambda s: (lambda x: x + x.std() * np.sin(2 * np.pi * 8 * np.arange(128) / 128))(spectral((128, 128))(s)),
          lambda x: T.assert_isotropic(x)),
         ("assert_no_axis_artefacts", "lattice noise (cubic, 8 cells, periodic) 128^2",
-         lambda s: noiselab.LatticeNoise(2, seed=s, kernel="cubic", period=8).grid((128, 128), [(0, 8), (0, 8)]),
+         lambda s: noiselab.LatticeNoise(2, rng=s, kernel="cubic", period=8).grid((128, 128), [(0, 8), (0, 8)]),
          lambda x: T.assert_no_axis_artefacts(x)),
         ("assert_seamless", "seam: spectral_noise 128^2 exponent 1.5 cropped to 120 x 128",
          crop(spectral((128, 128), 1.5), (120, 128)), lambda x: T.assert_seamless(x)),

@@ -659,7 +659,7 @@ class NaiveLattice:
     ``test_naive``: the bound is checked on its own).
     """
 
-    def __init__(self, dim_in, dim_out=1, *, seed=0, kernel=None, basis="value", table_size=256, period=None,
+    def __init__(self, dim_in, dim_out=1, *, rng=0, kernel=None, basis="value", table_size=256, period=None,
                  frequency=1.0, phase=0.0, amplitude=1.0, alternation="table", hash="table"):
         d, n = dim_in, table_size
         if kernel is None:  # Phillips' cubic B-spline for values, Perlin's quintic fade for gradients
@@ -672,7 +672,7 @@ class NaiveLattice:
         default = n if hash == "table" else 1 << 32
         self.period = np.broadcast_to(np.asarray(default if period is None else period, dtype=np.int64), (d,))
         self.tileable = period is not None
-        rng = np.random.default_rng(seed)
+        rng = np.random.default_rng(rng)
         self.positive = 1.0 - rng.random(n)
         self.negative = rng.random(n) - 1.0
         g = rng.standard_normal((n, d))

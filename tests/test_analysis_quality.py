@@ -32,7 +32,7 @@ def test_white_noise_twice_as_dense_as_the_output_aliases_all_but_one_cell_in_2_
 def test_lattice_noise_aliases_and_the_spectral_field_does_not():
     # 32 lattice cells over a 128 x 128 output (4 px per cell), rendered twice as densely: the smoother the
     # kernel, the less power past the output's Nyquist (2 cycles per cell)
-    aliased = {k: A.band_leakage(noiselab.LatticeNoise(2, seed=2, kernel=k, period=32).grid((256, 256), [(0, 32)] * 2),
+    aliased = {k: A.band_leakage(noiselab.LatticeNoise(2, rng=2, kernel=k, period=32).grid((256, 256), [(0, 32)] * 2),
                                  (1, 64), oversample=2).aliased for k in ("box", "linear", "cubic")}
     assert aliased["box"] > 0.05 and aliased["box"] > 10 * aliased["linear"] > 100 * aliased["cubic"] > 0
     from scipy.signal import resample
@@ -122,7 +122,7 @@ def test_detect_period_finds_the_fft_domain_and_the_lattice_table():
     assert A.detect_period(np.tile(img, (3, 1)), axis=0).period == 64
     assert A.detect_period(img[:, :48]).period is None
     # lattice noise repeats after its table: 64 cells of 4 samples
-    line = noiselab.LatticeNoise(1, seed=3, table_size=64).grid((1024,), [(0, 256)])
+    line = noiselab.LatticeNoise(1, rng=3, table_size=64).grid((1024,), [(0, 256)])
     p = A.detect_period(line)
     assert p.period == 256 and p.difference < 1e-12
     white = A.detect_period(np.random.default_rng(10).standard_normal(2000))
@@ -143,7 +143,7 @@ def test_axis_artefacts_isotropic_striped_and_lattice():
     spec = A.power_spectrum(white).full()
     assert (a.column_mean_spread * white.std()) ** 2 == pytest.approx(spec[0, :].sum(), rel=1e-9)
     # a periodic lattice shows its axes; the spectral field does not
-    lat = noiselab.LatticeNoise(2, seed=12, kernel="cubic", period=16).grid((256, 256), [(0, 16), (0, 16)])
+    lat = noiselab.LatticeNoise(2, rng=12, kernel="cubic", period=16).grid((256, 256), [(0, 16), (0, 16)])
     past = A.axis_artefacts(lat, (32, 128))  # past twice the lattice frequency, the tails run along the axes
     assert past.axis_excess > 3
     for s in (13, 14):  # about 450 axis cells: 1 +- 0.05
@@ -152,11 +152,11 @@ def test_axis_artefacts_isotropic_striped_and_lattice():
 
 def test_variance_striping_of_linear_value_noise_matches_its_kernel():
     # var(t) of linear value noise is (1 - t)**2 + t**2 times the values' variance: 1 at lattice points, 1/2 mid-cell
-    line = noiselab.LatticeNoise(1, seed=14, kernel="linear", table_size=1 << 16).grid((1 << 18,), [(0, 1 << 14)])
+    line = noiselab.LatticeNoise(1, rng=14, kernel="linear", table_size=1 << 16).grid((1 << 18,), [(0, 1 << 14)])
     t = np.arange(16) / 16
     s = (1 - t) ** 2 + t**2
     assert A.variance_striping(line, 16) == pytest.approx((s.max() - s.min()) / s.mean(), abs=0.05)
-    img = noiselab.LatticeNoise(2, seed=15, kernel="linear", table_size=1 << 12).grid((512, 512), [(0, 64), (0, 64)])
+    img = noiselab.LatticeNoise(2, rng=15, kernel="linear", table_size=1 << 12).grid((512, 512), [(0, 64), (0, 64)])
     assert A.variance_striping(img, 8, axis=1) == pytest.approx((s[::2].max() - s[::2].min()) / s[::2].mean(), abs=0.1)
     stationary = noiselab.spectral_noise((1 << 18,), exponent=0.0, rng=16)
     assert A.variance_striping(stationary, 16) < 0.1

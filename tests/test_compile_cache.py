@@ -27,7 +27,7 @@ import hashlib, sys
 import numpy as np
 from noiselab import LatticeNoise
 x = np.linspace(-7.3, 9.1, 257)
-out = LatticeNoise(1, seed=5)(x, dtype=np.dtype(sys.argv[1]))
+out = LatticeNoise(1, rng=5)(x, dtype=np.dtype(sys.argv[1]))
 print(hashlib.sha256(out.tobytes()).hexdigest())
 """
 
@@ -81,7 +81,7 @@ def test_importing_noiselab_before_numba_changes_nothing_in_numba():
 def _expected(dtype):
     from noiselab import LatticeNoise
 
-    out = LatticeNoise(1, seed=5)(np.linspace(-7.3, 9.1, 257), dtype=np.dtype(dtype))
+    out = LatticeNoise(1, rng=5)(np.linspace(-7.3, 9.1, 257), dtype=np.dtype(dtype))
     return hashlib.sha256(out.tobytes()).hexdigest()
 
 

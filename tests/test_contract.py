@@ -160,13 +160,13 @@ def test_amplitude_past_float32_is_refused_not_inf():
 
 
 def test_grid_and_points_agree_past_2_to_the_53_cells():
-    noise = nl.LatticeNoise(1, seed=5, kernel="box", frequency=21475.0)
+    noise = nl.LatticeNoise(1, rng=5, kernel="box", frequency=21475.0)
     shape, extent = (4,), [(1.0, 559236275034.0)]
     grid = noise.grid(shape, extent)
     np.testing.assert_array_equal(grid, noise(noise.grid_points(shape, extent)))
     assert grid[-1] == pytest.approx(0.5170, abs=1e-4)
     # and in 2-D, across 2**52 (some octaves separable, some per point)
-    noise2 = nl.LatticeNoise(2, seed=3, frequency=1e4)
+    noise2 = nl.LatticeNoise(2, rng=3, frequency=1e4)
     ext = [(0.0, 3e11), (5e11, 5e11 + 4.0)]
     np.testing.assert_array_equal(noise2.grid((5, 6), ext), noise2(noise2.grid_points((5, 6), ext)))
 
@@ -371,7 +371,7 @@ def test_derivative_paths_refuse_coordinate_and_derivative_overflow():
 
 
 def test_new_functions_name_their_bad_arguments():
-    n2, v2, pts = nl.LatticeNoise(2, seed=1), nl.LatticeNoise(2, 2, seed=2), np.ones((3, 2))
+    n2, v2, pts = nl.LatticeNoise(2, rng=1), nl.LatticeNoise(2, 2, rng=2), np.ones((3, 2))
     cases = [
         (TypeError, "points", lambda: nl.curl_noise(n2, "abc")),
         (TypeError, "points", lambda: nl.warp(n2, v2)([[1.0, 2.0], [3.0]])),
@@ -401,7 +401,7 @@ def test_new_functions_name_their_bad_arguments():
 
 
 def test_normals_of_steep_and_huge_surfaces_are_the_limits_not_nan():
-    n2, pts = nl.LatticeNoise(2, seed=1), np.random.default_rng(0).uniform(0, 4, (50, 2))
+    n2, pts = nl.LatticeNoise(2, rng=1), np.random.default_rng(0).uniform(0, 4, (50, 2))
     g = nl.fractal_gradient(n2, pts, 1)
     # |amplitude * frequency| -> inf: the normal turns horizontal, against the gradient
     steep = nl.monge_normals(n2, pts, amplitude=1e300)
@@ -413,7 +413,7 @@ def test_normals_of_steep_and_huge_surfaces_are_the_limits_not_nan():
     plain = np.concatenate([-g * (1 - 1e-9), np.ones((len(g), 1))], axis=1)
     np.testing.assert_allclose(below, plain / np.linalg.norm(plain, axis=1, keepdims=True), atol=1e-13)
     # displaced normals: continuous across the switch to the scaled formula (|amplitude| * frequency = 1)
-    sphere, n3 = G.sphere(2), nl.LatticeNoise(3, seed=3)
+    sphere, n3 = G.sphere(2), nl.LatticeNoise(3, rng=3)
     below = nl.displaced_normals(sphere, n3, 1 - 1e-9, curvature=1.0)
     above = nl.displaced_normals(sphere, n3, 1 + 1e-9, curvature=1.0)
     np.testing.assert_allclose(below, above, atol=1e-7)
@@ -428,7 +428,7 @@ def test_scale_free_measures_of_huge_and_tiny_fields():
     x = np.random.default_rng(0).standard_normal(100)
     for scale in (1e300, 1e-310):
         assert A.detect_period(np.tile(x, 3) * scale).period == 100
-    line = nl.LatticeNoise(1, seed=0, kernel="linear").grid((4096,), [(0, 256)])
+    line = nl.LatticeNoise(1, rng=0, kernel="linear").grid((4096,), [(0, 256)])
     assert A.variance_striping(line * 1e300, 16) == pytest.approx(A.variance_striping(line, 16), rel=1e-9)
     with pytest.raises(ValueError, match="variance would overflow"):
         A.value_statistics(line * 1e300)

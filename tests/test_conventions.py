@@ -124,7 +124,7 @@ def test_write_zarr_records_the_int_rng(tmp_path):
 def _lattice2():
     from noiselab.lattice import LatticeNoise
 
-    return LatticeNoise(2, seed=1)   # (LatticeNoise's own rng= arrives with the lattice engine)
+    return LatticeNoise(2, rng=1)   # (LatticeNoise's own rng= arrives with the lattice engine)
 
 
 def _pink():
@@ -189,13 +189,19 @@ OLD_AND_NEW = [
      lambda: noiselab.analysis.octave_energy(_pink(), (4, 32)).energy, "lo"),
     ("octave_energy lo=", lambda: noiselab.analysis.octave_energy(_pink(), lo=2.0).energy,
      lambda: noiselab.analysis.octave_energy(_pink(), (2.0, None)).energy, "lo"),
+    ("LatticeNoise seed", lambda: noiselab.LatticeNoise(3, seed=5)(np.full((4, 3), 0.3)),
+     lambda: noiselab.LatticeNoise(3, rng=5)(np.full((4, 3), 0.3)), "seed"),
+    ("evaluate_grid_jacobian value", lambda: noiselab.LatticeNoise(2, rng=2).evaluate_grid_jacobian(
+        (6, 5), [(0, 1), (0, 1)], value=False)[1],
+     lambda: noiselab.LatticeNoise(2, rng=2).evaluate_grid_jacobian((6, 5), [(0, 1), (0, 1)],
+                                                                     return_value=False)[1], "value"),
 ]
 
 
 def _lattice2_3d():
     from noiselab.lattice import LatticeNoise
 
-    return LatticeNoise(3, seed=1)
+    return LatticeNoise(3, rng=1)
 
 
 @pytest.mark.parametrize("what, old, new, word", OLD_AND_NEW, ids=[c[0] for c in OLD_AND_NEW])
@@ -212,6 +218,7 @@ def test_an_old_spelling_warns_naming_the_new_one_and_gives_the_same_result(what
 @pytest.mark.parametrize("call, match", [
     (lambda: SNOW.snow((2, 8, 8), show_progress=False, progress=False), "both show_progress= .* and progress="),
     (lambda: SP.spectral_noise((8, 8), amplitude="fixed", amplitude_distribution="fixed"), "both amplitude="),
+    (lambda: noiselab.LatticeNoise(2, seed=1, rng=1), "both seed= .* and rng="),
     (lambda: noiselab.geometry.height_map(_sine, (8, 8), on_aliasing="ignore", on_alias="ignore"), "both on_aliasing="),
     (lambda: noiselab.testing.assert_power_law(_pink(), 1.0, tolerance=1.0, tol=1.0), "both tolerance="),
     (lambda: noiselab.analysis.detect_period(_pink(), 0, axis=0), "multiple values for argument 'axis'"),
@@ -382,17 +389,6 @@ def test_the_command_line_takes_array_order_and_the_old_flags_swapped(tmp_path):
 
 
 # ------------------------------------------------------------------ every public signature against the table
-# noiselab/lattice/ is being reworked beside this table (the lattice engine); its signatures take the table's
-# words when that lands. Until then these (public callable, parameter) pairs are held to nothing, each with the
-# word it becomes. Empty this after the merge: the test then holds the lattice to the table like the rest.
-PENDING_LATTICE_MERGE = {
-    ("noiselab.LatticeNoise", "seed"): "rng=None (SPEC 7; the table's rng entry)",
-    ("noiselab.LatticeNoise.evaluate_grid_jacobian", "value"): "return_value=False, as the other methods",
-    **{(f"noiselab.LatticeNoise.{m}", "workers"): "workers=None (scipy.fft's meaning)"
-       for m in ("evaluate", "evaluate_jacobian", "evaluate_grid", "evaluate_grid_jacobian", "jacobian", "gradient",
-                 "jacobian_grid", "gradient_grid", "grid")},
-}
-
 # where the public API lives: the root's names, then each subpackage's __all__ (noiselab.testing included)
 PUBLIC_MODULES = ["noiselab"] + [f"noiselab.{s}" for s in noiselab._SUBPACKAGES] + ["noiselab.testing"]
 # classes users construct; every other dataclass or named tuple is a result, whose fields are not parameters
@@ -452,8 +448,6 @@ def _same_default(got, want):
 def _violations():
     out = []
     for qual, p in public_parameters():
-        if (qual, p.name) in PENDING_LATTICE_MERGE:
-            continue
         word = WORDS.get(p.name)
         if word is None:
             out.append(f"{qual}({p.name}=): not in the conventions table (noiselab/_core/conventions.py)")
@@ -483,16 +477,6 @@ def test_the_table_has_no_stale_entries():
         assert word.meaning.strip(), f"{w} has no meaning"
         if word.per_function or word.default == VARIES:
             assert word.note, f"{w}: a per-function default needs its reason (note=)"
-
-
-def test_pending_lattice_entries_are_real_and_only_the_lattice():
-    """The exception list only covers the lattice's own signatures, each still as it was (so it cannot hide drift)."""
-    params = {(qual, p.name): p for qual, p in public_parameters()}
-    for (qual, name), becomes in PENDING_LATTICE_MERGE.items():
-        assert qual.startswith("noiselab.LatticeNoise"), qual
-        if (qual, name) not in params:
-            pytest.fail(f"{qual}({name}=) is gone: the lattice merge landed, empty PENDING_LATTICE_MERGE "
-                        f"(it becomes {becomes})")
 
 
 def test_the_walk_reaches_every_kind_of_public_callable():

@@ -82,7 +82,7 @@ def test_chunked_fractal_sums_and_turbulence_are_bit_identical(client, case):
 
 
 def test_threaded_scheduler_auto_chunks_and_a_callable_noise():
-    noise = LatticeNoise(3, 2, seed=8)
+    noise = LatticeNoise(3, 2, rng=8)
     grid = Grid((20, 18, 16), [(0, 2)] * 3)
     ref = fractal_sum(noise, grid, 4)
     # "auto" chunks with a small block limit, so the grid really is cut
@@ -105,7 +105,7 @@ def test_threaded_scheduler_auto_chunks_and_a_callable_noise():
 
 
 def test_the_lazy_array_does_not_follow_later_changes_to_the_noise():
-    noise = LatticeNoise(2, seed=1)
+    noise = LatticeNoise(2, rng=1)
     ref = noise.grid((16, 16), [(0, 2), (0, 2)])
     lazy = noise.grid((16, 16), [(0, 2), (0, 2)], chunks=8)
     noise.values[:] = 0.0
@@ -113,7 +113,7 @@ def test_the_lazy_array_does_not_follow_later_changes_to_the_noise():
 
 
 def test_bad_chunks_are_refused_with_the_parameter_named():
-    noise = LatticeNoise(2, 2, seed=1)
+    noise = LatticeNoise(2, 2, rng=1)
     ext = [(0, 1), (0, 1)]
     with pytest.raises(ValueError, match=r"chunks\[0\] must be >= 1"):
         noise.grid((8, 8), ext, chunks=0)
@@ -145,7 +145,7 @@ def test_without_dask_the_error_names_the_extra(monkeypatch, tmp_path, capsys):
 
     # (patched at noiselab's one import seam, not in sys.modules: the cluster's threads share this process)
     monkeypatch.setattr(_deps, "_import", absent)
-    noise = LatticeNoise(2, seed=1)
+    noise = LatticeNoise(2, rng=1)
     with pytest.raises(ImportError, match=r"chunks= needs the optional package 'dask'.*pip install 'noiselab\[dask\]'"):
         noise.grid((8, 8), [(0, 1), (0, 1)], chunks=4)
     with pytest.raises(ImportError, match=r"noiselab\[dask\]"):
@@ -161,7 +161,7 @@ def test_without_dask_the_error_names_the_extra(monkeypatch, tmp_path, capsys):
 
 
 def test_zarr_round_trip_on_the_cluster_keeps_data_attributes_dims_and_coords(client, tmp_path):
-    noise = LatticeNoise(3, seed=11, kernel="quintic")
+    noise = LatticeNoise(3, rng=11, kernel="quintic")
     grid = Grid((24, 20, 18), [(0, 3), (0, 2), (0, 2)])
     lazy = fractal_sum(noise, grid, 5, dtype="float32", chunks=((10, 14), 7, 18))  # uneven: regrouped for zarr
     coords = {"x": np.arange(18) / 9.0}
@@ -198,7 +198,7 @@ def _fail_on_block(block, block_info=None):
 
 
 def test_a_failed_run_leaves_no_store_under_the_final_name(client, tmp_path):
-    lazy = LatticeNoise(2, seed=1).grid((32, 32), [(0, 4), (0, 4)], chunks=8)
+    lazy = LatticeNoise(2, rng=1).grid((32, 32), [(0, 4), (0, 4)], chunks=8)
     with pytest.raises(ValueError, match="boom in one chunk"):
         write_zarr(tmp_path / "f.zarr", lazy.map_blocks(_fail_on_block, dtype=lazy.dtype))
     assert os.listdir(tmp_path) == []  # neither the store nor its temporary folder
@@ -216,7 +216,7 @@ def test_a_killed_run_leaves_only_a_temporary_folder(tmp_path):
             if count[0] == 6:
                 os._exit(9)
             return block
-        lazy = LatticeNoise(2, seed=1).grid((64, 64), [(0, 4), (0, 4)], chunks=16)
+        lazy = LatticeNoise(2, rng=1).grid((64, 64), [(0, 4), (0, 4)], chunks=16)
         write_zarr({str(tmp_path / "k.zarr")!r}, lazy.map_blocks(die_after_some, dtype=lazy.dtype),
                    scheduler="synchronous")
     """)
@@ -239,7 +239,7 @@ def _kill_worker_once(block, marker, block_info=None):
 
 def test_a_worker_killed_mid_run_still_completes_a_right_store(client, tmp_path):
     marker = str(tmp_path / "killed")
-    noise = LatticeNoise(3, seed=12)
+    noise = LatticeNoise(3, rng=12)
     grid = Grid((32, 24, 16), [(0, 4), (0, 3), (0, 2)])
     lazy = fractal_sum(noise, grid, 3, dtype="float32", chunks=(8, 8, 16))
     killer = lazy.map_blocks(_kill_worker_once, marker, dtype=lazy.dtype)
@@ -268,7 +268,7 @@ def test_cli_writes_zarr_on_the_cluster_and_analyze_reads_it(client, tmp_path, c
                "--scheduler", client.scheduler.address])  # connects to the running cluster by its address
     assert rc == 0
     assert "chunks=(7, 24, 16) (3 tasks)" in capsys.readouterr().out
-    noise = LatticeNoise(3, seed=5, kernel="quintic")
+    noise = LatticeNoise(3, rng=5, kernel="quintic")
     ref = fractal_sum(noise, Grid((20, 24, 16), [(0, 2), (0, 3), (0, 2)]), 3, dtype="float32")
     xa = read_zarr(out, as_xarray=True)
     assert np.array_equal(xa.values, ref) and xa.dims == ("z", "y", "x")
@@ -317,7 +317,7 @@ def test_any_chunking_is_bit_identical_property():
     @given(cases())
     def check(case):
         d, shape, chunks, extent, kernel, basis, octaves, turb = case
-        noise = LatticeNoise(d, seed=d, kernel=kernel, basis=basis)
+        noise = LatticeNoise(d, rng=d, kernel=kernel, basis=basis)
         grid = Grid(shape, extent)
         summer = turbulence if turb else fractal_sum
         lazy = summer(noise, grid, octaves, dtype="float32", chunks=chunks)
@@ -328,7 +328,7 @@ def test_any_chunking_is_bit_identical_property():
 
 
 def test_progress_bars_go_to_stderr_locally_and_on_the_cluster(client, capsys):
-    x = LatticeNoise(2, seed=1).grid((32, 32), [(0, 2), (0, 2)], chunks=8).sum()
+    x = LatticeNoise(2, rng=1).grid((32, 32), [(0, 2), (0, 2)], chunks=8).sum()
     compute(x, scheduler="threads", progress=True)
     err = capsys.readouterr()
     assert "100% Completed" in err.err and err.out == ""

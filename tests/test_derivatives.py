@@ -25,7 +25,7 @@ def _noise(d, kernel, basis, dim_out=2, **kw):
     kw.setdefault("frequency", np.linspace(1.3, 2.1, d))
     kw.setdefault("phase", 0.37)
     kw.setdefault("amplitude", 1.7)
-    return LatticeNoise(d, dim_out, seed=11 + d, kernel=kernel, basis=basis, **kw)
+    return LatticeNoise(d, dim_out, rng=11 + d, kernel=kernel, basis=basis, **kw)
 
 
 def _central(f, x, h):
@@ -75,7 +75,7 @@ def test_kernel_continuity_classes_and_derivative_polynomials():
 
 @pytest.mark.parametrize("kernel", ["box", "linear"])
 def test_kernels_without_a_continuous_derivative_raise(kernel):
-    noise = LatticeNoise(2, seed=0, kernel=kernel)
+    noise = LatticeNoise(2, rng=0, kernel=kernel)
     for call in (lambda: noise.gradient(np.zeros((2, 2))), lambda: noise.jacobian(np.zeros((2, 2))),
                  lambda: noise.gradient_grid((4, 4), [(0, 1), (0, 1)]), lambda: curl_noise(noise, np.zeros((2, 2))),
                  lambda: fractal_gradient(noise, np.zeros((2, 2)), 3)):
@@ -119,13 +119,13 @@ def test_jacobian_at_1e9(d, kernel, basis):
 
 
 def test_gradient_is_the_scalar_jacobian_and_threads_are_bit_identical():
-    noise = LatticeNoise(3, seed=4, kernel="quintic", frequency=[1, 2, 3], phase=[0.1, 0.2, 0.3])
+    noise = LatticeNoise(3, rng=4, kernel="quintic", frequency=[1, 2, 3], phase=[0.1, 0.2, 0.3])
     x = np.random.default_rng(0).uniform(-4, 4, (3, 5000, 3))
     g = noise.gradient(x)
     assert g.shape == (3, 5000, 3)
     np.testing.assert_array_equal(g, noise.jacobian(x)[..., 0, :])
     np.testing.assert_array_equal(noise.gradient(x, workers=2), g)
-    one = LatticeNoise(1, seed=2)
+    one = LatticeNoise(1, rng=2)
     v, g1 = one.gradient(np.linspace(0, 4, 9), return_value=True)
     assert v.shape == (9,) and g1.shape == (9, 1)
     with pytest.raises(ValueError, match="dim_out=1.*use jacobian"):
@@ -186,7 +186,7 @@ def test_grid_jacobian_equals_points_path(d, basis):
 
 def test_grid_gradient_sparse_fallback_and_errors():
     # a grid much sparser than the lattice goes through the per-point path
-    noise = LatticeNoise(3, seed=1, kernel="quadratic")
+    noise = LatticeNoise(3, rng=1, kernel="quadratic")
     shape, ext = (20, 20, 20), [(0, 900), (0, 700), (0, 800)]
     assert not grid_path.is_separable(noise.kernel.taps, [np.linspace(a, b, n) for n, (a, b) in zip(shape, ext)],
                                       noise.frequency)
@@ -201,7 +201,7 @@ def test_grid_gradient_sparse_fallback_and_errors():
 @pytest.mark.parametrize("absval", [False, True])
 def test_fractal_and_turbulence_gradients(absval, basis):
     value_fn, grad_fn = (turbulence, turbulence_gradient) if absval else (fractal_sum, fractal_gradient)
-    noise = LatticeNoise(2, seed=3, basis=basis, frequency=1.5)
+    noise = LatticeNoise(2, rng=3, basis=basis, frequency=1.5)
     x = np.random.default_rng(1).uniform(-5, 5, (200, 2))
     value, grad = grad_fn(noise, x, 5, normalize=True, return_value=True)
     np.testing.assert_allclose(value, value_fn(noise, x, 5, normalize=True), rtol=0, atol=1e-14)
@@ -219,7 +219,7 @@ def test_fractal_and_turbulence_gradients(absval, basis):
     np.testing.assert_allclose(gg, pg, rtol=0, atol=1e-13)
     np.testing.assert_allclose(gv, value_fn(noise, grid, 3), rtol=0, atol=1e-14)
     # vector noise: (..., dim_out, dim_in) on both paths
-    vec = LatticeNoise(2, 3, seed=4, basis=basis)
+    vec = LatticeNoise(2, 3, rng=4, basis=basis)
     vg = grad_fn(vec, grid, 3)
     assert vg.shape == (40, 30, 3, 2)
     np.testing.assert_allclose(vg, grad_fn(vec, vec.grid_points(grid.shape, grid.extent), 3), rtol=0, atol=1e-13)
@@ -228,7 +228,7 @@ def test_fractal_and_turbulence_gradients(absval, basis):
 def test_turbulence_crease_has_derivative_zero_and_one_sided_slopes_either_side():
     # gradient noise with an interpolating kernel is exactly 0 at every
     # lattice point: |n| has a corner there
-    noise = LatticeNoise(1, seed=5, basis="gradient", kernel="quintic")
+    noise = LatticeNoise(1, rng=5, basis="gradient", kernel="quintic")
     x = np.array([3.0, 7.0])
     slope = fractal_gradient(noise, x, 1)[:, 0]
     assert (np.abs(slope) > 1e-3).all()
@@ -248,8 +248,8 @@ def _divergence(field, x, h):
 
 @pytest.mark.parametrize("d", [2, 3])
 def test_curl_noise_is_divergence_free_and_vector_noise_is_not(d):
-    potential = LatticeNoise(d, 1 if d == 2 else 3, seed=8, kernel="quintic", frequency=1.3)
-    plain = LatticeNoise(d, d, seed=8, kernel="quintic", frequency=1.3)
+    potential = LatticeNoise(d, 1 if d == 2 else 3, rng=8, kernel="quintic", frequency=1.3)
+    plain = LatticeNoise(d, d, rng=8, kernel="quintic", frequency=1.3)
     x = np.random.default_rng(d).uniform(0, 6, (400, d))
     h = 1e-5
     v = curl_noise(potential, x)
@@ -281,18 +281,18 @@ def test_curl_noise_rejects_other_shapes():
 
 # ------------------------------------------------------------------ warping
 def test_warp_values_and_chain_rule_jacobian_compose():
-    base = LatticeNoise(2, seed=1, kernel="cubic", frequency=1.5)
-    disp = LatticeNoise(2, 2, seed=2, kernel="quintic")
+    base = LatticeNoise(2, rng=1, kernel="cubic", frequency=1.5)
+    disp = LatticeNoise(2, 2, rng=2, kernel="quintic")
     w = warp(base, disp, amount=[0.6, 0.3])
     x = np.random.default_rng(4).uniform(-3, 3, (300, 2))
     np.testing.assert_array_equal(w(x), base(x + [0.6, 0.3] * disp(x)))
-    for f in (w, warp(w, LatticeNoise(2, 2, seed=3, basis="gradient"), 0.4)):
+    for f in (w, warp(w, LatticeNoise(2, 2, rng=3, basis="gradient"), 0.4)):
         value, grad = f.gradient(x, return_value=True)
         np.testing.assert_array_equal(value, f(x))
         fd = _central(f, x, 1e-6)
         assert np.abs(grad - fd).max() < 1e-7 * (1 + np.abs(grad).max())
     # a warped vector potential still gives divergence-free curl noise
-    pot = warp(LatticeNoise(3, 3, seed=5), LatticeNoise(3, 3, seed=6), 0.5)
+    pot = warp(LatticeNoise(3, 3, rng=5), LatticeNoise(3, 3, rng=6), 0.5)
     y = np.random.default_rng(5).uniform(0, 4, (100, 3))
     assert np.abs(_divergence(lambda p: curl_noise(pot, p), y, 1e-5)).max() < 1e-7
     # fractal sums of a warp (generic object path) match their finite differences
@@ -307,7 +307,7 @@ def test_warp_values_and_chain_rule_jacobian_compose():
 
 # ------------------------------------------------------------------ normals
 def test_monge_normals_match_a_dense_finite_difference_surface():
-    field = LatticeNoise(2, seed=1, kernel="cubic")
+    field = LatticeNoise(2, rng=1, kernel="cubic")
     n = 1024                                   # 256 samples per lattice cell
     ext = ((0.0, 4.0), (0.0, 4.0))
     pts = grid_points((n, n), ext)
@@ -325,7 +325,7 @@ def test_monge_normals_match_a_dense_finite_difference_surface():
 def test_mesh_face_normals_converge_to_the_exact_normals():
     # Monge surface: the normals recomputed from the mesh's faces approach the
     # exact ones at second order (x4 per halving of the grid step)
-    field = LatticeNoise(2, seed=1)
+    field = LatticeNoise(2, rng=1)
     medians = []
     for n in (32, 64, 128):
         with warnings.catch_warnings():
@@ -337,7 +337,7 @@ def test_mesh_face_normals_converge_to_the_exact_normals():
     # displaced sphere (Eq. 11): the exact normal from the gradient and the base normal
     import trimesh
 
-    field3 = LatticeNoise(3, seed=0)
+    field3 = LatticeNoise(3, rng=0)
     medians = []
     for sub in (3, 4, 5):
         sphere = trimesh.creation.icosphere(sub)
@@ -356,7 +356,7 @@ def test_mesh_face_normals_converge_to_the_exact_normals():
 def test_tiling_and_alternation_carry_over_to_the_gradient(period):
     # periods below the tap count (generic kernel), non-powers of two, and the
     # lattice-parity alternation: the gradient tiles with the noise and matches its differences
-    noise = LatticeNoise(2, seed=6, kernel="cubic", period=period, frequency=[1.5, 0.75], alternation="lattice"
+    noise = LatticeNoise(2, rng=6, kernel="cubic", period=period, frequency=[1.5, 0.75], alternation="lattice"
                          if all(p % 2 == 0 for p in period) else "table")
     x = np.random.default_rng(2).uniform(-3, 3, (200, 2))
     g = noise.gradient(x)

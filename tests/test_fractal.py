@@ -11,14 +11,14 @@ RNG = np.random.default_rng(99)
 
 
 def test_fractal_sum_is_eq9_with_paper_defaults():
-    noise = LatticeNoise(2, seed=1)
+    noise = LatticeNoise(2, rng=1)
     x = RNG.uniform(-20, 20, (500, 2))
     expected = sum(noise(2.0 ** f * x) / 2.0 ** f for f in range(5))
     np.testing.assert_allclose(fractal_sum(noise, x, 5), expected, atol=1e-13)
 
 
 def test_turbulence_is_eq10_and_non_negative():
-    noise = LatticeNoise(3, seed=2, kernel="quintic", basis="gradient")
+    noise = LatticeNoise(3, rng=2, kernel="quintic", basis="gradient")
     x = RNG.uniform(-20, 20, (500, 3))
     expected = sum(np.abs(noise(2.0 ** f * x)) / 2.0 ** f for f in range(5))
     t = turbulence(noise, x, 5)
@@ -27,7 +27,7 @@ def test_turbulence_is_eq10_and_non_negative():
 
 
 def test_lacunarity_gain_and_normalize():
-    noise = LatticeNoise(1, seed=3)
+    noise = LatticeNoise(1, rng=3)
     x = np.linspace(0, 30, 1000)
     expected = sum(0.7 ** o * noise(3.0 ** o * x) for o in range(4))
     np.testing.assert_allclose(fractal_sum(noise, x, 4, lacunarity=3.0, gain=0.7), expected, atol=1e-13)
@@ -44,7 +44,7 @@ def test_lacunarity_gain_and_normalize():
 
 @pytest.mark.parametrize("summer", [fractal_sum, turbulence])
 def test_grid_and_points_agree(summer):
-    noise = LatticeNoise(2, 2, seed=4, kernel="catmull-rom")
+    noise = LatticeNoise(2, 2, rng=4, kernel="catmull-rom")
     grid = Grid((96, 80), [(-3.0, 9.0), (100.0, 110.0)])
     g, used = summer(noise, grid, 6, return_octaves=True)
     p = summer(noise, noise.grid_points(*grid), used)
@@ -53,7 +53,7 @@ def test_grid_and_points_agree(summer):
 
 
 def test_octaves_past_nyquist_are_skipped_and_reported():
-    noise = LatticeNoise(2, seed=5)
+    noise = LatticeNoise(2, rng=5)
     # 256 samples over 4 cells: 64 samples per cell; octave o has 2**o / 64
     # cells per sample, aliasing from o = 7 on
     img, used = fractal_sum(noise, Grid((256, 256), [(0, 4), (0, 4)]), 60, return_octaves=True)
@@ -71,7 +71,7 @@ def test_octaves_past_nyquist_are_skipped_and_reported():
 
 
 def test_sixty_octaves_on_points_neither_overflow_nor_run_all():
-    noise = LatticeNoise(3, seed=6, kernel="quintic")
+    noise = LatticeNoise(3, rng=6, kernel="quintic")
     x = RNG.uniform(-1e3, 1e3, (200, 3))
     v, used = fractal_sum(noise, x, 60, return_octaves=True)
     assert used == octaves_used(60) == 54   # 2**-54 is below float64 resolution
@@ -89,7 +89,7 @@ def test_fractal_spectrum_follows_one_over_f():
     # gain 1/2 per octave doubling (Hurst exponent H = 1): octave o has
     # amplitude 2**-o on a lattice 2**o times denser, so its 1-D power
     # density is 4**-o * 2**-o at f ~ 2**o: power ~ f**-(2H + 1) = f**-3
-    noise = LatticeNoise(1, seed=7, kernel="cubic")
+    noise = LatticeNoise(1, rng=7, kernel="cubic")
     n, cells = 1 << 16, 64
     v = fractal_sum(noise, Grid((n,), [(0, cells)]), 10)
     spec = np.abs(np.fft.rfft(v - v.mean())) ** 2
@@ -101,7 +101,7 @@ def test_fractal_spectrum_follows_one_over_f():
 
 
 def test_generic_callable_noise():
-    noise = LatticeNoise(2, seed=8)
+    noise = LatticeNoise(2, rng=8)
     x = RNG.uniform(-5, 5, (100, 2))
     np.testing.assert_allclose(fractal_sum(lambda p: noise(p), x, 4), fractal_sum(noise, x, 4), atol=1e-13)
     with pytest.raises(TypeError, match="noise must be"):

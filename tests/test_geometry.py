@@ -170,14 +170,14 @@ def test_time_is_the_fourth_input_coordinate():
 
 
 def test_lattice_field_with_wrong_input_dimension_is_named():
-    noise3 = noiselab.LatticeNoise(3, seed=0)
+    noise3 = noiselab.LatticeNoise(3, rng=0)
     with pytest.raises(ValueError, match="takes 3-D points .* 4-D points"):
         displace(sphere(3), noise3, 0.1, time=0.5)
 
 
 # ---------------------------------------------------------------- octaves and the lattice noise
 def test_octave_field_matches_the_lattice_fractal_sum_and_turbulence():
-    noise = noiselab.LatticeNoise(3, seed=4)
+    noise = noiselab.LatticeNoise(3, rng=4)
     x = np.random.default_rng(1).uniform(-3, 3, (2000, 3))
     generic_f = octave_field(lambda p: noise(p), 4, "fractal")
     generic_t = octave_field(lambda p: noise(p), 4, "turbulence")
@@ -189,9 +189,9 @@ def test_octave_field_matches_the_lattice_fractal_sum_and_turbulence():
 
 def test_displace_by_lattice_fractal_sum_is_repeatable_and_bounded():
     mesh = sphere_for_noise(2.0 * 2 ** 3)
-    a = displace(mesh, noiselab.LatticeNoise(3, seed=7), 0.1, 2.0, octaves=4)
-    b = displace(mesh, noiselab.LatticeNoise(3, seed=7), 0.1, 2.0, octaves=4)
-    c = displace(mesh, noiselab.LatticeNoise(3, seed=8), 0.1, 2.0, octaves=4)
+    a = displace(mesh, noiselab.LatticeNoise(3, rng=7), 0.1, 2.0, octaves=4)
+    b = displace(mesh, noiselab.LatticeNoise(3, rng=7), 0.1, 2.0, octaves=4)
+    c = displace(mesh, noiselab.LatticeNoise(3, rng=8), 0.1, 2.0, octaves=4)
     np.testing.assert_array_equal(a.vertices, b.vertices)
     assert np.abs(a.vertices - c.vertices).max() > 1e-3
     s = a.vertex_attributes["displacement"]
@@ -200,7 +200,7 @@ def test_displace_by_lattice_fractal_sum_is_repeatable_and_bounded():
 
 
 def test_turbulence_only_pushes_outwards():
-    out = displace(sphere(4), noiselab.LatticeNoise(3, seed=2), 0.1, 1.0, octaves=3, kind="turbulence",
+    out = displace(sphere(4), noiselab.LatticeNoise(3, rng=2), 0.1, 1.0, octaves=3, kind="turbulence",
                    on_alias="ignore")
     assert np.linalg.norm(out.vertices, axis=1).min() >= 1.0 - 1e-3
 
@@ -291,7 +291,7 @@ def test_squashed_sphere_is_five_percent_lower_and_keeps_it_under_small_noise():
 def test_bundled_model_loads_offline_and_displaces():
     ant = load_model("ant")
     assert ant.is_watertight and max(ant.extents) == pytest.approx(2.0)
-    out = displace(ant, noiselab.LatticeNoise(3, seed=1), amplitude=0.05, frequency=2.0, on_alias="ignore")
+    out = displace(ant, noiselab.LatticeNoise(3, rng=1), amplitude=0.05, frequency=2.0, on_alias="ignore")
     moved = np.linalg.norm(out.vertices - ant.vertices, axis=1)
     assert moved.max() <= 0.05 + 1e-12 and moved.max() > 0.005
     with pytest.raises(ValueError, match="cow"):
@@ -419,7 +419,7 @@ def test_docstring_examples_run(module):
 
 
 def test_vector_displacement_moves_vertices_by_the_3d_field():
-    noise = noiselab.LatticeNoise(3, 3, seed=5)
+    noise = noiselab.LatticeNoise(3, 3, rng=5)
     mesh = sphere(3)
     out = displace(mesh, noise, 0.1, 1.0, direction="vector")
     p = np.asarray(mesh.vertices)

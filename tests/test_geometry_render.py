@@ -53,7 +53,7 @@ def test_scene_layout_puts_x_right_and_y_up():
 
 
 def test_arranged_panels_show_growing_displacement():
-    spheres = [displace(sphere(4), noiselab.LatticeNoise(3, seed=1), a, 2.0) for a in (0.0, 0.3)]
+    spheres = [displace(sphere(4), noiselab.LatticeNoise(3, rng=1), a, 2.0) for a in (0.0, 0.3)]
     img = render_mesh(arrange(spheres), size=(64, 128), view="xy")
     fg = foreground(img)
     left, right = fg[:, :64], fg[:, 64:]
@@ -68,7 +68,7 @@ def test_arranged_panels_show_growing_displacement():
 
 
 def test_color_by_displacement_uses_the_colormap():
-    out = displace(sphere(4), noiselab.LatticeNoise(3, seed=2), 0.2, 2.0)
+    out = displace(sphere(4), noiselab.LatticeNoise(3, rng=2), 0.2, 2.0)
     img = render_mesh(out, size=96, scalars="displacement").astype(int)
     fg = foreground(img)
     chroma = np.ptp(img[fg], axis=1)

@@ -66,7 +66,7 @@ def test_xy_arc_moves_points_by_the_2d_output():
 
 
 def test_closed_circle_has_no_seam_and_literal_eq3_does():
-    noise2 = noiselab.LatticeNoise(2, seed=3)
+    noise2 = noiselab.LatticeNoise(2, rng=3)
     closed = noisy_circle(noise2, 720, amplitude=0.3, frequency=3.0)
     # Eq. 3 with a 1-D input: the noise at theta = 2 pi is not the noise at 0
     opened = noisy_circle(wave1, 720, amplitude=0.3, frequency=3.0, closed=False)
@@ -81,7 +81,7 @@ def test_closed_circle_has_no_seam_and_literal_eq3_does():
 
 
 def test_trajectory_is_amplitude_times_vector_noise_of_time():
-    noise = noiselab.LatticeNoise(1, 3, seed=5)
+    noise = noiselab.LatticeNoise(1, 3, rng=5)
     t = np.linspace(0, 2, 200)
     path = trajectory(noise, t, amplitude=2.0, frequency=3.0, dims=2)
     assert path.shape == (200, 2)
@@ -127,7 +127,7 @@ def test_grid_and_height_map_take_shape_and_extent_in_array_axis_order():
 
 def test_height_map_of_lattice_noise_is_its_grid_with_the_same_shape_and_extent():
     # one order for shapes and extents: the same numbers give the same field, not its transpose
-    noise = noiselab.LatticeNoise(2, seed=9)
+    noise = noiselab.LatticeNoise(2, rng=9)
     shape, extent = (32, 48), ((0.0, 4.0), (1.0, 7.0))            # non-square shape and extent
     ref = noise.grid(shape, extent)
     h = height_map(noise, shape, extent)
@@ -149,22 +149,22 @@ def test_height_map_of_lattice_noise_is_its_grid_with_the_same_shape_and_extent(
 
 
 def test_monge_surface_flow_field_and_normals_follow_the_array_axis_order():
-    noise = noiselab.LatticeNoise(2, seed=9, kernel="cubic")
+    noise = noiselab.LatticeNoise(2, rng=9, kernel="cubic")
     shape, extent = (24, 36), ((0.0, 2.0), (1.0, 4.0))
     m = monge_surface(noise, shape, extent, amplitude=0.5)
     # vertex i * nx + j is the grid point (y_i, x_j) followed by its height
     np.testing.assert_array_equal(m.vertices[:, :2], grid_points(shape, extent).reshape(-1, 2))
     np.testing.assert_allclose(m.vertices[:, 2].reshape(shape), 0.5 * noise.grid(shape, extent), atol=1e-12)
     assert np.all(m.face_normals[:, 2] > 0)
-    hue = colored_surface(noiselab.LatticeNoise(2, 2, seed=2), shape, extent, amplitude=0.5, on_alias="ignore")
+    hue = colored_surface(noiselab.LatticeNoise(2, 2, rng=2), shape, extent, amplitude=0.5, on_alias="ignore")
     np.testing.assert_allclose(hue.vertices[:, 2].reshape(shape),
-                               0.5 * noiselab.LatticeNoise(2, 2, seed=2).grid(shape, extent)[..., 0], atol=1e-12)
+                               0.5 * noiselab.LatticeNoise(2, 2, rng=2).grid(shape, extent)[..., 0], atol=1e-12)
     # flow fields: vectors (v_y, v_x) at points (y, x), the lattice's vector grid in 2-D and 3-D
-    flow = noiselab.LatticeNoise(2, 2, seed=4)
+    flow = noiselab.LatticeNoise(2, 2, rng=4)
     pts, vec = flow_field(flow, shape, extent)
     np.testing.assert_array_equal(pts, grid_points(shape, extent))
     np.testing.assert_allclose(vec, flow.grid(shape, extent), rtol=0, atol=1e-12)
-    flow3 = noiselab.LatticeNoise(3, 3, seed=5)
+    flow3 = noiselab.LatticeNoise(3, 3, rng=5)
     shape3, extent3 = (3, 4, 5), ((0.0, 1.0), (0.0, 2.0), (1.0, 4.0))
     np.testing.assert_allclose(flow_field(flow3, shape3, extent3)[1], flow3.grid(shape3, extent3), atol=1e-12)
     # exact normals at the grid points: (-dz/dy, -dz/dx, 1) in the same order as a finite difference of the map
@@ -191,7 +191,7 @@ def test_monge_surface_heights_normals_and_aliasing():
 
 
 def test_fractal_and_turbulent_height_maps_differ_as_expected():
-    noise = noiselab.LatticeNoise(2, seed=1)
+    noise = noiselab.LatticeNoise(2, rng=1)
     f = height_map(noise, (128, 128), ((0, 4), (0, 4)), octaves=4)
     t = height_map(noise, (128, 128), ((0, 4), (0, 4)), octaves=4, kind="turbulence")
     assert t.min() >= 0 and f.min() < 0
@@ -201,7 +201,7 @@ def test_fractal_and_turbulent_height_maps_differ_as_expected():
 
 
 def test_hue_surface_takes_height_and_colour_from_the_two_outputs():
-    noise = noiselab.LatticeNoise(2, 2, seed=2)
+    noise = noiselab.LatticeNoise(2, 2, rng=2)
     m = colored_surface(noise, (32, 32), amplitude=0.5, color="hue")
     pts = grid_points((32, 32), ((0, 4), (0, 4))).reshape(-1, 2)
     out = noise(pts)
@@ -214,7 +214,7 @@ def test_hue_surface_takes_height_and_colour_from_the_two_outputs():
 
 
 def test_rgb_surface_maps_three_outputs_to_rgb():
-    noise = noiselab.LatticeNoise(2, 4, seed=3)
+    noise = noiselab.LatticeNoise(2, 4, rng=3)
     m = colored_surface(noise, (16, 16), color="rgb")
     out = noise(grid_points((16, 16), ((0, 4), (0, 4))).reshape(-1, 2))
     expected = np.rint(np.clip((out[:, 1:4] + 1) / 2, 0, 1) * 255)
@@ -255,7 +255,7 @@ def test_streamlines_rk4_and_solve_ivp_agree_and_follow_the_flow():
 
 
 def test_lattice_flow_streamlines_are_smooth():
-    noise = noiselab.LatticeNoise(2, 2, seed=0)
+    noise = noiselab.LatticeNoise(2, 2, rng=0)
     lines = streamlines(noise, np.random.default_rng(0).uniform(0, 4, (20, 2)), step=0.02, n_steps=100)
     steps = np.linalg.norm(np.diff(lines, axis=1), axis=2)
     assert steps.max() <= 0.02 * 1.0 + 1e-9                 # |v| <= 1 per component... and speed bounded
@@ -264,10 +264,10 @@ def test_lattice_flow_streamlines_are_smooth():
 
 
 def test_quiver_and_glyphs_draw_something():
-    img = quiver_image(noiselab.LatticeNoise(2, 2, seed=1), shape=(8, 8), size=128, streamline_seeds=5)
+    img = quiver_image(noiselab.LatticeNoise(2, 2, rng=1), shape=(8, 8), size=128, streamline_seeds=5)
     dark = img.mean(axis=2) < 128
     assert dark.sum() > 100 and dark[:, :64].any() and dark[:, 64:].any()
-    glyphs = flow_glyphs(noiselab.LatticeNoise(3, 3, seed=1), (3, 3, 3))
+    glyphs = flow_glyphs(noiselab.LatticeNoise(3, 3, rng=1), (3, 3, 3))
     assert glyphs.n_points > 27 and glyphs.n_cells > 27
     lo, hi = np.asarray(glyphs.bounds)[0::2], np.asarray(glyphs.bounds)[1::2]
     assert np.all(lo > -1.5) and np.all(hi < 4.0)           # arrows stay within about a cell of the grid

@@ -24,7 +24,7 @@ def _int(dim, dim_out=1, **kw):
 @pytest.mark.parametrize("dim", [1, 2, 3, 4])
 def test_range_within_bound_and_not_vacuous(dim, basis):
     for name in ("box", "catmull-rom", "quintic"):
-        noise = _int(dim, seed=3, kernel=name, basis=basis, frequency=1.7)
+        noise = _int(dim, rng=3, kernel=name, basis=basis, frequency=1.7)
         v = noise(RNG.uniform(-50, 50, (4000 if dim < 4 else 1500, dim)))
         assert np.abs(v).max() <= 1.0, (name, dim, basis)
         # the bound is not vacuous: the field uses a good part of it
@@ -52,7 +52,7 @@ def _word(noise, c, j):
 @pytest.mark.parametrize("dim", [1, 2, 3, 4])
 def test_values_at_lattice_points_are_the_documented_hash(dim, dtype):
     # interpolating kernels pass through the lattice values: v = int32(mix32(key ^ j_0 M_0 ^ ...)) / 2**31
-    noise = _int(dim, 2, seed=5, kernel="catmull-rom")
+    noise = _int(dim, 2, rng=5, kernel="catmull-rom")
     j = RNG.integers(-1000, 1000, (200, dim))
     got = noise(j.astype(dtype))
     assert got.dtype == dtype
@@ -62,7 +62,7 @@ def test_values_at_lattice_points_are_the_documented_hash(dim, dtype):
         tol = 1e-15 if dtype == np.float64 else 1.2e-7   # float32: the values rounded to 24 bits
         np.testing.assert_allclose(got[:, c], want * noise.scale, rtol=0, atol=tol)
     # and they spread over [-1, 1): mean near 0, variance near 1/3
-    vals = _int(1, seed=1, kernel="catmull-rom", amplitude=1.0)(np.arange(20000.0)) / 0.8
+    vals = _int(1, rng=1, kernel="catmull-rom", amplitude=1.0)(np.arange(20000.0)) / 0.8
     assert abs(vals.mean()) < 0.02 and abs(vals.var() - 1 / 3) < 0.02
 
 
@@ -70,7 +70,7 @@ def test_values_at_lattice_points_are_the_documented_hash(dim, dtype):
 def test_gradients_are_the_documented_set(dim):
     # gradient noise with the linear kernel, one cell from a lattice point along axis a, is g_a(j) times the
     # distance (the other corners' weights vanish there): the gradient picked by the word's top bits
-    noise = _int(dim, seed=8, kernel="linear", basis="gradient")
+    noise = _int(dim, rng=8, kernel="linear", basis="gradient")
     grads = _inthash.gradient_set(dim, noise.gradients)
     assert grads.shape == ({1: 2, 2: 8, 3: 16}[dim], dim)
     np.testing.assert_allclose(np.linalg.norm(grads, axis=1), 1.0, rtol=1e-15)
@@ -94,18 +94,18 @@ def test_gradients_are_the_documented_set(dim):
 
 def test_deterministic_and_seeded():
     pts = RNG.uniform(-20, 20, (3000, 3))
-    a = _int(3, seed=7, kernel="quintic")(pts)
-    np.testing.assert_array_equal(a, _int(3, seed=7, kernel="quintic")(pts))
-    np.testing.assert_array_equal(a, _int(3, seed=np.random.default_rng(7), kernel="quintic")(pts))
-    b = _int(3, seed=8, kernel="quintic")(pts)
+    a = _int(3, rng=7, kernel="quintic")(pts)
+    np.testing.assert_array_equal(a, _int(3, rng=7, kernel="quintic")(pts))
+    np.testing.assert_array_equal(a, _int(3, rng=np.random.default_rng(7), kernel="quintic")(pts))
+    b = _int(3, rng=8, kernel="quintic")(pts)
     assert abs(np.corrcoef(a, b)[0, 1]) < 0.1
     # components are independent too, and the first ones do not depend on dim_out
-    two = _int(3, 2, seed=7, kernel="quintic")(pts)
-    three = _int(3, 3, seed=7, kernel="quintic")(pts)
+    two = _int(3, 2, rng=7, kernel="quintic")(pts)
+    three = _int(3, 3, rng=7, kernel="quintic")(pts)
     np.testing.assert_array_equal(two, three[:, :2])
     assert abs(np.corrcoef(three[:, 0], three[:, 1])[0, 1]) < 0.1
     # and the integer hash is a different noise from the table hash of the same seed
-    assert abs(np.corrcoef(a, LatticeNoise(3, seed=7, kernel="quintic")(pts))[0, 1]) < 0.1
+    assert abs(np.corrcoef(a, LatticeNoise(3, rng=7, kernel="quintic")(pts))[0, 1]) < 0.1
 
 
 @pytest.mark.parametrize("basis", ["value", "gradient"])
@@ -114,7 +114,7 @@ def test_grid_and_points_agree(dim, basis):
     shape = {1: (300,), 2: (40, 30), 3: (12, 10, 9)}[dim]
     ext = [(-3.1, 4.5), (0.2, 6.0), (-2.0, 1.0)][:dim]
     for name in ("linear", "cubic", "catmull-rom", "quintic"):
-        noise = _int(dim, 2, seed=2, kernel=name, basis=basis, frequency=1.3, phase=0.25)
+        noise = _int(dim, 2, rng=2, kernel=name, basis=basis, frequency=1.3, phase=0.25)
         np.testing.assert_allclose(noise.grid(shape, ext), noise(noise.grid_points(shape, ext)), atol=1e-12)
 
 
@@ -124,14 +124,14 @@ def test_float32_output_error_against_float64():
         pts = RNG.uniform(-1e4, 1e4, (20000, dim))
         for name in (("catmull-rom", "quintic") if dim == 2 else ("quintic",)):   # 4-tap in 2-D (compile time)
             for basis in ("value", "gradient"):
-                noise = _int(dim, seed=1, kernel=name, basis=basis, frequency=0.37, phase=0.2)
+                noise = _int(dim, rng=1, kernel=name, basis=basis, frequency=0.37, phase=0.2)
                 v64, v32 = noise(pts), noise(pts, dtype=np.float32)
                 assert v32.dtype == np.float32 and np.abs(v32).max() <= 1.0
                 np.testing.assert_array_equal(v32, v64.astype(np.float32))
 
 
 def test_chunkings_threads_and_windows_are_bit_identical():
-    noise = _int(3, 2, seed=2, kernel="quintic", basis="gradient")
+    noise = _int(3, 2, rng=2, kernel="quintic", basis="gradient")
     pts = RNG.uniform(-30, 30, (5000, 3))
     pts[::5] += 1e13    # past 2**52: no fractional bits
     pts[::11] *= 1e17   # far out: those chunks take the exact reduction
@@ -148,7 +148,7 @@ def test_chunkings_threads_and_windows_are_bit_identical():
 @pytest.mark.parametrize("dim", [1, 2, 3, 4])
 def test_periods_tile_exactly(dim):
     period = [5, 8, 6, 3][:dim]         # powers of two and not
-    noise = _int(dim, seed=9, kernel="cubic", period=period, frequency=2.0)
+    noise = _int(dim, rng=9, kernel="cubic", period=period, frequency=2.0)
     x = np.round(RNG.uniform(-10, 10, (500, dim)) * 64) / 64   # dyadic: x + period / frequency is exact
     v = noise(x)
     for a in range(dim):
@@ -163,16 +163,16 @@ def test_periods_tile_exactly(dim):
 
 def test_no_table_period_and_no_row_mean_artefact():
     # 1-D, 1024 cells: the table hash repeats after its 256-entry table, the integer hash does not
-    line_t = LatticeNoise(1, seed=0, kernel="linear").grid((4096,), [(0, 1024)])
-    line_i = _int(1, seed=0, kernel="linear").grid((4096,), [(0, 1024)])
+    line_t = LatticeNoise(1, rng=0, kernel="linear").grid((4096,), [(0, 1024)])
+    line_i = _int(1, rng=0, kernel="linear").grid((4096,), [(0, 1024)])
     assert detect_period(line_t).period == 4 * 256
     per = detect_period(line_i, min_lag=16)   # lags past the kernel's reach (4 samples per cell)
     assert per.period is None and per.difference > 0.3
     # 2-D, one full 256-cell period (both tile it exactly): Phillips' nested permutation makes every
     # lattice row a permutation of one table, so the row means of lattice-aligned samples are all equal
     ext = [(0, 256), (0, 256)]
-    img_t = LatticeNoise(2, seed=1, kernel="catmull-rom").grid((256, 256), ext)
-    img_i = _int(2, seed=1, kernel="catmull-rom", period=256).grid((256, 256), ext)
+    img_t = LatticeNoise(2, rng=1, kernel="catmull-rom").grid((256, 256), ext)
+    img_i = _int(2, rng=1, kernel="catmull-rom", period=256).grid((256, 256), ext)
     art_t, art_i = axis_artefacts(img_t), axis_artefacts(img_i)
     assert art_t.mean_spread_excess < 1e-6 and art_t.row_mean_spread < 1e-6
     # independent rows: the row means spread like an isotropic field's (excess about 1)
@@ -181,7 +181,7 @@ def test_no_table_period_and_no_row_mean_artefact():
 
 
 def test_huge_coordinates_stay_smooth_and_in_range():
-    noise = _int(2, seed=4, kernel="quintic")
+    noise = _int(2, rng=4, kernel="quintic")
     t = np.linspace(0, 20, 2000)
     for origin in (1e9, 5e9, 1e12, -1e12):   # past the 2**32-cell default period and 2**40
         x = np.stack([origin + t, -0.5 * origin + 0.7 * t], axis=-1)
@@ -196,7 +196,7 @@ def test_derivatives_match_central_differences(dim, basis):
     pts = RNG.uniform(-5, 5, (60, dim))
     eps = 1e-6
     for name in C1_KERNELS:
-        noise = _int(dim, 2, seed=6, kernel=name, basis=basis, frequency=1.9)
+        noise = _int(dim, 2, rng=6, kernel=name, basis=basis, frequency=1.9)
         val, jac = noise.jacobian(pts, return_value=True)
         np.testing.assert_allclose(val, noise(pts), atol=1e-13)
         fd = np.stack([(noise(pts + eps * e) - noise(pts - eps * e)) / (2 * eps) for e in np.eye(dim)], axis=-1)
@@ -204,13 +204,13 @@ def test_derivatives_match_central_differences(dim, basis):
     # the grid derivative agrees with the scattered one
     shape = (9,) * dim
     ext = [(0.0, 2.0)] * dim
-    noise = _int(dim, 2, seed=6, kernel="quintic", basis=basis, frequency=1.9)
+    noise = _int(dim, 2, rng=6, kernel="quintic", basis=basis, frequency=1.9)
     np.testing.assert_allclose(noise.jacobian_grid(shape, ext), noise.jacobian(noise.grid_points(shape, ext)),
                                atol=1e-12)
 
 
 def test_fractal_sums_on_both_paths():
-    noise = _int(2, seed=3, kernel="quintic", basis="gradient")
+    noise = _int(2, rng=3, kernel="quintic", basis="gradient")
     g = Grid((48, 40), [(0, 3), (1, 4)])
     pts = noise.grid_points(g.shape, g.extent)
     np.testing.assert_allclose(fractal_sum(noise, g, 5), fractal_sum(noise, pts, 5), atol=1e-12)

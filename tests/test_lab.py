@@ -304,7 +304,7 @@ def test_lattice_spectrum_is_the_mean_periodogram_of_periodic_lattice_noise(kern
     from noiselab.lab.quality import lattice_spectrum
 
     n, cells = 96, 13  # 7.4 px per cell: every lattice point at another sampling phase
-    mean = np.mean([power_spectrum(LatticeNoise(2, seed=s, kernel=kernel, basis=basis, period=cells)
+    mean = np.mean([power_spectrum(LatticeNoise(2, rng=s, kernel=kernel, basis=basis, period=cells)
                                    .grid((n, n), [(0, cells)] * 2)).power for s in range(24)], axis=0)
     spec = PowerSpectrum(power=mean, shape=(n, n), axes=(0, 1))
     err = envelope_error(spec, lattice_spectrum(kernel, basis, n, cells), groups=8, support=1e-4)
@@ -320,7 +320,7 @@ def test_lattice_variance_is_the_empirical_variance(kernel, basis):
     from noiselab import LatticeNoise
     from noiselab.lab.quality import lattice_variance
 
-    noise = LatticeNoise(1, seed=4, kernel=kernel, basis=basis, table_size=1 << 16)
+    noise = LatticeNoise(1, rng=4, kernel=kernel, basis=basis, table_size=1 << 16)
     line = noise.grid((1 << 18,), [(0, 1 << 14)])
     assert line.var() == pytest.approx(lattice_variance(noise), rel=0.03)
 

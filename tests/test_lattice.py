@@ -44,7 +44,7 @@ def test_kernel_family_and_aliases():
 def test_interpolating_kernels_pass_through_the_hashed_lattice_values(name):
     # value at the integer lattice point (ix, iy) is the table value reached by
     # the nested permutation P[(P[ix] + iy) mod n] (Phillips 2.4.1), / bound
-    noise = LatticeNoise(2, 2, seed=7, kernel=name)
+    noise = LatticeNoise(2, 2, rng=7, kernel=name)
     ij = RNG.integers(-600, 600, size=(200, 2))
     got = noise(ij.astype(float))
     n = noise.table_size
@@ -60,7 +60,7 @@ def test_interpolating_kernels_pass_through_the_hashed_lattice_values(name):
 def test_3d_values_at_lattice_points_are_the_nested_permutation(name, alternation):
     # the 3-D point kernel must give P[(P[(P[ix] + iy) mod n] + iz) mod n]
     # exactly, with the lattice parity
-    noise = LatticeNoise(3, 2, seed=8, kernel=name, alternation=alternation)
+    noise = LatticeNoise(3, 2, rng=8, kernel=name, alternation=alternation)
     ijk = RNG.integers(-700, 700, size=(300, 3))
     n = noise.table_size
     par = ijk.sum(axis=1) & 1
@@ -75,7 +75,7 @@ def test_3d_values_at_lattice_points_are_the_nested_permutation(name, alternatio
 
 
 def test_3d_gradient_tables_follow_changed_gradients():
-    noise = LatticeNoise(3, seed=3, kernel="quintic", basis="gradient")
+    noise = LatticeNoise(3, rng=3, kernel="quintic", basis="gradient")
     x = RNG.uniform(-20, 20, (500, 3))
     before = noise(x)
     noise.gradients[:] = -noise.gradients
@@ -84,7 +84,7 @@ def test_3d_gradient_tables_follow_changed_gradients():
 
 # ----------------------------------------------------------------- basis
 def test_tables_permutations_and_alternation():
-    noise = LatticeNoise(3, 4, seed=1)
+    noise = LatticeNoise(3, 4, rng=1)
     n = noise.table_size
     assert ((noise.positive > 0) & (noise.positive <= 1)).all()
     assert ((noise.negative >= -1) & (noise.negative < 0)).all()
@@ -98,13 +98,13 @@ def test_tables_permutations_and_alternation():
 
 
 def test_lattice_alternation_follows_lattice_parity():
-    noise = LatticeNoise(2, seed=3, kernel="quintic", alternation="lattice")
+    noise = LatticeNoise(2, rng=3, kernel="quintic", alternation="lattice")
     ij = RNG.integers(-300, 300, size=(500, 2))
     v = noise(ij.astype(float))
     sign = np.where((ij.sum(axis=1) % 2) == 0, 1.0, -1.0)
     assert (v * sign > 0).all()
     # the table alternation has no such checkerboard: signs agree with parity about half the time
-    w = LatticeNoise(2, seed=3, kernel="quintic")(ij.astype(float))
+    w = LatticeNoise(2, rng=3, kernel="quintic")(ij.astype(float))
     assert 0.35 < np.mean(w * sign > 0) < 0.65
     with pytest.raises(ValueError, match="period must be even"):
         LatticeNoise(2, alternation="lattice", period=5)
@@ -112,8 +112,8 @@ def test_lattice_alternation_follows_lattice_parity():
 
 def test_first_components_do_not_depend_on_dim_out():
     x = RNG.uniform(-20, 20, (300, 2))
-    one = LatticeNoise(2, 1, seed=9)(x)
-    three = LatticeNoise(2, 3, seed=9)(x)
+    one = LatticeNoise(2, 1, rng=9)(x)
+    three = LatticeNoise(2, 3, rng=9)(x)
     np.testing.assert_array_equal(one, three[:, 0])
     assert np.corrcoef(three[:, 0], three[:, 1])[0, 1] < 0.3
 
@@ -122,7 +122,7 @@ def test_first_components_do_not_depend_on_dim_out():
 @pytest.mark.parametrize("basis", ["value", "gradient"])
 @pytest.mark.parametrize("name", ALL_KERNELS)
 def test_range_within_minus_one_one_and_not_vacuous(name, basis):
-    noise = LatticeNoise(2, 2, seed=4, kernel=name, basis=basis)
+    noise = LatticeNoise(2, 2, rng=4, kernel=name, basis=basis)
     v = noise.grid((300, 300), [(0.0, 40.0), (-7.0, 33.0)])
     assert np.abs(v).max() <= 1.0
     assert np.abs(v).max() > 0.35 and v.std() > 0.08
@@ -131,7 +131,7 @@ def test_range_within_minus_one_one_and_not_vacuous(name, basis):
 def test_gradient_bound_is_tight():
     # at a cell centre, with every corner gradient pointing away from the
     # corner, quintic gradient noise reaches exactly the proved bound: output 1
-    noise = LatticeNoise(2, seed=0, kernel="quintic", basis="gradient")
+    noise = LatticeNoise(2, rng=0, kernel="quintic", basis="gradient")
     p = noise.perms[0]
     n = noise.table_size
     for ix in (0, 1):
@@ -145,7 +145,7 @@ def test_gradient_bound_is_tight():
 def test_catmull_rom_overshoot_is_absorbed_by_the_bound():
     # adversarial table: values +-1 with the signs of the Catmull-Rom weights
     # at t = 1/2 make the raw sum reach S**2 = 1.5625; the output is exactly 1
-    noise = LatticeNoise(2, seed=0, kernel="catmull-rom")
+    noise = LatticeNoise(2, rng=0, kernel="catmull-rom")
     p = noise.perms[0]
     n = noise.table_size
     sign = np.array([-1.0, 1.0, 1.0, -1.0])
@@ -160,14 +160,14 @@ def test_catmull_rom_overshoot_is_absorbed_by_the_bound():
 
 def test_repeatable_and_seeded():
     x = RNG.uniform(-50, 50, (400, 3))
-    a = LatticeNoise(3, seed=11)(x)
-    b = LatticeNoise(3, seed=11)(x)
-    c = LatticeNoise(3, seed=np.random.default_rng(11))(x)
+    a = LatticeNoise(3, rng=11)(x)
+    b = LatticeNoise(3, rng=11)(x)
+    c = LatticeNoise(3, rng=np.random.default_rng(11))(x)
     np.testing.assert_array_equal(a, b)
     np.testing.assert_array_equal(a, c)
-    assert np.abs(a - LatticeNoise(3, seed=12)(x)).max() > 0.1
+    assert np.abs(a - LatticeNoise(3, rng=12)(x)).max() > 0.1
     with pytest.raises(ValueError, match="rng"):
-        LatticeNoise(3, seed=-1)
+        LatticeNoise(3, rng=-1)
 
 
 def _power_spectrum_1d(values, cells):
@@ -177,7 +177,7 @@ def _power_spectrum_1d(values, cells):
 
 
 def test_band_limited_spectrum_falls_off_above_lattice_frequency():
-    noise = LatticeNoise(1, seed=2, kernel="cubic")
+    noise = LatticeNoise(1, rng=2, kernel="cubic")
     cells = 4096
     v = noise.grid((cells * 16,), [(0, cells)])
     f, s = _power_spectrum_1d(v, cells)
@@ -186,13 +186,13 @@ def test_band_limited_spectrum_falls_off_above_lattice_frequency():
     bands = [s[(f >= lo) & (f < lo + 1)].sum() for lo in (1, 2, 3)]
     assert bands[0] > 10 * bands[1] > 0 and bands[1] > bands[2]
     # the box filter (order 1) is not band-limited: far more power above 1
-    box = LatticeNoise(1, seed=2, kernel="box").grid((cells * 16,), [(0, cells)])
+    box = LatticeNoise(1, rng=2, kernel="box").grid((cells * 16,), [(0, cells)])
     fb, sb = _power_spectrum_1d(box, cells)
     assert sb[fb > 1].sum() / sb.sum() > 10 * s[f > 1].sum() / total
 
 
 def test_stationary_statistics_across_the_plane():
-    noise = LatticeNoise(2, seed=8)
+    noise = LatticeNoise(2, rng=8)
     img = noise.grid((512, 512), [(0, 64), (0, 64)])
     blocks = img.reshape(4, 128, 4, 128).transpose(0, 2, 1, 3).reshape(16, -1)
     assert np.abs(blocks.mean(axis=1)).max() < 0.1
@@ -219,13 +219,13 @@ def _anisotropy(img, cells):
 @pytest.mark.parametrize("name,basis", [("cubic", "value"), ("quintic", "value"), ("quintic", "gradient")])
 def test_nearly_isotropic(name, basis):
     # power along the lattice axes vs along the diagonals, in the main band
-    ratios = [_anisotropy(LatticeNoise(2, seed=s, kernel=name, basis=basis).grid((256, 256), [(0, 32), (0, 32)]), 32)
+    ratios = [_anisotropy(LatticeNoise(2, rng=s, kernel=name, basis=basis).grid((256, 256), [(0, 32), (0, 32)]), 32)
               for s in range(3)]
     assert abs(np.mean(ratios) - 1) < 0.2, ratios
 
 
 def test_pseudo_periodic_with_table_period_and_exact_period():
-    noise = LatticeNoise(2, seed=5, table_size=64)
+    noise = LatticeNoise(2, rng=5, table_size=64)
     x = RNG.uniform(-100, 100, (500, 2))
     for axis in range(2):
         shift = np.zeros(2)
@@ -236,7 +236,7 @@ def test_pseudo_periodic_with_table_period_and_exact_period():
     # 3-D scattered points with exact periods, on both kernel families (the
     # table kernels need the last period to be the table size)
     for period in ((3, 5, 64), (3, 5, 6)):
-        tile3 = LatticeNoise(3, seed=5, table_size=64, period=period, kernel="catmull-rom")
+        tile3 = LatticeNoise(3, rng=5, table_size=64, period=period, kernel="catmull-rom")
         x3 = RNG.uniform(-50, 50, (500, 3))
         for axis in range(3):
             step = np.zeros(3)
@@ -244,7 +244,7 @@ def test_pseudo_periodic_with_table_period_and_exact_period():
             np.testing.assert_allclose(tile3(x3 + step), tile3(x3), atol=1e-12)
         assert np.corrcoef(tile3(x3), tile3(x3 + [0, 0, 1.5]))[0, 1] < 0.5
     # an exact period tiles: the grid over two periods is the one-period grid twice
-    tile = LatticeNoise(2, seed=5, period=(3, 5), frequency=(1.0, 2.0))
+    tile = LatticeNoise(2, rng=5, period=(3, 5), frequency=(1.0, 2.0))
     one = tile.grid((30, 50), [(0, 3), (0, 2.5)])
     two = tile.grid((60, 100), [(0, 6), (0, 5)])
     np.testing.assert_allclose(two[:30, :50], one, atol=1e-12)
@@ -252,8 +252,8 @@ def test_pseudo_periodic_with_table_period_and_exact_period():
 
 
 def test_eq2_amplitude_frequency_phase():
-    base = LatticeNoise(2, seed=3)
-    scaled = LatticeNoise(2, seed=3, amplitude=0.25, frequency=(2.0, 0.5), phase=(0.3, -1.7))
+    base = LatticeNoise(2, rng=3)
+    scaled = LatticeNoise(2, rng=3, amplitude=0.25, frequency=(2.0, 0.5), phase=(0.3, -1.7))
     x = RNG.uniform(-10, 10, (300, 2))
     expected = 0.25 * base(x * [2.0, 0.5] + [0.3, -1.7])
     np.testing.assert_allclose(scaled(x), expected, atol=1e-14)
@@ -265,7 +265,7 @@ def test_grid_and_scattered_paths_agree(dim):
     shape = (23, 17, 9, 5, 4)[:dim]
     extent = [(-3.3, 5.1), (0.2, 7.7), (1e6, 1e6 + 4), (-20, -17), (0, 2)][:dim]
     for name, basis in [("cubic", "value"), ("quintic", "gradient"), ("catmull-rom", "value")]:
-        noise = LatticeNoise(dim, 2, seed=6, kernel=name, basis=basis)
+        noise = LatticeNoise(dim, 2, rng=6, kernel=name, basis=basis)
         grid = noise.grid(shape, extent)
         pts = noise(noise.grid_points(shape, extent))
         assert grid.shape == tuple(shape) + (2,)
@@ -277,20 +277,20 @@ def test_grid_and_scattered_agree_for_every_kernel(name):
     # 1-D for every kernel (2-D and up are covered above for 2- and 4-tap kernels)
     for basis in ("value", "gradient"):
         for alternation in ("table", "lattice"):
-            noise = LatticeNoise(1, 2, seed=6, kernel=name, basis=basis, alternation=alternation)
+            noise = LatticeNoise(1, 2, rng=6, kernel=name, basis=basis, alternation=alternation)
             ext = [(-2.5e3, 1e3 + 9)]
             np.testing.assert_allclose(noise.grid((4001,), ext), noise(noise.grid_points((4001,), ext)), atol=1e-12)
 
 
 def test_sparse_grid_falls_back_and_still_agrees():
-    noise = LatticeNoise(2, seed=1)
+    noise = LatticeNoise(2, rng=1)
     ext = [(0, 5000), (0, 3000)]  # 100 cells per sample
     np.testing.assert_allclose(noise.grid((50, 30), ext), noise(noise.grid_points((50, 30), ext)), atol=1e-12)
 
 
 @pytest.mark.parametrize("name,basis", [("quintic", "value"), ("cubic", "gradient")])
 def test_chunkings_are_bit_identical(name, basis):
-    noise = LatticeNoise(3, 2, seed=2, kernel=name, basis=basis)
+    noise = LatticeNoise(3, 2, rng=2, kernel=name, basis=basis)
     pts = RNG.uniform(-30, 30, (20000, 3))
     pts[::5] += 1e13  # past 2**52: no fractional bits
     pts[::11] *= 1e18  # past 2**63: some chunks on the exact (fmod) path
@@ -310,7 +310,7 @@ def test_chunkings_are_bit_identical(name, basis):
 
 
 def test_float32_output_and_input():
-    noise = LatticeNoise(2, seed=3)
+    noise = LatticeNoise(2, rng=3)
     x64 = RNG.uniform(-100, 100, (1000, 2))
     x32 = x64.astype(np.float32)
     v32 = noise(x32)
@@ -318,7 +318,7 @@ def test_float32_output_and_input():
     np.testing.assert_allclose(v32, noise(x32.astype(np.float64)), atol=1e-7)
     # 3-D: the table kernels read float32 points and write float32 output
     # themselves: exactly the rounded float64 evaluation of the widened points
-    noise3 = LatticeNoise(3, 2, seed=3, kernel="quintic")
+    noise3 = LatticeNoise(3, 2, rng=3, kernel="quintic")
     p32 = RNG.uniform(-100, 100, (3000, 3)).astype(np.float32)
     v3 = noise3(p32)
     assert v3.dtype == np.float32
@@ -332,7 +332,7 @@ def test_float32_output_and_input():
 # ------------------------------------------------------------ hard cases
 @pytest.mark.parametrize("origin", [1e6, 1e9, 2.2e9, 1e12, -1e12])
 def test_huge_coordinates_stay_smooth_in_range_and_non_degenerate(origin):
-    noise = LatticeNoise(2, seed=4)
+    noise = LatticeNoise(2, rng=4)
     # 2000 samples along a diagonal over 20 cells
     t = np.linspace(0, 20, 2000)
     x = np.stack([origin + t, -0.5 * origin + 0.7 * t], axis=-1)
@@ -351,7 +351,7 @@ def test_huge_coordinates_stay_smooth_in_range_and_non_degenerate(origin):
 
 
 def test_negative_coordinates_and_exact_integers_are_continuous():
-    noise = LatticeNoise(1, seed=2, kernel="cubic")
+    noise = LatticeNoise(1, rng=2, kernel="cubic")
     eps = 1e-12
     for x0 in (-3.0, -1.0, 0.0, 2.0):
         assert abs(noise(x0 - eps) - noise(x0)) < 1e-10
@@ -379,7 +379,7 @@ def test_nan_and_inf_are_clear_errors(dim):
 
 @pytest.mark.parametrize("dim", [1, 2, 3, 4, 5])
 def test_any_input_dimension_and_empty_arrays(dim):
-    noise = LatticeNoise(dim, 3, seed=1, kernel="quintic")
+    noise = LatticeNoise(dim, 3, rng=1, kernel="quintic")
     x = RNG.uniform(-9, 9, (7, 5, dim))
     v = noise(x)
     assert v.shape == (7, 5, 3)
@@ -389,7 +389,7 @@ def test_any_input_dimension_and_empty_arrays(dim):
 
 
 def test_scalar_input_for_one_dimension():
-    noise = LatticeNoise(1, seed=3)
+    noise = LatticeNoise(1, rng=3)
     t = np.linspace(0, 10, 50)
     assert noise(t).shape == (50,)
     assert np.ndim(noise(2.5)) == 0
@@ -427,7 +427,7 @@ def test_evaluation_interface_is_what_the_calls_and_fractal_sums_return(d, hash_
     """``evaluate``/``evaluate_grid`` and their Jacobian twins give the user calls' and fractal sums' bits."""
     from noiselab import fractal_gradient, fractal_sum, turbulence
 
-    noise = LatticeNoise(d, 2 if d == 3 else 1, seed=7, kernel="quintic", hash=hash_)
+    noise = LatticeNoise(d, 2 if d == 3 else 1, rng=7, kernel="quintic", hash=hash_)
     pts = np.random.default_rng(1).uniform(-6, 6, (500, d))
     np.testing.assert_array_equal(noise.evaluate(pts), noise(pts))
     np.testing.assert_array_equal(noise.evaluate(pts.astype(np.float32)), noise(pts.astype(np.float32)))
@@ -441,7 +441,7 @@ def test_evaluation_interface_is_what_the_calls_and_fractal_sums_return(d, hash_
     shape, ext = (24, 20, 6)[:d], [(0, 3), (-1, 2), (0, 1)][:d]
     np.testing.assert_array_equal(noise.evaluate_grid(shape, ext), noise.grid(shape, ext))
     np.testing.assert_array_equal(noise.evaluate_grid(shape, ext, octaves=3), fractal_sum(noise, Grid(shape, ext), 3))
-    none, gj = noise.evaluate_grid_jacobian(shape, ext, octaves=2, value=False)
+    none, gj = noise.evaluate_grid_jacobian(shape, ext, octaves=2, return_value=False)
     assert none is None
     np.testing.assert_array_equal(gj, noise.evaluate_grid_jacobian(shape, ext, octaves=2)[1])
     np.testing.assert_array_equal(noise.evaluate_grid_jacobian(shape, ext)[1], noise.jacobian_grid(shape, ext))
@@ -482,10 +482,10 @@ def test_default_kernel_is_chosen_per_basis():
     assert LatticeNoise(3, basis="gradient", kernel="cubic").kernel.name == "cubic"
     assert LatticeNoise(2, kernel="quintic").kernel.name == "quintic"
     x = np.random.default_rng(0).uniform(0, 64, (20000, 3))
-    default = LatticeNoise(3, basis="gradient", seed=2)
-    assert np.array_equal(default(x), LatticeNoise(3, basis="gradient", seed=2, kernel="quintic")(x))
+    default = LatticeNoise(3, basis="gradient", rng=2)
+    assert np.array_equal(default(x), LatticeNoise(3, basis="gradient", rng=2, kernel="quintic")(x))
     # the quintic default reaches further into its bound than the cubic B-spline did (0.76 against 0.57 here)
-    assert np.abs(default(x)).max() > 0.7 > np.abs(LatticeNoise(3, basis="gradient", seed=2, kernel="cubic")(x)).max()
+    assert np.abs(default(x)).max() > 0.7 > np.abs(LatticeNoise(3, basis="gradient", rng=2, kernel="cubic")(x)).max()
 
 
 @pytest.mark.parametrize("dim,dim_out,hash_", [(2, 1, "table"), (2, 1, "integer"), (2, 2, "table"), (3, 1, "table"),
@@ -503,7 +503,7 @@ def test_grid_workers_split_into_bands_and_keep_the_bits(monkeypatch, dim, dim_o
 
     monkeypatch.setattr(grid_path, "MIN_BAND", 1)
     monkeypatch.setattr(grid_path, "render_bands", counting)
-    noise = LatticeNoise(dim, dim_out, seed=5, kernel="quintic", hash=hash_)
+    noise = LatticeNoise(dim, dim_out, rng=5, kernel="quintic", hash=hash_)
     shape = (37, 29, 11)[:dim]
     ext = [(0, 3), (1, 4.5), (-2, 0)][:dim]
     for dtype in (np.float32, np.float64):
@@ -530,7 +530,7 @@ def test_grid_workers_is_validated_and_small_grids_stay_on_one_thread(monkeypatc
 
     calls = []
     monkeypatch.setattr(grid_path, "render_bands", lambda *a: calls.append(a))
-    noise = LatticeNoise(2, seed=1)
+    noise = LatticeNoise(2, rng=1)
     small = noise.grid((512, 512), [(0, 4), (0, 4)], workers=2)  # 262,144 samples x 1 octave: below one band
     assert calls == [] and small.shape == (512, 512)
     noise.grid((1024, 1024), [(0, 4), (0, 4)], workers=2)  # 1 Mi samples x 1 octave: still one band

@@ -19,7 +19,7 @@ HERE = Path(__file__).resolve().parent.parent
 # ----------------------------------------------------------------- tables
 @pytest.mark.parametrize("hash_", ["table", "integer"])
 def test_permutations_and_keys_are_read_only_for_good(hash_):
-    noise = LatticeNoise(2, 2, seed=1, hash=hash_)
+    noise = LatticeNoise(2, 2, rng=1, hash=hash_)
     for table in (noise.perms, noise.keys):
         assert not table.flags.writeable
         with pytest.raises(ValueError, match="read-only"):
@@ -33,20 +33,20 @@ def test_permutations_and_keys_are_read_only_for_good(hash_):
 def test_points_and_grids_read_one_table():
     # a changed table once made points (a copy taken at construction) and grids (the live table) disagree by
     # 0.56 on a 16^2 grid; now the table cannot change, and a changed value table reaches both paths alike
-    noise = LatticeNoise(2, seed=2, kernel="quintic")
+    noise = LatticeNoise(2, rng=2, kernel="quintic")
     shape, ext = (16, 16), [(0, 4), (0, 4)]
     with pytest.raises(ValueError):
         noise.perms[0] = noise.perms[0][::-1]
     noise.values[:] = noise.values[:, ::-1].copy()
     grid = noise.grid(shape, ext)
     np.testing.assert_allclose(noise(noise.grid_points(shape, ext)), grid, rtol=0, atol=1e-12)
-    assert np.abs(grid - LatticeNoise(2, seed=2, kernel="quintic").grid(shape, ext)).max() > 0.1
+    assert np.abs(grid - LatticeNoise(2, rng=2, kernel="quintic").grid(shape, ext)).max() > 0.1
 
 
 # ----------------------------------------------------------------- layout
 @pytest.mark.parametrize("hash_", ["table", "integer"])
 def test_points_in_rows_or_columns_give_the_same_bits(hash_):
-    noise = LatticeNoise(3, 2, seed=4, hash=hash_, kernel="quintic", basis="gradient")
+    noise = LatticeNoise(3, 2, rng=4, hash=hash_, kernel="quintic", basis="gradient")
     rows = RNG.uniform(-20, 20, (3000, 3))
     cols = np.ascontiguousarray(rows.T)           # structure of arrays, (3, N)
     want = noise(rows)
@@ -77,7 +77,7 @@ def test_folded_tables_give_the_per_point_kernels_bits(kw, monkeypatch):
     # many 3-D points read the folded tables (pair_tables), few the permutation itself: the same bits
     from noiselab.lattice import points_path
 
-    noise = LatticeNoise(3, seed=2, **kw)
+    noise = LatticeNoise(3, rng=2, **kw)
     pts = RNG.uniform(-300, 300, (3000, 3))
     pts[::7] += 1e13   # past 2**52: the exact reduction
     results = []
@@ -103,21 +103,21 @@ x = np.random.default_rng(1).uniform(-9, 9, (40, 3))
 out = []
 for h in ("table", "integer"):
     for kw in ({}, {"basis": "gradient", "kernel": "catmull-rom"}, {"period": (3, 4, 5), "kernel": "quintic"}):
-        n3 = nl.LatticeNoise(3, 2, seed=3, hash=h, **kw)
+        n3 = nl.LatticeNoise(3, 2, rng=3, hash=h, **kw)
         out += [n3.evaluate(x, octaves=2), n3(x.T, axis=0)]
         out += list(n3.evaluate_jacobian(x, octaves=2, absval=True))
         kw2 = dict(kw, period=(3, 4)) if "period" in kw else kw
-        n2g = nl.LatticeNoise(2, seed=3, hash=h, **kw2)
+        n2g = nl.LatticeNoise(2, rng=3, hash=h, **kw2)
         out += [nl.fractal_sum(n2g, Grid((9, 7), ((0, 3), (-1, 2))), 3), n2g.grid((6, 5), [(0, 2), (0, 2)],
                                                                                   dtype=np.float32)]
-        out += [nl.LatticeNoise(3, seed=3, hash=h).grid((5, 4, 3), [(0, 2), (0, 2), (0, 1)])]
+        out += [nl.LatticeNoise(3, rng=3, hash=h).grid((5, 4, 3), [(0, 2), (0, 2), (0, 1)])]
         out += list(n2g.evaluate_grid_jacobian((6, 5), [(0, 2), (0, 2)], octaves=2))
-    out += [nl.LatticeNoise(5, seed=3, hash=h, kernel="linear")(x[:, :1].repeat(5, axis=1))]
+    out += [nl.LatticeNoise(5, rng=3, hash=h, kernel="linear")(x[:, :1].repeat(5, axis=1))]
 from noiselab.lattice import points_path
 for least in (0, 1 << 40):   # 3-D table-hash values over the folded tables, and without them
     points_path.PAIRS_MIN = least
     for kw in ({}, {"basis": "gradient"}, {"alternation": "lattice", "table_size": 20}):
-        out += [nl.LatticeNoise(3, 2, seed=5, **kw).evaluate(x, octaves=2)]
+        out += [nl.LatticeNoise(3, 2, rng=5, **kw).evaluate(x, octaves=2)]
 np.savez(sys.argv[1], *out)
 """
 
@@ -144,7 +144,7 @@ _EVAL = """
 import numpy as np
 from noiselab import LatticeNoise
 x = np.random.default_rng(0).uniform(-9, 9, (200, 3))
-print(repr(float(LatticeNoise(3, seed=1)(x).sum())))
+print(repr(float(LatticeNoise(3, rng=1)(x).sum())))
 """
 
 
@@ -173,7 +173,7 @@ def test_an_edit_of_the_engine_reaches_a_warm_cache(tmp_path):
     old = "        i = np.int64(fi) - left\n"
     assert text.count(old) == 1
     source.write_text(text.replace(old, "        i = np.int64(fi) - left + 1  # edited\n"))
-    shifted = LatticeNoise(3, seed=1, phase=1.0)(np.random.default_rng(0).uniform(-9, 9, (200, 3))).sum()
+    shifted = LatticeNoise(3, rng=1, phase=1.0)(np.random.default_rng(0).uniform(-9, 9, (200, 3))).sum()
     after = run()
     assert after != before
     assert after == pytest.approx(float(shifted), abs=1e-9)   # the edit's effect: the lattice moved one cell

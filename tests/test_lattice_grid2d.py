@@ -22,7 +22,7 @@ INT_NOISES = [{}, {"period": (6, 10)}, {"dim_out": 2, "phase": (0.3, -2.7)}, {"f
 @pytest.mark.parametrize("hash", ["table", "integer"])
 def test_grids_equal_the_points_path_and_stay_in_range(name, basis, hash):
     for kw in (NOISES if hash == "table" else INT_NOISES):
-        noise = LatticeNoise(2, seed=3, kernel=name, basis=basis, hash=hash, **kw)
+        noise = LatticeNoise(2, rng=3, kernel=name, basis=basis, hash=hash, **kw)
         for shape, ext in GRIDS:
             grid = noise.grid(shape, ext)
             pts = noise.grid_points(shape, ext)
@@ -43,7 +43,7 @@ def test_grids_equal_the_points_path_and_stay_in_range(name, basis, hash):
                                              ("quadratic", "gradient", "table"), ("quintic", "gradient", "integer"),
                                              ("catmull-rom", "value", "integer")])
 def test_grids_are_bit_identical_across_windows_and_bands(name, basis, hash):
-    noise = LatticeNoise(2, seed=4, kernel=name, basis=basis, hash=hash)
+    noise = LatticeNoise(2, rng=4, kernel=name, basis=basis, hash=hash)
     shape, ext = (6, 1500), [(0.3, 2.0), (-7.0, 150.0)]
     g = Grid(shape, ext)
     whole = [fractal_sum(noise, g, 6), turbulence(noise, g, 6), noise.grid(shape, ext, dtype="float32")]

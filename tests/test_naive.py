@@ -321,8 +321,8 @@ def test_range_bounds_equal_reference(name):
 @pytest.mark.parametrize("hash", ["table", "integer"])
 def test_tables_from_the_seed_equal_the_public_attributes(hash):
     for d, c, n in ((1, 1, 256), (3, 2, 256), (2, 3, 10)):
-        noise = LatticeNoise(d, c, seed=17, table_size=n, hash=hash)
-        ref = naive.NaiveLattice(d, c, seed=17, table_size=n, hash=hash)
+        noise = LatticeNoise(d, c, rng=17, table_size=n, hash=hash)
+        ref = naive.NaiveLattice(d, c, rng=17, table_size=n, hash=hash)
         assert np.array_equal(noise.perms, np.stack(ref.perms))
         assert np.array_equal(noise.positive, ref.positive) and np.array_equal(noise.negative, ref.negative)
         assert np.allclose(noise.gradients, ref.gradients, rtol=0, atol=1e-15)
@@ -362,7 +362,7 @@ def _check_float32(noise, x, want):
 @pytest.mark.parametrize("basis", ["value", "gradient"])
 @pytest.mark.parametrize("kernel", sorted(KERNELS))
 def test_every_kernel_and_basis_in_2d_points_and_grid(kernel, basis, hash):
-    noise, ref = _pair(2, seed=3, kernel=kernel, basis=basis, hash=hash, frequency=(1.3, 0.7), phase=(0.2, -1.1),
+    noise, ref = _pair(2, rng=3, kernel=kernel, basis=basis, hash=hash, frequency=(1.3, 0.7), phase=(0.2, -1.1),
                        amplitude=1.5)
     x = _points(150, 2)
     assert_close(noise(x), _want(ref, noise, x))
@@ -385,14 +385,14 @@ DIM_CASES = [(d, k) for d in (1, 2, 3, 4) for k in ("cubic", "quintic")]
 @pytest.mark.parametrize("dim,kernel", DIM_CASES)
 def test_every_dimension_points_and_grids(dim, kernel, basis, hash):
     dim_out = 2 if dim in (2, 3) else 1
-    noise, ref = _pair(dim, dim_out, seed=dim, kernel=kernel, basis=basis, hash=hash, frequency=1.7, phase=0.3)
+    noise, ref = _pair(dim, dim_out, rng=dim, kernel=kernel, basis=basis, hash=hash, frequency=1.7, phase=0.3)
     x = _points(100 if dim < 4 else 40, dim)
     assert_close(noise(x), _want(ref, noise, x))
     _check_float32(noise, x, lambda p: _want(ref, noise, p))
     if dim == 1:  # a plain array of scalar inputs
         assert_close(noise(x[:, 0]), _want(ref, noise, x))
     # a power-of-two frequency and no phase: the integer hash's all-float32 kernel (exact float32 split)
-    noise2, ref2 = _pair(dim, seed=dim, kernel=kernel, basis=basis, hash=hash, frequency=2.0)
+    noise2, ref2 = _pair(dim, rng=dim, kernel=kernel, basis=basis, hash=hash, frequency=2.0)
     assert_close(noise2(x), _want(ref2, noise2, x))
     _check_float32(noise2, x, lambda p: _want(ref2, noise2, p))
     shape = {1: (17,), 2: (9, 7), 3: (5, 6, 4), 4: (3, 4, 3, 2)}[dim]
@@ -413,7 +413,7 @@ def test_periods_table_sizes_and_alternation(dim, hash):
         cases += [dict(alternation="lattice", period=6, kernel="linear"),
                   dict(alternation="lattice", table_size=12, kernel="cubic"), dict(period=512, kernel="quintic")]
     for kw in cases:
-        noise, ref = _pair(dim, seed=5, hash=hash, frequency=1.3, **kw)
+        noise, ref = _pair(dim, rng=5, hash=hash, frequency=1.3, **kw)
         x = _points(60 if dim < 4 else 25, dim, -30, 30)
         assert_close(noise(x), _want(ref, noise, x))
         shape = (7,) * dim if dim < 4 else (3, 2, 3, 4)
@@ -436,7 +436,7 @@ def _want_jac(ref, noise, x):
 @pytest.mark.parametrize("basis", ["value", "gradient"])
 @pytest.mark.parametrize("kernel", C1)
 def test_jacobian_every_c1_kernel_in_2d(kernel, basis, hash):
-    noise, ref = _pair(2, 2, seed=9, kernel=kernel, basis=basis, hash=hash, frequency=(2.1, 0.9), phase=0.4,
+    noise, ref = _pair(2, 2, rng=9, kernel=kernel, basis=basis, hash=hash, frequency=(2.1, 0.9), phase=0.4,
                        amplitude=0.8)
     x = _points(80, 2)
     value, jac = noise.jacobian(x, return_value=True)
@@ -451,7 +451,7 @@ def test_jacobian_every_c1_kernel_in_2d(kernel, basis, hash):
 @pytest.mark.parametrize("basis", ["value", "gradient"])
 @pytest.mark.parametrize("dim", [1, 2, 3, 4])
 def test_gradient_every_dimension(dim, basis, hash):
-    noise, ref = _pair(dim, seed=12, kernel="cubic", basis=basis, hash=hash, frequency=1.9, phase=-0.6)
+    noise, ref = _pair(dim, rng=12, kernel="cubic", basis=basis, hash=hash, frequency=1.9, phase=-0.6)
     x = _points(50 if dim < 4 else 20, dim)
     value, grad = noise.gradient(x, return_value=True)
     assert_close(grad, _want_jac(ref, noise, x))
@@ -475,7 +475,7 @@ OCTAVE_CASES = [(1, "cubic", "value"), (2, "quintic", "gradient"), (2, "catmull-
 @pytest.mark.parametrize("hash", ["table", "integer"])
 @pytest.mark.parametrize("dim,kernel,basis", OCTAVE_CASES)
 def test_fractal_sum_and_turbulence_points_and_grids(dim, kernel, basis, hash):
-    noise, ref = _pair(dim, seed=21, kernel=kernel, basis=basis, hash=hash, frequency=1.1, phase=0.25)
+    noise, ref = _pair(dim, rng=21, kernel=kernel, basis=basis, hash=hash, frequency=1.1, phase=0.25)
     x = _points(60 if dim < 4 else 20, dim, -6, 6)
     octaves = 4 if dim < 4 else 3
     shape = {1: (40,), 2: (12, 14), 3: (6, 7, 5), 4: (3, 3, 4, 3)}[dim]
@@ -503,7 +503,7 @@ def test_fractal_sum_and_turbulence_points_and_grids(dim, kernel, basis, hash):
 
 
 def test_fractal_sum_with_another_lacunarity_and_gain_and_vector_noise():
-    noise, ref = _pair(2, 3, seed=4, kernel="catmull-rom", frequency=0.8)
+    noise, ref = _pair(2, 3, rng=4, kernel="catmull-rom", frequency=0.8)
     x = _points(70, 2, -5, 5)
     want = naive.fractal_sum(ref, x, noise.bound, 5, lacunarity=1.9, gain=0.6)
     assert_close(fractal_sum(noise, x, 5, lacunarity=1.9, gain=0.6), want)
@@ -520,7 +520,7 @@ TILE_CASES = [(1, "cubic", "value", 3), (2, "quintic", "gradient", [4, 3]), (2, 
 def test_tileable_octave_sums_take_a_period_per_octave(dim, kernel, basis, period, hash):
     """A tileable noise's octave o has the lattice period ``period * lacunarity**o`` (the reference's
     ``NaiveLattice.octave``): fractal sums, turbulence and their gradients, on points and grids."""
-    noise, ref = _pair(dim, seed=5, kernel=kernel, basis=basis, hash=hash, period=period, frequency=1.3, phase=0.2)
+    noise, ref = _pair(dim, rng=5, kernel=kernel, basis=basis, hash=hash, period=period, frequency=1.3, phase=0.2)
     x = _points(50 if dim < 3 else 25, dim, -6, 6)
     shape = {1: (40,), 2: (12, 14), 3: (6, 7, 5)}[dim]
     extent = [(-1.5 + 0.2 * a, -1.5 + 0.2 * a + 0.07 * n) for a, n in enumerate(shape)]  # every octave visible
@@ -542,7 +542,7 @@ def test_tileable_octave_sums_take_a_period_per_octave(dim, kernel, basis, perio
         want = naive.fractal_gradient(ref, pts, noise.bound, octaves, lacunarity)[:, 0].reshape(shape + (dim,))
         assert_close(fractal_gradient(noise, Grid(shape, extent), octaves, **kw), want)
     # the reference with one period for every octave (the old sum) is another function
-    old = naive.NaiveLattice(dim, seed=5, kernel=kernel, basis=basis, hash=hash, period=period, frequency=1.3,
+    old = naive.NaiveLattice(dim, rng=5, kernel=kernel, basis=basis, hash=hash, period=period, frequency=1.3,
                              phase=0.2)
     old.tileable = False
     assert np.abs(naive.fractal_sum(old, x, noise.bound, 4)[:, 0] - fractal_sum(noise, x, 4)).max() > 0.01
@@ -552,7 +552,7 @@ def test_tileable_octave_sums_take_a_period_per_octave(dim, kernel, basis, perio
 @pytest.mark.parametrize("dim,kernel,basis", [(1, "quintic", "value"), (2, "cubic", "gradient"),
                                               (3, "catmull-rom", "value"), (4, "quadratic", "gradient")])
 def test_fractal_and_turbulence_gradients(dim, kernel, basis, hash):
-    noise, ref = _pair(dim, seed=8, kernel=kernel, basis=basis, hash=hash, frequency=1.2)
+    noise, ref = _pair(dim, rng=8, kernel=kernel, basis=basis, hash=hash, frequency=1.2)
     x = _points(40 if dim < 4 else 15, dim, -4, 4)
     for func, turb in ((fractal_gradient, False), (turbulence_gradient, True)):
         want = naive.fractal_gradient(ref, x, noise.bound, 3, turbulence=turb)[:, 0]

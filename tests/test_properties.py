@@ -274,9 +274,9 @@ ALPHA = VID.astype(np.float32)
 W3 = SP.frequency_vectors((4, 8, 8))
 W2 = SP.frequency_vectors((8, 8))
 MESH = G.sphere(1)
-N1, N2, N3 = L.LatticeNoise(1, seed=1), L.LatticeNoise(2, seed=2), L.LatticeNoise(3, seed=3)
-V2 = L.LatticeNoise(2, 2, seed=4)
-NI = L.LatticeNoise(2, 3, seed=5, hash="integer")
+N1, N2, N3 = L.LatticeNoise(1, rng=1), L.LatticeNoise(2, rng=2), L.LatticeNoise(3, rng=3)
+V2 = L.LatticeNoise(2, 2, rng=4)
+NI = L.LatticeNoise(2, 3, rng=5, hash="integer")
 PTS2 = RNG.uniform(-4, 4, (5, 2))
 MASK = np.zeros((16, 16), bool)
 MASK[:, 8:] = True
@@ -383,8 +383,8 @@ TABLE = [
           dict(c="real", band="pair", width="int", height="int"),
           lambda r, kw: (finite(r), np.testing.assert_array_less(-1e-300, r))),
     # ------------------------------------------------------------- lattice
-    Entry("LatticeNoise", _lattice_call, dict(dim_in=2, dim_out=1, seed=0),
-          dict(dim_in="int", dim_out="int", seed="rng", kernel="choice", basis="choice", table_size="int",
+    Entry("LatticeNoise", _lattice_call, dict(dim_in=2, dim_out=1, rng=0),
+          dict(dim_in="int", dim_out="int", rng="rng", kernel="choice", basis="choice", table_size="int",
                period="int", frequency="real", phase="real", amplitude="real", alternation="choice",
                hash="choice"),
           _lattice_check),

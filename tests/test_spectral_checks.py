@@ -179,7 +179,7 @@ def test_spectral_noise_is_isotropic_and_tiles():
 def lattice_images():
     """Periodic (tileable) value noise, 8 lattice cells across 256 px, for every kernel."""
     return {
-        k: noiselab.LatticeNoise(2, seed=3, kernel=k, period=8).grid((256, 256), [(0, 8), (0, 8)])
+        k: noiselab.LatticeNoise(2, rng=3, kernel=k, period=8).grid((256, 256), [(0, 8), (0, 8)])
         for k in KERNELS
     }
 
@@ -225,7 +225,7 @@ def test_lattice_noise_shows_its_axes_where_spectral_noise_does_not(lattice_imag
 
 
 def test_non_periodic_lattice_noise_needs_the_window():
-    img = noiselab.LatticeNoise(2, seed=5, kernel="cubic").grid((256, 256), [(0, 8), (0, 8)])
+    img = noiselab.LatticeNoise(2, rng=5, kernel="cubic").grid((256, 256), [(0, 8), (0, 8)])
     with pytest.raises(AssertionError, match="SEAM"):
         NT.assert_seamless(img)  # not periodic over the frame
     assert A.tile_seam(img) > 3
@@ -238,7 +238,7 @@ def test_non_periodic_lattice_noise_needs_the_window():
 def test_fractal_sum_slope_follows_the_gain(kernel, gain):
     # octave o has amplitude gain**o at 2**o times the frequency: in 2-D the energy per
     # octave falls as gain**2 per octave over 4x the cells, so the amplitude slope is log2(gain) - 1
-    noise = noiselab.LatticeNoise(2, seed=4, kernel=kernel)
+    noise = noiselab.LatticeNoise(2, rng=4, kernel=kernel)
     img, used = noiselab.fractal_sum(noise, Grid((256, 256), [(0, 4), (0, 4)]), 8, gain=gain, return_octaves=True)
     assert used >= 6
     # a fractal sum is a power law only on average over its octaves (its spectrum ripples octave by octave:

@@ -141,7 +141,7 @@ def test_isotropy_sees_a_stretched_field():
 
 
 def test_lattice_noise_shows_its_axes():
-    lattice = noiselab.LatticeNoise(2, seed=3, kernel="cubic", period=16).grid((128, 128), [(0, 16), (0, 16)])
+    lattice = noiselab.LatticeNoise(2, rng=3, kernel="cubic", period=16).grid((128, 128), [(0, 16), (0, 16)])
     with pytest.raises(AssertionError, match="axis artefacts"):
         T.assert_no_axis_artefacts(lattice)
     with pytest.raises(AssertionError, match="4-fold"):

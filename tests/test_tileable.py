@@ -65,7 +65,7 @@ def test_tileable_sum_has_no_period_shorter_than_the_tile(hash, absval):
         # lattice points), and every shift here is a whole number of cells of every octave: a noise with no
         # period at all (a 4096-entry table, so nothing repeats in 8 cells) reads 0.1-0.35 at these shifts
         # too; the tileable sum must read no more than that
-        free = shift_correlations(func(LatticeNoise(2, seed=3, hash=hash, kernel="quintic", table_size=4096), TILE,
+        free = shift_correlations(func(LatticeNoise(2, rng=3, hash=hash, kernel="quintic", table_size=4096), TILE,
                                        OCTAVES))
         assert np.abs(r - free).max() < 0.1 and r.max() < 0.25, (r, free)
     # the old sum, rebuilt: octave o repeats 2**o times inside the tile, so at a shift of 2**-k of the tile
@@ -85,7 +85,7 @@ def test_tileable_sum_has_no_period_shorter_than_the_tile(hash, absval):
 @pytest.mark.parametrize("hash", ["table", "integer"])
 def test_tileable_sum_edges_continue_across_the_seam(hash):
     """The tile's last row runs on into its first: the step across the seam is like any other step."""
-    field = fractal_sum(LatticeNoise(2, seed=4, period=CELLS, hash=hash, kernel="quintic"), TILE, OCTAVES)
+    field = fractal_sum(LatticeNoise(2, rng=4, period=CELLS, hash=hash, kernel="quintic"), TILE, OCTAVES)
     for a in (0, 1):
         steps = np.abs(np.diff(field, axis=a))
         seam = np.abs(np.take(field, 0, axis=a) - np.take(field, -1, axis=a))
@@ -94,7 +94,7 @@ def test_tileable_sum_edges_continue_across_the_seam(hash):
 
 @pytest.mark.parametrize("hash", ["table", "integer"])
 def test_tileable_points_grid_threads_and_chunks_agree(hash):
-    noise = LatticeNoise(2, seed=6, period=[4, 6], hash=hash, frequency=[1.0, 1.5])
+    noise = LatticeNoise(2, rng=6, period=[4, 6], hash=hash, frequency=[1.0, 1.5])
     grid = Grid((48, 40), ((0, 4), (0, 4)))
     img, used = fractal_sum(noise, grid, 5, return_octaves=True)
     assert used == 4  # the fifth octave is past the grid's Nyquist
@@ -113,7 +113,7 @@ def test_tileable_points_grid_threads_and_chunks_agree(hash):
 
 
 def test_tileable_gradient_is_the_derivative_and_tiles():
-    noise = LatticeNoise(2, seed=7, period=CELLS, kernel="quintic", hash="integer")
+    noise = LatticeNoise(2, rng=7, period=CELLS, kernel="quintic", hash="integer")
     grid = Grid((64, 64), ((0, CELLS), (0, CELLS)))
     value, grad = fractal_gradient(noise, grid, 4, return_value=True)
     assert np.array_equal(value, fractal_sum(noise, grid, 4))

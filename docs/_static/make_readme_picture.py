@@ -17,7 +17,7 @@ from noiselab.snowfall.background import default_background  # noqa: E402
 
 alpha = noiselab.snow((32, 160, 160), rng=1)
 frame = noiselab.composite(alpha, default_background(160, 160))[0]
-terrain = noiselab.fractal_sum(noiselab.LatticeNoise(2, seed=2, kernel="quintic", basis="gradient"),
+terrain = noiselab.fractal_sum(noiselab.LatticeNoise(2, rng=2, kernel="quintic", basis="gradient"),
                                Grid((160, 160), ((0, 4), (0, 4))), 6)
 fig, axes = plt.subplots(1, 3, figsize=(6, 2.1), dpi=100)
 axes[0].imshow(frame, cmap="gray" if frame.ndim == 2 else None)

@@ -1171,7 +1171,10 @@ WORDS = {
         unit='',
         type='bool, default False',
         default=False,
-        keyword_only=True),
+        keyword_only=True,
+        per_function={'noiselab.LatticeNoise.evaluate_grid_jacobian': (True, True)},
+        note=('evaluate_grid_jacobian is the evaluation interface other packages call: it always returns the pair '
+              '(value or None, jacobian), the value by default')),
     'rng': Word(
         ('The random state (SPEC 7): an int (the same int gives the same bits across runs, processes, evaluation '
          'paths and chunkings), a numpy.random.Generator (drawn from, advanced) or None (fresh OS entropy, not '
@@ -1182,10 +1185,11 @@ WORDS = {
         keyword_only=True,
         per_function={'noiselab.spectral.draw_coefficients': (None, False),
                       'noiselab.geometry.quiver_image': (0, True),
-                      'noiselab.LatticeNoise': (None, True)},
+                      'noiselab.LatticeNoise': (0, True)},
         note=('draw_coefficients keeps rng second by position (its calling form since 0.1); quiver_image draws a '
-              'fixed picture: the same every run unless another rng is passed; LatticeNoise takes seed=0 until the'
-              " lattice engine's rework lands (then rng=None)")),
+              'fixed picture: the same every run unless another rng is passed; a LatticeNoise is a fixed function '
+              "(as Perlin's reference noise and the SIMD peers' default seed are), so LatticeNoise(3) is the same "
+              'noise in every process: rng=0')),
     'samples_per_period': Word(
         'Samples per period of the highest octave below which the grid aliases.',
         unit='samples',

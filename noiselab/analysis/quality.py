@@ -762,7 +762,7 @@ def variance_striping(field, period, *, axis=-1, phases=None) -> float:
     Examples
     --------
     >>> import noiselab
-    >>> line = noiselab.LatticeNoise(1, seed=0, kernel="linear", table_size=1 << 16).grid((1 << 18,), [(0, 1 << 14)])
+    >>> line = noiselab.LatticeNoise(1, rng=0, kernel="linear", table_size=1 << 16).grid((1 << 18,), [(0, 1 << 14)])
     >>> abs(variance_striping(line, 16) - 0.75) < 0.05   # (1 - 1/2) / (2/3): linear value noise
     True
     """

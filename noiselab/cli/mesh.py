@@ -71,7 +71,7 @@ def _lattice(dim, args):
     except ImportError as exc:  # pragma: no cover - the lattice package is part of noiselab
         raise ValueError(f"the lattice noise is not available: {exc}") from None
     dim_out = 3 if args.direction == "vector" else 1
-    return LatticeNoise(dim, dim_out, seed=args.seed, kernel=args.kernel, basis=args.basis)
+    return LatticeNoise(dim, dim_out, rng=args.seed, kernel=args.kernel, basis=args.basis)
 
 
 def _load(args):

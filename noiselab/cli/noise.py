@@ -100,7 +100,7 @@ def run(args) -> int:
     table_size = 256 if args.table_size is None else args.table_size
     if period is not None and args.table_size is None:
         table_size = _tile_table_size(period, shape, cells, args.octaves, args.lacunarity, args.gain, dtype)
-    noise = LatticeNoise(dims, seed=args.seed, kernel=args.kernel, basis=args.basis, table_size=table_size,
+    noise = LatticeNoise(dims, rng=args.seed, kernel=args.kernel, basis=args.basis, table_size=table_size,
                          period=period, alternation=args.alternation)
     grid = Grid(shape, [(0.0, c) for c in cells])
     summer = turbulence if args.kind == "turbulence" else fractal_sum

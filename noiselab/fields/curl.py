@@ -74,7 +74,7 @@ def curl_noise(noise, points, *, octaves=1, lacunarity=2.0, gain=0.5):
     --------
     >>> import numpy as np
     >>> from noiselab import LatticeNoise
-    >>> v = curl_noise(LatticeNoise(2, seed=0), np.random.default_rng(0).uniform(0, 4, (100, 2)))
+    >>> v = curl_noise(LatticeNoise(2, rng=0), np.random.default_rng(0).uniform(0, 4, (100, 2)))
     >>> v.shape
     (100, 2)
     """

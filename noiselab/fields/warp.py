@@ -39,7 +39,7 @@ class Warped:
     --------
     >>> import numpy as np
     >>> from noiselab.lattice import LatticeNoise
-    >>> w = Warped(LatticeNoise(2, seed=1), LatticeNoise(2, 2, seed=2), amount=0.5)
+    >>> w = Warped(LatticeNoise(2, rng=1), LatticeNoise(2, 2, rng=2), amount=0.5)
     >>> w(np.zeros((3, 2))).shape, w.gradient(np.zeros((3, 2))).shape
     ((3,), (3, 2))
     """
@@ -135,11 +135,11 @@ def warp(noise, warp_noise, amount=1.0):
     --------
     >>> import numpy as np
     >>> from noiselab import LatticeNoise
-    >>> w = warp(LatticeNoise(2, seed=1), LatticeNoise(2, 2, seed=2), amount=0.5)
+    >>> w = warp(LatticeNoise(2, rng=1), LatticeNoise(2, 2, rng=2), amount=0.5)
     >>> x = np.random.default_rng(0).uniform(0, 4, (10, 2))
     >>> w(x).shape, w.gradient(x).shape
     ((10,), (10, 2))
-    >>> warp(w, LatticeNoise(2, 2, seed=3), 0.25).jacobian(x).shape    # warps compose
+    >>> warp(w, LatticeNoise(2, 2, rng=3), 0.25).jacobian(x).shape    # warps compose
     (10, 1, 2)
     """
     return Warped(noise, warp_noise, amount)

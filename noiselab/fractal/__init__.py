@@ -236,7 +236,7 @@ def fractal_sum(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=Fals
     Examples
     --------
     >>> from noiselab.lattice import LatticeNoise, Grid
-    >>> noise = LatticeNoise(2, seed=0)
+    >>> noise = LatticeNoise(2, rng=0)
     >>> img, used = fractal_sum(noise, Grid((256, 256), [(0, 4), (0, 4)]), 60, return_octaves=True)
     >>> img.shape, used
     ((256, 256), 7)
@@ -271,7 +271,7 @@ def turbulence(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize=False
     --------
     >>> import numpy as np
     >>> from noiselab.lattice import LatticeNoise
-    >>> t = turbulence(LatticeNoise(1, seed=0), np.linspace(0, 8, 100), 5)
+    >>> t = turbulence(LatticeNoise(1, rng=0), np.linspace(0, 8, 100), 5)
     >>> bool(t.min() >= 0)
     True
     """
@@ -301,7 +301,7 @@ def _jacobian_sum(noise, x, octaves, lacunarity, gain, normalize, return_value, 
     norm = sum(gain ** o for o in range(used)) if normalize else 1.0
     if lattice and is_grid:
         value, jac = noise.evaluate_grid_jacobian(shape, ext, octaves=used, lacunarity=lacunarity, gain=gain,
-                                                  absval=absval, value=bool(return_value), workers=workers)
+                                                  absval=absval, return_value=bool(return_value), workers=workers)
     elif lattice:
         value, jac = noise.evaluate_jacobian(as_array("x", x), octaves=used, lacunarity=lacunarity, gain=gain,
                                              absval=absval, workers=workers, name="x")
@@ -370,7 +370,7 @@ def fractal_gradient(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize
     --------
     >>> import numpy as np
     >>> from noiselab.lattice import LatticeNoise
-    >>> noise = LatticeNoise(2, seed=0)
+    >>> noise = LatticeNoise(2, rng=0)
     >>> fractal_gradient(noise, np.zeros((3, 2)), 4).shape
     (3, 2)
     """
@@ -410,7 +410,7 @@ def turbulence_gradient(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normal
     --------
     >>> import numpy as np
     >>> from noiselab.lattice import LatticeNoise
-    >>> v, g = turbulence_gradient(LatticeNoise(1, seed=0), np.linspace(0.1, 8, 100), 5, return_value=True)
+    >>> v, g = turbulence_gradient(LatticeNoise(1, rng=0), np.linspace(0.1, 8, 100), 5, return_value=True)
     >>> v.shape, g.shape
     ((100,), (100, 1))
     """

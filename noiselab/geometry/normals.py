@@ -38,7 +38,7 @@ def field_gradient(field, points, *, octaves=1, kind="fractal", lacunarity=2.0, 
     --------
     >>> import numpy as np
     >>> from noiselab import LatticeNoise
-    >>> v, g = field_gradient(LatticeNoise(3, seed=0), np.zeros((4, 3)), octaves=3)
+    >>> v, g = field_gradient(LatticeNoise(3, rng=0), np.zeros((4, 3)), octaves=3)
     >>> v.shape, g.shape
     ((4,), (4, 3))
     """
@@ -129,7 +129,7 @@ def monge_normals(field, points, amplitude=1.0, frequency=1.0, phase=0.0, *, oct
     >>> from noiselab import LatticeNoise
     >>> from noiselab.geometry import grid_points
     >>> pts = grid_points((64, 64), ((0, 4), (0, 4)))
-    >>> n = monge_normals(LatticeNoise(2, seed=1), pts, amplitude=0.5)
+    >>> n = monge_normals(LatticeNoise(2, rng=1), pts, amplitude=0.5)
     >>> n.shape, bool(np.allclose(np.linalg.norm(n, axis=-1), 1) and n[..., 2].min() > 0)
     ((64, 64, 3), True)
     """
@@ -201,7 +201,7 @@ def displaced_normals(mesh, field, amplitude=1.0, frequency=1.0, phase=0.0, *, o
     >>> import numpy as np, trimesh
     >>> from noiselab import LatticeNoise
     >>> sphere = trimesh.creation.icosphere(3)
-    >>> n = displaced_normals(sphere, LatticeNoise(3, seed=0), amplitude=0.1, frequency=2.0, curvature=1.0)
+    >>> n = displaced_normals(sphere, LatticeNoise(3, rng=0), amplitude=0.1, frequency=2.0, curvature=1.0)
     >>> bool(np.allclose(np.linalg.norm(n, axis=1), 1))
     True
     """

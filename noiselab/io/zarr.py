@@ -223,7 +223,7 @@ def write_zarr(path, data, *, name=_DEFAULT_NAME, dims=None, coords=None, attrs=
     --------
     >>> import os, tempfile
     >>> from noiselab.lattice import LatticeNoise
-    >>> vol = LatticeNoise(3, seed=1).grid((32, 32, 32), [(0, 4)] * 3, chunks=16, dtype="float32")
+    >>> vol = LatticeNoise(3, rng=1).grid((32, 32, 32), [(0, 4)] * 3, chunks=16, dtype="float32")
     >>> out = write_zarr(os.path.join(tempfile.mkdtemp(), "vol.zarr"), vol, dims=("z", "y", "x"), rng=1)
     >>> back = read_zarr(out)
     >>> back.shape, back.dtype.name, bool((back == vol).all().compute())

@@ -68,7 +68,7 @@ def _lattice_texture(n, dim, f0, kernel, basis, seed, dtype=np.float64):
     from .snowgen import lattice_peak
 
     cells = f0 / lattice_peak(kernel, basis)
-    noise = LatticeNoise(dim, seed=seed, kernel=kernel, basis=basis)
+    noise = LatticeNoise(dim, rng=seed, kernel=kernel, basis=basis)
     grid = Grid((n,) * dim, [(0.0, cells)] * dim)
     return fractal_sum(noise, grid, 60, lacunarity=2.0, gain=1.0, dtype=dtype)
 
@@ -422,7 +422,7 @@ def sweep_octaves(cfg):
     from ..lattice import Grid, LatticeNoise
 
     n = cfg.texture_n2
-    noise = LatticeNoise(2, seed=0, kernel="cubic")
+    noise = LatticeNoise(2, rng=0, kernel="cubic")
     grid = Grid((n, n), [(0.0, 4.0)] * 2)
     full, used = fractal_sum(noise, grid, 60, return_octaves=True)
     octs = list(range(1, used + 1))

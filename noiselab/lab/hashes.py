@@ -61,7 +61,7 @@ def profile_striping(fields) -> np.ndarray:
 def _noise(hash_, kernel, basis, seed, dim=2, period=None):
     from ..lattice import LatticeNoise
 
-    return LatticeNoise(dim, seed=seed, kernel=kernel, basis=basis, hash=hash_, period=period)
+    return LatticeNoise(dim, rng=seed, kernel=kernel, basis=basis, hash=hash_, period=period)
 
 
 def hash_experiment(cfg=None, *, cells=256, spc=2, repeats=None):

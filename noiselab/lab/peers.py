@@ -100,7 +100,7 @@ def lattice_cases(n, octaves):
         from noiselab.fractal import fractal_sum
         from noiselab.lattice import Grid, LatticeNoise
 
-        noise = LatticeNoise(2, seed=0, kernel="quintic", basis="gradient")
+        noise = LatticeNoise(2, rng=0, kernel="quintic", basis="gradient")
         if octaves == 1:
             return noise.grid((n, n), [(0, cells), (0, cells)])
         return fractal_sum(noise, Grid((n, n), [(0, cells), (0, cells)]), octaves)
@@ -109,7 +109,7 @@ def lattice_cases(n, octaves):
         from noiselab.fractal import fractal_sum
         from noiselab.lattice import Grid, LatticeNoise
 
-        noise = LatticeNoise(2, seed=0, kernel="cubic")
+        noise = LatticeNoise(2, rng=0, kernel="cubic")
         if octaves == 1:
             return noise.grid((n, n), [(0, cells), (0, cells)], dtype=np.float32)
         return fractal_sum(noise, Grid((n, n), [(0, cells), (0, cells)]), octaves, dtype=np.float32)

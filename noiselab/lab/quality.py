@@ -99,7 +99,7 @@ def lattice_variance(noise, *, table=True) -> float:
     Examples
     --------
     >>> from noiselab import LatticeNoise
-    >>> round(lattice_variance(LatticeNoise(1, kernel="linear", seed=0), table=False), 4)   # 1/3 x 2/3
+    >>> round(lattice_variance(LatticeNoise(1, kernel="linear", rng=0), table=False), 4)   # 1/3 x 2/3
     0.2222
     """
     t = (np.arange(4096) + 0.5) / 4096
@@ -150,10 +150,10 @@ def octave_generators(n, dim=2):
             peak = lattice_peak(k, basis)
             cells = max(int(round(c0 / peak)), 2)
             c = cells * peak
-            noise = LatticeNoise(dim, seed=0, kernel=k, basis=basis, period=cells)  # the variance over seeds
+            noise = LatticeNoise(dim, rng=0, kernel=k, basis=basis, period=cells)  # the variance over seeds
 
             def make(seed, m, k=k, basis=basis, cells=cells):
-                nz = LatticeNoise(dim, seed=seed, kernel=k, basis=basis, period=cells)
+                nz = LatticeNoise(dim, rng=seed, kernel=k, basis=basis, period=cells)
                 return nz.grid((m,) * dim, [(0.0, float(cells))] * dim)
 
             gens[f"{basis} noise, {k}"] = ("lattice", make,
@@ -171,7 +171,7 @@ def _period_of(family, info, n, seed=0):
     if family == "lattice":
         table = 64  # a small table keeps the line short; the default 256 repeats after 256 cells the same way
         spc = 4
-        nz = LatticeNoise(1, seed=seed, kernel=info["kernel"], basis=info["basis"], table_size=table)
+        nz = LatticeNoise(1, rng=seed, kernel=info["kernel"], basis=info["basis"], table_size=table)
         line = nz.grid((2 * table * spc + spc,), [(0.0, 2 * table + 1.0)])
         p = detect_period(line, tol=1e-9)
         return {"period": None if p.period is None else p.period / spc, "period_unit": "cells",

@@ -76,7 +76,7 @@ def lattice_peak(kernel="catmull-rom", basis="gradient") -> float:
 def _lattice_peak(kernel, basis) -> float:
     from ..analysis import radial_spectrum
 
-    img = LatticeNoise(2, seed=12345, kernel=kernel, basis=basis, period=64).grid((512, 512), [(0, 64), (0, 64)])
+    img = LatticeNoise(2, rng=12345, kernel=kernel, basis=basis, period=64).grid((512, 512), [(0, 64), (0, 64)])
     rs = radial_spectrum(img)
     p = rs.power * rs.counts
     return float(np.sum(p * rs.mean_frequency) / np.sum(p) / 64.0)
@@ -194,7 +194,7 @@ def layered_lattice_snow(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, la
     for k in range(len(plan["speed"])):
         nx, ny = int(plan["cells_x"][k]), int(plan["cells_y"][k])
         # axis 0 is y, axis 1 is x; period = cells across the frame: each layer tiles the frame
-        noise = LatticeNoise(2, seed=int(layer_seeds[k]), kernel=kernel, basis="gradient", period=(ny, nx))
+        noise = LatticeNoise(2, rng=int(layer_seeds[k]), kernel=kernel, basis="gradient", period=(ny, nx))
         # random sub-cell offset per layer, so that layers do not share lattice lines
         layers_.append((noise, nx, ny, float(plan["speed"][k]), float(plan["amplitude"][k]), rng.random(2)))
     out = np.empty((T, H, W), dtype=dt)

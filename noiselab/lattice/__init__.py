@@ -1,6 +1,6 @@
 """Phillips' permutation-table lattice noise (value and gradient bases) and its smoothing kernels.
 
-``LatticeNoise(dim_in, dim_out=1, *, seed=0, kernel=...)`` evaluates on
+``LatticeNoise(dim_in, dim_out=1, *, rng=0, kernel=...)`` evaluates on
 scattered points (``noise(points)``, points ``(..., dim_in)``) and on regular
 grids (``noise.grid(shape, extent)``, by separability), with exact
 derivatives (``noise.gradient``, ``noise.jacobian``, ``noise.gradient_grid``,

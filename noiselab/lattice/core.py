@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from .._core import as_array, as_generator, check_int, check_real, dispatch, resolve_workers
+from .._core import as_array, as_generator, check_int, check_real, dispatch, renamed_parameters, resolve_workers
 from . import checks, tables
 from .derivatives import grid_jacobian, jacobian_views
 from .grid import check_grid, grid_coordinates
@@ -47,8 +47,12 @@ class LatticeNoise:
         Input dimension d >= 1 (1: a curve of time, 2: an image, 3: solid noise, ...).
     dim_out : int, default 1
         Output components; each has its own permutation table (Phillips 2.3.1).
-    seed : int or numpy.random.Generator, default 0
-        Seeds the value tables, the gradients and the permutations.
+    rng : int, numpy.random.Generator or None, default 0
+        Draws the value tables, the gradients and the permutations (SPEC 7).
+        A noise is a fixed function, as Perlin's reference noise and the
+        SIMD peers' default seed are, so the default is the int 0 rather
+        than ``None``: ``LatticeNoise(3)`` is the same function in every
+        process. ``seed=`` is the old spelling (until 0.3).
     kernel : str, optional
         ``"box"``, ``"linear"``, ``"quadratic"``, ``"cubic"`` (B-splines of
         order 1-4, i.e. 1-4 box filters), ``"catmull-rom"`` (interpolating
@@ -154,19 +158,20 @@ class LatticeNoise:
     Examples
     --------
     >>> import numpy as np
-    >>> noise = LatticeNoise(2, seed=1)
+    >>> noise = LatticeNoise(2, rng=1)
     >>> v = noise(np.random.default_rng(0).uniform(-8, 8, (1000, 2)))
     >>> v.shape, bool(np.abs(v).max() <= 1)
     ((1000,), True)
     >>> img = noise.grid((64, 64), [(0, 4), (0, 4)])
     >>> img.shape
     (64, 64)
-    >>> flow = LatticeNoise(2, 2, seed=1)(np.zeros((5, 2)))
+    >>> flow = LatticeNoise(2, 2, rng=1)(np.zeros((5, 2)))
     >>> flow.shape
     (5, 2)
     """
 
-    def __init__(self, dim_in, dim_out=1, *, seed=0, kernel=None, basis="value", table_size=256,
+    @renamed_parameters(seed="rng")
+    def __init__(self, dim_in, dim_out=1, *, rng=0, kernel=None, basis="value", table_size=256,
                  period=None, frequency=1.0, phase=0.0, amplitude=1.0, alternation="table", hash="table"):
         self.dim_in = d = check_int("dim_in", dim_in, lo=1, hi=32)
         self.dim_out = check_int("dim_out", dim_out, lo=1)
@@ -183,8 +188,8 @@ class LatticeNoise:
         self.frequency = checks.per_axis("frequency", frequency, d, lo=0.0, lo_open=True)
         self.phase = checks.per_axis("phase", phase, d)
         self.amplitude = check_real("amplitude", amplitude, lo=0.0, lo_open=True)
-        self.seed = seed
-        drawn = tables.draw_tables(as_generator(seed), n, d, self.dim_out, hash == "integer")
+        self.rng = rng
+        drawn = tables.draw_tables(as_generator(rng), n, d, self.dim_out, hash == "integer")
         # perms and keys are read-only (tables.frozen): every path reads these very arrays
         self.positive, self.negative, self.gradients, self.keys, self.perms = drawn
         self.values = tables.signed_values(self.positive, self.negative, alternation)
@@ -194,7 +199,7 @@ class LatticeNoise:
         self.scale = self.amplitude / self.bound  # a * basis / bound, so |output| <= a
 
     def __repr__(self):
-        return (f"LatticeNoise(dim_in={self.dim_in}, dim_out={self.dim_out}, seed={self.seed!r}, "
+        return (f"LatticeNoise(dim_in={self.dim_in}, dim_out={self.dim_out}, rng={self.rng!r}, "
                 f"kernel={self.kernel.name!r}, basis={self.basis!r}, table_size={self.table_size}"
                 + (", hash='integer')" if self.hash == "integer" else ")"))
 
@@ -252,7 +257,7 @@ class LatticeNoise:
                 total += part
         return total
 
-    def evaluate(self, points, *, octaves=1, lacunarity=2.0, gain=0.5, absval=False, dtype=None, workers=1,
+    def evaluate(self, points, *, octaves=1, lacunarity=2.0, gain=0.5, absval=False, dtype=None, workers=None,
                  name="points", axis=-1):
         """The octave sum ``sum_o gain**o b(noise(lacunarity**o x))`` at points ``(..., dim_in)``.
 
@@ -279,7 +284,7 @@ class LatticeNoise:
         Examples
         --------
         >>> import numpy as np
-        >>> noise = LatticeNoise(2, seed=1)
+        >>> noise = LatticeNoise(2, rng=1)
         >>> x = np.random.default_rng(0).uniform(0, 8, (100, 2))
         >>> bool(np.array_equal(noise.evaluate(x), noise(x)))
         True
@@ -309,7 +314,7 @@ class LatticeNoise:
         checks.check_large(flat.shape[0] * (self.dim_out * dtype.itemsize + 8 * self.dim_in), "lattice noise")
         return shape_out(evaluate_points(self, flat, freqs, amps, absval, dtype, name, workers), lead, self.dim_out)
 
-    def evaluate_jacobian(self, points, *, octaves=1, lacunarity=2.0, gain=0.5, absval=False, workers=1,
+    def evaluate_jacobian(self, points, *, octaves=1, lacunarity=2.0, gain=0.5, absval=False, workers=None,
                           name="points", axis=-1):
         """The octave sum and its exact Jacobian at points: ``(value, jacobian)``, computed in one pass.
 
@@ -326,7 +331,7 @@ class LatticeNoise:
         Examples
         --------
         >>> import numpy as np
-        >>> noise = LatticeNoise(3, 2, seed=2, kernel="quintic")
+        >>> noise = LatticeNoise(3, 2, rng=2, kernel="quintic")
         >>> value, jac = noise.evaluate_jacobian(np.zeros((5, 3)), octaves=3)
         >>> value.shape, jac.shape
         ((5, 2), (5, 2, 3))
@@ -349,7 +354,7 @@ class LatticeNoise:
         return jacobian_views(out, lead, self.dim_out, self.dim_in)
 
     def evaluate_grid(self, shape, extent, *, window=None, octaves=1, lacunarity=2.0, gain=0.5, absval=False,
-                      dtype=np.float64, workers=1):
+                      dtype=np.float64, workers=None):
         """:meth:`evaluate` on a regular grid (as :meth:`grid`), by the separable passes.
 
         ``shape``, ``extent``, ``window``, ``dtype`` and ``workers`` as for
@@ -359,7 +364,7 @@ class LatticeNoise:
         Examples
         --------
         >>> import numpy as np
-        >>> noise = LatticeNoise(2, seed=1)
+        >>> noise = LatticeNoise(2, rng=1)
         >>> img = noise.evaluate_grid((64, 48), [(0, 4), (0, 3)], octaves=5)
         >>> tile = noise.evaluate_grid((64, 48), [(0, 4), (0, 3)], octaves=5, window=[(8, 24), (0, 48)])
         >>> img.shape, bool(np.array_equal(tile, img[8:24]))
@@ -370,30 +375,31 @@ class LatticeNoise:
                            gain=gain, absval=bool(absval), periods=self._octave_periods(octaves, lacunarity),
                            workers=resolve_workers(workers))
 
+    @renamed_parameters(value="return_value")
     def evaluate_grid_jacobian(self, shape, extent, *, window=None, octaves=1, lacunarity=2.0, gain=0.5,
-                               absval=False, value=True, workers=1):
+                               absval=False, return_value=True, workers=None):
         """:meth:`evaluate_jacobian` on a regular grid: ``(value or None, jacobian)``.
 
         One set of separable grid passes per input axis with the kernel's
-        derivative on that axis; ``value=False`` skips the value's passes
+        derivative on that axis; ``return_value=False`` skips the value's passes
         (``None`` is returned in its place). Parameters as
         :meth:`evaluate_grid`; the results are float64, the Jacobian of shape
         ``window shape + (dim_out, dim_in)``.
 
         Examples
         --------
-        >>> noise = LatticeNoise(2, seed=3, kernel="quintic")
+        >>> noise = LatticeNoise(2, rng=3, kernel="quintic")
         >>> value, jac = noise.evaluate_grid_jacobian((32, 16), [(0, 4), (0, 2)], octaves=4)
         >>> value.shape, jac.shape
         ((32, 16), (32, 16, 1, 2))
         """
         octaves, lacunarity, gain = checks.check_octaves(octaves, lacunarity, gain)
         return grid_jacobian(self, shape, extent, window=window, octaves=octaves, lacunarity=lacunarity, gain=gain,
-                             absval=bool(absval), value=bool(value), periods=self._octave_periods(octaves, lacunarity),
+                             absval=bool(absval), value=bool(return_value), periods=self._octave_periods(octaves, lacunarity),
                              workers=resolve_workers(workers))
 
     # ------------------------------------------------------- the user's calls
-    def __call__(self, points, *, dtype=None, workers=1, axis=-1):
+    def __call__(self, points, *, dtype=None, workers=None, axis=-1):
         """Evaluate at points of shape ``(..., dim_in)``; returns ``(...)`` or ``(..., dim_out)``.
 
         For ``dim_in == 1`` an array whose last axis is not 1 (or a scalar) is
@@ -407,7 +413,7 @@ class LatticeNoise:
         """
         return self._sum_at(points, 1, 2.0, 0.5, False, dtype, workers, "points", axis)
 
-    def jacobian(self, points, *, return_value=False, workers=1, axis=-1):
+    def jacobian(self, points, *, return_value=False, workers=None, axis=-1):
         r"""The exact Jacobian ``d noise_c / d x_a`` at points ``(..., dim_in)``: shape ``(..., dim_out, dim_in)``.
 
         In input units (:mod:`noiselab.lattice.derivatives`). It needs a kernel
@@ -420,8 +426,10 @@ class LatticeNoise:
             As for ``__call__`` (for ``dim_in == 1`` a plain array is that many inputs).
         return_value : bool, default False
             Also return the noise values (computed in the same pass), as ``(value, jacobian)``.
-        workers : int, default 1
-            Threads over blocks of points (bit-identical to one worker).
+        workers : int, optional
+            Threads over blocks of points (bit-identical to one worker);
+            scipy.fft's meaning (``None``: its current default, one thread
+            unless a ``scipy.fft.set_workers`` block says otherwise).
         axis : int, default -1
             The axis of ``points`` that holds the coordinates (as in :meth:`evaluate`).
 
@@ -439,14 +447,14 @@ class LatticeNoise:
         Examples
         --------
         >>> import numpy as np
-        >>> noise = LatticeNoise(3, 3, seed=2, frequency=2.0)
+        >>> noise = LatticeNoise(3, 3, rng=2, frequency=2.0)
         >>> noise.jacobian(np.zeros((5, 3))).shape
         (5, 3, 3)
         """
         value, jac = self.evaluate_jacobian(points, workers=workers, axis=axis)
         return (value, jac) if return_value else jac
 
-    def gradient(self, points, *, return_value=False, workers=1, axis=-1):
+    def gradient(self, points, *, return_value=False, workers=None, axis=-1):
         """The exact gradient of scalar noise (``dim_out == 1``) at points ``(..., dim_in)``: shape ``(..., dim_in)``.
 
         :meth:`jacobian` of a one-component noise, without the component
@@ -455,7 +463,7 @@ class LatticeNoise:
         Examples
         --------
         >>> import numpy as np
-        >>> noise = LatticeNoise(2, seed=1, kernel="quintic", frequency=4.0)
+        >>> noise = LatticeNoise(2, rng=1, kernel="quintic", frequency=4.0)
         >>> value, grad = noise.gradient(np.array([[0.3, 0.7]]), return_value=True)
         >>> value.shape, grad.shape
         ((1,), (1, 2))
@@ -464,7 +472,7 @@ class LatticeNoise:
         value, jac = self.evaluate_jacobian(points, workers=workers, axis=axis)
         return (value, jac[..., 0, :]) if return_value else jac[..., 0, :]
 
-    def jacobian_grid(self, shape, extent, *, window=None, return_value=False, workers=1):
+    def jacobian_grid(self, shape, extent, *, window=None, return_value=False, workers=None):
         """:meth:`jacobian` on a regular grid (as :meth:`grid`): shape ``shape + (dim_out, dim_in)``.
 
         Evaluated by the grid's separable passes with the kernel's derivative
@@ -475,28 +483,28 @@ class LatticeNoise:
 
         Examples
         --------
-        >>> noise = LatticeNoise(2, 2, seed=3)
+        >>> noise = LatticeNoise(2, 2, rng=3)
         >>> noise.jacobian_grid((32, 16), [(0, 4), (0, 2)]).shape
         (32, 16, 2, 2)
         """
-        val, jac = self.evaluate_grid_jacobian(shape, extent, window=window, value=bool(return_value),
+        val, jac = self.evaluate_grid_jacobian(shape, extent, window=window, return_value=bool(return_value),
                                                workers=workers)
         return (val, jac) if return_value else jac
 
-    def gradient_grid(self, shape, extent, *, window=None, return_value=False, workers=1):
+    def gradient_grid(self, shape, extent, *, window=None, return_value=False, workers=None):
         """:meth:`gradient` on a regular grid (as :meth:`grid`): shape ``shape + (dim_in,)``.
 
         See :meth:`jacobian_grid`.
 
         Examples
         --------
-        >>> noise = LatticeNoise(2, seed=3, kernel="quintic")
+        >>> noise = LatticeNoise(2, rng=3, kernel="quintic")
         >>> h, g = noise.gradient_grid((64, 64), [(0, 4), (0, 4)], return_value=True)
         >>> h.shape, g.shape
         ((64, 64), (64, 64, 2))
         """
         checks.check_scalar(self.dim_out, "gradient_grid")
-        val, jac = self.evaluate_grid_jacobian(shape, extent, window=window, value=bool(return_value),
+        val, jac = self.evaluate_grid_jacobian(shape, extent, window=window, return_value=bool(return_value),
                                                workers=workers)
         jac = jac[..., 0, :]
         return (val, jac) if return_value else jac
@@ -508,7 +516,7 @@ class LatticeNoise:
         coords = grid_coordinates(shape, extent)
         return np.stack(np.meshgrid(*coords, indexing="ij"), axis=-1) if coords else np.zeros((0,))
 
-    def grid(self, shape, extent, *, dtype=np.float64, window=None, chunks=None, workers=1):
+    def grid(self, shape, extent, *, dtype=np.float64, window=None, chunks=None, workers=None):
         """Evaluate on a regular grid by separability.
 
         Parameters
@@ -529,8 +537,8 @@ class LatticeNoise:
             ``window=`` path: bit-identical to the in-memory grid for any
             chunking, and a chunk needs only its own memory. Needs the extra
             ``pip install noiselab[dask]``; see :mod:`noiselab.scale`.
-        workers : int, default 1
-            Threads (scipy.fft's meaning: -1 is every core). The grid's first
+        workers : int, optional
+            Threads (scipy.fft's meaning: ``None`` its current default, -1 is every core). The grid's first
             axis is split into that many bands, each a ``window`` of the full
             grid rendered on a pooled thread (the kernels release the GIL), so
             the result is bit-identical for any count. A band gets at least

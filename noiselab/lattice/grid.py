@@ -36,7 +36,7 @@ class Grid(NamedTuple):
     --------
     >>> from noiselab.lattice import LatticeNoise
     >>> grid = Grid((64, 128), ((0, 2), (0, 4)))
-    >>> LatticeNoise(2, seed=0).grid(*grid).shape
+    >>> LatticeNoise(2, rng=0).grid(*grid).shape
     (64, 128)
     """
 

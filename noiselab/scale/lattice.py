@@ -119,7 +119,7 @@ def chunked_grid(noise, shape, extent, *, dtype=np.float64, chunks="auto", windo
     --------
     >>> import numpy as np
     >>> from noiselab.lattice import LatticeNoise
-    >>> noise = LatticeNoise(2, seed=1)
+    >>> noise = LatticeNoise(2, rng=1)
     >>> lazy = noise.grid((100, 60), [(0, 4), (0, 3)], chunks=(30, (10, 50)))
     >>> lazy.chunks
     ((30, 30, 30, 10), (10, 50))
@@ -175,7 +175,7 @@ def chunked_sum(noise, shape, ext, chunks, *, dtype, used, lacunarity, gain, abs
     >>> import numpy as np
     >>> from noiselab.lattice import LatticeNoise, Grid
     >>> from noiselab.fractal import fractal_sum
-    >>> noise, grid = LatticeNoise(3, seed=2), Grid((24, 20, 16), [(0, 2)] * 3)
+    >>> noise, grid = LatticeNoise(3, rng=2), Grid((24, 20, 16), [(0, 2)] * 3)
     >>> lazy = fractal_sum(noise, grid, 5, chunks=(7, 20, 9))
     >>> bool(np.array_equal(lazy.compute(), fractal_sum(noise, grid, 5)))
     True

@@ -304,7 +304,7 @@ class Display:
         >>> ext
         (0.0, 8.0)
         >>> n = d.pixels(4.0)
-        >>> img = noiselab.LatticeNoise(dim_in=2, seed=0).evaluate_grid((n, n), (ext, ext))
+        >>> img = noiselab.LatticeNoise(dim_in=2, rng=0).evaluate_grid((n, n), (ext, ext))
         """
         size = check_real("size_deg", size_deg, lo=0.0, lo_open=True, hi=1e12)
         f = check_real("cycles_per_degree", cycles_per_degree, lo=0.0, lo_open=True, hi=1e12)

@@ -20,7 +20,7 @@ from noiselab.io import read_mesh, write_mesh
 folder = Path(tempfile.mkdtemp())
 write_mesh(folder / "ball.obj", sphere_for_noise(2.0 * 2 ** 2))     # "your" mesh file
 mesh = read_mesh(folder / "ball.obj")
-bumpy = noiselab.displace(mesh, noiselab.LatticeNoise(3, seed=7), amplitude=0.15, frequency=2.0, octaves=3)
+bumpy = noiselab.displace(mesh, noiselab.LatticeNoise(3, rng=7), amplitude=0.15, frequency=2.0, octaves=3)
 write_mesh(folder / "bumpy.ply", bumpy)
 print(len(mesh.vertices), "vertices; radius", round(float(abs(bumpy.vertices).max()), 3))
 

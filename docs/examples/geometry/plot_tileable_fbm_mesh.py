@@ -20,7 +20,7 @@ from noiselab.geometry import monge_surface
 from noiselab.io import read_mesh, write_mesh
 from noiselab.lattice import Grid
 
-noise = noiselab.LatticeNoise(2, seed=6, period=4)                  # repeats every 4 units along y and x
+noise = noiselab.LatticeNoise(2, rng=6, period=4)                  # repeats every 4 units along y and x
 heights = noiselab.fractal_sum(noise, Grid((128, 128), ((0, 4), (0, 4))), 5, normalize=True)
 print("left-right jump:", float(np.abs(heights[:, 0] - heights[:, -1]).max()),
       "neighbour step:", float(np.abs(np.diff(heights, axis=1)).max()))

@@ -14,7 +14,7 @@ import noiselab
 from noiselab.geometry import streamlines
 from noiselab.lattice import Grid
 
-potential = noiselab.LatticeNoise(2, seed=8, kernel="quintic")
+potential = noiselab.LatticeNoise(2, rng=8, kernel="quintic")
 flow = noiselab.curl_noise(potential, Grid((64, 64), ((0, 4), (0, 4))))          # (64, 64, 2)
 divergence = np.gradient(flow[..., 0], axis=0) + np.gradient(flow[..., 1], axis=1)
 print("max |divergence| / max |flow| on the grid:", float(abs(divergence).max() / abs(flow).max()))

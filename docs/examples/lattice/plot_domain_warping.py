@@ -11,9 +11,9 @@ import matplotlib.pyplot as plt
 import noiselab
 from noiselab.geometry import grid_points
 
-base = noiselab.LatticeNoise(2, seed=1)
-once = noiselab.warp(base, noiselab.LatticeNoise(2, 2, seed=2), amount=0.8)
-twice = noiselab.warp(once, noiselab.LatticeNoise(2, 2, seed=3, frequency=2.0), amount=0.4)
+base = noiselab.LatticeNoise(2, rng=1)
+once = noiselab.warp(base, noiselab.LatticeNoise(2, 2, rng=2), amount=0.8)
+twice = noiselab.warp(once, noiselab.LatticeNoise(2, 2, rng=3, frequency=2.0), amount=0.4)
 
 points = grid_points((160, 160), ((0, 4), (0, 4)))   # (160, 160, 2), (y, x) order
 fig, axes = plt.subplots(1, 3, figsize=(9, 3.2))

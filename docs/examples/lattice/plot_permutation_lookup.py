@@ -38,9 +38,9 @@ top.set_title("one lookup per lattice point, n = 8")
 
 x = np.linspace(0, 24, 1200)
 for kernel in ("linear", "cubic", "quintic"):
-    noise = noiselab.LatticeNoise(1, seed=0, table_size=n, kernel=kernel)
+    noise = noiselab.LatticeNoise(1, rng=0, table_size=n, kernel=kernel)
     bottom.plot(x, noise(x), lw=1, label=kernel)
-lattice = noiselab.LatticeNoise(1, seed=0, table_size=n, kernel="linear")(np.arange(25.0))
+lattice = noiselab.LatticeNoise(1, rng=0, table_size=n, kernel="linear")(np.arange(25.0))
 bottom.plot(np.arange(25), lattice, "ko", ms=3, label="lattice values")
 for edge in (8, 16):
     bottom.axvline(edge, color="0.7", ls="--", lw=0.8)

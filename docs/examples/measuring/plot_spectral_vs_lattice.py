@@ -16,7 +16,7 @@ from noiselab.lattice import Grid
 
 size = 256
 spectral = noiselab.spectral_noise((size, size), exponent=1.0, band=(2, 64), rng=0)
-lattice = noiselab.fractal_sum(noiselab.LatticeNoise(2, seed=0, kernel="quintic", basis="gradient"),
+lattice = noiselab.fractal_sum(noiselab.LatticeNoise(2, rng=0, kernel="quintic", basis="gradient"),
                                Grid((size, size), ((0, 4), (0, 4))), 5)
 
 fig, axes = plt.subplots(1, 3, figsize=(10, 3))

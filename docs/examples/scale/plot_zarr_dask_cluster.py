@@ -19,7 +19,7 @@ import noiselab
 from noiselab.io import read_zarr, write_zarr
 from noiselab.lattice import Grid
 
-noise = noiselab.LatticeNoise(3, seed=1)
+noise = noiselab.LatticeNoise(3, rng=1)
 grid = Grid((64, 64, 64), [(0, 4)] * 3)
 volume = noiselab.fractal_sum(noise, grid, 4, dtype="float32", chunks=(32, 32, 32))   # lazy: 8 chunks
 store = Path(tempfile.mkdtemp()) / "fbm.zarr"

@@ -26,8 +26,8 @@ def curl_flow(out, *, samples, cells, arrows, seed):
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    potential = LatticeNoise(2, seed=seed, kernel="quintic")
-    plain = LatticeNoise(2, 2, seed=seed, kernel="quintic")
+    potential = LatticeNoise(2, rng=seed, kernel="quintic")
+    plain = LatticeNoise(2, 2, rng=seed, kernel="quintic")
     grid = Grid((samples, samples), [(0, cells), (0, cells)])
     v_curl = curl_noise(potential, grid)                      # (x, y, 2), axis 0 is x
     v_plain = plain.grid(grid.shape, grid.extent)
@@ -70,9 +70,9 @@ def warp_figure(out, *, samples, cells, amount, seed):
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    base = LatticeNoise(2, seed=seed, kernel="quintic")
-    once = warp(base, LatticeNoise(2, 2, seed=seed + 1, kernel="quintic"), amount)
-    twice = warp(once, LatticeNoise(2, 2, seed=seed + 2, kernel="quintic", frequency=2.0), amount / 2)
+    base = LatticeNoise(2, rng=seed, kernel="quintic")
+    once = warp(base, LatticeNoise(2, 2, rng=seed + 1, kernel="quintic"), amount)
+    twice = warp(once, LatticeNoise(2, 2, rng=seed + 2, kernel="quintic", frequency=2.0), amount / 2)
     pts = base.grid_points((samples, samples), [(0, cells), (0, cells)])
     measured = {}
     fig, axes = plt.subplots(2, 3, figsize=(12, 8.2))
@@ -121,8 +121,8 @@ def normals(out, *, resolutions, subdivisions, shade, seed):
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    field2 = LatticeNoise(2, seed=seed)
-    field3 = LatticeNoise(3, seed=seed)
+    field2 = LatticeNoise(2, rng=seed)
+    field3 = LatticeNoise(3, rng=seed)
     amp, ext = 0.5, ((0.0, 4.0), (0.0, 4.0))
     measured = {}
     monge = []

@@ -78,7 +78,7 @@ def phillips_intro(out, *, entries, seed):
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    noise = LatticeNoise(1, seed=seed, kernel="catmull-rom")
+    noise = LatticeNoise(1, rng=seed, kernel="catmull-rom")
     perm = noise.perms[0][:entries]
     vals = noise(np.arange(entries, dtype=float)[:, None]) * noise.bound
     fig = plt.figure(figsize=(13, 4.6))

@@ -23,7 +23,7 @@ def one_over_f(out, *, size, octaves, cells, gains, seed):
     plt = pyplot()
     fields = {"spectral: spectral_noise, 1/f": spectral_noise((size, size), exponent=1.0, rng=seed, dtype=np.float64)}
     for g in gains:
-        f, used = fractal_sum(LatticeNoise(2, seed=seed), Grid((size, size), [(0, cells), (0, cells)]), octaves,
+        f, used = fractal_sum(LatticeNoise(2, rng=seed), Grid((size, size), [(0, cells), (0, cells)]), octaves,
                               gain=g, normalize=True, return_octaves=True)
         fields[f"lattice: fractal_sum, gain {g:g}, {used} octaves"] = f
     fit_band = (2 * cells, min(size / 4, cells * 2 ** (used - 1)))
@@ -80,7 +80,7 @@ def kernels(out, *, size, cells, seed):
     measured, rolloff = {}, {}
     for r, basis in enumerate(("value", "gradient")):
         for c, k in enumerate(names):
-            img = LatticeNoise(2, seed=seed, kernel=k, basis=basis).grid((size, size), [(0, cells), (0, cells)])
+            img = LatticeNoise(2, rng=seed, kernel=k, basis=basis).grid((size, size), [(0, cells), (0, cells)])
             axes[r, c].imshow(img, cmap="gray", vmin=-1, vmax=1)
             axes[r, c].set_title(f"{basis} / {k}", fontsize=10), axes[r, c].axis("off")
             rad = analysis.radial_spectrum(img, log=True, window="hann")
@@ -162,8 +162,8 @@ def hashes(out, *, cells, spc, seeds, kernel, seed):
     plt = pyplot()
     n = cells * spc
     ext = [(0, cells), (0, cells)]
-    make = {"table": lambda s, **kw: LatticeNoise(2, seed=s, kernel=kernel, table_size=cells, period=cells, **kw),
-            "integer": lambda s, **kw: LatticeNoise(2, seed=s, kernel=kernel, hash="integer", period=cells, **kw)}
+    make = {"table": lambda s, **kw: LatticeNoise(2, rng=s, kernel=kernel, table_size=cells, period=cells, **kw),
+            "integer": lambda s, **kw: LatticeNoise(2, rng=s, kernel=kernel, hash="integer", period=cells, **kw)}
     fig, axes = plt.subplots(2, 3, figsize=(13.5, 8.4), layout="constrained")
     measured = {}
     for r, (h, mk) in enumerate(make.items()):
@@ -177,7 +177,7 @@ def hashes(out, *, cells, spc, seeds, kernel, seed):
         prof = np.mean(np.abs(np.fft.rfft(imgs, axis=-1)) ** 2, axis=1)[:, 1:n // 4 + 1]
         axes[1, 1].semilogy(np.arange(1, n // 4 + 1), prof[0] / prof.mean(axis=0), lw=0.8, color=f"C{r}",
                             label=f"hash={h!r}: CV {np.median(cv):.2f}")
-        line = LatticeNoise(1, seed=seed, kernel=kernel, table_size=cells, hash=h).grid((16 * cells,), [(0, 4 * cells)])
+        line = LatticeNoise(1, rng=seed, kernel=kernel, table_size=cells, hash=h).grid((16 * cells,), [(0, 4 * cells)])
         per = analysis.detect_period(line, min_lag=16)
         lags = np.arange(16, line.size // 2)
         diff = [np.mean((line[L:] - line[:-L]) ** 2) / (2 * line.var()) for L in lags]

@@ -28,7 +28,7 @@ def fig01(out, *, length, per_unit, freqs, passes, measure_length, seed):
 
     plt = pyplot()
     # (a): Phillips' basis, one random value per integer, alternating above and below zero
-    basis = LatticeNoise(1, seed=seed, kernel="box", alternation="lattice")
+    basis = LatticeNoise(1, rng=seed, kernel="box", alternation="lattice")
     xi = np.arange(measure_length + 1)
     v = basis(xi.astype(float)[:, None])
     alternates = bool(np.all(v[xi % 2 == 0] > 0) and np.all(v[xi % 2 == 1] < 0))
@@ -88,7 +88,7 @@ def fig02(out, *, entries, table_size, seed):
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    noise = LatticeNoise(1, seed=seed, kernel="box", alternation="lattice", table_size=table_size)
+    noise = LatticeNoise(1, rng=seed, kernel="box", alternation="lattice", table_size=table_size)
     perm = noise.perms[0][:entries]
     idx = np.arange(entries, dtype=float)
     basis = noise(idx[:, None])
@@ -115,7 +115,7 @@ def fig02(out, *, entries, table_size, seed):
     ax_b = fig.add_axes([0.05, 0.08, 0.55, 0.58])
     ax_b.vlines(idx, 0, basis, color="k", lw=2, label="basis: table[sign of i][perm[i]]")
     ax_b.plot(idx, basis, "ko", ms=4)
-    smooth = LatticeNoise(1, seed=seed, kernel="catmull-rom", alternation="lattice", table_size=table_size)
+    smooth = LatticeNoise(1, rng=seed, kernel="catmull-rom", alternation="lattice", table_size=table_size)
     xs = np.linspace(0, entries - 1, 400)
     through = smooth(xs[:, None]) * smooth.bound      # undo the range normalisation: the curve through the stems
     ax_b.plot(xs, through, color="C2", lw=1.5, label="Catmull-Rom interpolation (passes through every stem)")
@@ -146,7 +146,7 @@ def fig03(out, *, arc_deg, cycles_per_degree, amplitudes, points, seed):
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    field = LatticeNoise(1, seed=seed)
+    field = LatticeNoise(1, rng=seed)
     half = np.radians(arc_deg) / 2
     theta = np.linspace(-half, half, points)
     fig, ax = plt.subplots(figsize=(11, 1.9 * len(amplitudes)))
@@ -204,7 +204,7 @@ def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, c
     t = np.arange(int(round(seconds * fps)) + 1) / fps
     # a 2 s path over 3 noise cells can come out nearly straight, which hides the 2-D output: show the
     # roundest of `candidates` seeds (largest minor/major principal-axis ratio), and say so
-    paths = {k: trajectory(LatticeNoise(1, 2, seed=k), t, frequency=cycles_per_second) for k in range(seed, seed + candidates)}
+    paths = {k: trajectory(LatticeNoise(1, 2, rng=k), t, frequency=cycles_per_second) for k in range(seed, seed + candidates)}
     chosen = max(paths, key=lambda k: _spread(paths[k]))
     pts = paths[chosen]
     tail = int(round(tail_seconds * fps))
@@ -224,7 +224,7 @@ def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, c
         ax.set_title(f"t = {t[i]:.2f} s", fontsize=11)
     files = [save_figure(fig, out / "frames.png")] + save_video(out, "trajectory", frames, fps=fps)
     r = float(np.corrcoef(pts[:, 0], pts[:, 1])[0, 1])
-    rs = [np.corrcoef(*trajectory(LatticeNoise(1, 2, seed=seed + 1000 + k), t, frequency=cycles_per_second).T)[0, 1]
+    rs = [np.corrcoef(*trajectory(LatticeNoise(1, 2, rng=seed + 1000 + k), t, frequency=cycles_per_second).T)[0, 1]
           for k in range(seeds)]
     sentence, stats = _independence(rs, f"x-y correlation of a {seconds:g} s trajectory")
     return Result(files, f"A point whose (x, y) is 2-output noise of time: {seconds:g} s at {fps} frames/s, noise at "
@@ -248,7 +248,7 @@ def fig05(out, *, amplitudes, frequencies, points, seed):
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    field = LatticeNoise(2, 2, seed=seed)
+    field = LatticeNoise(2, 2, rng=seed)
     fig, axes = plt.subplots(len(amplitudes), len(frequencies), figsize=(3.0 * len(frequencies), 3.1 * len(amplitudes)),
                              layout="constrained")
     theta = np.linspace(0, 2 * np.pi, 200)
@@ -310,7 +310,7 @@ def fig06(out, *, point, planes, xrange, kernel, checks, seed):
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    noise = LatticeNoise(2, seed=seed, kernel=kernel)
+    noise = LatticeNoise(2, rng=seed, kernel=kernel)
     K = noise.kernel
     n = noise.table_size
     P = noise.perms[0]
@@ -337,7 +337,7 @@ def fig06(out, *, point, planes, xrange, kernel, checks, seed):
     test = rng.uniform(-40, 40, (checks, 2))
     ours = np.array([derived(yy, xx)[0] for yy, xx in test])
     err = float(np.max(np.abs(ours - noise(test))))
-    linear = LatticeNoise(2, seed=seed, kernel="linear")
+    linear = LatticeNoise(2, rng=seed, kernel="linear")
     grid_y, grid_x = np.meshgrid(np.arange(*planes), np.arange(*xrange), indexing="ij")
     at_integers = linear(np.stack([grid_y.ravel(), grid_x.ravel()], 1).astype(float)).reshape(grid_y.shape) * linear.bound
     table_ok = bool(np.max(np.abs(lattice(grid_y, grid_x) - at_integers)) < 1e-12)
@@ -432,7 +432,7 @@ def fig07(out, *, frames, size, cells, cells_per_frame, panels, step, seed):
     t_cells = frames * cells_per_frame
     if abs(t_cells - round(t_cells)) > 1e-9:
         raise ValueError(f"frames * cells_per_frame must be a whole number of cells for a loop, got {t_cells:g}")
-    noise = LatticeNoise(3, seed=seed, basis=basis, kernel=kernel, period=(int(round(t_cells)), 256, 256))
+    noise = LatticeNoise(3, rng=seed, basis=basis, kernel=kernel, period=(int(round(t_cells)), 256, 256))
     vol = noise.grid((frames, size, size), [(0, t_cells), (0, cells), (0, cells)])
     lo, hi = float(vol.min()), float(vol.max())
     video = (vol - lo) / (hi - lo)          # grey levels stretched over the measured range
@@ -497,7 +497,7 @@ def fig08(out, *, grid, cells, amplitude, size, seed):
     from noiselab.geometry import height_map, height_map_image, monge_surface
 
     (basis, kernel), _ = _most_isotropic(ISOTROPY_SEED)
-    noise = LatticeNoise(2, seed=seed, basis=basis, kernel=kernel)
+    noise = LatticeNoise(2, rng=seed, basis=basis, kernel=kernel)
     ext = ((0.0, cells), (0.0, cells))
     surf = monge_surface(noise, (grid, grid), ext, amplitude=amplitude)
     h = height_map(noise, (size, size), ext)           # the depth map at the render's pixel size
@@ -526,7 +526,7 @@ def fig09(out, *, arrows, cells, size, streamlines, seed):
     from noiselab.lattice import LatticeNoise
     from noiselab.geometry import flow_field, quiver_image
 
-    field = LatticeNoise(2, 2, seed=seed)
+    field = LatticeNoise(2, 2, rng=seed)
     ext = ((0.0, cells), (0.0, cells))
     quiver_image(field, out / "fig09.png", shape=(arrows, arrows), extent=ext, size=size, streamline_seeds=streamlines, rng=seed)
     _, vec = flow_field(field, (64, 64), ext)
@@ -547,7 +547,7 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    field = LatticeNoise(3, 3, seed=seed)
+    field = LatticeNoise(3, 3, rng=seed)
     ext = ((0.0, cells),) * 3
     pts, vec = flow_field(field, (glyphs,) * 3, ext)          # (z, y, x) points and (v_z, v_y, v_x) vectors
     p = pts.reshape(-1, 3)[:, ::-1]
@@ -589,7 +589,7 @@ def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
     ext = ((0.0, cells), (0.0, cells))
     # the colour components use their measured spread (2nd to 98th percentile), not the bound [-1, 1] that the
     # noise almost never reaches: over [-1, 1] the hue covered only about 76-263 degrees and the RGB was muddy
-    f_hue, f_rgb = LatticeNoise(2, 2, seed=seed), LatticeNoise(2, 4, seed=seed + 1)
+    f_hue, f_rgb = LatticeNoise(2, 2, rng=seed), LatticeNoise(2, 4, rng=seed + 1)
     vr_hue = tuple(float(q) for q in np.percentile(f_hue.grid((grid, grid), ext)[..., 1], [2, 98]))
     vr_rgb = tuple(float(q) for q in np.percentile(f_rgb.grid((grid, grid), ext)[..., 1:], [2, 98]))
     hue = colored_surface(f_hue, (grid, grid), ext, amplitude=amplitude, color="hue", value_range=vr_hue)
@@ -607,7 +607,7 @@ def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
     # over only 3 x 3 lattice cells two independent smooth fields correlate by chance: the spread over seeds says how much
     pooled = []
     for k in range(seeds):
-        c = LatticeNoise(2, 4, seed=seed + 100 + k).grid((grid, grid), ext)[..., 1:].reshape(-1, 3)
+        c = LatticeNoise(2, 4, rng=seed + 100 + k).grid((grid, grid), ext)[..., 1:].reshape(-1, 3)
         pooled += [np.corrcoef(c[:, i], c[:, j])[0, 1] for i, j in ((0, 1), (0, 2), (1, 2))]
     sentence, stats = _independence(pooled, f"the R-G, R-B, G-B correlations of 3 x 3-cell surfaces (3 pairs x {seeds} seeds)",
                                     unit="values")
@@ -642,7 +642,7 @@ def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=
     from .._common import pyplot, save_figure
 
     plt = pyplot()
-    noise = LatticeNoise(1, seed=seed, frequency=cells / length)
+    noise = LatticeNoise(1, rng=seed, frequency=cells / length)
     x = np.linspace(0, length, samples, endpoint=False)[:, None]
     fn = fractal_sum if kind == "fractal" else turbulence
     ns = list(range(1, octaves + 1)) if kind == "fractal" else [octaves]
@@ -680,7 +680,7 @@ def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=
     sentence = ""
     if kind == "fractal":
         band = (cells / 2, cells * 2 ** (octaves - 1) / 4)   # value noise holds its power below half its lattice rate
-        slopes = [analysis.spectral_slope(fn(LatticeNoise(1, seed=seed + k, frequency=cells / length), x, octaves), band,
+        slopes = [analysis.spectral_slope(fn(LatticeNoise(1, rng=seed + k, frequency=cells / length), x, octaves), band,
                                           window="hann") for k in range(seeds)]
         sentence, stats, target = _slope_sentence(slopes, 1)
         measured[f"n = {octaves}: amplitude slope over {band[0]:g}-{band[1]:g} cycles/plot, {seeds} seeds (mean, sd; target {target:g})"] = stats
@@ -715,7 +715,7 @@ def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed, see
     from noiselab.lattice import LatticeNoise
     from noiselab.geometry import height_map, monge_surface
 
-    noise = LatticeNoise(2, seed=seed)
+    noise = LatticeNoise(2, rng=seed)
     ext = ((0.0, cells), (0.0, cells))
     meshes = [monge_surface(noise, (grid, grid), ext, amplitude=amplitude, octaves=n, kind=kind, on_alias="ignore")
               for n in range(1, octaves + 1)]
@@ -731,7 +731,7 @@ def _octave_surfaces(out, kind, octaves, grid, cells, amplitude, size, seed, see
                 f"{_anisotropy_words(aniso)}.")
     if kind == "fractal":
         band = (cells / 2, min(grid / 4, cells * 2 ** (octaves - 1) / 4))
-        slopes = [analysis.spectral_slope(height_map(LatticeNoise(2, seed=seed + k), (grid, grid), ext, octaves=octaves,
+        slopes = [analysis.spectral_slope(height_map(LatticeNoise(2, rng=seed + k), (grid, grid), ext, octaves=octaves,
                                                      kind=kind, on_alias="ignore"), band, window="hann")
                   for k in range(seeds)]
         s2, stats, target = _slope_sentence(slopes, 2)
@@ -787,7 +787,7 @@ def _spheres(field, specs, radius=1.0, base=None, samples_per_period=4.0, max_fr
 def fig16(out, *, amplitudes, frequency, frequencies, amplitude, size, seed):
     from noiselab.lattice import LatticeNoise
 
-    field = LatticeNoise(3, seed=seed)
+    field = LatticeNoise(3, rng=seed)
     first, r1 = _spheres(field, [(a, frequency, 1, "fractal") for a in amplitudes])
     second, r2 = _spheres(field, [(amplitude, f, 1, "fractal") for f in frequencies])
     cell = size // 4
@@ -817,7 +817,7 @@ def fig17(out, *, octaves, frequency, amplitude, samples_per_period, size, seed)
     from noiselab.lattice import LatticeNoise
     from noiselab.geometry import displace, resolution_report, sphere_for_noise
 
-    field = LatticeNoise(3, seed=seed)
+    field = LatticeNoise(3, rng=seed)
     finest = frequency * 2 ** (octaves - 1)
     # one mesh for every n, fine enough for the finest octave of the largest n: a mesh refined per n makes
     # detail jump where the refinement changes, and too coarse a mesh makes n and n + 1 look the same
@@ -863,7 +863,7 @@ def fig18(out, *, amplitudes, length, frequency, resolution, size, seed):
     from .._common import cow
 
     base = subdivide_for_noise(cow(resolution, size=length), frequency, samples_per_period=6.0)
-    field = LatticeNoise(3, seed=seed)
+    field = LatticeNoise(3, rng=seed)
     meshes, ranges = _spheres(field, [(a, frequency, 1, "fractal") for a in amplitudes], base=base)
     n0 = base.face_normals
     flips = [int((np.einsum("ij,ij->i", n0, m.face_normals) < 0).sum()) for m in meshes]
@@ -895,7 +895,7 @@ def fig19(out, *, squash, levels, frequency, size, seed):
     from noiselab.geometry import displace, squashed_sphere
 
     base = squashed_sphere(squash, subdivisions=6)
-    field = LatticeNoise(3, seed=seed)
+    field = LatticeNoise(3, rng=seed)
     # "noise up to 10 % of the radius of curvature, on average": the RMS displacement, not the amplitude; the
     # unit-amplitude displacement's RMS on this mesh calibrates the amplitude of each level
     unit = np.asarray(displace(base, field, amplitude=1.0, frequency=frequency, on_alias="ignore")
@@ -936,7 +936,7 @@ def _isotropy_scores(candidates, trial_size, trial_seeds, seed):
     for basis, kernel in candidates:
         a, p = [], []
         for k in range(trial_seeds):
-            img = LatticeNoise(2, seed=seed + k, basis=basis, kernel=kernel).grid((trial_size, trial_size),
+            img = LatticeNoise(2, rng=seed + k, basis=basis, kernel=kernel).grid((trial_size, trial_size),
                                                                                 [(0, cells), (0, cells)])
             a.append(analysis.anisotropy(img, (cells / 2, min(2 * cells, trial_size / 2 - 1)), window="hann"))
             gy, gx = np.gradient(img)
@@ -968,7 +968,7 @@ def fig20(out, *, frequencies, amplitude, candidates, trial_size, trial_seeds, s
     cells = 8.0
     best = min(scores, key=scores.get)
     basis, kernel = best.split("/")
-    meshes, ranges = _spheres(LatticeNoise(3, seed=seed, basis=basis, kernel=kernel),
+    meshes, ranges = _spheres(LatticeNoise(3, rng=seed, basis=basis, kernel=kernel),
                               [(amplitude, f, 1, "fractal") for f in frequencies], samples_per_period=8.0, min_frequency=4.0)
     labels = [f"({t}) F = {f:g}" for t, f in zip("abcdefghijkl", frequencies)]
     files = [_render_tiles(meshes, out / "fig20.png", labels, columns=3, cell=size // 3, view="xy",
