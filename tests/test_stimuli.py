@@ -246,6 +246,50 @@ def test_request_the_display_cannot_show():
         to_display(FIELD, (0, 100), mean=50.0, contrast=0.1)
 
 
+
+# a Gaussian 1/f patch: its tails leave a 0.5..100 cd/m² display at mean 50 and RMS contrast 0.25
+PINK = spectral_noise((256, 256), exponent=1.0, rng=11, dtype=np.float64)
+
+
+def test_clip_makes_a_gaussian_field_fit_at_the_requested_contrast():
+    with pytest.raises(ValueError) as exc:
+        to_display(PINK, D8, mean=50.0, contrast=0.25)
+    msg = str(exc.value)
+    k = float(msg.split("clip=")[1].split(" ")[0])   # the refusal names the option and a value that fits
+    assert 2.0 < k < 6.0 and "% of the samples" in msg
+    v, report = to_display(PINK, D8, mean=50.0, contrast=0.25, clip=k, rng=1, full_output=True)
+    L = D8.luminance_of(v)
+    # the requested contrast holds after clipping (not 0.25 times the clipped field's smaller spread)
+    assert L.mean() == pytest.approx(50.0, rel=0.01)
+    assert analysis.rms_contrast(L) == pytest.approx(0.25, rel=0.02)
+    # the fraction reported is the fraction of samples beyond k standard deviations, counted here
+    z = PINK - PINK.mean()
+    expected = np.mean(np.abs(z) > k * z.std())
+    assert report.clipped_fraction == pytest.approx(expected, abs=1e-12) and 0 < report.clipped_fraction < 1e-3
+    assert report.clip == k and D8.luminance[0] <= report.luminance_range[0] < report.luminance_range[1] <= 100.0
+    # a tighter clip clips more and still holds the contrast; the clipped pixels sit at the two ends
+    v2, r2 = to_display(PINK, D8, mean=50.0, contrast=0.25, clip=2.0, dither=False, full_output=True)
+    L2 = D8.luminance_of(v2)
+    assert r2.clipped_fraction == pytest.approx(np.mean(np.abs(z) > 2.0 * z.std()), abs=1e-12)
+    assert r2.clipped_fraction > 0.03 and analysis.rms_contrast(L2) == pytest.approx(0.25, rel=0.02)
+    assert np.mean(L2 >= L2.max() - 1.0) > 0.01   # a pile-up at the clipped ends
+
+
+def test_clip_without_need_changes_nothing_and_bad_clips_are_named():
+    v, report = to_display(FIELD, D8, mean=40.0, contrast=0.1, clip=50.0, rng=3, full_output=True)
+    assert report.clipped_fraction == 0.0
+    assert np.array_equal(D8.luminance_of(v), D8.luminance_of(to_display(FIELD, D8, mean=40.0, contrast=0.1,
+                                                                          rng=3)))
+    assert to_display(FIELD, D8, mean=40.0, contrast=0.1, rng=3, full_output=True)[1].clipped_fraction == 0.0
+    for bad in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="clip"):
+            to_display(FIELD, D8, mean=40.0, contrast=0.1, clip=bad)
+    with pytest.raises(TypeError, match="full_output"):
+        to_display(FIELD, D8, mean=40.0, contrast=0.1, full_output="yes")
+    # a clip that still leaves the display: the refusal says so and names the clip that fits
+    with pytest.raises(ValueError, match=r"clipped at clip=8 standard deviations .*clip=\d"):
+        to_display(PINK, D8, mean=50.0, contrast=0.25, clip=8.0)
+
 def test_to_display_on_a_snow_video():
     video = noiselab.snow((8, 64, 64), rng=0)
     v = to_display(video, D10, mean=30.0, contrast=0.176, contrast_kind="michelson", rng=0)

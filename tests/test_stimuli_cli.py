@@ -72,3 +72,19 @@ def test_stimulus_errors_are_one_line_and_exit_2(tmp_path, argv, words, capsys, 
     assert _run(tmp_path, *argv) == 2
     err = capsys.readouterr().err
     assert err.startswith("noiselab stimulus: error: ") and words in err and err.count("\n") == 1
+
+
+def test_clip_flag_fits_a_gaussian_patch_and_records_the_clipped_fraction(tmp_path, capsys):
+    out = tmp_path / "p.npy"
+    args = ["pink", "--size", "8", "--mean", "50", "--contrast", "0.25", "--seed", "2", "-o", str(out)]
+    assert _run(tmp_path, *args) == 2
+    err = capsys.readouterr().err
+    assert "--clip " in err and "% of the samples" in err and err.count("\n") == 1
+    assert _run(tmp_path, *args, "--clip", "3") == 0
+    side = json.loads((tmp_path / "p.npy.json").read_text())
+    m = side["measured_on_written_values"]
+    L = Display(32.0).luminance_of(np.load(out))
+    assert m["clip_sd"] == 3.0 and side["parameters"]["clip"] == 3.0
+    assert 0.0 < m["clipped_fraction"] < 0.01
+    assert m["rms_contrast"] == pytest.approx(0.25, rel=0.02) and analysis.rms_contrast(L) == pytest.approx(
+        0.25, rel=0.02)

@@ -285,11 +285,16 @@ WORDS = {
         default=None,
         keyword_only=True),
     'clip': Word(
-        'Clip floats outside [0, 1] when no range is stated (otherwise a ``ValueError``).',
-        unit='',
-        type='bool, default False',
+        ('Clip instead of refusing: a writer clips floats outside [0, 1] when no range is stated (otherwise a '
+         '``ValueError``); ``to_display`` clips the field at ``clip`` standard deviations of its mean before '
+         'scaling it to the requested contrast (None: no clipping, a request off the display is refused).'),
+        unit='standard deviations (to_display)',
+        type='bool (writers) or float > 0 (to_display)',
         default=False,
-        keyword_only=True),
+        keyword_only=True,
+        per_function={'noiselab.stimuli.to_display': (None, True)},
+        note=("to_display's clip is a number of standard deviations (None: none), as a Gaussian field's tails "
+              "are what leaves a display; the writers' clip is a yes or no to [0, 1]")),
     'close': Word(
         'Close the figure afterwards (pyplot figures only).',
         unit='',
@@ -610,6 +615,13 @@ WORDS = {
         unit='amplitude ratio between octaves',
         type='int, float, float; default 1, 2, 0.5',
         default=0.5,
+        keyword_only=True),
+    'full_output': Word(
+        ("Return ``(result, report)`` with what the function did besides the result (as scipy's "
+         '``full_output``): ``to_display``\'s :class:`~noiselab.stimuli.DisplayReport`.'),
+        unit='',
+        type='bool, default False',
+        default=False,
         keyword_only=True),
     'gamma': Word(
         'Exponent of the gamma law, in ``[0.1, 10]``.',

@@ -7,7 +7,8 @@ are in degrees, durations in seconds, frequencies in cycles/deg, speeds in
 deg/s, luminance in cd/m² on the display the options describe; the output
 holds the integer display values (``noiselab.stimuli.to_display``) and
 ``OUTPUT.json`` beside it every parameter, the display, the seed, the
-noiselab version and the mean and contrast measured on the values written.
+noiselab version, the mean and contrast measured on the values written and,
+with ``--clip K``, the fraction of the field clipped at K standard deviations.
 """
 from __future__ import annotations
 
@@ -49,6 +50,10 @@ def add_arguments(p):
     s.add_argument("--contrast", type=float, default=0.2, help="contrast (default 0.2)")
     s.add_argument("--contrast-kind", choices=("rms", "michelson"), default="rms",
                    help="rms: sd/mean of the luminance; michelson: (max-min)/(max+min) (default rms)")
+    s.add_argument("--clip", type=float, default=None, metavar="K",
+                   help="clip the field at +-K standard deviations, then scale it to the requested contrast (a "
+                        "Gaussian field's tails otherwise leave the display); the sidecar records the fraction "
+                        "clipped (default: no clipping)")
     s.add_argument("--no-dither", action="store_true", help="nearest display value instead of random dithering")
     s.add_argument("--seed", type=int, default=0, help="random seed (default 0); same seed, same stimulus")
     k = p.add_argument_group("spectrum")
@@ -192,12 +197,17 @@ def run(args):
     prepare_output(path)
     rng = np.random.default_rng(args.seed)
     field, used = _field(args, display, rng)
-    values = to_display(field, display, mean=args.mean, contrast=args.contrast, contrast_kind=args.contrast_kind,
-                        dither=not args.no_dither, rng=rng)
+    try:
+        values, report = to_display(field, display, mean=args.mean, contrast=args.contrast,
+                                    contrast_kind=args.contrast_kind, dither=not args.no_dither, rng=rng,
+                                    clip=args.clip, full_output=True)
+    except ValueError as exc:   # the library's option is --clip here
+        raise ValueError(str(exc).replace("clip=", "--clip ")) from None
     _write(path, values, display, args)
     L = display.luminance_of(values)
     measured = {"mean_cd_m2": float(L.mean()), "rms_contrast": rms_contrast(L),
-                "michelson_contrast": michelson_contrast(L)}
+                "michelson_contrast": michelson_contrast(L), "clip_sd": args.clip,
+                "clipped_fraction": report.clipped_fraction}
     lossless = LOSSLESS[suffix] or (suffix == ".mp4" and args.lossless)
     sidecar = {
         "noiselab_version": __version__,
@@ -219,5 +229,7 @@ def run(args):
           f"{'lossless' if lossless else 'LOSSY: H.264 changes grey levels'}) and {side.name}; mean "
           f"{measured['mean_cd_m2']:.4g} cd/m², RMS contrast {measured['rms_contrast']:.4g}, Michelson "
           f"{measured['michelson_contrast']:.4g} (requested {args.contrast_kind} {args.contrast:g} at "
-          f"{args.mean:g} cd/m²)")
+          f"{args.mean:g} cd/m²)" + ("" if args.clip is None else
+                                      f"; clipped at {args.clip:g} sd: {100 * report.clipped_fraction:.3g} % of "
+                                      f"the samples"))
     return 0

@@ -15,9 +15,9 @@ generator, so it measures what it needs itself rather than through
 ``noiselab.analysis``.
 """
 from .cloud import cloud_envelope, motion_cloud
-from .contrast import CONTRAST_KINDS, luminance_for, to_display
+from .contrast import CONTRAST_KINDS, DisplayReport, luminance_for, to_display
 from .display import Display
 from .scramble import amplitude_swap, phase_scramble
 
-__all__ = ["Display", "to_display", "luminance_for", "CONTRAST_KINDS", "phase_scramble", "amplitude_swap",
+__all__ = ["Display", "to_display", "DisplayReport", "luminance_for", "CONTRAST_KINDS", "phase_scramble", "amplitude_swap",
            "motion_cloud", "cloud_envelope"]
