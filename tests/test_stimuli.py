@@ -10,8 +10,8 @@ import scipy.fft
 import noiselab
 from noiselab import Display, analysis, spectral_noise, synthesize
 from noiselab.spectral import envelopes as E
-from noiselab.stimuli import (amplitude_swap, cloud_envelope, luminance_for, motion_cloud, phase_scramble,
-                              to_display)
+from noiselab.stimuli import (amplitude_swap, circular_aperture, cloud_envelope, gaussian_aperture, luminance_for,
+                              motion_cloud, phase_scramble, raised_cosine_aperture, to_display)
 
 D8 = Display(32.0, frame_rate=60.0, luminance=(0.5, 100.0), gamma=2.2, bits=8)
 D10 = Display(32.0, frame_rate=60.0, luminance=(0.5, 100.0), gamma=2.2, bits=10)
@@ -289,6 +289,83 @@ def test_clip_without_need_changes_nothing_and_bad_clips_are_named():
     # a clip that still leaves the display: the refusal says so and names the clip that fits
     with pytest.raises(ValueError, match=r"clipped at clip=8 standard deviations .*clip=\d"):
         to_display(PINK, D8, mean=50.0, contrast=0.25, clip=8.0)
+
+
+# ---------------------------------------------------------------- apertures
+def _radius_deg(n, ppd):
+    y, x = np.mgrid[:n, :n] - (n - 1) / 2.0
+    return np.hypot(y, x) / ppd
+
+
+def test_aperture_shapes_in_degrees():
+    d = Display(20.0)
+    r = _radius_deg(101, 20.0)
+    circle = circular_aperture((101, 101), d, diameter_deg=3.0)
+    assert np.array_equal(circle, (r <= 1.5).astype(float))
+    cos = raised_cosine_aperture((4, 101, 101), d, diameter_deg=4.0, ramp_deg=1.0)   # frames: one window
+    assert cos.shape == (101, 101)
+    assert np.all(cos[r <= 1.0] == 1.0) and np.all(cos[r >= 2.0] == 0.0)
+    ramp = (r > 1.0) & (r < 2.0)
+    assert np.allclose(cos[ramp], 0.5 + 0.5 * np.cos(np.pi * (r[ramp] - 1.0)), atol=1e-12)
+    assert np.all(np.diff(cos[50, 50:]) <= 0)   # falls monotonically from the centre
+    g = gaussian_aperture((101, 101), d, sigma_deg=0.75)
+    assert g[50, 50] == 1.0 and g[50, 50 + 15] == pytest.approx(math.exp(-0.5), rel=1e-12)   # 15 px = 1 sigma
+    for fn, kw, word in ((circular_aperture, dict(diameter_deg=0.0), "diameter_deg"),
+                         (raised_cosine_aperture, dict(diameter_deg=2.0, ramp_deg=1.5), "ramp_deg"),
+                         (raised_cosine_aperture, dict(diameter_deg=float("nan"), ramp_deg=0.5), "diameter_deg"),
+                         (gaussian_aperture, dict(sigma_deg=-1.0), "sigma_deg")):
+        with pytest.raises(ValueError, match=word):
+            fn((32, 32), d, **kw)
+    with pytest.raises(ValueError, match="shape"):
+        circular_aperture((32,), d, diameter_deg=1.0)
+
+
+BANDED = spectral_noise((128, 128), exponent=0.0, band=(8, 40), rng=21, dtype=np.float64)
+
+
+@pytest.mark.parametrize("make", [
+    lambda s: circular_aperture(s, D10, diameter_deg=3.0),
+    lambda s: raised_cosine_aperture(s, D10, diameter_deg=3.5, ramp_deg=0.75),
+    lambda s: gaussian_aperture(s, D10, sigma_deg=0.7),
+], ids=["circle", "raised-cosine", "gaussian"])
+def test_aperture_blends_to_the_mean_and_states_contrast_inside(make):
+    mean, c = 40.0, 0.2
+    w = make(BANDED.shape)
+    # the luminance written, averaged over 64 dither seeds, against the formula computed here:
+    # L = mean (1 + c w z / sd_w), z centred on its w-weighted mean, sd_w its w-weighted RMS
+    z = BANDED - np.sum(w * BANDED) / w.sum()
+    expected = mean * (1 + c * w * z / np.sqrt(np.sum(w * z * z) / w.sum()))
+    avg = np.mean([D10.luminance_of(to_display(BANDED, D10, mean=mean, contrast=c, aperture=w, rng=s))
+                   for s in range(64)], axis=0)
+    assert np.max(np.abs(avg - expected)) < 0.05   # cd/m² (a 10-bit step at 40 cd/m² is about 0.13)
+    # outside the window the mean luminance, everywhere (no dithering: one display value, the nearest)
+    flat = D10.luminance_of(to_display(BANDED, D10, mean=mean, contrast=c, aperture=w, dither=False))
+    if np.any(w == 0):
+        out = flat[w == 0]
+        assert out.min() == out.max() and abs(out[0] - mean) < 0.1
+    # the frame's mean is the requested mean
+    assert avg.mean() == pytest.approx(mean, rel=1e-3)
+
+
+def test_circular_aperture_contrast_is_the_contrast_inside():
+    w = circular_aperture(BANDED.shape, D8, diameter_deg=3.0)
+    inside = w == 1
+    for kind, c, measure in (("rms", 0.15, analysis.rms_contrast), ("michelson", 0.6, analysis.michelson_contrast)):
+        L = D8.luminance_of(to_display(BANDED, D8, mean=45.0, contrast=c, contrast_kind=kind, aperture=w, rng=2))
+        assert measure(L[inside]) == pytest.approx(c, rel=0.02), kind
+        assert L[inside].mean() == pytest.approx(45.0, rel=0.01)
+    assert np.ptp(L[~inside]) < 1.0   # outside: the display values around 45 cd/m² only (dithered)
+
+
+def test_aperture_on_a_video_and_bad_apertures():
+    video = noiselab.snow((6, 64, 64), rng=1)
+    w = circular_aperture(video.shape, D10, diameter_deg=1.5)
+    L = D10.luminance_of(to_display(video, D10, mean=30.0, contrast=0.2, aperture=w, dither=False))
+    assert np.ptp(L[:, w == 0]) == 0 and analysis.rms_contrast(L[:, w == 1]) == pytest.approx(0.2, rel=0.03)
+    for bad, words in ((np.ones((32, 32)), "aperture must broadcast"), (w * 2, r"aperture must hold weights in \[0, 1\]"),
+                       (np.zeros((64, 64)), "aperture is 0 everywhere"), (np.full((64, 64), np.nan), "aperture")):
+        with pytest.raises(ValueError, match=words):
+            to_display(video, D10, mean=30.0, contrast=0.2, aperture=bad)
 
 def test_to_display_on_a_snow_video():
     video = noiselab.snow((8, 64, 64), rng=0)

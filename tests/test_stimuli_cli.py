@@ -88,3 +88,23 @@ def test_clip_flag_fits_a_gaussian_patch_and_records_the_clipped_fraction(tmp_pa
     assert 0.0 < m["clipped_fraction"] < 0.01
     assert m["rms_contrast"] == pytest.approx(0.25, rel=0.02) and analysis.rms_contrast(L) == pytest.approx(
         0.25, rel=0.02)
+
+
+@pytest.mark.parametrize("aperture, extra", [("circle", []), ("raised-cosine", ["--ramp", "0.5"]),
+                                             ("gaussian", ["--aperture-sigma", "0.5"])])
+def test_aperture_flag_blends_to_the_mean_and_records_the_window(tmp_path, aperture, extra):
+    out = tmp_path / "a.npy"
+    assert _run(tmp_path, "bandpass", "--size", "4", "--aperture", aperture, "--aperture-diameter", "3", *extra,
+                "--mean", "30", "--contrast", "0.2", "--bits", "10", "--no-dither", "-o", str(out)) == 0
+    side = json.loads((tmp_path / "a.npy.json").read_text())
+    assert side["aperture"]["kind"] == aperture
+    d = Display(32.0, bits=10)
+    L = d.luminance_of(np.load(out))
+    n = L.shape[0]
+    r = np.hypot(*(np.mgrid[:n, :n] - (n - 1) / 2.0)) / 32.0
+    far = r >= (1.5 if aperture != "gaussian" else 1.9)   # past the edge, or 3.8 sigma out
+    assert np.ptp(L[far]) < 0.15 and abs(L[far].mean() - 30.0) < 0.15   # the mean luminance (one 10-bit value)
+    m = side["measured_on_written_values"]["in_aperture"]
+    assert m["rms_contrast"] == pytest.approx(0.2, rel=0.05) and m["mean_cd_m2"] == pytest.approx(30.0, rel=0.02)
+    if aperture == "circle":
+        assert analysis.rms_contrast(L[r <= 1.45]) == pytest.approx(0.2, rel=0.03)

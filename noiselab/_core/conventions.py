@@ -110,6 +110,13 @@ WORDS = {
         type='',
         default=None,
         keyword_only=False),
+    'aperture': Word(
+        ('A window of weights in [0, 1] (e.g. ``circular_aperture``) that broadcasts against the field: the '
+         'stimulus blends to the mean luminance where it is 0, and its contrast is stated inside it.'),
+        unit='',
+        type='array_like or None',
+        default=None,
+        keyword_only=True),
     'array': Word(
         'Integers in [0, 255], or floats.',
         unit='',
@@ -484,6 +491,12 @@ WORDS = {
         'Eye to screen, cm, > 0.',
         unit='cm',
         type='float',
+        default=REQUIRED,
+        keyword_only=True),
+    'diameter_deg': Word(
+        "An aperture's outer diameter, degrees of visual angle.",
+        unit='deg',
+        type='float > 0',
         default=REQUIRED,
         keyword_only=True),
     'dither': Word(
@@ -1110,6 +1123,12 @@ WORDS = {
         type='int, default 8',
         default=8,
         keyword_only=True),
+    'ramp_deg': Word(
+        "Width of a raised-cosine aperture's edge, degrees, inside its diameter.",
+        unit='deg',
+        type='float, 0 < ramp_deg <= diameter_deg / 2',
+        default=REQUIRED,
+        keyword_only=True),
     'quick': Word(
         'Parameter overrides for a fast build of the figure.',
         unit='',
@@ -1285,6 +1304,12 @@ WORDS = {
         default=VARIES,
         keyword_only=None,
         note="the default is each function's own (a size, a shape, a name: what that function is for)"),
+    'sigma_deg': Word(
+        "A Gaussian aperture's standard deviation, degrees.",
+        unit='deg',
+        type='float > 0',
+        default=REQUIRED,
+        keyword_only=True),
     'size_deg': Word(
         'A size in degrees of visual angle.',
         unit='degrees',

@@ -24,6 +24,7 @@ HELP = ("a stimulus in physical units (deg, s, cycles/deg, deg/s, cd/m², contra
         "1/f patch, band-pass oriented noise, snow, motion cloud or phase-scrambled image, with a JSON sidecar")
 KINDS = ("pink", "bandpass", "snow", "cloud", "scramble")
 MOVING = ("snow", "cloud")
+APERTURES = ("none", "circle", "raised-cosine", "gaussian")
 # what each output format keeps (benchmarks/bench_stimuli.md measures the contrast after a round trip)
 LOSSLESS = {".npy": True, ".png": True, ".mkv": True, ".mp4": False}
 
@@ -54,6 +55,15 @@ def add_arguments(p):
                    help="clip the field at +-K standard deviations, then scale it to the requested contrast (a "
                         "Gaussian field's tails otherwise leave the display); the sidecar records the fraction "
                         "clipped (default: no clipping)")
+    s.add_argument("--aperture", choices=APERTURES, default="none",
+                   help="window on the mean luminance: none, circle, raised-cosine (with --ramp) or gaussian (with "
+                        "--aperture-sigma); the contrast is stated inside it (default none)")
+    s.add_argument("--aperture-diameter", type=float, default=None, metavar="DEG",
+                   help="circle and raised-cosine: outer diameter in degrees, ramp included (default: --size)")
+    s.add_argument("--ramp", type=float, default=0.5, metavar="DEG",
+                   help="raised-cosine: width of the cosine edge in degrees, inside the diameter (default 0.5)")
+    s.add_argument("--aperture-sigma", type=float, default=None, metavar="DEG",
+                   help="gaussian: the envelope's standard deviation in degrees (default: --size / 6)")
     s.add_argument("--no-dither", action="store_true", help="nearest display value instead of random dithering")
     s.add_argument("--seed", type=int, default=0, help="random seed (default 0); same seed, same stimulus")
     k = p.add_argument_group("spectrum")
@@ -138,6 +148,33 @@ def _field(args, display, rng):
     return phase_scramble(image, rng=rng), dict(shape=image.shape, image=str(args.image))
 
 
+def _aperture(args, display, shape):
+    """The window of ``--aperture`` on the frames of ``shape`` (None for none), and what it was made with."""
+    from ..stimuli import circular_aperture, gaussian_aperture, raised_cosine_aperture
+
+    if args.aperture == "none":
+        return None, None
+    diameter = args.size if args.aperture_diameter is None else args.aperture_diameter
+    if args.aperture == "circle":
+        return circular_aperture(shape, display, diameter_deg=diameter), dict(kind="circle", diameter_deg=diameter)
+    if args.aperture == "raised-cosine":
+        used = dict(diameter_deg=diameter, ramp_deg=args.ramp)
+        return raised_cosine_aperture(shape, display, **used), dict(kind="raised-cosine", **used)
+    sigma = args.size / 6.0 if args.aperture_sigma is None else args.aperture_sigma
+    return gaussian_aperture(shape, display, sigma_deg=sigma), dict(kind="gaussian", sigma_deg=sigma)
+
+
+def _measured_in_aperture(L, w, mean):
+    """Mean and the carrier's RMS contrast where the window is at least 0.5: ``(L - mean) / w`` weighted by ``w``."""
+    inside = np.broadcast_to(w >= 0.5, L.shape)
+    wi = np.broadcast_to(w, L.shape)[inside]
+    d = L[inside] - mean
+    return {"mean_cd_m2": float(L[inside].mean()),
+            "rms_contrast": float(np.sqrt(np.sum(d * d / wi) / np.sum(wi)) / mean),
+            "where": "pixels whose aperture weight w >= 0.5; the contrast is that of (L - mean) / w, weighted by w "
+                     "(the carrier's, as requested)"}
+
+
 def _write(path, values, display, args):
     import imageio.v3 as iio
 
@@ -197,10 +234,11 @@ def run(args):
     prepare_output(path)
     rng = np.random.default_rng(args.seed)
     field, used = _field(args, display, rng)
+    window, window_used = _aperture(args, display, field.shape)
     try:
         values, report = to_display(field, display, mean=args.mean, contrast=args.contrast,
                                     contrast_kind=args.contrast_kind, dither=not args.no_dither, rng=rng,
-                                    clip=args.clip, full_output=True)
+                                    clip=args.clip, aperture=window, full_output=True)
     except ValueError as exc:   # the library's option is --clip here
         raise ValueError(str(exc).replace("clip=", "--clip ")) from None
     _write(path, values, display, args)
@@ -208,6 +246,8 @@ def run(args):
     measured = {"mean_cd_m2": float(L.mean()), "rms_contrast": rms_contrast(L),
                 "michelson_contrast": michelson_contrast(L), "clip_sd": args.clip,
                 "clipped_fraction": report.clipped_fraction}
+    if window is not None:
+        measured["in_aperture"] = _measured_in_aperture(L, window, args.mean)
     lossless = LOSSLESS[suffix] or (suffix == ".mp4" and args.lossless)
     sidecar = {
         "noiselab_version": __version__,
@@ -217,6 +257,7 @@ def run(args):
         "parameters": {k: v for k, v in vars(args).items() if not k.startswith("_") and k != "command"},
         "display": display.as_dict(),
         "pixel_units": used,
+        "aperture": window_used,
         "output": {"path": path.name, "format": suffix.lstrip("."), "lossless": lossless,
                    "shape": list(values.shape), "dtype": str(values.dtype),
                    "values": "display values: luminance = display's law (or lut) of each value"},

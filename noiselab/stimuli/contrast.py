@@ -98,8 +98,13 @@ def luminance_for(field, *, mean, contrast, contrast_kind="rms") -> np.ndarray:
     return L
 
 
-def _luminance(field, mean, contrast, kind):
-    """:func:`luminance_for`'s luminance, negative where an RMS contrast asks for it; also the normalised sd and min."""
+def _luminance(field, mean, contrast, kind, w=None):
+    """:func:`luminance_for`'s luminance, negative where an RMS contrast asks for it; also the normalised sd and min.
+
+    With an aperture ``w`` (weights in [0, 1] broadcast against the field) the field is centred on its
+    ``w``-weighted mean, its contrast is measured with the weights ``w`` (RMS) or over ``w > 0`` (Michelson),
+    and its deviations are multiplied by ``w``: ``L = mean * (1 + w * k * z)``.
+    """
     f = check_finite_array("field", field)
     if f.size == 0:
         raise ValueError("field is empty")
@@ -114,14 +119,23 @@ def _luminance(field, mean, contrast, kind):
     # scaled by a power of two (exact; the normalisation below undoes it): the mean's sum of a field near
     # float64's largest value would overflow
     z = _power_of_two_scaled(f)[0]
-    z -= z.mean()
-    zmin, zmax = float(z.min()), float(z.max())
+    if w is None:
+        z -= z.mean()
+        inside = z
+    else:
+        w = np.broadcast_to(w, z.shape)
+        total = float(w.sum())
+        z -= float(np.sum(w * z)) / total
+        inside = z[w > 0]
+    zmin, zmax = float(inside.min()), float(inside.max())
     if zmax - zmin == 0 or not np.isfinite(zmax - zmin):
-        raise ValueError("field must vary (a constant field has no contrast to scale)")
-    z /= max(abs(zmin), abs(zmax))  # scale-free from here: neither the squares nor the sums overflow
-    zmin, zmax = float(z.min()), float(z.max())
+        raise ValueError("field must vary" + (" inside the aperture" if w is not None else "")
+                         + " (a constant field has no contrast to scale)")
+    scale = max(abs(zmin), abs(zmax), float(np.max(np.abs(z))))
+    z /= scale  # scale-free from here: neither the squares nor the sums overflow
+    zmin, zmax = zmin / scale, zmax / scale
     if kind == "rms":
-        sd = float(z.std())
+        sd = float(z.std()) if w is None else float(np.sqrt(np.sum(w * z * z) / total))
         if sd == 0:
             raise ValueError("field must vary (its standard deviation is 0 in float64)")
         k = contrast / sd
@@ -129,6 +143,8 @@ def _luminance(field, mean, contrast, kind):
         # (Lmax - Lmin) / (Lmax + Lmin) = k d / (2 + k s) = C  =>  k = 2 C / (d - C s); d - C s > 0 as zmin < 0 < zmax
         k = 2.0 * contrast / ((zmax - zmin) - contrast * (zmax + zmin))
     z *= k
+    if w is not None:
+        z *= w
     z += 1.0
     z *= mean
     if kind == "michelson":
@@ -152,22 +168,32 @@ def _clip_sd(field, k):
     return z, frac
 
 
-def _clipped_range(z, k, contrast):
-    """The relative luminance range ``(min, max) / mean - 1`` of ``z`` clipped at ``k`` sd and scaled to RMS ``contrast``."""
+def _clipped_range(z, k, contrast, w):
+    """The relative luminance range ``(min, max) / mean - 1`` of ``z`` clipped at ``k`` sd and scaled to RMS ``contrast``.
+
+    (As :func:`_luminance` scales it, through the aperture ``w`` when there is one.)
+    """
     lim = k * float(z.std())
     c = np.clip(z, -lim, lim)
-    c -= c.mean()
-    s = float(c.std())
-    return contrast * float(c.min()) / s, contrast * float(c.max()) / s
+    if w is None:
+        c -= c.mean()
+        c *= contrast / float(c.std())
+    else:
+        c -= float(np.sum(w * c)) / float(w.sum())
+        c *= contrast / float(np.sqrt(np.sum(w * c * c) / float(w.sum())))
+        c *= w
+    return float(c.min()), float(c.max())
 
 
-def _largest_clip(field, mean, contrast, lo, hi):
+def _largest_clip(field, mean, contrast, lo, hi, w=None):
     """The largest ``clip`` (sd, rounded down to 0.01) at which an RMS request fits ``[lo, hi]``, or None; its fraction."""
     z = _clip_sd(field, np.inf)[0]
     sd = float(z.std())
+    if w is not None:
+        w = np.broadcast_to(w, z.shape)
 
     def fits(k):
-        a, b = _clipped_range(z, k, contrast)
+        a, b = _clipped_range(z, k, contrast, w)
         return mean * (1 + a) >= lo and mean * (1 + b) <= hi
 
     k_lo, k_hi = 0.01, float(np.max(np.abs(z))) / sd
@@ -182,7 +208,7 @@ def _largest_clip(field, mean, contrast, lo, hi):
 
 @renamed_parameters(seed="rng", kind="contrast_kind")
 def to_display(field, display, *, mean, contrast, contrast_kind="rms", dither=True, rng=None, clip=None,
-               full_output=False):
+               aperture=None, full_output=False):
     """Integer display values that show ``field`` at mean luminance ``mean`` (cd/m²) and the given contrast.
 
     Parameters
@@ -222,6 +248,19 @@ def to_display(field, display, *, mean, contrast, contrast_kind="rms", dither=Tr
         RMS contrast is the request exactly, not the request times the
         clipped field's smaller spread). The fraction of samples clipped is
         in the report (``full_output=True``).
+    aperture : array_like or None
+        None (default): the whole field. Weights in ``[0, 1]`` that broadcast
+        against the field (an ``(ny, nx)`` window serves every frame of a
+        video), e.g. from :func:`circular_aperture`,
+        :func:`raised_cosine_aperture` or :func:`gaussian_aperture`: the
+        field is shown as ``L = mean * (1 + w * k * z)``, blending to the
+        mean luminance where ``w`` is 0, and its contrast is stated inside
+        the window: ``z`` is centred on its ``w``-weighted mean and ``k``
+        makes its ``w``-weighted RMS contrast (or its Michelson contrast over
+        ``w > 0``) the request. In a hard circle that is the contrast of the
+        luminance inside it; in a tapered window it is the carrier's contrast
+        where the window is 1 (as "a Gabor of contrast c" states it). The
+        mean of ``L`` over the whole frame is ``mean``.
     full_output : bool
         False (default): return the display values. True: return
         ``(values, report)`` with a :class:`DisplayReport` (the clipped
@@ -287,6 +326,7 @@ def to_display(field, display, *, mean, contrast, contrast_kind="rms", dither=Tr
         raise TypeError(f"full_output must be True or False, got {full_output!r}")
     if clip is not None:
         clip = check_real("clip (standard deviations)", clip, lo=0.0, lo_open=True, hi=1e6)
+    w = None if aperture is None else _check_aperture(aperture, np.shape(field))
     lo, hi = display.luminance
     mean = check_real("mean (cd/m²)", mean, lo=0.0, lo_open=True, hi=1e12)
     if not lo <= mean <= hi:
@@ -297,7 +337,7 @@ def to_display(field, display, *, mean, contrast, contrast_kind="rms", dither=Tr
     source = field
     if clip is not None:
         source, fraction = _clip_sd(field, clip)
-    L = _luminance(source, mean, contrast, kind)[0]  # (a negative luminance is out of range below)
+    L = _luminance(source, mean, contrast, kind, w)[0]  # (a negative luminance is out of range below)
     del source
     Lmin, Lmax = float(L.min()), float(L.max())
     # a request that exactly fills the range (e.g. the largest contrast this error reports) may land a rounding
@@ -314,7 +354,7 @@ def to_display(field, display, *, mean, contrast, contrast_kind="rms", dither=Tr
         clipped = "" if clip is None else f" clipped at clip={clip:g} standard deviations"
         hint = "clip=K (standard deviations) clips the field's tails; "
         if kind == "rms":
-            k, frac = _largest_clip(field, mean, contrast, lo, hi)
+            k, frac = _largest_clip(field, mean, contrast, lo, hi, w)
             hint = (f"to keep the contrast, clip the field's tails: clip={k:g} (standard deviations) fits, "
                     f"clipping {100 * frac:.3g} % of the samples; " if k is not None else
                     "no clip=K (standard deviations, clipping the field's tails) fits this mean and contrast; ")
@@ -334,7 +374,9 @@ def to_display(field, display, *, mean, contrast, contrast_kind="rms", dither=Tr
     else:
         up = p >= 0.5    # the nearer luminance
     v0 += up
-    if kind == "michelson":
+    if kind == "michelson" and (w is None or abs((Lmax - Lmin) / (Lmax + Lmin) - float(contrast)) < 1e-9):
+        # (in a tapered aperture the carrier's extremes may fall where w < 1: then the luminance's own ends do
+        # not set the contrast asked for, and are left as they are)
         _michelson_ends(v0, L, t, float(contrast), display.levels)
     values = v0.astype(np.uint8 if display.bits <= 8 else np.uint16)
     if full_output:
@@ -397,6 +439,23 @@ def _michelson_ends(v, L, t, contrast, levels):
     np.clip(v, lo_v, hi_v, out=v)
     vf = v.reshape(-1)
     vf[i_lo], vf[i_hi] = lo_v, hi_v
+
+
+def _check_aperture(aperture, shape):
+    """An aperture: finite weights in [0, 1], not all 0, that broadcast to the field's ``shape`` (float64)."""
+    w = check_finite_array("aperture", aperture).astype(np.float64)
+    try:
+        ok = np.broadcast_shapes(w.shape, shape) == tuple(shape)
+    except ValueError:
+        ok = False
+    if not ok:
+        raise ValueError(f"aperture must broadcast against the field's shape {tuple(shape)} (e.g. the frames' "
+                         f"(ny, nx)), got shape {w.shape}")
+    if w.size and (w.min() < 0 or w.max() > 1):
+        raise ValueError(f"aperture must hold weights in [0, 1], got [{w.min():.6g}, {w.max():.6g}]")
+    if not np.any(w > 0):
+        raise ValueError("aperture is 0 everywhere: nothing of the field would be shown")
+    return w
 
 
 def _contrast_of(L, kind, mean, room):
