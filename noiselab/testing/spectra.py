@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize, special, stats
 
-from .._core import as_array, check_band, check_real, renamed_parameters
+from .._core import HIDE_ASSERTION_FRAMES, as_array, check_band, check_real, renamed_parameters
 from ..analysis import PowerSpectrum, axis_artefacts, band_energy, power_spectrum
 from ._cells import independent_cells, live_band, ring_index
 
@@ -51,6 +51,7 @@ def _spectrum(name, field, ndim, window):
 
 def _band(cells, band, default, what):
     """The band to test: the user's, or the default clipped to where the field has power."""
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     nyq = cells.n_ref / 2.0
     if band is not None:
         return check_band("band", band, nyq * math.sqrt(len(cells.components)), lo_open=True), "given"
@@ -188,6 +189,7 @@ def assert_power_law(field, exponent, *, band=None, tol=None, false_alarm=1e-3, 
     ...
     AssertionError: power law: amplitude exponent 0.98...
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     spec = _spectrum("field", field, (1, 2, 3), window)
     expected = check_real("exponent", exponent, lo=-20.0, hi=20.0)
     alpha_fa = check_false_alarm(false_alarm)
@@ -290,6 +292,7 @@ def assert_band_limited(field, band, *, max_leakage=None, window=None, axes=None
     ...
     AssertionError: band limit: ...
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     if isinstance(field, PowerSpectrum):
         spec = field  # computed once for several checks
     else:
@@ -534,6 +537,7 @@ def assert_isotropic(field, *, band=None, tol=None, false_alarm=1e-3, window=Non
     ...
     AssertionError: isotropy: ...
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     spec = _spectrum("field", field, (2,), window)
     alpha_fa = check_false_alarm(false_alarm)
     tol = None if tol is None else check_real("tol", tol, lo=0.0, hi=1e6)
@@ -666,6 +670,7 @@ def assert_no_axis_artefacts(field, *, band=None, false_alarm=1e-3, window=None)
     ...
     AssertionError: axis artefacts: ...
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     spec = _spectrum("field", field, (2,), window)
     alpha_fa = check_false_alarm(false_alarm)
     cells = independent_cells(spec)
