@@ -85,6 +85,18 @@ def test_power_law_message_states_the_measurement_and_the_derivation():
     assert T.assert_power_law(img, 1.2, band=(4, 32), tol=0.3).tolerance == 0.3
 
 
+def test_a_power_exponent_given_for_the_amplitude_exponent_gets_a_hint():
+    field = _powerbox(128, 1.0, seed=4)   # power ~ k**-2: amplitude exponent 1
+    with pytest.raises(AssertionError, match=r"about half the one given: exponent is the AMPLITUDE exponent .*"
+                                             r"a power slope of -2 is exponent=1$"):
+        T.assert_power_law(field, 2.0)    # the power slope's 2 passed as the exponent
+    with pytest.raises(AssertionError, match=r"about twice the one given: .*exponent=0.5 means a power slope of -1"):
+        T.assert_power_law(field, 0.5)
+    with pytest.raises(AssertionError) as exc:   # an exponent merely wrong gets no hint
+        T.assert_power_law(field, 1.4)
+    assert "AMPLITUDE" not in str(exc.value)
+
+
 def test_power_law_of_a_band_limited_field_outside_its_band_fails():
     img = noiselab.spectral_noise((128, 128), exponent=1.0, band=(8, 32), rng=6)
     T.assert_power_law(img, 1.0, band=(8, 32))

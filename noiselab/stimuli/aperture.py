@@ -61,7 +61,7 @@ def circular_aperture(shape, display, *, diameter_deg) -> np.ndarray:
     --------
     >>> from noiselab import Display
     >>> w = circular_aperture((64, 64), Display(32.0), diameter_deg=1.0)   # 32 px across
-    >>> int(w.sum()), w[32, 32], w[0, 0]
+    >>> int(w.sum()), float(w[32, 32]), float(w[0, 0])
     (812, 1.0, 0.0)
     """
     r = _radius_deg(shape, display)

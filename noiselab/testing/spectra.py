@@ -125,6 +125,19 @@ def power_law_fit(cells, lo, hi):
     return float(res.x), se, n, f[dead]
 
 
+def _exponent_hint(measured, expected, tol):
+    """A hint when ``expected`` looks like a power exponent (or half of one) where the amplitude exponent was meant."""
+    what = (f"exponent is the AMPLITUDE exponent (amplitude ~ f**-exponent, power ~ f**(-2 exponent)): "
+            f"exponent={expected:g} means a power slope of {-2.0 * expected:g}")
+    if expected != 0 and abs(measured - expected / 2.0) <= tol:
+        return f"; the measured exponent is about half the one given: {what}, and a power slope of " \
+               f"{-expected:g} is exponent={expected / 2.0:g}"
+    if expected != 0 and abs(measured - 2.0 * expected) <= tol:
+        return f"; the measured exponent is about twice the one given: {what}, and this field's power slope is " \
+               f"about {-2.0 * measured:.3g}"
+    return ""
+
+
 def _default_slope_band(n_ref):
     # 2 cycles/frame (the lowest rings hold a handful of cells) to a quarter of the frame (half the Nyquist
     # frequency: above it a generator's interpolation and a camera's optics bend the spectrum)
@@ -217,7 +230,7 @@ def assert_power_law(field, exponent, *, band=None, tol=None, false_alarm=1e-3, 
     msg = (f"power law: amplitude exponent {est:.4f} +- {se:.4f} (Whittle fit {where}), expected {expected:g} "
            f"{how}: off by {off:+.4f} = {abs(off) / se:.1f} SE")
     if not abs(off) <= tol:
-        raise AssertionError(msg)
+        raise AssertionError(msg + _exponent_hint(est, expected, tol))
     return PowerLawCheck(exponent=est, error=se, expected=expected, tolerance=tol, band=(lo, hi), cells=n,
                          message=msg)
 
