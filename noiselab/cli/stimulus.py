@@ -272,5 +272,8 @@ def run(args):
           f"{measured['michelson_contrast']:.4g} (requested {args.contrast_kind} {args.contrast:g} at "
           f"{args.mean:g} cd/m²)" + ("" if args.clip is None else
                                       f"; clipped at {args.clip:g} sd: {100 * report.clipped_fraction:.3g} % of "
-                                      f"the samples"))
+                                      f"the samples")
+          + ("" if window is None else
+             f"; inside the {window_used['kind']} aperture: mean {measured['in_aperture']['mean_cd_m2']:.4g} cd/m², "
+             f"RMS contrast {measured['in_aperture']['rms_contrast']:.4g}"))
     return 0
