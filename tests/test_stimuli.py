@@ -523,3 +523,62 @@ def test_motion_cloud_bad_input():
         motion_cloud((4, 16, 16), sf_0=0.2, B_sf=0.1, B_V=-1.0)
     with pytest.raises(ValueError, match=r"B_theta \(radians\) must be >= 1e-6 or np.inf"):
         motion_cloud((4, 16, 16), sf_0=0.2, B_sf=0.1, B_theta=0.0)
+
+
+# ---------------------------------------------------------------- bandwidths as papers state them
+def test_octave_and_hwhm_converters_measure_the_envelopes_half_heights():
+    from noiselab.stimuli import B_sf_from_octaves, B_theta_from_hwhm, hwhm_from_B_theta, octaves_from_B_sf
+
+    sf_0 = 0.1
+    for octaves in (0.5, 1.0, 1.5, 3.0):
+        b = B_sf_from_octaves(sf_0=sf_0, sf_bandwidth_octaves=octaves)
+        assert octaves_from_B_sf(sf_0=sf_0, B_sf=b) == pytest.approx(octaves, rel=1e-12)
+        # the log-Gabor amplitude band falls to half exactly `octaves` apart, centred (in log f) on sf_0
+        f = sf_0 * 2.0 ** (np.array([-0.5, 0.5]) * octaves)
+        g = E.log_gabor(2 * np.pi * f, sf_0=sf_0, B_sf=b)
+        assert np.allclose(g, 0.5, atol=1e-12)
+    for hwhm in (5.0, 15.0, 30.0, 60.0):
+        b = B_theta_from_hwhm(orientation_hwhm_deg=hwhm)
+        assert hwhm_from_B_theta(B_theta=b) == pytest.approx(hwhm, rel=1e-12)
+        a = np.radians(hwhm)   # the orientation band's amplitude at HWHM from theta, either side
+        for side in (-1, 1):
+            w = E.orientation(np.array(np.sin(0.3 + side * a)), np.array(np.cos(0.3 + side * a)), theta=0.3, B_theta=b)
+            assert float(w) == pytest.approx(0.5, abs=1e-12)
+    assert hwhm_from_B_theta(B_theta=0.85) == math.inf and hwhm_from_B_theta() == math.inf
+    with pytest.raises(ValueError, match="sf_bandwidth_octaves"):
+        B_sf_from_octaves(sf_0=0.1, sf_bandwidth_octaves=0.0)
+    with pytest.raises(ValueError, match="orientation_hwhm_deg"):
+        B_theta_from_hwhm(orientation_hwhm_deg=120.0)
+
+
+def test_where_a_motion_clouds_power_peaks():
+    # the documented peaks, measured on the envelope along the x axis (1024 px: cells of 1/1024 cycles/px)
+    sf_0, B_sf = 0.1, 0.05
+    s = math.log((sf_0 + B_sf) / sf_0)
+    n = 1024
+    f = np.arange(n // 2 + 1) / n
+    still = cloud_envelope((8, n), sf_0=sf_0, B_sf=B_sf)[0] ** 2          # power per cell, along wy = 0
+    assert f[np.argmax(still)] == pytest.approx(sf_0 * math.exp(-s * s), abs=1.0 / n)
+    assert f[np.argmax(f * f * still)] == pytest.approx(sf_0, abs=1.0 / n)   # power per octave peaks at sf_0
+    assert f[np.argmax(f * still)] == pytest.approx(sf_0 * math.exp(-s * s / 2), abs=1.0 / n)   # per ring
+    # drifting: each spatial frequency's power summed over the frames grows with |w| (speed band B_V |w| wide)
+    moving = (cloud_envelope((64, 8, n), sf_0=sf_0, B_sf=B_sf, V_X=1.0, B_V=0.5)[:, 0, :] ** 2).sum(axis=0)
+    peak = f[np.argmax(moving)]
+    assert peak == pytest.approx(sf_0 * math.exp(-s * s / 2), abs=1.5 / n)
+    assert peak / f[np.argmax(still)] == pytest.approx(math.exp(s * s / 2), abs=0.02)
+
+
+def test_theta_is_psychopys_ori_in_radians():
+    # theta = 0: the wave vector along x, vertical stripes (PsychoPy's ori = 0 grating); theta > 0 turns the
+    # wave vector from +x towards +y, which is down the screen: clockwise, as PsychoPy's ori
+    z = motion_cloud((128, 128), sf_0=0.1, B_sf=0.02, theta=math.radians(30.0), B_theta=math.radians(5.0), rng=1)
+    p = np.abs(np.fft.fft2(z)) ** 2
+    fy, fx = np.meshgrid(np.fft.fftfreq(128), np.fft.fftfreq(128), indexing="ij")
+    angle = np.degrees(np.arctan2(fy, fx)) % 180.0          # wave-vector angle, y down, mod 180
+    mean = np.degrees(0.5 * np.angle(np.sum(p * np.exp(2j * np.radians(angle))))) % 180.0
+    assert mean == pytest.approx(30.0, abs=2.0)
+    # on screen (row 0 at the top) the stripes run along the direction perpendicular to the wave vector:
+    # stepping along (dx, dy) = (-sin 30, cos 30) the field changes least
+    along = np.mean((z[1:, :-1] - z[:-1, 1:]) ** 2)   # a step of (dx, dy) = (+1, -1): 15 deg from the stripes
+    across = np.mean((z[1:, 1:] - z[:-1, :-1]) ** 2)  # (+1, +1): 15 deg from the wave vector
+    assert along < across

@@ -108,3 +108,22 @@ def test_aperture_flag_blends_to_the_mean_and_records_the_window(tmp_path, apert
     assert m["rms_contrast"] == pytest.approx(0.2, rel=0.05) and m["mean_cd_m2"] == pytest.approx(30.0, rel=0.02)
     if aperture == "circle":
         assert analysis.rms_contrast(L[r <= 1.45]) == pytest.approx(0.2, rel=0.03)
+
+
+def test_bandwidths_in_octaves_and_hwhm_degrees(tmp_path):
+    from noiselab.stimuli import B_sf_from_octaves, B_theta_from_hwhm
+
+    out = tmp_path / "b.npy"
+    assert _run(tmp_path, "bandpass", "--size", "4", "--sf", "4", "--sf-bandwidth-octaves", "1", "--orientation",
+                "30", "--orientation-hwhm", "10", "-o", str(out)) == 0
+    used = json.loads((tmp_path / "b.npy.json").read_text())["pixel_units"]
+    assert used["B_sf"] == pytest.approx(B_sf_from_octaves(sf_0=4.0, sf_bandwidth_octaves=1.0) / 32.0, rel=1e-12)
+    assert used["B_theta"] == pytest.approx(B_theta_from_hwhm(orientation_hwhm_deg=10.0), rel=1e-12)
+    # the stripes' wave vector at 30 deg (y down), measured on the written values
+    z = np.load(out).astype(float)
+    p = np.abs(np.fft.fft2(z - z.mean())) ** 2
+    fy, fx = np.meshgrid(np.fft.fftfreq(z.shape[0]), np.fft.fftfreq(z.shape[1]), indexing="ij")
+    mean = np.degrees(0.5 * np.angle(np.sum(p * np.exp(2j * np.arctan2(fy, fx))))) % 180.0
+    assert mean == pytest.approx(30.0, abs=3.0)
+    assert _run(tmp_path, "bandpass", "--orientation-hwhm", "10", "--orientation-bandwidth", "5", "-o",
+                str(out)) == 2

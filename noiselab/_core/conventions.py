@@ -1129,6 +1129,12 @@ WORDS = {
         type='float, 0 < ramp_deg <= diameter_deg / 2',
         default=REQUIRED,
         keyword_only=True),
+    'orientation_hwhm_deg': Word(
+        'Orientation bandwidth as papers state it: half width at half height of the amplitude band, degrees.',
+        unit='deg',
+        type='float in (0, 90]',
+        default=REQUIRED,
+        keyword_only=True),
     'quick': Word(
         'Parameter overrides for a fast build of the figure.',
         unit='',
@@ -1276,6 +1282,12 @@ WORDS = {
          'cycles/deg).'),
         unit='cycles/pixel',
         type='float',
+        default=REQUIRED,
+        keyword_only=True),
+    'sf_bandwidth_octaves': Word(
+        'Spatial-frequency bandwidth as papers state it: full width at half maximum of the amplitude band, octaves.',
+        unit='octaves',
+        type='float in (0, 20]',
         default=REQUIRED,
         keyword_only=True),
     'shape': Word(

@@ -75,10 +75,16 @@ def add_arguments(p):
                    help="bandpass and cloud: peak spatial frequency in cycles/deg (default 4)")
     k.add_argument("--sf-bandwidth", type=float, default=2.0,
                    help="bandpass and cloud: MotionClouds' B_sf in cycles/deg (default 2: a log-width of ln 1.5)")
+    k.add_argument("--sf-bandwidth-octaves", type=float, default=None, metavar="OCT",
+                   help="bandpass and cloud: the spatial-frequency bandwidth in octaves, full width at half maximum "
+                        "of the amplitude band, as papers state it (instead of --sf-bandwidth)")
     k.add_argument("--orientation", type=float, default=0.0,
                    help="bandpass and cloud: orientation of the wave vector in degrees, y down (default 0)")
     k.add_argument("--orientation-bandwidth", type=float, default=None,
                    help="bandpass and cloud: orientation bandwidth B_theta in degrees (default: every orientation)")
+    k.add_argument("--orientation-hwhm", type=float, default=None, metavar="DEG",
+                   help="bandpass and cloud: orientation bandwidth as half width at half height in degrees, as "
+                        "papers state it (instead of --orientation-bandwidth)")
     k.add_argument("--velocity-yx", type=float, nargs=2, default=None, metavar=("VY", "VX"),
                    help="cloud: velocity in deg/s in array order, y down, x right (default 0 1); snow: the fall "
                         "speed is VY")
@@ -122,14 +128,22 @@ def _field(args, display, rng):
 
     n = display.pixels(args.size)
     frames = display.frame_count(args.duration)
+    from ..stimuli import B_sf_from_octaves, B_theta_from_hwhm
+
+    if args.orientation_hwhm is not None and args.orientation_bandwidth is not None:
+        raise ValueError("--orientation-hwhm and --orientation-bandwidth both set the orientation band; pass one")
     b_theta = np.inf if args.orientation_bandwidth is None else math.radians(args.orientation_bandwidth)
+    if args.orientation_hwhm is not None:
+        b_theta = B_theta_from_hwhm(orientation_hwhm_deg=args.orientation_hwhm)
+    b_sf = args.sf_bandwidth if args.sf_bandwidth_octaves is None else B_sf_from_octaves(
+        sf_0=args.sf, sf_bandwidth_octaves=args.sf_bandwidth_octaves)   # (cycles/deg in, cycles/deg out)
     if args.kind == "pink":
         band = None if args.band is None else display.band(args.band, n)
         used = dict(shape=(n, n), exponent=args.exponent, band=band)
         return spectral_noise(rng=rng, **used), used
     if args.kind in ("bandpass", "cloud"):
         used = dict(shape=(n, n) if args.kind == "bandpass" else (frames, n, n),
-                    sf_0=display.cycles_per_pixel(args.sf), B_sf=display.cycles_per_pixel(args.sf_bandwidth),
+                    sf_0=display.cycles_per_pixel(args.sf), B_sf=display.cycles_per_pixel(b_sf),
                     theta=math.radians(args.orientation), B_theta=b_theta)
         if args.kind == "cloud":
             used.update(V_X=display.px_per_frame(args.velocity[0]), V_Y=display.px_per_frame(args.velocity[1]),
