@@ -127,3 +127,36 @@ def test_bandwidths_in_octaves_and_hwhm_degrees(tmp_path):
     assert mean == pytest.approx(30.0, abs=3.0)
     assert _run(tmp_path, "bandpass", "--orientation-hwhm", "10", "--orientation-bandwidth", "5", "-o",
                 str(out)) == 2
+
+
+def test_trials_write_distinct_reproducible_stimuli_and_one_manifest(tmp_path, capsys):
+    from noiselab.cli.stimulus import trial_seeds
+
+    out = tmp_path / "t" / "pink.npy"
+    args = ["pink", "--size", "2", "--mean", "50", "--contrast", "0.25", "--clip", "3", "--seed", "7"]
+    assert _run(tmp_path, *args, "--trials", "3", "-o", str(out)) == 0
+    manifest = json.loads((tmp_path / "t" / "pink_manifest.json").read_text())
+    seeds = [t["seed"] for t in manifest["trials"]]
+    assert seeds == trial_seeds(7, 3) and len(set(seeds)) == 3 and manifest["experiment_seed"] == 7
+    assert manifest["display"] == Display(32.0).as_dict() and manifest["parameters"]["contrast"] == 0.25
+    files = [tmp_path / "t" / t["file"] for t in manifest["trials"]]
+    assert [f.name for f in files] == ["pink_000.npy", "pink_001.npy", "pink_002.npy"]
+    values = [np.load(f) for f in files]
+    assert not np.array_equal(values[0], values[1]) and not np.array_equal(values[1], values[2])
+    for t, v in zip(manifest["trials"], values):
+        L = Display(32.0).luminance_of(v)
+        m = t["measured_on_written_values"]
+        assert m["rms_contrast"] == pytest.approx(analysis.rms_contrast(L), rel=1e-12)
+        assert m["rms_contrast"] == pytest.approx(0.25, rel=0.03)
+        assert m["luminance_range_cd_m2"] == [L.min(), L.max()] and 0 < m["clipped_fraction"] < 0.02
+    # a trial on its own: the same command with its recorded seed, without --trials, gives the same values
+    one = tmp_path / "one.npy"
+    assert _run(tmp_path, *args[:-1], str(seeds[1]), "-o", str(one)) == 0
+    assert np.array_equal(np.load(one), values[1])
+    # the same experiment seed makes the same set again
+    again = tmp_path / "again" / "pink.npy"
+    assert _run(tmp_path, *args, "--trials", "3", "-o", str(again)) == 0
+    assert np.array_equal(np.load(tmp_path / "again" / "pink_002.npy"), values[2])
+    capsys.readouterr()
+    assert _run(tmp_path, *args, "--trials", "0", "-o", str(out)) == 2
+    assert "--trials must be an int in [1, 100000]" in capsys.readouterr().err

@@ -66,6 +66,10 @@ def add_arguments(p):
                    help="gaussian: the envelope's standard deviation in degrees (default: --size / 6)")
     s.add_argument("--no-dither", action="store_true", help="nearest display value instead of random dithering")
     s.add_argument("--seed", type=int, default=0, help="random seed (default 0); same seed, same stimulus")
+    s.add_argument("--trials", type=int, default=None, metavar="N",
+                   help="write N trials OUTPUT_000 .. with seeds derived from --seed (recorded; trial i is --seed "
+                        "<its seed> on its own) and one OUTPUT_manifest.json listing every file, its seed, "
+                        "parameters and measured contrast, luminance range and clipped fraction")
     k = p.add_argument_group("spectrum")
     k.add_argument("--exponent", type=float, default=1.0, help="pink: amplitude 1/f**exponent (default 1)")
     k.add_argument("--band-cpd", "--band", dest="band", type=float, nargs=2, default=None, metavar=("LO", "HI"),
@@ -227,11 +231,55 @@ def _jsonable(x):
     return x
 
 
+def _make(args, display, path, seed):
+    """Make, write and measure one stimulus with ``seed``: its values, what was measured, the pixel-unit arguments."""
+    from ..analysis import michelson_contrast, rms_contrast
+    from ..stimuli import to_display
+
+    rng = np.random.default_rng(seed)
+    field, used = _field(args, display, rng)
+    window, window_used = _aperture(args, display, field.shape)
+    try:
+        values, report = to_display(field, display, mean=args.mean, contrast=args.contrast,
+                                    contrast_kind=args.contrast_kind, dither=not args.no_dither, rng=rng,
+                                    clip=args.clip, aperture=window, full_output=True)
+    except ValueError as exc:   # the library's option is --clip here
+        raise ValueError(str(exc).replace("clip=", "--clip ")) from None
+    _write(path, values, display, args)
+    L = display.luminance_of(values)
+    measured = {"mean_cd_m2": float(L.mean()), "rms_contrast": rms_contrast(L),
+                "michelson_contrast": michelson_contrast(L), "luminance_range_cd_m2": [float(L.min()), float(L.max())],
+                "clip_sd": args.clip, "clipped_fraction": report.clipped_fraction}
+    if window is not None:
+        measured["in_aperture"] = _measured_in_aperture(L, window, args.mean)
+    return values, measured, used, window_used
+
+
+def trial_seeds(seed, trials):
+    """The seeds of ``trials`` trials derived from the experiment's ``seed``: distinct, and the same on every run.
+
+    Trial ``i`` gets ``SeedSequence(seed).spawn(trials)[i].generate_state(1)[0]``
+    (numpy's way of deriving independent streams), so trial ``i`` is also
+    ``noiselab stimulus ... --seed <its seed>`` on its own.
+    """
+    return [int(child.generate_state(1)[0]) for child in np.random.SeedSequence(seed).spawn(trials)]
+
+
+def _summary(measured, args):
+    text = (f"mean {measured['mean_cd_m2']:.4g} cd/m², RMS contrast {measured['rms_contrast']:.4g}, Michelson "
+            f"{measured['michelson_contrast']:.4g} (requested {args.contrast_kind} {args.contrast:g} at "
+            f"{args.mean:g} cd/m²)")
+    if args.clip is not None:
+        text += f"; clipped at {args.clip:g} sd: {100 * measured['clipped_fraction']:.3g} % of the samples"
+    if "in_aperture" in measured:
+        text += (f"; inside the {args.aperture} aperture: mean {measured['in_aperture']['mean_cd_m2']:.4g} cd/m², "
+                 f"RMS contrast {measured['in_aperture']['rms_contrast']:.4g}")
+    return text
+
+
 def run(args):
     from .. import __version__
-    from ..analysis import michelson_contrast, rms_contrast
     from ..io import atomic_output, prepare_output
-    from ..stimuli import to_display
 
     if args.velocity_yx is not None and args.velocity is not None:
         raise ValueError("--velocity-yx and --velocity say the same thing in two orders; pass one")
@@ -244,50 +292,54 @@ def run(args):
         raise ValueError(f"output must end in .png, .mkv, .mp4 or .npy, got {path.name!r}")
     if suffix == ".png" and args.kind in MOVING:
         raise ValueError(f"{path.name}: a PNG holds one frame; write the {args.kind} video to .mkv, .mp4 or .npy")
+    if args.trials is not None and not 1 <= args.trials <= 100000:
+        raise ValueError(f"--trials must be an int in [1, 100000], got {args.trials}")
     display = _display(args)
-    prepare_output(path)
-    rng = np.random.default_rng(args.seed)
-    field, used = _field(args, display, rng)
-    window, window_used = _aperture(args, display, field.shape)
-    try:
-        values, report = to_display(field, display, mean=args.mean, contrast=args.contrast,
-                                    contrast_kind=args.contrast_kind, dither=not args.no_dither, rng=rng,
-                                    clip=args.clip, aperture=window, full_output=True)
-    except ValueError as exc:   # the library's option is --clip here
-        raise ValueError(str(exc).replace("clip=", "--clip ")) from None
-    _write(path, values, display, args)
-    L = display.luminance_of(values)
-    measured = {"mean_cd_m2": float(L.mean()), "rms_contrast": rms_contrast(L),
-                "michelson_contrast": michelson_contrast(L), "clip_sd": args.clip,
-                "clipped_fraction": report.clipped_fraction}
-    if window is not None:
-        measured["in_aperture"] = _measured_in_aperture(L, window, args.mean)
     lossless = LOSSLESS[suffix] or (suffix == ".mp4" and args.lossless)
-    sidecar = {
+    common = {
         "noiselab_version": __version__,
         "command": ["noiselab"] + sys.argv[1:] if Path(sys.argv[0]).name in ("noiselab", "__main__.py") else None,
         "kind": args.kind,
-        "seed": args.seed,
         "parameters": {k: v for k, v in vars(args).items() if not k.startswith("_") and k != "command"},
         "display": display.as_dict(),
-        "pixel_units": used,
-        "aperture": window_used,
-        "output": {"path": path.name, "format": suffix.lstrip("."), "lossless": lossless,
-                   "shape": list(values.shape), "dtype": str(values.dtype),
-                   "values": "display values: luminance = display's law (or lut) of each value"},
-        "measured_on_written_values": measured,
     }
-    side = path.with_name(path.name + ".json")
-    with atomic_output(side) as tmp:
-        Path(tmp).write_text(json.dumps(_jsonable(sidecar), indent=2) + "\n")
-    print(f"noiselab stimulus: wrote {path} ({values.shape} {values.dtype}, "
-          f"{'lossless' if lossless else 'LOSSY: H.264 changes grey levels'}) and {side.name}; mean "
-          f"{measured['mean_cd_m2']:.4g} cd/m², RMS contrast {measured['rms_contrast']:.4g}, Michelson "
-          f"{measured['michelson_contrast']:.4g} (requested {args.contrast_kind} {args.contrast:g} at "
-          f"{args.mean:g} cd/m²)" + ("" if args.clip is None else
-                                      f"; clipped at {args.clip:g} sd: {100 * report.clipped_fraction:.3g} % of "
-                                      f"the samples")
-          + ("" if window is None else
-             f"; inside the {window_used['kind']} aperture: mean {measured['in_aperture']['mean_cd_m2']:.4g} cd/m², "
-             f"RMS contrast {measured['in_aperture']['rms_contrast']:.4g}"))
+    output = {"format": suffix.lstrip("."), "lossless": lossless,
+              "values": "display values: luminance = display's law (or lut) of each value"}
+    if args.trials is None:
+        prepare_output(path)
+        values, measured, used, window_used = _make(args, display, path, args.seed)
+        sidecar = {**common, "seed": args.seed, "pixel_units": used, "aperture": window_used,
+                   "output": {"path": path.name, **output, "shape": list(values.shape), "dtype": str(values.dtype)},
+                   "measured_on_written_values": measured}
+        side = path.with_name(path.name + ".json")
+        with atomic_output(side) as tmp:
+            Path(tmp).write_text(json.dumps(_jsonable(sidecar), indent=2) + "\n")
+        print(f"noiselab stimulus: wrote {path} ({values.shape} {values.dtype}, "
+              f"{'lossless' if lossless else 'LOSSY: H.264 changes grey levels'}) and {side.name}; "
+              + _summary(measured, args))
+        return 0
+    seeds = trial_seeds(args.seed, args.trials)
+    paths = [path.with_name(f"{path.stem}_{i:0{max(3, len(str(args.trials - 1)))}d}{path.suffix}")
+             for i in range(args.trials)]
+    manifest_path = path.with_name(f"{path.stem}_manifest.json")
+    for p in (*paths, manifest_path):
+        prepare_output(p)
+    trials = []
+    for i, (p, seed) in enumerate(zip(paths, seeds)):
+        values, measured, used, window_used = _make(args, display, p, seed)
+        trials.append({"trial": i, "file": p.name, "seed": seed, "shape": list(values.shape),
+                       "dtype": str(values.dtype), "measured_on_written_values": measured})
+    manifest = {**common, "experiment_seed": args.seed,
+                "seed_derivation": ("numpy.random.SeedSequence(experiment_seed).spawn(trials)[i]"
+                                    ".generate_state(1)[0]; trial i is the same command with --seed <its seed> "
+                                    "and without --trials"),
+                "pixel_units": used, "aperture": window_used, "output": output, "trials": trials}
+    with atomic_output(manifest_path) as tmp:
+        Path(tmp).write_text(json.dumps(_jsonable(manifest), indent=2) + "\n")
+    where = "" if window_used is None else f" inside the {args.aperture} aperture"
+    rms = [t["measured_on_written_values"]["in_aperture" if window_used else "rms_contrast"] for t in trials]
+    rms = [r["rms_contrast"] if isinstance(r, dict) else r for r in rms]
+    print(f"noiselab stimulus: wrote {args.trials} trials {paths[0].name} .. {paths[-1].name} and "
+          f"{manifest_path.name}; RMS contrast{where} {min(rms):.4g} .. {max(rms):.4g} (requested "
+          f"{args.contrast_kind} {args.contrast:g} at {args.mean:g} cd/m²)")
     return 0
