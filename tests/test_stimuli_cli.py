@@ -160,3 +160,17 @@ def test_trials_write_distinct_reproducible_stimuli_and_one_manifest(tmp_path, c
     capsys.readouterr()
     assert _run(tmp_path, *args, "--trials", "0", "-o", str(out)) == 2
     assert "--trials must be an int in [1, 100000]" in capsys.readouterr().err
+
+
+def test_psychopy_output_is_luminance_in_minus_one_to_one(tmp_path):
+    out = tmp_path / "s.png"
+    assert _run(tmp_path, "pink", "--size", "2", "--luminance", "2", "120", "--mean", "40", "--psychopy",
+                "-o", str(out)) == 0
+    side = json.loads((tmp_path / "s.png.json").read_text())
+    pp = np.load(tmp_path / side["output"]["psychopy"])
+    d = Display(32.0, luminance=(2.0, 120.0))
+    L = d.luminance_of(read_image(out))
+    assert pp.dtype == np.float32 and pp.shape == L.shape and -1 <= pp.min() and pp.max() <= 1
+    # -1 is L_min and 1 is L_max, linear in cd/m² between
+    assert np.allclose(2.0 + (pp + 1.0) / 2.0 * 118.0, L, rtol=0, atol=1e-4)
+    assert np.mean(pp) == pytest.approx(2.0 * (40.0 - 2.0) / 118.0 - 1.0, abs=0.01)

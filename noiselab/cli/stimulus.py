@@ -103,6 +103,10 @@ def add_arguments(p):
     o.add_argument("--output", "-o", default="out/stimulus.png",
                    help="file: .png (still), .mkv (lossless FFV1), .mp4 (lossy H.264 unless --lossless) or .npy "
                         "(the display values); OUTPUT.json beside it (default out/stimulus.png)")
+    o.add_argument("--psychopy", action="store_true",
+                   help="also write OUTPUT_psychopy.npy: float32 luminance in -1..1 (-1 = LMIN, 1 = LMAX, linear in "
+                        "cd/m²), the image a PsychoPy window that corrects gamma itself takes (ImageStim, "
+                        "colorSpace rgb); the PNG/video holds display values for a window that does not")
     o.add_argument("--lossless", action="store_true", help=".mp4: H.264 in RGB with -qp 0 (lossless)")
 
 
@@ -252,7 +256,18 @@ def _make(args, display, path, seed):
                 "clip_sd": args.clip, "clipped_fraction": report.clipped_fraction}
     if window is not None:
         measured["in_aperture"] = _measured_in_aperture(L, window, args.mean)
+    if args.psychopy:
+        from ..io import atomic_output
+
+        lo, hi = display.luminance
+        with atomic_output(_psychopy_path(path)) as tmp:
+            with open(tmp, "wb") as f:
+                np.save(f, (2.0 * (L - lo) / (hi - lo) - 1.0).astype(np.float32))
     return values, measured, used, window_used
+
+
+def _psychopy_path(path):
+    return path.with_name(f"{path.stem}_psychopy.npy")
 
 
 def trial_seeds(seed, trials):
@@ -307,9 +322,12 @@ def run(args):
               "values": "display values: luminance = display's law (or lut) of each value"}
     if args.trials is None:
         prepare_output(path)
+        if args.psychopy:
+            prepare_output(_psychopy_path(path))
         values, measured, used, window_used = _make(args, display, path, args.seed)
         sidecar = {**common, "seed": args.seed, "pixel_units": used, "aperture": window_used,
-                   "output": {"path": path.name, **output, "shape": list(values.shape), "dtype": str(values.dtype)},
+                   "output": {"path": path.name, **output, "shape": list(values.shape), "dtype": str(values.dtype),
+                              "psychopy": _psychopy_path(path).name if args.psychopy else None},
                    "measured_on_written_values": measured}
         side = path.with_name(path.name + ".json")
         with atomic_output(side) as tmp:
@@ -322,12 +340,13 @@ def run(args):
     paths = [path.with_name(f"{path.stem}_{i:0{max(3, len(str(args.trials - 1)))}d}{path.suffix}")
              for i in range(args.trials)]
     manifest_path = path.with_name(f"{path.stem}_manifest.json")
-    for p in (*paths, manifest_path):
+    for p in (*paths, *(map(_psychopy_path, paths) if args.psychopy else ()), manifest_path):
         prepare_output(p)
     trials = []
     for i, (p, seed) in enumerate(zip(paths, seeds)):
         values, measured, used, window_used = _make(args, display, p, seed)
         trials.append({"trial": i, "file": p.name, "seed": seed, "shape": list(values.shape),
+                       "psychopy": _psychopy_path(p).name if args.psychopy else None,
                        "dtype": str(values.dtype), "measured_on_written_values": measured})
     manifest = {**common, "experiment_seed": args.seed,
                 "seed_derivation": ("numpy.random.SeedSequence(experiment_seed).spawn(trials)[i]"
