@@ -32,23 +32,11 @@ CONTRAST_KINDS = ("rms", "michelson")
 
 
 class DisplayReport(NamedTuple):
-    """What :func:`to_display` did besides the display values (``full_output=True``).
+    """What :func:`to_display` did besides the display values (``full_output=True``): clipping and the range asked."""
 
-    Attributes
-    ----------
-    clipped_fraction : float
-        Fraction of the field's samples that lay beyond ``clip`` standard
-        deviations of its mean and were clipped there (0.0 without ``clip``).
-    clip : float or None
-        The ``clip`` asked for, in standard deviations.
-    luminance_range : (float, float)
-        The darkest and brightest luminance requested (cd/m², before the
-        display values are chosen).
-    """
-
-    clipped_fraction: float
-    clip: float | None
-    luminance_range: tuple
+    clipped_fraction: float   # share of the field's samples clipped at +-clip standard deviations (0.0 without clip)
+    clip: float | None        # the clip asked for, in standard deviations (None: none)
+    luminance_range: tuple    # (darkest, brightest) luminance requested, cd/m², before display values are chosen
 
 
 @renamed_parameters(kind="contrast_kind")
