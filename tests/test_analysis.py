@@ -403,6 +403,21 @@ def test_loop_seam_is_one_for_a_perfect_loop_and_large_for_a_cut():
     assert A.loop_seam(loop[:100]) > 3
 
 
+def test_loop_seam_takes_colour_videos_as_documented():
+    t = np.arange(24)[:, None, None]
+    x = np.arange(32)[None, None, :]
+    loop = np.cos(2 * np.pi * (x / 32 - t / 24)) * np.ones((1, 8, 1))
+    rgb = np.stack([loop, 0.5 * loop, np.roll(loop, 3, axis=2)], axis=-1)   # (T, H, W, 3)
+    assert A.loop_seam(rgb) == pytest.approx(1.0, abs=1e-9)
+    cut = rgb[:17]
+    # the colour cost is the RMS over all three channels: the steps of the three channels pooled
+    steps = [np.sqrt(np.mean((cut[i + 1] - cut[i]) ** 2)) for i in range(16)]
+    assert A.loop_seam(cut) == pytest.approx(np.sqrt(np.mean((cut[0] - cut[-1]) ** 2)) / np.mean(steps), rel=1e-12)
+    assert A.loop_seam(cut) > 3
+    with pytest.raises(ValueError, match=r"video must be \(T, H, W\) or a colour \(T, H, W, 3\)"):
+        A.loop_seam(np.zeros((4, 8, 8, 2)))
+
+
 def test_tile_seam_of_periodic_and_cropped_textures():
     tex = band_texture(128, (2, 10), 4)
     assert A.tile_seam(tex) == pytest.approx(1.0, abs=0.25)

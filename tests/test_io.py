@@ -178,3 +178,56 @@ def test_a_removed_temporary_folder_stays_removed_while_threads_still_write_into
     assert not thread.is_alive() and errors  # the writer failed on the file, it did not rebuild the folder
     assert folder.is_file() and [p.name for p in tmp_path.iterdir()] == [folder.name]
     folder.unlink()
+
+
+def _ffmpeg_decode(path, pix_fmt, shape, *flags):
+    """ffmpeg's own decode of a video file to raw ``pix_fmt`` frames (the reference the reader must match)."""
+    import subprocess
+
+    import imageio_ffmpeg
+
+    out = subprocess.run([imageio_ffmpeg.get_ffmpeg_exe(), "-v", "error", "-i", str(path), *flags, "-f", "rawvideo",
+                          "-pix_fmt", pix_fmt, "-"], capture_output=True, check=True).stdout
+    dtype = np.dtype("<u2") if pix_fmt == "rgb48le" else np.uint8
+    return np.frombuffer(out, dtype).reshape(shape)
+
+
+@pytest.mark.parametrize("content", ["ramp", "noise"])
+def test_lossy_mp4_reads_back_as_ffmpegs_own_grey_decode(tmp_path, content):
+    from noiselab.io import read_video
+
+    T, H, W = 6, 48, 256
+    if content == "ramp":
+        video = np.broadcast_to(np.arange(256, dtype=np.uint8), (T, H, W)).copy()
+    else:
+        video = np.random.default_rng(3).integers(0, 256, (T, H, W), dtype=np.uint8)
+    path = write_video(tmp_path / "v.mp4", video, fps=25)   # H.264 yuv420p: lossy
+    read = read_video(path).astype(np.float64)
+    grey = _ffmpeg_decode(path, "gray", (T, H, W)).astype(np.float64)
+    assert read.shape == (T, H, W)
+    assert abs(np.mean(read - grey)) <= 0.05 and np.mean(np.abs(read - grey)) <= 0.05   # grey levels
+    assert np.mean(grey != video) > 0.1   # (the codec does change values: the comparison is not trivial)
+
+
+def test_lossy_colour_mp4_reads_back_without_bias(tmp_path):
+    from noiselab.io import read_video
+
+    T, H, W = 4, 32, 64
+    rng = np.random.default_rng(4)
+    video = (np.linspace(0, 255, W)[None, None, :, None] * np.array([1.0, 0.6, 0.3]) + rng.normal(0, 20, (T, H, W, 3)))
+    video = np.clip(video, 0, 255).astype(np.uint8)
+    path = write_video(tmp_path / "c.mp4", video, fps=25)
+    read = read_video(path).astype(np.float64)
+    # the reference: the decoder's own Y'CbCr 4:2:0 planes, converted here in float64 (BT.601, limited range,
+    # each chroma sample held over its 2 x 2 pixels); the reader interpolates chroma, so single pixels differ,
+    # but its conversion must add no bias
+    planes = _ffmpeg_decode(path, "yuv420p", (T, H * W * 3 // 2)).astype(np.float64)
+    y = (planes[:, :H * W].reshape(T, H, W) - 16) * 255 / 219
+
+    def chroma(a, b):
+        return ((planes[:, a:b].reshape(T, H // 2, W // 2) - 128) * 255 / 224).repeat(2, 1).repeat(2, 2)
+
+    u, v = chroma(H * W, H * W * 5 // 4), chroma(H * W * 5 // 4, H * W * 3 // 2)
+    exact = np.clip(np.stack([y + 1.402 * v, y - 0.344136 * u - 0.714136 * v, y + 1.772 * u], axis=-1), 0, 255)
+    assert read.shape == (T, H, W, 3)
+    assert np.all(np.abs(np.mean(read - exact, axis=(0, 1, 2))) <= 0.05), np.mean(read - exact, axis=(0, 1, 2))

@@ -10,8 +10,8 @@ import scipy.fft
 import noiselab
 from noiselab import Display, analysis, spectral_noise, synthesize
 from noiselab.spectral import envelopes as E
-from noiselab.stimuli import (amplitude_swap, cloud_envelope, luminance_for, motion_cloud, phase_scramble,
-                              to_display)
+from noiselab.stimuli import (amplitude_swap, circular_aperture, cloud_envelope, gaussian_aperture, luminance_for,
+                              motion_cloud, phase_scramble, raised_cosine_aperture, to_display)
 
 D8 = Display(32.0, frame_rate=60.0, luminance=(0.5, 100.0), gamma=2.2, bits=8)
 D10 = Display(32.0, frame_rate=60.0, luminance=(0.5, 100.0), gamma=2.2, bits=10)
@@ -246,6 +246,127 @@ def test_request_the_display_cannot_show():
         to_display(FIELD, (0, 100), mean=50.0, contrast=0.1)
 
 
+
+# a Gaussian 1/f patch: its tails leave a 0.5..100 cd/m² display at mean 50 and RMS contrast 0.25
+PINK = spectral_noise((256, 256), exponent=1.0, rng=11, dtype=np.float64)
+
+
+def test_clip_makes_a_gaussian_field_fit_at_the_requested_contrast():
+    with pytest.raises(ValueError) as exc:
+        to_display(PINK, D8, mean=50.0, contrast=0.25)
+    msg = str(exc.value)
+    k = float(msg.split("clip=")[1].split(" ")[0])   # the refusal names the option and a value that fits
+    assert 2.0 < k < 6.0 and "% of the samples" in msg
+    v, report = to_display(PINK, D8, mean=50.0, contrast=0.25, clip=k, rng=1, full_output=True)
+    L = D8.luminance_of(v)
+    # the requested contrast holds after clipping (not 0.25 times the clipped field's smaller spread)
+    assert L.mean() == pytest.approx(50.0, rel=0.01)
+    assert analysis.rms_contrast(L) == pytest.approx(0.25, rel=0.02)
+    # the fraction reported is the fraction of samples beyond k standard deviations, counted here
+    z = PINK - PINK.mean()
+    expected = np.mean(np.abs(z) > k * z.std())
+    assert report.clipped_fraction == pytest.approx(expected, abs=1e-12) and 0 < report.clipped_fraction < 1e-3
+    assert report.clip == k and D8.luminance[0] <= report.luminance_range[0] < report.luminance_range[1] <= 100.0
+    # a tighter clip clips more and still holds the contrast; the clipped pixels sit at the two ends
+    v2, r2 = to_display(PINK, D8, mean=50.0, contrast=0.25, clip=2.0, dither=False, full_output=True)
+    L2 = D8.luminance_of(v2)
+    assert r2.clipped_fraction == pytest.approx(np.mean(np.abs(z) > 2.0 * z.std()), abs=1e-12)
+    assert r2.clipped_fraction > 0.03 and analysis.rms_contrast(L2) == pytest.approx(0.25, rel=0.02)
+    assert np.mean(L2 >= L2.max() - 1.0) > 0.01   # a pile-up at the clipped ends
+
+
+def test_clip_without_need_changes_nothing_and_bad_clips_are_named():
+    v, report = to_display(FIELD, D8, mean=40.0, contrast=0.1, clip=50.0, rng=3, full_output=True)
+    assert report.clipped_fraction == 0.0
+    assert np.array_equal(D8.luminance_of(v), D8.luminance_of(to_display(FIELD, D8, mean=40.0, contrast=0.1,
+                                                                          rng=3)))
+    assert to_display(FIELD, D8, mean=40.0, contrast=0.1, rng=3, full_output=True)[1].clipped_fraction == 0.0
+    for bad in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="clip"):
+            to_display(FIELD, D8, mean=40.0, contrast=0.1, clip=bad)
+    with pytest.raises(TypeError, match="full_output"):
+        to_display(FIELD, D8, mean=40.0, contrast=0.1, full_output="yes")
+    # a clip that still leaves the display: the refusal says so and names the clip that fits
+    with pytest.raises(ValueError, match=r"clipped at clip=8 standard deviations .*clip=\d"):
+        to_display(PINK, D8, mean=50.0, contrast=0.25, clip=8.0)
+
+
+# ---------------------------------------------------------------- apertures
+def _radius_deg(n, ppd):
+    y, x = np.mgrid[:n, :n] - (n - 1) / 2.0
+    return np.hypot(y, x) / ppd
+
+
+def test_aperture_shapes_in_degrees():
+    d = Display(20.0)
+    r = _radius_deg(101, 20.0)
+    circle = circular_aperture((101, 101), d, diameter_deg=3.0)
+    assert np.array_equal(circle, (r <= 1.5).astype(float))
+    cos = raised_cosine_aperture((4, 101, 101), d, diameter_deg=4.0, ramp_deg=1.0)   # frames: one window
+    assert cos.shape == (101, 101)
+    assert np.all(cos[r <= 1.0] == 1.0) and np.all(cos[r >= 2.0] == 0.0)
+    ramp = (r > 1.0) & (r < 2.0)
+    assert np.allclose(cos[ramp], 0.5 + 0.5 * np.cos(np.pi * (r[ramp] - 1.0)), atol=1e-12)
+    assert np.all(np.diff(cos[50, 50:]) <= 0)   # falls monotonically from the centre
+    g = gaussian_aperture((101, 101), d, sigma_deg=0.75)
+    assert g[50, 50] == 1.0 and g[50, 50 + 15] == pytest.approx(math.exp(-0.5), rel=1e-12)   # 15 px = 1 sigma
+    for fn, kw, word in ((circular_aperture, dict(diameter_deg=0.0), "diameter_deg"),
+                         (raised_cosine_aperture, dict(diameter_deg=2.0, ramp_deg=1.5), "ramp_deg"),
+                         (raised_cosine_aperture, dict(diameter_deg=float("nan"), ramp_deg=0.5), "diameter_deg"),
+                         (gaussian_aperture, dict(sigma_deg=-1.0), "sigma_deg")):
+        with pytest.raises(ValueError, match=word):
+            fn((32, 32), d, **kw)
+    with pytest.raises(ValueError, match="shape"):
+        circular_aperture((32,), d, diameter_deg=1.0)
+
+
+BANDED = spectral_noise((128, 128), exponent=0.0, band=(8, 40), rng=21, dtype=np.float64)
+
+
+@pytest.mark.parametrize("make", [
+    lambda s: circular_aperture(s, D10, diameter_deg=3.0),
+    lambda s: raised_cosine_aperture(s, D10, diameter_deg=3.5, ramp_deg=0.75),
+    lambda s: gaussian_aperture(s, D10, sigma_deg=0.7),
+], ids=["circle", "raised-cosine", "gaussian"])
+def test_aperture_blends_to_the_mean_and_states_contrast_inside(make):
+    mean, c = 40.0, 0.2
+    w = make(BANDED.shape)
+    # the luminance written, averaged over 64 dither seeds, against the formula computed here:
+    # L = mean (1 + c w z / sd_w), z centred on its w-weighted mean, sd_w its w-weighted RMS
+    z = BANDED - np.sum(w * BANDED) / w.sum()
+    expected = mean * (1 + c * w * z / np.sqrt(np.sum(w * z * z) / w.sum()))
+    avg = np.mean([D10.luminance_of(to_display(BANDED, D10, mean=mean, contrast=c, aperture=w, rng=s))
+                   for s in range(64)], axis=0)
+    assert np.max(np.abs(avg - expected)) < 0.05   # cd/m² (a 10-bit step at 40 cd/m² is about 0.13)
+    # outside the window the mean luminance, everywhere (no dithering: one display value, the nearest)
+    flat = D10.luminance_of(to_display(BANDED, D10, mean=mean, contrast=c, aperture=w, dither=False))
+    if np.any(w == 0):
+        out = flat[w == 0]
+        assert out.min() == out.max() and abs(out[0] - mean) < 0.1
+    # the frame's mean is the requested mean
+    assert avg.mean() == pytest.approx(mean, rel=1e-3)
+
+
+def test_circular_aperture_contrast_is_the_contrast_inside():
+    w = circular_aperture(BANDED.shape, D8, diameter_deg=3.0)
+    inside = w == 1
+    for kind, c, measure in (("rms", 0.15, analysis.rms_contrast), ("michelson", 0.6, analysis.michelson_contrast)):
+        L = D8.luminance_of(to_display(BANDED, D8, mean=45.0, contrast=c, contrast_kind=kind, aperture=w, rng=2))
+        assert measure(L[inside]) == pytest.approx(c, rel=0.02), kind
+        assert L[inside].mean() == pytest.approx(45.0, rel=0.01)
+    assert np.ptp(L[~inside]) < 1.0   # outside: the display values around 45 cd/m² only (dithered)
+
+
+def test_aperture_on_a_video_and_bad_apertures():
+    video = noiselab.snow((6, 64, 64), rng=1)
+    w = circular_aperture(video.shape, D10, diameter_deg=1.5)
+    L = D10.luminance_of(to_display(video, D10, mean=30.0, contrast=0.2, aperture=w, dither=False))
+    assert np.ptp(L[:, w == 0]) == 0 and analysis.rms_contrast(L[:, w == 1]) == pytest.approx(0.2, rel=0.03)
+    for bad, words in ((np.ones((32, 32)), "aperture must broadcast"), (w * 2, r"aperture must hold weights in \[0, 1\]"),
+                       (np.zeros((64, 64)), "aperture is 0 everywhere"), (np.full((64, 64), np.nan), "aperture")):
+        with pytest.raises(ValueError, match=words):
+            to_display(video, D10, mean=30.0, contrast=0.2, aperture=bad)
+
 def test_to_display_on_a_snow_video():
     video = noiselab.snow((8, 64, 64), rng=0)
     v = to_display(video, D10, mean=30.0, contrast=0.176, contrast_kind="michelson", rng=0)
@@ -402,3 +523,62 @@ def test_motion_cloud_bad_input():
         motion_cloud((4, 16, 16), sf_0=0.2, B_sf=0.1, B_V=-1.0)
     with pytest.raises(ValueError, match=r"B_theta \(radians\) must be >= 1e-6 or np.inf"):
         motion_cloud((4, 16, 16), sf_0=0.2, B_sf=0.1, B_theta=0.0)
+
+
+# ---------------------------------------------------------------- bandwidths as papers state them
+def test_octave_and_hwhm_converters_measure_the_envelopes_half_heights():
+    from noiselab.stimuli import B_sf_from_octaves, B_theta_from_hwhm, hwhm_from_B_theta, octaves_from_B_sf
+
+    sf_0 = 0.1
+    for octaves in (0.5, 1.0, 1.5, 3.0):
+        b = B_sf_from_octaves(sf_0=sf_0, sf_bandwidth_octaves=octaves)
+        assert octaves_from_B_sf(sf_0=sf_0, B_sf=b) == pytest.approx(octaves, rel=1e-12)
+        # the log-Gabor amplitude band falls to half exactly `octaves` apart, centred (in log f) on sf_0
+        f = sf_0 * 2.0 ** (np.array([-0.5, 0.5]) * octaves)
+        g = E.log_gabor(2 * np.pi * f, sf_0=sf_0, B_sf=b)
+        assert np.allclose(g, 0.5, atol=1e-12)
+    for hwhm in (5.0, 15.0, 30.0, 60.0):
+        b = B_theta_from_hwhm(orientation_hwhm_deg=hwhm)
+        assert hwhm_from_B_theta(B_theta=b) == pytest.approx(hwhm, rel=1e-12)
+        a = np.radians(hwhm)   # the orientation band's amplitude at HWHM from theta, either side
+        for side in (-1, 1):
+            w = E.orientation(np.array(np.sin(0.3 + side * a)), np.array(np.cos(0.3 + side * a)), theta=0.3, B_theta=b)
+            assert float(w) == pytest.approx(0.5, abs=1e-12)
+    assert hwhm_from_B_theta(B_theta=0.85) == math.inf and hwhm_from_B_theta() == math.inf
+    with pytest.raises(ValueError, match="sf_bandwidth_octaves"):
+        B_sf_from_octaves(sf_0=0.1, sf_bandwidth_octaves=0.0)
+    with pytest.raises(ValueError, match="orientation_hwhm_deg"):
+        B_theta_from_hwhm(orientation_hwhm_deg=120.0)
+
+
+def test_where_a_motion_clouds_power_peaks():
+    # the documented peaks, measured on the envelope along the x axis (1024 px: cells of 1/1024 cycles/px)
+    sf_0, B_sf = 0.1, 0.05
+    s = math.log((sf_0 + B_sf) / sf_0)
+    n = 1024
+    f = np.arange(n // 2 + 1) / n
+    still = cloud_envelope((8, n), sf_0=sf_0, B_sf=B_sf)[0] ** 2          # power per cell, along wy = 0
+    assert f[np.argmax(still)] == pytest.approx(sf_0 * math.exp(-s * s), abs=1.0 / n)
+    assert f[np.argmax(f * f * still)] == pytest.approx(sf_0, abs=1.0 / n)   # power per octave peaks at sf_0
+    assert f[np.argmax(f * still)] == pytest.approx(sf_0 * math.exp(-s * s / 2), abs=1.0 / n)   # per ring
+    # drifting: each spatial frequency's power summed over the frames grows with |w| (speed band B_V |w| wide)
+    moving = (cloud_envelope((64, 8, n), sf_0=sf_0, B_sf=B_sf, V_X=1.0, B_V=0.5)[:, 0, :] ** 2).sum(axis=0)
+    peak = f[np.argmax(moving)]
+    assert peak == pytest.approx(sf_0 * math.exp(-s * s / 2), abs=1.5 / n)
+    assert peak / f[np.argmax(still)] == pytest.approx(math.exp(s * s / 2), abs=0.02)
+
+
+def test_theta_is_psychopys_ori_in_radians():
+    # theta = 0: the wave vector along x, vertical stripes (PsychoPy's ori = 0 grating); theta > 0 turns the
+    # wave vector from +x towards +y, which is down the screen: clockwise, as PsychoPy's ori
+    z = motion_cloud((128, 128), sf_0=0.1, B_sf=0.02, theta=math.radians(30.0), B_theta=math.radians(5.0), rng=1)
+    p = np.abs(np.fft.fft2(z)) ** 2
+    fy, fx = np.meshgrid(np.fft.fftfreq(128), np.fft.fftfreq(128), indexing="ij")
+    angle = np.degrees(np.arctan2(fy, fx)) % 180.0          # wave-vector angle, y down, mod 180
+    mean = np.degrees(0.5 * np.angle(np.sum(p * np.exp(2j * np.radians(angle))))) % 180.0
+    assert mean == pytest.approx(30.0, abs=2.0)
+    # on screen (row 0 at the top) the stripes run along the direction perpendicular to the wave vector:
+    # stepping along (dx, dy) = (-sin 30, cos 30) the field changes least
+    along = np.mean((z[1:, :-1] - z[:-1, 1:]) ** 2)   # a step of (dx, dy) = (+1, -1): 15 deg from the stripes
+    across = np.mean((z[1:, 1:] - z[:-1, :-1]) ** 2)  # (+1, +1): 15 deg from the wave vector
+    assert along < across

@@ -9,6 +9,7 @@ Conventions: an amplitude exponent ``a`` is a power exponent ``2 a``
 """
 import doctest
 import importlib
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -82,6 +83,18 @@ def test_power_law_message_states_the_measurement_and_the_derivation():
         assert part in msg, part
     # a given tolerance replaces the statistical one
     assert T.assert_power_law(img, 1.2, band=(4, 32), tol=0.3).tolerance == 0.3
+
+
+def test_a_power_exponent_given_for_the_amplitude_exponent_gets_a_hint():
+    field = _powerbox(128, 1.0, seed=4)   # power ~ k**-2: amplitude exponent 1
+    with pytest.raises(AssertionError, match=r"about half the one given: exponent is the AMPLITUDE exponent .*"
+                                             r"a power slope of -2 is exponent=1$"):
+        T.assert_power_law(field, 2.0)    # the power slope's 2 passed as the exponent
+    with pytest.raises(AssertionError, match=r"about twice the one given: .*exponent=0.5 means a power slope of -1"):
+        T.assert_power_law(field, 0.5)
+    with pytest.raises(AssertionError) as exc:   # an exponent merely wrong gets no hint
+        T.assert_power_law(field, 1.4)
+    assert "AMPLITUDE" not in str(exc.value)
 
 
 def test_power_law_of_a_band_limited_field_outside_its_band_fails():
@@ -254,3 +267,51 @@ def test_the_guide_page_runs():
     namespace = {}
     for block in blocks:
         exec("\n".join(line[4:] for line in block.splitlines()), namespace)
+
+
+
+# ---------------------------------------------------------------- failure reports
+FAILING = """
+import numpy as np
+import noiselab
+from noiselab import testing as T
+
+def test_white_noise_is_not_pink():
+    T.assert_power_law(np.random.default_rng(0).standard_normal((64, 64)), 1.0)
+
+def test_still_video_does_not_move():
+    T.assert_motion(np.repeat(np.random.default_rng(1).standard_normal((1, 32, 32)), 16, axis=0),
+                    velocity_yx=(0.0, 1.0))
+
+def test_a_seam():
+    T.assert_seamless(np.arange(64.0 * 64).reshape(64, 64) % 7.3)
+
+def test_bad_input_keeps_its_traceback():
+    T.assert_power_law(np.ones((4, 4)) * np.nan, 1.0)
+"""
+
+
+def test_a_failing_assertion_reports_the_callers_line_not_library_source(tmp_path):
+    import os
+    import subprocess
+    import sys
+
+    (tmp_path / "test_tiny.py").write_text(FAILING)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [str(Path(noiselab.__file__).parents[1]),
+                                                                      os.environ.get("PYTHONPATH")])))
+    run = subprocess.run([sys.executable, "-m", "pytest", "-p", "no:randomly", "-p", "no:cacheprovider", "-q",
+                          "--rootdir", str(tmp_path), "-c", os.devnull, str(tmp_path / "test_tiny.py")],
+                         capture_output=True, text=True, cwd=tmp_path, env=env, timeout=300)
+    out = run.stdout
+    assert "4 failed" in out, out[-3000:]
+    reports = out.split("_____ ")[1:]
+    assert len(reports) >= 4, out[-3000:]
+    for name in ("test_white_noise_is_not_pink", "test_still_video_does_not_move", "test_a_seam"):
+        report = next(r for r in reports if r.lstrip().startswith(name))
+        # the test's own lines and the one-line message; no frame of noiselab's source (testing/, _core/)
+        assert "noiselab/testing/" not in report and "noiselab/_core/" not in report, report
+        assert "E   AssertionError: " in report or "E       AssertionError: " in report, report
+        assert len(report.splitlines()) < 25, report
+    # a bad input is not an assertion: its ValueError keeps the library frames that raised it
+    bad = next(r for r in reports if r.lstrip().startswith("test_bad_input_keeps_its_traceback"))
+    assert "ValueError" in bad and "noiselab/" in bad

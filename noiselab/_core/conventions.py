@@ -110,6 +110,13 @@ WORDS = {
         type='',
         default=None,
         keyword_only=False),
+    'aperture': Word(
+        ('A window of weights in [0, 1] (e.g. ``circular_aperture``) that broadcasts against the field: the '
+         'stimulus blends to the mean luminance where it is 0, and its contrast is stated inside it.'),
+        unit='',
+        type='array_like or None',
+        default=None,
+        keyword_only=True),
     'array': Word(
         'Integers in [0, 255], or floats.',
         unit='',
@@ -285,11 +292,16 @@ WORDS = {
         default=None,
         keyword_only=True),
     'clip': Word(
-        'Clip floats outside [0, 1] when no range is stated (otherwise a ``ValueError``).',
-        unit='',
-        type='bool, default False',
+        ('Clip instead of refusing: a writer clips floats outside [0, 1] when no range is stated (otherwise a '
+         '``ValueError``); ``to_display`` clips the field at ``clip`` standard deviations of its mean before '
+         'scaling it to the requested contrast (None: no clipping, a request off the display is refused).'),
+        unit='standard deviations (to_display)',
+        type='bool (writers) or float > 0 (to_display)',
         default=False,
-        keyword_only=True),
+        keyword_only=True,
+        per_function={'noiselab.stimuli.to_display': (None, True)},
+        note=("to_display's clip is a number of standard deviations (None: none), as a Gaussian field's tails "
+              "are what leaves a display; the writers' clip is a yes or no to [0, 1]")),
     'close': Word(
         'Close the figure afterwards (pyplot figures only).',
         unit='',
@@ -481,6 +493,12 @@ WORDS = {
         type='float',
         default=REQUIRED,
         keyword_only=True),
+    'diameter_deg': Word(
+        "An aperture's outer diameter, degrees of visual angle.",
+        unit='deg',
+        type='float > 0',
+        default=REQUIRED,
+        keyword_only=True),
     'dither': Word(
         ('True (default): random dithering between the two display values around each requested luminance, with '
          'probabilities that make the expected luminance of every pixel exactly the requested one.'),
@@ -610,6 +628,13 @@ WORDS = {
         unit='amplitude ratio between octaves',
         type='int, float, float; default 1, 2, 0.5',
         default=0.5,
+        keyword_only=True),
+    'full_output': Word(
+        ("Return ``(result, report)`` with what the function did besides the result (as scipy's "
+         '``full_output``): ``to_display``\'s :class:`~noiselab.stimuli.DisplayReport`.'),
+        unit='',
+        type='bool, default False',
+        default=False,
         keyword_only=True),
     'gamma': Word(
         'Exponent of the gamma law, in ``[0.1, 10]``.',
@@ -1098,6 +1123,18 @@ WORDS = {
         type='int, default 8',
         default=8,
         keyword_only=True),
+    'ramp_deg': Word(
+        "Width of a raised-cosine aperture's edge, degrees, inside its diameter.",
+        unit='deg',
+        type='float, 0 < ramp_deg <= diameter_deg / 2',
+        default=REQUIRED,
+        keyword_only=True),
+    'orientation_hwhm_deg': Word(
+        'Orientation bandwidth as papers state it: half width at half height of the amplitude band, degrees.',
+        unit='deg',
+        type='float in (0, 90]',
+        default=REQUIRED,
+        keyword_only=True),
     'quick': Word(
         'Parameter overrides for a fast build of the figure.',
         unit='',
@@ -1251,6 +1288,12 @@ WORDS = {
         type='float',
         default=REQUIRED,
         keyword_only=True),
+    'sf_bandwidth_octaves': Word(
+        'Spatial-frequency bandwidth as papers state it: full width at half maximum of the amplitude band, octaves.',
+        unit='octaves',
+        type='float in (0, 20]',
+        default=REQUIRED,
+        keyword_only=True),
     'shape': Word(
         "An array shape in numpy's order: (n,), (ny, nx), (nz, ny, nx) or (T, H, W).",
         unit='samples',
@@ -1277,6 +1320,12 @@ WORDS = {
         default=VARIES,
         keyword_only=None,
         note="the default is each function's own (a size, a shape, a name: what that function is for)"),
+    'sigma_deg': Word(
+        "A Gaussian aperture's standard deviation, degrees.",
+        unit='deg',
+        type='float > 0',
+        default=REQUIRED,
+        keyword_only=True),
     'size_deg': Word(
         'A size in degrees of visual angle.',
         unit='degrees',

@@ -9,7 +9,13 @@ from __future__ import annotations
 
 import functools
 import inspect
+import operator
 import warnings
+
+# pytest leaves out of a failure's report the frames whose ``__tracebackhide__`` says so (a callable is asked
+# with the exception): an assertion helper's own source says nothing about the caller's failing test, so its
+# frames (and these wrappers') are hidden for AssertionError only; any other error keeps its full traceback
+HIDE_ASSERTION_FRAMES = operator.methodcaller("errisinstance", AssertionError)
 
 __all__ = ["renamed_parameters", "keyword_only", "array_order", "swap_pair"]
 
@@ -42,6 +48,7 @@ def renamed_parameters(**old_to_new):
 
         @functools.wraps(function)
         def wrapper(*args, **kwargs):
+            __tracebackhide__ = HIDE_ASSERTION_FRAMES
             for old, new in old_to_new.items():
                 if old in kwargs:
                     if new in kwargs:
@@ -85,6 +92,7 @@ def keyword_only(*names):
 
         @functools.wraps(function)
         def wrapper(*args, **kwargs):
+            __tracebackhide__ = HIDE_ASSERTION_FRAMES
             if len(args) > n_positional:
                 extra = args[n_positional:]
                 if len(extra) > len(names):
@@ -153,6 +161,7 @@ def array_order(*pairs, positional=()):
 
         @functools.wraps(function)
         def wrapper(*args, **kwargs):
+            __tracebackhide__ = HIDE_ASSERTION_FRAMES
             if len(args) > n_positional:
                 extra = args[n_positional:]
                 if len(extra) > len(positional):

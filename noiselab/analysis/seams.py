@@ -10,7 +10,7 @@ import numbers
 
 import numpy as np
 
-from .._core import check_int
+from .._core import as_array, check_int
 from ._common import check_field, check_video
 
 __all__ = ["loop_seam", "tile_seam"]
@@ -51,8 +51,15 @@ def loop_seam(video) -> float:
     1.0
     >>> loop_seam(loop[:12]) > 3
     True
+    >>> round(loop_seam(np.stack([loop, 2 * loop, loop], axis=-1)), 6)   # (T, H, W, 3): colour
+    1.0
     """
-    arr = _scale_free(check_video("video", video, min_frames=3, min_size=1, allow_constant=True))
+    v = as_array("video", video)
+    if v.ndim == 4:   # a colour video: every channel's steps count, as pixels of a frame three times as wide
+        if v.shape[-1] != 3:
+            raise ValueError(f"video must be (T, H, W) or a colour (T, H, W, 3), got shape {v.shape}")
+        v = v.reshape(v.shape[0], v.shape[1], v.shape[2] * 3)
+    arr = _scale_free(check_video("video", v, min_frames=3, min_size=1, allow_constant=True))
     steps = [_rms(arr[t + 1].astype(np.float64) - arr[t]) for t in range(arr.shape[0] - 1)]
     ordinary = float(np.mean(steps))
     if ordinary == 0:

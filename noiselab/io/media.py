@@ -464,6 +464,10 @@ def read_image(path, *, as_float=False) -> np.ndarray:
     return image
 
 
+# swscale's flags for decoding: accurate rounding and the chroma interpolated at full resolution
+_EXACT_SCALER = ("-sws_flags", "accurate_rnd+full_chroma_int")
+
+
 def _png_frames(path):
     files = sorted(p for p in path.iterdir() if p.suffix.lower() == ".png")
     if not files:
@@ -514,8 +518,12 @@ def iter_video(path, *, max_frames=None):
     import imageio.v3 as iio
 
     n = 0
+    # ffmpeg's own YUV -> RGB conversion, rounded: swscale's default path truncates (its RGB of an H.264 grey
+    # ramp read 0.49 grey level low on average, one level low at about half the pixels), where this one gives
+    # ffmpeg's grey decode (-pix_fmt gray) exactly (tests/test_io.py)
+    kwargs = {} if path.suffix.lower() == ".gif" else dict(plugin="FFMPEG", output_params=list(_EXACT_SCALER))
     try:
-        for frame in iio.imiter(path):
+        for frame in iio.imiter(path, **kwargs):
             if max_frames is not None and n >= max_frames:
                 break
             n += 1
@@ -532,7 +540,12 @@ def read_video(path, *, as_float=False, max_frames=None) -> np.ndarray:
     """Read a video (``.mp4``/``.gif``/``.npy``, or a folder of PNG frames) as ``(T, H, W[, 3])``.
 
     Grey videos stored as RGB (equal channels, as GIF and MP4 store them) come
-    back with the colour axis dropped. Unreadable input raises ``InputError``
+    back with the colour axis dropped. MP4 and MKV are decoded by ffmpeg with
+    accurate rounding (``-sws_flags accurate_rnd+full_chroma_int``): a grey
+    video reads back exactly as ffmpeg's own grey decode (``-pix_fmt gray``),
+    so the reader adds no error to the codec's (measured on an H.264 grey ramp
+    and on uniform noise, 256 x 64 x 8 frames: mean difference 0.0 level;
+    swscale's default conversion read 0.49 level low). Unreadable input raises ``InputError``
     (a ``ValueError``) naming the file and the cause.
 
     Parameters

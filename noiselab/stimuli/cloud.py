@@ -100,12 +100,18 @@ def motion_cloud(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y=0
         (``display.cycles_per_pixel(cpd)`` from cycles/deg).
     B_sf : float
         Radial bandwidth, cycles/pixel, > 0 (``np.inf``: no band, a 1/f
-        spectrum with ``loggabor``).
+        spectrum with ``loggabor``). From a bandwidth in octaves (FWHM):
+        ``B_sf_from_octaves(sf_0=sf_0, sf_bandwidth_octaves=...)``.
     theta : float
         Mean orientation of the wave vector, radians (0: waves along x,
-        vertical stripes; y is down).
+        vertical stripes; y is down, so a positive ``theta`` turns the wave
+        vector, and the stripes, clockwise on the screen). It is PsychoPy's
+        ``ori`` of a grating (degrees, 0 vertical bars, clockwise) in
+        radians: ``theta = np.radians(ori)``.
     B_theta : float
-        Orientation bandwidth, radians, ``>= 1e-6``; ``np.inf`` (default): isotropic.
+        Orientation bandwidth, radians, ``>= 1e-6``; ``np.inf`` (default):
+        isotropic. From a half width at half height in degrees:
+        ``B_theta_from_hwhm(orientation_hwhm_deg=...)``.
     V_X, V_Y : float
         Velocity of the motion plane, px/frame (x right, y down), within +-1e6
         (``display.px_per_frame(deg_per_s)``).
@@ -137,6 +143,13 @@ def motion_cloud(shape, *, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y=0
 
     Notes
     -----
+    ``sf_0`` is where the power *per octave* peaks; the power per frequency
+    cell peaks at ``sf_0 exp(-s**2)`` with ``s = ln((sf_0 + B_sf) / sf_0)``
+    (0.848 ``sf_0`` for ``B_sf = sf_0 / 2``), and a moving cloud's spatial
+    spectrum (summed over the frames) one factor ``exp(s**2 / 2)`` higher
+    (``noiselab.stimuli.bandwidth`` derives these; ``tests/test_stimuli.py``
+    measures them on the envelope).
+
     ``tests/test_stimuli.py`` compares the power spectrum averaged over 24
     seeds with ``MotionClouds.envelope_gabor(...)**2`` for the same
     parameters (MotionClouds from PyPI) and reads ``(V_X, V_Y)`` back with

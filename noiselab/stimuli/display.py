@@ -48,7 +48,11 @@ class Display:
         Luminance in cd/m² at the lowest and the highest display value,
         ``0 <= L_min < L_max``. Default ``(0.5, 100.0)``.
     gamma : float
-        Exponent of the gamma law, in ``[0.1, 10]``. Default 2.2.
+        Exponent of the gamma law, in ``[0.1, 10]``. Default 2.2. Display
+        value ``v`` shows the luminance
+        ``L(v) = L_min + (L_max - L_min) * (v / (2**bits - 1)) ** gamma``
+        (cd/m²), and :meth:`value_of` inverts it:
+        ``v = (2**bits - 1) * ((L - L_min) / (L_max - L_min)) ** (1 / gamma)``.
     bits : int
         Bits per display value, 1 to 16: values ``0 .. 2**bits - 1``.
     lut : tuple of float, optional
@@ -71,6 +75,9 @@ class Display:
     2.0
     >>> float(d.luminance_of(255))
     100.0
+    >>> v = 128   # the gamma law, written out
+    >>> bool(np.isclose(d.luminance_of(v), 0.5 + (100.0 - 0.5) * (v / 255) ** 2.2))
+    True
     """
 
     pixels_per_degree: float

@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._core import array_order, check_real
+from .._core import HIDE_ASSERTION_FRAMES, array_order, check_real
 from ..analysis import motion_energy, tent_energy, video_spectrum
 
 __all__ = ["MotionCheck", "assert_motion", "assert_tent"]
@@ -39,6 +39,7 @@ _WHY = ("a deterministic fraction of the spectrum: a video that moves so has all
 
 
 def _judge(what, energy, opposite, chance, min_energy, given, extra=""):
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     how = f"given min_energy {min_energy:g}" if given else f"default min_energy {min_energy:g} ({_WHY})"
     msg = (f"{what}: {energy:.6g} of the power lies on it (the opposite motion: {opposite:.3g}; chance for power "
            f"spread evenly over temporal frequency: {chance:.3g}){extra}; required at least {how}")
@@ -105,6 +106,7 @@ def assert_motion(video, *, velocity_yx, min_energy=None, tol=1.0, band=None, wi
     ...
     AssertionError: motion at (vy, vx) = (-1, -2) px/frame ...
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     spec = video_spectrum(video, window=window)
     min_energy, given = _min_energy(min_energy)
     energy = motion_energy(spec, velocity_yx=velocity_yx, tol=tol, band=band)
@@ -165,6 +167,7 @@ def assert_tent(video, c, band, *, direction_yx=(1.0, 0.0), pan_yx=(0.0, 0.0), t
     >>> assert_tent(snow, 1.0, (2, 16)).energy > 0.999
     True
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     spec = video_spectrum(video, window=window)
     min_energy, given = _min_energy(min_energy)
     energy = tent_energy(spec, c, band, direction_yx=direction_yx, pan_yx=pan_yx, thickness=thickness, tol=tol)

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from .._core import as_array, check_axes, check_finite_array, check_int
+from .._core import HIDE_ASSERTION_FRAMES, as_array, check_axes, check_finite_array, check_int
 from .spectra import check_false_alarm
 
 __all__ = ["SeamCheck", "assert_seamless"]
@@ -110,6 +110,7 @@ def assert_seamless(array, axes=None, *, period=None, false_alarm=1e-3) -> SeamC
     ...
     AssertionError: seams: ...
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     arr = check_finite_array("array", as_array("array", array))
     if arr.dtype.kind not in "biuf":
         raise TypeError(f"array must be real and numeric, got dtype {arr.dtype}")

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize, special, stats
 
-from .._core import as_array, check_band, check_real, renamed_parameters
+from .._core import HIDE_ASSERTION_FRAMES, as_array, check_band, check_real, renamed_parameters
 from ..analysis import PowerSpectrum, axis_artefacts, band_energy, power_spectrum
 from ._cells import independent_cells, live_band, ring_index
 
@@ -51,6 +51,7 @@ def _spectrum(name, field, ndim, window):
 
 def _band(cells, band, default, what):
     """The band to test: the user's, or the default clipped to where the field has power."""
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     nyq = cells.n_ref / 2.0
     if band is not None:
         return check_band("band", band, nyq * math.sqrt(len(cells.components)), lo_open=True), "given"
@@ -124,6 +125,19 @@ def power_law_fit(cells, lo, hi):
     return float(res.x), se, n, f[dead]
 
 
+def _exponent_hint(measured, expected, tol):
+    """A hint when ``expected`` looks like a power exponent (or half of one) where the amplitude exponent was meant."""
+    what = (f"exponent is the AMPLITUDE exponent (amplitude ~ f**-exponent, power ~ f**(-2 exponent)): "
+            f"exponent={expected:g} means a power slope of {-2.0 * expected:g}")
+    if expected != 0 and abs(measured - expected / 2.0) <= tol:
+        return f"; the measured exponent is about half the one given: {what}, and a power slope of " \
+               f"{-expected:g} is exponent={expected / 2.0:g}"
+    if expected != 0 and abs(measured - 2.0 * expected) <= tol:
+        return f"; the measured exponent is about twice the one given: {what}, and this field's power slope is " \
+               f"about {-2.0 * measured:.3g}"
+    return ""
+
+
 def _default_slope_band(n_ref):
     # 2 cycles/frame (the lowest rings hold a handful of cells) to a quarter of the frame (half the Nyquist
     # frequency: above it a generator's interpolation and a camera's optics bend the spectrum)
@@ -188,6 +202,7 @@ def assert_power_law(field, exponent, *, band=None, tol=None, false_alarm=1e-3, 
     ...
     AssertionError: power law: amplitude exponent 0.98...
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     spec = _spectrum("field", field, (1, 2, 3), window)
     expected = check_real("exponent", exponent, lo=-20.0, hi=20.0)
     alpha_fa = check_false_alarm(false_alarm)
@@ -215,7 +230,7 @@ def assert_power_law(field, exponent, *, band=None, tol=None, false_alarm=1e-3, 
     msg = (f"power law: amplitude exponent {est:.4f} +- {se:.4f} (Whittle fit {where}), expected {expected:g} "
            f"{how}: off by {off:+.4f} = {abs(off) / se:.1f} SE")
     if not abs(off) <= tol:
-        raise AssertionError(msg)
+        raise AssertionError(msg + _exponent_hint(est, expected, tol))
     return PowerLawCheck(exponent=est, error=se, expected=expected, tolerance=tol, band=(lo, hi), cells=n,
                          message=msg)
 
@@ -290,6 +305,7 @@ def assert_band_limited(field, band, *, max_leakage=None, window=None, axes=None
     ...
     AssertionError: band limit: ...
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     if isinstance(field, PowerSpectrum):
         spec = field  # computed once for several checks
     else:
@@ -534,6 +550,7 @@ def assert_isotropic(field, *, band=None, tol=None, false_alarm=1e-3, window=Non
     ...
     AssertionError: isotropy: ...
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     spec = _spectrum("field", field, (2,), window)
     alpha_fa = check_false_alarm(false_alarm)
     tol = None if tol is None else check_real("tol", tol, lo=0.0, hi=1e6)
@@ -666,6 +683,7 @@ def assert_no_axis_artefacts(field, *, band=None, false_alarm=1e-3, window=None)
     ...
     AssertionError: axis artefacts: ...
     """
+    __tracebackhide__ = HIDE_ASSERTION_FRAMES  # a failure reports the caller's line and the message
     spec = _spectrum("field", field, (2,), window)
     alpha_fa = check_false_alarm(false_alarm)
     cells = independent_cells(spec)
