@@ -36,14 +36,14 @@ def client():
 
 # (noise, shape, extent, uneven chunks): 1-4-D, both bases, several kernels, vector output, periods
 CASES = {
-    "1d-gradient": (dict(dim_in=1, seed=3, basis="gradient"), (257,), [(0, 19)], ((100, 57, 100),)),
-    "2d-vector-period-catmullrom": (dict(dim_in=2, dim_out=3, seed=4, kernel="catmull-rom", period=(3, 5)),
+    "1d-gradient": (dict(dim_in=1, rng=3, basis="gradient"), (257,), [(0, 19)], ((100, 57, 100),)),
+    "2d-vector-period-catmullrom": (dict(dim_in=2, dim_out=3, rng=4, kernel="catmull-rom", period=(3, 5)),
                                     (41, 33), [(0, 3), (0, 5)], (7, (1, 32))),
-    "3d-quintic-gradient": (dict(dim_in=3, seed=5, kernel="quintic", basis="gradient"),
+    "3d-quintic-gradient": (dict(dim_in=3, rng=5, kernel="quintic", basis="gradient"),
                             (19, 23, 17), [(0, 2), (-1, 3), (5, 7)], (5, 8, (16, 1))),
-    "4d-linear": (dict(dim_in=4, seed=6, kernel="linear"), (6, 7, 5, 9), [(0, 1), (0, 2), (0, 1), (0, 3)],
+    "4d-linear": (dict(dim_in=4, rng=6, kernel="linear"), (6, 7, 5, 9), [(0, 1), (0, 2), (0, 1), (0, 3)],
                   (4, 3, 5, (2, 7))),
-    "2d-sparse-grid-scattered-path": (dict(dim_in=2, seed=7), (30, 30), [(0, 200), (0, 200)], ((13, 17), 11)),
+    "2d-sparse-grid-scattered-path": (dict(dim_in=2, rng=7), (30, 30), [(0, 200), (0, 200)], ((13, 17), 11)),
 }
 
 

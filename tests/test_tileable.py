@@ -54,7 +54,7 @@ def old_sum(noise_kw, octaves, absval=False):
 @pytest.mark.parametrize("hash", ["table", "integer"])
 @pytest.mark.parametrize("absval", [False, True])
 def test_tileable_sum_has_no_period_shorter_than_the_tile(hash, absval):
-    kw = dict(seed=3, period=CELLS, hash=hash, kernel="quintic")
+    kw = dict(rng=3, period=CELLS, hash=hash, kernel="quintic")
     func = turbulence if absval else fractal_sum
     field = func(LatticeNoise(2, **kw), TILE, OCTAVES)
     r = shift_correlations(field)
