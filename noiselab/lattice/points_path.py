@@ -110,8 +110,11 @@ def kernel_args(noise, freqs, amps, absval, pairs=False):
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     """The point kernel for this noise and call over ``flat`` into ``out``, on ``workers`` threads."""
     pairs = _pairs(noise, flat.shape[0], deriv)
-    kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv, _periodic(noise),
-                               pairs)
+    if noise.hash == "integer" and noise.dim_in <= 3 and not deriv:  # the same bits, vectorised across points
+        kernel = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, noise.basis == "gradient", _periodic(noise))
+    else:
+        kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv,
+                                   _periodic(noise), pairs)
     run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval, pairs), workers)
 
 
