@@ -18,8 +18,10 @@ unrolls.
   table hash: Phillips' nested permutation ``h_{a+1} = P[(h_a + j_a) mod n]``,
   2.4.1; for 3-D value noise over many points, over :func:`pair_tables`)
   and :func:`_make_int_points` (the integer hash, 256 points at a time, each
-  level of the corner walk one loop over them). Octaves are fused into one
-  pass over the points.
+  level of the corner walk one loop over them); :func:`int_fast_kernel`
+  (:func:`_make_int_fast`: the integer hash's 1-3-D values, the same bits,
+  the last axis's taps unrolled in one loop over the points that LLVM
+  vectorises). Octaves are fused into one pass over the points.
 - the separable grid passes: :func:`axis_weights` / :func:`axis_dweights`
   and :func:`dense_taps` (per-axis weights and distinct taps),
   :func:`hash_expand` / :func:`hash_expand_values` / :func:`block_prefix`
