@@ -13,7 +13,10 @@ special (above 1: the special path pays). The paths:
   (``noise.evaluate(noise.grid_points(...))``), 2-D and 3-D: what a grid
   would cost without a grid path;
 - 3-D table-hash values over folded tables (``points_path.PAIRS_MIN``: many
-  points) against the per-point kernel on the same points (the same bits).
+  points) against the per-point kernel on the same points (the same bits);
+- 1-3-D integer-hash values by the kernel vectorised across points
+  (``points_path.INT_FAST_DIM``) against the general integer-hash kernel
+  (the same bits).
 
 The fused 2-D grid kernel this script measured first (a run at commit
 c825318, kept in ``bench_lattice_paths.md``) ran at 0.72-0.79x the separable
@@ -70,6 +73,32 @@ def cases():
         call = (lambda n: lambda: n(pts))(n)
         out.append((f"1e6 3-D points, table hash, {label}: folded tables vs per-point kernel",
                     with_least(0, call), with_least(1 << 40, call)))
+    def with_fast(dims, fn):
+        def run():
+            old = points_path.INT_FAST_DIM
+            points_path.INT_FAST_DIM = dims
+            try:
+                return fn()
+            finally:
+                points_path.INT_FAST_DIM = old
+        return run
+
+    p32 = pts.astype(np.float32)
+    for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"}),
+                      ("value catmull-rom", {"kernel": "catmull-rom"}), ("value cubic, period 7", {"period": 7})):
+        n = nl.LatticeNoise(3, hash="integer", **kw)
+        call = (lambda n: lambda: n(pts))(n)
+        out.append((f"1e6 3-D points, integer hash, {label}: vectorised vs general kernel",
+                    with_fast(3, call), with_fast(0, call)))
+    call = (lambda n: lambda: n(p32))(nl.LatticeNoise(3, hash="integer"))
+    out.append(("1e6 3-D float32 points, integer hash, value cubic: vectorised vs general kernel",
+                with_fast(3, call), with_fast(0, call)))
+    for d, label, kw in ((2, "value cubic", {}), (2, "gradient quintic", {"basis": "gradient"}),
+                         (1, "value cubic", {})):
+        n = nl.LatticeNoise(d, hash="integer", **kw)
+        call = (lambda n, p: lambda: n(p))(n, np.ascontiguousarray(pts[:, :d]))
+        out.append((f"1e6 {d}-D points, integer hash, {label}: vectorised vs general kernel",
+                    with_fast(3, call), with_fast(0, call)))
     return out
 
 

@@ -7,7 +7,8 @@ read in place, without a copy) as ``(N, dim_in)`` rows;
 kernel of :mod:`._jit` that fits the noise (:func:`._jit.points_kernel`:
 hash, dimension, tap count, derivative flag, and whether any axis has a
 period of its own; 3-D table-hash value noise over many points reads folded
-tables, :data:`PAIRS_MIN`) over blocks of points on ``workers`` threads
+tables, :data:`PAIRS_MIN`; integer-hash values in 1-3-D a kernel vectorised
+across points, :data:`INT_FAST_DIM`) over blocks of points on ``workers`` threads
 (:func:`noiselab._core.run_split`: every point's arithmetic is the same
 whatever the split, so any worker count gives the same bits). These
 functions read a noise's tables and change nothing.
@@ -80,6 +81,12 @@ PAIRS_MIN = 1 << 15
 MAX_PAIR_ENTRIES = 1 << 20
 
 
+# integer-hash values (no Jacobian) in up to this many dimensions take the kernel vectorised across points
+# (:func:`._jit.int_fast_kernel`, the same bits; 2.5-3.3x for 1e6 3-D points, faster from 10 points on,
+# benchmarks/bench_lattice_paths.md); 0 turns it off
+INT_FAST_DIM = 3
+
+
 def _periodic(noise):
     """Whether any axis has a period other than the hash's own (n for the table hash, 2**32 for the integer)."""
     free = jit.PERIOD_MAX if noise.hash == "integer" else noise.table_size
@@ -110,8 +117,11 @@ def kernel_args(noise, freqs, amps, absval, pairs=False):
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     """The point kernel for this noise and call over ``flat`` into ``out``, on ``workers`` threads."""
     pairs = _pairs(noise, flat.shape[0], deriv)
-    kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv, _periodic(noise),
-                               pairs)
+    if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv:  # the same bits, vectorised
+        kernel = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, noise.basis == "gradient", _periodic(noise))
+    else:
+        kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv,
+                                   _periodic(noise), pairs)
     run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval, pairs), workers)
 
 
