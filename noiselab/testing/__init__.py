@@ -31,6 +31,7 @@ True
 """
 from .motion import MotionCheck, assert_motion, assert_tent
 from .seams import SeamCheck, assert_seamless
+from .velocity import VelocityCheck, assert_velocity
 from .spectra import (
     AxisCheck,
     BandLimitCheck,
@@ -54,6 +55,8 @@ __all__ = [
     "assert_motion",
     "assert_tent",
     "MotionCheck",
+    "assert_velocity",
+    "VelocityCheck",
     "assert_seamless",
     "SeamCheck",
 ]
