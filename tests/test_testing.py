@@ -232,6 +232,13 @@ def test_velocity_of_a_translation_is_exact():
         T.assert_velocity(video, vx=-3, vy=2)  # the wrong sign
 
 
+def test_velocity_of_a_grating_is_undefined_along_its_stripes():
+    profile = np.random.default_rng(4).standard_normal(32)  # random vertical stripes, moving right 1 px/frame
+    grating = np.stack([np.broadcast_to(np.roll(profile, t), (32, 32)) for t in range(16)])
+    with pytest.raises(AssertionError, match="aperture problem"):
+        T.assert_velocity(grating, vx=1.0, vy=0.0)
+
+
 def test_snow_lies_on_its_tent_and_not_on_the_upward_one():
     snow = noiselab.snow((16, 64, 64), rng=1, c=1.0, rescale=False)
     assert T.assert_tent(snow, 1.0, (2, 16), min_energy=0.999999).energy > 0.999999

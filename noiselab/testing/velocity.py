@@ -73,6 +73,9 @@ def _fit(r_lag, fx, fy, v0):
     if n < 3:
         return None, None, n
     m = x.T @ (a[:, None] * x)
+    ev = np.linalg.eigvalsh(m)
+    if ev[0] <= 1e-10 * ev[1]:
+        return "aperture", None, n
     v = np.asarray(v0, dtype=np.float64)
     for _ in range(8):
         res = np.angle(rl * np.exp(1j * (x @ v)))
@@ -143,7 +146,9 @@ def assert_velocity(video, *, vx, vy, tol=None, display=None, false_alarm=1e-3, 
     ------
     AssertionError
         If ``(vx, vy)`` lies outside the tolerance of the measurement, in one
-        line: ``measured vx=…±…, vy=…±… px/frame against expected …``.
+        line: ``measured vx=…±…, vy=…±… px/frame against expected …``; or if
+        the video has no moving power, or all of it along one orientation (a
+        grating, whose velocity along its stripes is undefined).
     ValueError, TypeError
         For bad input, naming the parameter.
 
@@ -186,6 +191,10 @@ def assert_velocity(video, *, vx, vy, tol=None, display=None, false_alarm=1e-3, 
         v0 = None
     fit = (None, None, 0) if v0 is None else _fit(r_lag, fx, fy, v0)
     v, cov, n = fit
+    if isinstance(v, str):
+        raise AssertionError(f"the video's moving power lies along one orientation (a grating): only the velocity "
+                             f"normal to its stripes is defined, not (vx, vy) = ({vx:g}, {vy:g}) {unit} "
+                             "(the aperture problem)")
     if v is None:
         raise AssertionError(f"no moving power to measure a velocity from (expected vx={vx:g}, vy={vy:g} {unit})")
     se = np.sqrt(np.maximum(np.diag(cov), 0.0))
