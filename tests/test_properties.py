@@ -747,6 +747,8 @@ TABLE += [
           dict(field="array", band="pair", false_alarm="real", window="choice")),
     Entry("assert_motion", _asserting(TST.assert_motion), dict(video=VID, velocity_yx=(0.0, 1.0)),
           dict(video="array", velocity_yx="pair", min_energy="real", tol="real", band="pair", window="choice")),
+    Entry("assert_velocity", _asserting(TST.assert_velocity), dict(video=VID, vx=1.0, vy=0.0),
+          dict(video="array", vx="real", vy="real", tol="real", false_alarm="real", band="pair", window="choice")),
     Entry("assert_tent", _asserting(TST.assert_tent), dict(video=VID, c=1.0, band=(2, 8)),
           dict(video="array", c="real", band="pair", direction_yx="pair", pan_yx="pair", thickness="real", tol="real",
                min_energy="real", window="choice")),

@@ -39,7 +39,7 @@ def _motion_cloud(velocity, seed, shape=(32, 64, 64)):
 
 
 @pytest.mark.parametrize("modname", ["noiselab.testing", "noiselab.testing.spectra", "noiselab.testing.motion",
-                                     "noiselab.testing.seams", "noiselab.testing.strategies"])
+                                     "noiselab.testing.velocity", "noiselab.testing.seams", "noiselab.testing.strategies"])
 def test_doctests(modname):
     result = doctest.testmod(importlib.import_module(modname),
                              optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
@@ -175,6 +175,70 @@ def test_motion_clouds_move_at_their_velocity(velocity):
         T.assert_motion(video, velocity_yx=(velocity[0], velocity[1]))  # the wrong direction
 
 
+def _cloud(B_V, seed, shape=(64, 128, 128)):
+    # noiselab's MotionClouds-style cloud moving at (vx, vy) = (1, 0.5) px/frame
+    return noiselab.stimuli.motion_cloud(shape, sf_0=0.125, B_sf=0.05, V_X=1.0, V_Y=0.5, B_V=B_V, rng=seed)
+
+
+@pytest.mark.parametrize("B_V", [0.05, 0.5, 1.0])
+def test_velocity_of_a_motion_cloud_passes_at_its_true_velocity(B_V):
+    video = _cloud(B_V, seed=11)
+    check = T.assert_velocity(video, vx=1.0, vy=0.5)
+    assert check.unit == "px/frame" and check.cells > 1000
+    # a tolerance in velocity, tighter than the 5 % the next test must see
+    assert 0 < check.tol_vx < 0.04 and 0 < check.tol_vy < 0.04, check.message
+    assert abs(check.vx - 1.0) <= check.tol_vx and abs(check.vy - 0.5) <= check.tol_vy
+
+
+def test_assert_motion_counts_cells_not_velocity():
+    # what assert_velocity is for: at MotionClouds' default B_V=0.5 the plane holds far less than 0.9 of the power
+    with pytest.raises(AssertionError, match="temporal cells"):
+        T.assert_motion(_cloud(0.5, seed=11), velocity_yx=(0.5, 1.0))
+
+
+@pytest.mark.parametrize("B_V", [0.05, 0.5])
+def test_velocity_five_percent_off_fails_in_one_line(B_V):
+    video = _cloud(B_V, seed=12)
+    with pytest.raises(AssertionError, match=r"^measured vx=[-0-9.e]+±[0-9.e-]+, vy=[-0-9.e]+±[0-9.e-]+ px/frame "
+                                             r"against expected vx=1.05, vy=0.525 ") as info:
+        T.assert_velocity(video, vx=1.05, vy=0.525)
+    assert "\n" not in str(info.value)
+    with pytest.raises(AssertionError, match="expected vx=0.95, vy=0.5 "):
+        T.assert_velocity(video, vx=0.95, vy=0.5)
+
+
+def test_velocity_in_degrees_per_second_agrees_with_px_per_frame():
+    display = noiselab.Display(32.0, frame_rate=60.0)  # 1 px/frame = 1.875 deg/s
+    video = _cloud(0.5, seed=13)
+    px = T.assert_velocity(video, vx=1.0, vy=0.5)
+    deg = T.assert_velocity(video, vx=display.deg_per_second(1.0), vy=display.deg_per_second(0.5), display=display)
+    assert deg.unit == "deg/s" and "deg/s" in deg.message
+    assert deg.vx == pytest.approx(px.vx * 1.875, rel=1e-12) and deg.vy == pytest.approx(px.vy * 1.875, rel=1e-12)
+    assert deg.se_vx == pytest.approx(px.se_vx * 1.875, rel=1e-12)
+    with pytest.raises(AssertionError, match="deg/s against expected vx=1.96875"):
+        T.assert_velocity(video, vx=1.875 * 1.05, vy=0.9375, display=display)
+    # a given tolerance is in the same unit: 0.2 deg/s accepts the 5 % (0.094 deg/s), 0.04 deg/s does not
+    T.assert_velocity(video, vx=1.875 * 1.05, vy=0.9375, display=display, tol=0.2)
+    with pytest.raises(AssertionError, match="given tol 0.04 deg/s"):
+        T.assert_velocity(video, vx=1.875 * 1.05, vy=0.9375, display=display, tol=0.04)
+
+
+def test_velocity_of_a_translation_is_exact():
+    img = np.random.default_rng(5).standard_normal((48, 48))
+    video = np.stack([np.roll(img, (-2 * t, 3 * t), axis=(0, 1)) for t in range(12)])  # vx=3, vy=-2
+    check = T.assert_velocity(video, vx=3, vy=-2)
+    assert check.vx == pytest.approx(3, abs=1e-9) and check.vy == pytest.approx(-2, abs=1e-9)
+    with pytest.raises(AssertionError, match="expected vx=-3, vy=2"):
+        T.assert_velocity(video, vx=-3, vy=2)  # the wrong sign
+
+
+def test_velocity_of_a_grating_is_undefined_along_its_stripes():
+    profile = np.random.default_rng(4).standard_normal(32)  # random vertical stripes, moving right 1 px/frame
+    grating = np.stack([np.broadcast_to(np.roll(profile, t), (32, 32)) for t in range(16)])
+    with pytest.raises(AssertionError, match="aperture problem"):
+        T.assert_velocity(grating, vx=1.0, vy=0.0)
+
+
 def test_snow_lies_on_its_tent_and_not_on_the_upward_one():
     snow = noiselab.snow((16, 64, 64), rng=1, c=1.0, rescale=False)
     assert T.assert_tent(snow, 1.0, (2, 16), min_energy=0.999999).energy > 0.999999
@@ -240,6 +304,14 @@ def test_power_law_holds_for_drawn_exponents(exponent, seed):
     (lambda: T.assert_isotropic(np.random.default_rng(0).random((4, 32, 32))), "field"),
     (lambda: T.assert_band_limited(np.random.default_rng(0).random((32, 32)), (4, 8), max_leakage=-1), "max_leakage"),
     (lambda: T.assert_motion(np.random.default_rng(0).random((8, 16, 16)), velocity_yx=("x", 1)), "velocity"),
+    (lambda: T.assert_velocity(np.random.default_rng(0).random((8, 16, 16)), vx=float("nan"), vy=0), "vx"),
+    (lambda: T.assert_velocity(np.random.default_rng(0).random((8, 16, 16)), vx=0, vy=float("inf")), "vy"),
+    (lambda: T.assert_velocity(np.random.default_rng(0).random((16, 16)), vx=0, vy=0), "video"),
+    (lambda: T.assert_velocity(np.random.default_rng(0).random((8, 16, 16)), vx=0, vy=0, tol=-0.1), "tol"),
+    (lambda: T.assert_velocity(np.random.default_rng(0).random((8, 16, 16)), vx=0, vy=0, false_alarm=0.9),
+     "false_alarm"),
+    (lambda: T.assert_velocity(np.random.default_rng(0).random((8, 16, 16)), vx=0, vy=0, display=60.0), "display"),
+    (lambda: T.assert_velocity(np.random.default_rng(0).random((3, 16, 16)), vx=0, vy=0), "video"),
     (lambda: T.assert_seamless(np.random.default_rng(0).random((16, 16)), axes=2), "axes"),
     (lambda: T.assert_seamless(np.random.default_rng(0).random((16, 16)), period=5), "period"),
     (lambda: T.assert_seamless(np.random.default_rng(0).random((4, 16))), "axis 0"),
@@ -283,6 +355,10 @@ def test_still_video_does_not_move():
     T.assert_motion(np.repeat(np.random.default_rng(1).standard_normal((1, 32, 32)), 16, axis=0),
                     velocity_yx=(0.0, 1.0))
 
+def test_a_wrong_velocity():
+    img = np.random.default_rng(2).standard_normal((32, 32))
+    T.assert_velocity(np.stack([np.roll(img, t, axis=1) for t in range(16)]), vx=1.2, vy=0.0)
+
 def test_a_seam():
     T.assert_seamless(np.arange(64.0 * 64).reshape(64, 64) % 7.3)
 
@@ -303,10 +379,11 @@ def test_a_failing_assertion_reports_the_callers_line_not_library_source(tmp_pat
                           "--rootdir", str(tmp_path), "-c", os.devnull, str(tmp_path / "test_tiny.py")],
                          capture_output=True, text=True, cwd=tmp_path, env=env, timeout=300)
     out = run.stdout
-    assert "4 failed" in out, out[-3000:]
+    assert "5 failed" in out, out[-3000:]
     reports = out.split("_____ ")[1:]
-    assert len(reports) >= 4, out[-3000:]
-    for name in ("test_white_noise_is_not_pink", "test_still_video_does_not_move", "test_a_seam"):
+    assert len(reports) >= 5, out[-3000:]
+    for name in ("test_white_noise_is_not_pink", "test_still_video_does_not_move", "test_a_seam",
+                 "test_a_wrong_velocity"):
         report = next(r for r in reports if r.lstrip().startswith(name))
         # the test's own lines and the one-line message; no frame of noiselab's source (testing/, _core/)
         assert "noiselab/testing/" not in report and "noiselab/_core/" not in report, report

@@ -486,7 +486,9 @@ WORDS = {
         unit='',
         type='Display',
         default=REQUIRED,
-        keyword_only=False),
+        keyword_only=False,
+        per_function={'noiselab.testing.assert_velocity': (None, True)},
+        note='optional and keyword-only on assert_velocity, where it turns px/frame into deg/s'),
     'distance_cm': Word(
         'Eye to screen, cm, > 0.',
         unit='cm',
@@ -1486,8 +1488,9 @@ WORDS = {
         keyword_only=True),
     'tol': Word(
         ('The accepted deviation, in the unit of what it bounds: temporal-frequency cells off a motion plane or '
-         'tent, a relative difference for detect_period, the measured statistic for the assertions (None: derived '
-         "from the estimator's sampling law)."),
+         'tent (assert_motion, assert_tent), a velocity per component for assert_velocity (px/frame, deg/s with a '
+         '``display``), a relative difference for detect_period, the measured statistic for the assertions (None: '
+         "derived from the estimator's sampling law)."),
         unit='',
         type='float or None',
         default=VARIES,
@@ -1612,6 +1615,20 @@ WORDS = {
         type='array_like',
         default=REQUIRED,
         keyword_only=False),
+    'vx': Word(
+        ('An expected image velocity, x component (+x right): px/frame, or deg/s when a ``display`` is given '
+         '(assert_velocity).'),
+        unit='px/frame (deg/s with display)',
+        type='float',
+        default=REQUIRED,
+        keyword_only=True),
+    'vy': Word(
+        ('An expected image velocity, y component (+y down the rows): px/frame, or deg/s when a ``display`` is '
+         'given (assert_velocity).'),
+        unit='px/frame (deg/s with display)',
+        type='float',
+        default=REQUIRED,
+        keyword_only=True),
     'warp_noise': Word(
         'The displacement field, ``dim_in = dim_out = noise.dim_in`` (a scalar noise for 1-D input).',
         unit='',
@@ -1652,7 +1669,8 @@ WORDS = {
         keyword_only=True,
         per_function={'noiselab.analysis.best_velocity': ('hann', True),
                       'noiselab.analysis.band_speeds': ('hann', True),
-                      'noiselab.analysis.speed_profile': ('hann', True)},
+                      'noiselab.analysis.speed_profile': ('hann', True),
+                      'noiselab.testing.assert_velocity': ('hann', True)},
         note=("the velocity estimators taper time by default (a video's ends rarely match); the lattice's grid "
               "methods use window= for a window of samples until the lattice engine's rework renames it")),
     'window_axes': Word(

@@ -15,7 +15,9 @@ periodogram cells, exponential for a Gaussian field) so that a field truly
 holding the property fails with probability ``false_alarm`` (default 1e-3;
 ``benchmarks/bench_testing.md`` counts the failures over 200 seeds). Where it
 is a deterministic fraction of the spectrum (a band limit, energy on a motion
-plane or tent), the threshold is a stated fraction.
+plane or tent), the threshold is a stated fraction. A velocity
+(``assert_velocity``) is measured with its standard errors and judged in
+velocity units (px/frame, or deg/s through a ``Display``).
 
 ``noiselab.testing.strategies`` holds hypothesis strategies for noise
 parameters (it imports hypothesis, a test extra, so it is not imported here).
@@ -31,6 +33,7 @@ True
 """
 from .motion import MotionCheck, assert_motion, assert_tent
 from .seams import SeamCheck, assert_seamless
+from .velocity import VelocityCheck, assert_velocity
 from .spectra import (
     AxisCheck,
     BandLimitCheck,
@@ -54,6 +57,8 @@ __all__ = [
     "assert_motion",
     "assert_tent",
     "MotionCheck",
+    "assert_velocity",
+    "VelocityCheck",
     "assert_seamless",
     "SeamCheck",
 ]

@@ -67,6 +67,16 @@ def assert_motion(video, *, velocity_yx, min_energy=None, tol=1.0, band=None, wi
     0.9). The message reports the fraction for ``-velocity_yx`` (a sign
     error) and the chance level ``(2 tol + 1) / frames``.
 
+    ``tol`` is a distance in temporal-frequency cells (``1 / frames``
+    cycles/frame each), not a velocity: a cell is a velocity step of
+    ``1 / (frames |w|)`` px/frame at spatial frequency ``|w|`` (cycles/px),
+    so the same ``tol`` accepts a wide range of velocities at low spatial
+    frequencies and few at high ones, and a cloud with a broad speed
+    bandwidth puts less than ``min_energy`` within it at its true velocity
+    (a 128 x 128 x 64 ``motion_cloud`` with ``B_V=0.5``, ``sf_0=0.125``:
+    ``tests/test_testing.py``). To check a velocity in px/frame or deg/s
+    with a standard error, use :func:`assert_velocity`.
+
     Parameters
     ----------
     video : array_like
