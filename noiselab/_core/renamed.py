@@ -65,6 +65,27 @@ def renamed_parameters(**old_to_new):
     return decorate
 
 
+def _fold_extra_positionals(function, n_positional, names, args, kwargs):
+    """Move the positional ``args`` past ``n_positional`` into ``kwargs`` under ``names``, in order.
+
+    Returns the remaining positional args and the names moved. Too many
+    positional arguments, or one also given by keyword, is the ``TypeError``
+    Python itself raises.
+    """
+    if len(args) <= n_positional:
+        return args, ()
+    extra = args[n_positional:]
+    if len(extra) > len(names):
+        raise TypeError(f"{function.__qualname__}() takes {n_positional} positional arguments but "
+                        f"{len(args)} were given")
+    moved = names[:len(extra)]
+    for name, value in zip(moved, extra):
+        if name in kwargs:
+            raise TypeError(f"{function.__qualname__}() got multiple values for argument {name!r}")
+        kwargs[name] = value
+    return args[:n_positional], moved
+
+
 def keyword_only(*names):
     """Decorator: ``names``, now keyword-only, still taken by position for one release with a DeprecationWarning.
 
@@ -93,19 +114,11 @@ def keyword_only(*names):
         @functools.wraps(function)
         def wrapper(*args, **kwargs):
             __tracebackhide__ = HIDE_ASSERTION_FRAMES
-            if len(args) > n_positional:
-                extra = args[n_positional:]
-                if len(extra) > len(names):
-                    raise TypeError(f"{function.__qualname__}() takes {n_positional} positional arguments but "
-                                    f"{len(args)} were given")
-                for name, value in zip(names, extra):
-                    if name in kwargs:
-                        raise TypeError(f"{function.__qualname__}() got multiple values for argument {name!r}")
-                    warnings.warn(f"{function.__qualname__}(): passing {name} by position is deprecated and will "
-                                  f"stop working in noiselab {REMOVED_IN}; pass {name}= as a keyword",
-                                  DeprecationWarning, stacklevel=2)
-                    kwargs[name] = value
-                args = args[:n_positional]
+            args, moved = _fold_extra_positionals(function, n_positional, names, args, kwargs)
+            for name in moved:
+                warnings.warn(f"{function.__qualname__}(): passing {name} by position is deprecated and will "
+                              f"stop working in noiselab {REMOVED_IN}; pass {name}= as a keyword",
+                              DeprecationWarning, stacklevel=2)
             return function(*args, **kwargs)
 
         wrapper.__keyword_only__ = tuple(names)
@@ -162,16 +175,7 @@ def array_order(*pairs, positional=()):
         @functools.wraps(function)
         def wrapper(*args, **kwargs):
             __tracebackhide__ = HIDE_ASSERTION_FRAMES
-            if len(args) > n_positional:
-                extra = args[n_positional:]
-                if len(extra) > len(positional):
-                    raise TypeError(f"{function.__qualname__}() takes {n_positional} positional arguments but "
-                                    f"{len(args)} were given")
-                for old, value in zip(positional, extra):
-                    if old in kwargs:
-                        raise TypeError(f"{function.__qualname__}() got multiple values for argument {old!r}")
-                    kwargs[old] = value
-                args = args[:n_positional]
+            args, _ = _fold_extra_positionals(function, n_positional, positional, args, kwargs)
             for old, new in old_to_new.items():
                 if old in kwargs:
                     if new in kwargs:
