@@ -8,7 +8,6 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "noiselab"
-PENDING = set()   # modules allowed a hand-built temp path: none
 
 
 def _docstrings(tree):
@@ -47,8 +46,6 @@ def test_the_scan_finds_a_guessable_temp_folder():
 _FILES = sorted(str(p.relative_to(PACKAGE)) for p in PACKAGE.rglob("*.py") if "__pycache__" not in p.parts)
 
 
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="replaced with "
-                                                                          "the lattice rewrite"))
-                                  if n in PENDING else n for n in _FILES])
+@pytest.mark.parametrize("name", _FILES)
 def test_no_module_builds_a_temp_path_by_name(name):
     assert guessable_temp_paths((PACKAGE / name).read_text()) == []
