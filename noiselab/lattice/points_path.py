@@ -82,7 +82,7 @@ MAX_PAIR_ENTRIES = 1 << 20
 
 
 # integer-hash values (no Jacobian) in up to this many dimensions take the kernel vectorised across points
-# (:func:`._jit.int_fast_kernel`, the same bits; 2.5-3.3x for 1e6 3-D points, faster from 10 points on,
+# (:func:`._jit.int_fast_kernel`, the same bits; 2.2-2.7x for 1e6 3-D points, 1.17x with a period of its own,
 # benchmarks/bench_lattice_paths.md); 0 turns it off
 INT_FAST_DIM = 3
 
