@@ -96,7 +96,8 @@ def _periodic(noise):
 def _pairs(noise, npts, deriv):
     """Whether the 3-D table-hash value kernel reads folded tables for this call."""
     return (noise.hash == "table" and noise.basis == "value" and noise.dim_in == 3 and not deriv
-            and npts >= PAIRS_MIN and not _periodic(noise) and noise.table_size ** 2 * noise.dim_out <= MAX_PAIR_ENTRIES)
+            and npts >= PAIRS_MIN and not _periodic(noise)
+            and noise.table_size ** 2 * noise.dim_out <= MAX_PAIR_ENTRIES)
 
 
 def kernel_args(noise, freqs, amps, absval, pairs=False):
