@@ -293,14 +293,14 @@ WORDS = {
         keyword_only=True),
     'clip': Word(
         ('Clip instead of refusing: a writer clips floats outside [0, 1] when no range is stated (otherwise a '
-         '``ValueError``); ``to_display`` clips the field at ``clip`` standard deviations of its mean before '
+         '``ValueError``); ``to_display`` and ``luminance_for`` clip the field at ``clip`` standard deviations of its mean before '
          'scaling it to the requested contrast (None: no clipping, a request off the display is refused).'),
         unit='standard deviations (to_display)',
         type='bool (writers) or float > 0 (to_display)',
         default=False,
         keyword_only=True,
-        per_function={'noiselab.stimuli.to_display': (None, True)},
-        note=("to_display's clip is a number of standard deviations (None: none), as a Gaussian field's tails "
+        per_function={'noiselab.stimuli.to_display': (None, True), 'noiselab.stimuli.luminance_for': (None, True)},
+        note=("to_display's and luminance_for's clip is a number of standard deviations (None: none), as a Gaussian field's tails "
               "are what leaves a display; the writers' clip is a yes or no to [0, 1]")),
     'close': Word(
         'Close the figure afterwards (pyplot figures only).',
@@ -1502,6 +1502,12 @@ WORDS = {
         type='float in [0, 1]',
         default=0.3,
         keyword_only=True),
+    'trials': Word(
+        "How many trials of an experiment (each with its own seed, as ``noiselab stimulus --trials``), >= 1.",
+        unit='',
+        type='int',
+        default=REQUIRED,
+        keyword_only=False),
     'unit_speed': Word(
         'Follow the direction only (unit speed).',
         unit='',
