@@ -487,8 +487,10 @@ WORDS = {
         type='Display',
         default=REQUIRED,
         keyword_only=False,
-        per_function={'noiselab.testing.assert_velocity': (None, True)},
-        note='optional and keyword-only on assert_velocity, where it turns px/frame into deg/s'),
+        per_function={'noiselab.testing.assert_velocity': (None, True),
+                      'noiselab.testing.assert_centre_frequency': (None, True)},
+        note=('optional and keyword-only on assert_velocity, where it turns px/frame into deg/s, and on '
+              'assert_centre_frequency, where it turns cycles/pixel into cycles/deg')),
     'distance_cm': Word(
         'Eye to screen, cm, > 0.',
         unit='cm',
@@ -1131,6 +1133,13 @@ WORDS = {
         type='float, 0 < ramp_deg <= diameter_deg / 2',
         default=REQUIRED,
         keyword_only=True),
+    'orientation_deg': Word(
+        ('An orientation in degrees, modulo 180: the direction of the wave vector, x right, y down (0: vertical '
+         "stripes; a positive angle turns them clockwise on the screen, as PsychoPy's ``ori``)."),
+        unit='deg',
+        type='float',
+        default=REQUIRED,
+        keyword_only=True),
     'orientation_hwhm_deg': Word(
         'Orientation bandwidth as papers state it: half width at half height of the amplitude band, degrees.',
         unit='deg',
@@ -1285,7 +1294,8 @@ WORDS = {
         keyword_only=True),
     'sf_0': Word(
         ('Peak spatial frequency, cycles/pixel, in ``(0, 0.5]`` (``display.cycles_per_pixel(cpd)`` from '
-         'cycles/deg).'),
+         'cycles/deg); the expected centre frequency of assert_centre_frequency, cycles/pixel or cycles/deg with '
+         'a ``display``.'),
         unit='cycles/pixel',
         type='float',
         default=REQUIRED,
@@ -1489,7 +1499,8 @@ WORDS = {
     'tol': Word(
         ('The accepted deviation, in the unit of what it bounds: temporal-frequency cells off a motion plane or '
          'tent (assert_motion, assert_tent), a velocity per component for assert_velocity (px/frame, deg/s with a '
-         '``display``), a relative difference for detect_period, the measured statistic for the assertions (None: '
+         '``display``), degrees for assert_orientation, octaves for assert_centre_frequency, a relative difference '
+         'for detect_period, the measured statistic for the other assertions (None: '
          "derived from the estimator's sampling law)."),
         unit='',
         type='float or None',
