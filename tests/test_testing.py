@@ -224,6 +224,20 @@ def test_velocity_in_degrees_per_second_agrees_with_px_per_frame():
         T.assert_velocity(video, vx=1.875 * 1.05, vy=0.9375, display=display, tol=0.04)
 
 
+def test_a_speed_band_cut_at_the_temporal_nyquist_frequency_reads_slow_and_says_so():
+    # a broad band (power to 0.4 cycles/px) at B_V=1: |v.f| + 2 B_V |f| passes 1/2 cycle/frame, where the cloud's
+    # speed band is cut; the fit reads about 5 % slow (benchmarks/bench_velocity_bias.md) and the failure names it
+    video = noiselab.stimuli.motion_cloud((32, 64, 64), sf_0=0.15, B_sf=0.1, V_X=1.0, V_Y=0.5, B_V=1.0, rng=1)
+    with pytest.raises(AssertionError, match=r"% of the power lies within 1/16 cycle/frame of the temporal Nyquist"):
+        T.assert_velocity(video, vx=1.0, vy=0.5)
+    T.assert_velocity(video, vx=1.0, vy=0.5, band=(1.0, 32 / (np.hypot(1.0, 0.5) + 2.0)))   # where the band fits
+    # a narrow band stays below the temporal Nyquist frequency: a miss says nothing of it
+    narrow = _cloud(0.5, seed=12)
+    with pytest.raises(AssertionError) as info:
+        T.assert_velocity(narrow, vx=1.05, vy=0.525)
+    assert "Nyquist" not in str(info.value)
+
+
 def test_velocity_of_a_translation_is_exact():
     img = np.random.default_rng(5).standard_normal((48, 48))
     video = np.stack([np.roll(img, (-2 * t, 3 * t), axis=(0, 1)) for t in range(12)])  # vx=3, vy=-2
