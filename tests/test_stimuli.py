@@ -645,3 +645,37 @@ def test_luminance_for_clips_and_windows_as_to_display():
         luminance_for(x, mean=50.0, contrast=0.25, aperture=np.ones((3, 3)))
     with pytest.raises(ValueError, match="clip"):
         luminance_for(x, mean=50.0, contrast=0.25, clip=0.0)
+
+
+def test_the_guides_running_an_experiment_section_runs(tmp_path, monkeypatch):
+    # docs/guide/stimuli.rst as tests/test_readme.py runs it (its python blocks as one script, then its shell
+    # blocks), here on its own: the trial set, the aperture, the clipping and the PsychoPy array must all work
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from test_readme import rst_blocks
+
+    page = Path(__file__).resolve().parents[1] / "docs" / "guide" / "stimuli.rst"
+    text = page.read_text()
+    section = text[text.index("Running an experiment"):]
+    for needed in ("trial_seeds(", "raised_cosine_aperture(", "clip=3.0", "np.flipud", "visual.ImageStim",
+                   "--trials", "--psychopy"):
+        assert needed in section, needed
+    blocks = rst_blocks(text)
+    monkeypatch.chdir(tmp_path)
+    exec("\n".join(code for _, lang, code in blocks if lang == "python"), {"__name__": "guide"})
+    manifest = __import__("json").loads((tmp_path / "out" / "trials" / "manifest.json").read_text())
+    assert [t["seed"] for t in manifest["trials"]] == noiselab.stimuli.trial_seeds(4, rng=2026)
+    assert all(abs(t["rms_contrast_inside"] - 0.25) < 0.01 and t["clipped_fraction"] > 0 for t in manifest["trials"])
+    shell = [code for _, lang, code in blocks if lang == "bash" and "--trials" in code]
+    assert len(shell) == 1
+    bindir = str(Path(sys.executable).parent)
+    env = dict(os.environ, PATH=bindir + os.pathsep + os.environ.get("PATH", ""),
+               PYTHONPATH=str(Path(noiselab.__file__).parents[1]))
+    subprocess.run(["bash", "-e", "-c", shell[0]], cwd=tmp_path, env=env, check=True, capture_output=True, timeout=600)
+    cli = __import__("json").loads((tmp_path / "out" / "trials" / "pink_manifest.json").read_text())
+    assert len(cli["trials"]) == 20 and [t["seed"] for t in cli["trials"]] == noiselab.stimuli.trial_seeds(20, rng=2026)
+    first = np.load(tmp_path / "out" / "trials" / cli["trials"][0]["psychopy"])
+    assert first.dtype == np.float32 and -1 <= first.min() and first.max() <= 1
