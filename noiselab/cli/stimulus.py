@@ -106,7 +106,9 @@ def add_arguments(p):
     o.add_argument("--psychopy", action="store_true",
                    help="also write OUTPUT_psychopy.npy: float32 luminance in -1..1 (-1 = LMIN, 1 = LMAX, linear in "
                         "cd/m²), the image a PsychoPy window that corrects gamma itself takes (ImageStim, "
-                        "colorSpace rgb); the PNG/video holds display values for a window that does not")
+                        "colorSpace rgb; rows run down as in the PNG, and PsychoPy draws an array's first row at the "
+                        "bottom: pass numpy.flipud of it); the PNG/video holds display values for a window that "
+                        "does not")
     o.add_argument("--lossless", action="store_true", help=".mp4: H.264 in RGB with -qp 0 (lossless)")
 
 
