@@ -1,4 +1,4 @@
-"""Bias of ``noiselab.testing.assert_velocity`` on motion clouds whose speed band reaches the temporal Nyquist frequency.
+"""Bias of ``assert_velocity`` on motion clouds whose speed band reaches the temporal Nyquist frequency.
 
 Run from the repository root (MotionClouds comes with the ``test`` extra)::
 
@@ -70,7 +70,8 @@ def row(name, make, shape, band_name, B_V, cut, seeds):
     rel, z = np.array(rel), np.array(z)
     sem = rel.std(axis=0) / math.sqrt(seeds)
     return [name, "x".join(map(str, shape)), band_name, f"{B_V:g}", "all" if band is None else f"1 .. {band[1]:.3g}",
-            f"{100 * rel[:, 0].mean():+.2f} ± {100 * sem[0]:.2f} %", f"{100 * rel[:, 1].mean():+.2f} ± {100 * sem[1]:.2f} %",
+            f"{100 * rel[:, 0].mean():+.2f} ± {100 * sem[0]:.2f} %",
+            f"{100 * rel[:, 1].mean():+.2f} ± {100 * sem[1]:.2f} %",
             f"{z[:, 0].mean():+.2f}, {z[:, 1].mean():+.2f}", f"{ok}/{seeds}"]
 
 

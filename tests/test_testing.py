@@ -414,8 +414,8 @@ def test_orientation_and_centre_false_alarm_rates(name):
     # upper quantile would mean the standard error is too small (benchmarks/bench_orientation.md: 200 seeds)
     fa = 0.05
     if name == "orientation":
-        make = lambda s: noiselab.stimuli.motion_cloud((64, 64), sf_0=0.125, B_sf=0.05, theta=0.6, B_theta=0.3,  # noqa: E731
-                                                       rng=s)
+        def make(s):
+            return noiselab.stimuli.motion_cloud((64, 64), sf_0=0.125, B_sf=0.05, theta=0.6, B_theta=0.3, rng=s)
         check = lambda x: T.assert_orientation(x, orientation_deg=np.degrees(0.6), false_alarm=fa)  # noqa: E731
     else:
         make = lambda s: noiselab.stimuli.motion_cloud((64, 64), sf_0=0.125, B_sf=0.05, rng=s)  # noqa: E731

@@ -293,15 +293,17 @@ WORDS = {
         keyword_only=True),
     'clip': Word(
         ('Clip instead of refusing: a writer clips floats outside [0, 1] when no range is stated (otherwise a '
-         '``ValueError``); ``to_display`` and ``luminance_for`` clip the field at ``clip`` standard deviations of its mean before '
-         'scaling it to the requested contrast (None: no clipping, a request off the display is refused).'),
-        unit='standard deviations (to_display)',
-        type='bool (writers) or float > 0 (to_display)',
+         '``ValueError``); ``to_display`` and ``luminance_for`` clip the field at ``clip`` standard deviations '
+         'of its mean before scaling it to the requested contrast (None: no clipping, a request off the display '
+         'is refused).'),
+        unit='standard deviations (to_display, luminance_for)',
+        type='bool (writers) or float > 0 (to_display, luminance_for)',
         default=False,
         keyword_only=True,
-        per_function={'noiselab.stimuli.to_display': (None, True), 'noiselab.stimuli.luminance_for': (None, True)},
-        note=("to_display's and luminance_for's clip is a number of standard deviations (None: none), as a Gaussian field's tails "
-              "are what leaves a display; the writers' clip is a yes or no to [0, 1]")),
+        per_function={'noiselab.stimuli.to_display': (None, True),
+                      'noiselab.stimuli.luminance_for': (None, True)},
+        note=("to_display's and luminance_for's clip is a number of standard deviations (None: none), as a "
+              "Gaussian field's tails are what leaves a display; the writers' clip is a yes or no to [0, 1]")),
     'close': Word(
         'Close the figure afterwards (pyplot figures only).',
         unit='',
