@@ -109,7 +109,7 @@ def main():
                          "pass"], rows, align="lllrlrrrr"),
         "",
         ("Reading (the figures of the run recorded here): the narrow band stays below the temporal Nyquist "
-         "frequency and reads within 0.5 % (z mean within 0.22); the broad band reads 1.1 to 1.2 % slow at B_V 0.5 "
+         "frequency and reads within 0.5 % (z mean within 0.22); the broad band reads 0.8 to 1.3 % slow at B_V 0.5 "
          "and 4.4 to 5.2 % slow at B_V 1, for noiselab's clouds and MotionClouds' alike, at 32x64x64 as at "
          "64x128x128, where the larger video's smaller standard errors make it fail at the true velocity (7 and "
          "0 of 30 pass). Within the band where the speed band fits, the bias is within its standard error "
