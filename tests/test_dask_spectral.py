@@ -151,3 +151,26 @@ def test_docstring_examples_run():
     import noiselab.scale.spectral as mod
 
     assert doctest.testmod(mod).failed == 0
+
+
+@pytest.mark.parametrize("hold", [True, False])
+def test_chunked_snow_one_pass_or_two_gives_the_in_memory_bits(client, hold, monkeypatch):
+    # the raw field waits in memory for its extremes when it fits (one FFT pass), else the FFT runs twice:
+    # either way the in-memory video's bits; the graph holds the second pass's slabs only when it needs them
+    from noiselab.scale import spectral as S
+
+    monkeypatch.setattr(S, "_hold_raw", lambda nbytes: hold)
+    shape, kw, chunks = SNOW["odd"]
+    lazy = snow(shape, rng=7, chunks=chunks, **kw)
+    names = {k[0] if isinstance(k, tuple) else k for k in dict(lazy.__dask_graph__())}
+    assert any(n.startswith("snow-b-ty-") for n in names) == (not hold)
+    assert sum(n.startswith("snow-raw-x-") for n in names) == (1 if hold else 0)
+    got = client.compute(lazy).result()
+    assert np.array_equal(got, snow(shape, rng=7, **kw))
+
+
+def test_hold_raw_counts_the_workers_memory(client):
+    from noiselab.scale.spectral import _hold_raw
+
+    total = 2 * LIMIT  # this module's cluster
+    assert _hold_raw(total // 4) and not _hold_raw(total // 4 + 1)

@@ -45,11 +45,17 @@ kept:
 3. transpose to ``(t, y)`` chunks with kx whole: ``irfft`` along x.
 
 The rescale to [0, 1] and ``alpha ** beta`` need the raw field's global
-minimum and maximum: the first pass of steps 2-3 returns only each chunk's
-extremes (a tree-free reduction over tiny arrays), and the second pass, which
-starts only after it (its first tasks depend on the extremes), recomputes
-steps 2-3 and rescales each chunk as it is made. No stage holds more than
-its own chunk; the price is the FFT twice (``benchmarks/bench_dask.md``).
+minimum and maximum. When the raw field fits in a quarter of the memory
+there is (the workers' memory limits on a ``distributed`` cluster, else this
+machine's available memory; :func:`_hold_raw`), steps 2-3 run once: each raw
+chunk's extremes are gathered as it is made, and the rescale is applied to
+the waiting raw chunks once the global extremes are known (the raw field is
+held meanwhile). Otherwise the first pass of steps 2-3 returns only each
+chunk's extremes (a tree-free reduction over tiny arrays), and the second
+pass, which starts only after it (its first tasks depend on the extremes),
+recomputes steps 2-3 and rescales each chunk as it is made: no stage holds
+more than its own chunk, at the price of the FFT twice
+(``benchmarks/bench_dask.md``). Both give the in-memory video's bits.
 ``rescale=False`` is one pass.
 """
 from __future__ import annotations
@@ -59,7 +65,7 @@ import uuid
 import numpy as np
 import scipy.fft
 
-from .._core import as_generator, dispatch, float_dtype, require_dask
+from .._core import as_generator, available_memory, dispatch, float_dtype, require_dask
 from ..snowfall.render import rescale_opacity
 from ..snowfall.tent import assemble, tent_columns, y_pass
 from ..spectral import plan, spectral_noise
@@ -342,6 +348,40 @@ def _reduce_extremes(parts):
     return lo, hi
 
 
+def _chunk_extremes(x):
+    return np.array([[[x.min(), x.max()]]], dtype=x.dtype)
+
+
+def _rescale_raw(x, beta, lohi):
+    """A raw chunk rescaled with the global extremes (into a copy: dask may still hold the raw chunk)."""
+    lo, hi = lohi
+    return rescale_opacity(x.copy(), beta, lo=lo, hi=hi, workers=1)
+
+
+def _hold_raw(nbytes):
+    """Whether a raw field of ``nbytes`` may wait in memory for its global extremes (one FFT pass instead of two).
+
+    Yes when it takes at most a quarter of the memory there is: the sum of the
+    workers' memory limits when a ``distributed`` client is active (a worker
+    without a limit counts as this machine's available memory), else this
+    machine's available memory.
+    """
+    total = None
+    try:
+        from distributed import get_client
+        client = get_client()
+    except (ImportError, ValueError):
+        client = None
+    if client is not None:
+        workers = client.scheduler_info().get("workers", {})
+        limits = [int(w.get("memory_limit") or 0) for w in workers.values()]
+        if limits:
+            total = sum(lim if lim > 0 else available_memory() for lim in limits)
+    if total is None:
+        total = available_memory()
+    return int(nbytes) <= total // 4
+
+
 def _snow_rescale(B, W, dt, beta, lohi):
     x = _last_pass(B, W, dt)
     lo, hi = lohi
@@ -420,6 +460,17 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
         s1 = stage1("raw").rechunk(ty + ((K,),))
         out = s1.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
         return out.rechunk(out_chunks)
+    if _hold_raw(T * H * W * dt.itemsize):
+        # one pass: the raw chunks wait (held by dask) while their extremes are reduced, then each is rescaled
+        raw = stage1("raw").rechunk(ty + ((K,),)).map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt,
+                                                              name=f"snow-raw-x-{tok}")
+        mm = raw.map_blocks(_chunk_extremes, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
+        dsk = _graph(mm)
+        dsk[lohi] = (_reduce_extremes, list(mm.__dask_keys__()))
+        for i, j in itertools.product(range(len(ty[0])), range(len(ty[1]))):
+            dsk[(name, i, j, 0)] = (_rescale_raw, (raw.name, i, j, 0), float(beta), lohi)
+        dsk.update(_graph(raw))
+        return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)
     # pass 1: each chunk's extremes only; pass 2 waits for them, recomputes, rescales chunk by chunk
     a1 = stage1("a").rechunk(ty + ((K,),))
     mm = a1.map_blocks(_snow_extremes, W, dt, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
