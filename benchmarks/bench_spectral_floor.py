@@ -114,7 +114,8 @@ def spectral(workers, rounds, before=None):
         st_before = stages(shape, rounds, before) if before is not None else None
         for w in workers:
             extra = {} if before is None else {
-                "before_cpu": cpu.ratio(("before", w), ("floor", w)), "before_wall": wall.ratio(("before", w), ("floor", w)),
+                "before_cpu": cpu.ratio(("before", w), ("floor", w)),
+                "before_wall": wall.ratio(("before", w), ("floor", w)),
                 "before_fill": st_before["fill"]}
             out.append({**extra, "shape": shape, "workers": w, "floor_wall_ms": 1e3 * wall[("floor", w)],
                         "floor_cpu_ms": 1e3 * cpu[("floor", w)],

@@ -174,3 +174,14 @@ def test_hold_raw_counts_the_workers_memory(client):
 
     total = 2 * LIMIT  # this module's cluster
     assert _hold_raw(total // 4) and not _hold_raw(total // 4 + 1)
+
+
+def test_chunks_no_worker_can_hold_are_a_clear_error_before_any_graph(client):
+    # one x-pass chunk of 64 x 2048 rows of a 2048-wide video: 1 GiB of complex rows in, past a 352 MiB worker
+    with pytest.raises(MemoryError, match=r"snow\(64, 2048, 2048\).* needs at least \d+ MiB per worker .*x-pass"
+                                          r".* 352 MiB"):
+        snow((64, 2048, 2048), rng=0, chunks=(64, 2048, 2048))
+    with pytest.raises(MemoryError, match=r"spectral_noise\(8192, 8192\).* MiB per worker .* memory_limit"):
+        spectral_noise((8192, 8192), rng=0, chunks=(8192, 8192))
+    # chunks a worker can hold build their graph as before
+    assert snow((64, 2048, 2048), rng=0, chunks=(8, 256, 2048)).npartitions == 64

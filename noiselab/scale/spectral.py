@@ -69,6 +69,7 @@ from .._core import as_generator, available_memory, dispatch, float_dtype, requi
 from ..snowfall.render import rescale_opacity
 from ..snowfall.tent import assemble, tent_columns, y_pass
 from ..spectral import plan, spectral_noise
+from .run import _active_client
 
 __all__ = ["chunked_spectral_noise", "chunked_snow"]
 
@@ -296,6 +297,12 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, rng, amplitude, dty
     full_lead = int(np.prod(shape[:-1]))
     ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, full_lead * item))
     kx_blocks = _blocks(p.K, ckx)
+    lead = int(np.prod([max(c) for c in out_chunks[:-1]]))
+    _check_worker_memory([(f"a spectrum slab of {max(slab_rows) * rest} complex cells", max(slab_rows) * rest * item),
+                         (f"a leading-axes slab of {full_lead} x {min(ckx, p.K)} complex cells, in and out",
+                          2 * full_lead * min(ckx, p.K) * item),
+                         (f"an x-pass chunk of {lead} rows, {p.K} complex cells in and {shape[-1]} out",
+                          lead * (p.K * item + shape[-1] * dt.itemsize))], f"spectral_noise{shape} in chunks {chunks}")
     spec = _transpose(spec, tuple((m,) for m in p.bshape[:-1]) + (kx_blocks,), spill, tok, "spectrum")
     s1 = spec.map_blocks(_leading_passes, p.index, shape, chunks=tuple((m,) for m in shape[:-1]) + (kx_blocks,),
                          dtype=p.cdt, name=f"spectral-lead-{tok}")
@@ -367,11 +374,7 @@ def _hold_raw(nbytes):
     machine's available memory.
     """
     total = None
-    try:
-        from distributed import get_client
-        client = get_client()
-    except (ImportError, ValueError):
-        client = None
+    client = _active_client()  # None without importing distributed when nobody did
     if client is not None:
         workers = client.scheduler_info().get("workers", {})
         limits = [int(w.get("memory_limit") or 0) for w in workers.values()]
@@ -380,6 +383,41 @@ def _hold_raw(nbytes):
     if total is None:
         total = available_memory()
     return int(nbytes) <= total // 4
+
+
+def _worker_memory():
+    """The smallest worker memory limit (bytes) under an active ``distributed`` client; None: no client or limit."""
+    client = _active_client()
+    if client is None:
+        return None
+    limits = [int(w.get("memory_limit") or 0) for w in client.scheduler_info().get("workers", {}).values()]
+    limits = [lim for lim in limits if lim > 0]
+    return min(limits) if limits else None
+
+
+def _check_worker_memory(tasks, what):
+    """A clear ``MemoryError`` when the largest task of a chunked transform cannot fit one worker's memory at all.
+
+    ``tasks``: ``(description, bytes)`` of each stage's largest task (its input
+    and output arrays, a lower bound on what the worker holds while it runs).
+    Checked before the graph is built, against the smallest memory limit of
+    the active ``distributed`` cluster's workers; no client (dask's local
+    schedulers) or no limit: nothing to check. A worker given less would be
+    restarted for memory again and again instead.
+
+    Examples
+    --------
+    >>> _check_worker_memory([("an x-pass chunk", 1 << 20)], "snow")  # no cluster here: nothing to check
+    """
+    limit = _worker_memory()
+    if limit is None or not tasks:
+        return
+    desc, need = max(tasks, key=lambda t: t[1])
+    if need > limit:
+        raise MemoryError(f"{what} needs at least {need / 2**20:.0f} MiB per worker ({desc}), more than the "
+                          f"{limit / 2**20:.0f} MiB memory limit of the cluster's smallest worker: pass smaller "
+                          f"chunks= (fewer frames or rows per chunk) or start the workers with memory_limit of at "
+                          f"least {2 * need / 2**20:.0f} MiB")
 
 
 def _snow_rescale(B, W, dt, beta, lohi):
@@ -416,6 +454,11 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
     K = int(cols.kx.max()) + 1
     spec = assemble(cols, as_generator(rng), amplitude, dt)  # the in-memory path's sparse spectrum
     ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, T * H * cdt.itemsize))
+    ct, cy = max(out_chunks[0]), max(out_chunks[1])
+    slab = T * H * min(ckx, K) * cdt.itemsize
+    _check_worker_memory([(f"a t/y slab of {T} x {H} x {min(ckx, K)} complex cells", slab),
+                         (f"an x-pass chunk of {ct} x {cy} rows, {K} complex cells in and {W} out", ct * cy * (
+                             K * cdt.itemsize + 2 * W * dt.itemsize))], f"snow{tuple(shape)} in chunks {chunks}")
     kx_blocks, pieces = _snow_plan(cols, spec, K, ckx)
     tok = uuid.uuid4().hex[:12]
     ty = out_chunks[:2] if spill is None else _regular(out_chunks[:2])

@@ -32,7 +32,7 @@ _C1, _C2, _C3, _C4, _C5 = -0.5, 1.0 / 24, -1.0 / 720, 1.0 / 40320, -1.0 / 362880
 
 
 def _float_bits(x):
-    """The bits of float32 ``x`` as an int32 (a bit cast: plain Python with ``NUMBA_DISABLE_JIT``, one move compiled)."""
+    """The bits of float32 ``x`` as an int32 (a bit cast: numpy with ``NUMBA_DISABLE_JIT``, one move compiled)."""
     return np.float32(x).view(np.int32)
 
 
