@@ -240,8 +240,8 @@ def snow_overhead(shape, chunks, repeats, tmp):
         "in memory": lambda r: None,
         "chunked, rechunk in memory, assembled into one array": lambda r: snow(shape, rng=3, chunks=chunks),
         "chunked, rechunk in memory, chunks": lambda r: snow(shape, rng=3, chunks=chunks),
-        "chunked, rechunk in memory, two FFT passes (raw field not held), chunks": lambda r: _two_pass_snow(
-            shape, chunks),
+        "chunked, rechunk in memory, two FFT passes (as for a field too big to hold), chunks":
+            lambda r: _two_pass_snow(shape, chunks),
         "chunked, transposes spilled to zarr, chunks": lambda r: snow(shape, rng=3, chunks=chunks,
                                                                       spill=tmp / f"spill{r}"),
         "chunked raw (rescale=False), chunks": lambda r: snow(shape, rng=3, chunks=chunks, rescale=False),
