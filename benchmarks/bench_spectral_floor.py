@@ -5,6 +5,7 @@ Run from the repository root::
     python3 benchmarks/bench_spectral_floor.py                       # workers 1 and 2; appends to bench_spectral.md
     python3 benchmarks/bench_spectral_floor.py --workers 1 2 4 8 16  # a bigger machine
     python3 benchmarks/bench_spectral_floor.py --no-write --rounds 5
+    python3 benchmarks/bench_spectral_floor.py --only spectral --before 1accfe0  # that revision's fill beside
 
 Floor: ``scipy.fft.irfftn`` of a ready half spectrum (complex64) to the same
 float32 output, with the same ``workers``. Every (case, worker count,
@@ -15,7 +16,10 @@ other jobs on a shared machine do not inflate. Reported: the median of the
 per-round ratios to the floor in the same round. A third column splits one
 ``spectral_noise`` call (one worker, medians) into the plan (Python
 bookkeeping), the spectrum fill (draws, law, band, row power), the gain
-(Hermitian planes, scaling) and the inverse FFT.
+(Hermitian planes, scaling) and the inverse FFT. ``--before REV`` adds
+``spectral_noise`` with the spectral synthesis and kernels of that git
+revision (``bench_spectral._before_module``) as a third candidate in the same
+rounds, and its fill time in the stage split.
 The snow section appends to ``bench_snow.md``: the same timings for
 ``snow((64, 512, 512))`` and its peak memory (the ``tracemalloc`` peak, and
 the peak RSS growth in a fresh subprocess, against the float32 output).
@@ -57,10 +61,14 @@ def _both_clocks(cands, rounds):
     return wall, cpu
 
 
-def stages(shape, rounds):
-    """Medians (ms, one worker) of one ``spectral_noise`` call's stages: plan, fill, gain + scaling, FFT."""
+def stages(shape, rounds, SY=None):
+    """Medians (ms, one worker) of one ``spectral_noise`` call's stages: plan, fill, gain + scaling, FFT.
+
+    ``SY``: the synthesis module to split (default: the current one).
+    """
     import noiselab.spectral.plan as PL
-    import noiselab.spectral.synthesis as SY
+    if SY is None:
+        import noiselab.spectral.synthesis as SY
 
     orig = (SY.noise_plan, SY.map_blocks, SY.hermitian_gain, SY._pruned_irfftn)
 
@@ -87,8 +95,10 @@ def stages(shape, rounds):
     return {k: 1e3 * t[k] for k in ("plan", "fill", "gain", "fft", "call")}
 
 
-def spectral(workers, rounds):
+def spectral(workers, rounds, before=None):
     spectral_noise((8, 8), rng=0)
+    if before is not None:
+        before.spectral_noise((8, 8), rng=0)
     out = []
     for shape in SPECTRAL:
         S = _half(shape)
@@ -96,10 +106,18 @@ def spectral(workers, rounds):
         for w in workers:
             cands[("floor", w)] = lambda r, w=w, S=S, shape=shape: scipy.fft.irfftn(S, s=shape, workers=w)
             cands[("spectral_noise", w)] = lambda r, w=w, shape=shape: spectral_noise(shape, rng=max(r, 0), workers=w)
+            if before is not None:
+                cands[("before", w)] = lambda r, w=w, shape=shape: before.spectral_noise(shape, rng=max(r, 0),
+                                                                                          workers=w)
         wall, cpu = _both_clocks(cands, rounds)
         st = stages(shape, rounds)
+        st_before = stages(shape, rounds, before) if before is not None else None
         for w in workers:
-            out.append({"shape": shape, "workers": w, "floor_wall_ms": 1e3 * wall[("floor", w)],
+            extra = {} if before is None else {
+                "before_cpu": cpu.ratio(("before", w), ("floor", w)),
+                "before_wall": wall.ratio(("before", w), ("floor", w)),
+                "before_fill": st_before["fill"]}
+            out.append({**extra, "shape": shape, "workers": w, "floor_wall_ms": 1e3 * wall[("floor", w)],
                         "floor_cpu_ms": 1e3 * cpu[("floor", w)],
                         "wall": wall.ratio(("spectral_noise", w), ("floor", w)),
                         "cpu": cpu.ratio(("spectral_noise", w), ("floor", w)),
@@ -158,15 +176,22 @@ def main(argv=None):
     ap.add_argument("--rounds", type=int, default=7)
     ap.add_argument("--no-write", action="store_true")
     ap.add_argument("--only", choices=["spectral", "snow"], default=None)
+    ap.add_argument("--before", default=None, help="git revision whose spectral synthesis and kernels to time beside")
     a = ap.parse_args(argv)
     if a.rounds < 5:
         ap.error("--rounds must be at least 5")
     cmd = "python3 benchmarks/bench_spectral_floor.py" + (
         f" --workers {' '.join(map(str, a.workers))}" if a.workers != [1, 2] else "") + (
-        f" --rounds {a.rounds}" if a.rounds != 7 else "") + (f" --only {a.only}" if a.only else "")
+        f" --rounds {a.rounds}" if a.rounds != 7 else "") + (f" --only {a.only}" if a.only else "") + (
+        f" --before {a.before}" if a.before else "")
     if a.only != "snow":
         load0 = load_average()
-        rows = spectral(a.workers, a.rounds)
+        before = None
+        if a.before:
+            sys.path.insert(0, str(ROOT / "benchmarks"))
+            from bench_spectral import _before_module
+            before = _before_module(a.before)
+        rows = spectral(a.workers, a.rounds, before)
         lines = _section(
             "## At the floor, CPU time and wall time (`bench_spectral_floor.py`)", cmd, load0,
             f"float32, full band, `exponent=1`; ratio = median over {a.rounds} interleaved rounds of "
@@ -174,13 +199,16 @@ def main(argv=None):
             "to the same output, same `workers`); CPU = `time.process_time` (all threads of the process), "
             "which the other jobs on a shared machine do not inflate; cores = CPU / wall of the call.",
             "| shape | workers | floor wall / CPU ms | **ratio, CPU** | ratio, wall | cores used: floor, "
-            "spectral_noise | 1-worker call, ms CPU: plan / fill / gain+scale / FFT (call) |")
+            "spectral_noise | 1-worker call, ms CPU: plan / fill / gain+scale / FFT (call) |"
+            + (f" `{a.before}`: ratio CPU, wall; 1-worker fill ms CPU |" if before is not None else ""))
         for r in rows:
             st = r["stages"]
             lines.append(f"| {'x'.join(map(str, r['shape']))} | {r['workers']} | {r['floor_wall_ms']:.1f} / "
                          f"{r['floor_cpu_ms']:.1f} | **{r['cpu']:.2f}** | {r['wall']:.2f} | {r['cores_floor']:.2f}, "
                          f"{r['cores_sn']:.2f} | {st['plan']:.2f} / {st['fill']:.2f} / {st['gain']:.2f} / "
-                         f"{st['fft']:.2f} ({st['call']:.2f}) |")
+                         f"{st['fft']:.2f} ({st['call']:.2f}) |"
+                         + (f" {r['before_cpu']:.2f}, {r['before_wall']:.2f}; {r['before_fill']:.2f} |"
+                            if before is not None else ""))
         _append("bench_spectral.md", lines, not a.no_write)
     if a.only != "spectral":
         load0 = load_average()

@@ -93,8 +93,9 @@ def coefficient_parts(key, n, amplitude):
 
     ``noiselab.spectral.synthesis`` stores the parts in float32, computed by
     polynomials whose truncation error is below 1e-9 (``spectral/_kernels.py``
-    docstrings): ``-log u`` by an exact range reduction ``2h + 1 = 2**e m``
-    (``m`` the 24 leading bits, in ``[sqrt(1/2), sqrt(2))``) and
+    docstrings): ``u = (h + 1/2) / 2**32`` rounded to float32, ``-log u`` by an
+    exact range reduction ``u = 2**e m`` (float32's exponent and mantissa,
+    ``m`` moved into ``[sqrt(1/2), sqrt(2))``) and
     ``log m = 2 atanh((m - 1)/(m + 1))`` to the ninth power; the phase's
     three top bits pick an octant, the other 29 an angle ``y`` in
     ``[0, pi/4]`` whose sine (to ``y**9``) and cosine (to ``y**10``) are
@@ -103,20 +104,22 @@ def coefficient_parts(key, n, amplitude):
     against the exact math of :func:`coefficient_parts_exact`.
     """
     f = np.float32
-    w, low = _split_word(splitmix64(key, np.arange(n)))
+    z = splitmix64(key, np.arange(n))
+    h = (z >> np.uint64(32)).astype(np.uint32)
+    low = (z & np.uint64(0xFFFFFFFF)).astype(np.int64)
+    u = h.astype(f) * f(2.0 ** -32) + f(2.0 ** -33)  # (h + 1/2) / 2**32 rounded to float32
     if amplitude == "rayleigh":
-        e = np.array([int(v).bit_length() - 1 for v in w], dtype=np.int64)  # w = 2**e * (1.m...)
-        mant = np.array([(int(v) << (52 - int(k))) >> 29 & 0xFFFFFF for v, k in zip(w, e)], dtype=np.int64)
-        m = mant.astype(f) * f(2.0 ** -23)  # [1, 2): the 24 leading bits of w
+        b = u.view(np.int32)
+        e = (b >> 23) - 127  # u = 2**e * m, m in [1, 2): float32's own exponent and mantissa
+        m = ((b & 0x7FFFFF) | 0x3F800000).astype(np.int32).view(f)
         big = m > f(np.sqrt(2.0))
         m = np.where(big, m * f(0.5), m)
         ef = np.where(big, e + 1, e).astype(f)
         t = (m - f(1)) / (m + f(1))
         t2 = t * t
         logm = f(2) * t * (f(1) + t2 * (f(1 / 3) + t2 * (f(1 / 5) + t2 * (f(1 / 7) + t2 * f(1 / 9)))))
-        a2 = (f(33) - ef) * f(np.log(2.0)) - logm  # -log(w / 2**33)
+        a2 = -(ef * f(np.log(2.0)) + logm)  # -log(2**e m)
     elif amplitude == "uniform":
-        u = (w.astype(np.float64) * 2.0 ** -33).astype(f)
         a2 = f(3) * u * u
     else:
         a2 = np.ones(n, f)

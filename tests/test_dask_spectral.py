@@ -151,3 +151,37 @@ def test_docstring_examples_run():
     import noiselab.scale.spectral as mod
 
     assert doctest.testmod(mod).failed == 0
+
+
+@pytest.mark.parametrize("hold", [True, False])
+def test_chunked_snow_one_pass_or_two_gives_the_in_memory_bits(client, hold, monkeypatch):
+    # the raw field waits in memory for its extremes when it fits (one FFT pass), else the FFT runs twice:
+    # either way the in-memory video's bits; the graph holds the second pass's slabs only when it needs them
+    from noiselab.scale import spectral as S
+
+    monkeypatch.setattr(S, "_hold_raw", lambda nbytes: hold)
+    shape, kw, chunks = SNOW["odd"]
+    lazy = snow(shape, rng=7, chunks=chunks, **kw)
+    names = {k[0] if isinstance(k, tuple) else k for k in dict(lazy.__dask_graph__())}
+    assert any(n.startswith("snow-b-ty-") for n in names) == (not hold)
+    assert sum(n.startswith("snow-raw-x-") for n in names) == (1 if hold else 0)
+    got = client.compute(lazy).result()
+    assert np.array_equal(got, snow(shape, rng=7, **kw))
+
+
+def test_hold_raw_counts_the_workers_memory(client):
+    from noiselab.scale.spectral import _hold_raw
+
+    total = 2 * LIMIT  # this module's cluster
+    assert _hold_raw(total // 4) and not _hold_raw(total // 4 + 1)
+
+
+def test_chunks_no_worker_can_hold_are_a_clear_error_before_any_graph(client):
+    # one x-pass chunk of 64 x 2048 rows of a 2048-wide video: 1 GiB of complex rows in, past a 352 MiB worker
+    with pytest.raises(MemoryError, match=r"snow\(64, 2048, 2048\).* needs at least \d+ MiB per worker .*x-pass"
+                                          r".* 352 MiB"):
+        snow((64, 2048, 2048), rng=0, chunks=(64, 2048, 2048))
+    with pytest.raises(MemoryError, match=r"spectral_noise\(8192, 8192\).* MiB per worker .* memory_limit"):
+        spectral_noise((8192, 8192), rng=0, chunks=(8192, 8192))
+    # chunks a worker can hold build their graph as before
+    assert snow((64, 2048, 2048), rng=0, chunks=(8, 256, 2048)).npartitions == 64

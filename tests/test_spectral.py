@@ -525,3 +525,35 @@ def test_the_plan_fills_the_same_block_slab_by_slab():
         for k, j in enumerate(j for j in plan.self_conjugate_columns(p.n) if j < p.K):
             slabs[..., j] = planes[k]
         np.testing.assert_array_equal(slabs * g, block)
+
+
+_NOJIT_CASES = """
+import numpy as np
+from noiselab.spectral import spectral_noise, synthesize
+from noiselab.spectral.envelopes import annulus
+env = lambda wy, wx: annulus(wy, wx, band_cycles_per_sample=(0.05, 0.3))
+out = [spectral_noise((16, 18), rng=1), spectral_noise((6, 8, 6), band=(1, 3), rng=2, exponent=1.5,
+                                                        amplitude_distribution="uniform"),
+       spectral_noise((20,), rng=3, exponent=0.7, normalize="sample", dtype=np.float64),
+       spectral_noise((9, 10), rng=4, exponent=2.0, amplitude_distribution="fixed"),
+       synthesize((12, 10), env, rng=5, amplitude_distribution="rayleigh")]
+"""
+
+
+def test_spectral_kernels_give_the_same_bits_without_the_jit(tmp_path):
+    # NUMBA_DISABLE_JIT=1 runs the kernels' Python source (the bit casts of the draw through numpy views):
+    # the same bits as the compiled kernels, for every amplitude law and fill variant used here
+    import os
+    import subprocess
+    import sys
+
+    script = _NOJIT_CASES + "np.save(__import__('sys').argv[1], np.concatenate([o.ravel().astype(np.float64) " \
+                            "for o in out]))\n"
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    path = tmp_path / "nojit.npy"
+    subprocess.run([sys.executable, "-W", "ignore", "-c", script, str(path)], env=env, check=True, timeout=300)
+    ns = {}
+    exec(_NOJIT_CASES, ns)
+    want = np.concatenate([o.ravel().astype(np.float64) for o in ns["out"]])
+    got = np.load(path)
+    assert got.shape == want.shape and got.tobytes() == want.tobytes()

@@ -45,11 +45,17 @@ kept:
 3. transpose to ``(t, y)`` chunks with kx whole: ``irfft`` along x.
 
 The rescale to [0, 1] and ``alpha ** beta`` need the raw field's global
-minimum and maximum: the first pass of steps 2-3 returns only each chunk's
-extremes (a tree-free reduction over tiny arrays), and the second pass, which
-starts only after it (its first tasks depend on the extremes), recomputes
-steps 2-3 and rescales each chunk as it is made. No stage holds more than
-its own chunk; the price is the FFT twice (``benchmarks/bench_dask.md``).
+minimum and maximum. When the raw field fits in a quarter of the memory
+there is (the workers' memory limits on a ``distributed`` cluster, else this
+machine's available memory; :func:`_hold_raw`), steps 2-3 run once: each raw
+chunk's extremes are gathered as it is made, and the rescale is applied to
+the waiting raw chunks once the global extremes are known (the raw field is
+held meanwhile). Otherwise the first pass of steps 2-3 returns only each
+chunk's extremes (a tree-free reduction over tiny arrays), and the second
+pass, which starts only after it (its first tasks depend on the extremes),
+recomputes steps 2-3 and rescales each chunk as it is made: no stage holds
+more than its own chunk, at the price of the FFT twice
+(``benchmarks/bench_dask.md``). Both give the in-memory video's bits.
 ``rescale=False`` is one pass.
 """
 from __future__ import annotations
@@ -59,10 +65,11 @@ import uuid
 import numpy as np
 import scipy.fft
 
-from .._core import as_generator, dispatch, float_dtype, require_dask
+from .._core import as_generator, available_memory, dispatch, float_dtype, require_dask
 from ..snowfall.render import rescale_opacity
 from ..snowfall.tent import assemble, tent_columns, y_pass
 from ..spectral import plan, spectral_noise
+from .run import _active_client
 
 __all__ = ["chunked_spectral_noise", "chunked_snow"]
 
@@ -290,6 +297,12 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, rng, amplitude, dty
     full_lead = int(np.prod(shape[:-1]))
     ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, full_lead * item))
     kx_blocks = _blocks(p.K, ckx)
+    lead = int(np.prod([max(c) for c in out_chunks[:-1]]))
+    _check_worker_memory([(f"a spectrum slab of {max(slab_rows) * rest} complex cells", max(slab_rows) * rest * item),
+                         (f"a leading-axes slab of {full_lead} x {min(ckx, p.K)} complex cells, in and out",
+                          2 * full_lead * min(ckx, p.K) * item),
+                         (f"an x-pass chunk of {lead} rows, {p.K} complex cells in and {shape[-1]} out",
+                          lead * (p.K * item + shape[-1] * dt.itemsize))], f"spectral_noise{shape} in chunks {chunks}")
     spec = _transpose(spec, tuple((m,) for m in p.bshape[:-1]) + (kx_blocks,), spill, tok, "spectrum")
     s1 = spec.map_blocks(_leading_passes, p.index, shape, chunks=tuple((m,) for m in shape[:-1]) + (kx_blocks,),
                          dtype=p.cdt, name=f"spectral-lead-{tok}")
@@ -342,6 +355,71 @@ def _reduce_extremes(parts):
     return lo, hi
 
 
+def _chunk_extremes(x):
+    return np.array([[[x.min(), x.max()]]], dtype=x.dtype)
+
+
+def _rescale_raw(x, beta, lohi):
+    """A raw chunk rescaled with the global extremes (into a copy: dask may still hold the raw chunk)."""
+    lo, hi = lohi
+    return rescale_opacity(x.copy(), beta, lo=lo, hi=hi, workers=1)
+
+
+def _hold_raw(nbytes):
+    """Whether a raw field of ``nbytes`` may wait in memory for its global extremes (one FFT pass instead of two).
+
+    Yes when it takes at most a quarter of the memory there is: the sum of the
+    workers' memory limits when a ``distributed`` client is active (a worker
+    without a limit counts as this machine's available memory), else this
+    machine's available memory.
+    """
+    total = None
+    client = _active_client()  # None without importing distributed when nobody did
+    if client is not None:
+        workers = client.scheduler_info().get("workers", {})
+        limits = [int(w.get("memory_limit") or 0) for w in workers.values()]
+        if limits:
+            total = sum(lim if lim > 0 else available_memory() for lim in limits)
+    if total is None:
+        total = available_memory()
+    return int(nbytes) <= total // 4
+
+
+def _worker_memory():
+    """The smallest worker memory limit (bytes) under an active ``distributed`` client; None: no client or limit."""
+    client = _active_client()
+    if client is None:
+        return None
+    limits = [int(w.get("memory_limit") or 0) for w in client.scheduler_info().get("workers", {}).values()]
+    limits = [lim for lim in limits if lim > 0]
+    return min(limits) if limits else None
+
+
+def _check_worker_memory(tasks, what):
+    """A clear ``MemoryError`` when the largest task of a chunked transform cannot fit one worker's memory at all.
+
+    ``tasks``: ``(description, bytes)`` of each stage's largest task (its input
+    and output arrays, a lower bound on what the worker holds while it runs).
+    Checked before the graph is built, against the smallest memory limit of
+    the active ``distributed`` cluster's workers; no client (dask's local
+    schedulers) or no limit: nothing to check. A worker given less would be
+    restarted for memory again and again instead.
+
+    Examples
+    --------
+    >>> _check_worker_memory([("an x-pass chunk", 1 << 20)], "snow")  # no cluster here: nothing to check
+    """
+    limit = _worker_memory()
+    if limit is None or not tasks:
+        return
+    desc, need = max(tasks, key=lambda t: t[1])
+    if need > limit:
+        raise MemoryError(f"{what} needs at least {need / 2**20:.0f} MiB per worker ({desc}), more than the "
+                          f"{limit / 2**20:.0f} MiB memory limit of the cluster's smallest worker: pass smaller "
+                          f"chunks= (fewer frames or rows per chunk) or start the workers with memory_limit of at "
+                          f"least {2 * need / 2**20:.0f} MiB")
+
+
 def _snow_rescale(B, W, dt, beta, lohi):
     x = _last_pass(B, W, dt)
     lo, hi = lohi
@@ -376,6 +454,11 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
     K = int(cols.kx.max()) + 1
     spec = assemble(cols, as_generator(rng), amplitude, dt)  # the in-memory path's sparse spectrum
     ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, T * H * cdt.itemsize))
+    ct, cy = max(out_chunks[0]), max(out_chunks[1])
+    slab = T * H * min(ckx, K) * cdt.itemsize
+    _check_worker_memory([(f"a t/y slab of {T} x {H} x {min(ckx, K)} complex cells", slab),
+                         (f"an x-pass chunk of {ct} x {cy} rows, {K} complex cells in and {W} out", ct * cy * (
+                             K * cdt.itemsize + 2 * W * dt.itemsize))], f"snow{tuple(shape)} in chunks {chunks}")
     kx_blocks, pieces = _snow_plan(cols, spec, K, ckx)
     tok = uuid.uuid4().hex[:12]
     ty = out_chunks[:2] if spill is None else _regular(out_chunks[:2])
@@ -420,6 +503,17 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
         s1 = stage1("raw").rechunk(ty + ((K,),))
         out = s1.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
         return out.rechunk(out_chunks)
+    if _hold_raw(T * H * W * dt.itemsize):
+        # one pass: the raw chunks wait (held by dask) while their extremes are reduced, then each is rescaled
+        raw = stage1("raw").rechunk(ty + ((K,),)).map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt,
+                                                              name=f"snow-raw-x-{tok}")
+        mm = raw.map_blocks(_chunk_extremes, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
+        dsk = _graph(mm)
+        dsk[lohi] = (_reduce_extremes, list(mm.__dask_keys__()))
+        for i, j in itertools.product(range(len(ty[0])), range(len(ty[1]))):
+            dsk[(name, i, j, 0)] = (_rescale_raw, (raw.name, i, j, 0), float(beta), lohi)
+        dsk.update(_graph(raw))
+        return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)
     # pass 1: each chunk's extremes only; pass 2 waits for them, recomputes, rescales chunk by chunk
     a1 = stage1("a").rechunk(ty + ((K,),))
     mm = a1.map_blocks(_snow_extremes, W, dt, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")

@@ -7,12 +7,18 @@ coefficients in C order to the cells that carry energy, exactly as a
 
 Each coefficient arrives as its squared random amplitude ``a2`` and the
 cosine and sine of its random phase (float32, see ``synthesis._draws``).
+A coefficient is one 64-bit word of a counter-based SplitMix64 stream, split
+into two 32-bit halves: the high half gives the amplitude, the low half the
+phase. Past the hash everything is 32-bit (16 float32 lanes of AVX-512), and
+the power-law fill hashes a row's words in one loop and draws from them in a
+second, so each loop vectorises at its own width.
 """
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
-from numba.cpython.unsafe.numbers import leading_zeros
+from numba.core.extending import overload
+from numba.cpython.unsafe.numbers import viewer
 
 _TWO_PI = 2.0 * np.pi
 
@@ -23,6 +29,32 @@ _M2 = np.uint64(0x94D049BB133111EB)
 # Taylor coefficients of sin and cos on [0, pi/4] (truncation error < 1e-9, below float32's resolution)
 _S1, _S2, _S3, _S4 = -1.0 / 6, 1.0 / 120, -1.0 / 5040, 1.0 / 362880
 _C1, _C2, _C3, _C4, _C5 = -0.5, 1.0 / 24, -1.0 / 720, 1.0 / 40320, -1.0 / 3628800
+
+
+def _float_bits(x):
+    """The bits of float32 ``x`` as an int32 (a bit cast: numpy with ``NUMBA_DISABLE_JIT``, one move compiled)."""
+    return np.float32(x).view(np.int32)
+
+
+def _bits_float(b):
+    """The float32 whose bits are the int32 ``b`` (the inverse bit cast)."""
+    return np.int32(b).view(np.float32)
+
+
+@overload(_float_bits, inline="always")
+def _float_bits_jit(x):
+    return lambda x: viewer(x, np.int32)
+
+
+@overload(_bits_float, inline="always")
+def _bits_float_jit(b):
+    return lambda b: viewer(b, np.float32)
+
+
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _halves(z):
+    """The high and low 32 bits of word ``z`` as uint32: the amplitude's and the phase's bits."""
+    return np.uint32(z >> np.uint64(32)), np.uint32(z & np.uint64(0xFFFFFFFF))
 
 
 @njit(cache=True, nogil=True, error_model="numpy", inline="always")
@@ -39,25 +71,25 @@ _SQRT2 = np.sqrt(2.0)
 
 
 @njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _amplitude2(z, mode):
-    """float32 ``a**2`` from the high 32 bits ``h`` of word ``z``: ``u = (2h + 1) / 2**33`` in ``(0, 1)``.
+def _amplitude2(h, mode):
+    """float32 ``a**2`` from the high half ``h`` (uint32) of a word: ``u = (h + 1/2) / 2**32`` rounded to float32.
 
-    "rayleigh" (mode 1): ``-log u``; "uniform" (0): ``3 u**2``; "fixed" (2): 1.
-    The log is a polynomial after an exact range reduction: ``2h + 1 = 2**e * m``
-    with ``m`` (24 bits) in ``[sqrt(1/2), sqrt(2))`` and
-    ``log m = 2 atanh((m-1)/(m+1))`` to the ninth power (error below 1e-9).
-    The error is float32 rounding and the 24 leading bits of ``u`` the log
-    sees: at most ``2**-23 * max(1, a**2)`` absolute (``2 * 2**-23 * max(1, a**2)``
-    for "uniform", which rounds ``3 u**2`` several times), which is ~1e-7
-    relative for ``a**2 >= 1`` but up to 4e-3 relative for the rare small
-    ``a**2`` (1.4e-5 came out 1.43e-5 in 200,000 draws; ``a`` itself is then
-    off by 7.7e-6): ``tests/test_naive.py`` checks these bounds against the
-    exact float64 law.
+    ``u`` is in ``(0, 1]`` (the 128 largest ``h`` round to 1, where ``a**2``
+    is 0 instead of about 1e-10); its float32 rounding keeps 24 significant
+    bits at every scale, so the smallest ``u`` is ``2**-33`` as the exact
+    ``(2h + 1) / 2**33`` has it. "rayleigh" (mode 1): ``-log u``; "uniform"
+    (0): ``3 u**2``; "fixed" (2): 1. The log reads ``u``'s exponent ``e`` and
+    mantissa ``m`` from its bits (``u = 2**e m``, ``m`` moved into
+    ``[sqrt(1/2), sqrt(2))``) and takes ``log m = 2 atanh((m-1)/(m+1))`` to
+    the ninth power (error below 1e-9). The error is float32 rounding: at most
+    ``2**-22 * max(1, a**2)`` absolute against the exact law of the unrounded
+    ``u`` (``tests/test_naive.py`` checks it).
     """
-    w = np.int64(((z >> np.uint64(32)) << np.uint64(1)) | np.uint64(1))  # 2h + 1, odd, in [1, 2**33)
+    u = np.float32(h) * np.float32(2.0 ** -32) + np.float32(2.0 ** -33)
     if mode == 1:
-        e = 63 - leading_zeros(w)
-        m = np.float32(((w << (52 - e)) >> 29) & 0xFFFFFF) * np.float32(2.0 ** -23)  # [1, 2)
+        b = _float_bits(u)
+        e = (b >> np.int32(23)) - np.int32(127)
+        m = _bits_float(np.int32((b & np.int32(0x7FFFFF)) | np.int32(0x3F800000)))  # [1, 2)
         big = m > np.float32(_SQRT2)
         m = m * np.float32(0.5) if big else m
         ef = np.float32(e + 1) if big else np.float32(e)
@@ -65,25 +97,26 @@ def _amplitude2(z, mode):
         t2 = t * t
         logm = np.float32(2.0) * t * (np.float32(1.0) + t2 * (np.float32(1.0 / 3) + t2 * (
             np.float32(1.0 / 5) + t2 * (np.float32(1.0 / 7) + t2 * np.float32(1.0 / 9)))))
-        return (np.float32(33.0) - ef) * np.float32(_LN2) - logm  # -log(w / 2**33)
+        return -(ef * np.float32(_LN2) + logm)  # -log(2**e m)
     if mode == 0:
-        u = np.float32(np.float64(w) * 2.0 ** -33)
         return np.float32(3.0) * u * u
     return np.float32(1.0)
 
 
 @njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _phase(z):
-    """float32 ``(cos th, sin th)`` for the phase ``th = 2*pi * l / 2**32`` of the low 32 bits ``l`` of word ``z``.
+def _phase(lo):
+    """float32 ``(cos th, sin th)`` for the phase ``th = 2*pi * l / 2**32`` of the low half ``l`` (uint32) of a word.
 
     Three bits pick the octant, 29 the angle inside it, reduced to ``y`` in
     ``[0, pi/4]`` whose sine and cosine are Taylor polynomials (error below
     1e-9); plain selects, so loops vectorise (16 float32 lanes) and call no libm.
+    ``cos th**2 + sin th**2`` is 1 to float32 rounding (``2**-22``), so the
+    power-law fill uses ``(c, s)`` as the unit phasor without dividing by its
+    norm (:func:`fill_envelope` still divides, in float64).
     """
-    lo = np.int64(z & np.uint64(0xFFFFFFFF))
-    octant = lo >> 29
-    x = np.float32(lo & 0x1FFFFFFF) * np.float32((np.pi / 4) * 2.0 ** -29)
-    odd = (octant & 1) == 1
+    octant = lo >> np.uint32(29)
+    x = np.float32(np.int32(lo & np.uint32(0x1FFFFFFF))) * np.float32((np.pi / 4) * 2.0 ** -29)
+    odd = (octant & np.uint32(1)) == np.uint32(1)
     y = np.float32(np.pi / 4) - x if odd else x
     y2 = y * y
     sn = y * (np.float32(1.0) + y2 * (np.float32(_S1) + y2 * (np.float32(_S2) + y2 * (
@@ -93,12 +126,12 @@ def _phase(z):
     # inside the quadrant: angle x (even octant) or pi/2 - y (odd octant)
     cq = sn if odd else cs
     sq = cs if odd else sn
-    q = octant >> 1  # th = q*pi/2 + (angle inside the quadrant)
-    swap = (q & 1) == 1
+    q = octant >> np.uint32(1)  # th = q*pi/2 + (angle inside the quadrant)
+    swap = (q & np.uint32(1)) == np.uint32(1)
     c2 = sq if swap else cq
     s2 = cq if swap else sq
-    c2 = -c2 if (q == 1 or q == 2) else c2
-    s2 = -s2 if q >= 2 else s2
+    c2 = -c2 if (q == np.uint32(1) or q == np.uint32(2)) else c2
+    s2 = -s2 if q >= np.uint32(2) else s2
     return c2, s2
 
 
@@ -107,28 +140,29 @@ def coefficient_parts(key, start, mode, a2, c, s):
     """Coefficients ``start .. start+n-1`` of the stream ``key`` into float32 ``a2, c, s``.
 
     Coefficient ``i`` is word ``i`` of :func:`splitmix64`: ``a2 = a**2``
-    (:func:`_amplitude2`) and the cosine and sine of its phase (:func:`_phase`).
+    (:func:`_amplitude2` of its high half) and the cosine and sine of its
+    phase (:func:`_phase` of its low half).
     """
     n = a2.size
     if mode == 1:
         for i in range(n):
-            z = splitmix64(key, start + i)
-            a2[i] = _amplitude2(z, 1)
-            x, y = _phase(z)
+            h, lo = _halves(splitmix64(key, start + i))
+            a2[i] = _amplitude2(h, 1)
+            x, y = _phase(lo)
             c[i] = x
             s[i] = y
     elif mode == 0:
         for i in range(n):
-            z = splitmix64(key, start + i)
-            a2[i] = _amplitude2(z, 0)
-            x, y = _phase(z)
+            h, lo = _halves(splitmix64(key, start + i))
+            a2[i] = _amplitude2(h, 0)
+            x, y = _phase(lo)
             c[i] = x
             s[i] = y
     else:
         for i in range(n):
-            z = splitmix64(key, start + i)
+            _, lo = _halves(splitmix64(key, start + i))
             a2[i] = np.float32(1.0)
-            x, y = _phase(z)
+            x, y = _phase(lo)
             c[i] = x
             s[i] = y
 
@@ -181,7 +215,8 @@ def fill_envelope(spec2, env2, counts, r0, r1, a2, c, s):
             if e > 0:
                 cj = np.float64(c[j])
                 sj = np.float64(s[j])
-                # |exp(i*th)| = 1 to float64 precision, not just float32's
+                # |exp(i*th)| = 1 to float64 precision, not just float32's (the general path keeps it: a fixed
+                # amplitude is then exactly 1 in float64; spectral_noise's fill uses (c, s) as they are)
                 m = e * np.sqrt(np.float64(a2[j]) / (cj * cj + sj * sj))
                 spec2[r, k] = complex(m * cj, m * sj)
                 j += 1
@@ -226,7 +261,7 @@ def band_rows(q0, q1, wxsq, lo, hi, allow_dc, kbeg, kend):
         kend[r] = max(a, start)
 
 
-def _make_fill_power_law(mode, exponent_one, sample, quarter):
+def _make_fill_power_law(mode, exponent_one, sample, quarter, unit):
     """:func:`fill_power_law` compiled for one amplitude law, ``exponent == 1`` or not, sample power or not (constants, so each loop vectorises).
 
     ``quarter``: ``2 * exponent`` when that is an integer other than 2 (the
@@ -240,29 +275,37 @@ def _make_fill_power_law(mode, exponent_one, sample, quarter):
     qn_pow = 0 if quarter is None else abs(quarter)
 
     @njit(cache=True, nogil=True, error_model="numpy")
-    def fill(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, exponent, qfloor, inv_qref, weight, rowpow,
-             scratch):
+    def fill(specf, K, q0, q1, wn, kbeg, kend, r0, r1, key, start, exponent, qfloor, inv_qref, weight, rowpow,
+             scratch, words):
         """Rows ``r0..r1-1`` of a ``(m0*m1, K)`` block: ``e * a * exp(i*th)`` inside each row's band, 0 outside.
 
         The coefficients are words ``start, start+1, ...`` of the stream ``key``
-        (the ``j``-th cell of the rows in C order takes word ``start + j``), drawn
-        in the loop that writes them: the same float32 values as
-        :func:`coefficient_parts` (so :func:`synthesize` with the same envelope
-        draws the same), without the arrays between the two.
+        (the ``j``-th cell of the rows in C order takes word ``start + j``): the
+        same float32 values as :func:`coefficient_parts` (so :func:`synthesize`
+        with the same envelope draws the same), without the arrays between the
+        two. Per row, one loop hashes the row's words into ``words`` (uint32,
+        ``(2, K)`` at least: high and low halves; 64-bit integer lanes) and a
+        second one draws and writes the cells from them (32-bit lanes only,
+        twice as many per vector).
 
-        ``e = (max(|w|**2, qfloor) * inv_qref) ** (-exponent/2)`` is the power law
-        divided by its value at ``|w|**2 = 1/inv_qref`` (the caller picks the
-        band's loudest end, so ``e <= 1``: no float32 overflow for any exponent;
-        ``qfloor`` makes the law flat below the lowest nonzero frequency, which
-        only DC can be). ``|w|**2 = q0[i0] + q1[i1] + wxsq[kx]`` is summed in
-        float64, ``e`` and the cell in the block's precision; the magnitude is
-        ``e * sqrt(a2 / (c**2 + s**2))`` so that ``|exp(i*th)| = 1`` to the
-        output's precision.
+        ``e = qn ** (-exponent/2)`` with ``qn = max(q * inv_qref + wn[kx],
+        qfloor * inv_qref)``: the power law divided by its value at ``|w|**2 =
+        1/inv_qref`` (the caller picks the band's loudest end, so ``e <= 1``:
+        no float32 overflow for any exponent; ``qfloor`` makes the law flat
+        below the lowest nonzero frequency, which only DC can be). ``q = q0[i0]
+        + q1[i1]`` is the row's part of ``|w|**2`` (float64) and ``wn = wxsq *
+        inv_qref`` the kx part, already scaled, both in the block's precision,
+        as ``qn`` and the cell. The magnitude is ``sqrt(a2 / qn)`` for
+        ``exponent == 1`` (one division, whose result is also ``e**2``), else
+        ``e * sqrt(a2)``; with ``unit`` (the float64 block) it is divided by
+        ``sqrt(c**2 + s**2)`` too, so that a fixed amplitude is exactly 1 and
+        the cells are :func:`fill_envelope`'s to float64 rounding; float32
+        uses ``(c, s)`` as they are (on the unit circle to ``2**-22``).
 
         ``specf`` is the block's flat float view (real and imaginary parts
         interleaved, ``2*K`` per row). ``rowpow[r]`` receives the row's power
         weighted by ``weight[kx]``: expected (``e**2``) or, with ``sample``, drawn
-        (``|S|**2``); ``scratch`` (at least ``K`` floats) holds a row's terms,
+        (``|S|**2 = m**2 (c**2 + s**2)``); ``scratch`` (at least ``K`` floats) holds a row's terms,
         summed in float64 in a fixed order.
 
         Indices are unsigned offsets rather than slices: no negative-index
@@ -275,9 +318,12 @@ def _make_fill_power_law(mode, exponent_one, sample, quarter):
         zero = T(0)
         one = np.uint64(1)
         two = np.uint64(2)
+        qf = T(qfloor * inv_qref)
+        hi_w = words[0]
+        lo_w = words[1]
         j = start
         for r in range(r0, r1):
-            q = q0[r // m1] + q1[r % m1]
+            qs = T((q0[r // m1] + q1[r % m1]) * inv_qref)
             b0 = kbeg[r]
             b1 = kend[r]
             base = np.uint64(r * 2 * K)
@@ -287,17 +333,17 @@ def _make_fill_power_law(mode, exponent_one, sample, quarter):
             ob = base + np.uint64(2 * b0)
             ub = np.uint64(b0)
             for i in range(n):
+                h, lo = _halves(splitmix64(key, j + i))
+                hi_w[np.uint64(i)] = h
+                lo_w[np.uint64(i)] = lo
+            for i in range(n):
                 t = np.uint64(i)
-                z = splitmix64(key, j + i)
-                a2 = T(_amplitude2(z, mode))
-                c32, s32 = _phase(z)
-                cc = T(c32)
-                ss = T(s32)
-                den = cc * cc + ss * ss
-                qn = T(max(q + wxsq[ub + t], qfloor) * inv_qref)
+                a2 = T(_amplitude2(hi_w[t], mode))
+                c32, s32 = _phase(lo_w[t])
+                qn = max(qs + wn[ub + t], qf)
                 if exponent_one:
-                    m = np.sqrt(a2 / (qn * den))
                     e2 = T(1) / qn
+                    m = np.sqrt(a2 * e2)
                 elif quarter is not None:
                     r4 = np.sqrt(np.sqrt(qn))
                     b = T(1) / r4 if qpos else r4
@@ -308,16 +354,20 @@ def _make_fill_power_law(mode, exponent_one, sample, quarter):
                             e = e * b
                         b = b * b
                         nq >>= 1
-                    m = e * np.sqrt(a2 / den)
+                    m = e * np.sqrt(a2)
                     e2 = e * e
                 else:
                     e = qn ** ex
-                    m = e * np.sqrt(a2 / den)
+                    m = e * np.sqrt(a2)
                     e2 = e * e
+                cc = T(c32)
+                ss = T(s32)
+                if unit:  # float64: (c, s) put on float64's unit circle, as synthesize does
+                    m = m / np.sqrt(cc * cc + ss * ss)
                 specf[ob + two * t] = m * cc
                 specf[ob + two * t + one] = m * ss
-                if sample:
-                    scratch[t] = m * m * den * weight[ub + t]
+                if sample:  # the drawn |S|**2, to the last bit of the output's precision
+                    scratch[t] = m * m * (cc * cc + ss * ss) * weight[ub + t]
                 else:
                     scratch[t] = e2 * weight[ub + t]
             # four running sums (a fixed order, so the same float every time; one chain would wait on each add)
@@ -351,11 +401,15 @@ def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, mode,
     """See :func:`_make_fill_power_law`'s kernel; dispatches to the variant for ``mode``, ``exponent == 1``, ``sample``."""
     two = 2.0 * float(exponent)
     quarter = int(two) if two == int(two) and exponent != 1.0 else None
-    flags = (int(mode), bool(exponent == 1.0), bool(sample), quarter)
+    # unit follows the dtype, which numba specialises on anyway: no extra compiled variant
+    flags = (int(mode), bool(exponent == 1.0), bool(sample), quarter, specf.dtype == np.float64)
     f = _FILLS.get(flags)
     if f is None:
         f = _FILLS[flags] = _make_fill_power_law(*flags)
-    f(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, exponent, qfloor, inv_qref, weight, rowpow, scratch)
+    wn = (wxsq * float(inv_qref)).astype(specf.dtype)  # the kx part of |w|**2 / qref, in the block's precision
+    words = np.empty((2, max(1, int(K))), dtype=np.uint32)
+    f(specf, K, q0, q1, wn, kbeg, kend, r0, r1, key, start, exponent, qfloor, inv_qref, weight, rowpow, scratch,
+      words)
 
 
 @njit(cache=True, nogil=True, error_model="numpy")

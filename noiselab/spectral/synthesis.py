@@ -188,11 +188,12 @@ def _draws(key, start, n, mode, dtype=np.float32):
     """Coefficients ``start .. start+n-1`` of the stream ``key`` as ``(a**2, cos th, sin th)`` arrays.
 
     Word ``i`` of a counter-based SplitMix64 stream keyed by one 64-bit word
-    of the caller's generator gives coefficient ``i``: ``u`` uniform on
-    ``(0, 1)`` (high 32 bits) and the phase ``th`` uniform on ``[0, 2*pi)``
-    (low 32 bits). The amplitude ``a`` is ``sqrt(3) * u`` ("uniform"),
-    ``sqrt(-log u)`` ("rayleigh": with the phase a complex Gaussian,
-    Box-Muller) or 1 ("fixed"); ``E[a**2] = 1``. Computed in float64 and
+    of the caller's generator gives coefficient ``i``: ``u = (h + 1/2) / 2**32``
+    (``h`` the high 32 bits, ``u`` rounded to float32, in ``(0, 1]``) and the
+    phase ``th = 2*pi * l / 2**32`` (``l`` the low 32 bits). The amplitude
+    ``a`` is ``sqrt(3) * u`` ("uniform"), ``sqrt(-log u)`` ("rayleigh": with
+    the phase a complex Gaussian, Box-Muller) or 1 ("fixed"); ``E[a**2] = 1``.
+    Computed in float32 arithmetic (``_kernels._amplitude2``, ``_phase``) and
     stored in float32 (the float64 path casts the same values), so one seed
     gives the same coefficients in both precisions and in any chunking.
     """
