@@ -118,7 +118,7 @@ def fig02(out, *, entries, table_size, seed):
     smooth = LatticeNoise(1, rng=seed, kernel="catmull-rom", alternation="lattice", table_size=table_size)
     xs = np.linspace(0, entries - 1, 400)
     through = smooth(xs[:, None]) * smooth.bound      # undo the range normalisation: the curve through the stems
-    ax_b.plot(xs, through, color="C2", lw=1.5, label="Catmull-Rom interpolation (passes through every stem)")
+    ax_b.plot(xs, through, color="C2", lw=1.5, label="Catmull-Rom: through every stem")
     ax_b.axhline(0, color="0.6", lw=0.5)
     ax_b.set_ylim(-1.1, 1.1)
     ax_b.set_title("(c) the basis function: signs alternate with i", fontsize=10, loc="left")
@@ -376,7 +376,7 @@ def fig06(out, *, point, planes, xrange, kernel, checks, seed):
     ax3.scatter([px], [py], [value * noise.bound], color="k", s=40, depthshade=False)
     ax3.set_xlabel("x"), ax3.set_ylabel("y (plane)"), ax3.set_zlabel("value")
     ax3.set_zlim(-1, 1), ax3.set_ylim(ys[0] - 0.3, ys[-1] + 0.3), ax3.set_yticks(ys), ax3.view_init(elev=18, azim=-38)
-    ax3.set_title(f"(b) planes y = {ys[0]}..{ys[-1]}; red: their values at x = {px:g} and the curve across them",
+    ax3.set_title(f"(b) planes y = {ys[0]}..{ys[-1]}; red: their values at x = {px:g}\nand the curve across them",
                   fontsize=10, loc="left")
     # (c) the function across the planes, sampled at y = py
     axc = fig.add_subplot(gs[2])
@@ -387,7 +387,7 @@ def fig06(out, *, point, planes, xrange, kernel, checks, seed):
                  textcoords="offset points", fontsize=10, arrowprops=dict(arrowstyle="->", lw=0.8))
     axc.axhline(0, color="0.6", lw=0.5), axc.set_xlabel("y"), axc.set_ylim(-1.15, 1.45), axc.set_xticks(ys)
     axc.legend(fontsize=10, loc="upper left")
-    axc.set_title(f"(c) across the planes at x = {px:g}, sampled at y = {py:g}", fontsize=10, loc="left")
+    axc.set_title(f"(c) across the planes at x = {px:g},\nsampled at y = {py:g}", fontsize=10, loc="left")
     agree = "equal" if err < 1e-12 else "differ"
     return Result([save_figure(fig, out / "fig06.png")],
                   "How noiselab.LatticeNoise extends 1-D noise to a 2-D input (section 2.4.1). Every integer y has its own "
@@ -655,7 +655,7 @@ def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=
             ax.plot(x[:, 0], fractal_sum(noise, x, n), color="C0", lw=0.8, alpha=0.6, label=f"fracsum(x, {n}) (Fig. 12)")
         ax.plot(x[:, 0], y, "k", lw=0.9, label=f"turb(x, {n})" if kind != "fractal" else None)
         if kind != "fractal":
-            ax.legend(fontsize=10, loc="upper right", ncol=2)
+            ax.legend(fontsize=10, loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False)
         ax.axhline(0, color="0.7", lw=0.5)
         ax.set_xlim(0, length)
         ax.set_title(f"n = {n} octave{'s' if n > 1 else ''}", fontsize=11, loc="left")

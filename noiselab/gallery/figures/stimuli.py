@@ -99,7 +99,7 @@ def _square_wave(display, frames, n, period_deg, speed, direction):
 def stoner_albright(out, *, size_deg, duration, period_deg, speed, background, t_sw, seed):
     from noiselab import analysis
 
-    from .._common import save_image, save_video
+    from .._common import save_video
 
     d = _display()
     n, frames = d.pixels(size_deg), d.frame_count(duration)
@@ -110,8 +110,7 @@ def stoner_albright(out, *, size_deg, duration, period_deg, speed, background, t
     L = background * np.where(a, t_sw, 1.0) * np.where(b, t_sw, 1.0)
     values = _show(L, d, seed)
     shown = d.luminance_of(values)
-    files = [save_image(out / "frame0.png", values[0])]
-    files += save_video(out, "gratings", values, fps=d.frame_rate)
+    files = save_video(out, "gratings", values, fps=d.frame_rate)   # its poster is the first frame
     lum = {k: float(shown[m].mean()) for k, m in (("background", ~a & ~b), ("bar", a & ~b), ("overlap", a & b))}
     # measured in the band of the fundamental: the hard edges' harmonics alias on the pixel grid
     f0 = n / d.deg_to_px(period_deg)
@@ -132,41 +131,3 @@ def stoner_albright(out, *, size_deg, duration, period_deg, speed, background, t
                             f"velocity of grating a, b at the fundamental (deg/s; stated +-{speed / np.sqrt(2):.3f} "
                             f"per axis)": f"({to_deg(va[0]):.3f}, {to_deg(va[1]):.3f}), "
                                           f"({to_deg(vb[0]):.3f}, {to_deg(vb[1]):.3f})"})
-
-
-@figure("stimuli", "fig6_2", source="Zhang 2003, Fig. 6.2 and Eq. 6.1, restated in cd/m²",
-        title="The motion-parallax transparency stimulus in cd/m² and Michelson contrast",
-        params=dict(size_deg=8.0, duration=1.0, transmittance=0.3, seed=7), quick=dict(size_deg=2.0, duration=0.25),
-        uses=STIM + ("noiselab.snowfall",),
-        look="the same parallax stimulus, now with its mean luminance in cd/m² and its veiled contrast as Michelson contrast")
-def parallax_in_cd(out, *, size_deg, duration, transmittance, seed):
-    from noiselab import analysis
-    from noiselab.snowfall import snow
-
-    from .._common import disc, save_image, save_video
-
-    d = _display()
-    n, frames = d.pixels(size_deg), d.frame_count(duration)
-    lo, hi = d.luminance
-    fg = snow((frames, n, n), rng=seed, c=d.snow_c(2.0, 4.0), band=d.band((1.0, 8.0), n), beta=1.0)
-    veiled = disc(n) > 0.5
-    # Eq. 6.1 with the display's own range for the thesis's 0..255: the parallax spans L_min..L_max, and the
-    # veil (L_max) lets a fraction `transmittance` of it through over the disc
-    L_fg = lo + (hi - lo) * fg.astype(np.float64)
-    L = np.where(veiled, hi * (1 - transmittance) + transmittance * L_fg, L_fg)
-    values = _show(L, d, seed)
-    shown = d.luminance_of(values)
-    files = [save_image(out / "frame0.png", values[0])] + save_video(out, "parallax_disc", values, fps=d.frame_rate)
-    m_v = analysis.michelson_contrast(shown, veiled)
-    m_c = analysis.michelson_contrast(shown, ~veiled)
-    exact_v = (hi - (hi * (1 - transmittance) + transmittance * lo)) / (hi + hi * (1 - transmittance)
-                                                                           + transmittance * lo)
-    return Result(files, f"Thesis Fig. 6.2 (disc) with Eq. 6.1 in luminance: tent-model snow (flakes of 4 cycles/deg "
-                         f"falling at 2 deg/s, beta = 1) spanning the display's {lo:g}..{hi:g} cd/m², under a veil of "
-                         f"{hi:g} cd/m² with transmittance {transmittance:g} over the disc. The thesis's contrasts 0.176 "
-                         f"(veiled) and 1 (clear) become {exact_v:.4f} and {(hi - lo) / (hi + lo):.4f} on a display "
-                         f"whose black is {lo:g} cd/m². {size_deg:g} deg, {duration:g} s on {d.pixels_per_degree:g} "
-                         f"px/deg, {d.frame_rate:g} Hz, gamma {d.gamma:g}, {d.bits} bits (dithered).",
-                  measured={"Michelson veiled / clear (on the displayed luminance)": f"{m_v:.4f} / {m_c:.4f}",
-                            "mean luminance veiled / clear (cd/m²)": f"{shown[:, veiled].mean():.2f} / "
-                                                                     f"{shown[:, ~veiled].mean():.2f}"})
