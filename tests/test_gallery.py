@@ -107,8 +107,8 @@ def _parse_all(out):
 
 
 def _cards():
-    """The figures shown as cards: every registered one but the paper introductions' schematics."""
-    return [s for s in registry.specs() if s.name != "intro"]
+    """The figures shown as cards: every registered one but the paper introductions' schematics and the README's picture."""
+    return [s for s in registry.specs() if s.name != "intro" and s.group != "readme"]
 
 
 @pytest.fixture(scope="module")
@@ -162,8 +162,8 @@ def test_every_figure_is_on_the_page_and_every_referenced_file_exists(quick_gall
     assert all(not r.startswith("/") and ".." not in Path(r).parts for r in page.refs)
 
 
-SEED_FIGURES = (["Zhang 2003, Fig. " + f for f in ("3.1", "3.2", "3.3", "3.4", "3.5", "4.1", "5.4", "5.5", "6.1", "6.2",
-                                                  "6.3")]
+SEED_FIGURES = (["Zhang 2003, Fig. " + f for f in ("3.1", "3.2", "3.3", "3.4", "3.5", "4.1", "5.1", "5.2", "5.3", "5.4",
+                                                  "5.5", "6.1", "6.2", "6.3")]
                 + [f"Phillips 2004, Fig. {n}:" for n in range(1, 21)])
 
 
@@ -295,6 +295,18 @@ def test_measured_values_are_sane(quick_gallery):
     fig18 = man["phillips/fig18"]["measured"]
     assert fig18["watertight"] is True and fig18["flipped faces per s"][0] == 0
     assert man["phillips/fig02"]["measured"]["basis at the lattice points equals the table entries the permutation points to"] is True
+    # Fig. 5.1: Metelli's equations recover the episcotister's open area and luminance from Talbot's mean
+    fig51 = man["stimuli/fig5_1"]["measured"]
+    assert fig51["alpha from Eq. 5.1 (set 0.4)"] == pytest.approx(0.4, abs=0.03)
+    assert fig51["t from Eq. 5.2 (set 8 cd/m²)"] == pytest.approx(8.0, abs=1.0)
+    # Fig. 5.2: target and match agree by Michelson contrast (Eq. 5.4), not by luminance range (Eq. 5.1)
+    by_m = [float(v) for v in man["stimuli/fig5_2"]["measured"]["alpha by Eq. 5.4 (M_centre / M_surround), target / match"].split(" / ")]
+    by_r = [float(v) for v in man["stimuli/fig5_2"]["measured"]["alpha by Eq. 5.1 (range ratio), target / match"].split(" / ")]
+    assert abs(by_m[0] - by_m[1]) < 0.03 < abs(by_r[0] - by_r[1])
+    # Fig. 5.3: (a) the surround has the lower contrast (alpha < 1), (b) with other means, the higher
+    fig53 = man["stimuli/fig5_3"]["measured"]
+    assert fig53["(a) M_surround / M_centre (the surround's alpha, Eq. 5.4)"] < 0.8
+    assert fig53["(b) M_surround / M_centre (the surround's alpha, Eq. 5.4)"] > 1.2
     lo, hi = man["phillips/fig16"]["measured"]["displacement / amplitude range (within [-1, 1])"]
     assert -1 <= lo < 0 < hi <= 1
 
@@ -651,3 +663,47 @@ def test_check_reports_small_labels_and_duplicates_on_a_built_page(tmp_path, cap
     assert status == 1
     assert "zz_bad/tiny/tiny.png: labels" in err
     assert "the same image twice" in err and "zz_bad/twice/still.png" in err and "zz_bad/twice/clip_poster.png" in err
+
+
+def test_the_readme_shows_the_picture_the_gallery_draws(tmp_path):
+    """The README's image is the file the gallery's readme/picture figure writes, published by a full build."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    shown = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", readme)
+    assert build_mod.README_PICTURE_PATH.as_posix() in shown
+    spec = registry.specs(build_mod.README_PICTURE)[0]
+    # built (quick sizes, to keep the test short) into a scratch folder
+    report = build_mod.build(tmp_path / "out", only=build_mod.README_PICTURE, quick=True, show_progress=False)
+    assert report["built"] == [spec.key]
+    man = build_mod.read_manifest(tmp_path / "out", spec)
+    assert [Path(f).name for f in man["files"]] == [build_mod.README_PICTURE_PATH.name]
+    # a quick build never publishes; a full one copies the bytes into a checkout's docs/_static/
+    checkout = tmp_path / "checkout"
+    (checkout / "docs" / "_static").mkdir(parents=True)
+    (checkout / "README.md").write_text("![x](docs/_static/noiselab.png)")
+    assert build_mod.publish_readme_picture(tmp_path / "out", checkout=checkout) is None
+    man["quick"] = False
+    (tmp_path / "out" / "readme" / "picture" / "manifest.json").write_text(json.dumps(man))
+    target = build_mod.publish_readme_picture(tmp_path / "out", checkout=checkout)
+    assert target == checkout / build_mod.README_PICTURE_PATH
+    assert target.read_bytes() == (tmp_path / "out" / man["files"][0]).read_bytes()
+    # an installed noiselab (no README beside the package) is left alone
+    assert build_mod.publish_readme_picture(tmp_path / "out", checkout=tmp_path / "nowhere") is None
+    # the committed picture is a full-size build of that figure: as wide as its three panels, labels that read
+    from PIL import Image
+
+    from noiselab.gallery import checks
+
+    committed = ROOT / build_mod.README_PICTURE_PATH
+    with Image.open(committed) as im:
+        width = im.width
+    assert width >= 3 * spec.params["panel"]
+    # on a project page about 830 px wide, its labels are seen at 11 px or more
+    assert checks.shown_text_px(checks.smallest_text_px(committed), natural_width=width, shown_width=830) >= 11
+
+
+def test_the_readme_picture_opens_the_papers_page(quick_gallery):
+    out, _ = quick_gallery
+    text = (out / "index.html").read_text()
+    assert text.index("noiselab is a Python laboratory") < text.index("readme/picture/noiselab.png") \
+        < text.index("The documents reproduced")
+    assert 'id="readme-picture"' not in "".join(f["id"] for f in _parse(out / "index.html").figures)

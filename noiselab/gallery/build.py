@@ -165,7 +165,40 @@ def build(out=DEFAULT_OUT, *, only=None, quick=False, force=False, show_progress
             built.append(spec.key)
     seconds = time.perf_counter() - t0
     index = write_index(out)
+    if not quick:
+        publish_readme_picture(out, log=log)
     return {"index": index, "built": built, "skipped": skipped, "failed": failed, "seconds": seconds}
+
+
+README_PICTURE = "readme/picture"                       # the figure drawn as the README's picture
+README_PICTURE_PATH = Path("docs") / "_static" / "noiselab.png"   # where the README shows it, in a checkout
+
+
+def publish_readme_picture(out, *, checkout=None, log=None):
+    """Copy the README's picture from a full-size build into a checkout's ``docs/_static/noiselab.png``.
+
+    ``checkout`` defaults to the folder that holds the ``noiselab`` package when that folder is a
+    checkout (it has ``README.md`` and ``docs/_static/``); an installed noiselab has none, and nothing is
+    written. A quick build never publishes (its picture is small). Returns the path written, or None.
+    """
+    from .registry import _ROOT
+
+    root = Path(checkout) if checkout is not None else _ROOT
+    target = root / README_PICTURE_PATH
+    if not (root / "README.md").is_file() or not target.parent.is_dir():
+        return None
+    spec = specs(README_PICTURE)[0]
+    man = read_manifest(Path(out), spec)
+    if not man or man.get("error") or man.get("quick") or not man.get("files"):
+        return None
+    source = Path(out) / man["files"][0]
+    if target.is_file() and target.read_bytes() == source.read_bytes():
+        return target
+    with atomic_output(target) as tmp:
+        Path(tmp).write_bytes(source.read_bytes())
+    if log:
+        log(f"gallery: the README's picture {target} rewritten from {source}")
+    return target
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

@@ -188,7 +188,7 @@ def format_measured(measured: dict) -> str:
 
 # the two pages: the seed papers' reproductions, then the lab's own figures; a group not named here goes on the
 # first page, after the named ones
-PAGES = {"index.html": ("snow", "stimuli", "phillips"), "lab.html": ("lab", "derivatives")}
+PAGES = {"index.html": ("readme", "snow", "stimuli", "phillips"), "lab.html": ("lab", "derivatives")}
 PAGE_TITLES = {"index.html": "noiselab gallery: the seed papers' figures, reproduced and measured",
                "lab.html": "noiselab lab: comparisons and derivatives"}
 # groups shown inside another group's section (Zhang's transparency stimuli belong with the rest of the thesis)
@@ -218,6 +218,7 @@ INTROS = {
                    "gradient rather than from the mesh.",
 }
 INTRO = "intro"   # a figure of this name is drawn in its group's introduction, not as a card
+FRONT = "readme"  # the group whose figures open index.html under the statement (the README's picture), not as cards
 
 # what the gallery is, and the documents it reproduces (shown at the top of index.html)
 STATEMENT = ("noiselab is a Python laboratory for procedural noise: spectral synthesis (falling snow from one inverse "
@@ -340,6 +341,14 @@ def _grid(sections, entries, root):
     return '<nav id="contents"><h2>Contents</h2>' + "".join(parts) + "</nav>"
 
 
+def _front(spec, man, root):
+    """The README's picture under the page's opening statement (its caption below it, no card of its own)."""
+    if not man or man.get("error"):
+        return ""
+    return (f'<div class="front" id="{html.escape(spec.key.replace("/", "-"))}">' + _media([root / f for f in man["files"]], root)
+            + f'<p>{html.escape(man["caption"])}</p></div>')
+
+
 def _references():
     items = "".join(f'<li>{html.escape(text)} <a href="{html.escape(url, quote=True)}">{html.escape(label)}</a></li>'
                     for text, url, label in REFERENCES)
@@ -364,7 +373,7 @@ def render_pages(root: Path, entries, *, summary="") -> dict:
         groups = []
         for spec, _ in entries:
             g = _section(spec.group)
-            if page_of(spec.group) == page and g not in groups:
+            if page_of(spec.group) == page and g not in groups and g != FRONT:
                 groups.append(g)
         order = list(PAGES[page])
         groups.sort(key=lambda g: order.index(g) if g in order else len(order))
@@ -377,6 +386,7 @@ def render_pages(root: Path, entries, *, summary="") -> dict:
         body = [f"<h1>{html.escape(title)}</h1>"]
         if page == "index.html":
             body.append(f'<p class="lead">{html.escape(STATEMENT)}</p>')
+            body += [_front(spec, man, root) for spec, man in entries if spec.group == FRONT]
             body.append(_references())
         body.append(f'<p>Click a thumbnail to jump to its figure, an image to open it at full size; a video loads '
                     f'when you play it, and plays while on screen. '
