@@ -686,11 +686,22 @@ def test_the_readme_shows_the_picture_the_gallery_draws(tmp_path):
     target = build_mod.publish_readme_picture(tmp_path / "out", checkout=checkout)
     assert target == checkout / build_mod.README_PICTURE_PATH
     assert target.read_bytes() == (tmp_path / "out" / man["files"][0]).read_bytes()
+    # another machine's renderer changes low bits, not the picture: the committed copy is left alone;
+    # a different picture replaces it
+    from PIL import Image
+
+    built = np.asarray(Image.open(target).convert("RGB")).astype(int)
+    noisy = np.clip(built + np.random.default_rng(1).integers(-3, 4, built.shape), 0, 255).astype(np.uint8)
+    Image.fromarray(noisy).save(target)
+    before = target.read_bytes()
+    build_mod.publish_readme_picture(tmp_path / "out", checkout=checkout)
+    assert target.read_bytes() == before
+    Image.fromarray(255 - noisy).save(target)
+    build_mod.publish_readme_picture(tmp_path / "out", checkout=checkout)
+    assert target.read_bytes() == (tmp_path / "out" / man["files"][0]).read_bytes()
     # an installed noiselab (no README beside the package) is left alone
     assert build_mod.publish_readme_picture(tmp_path / "out", checkout=tmp_path / "nowhere") is None
     # the committed picture is a full-size build of that figure: as wide as its three panels, labels that read
-    from PIL import Image
-
     from noiselab.gallery import checks
 
     committed = ROOT / build_mod.README_PICTURE_PATH
