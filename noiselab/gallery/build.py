@@ -99,12 +99,17 @@ def _plain(measured):
 
 
 def _thumbnail(out: Path, spec, man) -> None:
-    """Write the contents grid's thumbnail of a built figure (its first image or video poster), if out of date."""
+    """Write the contents grid's thumbnail of a built figure (its first video's poster or first still), if out of date."""
     from PIL import Image
 
-    from .html import IMAGE_EXT, THUMB_WIDTH, thumbnail_of
+    from .html import IMAGE_EXT, THUMB_WIDTH, VIDEO_EXT, poster_of, thumbnail_of
 
-    images = [out / f for f in man["files"] if Path(f).suffix.lower() in IMAGE_EXT]
+    files = [out / f for f in man["files"]]
+    posters = [poster_of(f) for f in files if f.suffix.lower() in VIDEO_EXT and poster_of(f) in files]
+    stills = [f for f in files if f.suffix.lower() in IMAGE_EXT and f not in posters]
+    # the first video's poster or the first still, whichever holds more (compresses to more bytes): a snowy
+    # frame rather than its clean background, a page of trajectories rather than a first frame with one dot
+    images = sorted(posters[:1] + stills[:1], key=lambda f: -f.stat().st_size)
     if not images:
         return
     source, thumb = images[0], out / thumbnail_of(spec)
