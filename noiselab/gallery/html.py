@@ -1,12 +1,18 @@
 """The gallery's pages, ``index.html`` and ``lab.html``: every figure with its caption, every video playable.
 
-The pages are static and self-contained (no network, no scripts from elsewhere).
+The pages are static and self-contained (no network, no scripts from elsewhere;
+the references' links point out). ``index.html`` opens with what noiselab is,
+the README's picture and the references; each page then has a grid of
+thumbnails, one per figure, and its sections (Zhang's figures in the thesis's
+order, :func:`reading_order`).
 Each figure is a card: its seed figure and title as the heading, the media,
 one line on what to look for, the measured caption, and a ``<details>``
 block with the parameters, the measured numbers and the rebuild command.
-Videos do not autoplay: an IntersectionObserver plays those on screen.
+Videos do not autoplay and load nothing until played (``preload="none"``,
+with a poster): an IntersectionObserver plays those on screen.
 A small inline script checks, once the page has loaded, that every image
-decoded and every video can play, and writes the result into
+decoded (and, when the page is opened with ``?check``, that every video
+loads and can play), and writes the result into
 ``<body data-check=...>`` and a status line, so a reader (or a headless
 browser in the tests) sees at once whether anything is missing.
 """
