@@ -247,6 +247,9 @@ def test_zhangs_figures_are_one_section_in_the_thesis_order(quick_gallery):
     numbers = [tuple(int(x) for x in re.search(r"(?:Fig|Sec)\. (\d+)\.(\d+)", h).groups()) for h in zhang]
     assert numbers == sorted(numbers), numbers
     assert ids.index("snow-fig3_1") < ids.index("snow-opacity")   # the opacity video after the figures it explains
+    # the lab's page keeps registration order (its sources are not a paper's figure numbers)
+    lab = [f["id"] for f in _parse(out / "lab.html").figures]
+    assert lab == [s.key.replace("/", "-") for s in _cards() if s.group in ("lab", "derivatives")]
     # Langer & Zhang's sketch has one figure: it is named where the thesis redraws it
     assert any("Langer & Zhang 2003, Fig. 1" in h for h in zhang)
     # no seed figure twice

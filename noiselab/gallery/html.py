@@ -278,7 +278,7 @@ def short_label(spec) -> str:
     m = re.search(r"^([A-Z][A-Za-z&. ]*?)\s+\d{4},\s*(Fig\.\s*[\d.]+)", spec.source)
     if m:
         return f"{m.group(1).split()[0]} {m.group(2)}"
-    m = re.search(r"^([A-Z]\w*).*?(Sec\.\s*[\d.]+)", spec.source)
+    m = re.search(r"^([A-Z]\w*) \d{4}, video\b.*?(Sec\.\s*[\d.]+)", spec.source)
     if m:
         return f"{m.group(1)} {m.group(2)}, video"
     words = spec.title.split()
@@ -386,7 +386,8 @@ def render_pages(root: Path, entries, *, summary="") -> dict:
         sections = []
         for g in groups:
             cards = [(spec, man) for spec, man in entries if _section(spec.group) == g and spec.name != INTRO]
-            cards.sort(key=lambda e: reading_order(e[0]))   # stable: registration order within a number
+            if page == "index.html":   # the papers' figures in their order; the lab's in registration order
+                cards.sort(key=lambda e: reading_order(e[0]))   # stable: registration order within a number
             sections.append((g, cards))
         other = [p for p in PAGE_TITLES if p != page][0]
         body = [f"<h1>{html.escape(title)}</h1>"]

@@ -94,8 +94,11 @@ def kernels(out, *, size, cells, seed):
             f"{k}: {rolloff[f'{basis}/{k}']:.1f}" for k in names)
         axes[r, -1].set_title(f"{basis} noise: radial power\n(Hann window)", fontsize=11)
         axes[r, -1].set_ylabel("power", fontsize=11)
-        axes[r, -1].set_xlabel("cycles per lattice cell", fontsize=11), axes[r, -1].legend(fontsize=11, ncol=2)
+        axes[r, -1].set_xlabel("cycles per lattice cell", fontsize=11)
         axes[r, -1].tick_params(labelsize=11)
+    # one legend for both spectra, under them, outside the plots: it covers no curve
+    handles, labels = axes[0, -1].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower right", ncol=3, fontsize=11, frameon=False)
     return Result([save_figure(fig, out / "kernels.png")],
                   f"LatticeNoise over {cells:g} x {cells:g} lattice cells, {size} x {size} pixels, for each kernel, with value "
                   "(Phillips) and gradient (Perlin) bases; right: radial power spectra against frequency in cycles per "
