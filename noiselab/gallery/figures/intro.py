@@ -129,7 +129,7 @@ def phillips_intro(out, *, entries, seed):
               "noiselab.analysis"),
         look="the flakes in the 2x crop, big near ones and small far ones; the seams of the 2 x 2 tiling cannot be found")
 def readme_picture(out, *, panel, frames, octaves, seed):
-    """The first picture a visitor sees: five panels of what noiselab does, each made here with its public API.
+    """The first picture a visitor sees: six panels of what noiselab does, each made here with its public API.
 
     Written as ``noiselab.png``; a full-size build also copies it to the checkout's ``docs/_static/`` (see
     :func:`noiselab.gallery.build.publish_readme_picture`).
@@ -170,17 +170,17 @@ def readme_picture(out, *, panel, frames, octaves, seed):
                        clim=(1.3 * float(z.min()), 1.3 * float(z.max())))
 
     plt = pyplot()
-    gap, top, label = 12, 34, 26   # px: between panels, above each (its label)
+    gap, top = 12, 34   # px: between panels, above each (its label)
     width = 3 * n + 2 * gap
     height = 2 * (n + top) + gap
     dpi = 100
     fig = plt.figure(figsize=(width / dpi, height / dpi), dpi=dpi, facecolor="white")
     fontsize = max(8.0, 13.0 * n / 384)
 
-    def put(img, col, row, span=1, title="", **kw):
+    def put(img, col, row, title="", **kw):
         x0 = col * (n + gap)
         y0 = row * (n + top + gap) + top
-        ax = fig.add_axes([x0 / width, 1 - (y0 + n) / height, (span * n + (span - 1) * gap) / width, n / height])
+        ax = fig.add_axes([x0 / width, 1 - (y0 + n) / height, n / width, n / height])
         ax.imshow(img, interpolation="nearest", aspect="auto", **kw)
         ax.set_axis_off()
         fig.text((x0 + 2) / width, 1 - (y0 - 6) / height, title, fontsize=fontsize, va="bottom", ha="left")
