@@ -237,7 +237,7 @@ def test_the_page_opens_with_what_noiselab_is_the_references_and_a_thumbnail_gri
 def test_zhangs_figures_are_one_section_in_the_thesis_order(quick_gallery):
     out, _ = quick_gallery
     page = _parse(out / "index.html")
-    assert page.sections == ["references", "snow", "phillips"]
+    assert page.sections[:3] == ["references", "snow", "phillips"]   # (a group added later follows them)
     ids = [f["id"] for f in page.figures]
     zhang = [f["head"] for f in page.figures if f["head"].startswith("Zhang")]
     assert len(zhang) == len([i for i in ids if i.split("-")[0] in ("snow", "stimuli")])
