@@ -721,3 +721,12 @@ def test_the_readme_picture_opens_the_papers_page(quick_gallery):
     assert text.index("noiselab is a Python laboratory") < text.index("readme/picture/noiselab.png") \
         < text.index("The documents reproduced")
     assert 'id="readme-picture"' not in "".join(f["id"] for f in _parse(out / "index.html").figures)
+
+
+def test_check_finds_nothing_on_the_built_gallery(quick_gallery, capsys):
+    """--check's every report (missing files, console errors, labels under 11 px, duplicate images) is empty."""
+    out, _ = quick_gallery
+    status = build_mod.check(out)
+    captured = capsys.readouterr()
+    assert status == 0, captured.err
+    assert "0 duplicate images" in captured.out and "labels" not in captured.err
