@@ -26,11 +26,12 @@ class _Refs(html.parser.HTMLParser):
         self.refs, self.figures, self.videos, self._fig, self._in_caption = [], [], [], None, False
         self.posters, self.images, self.links, self.toc, self._href, self._in_toc = [], [], {}, [], None, False
         self._in_head, self._in_look, self.autoplay = False, False, []
+        self.thumbs, self.sections, self.preload = [], [], []
 
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
-        for key in ("src", "href", "poster"):
-            if a.get(key) and not a[key].startswith(("data:", "#")):
+        for key in ("src", "href", "poster"):   # files of the gallery (the references' links go out)
+            if a.get(key) and not a[key].startswith(("data:", "#", "https://")):
                 self.refs.append(a[key])
         if tag == "nav" and a.get("id") == "contents":
             self._in_toc = True
@@ -38,14 +39,19 @@ class _Refs(html.parser.HTMLParser):
             self._href = a.get("href")
             if self._in_toc and self._href and self._href.startswith("#"):
                 self.toc.append(self._href[1:])
-        if tag == "img":
+        if tag == "img" and "thumb" in (a.get("class") or ""):
+            self.thumbs.append((a.get("src"), self._href))
+        elif tag == "img":
             self.images.append(a.get("src"))
             if self._href:
                 self.links[a.get("src")] = self._href
+        if tag == "h2" and a.get("id"):
+            self.sections.append(a["id"])
         if tag == "video" and a.get("poster"):
             self.posters.append(a["poster"])
         if tag == "video":
             self.autoplay.append("autoplay" in a)
+            self.preload.append(a.get("preload"))
         if tag == "h3" and self._fig is not None:
             self._in_head = True
         if tag == "p" and "look" in (a.get("class") or "") and self._fig is not None:
@@ -101,8 +107,8 @@ def _parse_all(out):
 
 
 def _cards():
-    """The figures shown as cards: every registered one but the paper introductions' schematics."""
-    return [s for s in registry.specs() if s.name != "intro"]
+    """The figures shown as cards: every registered one but the paper introductions' schematics and the README's picture."""
+    return [s for s in registry.specs() if s.name != "intro" and s.group != "readme"]
 
 
 @pytest.fixture(scope="module")
@@ -136,8 +142,9 @@ def test_every_figure_is_on_the_page_and_every_referenced_file_exists(quick_gall
     # no image is shown twice (a video's poster is its still, never a second image beside it)
     shown = page.images + page.posters
     assert len(shown) == len(set(shown)), [i for i in shown if shown.count(i) > 1]
-    # no video autoplays: the page's script plays the ones on screen
+    # no video autoplays: the page's script plays the ones on screen; none loads before it is played
     assert page.autoplay and not any(page.autoplay)
+    assert page.preload and set(page.preload) == {"none"}
     assert "IntersectionObserver" in (out / "index.html").read_text()
     assert not [f["id"] for f in page.figures if "failed" in f["class"]]
     assert all(f["srcs"] for f in page.figures), "a figure without an image or a video"
@@ -155,7 +162,8 @@ def test_every_figure_is_on_the_page_and_every_referenced_file_exists(quick_gall
     assert all(not r.startswith("/") and ".." not in Path(r).parts for r in page.refs)
 
 
-SEED_FIGURES = (["Zhang 2003, Fig. " + f for f in ("3.1", "3.2", "3.3", "3.4", "3.5", "4.1", "6.1", "6.2", "6.3")]
+SEED_FIGURES = (["Zhang 2003, Fig. " + f for f in ("3.1", "3.2", "3.3", "3.4", "3.5", "4.1", "5.1", "5.2", "5.3", "5.4",
+                                                  "5.5", "6.1", "6.2", "6.3")]
                 + [f"Phillips 2004, Fig. {n}:" for n in range(1, 21)])
 
 
@@ -197,8 +205,57 @@ def test_each_paper_opens_with_an_introduction_and_its_schematic(quick_gallery):
         section = text[text.index(f'<h2 id="{group}">'):]
         intro = section[:section.index("<figure")]
         assert 'class="intro"' in intro and image in intro and len(intro) > 400, group
-    # the build log is in the footer, not at the top
-    assert text.index("Last build") > text.rindex("</figure>")
+    # no build log on the page (it goes to the terminal)
+    for page in PAGES:
+        assert not re.search(r"\d+ built|up to date,|Last build", (out / page).read_text()), page
+
+
+def test_the_page_opens_with_what_noiselab_is_the_references_and_a_thumbnail_grid(quick_gallery):
+    from noiselab.gallery import html as page_html
+
+    out, _ = quick_gallery
+    text = (out / "index.html").read_text()
+    first_section = text.index('<h2 id="snow">')
+    # the statement, then the full references with links, then the contents, all before the first section
+    assert text.index("noiselab is a Python laboratory") < text.index("The documents reproduced") \
+        < text.index('<nav id="contents">') < first_section
+    refs = text[text.index("The documents reproduced"):text.index('<nav id="contents">')]
+    for words in ("Langer and L. Zhang", "SIGGRAPH 2003", "M.Sc. thesis", "McGill University",
+                  "Perception 33(7), 837-854, 2004", 'href="https://doi.org/10.1068/p5141"'):
+        assert words in refs, words
+    assert refs.count("<li>") == 3 and refs.count('href="https://') == 3
+    # every card has one thumbnail in the grid, a file of its own that links to the card
+    for name in PAGES:
+        page = _parse(out / name)
+        ids = [f["id"] for f in page.figures]
+        assert [href[1:] for _, href in page.thumbs] == ids
+        assert all((out / src).is_file() and src.startswith("thumbs/") for src, _ in page.thumbs)
+        assert len({src for src, _ in page.thumbs}) == len(ids)
+    assert page_html.short_label(registry.specs("snow/fig3_1")[0]) == "Zhang Fig. 3.1"
+
+
+def test_zhangs_figures_are_one_section_in_the_thesis_order(quick_gallery):
+    out, _ = quick_gallery
+    page = _parse(out / "index.html")
+    assert page.sections[:3] == ["references", "snow", "phillips"]   # (a group added later follows them)
+    ids = [f["id"] for f in page.figures]
+    zhang = [f["head"] for f in page.figures if f["head"].startswith("Zhang")]
+    assert len(zhang) == len([i for i in ids if i.split("-")[0] in ("snow", "stimuli")])
+    # one block, before Phillips, with the thesis's figure numbers in order
+    first_p = ids.index("phillips-fig01")
+    assert all(i.split("-")[0] in ("snow", "stimuli") for i in ids[:first_p])
+    numbers = [tuple(int(x) for x in re.search(r"(?:Fig|Sec)\. (\d+)\.(\d+)", h).groups()) for h in zhang]
+    assert numbers == sorted(numbers), numbers
+    assert ids.index("snow-fig3_1") < ids.index("snow-opacity")   # the opacity video after the figures it explains
+    # the lab's page keeps registration order (its sources are not a paper's figure numbers)
+    lab = [f["id"] for f in _parse(out / "lab.html").figures]
+    assert lab == [s.key.replace("/", "-") for s in _cards() if s.group in ("lab", "derivatives")]
+    # Langer & Zhang's sketch has one figure: it is named where the thesis redraws it
+    assert any("Langer & Zhang 2003, Fig. 1" in h for h in zhang)
+    # no seed figure twice
+    figs = [re.search(r"(?:Zhang|Phillips) 2003?4?, Fig\. [\d.]+", h) for h in (f["head"] for f in page.figures)]
+    named = [m.group(0) for m in figs if m]
+    assert len(named) == len(set(named)), [n for n in named if named.count(n) > 1]
 
 
 def test_table_of_contents_links_every_figure(quick_gallery):
@@ -206,9 +263,9 @@ def test_table_of_contents_links_every_figure(quick_gallery):
     for name in PAGES:
         page = _parse(out / name)
         ids = [f["id"] for f in page.figures]
-        groups = sorted({f.split("-")[0] for f in ids})
-        assert [t for t in page.toc if t not in groups] == ids
-        assert set(groups) <= set(page.toc)
+        sections = [s for s in page.sections if s not in ("references", "contents")]
+        assert [t for t in page.toc if t not in sections] == ids
+        assert set(sections) <= set(page.toc)
 
 
 def test_measured_values_are_sane(quick_gallery):
@@ -241,6 +298,18 @@ def test_measured_values_are_sane(quick_gallery):
     fig18 = man["phillips/fig18"]["measured"]
     assert fig18["watertight"] is True and fig18["flipped faces per s"][0] == 0
     assert man["phillips/fig02"]["measured"]["basis at the lattice points equals the table entries the permutation points to"] is True
+    # Fig. 5.1: Metelli's equations recover the episcotister's open area and luminance from Talbot's mean
+    fig51 = man["stimuli/fig5_1"]["measured"]
+    assert fig51["alpha from Eq. 5.1 (set 0.4)"] == pytest.approx(0.4, abs=0.03)
+    assert fig51["t from Eq. 5.2 (set 8 cd/m²)"] == pytest.approx(8.0, abs=1.0)
+    # Fig. 5.2: target and match agree by Michelson contrast (Eq. 5.4), not by luminance range (Eq. 5.1)
+    by_m = [float(v) for v in man["stimuli/fig5_2"]["measured"]["alpha by Eq. 5.4 (M_centre / M_surround), target / match"].split(" / ")]
+    by_r = [float(v) for v in man["stimuli/fig5_2"]["measured"]["alpha by Eq. 5.1 (range ratio), target / match"].split(" / ")]
+    assert abs(by_m[0] - by_m[1]) < 0.03 < abs(by_r[0] - by_r[1])
+    # Fig. 5.3: (a) the surround has the lower contrast (alpha < 1), (b) with other means, the higher
+    fig53 = man["stimuli/fig5_3"]["measured"]
+    assert fig53["(a) M_surround / M_centre (the surround's alpha, Eq. 5.4)"] < 0.8
+    assert fig53["(b) M_surround / M_centre (the surround's alpha, Eq. 5.4)"] > 1.2
     lo, hi = man["phillips/fig16"]["measured"]["displacement / amplitude range (within [-1, 1])"]
     assert -1 <= lo < 0 < hi <= 1
 
@@ -262,7 +331,7 @@ def test_chromium_check_catches_a_missing_file_and_a_console_error(tmp_path):
     report = browser.check_page(tmp_path / "page.html", timeout=60)
     assert any("broken" in e for e in report["console_errors"])
     assert any("nowhere.png" in e or "ERR_FILE_NOT_FOUND" in e for e in report["console_errors"])
-    assert report["images"] == [{"src": "nowhere.png", "ok": False, "w": 0}]
+    assert [{k: i[k] for k in ("src", "ok", "w")} for i in report["images"]] == [{"src": "nowhere.png", "ok": False, "w": 0}]
 
 
 def _mtimes(folder):
@@ -350,7 +419,9 @@ def test_a_change_in_a_module_a_figure_reaches_rebuilds_it(monkeypatch):
 def test_only_builds_only_that_group(tmp_path):
     report = build_mod.build(tmp_path, only="lab", quick=True, show_progress=False)
     assert set(report["built"]) == {s.key for s in registry.specs("lab")}
-    assert sorted(p.name for p in tmp_path.iterdir() if p.is_dir()) == ["lab"]
+    assert sorted(p.name for p in tmp_path.iterdir() if p.is_dir()) == ["lab", "thumbs"]
+    assert sorted(p.name for p in (tmp_path / "thumbs").iterdir()) == sorted(f"{k.replace('/', '-')}.png"
+                                                                           for k in report["built"])
     page = _parse_all(tmp_path)
     assert not [r for r in page.refs if not (tmp_path / r).is_file() and r not in PAGES]
     built = [f for f in page.figures if f["srcs"]]
@@ -489,11 +560,11 @@ def test_a_periodic_background_wraps_and_the_crop_is_a_2x_enlargement():
     assert np.array_equal(crop[1::2, 1::2, 0], frame[10:42, 20:52])
 
 
-def test_a_stimuli_figure_gets_its_own_section_on_the_papers_page(tmp_path):
-    """Figures whose id starts with stimuli/ (another module adds them) land in a 'stimuli' section of index.html."""
+def test_a_stimuli_figure_joins_zhangs_section_in_the_thesis_order(tmp_path):
+    """Figures of the stimuli group (Zhang's Chapter 5 displays) stand among the thesis's other figures, by number."""
     from noiselab.gallery import html as page_html
 
-    @registry.figure("stimuli", "zz_probe", source="Zhang 2003, Fig. 0.0", title="probe", params=dict(n=4))
+    @registry.figure("stimuli", "zz_probe", source="Zhang 2003, Fig. 5.0", title="probe", params=dict(n=4))
     def probe(out, *, n):
         from noiselab.io import write_image
 
@@ -506,7 +577,156 @@ def test_a_stimuli_figure_gets_its_own_section_on_the_papers_page(tmp_path):
     assert report["built"] == ["stimuli/zz_probe"]
     assert page_html.page_of("stimuli") == "index.html"
     text = (tmp_path / "index.html").read_text()
-    assert '<h2 id="stimuli">' in text and text.index('<h2 id="stimuli">') < text.index('id="stimuli-zz_probe"')
+    assert '<h2 id="stimuli">' not in text
+    assert text.index('<h2 id="snow">') < text.index('id="snow-fig4_1"') < text.index('id="stimuli-zz_probe"') \
+        < text.index('id="stimuli-fig5_4"') < text.index('id="snow-fig6_1"') < text.index('<h2 id="phillips">')
     assert "stimuli-zz_probe" not in (tmp_path / "lab.html").read_text()
     # a 4-pixel image is shown enlarged by a whole factor, nearest neighbour
     assert 'class="pixelated" width="256" height="256"' in text
+
+
+def test_small_label_detector_flags_text_seen_under_11_px(tmp_path):
+    from noiselab.gallery import checks
+    from noiselab.gallery._common import pyplot, save_figure
+
+    plt = pyplot()
+    paths = {}
+    for name, size in (("small", 6), ("large", 14)):
+        fig, ax = plt.subplots(figsize=(4, 3))
+        ax.plot([0, 1], [0, 1])
+        ax.tick_params(labelsize=size)
+        ax.set_title("a title", fontsize=size)
+        paths[name] = save_figure(fig, tmp_path / f"{name}.png", dpi=100)
+    # the PNG records its smallest text in its own pixels (points * dpi / 72)
+    assert checks.smallest_text_px(paths["small"]) == pytest.approx(6 * 100 / 72, abs=0.01)
+    assert checks.smallest_text_px(paths["large"]) == pytest.approx(14 * 100 / 72, abs=0.01)
+    from PIL import Image
+
+    width = Image.open(paths["small"]).width
+    shown = [{"src": "small.png", "w": width, "shown": width}, {"src": "large.png", "w": width, "shown": width}]
+    assert [src for src, _ in checks.small_labels(shown, tmp_path)] == ["small.png"]
+    # the same 14-pt labels drawn at half their width are read at 9.7 px: flagged
+    half = [{"src": "large.png", "w": width, "shown": width / 2}]
+    [(src, px)] = checks.small_labels(half, tmp_path)
+    assert src == "large.png" and px == pytest.approx(14 * 100 / 72 / 2, abs=0.01)
+    # an image with no recorded size (a photograph, a frame) is not judged
+    Image.new("RGB", (8, 8)).save(tmp_path / "plain.png")
+    assert checks.small_labels([{"src": "plain.png", "w": 8, "shown": 1}], tmp_path) == []
+    with pytest.raises(ValueError, match="natural_width"):
+        checks.shown_text_px(10, natural_width=0, shown_width=5)
+
+
+def test_duplicate_detector_finds_same_bytes_and_same_pixels(tmp_path):
+    from PIL import Image
+
+    from noiselab.gallery import checks
+
+    rng = np.random.default_rng(0)
+    a = rng.integers(0, 256, (16, 16, 3), dtype=np.uint8)
+    Image.fromarray(a).save(tmp_path / "a.png")
+    (tmp_path / "a_copy.png").write_bytes((tmp_path / "a.png").read_bytes())
+    Image.fromarray(a).save(tmp_path / "a_other_bytes.png", compress_level=0)   # same pixels, other bytes
+    b = a.copy()
+    b[0, 0, 0] ^= 1                                                                # one pixel differs
+    Image.fromarray(b).save(tmp_path / "b.png")
+    assert (tmp_path / "a.png").read_bytes() != (tmp_path / "a_other_bytes.png").read_bytes()
+    groups = checks.duplicate_images(sorted(tmp_path.glob("*.png")))
+    reasons = {reason: sorted(p.name for p in group) for reason, group in groups}
+    assert reasons == {"identical bytes": ["a.png", "a_copy.png"],
+                       "identical pixels": ["a.png", "a_copy.png", "a_other_bytes.png"]}
+    assert checks.duplicate_images([tmp_path / "a.png", tmp_path / "b.png", tmp_path / "a.png"]) == []
+
+
+def test_check_reports_small_labels_and_duplicates_on_a_built_page(tmp_path, capsys):
+    """``--check`` on a page holding a still identical to a video's poster and a figure with tiny labels fails."""
+    from noiselab.gallery._common import pyplot, save_figure, save_video
+
+    @registry.figure("zz_bad", "twice", source="Test, Fig. 1", title="a still beside its video", params=dict(n=16))
+    def twice(out, *, n):
+        frames = np.linspace(0, 1, 4 * n * n).reshape(4, n, n)
+        files = save_video(out, "clip", frames)
+        from noiselab.io import to_uint8, write_image
+
+        files.append(write_image(out / "still.png", to_uint8(frames[0], None, None)))
+        return registry.Result(files, "bad")
+
+    @registry.figure("zz_bad", "tiny", source="Test, Fig. 2", title="tiny labels", params=dict(n=1))
+    def tiny(out, *, n):
+        plt = pyplot()
+        fig, ax = plt.subplots(figsize=(4, 3))
+        ax.set_title("tiny", fontsize=5)
+        return registry.Result([save_figure(fig, out / "tiny.png")], "bad")
+
+    try:
+        build_mod.build(tmp_path, only="zz_bad", show_progress=False)
+        status = build_mod.check(tmp_path, pages=("index.html",))
+    finally:
+        del registry.REGISTRY["zz_bad/twice"], registry.REGISTRY["zz_bad/tiny"]
+    err = capsys.readouterr().err
+    assert status == 1
+    assert "zz_bad/tiny/tiny.png: labels" in err
+    assert "the same image twice" in err and "zz_bad/twice/still.png" in err and "zz_bad/twice/clip_poster.png" in err
+
+
+def test_the_readme_shows_the_picture_the_gallery_draws(tmp_path):
+    """The README's image is the file the gallery's readme/picture figure writes, published by a full build."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    shown = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", readme)
+    assert build_mod.README_PICTURE_PATH.as_posix() in shown
+    spec = registry.specs(build_mod.README_PICTURE)[0]
+    # built (quick sizes, to keep the test short) into a scratch folder
+    report = build_mod.build(tmp_path / "out", only=build_mod.README_PICTURE, quick=True, show_progress=False)
+    assert report["built"] == [spec.key]
+    man = build_mod.read_manifest(tmp_path / "out", spec)
+    assert [Path(f).name for f in man["files"]] == [build_mod.README_PICTURE_PATH.name]
+    # a quick build never publishes; a full one copies the bytes into a checkout's docs/_static/
+    checkout = tmp_path / "checkout"
+    (checkout / "docs" / "_static").mkdir(parents=True)
+    (checkout / "README.md").write_text("![x](docs/_static/noiselab.png)")
+    assert build_mod.publish_readme_picture(tmp_path / "out", checkout=checkout) is None
+    man["quick"] = False
+    (tmp_path / "out" / "readme" / "picture" / "manifest.json").write_text(json.dumps(man))
+    target = build_mod.publish_readme_picture(tmp_path / "out", checkout=checkout)
+    assert target == checkout / build_mod.README_PICTURE_PATH
+    assert target.read_bytes() == (tmp_path / "out" / man["files"][0]).read_bytes()
+    # another machine's renderer changes low bits, not the picture: the committed copy is left alone;
+    # a different picture replaces it
+    from PIL import Image
+
+    built = np.asarray(Image.open(target).convert("RGB")).astype(int)
+    noisy = np.clip(built + np.random.default_rng(1).integers(-3, 4, built.shape), 0, 255).astype(np.uint8)
+    Image.fromarray(noisy).save(target)
+    before = target.read_bytes()
+    build_mod.publish_readme_picture(tmp_path / "out", checkout=checkout)
+    assert target.read_bytes() == before
+    Image.fromarray(255 - noisy).save(target)
+    build_mod.publish_readme_picture(tmp_path / "out", checkout=checkout)
+    assert target.read_bytes() == (tmp_path / "out" / man["files"][0]).read_bytes()
+    # an installed noiselab (no README beside the package) is left alone
+    assert build_mod.publish_readme_picture(tmp_path / "out", checkout=tmp_path / "nowhere") is None
+    # the committed picture is a full-size build of that figure: as wide as its three panels, labels that read
+    from noiselab.gallery import checks
+
+    committed = ROOT / build_mod.README_PICTURE_PATH
+    with Image.open(committed) as im:
+        width = im.width
+    assert width >= 3 * spec.params["panel"]
+    # on a project page about 830 px wide, its labels are seen at 11 px or more
+    assert checks.shown_text_px(checks.smallest_text_px(committed), natural_width=width, shown_width=830) >= 11
+
+
+def test_the_readme_picture_opens_the_papers_page(quick_gallery):
+    out, _ = quick_gallery
+    text = (out / "index.html").read_text()
+    assert text.index("noiselab is a Python laboratory") < text.index("readme/picture/noiselab.png") \
+        < text.index("The documents reproduced")
+    assert 'id="readme-picture"' not in "".join(f["id"] for f in _parse(out / "index.html").figures)
+
+
+def test_check_finds_nothing_on_the_built_gallery(quick_gallery, capsys):
+    """--check's every report (missing files, console errors, labels under 11 px, duplicate images) is empty."""
+    out, _ = quick_gallery
+    status = build_mod.check(out)
+    captured = capsys.readouterr()
+    assert status == 0, captured.err
+    assert "0 duplicate images" in captured.out and "labels" not in captured.err

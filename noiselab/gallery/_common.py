@@ -20,11 +20,28 @@ def pyplot():
     return plt
 
 
+def smallest_text(fig) -> float | None:
+    """The font size, in points, of the smallest visible, non-empty text of a matplotlib figure."""
+    from matplotlib.text import Text
+
+    sizes = [t.get_fontsize() for t in fig.findobj(Text) if t.get_visible() and t.get_text().strip()
+             and t.get_figure() is not None]
+    return min(sizes) if sizes else None
+
+
 def save_figure(fig, path, dpi=100) -> Path:
-    """Save a matplotlib figure to ``path`` and close it."""
+    """Save a matplotlib figure to ``path`` and close it.
+
+    A PNG records the size of its smallest text in its own pixels (``noiselab.gallery.checks.TEXT_PX_KEY``),
+    which ``noiselab gallery --check`` compares with the width the page shows it at.
+    """
+    from .checks import TEXT_PX_KEY
+
     plt = pyplot()
     path = Path(path)
-    fig.savefig(path, dpi=dpi, bbox_inches="tight")
+    points = smallest_text(fig)
+    meta = {TEXT_PX_KEY: f"{points * dpi / 72:.2f}"} if points and path.suffix.lower() == ".png" else None
+    fig.savefig(path, dpi=dpi, bbox_inches="tight", metadata=meta)
     plt.close(fig)
     return path
 

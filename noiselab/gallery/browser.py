@@ -88,27 +88,31 @@ _STATUS_JS = """
     ready: document.readyState,
     wantsCheck: !!document.getElementById('status'),
     check: document.body ? document.body.getAttribute('data-check') : null,
-    images: imgs.map(i => ({src: i.getAttribute('src'), ok: i.complete && i.naturalWidth > 0, w: i.naturalWidth})),
+    images: imgs.map(i => ({src: i.getAttribute('src'), ok: i.complete && i.naturalWidth > 0, w: i.naturalWidth,
+                          shown: i.getBoundingClientRect().width})),
     videos: vids.map(v => ({src: (v.querySelector('source') || v).getAttribute('src'), ready: v.readyState,
-                            error: v.error ? v.error.code : null, w: v.videoWidth, duration: v.duration})),
+                            error: v.error ? v.error.code : null, w: v.videoWidth, duration: v.duration,
+                            poster: v.getAttribute('poster')})),
     links: [...document.querySelectorAll('a[href]')].map(a => a.getAttribute('href')),
   });
 })()
 """
 
 
-def check_page(path, *, timeout=60.0, chromium=None):
+def check_page(path, *, timeout=60.0, chromium=None, width=1280):
     """Load ``path`` (an HTML file) in headless Chromium and return a report dict.
 
     Keys: ``console_errors`` (console messages of level error, uncaught
     exceptions, failed resource loads), ``images``, ``videos``, ``links`` (what
-    the page holds and whether each loaded), ``check`` (the page's own
-    ``data-check`` verdict), ``browser`` (version string).
+    the page holds and whether each loaded; an image's ``w`` is its natural width, ``shown`` the width drawn
+    in a window ``width`` CSS px wide), ``check`` (the page's own ``data-check`` verdict), ``browser``
+    (version string). The page is opened with ``?check``, so it loads every video, which a reader's page
+    does only when one is played.
     """
     chromium = chromium or find_chromium()
     if not chromium:
         raise FileNotFoundError("no Chromium found (install the Debian package 'chromium': ./install.sh test)")
-    url = Path(path).resolve().as_uri()
+    url = Path(path).resolve().as_uri() + "?check"   # the page then loads every video (they preload none)
     profile = tempfile.mkdtemp(prefix="noiselab-chromium-")
     to_r, to_w = os.pipe()      # we write, Chromium reads on fd 3
     from_r, from_w = os.pipe()  # Chromium writes on fd 4, we read
@@ -132,6 +136,9 @@ def check_page(path, *, timeout=60.0, chromium=None):
         session = pipe.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
         for domain in ("Runtime.enable", "Log.enable", "Page.enable", "Network.enable"):
             pipe.call(domain, session=session)
+        # the window a reader on a laptop has: label sizes are judged at this width
+        pipe.call("Emulation.setDeviceMetricsOverride", {"width": width, "height": 900, "deviceScaleFactor": 1,
+                                                          "mobile": False}, session=session)
         pipe.call("Page.navigate", {"url": url}, session=session)
         deadline = time.monotonic() + timeout
         status = None

@@ -24,6 +24,8 @@ import time
 import traceback
 from pathlib import Path
 
+import numpy as np
+
 from noiselab._core import progress
 from noiselab.io import atomic_output
 
@@ -96,8 +98,37 @@ def _plain(measured):
     return {str(k): conv(v) for k, v in measured.items()}
 
 
+def _thumbnail(out: Path, spec, man) -> None:
+    """Write the contents grid's thumbnail of a built figure (its first video's poster or first still), if out of date."""
+    from PIL import Image
+
+    from .html import IMAGE_EXT, THUMB_WIDTH, VIDEO_EXT, poster_of, thumbnail_of
+
+    files = [out / f for f in man["files"]]
+    posters = [poster_of(f) for f in files if f.suffix.lower() in VIDEO_EXT and poster_of(f) in files]
+    stills = [f for f in files if f.suffix.lower() in IMAGE_EXT and f not in posters]
+    # the first video's poster or the first still, whichever holds more (compresses to more bytes): a snowy
+    # frame rather than its clean background, a page of trajectories rather than a first frame with one dot
+    images = sorted(posters[:1] + stills[:1], key=lambda f: -f.stat().st_size)
+    if not images:
+        return
+    source, thumb = images[0], out / thumbnail_of(spec)
+    if thumb.is_file() and thumb.stat().st_mtime_ns >= source.stat().st_mtime_ns:
+        return
+    thumb.parent.mkdir(parents=True, exist_ok=True)
+    with Image.open(source) as im:
+        im = im.convert("RGBA" if im.mode in ("RGBA", "LA", "P") else "RGB")
+        im.thumbnail((THUMB_WIDTH, THUMB_WIDTH), Image.LANCZOS)
+        with atomic_output(thumb) as tmp:
+            im.save(tmp, format="PNG", optimize=True)
+
+
 def write_index(out: Path, *, summary="") -> Path:
-    """Write ``out/index.html`` and ``out/lab.html`` (atomically) from every registered figure's manifest; return the first."""
+    """Write ``out/index.html`` and ``out/lab.html`` (atomically) from every registered figure's manifest; return the first.
+
+    Also writes the thumbnails of the pages' contents grids (``out/thumbs/``). ``summary`` is accepted for
+    older callers and not shown: the build's log goes to the terminal, not onto the page.
+    """
     entries = []
     for spec in specs():
         man = read_manifest(out, spec)
@@ -105,8 +136,10 @@ def write_index(out: Path, *, summary="") -> Path:
             man = None
         if man and not man.get("error"):
             man["stale"] = man.get("hash") != content_hash(spec, bool(man.get("quick")))
+            if spec.name != "intro":
+                _thumbnail(out, spec, man)
         entries.append((spec, man))
-    for name, page in render_pages(out, entries, summary=summary).items():
+    for name, page in render_pages(out, entries).items():
         with atomic_output(out / name) as tmp:
             Path(tmp).write_text(page, encoding="utf-8")
     return out / "index.html"
@@ -138,11 +171,63 @@ def build(out=DEFAULT_OUT, *, only=None, quick=False, force=False, show_progress
         else:
             built.append(spec.key)
     seconds = time.perf_counter() - t0
-    mode = "quick" if quick else "full"
-    summary = (f"Last build ({mode}): {len(built)} built, {len(skipped)} up to date, {len(failed)} failed, "
-               f"{seconds:.1f} s. Rebuild one figure with noiselab gallery --only GROUP/NAME.")
-    index = write_index(out, summary=summary)
+    index = write_index(out)
+    if not quick:
+        publish_readme_picture(out, log=log)
     return {"index": index, "built": built, "skipped": skipped, "failed": failed, "seconds": seconds}
+
+
+README_PICTURE = "readme/picture"                       # the figure drawn as the README's picture
+README_PICTURE_PATH = Path("docs") / "_static" / "noiselab.png"   # where the README shows it, in a checkout
+
+
+def same_picture(a, b, *, block=4, tol=2.0) -> bool:
+    """Whether two images show the same picture: same size, and their ``block`` x ``block`` means differ by
+    under ``tol`` grey levels on average.
+
+    Another machine's renderer or FFT changes a few low bits, and the 256-colour dithering spreads them into
+    a different pattern of pixels; neither is a new picture, so the checkout's copy is left alone.
+    """
+    from PIL import Image
+
+    with Image.open(a) as ia, Image.open(b) as ib:
+        x, y = np.asarray(ia.convert("RGB"), float), np.asarray(ib.convert("RGB"), float)
+    if x.shape != y.shape:
+        return False
+    h, w = (x.shape[0] // block) * block, (x.shape[1] // block) * block
+
+    def means(z):
+        return z[:h, :w].reshape(h // block, block, w // block, block, 3).mean(axis=(1, 3))
+
+    return bool(np.abs(means(x) - means(y)).mean() < tol)
+
+
+def publish_readme_picture(out, *, checkout=None, log=None):
+    """Copy the README's picture from a full-size build into a checkout's ``docs/_static/noiselab.png``.
+
+    ``checkout`` defaults to the folder that holds the ``noiselab`` package when that folder is a
+    checkout (it has ``README.md`` and ``docs/_static/``); an installed noiselab has none, and nothing is
+    written. A quick build never publishes (its picture is small), and a copy that shows the same picture
+    (:func:`same_picture`) is left as it is. Returns the path of the checkout's picture, or None.
+    """
+    from .registry import _ROOT
+
+    root = Path(checkout) if checkout is not None else _ROOT
+    target = root / README_PICTURE_PATH
+    if not (root / "README.md").is_file() or not target.parent.is_dir():
+        return None
+    spec = specs(README_PICTURE)[0]
+    man = read_manifest(Path(out), spec)
+    if not man or man.get("error") or man.get("quick") or not man.get("files"):
+        return None
+    source = Path(out) / man["files"][0]
+    if target.is_file() and (target.read_bytes() == source.read_bytes() or same_picture(target, source)):
+        return target
+    with atomic_output(target) as tmp:
+        Path(tmp).write_bytes(source.read_bytes())
+    if log:
+        log(f"gallery: the README's picture {target} rewritten from {source}")
+    return target
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -153,7 +238,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--force", action="store_true", help="rebuild figures even if they are up to date")
     parser.add_argument("--list", action="store_true", help="list the figure groups and figures, then exit")
     parser.add_argument("--check", action="store_true",
-                        help="then open index.html and lab.html in headless Chromium and report missing files and console errors")
+                        help="then open index.html and lab.html in headless Chromium (1280 px wide) and report missing files, "
+                             "console errors, labels under 11 px and images shown twice")
     parser.add_argument("--progress", dest="show_progress", action="store_true", default=None,
                         help="always show the progress bar (default: only on a terminal)")
     parser.add_argument("--no-progress", dest="show_progress", action="store_false", help="never show the progress bar")
@@ -172,18 +258,44 @@ def run(args) -> int:
     print(f"gallery: open {index}")
     status = 1 if report["failed"] else 0
     if getattr(args, "check", False):
-        from .browser import check_page
-
-        for page_path in (index, index.with_name("lab.html")):
-            page = check_page(page_path)
-            bad = ([e for e in page["console_errors"]] + [f"image {i['src']} did not load" for i in page["images"] if not i["ok"]]
-                   + [f"video {v['src']} cannot play" for v in page["videos"] if v["error"] is not None or v["ready"] < 2])
-            for line in bad:
-                print(f"gallery: check: {page_path.name}: {line}", file=sys.stderr)
-            print(f"gallery: check {page_path.name} in {page['browser']}: {len(page['images'])} images, "
-                  f"{len(page['videos'])} videos, {len(bad)} problems")
-            status = status or (1 if bad else 0)
+        status = check(index.parent) or status
     return status
+
+
+def check(out, *, pages=("index.html", "lab.html"), width=None, min_px=None, echo=print) -> int:
+    """Open the built pages in headless Chromium and report what a reader would trip over; return 1 if anything.
+
+    Reports console errors, images that did not load, videos that cannot play, labels seen smaller than
+    ``min_px`` CSS px in a ``width`` px wide window (:func:`noiselab.gallery.checks.small_labels`), and
+    images shown more than once in another file (identical bytes or pixels, across both pages; the
+    contents grid's thumbnails excepted).
+    """
+    from .browser import check_page
+    from .checks import CHECK_WIDTH, MIN_TEXT_PX, duplicate_images, small_labels
+
+    out = Path(out)
+    width = CHECK_WIDTH if width is None else width
+    min_px = MIN_TEXT_PX if min_px is None else min_px
+    status, shown = 0, []
+    for name in pages:
+        page = check_page(out / name, width=width)
+        bad = ([e for e in page["console_errors"]] + [f"image {i['src']} did not load" for i in page["images"] if not i["ok"]]
+               + [f"video {v['src']} cannot play" for v in page["videos"] if v["error"] is not None or v["ready"] < 2])
+        bad += [f"image {src}: labels {px:.1f} px at {width} px width (under {min_px:g})"
+                for src, px in small_labels(page["images"], out, min_px=min_px)]
+        shown += [out / i["src"] for i in page["images"] if i["ok"] and not i["src"].startswith("thumbs/")]
+        shown += [out / v["poster"] for v in page["videos"] if v.get("poster")]
+        for line in bad:
+            echo(f"gallery: check: {name}: {line}", file=sys.stderr)
+        echo(f"gallery: check {name} in {page['browser']}: {len(page['images'])} images, "
+             f"{len(page['videos'])} videos, {len(bad)} problems")
+        status = status or (1 if bad else 0)
+    dups = duplicate_images(p for p in shown if p.is_file())
+    for reason, group in dups:
+        echo(f"gallery: check: the same image twice ({reason}): "
+             + ", ".join(p.relative_to(out).as_posix() for p in group), file=sys.stderr)
+    echo(f"gallery: check: {len(dups)} duplicate images among {len(set(shown))} shown")
+    return status or (1 if dups else 0)
 
 
 def main(argv=None) -> int:

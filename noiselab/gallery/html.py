@@ -1,12 +1,18 @@
 """The gallery's pages, ``index.html`` and ``lab.html``: every figure with its caption, every video playable.
 
-The pages are static and self-contained (no network, no scripts from elsewhere).
+The pages are static and self-contained (no network, no scripts from elsewhere;
+the references' links point out). ``index.html`` opens with what noiselab is,
+the README's picture and the references; each page then has a grid of
+thumbnails, one per figure, and its sections (Zhang's figures in the thesis's
+order, :func:`reading_order`).
 Each figure is a card: its seed figure and title as the heading, the media,
 one line on what to look for, the measured caption, and a ``<details>``
 block with the parameters, the measured numbers and the rebuild command.
-Videos do not autoplay: an IntersectionObserver plays those on screen.
+Videos do not autoplay and load nothing until played (``preload="none"``,
+with a poster): an IntersectionObserver plays those on screen.
 A small inline script checks, once the page has loaded, that every image
-decoded and every video can play, and writes the result into
+decoded (and, when the page is opened with ``?check``, that every video
+loads and can play), and writes the result into
 ``<body data-check=...>`` and a status line, so a reader (or a headless
 browser in the tests) sees at once whether anything is missing.
 """
@@ -14,6 +20,7 @@ from __future__ import annotations
 
 import html
 import os
+import re
 from pathlib import Path
 
 IMAGE_EXT = {".png", ".gif", ".jpg", ".jpeg", ".svg", ".webp"}
@@ -32,7 +39,15 @@ figure h3 { margin: 0 0 0.5em 0; font-size: 1.1em; }
 .media img.pixelated { image-rendering: pixelated; }
 .media a.shot { display: block; max-width: 100%; }
 .clip { font-size: 0.85em; } .clip a.full { color: #555; }
-.toc { columns: 2; font-size: 0.95em; } .toc ol { margin: 0.2em 0 0.6em 0; } .toc li { break-inside: avoid; }
+.lead { font-size: 1.1em; line-height: 1.5; max-width: 60em; }
+.refs ol { line-height: 1.5; } .refs h2 { margin-top: 1em; }
+#contents h3 { margin: 1em 0 0.4em 0; font-size: 1.05em; }
+.grid { display: grid; grid-template-columns: repeat(auto-fill, minmax(150px, 1fr)); gap: 0.6em; }
+.grid a.tile { display: block; background: #fff; border: 1px solid #ddd; border-radius: 4px; padding: 4px;
+               text-decoration: none; color: #1d4e89; font-size: 0.85em; text-align: center; }
+.grid a.tile:hover { border-color: #7a9cc6; }
+.grid img.thumb { display: block; width: 100%; height: 110px; object-fit: contain; background: #f4f4f4; margin-bottom: 3px; }
+.grid .nothumb { display: block; height: 110px; line-height: 110px; color: #999; background: #f4f4f4; }
 a.anchor { font-size: 0.75em; font-weight: normal; color: #999; text-decoration: none; margin-left: 0.4em; }
 code { background: #f0f0f0; padding: 0 0.25em; border-radius: 3px; }
 figcaption { margin-top: 0.6em; line-height: 1.45; }
@@ -51,7 +66,8 @@ _SCRIPT = """
     document.body.setAttribute('data-check', JSON.stringify(report));
     var s = document.getElementById('status');
     if (s) { s.textContent = report.bad.length ? ('Problems: ' + report.bad.join(', '))
-                                               : ('All ' + report.images + ' images and ' + report.videos + ' videos loaded.'); }
+                                               : ('All ' + report.images + ' images loaded' + (report.videosChecked
+                                                  ? ' and all ' + report.videos + ' videos play.' : '; ' + report.videos + ' videos load when played.')); }
   }
   // videos play only while at least half of them is on screen (never all at once)
   if ('IntersectionObserver' in window) {
@@ -66,13 +82,17 @@ _SCRIPT = """
   window.addEventListener('load', function () {
     var bad = [], imgs = document.querySelectorAll('img'), vids = document.querySelectorAll('video');
     imgs.forEach(function (im) { if (!im.complete || im.naturalWidth === 0) bad.push(im.getAttribute('src')); });
-    var pending = vids.length;
-    var report = {images: imgs.length, videos: vids.length, bad: bad};
+    // a reader's page loads no video until it is played (preload="none"); opened with ?check, every video is
+    // loaded and must reach its first frame (the headless check in noiselab/gallery/browser.py does that)
+    var checkVideos = /[?&]check(=|&|$)/.test(window.location.search);
+    var pending = checkVideos ? vids.length : 0;
+    var report = {images: imgs.length, videos: vids.length, bad: bad, videosChecked: checkVideos};
     if (!pending) { done(report); return; }
     vids.forEach(function (v) {
       var src = v.querySelector('source') ? v.querySelector('source').getAttribute('src') : v.getAttribute('src');
       var settled = false;
       function settle(ok) { if (settled) return; settled = true; if (!ok) bad.push(src); if (--pending === 0) done(report); }
+      v.preload = 'auto';
       if (v.readyState >= 2) { settle(true); return; }
       v.addEventListener('loadeddata', function () { settle(true); });
       v.addEventListener('error', function () { settle(false); }, true);
@@ -137,7 +157,7 @@ def _media(files, root):
             poster = poster_of(f)
             attr = f' poster="{html.escape(_rel(poster, root), quote=True)}"' if poster in files else ""
             mime = "video/mp4" if ext == ".mp4" else "video/webm"
-            parts.append(f'<div class="clip"><video controls loop muted playsinline preload="auto"{attr}>'
+            parts.append(f'<div class="clip"><video controls loop muted playsinline preload="none"{attr}>'
                          f'<source src="{src}" type="{mime}"></video>'
                          f'<br><a class="full" href="{src}" target="_blank">{html.escape(f.name)}: open full size</a></div>')
         elif ext in IMAGE_EXT:
@@ -173,13 +193,15 @@ def format_measured(measured: dict) -> str:
 
 
 # the two pages: the seed papers' reproductions, then the lab's own figures; a group not named here goes on the
-# first page, after the named ones (the stimuli group is named so that its figures find their place when added)
-PAGES = {"index.html": ("snow", "phillips", "stimuli"), "lab.html": ("lab", "derivatives")}
+# first page, after the named ones
+PAGES = {"index.html": ("readme", "snow", "stimuli", "phillips"), "lab.html": ("lab", "derivatives")}
 PAGE_TITLES = {"index.html": "noiselab gallery: the seed papers' figures, reproduced and measured",
                "lab.html": "noiselab lab: comparisons and derivatives"}
-GROUP_TITLES = {"snow": "Falling snow (Langer & Zhang 2003; Zhang's M.Sc. thesis)",
+# groups shown inside another group's section (Zhang's transparency stimuli belong with the rest of the thesis)
+SECTION_OF = {"stimuli": "snow"}
+GROUP_TITLES = {"snow": "Falling snow and perceptual transparency (Langer & Zhang 2003; Zhang 2003)",
                 "phillips": "Noisy stimuli (Phillips 2004)",
-                "stimuli": "Transparency stimuli (Zhang's thesis, Chapter 5)",
+                "stimuli": "Transparency stimuli (Zhang 2003, Chapter 5)",
                 "lab": "The lab's comparisons", "derivatives": "Derivatives of lattice noise"}
 INTROS = {
     "snow": "Langer and Zhang render falling snow without particles. A near flake looks bigger and moves faster than "
@@ -187,15 +209,14 @@ INTROS = {
             "energy of falling snow lies on one surface, the tent. The method fills the tent with random phases and "
             "a 1/f amplitude inside a band of spatial frequencies, takes one inverse 3-D FFT, and uses the result as "
             "the opacity of white snow over a picture. Every component is periodic, so the snow tiles in space and "
-            "loops in time. The thesis's Chapter 6 uses the same snow as a stimulus for perceptual transparency.",
+            "loops in time. The figures follow the thesis: Chapter 3 (the method, tiling), Chapter 4 (a panning "
+            "camera), Chapter 5 (the transparency displays it reviews, rendered in cd/m² on a stated display) and "
+            "Chapter 6 (the same snow as a stimulus for perceptual transparency).",
     "phillips": "Phillips builds psychophysical stimuli from lattice noise: random numbers at the integer points of "
                 "a lattice, found through a permutation table and smoothed by a kernel. The input can be 1-D (time: "
                 "a trajectory), 2-D (a texture, a height field) or 3-D (a solid, or 2-D over time), the output a "
                 "scalar or a vector (flow fields, colours). Summing octaves gives fractal sums (Eq. 9) and turbulence "
                 "(Eq. 10); displacing a mesh along its normals by noise gives the noisy spheres and the cow (Eq. 11).",
-    "stimuli": "The perceptual transparency stimuli that Chapter 5 of Zhang's thesis reviews: Singh and Anderson's "
-               "textured backgrounds with low-contrast regions (Fig. 5.4) and Stoner and Albright's moving "
-               "square-wave gratings (Fig. 5.5).",
     "lab": "The lab's own comparisons, with no seed figure: spectral synthesis against lattice noise, every "
            "smoothing kernel, quality measures from the literature, and the hash question, all measured with the "
            "same instruments.",
@@ -203,6 +224,65 @@ INTROS = {
                    "gradient rather than from the mesh.",
 }
 INTRO = "intro"   # a figure of this name is drawn in its group's introduction, not as a card
+FRONT = "readme"  # the group whose figures open index.html under the statement (the README's picture), not as cards
+
+# what the gallery is, and the documents it reproduces (shown at the top of index.html)
+STATEMENT = ("noiselab is a Python laboratory for procedural noise: spectral synthesis (falling snow from one inverse "
+             "FFT, motion clouds, 1/f textures) and lattice noise (value and gradient noise, fractal sums, "
+             "turbulence, noisy curves, surfaces and meshes), with the instruments that measure what was made "
+             "(spectra, speeds, contrasts in cd/m²). This page rebuilds the figures of the documents below with "
+             "noiselab; every caption says what was measured on the figure it sits under.")
+REFERENCES = (
+    ("M. S. Langer and L. Zhang. Rendering falling snow using an inverse Fourier transform. "
+     "ACM SIGGRAPH 2003 Sketches & Applications, San Diego, 2003.",
+     "https://dl.acm.org/action/doSearch?AllField=Rendering+falling+snow+using+an+inverse+Fourier+transform",
+     "ACM Digital Library"),
+    ("L. Zhang. Rendering falling snow using an inverse Fourier transform. M.Sc. thesis, School of Computer "
+     "Science, McGill University, Montreal, August 2003 (supervisor M. S. Langer).",
+     "https://escholarship.mcgill.ca/catalog?q=Rendering+falling+snow+using+an+inverse+Fourier+transform",
+     "McGill eScholarship"),
+    ("F. Phillips. Creating noisy stimuli. Perception 33(7), 837-854, 2004.",
+     "https://doi.org/10.1068/p5141", "doi:10.1068/p5141"),
+)
+
+THUMBS = "thumbs"   # folder of the contents grid's thumbnails, under the output folder
+THUMB_WIDTH = 200   # px
+
+
+def thumbnail_of(spec) -> str:
+    """Path, relative to the output folder, of a figure's thumbnail in the contents grid."""
+    return f"{THUMBS}/{spec.group}-{spec.name}.png"
+
+
+def _section(group: str) -> str:
+    return SECTION_OF.get(group, group)
+
+
+_NUMBER = re.compile(r"(?:Fig|Sec)\.\s*(\d+)(?:\.(\d+))?")
+
+
+def reading_order(spec) -> tuple:
+    """Where a card stands in its section: by the first figure (or section) number its source names.
+
+    ``"Zhang 2003, Fig. 5.4"`` -> (5, 4, 0); ``"... (Sec. 3.5 I)"`` -> (3, 5, 1), after Fig. 3.5; a source
+    with no number keeps its registration order after the numbered ones.
+    """
+    m = _NUMBER.search(spec.source)
+    if not m:
+        return (10 ** 6, 0, 0)
+    return (int(m.group(1)), int(m.group(2) or 0), 1 if m.group(0).startswith("Sec") else 0)
+
+
+def short_label(spec) -> str:
+    """The grid's label of a figure: its figure number (``Zhang Fig. 3.1``), or its title's first words."""
+    m = re.search(r"^([A-Z][A-Za-z&. ]*?)\s+\d{4},\s*(Fig\.\s*[\d.]+)", spec.source)
+    if m:
+        return f"{m.group(1).split()[0]} {m.group(2)}"
+    m = re.search(r"^([A-Z]\w*) \d{4}, video\b.*?(Sec\.\s*[\d.]+)", spec.source)
+    if m:
+        return f"{m.group(1)} {m.group(2)}, video"
+    words = spec.title.split()
+    return " ".join(words[:4]) + ("…" if len(words) > 4 else "")
 
 
 def page_of(group: str) -> str:
@@ -250,41 +330,82 @@ def _intro(group, entries, root):
     return "".join(parts) + "</div>"
 
 
+def _grid(sections, entries, root):
+    """The contents: per section, a grid of thumbnails, each a link to its figure's card."""
+    parts = []
+    for g, cards in sections:
+        tiles = []
+        for spec, man in cards:
+            anchor = html.escape(spec.key.replace("/", "-"))
+            thumb = thumbnail_of(spec)
+            img = (f'<img class="thumb" src="{html.escape(thumb, quote=True)}" alt="">'
+                   if (root / thumb).is_file() else '<span class="nothumb">not built</span>')
+            tiles.append(f'<a class="tile" href="#{anchor}" title="{html.escape(spec.source)}: '
+                         f'{html.escape(spec.title)}">{img}<span>{html.escape(short_label(spec))}</span></a>')
+        parts.append(f'<h3><a href="#{html.escape(g)}">{html.escape(GROUP_TITLES.get(g, g))}</a></h3>'
+                     f'<div class="grid">{"".join(tiles)}</div>')
+    return '<nav id="contents"><h2>Contents</h2>' + "".join(parts) + "</nav>"
+
+
+def _front(spec, man, root):
+    """The README's picture under the page's opening statement (its caption below it, no card of its own)."""
+    if not man or man.get("error"):
+        return ""
+    return (f'<div class="front" id="{html.escape(spec.key.replace("/", "-"))}">' + _media([root / f for f in man["files"]], root)
+            + f'<p>{html.escape(man["caption"])}</p></div>')
+
+
+def _references():
+    items = "".join(f'<li>{html.escape(text)} <a href="{html.escape(url, quote=True)}">{html.escape(label)}</a></li>'
+                    for text, url, label in REFERENCES)
+    return f'<div class="refs"><h2 id="references">The documents reproduced</h2><ol>{items}</ol></div>'
+
+
 def render_pages(root: Path, entries, *, summary="") -> dict:
     """Return ``{file name: HTML}`` for the gallery's pages (``index.html``, ``lab.html``).
 
     ``entries`` is a list of ``(spec, manifest_or_None)`` in registration order;
     ``manifest`` holds ``files`` (relative to ``root``), ``caption``,
-    ``measured``, ``params``, ``error``. Each page opens with a short
-    introduction per paper (with its schematic, the figure named ``intro``),
-    then one card per figure; the build summary is in the footer.
+    ``measured``, ``params``, ``error``. ``index.html`` opens with what
+    noiselab is and the full references of the documents it reproduces;
+    each page then shows a grid of thumbnails (``thumbs/``, see
+    :func:`thumbnail_of`) that jump to the figures, and one section per paper
+    (Zhang's figures in the thesis's order, :func:`reading_order`) with its
+    introduction and schematic (the figure named ``intro``). ``summary`` is
+    accepted for older callers and not shown: a page holds no build log.
     """
     pages = {}
     for page, title in PAGE_TITLES.items():
         groups = []
         for spec, _ in entries:
-            if page_of(spec.group) == page and spec.group not in groups:
-                groups.append(spec.group)
+            g = _section(spec.group)
+            if page_of(spec.group) == page and g not in groups and g != FRONT:
+                groups.append(g)
         order = list(PAGES[page])
         groups.sort(key=lambda g: order.index(g) if g in order else len(order))
+        sections = []
+        for g in groups:
+            cards = [(spec, man) for spec, man in entries if _section(spec.group) == g and spec.name != INTRO]
+            if page == "index.html":   # the papers' figures in their order; the lab's in registration order
+                cards.sort(key=lambda e: reading_order(e[0]))   # stable: registration order within a number
+            sections.append((g, cards))
         other = [p for p in PAGE_TITLES if p != page][0]
-        toc = []
-        for g in groups:
-            items = "".join(f'<li><a href="#{html.escape(spec.key.replace("/", "-"))}">{html.escape(spec.source)}: '
-                            f'{html.escape(spec.title)}</a></li>' for spec, _ in entries
-                            if spec.group == g and spec.name != INTRO)
-            toc.append(f'<li><a href="#{html.escape(g)}">{html.escape(GROUP_TITLES.get(g, g))}</a><ol>{items}</ol></li>')
-        body = [f"<h1>{html.escape(title)}</h1>",
-                f'<p>Every figure is computed by noiselab when the gallery is built; its caption says what was measured '
-                f'on it. Click an image to open it at full size; videos play while they are on screen. '
-                f'<a href="{other}">{html.escape(PAGE_TITLES[other])}</a> are on a page of their own.</p>',
-                '<nav id="contents"><h2>Contents</h2><ol class="toc">' + "".join(toc) + "</ol></nav>"]
-        for g in groups:
+        body = [f"<h1>{html.escape(title)}</h1>"]
+        if page == "index.html":
+            body.append(f'<p class="lead">{html.escape(STATEMENT)}</p>')
+            body += [_front(spec, man, root) for spec, man in entries if spec.group == FRONT]
+            body.append(_references())
+        body.append(f'<p>Click a thumbnail to jump to its figure, an image to open it at full size; a video loads '
+                    f'when you play it, and plays while on screen. '
+                    f'<a href="{other}">{html.escape(PAGE_TITLES[other])}</a> are on a page of their own.</p>')
+        body.append(_grid(sections, entries, root))
+        for g, cards in sections:
             body.append(f'<h2 id="{html.escape(g)}">{html.escape(GROUP_TITLES.get(g, g))}</h2>')
             body.append(_intro(g, entries, root))
-            body += [_card(spec, man, root) for spec, man in entries if spec.group == g and spec.name != INTRO]
-        body.append(f'<footer><p>{html.escape(summary)}</p><p id="status">Checking that every file loads…</p></footer>')
+            body += [_card(spec, man, root) for spec, man in cards]
+        body.append('<footer><p id="status">Checking that every file loads…</p></footer>')
         pages[page] = ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+                       '<meta name="viewport" content="width=device-width, initial-scale=1">'
                        f"<title>{html.escape(title)}</title>"
                        '<link rel="icon" href="data:,">'
                        f"<style>{_CSS}</style></head>\n<body>\n" + "\n".join(b for b in body if b)
@@ -294,4 +415,4 @@ def render_pages(root: Path, entries, *, summary="") -> dict:
 
 def render_index(root: Path, entries, *, title=None, summary="") -> str:
     """The HTML of ``index.html`` alone (the seed papers' page); see :func:`render_pages`."""
-    return render_pages(root, entries, summary=summary)["index.html"]
+    return render_pages(root, entries)["index.html"]

@@ -120,3 +120,100 @@ def phillips_intro(out, *, entries, seed):
                   "scales x (F lattice cells per unit); octaves at F, 2F, 4F... summed with weights 1, 1/2, 1/4... "
                   "make the fractal sum (Eq. 9), their magnitudes turbulence (Eq. 10).",
                   measured={"values at the lattice points": [float(v) for v in vals]})
+
+
+@figure("readme", "picture", source="The gallery's own (the README's picture)",
+        title="What noiselab makes: falling snow, a displaced mesh, a motion cloud, a tileable texture, a surface",
+        params=dict(panel=384, frames=16, octaves=4, seed=2), quick=dict(panel=96, frames=4, octaves=2),
+        uses=("noiselab.snowfall", "noiselab.geometry", "noiselab.lattice", "noiselab.stimuli", "noiselab.spectral",
+              "noiselab.analysis"),
+        look="the flakes in the 2x crop, big near ones and small far ones; the seams of the 2 x 2 tiling cannot be found")
+def readme_picture(out, *, panel, frames, octaves, seed):
+    """The first picture a visitor sees: six panels of what noiselab does, each made here with its public API.
+
+    Written as ``noiselab.png``; a full-size build also copies it to the checkout's ``docs/_static/`` (see
+    :func:`noiselab.gallery.build.publish_readme_picture`).
+    """
+    from noiselab import analysis
+    from noiselab.geometry import displace, monge_surface, render_mesh, sphere_for_noise
+    from noiselab.lattice import LatticeNoise
+    from noiselab.snowfall import snow
+    from noiselab.spectral import spectral_noise
+    from noiselab.stimuli import motion_cloud
+
+    from .._common import alpha_to_rgb_composite, pyplot
+    from ..checks import TEXT_PX_KEY
+    from ..scenes import frame_with_crop, house_scene
+
+    n = panel
+    # (a, b) falling snow over a scene: a frame and its 2x crop (the thesis's Fig. 3.1 method, Eq. 3.6)
+    alpha = snow((frames, n, n), rng=seed, c=1.0, beta=3.0, direction_yx=(1.0, 0.4))
+    frame = alpha_to_rgb_composite(alpha[0], house_scene(n, n), 250)
+    snow_pair = frame_with_crop(frame, (int(0.36 * n), int(0.3 * n)), gap=0)
+    # (c) a sphere displaced along its normals by turbulence (Phillips' Eq. 11)
+    field = LatticeNoise(3, rng=seed)
+    mesh = displace(sphere_for_noise(2.0 ** (octaves - 1), 1.0, max_subdivisions=6), field, amplitude=0.35,
+                    frequency=1.0, octaves=octaves, kind="turbulence", on_alias="ignore")
+    render = render_mesh(mesh, size=n, view="iso", elevation=10)
+    # (d) a motion cloud: band-pass, oriented noise (one frame)
+    cloud = motion_cloud((4, n, n), sf_0=0.06, B_sf=0.02, theta=np.pi / 4, B_theta=np.pi / 16,
+                         V_X=1.0, rng=seed, dtype=np.float64)[0]
+    cloud = cloud / (3 * cloud.std())
+    # (e) a periodic 1/f texture, one quarter of the panel, tiled 2 x 2: the seams do not show
+    tile = spectral_noise((n // 2, n // 2), exponent=1.5, rng=seed, dtype=np.float64)
+    tiled = np.tile(tile, (2, 2))
+    # (f) a lattice fractal sum as a Monge surface z = f(x, y) (Phillips' Figs. 8 and 14), coloured by height
+    terrain = monge_surface(LatticeNoise(2, rng=seed + 1), (n // 2, n // 2), ((0.0, 3.0), (0.0, 3.0)), amplitude=0.9,
+                            octaves=5, on_alias="ignore")
+    z = np.asarray(terrain.vertices)[:, 2]
+    land = render_mesh(terrain, size=n, view="iso", elevation=20, zoom=1.1, scalars="height", cmap="gist_earth",
+                       clim=(1.3 * float(z.min()), 1.3 * float(z.max())))
+
+    plt = pyplot()
+    gap, top = 12, 34   # px: between panels, above each (its label)
+    width = 3 * n + 2 * gap
+    height = 2 * (n + top) + gap
+    dpi = 100
+    fig = plt.figure(figsize=(width / dpi, height / dpi), dpi=dpi, facecolor="white")
+    fontsize = max(8.0, 13.0 * n / 384)
+
+    def put(img, col, row, title="", **kw):
+        x0 = col * (n + gap)
+        y0 = row * (n + top + gap) + top
+        ax = fig.add_axes([x0 / width, 1 - (y0 + n) / height, n / width, n / height])
+        ax.imshow(img, interpolation="nearest", aspect="auto", **kw)
+        ax.set_axis_off()
+        fig.text((x0 + 2) / width, 1 - (y0 - 6) / height, title, fontsize=fontsize, va="bottom", ha="left")
+        return ax
+
+    put(snow_pair[:, :n], 0, 0, title="falling snow: one frame, no particles")
+    put(snow_pair[:, n:], 1, 0, title="the square, 2x: near and far flakes")
+    put(render, 2, 0, title="a sphere displaced by turbulence")
+    put(cloud, 0, 1, title="a motion cloud (band-pass, drifting)", cmap="gray", vmin=-1, vmax=1)
+    ax = put(tiled, 1, 1, title="a periodic texture, tiled 2 x 2", cmap="gist_earth")
+    for t in (n // 2 - 0.5,):   # ticks outside the image mark where the tiles meet
+        ax.annotate("", (t, -4), (t, -14), arrowprops=dict(arrowstyle="-", color="0.4"), annotation_clip=False)
+    put(land, 2, 1, title="a lattice fractal sum as a surface")
+    spec = analysis.video_spectrum(alpha)
+    on_tent = analysis.tent_energy(spec, 1.0, (n / 32, n / 4), direction_yx=(1.0, 0.4))
+    path = out / "noiselab.png"
+    fig.canvas.draw()
+    rgb = np.asarray(fig.canvas.buffer_rgba())[..., :3]
+    plt.close(fig)
+    # 256 colours: about a quarter of the bytes of full colour, small enough to commit as the README's picture
+    from PIL import Image, PngImagePlugin
+
+    info = PngImagePlugin.PngInfo()
+    info.add_text(TEXT_PX_KEY, f"{fontsize * dpi / 72:.2f}")
+    image = Image.fromarray(rgb)
+    palette = image.quantize(256, method=Image.Quantize.MEDIANCUT)       # (Pillow dithers only onto a given palette)
+    image.quantize(palette=palette, dither=Image.Dither.FLOYDSTEINBERG).save(path, optimize=True, pnginfo=info)
+    return Result([path], "The README's picture, rebuilt with every gallery build: a frame of falling snow over a "
+                          "winter scene and its outlined square enlarged 2x (the flakes read there: large near ones, "
+                          f"small far ones); a sphere displaced along its normals by {octaves} octaves of turbulence; one "
+                          "frame of a drifting motion cloud; a periodic 1/f texture shown as 2 x 2 copies of itself "
+                          "(the tiles meet at the grey tick); five octaves of lattice noise as a height field.",
+                  measured={"energy on the tent": on_tent, "mean opacity": float(alpha.mean()),
+                            "texture: largest jump across a seam / largest jump inside (<= 1: no seam)":
+                                float(max(np.abs(tile[:, 0] - tile[:, -1]).max(), np.abs(tile[0] - tile[-1]).max())
+                                      / max(np.abs(np.diff(tile, axis=1)).max(), np.abs(np.diff(tile, axis=0)).max()))})

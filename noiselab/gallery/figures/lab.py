@@ -82,7 +82,7 @@ def kernels(out, *, size, cells, seed):
         for c, k in enumerate(names):
             img = LatticeNoise(2, rng=seed, kernel=k, basis=basis).grid((size, size), [(0, cells), (0, cells)])
             axes[r, c].imshow(img, cmap="gray", vmin=-1, vmax=1)
-            axes[r, c].set_title(f"{basis} / {k}", fontsize=10), axes[r, c].axis("off")
+            axes[r, c].set_title(f"{basis} / {k}", fontsize=11), axes[r, c].axis("off")
             rad = analysis.radial_spectrum(img, log=True, window="hann")
             keep = rad.counts > 0
             axes[r, -1].loglog(rad.centers[keep] / cells, rad.power[keep], label=k, lw=1)
@@ -92,9 +92,13 @@ def kernels(out, *, size, cells, seed):
             rolloff[f"{basis}/{k}"] = float(2 * analysis.spectral_slope(img, band, window="hann"))
         measured[f"{basis}: power slope 1-4 cycles/cell"] = ", ".join(
             f"{k}: {rolloff[f'{basis}/{k}']:.1f}" for k in names)
-        axes[r, -1].set_title(f"{basis} noise: radial power\n(Hann window)", fontsize=10)
-        axes[r, -1].set_ylabel("power", fontsize=10)
-        axes[r, -1].set_xlabel("cycles per lattice cell", fontsize=10), axes[r, -1].legend(fontsize=10, ncol=2)
+        axes[r, -1].set_title(f"{basis} noise: radial power\n(Hann window)", fontsize=11)
+        axes[r, -1].set_ylabel("power", fontsize=11)
+        axes[r, -1].set_xlabel("cycles per lattice cell", fontsize=11)
+        axes[r, -1].tick_params(labelsize=11)
+    # one legend for both spectra, under them, outside the plots: it covers no curve
+    handles, labels = axes[0, -1].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower right", ncol=3, fontsize=11, frameon=False)
     return Result([save_figure(fig, out / "kernels.png")],
                   f"LatticeNoise over {cells:g} x {cells:g} lattice cells, {size} x {size} pixels, for each kernel, with value "
                   "(Phillips) and gradient (Perlin) bases; right: radial power spectra against frequency in cycles per "

@@ -118,7 +118,7 @@ def fig02(out, *, entries, table_size, seed):
     smooth = LatticeNoise(1, rng=seed, kernel="catmull-rom", alternation="lattice", table_size=table_size)
     xs = np.linspace(0, entries - 1, 400)
     through = smooth(xs[:, None]) * smooth.bound      # undo the range normalisation: the curve through the stems
-    ax_b.plot(xs, through, color="C2", lw=1.5, label="Catmull-Rom interpolation (passes through every stem)")
+    ax_b.plot(xs, through, color="C2", lw=1.5, label="Catmull-Rom: through every stem")
     ax_b.axhline(0, color="0.6", lw=0.5)
     ax_b.set_ylim(-1.1, 1.1)
     ax_b.set_title("(c) the basis function: signs alternate with i", fontsize=10, loc="left")
@@ -376,7 +376,7 @@ def fig06(out, *, point, planes, xrange, kernel, checks, seed):
     ax3.scatter([px], [py], [value * noise.bound], color="k", s=40, depthshade=False)
     ax3.set_xlabel("x"), ax3.set_ylabel("y (plane)"), ax3.set_zlabel("value")
     ax3.set_zlim(-1, 1), ax3.set_ylim(ys[0] - 0.3, ys[-1] + 0.3), ax3.set_yticks(ys), ax3.view_init(elev=18, azim=-38)
-    ax3.set_title(f"(b) planes y = {ys[0]}..{ys[-1]}; red: their values at x = {px:g} and the curve across them",
+    ax3.set_title(f"(b) planes y = {ys[0]}..{ys[-1]}; red: their values at x = {px:g}\nand the curve across them",
                   fontsize=10, loc="left")
     # (c) the function across the planes, sampled at y = py
     axc = fig.add_subplot(gs[2])
@@ -387,7 +387,7 @@ def fig06(out, *, point, planes, xrange, kernel, checks, seed):
                  textcoords="offset points", fontsize=10, arrowprops=dict(arrowstyle="->", lw=0.8))
     axc.axhline(0, color="0.6", lw=0.5), axc.set_xlabel("y"), axc.set_ylim(-1.15, 1.45), axc.set_xticks(ys)
     axc.legend(fontsize=10, loc="upper left")
-    axc.set_title(f"(c) across the planes at x = {px:g}, sampled at y = {py:g}", fontsize=10, loc="left")
+    axc.set_title(f"(c) across the planes at x = {px:g},\nsampled at y = {py:g}", fontsize=10, loc="left")
     agree = "equal" if err < 1e-12 else "differ"
     return Result([save_figure(fig, out / "fig06.png")],
                   "How noiselab.LatticeNoise extends 1-D noise to a 2-D input (section 2.4.1). Every integer y has its own "
@@ -537,9 +537,27 @@ def fig09(out, *, arrows, cells, size, streamlines, seed):
                    "mean resultant length of directions (0 = no preferred direction)": float(np.hypot(np.cos(ang).mean(), np.sin(ang).mean()))})
 
 
+def _streamline_3d(field, start, cells, step=0.02, steps=600):
+    """A streamline of a 3-output field from ``start`` (x, y, z), unit speed, midpoint rule, until it leaves the box."""
+    def unit(q):
+        v = field(np.asarray(q, float)[None, ::-1])[0][::-1]    # the field takes (z, y, x); vectors read as the arrows
+        return v / max(float(np.linalg.norm(v)), 1e-12)
+
+    line = [np.asarray(start, float)]
+    for _ in range(steps):
+        q = line[-1]
+        mid = q + 0.5 * step * cells * unit(q)
+        nxt = q + step * cells * unit(mid)
+        if np.any(nxt < 0) or np.any(nxt > cells):
+            break
+        line.append(nxt)
+    return np.array(line)
+
+
 @figure("phillips", "fig10", source="Phillips 2004, Fig. 10", title="A 3-D vector field, as a cross-fusible stereo pair",
-        look="cross your eyes until the two boxes fuse into one: the arrows then stand at different depths",
-        params=dict(glyphs=5, cells=3.0, size=900, eye_deg=5.0, seed=8), quick=dict(glyphs=3, size=360), uses=GEOM)
+        look="cross your eyes until the two boxes fuse: near arrows (dark red) stand in front of far ones (pale blue), "
+             "and neighbours point alike, as the two streamlines show",
+        params=dict(glyphs=4, cells=2.0, size=900, eye_deg=5.0, seed=8), quick=dict(glyphs=3, size=360), uses=GEOM)
 def fig10(out, *, glyphs, cells, size, eye_deg, seed):
     from noiselab.lattice import LatticeNoise
     from noiselab.geometry import flow_field
@@ -549,36 +567,68 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
     plt = pyplot()
     field = LatticeNoise(3, 3, rng=seed)
     ext = ((0.0, cells),) * 3
-    pts, vec = flow_field(field, (glyphs,) * 3, ext)          # (z, y, x) points and (v_z, v_y, v_x) vectors
+    margin = 0.1 * cells
+    pts, vec = flow_field(field, (glyphs,) * 3, ((margin, cells - margin),) * 3)   # (z, y, x) points, (v_z, v_y, v_x)
     p = pts.reshape(-1, 3)[:, ::-1]
     v = vec.reshape(-1, 3)[:, ::-1]
-    spacing = cells / max(glyphs - 1, 1)
-    scale = 0.8 * spacing / float(np.linalg.norm(v, axis=1).max())
+    spacing = (cells - 2 * margin) / max(glyphs - 1, 1)
+    scale = 1.1 * spacing / float(np.percentile(np.linalg.norm(v, axis=1), 90))   # most arrows about a spacing long
+    # depth along the line of sight of the mean view: 0 nearest, 1 farthest; colour and width follow it
+    elev, azim = np.radians(22.0), np.radians(-30.0)
+    eye = np.array([np.cos(elev) * np.cos(azim), np.cos(elev) * np.sin(azim), np.sin(elev)])
+    depth = -(p + 0.5 * v * scale - cells / 2) @ eye
+    depth = (depth - depth.min()) / max(float(np.ptp(depth)), 1e-12)
+    from matplotlib.colors import LinearSegmentedColormap
+
+    cmap = LinearSegmentedColormap.from_list("near_far", ["#7f0f0f", "#c2562f", "#7fa7cf"])
+    colours = [cmap(d) for d in depth]
+    starts = [(0.15 * cells, 0.5 * cells, 0.45 * cells), (0.8 * cells, 0.25 * cells, 0.7 * cells)]
+    lines = [np.concatenate([_streamline_3d(lambda q: -field(q), s_, cells, steps=60)[::-1],
+                             _streamline_3d(field, s_, cells, steps=60)[1:]]) for s_ in starts]
     # cross-fused viewing: the left image is the right eye's view, turned by half the vergence the other way
     fig = plt.figure(figsize=(size / 100, size / 200 + 0.4))
     box = np.array([[x, y, z] for x in (0, cells) for y in (0, cells) for z in (0, cells)])
     edges = [(i, j) for i in range(8) for j in range(i + 1, 8) if np.sum(box[i] != box[j]) == 1]
+    order = np.argsort(-depth)     # far arrows first, so near ones are drawn over them
     for k, az in enumerate((-30 + eye_deg / 2, -30 - eye_deg / 2)):
         ax = fig.add_axes((0.5 * k, 0.0, 0.5, 0.92), projection="3d")
         ax.set_proj_type("persp", focal_length=0.6)
         for i, j in edges:
-            ax.plot(*np.c_[box[i], box[j]], color="0.45", lw=1.0)
-        ax.quiver(p[:, 0], p[:, 1], p[:, 2], v[:, 0] * scale, v[:, 1] * scale, v[:, 2] * scale, color="#111111",
-                  linewidth=2.6, arrow_length_ratio=0.35)
+            ax.plot(*np.c_[box[i], box[j]], color="0.6", lw=1.0)
+        for line in lines:
+            ax.plot(*line.T, color="0.1", lw=2.2)
+        for a in order:
+            ax.quiver(*p[a], *(v[a] * scale), color=colours[a], linewidth=1.5 + 2.5 * (1 - depth[a]),
+                      arrow_length_ratio=0.3)
         ax.view_init(elev=22, azim=az)
         ax.set_xlim(0, cells), ax.set_ylim(0, cells), ax.set_zlim(0, cells)
         ax.set_box_aspect((1, 1, 1)), ax.set_axis_off()
         ax.set_title("left: the right eye's view" if k == 0 else "right: the left eye's view", fontsize=12)
+    length = [float(np.sum(np.linalg.norm(np.diff(line, axis=0), axis=1))) for line in lines]
+    # local smoothness, measured: the angle between neighbouring arrows along each axis of the glyph grid
+    unit = vec / np.linalg.norm(vec, axis=-1, keepdims=True)
+    cos = np.concatenate([np.sum(unit[1:] * unit[:-1], -1).ravel(), np.sum(unit[:, 1:] * unit[:, :-1], -1).ravel(),
+                          np.sum(unit[:, :, 1:] * unit[:, :, :-1], -1).ravel()])
+    fine_pts, fine = flow_field(field, (24,) * 3, ext)
+    fu = fine / np.linalg.norm(fine, axis=-1, keepdims=True)
+    fine_cos = np.sum(fu[1:] * fu[:-1], -1)
     return Result([save_figure(fig, out / "stereo.png")],
-                  f"{glyphs}^3 arrows of 3-output noise of (x, y, z) over {cells:g}^3 lattice cells, drawn as dark arrows "
-                  f"in a wireframe box seen in perspective; the two views differ by {eye_deg:g} degrees of azimuth (left "
-                  "image = right eye, for cross-fusing). Arrow length is proportional to the vector's magnitude.",
-                  {f"v{c} range": _range(vec[..., i]) for i, c in enumerate("zyx")})
+                  f"{glyphs}^3 arrows of 3-output noise of (x, y, z) over {cells:g}^3 lattice cells in a wireframe box "
+                  f"seen in perspective, each arrow coloured and thickened by its depth (dark red near, pale blue far), "
+                  f"with two streamlines (dark grey) through the field: they bend gradually, which is what 'locally "
+                  f"smooth' means here. The two views differ by {eye_deg:g} degrees of azimuth (left image = right eye, "
+                  "for cross-fusing). Arrow length is proportional to the vector's magnitude.",
+                  {**{f"v{c} range": _range(vec[..., i]) for i, c in enumerate("zyx")},
+                   "streamline lengths (cells)": length,
+                   f"median angle between neighbouring arrows {spacing:.2f} cells apart (degrees)":
+                       float(np.degrees(np.arccos(np.clip(np.median(cos), -1, 1)))),
+                   f"median angle between neighbours {cells / 23:.3f} cells apart (degrees)":
+                       float(np.degrees(np.arccos(np.clip(np.median(fine_cos), -1, 1))))})
 
 
 @figure("phillips", "fig11", source="Phillips 2004, Fig. 11", title="Height and colour from one vector-valued noise",
-        look="hills and valleys whose colour changes independently of their height",
-        params=dict(grid=128, cells=3.0, amplitude=1.2, size=520, seeds=32, seed=9), quick=dict(grid=24, size=200, seeds=8),
+        look="hills and valleys, seen from low and lit from the side, whose colour changes independently of their height",
+        params=dict(grid=128, cells=3.0, amplitude=1.3, size=520, seeds=32, seed=9), quick=dict(grid=24, size=200, seeds=8),
         uses=GEOM)
 def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
     from noiselab.lattice import LatticeNoise
@@ -595,7 +645,16 @@ def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
     hue = colored_surface(f_hue, (grid, grid), ext, amplitude=amplitude, color="hue", value_range=vr_hue)
     rgb = colored_surface(f_rgb, (grid, grid), ext, amplitude=amplitude, color="rgb", value_range=vr_rgb,
                           on_alias="ignore")
-    imgs = [render_mesh(m, size=size, elevation=30, azimuth=20) for m in (hue, rgb)]
+    # a low, lit view: the hills and valleys read by their shading; the colours are softened a third towards grey
+    # for the render only (the measured colours below are the surface's own), so shading is not swamped by hue
+    shown = []
+    for m in (hue, rgb):
+        m = m.copy()
+        c = np.asarray(m.visual.vertex_colors).astype(float)
+        c[:, :3] = 0.67 * c[:, :3] + 0.33 * 190.0
+        m.visual.vertex_colors = np.clip(np.rint(c), 0, 255).astype(np.uint8)
+        shown.append(m)
+    imgs = [render_mesh(m, size=size, elevation=-5, azimuth=20, zoom=1.1) for m in shown]
     pair = np.concatenate([imgs[0], np.full((imgs[0].shape[0], 12, 3), 255, np.uint8), imgs[1]], axis=1)
     cols = np.asarray(rgb.visual.vertex_colors)[:, :3].astype(float)
     here = [float(np.corrcoef(cols[:, i], cols[:, j])[0, 1]) for i, j in ((0, 1), (0, 2), (1, 2))]
@@ -655,7 +714,7 @@ def _octave_plots(out, name, kind, octaves, length, samples, cells, seed, seeds=
             ax.plot(x[:, 0], fractal_sum(noise, x, n), color="C0", lw=0.8, alpha=0.6, label=f"fracsum(x, {n}) (Fig. 12)")
         ax.plot(x[:, 0], y, "k", lw=0.9, label=f"turb(x, {n})" if kind != "fractal" else None)
         if kind != "fractal":
-            ax.legend(fontsize=10, loc="upper right", ncol=2)
+            ax.legend(fontsize=10, loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False)
         ax.axhline(0, color="0.7", lw=0.5)
         ax.set_xlim(0, length)
         ax.set_title(f"n = {n} octave{'s' if n > 1 else ''}", fontsize=11, loc="left")

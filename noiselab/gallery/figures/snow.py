@@ -41,7 +41,7 @@ def opacity(out, *, frames, size, c, thickness, beta, seed):
     inside = (prof.centers >= band[0]) & (prof.centers <= band[1])
     return Result(files, f"The rendered opacity alpha = (rescaled inverse FFT of the thickened tent)^beta, "
                          f"{frames} frames of {size} x {size}, band {band[0]:g}..{band[1]:g} cycles/frame; "
-                         f"below: the speed of each spatial-frequency band against the tent's prediction. "
+                         f"beside it: the speed of each spatial-frequency band against the tent's prediction. "
                          f"Nearest flakes {near:.2f} px/frame, farthest {far:.2f} px/frame (flake_speeds).",
                   measured={"energy on the tent": on_tent,
                             "speed per band (cycles/frame: px/frame)": ", ".join(
@@ -81,7 +81,7 @@ def _composite_with_crop(alpha, background, box, intensity=250):
     return out
 
 
-@figure("snow", "fig3_1", source="Zhang 2003, Fig. 3.1", title="Falling snow composited over a house on a winter day",
+@figure("snow", "fig3_1", source="Zhang 2003, Fig. 3.1; Langer & Zhang 2003, Fig. 1", title="Falling snow composited over a house on a winter day",
         look="the flakes in the 2x crop: large fast ones in front, small slow ones behind, all falling down and to the right",
         params=dict(frames=64, size=512, c=1.0, beta=3.0, intensity=250, direction=(0.4, 1.0), seed=2),
         quick=dict(frames=8, size=64), uses=SNOW)
