@@ -1,0 +1,15 @@
+"""Sparse Gabor convolution noise (Lagae et al. 2009): the lab's third family, between spectral and lattice noise.
+
+Like lattice noise it is evaluated point by point from a counter-based hash
+(any point, window or chunk gives the same bits, with no period short of
+2**32 cells); like a spectral field its power spectrum is known in closed
+form (:meth:`GaborNoise.expected_spectrum`) and can be shaped by sampling the
+kernels' frequencies from a target.
+
+- :class:`GaborNoise`: the noise (2-D, 3-D, still or moving kernels), at
+  points and on grids; :func:`truncation_error` bounds the error of cutting
+  the kernels.
+"""
+from .noise import GaborNoise, truncation_error
+
+__all__ = ["GaborNoise", "truncation_error"]
