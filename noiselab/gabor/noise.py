@@ -56,7 +56,7 @@ def truncation_error(truncation, dim):
     Examples
     --------
     >>> round(truncation_error(0.01, 2), 6), round(truncation_error(0.01, 3), 4)
-    (0.01, 0.0386)
+    (0.01, 0.019)
     """
     truncation = check_real("truncation", truncation, lo=0.0, hi=0.5, lo_open=True)
     if dim not in (2, 3):
@@ -89,12 +89,13 @@ class GaborNoise:
     density : float
         Mean number of impulses per cell (Poisson), in (0, 256]. The number
         of kernels that overlap a point is ``density`` times the cut
-        ellipsoid's volume in cells (``pi ln(1/truncation) / pi``... about 4.6
-        in 2-D and 7.4 in 3-D at the default truncation).
+        ellipsoid's volume in cells (``ln(1/truncation)`` in 2-D,
+        ``4/3 pi (ln(1/truncation) / pi)**1.5`` in 3-D: 4.6 and 7.4 at the
+        default truncation).
     truncation : float
         Envelope level (relative to its peak) where each kernel is cut, in
         (0, 0.5]; the relative RMS error this makes is
-        :func:`truncation_error` (0.01 in 2-D, 0.039 in 3-D at 0.01).
+        :func:`truncation_error` (0.01 in 2-D, 0.019 in 3-D at 0.01).
     rng : int, numpy.random.Generator or None
         The random state: draws the hash key (one 32-bit word). Default 0, a
         fixed function like :class:`noiselab.LatticeNoise`.
