@@ -133,6 +133,15 @@ def test_expected_spectrum_integrates_to_the_variance():
     assert abs(ft[i] + 1.0 * fy[i] + 0.5 * fx[i]) < 0.011
 
 
+@pytest.mark.parametrize("dim", [2, 3])
+def test_expected_spectrum_on_sparse_grids_equals_the_point_by_point_sum(dim):
+    g = GaborNoise(RNG.uniform(-0.3, 0.3, (200, dim)), bandwidth=RNG.uniform(0.03, 0.1, dim), rng=1)
+    sparse = np.meshgrid(*[np.linspace(-0.5, 0.5, n) for n in (20, 24, 28)[:dim]], indexing="ij", sparse=True)
+    fast = g.expected_spectrum(*sparse)
+    slow = g.expected_spectrum(*[x.ravel() for x in np.broadcast_arrays(*sparse)]).reshape(fast.shape)
+    np.testing.assert_allclose(fast, slow, rtol=1e-12, atol=1e-12 * slow.max())
+
+
 def test_moving_kernels_move():
     """The mean of x(t+1, y, x + v) x(t, y, x) peaks at the kernels' velocity."""
     g = GaborNoise([[0.0, 0.0, 0.12]], bandwidth=(0.02, 0.04, 0.04), velocity=[[0.0, 3.0]], rng=9)

@@ -9,7 +9,11 @@ kernels' frequencies from a target.
 - :class:`GaborNoise`: the noise (2-D, 3-D, still or moving kernels), at
   points and on grids; :func:`truncation_error` bounds the error of cutting
   the kernels.
+- :func:`from_envelope`: the noise whose expected spectrum is a spectral
+  field's (the envelope :func:`noiselab.synthesize` takes), by sampling the
+  kernels' frequencies from it.
 """
 from .noise import GaborNoise, truncation_error
+from .spectra import from_envelope
 
-__all__ = ["GaborNoise", "truncation_error"]
+__all__ = ["GaborNoise", "truncation_error", "from_envelope"]

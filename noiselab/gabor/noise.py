@@ -283,7 +283,9 @@ class GaborNoise:
         ``nu'`` the frequency in the kernel's moving frame
         (``nu'_0 = nu_0 + v_m . (nu_1, nu_2)``). It integrates to the
         variance, 1 (without truncation). A grid of unit step has
-        ``np.abs(np.fft.fftn(x))**2 / x.size`` with this mean.
+        ``np.abs(np.fft.fftn(x))**2 / x.size`` with this mean. Sparse grids
+        (``np.meshgrid(..., sparse=True)``) of still kernels are summed axis
+        by axis (fast); other inputs point by point.
 
         Parameters
         ----------
@@ -297,21 +299,43 @@ class GaborNoise:
         """
         if len(f) != self.dim:
             raise ValueError(f"expected_spectrum takes {self.dim} frequency arrays (array order), got {len(f)}")
-        f = np.broadcast_arrays(*[check_finite_array(f"f[{i}]", x).astype(np.float64) for i, x in enumerate(f)])
+        f = [check_finite_array(f"f[{i}]", x).astype(np.float64) for i, x in enumerate(f)]
+        try:
+            shape = np.broadcast_shapes(*[x.shape for x in f])
+        except ValueError:
+            raise ValueError(f"the frequency arrays must broadcast together, got {[x.shape for x in f]}") from None
         s = self.bandwidth
-        total = np.zeros(f[0].shape)
-        norm = float(np.prod(1.0 / s ** 2))
-        for m in range(len(self.frequencies)):
-            fm = self.frequencies[m]
-            nu = list(f)
-            if self.dim == 3 and np.any(self.velocity[m]):
-                nu[0] = f[0] + self.velocity[m, 0] * f[1] + self.velocity[m, 1] * f[2]
-            for sign in (-1.0, 1.0):
-                e = np.zeros(f[0].shape)
-                for a in range(self.dim):
-                    e = e + (nu[a] + sign * fm[a]) ** 2 / s[a] ** 2
-                total += np.exp(-2.0 * math.pi * e)
-        return self._lambda * (1.0 / 3.0) * self._amp ** 2 / 4.0 * norm * total / len(self.frequencies)
+        rows = self.frequencies
+        lobes = np.concatenate([rows, -rows])            # the lobes at +f_m and -f_m
+        vel = np.concatenate([self.velocity, self.velocity])
+        scale = self._lambda * (1.0 / 3.0) * self._amp ** 2 / 4.0 * float(np.prod(1.0 / s ** 2)) / len(rows)
+        nd = len(shape)
+        axes = [[i for i, n in enumerate(x.shape) if n != 1] for x in f]
+        separable = (not np.any(self.velocity) and all(x.ndim == nd for x in f) and all(len(a) <= 1 for a in axes)
+                     and len({a[0] for a in axes if a}) == sum(1 for a in axes if a))
+        if separable:   # a sparse grid (np.meshgrid(..., sparse=True)): one factor per axis, summed by einsum
+            factors, subs = [], []
+            for a, x in enumerate(f):
+                e = np.exp(-2.0 * math.pi * (x.reshape(-1)[None, :] - lobes[:, a:a + 1]) ** 2 / s[a] ** 2)
+                factors.append(e if axes[a] else e[:, 0])
+                subs.append("m" + (chr(ord("a") + axes[a][0]) if axes[a] else ""))
+            out_subs = "".join(chr(ord("a") + i) for i in range(nd) if any(ax and ax[0] == i for ax in axes))
+            total = np.einsum(",".join(subs) + "->" + out_subs, *factors)
+            full = tuple(n if any(ax and ax[0] == i for ax in axes) else 1 for i, n in enumerate(shape))
+            return scale * total.reshape(full) * np.ones(shape)
+        fb = [np.broadcast_to(x, shape).reshape(-1) for x in f]
+        total = np.zeros(fb[0].shape)
+        step = max(1, (1 << 22) // max(1, fb[0].size))
+        for m0 in range(0, len(lobes), step):
+            L, V = lobes[m0:m0 + step], vel[m0:m0 + step]
+            nu0 = fb[0][None, :]
+            if self.dim == 3 and np.any(V):
+                nu0 = nu0 + V[:, :1] * fb[1][None, :] + V[:, 1:] * fb[2][None, :]
+            e = (nu0 - L[:, :1]) ** 2 / s[0] ** 2
+            for a in range(1, self.dim):
+                e = e + (fb[a][None, :] - L[:, a:a + 1]) ** 2 / s[a] ** 2
+            total += np.exp(-2.0 * math.pi * e).sum(axis=0)
+        return scale * total.reshape(shape)
 
 
 def _seq(name, value, n):
