@@ -215,8 +215,10 @@ def _make_grid(DIM):
                             # the moving centre on this layer, and the rows and columns within reach
                             c1 = p1 + vel[m, 0] * d0
                             c2 = p2 + vel[m, 1] * d0
-                            half1 = rmax / scale[1]
-                            half2 = rmax / scale[2]
+                            # the cut ellipsoid's section on this layer: radius sqrt(rho2 - s0) in cells
+                            rem = math.sqrt(rho2 - s0)
+                            half1 = rem / scale[1]
+                            half2 = rem / scale[2]
                             i1lo = max(0, np.int64(math.floor((c1 - half1 - b1o) / step[1])) - 1)
                             i1hi = min(n1 - 1, np.int64(math.floor((c1 + half1 - b1o) / step[1])) + 1)
                             i2lo = max(0, np.int64(math.floor((c2 - half2 - b2o) / step[2])) - 1)
