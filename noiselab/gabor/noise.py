@@ -146,7 +146,7 @@ class GaborNoise:
         # internal three axes (axis 0 absent in 2-D)
         s3 = np.ones(3) if dim == 2 else np.empty(3)
         s3[3 - dim:] = self.bandwidth
-        self._scale = s3
+        self._s3 = s3
         self._cell = 1.0 / s3
         self._rho2 = math.log(1.0 / self.truncation) / math.pi
         rmax = math.sqrt(self._rho2)
@@ -175,7 +175,7 @@ class GaborNoise:
         return truncation_error(self.truncation, self.dim)
 
     def _rest(self):
-        return (self.key, _MULTS, self._cell, self._reach, self.density, self._scale, self._rho2, self._amp,
+        return (self.key, _MULTS, self._cell, self._reach, self.density, self._s3, self._rho2, self._amp,
                 self._f3, self.velocity)
 
     def __call__(self, points, *, dtype=np.float32, workers=None):
