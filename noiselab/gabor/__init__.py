@@ -11,12 +11,15 @@ kernels' frequencies from a target.
   the kernels.
 - :func:`from_envelope`: the noise whose expected spectrum is a spectral
   field's (the envelope :func:`noiselab.synthesize` takes), by sampling the
-  kernels' frequencies from it.
+  kernels' frequencies from it; :func:`power_law_layers` and
+  :func:`render_layers`: a power law over many octaves, octave by octave
+  (kernels sized to their wavelengths).
 - :func:`gabor_snow`: :func:`noiselab.snow`'s falling snow with no period,
   any window of any frame; :func:`snow_layers` are its moving-kernel noises.
 """
 from .noise import GaborNoise, truncation_error
 from .snow import OPACITY_SIGMAS, gabor_snow, snow_layers
-from .spectra import from_envelope
+from .spectra import from_envelope, power_law_layers, render_layers
 
-__all__ = ["GaborNoise", "truncation_error", "from_envelope", "gabor_snow", "snow_layers", "OPACITY_SIGMAS"]
+__all__ = ["GaborNoise", "truncation_error", "from_envelope", "power_law_layers", "render_layers", "gabor_snow",
+           "snow_layers", "OPACITY_SIGMAS"]

@@ -18,7 +18,7 @@ import numpy as np
 from .._core import as_generator, check_int
 from .noise import GaborNoise
 
-__all__ = ["from_envelope", "SAMPLES_PER_AXIS"]
+__all__ = ["from_envelope", "power_law_layers", "render_layers", "SAMPLES_PER_AXIS"]
 
 #: Frequency cells per axis over [-0.5, 0.5) cycles/sample where the envelope is sampled (2-D, 3-D).
 SAMPLES_PER_AXIS = {2: 512, 3: 96}
@@ -105,3 +105,100 @@ def from_envelope(envelope, *, dim=2, bandwidth, rows=4096, density=4.0, truncat
     cells = np.stack(np.unravel_index(idx, shape), axis=1)
     table = f[cells] + gen.random((rows, dim)) * step
     return GaborNoise(table, bandwidth=bandwidth, density=density, truncation=truncation, rng=gen)
+
+
+def power_law_layers(*, dim=2, exponent=1.0, band, density=4.0, rows=2048, rng=0):
+    """An isotropic power law in a band as octave layers of Gabor noise, with their weights.
+
+    Octave ``k`` of ``band`` (cycles/sample) is a :class:`GaborNoise` whose
+    kernels have random directions and radii drawn with the density of the
+    power ``|f|**(-2 exponent)`` over the plane (space), and an envelope a
+    quarter of the octave's low edge wide (kernels sized to their
+    wavelengths); its weight is the square root of the octave's share of the
+    power. ``sum_k weight_k * noise_k`` has variance 1 and the power law's
+    expected spectrum blurred by each octave's lobe.
+
+    Parameters
+    ----------
+    dim : {2, 3}
+        Dimension of the noise.
+    exponent : float
+        Amplitude exponent (``dim / 2``: equal energy per octave).
+    band : (lo, hi)
+        Pass band in cycles/sample, ``0 < lo < hi <= 0.5``.
+    density, rows, rng
+        As for :func:`from_envelope` (``rows`` per octave).
+
+    Returns
+    -------
+    list of (float, GaborNoise)
+
+    Examples
+    --------
+    >>> layers = power_law_layers(band=(1 / 64, 1 / 4))
+    >>> len(layers), round(sum(w * w for w, _ in layers), 12)
+    (4, 1.0)
+    """
+    from .._core import check_band, check_real
+
+    if dim not in (2, 3) or isinstance(dim, bool):
+        raise ValueError(f"dim must be 2 or 3, got {dim!r}")
+    exponent = check_real("exponent", exponent, lo=-8.0, hi=8.0)
+    lo, hi = check_band("band", band, 0.5, lo_open=True)
+    rows = check_int("rows", rows, lo=1, hi=1 << 20)
+    gen = as_generator(rng)
+    k = float(dim) - 2.0 * exponent   # radial density |f|**(k - 1)
+
+    def mass(a, b):
+        return math.log(b / a) if abs(k) < 1e-12 else (b ** k - a ** k) / k
+
+    edges = [lo]
+    while edges[-1] * 2.0 < hi * (1 - 1e-9):
+        edges.append(edges[-1] * 2.0)
+    edges.append(hi)
+    total = mass(lo, hi)
+    layers = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        u = gen.random(rows)
+        r = a * (b / a) ** u if abs(k) < 1e-12 else (a ** k + u * (b ** k - a ** k)) ** (1.0 / k)
+        d = gen.standard_normal((rows, dim))
+        d /= np.linalg.norm(d, axis=1, keepdims=True)
+        layers.append((math.sqrt(mass(a, b) / total),
+                       GaborNoise(r[:, None] * d, bandwidth=a / 4.0, density=density, rng=gen)))
+    return layers
+
+
+def render_layers(layers, shape, *, origin=None, dtype=np.float32, workers=None):
+    """``sum_k weight_k * noise_k`` on a grid (:meth:`GaborNoise.grid`), summed in float64 in layer order.
+
+    Parameters
+    ----------
+    layers : list of (float, GaborNoise)
+        From :func:`power_law_layers` or :func:`noiselab.gabor.snow_layers`.
+    shape : tuple of ints
+        The grid (array order).
+    origin : sequence of floats, optional
+        Coordinate of the first sample (default zeros).
+    dtype : float32 or float64
+        Output dtype.
+    workers : int, optional
+        Threads; the result does not depend on them.
+
+    Returns
+    -------
+    ndarray, ``shape``
+
+    Examples
+    --------
+    >>> x = render_layers(power_law_layers(band=(1 / 32, 1 / 4)), (64, 64))
+    >>> x.shape, x.dtype
+    ((64, 64), dtype('float32'))
+    """
+    from .._core import float_dtype
+
+    dt = float_dtype(dtype)
+    out = None
+    for weight, g in layers:
+        x = g.grid(shape, origin=origin, dtype=np.float64, workers=workers)
+        out = weight * x if out is None else out + weight * x
+    return out.astype(dt, copy=False)
