@@ -23,7 +23,7 @@ def _noise(dim, moving=False, rows=3, density=3.0, rng=5):
     F = RNG.uniform(-0.2, 0.2, (rows, dim))
     s = RNG.uniform(0.05, 0.2, dim)
     vel = RNG.uniform(-2.0, 2.0, (rows, 2)) if moving else None
-    return GaborNoise(F, bandwidth=s, velocity=vel, density=density, rng=rng), F, s, vel
+    return GaborNoise(F, bandwidth=s, velocities_yx=vel, density=density, rng=rng), F, s, vel
 
 
 def _grid_points(origin, shape, step=1.0):
@@ -76,14 +76,14 @@ def test_same_int_same_bits_other_int_other_noise():
 def test_same_bits_in_another_process_and_without_the_jit():
     """The compiled kernels and plain Python (NUMBA_DISABLE_JIT=1) give the same values, in a fresh process."""
     code = ("import numpy as np; from noiselab.gabor import GaborNoise;"
-            "g = GaborNoise([[0.0, 0.1, 0.05], [0.1, 0.0, 0.0]], bandwidth=(0.2, 0.1, 0.1), velocity=[[1, 0], [0, -1]],"
+            "g = GaborNoise([[0.0, 0.1, 0.05], [0.1, 0.0, 0.0]], bandwidth=(0.2, 0.1, 0.1), velocities_yx=[[1, 0], [0, -1]],"
             " density=2.0, rng=11);"
             "a = g.grid((2, 6, 7), origin=(3, -2, 4), dtype=np.float64);"
             "b = g(np.array([[3.5, 1.25, -9.0], [1e5, 2.0, 3.0]]), dtype=np.float64);"
             "print(repr(a.tolist()), repr(b.tolist()))")
     env = dict(os.environ, PYTHONPATH=str(ROOT), NUMBA_DISABLE_JIT="1")
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True).stdout
-    g = GaborNoise([[0.0, 0.1, 0.05], [0.1, 0.0, 0.0]], bandwidth=(0.2, 0.1, 0.1), velocity=[[1, 0], [0, -1]],
+    g = GaborNoise([[0.0, 0.1, 0.05], [0.1, 0.0, 0.0]], bandwidth=(0.2, 0.1, 0.1), velocities_yx=[[1, 0], [0, -1]],
                    density=2.0, rng=11)
     a = g.grid((2, 6, 7), origin=(3, -2, 4), dtype=np.float64)
     b = g(np.array([[3.5, 1.25, -9.0], [1e5, 2.0, 3.0]]), dtype=np.float64)
@@ -123,7 +123,7 @@ def test_expected_spectrum_integrates_to_the_variance():
     fy, fx = np.meshgrid(f, f, indexing="ij")
     total = g.expected_spectrum(fy, fx).sum() * (f[1] - f[0]) ** 2
     assert abs(total - 1.0) < 1e-6
-    gm = GaborNoise([[0.0, 0.0, 0.1]], bandwidth=(0.1, 0.05, 0.05), velocity=[[1.0, 0.5]], rng=0)
+    gm = GaborNoise([[0.0, 0.0, 0.1]], bandwidth=(0.1, 0.05, 0.05), velocities_yx=[[1.0, 0.5]], rng=0)
     f = np.linspace(-0.6, 0.6, 121)
     ft, fy, fx = np.meshgrid(f, f, f, indexing="ij")
     S = gm.expected_spectrum(ft, fy, fx)
@@ -144,7 +144,7 @@ def test_expected_spectrum_on_sparse_grids_equals_the_point_by_point_sum(dim):
 
 def test_moving_kernels_move():
     """The mean of x(t+1, y, x + v) x(t, y, x) peaks at the kernels' velocity."""
-    g = GaborNoise([[0.0, 0.0, 0.12]], bandwidth=(0.02, 0.04, 0.04), velocity=[[0.0, 3.0]], rng=9)
+    g = GaborNoise([[0.0, 0.0, 0.12]], bandwidth=(0.02, 0.04, 0.04), velocities_yx=[[0.0, 3.0]], rng=9)
     v = g.grid((2, 96, 160), dtype=np.float64)
     lags = range(-6, 7)
     corr = [np.mean(v[1, :, 10 + k:140 + k] * v[0, :, 10:140]) for k in lags]
@@ -197,9 +197,9 @@ def test_bad_grid_arguments_are_refused(case):
 
 
 def test_velocity_needs_three_axes_and_one_row_per_frequency():
-    with pytest.raises(ValueError, match="velocity"):
-        GaborNoise([[0.0, 0.1]], bandwidth=0.05, velocity=[[1.0, 0.0]])
-    with pytest.raises(ValueError, match="velocity"):
-        GaborNoise([[0.0, 0.0, 0.1]], bandwidth=0.05, velocity=[[1.0, 0.0], [0.0, 1.0]])
+    with pytest.raises(ValueError, match="velocities_yx"):
+        GaborNoise([[0.0, 0.1]], bandwidth=0.05, velocities_yx=[[1.0, 0.0]])
+    with pytest.raises(ValueError, match="velocities_yx"):
+        GaborNoise([[0.0, 0.0, 0.1]], bandwidth=0.05, velocities_yx=[[1.0, 0.0], [0.0, 1.0]])
     with pytest.raises(ValueError, match="dim"):
         truncation_error(0.01, 4)

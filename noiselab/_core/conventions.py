@@ -445,8 +445,9 @@ WORDS = {
         type='',
         default=REQUIRED,
         keyword_only=False,
-        per_function={'noiselab.gabor.from_envelope': (2, True)},
-        note='from_envelope takes 2 or 3 by keyword, 2 by default (the envelope comes first)'),
+        per_function={'noiselab.gabor.from_envelope': (2, True), 'noiselab.gabor.power_law_layers': (2, True)},
+        note=('from_envelope and power_law_layers take 2 or 3 by keyword, 2 by default (the envelope or the band '
+              'is what they are about)')),
     'dim_in': Word(
         'Input dimension d >= 1 (1: a curve of time, 2: an image, 3: solid noise, ...).',
         unit='',
@@ -1228,7 +1229,8 @@ WORDS = {
                       'noiselab.geometry.quiver_image': (0, True),
                       'noiselab.LatticeNoise': (0, True),
                       'noiselab.gabor.GaborNoise': (0, True),
-                      'noiselab.gabor.from_envelope': (0, True)},
+                      'noiselab.gabor.from_envelope': (0, True),
+                      'noiselab.gabor.power_law_layers': (0, True)},
         note=('draw_coefficients keeps rng second by position (its calling form since 0.1); quiver_image draws a '
               'fixed picture: the same every run unless another rng is passed; a LatticeNoise is a fixed function '
               "(as Perlin's reference noise and the SIMD peers' default seed are), so LatticeNoise(3) is the same "
@@ -1750,9 +1752,15 @@ WORDS = {
         keyword_only=None,
         per_function={'noiselab.gabor.truncation_error': (REQUIRED, False)},
         note='truncation_error takes the level it reports on (required)'),
-    'velocity': Word(
-        ("Each Gabor kernel's (vy, vx) in samples of axes 1, 2 per sample of axis 0 (time): one row per "
-         'frequency row; None for still kernels.'),
+    'weighted_noises': Word(
+        'A list of (weight, GaborNoise) pairs summed in order (noiselab.gabor.power_law_layers, snow_layers).',
+        unit='',
+        type='list of (float, GaborNoise)',
+        default=REQUIRED,
+        keyword_only=False),
+    'velocities_yx': Word(
+        ("Each Gabor kernel's (vy, vx), array order, in samples of axes 1, 2 per sample of axis 0 (time): one "
+         'row per frequency row; None for still kernels.'),
         unit='px/frame',
         type='array_like (M, 2) or None',
         default=None,

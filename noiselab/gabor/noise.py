@@ -81,9 +81,9 @@ class GaborNoise:
         ``s_a``: the Gaussian envelope ``exp(-pi (s_a d_a)**2)`` per axis,
         whose lobe in frequency is ``exp(-pi nu**2 / s_a**2)`` (cycles per
         unit, > 0). The kernel's cell is ``1 / s_a`` units.
-    velocity : array_like, (M, 2), optional
+    velocities_yx : array_like, (M, 2), optional
         Only for ``dim = 3`` with axis 0 as time: row ``m``'s kernel centre
-        moves by ``velocity[m] = (vy, vx)`` units of axes 1, 2 per unit of
+        moves by ``velocities_yx[m] = (vy, vx)`` units of axes 1, 2 per unit of
         axis 0, so its energy lies on the plane ``nu_t = -v . nu`` (a moving
         grating). Default: still kernels.
     density : float
@@ -114,7 +114,7 @@ class GaborNoise:
     True
     """
 
-    def __init__(self, frequencies, *, bandwidth, velocity=None, density=4.0, truncation=0.01, rng=0):
+    def __init__(self, frequencies, *, bandwidth, velocities_yx=None, density=4.0, truncation=0.01, rng=0):
         f = check_finite_array("frequencies", frequencies)
         if f.ndim != 2 or f.shape[1] not in (2, 3) or f.shape[0] < 1:
             raise ValueError(f"frequencies must be an (M, 2) or (M, 3) table with M >= 1, got shape {f.shape}")
@@ -130,16 +130,17 @@ class GaborNoise:
                 raise ValueError(f"bandwidth must be a number or {dim} numbers (one per axis), got {len(s)}")
             s = [check_real(f"bandwidth[{i}]", v, lo=0.0, lo_open=True) for i, v in enumerate(s)]
         self.bandwidth = np.array(s, dtype=np.float64)
-        if velocity is not None:
+        if velocities_yx is not None:
             if dim != 3:
-                raise ValueError("velocity needs a 3-D noise (axis 0 is time): frequencies of shape (M, 3)")
-            v = check_finite_array("velocity", velocity).astype(np.float64)
+                raise ValueError("velocities_yx needs a 3-D noise (axis 0 is time): frequencies of shape (M, 3)")
+            v = check_finite_array("velocities_yx", velocities_yx).astype(np.float64)
             if v.shape != (f.shape[0], 2):
-                raise ValueError(f"velocity must be ({f.shape[0]}, 2), one (vy, vx) per frequency row, got {v.shape}")
+                raise ValueError(f"velocities_yx must be ({f.shape[0]}, 2), one (vy, vx) per frequency row, "
+                                 f"got {v.shape}")
         else:
             v = np.zeros((f.shape[0], 2))
-        self.velocity = v
-        self.velocity.setflags(write=False)
+        self.velocities_yx = v
+        self.velocities_yx.setflags(write=False)
         self.density = check_real("density", density, lo=0.0, hi=MAX_DENSITY, lo_open=True)
         self.truncation = check_real("truncation", truncation, lo=0.0, hi=0.5, lo_open=True)
         self.key = np.uint32(as_generator(rng).integers(0, 1 << 32, dtype=np.uint64))
@@ -167,7 +168,7 @@ class GaborNoise:
     def __repr__(self):
         return (f"GaborNoise(dim={self.dim}, rows={len(self.frequencies)}, bandwidth={self.bandwidth.tolist()}, "
                 f"density={self.density:g}, truncation={self.truncation:g}, "
-                f"moving={bool(np.any(self.velocity))})")
+                f"moving={bool(np.any(self.velocities_yx))})")
 
     @property
     def truncation_error(self):
@@ -176,7 +177,7 @@ class GaborNoise:
 
     def _rest(self):
         return (self.key, _MULTS, self._cell, self._reach, self.density, self._s3, self._rho2, self._amp,
-                self._f3, self.velocity)
+                self._f3, self.velocities_yx)
 
     def __call__(self, points, *, dtype=np.float32, workers=None):
         """The noise at ``points`` (``(..., dim)``, array order), as ``dtype``; threads split the points.
@@ -307,11 +308,11 @@ class GaborNoise:
         s = self.bandwidth
         rows = self.frequencies
         lobes = np.concatenate([rows, -rows])            # the lobes at +f_m and -f_m
-        vel = np.concatenate([self.velocity, self.velocity])
+        vel = np.concatenate([self.velocities_yx, self.velocities_yx])
         scale = self._lambda * (1.0 / 3.0) * self._amp ** 2 / 4.0 * float(np.prod(1.0 / s ** 2)) / len(rows)
         nd = len(shape)
         axes = [[i for i, n in enumerate(x.shape) if n != 1] for x in f]
-        separable = (not np.any(self.velocity) and all(x.ndim == nd for x in f) and all(len(a) <= 1 for a in axes)
+        separable = (not np.any(self.velocities_yx) and all(x.ndim == nd for x in f) and all(len(a) <= 1 for a in axes)
                      and len({a[0] for a in axes if a}) == sum(1 for a in axes if a))
         if separable:   # a sparse grid (np.meshgrid(..., sparse=True)): one factor per axis, summed by einsum
             factors, subs = [], []

@@ -57,7 +57,7 @@ def snow_layers(*, rng=None, c=1.0, band=None, thickness=0.1, direction_yx=(1.0,
     >>> layers = snow_layers(rng=0)
     >>> len(layers), round(sum(w * w for w, _ in layers), 12)     # 16..128 cycles/frame: 3 octaves
     (3, 1.0)
-    >>> bool(all(g.velocity[:, 0].min() > 0 for _, g in layers))  # every kernel falls (down the rows)
+    >>> bool(all(g.velocities_yx[:, 0].min() > 0 for _, g in layers))  # every kernel falls (down the rows)
     True
     """
     width = check_int("width", width, lo=8, hi=1 << 30)
@@ -97,7 +97,7 @@ def snow_layers(*, rng=None, c=1.0, band=None, thickness=0.1, direction_yx=(1.0,
         s_space = a / 4.0
         s_time = 1.0 / 64.0 if c > 0 or any((uy, ux)) else s_space
         layers.append((math.sqrt(mass(a, b) / total),
-                       GaborNoise(table, bandwidth=(s_time, s_space, s_space), velocity=vel, density=density,
+                       GaborNoise(table, bandwidth=(s_time, s_space, s_space), velocities_yx=vel, density=density,
                                   rng=gen)))
     return layers
 

@@ -168,12 +168,12 @@ def power_law_layers(*, dim=2, exponent=1.0, band, density=4.0, rows=2048, rng=0
     return layers
 
 
-def render_layers(layers, shape, *, origin=None, dtype=np.float32, workers=None):
+def render_layers(weighted_noises, shape, *, origin=None, dtype=np.float32, workers=None):
     """``sum_k weight_k * noise_k`` on a grid (:meth:`GaborNoise.grid`), summed in float64 in layer order.
 
     Parameters
     ----------
-    layers : list of (float, GaborNoise)
+    weighted_noises : list of (float, GaborNoise)
         From :func:`power_law_layers` or :func:`noiselab.gabor.snow_layers`.
     shape : tuple of ints
         The grid (array order).
@@ -198,7 +198,7 @@ def render_layers(layers, shape, *, origin=None, dtype=np.float32, workers=None)
 
     dt = float_dtype(dtype)
     out = None
-    for weight, g in layers:
+    for weight, g in weighted_noises:
         x = g.grid(shape, origin=origin, dtype=np.float64, workers=workers)
         out = weight * x if out is None else out + weight * x
     return out.astype(dt, copy=False)
