@@ -141,7 +141,7 @@ def main(argv=None):
     qrows, bands = snow_quality(qshape)
     lines += markdown_table(["method", "tent energy (no window, tol 0.5)", "tent energy (Hann, tol 0.5)",
                              "tent energy (Hann, tol 1.5)", "speed / tent law per band", "max |speed/law - 1|",
-                             "spatial slope (target -2)"], qrows)
+                             "spatial amplitude slope (target -1)"], qrows)
     lines += ["", "Bands (cycles/frame): " + ", ".join(f"{lo:.1f}-{hi:.1f}" for lo, hi in bands) + "; the law is "
               "`c N / (2 pi f)` averaged over each band's 1/f power. The Gabor clip does not loop, so a window "
               "without a taper leaks at its ends and a Hann taper spreads each temporal line over about 3 bins "
