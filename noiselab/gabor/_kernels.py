@@ -246,9 +246,17 @@ def _make_grid(DIM):
                                     continue
                                 qr = f1r[i1]
                                 qi = f1i[i1]
-                                for i2 in range(i2lo, i2hi + 1):
-                                    if t01 + g2[i2] < rho2:
-                                        acc[i0, i1, i2] += qr * f2r[i2] - qi * f2i[i2]
+                                # the columns inside the cut form one run (g2 grows with |d2|, rounding
+                                # included): find its ends, then add without a test (a loop LLVM vectorises)
+                                lo = i2lo
+                                while lo <= i2hi and t01 + g2[lo] >= rho2:
+                                    lo += 1
+                                hi = i2hi
+                                while hi >= lo and t01 + g2[hi] >= rho2:
+                                    hi -= 1
+                                row = acc[i0, i1]
+                                for i2 in range(lo, hi + 1):
+                                    row[i2] += qr * f2r[i2] - qi * f2i[i2]
         for i0 in range(n0):
             for i1 in range(n1):
                 for i2 in range(n2):
