@@ -85,3 +85,19 @@ def test_bad_arguments_name_the_parameter(kw, word):
     args.update(kw)
     with pytest.raises((ValueError, TypeError), match=word):
         gabor_snow(**args)
+
+
+def test_motion_cloud_moves_at_its_velocity_and_spreads_with_its_bandwidth():
+    from noiselab.gabor import motion_cloud_noise
+
+    narrow = motion_cloud_noise(sf_0=0.1, B_sf=0.04, V_X=1.0, V_Y=0.5, B_V=0.05, rng=2)
+    wide = motion_cloud_noise(sf_0=0.1, B_sf=0.04, V_X=1.0, V_Y=0.5, B_V=1.0, rng=2)
+    a = narrow.grid((32, 96, 96), origin=(10 ** 6, 0, 0), dtype=np.float64)
+    b = wide.grid((32, 96, 96), origin=(10 ** 6, 0, 0), dtype=np.float64)
+    vx, vy = A.best_velocity(a, band=(4, 20))
+    assert abs(vx - 1.0) < 0.1 and abs(vy - 0.5) < 0.1
+    on_a = A.motion_energy(a, velocity_yx=(0.5, 1.0), tol=1.5, band=(4, 20), window="hann")
+    on_b = A.motion_energy(b, velocity_yx=(0.5, 1.0), tol=1.5, band=(4, 20), window="hann")
+    assert on_a > 0.8 and on_b < on_a - 0.2, (on_a, on_b)
+    with pytest.raises(ValueError, match="B_V"):
+        motion_cloud_noise(sf_0=0.1, B_sf=0.04, B_V=-1.0)

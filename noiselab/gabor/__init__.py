@@ -15,11 +15,12 @@ kernels' frequencies from a target.
   :func:`render_layers`: a power law over many octaves, octave by octave
   (kernels sized to their wavelengths).
 - :func:`gabor_snow`: :func:`noiselab.snow`'s falling snow with no period,
-  any window of any frame; :func:`snow_layers` are its moving-kernel noises.
+  any window of any frame; :func:`snow_layers` are its moving-kernel noises;
+  :func:`motion_cloud_noise`: a Motion Cloud (velocity and its bandwidth) the same way.
 """
 from .noise import GaborNoise, truncation_error
-from .snow import OPACITY_SIGMAS, gabor_snow, snow_layers
+from .snow import OPACITY_SIGMAS, gabor_snow, motion_cloud_noise, snow_layers
 from .spectra import from_envelope, power_law_layers, render_layers
 
 __all__ = ["GaborNoise", "truncation_error", "from_envelope", "power_law_layers", "render_layers", "gabor_snow",
-           "snow_layers", "OPACITY_SIGMAS"]
+           "snow_layers", "motion_cloud_noise", "OPACITY_SIGMAS"]

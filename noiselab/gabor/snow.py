@@ -21,7 +21,7 @@ from .._core import as_generator, check_band, check_int, check_real, check_real_
 from ..spectral.envelopes import unit_direction_yx
 from .noise import GaborNoise
 
-__all__ = ["gabor_snow", "snow_layers", "OPACITY_SIGMAS"]
+__all__ = ["gabor_snow", "snow_layers", "motion_cloud_noise", "OPACITY_SIGMAS"]
 
 #: The raw field (variance 1) maps to opacity as ``clip((x / OPACITY_SIGMAS + 1) / 2, 0, 1) ** beta``: a fixed map
 #: (a window cannot know a block's extremes), set to the extremes of :func:`noiselab.snow`'s default block, which
@@ -184,3 +184,69 @@ def gabor_snow(shape=(64, 512, 512), *, origin=(0, 0, 0), rng=None, c=1.0, band=
     np.clip(x, 0.0, 1.0, out=x)
     np.power(x, beta, out=x)
     return x.astype(dt, copy=False)
+
+
+def motion_cloud_noise(*, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y=0.0, B_V=0.5, density=4.0, rows=4096,
+                       rng=None):
+    """A Motion Cloud (Leon et al. 2012) as moving Gabor kernels: any window of an endless (t, y, x) scene.
+
+    MotionClouds' envelope (:func:`noiselab.stimuli.motion_cloud`'s parameters):
+    spatial frequencies from the log-Gabor ring times ``1/f`` and the orientation
+    band (power = envelope squared, drawn as :func:`from_envelope` draws them), and
+    each kernel's velocity ``V + B_V z f/|f|`` with ``z`` standard normal: the
+    energy of a kernel of frequency ``f`` lies on the plane ``f_t = -v . f``, spread
+    around the motion plane of ``V`` by ``B_V |f|``, as MotionClouds' speed envelope
+    ``exp(-(w_t + V . w)**2 / (2 (B_V |w|)**2))``.
+
+    Parameters
+    ----------
+    sf_0, B_sf : float
+        Peak spatial frequency and its bandwidth, cycles/pixel (``0 < sf_0 <= 0.5``, ``B_sf > 0``).
+    theta, B_theta : float
+        Orientation (radians, waves along x at 0) and its bandwidth (``np.inf``: every orientation).
+    V_X, V_Y : float
+        The cloud's velocity, px/frame (x right, y down).
+    B_V : float
+        Speed bandwidth, px/frame (>= 0).
+    density, rows, rng
+        As for :func:`gabor_snow` and :func:`from_envelope`.
+
+    Returns
+    -------
+    GaborNoise
+        3-D (t, y, x), moving kernels, unit variance: render with ``.grid(shape, origin=(t, y, x))``.
+
+    Examples
+    --------
+    >>> g = motion_cloud_noise(sf_0=0.125, B_sf=0.05, V_X=1.0, rng=0)
+    >>> v = g.grid((4, 32, 32), origin=(10**6, 0, 0))
+    >>> v.shape, g.dim
+    ((4, 32, 32), 3)
+    """
+    from ..spectral import envelopes as E
+    from .spectra import sample_table
+
+    sf_0 = check_real("sf_0 (cycles/pixel)", sf_0, lo=0.0, hi=0.5, lo_open=True)
+    B_sf = check_real("B_sf (cycles/pixel)", B_sf, lo=0.0, lo_open=True, hi=1e6)
+    theta = check_real("theta", theta)
+    if not (isinstance(B_theta, (int, float, np.floating)) and B_theta == np.inf):
+        B_theta = check_real("B_theta (radians)", B_theta, lo=1e-6, hi=1e6)
+    V_X = check_real("V_X (px/frame)", V_X, lo=-1e6, hi=1e6)
+    V_Y = check_real("V_Y (px/frame)", V_Y, lo=-1e6, hi=1e6)
+    B_V = check_real("B_V (px/frame)", B_V, lo=0.0, hi=1e6)
+    rows = check_int("rows", rows, lo=1, hi=1 << 20)
+    gen = as_generator(rng)
+
+    def env(wy, wx):
+        fr = np.hypot(wy, wx) / (2 * math.pi)
+        inv = np.where(fr > 0, 1.0 / np.where(fr > 0, fr, 1.0), 0.0)
+        return E.orientation(wy, wx, theta=theta, B_theta=B_theta) * inv * E.log_gabor(wy, wx, sf_0=sf_0, B_sf=B_sf)
+
+    table = sample_table(env, 2, rows, gen)
+    r = np.hypot(table[:, 0], table[:, 1])
+    unit = table / np.maximum(r, 1e-12)[:, None]
+    z = gen.standard_normal(rows) * B_V
+    vel = np.array([V_Y, V_X])[None, :] + z[:, None] * unit
+    s_space = max(min(sf_0, B_sf) / 4.0, 1.0 / 1024.0)
+    return GaborNoise(np.concatenate([np.zeros((rows, 1)), table], axis=1), bandwidth=(1.0 / 64.0, s_space, s_space),
+                      velocities_yx=vel, density=density, rng=gen)

@@ -72,12 +72,42 @@ def from_envelope(envelope, *, dim=2, bandwidth, rows=4096, density=4.0, truncat
     >>> bool(f.min() >= 0.049 and f.max() <= 0.201)
     True
     """
-    if not callable(envelope):
-        raise TypeError(f"envelope must be a callable envelope(*w) of rad/sample frequencies, got "
-                        f"{type(envelope).__name__}")
     if dim not in (2, 3) or isinstance(dim, bool):
         raise ValueError(f"dim must be 2 or 3, got {dim!r}")
     rows = check_int("rows", rows, lo=1, hi=1 << 20)
+    gen = as_generator(rng)
+    table = sample_table(envelope, dim, rows, gen)
+    return GaborNoise(table, bandwidth=bandwidth, density=density, truncation=truncation, rng=gen)
+
+
+def sample_table(envelope, dim, rows, gen):
+    """``rows`` frequency vectors (cycles/sample) drawn with probability ``envelope**2`` (see :func:`from_envelope`).
+
+    Parameters
+    ----------
+    envelope : callable
+        ``envelope(*w)`` of ``dim`` angular frequency arrays in rad/sample.
+    dim : {2, 3}
+        Number of frequency axes.
+    rows : int
+        How many to draw.
+    gen : numpy.random.Generator
+        Draws the cells and the positions inside them.
+
+    Returns
+    -------
+    ndarray, (rows, dim)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = sample_table(lambda wy, wx: (np.abs(wx) < 0.5) * 1.0, 2, 100, np.random.default_rng(0))
+    >>> t.shape, bool(np.all(np.abs(2 * np.pi * t[:, 1]) < 0.52))
+    ((100, 2), True)
+    """
+    if not callable(envelope):
+        raise TypeError(f"envelope must be a callable envelope(*w) of rad/sample frequencies, got "
+                        f"{type(envelope).__name__}")
     n = SAMPLES_PER_AXIS[dim]
     f = (np.arange(n) - n // 2) / n            # cell starts, cycles/sample
     step = 1.0 / n
@@ -100,11 +130,9 @@ def from_envelope(envelope, *, dim=2, bandwidth, rows=4096, density=4.0, truncat
     total = float(p.sum())
     if not total > 0:
         raise ValueError("envelope is 0 on every frequency of the grid: nothing to sample")
-    gen = as_generator(rng)
     idx = gen.choice(p.size, size=rows, p=p / total)
     cells = np.stack(np.unravel_index(idx, shape), axis=1)
-    table = f[cells] + gen.random((rows, dim)) * step
-    return GaborNoise(table, bandwidth=bandwidth, density=density, truncation=truncation, rng=gen)
+    return f[cells] + gen.random((rows, dim)) * step
 
 
 def power_law_layers(*, dim=2, exponent=1.0, band, density=4.0, rows=2048, rng=0):
