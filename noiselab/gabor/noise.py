@@ -202,6 +202,7 @@ class GaborNoise:
             raise ValueError(f"points must be (..., {self.dim}) for a {self.dim}-D noise, got shape {p.shape}")
         if p.size and float(np.abs(p).max()) > 2.0 ** 52 * float(self._cell.min()) / 4:
             raise ValueError("points must be within |x| < 2**50 cells of the origin (float64 keeps their fractions)")
+        check_memory(int(p.size // max(1, self.dim)) * (32 + dt.itemsize), f"gabor noise at {p.shape[:-1]} points")
         flat = p.reshape(-1, self.dim).astype(np.float64)
         pts = np.zeros((flat.shape[0], 3))
         pts[:, 3 - self.dim:] = flat

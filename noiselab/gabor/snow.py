@@ -17,7 +17,8 @@ import math
 
 import numpy as np
 
-from .._core import as_generator, check_band, check_int, check_real, check_real_sequence, check_shape, float_dtype
+from .._core import (as_generator, check_band, check_int, check_memory, check_real, check_real_sequence, check_shape,
+                     float_dtype)
 from ..spectral.envelopes import unit_direction_yx
 from .noise import GaborNoise
 
@@ -172,6 +173,8 @@ def gabor_snow(shape=(64, 512, 512), *, origin=(0, 0, 0), rng=None, c=1.0, band=
         raise ValueError(f"origin must be whole samples (t, y, x), got {origin}")
     beta = check_real("beta", beta, lo=0.0, lo_open=True)
     dt = float_dtype(dtype)
+    # the float64 sum, one layer's float64 grid and its scratch, and the output
+    check_memory(int(np.prod(shape, dtype=np.float64)) * (3 * 8 + dt.itemsize), f"gabor_snow{shape}")
     layers = snow_layers(rng=rng, c=c, band=band, thickness=thickness, direction_yx=direction_yx, pan_yx=pan_yx,
                          exponent=exponent, width=width, density=density)
     x = np.zeros(shape)
