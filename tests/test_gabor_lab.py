@@ -52,3 +52,14 @@ def test_quick_texture_rows_hold_the_gabor_family():
     lattice = [r for r in rows if r["family"] == "lattice"]
     # its spectrum is the spectral field's, blurred: a slope error far under the worst lattice sum's
     assert abs(g["slope_error"]) < max(abs(r["slope_error"]) for r in lattice)
+
+
+def test_the_three_families_sweep_holds_every_family():
+    from noiselab.lab.experiments import sweep_families
+
+    sweep = sweep_families(Config.quick_config())
+    names = [p["setting"] for p in sweep["points"]]
+    assert "spectral (IFFT)" in names and any(n.startswith("value noise") for n in names)
+    gabor = [p for p in sweep["points"] if p["setting"].startswith("sparse Gabor")]
+    assert len(gabor) == 4 and all(p["time_s"] > 0 and np.isfinite(p["error"]) for p in gabor)
+    assert [p["setting"] for p in gabor] == [f"sparse Gabor, {d} impulses/cell" for d in (1, 2, 4, 8)]

@@ -91,10 +91,10 @@ def texture_methods(n, dim, f0):
     return methods
 
 
-def _gabor_texture(n, dim, f0, seed, dtype=np.float64):
+def _gabor_texture(n, dim, f0, seed, dtype=np.float64, density=4.0):
     from ..gabor import power_law_layers, render_layers
 
-    layers = power_law_layers(dim=dim, exponent=dim / 2, band=(f0 / n, 0.5), rng=seed)
+    layers = power_law_layers(dim=dim, exponent=dim / 2, band=(f0 / n, 0.5), density=density, rng=seed)
     return render_layers(layers, (n,) * dim, dtype=dtype)
 
 
@@ -435,6 +435,30 @@ def sweep_kernels(cfg):
             "note": "0.05: the analysers' slope resolution at 512 x 512; 0.1: anisotropy where the lattice axes show"}
 
 
+def sweep_families(cfg):
+    """The three families on the 2-D 1/f texture: time against :func:`sweep_kernels`' visibility score.
+
+    Spectral (IFFT), every lattice sum of :func:`texture_methods`, and sparse
+    Gabor octave layers at 1, 2, 4 and 8 impulses per cell (its knob: more
+    kernels, a more Gaussian field, more time).
+    """
+    n, f0 = cfg.texture_n2, cfg.texture_f0
+    methods = {k: fn for k, (fam, fn) in texture_methods(n, 2, f0).items() if fam in ("spectral", "lattice")}
+    for d in (1.0, 2.0, 4.0, 8.0):
+        methods[f"sparse Gabor, {d:g} impulses/cell"] = lambda s, d=d: _gabor_texture(n, 2, f0, s, density=d)
+    timing = _timed({k: (lambda fn=fn: fn(0)) for k, fn in methods.items()}, write_floor((n, n)), cfg.repeats)
+    pts = []
+    for k, fn in methods.items():
+        q = texture_quality(fn(1), f0, 2)
+        pts.append({"setting": k, "time_s": timing[k]["median_s"], "x_floor": timing[k]["ratio"],
+                    "error": max(abs(q["slope_error"]) / 0.05, q["anisotropy"] / 0.1),
+                    "slope_error": q["slope_error"], "anisotropy": q["anisotropy"],
+                    "band_leakage": q["band_leakage"]})
+    return {"name": "three families (2-D 1/f texture)", "error": "max(|slope error| / 0.05, anisotropy / 0.1)",
+            "threshold": 1.0, "points": pts,
+            "note": "the same score as the lattice kernel sweep; floor: writing the output array"}
+
+
 def sweep_octaves(cfg):
     """Fractal sum with o octaves against the full (Nyquist-limited) sum: RMS difference / RMS of the full sum."""
     from ..fractal import fractal_sum
@@ -516,8 +540,8 @@ def sweep_fft(cfg):
 
 def pareto_sweeps(cfg: Config):
     """All the speed-against-error sweeps; each with its points, threshold and knee."""
-    sweeps = [sweep_tiles(cfg), *sweep_precision(cfg), sweep_kernels(cfg), sweep_octaves(cfg), sweep_layers(cfg),
-              sweep_fft(cfg)]
+    sweeps = [sweep_tiles(cfg), *sweep_precision(cfg), sweep_kernels(cfg), sweep_families(cfg), sweep_octaves(cfg),
+              sweep_layers(cfg), sweep_fft(cfg)]
     for s in sweeps:
         k = knee(s["points"], s["threshold"])
         s["knee"] = k["setting"] if k else None
