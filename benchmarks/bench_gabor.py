@@ -10,7 +10,7 @@ rounds, median of the per-round ratios, :func:`noiselab.lab.measure.interleaved`
 one thread each (``workers=1``):
 
 1. falling snow: a 512x512 frame of ``gabor_snow`` (at a new frame each
-   round) against the FFT snow's cost per frame (``snow((64, 512, 512))`` / 64),
+   round; the default 4 impulses per cell and 2) against the FFT snow's cost per frame (``snow((64, 512, 512))`` / 64),
    and a 64x64 window of frame 10**6 (the FFT snow computes its whole block
    for it); peak resident memory of each in a fresh process;
 2. snow quality on the same scene (64x256x256, band 8..64 cycles/frame,
@@ -50,6 +50,8 @@ def snow_timing(size, frames, repeats):
     cands = {
         "gabor frame": lambda r: gabor_snow((1, size, size), origin=(1000 * (r + 1), 0, 0), rng=0, width=size,
                                             workers=1),
+        "gabor frame, density 2": lambda r: gabor_snow((1, size, size), origin=(1000 * (r + 1), 0, 0), rng=0,
+                                                       width=size, density=2.0, workers=1),
         "fft block": lambda r: snow(block, rng=0, workers=1),
         "gabor 64x64 of frame 10**6": lambda r: gabor_snow((1, 64, 64), origin=(10 ** 6 + r, 0, 0), rng=0,
                                                            width=size, workers=1),
@@ -60,6 +62,9 @@ def snow_timing(size, frames, repeats):
         ["gabor_snow, one 512x512 frame" if size == 512 else f"gabor_snow, one {size}x{size} frame",
          f"{t.median('gabor frame') * 1e3:.1f}", f"{1 / t.median('gabor frame'):.1f}",
          f"{t.ratio('gabor frame', 'fft block') * frames:.2f}"],
+        [f"gabor_snow, one {size}x{size} frame, density=2 (half the kernels)",
+         f"{t.median('gabor frame, density 2') * 1e3:.1f}", f"{1 / t.median('gabor frame, density 2'):.1f}",
+         f"{t.ratio('gabor frame, density 2', 'fft block') * frames:.2f}"],
         [f"snow (FFT), block {frames}x{size}x{size}, per frame", f"{per_frame_fft * 1e3:.1f}",
          f"{1 / per_frame_fft:.1f}", "1"],
         ["gabor_snow, 64x64 window of frame 10**6", f"{t.median('gabor 64x64 of frame 10**6') * 1e3:.2f}", "",
@@ -86,8 +91,9 @@ def snow_quality(shape):
     f = snow(shape, rng=0, rescale=False, workers=1)
     bands = A.octave_bands(band[0] * 2 ** 0.5, band[1] / 2 ** 0.5, per_octave=2)
     law = np.array([W / (2 * math.pi) * (1 / lo - 1 / hi) / math.log(hi / lo) for lo, hi in bands])
+    g2 = gabor_snow(shape, rng=0, width=W, density=2.0, rescale=False, workers=1)
     rows = []
-    for name, v in (("gabor_snow", g), ("snow (FFT)", f)):
+    for name, v in (("gabor_snow", g), ("gabor_snow, density=2", g2), ("snow (FFT)", f)):
         speed = A.band_speeds(v, bands)[:, 1] / law
         slope = np.mean([float(A.spectral_slope(v[i], band=(band[0], band[1]), window="hann"))
                          for i in range(0, T, max(1, T // 8))])
