@@ -63,8 +63,8 @@ _API = {
 # ``noiselab._core.dispatch`` (the core names no layer above it; the root, which knows them all, does)
 _DISPATCH_PROVIDERS = ("noiselab.scale",)
 
-_SUBPACKAGES = ("spectral", "snowfall", "lattice", "fractal", "fields", "geometry", "stimuli", "analysis", "io", "lab",
-                "scale", "gallery", "cli")
+_SUBPACKAGES = ("spectral", "snowfall", "lattice", "gabor", "fractal", "fields", "geometry", "stimuli", "analysis", "io",
+                "lab", "scale", "gallery", "cli")
 
 __all__ = sorted(_API) + list(_SUBPACKAGES)
 

@@ -41,7 +41,7 @@ PACKAGE_DIR = Path(__file__).resolve().parents[1] / "noiselab"
 LAYERS = {
     "_core": 0,
     "spectral": 1, "lattice": 1, "analysis": 1, "io": 1,
-    "snowfall": 2, "fractal": 2,
+    "snowfall": 2, "fractal": 2, "gabor": 2,
     # testing (the spectral assertions) builds on analysis only: layer 2, the lowest above analysis; nothing
     # below imports it (a generator must not lean on its own tests), so it is an analyser too
     "testing": 2,
@@ -53,7 +53,7 @@ LAYERS = {
 }
 LEAVES = {"io"}                       # any layer may import these
 ANALYSERS = {"analysis", "testing"}   # ... but no generator imports these
-GENERATORS = {"spectral", "lattice", "io", "snowfall", "fractal", "fields", "geometry", "stimuli"}
+GENERATORS = {"spectral", "lattice", "io", "snowfall", "fractal", "gabor", "fields", "geometry", "stimuli"}
 DASK_MODULES = {"dask", "distributed"}
 # the package root (lazy re-exports) and the deprecated alias module ``noiselab.snow`` of ``noiselab.snowfall``
 # (for one release): above every layer

@@ -811,3 +811,95 @@ def visible_octaves(octaves, spacing, frequency=1.0, lacunarity=2.0, gain=0.5, e
         partial += gain ** o
         used += 1
     return used
+
+
+# ============================================================================ sparse Gabor noise
+#
+# noiselab.gabor: Lagae, Lefebvre, Drettakis & Dutre, "Procedural noise using
+# sparse Gabor convolution" (SIGGRAPH 2009): n(x) = sum_i w_i g(x - x_i) over a
+# Poisson process of impulses, g(x) = K exp(-pi a^2 |x|^2) cos(2 pi F.x + phi),
+# here with a per-axis envelope s_a, kernels that may move (centre x_i + v (t - t_i)),
+# and each cell's impulses drawn from the integer hash of (cell, index, key).
+
+_GOLD32 = 0x9E3779B9
+_GOLD2_32 = 0x7F4A7C15
+_COUNT_SALT = 0x5BD1E995
+
+
+def _mix32_int(v):
+    return int(mix32([v])[0])
+
+
+def gabor_cell_impulses(key, cell_index, cell, density, rows):
+    """The impulses of one cell: [(position (3,), weight, phase, table row)], from the hash words.
+
+    Cell word ``h = mix32(key ^ j0 M0 ^ j1 M1 ^ j2 M2)``; count = Poisson(density)
+    by inversion of ``u = (mix32(h ^ salt) + 0.5) / 2**32``; impulse ``k``'s word
+    ``b = mix32(h ^ mix32((k + 1) * golden))`` and its draws ``mix32(b + j * golden2)``.
+    """
+    word = int(key)
+    for a, j in enumerate(cell_index):
+        word ^= ((int(j) & 0xFFFFFFFF) * axis_multiplier(a)) & 0xFFFFFFFF
+    h = _mix32_int(word)
+    u = (_mix32_int(h ^ _COUNT_SALT) + 0.5) / 2.0 ** 32
+    n, p = 0, math.exp(-density)
+    total = p
+    while u > total and n < 4096:
+        n += 1
+        p = p * density / n
+        total += p
+    out = []
+    for k in range(n):
+        b = _mix32_int(h ^ _mix32_int(((k + 1) * _GOLD32) & 0xFFFFFFFF))
+        d = [(_mix32_int((b + j * _GOLD2_32) & 0xFFFFFFFF) + 0.5) / 2.0 ** 32 for j in range(5)]
+        row = (_mix32_int((b + 5 * _GOLD2_32) & 0xFFFFFFFF) * rows) >> 32
+        pos = np.array([(cell_index[a] + d[a]) * cell[a] for a in range(3)])
+        out.append((pos, 2.0 * d[3] - 1.0, 2.0 * math.pi * d[4], row))
+    return out
+
+
+def gabor_noise(points, *, key, freqs, bandwidth, velocity=None, density=4.0, truncation=0.01):
+    """Sparse Gabor noise at ``points`` ``(n, dim)`` by a direct sum over the impulses of nearby cells.
+
+    Cells are ``1 / s_a`` units along axis ``a`` and hold Poisson(``density``)
+    impulses; a kernel is cut where its envelope falls to ``truncation``
+    (``sum (s_a d_a)^2 < ln(1/truncation) / pi``); ``K`` gives variance 1:
+    ``lambda E[w^2] K^2 / 2 * prod 1 / (sqrt(2) s_a) = 1`` with
+    ``lambda = density * prod s_a`` and ``E[w^2] = 1/3``.
+    """
+    points = np.asarray(points, dtype=np.float64)
+    n, dim = points.shape
+    s = np.broadcast_to(np.asarray(bandwidth, dtype=np.float64), (dim,))
+    freqs = np.asarray(freqs, dtype=np.float64)
+    vel = np.zeros((len(freqs), 2)) if velocity is None else np.asarray(velocity, dtype=np.float64)
+    s3 = np.ones(3)
+    s3[3 - dim:] = s
+    f3 = np.zeros((len(freqs), 3))
+    f3[:, 3 - dim:] = freqs
+    cell = 1.0 / s3
+    rho2 = math.log(1.0 / truncation) / math.pi
+    lam = density * np.prod(s)
+    K = math.sqrt(6.0 / (lam * np.prod(1.0 / (math.sqrt(2.0) * s))))
+    vmax = np.abs(vel).max(axis=0)
+    reach = math.sqrt(rho2) / s3
+    reach[1:] += vmax * (reach[0] if dim == 3 else 0.0)
+    out = np.zeros(n)
+    for i in range(n):
+        q = np.zeros(3)
+        q[3 - dim:] = points[i]
+        lo = np.floor((q - reach) / cell).astype(int) - 1
+        hi = np.floor((q + reach) / cell).astype(int) + 1
+        if dim == 2:
+            lo[0] = hi[0] = 0
+        for j0 in range(lo[0], hi[0] + 1):
+            for j1 in range(lo[1], hi[1] + 1):
+                for j2 in range(lo[2], hi[2] + 1):
+                    for pos, w, phi, m in gabor_cell_impulses(key, (j0, j1, j2), cell, density, len(freqs)):
+                        d = q - pos
+                        if dim == 2:
+                            d[0] = 0.0
+                        d[1:] -= vel[m] * d[0]
+                        r2 = float(np.sum((s3 * d) ** 2)) if dim == 3 else float(np.sum((s3[1:] * d[1:]) ** 2))
+                        if r2 < rho2:
+                            out[i] += w * K * math.exp(-math.pi * r2) * math.cos(2 * math.pi * float(f3[m] @ d) + phi)
+    return out

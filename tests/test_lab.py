@@ -229,8 +229,10 @@ def test_quick_experiments_make_well_formed_tables():
     assert all(r["band_leakage"] > 0.01 for r in rows if r["family"] == "lattice")
     snow_rows = snow_experiment(cfg)
     assert [r["method"].split(" (")[0] for r in snow_rows] == ["tent IFFT", "layered lattice", "particles",
-                                                                "particles, motion-blurred"]
-    tent, lay, par, blur = snow_rows
+                                                                "particles, motion-blurred",
+                                                                "sparse Gabor, moving kernels"]
+    tent, lay, par, blur, gabor = snow_rows
+    assert gabor["loop_seam"] > 1.2   # no period: it does not loop either
     assert tent["loop_seam"] == pytest.approx(1.0, abs=0.05)  # the IFFT loops exactly
     assert min(lay["loop_seam"], par["loop_seam"], blur["loop_seam"]) > 1.2  # the others do not
     assert tent["tent_energy"] > max(lay["tent_energy"], par["tent_energy"], blur["tent_energy"])

@@ -24,7 +24,7 @@ LINT_IMPORTS = Path(sys.executable).with_name("lint-imports")
 # highest first, as in [tool.importlinter]; the package root and the deprecated alias ``noiselab.snow``
 # sit above every layer
 LAYERS = [["cli"], ["gallery"], ["scale"], ["lab"], ["fields", "geometry", "stimuli"],
-          ["snowfall", "fractal", "testing"], ["spectral", "lattice", "analysis"], ["io"], ["_core"]]
+          ["snowfall", "fractal", "testing", "gabor"], ["spectral", "lattice", "analysis"], ["io"], ["_core"]]
 LEVEL = {name: len(LAYERS) - i for i, names in enumerate(LAYERS) for name in names}
 
 _LOAD_ALL = """

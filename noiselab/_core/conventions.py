@@ -446,7 +446,10 @@ WORDS = {
         unit='',
         type='',
         default=REQUIRED,
-        keyword_only=False),
+        keyword_only=False,
+        per_function={'noiselab.gabor.from_envelope': (2, True), 'noiselab.gabor.power_law_layers': (2, True)},
+        note=('from_envelope and power_law_layers take 2 or 3 by keyword, 2 by default (the envelope or the band '
+              'is what they are about)')),
     'dim_in': Word(
         'Input dimension d >= 1 (1: a curve of time, 2: an image, 3: solid noise, ...).',
         unit='',
@@ -1235,11 +1238,14 @@ WORDS = {
         keyword_only=True,
         per_function={'noiselab.spectral.draw_coefficients': (None, False),
                       'noiselab.geometry.quiver_image': (0, True),
-                      'noiselab.LatticeNoise': (0, True)},
+                      'noiselab.LatticeNoise': (0, True),
+                      'noiselab.gabor.GaborNoise': (0, True),
+                      'noiselab.gabor.from_envelope': (0, True),
+                      'noiselab.gabor.power_law_layers': (0, True)},
         note=('draw_coefficients keeps rng second by position (its calling form since 0.1); quiver_image draws a '
               'fixed picture: the same every run unless another rng is passed; a LatticeNoise is a fixed function '
               "(as Perlin's reference noise and the SIMD peers' default seed are), so LatticeNoise(3) is the same "
-              'noise in every process: rng=0')),
+              'noise in every process: rng=0; so is a GaborNoise (from_envelope makes one)')),
     'samples_per_period': Word(
         'Samples per period of the highest octave below which the grid aliases.',
         unit='samples',
@@ -1679,7 +1685,10 @@ WORDS = {
         unit='',
         type='int, default 512',
         default=512,
-        keyword_only=False),
+        keyword_only=False,
+        per_function={'noiselab.gabor.gabor_snow': (512, True), 'noiselab.gabor.snow_layers': (512, True)},
+        note=('the Gabor snow takes it by keyword: there it is the scene\'s frame width that cycles/frame refer '
+              'to, not the width of the window rendered')),
     'window': Word(
         "A taper before the FFT for fields that do not tile: None or 'hann'.",
         unit='',
@@ -1717,5 +1726,62 @@ WORDS = {
         unit='',
         type='float',
         default=1.0,
+        keyword_only=True),
+    # ---- sparse Gabor noise (noiselab.gabor)
+    'bandwidth': Word(
+        ("A Gabor kernel's envelope ``exp(-pi (s d)**2)`` per axis: ``s`` is the width of its spectral lobe "
+         '``exp(-pi nu**2 / s**2)`` in cycles/sample (> 0), and ``1 / s`` samples its cell.'),
+        unit='cycles/sample',
+        type='float or sequence of dim floats',
+        default=REQUIRED,
+        keyword_only=True),
+    'density': Word(
+        'Mean number of Gabor impulses per kernel cell (Poisson), in (0, 256].',
+        unit='impulses per cell',
+        type='float, default 4',
+        default=4.0,
+        keyword_only=True),
+    'frequencies': Word(
+        'The Gabor kernels\' frequency table, one row per kernel kind, cycles/sample along each axis, array order.',
+        unit='cycles/sample',
+        type='array_like (M, dim)',
+        default=REQUIRED,
+        keyword_only=False),
+    'origin': Word(
+        ('Coordinate (array order) of a window\'s first sample: ``(t, y, x)`` frames and pixels for snow, any '
+         'reals for a Gabor grid (default zeros).'),
+        unit='samples',
+        type='sequence of floats (whole samples for snow)',
+        default=VARIES,
+        keyword_only=True,
+        note="the default is each function's own (a size, a shape, a name: what that function is for)"),
+    'rows': Word(
+        'Size of a Gabor frequency table drawn from a target (per octave for snow), 1 to 2**20.',
+        unit='',
+        type='int',
+        default=VARIES,
+        keyword_only=True,
+        note="the default is each function's own (a size, a shape, a name: what that function is for)"),
+    'truncation': Word(
+        ("Level of a Gabor kernel's envelope (relative to its peak) where it is cut, in (0, 0.5]; "
+         ':func:`noiselab.gabor.truncation_error` is the error it makes.'),
+        unit='',
+        type='float, default 0.01',
+        default=0.01,
+        keyword_only=None,
+        per_function={'noiselab.gabor.truncation_error': (REQUIRED, False)},
+        note='truncation_error takes the level it reports on (required)'),
+    'weighted_noises': Word(
+        'A list of (weight, GaborNoise) pairs summed in order (noiselab.gabor.power_law_layers, snow_layers).',
+        unit='',
+        type='list of (float, GaborNoise)',
+        default=REQUIRED,
+        keyword_only=False),
+    'velocities_yx': Word(
+        ("Each Gabor kernel's (vy, vx), array order, in samples of axes 1, 2 per sample of axis 0 (time): one "
+         'row per frequency row; None for still kernels.'),
+        unit='px/frame',
+        type='array_like (M, 2) or None',
+        default=None,
         keyword_only=True),
 }

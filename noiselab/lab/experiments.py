@@ -15,10 +15,13 @@ Scenes
     ``2**(d/2 - d/2) = 1`` (equal amplitude per octave gives equal energy per
     octave), base lattice density ``f0 / lattice_peak`` cells per frame,
     octaves up to the sampling Nyquist (``fractal_sum`` skips the rest).
+    Sparse Gabor (the third family): :func:`noiselab.gabor.power_law_layers`
+    over the same band, one octave layer of kernels per octave.
 Falling snow
     ``(T, H, W)`` frames, band ``(W/32, W/4)`` cycles/frame, ``c = 1``
     rad/frame, straight down: :func:`noiselab.snowfall.snow` (tent IFFT),
-    :func:`layered_lattice_snow`, :func:`particle_snow`.
+    :func:`layered_lattice_snow`, :func:`particle_snow`, and
+    :func:`noiselab.gabor.gabor_snow` (moving Gabor kernels, no period).
 """
 from __future__ import annotations
 
@@ -84,7 +87,15 @@ def texture_methods(n, dim, f0):
         methods[f"value noise, {k}"] = ("lattice", lambda s, k=k: _lattice_texture(n, dim, f0, k, "value", s))
     for k in ("quintic", "catmull-rom"):
         methods[f"gradient noise, {k}"] = ("lattice", lambda s, k=k: _lattice_texture(n, dim, f0, k, "gradient", s))
+    methods["sparse Gabor, octave layers"] = ("gabor", lambda s: _gabor_texture(n, dim, f0, s))
     return methods
+
+
+def _gabor_texture(n, dim, f0, seed, dtype=np.float64, density=4.0):
+    from ..gabor import power_law_layers, render_layers
+
+    layers = power_law_layers(dim=dim, exponent=dim / 2, band=(f0 / n, 0.5), density=density, rng=seed)
+    return render_layers(layers, (n,) * dim, dtype=dtype)
 
 
 def texture_quality(x, f0, dim):
@@ -152,14 +163,18 @@ def texture_scaling(cfg: Config):
 
 
 CAPABILITIES = [
-    # (capability, spectral, lattice)
-    ("evaluation at arbitrary points (mesh vertices, trajectories)", "no: a whole grid at once", "yes"),
-    ("unbounded domain / streaming tiles of a huge grid", "no: the output is one period", "yes (grid windows are bit-identical)"),
-    ("exact periodicity (seamless tiles and loops)", "yes, always", "only with period= (whole lattice cells)"),
-    ("exact prescribed spectrum (any envelope, sharp band edges)", "yes (round trip to float precision)", "no: each octave's spectrum is the kernel's, about 2 octaves wide"),
-    ("motion envelopes (tent, motion plane) in one pass", "yes", "no: layers translated one by one"),
-    ("bounded output without clipping", "no (Gaussian tails)", "yes: [-a, a] by construction"),
-    ("any number of input dimensions", "1-3 here (memory grows as N**d)", "any (tested 1-5)"),
+    # (capability, spectral, lattice, sparse Gabor)
+    ("evaluation at arbitrary points (mesh vertices, trajectories)", "no: a whole grid at once", "yes", "yes"),
+    ("unbounded domain / streaming tiles of a huge grid", "no: the output is one period",
+     "yes (grid windows are bit-identical)", "yes (windows bit-identical; no period short of 2**32 cells)"),
+    ("exact periodicity (seamless tiles and loops)", "yes, always", "only with period= (whole lattice cells)", "no"),
+    ("exact prescribed spectrum (any envelope, sharp band edges)", "yes (round trip to float precision)",
+     "no: each octave's spectrum is the kernel's, about 2 octaves wide",
+     "in expectation, blurred by the kernel's lobe (closed form: expected_spectrum)"),
+    ("motion envelopes (tent, motion plane) in one pass", "yes", "no: layers translated one by one",
+     "yes: moving kernels, one per frequency"),
+    ("bounded output without clipping", "no (Gaussian tails)", "yes: [-a, a] by construction", "no (sums of kernels)"),
+    ("any number of input dimensions", "1-3 here (memory grows as N**d)", "any (tested 1-5)", "2 and 3"),
 ]
 
 
@@ -171,6 +186,7 @@ def snow_band(W):
 
 def snow_methods(shape, *, layers=8, flakes=None, blur=False):
     """name -> callable(seed) for the snow scene; ``blur`` adds motion-blurred particles."""
+    from ..gabor import gabor_snow
     from ..snowfall import snow
     from .snowgen import layered_lattice_snow, particle_snow
 
@@ -184,6 +200,9 @@ def snow_methods(shape, *, layers=8, flakes=None, blur=False):
     if blur:
         methods["particles, motion-blurred (Reeves)"] = lambda s: particle_snow(shape, rng=s, band=band, c=1.0,
                                                                                 flakes=flakes, motion_blur=True)
+    # the third family: moving Gabor kernels, any window of an endless scene (the scene's width is the frame's)
+    methods["sparse Gabor, moving kernels (noiselab.gabor)"] = lambda s: gabor_snow(shape, rng=s, band=band, c=1.0,
+                                                                                    width=shape[2])
     return methods
 
 
@@ -416,6 +435,30 @@ def sweep_kernels(cfg):
             "note": "0.05: the analysers' slope resolution at 512 x 512; 0.1: anisotropy where the lattice axes show"}
 
 
+def sweep_families(cfg):
+    """The three families on the 2-D 1/f texture: time against :func:`sweep_kernels`' visibility score.
+
+    Spectral (IFFT), every lattice sum of :func:`texture_methods`, and sparse
+    Gabor octave layers at 1, 2, 4 and 8 impulses per cell (its knob: more
+    kernels, a more Gaussian field, more time).
+    """
+    n, f0 = cfg.texture_n2, cfg.texture_f0
+    methods = {k: fn for k, (fam, fn) in texture_methods(n, 2, f0).items() if fam in ("spectral", "lattice")}
+    for d in (1.0, 2.0, 4.0, 8.0):
+        methods[f"sparse Gabor, {d:g} impulses/cell"] = lambda s, d=d: _gabor_texture(n, 2, f0, s, density=d)
+    timing = _timed({k: (lambda fn=fn: fn(0)) for k, fn in methods.items()}, write_floor((n, n)), cfg.repeats)
+    pts = []
+    for k, fn in methods.items():
+        q = texture_quality(fn(1), f0, 2)
+        pts.append({"setting": k, "time_s": timing[k]["median_s"], "x_floor": timing[k]["ratio"],
+                    "error": max(abs(q["slope_error"]) / 0.05, q["anisotropy"] / 0.1),
+                    "slope_error": q["slope_error"], "anisotropy": q["anisotropy"],
+                    "band_leakage": q["band_leakage"]})
+    return {"name": "three families (2-D 1/f texture)", "error": "max(|slope error| / 0.05, anisotropy / 0.1)",
+            "threshold": 1.0, "points": pts,
+            "note": "the same score as the lattice kernel sweep; floor: writing the output array"}
+
+
 def sweep_octaves(cfg):
     """Fractal sum with o octaves against the full (Nyquist-limited) sum: RMS difference / RMS of the full sum."""
     from ..fractal import fractal_sum
@@ -497,8 +540,8 @@ def sweep_fft(cfg):
 
 def pareto_sweeps(cfg: Config):
     """All the speed-against-error sweeps; each with its points, threshold and knee."""
-    sweeps = [sweep_tiles(cfg), *sweep_precision(cfg), sweep_kernels(cfg), sweep_octaves(cfg), sweep_layers(cfg),
-              sweep_fft(cfg)]
+    sweeps = [sweep_tiles(cfg), *sweep_precision(cfg), sweep_kernels(cfg), sweep_families(cfg), sweep_octaves(cfg),
+              sweep_layers(cfg), sweep_fft(cfg)]
     for s in sweeps:
         k = knee(s["points"], s["threshold"])
         s["knee"] = k["setting"] if k else None

@@ -363,6 +363,8 @@ def render_markdown(res, *, quick=False, command=None):
     cmd = command or ("python3 -m noiselab bench --quick" if quick else "python3 -m noiselab bench")
     L = []
     L.append("# noiselab laboratory results\n")
+    # the version that made this report, on a line of its own (tests/test_gabor_lab.py reads it)
+    L.append(f"Made by noiselab {info.get('noiselab', 'unknown')}.\n")
     for section, why in res.get("skipped", {}).items():
         L.append(f"> **Section {section} skipped in this run:** {why}\n")
     if quick:
@@ -418,6 +420,12 @@ def render_markdown(res, *, quick=False, command=None):
                  f"{ba['anisotropy'] / max(sp['anisotropy'], 1e-9):.0f}x the spectral field's); leakage {bl['method']} "
                  f"({bl['band_leakage']:.3f}); time {fl['method']} ({fl['time_s'] / sp['time_s']:.2f}x the spectral "
                  "time). No lattice sum matches the spectral field on all figures at once.")
+        gb = next((r for r in rs if r["family"] == "gabor"), None)
+        if gb:
+            L.append(f"  Sparse Gabor (octave layers): slope error {gb['slope_error']:+.3f}, ripple "
+                     f"{gb['octave_ripple_db']:.2f} dB, anisotropy {gb['anisotropy']:.3f}, leakage "
+                     f"{gb['band_leakage']:.3f}, {gb['time_s'] / sp['time_s']:.1f}x the spectral time: the spectrum "
+                     "of the spectral field within its lobes' blur, evaluated point by point like the lattice.")
     L.append("\nScaling of 2-D textures with the image size (N x N):\n")
     L.append(md_table(res["texture_scaling"], [("method", "method"), ("size", "N"), ("time_s", "time s"),
                                                ("x_fft_floor", "x FFT floor"), ("peak_mib", "peak MiB")]) + "\n")
@@ -427,11 +435,12 @@ def render_markdown(res, *, quick=False, command=None):
                                             ("memory_exponent", "memory k")]) + "\n")
     L.append("\n![texture spectra](results/texture_spectra.png)\n")
     L.append("What each can do that the other cannot:\n")
-    L.append(md_table([{"c": c, "s": s, "l": l} for c, s, l in CAPABILITIES],
-                      [("c", "capability"), ("s", "spectral (IFFT)"), ("l", "lattice")]) + "\n")
+    L.append(md_table([{"c": c, "s": s, "l": l, "g": g} for c, s, l, g in CAPABILITIES],
+                      [("c", "capability"), ("s", "spectral (IFFT)"), ("l", "lattice"), ("g", "sparse Gabor")]) + "\n")
 
     # --- snow
-    L.append("## 2. Same scene: falling snow, tent IFFT against layered lattice against particles\n")
+    L.append("## 2. Same scene: falling snow, tent IFFT against layered lattice against particles against sparse "
+             "Gabor\n")
     srow = res["snow"][0]
     L.append(f"Scene: {srow['scene']}, straight down. Tent energy = `tent_energy(video, c, band)` (fraction of "
              "the power within one temporal-frequency cell of the tent); parallax error = RMS relative deviation of "
@@ -535,12 +544,22 @@ def _headline(res):
              f"{lay['time_s'] / t['time_s']:.1f}x its time, tent energy {lay['tent_energy']:.3f}, parallax "
              f"{lay['parallax_rms_error']:.3f}, seam {lay['loop_seam']:.2f}; particles {par['time_s'] / t['time_s']:.1f}x, "
              f"tent energy {par['tent_energy']:.3f}, parallax {par['parallax_rms_error']:.3f}, seam {par['loop_seam']:.2f}.")
+    gs = next((r for k, r in snow.items() if k.startswith("sparse Gabor")), None)
+    if gs:
+        H.append(f"- The same snow by sparse Gabor kernels (no period, any window): {gs['time_s'] / t['time_s']:.1f}x "
+                 f"the tent IFFT's time, tent energy {gs['tent_energy']:.3f}, parallax {gs['parallax_rms_error']:.3f}, "
+                 f"seam {gs['loop_seam']:.2f} (it does not loop: it never repeats).")
     for dim in (2, 3):
         rs = [r for r in res["texture"] if r["dim"] == dim]
         if not rs:
             continue
         sp = next(r for r in rs if r["family"] == "spectral")
         lat = [r for r in rs if r["family"] == "lattice"]
+        gb = next((r for r in rs if r["family"] == "gabor"), None)
+        if gb:
+            H.append(f"- 1/f texture {dim}-D, sparse Gabor: slope error {gb['slope_error']:+.3f}, anisotropy "
+                     f"{gb['anisotropy']:.3f}, leakage {gb['band_leakage']:.3f}, {gb['time_s'] / sp['time_s']:.1f}x "
+                     "the spectral field's time.")
         H.append(f"- 1/f texture {dim}-D ({sp['n']}^{dim}): spectral slope error {sp['slope_error']:+.3f}, "
                  f"anisotropy {sp['anisotropy']:.3f}, leakage {sp['band_leakage']:.0e}; lattice sums: slope error "
                  f"{min(r['slope_error'] for r in lat):+.3f}..{max(r['slope_error'] for r in lat):+.3f}, anisotropy "

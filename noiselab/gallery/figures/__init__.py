@@ -6,7 +6,7 @@ a module (see :mod:`noiselab.gallery.registry`).
 """
 import importlib
 
-GROUP_MODULES = ("intro", "snow", "phillips", "lab", "derivatives")
+GROUP_MODULES = ("intro", "snow", "phillips", "lab", "derivatives", "gabor")
 
 for _name in GROUP_MODULES:
     importlib.import_module(f"{__name__}.{_name}")
