@@ -203,3 +203,19 @@ def test_velocity_needs_three_axes_and_one_row_per_frequency():
         GaborNoise([[0.0, 0.0, 0.1]], bandwidth=0.05, velocities_yx=[[1.0, 0.0], [0.0, 1.0]])
     with pytest.raises(ValueError, match="dim"):
         truncation_error(0.01, 4)
+
+
+def test_the_recorded_hash_fingerprint_is_the_lattice_hash_of_today():
+    """A change to the lattice's hash must touch the Gabor kernels' file, or numba's cache keeps the old ones."""
+    import hashlib
+
+    from noiselab.gabor import _kernels
+    from noiselab.lattice.hashing import MULT, mix32, prime
+
+    words = np.array([int(mix32(np.uint32(i * 2654435761 % 2**32))) for i in range(4096)], dtype=np.uint32)
+    primes = np.array([int(prime(np.int64(j), MULT[a])) for j in (-5, 0, 7, 123456789) for a in range(4)],
+                      dtype=np.uint32)
+    fingerprint = hashlib.sha256(words.tobytes() + primes.tobytes() + MULT.tobytes()).hexdigest()[:16]
+    assert fingerprint == _kernels.HASH_FINGERPRINT, (
+        f"the lattice hash changed (fingerprint {fingerprint}): set HASH_FINGERPRINT in "
+        "noiselab/gabor/_kernels.py to it, so that numba recompiles the Gabor kernels")

@@ -47,6 +47,12 @@ _S32 = np.uint64(32)
 _UNIT = 1.0 / 4294967296.0  # 2**-32
 _TWO_PI = 2.0 * math.pi
 MAX_COUNT = 4096  # the most impulses one cell may hold (the mean is checked far below it)
+# A fingerprint of the lattice hash these kernels call (``mix32`` and ``prime`` on fixed inputs, and
+# ``MULT``; tests/test_gabor.py recomputes it). numba's cache keys a kernel on its own file only, so
+# a change to the hash in ``noiselab/lattice/_jit.py`` alone would leave the compiled Gabor kernels
+# of this file stale in the cache: the test then fails until this line is updated, and the edit of
+# this file is what makes numba recompile them.
+HASH_FINGERPRINT = "6602aa104feb71df"
 
 
 @nb.njit(cache=True, nogil=True)

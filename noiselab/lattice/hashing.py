@@ -17,7 +17,10 @@ These are the lattice engine's own compiled functions (``noiselab.lattice._jit``
 re-exported, not copies. numba's ``cache=True`` keys a kernel on its own source
 file: a kernel of another module that calls them is recompiled when its own
 file changes, not when the engine's does, so a change to ``mix32`` is a change
-of every hashing generator's bits (and of the package version that states it).
+of every hashing generator's bits (and of the package version that states it). A caller's
+compiled file records a fingerprint of these functions' outputs
+(``noiselab.gabor._kernels.HASH_FINGERPRINT``), checked by the tests, so changing the hash
+means editing that file too, and numba recompiles its kernels.
 
 Examples
 --------
