@@ -101,3 +101,21 @@ def test_motion_cloud_moves_at_its_velocity_and_spreads_with_its_bandwidth():
     assert on_a > 0.8 and on_b < on_a - 0.2, (on_a, on_b)
     with pytest.raises(ValueError, match="B_V"):
         motion_cloud_noise(sf_0=0.1, B_sf=0.04, B_V=-1.0)
+
+
+@pytest.mark.parametrize("chunks", [(2, 16, 16), (3, (10, 22), -1), 7])
+def test_chunked_gabor_snow_is_the_in_memory_video_for_any_chunking(chunks):
+    pytest.importorskip("dask")
+    whole = gabor_snow((5, 32, 32), origin=(1000, -7, 3), rng=4)
+    lazy = gabor_snow((5, 32, 32), origin=(1000, -7, 3), rng=4, chunks=chunks)
+    assert lazy.shape == whole.shape and lazy.dtype == whole.dtype
+    assert np.array_equal(lazy.compute(), whole)
+
+
+def test_chunked_gabor_grid_is_the_in_memory_grid():
+    pytest.importorskip("dask")
+    from noiselab.gabor import GaborNoise
+
+    noise = GaborNoise([[0.05, 0.02], [0.0, 0.1]], bandwidth=0.02, rng=2)
+    whole = noise.grid((40, 30), origin=(5, -3))
+    assert np.array_equal(noise.grid((40, 30), origin=(5, -3), chunks=(16, (10, 20))).compute(), whole)

@@ -19,8 +19,8 @@ kernels' frequencies from a target.
   :func:`motion_cloud_noise`: a Motion Cloud (velocity and its bandwidth) the same way.
 """
 from .noise import GaborNoise, truncation_error
-from .snow import OPACITY_SIGMAS, gabor_snow, motion_cloud_noise, snow_layers
+from .snow import OPACITY_SIGMAS, gabor_snow, motion_cloud_noise, snow_layers, snow_opacity
 from .spectra import from_envelope, power_law_layers, render_layers
 
 __all__ = ["GaborNoise", "truncation_error", "from_envelope", "power_law_layers", "render_layers", "gabor_snow",
-           "snow_layers", "motion_cloud_noise", "OPACITY_SIGMAS"]
+           "snow_layers", "snow_opacity", "motion_cloud_noise", "OPACITY_SIGMAS"]

@@ -213,7 +213,7 @@ class GaborNoise:
             run_split(kernel, pts, out, self._rest(), nw, min_block=1024)
         return out.astype(dt, copy=False).reshape(p.shape[:-1])
 
-    def grid(self, shape, *, origin=None, step=1.0, dtype=np.float32, workers=None):
+    def grid(self, shape, *, origin=None, step=1.0, dtype=np.float32, workers=None, chunks=None):
         """The noise on the grid ``origin + i * step`` of ``shape`` (array order), as ``dtype``.
 
         Each sample equals the noise at its point (:meth:`__call__`) to the
@@ -234,6 +234,10 @@ class GaborNoise:
         workers : int, optional
             Threads (scipy.fft's meaning): blocks of rows (2-D) or layers
             (3-D); the result does not depend on them.
+        chunks : int, "auto" or one entry per axis, optional
+            Return a lazy ``dask.array.Array`` in these chunks, each chunk
+            the grid of its window (needs ``noiselab[dask]``): bit-identical
+            to the in-memory grid when the origin and step are integers.
 
         Returns
         -------
@@ -248,6 +252,10 @@ class GaborNoise:
             [step] * dim if np.isscalar(step) else _seq("step", step, dim))])
         if float(np.abs(o).max(initial=0) + np.max(np.array(shape) * st)) > 2.0 ** 50 * float(self._cell.min()):
             raise ValueError("origin + shape * step must stay within 2**50 cells of the origin")
+        if chunks is not None:
+            from .._core import dispatch
+
+            return dispatch.chunked("gabor_grid")(self, shape, origin=o, step=st, dtype=dt, chunks=chunks)
         check_memory(int(np.prod(shape)) * (8 + dt.itemsize), f"gabor grid {shape}")
         out = np.empty(shape, dtype=dt)
         nw = resolve_workers(workers)

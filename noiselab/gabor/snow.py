@@ -21,8 +21,9 @@ from .._core import (as_generator, check_band, check_int, check_memory, check_re
                      float_dtype)
 from ..spectral.envelopes import unit_direction_yx
 from .noise import GaborNoise
+from .spectra import render_layers
 
-__all__ = ["gabor_snow", "snow_layers", "motion_cloud_noise", "OPACITY_SIGMAS"]
+__all__ = ["gabor_snow", "snow_layers", "snow_opacity", "motion_cloud_noise", "OPACITY_SIGMAS"]
 
 #: The raw field (variance 1) maps to opacity as ``clip((x / OPACITY_SIGMAS + 1) / 2, 0, 1) ** beta``: a fixed map
 #: (a window cannot know a block's extremes), set to the extremes of :func:`noiselab.snow`'s default block, which
@@ -105,7 +106,7 @@ def snow_layers(*, rng=None, c=1.0, band=None, thickness=0.1, direction_yx=(1.0,
 
 def gabor_snow(shape=(64, 512, 512), *, origin=(0, 0, 0), rng=None, c=1.0, band=None, thickness=0.1,
                direction_yx=(1.0, 0.0), pan_yx=(0.0, 0.0), beta=1.5, exponent=1.0, width=512, density=4.0,
-               dtype=np.float32, rescale=True, workers=None):
+               dtype=np.float32, rescale=True, workers=None, chunks=None):
     """Falling-snow opacity with no period, any window of an endless (t, y, x) scene (sparse Gabor noise).
 
     The scene is :func:`noiselab.snow`'s (Langer & Zhang's tent, 1/f
@@ -150,6 +151,10 @@ def gabor_snow(shape=(64, 512, 512), *, origin=(0, 0, 0), rng=None, c=1.0, band=
         ``False`` returns the raw field (zero mean, variance 1).
     workers : int, optional
         Threads (scipy.fft's meaning); the result does not depend on them.
+    chunks : int, "auto" or one entry per axis, optional
+        Return a lazy ``dask.array.Array`` in these chunks (dask's chunk
+        syntax), each chunk the window of its samples: bit-identical to the
+        in-memory result for any chunking (needs ``noiselab[dask]``).
 
     Returns
     -------
@@ -173,20 +178,39 @@ def gabor_snow(shape=(64, 512, 512), *, origin=(0, 0, 0), rng=None, c=1.0, band=
         raise ValueError(f"origin must be whole samples (t, y, x), got {origin}")
     beta = check_real("beta", beta, lo=0.0, lo_open=True)
     dt = float_dtype(dtype)
-    # the float64 sum, one layer's float64 grid and its scratch, and the output
-    check_memory(int(np.prod(shape, dtype=np.float64)) * (3 * 8 + dt.itemsize), f"gabor_snow{shape}")
     layers = snow_layers(rng=rng, c=c, band=band, thickness=thickness, direction_yx=direction_yx, pan_yx=pan_yx,
                          exponent=exponent, width=width, density=density)
-    x = np.zeros(shape)
-    for weight, g in layers:   # in octave order, one float64 sum: every window adds the same terms in the same order
-        x += weight * g.grid(shape, origin=origin, dtype=np.float64, workers=workers)
-    if not rescale:
-        return x.astype(dt, copy=False)
+    if chunks is not None:
+        from .._core import dispatch
+
+        return dispatch.chunked("gabor_snow")(layers, shape, origin=origin, beta=beta, dtype=dt, rescale=rescale,
+                                              chunks=chunks)
+    # the float64 sum, one layer's float64 grid and its scratch, and the output
+    check_memory(int(np.prod(shape, dtype=np.float64)) * (3 * 8 + dt.itemsize), f"gabor_snow{shape}")
+    # in octave order, one float64 sum: every window adds the same terms in the same order
+    x = render_layers(layers, shape, origin=origin, dtype=np.float64, workers=workers)
+    return snow_opacity(x, beta=beta, dtype=dt) if rescale else x.astype(dt, copy=False)
+
+
+def snow_opacity(field, *, beta=1.5, dtype=np.float32):
+    """The fixed opacity map of :func:`gabor_snow`: ``clip((x / OPACITY_SIGMAS + 1) / 2, 0, 1) ** beta``.
+
+    Pointwise, so a window of a field maps to the same window of its opacity
+    (the chunked path applies it chunk by chunk). ``field`` is float64 and is
+    overwritten.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> snow_opacity(np.array([-100.0, 0.0, 100.0]), beta=1.0).tolist()
+    [0.0, 0.5, 1.0]
+    """
+    x = field
     np.multiply(x, 0.5 / OPACITY_SIGMAS, out=x)
     np.add(x, 0.5, out=x)
     np.clip(x, 0.0, 1.0, out=x)
     np.power(x, beta, out=x)
-    return x.astype(dt, copy=False)
+    return x.astype(float_dtype(dtype), copy=False)
 
 
 def motion_cloud_noise(*, sf_0, B_sf, theta=0.0, B_theta=np.inf, V_X=0.0, V_Y=0.0, B_V=0.5, density=4.0, rows=4096,

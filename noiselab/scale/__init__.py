@@ -2,7 +2,8 @@
 
 ``LatticeNoise.grid(..., chunks=...)``, ``fractal_sum(..., chunks=...)``,
 ``turbulence(..., chunks=...)``, ``spectral_noise(..., chunks=...)`` and
-``snow(..., chunks=...)`` return a lazy ``dask.array.Array``. The in-memory
+``snow(..., chunks=...)``, ``GaborNoise.grid(..., chunks=...)`` and
+``gabor_snow(..., chunks=...)`` return a lazy ``dask.array.Array``. The in-memory
 core never imports this package: each of those functions asks
 :func:`noiselab._core.dispatch.chunked` for the implementation registered
 here under its name, and this package registers them when it is imported.
@@ -16,10 +17,11 @@ optional extra ``pip install noiselab[dask]``.
 
 Modules: :mod:`noiselab.scale.lattice` (chunked grids and fractal sums),
 :mod:`noiselab.scale.spectral` (chunked spectral noise and snow: pencil-decomposed inverse FFTs),
+:mod:`noiselab.scale.gabor` (chunked Gabor noise and Gabor snow: one window per chunk),
 :mod:`noiselab.scale.run` (computing on a chosen scheduler with progress).
 """
 from .._core import require_dask
-from . import lattice, spectral  # noqa: F401  (importing them registers the dask implementations)
+from . import gabor, lattice, spectral  # noqa: F401  (importing them registers the dask implementations)
 from . import zarr  # noqa: F401  (registers write_zarr and read_zarr for dask arrays)
 from .run import compute
 
