@@ -19,8 +19,9 @@ HIDE_ASSERTION_FRAMES = operator.methodcaller("errisinstance", AssertionError)
 
 __all__ = ["renamed_parameters", "keyword_only", "array_order", "swap_pair"]
 
-# the release that removes the old spellings
-REMOVED_IN = "0.3"
+# the release that removes the old spellings (0.2.0 deprecated them; 0.3.0 followed within days, so they
+# stay one release longer)
+REMOVED_IN = "0.4"
 
 
 def renamed_parameters(**old_to_new):

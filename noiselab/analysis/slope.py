@@ -190,7 +190,7 @@ def _octave_band(function):
         if old:
             if "band" in kwargs:
                 raise TypeError("octave_energy() got both lo=/hi= (deprecated) and band=; pass band= only")
-            warnings.warn("octave_energy(): lo and hi are deprecated and will be removed in noiselab 0.3; pass "
+            warnings.warn("octave_energy(): lo and hi are deprecated and will be removed in noiselab 0.4; pass "
                           "band=(lo, hi) instead (hi=None: the Nyquist frequency)", DeprecationWarning, stacklevel=2)
             return function(field, band=(old.get("lo", 1.0), old.get("hi")), **kwargs)
         return function(field, *args, **kwargs)

@@ -589,7 +589,7 @@ def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0,
     if "on_aliasing" in kwargs:   # the old spelling, kept for one release like displace's own
         if "on_alias" in kwargs:
             raise TypeError("displace_frames() got both on_aliasing= (deprecated) and on_alias=; pass on_alias= only")
-        warnings.warn("displace_frames(): on_aliasing= is deprecated and will be removed in noiselab 0.3; pass "
+        warnings.warn("displace_frames(): on_aliasing= is deprecated and will be removed in noiselab 0.4; pass "
                       "on_alias= instead", DeprecationWarning, stacklevel=2)
         kwargs["on_alias"] = kwargs.pop("on_aliasing")
     on_alias = kwargs.pop("on_alias", "warn")

@@ -165,7 +165,7 @@ def snow(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, thickness=0.1, dir
     pan_yx : (uy, ux)
         Image velocity in px/frame, array order, that a panning camera adds
         to every flake (the sheared tent, Eq. 4.2); ``(0, 0)`` for a still
-        camera. (``pan=(ux, uy)``: the old spelling, until 0.3.)
+        camera. (``pan=(ux, uy)``: the old spelling, until 0.4.)
     beta : float
         Opacity exponent, ``alpha ** beta`` after rescaling (thesis: 1.5).
     exponent : float

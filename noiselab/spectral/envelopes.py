@@ -10,7 +10,7 @@ take bands in cycles/frame, ``W`` times that), ``c`` and ``tol`` in
 rad/frame, velocities in px/frame. Pairs of per-axis components are in array
 order, like the frequency vectors: ``direction_yx = (dy, dx)``,
 ``pan_yx = (uy, ux)``, ``velocity_yx = (vy, vx)`` (the old ``(x, y)``
-keywords and positions still work until 0.3, with a ``DeprecationWarning``).
+keywords and positions still work until 0.4, with a ``DeprecationWarning``).
 Masks are float arrays of 0 and 1, so that
 ``annulus(...) * power_law(...) * tent(...)`` is the snow envelope.
 
