@@ -74,19 +74,23 @@ def test_points_in_rows_or_columns_give_the_same_bits(hash_):
                                 {"alternation": "lattice"}, {"table_size": 20, "kernel": "quadratic"},
                                 {"basis": "gradient", "table_size": 30}])
 def test_folded_tables_give_the_per_point_kernels_bits(kw, monkeypatch):
-    # many 3-D points read the folded tables (pair_tables), few the permutation itself: the same bits
+    # many 3-D points read the folded tables (pair_tables), few the permutation itself, and either through the
+    # kernel split per chunk (_jit.table_fast_kernel) or the per-point kernel: the same bits
     from noiselab.lattice import points_path
 
     noise = LatticeNoise(3, rng=2, **kw)
     pts = RNG.uniform(-300, 300, (3000, 3))
     pts[::7] += 1e13   # past 2**52: the exact reduction
     results = []
-    for least in (1 << 40, 0):
+    for least, split in ((1 << 40, False), (0, False), (0, True), (1 << 40, True)):
         monkeypatch.setattr(points_path, "PAIRS_MIN", least)
-        results.append([noise.evaluate(pts, octaves=3), noise.evaluate(pts, octaves=2, absval=True)])
-    for a, b in zip(*results):
-        np.testing.assert_array_equal(a, b)
-        np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
+        monkeypatch.setattr(points_path, "TABLE_SPLIT", split)
+        results.append([noise.evaluate(pts, octaves=3), noise.evaluate(pts, octaves=2, absval=True),
+                        noise(pts[:300].T, axis=0)])
+    for other in results[1:]:
+        for a, b in zip(results[0], other):
+            np.testing.assert_array_equal(a, b)
+            np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
     # and a changed value table reaches the folded tables (they are built from the live tables at each call)
     noise.values[:] = -noise.values
     noise.gradients[:] = -noise.gradients

@@ -87,6 +87,11 @@ MAX_PAIR_ENTRIES = 1 << 20
 INT_FAST_DIM = 3
 
 
+# 3-D table-hash noise without a period or derivatives (values over the folded tables, gradients over the
+# permutation) runs the kernel split per chunk (:func:`._jit.table_fast_kernel`, the same bits); False turns it off
+TABLE_SPLIT = True
+
+
 def _periodic(noise):
     """Whether any axis has a period other than the hash's own (n for the table hash, 2**32 for the integer)."""
     free = jit.PERIOD_MAX if noise.hash == "integer" else noise.table_size
@@ -118,8 +123,11 @@ def kernel_args(noise, freqs, amps, absval, pairs=False):
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     """The point kernel for this noise and call over ``flat`` into ``out``, on ``workers`` threads."""
     pairs = _pairs(noise, flat.shape[0], deriv)
+    gradient = noise.basis == "gradient"
     if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv:  # the same bits, vectorised
-        kernel = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, noise.basis == "gradient", _periodic(noise))
+        kernel = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, gradient, _periodic(noise))
+    elif TABLE_SPLIT and (pairs or (gradient and noise.dim_in == 3 and not deriv and not _periodic(noise))):
+        kernel = jit.table_fast_kernel(noise.kernel.taps, gradient)  # the same bits, split per chunk
     else:
         kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv,
                                    _periodic(noise), pairs)
