@@ -12,8 +12,11 @@ special (above 1: the special path pays). The paths:
 - the separable grid passes against the points path on the grid's points
   (``noise.evaluate(noise.grid_points(...))``), 2-D and 3-D: what a grid
   would cost without a grid path;
-- 3-D table-hash values over folded tables (``points_path.PAIRS_MIN``: many
-  points) against the per-point kernel on the same points (the same bits);
+- 3-D table-hash points without a period split per chunk
+  (``points_path.TABLE_SPLIT``: the weights vectorised across points, then
+  the corner sum) against the per-point kernel, and values over folded
+  tables (``points_path.PAIRS_MIN``: many points) against the per-point
+  kernel on the same points (the same bits);
 - 1-3-D integer-hash values by the kernel vectorised across points
   (``points_path.INT_FAST_DIM``) against the general integer-hash kernel
   (the same bits).
@@ -57,31 +60,37 @@ def cases():
                             (lambda n, p, o: lambda: n.evaluate(p, octaves=o))(n, pts, octaves)))
     pts = np.random.default_rng(0).random((1_000_000, 3)) * 32
 
-    def with_least(least, fn):
+    def with_attrs(attrs, fn):
         def run():
-            old = points_path.PAIRS_MIN
-            points_path.PAIRS_MIN = least
+            old = {k: getattr(points_path, k) for k in attrs}
+            for k, v in attrs.items():
+                setattr(points_path, k, v)
             try:
                 return fn()
             finally:
-                points_path.PAIRS_MIN = old
+                for k, v in old.items():
+                    setattr(points_path, k, v)
         return run
 
     for label, kw in (("value cubic", {}), ("value catmull-rom", {"kernel": "catmull-rom"}),
                       ("gradient quintic", {"basis": "gradient"})):
         n = nl.LatticeNoise(3, **kw)
         call = (lambda n: lambda: n(pts))(n)
-        out.append((f"1e6 3-D points, table hash, {label}: folded tables vs per-point kernel",
-                    with_least(0, call), with_least(1 << 40, call)))
+        out.append((f"1e6 3-D points, table hash, {label}: split per chunk vs per-point kernel",
+                    with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": True}, call),
+                    with_attrs({"PAIRS_MIN": 0 if "value" in label else 1 << 40, "TABLE_SPLIT": False}, call)))
+        if "value" in label:
+            out.append((f"1e6 3-D points, table hash, {label}: folded tables vs per-point kernel (no split)",
+                        with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": False}, call),
+                        with_attrs({"PAIRS_MIN": 1 << 40, "TABLE_SPLIT": False}, call)))
+    n = nl.LatticeNoise(3)
+    call = (lambda n: lambda: n(pts.T, axis=0))(n)
+    out.append(("1e6 3-D points as (3, N) columns, table hash, value cubic: split per chunk vs per-point kernel",
+                with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": True}, call),
+                with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": False}, call)))
+
     def with_fast(dims, fn):
-        def run():
-            old = points_path.INT_FAST_DIM
-            points_path.INT_FAST_DIM = dims
-            try:
-                return fn()
-            finally:
-                points_path.INT_FAST_DIM = old
-        return run
+        return with_attrs({"INT_FAST_DIM": dims}, fn)
 
     p32 = pts.astype(np.float32)
     for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"}),

@@ -97,6 +97,22 @@ def test_folded_tables_give_the_per_point_kernels_bits(kw, monkeypatch):
     np.testing.assert_array_equal(noise.evaluate(pts, octaves=3), -results[1][0])
 
 
+
+@pytest.mark.parametrize("basis", ["value", "gradient"])
+def test_the_integer_hash_never_takes_the_table_kernels(basis, monkeypatch):
+    # with its vectorised kernel off, integer-hash 3-D points run the general integer kernel (the same bits),
+    # never a table-hash kernel that would read its keys as permutations
+    from noiselab.lattice import points_path
+
+    noise = LatticeNoise(3, rng=2, hash="integer", basis=basis)
+    pts = RNG.uniform(-50, 50, (2000, 3))
+    results = []
+    for dims in (3, 0):
+        monkeypatch.setattr(points_path, "INT_FAST_DIM", dims)
+        monkeypatch.setattr(points_path, "PAIRS_MIN", 0)
+        results.append(noise.evaluate(pts, octaves=2))
+    np.testing.assert_array_equal(results[0], results[1])
+
 # ----------------------------------------------------------------- plain Python
 _CASE = """
 import sys

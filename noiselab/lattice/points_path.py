@@ -126,7 +126,8 @@ def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     gradient = noise.basis == "gradient"
     if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv:  # the same bits, vectorised
         kernel = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, gradient, _periodic(noise))
-    elif TABLE_SPLIT and (pairs or (gradient and noise.dim_in == 3 and not deriv and not _periodic(noise))):
+    elif TABLE_SPLIT and (pairs or (noise.hash == "table" and gradient and noise.dim_in == 3 and not deriv
+                                    and not _periodic(noise))):
         kernel = jit.table_fast_kernel(noise.kernel.taps, gradient)  # the same bits, split per chunk
     else:
         kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv,
