@@ -58,6 +58,32 @@ def cases():
                 out.append((f"{shape} grid, {octaves} octave(s), {h} hash, {label}: separable passes vs points path",
                             (lambda n, o, s, e: lambda: n.evaluate_grid(s, e, octaves=o))(n, octaves, shape, ext),
                             (lambda n, p, o: lambda: n.evaluate(p, octaves=o))(n, pts, octaves)))
+    from noiselab.lattice import grid_path
+
+    def with_block(block, fn):
+        def run():
+            old = grid_path.SCATTERED_BLOCK
+            grid_path.SCATTERED_BLOCK = block
+            try:
+                return fn()
+            finally:
+                grid_path.SCATTERED_BLOCK = old
+        return run
+
+    # octaves sparser than the grid (the scattered path): blocks of rows against one row per call; and the
+    # integer hash's 2-D fBm grids, denser and sparser than the finest octave, against the points path
+    for cells, label, kw in ((32, "value cubic", {}), (64, "value cubic", {}), (16, "value quintic", {"kernel": "quintic"}),
+                             (64, "value quintic", {"kernel": "quintic"}), (16, "gradient quintic", {"basis": "gradient"}),
+                             (64, "gradient quintic", {"basis": "gradient"})):
+        n = nl.LatticeNoise(2, hash="integer", **kw)
+        shape, ext = (512, 512), [(0, cells), (0, cells)]
+        call = (lambda n, s, e: lambda: n.evaluate_grid(s, e, octaves=6))(n, shape, ext)
+        if "cubic" in label:
+            out.append((f"512^2 grid, {cells} cells, 6 octaves, integer hash, {label}: scattered octaves in blocks of "
+                        "rows vs one row per call", with_block(1 << 16, call), with_block(1, call)))
+        pts2 = n.grid_points(shape, ext)
+        out.append((f"512^2 grid, {cells} cells, 6 octaves, integer hash, {label}: grid path vs points path",
+                    call, (lambda n, p: lambda: n.evaluate(p, octaves=6))(n, pts2)))
     pts = np.random.default_rng(0).random((1_000_000, 3)) * 32
 
     def with_attrs(attrs, fn):

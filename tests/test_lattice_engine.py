@@ -197,3 +197,22 @@ def test_an_edit_of_the_engine_reaches_a_warm_cache(tmp_path):
     after = run()
     assert after != before
     assert after == pytest.approx(float(shifted), abs=1e-9)   # the edit's effect: the lattice moved one cell
+
+
+@pytest.mark.parametrize("hash_", ["table", "integer"])
+def test_the_scattered_grid_octaves_give_the_same_bits_in_blocks_of_rows(hash_, monkeypatch):
+    # octaves sparser than the grid run through the points path; in blocks of rows or one row per call
+    from noiselab.fractal import fractal_sum, turbulence
+    from noiselab.lattice import Grid, grid_path
+
+    noise = LatticeNoise(2, 2, rng=4, hash=hash_)   # cubic: 4 taps, the finer octaves are sparse
+    grid = Grid((60, 50), ((0.0, 64.0), (0.5, 70.0)))
+    results = []
+    for block in (1, 1000, 1 << 16):
+        monkeypatch.setattr(grid_path, "SCATTERED_BLOCK", block)
+        results.append([fractal_sum(noise, grid, 5), turbulence(noise, grid, 4), noise.jacobian_grid((30, 20),
+                                                                                                     [(0, 90), (0, 77)])])
+    for other in results[1:]:
+        for a, b in zip(results[0], other):
+            np.testing.assert_array_equal(a, b)
+            np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
