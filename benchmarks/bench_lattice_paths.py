@@ -14,9 +14,8 @@ special (above 1: the special path pays). The paths:
   would cost without a grid path;
 - 3-D table-hash points without a period split per chunk
   (``points_path.TABLE_SPLIT``: the weights vectorised across points, then
-  the corner sum) against the per-point kernel, and values over folded
-  tables (``points_path.PAIRS_MIN``: many points) against the per-point
-  kernel on the same points (the same bits);
+  the corner sum; values over folded tables) against the per-point kernel
+  on the same points (the same bits);
 - 1-3-D integer-hash values by the kernel vectorised across points
   (``points_path.INT_FAST_DIM``) against the general integer-hash kernel
   (the same bits).
@@ -104,11 +103,7 @@ def cases():
         call = (lambda n: lambda: n(pts))(n)
         out.append((f"1e6 3-D points, table hash, {label}: split per chunk vs per-point kernel",
                     with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": True}, call),
-                    with_attrs({"PAIRS_MIN": 0 if "value" in label else 1 << 40, "TABLE_SPLIT": False}, call)))
-        if "value" in label:
-            out.append((f"1e6 3-D points, table hash, {label}: folded tables vs per-point kernel (no split)",
-                        with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": False}, call),
-                        with_attrs({"PAIRS_MIN": 1 << 40, "TABLE_SPLIT": False}, call)))
+                    with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": False}, call)))
     n = nl.LatticeNoise(3)
     call = (lambda n: lambda: n(pts.T, axis=0))(n)
     out.append(("1e6 3-D points as (3, N) columns, table hash, value cubic: split per chunk vs per-point kernel",

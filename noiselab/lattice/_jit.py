@@ -16,7 +16,7 @@ unrolls.
 - points: :func:`points_kernel` returns the kernel for a hash, dimension,
   tap count, derivative flag and period flag: :func:`_make_points` (the
   table hash: Phillips' nested permutation ``h_{a+1} = P[(h_a + j_a) mod n]``,
-  2.4.1; for 3-D value noise over many points, over :func:`pair_tables`)
+  2.4.1)
   and :func:`_make_int_points` (the integer hash, 256 points at a time, each
   level of the corner walk one loop over them); :func:`int_fast_kernel`
   (:func:`_make_int_fast`: the integer hash's 1-3-D values, the same bits,
@@ -169,18 +169,13 @@ def prime(j, mult):
     return _U32(_U32(j) * mult)
 
 
-def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
+def _make_points(DIM, TAPS, DERIV, PERIODIC):
     """The table hash's point kernel for ``DIM`` input axes and ``TAPS`` taps (compile-time constants).
 
     ``DERIV``: values and Jacobians (else values). ``PERIODIC`` False: every
     axis's period is the table size n, so a tap's index needs no reduction of
     its own (the hash reduces ``h + j`` modulo n, and n is even, so the
-    parity is the same). ``PAIRS`` (3-D value noise without a period): the
-    tables are :func:`pair_tables`' in place of ``perms`` and ``values`` (the
-    first two hash levels one read, the last folded into the values): the
-    same sums of the same values, so the same bits, with about half the
-    table reads (1.23x faster for 4 taps, ``benchmarks/bench_lattice_paths.md``;
-    1.01x for gradient noise, which does not take it). numba prunes the branches these constants rule out
+    parity is the same). numba prunes the branches these constants rule out
     before typing; numbers and booleans are safe in numba's cache key (pickled
     with the closure), a function closed over is not (it pickles with a new id in every process).
     """
@@ -247,9 +242,6 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
         acc = np.empty((ncomp, nq))  # zeroed per point
         vals0 = values[0]
         vals1 = values[1]
-        if PAIRS:  # the table size n, from the folded values' run 2 (2n + 4)
-            np_ = (values.shape[1] // 2 - 4) // 2
-            pmask_ = np_ - 1 if (np_ & (np_ - 1)) == 0 else -1
         for p in range(npts):
             for c in range(ncomp):
                 for q in range(nq):
@@ -318,17 +310,6 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
                             if DERIV:
                                 D[0] += dw[0, k0] * s1 + w[0, k0] * e0
                                 D[1] += w[0, k0] * s1d1
-                    elif PAIRS:  # (3-D values): perms holds H2, values VL (pair_tables)
-                        for k0 in range(TAPS):
-                            row = _hash(0, jj[0, k0], np_, pmask_) * np_
-                            s1 = 0.0
-                            for k1 in range(TAPS):
-                                hb = np.int64(perm[row + _hash(0, jj[1, k1], np_, pmask_)])
-                                s2 = 0.0
-                                for k2 in range(TAPS):
-                                    s2 += w[2, k2] * values[c, hb + jj[2, k2]]
-                                s1 += w[1, k1] * s2
-                            total += w[0, k0] * s1
                     elif DIM == 3:
                         for k0 in range(TAPS):
                             j0 = jj[0, k0]
@@ -908,20 +889,19 @@ def _make_table_fast(TAPS, GRAD):
 _POINTS = {}
 
 
-def points_kernel(integer, dim, taps, deriv, periodic, pairs=False):
+def points_kernel(integer, dim, taps, deriv, periodic):
     """The compiled point kernel for this hash, dimension, tap count, derivative flag and period flag.
 
     Its arguments: ``(pts, out, freqs, amps, phase, shift, left, taps, coef,
     dcoef, period, pmask, perms, values, grads, basis, absval)`` for the table
     hash (:func:`_make_points`), ``(..., pmask, keys, mult, grads, basis,
-    absval)`` for the integer hash (:func:`_make_int_points`); ``pairs``: the
-    3-D table-hash value kernel over :func:`pair_tables`. Made on first
+    absval)`` for the integer hash (:func:`_make_int_points`). Made on first
     request; numba compiles it on its first call (or loads it from its cache).
     """
-    key = (bool(integer), int(dim), int(taps), bool(deriv), bool(periodic), bool(pairs))
+    key = (bool(integer), int(dim), int(taps), bool(deriv), bool(periodic))
     fn = _POINTS.get(key)
     if fn is None:
-        fn = _POINTS[key] = _make_int_points(*key[1:5]) if integer else _make_points(*key[1:])
+        fn = _POINTS[key] = (_make_int_points if integer else _make_points)(*key[1:])
     return fn
 
 
