@@ -582,3 +582,100 @@ def test_theta_is_psychopys_ori_in_radians():
     along = np.mean((z[1:, :-1] - z[:-1, 1:]) ** 2)   # a step of (dx, dy) = (+1, -1): 15 deg from the stripes
     across = np.mean((z[1:, 1:] - z[:-1, :-1]) ** 2)  # (+1, +1): 15 deg from the wave vector
     assert along < across
+
+
+def test_trial_seeds_are_distinct_reproducible_and_numpys_derivation():
+    from noiselab.stimuli import trial_seeds
+
+    seeds = trial_seeds(50, rng=2026)
+    assert len(set(seeds)) == 50 and all(0 <= s < 2**32 for s in seeds)
+    assert seeds == trial_seeds(50, rng=2026)                 # the same on every run
+    assert trial_seeds(10, rng=2026) == seeds[:10]             # a longer run extends a shorter one
+    assert seeds == [int(c.generate_state(1)[0]) for c in np.random.SeedSequence(2026).spawn(50)]
+    assert set(seeds).isdisjoint(trial_seeds(50, rng=2027))
+    g1, g2 = np.random.default_rng(5), np.random.default_rng(5)
+    assert trial_seeds(4, rng=g1) == trial_seeds(4, rng=g2)   # a Generator: one draw of its stream
+    with pytest.raises(ValueError, match="trials"):
+        trial_seeds(0, rng=1)
+    with pytest.raises(ValueError, match="rng"):
+        trial_seeds(3, rng=-1)
+
+
+def test_trial_seeds_tell_coinciding_words_apart(monkeypatch):
+    from noiselab.stimuli import trials as T
+
+    class Same:   # every child's first word is the same: the later trials take further words of their own stream
+        def __init__(self, k):
+            self.k = k
+
+        def generate_state(self, n):
+            return np.array([7] + [1000 * self.k + j for j in range(1, n)], dtype=np.uint32)
+
+    class Seq:
+        def __init__(self, entropy):
+            pass
+
+        def spawn(self, n):
+            return [Same(k) for k in range(n)]
+
+    monkeypatch.setattr(T.np.random, "SeedSequence", Seq)
+    assert T.trial_seeds(3, rng=0) == [7, 1001, 2001]
+
+
+def test_luminance_for_clips_and_windows_as_to_display():
+    d = Display(32.0, luminance=(0.5, 100.0), gamma=2.2, bits=8)
+    x = spectral_noise((128, 128), exponent=1.0, rng=0)
+    w = circular_aperture((128, 128), d, diameter_deg=3.0)
+    with pytest.raises(ValueError, match=r"largest RMS contrast it allows is .*clip=[0-9.]+ \(standard deviations\)"):
+        luminance_for(x, mean=50.0, contrast=0.45)
+    L, report = luminance_for(x, mean=50.0, contrast=0.45, clip=2.0, full_output=True)
+    z = (x - x.mean()) / x.std()
+    assert report.clip == 2.0 and report.clipped_fraction == pytest.approx(np.mean(np.abs(z) > 2.0), abs=1e-12)
+    assert L.std() / L.mean() == pytest.approx(0.45, rel=1e-9) and L.mean() == pytest.approx(50.0, rel=1e-12)
+    assert report.luminance_range == (L.min(), L.max()) and L.min() > 0
+    # the clipped tails are flat: as many samples at each end as were clipped there
+    assert np.count_nonzero(L == L.max()) == np.count_nonzero(z > 2.0)
+    L, report = luminance_for(x, mean=50.0, contrast=0.25, clip=3.0, aperture=w, full_output=True)
+    assert np.all(L[w == 0] == 50.0)
+    inside = L[w == 1]
+    assert inside.std() / inside.mean() == pytest.approx(0.25, rel=0.02)
+    v, shown = to_display(x, d, mean=50.0, contrast=0.25, clip=3.0, aperture=w, rng=1, full_output=True)
+    assert shown == report   # the luminance to_display shows, before it picks display values
+    with pytest.raises(ValueError, match="aperture"):
+        luminance_for(x, mean=50.0, contrast=0.25, aperture=np.ones((3, 3)))
+    with pytest.raises(ValueError, match="clip"):
+        luminance_for(x, mean=50.0, contrast=0.25, clip=0.0)
+
+
+def test_the_guides_running_an_experiment_section_runs(tmp_path, monkeypatch):
+    # docs/guide/stimuli.rst as tests/test_readme.py runs it (its python blocks as one script, then its shell
+    # blocks), here on its own: the trial set, the aperture, the clipping and the PsychoPy array must all work
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from test_readme import rst_blocks
+
+    page = Path(__file__).resolve().parents[1] / "docs" / "guide" / "stimuli.rst"
+    text = page.read_text()
+    section = text[text.index("Running an experiment"):]
+    for needed in ("trial_seeds(", "raised_cosine_aperture(", "clip=3.0", "np.flipud", "visual.ImageStim",
+                   "--trials", "--psychopy"):
+        assert needed in section, needed
+    blocks = rst_blocks(text)
+    monkeypatch.chdir(tmp_path)
+    exec("\n".join(code for _, lang, code in blocks if lang == "python"), {"__name__": "guide"})
+    manifest = __import__("json").loads((tmp_path / "out" / "trials" / "manifest.json").read_text())
+    assert [t["seed"] for t in manifest["trials"]] == noiselab.stimuli.trial_seeds(4, rng=2026)
+    assert all(abs(t["rms_contrast_inside"] - 0.25) < 0.01 and t["clipped_fraction"] > 0 for t in manifest["trials"])
+    shell = [code for _, lang, code in blocks if lang == "bash" and "--trials" in code]
+    assert len(shell) == 1
+    bindir = str(Path(sys.executable).parent)
+    env = dict(os.environ, PATH=bindir + os.pathsep + os.environ.get("PATH", ""),
+               PYTHONPATH=str(Path(noiselab.__file__).parents[1]))
+    subprocess.run(["bash", "-e", "-c", shell[0]], cwd=tmp_path, env=env, check=True, capture_output=True, timeout=600)
+    cli = __import__("json").loads((tmp_path / "out" / "trials" / "pink_manifest.json").read_text())
+    assert len(cli["trials"]) == 20 and [t["seed"] for t in cli["trials"]] == noiselab.stimuli.trial_seeds(20, rng=2026)
+    first = np.load(tmp_path / "out" / "trials" / cli["trials"][0]["psychopy"])
+    assert first.dtype == np.float32 and -1 <= first.min() and first.max() <= 1

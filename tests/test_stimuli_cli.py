@@ -130,14 +130,16 @@ def test_bandwidths_in_octaves_and_hwhm_degrees(tmp_path):
 
 
 def test_trials_write_distinct_reproducible_stimuli_and_one_manifest(tmp_path, capsys):
-    from noiselab.cli.stimulus import trial_seeds
+    from noiselab.stimuli import trial_seeds
 
     out = tmp_path / "t" / "pink.npy"
     args = ["pink", "--size", "2", "--mean", "50", "--contrast", "0.25", "--clip", "3", "--seed", "7"]
     assert _run(tmp_path, *args, "--trials", "3", "-o", str(out)) == 0
     manifest = json.loads((tmp_path / "t" / "pink_manifest.json").read_text())
     seeds = [t["seed"] for t in manifest["trials"]]
-    assert seeds == trial_seeds(7, 3) and len(set(seeds)) == 3 and manifest["experiment_seed"] == 7
+    # the manifest's seeds are the API's, and numpy's SeedSequence derivation it documents
+    assert seeds == trial_seeds(3, rng=7) and len(set(seeds)) == 3 and manifest["experiment_seed"] == 7
+    assert seeds == [int(c.generate_state(1)[0]) for c in np.random.SeedSequence(7).spawn(3)]
     assert manifest["display"] == Display(32.0).as_dict() and manifest["parameters"]["contrast"] == 0.25
     files = [tmp_path / "t" / t["file"] for t in manifest["trials"]]
     assert [f.name for f in files] == ["pink_000.npy", "pink_001.npy", "pink_002.npy"]

@@ -39,7 +39,8 @@ def _motion_cloud(velocity, seed, shape=(32, 64, 64)):
 
 
 @pytest.mark.parametrize("modname", ["noiselab.testing", "noiselab.testing.spectra", "noiselab.testing.motion",
-                                     "noiselab.testing.velocity", "noiselab.testing.seams", "noiselab.testing.strategies"])
+                                     "noiselab.testing.velocity", "noiselab.testing.orientation",
+                                     "noiselab.testing.seams", "noiselab.testing.strategies"])
 def test_doctests(modname):
     result = doctest.testmod(importlib.import_module(modname),
                              optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
@@ -223,6 +224,20 @@ def test_velocity_in_degrees_per_second_agrees_with_px_per_frame():
         T.assert_velocity(video, vx=1.875 * 1.05, vy=0.9375, display=display, tol=0.04)
 
 
+def test_a_speed_band_cut_at_the_temporal_nyquist_frequency_reads_slow_and_says_so():
+    # a broad band (power to 0.4 cycles/px) at B_V=1: |v.f| + 2 B_V |f| passes 1/2 cycle/frame, where the cloud's
+    # speed band is cut; the fit reads about 5 % slow (benchmarks/bench_velocity_bias.md) and the failure names it
+    video = noiselab.stimuli.motion_cloud((32, 64, 64), sf_0=0.15, B_sf=0.1, V_X=1.0, V_Y=0.5, B_V=1.0, rng=1)
+    with pytest.raises(AssertionError, match=r"% of the power lies within 1/16 cycle/frame of the temporal Nyquist"):
+        T.assert_velocity(video, vx=1.0, vy=0.5)
+    T.assert_velocity(video, vx=1.0, vy=0.5, band=(1.0, 32 / (np.hypot(1.0, 0.5) + 2.0)))   # where the band fits
+    # a narrow band stays below the temporal Nyquist frequency: a miss says nothing of it
+    narrow = _cloud(0.5, seed=12)
+    with pytest.raises(AssertionError) as info:
+        T.assert_velocity(narrow, vx=1.05, vy=0.525)
+    assert "Nyquist" not in str(info.value)
+
+
 def test_velocity_of_a_translation_is_exact():
     img = np.random.default_rng(5).standard_normal((48, 48))
     video = np.stack([np.roll(img, (-2 * t, 3 * t), axis=(0, 1)) for t in range(12)])  # vx=3, vy=-2
@@ -295,6 +310,120 @@ def test_power_law_holds_for_drawn_exponents(exponent, seed):
         T.assert_power_law(img, exponent + 0.5, false_alarm=1e-6)
 
 
+# ---------------------------------------------------------------- orientation and centre frequency
+def _mc_still(seed, *, sf_0=0.125, B_sf=0.05, theta=0.0, B_theta=np.inf, n=128):
+    fx, fy, ft = mc.get_grids(n, n, 1)
+    env = mc.envelope_gabor(fx, fy, ft, V_X=0.0, V_Y=0.0, sf_0=sf_0, B_sf=B_sf, theta=theta, B_theta=B_theta)
+    return np.transpose(mc.random_cloud(env, seed=seed), (2, 1, 0))[0]
+
+
+@pytest.mark.parametrize("deg", [0.0, 30.0, 90.0, 150.0])
+@pytest.mark.parametrize("source", ["noiselab", "MotionClouds"])
+def test_orientation_of_a_cloud_passes_at_its_theta_and_fails_five_degrees_off(deg, source):
+    b_theta = noiselab.stimuli.B_theta_from_hwhm(orientation_hwhm_deg=15.0)
+    if source == "noiselab":
+        img = noiselab.stimuli.motion_cloud((128, 128), sf_0=0.125, B_sf=0.05, theta=np.radians(deg),
+                                            B_theta=b_theta, rng=21)
+    else:
+        img = _mc_still(21, theta=np.radians(deg), B_theta=b_theta)
+    check = T.assert_orientation(img, orientation_deg=deg)
+    assert 0 <= check.orientation_deg < 180 and 0 < check.se < 1.5 and check.tol < 5, check.message
+    T.assert_orientation(img, orientation_deg=deg + 180)   # axial: the same orientation
+    with pytest.raises(AssertionError, match=rf"^measured orientation [0-9.]+±[0-9.]+° against expected "
+                                             rf"{deg + 5:g}° ") as info:
+        T.assert_orientation(img, orientation_deg=deg + 5)
+    assert "\n" not in str(info.value)
+    with pytest.raises(AssertionError, match="against expected"):
+        T.assert_orientation(img, orientation_deg=deg - 5)
+
+
+def test_orientation_convention_is_the_wave_vector_with_y_down():
+    # oriented noise drawn by hand, a sum of gratings cos(k (x cos t + y sin t) + phase) with t within 10 degrees
+    # of the orientation: rows go down the screen, so a positive angle turns vertical stripes clockwise
+    y, x = np.mgrid[0:128, 0:128]
+    rng = np.random.default_rng(1)
+    for deg in (0.0, 30.0, 90.0, 120.0):
+        t = np.radians(deg + rng.uniform(-10, 10, 300))[:, None, None]
+        k = 2 * np.pi * rng.uniform(8, 32, 300)[:, None, None] / 128
+        phase = rng.uniform(0, 2 * np.pi, 300)[:, None, None]
+        stripes = np.cos(k * (x * np.cos(t) + y * np.sin(t)) + phase).sum(axis=0)
+        check = T.assert_orientation(stripes, orientation_deg=deg, tol=3.0, window="hann")
+        assert check.modulation > 0.5, check.message
+    with pytest.raises(AssertionError, match="expected 60°"):
+        T.assert_orientation(stripes, orientation_deg=60.0, tol=3.0, window="hann")   # the mirror image of 120
+
+
+def test_an_isotropic_field_has_no_orientation():
+    with pytest.raises(AssertionError, match="no measurable orientation"):
+        T.assert_orientation(noiselab.spectral_noise((128, 128), exponent=1.0, rng=3), orientation_deg=0.0)
+
+
+def test_orientation_of_a_video_reads_every_frame():
+    video = noiselab.stimuli.motion_cloud((16, 64, 64), sf_0=0.125, B_sf=0.05, theta=np.radians(60), B_theta=0.2,
+                                          V_X=0.5, rng=4)
+    check = T.assert_orientation(video, orientation_deg=60.0)
+    assert check.cells > 16 * 64 * 64 // 2 - 64 and check.se < 1.0, check.message
+
+
+@pytest.mark.parametrize("octaves, off", [(0.5, 1.05), (1.0, 1.05), (2.0, 1.1)])
+@pytest.mark.parametrize("source", ["noiselab", "MotionClouds"])
+def test_centre_frequency_of_a_cloud_is_sf_0_and_an_offset_fails(octaves, off, source):
+    # the offsets the calibration misses in none of 200 seeds (benchmarks/bench_orientation.md)
+    b_sf = noiselab.stimuli.B_sf_from_octaves(sf_0=0.125, sf_bandwidth_octaves=octaves)
+    img = (noiselab.stimuli.motion_cloud((128, 128), sf_0=0.125, B_sf=b_sf, rng=31) if source == "noiselab"
+           else _mc_still(31, B_sf=b_sf))
+    check = T.assert_centre_frequency(img, sf_0=0.125)
+    assert check.unit == "cycles/px" and check.tol_octaves < np.log2(off), check.message
+    with pytest.raises(AssertionError, match=r"^measured centre frequency [0-9.]+±[0-9.e-]+ cycles/px \(±"):
+        T.assert_centre_frequency(img, sf_0=0.125 * off)
+    with pytest.raises(AssertionError, match=f"against expected {0.125 / off:g} cycles/px"):
+        T.assert_centre_frequency(img, sf_0=0.125 / off)
+
+
+def test_centre_of_band_limited_pink_noise_and_of_a_drifting_cloud():
+    # 1/f amplitude in 2-D: power flat per octave, the centre is the band's geometric middle
+    img = noiselab.spectral_noise((128, 128), exponent=1.0, band=(8.0, 32.0), rng=5)
+    T.assert_centre_frequency(img, sf_0=16.0 / 128)
+    with pytest.raises(AssertionError):
+        T.assert_centre_frequency(img, sf_0=20.0 / 128)   # the arithmetic middle of the band
+    # a drifting cloud's video: the speed band weights the power by f, the centre moves up by exp(s**2 / 2)
+    b_sf = noiselab.stimuli.B_sf_from_octaves(sf_0=0.125, sf_bandwidth_octaves=1.0)
+    s = np.log((0.125 + b_sf) / 0.125)
+    video = noiselab.stimuli.motion_cloud((32, 64, 64), sf_0=0.125, B_sf=b_sf, V_X=1.0, B_V=0.5, rng=6)
+    T.assert_centre_frequency(video, sf_0=0.125 * np.exp(s * s / 2))
+    with pytest.raises(AssertionError):
+        T.assert_centre_frequency(video, sf_0=0.125)
+
+
+def test_centre_frequency_in_cycles_per_degree():
+    d = noiselab.Display(32.0)
+    img = noiselab.stimuli.motion_cloud((128, 128), sf_0=d.cycles_per_pixel(4.0), B_sf=d.cycles_per_pixel(1.0),
+                                        rng=7)
+    px = T.assert_centre_frequency(img, sf_0=0.125)
+    deg = T.assert_centre_frequency(img, sf_0=4.0, display=d)
+    assert deg.unit == "cycles/deg" and deg.sf_0 == pytest.approx(32 * px.sf_0, rel=1e-12)
+    assert deg.se_octaves == pytest.approx(px.se_octaves, rel=1e-12)
+    T.assert_centre_frequency(img, sf_0=4.4, display=d, tol=0.2)   # a given tol, octaves: log2(1.1) = 0.14
+    with pytest.raises(AssertionError, match="given tol 0.1 octaves"):
+        T.assert_centre_frequency(img, sf_0=4.4, display=d, tol=0.1)
+
+
+@pytest.mark.parametrize("name", ["orientation", "centre"])
+def test_orientation_and_centre_false_alarm_rates(name):
+    # at false_alarm=0.05 a calibrated test fails 2 of 40 fields on average; more than the binomial's 1e-4
+    # upper quantile would mean the standard error is too small (benchmarks/bench_orientation.md: 200 seeds)
+    fa = 0.05
+    if name == "orientation":
+        def make(s):
+            return noiselab.stimuli.motion_cloud((64, 64), sf_0=0.125, B_sf=0.05, theta=0.6, B_theta=0.3, rng=s)
+        check = lambda x: T.assert_orientation(x, orientation_deg=np.degrees(0.6), false_alarm=fa)  # noqa: E731
+    else:
+        make = lambda s: noiselab.stimuli.motion_cloud((64, 64), sf_0=0.125, B_sf=0.05, rng=s)  # noqa: E731
+        check = lambda x: T.assert_centre_frequency(x, sf_0=0.125, false_alarm=fa)  # noqa: E731
+    fails = _failures(check, make, range(40))
+    assert fails <= stats.binom.isf(1e-4, 40, fa), fails
+
+
 # ---------------------------------------------------------------- bad input
 @pytest.mark.parametrize("call, name", [
     (lambda: T.assert_power_law(np.ones((2, 2)) * [1, 2], 1.0), "field"),
@@ -312,6 +441,19 @@ def test_power_law_holds_for_drawn_exponents(exponent, seed):
      "false_alarm"),
     (lambda: T.assert_velocity(np.random.default_rng(0).random((8, 16, 16)), vx=0, vy=0, display=60.0), "display"),
     (lambda: T.assert_velocity(np.random.default_rng(0).random((3, 16, 16)), vx=0, vy=0), "video"),
+    (lambda: T.assert_orientation(np.random.default_rng(0).random((16, 16)), orientation_deg=float("nan")),
+     "orientation_deg"),
+    (lambda: T.assert_orientation(np.random.default_rng(0).random((16, 16)), orientation_deg=0, tol=91), "tol"),
+    (lambda: T.assert_orientation(np.random.default_rng(0).random(16), orientation_deg=0), "field"),
+    (lambda: T.assert_orientation(np.random.default_rng(0).random((16, 16)), orientation_deg=0, band=(2, 99)),
+     "band"),
+    (lambda: T.assert_centre_frequency(np.random.default_rng(0).random((16, 16)), sf_0=0.0), "sf_0"),
+    (lambda: T.assert_centre_frequency(np.random.default_rng(0).random((16, 16)), sf_0=0.9), "sf_0"),
+    (lambda: T.assert_centre_frequency(np.random.default_rng(0).random((16, 16)), sf_0=0.1, tol=-1), "tol"),
+    (lambda: T.assert_centre_frequency(np.random.default_rng(0).random((16, 16)), sf_0=0.1, display=32.0),
+     "display"),
+    (lambda: T.assert_centre_frequency(np.random.default_rng(0).random((16, 16)), sf_0=0.1, false_alarm=0.7),
+     "false_alarm"),
     (lambda: T.assert_seamless(np.random.default_rng(0).random((16, 16)), axes=2), "axes"),
     (lambda: T.assert_seamless(np.random.default_rng(0).random((16, 16)), period=5), "period"),
     (lambda: T.assert_seamless(np.random.default_rng(0).random((4, 16))), "axis 0"),
@@ -359,6 +501,11 @@ def test_a_wrong_velocity():
     img = np.random.default_rng(2).standard_normal((32, 32))
     T.assert_velocity(np.stack([np.roll(img, t, axis=1) for t in range(16)]), vx=1.2, vy=0.0)
 
+def test_a_wrong_orientation():
+    from noiselab.stimuli import motion_cloud
+    T.assert_orientation(motion_cloud((64, 64), sf_0=0.125, B_sf=0.05, theta=0.5, B_theta=0.2, rng=1),
+                         orientation_deg=60.0)
+
 def test_a_seam():
     T.assert_seamless(np.arange(64.0 * 64).reshape(64, 64) % 7.3)
 
@@ -379,11 +526,11 @@ def test_a_failing_assertion_reports_the_callers_line_not_library_source(tmp_pat
                           "--rootdir", str(tmp_path), "-c", os.devnull, str(tmp_path / "test_tiny.py")],
                          capture_output=True, text=True, cwd=tmp_path, env=env, timeout=300)
     out = run.stdout
-    assert "5 failed" in out, out[-3000:]
+    assert "6 failed" in out, out[-3000:]
     reports = out.split("_____ ")[1:]
-    assert len(reports) >= 5, out[-3000:]
+    assert len(reports) >= 6, out[-3000:]
     for name in ("test_white_noise_is_not_pink", "test_still_video_does_not_move", "test_a_seam",
-                 "test_a_wrong_velocity"):
+                 "test_a_wrong_velocity", "test_a_wrong_orientation"):
         report = next(r for r in reports if r.lstrip().startswith(name))
         # the test's own lines and the one-line message; no frame of noiselab's source (testing/, _core/)
         assert "noiselab/testing/" not in report and "noiselab/_core/" not in report, report

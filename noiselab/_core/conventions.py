@@ -293,15 +293,17 @@ WORDS = {
         keyword_only=True),
     'clip': Word(
         ('Clip instead of refusing: a writer clips floats outside [0, 1] when no range is stated (otherwise a '
-         '``ValueError``); ``to_display`` clips the field at ``clip`` standard deviations of its mean before '
-         'scaling it to the requested contrast (None: no clipping, a request off the display is refused).'),
-        unit='standard deviations (to_display)',
-        type='bool (writers) or float > 0 (to_display)',
+         '``ValueError``); ``to_display`` and ``luminance_for`` clip the field at ``clip`` standard deviations '
+         'of its mean before scaling it to the requested contrast (None: no clipping, a request off the display '
+         'is refused).'),
+        unit='standard deviations (to_display, luminance_for)',
+        type='bool (writers) or float > 0 (to_display, luminance_for)',
         default=False,
         keyword_only=True,
-        per_function={'noiselab.stimuli.to_display': (None, True)},
-        note=("to_display's clip is a number of standard deviations (None: none), as a Gaussian field's tails "
-              "are what leaves a display; the writers' clip is a yes or no to [0, 1]")),
+        per_function={'noiselab.stimuli.to_display': (None, True),
+                      'noiselab.stimuli.luminance_for': (None, True)},
+        note=("to_display's and luminance_for's clip is a number of standard deviations (None: none), as a "
+              "Gaussian field's tails are what leaves a display; the writers' clip is a yes or no to [0, 1]")),
     'close': Word(
         'Close the figure afterwards (pyplot figures only).',
         unit='',
@@ -487,8 +489,10 @@ WORDS = {
         type='Display',
         default=REQUIRED,
         keyword_only=False,
-        per_function={'noiselab.testing.assert_velocity': (None, True)},
-        note='optional and keyword-only on assert_velocity, where it turns px/frame into deg/s'),
+        per_function={'noiselab.testing.assert_velocity': (None, True),
+                      'noiselab.testing.assert_centre_frequency': (None, True)},
+        note=('optional and keyword-only on assert_velocity, where it turns px/frame into deg/s, and on '
+              'assert_centre_frequency, where it turns cycles/pixel into cycles/deg')),
     'distance_cm': Word(
         'Eye to screen, cm, > 0.',
         unit='cm',
@@ -1131,6 +1135,13 @@ WORDS = {
         type='float, 0 < ramp_deg <= diameter_deg / 2',
         default=REQUIRED,
         keyword_only=True),
+    'orientation_deg': Word(
+        ('An orientation in degrees, modulo 180: the direction of the wave vector, x right, y down (0: vertical '
+         "stripes; a positive angle turns them clockwise on the screen, as PsychoPy's ``ori``)."),
+        unit='deg',
+        type='float',
+        default=REQUIRED,
+        keyword_only=True),
     'orientation_hwhm_deg': Word(
         'Orientation bandwidth as papers state it: half width at half height of the amplitude band, degrees.',
         unit='deg',
@@ -1285,7 +1296,8 @@ WORDS = {
         keyword_only=True),
     'sf_0': Word(
         ('Peak spatial frequency, cycles/pixel, in ``(0, 0.5]`` (``display.cycles_per_pixel(cpd)`` from '
-         'cycles/deg).'),
+         'cycles/deg); the expected centre frequency of assert_centre_frequency, cycles/pixel or cycles/deg with '
+         'a ``display``.'),
         unit='cycles/pixel',
         type='float',
         default=REQUIRED,
@@ -1489,7 +1501,8 @@ WORDS = {
     'tol': Word(
         ('The accepted deviation, in the unit of what it bounds: temporal-frequency cells off a motion plane or '
          'tent (assert_motion, assert_tent), a velocity per component for assert_velocity (px/frame, deg/s with a '
-         '``display``), a relative difference for detect_period, the measured statistic for the assertions (None: '
+         '``display``), degrees for assert_orientation, octaves for assert_centre_frequency, a relative difference '
+         'for detect_period, the measured statistic for the other assertions (None: '
          "derived from the estimator's sampling law)."),
         unit='',
         type='float or None',
@@ -1502,6 +1515,12 @@ WORDS = {
         type='float in [0, 1]',
         default=0.3,
         keyword_only=True),
+    'trials': Word(
+        "How many trials of an experiment (each with its own seed, as ``noiselab stimulus --trials``), >= 1.",
+        unit='',
+        type='int',
+        default=REQUIRED,
+        keyword_only=False),
     'unit_speed': Word(
         'Follow the direction only (unit speed).',
         unit='',

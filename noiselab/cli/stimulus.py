@@ -106,7 +106,9 @@ def add_arguments(p):
     o.add_argument("--psychopy", action="store_true",
                    help="also write OUTPUT_psychopy.npy: float32 luminance in -1..1 (-1 = LMIN, 1 = LMAX, linear in "
                         "cd/m²), the image a PsychoPy window that corrects gamma itself takes (ImageStim, "
-                        "colorSpace rgb); the PNG/video holds display values for a window that does not")
+                        "colorSpace rgb; rows run down as in the PNG, and PsychoPy draws an array's first row at the "
+                        "bottom: pass numpy.flipud of it); the PNG/video holds display values for a window that "
+                        "does not")
     o.add_argument("--lossless", action="store_true", help=".mp4: H.264 in RGB with -qp 0 (lossless)")
 
 
@@ -270,16 +272,6 @@ def _psychopy_path(path):
     return path.with_name(f"{path.stem}_psychopy.npy")
 
 
-def trial_seeds(seed, trials):
-    """The seeds of ``trials`` trials derived from the experiment's ``seed``: distinct, and the same on every run.
-
-    Trial ``i`` gets ``SeedSequence(seed).spawn(trials)[i].generate_state(1)[0]``
-    (numpy's way of deriving independent streams), so trial ``i`` is also
-    ``noiselab stimulus ... --seed <its seed>`` on its own.
-    """
-    return [int(child.generate_state(1)[0]) for child in np.random.SeedSequence(seed).spawn(trials)]
-
-
 def _summary(measured, args):
     text = (f"mean {measured['mean_cd_m2']:.4g} cd/m², RMS contrast {measured['rms_contrast']:.4g}, Michelson "
             f"{measured['michelson_contrast']:.4g} (requested {args.contrast_kind} {args.contrast:g} at "
@@ -336,7 +328,9 @@ def run(args):
               f"{'lossless' if lossless else 'LOSSY: H.264 changes grey levels'}) and {side.name}; "
               + _summary(measured, args))
         return 0
-    seeds = trial_seeds(args.seed, args.trials)
+    from ..stimuli import trial_seeds
+
+    seeds = trial_seeds(args.trials, rng=args.seed)
     paths = [path.with_name(f"{path.stem}_{i:0{max(3, len(str(args.trials - 1)))}d}{path.suffix}")
              for i in range(args.trials)]
     manifest_path = path.with_name(f"{path.stem}_manifest.json")
@@ -349,9 +343,9 @@ def run(args):
                        "psychopy": _psychopy_path(p).name if args.psychopy else None,
                        "dtype": str(values.dtype), "measured_on_written_values": measured})
     manifest = {**common, "experiment_seed": args.seed,
-                "seed_derivation": ("numpy.random.SeedSequence(experiment_seed).spawn(trials)[i]"
-                                    ".generate_state(1)[0]; trial i is the same command with --seed <its seed> "
-                                    "and without --trials"),
+                "seed_derivation": ("noiselab.stimuli.trial_seeds(trials, rng=experiment_seed): "
+                                    "numpy.random.SeedSequence(experiment_seed).spawn(trials)[i].generate_state(1)[0]"
+                                    "; trial i is the same command with --seed <its seed> and without --trials"),
                 "pixel_units": used, "aperture": window_used, "output": output, "trials": trials}
     with atomic_output(manifest_path) as tmp:
         Path(tmp).write_text(json.dumps(_jsonable(manifest), indent=2) + "\n")

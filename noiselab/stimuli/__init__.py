@@ -13,6 +13,8 @@
   spectrum with random or another image's phases;
 - :func:`motion_cloud`: MotionClouds' ``envelope_gabor`` with its parameters,
   in noiselab's ``(frames, height, width)``;
+- :func:`trial_seeds`: one recorded seed per trial of an experiment,
+  derived from its seed (the seeds of ``noiselab stimulus --trials``);
 - :func:`B_sf_from_octaves`, :func:`B_theta_from_hwhm` and their inverses:
   bandwidths as papers state them (octaves FWHM, degrees HWHM) to and from
   MotionClouds' ``B_sf`` and ``B_theta``.
@@ -27,7 +29,9 @@ from .cloud import cloud_envelope, motion_cloud
 from .contrast import CONTRAST_KINDS, DisplayReport, luminance_for, to_display
 from .display import Display
 from .scramble import amplitude_swap, phase_scramble
+from .trials import trial_seeds
 
 __all__ = ["Display", "to_display", "DisplayReport", "luminance_for", "CONTRAST_KINDS", "phase_scramble",
            "amplitude_swap", "motion_cloud", "cloud_envelope", "circular_aperture", "raised_cosine_aperture",
-           "gaussian_aperture", "B_sf_from_octaves", "octaves_from_B_sf", "B_theta_from_hwhm", "hwhm_from_B_theta"]
+           "gaussian_aperture", "B_sf_from_octaves", "octaves_from_B_sf", "B_theta_from_hwhm", "hwhm_from_B_theta",
+           "trial_seeds"]

@@ -40,7 +40,7 @@ class DisplayReport(NamedTuple):
 
 
 @renamed_parameters(kind="contrast_kind")
-def luminance_for(field, *, mean, contrast, contrast_kind="rms") -> np.ndarray:
+def luminance_for(field, *, mean, contrast, contrast_kind="rms", clip=None, aperture=None, full_output=False):
     """The luminance (cd/m², float64) a field is shown at: mean ``mean`` and contrast ``contrast`` exactly.
 
     The field's own mean is removed and its deviations scaled by one factor:
@@ -60,16 +60,31 @@ def luminance_for(field, *, mean, contrast, contrast_kind="rms") -> np.ndarray:
     contrast : float
         RMS contrast (> 0) or Michelson contrast (in ``(0, 1]``).
     contrast_kind : {"rms", "michelson"}
+    clip : float or None
+        As :func:`to_display`: None (default) keeps the field as it is; ``k >
+        0`` clips its deviations at ``k`` standard deviations first, and the
+        clipped field then gets the requested mean and contrast.
+    aperture : array_like or None
+        As :func:`to_display`: weights in ``[0, 1]`` broadcasting against the
+        field; ``L = mean * (1 + w * k * z)`` with the contrast stated inside
+        the window (``w``-weighted RMS, or Michelson over ``w > 0``).
+    full_output : bool
+        False (default): return the luminance. True: ``(luminance, report)``
+        with the :class:`DisplayReport` of :func:`to_display` (clipped
+        fraction, clip, luminance range).
 
     Returns
     -------
     ndarray, float64, the shape of ``field``.
+    DisplayReport
+        Only with ``full_output=True``.
 
     Raises
     ------
     ValueError
         A constant field, a contrast out of its range, or (RMS) a contrast so
-        large that some luminance would be negative.
+        large that some luminance would be negative (the message names the
+        largest RMS contrast, and a ``clip`` that keeps the request).
 
     Examples
     --------
@@ -77,12 +92,37 @@ def luminance_for(field, *, mean, contrast, contrast_kind="rms") -> np.ndarray:
     >>> L = luminance_for(np.array([-1.0, 0.0, 1.0, 0.0]), mean=50.0, contrast=0.5, contrast_kind="michelson")
     >>> L.tolist()
     [25.0, 50.0, 75.0, 50.0]
+
+    Clipped at 3 standard deviations, inside a circle of 12 px on a 32-pixel-per-degree screen:
+
+    >>> from noiselab.stimuli import Display, circular_aperture
+    >>> x = np.random.default_rng(0).standard_normal((64, 64))
+    >>> w = circular_aperture((64, 64), Display(32.0), diameter_deg=0.375)
+    >>> L, report = luminance_for(x, mean=50.0, contrast=0.25, clip=3.0, aperture=w, full_output=True)
+    >>> bool(report.clipped_fraction < 0.01), float(L[w == 0].min()) == float(L[w == 0].max()) == 50.0
+    (True, True)
     """
     kind = contrast_kind
-    L, sd, zmin = _luminance(field, mean, contrast, kind)
+    if not isinstance(full_output, (bool, np.bool_)):
+        raise TypeError(f"full_output must be True or False, got {full_output!r}")
+    if clip is not None:
+        clip = check_real("clip (standard deviations)", clip, lo=0.0, lo_open=True, hi=1e6)
+    w = None if aperture is None else _check_aperture(aperture, np.shape(field))
+    fraction, source = 0.0, field
+    if clip is not None:
+        source, fraction = _clip_sd(field, clip)
+    L, sd, zmin = _luminance(source, mean, contrast, kind, w)
+    del source
     if kind == "rms" and float(L.min()) < 0:
+        hint = ""
+        k, frac = _largest_clip(field, mean, contrast, 0.0, np.inf, w)
+        if k is not None and clip is None:
+            hint = f"; clip={k:g} (standard deviations) keeps it, clipping {100 * frac:.3g} % of the samples"
+        largest = -contrast * float(mean) / (float(L.min()) - float(mean))
         raise ValueError(f"contrast (RMS) = {contrast:g} makes the darkest pixel's luminance negative for this "
-                         f"field; the largest RMS contrast it allows is {-sd / zmin:.6g}")
+                         f"field; the largest RMS contrast it allows is {largest:.6g}{hint}")
+    if full_output:
+        return L, DisplayReport(fraction, clip, (float(L.min()), float(L.max())))
     return L
 
 

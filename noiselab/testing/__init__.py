@@ -17,7 +17,10 @@ holding the property fails with probability ``false_alarm`` (default 1e-3;
 is a deterministic fraction of the spectrum (a band limit, energy on a motion
 plane or tent), the threshold is a stated fraction. A velocity
 (``assert_velocity``) is measured with its standard errors and judged in
-velocity units (px/frame, or deg/s through a ``Display``).
+velocity units (px/frame, or deg/s through a ``Display``); an orientation
+(``assert_orientation``) in degrees and a centre spatial frequency
+(``assert_centre_frequency``) in cycles/pixel or cycles/deg, each with its
+standard error.
 
 ``noiselab.testing.strategies`` holds hypothesis strategies for noise
 parameters (it imports hypothesis, a test extra, so it is not imported here).
@@ -32,6 +35,7 @@ Examples
 True
 """
 from .motion import MotionCheck, assert_motion, assert_tent
+from .orientation import FrequencyCheck, OrientationCheck, assert_centre_frequency, assert_orientation
 from .seams import SeamCheck, assert_seamless
 from .velocity import VelocityCheck, assert_velocity
 from .spectra import (
@@ -59,6 +63,10 @@ __all__ = [
     "MotionCheck",
     "assert_velocity",
     "VelocityCheck",
+    "assert_orientation",
+    "OrientationCheck",
+    "assert_centre_frequency",
+    "FrequencyCheck",
     "assert_seamless",
     "SeamCheck",
 ]

@@ -63,6 +63,17 @@ def _lag_one_cells(spec, band):
     return r_lag[keep], fx[keep], fy[keep]
 
 
+def _near_temporal_nyquist(spec):
+    """The share of a video's power at temporal frequencies within 1/16 cycle/frame of the Nyquist frequency."""
+    t = spec.shape[0]
+    per_t = np.asarray(spec.power, dtype=np.float64).reshape(t, -1, spec.power.shape[-1]).sum(axis=1) @ \
+        np.asarray(spec.weight, dtype=np.float64).ravel()
+    total = float(per_t.sum())
+    if total <= 0:
+        return 0.0
+    return float(per_t[np.abs(np.fft.fftfreq(t)) >= 0.5 - 1.0 / 16].sum()) / total
+
+
 def _fit(r_lag, fx, fy, v0):
     """Weighted least squares of the lag-one phases on the plane ``phase = -2 pi (vx fx + vy fy)``, with a sandwich covariance."""
     a = np.abs(r_lag)
@@ -112,6 +123,21 @@ def assert_velocity(video, *, vx, vy, tol=None, display=None, false_alarm=1e-3, 
     at ``(vx, vy)`` fails with probability about ``false_alarm``
     (the tolerance is never below 1e-6 px/frame, for rounding)
     (``benchmarks/bench_velocity.md`` counts it on motion clouds).
+
+    A cloud whose speed band reaches the temporal Nyquist frequency reads
+    slow: MotionClouds and :func:`noiselab.stimuli.motion_cloud` draw the
+    band ``exp(-(ft + v.f)**2 / (2 (B_V |f|)**2))`` on the grid's temporal
+    frequencies ``[-1/2, 1/2)``, so where ``|v.f| + 2 B_V |f|`` passes 1/2 it
+    is cut (not wrapped) and each such cell's circular mean moves towards 0.
+    At (vx, vy) = (1, 0.5) px/frame with ``sf_0`` 0.15, ``B_sf`` 0.1
+    cycles/px the fit reads about 1 % slow at ``B_V`` 0.5 and 5 % slow at
+    ``B_V`` 1 (at 32 x 64 x 64 px as at 64 x 128 x 128: the size does not
+    matter, the band does), enough to fail at the true velocity; with
+    ``sf_0`` 0.125, ``B_sf`` 0.05 the bias is at most 0.5 % and within the
+    standard errors. Measuring within ``band=(1, N / 2 / (|v| + 2 B_V))``
+    cycles/frame removes it (``python3 benchmarks/bench_velocity_bias.py``,
+    ``benchmarks/bench_velocity_bias.md``); a failure says how much of the
+    video's power lies near the temporal Nyquist frequency.
 
     Unlike :func:`assert_motion` (a fraction of the power within a number of
     temporal-frequency cells of the plane, which a broad speed bandwidth
@@ -211,5 +237,10 @@ def assert_velocity(video, *, vx, vy, tol=None, display=None, false_alarm=1e-3, 
     msg = (f"measured vx={mx:.4g}±{sx:.2g}, vy={my:.4g}±{sy:.2g} {unit} against expected vx={vx:g}, vy={vy:g} "
            f"(accepted ±{tx:.2g}, ±{ty:.2g}: {how}; {n} spatial cells)")
     if not (abs(mx - vx) <= tx and abs(my - vy) <= ty):
+        near = _near_temporal_nyquist(spec)
+        if near > 1e-3:
+            msg += (f"; {100 * near:.2g} % of the power lies within 1/16 cycle/frame of the temporal Nyquist "
+                    "frequency, where a speed band is cut and reads slow: band=(lo, hi) below "
+                    "N / 2 / (|v| + 2 B_V) cycles/frame measures where it fits")
         raise AssertionError(msg)
     return VelocityCheck(vx=mx, vy=my, se_vx=sx, se_vy=sy, tol_vx=tx, tol_vy=ty, unit=unit, cells=n, message=msg)
