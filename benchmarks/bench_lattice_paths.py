@@ -123,6 +123,10 @@ def cases():
     call = (lambda n: lambda: n(p32))(nl.LatticeNoise(3, hash="integer"))
     out.append(("1e6 3-D float32 points, integer hash, value cubic: vectorised vs general kernel",
                 with_fast(3, call), with_fast(0, call)))
+    for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"})):
+        n = nl.LatticeNoise(3, hash="integer", **kw)
+        out.append((f"1e6 3-D float32 points, integer hash, {label}: read in place vs a float64 copy first",
+                    (lambda n: lambda: n(p32))(n), (lambda n: lambda: n(p32.astype(np.float64), dtype=np.float32))(n)))
     for d, label, kw in ((2, "value cubic", {}), (2, "gradient quintic", {"basis": "gradient"}),
                          (1, "value cubic", {})):
         n = nl.LatticeNoise(d, hash="integer", **kw)
@@ -136,11 +140,14 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=7)
     ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
+    ap.add_argument("--only", default="", help="run only the rows whose description contains this text")
     args = ap.parse_args(argv)
     command = "python benchmarks/bench_lattice_paths.py " + shlex.join(argv if argv is not None else sys.argv[1:])
     info = run_info(command.strip())
     rows = []
     for what, special, general in cases():
+        if args.only not in what:
+            continue
         t = interleaved({"special": special, "general": general}, repeats=args.repeats, timer=time.thread_time)
         rows.append([what, f"{t['special'] * 1e3:.2f}", f"{t['general'] * 1e3:.2f}",
                      f"{t.ratio('general', 'special'):.2f}"])

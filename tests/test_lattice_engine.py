@@ -216,3 +216,19 @@ def test_the_scattered_grid_octaves_give_the_same_bits_in_blocks_of_rows(hash_, 
         for a, b in zip(results[0], other):
             np.testing.assert_array_equal(a, b)
             np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
+
+
+@pytest.mark.parametrize("dim", [1, 2, 3])
+def test_float32_points_read_in_place_give_the_bits_of_their_float64_copy(dim):
+    # the integer hash's vectorised kernel reads float32 points without a float64 copy; widening is exact,
+    # so the values are those of the float64 points, in either layout, at any worker count
+    x = RNG.uniform(-300, 300, (3000, dim)).astype(np.float32)
+    x[::97] *= np.float32(1e13)   # past the fast split: the exact reduction
+    for kw in ({}, {"basis": "gradient", "kernel": "quintic"}, {"period": 7}):
+        noise = LatticeNoise(dim, 2, rng=3, hash="integer", **kw)
+        want = noise.evaluate(x.astype(np.float64), octaves=3)
+        got = noise.evaluate(x, octaves=3, dtype=np.float64)
+        np.testing.assert_array_equal(got, want)
+        np.testing.assert_array_equal(np.signbit(got), np.signbit(want))
+        np.testing.assert_array_equal(noise(np.ascontiguousarray(x.T), axis=0, workers=2), noise(x))
+        assert noise(x).dtype == np.float32

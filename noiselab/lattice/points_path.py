@@ -33,8 +33,9 @@ def prepare_points(noise, points, name="points", axis=-1):
     structure-of-arrays ``(dim_in, ...)``); the others, in order, are the
     leading shape. For ``dim_in == 1`` with ``axis=-1`` an array whose last
     axis is not 1 (or a scalar) is that many scalar inputs. Two-dimensional
-    float64 points are used in place in either layout (a transposed view for
-    ``axis=0``); other points are copied to float64 rows.
+    float64 and float32 points are used in place in either layout (a
+    transposed view for ``axis=0``; float32 ones are widened, exactly, where
+    a kernel reads them: :func:`_run`); other points are copied to float64 rows.
     """
     points = as_array(name, points)
     if points.dtype.kind != "f":
@@ -58,7 +59,7 @@ def prepare_points(noise, points, name="points", axis=-1):
             raise ValueError(f"{name} must have shape (..., dim_in={d}), got {points.shape}")
         lead = points.shape[:-1]
         flat = points.reshape(-1, d)
-    return lead, flat.astype(np.float64, copy=False)
+    return lead, flat if flat.dtype == np.float32 else flat.astype(np.float64, copy=False)
 
 
 def output_dtype(points_dtype, dtype):
@@ -127,8 +128,13 @@ def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     pairs = TABLE_SPLIT and _pairs(noise, flat.shape[0], deriv)  # values over folded tables: the split kernel
     gradient = noise.basis == "gradient"
     if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv:  # the same bits, vectorised
+        # float32 points read in place (each coordinate widened to float64 as it is read: the same values,
+        # without a float64 copy of the points; 1e6 3-D points: benchmarks/bench_lattice_paths.md)
         kernel = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, gradient, _periodic(noise))
-    elif pairs or (TABLE_SPLIT and noise.hash == "table" and gradient and noise.dim_in == 3 and not deriv
+        run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval), workers)
+        return
+    flat = flat.astype(np.float64, copy=False)  # the other kernels are compiled for float64 points only
+    if pairs or (TABLE_SPLIT and noise.hash == "table" and gradient and noise.dim_in == 3 and not deriv
                    and not _periodic(noise)):
         kernel = jit.table_fast_kernel(noise.kernel.taps, gradient)  # the same bits, split per chunk
     else:
