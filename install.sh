@@ -116,5 +116,11 @@ python=.venv/bin/python
 export PIP_ROOT_USER_ACTION=ignore PIP_DISABLE_PIP_VERSION_CHECK=1
 say "installing noiselab${extras:+[$extras]} and its dependencies with pip (a few minutes the first time)"
 "$python" -m pip install -q -e ".${extras:+[$extras]}"
+# numba compiles each kernel on its first call; compile the default ones now, in parallel processes, so that
+# the gallery and a first script start warm (8-10 s; NOISELAB_NO_WARMUP=1 skips it)
+if [ -z "${NOISELAB_NO_WARMUP:-}" ]; then
+    say "compiling the default kernels ahead (noiselab warmup)"
+    "$python" -m noiselab warmup >/dev/null || say "noiselab warmup failed: first calls will compile instead"
+fi
 say "done: $("$python" -m noiselab --version) in $(cd .venv && pwd -P)"
 say "run it as .venv/bin/noiselab (or: source .venv/bin/activate; then noiselab ...)"

@@ -12,8 +12,10 @@ special (above 1: the special path pays). The paths:
 - the separable grid passes against the points path on the grid's points
   (``noise.evaluate(noise.grid_points(...))``), 2-D and 3-D: what a grid
   would cost without a grid path;
-- 3-D table-hash values over folded tables (``points_path.PAIRS_MIN``: many
-  points) against the per-point kernel on the same points (the same bits);
+- 3-D table-hash points without a period split per chunk
+  (``points_path.TABLE_SPLIT``: the weights vectorised across points, then
+  the corner sum; values over folded tables) against the per-point kernel
+  on the same points (the same bits);
 - 1-3-D integer-hash values by the kernel vectorised across points
   (``points_path.INT_FAST_DIM``) against the general integer-hash kernel
   (the same bits).
@@ -55,33 +57,61 @@ def cases():
                 out.append((f"{shape} grid, {octaves} octave(s), {h} hash, {label}: separable passes vs points path",
                             (lambda n, o, s, e: lambda: n.evaluate_grid(s, e, octaves=o))(n, octaves, shape, ext),
                             (lambda n, p, o: lambda: n.evaluate(p, octaves=o))(n, pts, octaves)))
-    pts = np.random.default_rng(0).random((1_000_000, 3)) * 32
+    from noiselab.lattice import grid_path
 
-    def with_least(least, fn):
+    def with_block(block, fn):
         def run():
-            old = points_path.PAIRS_MIN
-            points_path.PAIRS_MIN = least
+            old = grid_path.SCATTERED_BLOCK
+            grid_path.SCATTERED_BLOCK = block
             try:
                 return fn()
             finally:
-                points_path.PAIRS_MIN = old
+                grid_path.SCATTERED_BLOCK = old
+        return run
+
+    # octaves sparser than the grid (the scattered path): blocks of rows against one row per call; and the
+    # integer hash's 2-D fBm grids, denser and sparser than the finest octave, against the points path
+    for cells, label, kw in ((32, "value cubic", {}), (64, "value cubic", {}), (16, "value quintic", {"kernel": "quintic"}),
+                             (64, "value quintic", {"kernel": "quintic"}), (16, "gradient quintic", {"basis": "gradient"}),
+                             (64, "gradient quintic", {"basis": "gradient"})):
+        n = nl.LatticeNoise(2, hash="integer", **kw)
+        shape, ext = (512, 512), [(0, cells), (0, cells)]
+        call = (lambda n, s, e: lambda: n.evaluate_grid(s, e, octaves=6))(n, shape, ext)
+        if "cubic" in label:
+            out.append((f"512^2 grid, {cells} cells, 6 octaves, integer hash, {label}: scattered octaves in blocks of "
+                        "rows vs one row per call", with_block(1 << 16, call), with_block(1, call)))
+        pts2 = n.grid_points(shape, ext)
+        out.append((f"512^2 grid, {cells} cells, 6 octaves, integer hash, {label}: grid path vs points path",
+                    call, (lambda n, p: lambda: n.evaluate(p, octaves=6))(n, pts2)))
+    pts = np.random.default_rng(0).random((1_000_000, 3)) * 32
+
+    def with_attrs(attrs, fn):
+        def run():
+            old = {k: getattr(points_path, k) for k in attrs}
+            for k, v in attrs.items():
+                setattr(points_path, k, v)
+            try:
+                return fn()
+            finally:
+                for k, v in old.items():
+                    setattr(points_path, k, v)
         return run
 
     for label, kw in (("value cubic", {}), ("value catmull-rom", {"kernel": "catmull-rom"}),
                       ("gradient quintic", {"basis": "gradient"})):
         n = nl.LatticeNoise(3, **kw)
         call = (lambda n: lambda: n(pts))(n)
-        out.append((f"1e6 3-D points, table hash, {label}: folded tables vs per-point kernel",
-                    with_least(0, call), with_least(1 << 40, call)))
+        out.append((f"1e6 3-D points, table hash, {label}: split per chunk vs per-point kernel",
+                    with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": True}, call),
+                    with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": False}, call)))
+    n = nl.LatticeNoise(3)
+    call = (lambda n: lambda: n(pts.T, axis=0))(n)
+    out.append(("1e6 3-D points as (3, N) columns, table hash, value cubic: split per chunk vs per-point kernel",
+                with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": True}, call),
+                with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": False}, call)))
+
     def with_fast(dims, fn):
-        def run():
-            old = points_path.INT_FAST_DIM
-            points_path.INT_FAST_DIM = dims
-            try:
-                return fn()
-            finally:
-                points_path.INT_FAST_DIM = old
-        return run
+        return with_attrs({"INT_FAST_DIM": dims}, fn)
 
     p32 = pts.astype(np.float32)
     for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"}),
@@ -93,6 +123,10 @@ def cases():
     call = (lambda n: lambda: n(p32))(nl.LatticeNoise(3, hash="integer"))
     out.append(("1e6 3-D float32 points, integer hash, value cubic: vectorised vs general kernel",
                 with_fast(3, call), with_fast(0, call)))
+    for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"})):
+        n = nl.LatticeNoise(3, hash="integer", **kw)
+        out.append((f"1e6 3-D float32 points, integer hash, {label}: read in place vs a float64 copy first",
+                    (lambda n: lambda: n(p32))(n), (lambda n: lambda: n(p32.astype(np.float64), dtype=np.float32))(n)))
     for d, label, kw in ((2, "value cubic", {}), (2, "gradient quintic", {"basis": "gradient"}),
                          (1, "value cubic", {})):
         n = nl.LatticeNoise(d, hash="integer", **kw)
@@ -106,11 +140,14 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=7)
     ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
+    ap.add_argument("--only", default="", help="run only the rows whose description contains this text")
     args = ap.parse_args(argv)
     command = "python benchmarks/bench_lattice_paths.py " + shlex.join(argv if argv is not None else sys.argv[1:])
     info = run_info(command.strip())
     rows = []
     for what, special, general in cases():
+        if args.only not in what:
+            continue
         t = interleaved({"special": special, "general": general}, repeats=args.repeats, timer=time.thread_time)
         rows.append([what, f"{t['special'] * 1e3:.2f}", f"{t['general'] * 1e3:.2f}",
                      f"{t.ratio('general', 'special'):.2f}"])

@@ -74,24 +74,44 @@ def test_points_in_rows_or_columns_give_the_same_bits(hash_):
                                 {"alternation": "lattice"}, {"table_size": 20, "kernel": "quadratic"},
                                 {"basis": "gradient", "table_size": 30}])
 def test_folded_tables_give_the_per_point_kernels_bits(kw, monkeypatch):
-    # many 3-D points read the folded tables (pair_tables), few the permutation itself: the same bits
+    # many 3-D points read the folded tables (pair_tables), few the permutation itself, and either through the
+    # kernel split per chunk (_jit.table_fast_kernel) or the per-point kernel: the same bits
     from noiselab.lattice import points_path
 
     noise = LatticeNoise(3, rng=2, **kw)
     pts = RNG.uniform(-300, 300, (3000, 3))
     pts[::7] += 1e13   # past 2**52: the exact reduction
     results = []
-    for least in (1 << 40, 0):
+    for least, split in ((1 << 40, False), (0, False), (0, True), (1 << 40, True)):
         monkeypatch.setattr(points_path, "PAIRS_MIN", least)
-        results.append([noise.evaluate(pts, octaves=3), noise.evaluate(pts, octaves=2, absval=True)])
-    for a, b in zip(*results):
-        np.testing.assert_array_equal(a, b)
-        np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
+        monkeypatch.setattr(points_path, "TABLE_SPLIT", split)
+        results.append([noise.evaluate(pts, octaves=3), noise.evaluate(pts, octaves=2, absval=True),
+                        noise(pts[:300].T, axis=0)])
+    for other in results[1:]:
+        for a, b in zip(results[0], other):
+            np.testing.assert_array_equal(a, b)
+            np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
     # and a changed value table reaches the folded tables (they are built from the live tables at each call)
     noise.values[:] = -noise.values
     noise.gradients[:] = -noise.gradients
     np.testing.assert_array_equal(noise.evaluate(pts, octaves=3), -results[1][0])
 
+
+
+@pytest.mark.parametrize("basis", ["value", "gradient"])
+def test_the_integer_hash_never_takes_the_table_kernels(basis, monkeypatch):
+    # with its vectorised kernel off, integer-hash 3-D points run the general integer kernel (the same bits),
+    # never a table-hash kernel that would read its keys as permutations
+    from noiselab.lattice import points_path
+
+    noise = LatticeNoise(3, rng=2, hash="integer", basis=basis)
+    pts = RNG.uniform(-50, 50, (2000, 3))
+    results = []
+    for dims in (3, 0):
+        monkeypatch.setattr(points_path, "INT_FAST_DIM", dims)
+        monkeypatch.setattr(points_path, "PAIRS_MIN", 0)
+        results.append(noise.evaluate(pts, octaves=2))
+    np.testing.assert_array_equal(results[0], results[1])
 
 # ----------------------------------------------------------------- plain Python
 _CASE = """
@@ -177,3 +197,38 @@ def test_an_edit_of_the_engine_reaches_a_warm_cache(tmp_path):
     after = run()
     assert after != before
     assert after == pytest.approx(float(shifted), abs=1e-9)   # the edit's effect: the lattice moved one cell
+
+
+@pytest.mark.parametrize("hash_", ["table", "integer"])
+def test_the_scattered_grid_octaves_give_the_same_bits_in_blocks_of_rows(hash_, monkeypatch):
+    # octaves sparser than the grid run through the points path; in blocks of rows or one row per call
+    from noiselab.fractal import fractal_sum, turbulence
+    from noiselab.lattice import Grid, grid_path
+
+    noise = LatticeNoise(2, 2, rng=4, hash=hash_)   # cubic: 4 taps, the finer octaves are sparse
+    grid = Grid((60, 50), ((0.0, 64.0), (0.5, 70.0)))
+    results = []
+    for block in (1, 1000, 1 << 16):
+        monkeypatch.setattr(grid_path, "SCATTERED_BLOCK", block)
+        results.append([fractal_sum(noise, grid, 5), turbulence(noise, grid, 4), noise.jacobian_grid((30, 20),
+                                                                                                     [(0, 90), (0, 77)])])
+    for other in results[1:]:
+        for a, b in zip(results[0], other):
+            np.testing.assert_array_equal(a, b)
+            np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
+
+
+@pytest.mark.parametrize("dim", [1, 2, 3])
+def test_float32_points_read_in_place_give_the_bits_of_their_float64_copy(dim):
+    # the integer hash's vectorised kernel reads float32 points without a float64 copy; widening is exact,
+    # so the values are those of the float64 points, in either layout, at any worker count
+    x = RNG.uniform(-300, 300, (3000, dim)).astype(np.float32)
+    x[::97] *= np.float32(1e13)   # past the fast split: the exact reduction
+    for kw in ({}, {"basis": "gradient", "kernel": "quintic"}, {"period": 7}):
+        noise = LatticeNoise(dim, 2, rng=3, hash="integer", **kw)
+        want = noise.evaluate(x.astype(np.float64), octaves=3)
+        got = noise.evaluate(x, octaves=3, dtype=np.float64)
+        np.testing.assert_array_equal(got, want)
+        np.testing.assert_array_equal(np.signbit(got), np.signbit(want))
+        np.testing.assert_array_equal(noise(np.ascontiguousarray(x.T), axis=0, workers=2), noise(x))
+        assert noise(x).dtype == np.float32

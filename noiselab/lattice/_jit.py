@@ -16,7 +16,7 @@ unrolls.
 - points: :func:`points_kernel` returns the kernel for a hash, dimension,
   tap count, derivative flag and period flag: :func:`_make_points` (the
   table hash: Phillips' nested permutation ``h_{a+1} = P[(h_a + j_a) mod n]``,
-  2.4.1; for 3-D value noise over many points, over :func:`pair_tables`)
+  2.4.1)
   and :func:`_make_int_points` (the integer hash, 256 points at a time, each
   level of the corner walk one loop over them); :func:`int_fast_kernel`
   (:func:`_make_int_fast`: the integer hash's 1-3-D values, the same bits,
@@ -169,18 +169,13 @@ def prime(j, mult):
     return _U32(_U32(j) * mult)
 
 
-def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
+def _make_points(DIM, TAPS, DERIV, PERIODIC):
     """The table hash's point kernel for ``DIM`` input axes and ``TAPS`` taps (compile-time constants).
 
     ``DERIV``: values and Jacobians (else values). ``PERIODIC`` False: every
     axis's period is the table size n, so a tap's index needs no reduction of
     its own (the hash reduces ``h + j`` modulo n, and n is even, so the
-    parity is the same). ``PAIRS`` (3-D value noise without a period): the
-    tables are :func:`pair_tables`' in place of ``perms`` and ``values`` (the
-    first two hash levels one read, the last folded into the values): the
-    same sums of the same values, so the same bits, with about half the
-    table reads (1.23x faster for 4 taps, ``benchmarks/bench_lattice_paths.md``;
-    1.01x for gradient noise, which does not take it). numba prunes the branches these constants rule out
+    parity is the same). numba prunes the branches these constants rule out
     before typing; numbers and booleans are safe in numba's cache key (pickled
     with the closure), a function closed over is not (it pickles with a new id in every process).
     """
@@ -247,9 +242,6 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
         acc = np.empty((ncomp, nq))  # zeroed per point
         vals0 = values[0]
         vals1 = values[1]
-        if PAIRS:  # the table size n, from the folded values' run 2 (2n + 4)
-            np_ = (values.shape[1] // 2 - 4) // 2
-            pmask_ = np_ - 1 if (np_ & (np_ - 1)) == 0 else -1
         for p in range(npts):
             for c in range(ncomp):
                 for q in range(nq):
@@ -318,17 +310,6 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC, PAIRS=False):
                             if DERIV:
                                 D[0] += dw[0, k0] * s1 + w[0, k0] * e0
                                 D[1] += w[0, k0] * s1d1
-                    elif PAIRS:  # (3-D values): perms holds H2, values VL (pair_tables)
-                        for k0 in range(TAPS):
-                            row = _hash(0, jj[0, k0], np_, pmask_) * np_
-                            s1 = 0.0
-                            for k1 in range(TAPS):
-                                hb = np.int64(perm[row + _hash(0, jj[1, k1], np_, pmask_)])
-                                s2 = 0.0
-                                for k2 in range(TAPS):
-                                    s2 += w[2, k2] * values[c, hb + jj[2, k2]]
-                                s1 += w[1, k1] * s2
-                            total += w[0, k0] * s1
                     elif DIM == 3:
                         for k0 in range(TAPS):
                             j0 = jj[0, k0]
@@ -797,23 +778,130 @@ def _make_int_fast(DIM, TAPS, GRAD, PERIODIC):
     return int_fast
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _table_split(pts, p0, m, a, f, ph, shift, left, TAPS, coef, per, msk, W, R, B, U, T, GRAD):
+    """One axis of a chunk for the table hash without a period: weights, (GRAD) signed distances, first taps.
+
+    The values of :func:`_make_points`' per-point set-up (the same operations in the same order): the
+    weights in one loop that LLVM vectorises, then the reduced first tap ``B[a, i]`` (:func:`_reduce`).
+    """
+    for i in range(m):
+        u = pts[p0 + i, a] * f + ph + shift  # same rounding as the grid path
+        fi = np.floor(u)
+        U[i] = fi
+        T[i] = u - fi
+    for k in range(TAPS):  # one tap at a time, its coefficients held in registers
+        c0 = coef[k, 0]
+        c1 = coef[k, 1]
+        c2 = coef[k, 2]
+        c3 = coef[k, 3]
+        c4 = coef[k, 4]
+        c5 = coef[k, 5]
+        for i in range(m):
+            t = T[i]
+            t2 = t * t
+            t3 = t2 * t
+            t4 = t2 * t2
+            t5 = t4 * t
+            W[a, k, i] = (c0 + c1 * t) + (c2 * t2 + c3 * t3) + (c4 * t4 + c5 * t5)  # :func:`_weight`
+            if GRAD:
+                R[a, k, i] = t - shift + (left - k)
+    for i in range(m):
+        B[a, i] = _reduce(U[i], left, per, msk)
+
+
+def _make_table_fast(TAPS, GRAD):
+    """The table hash's 3-D value kernel without a period or derivatives, split per chunk, then summed.
+
+    The same arguments and the same bits as :func:`_make_points` for ``DIM`` 3 (values over
+    :func:`pair_tables`, ``GRAD`` gradients over the permutation; ``basis`` is ignored): per chunk of
+    :data:`CHUNK` points and octave each axis's weights and first taps (:func:`_table_split`, vectorised
+    across points), then per point the corner sum in the general kernel's nested order from the split's
+    arrays. The weights, computed once per axis and point in a vectorised loop, were the general kernel's
+    per-point set-up (``benchmarks/bench_lattice_paths.md``).
+    """
+
+    @nb.njit(cache=True, nogil=True)
+    def table_fast(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
+                   perms, values, grads, basis, absval):
+        """Lattice noise with the table hash at scattered 3-D points, values (as :func:`_make_points`)."""
+        npts = pts.shape[0]
+        ncomp = perms.shape[0]
+        noct = freqs.shape[0]
+        if GRAD:
+            n = perms.shape[1]
+        else:  # the table size n, from the folded values' run 2 (2n + 4)
+            n = (values.shape[1] // 2 - 4) // 2
+        nmask = n - 1 if (n & (n - 1)) == 0 else -1
+        W = np.empty((3, TAPS, CHUNK))
+        R = np.empty((3, TAPS, CHUNK) if GRAD else (1, 1, 1))
+        B = np.empty((3, CHUNK), np.int64)
+        U = np.empty(CHUNK)
+        T = np.empty(CHUNK)
+        ACC = np.empty((ncomp, CHUNK))
+        for p0 in range(0, npts, CHUNK):
+            m = min(CHUNK, npts - p0)
+            for c in range(ncomp):
+                for i in range(m):
+                    ACC[c, i] = 0.0
+            for o in range(noct):
+                for a in range(3):
+                    _table_split(pts, p0, m, a, freqs[o, a], phase[a], shift, left, TAPS, coef, period[a], pmask[a],
+                                 W, R, B, U, T, GRAD)
+                amp = amps[o]
+                for c in range(ncomp):
+                    perm = perms[c]
+                    acc = ACC[c]
+                    for i in range(m):
+                        b0 = B[0, i]
+                        b1 = B[1, i]
+                        b2 = B[2, i]
+                        total = 0.0
+                        for k0 in range(TAPS):
+                            s1 = 0.0
+                            if GRAD:
+                                h1 = perm[_hash(0, b0 + k0, n, nmask)]
+                                for k1 in range(TAPS):
+                                    h2 = perm[_hash(h1, b1 + k1, n, nmask)]
+                                    s2 = 0.0
+                                    for k2 in range(TAPS):
+                                        h = perm[_hash(h2, b2 + k2, n, nmask)]
+                                        v = grads[h, 0] * R[0, k0, i] + grads[h, 1] * R[1, k1, i] + grads[h, 2] * R[2, k2, i]
+                                        s2 += W[2, k2, i] * v
+                                    s1 += W[1, k1, i] * s2
+                            else:  # perms holds H2, values VL (pair_tables)
+                                row = _hash(0, b0 + k0, n, nmask) * n
+                                for k1 in range(TAPS):
+                                    hb = np.int64(perm[row + _hash(0, b1 + k1, n, nmask)]) + b2
+                                    s2 = 0.0
+                                    for k2 in range(TAPS):
+                                        s2 += W[2, k2, i] * values[c, hb + k2]
+                                    s1 += W[1, k1, i] * s2
+                            total += W[0, k0, i] * s1
+                        acc[i] += amp * (abs(total) if absval else total)
+            for i in range(m):
+                for c in range(ncomp):
+                    out[p0 + i, c] = ACC[c, i]
+
+    return table_fast
+
+
 _POINTS = {}
 
 
-def points_kernel(integer, dim, taps, deriv, periodic, pairs=False):
+def points_kernel(integer, dim, taps, deriv, periodic):
     """The compiled point kernel for this hash, dimension, tap count, derivative flag and period flag.
 
     Its arguments: ``(pts, out, freqs, amps, phase, shift, left, taps, coef,
     dcoef, period, pmask, perms, values, grads, basis, absval)`` for the table
     hash (:func:`_make_points`), ``(..., pmask, keys, mult, grads, basis,
-    absval)`` for the integer hash (:func:`_make_int_points`); ``pairs``: the
-    3-D table-hash value kernel over :func:`pair_tables`. Made on first
+    absval)`` for the integer hash (:func:`_make_int_points`). Made on first
     request; numba compiles it on its first call (or loads it from its cache).
     """
-    key = (bool(integer), int(dim), int(taps), bool(deriv), bool(periodic), bool(pairs))
+    key = (bool(integer), int(dim), int(taps), bool(deriv), bool(periodic))
     fn = _POINTS.get(key)
     if fn is None:
-        fn = _POINTS[key] = _make_int_points(*key[1:5]) if integer else _make_points(*key[1:])
+        fn = _POINTS[key] = (_make_int_points if integer else _make_points)(*key[1:])
     return fn
 
 
@@ -823,6 +911,15 @@ def int_fast_kernel(dim, taps, gradient, periodic):
     fn = _POINTS.get(key)
     if fn is None:
         fn = _POINTS[key] = _make_int_fast(*key[1:])
+    return fn
+
+
+def table_fast_kernel(taps, gradient):
+    """The table hash's split 3-D kernel without a period (:func:`_make_table_fast`), as :func:`points_kernel`."""
+    key = ("table", int(taps), bool(gradient))
+    fn = _POINTS.get(key)
+    if fn is None:
+        fn = _POINTS[key] = _make_table_fast(*key[1:])
     return fn
 
 

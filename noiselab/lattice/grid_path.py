@@ -167,24 +167,36 @@ def is_separable(taps, full_coords, freq):
     return block <= 4.0 * samples + 4096
 
 
+# the points of one call of the scattered path: a block of whole rows of axis 0 (one row at least)
+SCATTERED_BLOCK = 1 << 16
+
+
 def grid_scattered(noise, sub, freq, amp, out, absval, deriv_axis=None):
-    """One octave added into ``out`` by the points path, one row of axis 0 at a time."""
-    # rows along axis 0 keep the temporary small; per-point results do
-    # not depend on the chunking
+    """One octave added into ``out`` by the points path, a block of rows of axis 0 at a time.
+
+    Blocks of about :data:`SCATTERED_BLOCK` points keep the temporary small
+    and the calls few (one per row cost 1.5-2x the time on 512² grids,
+    ``benchmarks/bench_lattice_paths.md``); per-point results do not depend
+    on the blocking.
+    """
     d = noise.dim_in
     rest = np.stack(np.meshgrid(*sub[1:], indexing="ij"), axis=-1).reshape(-1, d - 1) \
         if d > 1 else np.zeros((1, 0))
-    flat_out = out.reshape(noise.dim_out, sub[0].shape[0], -1)
-    for j, x0 in enumerate(sub[0]):
-        pts = np.empty((rest.shape[0], d))
-        pts[:, 0] = x0
-        pts[:, 1:] = rest
+    nrow = sub[0].shape[0]
+    flat_out = out.reshape(noise.dim_out, nrow, -1)
+    step = max(1, SCATTERED_BLOCK // max(1, rest.shape[0]))
+    for j0 in range(0, nrow, step):
+        j1 = min(nrow, j0 + step)
+        pts = np.empty((j1 - j0, rest.shape[0], d))
+        pts[:, :, 0] = sub[0][j0:j1, None]
+        pts[:, :, 1:] = rest
+        pts = pts.reshape(-1, d)
         if deriv_axis is None:
             vals = evaluate_points(noise, pts, freq[None], np.array([amp]), absval, np.dtype(np.float64))
         else:
             vals = evaluate_points_jac(noise, pts, freq[None], np.array([amp]), absval)[:, :, 1 + deriv_axis]
         for c in range(noise.dim_out):
-            flat_out[c, j] += vals[:, c].astype(out.dtype)
+            flat_out[c, j0:j1] += vals[:, c].reshape(j1 - j0, -1).astype(out.dtype)
 
 
 def axis_taps(noise, coords_a, freq_a, a, grad, deriv=False, period=None):

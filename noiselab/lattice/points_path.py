@@ -6,9 +6,10 @@ read in place, without a copy) as ``(N, dim_in)`` rows;
 :func:`evaluate_points` and :func:`evaluate_points_jac` run the one point
 kernel of :mod:`._jit` that fits the noise (:func:`._jit.points_kernel`:
 hash, dimension, tap count, derivative flag, and whether any axis has a
-period of its own; 3-D table-hash value noise over many points reads folded
-tables, :data:`PAIRS_MIN`; integer-hash values in 1-3-D a kernel vectorised
-across points, :data:`INT_FAST_DIM`) over blocks of points on ``workers`` threads
+period of its own; 3-D table-hash noise without a period a kernel split per
+chunk of points, :data:`TABLE_SPLIT`, its values over folded tables from
+:data:`PAIRS_MIN` points on; integer-hash values in 1-3-D a kernel
+vectorised across points, :data:`INT_FAST_DIM`) over blocks of points on ``workers`` threads
 (:func:`noiselab._core.run_split`: every point's arithmetic is the same
 whatever the split, so any worker count gives the same bits). These
 functions read a noise's tables and change nothing.
@@ -32,8 +33,9 @@ def prepare_points(noise, points, name="points", axis=-1):
     structure-of-arrays ``(dim_in, ...)``); the others, in order, are the
     leading shape. For ``dim_in == 1`` with ``axis=-1`` an array whose last
     axis is not 1 (or a scalar) is that many scalar inputs. Two-dimensional
-    float64 points are used in place in either layout (a transposed view for
-    ``axis=0``); other points are copied to float64 rows.
+    float64 and float32 points are used in place in either layout (a
+    transposed view for ``axis=0``; float32 ones are widened, exactly, where
+    a kernel reads them: :func:`_run`); other points are copied to float64 rows.
     """
     points = as_array(name, points)
     if points.dtype.kind != "f":
@@ -57,7 +59,7 @@ def prepare_points(noise, points, name="points", axis=-1):
             raise ValueError(f"{name} must have shape (..., dim_in={d}), got {points.shape}")
         lead = points.shape[:-1]
         flat = points.reshape(-1, d)
-    return lead, flat.astype(np.float64, copy=False)
+    return lead, flat if flat.dtype == np.float32 else flat.astype(np.float64, copy=False)
 
 
 def output_dtype(points_dtype, dtype):
@@ -74,9 +76,10 @@ def shape_out(out, lead, dim_out):
     return out.reshape(tuple(lead) + (dim_out,))
 
 
-# 3-D table-hash value noise without a period reads folded tables (:func:`._jit.pair_tables`, the same
-# bits; 1.23x faster for 4 taps, benchmarks/bench_lattice_paths.md) from this many points on (building them
-# takes about 0.3 ms for n = 256), and up to this many entries (n * n per component: 2 MiB for n = 1024)
+# 3-D table-hash value noise without a period runs the split kernel over folded tables (:func:`._jit.pair_tables`,
+# the same bits; with the split 1.55x the per-point kernel, benchmarks/bench_lattice_paths.md) from this many
+# points on (building them takes about 0.3 ms for n = 256), and up to this many entries (n * n per component:
+# 2 MiB for n = 1024); fewer points, or larger tables, take the per-point kernel
 PAIRS_MIN = 1 << 15
 MAX_PAIR_ENTRIES = 1 << 20
 
@@ -85,6 +88,11 @@ MAX_PAIR_ENTRIES = 1 << 20
 # (:func:`._jit.int_fast_kernel`, the same bits; 2.2-2.7x for 1e6 3-D points, 1.17x with a period of its own,
 # benchmarks/bench_lattice_paths.md); 0 turns it off
 INT_FAST_DIM = 3
+
+
+# 3-D table-hash noise without a period or derivatives (values over the folded tables, gradients over the
+# permutation) runs the kernel split per chunk (:func:`._jit.table_fast_kernel`, the same bits); False turns it off
+TABLE_SPLIT = True
 
 
 def _periodic(noise):
@@ -117,12 +125,21 @@ def kernel_args(noise, freqs, amps, absval, pairs=False):
 
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     """The point kernel for this noise and call over ``flat`` into ``out``, on ``workers`` threads."""
-    pairs = _pairs(noise, flat.shape[0], deriv)
+    pairs = TABLE_SPLIT and _pairs(noise, flat.shape[0], deriv)  # values over folded tables: the split kernel
+    gradient = noise.basis == "gradient"
     if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv:  # the same bits, vectorised
-        kernel = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, noise.basis == "gradient", _periodic(noise))
+        # float32 points read in place (each coordinate widened to float64 as it is read: the same values,
+        # without a float64 copy of the points; 1e6 3-D points: benchmarks/bench_lattice_paths.md)
+        kernel = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, gradient, _periodic(noise))
+        run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval), workers)
+        return
+    flat = flat.astype(np.float64, copy=False)  # the other kernels are compiled for float64 points only
+    if pairs or (TABLE_SPLIT and noise.hash == "table" and gradient and noise.dim_in == 3 and not deriv
+                   and not _periodic(noise)):
+        kernel = jit.table_fast_kernel(noise.kernel.taps, gradient)  # the same bits, split per chunk
     else:
         kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv,
-                                   _periodic(noise), pairs)
+                                   _periodic(noise))
     run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval, pairs), workers)
 
 
