@@ -96,9 +96,14 @@ def _out_chunks(chunks, shape, dtype):
         return normalize_grid_chunks(chunks, shape, 1, dtype)
 
 
-def _slab_bytes(out_chunks, dt):
-    """Bytes of a transposed stage's chunk: twice the caller's largest output chunk, 1 MiB to ``_SLAB_MAX``."""
-    return min(_SLAB_MAX, max(1 << 20, 2 * int(np.prod([max(c) for c in out_chunks])) * np.dtype(dt).itemsize))
+def _slab_bytes(out_chunks, dt, budget):
+    """Bytes of a transposed stage's chunk: twice the caller's largest output chunk, 1 MiB to ``_SLAB_MAX``.
+
+    At most a quarter of a worker's ``budget`` (:func:`_budget`), a task's
+    arrays and their copies by the spill's writer short of the pause threshold.
+    """
+    cap = max(1 << 18, min(_SLAB_MAX, budget // 4))
+    return min(cap, max(1 << 20, 2 * int(np.prod([max(c) for c in out_chunks])) * np.dtype(dt).itemsize))
 
 
 def _blocks(n, size):
@@ -244,6 +249,50 @@ def _last_pass(B, n, dt):
     return out
 
 
+def _xpass_chunk(path, region, cols, n, dt, sub, post, *after):
+    """One output chunk from spilled complex rows: ``irfft`` of its rows ``sub`` rows at a time, its columns kept.
+
+    ``region``: the chunk's ``[start, stop]`` along each leading axis;
+    ``cols``: its ``[start, stop]`` along the last. A task holds the chunk
+    and one block of ``sub`` rows, never the chunk's whole rows (the whole
+    rows of a chunk cut along x are ``n / (stop - start)`` times the chunk);
+    the x-pass of a row is recomputed for each chunk of its columns.
+    ``post``: None, or ``(beta, (lo, hi))`` to rescale (snow).
+    """
+    import itertools
+
+    import zarr
+
+    z = zarr.open_array(path, mode="r")
+    x0, x1 = cols
+    out = np.empty(tuple(b - a for a, b in region) + (x1 - x0,), dtype=dt)
+    for st in itertools.product(*[range(a, b, s) for (a, b), s in zip(region, sub)]):
+        sl = tuple(slice(s0, min(s0 + s, b)) for s0, s, (_, b) in zip(st, sub, region))
+        x = _last_pass(z[sl], n, dt)
+        if x1 - x0 < n:
+            x = np.ascontiguousarray(x[..., x0:x1])
+        if post is not None:
+            beta, (lo, hi) = post
+            x = rescale_opacity(x, beta, lo=lo, hi=hi, workers=1)
+        out[tuple(slice(q.start - a, q.stop - a) for q, (a, _) in zip(sl, region))] = x
+    return out
+
+
+def _post(beta, lohi):
+    return beta, lohi
+
+
+def _spilled_xpass(path, done, out_chunks, sub, n, dt, name, dsk, post=None):
+    """Tasks making ``out_chunks`` straight from the spilled complex rows (:func:`_xpass_chunk`), no rechunk after."""
+    import itertools
+
+    st = [_starts(c) for c in out_chunks]
+    for idx in itertools.product(*[range(len(c)) for c in out_chunks]):
+        reg = [[int(st[a][i]), int(st[a][i + 1])] for a, i in enumerate(idx)]
+        dsk[(name,) + idx] = (_xpass_chunk, path, reg[:-1], reg[-1], n, dt, sub, post, done)
+    return _array(dsk, name, out_chunks, dt)
+
+
 def _one_piece(shape, kw):
     return spectral_noise(shape, **kw)
 
@@ -282,7 +331,8 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, rng, amplitude, dty
     b0 = p.bshape[0]
     rest = int(np.prod(p.bshape[1:]))
     item = p.cdt.itemsize
-    slab_rows = _blocks(b0, max(1, _TARGET // max(1, rest * item)))
+    budget, _ = _budget()
+    slab_rows = _blocks(b0, max(1, min(_TARGET, max(1 << 18, budget // 4)) // max(1, rest * item)))
     st = _starts(slab_rows)
     pkey = f"spectral-plan-{tok}"
     a_name, g_name, b_name = f"spectral-a-{tok}", f"spectral-gain-{tok}", f"spectral-spectrum-{tok}"
@@ -297,7 +347,7 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, rng, amplitude, dty
     spec = _array(dsk, b_name, bchunks, p.cdt)
     # transpose 1: slabs of kx, leading axes whole
     full_lead = int(np.prod(shape[:-1]))
-    ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, full_lead * item))
+    ckx = max(1, _slab_bytes(out_chunks, dt, budget) // max(1, full_lead * item))
     kx_blocks = _blocks(p.K, ckx)
     budget, _ = _budget()
     # the x-pass over whole rows in tasks that fit a worker short of its pause threshold (a 128 x 256-row task of a
@@ -319,9 +369,13 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, rng, amplitude, dty
     s1 = spec.map_blocks(_leading_passes, p.index, shape, chunks=tuple((m,) for m in shape[:-1]) + (kx_blocks,),
                          dtype=p.cdt, name=f"spectral-lead-{tok}")
     # transpose 2: the output's chunks along the leading axes (or a part of them), kx whole
-    lead_chunks = x_lead if spill is None else _regular(x_lead)
-    s1 = _transpose(s1, lead_chunks + ((p.K,),), spill, tok, "lead")
-    out = s1.map_blocks(_last_pass, shape[-1], dt, chunks=lead_chunks + ((shape[-1],),), dtype=dt,
+    if spill is not None:  # the x-pass reads the spilled rows a block at a time into the output's chunks
+        dsk = {}
+        path, done = _spill_write(s1, _regular(x_lead) + ((p.K,),), spill, dsk)
+        return _spilled_xpass(path, done, out_chunks, tuple(max(c) for c in x_lead), shape[-1], dt,
+                              f"spectral-x-{tok}", dsk)
+    s1 = _transpose(s1, x_lead + ((p.K,),), spill, tok, "lead")
+    out = s1.map_blocks(_last_pass, shape[-1], dt, chunks=x_lead + ((shape[-1],),), dtype=dt,
                         name=f"spectral-x-{tok}")
     return out.rechunk(out_chunks)
 
@@ -588,9 +642,9 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1
     spec = assemble(cols, as_generator(rng), amplitude, dt)  # the in-memory path's sparse spectrum
-    ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, T * H * cdt.itemsize))
-    slab = T * H * min(ckx, K) * cdt.itemsize
     budget, _ = _budget()
+    ckx = max(1, _slab_bytes(out_chunks, dt, budget) // max(1, T * H * cdt.itemsize))
+    slab = T * H * min(ckx, K) * cdt.itemsize
     row_bytes = K * cdt.itemsize + 2 * W * dt.itemsize  # complex rows in, raw and rescaled rows out
     x_ty = _fit_rows(out_chunks[:2], row_bytes, _xpass_cap(budget))
     ct, cy = max(x_ty[0]), max(x_ty[1])
@@ -622,9 +676,8 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
     name = f"snow-alpha-{tok}"
     lohi = f"snow-lohi-{tok}"
     if spill is not None:
-        # the t- and y-passes once, spilled; the x-pass twice (extremes, then the rescale), each x-pass task reading
-        # its own block (a nested task: separate read tasks all became ready together and a worker held every
-        # block it had read, past its memory limit)
+        # the t- and y-passes once, spilled; the x-pass twice (extremes over whole rows, then each output chunk made
+        # straight from the spilled rows a block at a time: no rechunk after it, a task holds its chunk and a block)
         dsk = {}
         path, done = _spill_write(stage1("s"), s2_chunks[:2] + ((K,),), spill, dsk)
         blocks = list(itertools.product(range(len(ty[0])), range(len(ty[1]))))
@@ -632,18 +685,14 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
         def read(i, j, *after):
             return (_read_block, path, _regions(ty + ((K,),), (i, j, 0)), done) + after
 
+        sub = tuple(max(c) for c in ty)
         if not rescale:
-            raw = f"snow-raw-x-{tok}"
-            for i, j in blocks:
-                dsk[(raw, i, j, 0)] = (_last_pass, read(i, j), W, dt)
-            return _array(dsk, raw, s2_chunks, dt).rechunk(out_chunks)
+            return _spilled_xpass(path, done, out_chunks, sub, W, dt, f"snow-raw-x-{tok}", dsk)
         mm = f"snow-extremes-{tok}"
         for i, j in blocks:
             dsk[(mm, i, j, 0)] = (_snow_extremes, read(i, j), W, dt)
         dsk[lohi] = (_reduce_extremes, [(mm, i, j, 0) for i, j in blocks])
-        for i, j in blocks:
-            dsk[(name, i, j, 0)] = (_snow_rescale, read(i, j, lohi), W, dt, float(beta), lohi)
-        return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)
+        return _spilled_xpass(path, done, out_chunks, sub, W, dt, name, dsk, post=(_post, float(beta), lohi))
     if not rescale:
         s1 = stage1("raw").rechunk(ty + ((K,),))
         out = s1.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
