@@ -195,16 +195,25 @@ def big_snow():
     return snow(BIG, rng=9)
 
 
+@pytest.fixture
+def fresh_client():
+    """A cluster of its own (2 worker processes, 1 thread, 352 MiB each), the workers' join and leave counted."""
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                  memory_limit=LIMIT) as cluster, distributed.Client(cluster) as c:
+        c.register_plugin(_worker_events_plugin())
+        yield c
+
+
 @pytest.mark.parametrize("chunks", [(48, 256, 512), (8, 1024, 256), (16, 128, 2048)])
-def test_user_chunks_without_spill_lose_no_worker(client, big_snow, chunks, tmp_path):
+def test_user_chunks_without_spill_lose_no_worker(fresh_client, big_snow, chunks, tmp_path):
     # the chunks any dask user would pass and no spill=: the in-memory rechunk would hold the transposed spectrum
     # across 2 workers short of room, so the route spills by itself, into a folder owned by the graph
     import gc
 
     import dask
 
+    client = fresh_client
     assert np.prod(BIG) * 4 > LIMIT
-    client.register_plugin(_worker_events_plugin())  # counts from 0 for this test
     workers = {a: w["id"] for a, w in client.scheduler_info()["workers"].items()}
     with dask.config.set({"temporary-directory": str(tmp_path / "dask")}):
         (tmp_path / "dask").mkdir()
@@ -225,9 +234,9 @@ def test_user_chunks_without_spill_lose_no_worker(client, big_snow, chunks, tmp_
     assert np.array_equal(np.asarray(stored[-3:, 500:700]), big_snow[-3:, 500:700])
 
 
-def test_spectral_noise_with_user_chunks_without_spill_loses_no_worker(client, tmp_path):
+def test_spectral_noise_with_user_chunks_without_spill_loses_no_worker(fresh_client, tmp_path):
     shape = (24, 1024, 2048)  # 192 MiB of float32; its half spectrum and the leading-axes transpose 385 MiB more
-    client.register_plugin(_worker_events_plugin())
+    client = fresh_client
     workers = set(client.scheduler_info()["workers"])
     lazy = spectral_noise(shape, rng=4, chunks=(24, 256, 512))
     write_zarr(tmp_path / "n.zarr", lazy, dims=("t", "y", "x"), rng=4)
@@ -237,7 +246,7 @@ def test_spectral_noise_with_user_chunks_without_spill_loses_no_worker(client, t
     assert _close(np.asarray(read_zarr(tmp_path / "n.zarr")[:3]), ref[:3])
 
 
-def test_the_route_spills_only_when_the_rechunk_would_not_fit(client):
+def test_the_route_spills_only_when_the_rechunk_would_not_fit(fresh_client):
     # on this cluster (2 workers of 352 MiB, paused at 80 %): a small video keeps dask's rechunk, a large one spills
     from noiselab.scale.spectral import _budget
 
