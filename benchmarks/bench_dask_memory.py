@@ -4,7 +4,7 @@ Run from the repository root::
 
     python3 benchmarks/bench_dask_memory.py                     # 512 MiB snow, 2 workers of 600 MiB (appends to bench_dask.md)
     python3 benchmarks/bench_dask_memory.py --mib 64 --limit 300 --no-write
-    python3 benchmarks/bench_dask_memory.py --chunks 128x256x256 --timeout 300   # user-chosen chunks, each case <= 5 min
+    python3 benchmarks/bench_dask_memory.py --chunks 128x256x256 --timeout 300   # user's chunks, a case <= 5 min
 
 A ``LocalCluster`` of worker processes (one thread each, ``memory_limit`` per
 worker; the nanny kills a worker past 95 % of it and starts a new one) writes
@@ -88,7 +88,8 @@ def run_case(client, name, lazy, path, out_mib, timeout):
     # a restarted worker's peak is its own since it started: growth over the first worker's baseline
     growth = {w: (peaks[w] - base.get(w, min(base.values(), default=peaks[w]))) / 1024 for w in peaks}
     chunk_mib = float(np.prod([max(c) for c in lazy.chunks])) * lazy.dtype.itemsize / 2**20
-    row = {"name": name, "failed": failed, "hung": hung, "shape": lazy.shape, "chunk": tuple(max(c) for c in lazy.chunks),
+    row = {"name": name, "failed": failed, "hung": hung, "shape": lazy.shape,
+           "chunk": tuple(max(c) for c in lazy.chunks),
            "chunk_mib": chunk_mib, "restarts": joined - joined0, "left": left - left0, "wall_s": wall,
            "growth_mib": sorted(growth.values(), reverse=True),
            "before_mib": sorted((v / 1024 for v in base.values()), reverse=True), "out_mib": out_mib}
@@ -125,8 +126,10 @@ def main(argv=None):
     tmp = Path(tempfile.mkdtemp(prefix="bench-dask-memory-"))
     rows = []
     cases = {
-        "snow-spill": ("snow, spill= (as `noiselab snow -o x.zarr`)", lambda: snow(shape, rng=3, chunks=chunks, spill=tmp / "s1")),
-        "noise-spill": ("spectral_noise (3-D), spill=", lambda: spectral_noise(shape, rng=3, chunks=chunks, spill=tmp / "s2")),
+        "snow-spill": ("snow, spill= (as `noiselab snow -o x.zarr`)",
+                       lambda: snow(shape, rng=3, chunks=chunks, spill=tmp / "s1")),
+        "noise-spill": ("spectral_noise (3-D), spill=",
+                        lambda: spectral_noise(shape, rng=3, chunks=chunks, spill=tmp / "s2")),
         "snow": ("snow, no spill=", lambda: snow(shape, rng=3, chunks=chunks)),
         "noise": ("spectral_noise (3-D), no spill=", lambda: spectral_noise(shape, rng=3, chunks=chunks)),
     }

@@ -239,11 +239,15 @@ def test_spectral_noise_with_user_chunks_without_spill_loses_no_worker(fresh_cli
     client = fresh_client
     workers = set(client.scheduler_info()["workers"])
     lazy = spectral_noise(shape, rng=4, chunks=(24, 256, 512))
+    assert any(str(k[0] if isinstance(k, tuple) else k).startswith("spill-write-") for k in dict(lazy.__dask_graph__()))
     write_zarr(tmp_path / "n.zarr", lazy, dims=("t", "y", "x"), rng=4)
     assert set(client.scheduler_info()["workers"]) == workers
     assert client.run_on_scheduler(_worker_events) == (0, 0)
-    ref = spectral_noise(shape, rng=4)
-    assert _close(np.asarray(read_zarr(tmp_path / "n.zarr")[:3]), ref[:3])
+    ref = spectral_noise(shape, rng=4)[:3]
+    # the full band is not pruned: the pencil FFT's rounding against one irfftn, 2.2 float32 ulp of the largest
+    # value on this 1024 x 2048 field (the same bits as the in-memory-rechunk route, checked by hand)
+    tol = 4 * np.finfo(np.float32).eps * float(np.max(np.abs(ref)))
+    assert float(np.max(np.abs(np.asarray(read_zarr(tmp_path / "n.zarr")[:3]) - ref))) <= tol
 
 
 def test_the_route_spills_only_when_the_rechunk_would_not_fit(fresh_client):
@@ -254,7 +258,8 @@ def test_the_route_spills_only_when_the_rechunk_would_not_fit(fresh_client):
     assert n == 2 and 0 < budget <= 0.8 * LIMIT - (240 << 20)
 
     def spills(x):
-        return any(str(k[0] if isinstance(k, tuple) else k).startswith("spill-write-") for k in dict(x.__dask_graph__()))
+        keys = dict(x.__dask_graph__())
+        return any(str(k[0] if isinstance(k, tuple) else k).startswith("spill-write-") for k in keys)
 
     assert not spills(snow((8, 64, 64), rng=0, chunks=(4, 32, 64)))
     assert spills(snow((32, 1024, 1024), rng=0, chunks=(8, 256, 1024)))

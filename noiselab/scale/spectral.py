@@ -467,7 +467,7 @@ _IMPORTS = 240 << 20
 
 
 def _pause_fraction():
-    """The fraction of its memory limit at which ``distributed`` pauses a worker (``distributed.worker.memory.pause``)."""
+    """The fraction of its memory limit at which ``distributed`` pauses a worker (``worker.memory.pause``)."""
     import dask
 
     frac = dask.config.get("distributed.worker.memory.pause", 0.8)
@@ -564,7 +564,7 @@ class _Scratch:
 
 
 def _route(spill, task, shared):
-    """The transposes' route: ``spill`` as given; else an owned temporary folder when dask's in-memory rechunk would not fit.
+    """The transposes' route: ``spill`` as given, else an owned temporary folder when the in-memory rechunk would not fit.
 
     ``task``: the bytes of the largest task; ``shared``: the bytes that the
     in-memory rechunk spreads over the workers (the transposed arrays, and
