@@ -564,7 +564,7 @@ class _Scratch:
 
 
 def _route(spill, task, shared):
-    """The transposes' route: ``spill`` as given, else an owned temporary folder when the in-memory rechunk would not fit.
+    """The transposes' route: ``spill`` as given, else an owned scratch folder when the in-memory rechunk would not fit.
 
     ``task``: the bytes of the largest task; ``shared``: the bytes that the
     in-memory rechunk spreads over the workers (the transposed arrays, and
