@@ -177,11 +177,91 @@ def test_hold_raw_counts_the_workers_memory(client):
 
 
 def test_chunks_no_worker_can_hold_are_a_clear_error_before_any_graph(client):
-    # one x-pass chunk of 64 x 2048 rows of a 2048-wide video: 1 GiB of complex rows in, past a 352 MiB worker
-    with pytest.raises(MemoryError, match=r"snow\(64, 2048, 2048\).* needs at least \d+ MiB per worker .*x-pass"
+    # one output chunk of 64 x 2048 x 2048 (1 GiB, assembled and copied by the writer), past a 352 MiB worker
+    with pytest.raises(MemoryError, match=r"snow\(64, 2048, 2048\).* needs at least \d+ MiB per worker .*output chunk"
                                           r".* 352 MiB"):
         snow((64, 2048, 2048), rng=0, chunks=(64, 2048, 2048))
     with pytest.raises(MemoryError, match=r"spectral_noise\(8192, 8192\).* MiB per worker .* memory_limit"):
         spectral_noise((8192, 8192), rng=0, chunks=(8192, 8192))
     # chunks a worker can hold build their graph as before
     assert snow((64, 2048, 2048), rng=0, chunks=(8, 256, 2048)).npartitions == 64
+
+
+BIG = (48, 1024, 2048)  # 384 MiB of float32, more than a worker's 352 MiB limit
+
+
+@pytest.fixture(scope="module")
+def big_snow():
+    return snow(BIG, rng=9)
+
+
+@pytest.fixture
+def fresh_client():
+    """A cluster of its own (2 worker processes, 1 thread, 352 MiB each), the workers' join and leave counted."""
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                  memory_limit=LIMIT) as cluster, distributed.Client(cluster) as c:
+        c.register_plugin(_worker_events_plugin())
+        yield c
+
+
+@pytest.mark.parametrize("chunks", [(48, 256, 512), (8, 1024, 256), (16, 128, 2048)])
+def test_user_chunks_without_spill_lose_no_worker(fresh_client, big_snow, chunks, tmp_path):
+    # the chunks any dask user would pass and no spill=: the in-memory rechunk would hold the transposed spectrum
+    # across 2 workers short of room, so the route spills by itself, into a folder owned by the graph
+    import gc
+
+    import dask
+
+    client = fresh_client
+    assert np.prod(BIG) * 4 > LIMIT
+    workers = {a: w["id"] for a, w in client.scheduler_info()["workers"].items()}
+    with dask.config.set({"temporary-directory": str(tmp_path / "dask")}):
+        (tmp_path / "dask").mkdir()
+        lazy = snow(BIG, rng=9, chunks=chunks)
+        assert lazy.chunks == da.core.normalize_chunks(chunks, BIG)  # the caller's chunks, whatever the route
+        assert any(str(k[0] if isinstance(k, tuple) else k).startswith("spill-write-")
+                   for k in dict(lazy.__dask_graph__()))
+        assert len(list((tmp_path / "dask").iterdir())) == 1  # the scratch folder, while the graph lives
+        write_zarr(tmp_path / "v.zarr", lazy, dims=("t", "y", "x"), rng=9)
+        del lazy
+        gc.collect()
+        assert list((tmp_path / "dask").iterdir()) == []  # removed with the graph
+    # no worker joined or left: the same addresses and ids, and no event counted by the scheduler plugin
+    assert {a: w["id"] for a, w in client.scheduler_info()["workers"].items()} == workers
+    assert client.run_on_scheduler(_worker_events) == (0, 0)
+    stored = read_zarr(tmp_path / "v.zarr")
+    assert np.array_equal(np.asarray(stored[:4]), big_snow[:4])
+    assert np.array_equal(np.asarray(stored[-3:, 500:700]), big_snow[-3:, 500:700])
+
+
+def test_spectral_noise_with_user_chunks_without_spill_loses_no_worker(fresh_client, tmp_path):
+    shape = (24, 1024, 2048)  # 192 MiB of float32; its half spectrum and the leading-axes transpose 385 MiB more
+    client = fresh_client
+    workers = set(client.scheduler_info()["workers"])
+    lazy = spectral_noise(shape, rng=4, chunks=(24, 256, 512))
+    assert any(str(k[0] if isinstance(k, tuple) else k).startswith("spill-write-") for k in dict(lazy.__dask_graph__()))
+    write_zarr(tmp_path / "n.zarr", lazy, dims=("t", "y", "x"), rng=4)
+    assert set(client.scheduler_info()["workers"]) == workers
+    assert client.run_on_scheduler(_worker_events) == (0, 0)
+    ref = spectral_noise(shape, rng=4)[:3]
+    # the full band is not pruned: the pencil FFT's rounding against one irfftn, 2.2 float32 ulp of the largest
+    # value on this 1024 x 2048 field (the same bits as the in-memory-rechunk route, checked by hand)
+    tol = 4 * np.finfo(np.float32).eps * float(np.max(np.abs(ref)))
+    assert float(np.max(np.abs(np.asarray(read_zarr(tmp_path / "n.zarr")[:3]) - ref))) <= tol
+
+
+def test_the_route_spills_only_when_the_rechunk_would_not_fit(fresh_client):
+    # on this cluster (2 workers of 352 MiB, paused at 80 %): a small video keeps dask's rechunk, a large one spills
+    from noiselab.scale.spectral import _budget
+
+    budget, n = _budget()
+    assert n == 2 and 0 < budget <= 0.8 * LIMIT - (240 << 20)
+
+    def spills(x):
+        keys = dict(x.__dask_graph__())
+        return any(str(k[0] if isinstance(k, tuple) else k).startswith("spill-write-") for k in keys)
+
+    assert not spills(snow((8, 64, 64), rng=0, chunks=(4, 32, 64)))
+    assert spills(snow((32, 1024, 1024), rng=0, chunks=(8, 256, 1024)))
+    assert not spills(spectral_noise((32, 32, 32), rng=0, chunks=(8, 32, 32)))
+    assert spills(spectral_noise((16, 1024, 1024), rng=0, chunks=(8, 256, 1024)))

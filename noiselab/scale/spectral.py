@@ -60,6 +60,7 @@ more than its own chunk, at the price of the FFT twice
 """
 from __future__ import annotations
 
+import os
 import uuid
 
 import numpy as np
@@ -95,9 +96,14 @@ def _out_chunks(chunks, shape, dtype):
         return normalize_grid_chunks(chunks, shape, 1, dtype)
 
 
-def _slab_bytes(out_chunks, dt):
-    """Bytes of a transposed stage's chunk: twice the caller's largest output chunk, 1 MiB to ``_SLAB_MAX``."""
-    return min(_SLAB_MAX, max(1 << 20, 2 * int(np.prod([max(c) for c in out_chunks])) * np.dtype(dt).itemsize))
+def _slab_bytes(out_chunks, dt, budget):
+    """Bytes of a transposed stage's chunk: twice the caller's largest output chunk, 1 MiB to ``_SLAB_MAX``.
+
+    At most a quarter of a worker's ``budget`` (:func:`_budget`), a task's
+    arrays and their copies by the spill's writer short of the pause threshold.
+    """
+    cap = max(1 << 18, min(_SLAB_MAX, budget // 4))
+    return min(cap, max(1 << 20, 2 * int(np.prod([max(c) for c in out_chunks])) * np.dtype(dt).itemsize))
 
 
 def _blocks(n, size):
@@ -152,12 +158,13 @@ def _regions(chunks, idx):
 def _spill_write(arr, new_chunks, spill, dsk):
     """Tasks writing ``arr`` into a zarr array under ``spill`` chunked on both chunkings' grid; returns (path, done key)."""
     import itertools
-    import os
 
     import zarr
 
     zch = tuple(int(min(max(a), max(b))) for a, b in zip(arr.chunks, new_chunks))
     path = os.path.join(os.fspath(spill), f"{arr.name}.zarr")
+    if isinstance(spill, _Scratch):
+        path = spill.owned(path)  # every task holding the path keeps the folder until the graph is gone
     zarr.create_array(path, shape=arr.shape, chunks=zch, dtype=arr.dtype, compressors=None, fill_value=0,
                       overwrite=True)
     dsk.update(_graph(arr))
@@ -242,6 +249,50 @@ def _last_pass(B, n, dt):
     return out
 
 
+def _xpass_chunk(path, region, cols, n, dt, sub, post, *after):
+    """One output chunk from spilled complex rows: ``irfft`` of its rows ``sub`` rows at a time, its columns kept.
+
+    ``region``: the chunk's ``[start, stop]`` along each leading axis;
+    ``cols``: its ``[start, stop]`` along the last. A task holds the chunk
+    and one block of ``sub`` rows, never the chunk's whole rows (the whole
+    rows of a chunk cut along x are ``n / (stop - start)`` times the chunk);
+    the x-pass of a row is recomputed for each chunk of its columns.
+    ``post``: None, or ``(beta, (lo, hi))`` to rescale (snow).
+    """
+    import itertools
+
+    import zarr
+
+    z = zarr.open_array(path, mode="r")
+    x0, x1 = cols
+    out = np.empty(tuple(b - a for a, b in region) + (x1 - x0,), dtype=dt)
+    for st in itertools.product(*[range(a, b, s) for (a, b), s in zip(region, sub)]):
+        sl = tuple(slice(s0, min(s0 + s, b)) for s0, s, (_, b) in zip(st, sub, region))
+        x = _last_pass(z[sl], n, dt)
+        if x1 - x0 < n:
+            x = np.ascontiguousarray(x[..., x0:x1])
+        if post is not None:
+            beta, (lo, hi) = post
+            x = rescale_opacity(x, beta, lo=lo, hi=hi, workers=1)
+        out[tuple(slice(q.start - a, q.stop - a) for q, (a, _) in zip(sl, region))] = x
+    return out
+
+
+def _post(beta, lohi):
+    return beta, lohi
+
+
+def _spilled_xpass(path, done, out_chunks, sub, n, dt, name, dsk, post=None):
+    """Tasks making ``out_chunks`` straight from the spilled complex rows (:func:`_xpass_chunk`), no rechunk after."""
+    import itertools
+
+    st = [_starts(c) for c in out_chunks]
+    for idx in itertools.product(*[range(len(c)) for c in out_chunks]):
+        reg = [[int(st[a][i]), int(st[a][i + 1])] for a, i in enumerate(idx)]
+        dsk[(name,) + idx] = (_xpass_chunk, path, reg[:-1], reg[-1], n, dt, sub, post, done)
+    return _array(dsk, name, out_chunks, dt)
+
+
 def _one_piece(shape, kw):
     return spectral_noise(shape, **kw)
 
@@ -280,7 +331,8 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, rng, amplitude, dty
     b0 = p.bshape[0]
     rest = int(np.prod(p.bshape[1:]))
     item = p.cdt.itemsize
-    slab_rows = _blocks(b0, max(1, _TARGET // max(1, rest * item)))
+    budget, _ = _budget()
+    slab_rows = _blocks(b0, max(1, min(_TARGET, max(1 << 18, budget // 4)) // max(1, rest * item)))
     st = _starts(slab_rows)
     pkey = f"spectral-plan-{tok}"
     a_name, g_name, b_name = f"spectral-a-{tok}", f"spectral-gain-{tok}", f"spectral-spectrum-{tok}"
@@ -295,21 +347,35 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, rng, amplitude, dty
     spec = _array(dsk, b_name, bchunks, p.cdt)
     # transpose 1: slabs of kx, leading axes whole
     full_lead = int(np.prod(shape[:-1]))
-    ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, full_lead * item))
+    ckx = max(1, _slab_bytes(out_chunks, dt, budget) // max(1, full_lead * item))
     kx_blocks = _blocks(p.K, ckx)
-    lead = int(np.prod([max(c) for c in out_chunks[:-1]]))
+    budget, _ = _budget()
+    # the x-pass over whole rows in tasks that fit a worker short of its pause threshold (a 128 x 256-row task of a
+    # 1024-wide field, 262 MiB in and out, paused a 600 MiB worker for good)
+    row_bytes = p.K * item + shape[-1] * dt.itemsize
+    x_lead = _fit_rows(out_chunks[:-1], row_bytes, _xpass_cap(budget))
+    lead = int(np.prod([max(c) for c in x_lead]))
+    out_chunk = int(np.prod([max(c) for c in out_chunks])) * dt.itemsize
     _check_worker_memory([(f"a spectrum slab of {max(slab_rows) * rest} complex cells", max(slab_rows) * rest * item),
                          (f"a leading-axes slab of {full_lead} x {min(ckx, p.K)} complex cells, in and out",
                           2 * full_lead * min(ckx, p.K) * item),
                          (f"an x-pass chunk of {lead} rows, {p.K} complex cells in and {shape[-1]} out",
-                          lead * (p.K * item + shape[-1] * dt.itemsize))], f"spectral_noise{shape} in chunks {chunks}")
+                          lead * row_bytes),
+                         (f"an output chunk of {out_chunk >> 20} MiB, assembled and copied by the writer",
+                          2 * out_chunk)], f"spectral_noise{shape} in chunks {chunks}")
+    task = max(2 * full_lead * min(ckx, p.K) * item, lead * row_bytes, 2 * out_chunk)
+    spill = _route(spill, task, (int(np.prod(p.bshape)) + full_lead * p.K) * item)
     spec = _transpose(spec, tuple((m,) for m in p.bshape[:-1]) + (kx_blocks,), spill, tok, "spectrum")
     s1 = spec.map_blocks(_leading_passes, p.index, shape, chunks=tuple((m,) for m in shape[:-1]) + (kx_blocks,),
                          dtype=p.cdt, name=f"spectral-lead-{tok}")
-    # transpose 2: the output's chunks along the leading axes, kx whole
-    lead_chunks = out_chunks[:-1] if spill is None else _regular(out_chunks[:-1])
-    s1 = _transpose(s1, lead_chunks + ((p.K,),), spill, tok, "lead")
-    out = s1.map_blocks(_last_pass, shape[-1], dt, chunks=lead_chunks + ((shape[-1],),), dtype=dt,
+    # transpose 2: the output's chunks along the leading axes (or a part of them), kx whole
+    if spill is not None:  # the x-pass reads the spilled rows a block at a time into the output's chunks
+        dsk = {}
+        path, done = _spill_write(s1, _regular(x_lead) + ((p.K,),), spill, dsk)
+        return _spilled_xpass(path, done, out_chunks, tuple(max(c) for c in x_lead), shape[-1], dt,
+                              f"spectral-x-{tok}", dsk)
+    s1 = _transpose(s1, x_lead + ((p.K,),), spill, tok, "lead")
+    out = s1.map_blocks(_last_pass, shape[-1], dt, chunks=x_lead + ((shape[-1],),), dtype=dt,
                         name=f"spectral-x-{tok}")
     return out.rechunk(out_chunks)
 
@@ -395,15 +461,136 @@ def _worker_memory():
     return min(limits) if limits else None
 
 
+# what a worker process holds before any task of ours: python, numpy, scipy, numba, distributed and noiselab
+# imported, the kernels compiled (240-266 MiB measured on the 2-core test machine, benchmarks/bench_dask.md)
+_IMPORTS = 240 << 20
+
+
+def _pause_fraction():
+    """The fraction of its memory limit at which ``distributed`` pauses a worker (``worker.memory.pause``)."""
+    import dask
+
+    frac = dask.config.get("distributed.worker.memory.pause", 0.8)
+    return float(frac) if frac else 0.95  # pausing switched off: the nanny's terminate threshold
+
+
+def _budget():
+    """``(budget, workers)``: the bytes a worker can give one computation before it is paused, and how many share it.
+
+    Under an active ``distributed`` client: the smallest over its workers of
+    the pause threshold (``distributed.worker.memory.pause``, 80 % of the
+    memory limit by default) less what the worker process holds already (its
+    measured memory, at least ``_IMPORTS``); a worker without a limit counts
+    this machine's available memory. A task past that pauses its worker for
+    good: the worker stops taking tasks and nothing it holds moves. Without a
+    client (dask's local schedulers): this machine's available memory, one
+    "worker".
+    """
+    client = _active_client()
+    if client is not None:
+        workers = list(client.scheduler_info().get("workers", {}).values())
+        if workers:
+            frac = _pause_fraction()
+            room = []
+            for w in workers:
+                lim = int(w.get("memory_limit") or 0) or available_memory()
+                used = max(int((w.get("metrics") or {}).get("memory") or 0), _IMPORTS)
+                room.append(max(0, int(frac * lim) - used))
+            return min(room), len(workers)
+    return available_memory(), 1
+
+
+def _xpass_cap(budget):
+    """Bytes of an x-pass task (its complex rows in, its real rows out): a third of the budget, 1 to 64 MiB."""
+    return int(min(2 * _SLAB_MAX, max(1 << 20, budget // 3)))
+
+
+def _fit_rows(lead, row_bytes, cap):
+    """Regular blocks of the leading axes for a pass over whole rows of ``row_bytes``: at most ``cap`` bytes a task.
+
+    ``lead``: the caller's chunks of the leading axes. Unchanged when its
+    largest block fits; else the first axes' blocks are cut to divisors of
+    the caller's (so the output chunks are whole groups of them), one row at
+    the least. The pass works row by row, so the values do not depend on it.
+    """
+    sizes = [max(c) for c in lead]
+    if int(np.prod(sizes)) * row_bytes <= cap:
+        return lead
+    for a in range(len(sizes)):
+        others = int(np.prod(sizes[:a] + sizes[a + 1:]))
+        want = max(1, cap // max(1, others * row_bytes))
+        sizes[a] = max(d for d in range(1, sizes[a] + 1) if sizes[a] % d == 0 and d <= want)
+        if int(np.prod(sizes)) * row_bytes <= cap:
+            break
+    return tuple(_blocks(sum(c), z) for c, z in zip(lead, sizes))
+
+
+class _OwnedPath(str):
+    """A path in the graph's tasks that keeps its scratch folder alive; sent to a worker, a plain ``str``."""
+
+    def __reduce__(self):
+        return (str, (str(self),))
+
+
+class _Scratch:
+    """A temporary folder for an automatic spill, owned by the lazy array's graph.
+
+    Made in dask's ``temporary-directory`` (else the system's temporary
+    folder) through :func:`noiselab.io.atomic.scratch_folder`, so a stopping
+    signal removes it; removed when the last graph that holds one of its paths
+    is garbage-collected, or at the interpreter's exit.
+    """
+
+    def __init__(self):
+        import tempfile
+        import weakref
+
+        import dask
+
+        from ..io.atomic import scratch_folder
+
+        base = dask.config.get("temporary-directory", None) or tempfile.gettempdir()
+        cm = scratch_folder(os.path.join(os.fspath(base), "noiselab-spill"), suffix=".spill.tmp")
+        self.path = os.fspath(cm.__enter__())
+        weakref.finalize(self, cm.__exit__, None, None, None)
+
+    def __fspath__(self):
+        return self.path
+
+    def owned(self, path):
+        out = _OwnedPath(path)
+        out.owner = self
+        return out
+
+
+def _route(spill, task, shared):
+    """The transposes' route: ``spill`` as given, else an owned scratch folder when the in-memory rechunk would not fit.
+
+    ``task``: the bytes of the largest task; ``shared``: the bytes that the
+    in-memory rechunk spreads over the workers (the transposed arrays, and
+    for one-pass snow the raw field waiting for its extremes). The rechunk is
+    kept when ``task + shared / workers`` fits :func:`_budget`; past it, the
+    transposes go through zarr arrays in a :class:`_Scratch` folder.
+    """
+    if spill is not None:
+        return spill
+    budget, n = _budget()
+    if task + shared / n <= budget:
+        return None
+    return _Scratch()
+
+
 def _check_worker_memory(tasks, what):
     """A clear ``MemoryError`` when the largest task of a chunked transform cannot fit one worker's memory at all.
 
     ``tasks``: ``(description, bytes)`` of each stage's largest task (its input
     and output arrays, a lower bound on what the worker holds while it runs).
     Checked before the graph is built, against the smallest memory limit of
-    the active ``distributed`` cluster's workers; no client (dask's local
-    schedulers) or no limit: nothing to check. A worker given less would be
-    restarted for memory again and again instead.
+    the active ``distributed`` cluster's workers, at the fraction where
+    ``distributed`` pauses a worker (``distributed.worker.memory.pause``, 80 %);
+    no client (dask's local schedulers) or no limit: nothing to check. A
+    worker given more would be paused for good, or restarted for memory again
+    and again.
 
     Examples
     --------
@@ -413,11 +600,13 @@ def _check_worker_memory(tasks, what):
     if limit is None or not tasks:
         return
     desc, need = max(tasks, key=lambda t: t[1])
-    if need > limit:
+    frac = _pause_fraction()
+    if need > frac * limit:
         raise MemoryError(f"{what} needs at least {need / 2**20:.0f} MiB per worker ({desc}), more than the "
-                          f"{limit / 2**20:.0f} MiB memory limit of the cluster's smallest worker: pass smaller "
-                          f"chunks= (fewer frames or rows per chunk) or start the workers with memory_limit of at "
-                          f"least {2 * need / 2**20:.0f} MiB")
+                          f"{frac * limit / 2**20:.0f} MiB at which distributed pauses the cluster's smallest worker "
+                          f"({frac:.0%} of its {limit / 2**20:.0f} MiB memory limit): pass smaller chunks= (fewer "
+                          f"frames or rows per chunk) or start the workers with memory_limit of at least "
+                          f"{(need / frac + _IMPORTS) / 2**20:.0f} MiB")
 
 
 def _snow_rescale(B, W, dt, beta, lohi):
@@ -453,15 +642,25 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
                         exponent=exponent, on_alias=on_alias)
     K = int(cols.kx.max()) + 1
     spec = assemble(cols, as_generator(rng), amplitude, dt)  # the in-memory path's sparse spectrum
-    ckx = max(1, _slab_bytes(out_chunks, dt) // max(1, T * H * cdt.itemsize))
-    ct, cy = max(out_chunks[0]), max(out_chunks[1])
+    budget, _ = _budget()
+    ckx = max(1, _slab_bytes(out_chunks, dt, budget) // max(1, T * H * cdt.itemsize))
     slab = T * H * min(ckx, K) * cdt.itemsize
+    row_bytes = K * cdt.itemsize + 2 * W * dt.itemsize  # complex rows in, raw and rescaled rows out
+    x_ty = _fit_rows(out_chunks[:2], row_bytes, _xpass_cap(budget))
+    ct, cy = max(x_ty[0]), max(x_ty[1])
+    out_chunk = int(np.prod([max(c) for c in out_chunks])) * dt.itemsize
     _check_worker_memory([(f"a t/y slab of {T} x {H} x {min(ckx, K)} complex cells", slab),
-                         (f"an x-pass chunk of {ct} x {cy} rows, {K} complex cells in and {W} out", ct * cy * (
-                             K * cdt.itemsize + 2 * W * dt.itemsize))], f"snow{tuple(shape)} in chunks {chunks}")
+                         (f"an x-pass chunk of {ct} x {cy} rows, {K} complex cells in and {W} out",
+                          ct * cy * row_bytes),
+                         (f"an output chunk of {out_chunk >> 20} MiB, assembled and copied by the writer",
+                          2 * out_chunk)], f"snow{tuple(shape)} in chunks {chunks}")
     kx_blocks, pieces = _snow_plan(cols, spec, K, ckx)
     tok = uuid.uuid4().hex[:12]
-    ty = out_chunks[:2] if spill is None else _regular(out_chunks[:2])
+    hold = rescale and _hold_raw(T * H * W * dt.itemsize)
+    # in memory, the t/y transpose (twice when the FFT runs twice) and the raw field waiting for its extremes
+    shared = T * H * K * cdt.itemsize * (1 if hold or not rescale else 2) + (T * H * W * dt.itemsize if hold else 0)
+    spill = _route(spill, max(slab, ct * cy * row_bytes, 2 * out_chunk), shared)
+    ty = x_ty if spill is None else _regular(x_ty)
     s2_chunks = ty + ((W,),)
     mm_chunks = tuple((1,) * len(c_) for c_ in ty) + ((2,),)
 
@@ -477,9 +676,8 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
     name = f"snow-alpha-{tok}"
     lohi = f"snow-lohi-{tok}"
     if spill is not None:
-        # the t- and y-passes once, spilled; the x-pass twice (extremes, then the rescale), each x-pass task reading
-        # its own block (a nested task: separate read tasks all became ready together and a worker held every
-        # block it had read, past its memory limit)
+        # the t- and y-passes once, spilled; the x-pass twice (extremes over whole rows, then each output chunk made
+        # straight from the spilled rows a block at a time: no rechunk after it, a task holds its chunk and a block)
         dsk = {}
         path, done = _spill_write(stage1("s"), s2_chunks[:2] + ((K,),), spill, dsk)
         blocks = list(itertools.product(range(len(ty[0])), range(len(ty[1]))))
@@ -487,23 +685,19 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
         def read(i, j, *after):
             return (_read_block, path, _regions(ty + ((K,),), (i, j, 0)), done) + after
 
+        sub = tuple(max(c) for c in ty)
         if not rescale:
-            raw = f"snow-raw-x-{tok}"
-            for i, j in blocks:
-                dsk[(raw, i, j, 0)] = (_last_pass, read(i, j), W, dt)
-            return _array(dsk, raw, s2_chunks, dt).rechunk(out_chunks)
+            return _spilled_xpass(path, done, out_chunks, sub, W, dt, f"snow-raw-x-{tok}", dsk)
         mm = f"snow-extremes-{tok}"
         for i, j in blocks:
             dsk[(mm, i, j, 0)] = (_snow_extremes, read(i, j), W, dt)
         dsk[lohi] = (_reduce_extremes, [(mm, i, j, 0) for i, j in blocks])
-        for i, j in blocks:
-            dsk[(name, i, j, 0)] = (_snow_rescale, read(i, j, lohi), W, dt, float(beta), lohi)
-        return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)
+        return _spilled_xpass(path, done, out_chunks, sub, W, dt, name, dsk, post=(_post, float(beta), lohi))
     if not rescale:
         s1 = stage1("raw").rechunk(ty + ((K,),))
         out = s1.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
         return out.rechunk(out_chunks)
-    if _hold_raw(T * H * W * dt.itemsize):
+    if hold:
         # one pass: the raw chunks wait (held by dask) while their extremes are reduced, then each is rescaled
         raw = stage1("raw").rechunk(ty + ((K,),)).map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt,
                                                               name=f"snow-raw-x-{tok}")

@@ -198,7 +198,13 @@ def snow(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, thickness=0.1, dir
         transposed t/y-pass output as a zarr array: the t- and y-passes then
         run once and no worker holds more than its chunks (videos bigger than
         the cluster's memory). The caller removes it after computing.
-        Default: dask's in-memory rechunk (the passes run twice).
+        Default: chosen by itself. Dask's in-memory rechunk when the largest
+        task plus each worker's share of the transposed arrays fits what the
+        workers have short of ``distributed``'s pause threshold (80 % of the
+        memory limit, less what the worker holds; no client: this machine's
+        available memory), else a temporary folder of its own in dask's
+        ``temporary-directory``, removed with the lazy array's graph
+        (``docs/guide/scale.md``).
 
     Returns
     -------

@@ -543,7 +543,10 @@ def spectral_noise(shape, *, exponent=1.0, band=None, rng=None, amplitude_distri
         With ``chunks``: a directory (on storage every worker sees) for the
         two transposes as zarr arrays, so no worker ever holds more than its
         chunks (for fields bigger than the cluster's memory). The caller
-        removes it after computing. Default: dask's in-memory rechunk.
+        removes it after computing. Default: chosen by itself, by the rule
+        :func:`noiselab.snowfall.snow` states (dask's in-memory rechunk when
+        it fits the workers short of their pause threshold, else a temporary
+        folder of its own, removed with the lazy array's graph).
 
     Returns
     -------
