@@ -8,6 +8,7 @@ bit-identical; spectral noise is bit-identical where the spectrum is pruned
 and otherwise at most 9.5e-7 apart on fields of largest value ~4.3 (under 2
 float32 ulp of it; in memory the unpruned field is one ``irfftn`` call).
 """
+import signal
 import sys
 
 import numpy as np
@@ -201,7 +202,21 @@ def fresh_client():
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
                                   memory_limit=LIMIT) as cluster, distributed.Client(cluster) as c:
         c.register_plugin(_worker_events_plugin())
-        yield c
+        # a worker that pauses for memory and never resumes would hang the suite: fail the test instead
+        previous = signal.signal(signal.SIGALRM, _no_progress)
+        signal.alarm(NO_PROGRESS_S)
+        try:
+            yield c
+        finally:
+            signal.alarm(0)
+            signal.signal(signal.SIGALRM, previous)
+
+
+NO_PROGRESS_S = 400  # about 4x the slowest case measured on a loaded 2-core machine
+
+
+def _no_progress(signum, frame):
+    raise TimeoutError(f"the cluster did not finish in {NO_PROGRESS_S} s: a worker paused for memory and never resumed")
 
 
 @pytest.mark.parametrize("chunks", [(48, 256, 512), (8, 1024, 256), (16, 128, 2048)])
