@@ -470,15 +470,15 @@ def _render(meshes, path, size, **kw):
     return path
 
 
-def _render_tiles(meshes, path, labels, columns=3, cell=300, **kw):
-    """Render each mesh on its own (same view) and lay the images out as labelled panels."""
+def _render_tiles(meshes, path, labels, columns=3, cell=300, panel_in=3.2, **kw):
+    """Render each mesh on its own (same view) and lay the images out as labelled panels (``panel_in`` inches each)."""
     from noiselab.geometry import render_mesh
 
     from .._common import pyplot, save_figure
 
     plt = pyplot()
     rows = -(-len(labels) // columns)   # from the labels: ``meshes`` may be a generator (one mesh in memory at a time)
-    fig, axes = plt.subplots(rows, columns, figsize=(3.2 * columns, 3.2 * rows), squeeze=False)
+    fig, axes = plt.subplots(rows, columns, figsize=(panel_in * columns, panel_in * rows), squeeze=False)
     for ax in axes.ravel():
         ax.axis("off")
     for ax, mesh, label in zip(axes.ravel(), meshes, labels):
@@ -632,9 +632,7 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
         uses=GEOM)
 def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
     from noiselab.lattice import LatticeNoise
-    from noiselab.geometry import colored_surface, render_mesh
-
-    from .._common import save_image
+    from noiselab.geometry import colored_surface
 
     ext = ((0.0, cells), (0.0, cells))
     # the colour components use their measured spread (2nd to 98th percentile), not the bound [-1, 1] that the
@@ -654,8 +652,10 @@ def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
         c[:, :3] = 0.67 * c[:, :3] + 0.33 * 190.0
         m.visual.vertex_colors = np.clip(np.rint(c), 0, 255).astype(np.uint8)
         shown.append(m)
-    imgs = [render_mesh(m, size=size, elevation=-5, azimuth=20, zoom=1.1) for m in shown]
-    pair = np.concatenate([imgs[0], np.full((imgs[0].shape[0], 12, 3), 255, np.uint8), imgs[1]], axis=1)
+    # the fit leaves a 4% margin around the farthest vertex; a zoom past 1 pushed both surfaces out of their frames,
+    # so each is drawn slightly smaller than the fit and in its own labelled panel
+    path = _render_tiles(shown, out / "fig11.png", ["hue (component 2)", "RGB (components 2-4)"], columns=2,
+                         cell=size, panel_in=size / 100, elevation=-5, azimuth=20, zoom=0.92)
     cols = np.asarray(rgb.visual.vertex_colors)[:, :3].astype(float)
     here = [float(np.corrcoef(cols[:, i], cols[:, j])[0, 1]) for i, j in ((0, 1), (0, 2), (1, 2))]
     from matplotlib.colors import rgb_to_hsv
@@ -670,7 +670,7 @@ def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
         pooled += [np.corrcoef(c[:, i], c[:, j])[0, 1] for i, j in ((0, 1), (0, 2), (1, 2))]
     sentence, stats = _independence(pooled, f"the R-G, R-B, G-B correlations of 3 x 3-cell surfaces (3 pairs x {seeds} seeds)",
                                     unit="values")
-    return Result([save_image(out / "fig11.png", pair)],
+    return Result([path],
                   f"Left: 2-output noise, component 1 = height (z = {amplitude:g} noise, relief {np.ptp(z):.2f} over "
                   f"{cells:g} cells), component 2 = hue, its 2nd-98th percentile stretched over the whole hue circle "
                   f"({100 * covered:.0f}% of 10-degree hue bins used). Right: 4-output noise, component 1 = height, "
