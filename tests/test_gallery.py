@@ -585,6 +585,25 @@ def test_a_stimuli_figure_joins_zhangs_section_in_the_thesis_order(tmp_path):
     assert 'class="pixelated" width="256" height="256"' in text
 
 
+def test_a_small_video_is_enlarged_like_the_small_still_beside_it(tmp_path):
+    """A video narrower than the page's small-image width plays at the same whole-factor enlargement as a still."""
+    from noiselab.gallery import html as page_html
+    from noiselab.gallery._common import save_video
+    from noiselab.io import write_image
+
+    frames = np.linspace(0, 1, 4 * 48 * 48).reshape(4, 48, 48)
+    files = save_video(tmp_path, "clip", frames) + [write_image(tmp_path / "still.png", np.zeros((48, 48), np.uint8))]
+    text = page_html._media(files, tmp_path)
+    k = -(-page_html.SMALL // 48)
+    video = re.search(r"<video[^>]*>", text).group(0)
+    still = re.search(r'<img src="still.png"[^>]*>', text).group(0)
+    for tag in (video, still):
+        assert f'class="pixelated" width="{48 * k}" height="{48 * k}"' in tag
+    # a video as wide as the page's small-image width is shown at its own size
+    big = save_video(tmp_path, "big", np.zeros((2, page_html.SMALL, page_html.SMALL)))
+    assert "pixelated" not in page_html._media(big, tmp_path)
+
+
 def test_small_label_detector_flags_text_seen_under_11_px(tmp_path):
     from noiselab.gallery import checks
     from noiselab.gallery._common import pyplot, save_figure
