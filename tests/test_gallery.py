@@ -604,6 +604,25 @@ def test_a_small_video_is_enlarged_like_the_small_still_beside_it(tmp_path):
     assert "pixelated" not in page_html._media(big, tmp_path)
 
 
+def test_label_band_keeps_the_stimulus_pixels_and_writes_each_label_over_its_panel():
+    from noiselab.gallery._common import label_band
+
+    rng = np.random.default_rng(0)
+    image = rng.integers(0, 256, (40, 200), dtype=np.uint8)
+    out = label_band(image, ["left", "right"], centres=[50, 150], height=24, size=16)
+    assert out.shape == (64, 200) and out.dtype == np.uint8
+    assert np.array_equal(out[24:], image)                  # the stimulus's displayed values are untouched
+    band = out[:24]
+    ink = np.flatnonzero((band < 128).any(axis=0))
+    # ink under both labels, none at the far edges or between the two words
+    assert ink.size and (ink < 100).any() and (ink >= 100).any()
+    assert not (band[:, :5] < 128).any() and not (band[:, 97:103] < 128).any()
+    rgb = label_band(np.repeat(image[..., None], 3, axis=-1), ["a"])
+    assert rgb.shape == (70, 200, 3) and np.array_equal(rgb[30:, :, 1], image)
+    with pytest.raises(TypeError, match="image must be uint8"):
+        label_band(image.astype(float), ["a"])
+
+
 def test_small_label_detector_flags_text_seen_under_11_px(tmp_path):
     from noiselab.gallery import checks
     from noiselab.gallery._common import pyplot, save_figure

@@ -101,14 +101,14 @@ def episcotister(out, *, size_deg, a, b, t, alpha, revolutions_per_second, durat
 
 @figure("stimuli", "fig5_2", source="Zhang 2003, Fig. 5.2 (after Singh & Anderson 2002)",
         title="Transmittance matching: a target disc and a matching disc of another mean luminance, over a sinusoidal background",
-        params=dict(size_deg=8.0, mean=40.0, michelson_surround=0.6, alpha_target=0.4, match_mean=20.0, cycles=4.0,
+        params=dict(size_deg=8.0, mean=40.0, michelson_surround=0.8, alpha_target=0.6, match_mean=20.0, cycles=4.0,
                     seed=12),
         quick=dict(size_deg=2.0), uses=STIM,
         look="the two central discs look equally transparent: the same Michelson contrast, though their luminance ranges differ by half")
 def transmittance_matching(out, *, size_deg, mean, michelson_surround, alpha_target, match_mean, cycles, seed):
     from noiselab import analysis
 
-    from .._common import save_image
+    from .._common import label_band, save_image
 
     d = _display()
     n = d.pixels(size_deg)
@@ -126,7 +126,9 @@ def transmittance_matching(out, *, size_deg, mean, michelson_surround, alpha_tar
     L = _side_by_side(target, match, gap, field)
     values = _show(L, d, seed)
     shown = d.luminance_of(values)
-    path = save_image(out / "fig5_2.png", values)
+    path = save_image(out / "fig5_2.png", label_band(values, [f"target (mean {mean:g} cd/m²)",
+                                                               f"match (mean {match_mean:g} cd/m²)"],
+                                                      centres=[n / 2, n + gap + n / 2]))
     left, right = shown[:, :n], shown[:, n + gap:]
     m_s = analysis.michelson_contrast(left, outer & ~_disc_mask(n, 0.24))
     m_t, m_m = analysis.michelson_contrast(left, centre), analysis.michelson_contrast(right, centre)
@@ -157,7 +159,7 @@ def transmittance_matching(out, *, size_deg, mean, michelson_surround, alpha_tar
 def larger_range(out, *, size_deg, range_centre, range_surround, means, cycles, seed):
     from noiselab import analysis
 
-    from .._common import save_image
+    from .._common import label_band, save_image
 
     d = _display()
     n = d.pixels(size_deg)
@@ -171,7 +173,9 @@ def larger_range(out, *, size_deg, range_centre, range_surround, means, cycles, 
     L = _side_by_side(panels[0], panels[1], gap, fill)
     values = _show(L, d, seed)
     shown = d.luminance_of(values)
-    path = save_image(out / "fig5_3.png", values)
+    path = save_image(out / "fig5_3.png", label_band(values, [f"(a) means {means[0][0]:g} / {means[0][1]:g}",
+                                                               f"(b) means {means[1][0]:g} / {means[1][1]:g}"],
+                                                      centres=[n / 2, n + gap + n / 2]))
     measured = {}
     ring = ~_disc_mask(n, 0.26)
     for tag, (m_c, m_s), img in (("(a)", means[0], shown[:, :n]), ("(b)", means[1], shown[:, n + gap:])):
