@@ -567,11 +567,12 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
     plt = pyplot()
     field = LatticeNoise(3, 3, rng=seed)
     ext = ((0.0, cells),) * 3
-    margin = 0.1 * cells
-    pts, vec = flow_field(field, (glyphs,) * 3, ((margin, cells - margin),) * 3)   # (z, y, x) points, (v_z, v_y, v_x)
+    # the arrows' tails at the centres of a glyphs^3 grid of equal sub-cubes (flow_field samples lo + i (hi - lo) / n,
+    # so the extent is shifted by half a spacing): the field fills the box evenly instead of its lower corner
+    spacing = cells / glyphs
+    pts, vec = flow_field(field, (glyphs,) * 3, ((spacing / 2, cells + spacing / 2),) * 3)   # (z, y, x), (v_z, v_y, v_x)
     p = pts.reshape(-1, 3)[:, ::-1]
     v = vec.reshape(-1, 3)[:, ::-1]
-    spacing = (cells - 2 * margin) / max(glyphs - 1, 1)
     scale = 1.1 * spacing / float(np.percentile(np.linalg.norm(v, axis=1), 90))   # most arrows about a spacing long
     # depth along the line of sight of the mean view: 0 nearest, 1 farthest; colour and width follow it
     elev, azim = np.radians(22.0), np.radians(-30.0)
@@ -587,7 +588,10 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
                              _streamline_3d(field, s_, cells, steps=60)[1:]]) for s_ in starts]
     # cross-fused viewing: the left image is the right eye's view, turned by half the vergence the other way
     fig = plt.figure(figsize=(size / 100, size / 200 + 0.4))
-    box = np.array([[x, y, z] for x in (0, cells) for y in (0, cells) for z in (0, cells)])
+    # the wireframe box: the field's cube, widened (the same on every axis, so it stays a cube) to hold every arrow head
+    heads = p + v * scale
+    lo, hi = min(0.0, float(heads.min())), max(float(cells), float(heads.max()))
+    box = np.array([[x, y, z] for x in (lo, hi) for y in (lo, hi) for z in (lo, hi)])
     edges = [(i, j) for i in range(8) for j in range(i + 1, 8) if np.sum(box[i] != box[j]) == 1]
     order = np.argsort(-depth)     # far arrows first, so near ones are drawn over them
     for k, az in enumerate((-30 + eye_deg / 2, -30 - eye_deg / 2)):
@@ -601,7 +605,7 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
             ax.quiver(*p[a], *(v[a] * scale), color=colours[a], linewidth=1.5 + 2.5 * (1 - depth[a]),
                       arrow_length_ratio=0.3)
         ax.view_init(elev=22, azim=az)
-        ax.set_xlim(0, cells), ax.set_ylim(0, cells), ax.set_zlim(0, cells)
+        ax.set_xlim(lo, hi), ax.set_ylim(lo, hi), ax.set_zlim(lo, hi)
         ax.set_box_aspect((1, 1, 1)), ax.set_axis_off()
         ax.set_title("left: the right eye's view" if k == 0 else "right: the left eye's view", fontsize=12)
     length = [float(np.sum(np.linalg.norm(np.diff(line, axis=0), axis=1))) for line in lines]
