@@ -158,7 +158,8 @@ def normals(out, *, resolutions, subdivisions, shade, seed):
     for ax in axes[:2]:
         ax.set_xlabel("x (lattice cells)"), ax.set_ylabel("y (lattice cells)")
     im = axes[1].imshow(coarse_angles, origin="lower", extent=(0, 4, 0, 4), cmap="magma")
-    plt.colorbar(im, ax=axes[1], fraction=0.046, label="angle (degrees)")
+    # the colour bar's unit as its title: a side label stood beside the next panel's y label, the same words twice
+    plt.colorbar(im, ax=axes[1], fraction=0.046).ax.set_title("degrees", fontsize=10)
     axes[1].set_title(f"angle between face and exact\nnormals, {resolutions[1]}^2 mesh", fontsize=10)
     for rows, label, mk in ((monge, "Monge surface", "o"), (sphere_rows, "displaced sphere (Eq. 11)", "s")):
         h = np.array([r[0] for r in rows])
@@ -169,8 +170,11 @@ def normals(out, *, resolutions, subdivisions, shade, seed):
     from matplotlib.ticker import NullFormatter
 
     axes[2].xaxis.set_minor_formatter(NullFormatter())
-    axes[2].set_xlabel("mesh edge length (input units)"), axes[2].set_ylabel("angle (degrees)")
-    axes[2].legend(fontsize=10)
+    axes[2].set_xlabel("mesh edge length (input units)"), axes[2].set_ylabel("angle to the exact normals (degrees)")
+    # the lines climb from lower left to upper right: headroom above them holds the legend, in the upper left
+    lo, hi = axes[2].get_ylim()
+    axes[2].set_ylim(lo, hi * (hi / lo) ** 0.5)
+    axes[2].legend(fontsize=10, loc="upper left")
     axes[2].set_title("face normals converge to the\nexact ones at second order", fontsize=10)
     slope = np.polyfit(np.log(h), np.log([r[1] for r in monge]), 1)[0]
     measured["Monge surface: fitted order of convergence of the median angle"] = float(slope)
