@@ -623,6 +623,20 @@ def test_label_band_keeps_the_stimulus_pixels_and_writes_each_label_over_its_pan
         label_band(image.astype(float), ["a"])
 
 
+def test_each_page_names_the_other_in_a_sentence_and_headings_start_with_a_capital(tmp_path):
+    from noiselab.gallery import html as page_html
+
+    pages = page_html.render_pages(tmp_path, [])
+    text = {p: re.sub(r"<[^>]+>", "", t) for p, t in pages.items()}
+    assert "The lab's comparisons and derivatives are on a page of their own." in html.unescape(text["index.html"])
+    assert ("The seed papers' figures, reproduced and measured, are on a page of their own."
+            in html.unescape(text["lab.html"]))
+    # a card's heading is "source: title": both begin with a capital letter or a digit
+    for spec in registry.specs(None):
+        for part in (spec.source, spec.title):
+            assert not part[0].islower(), (spec.key, part)
+
+
 def test_small_label_detector_flags_text_seen_under_11_px(tmp_path):
     from noiselab.gallery import checks
     from noiselab.gallery._common import pyplot, save_figure

@@ -204,6 +204,9 @@ def format_measured(measured: dict) -> str:
 PAGES = {"index.html": ("readme", "snow", "stimuli", "phillips"), "lab.html": ("lab", "derivatives")}
 PAGE_TITLES = {"index.html": "noiselab gallery: the seed papers' figures, reproduced and measured",
                "lab.html": "noiselab lab: comparisons and derivatives"}
+# how each page names the other one, in a sentence of its own
+PAGE_SUBJECTS = {"index.html": "The seed papers' figures, reproduced and measured,",
+                 "lab.html": "The lab's comparisons and derivatives"}
 # groups shown inside another group's section (Zhang's transparency stimuli belong with the rest of the thesis)
 SECTION_OF = {"stimuli": "snow"}
 GROUP_TITLES = {"snow": "Falling snow and perceptual transparency (Langer & Zhang 2003; Zhang 2003)",
@@ -403,8 +406,8 @@ def render_pages(root: Path, entries, *, summary="") -> dict:
             body += [_front(spec, man, root) for spec, man in entries if spec.group == FRONT]
             body.append(_references())
         body.append(f'<p>Click a thumbnail to jump to its figure, an image to open it at full size; a video loads '
-                    f'when you play it, and plays while on screen. '
-                    f'<a href="{other}">{html.escape(PAGE_TITLES[other])}</a> are on a page of their own.</p>')
+                    f'when you play it, and plays while on screen. {html.escape(PAGE_SUBJECTS[other])} are on '
+                    f'<a href="{other}">a page of their own</a>.</p>')
         body.append(_grid(sections, entries, root))
         for g, cards in sections:
             body.append(f'<h2 id="{html.escape(g)}">{html.escape(GROUP_TITLES.get(g, g))}</h2>')

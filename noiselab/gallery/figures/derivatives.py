@@ -60,7 +60,7 @@ def curl_flow(out, *, samples, cells, arrows, seed):
 
 
 @figure("derivatives", "warp", look="the pattern folds and swirls as warps compose; the shading comes from the exact chain-rule gradient",
-        source="the lab's own (domain warping, Quilez 2002)",
+        source="The lab's own comparison (domain warping, Quilez 2002)",
         title="Domain warping and its exact gradient",
         params=dict(samples=384, cells=4.0, amount=0.8, seed=3), quick=dict(samples=96), uses=USES)
 def warp_figure(out, *, samples, cells, amount, seed):
