@@ -209,8 +209,11 @@ def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, c
     pts = paths[chosen]
     tail = int(round(tail_seconds * fps))
     lo, hi = pts.min(axis=0), pts.max(axis=0)
-    pad = 0.08 * float(np.max(hi - lo))
-    lim = ((lo[0] - pad, hi[0] + pad), (lo[1] - pad, hi[1] + pad))
+    # the same span on both axes, about the path's middle: the square video frames then show the path unstretched
+    # (equal aspect), as the panels do
+    half = 0.54 * float(np.max(hi - lo))
+    mid = (lo + hi) / 2
+    lim = ((mid[0] - half, mid[0] + half), (mid[1] - half, mid[1] + half))
     frames = trajectory_frames(pts, tail=tail, size=size, limits=lim)
     picks = np.linspace(tail, len(t) - 1, panels).astype(int)
     fig, axes = plt.subplots(1, panels, figsize=(3.2 * panels, 3.6), layout="constrained")
