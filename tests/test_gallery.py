@@ -247,9 +247,10 @@ def test_zhangs_figures_are_one_section_in_the_thesis_order(quick_gallery):
     numbers = [tuple(int(x) for x in re.search(r"(?:Fig|Sec)\. (\d+)\.(\d+)", h).groups()) for h in zhang]
     assert numbers == sorted(numbers), numbers
     assert ids.index("snow-fig3_1") < ids.index("snow-opacity")   # the opacity video after the figures it explains
-    # the lab's page keeps registration order (its sources are not a paper's figure numbers)
+    # the lab's page keeps registration order within each section (its sources are not a paper's figure numbers);
+    # a figure of the lab group registered by a later module (gabor) still stands in the lab's section
     lab = [f["id"] for f in _parse(out / "lab.html").figures]
-    assert lab == [s.key.replace("/", "-") for s in _cards() if s.group in ("lab", "derivatives")]
+    assert lab == [s.key.replace("/", "-") for g in ("lab", "derivatives") for s in _cards() if s.group == g]
     # Langer & Zhang's sketch has one figure: it is named where the thesis redraws it
     assert any("Langer & Zhang 2003, Fig. 1" in h for h in zhang)
     # no seed figure twice
