@@ -247,9 +247,10 @@ def test_zhangs_figures_are_one_section_in_the_thesis_order(quick_gallery):
     numbers = [tuple(int(x) for x in re.search(r"(?:Fig|Sec)\. (\d+)\.(\d+)", h).groups()) for h in zhang]
     assert numbers == sorted(numbers), numbers
     assert ids.index("snow-fig3_1") < ids.index("snow-opacity")   # the opacity video after the figures it explains
-    # the lab's page keeps registration order (its sources are not a paper's figure numbers)
+    # the lab's page keeps registration order within each section (its sources are not a paper's figure numbers);
+    # a figure of the lab group registered by a later module (gabor) still stands in the lab's section
     lab = [f["id"] for f in _parse(out / "lab.html").figures]
-    assert lab == [s.key.replace("/", "-") for s in _cards() if s.group in ("lab", "derivatives")]
+    assert lab == [s.key.replace("/", "-") for g in ("lab", "derivatives") for s in _cards() if s.group == g]
     # Langer & Zhang's sketch has one figure: it is named where the thesis redraws it
     assert any("Langer & Zhang 2003, Fig. 1" in h for h in zhang)
     # no seed figure twice
@@ -583,6 +584,58 @@ def test_a_stimuli_figure_joins_zhangs_section_in_the_thesis_order(tmp_path):
     assert "stimuli-zz_probe" not in (tmp_path / "lab.html").read_text()
     # a 4-pixel image is shown enlarged by a whole factor, nearest neighbour
     assert 'class="pixelated" width="256" height="256"' in text
+
+
+def test_a_small_video_is_enlarged_like_the_small_still_beside_it(tmp_path):
+    """A video narrower than the page's small-image width plays at the same whole-factor enlargement as a still."""
+    from noiselab.gallery import html as page_html
+    from noiselab.gallery._common import save_video
+    from noiselab.io import write_image
+
+    frames = np.linspace(0, 1, 4 * 48 * 48).reshape(4, 48, 48)
+    files = save_video(tmp_path, "clip", frames) + [write_image(tmp_path / "still.png", np.zeros((48, 48), np.uint8))]
+    text = page_html._media(files, tmp_path)
+    k = -(-page_html.SMALL // 48)
+    video = re.search(r"<video[^>]*>", text).group(0)
+    still = re.search(r'<img src="still.png"[^>]*>', text).group(0)
+    for tag in (video, still):
+        assert f'class="pixelated" width="{48 * k}" height="{48 * k}"' in tag
+    # a video as wide as the page's small-image width is shown at its own size
+    big = save_video(tmp_path, "big", np.zeros((2, page_html.SMALL, page_html.SMALL)))
+    assert "pixelated" not in page_html._media(big, tmp_path)
+
+
+def test_label_band_keeps_the_stimulus_pixels_and_writes_each_label_over_its_panel():
+    from noiselab.gallery._common import label_band
+
+    rng = np.random.default_rng(0)
+    image = rng.integers(0, 256, (40, 200), dtype=np.uint8)
+    out = label_band(image, ["left", "right"], centres=[50, 150], height=24, size=16)
+    assert out.shape == (64, 200) and out.dtype == np.uint8
+    assert np.array_equal(out[24:], image)                  # the stimulus's displayed values are untouched
+    band = out[:24]
+    ink = np.flatnonzero((band < 128).any(axis=0))
+    # ink under both labels, none at the far edges or between the two words
+    assert ink.size and (ink < 100).any() and (ink >= 100).any()
+    assert not (band[:, :5] < 128).any() and not (band[:, 97:103] < 128).any()
+    rgb = label_band(np.repeat(image[..., None], 3, axis=-1), ["a"])
+    assert rgb.shape == (70, 200, 3) and np.array_equal(rgb[30:, :, 1], image)
+    with pytest.raises(TypeError, match="image must be uint8"):
+        label_band(image.astype(float), ["a"])
+
+
+def test_each_page_names_the_other_in_a_sentence_and_headings_start_with_a_capital(tmp_path):
+    from noiselab.gallery import html as page_html
+
+    pages = page_html.render_pages(tmp_path, [])
+    text = {p: re.sub(r"<[^>]+>", "", t) for p, t in pages.items()}
+    assert "The lab's comparisons and derivatives are on a page of their own." in html.unescape(text["index.html"])
+    assert ("The seed papers' figures, reproduced and measured, are on a page of their own."
+            in html.unescape(text["lab.html"]))
+    # a card's heading is "source: title": both begin with a capital letter or a digit
+    for spec in registry.specs(None):
+        for part in (spec.source, spec.title):
+            assert not part[0].islower(), (spec.key, part)
 
 
 def test_small_label_detector_flags_text_seen_under_11_px(tmp_path):

@@ -68,6 +68,32 @@ def save_video(out, stem, frames, *, fps=25.0, vmin=None, vmax=None, poster_fram
     return [mp4, poster]
 
 
+def label_band(image, labels, *, centres=None, height=30, size=18):
+    """``image`` (uint8, grey or RGB) under a white band holding ``labels``, centred at the columns ``centres``.
+
+    ``centres`` defaults to the middles of equal column spans, one per label.
+    The image's own pixels are kept as they are (a stimulus keeps its displayed values); the labels are drawn in
+    matplotlib's DejaVu Sans, ``size`` pixels high, so the band is the same on every machine.
+    """
+    from matplotlib import font_manager
+    from PIL import Image, ImageDraw, ImageFont
+
+    image = np.asarray(image)
+    if image.dtype != np.uint8:
+        raise TypeError(f"image must be uint8, got {image.dtype}")
+    band = Image.new("L", (image.shape[1], height), 255)
+    draw = ImageDraw.Draw(band)
+    font = ImageFont.truetype(font_manager.findfont("DejaVu Sans"), size)
+    if centres is None:
+        centres = [(k + 0.5) * image.shape[1] / len(labels) for k in range(len(labels))]
+    for x, text in zip(centres, labels):
+        draw.text((x, height / 2), text, fill=0, font=font, anchor="mm")
+    top = np.asarray(band)
+    if image.ndim == 3:
+        top = np.repeat(top[..., None], image.shape[2], axis=-1)
+    return np.concatenate([top, image], axis=0)
+
+
 def grey_to_rgb(image):
     image = np.asarray(image)
     return np.repeat(image[..., None], 3, axis=-1) if image.ndim == 2 else image

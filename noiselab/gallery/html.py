@@ -36,7 +36,7 @@ figure { background: #fff; border: 1px solid #ddd; border-radius: 6px; margin: 1
 figure h3 { margin: 0 0 0.5em 0; font-size: 1.1em; }
 .media { display: flex; flex-wrap: wrap; gap: 1em; align-items: flex-start; }
 .media img, .media video { max-width: 100%; height: auto; border: 1px solid #eee; }
-.media img.pixelated { image-rendering: pixelated; }
+.media .pixelated { image-rendering: pixelated; }
 .media a.shot { display: block; max-width: 100%; }
 .clip { font-size: 0.85em; } .clip a.full { color: #555; }
 .lead { font-size: 1.1em; line-height: 1.5; max-width: 60em; }
@@ -128,13 +128,18 @@ def _png_size(path: Path):
 SMALL = 256   # px: smaller images (tiles) are shown enlarged by a whole factor, nearest neighbour
 
 
-def _image(f: Path, root: Path) -> str:
-    src = html.escape(_rel(f, root), quote=True)
-    size = _png_size(f) if f.suffix.lower() == ".png" else None
-    attr = ""
+def _enlarged(png: Path) -> str:
+    """Attributes that show a PNG narrower than ``SMALL`` (or a video with such a poster) enlarged by a whole factor."""
+    size = _png_size(png) if png.suffix.lower() == ".png" else None
     if size and 0 < size[0] < SMALL:
         k = -(-SMALL // size[0])
-        attr = f' class="pixelated" width="{size[0] * k}" height="{size[1] * k}"'
+        return f' class="pixelated" width="{size[0] * k}" height="{size[1] * k}"'
+    return ""
+
+
+def _image(f: Path, root: Path) -> str:
+    src = html.escape(_rel(f, root), quote=True)
+    attr = _enlarged(f)
     return (f'<a class="shot" href="{src}" target="_blank" title="open {html.escape(f.name)} at full size">'
             f'<img src="{src}" alt="{html.escape(f.name)}"{attr} loading="eager"></a>')
 
@@ -155,7 +160,9 @@ def _media(files, root):
         ext = f.suffix.lower()
         if ext in VIDEO_EXT:
             poster = poster_of(f)
-            attr = f' poster="{html.escape(_rel(poster, root), quote=True)}"' if poster in files else ""
+            attr = ""
+            if poster in files:   # a small video is enlarged like a small image, so a still beside it matches it
+                attr = f' poster="{html.escape(_rel(poster, root), quote=True)}"' + _enlarged(poster)
             mime = "video/mp4" if ext == ".mp4" else "video/webm"
             parts.append(f'<div class="clip"><video controls loop muted playsinline preload="none"{attr}>'
                          f'<source src="{src}" type="{mime}"></video>'
@@ -197,6 +204,9 @@ def format_measured(measured: dict) -> str:
 PAGES = {"index.html": ("readme", "snow", "stimuli", "phillips"), "lab.html": ("lab", "derivatives")}
 PAGE_TITLES = {"index.html": "noiselab gallery: the seed papers' figures, reproduced and measured",
                "lab.html": "noiselab lab: comparisons and derivatives"}
+# how each page names the other one, in a sentence of its own
+PAGE_SUBJECTS = {"index.html": "The seed papers' figures, reproduced and measured,",
+                 "lab.html": "The lab's comparisons and derivatives"}
 # groups shown inside another group's section (Zhang's transparency stimuli belong with the rest of the thesis)
 SECTION_OF = {"stimuli": "snow"}
 GROUP_TITLES = {"snow": "Falling snow and perceptual transparency (Langer & Zhang 2003; Zhang 2003)",
@@ -396,8 +406,8 @@ def render_pages(root: Path, entries, *, summary="") -> dict:
             body += [_front(spec, man, root) for spec, man in entries if spec.group == FRONT]
             body.append(_references())
         body.append(f'<p>Click a thumbnail to jump to its figure, an image to open it at full size; a video loads '
-                    f'when you play it, and plays while on screen. '
-                    f'<a href="{other}">{html.escape(PAGE_TITLES[other])}</a> are on a page of their own.</p>')
+                    f'when you play it, and plays while on screen. {html.escape(PAGE_SUBJECTS[other])} are on '
+                    f'<a href="{other}">a page of their own</a>.</p>')
         body.append(_grid(sections, entries, root))
         for g, cards in sections:
             body.append(f'<h2 id="{html.escape(g)}">{html.escape(GROUP_TITLES.get(g, g))}</h2>')

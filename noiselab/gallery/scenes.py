@@ -136,7 +136,9 @@ def house_scene(height, width, *, periodic=False, rng=0):
     _poly(ax, [(x0 - 0.02 * W, yb + 0.035 * H), (x1 + 0.1 * W, yb + 0.035 * H), (x1 + 0.02 * W, yb), (x0, yb)],
           (176, 196, 228), 5, P)                                            # its shadow on the snow
     _rect(ax, x0, yw, x1, yb, (168, 36, 32), 6, P)
-    _rect(ax, x1, yw, x1 + 0.1 * W, yb, (120, 26, 24), 6, P)                # the side wall, in shade
+    # the side wall, in shade; it starts under the roof (at the far slope's lower edge, yw - 0.005 H, less a
+    # pixel), not at yw: the band between them showed the sky as a dashed white line under the right eave
+    _rect(ax, x1, yw - 0.005 * H - 1, x1 + 0.1 * W, yb, (120, 26, 24), 6, P)
     _rect(ax, 0.46 * W, 0.24 * H, 0.5 * W, 0.38 * H, (96, 40, 32), 6.5, P)   # chimney
     _rect(ax, 0.455 * W, 0.225 * H, 0.505 * W, 0.245 * H, (250, 252, 255), 6.6, P)
     _poly(ax, [(x0 - 0.03 * W, yw + 0.01 * H), (x1 + 0.03 * W, yw + 0.01 * H), (0.5 * (x0 + x1), 0.27 * H)],

@@ -60,7 +60,7 @@ def curl_flow(out, *, samples, cells, arrows, seed):
 
 
 @figure("derivatives", "warp", look="the pattern folds and swirls as warps compose; the shading comes from the exact chain-rule gradient",
-        source="the lab's own (domain warping, Quilez 2002)",
+        source="The lab's own comparison (domain warping, Quilez 2002)",
         title="Domain warping and its exact gradient",
         params=dict(samples=384, cells=4.0, amount=0.8, seed=3), quick=dict(samples=96), uses=USES)
 def warp_figure(out, *, samples, cells, amount, seed):
@@ -158,7 +158,8 @@ def normals(out, *, resolutions, subdivisions, shade, seed):
     for ax in axes[:2]:
         ax.set_xlabel("x (lattice cells)"), ax.set_ylabel("y (lattice cells)")
     im = axes[1].imshow(coarse_angles, origin="lower", extent=(0, 4, 0, 4), cmap="magma")
-    plt.colorbar(im, ax=axes[1], fraction=0.046, label="angle (degrees)")
+    # the colour bar's unit as its title: a side label stood beside the next panel's y label, the same words twice
+    plt.colorbar(im, ax=axes[1], fraction=0.046).ax.set_title("degrees", fontsize=10)
     axes[1].set_title(f"angle between face and exact\nnormals, {resolutions[1]}^2 mesh", fontsize=10)
     for rows, label, mk in ((monge, "Monge surface", "o"), (sphere_rows, "displaced sphere (Eq. 11)", "s")):
         h = np.array([r[0] for r in rows])
@@ -169,8 +170,11 @@ def normals(out, *, resolutions, subdivisions, shade, seed):
     from matplotlib.ticker import NullFormatter
 
     axes[2].xaxis.set_minor_formatter(NullFormatter())
-    axes[2].set_xlabel("mesh edge length (input units)"), axes[2].set_ylabel("angle (degrees)")
-    axes[2].legend(fontsize=10)
+    axes[2].set_xlabel("mesh edge length (input units)"), axes[2].set_ylabel("angle to the exact normals (degrees)")
+    # the lines climb from lower left to upper right: headroom above them holds the legend, in the upper left
+    lo, hi = axes[2].get_ylim()
+    axes[2].set_ylim(lo, hi * (hi / lo) ** 0.5)
+    axes[2].legend(fontsize=10, loc="upper left")
     axes[2].set_title("face normals converge to the\nexact ones at second order", fontsize=10)
     slope = np.polyfit(np.log(h), np.log([r[1] for r in monge]), 1)[0]
     measured["Monge surface: fitted order of convergence of the median angle"] = float(slope)

@@ -52,8 +52,9 @@ def one_over_f(out, *, size, octaves, cells, gains, seed):
     axes[n].set_xlabel("cycles/frame"), axes[n].set_ylabel("radial amplitude"), axes[n].legend(fontsize=10)
     axes[n].set_title("radially averaged amplitude\nspectra (Hann window)", fontsize=10)
     axes[n + 1].set_xlabel("wave-vector orientation (degrees)"), axes[n + 1].set_ylabel("energy / mean")
-    axes[n + 1].set_xticks(range(0, 361, 90)), axes[n + 1].legend(fontsize=10)
-    axes[n + 1].set_title("energy against orientation\n(whitened)", fontsize=10)
+    # no legend of its own (it covered the curves): the colours are the spectra's, whose legend names them
+    axes[n + 1].set_xticks(range(0, 361, 90))
+    axes[n + 1].set_title("energy against orientation\n(whitened; colours as in the spectra)", fontsize=10)
     return Result([save_figure(fig, out / "one_over_f.png")],
                   f"{size} x {size} textures: one with a 1/f amplitude spectrum shaped in the Fourier domain and inverted "
                   f"(noiselab.spectral_noise), and fractal sums of cubic value noise over {cells:g} lattice cells "
@@ -195,7 +196,11 @@ def hashes(out, *, cells, spc, seeds, kernel, seed):
     axes[0, 1].set_title("row means of one field", fontsize=12)
     axes[0, 1].set_xlabel("row (pixels)"), axes[0, 1].set_ylabel("mean value"), axes[0, 1].legend(fontsize=10)
     axes[1, 1].set_title("row-averaged periodogram along x\n/ its mean over seeds", fontsize=12)
-    axes[1, 1].set_xlabel("cycles/frame"), axes[1, 1].set_ylabel("ratio"), axes[1, 1].legend(fontsize=10)
+    # headroom above the traces (a third more decades) for the legend, which covered the first one
+    lo, hi = axes[1, 1].get_ylim()
+    axes[1, 1].set_ylim(lo, hi * (hi / lo) ** 0.35)
+    axes[1, 1].set_xlabel("cycles/frame"), axes[1, 1].set_ylabel("ratio")
+    axes[1, 1].legend(fontsize=10, loc="upper right")
     axes[0, 2].set_title("1-D line: mean squared difference\nat a lag / 2 var (0 = it repeats)", fontsize=12)
     axes[0, 2].set_xlabel("lag (cells)"), axes[0, 2].set_ylabel("ratio"), axes[0, 2].legend(fontsize=10)
     # the striping measure as bars (the numbers themselves are in the caption's details)

@@ -209,8 +209,11 @@ def fig04(out, *, seconds, fps, cycles_per_second, tail_seconds, size, panels, c
     pts = paths[chosen]
     tail = int(round(tail_seconds * fps))
     lo, hi = pts.min(axis=0), pts.max(axis=0)
-    pad = 0.08 * float(np.max(hi - lo))
-    lim = ((lo[0] - pad, hi[0] + pad), (lo[1] - pad, hi[1] + pad))
+    # the same span on both axes, about the path's middle: the square video frames then show the path unstretched
+    # (equal aspect), as the panels do
+    half = 0.54 * float(np.max(hi - lo))
+    mid = (lo + hi) / 2
+    lim = ((mid[0] - half, mid[0] + half), (mid[1] - half, mid[1] + half))
     frames = trajectory_frames(pts, tail=tail, size=size, limits=lim)
     picks = np.linspace(tail, len(t) - 1, panels).astype(int)
     fig, axes = plt.subplots(1, panels, figsize=(3.2 * panels, 3.6), layout="constrained")
@@ -470,15 +473,15 @@ def _render(meshes, path, size, **kw):
     return path
 
 
-def _render_tiles(meshes, path, labels, columns=3, cell=300, **kw):
-    """Render each mesh on its own (same view) and lay the images out as labelled panels."""
+def _render_tiles(meshes, path, labels, columns=3, cell=300, panel_in=3.2, **kw):
+    """Render each mesh on its own (same view) and lay the images out as labelled panels (``panel_in`` inches each)."""
     from noiselab.geometry import render_mesh
 
     from .._common import pyplot, save_figure
 
     plt = pyplot()
     rows = -(-len(labels) // columns)   # from the labels: ``meshes`` may be a generator (one mesh in memory at a time)
-    fig, axes = plt.subplots(rows, columns, figsize=(3.2 * columns, 3.2 * rows), squeeze=False)
+    fig, axes = plt.subplots(rows, columns, figsize=(panel_in * columns, panel_in * rows), squeeze=False)
     for ax in axes.ravel():
         ax.axis("off")
     for ax, mesh, label in zip(axes.ravel(), meshes, labels):
@@ -567,11 +570,12 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
     plt = pyplot()
     field = LatticeNoise(3, 3, rng=seed)
     ext = ((0.0, cells),) * 3
-    margin = 0.1 * cells
-    pts, vec = flow_field(field, (glyphs,) * 3, ((margin, cells - margin),) * 3)   # (z, y, x) points, (v_z, v_y, v_x)
+    # the arrows' tails at the centres of a glyphs^3 grid of equal sub-cubes (flow_field samples lo + i (hi - lo) / n,
+    # so the extent is shifted by half a spacing): the field fills the box evenly instead of its lower corner
+    spacing = cells / glyphs
+    pts, vec = flow_field(field, (glyphs,) * 3, ((spacing / 2, cells + spacing / 2),) * 3)   # (z, y, x), (v_z, v_y, v_x)
     p = pts.reshape(-1, 3)[:, ::-1]
     v = vec.reshape(-1, 3)[:, ::-1]
-    spacing = (cells - 2 * margin) / max(glyphs - 1, 1)
     scale = 1.1 * spacing / float(np.percentile(np.linalg.norm(v, axis=1), 90))   # most arrows about a spacing long
     # depth along the line of sight of the mean view: 0 nearest, 1 farthest; colour and width follow it
     elev, azim = np.radians(22.0), np.radians(-30.0)
@@ -587,7 +591,10 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
                              _streamline_3d(field, s_, cells, steps=60)[1:]]) for s_ in starts]
     # cross-fused viewing: the left image is the right eye's view, turned by half the vergence the other way
     fig = plt.figure(figsize=(size / 100, size / 200 + 0.4))
-    box = np.array([[x, y, z] for x in (0, cells) for y in (0, cells) for z in (0, cells)])
+    # the wireframe box: the field's cube, widened (the same on every axis, so it stays a cube) to hold every arrow head
+    heads = p + v * scale
+    lo, hi = min(0.0, float(heads.min())), max(float(cells), float(heads.max()))
+    box = np.array([[x, y, z] for x in (lo, hi) for y in (lo, hi) for z in (lo, hi)])
     edges = [(i, j) for i in range(8) for j in range(i + 1, 8) if np.sum(box[i] != box[j]) == 1]
     order = np.argsort(-depth)     # far arrows first, so near ones are drawn over them
     for k, az in enumerate((-30 + eye_deg / 2, -30 - eye_deg / 2)):
@@ -601,7 +608,7 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
             ax.quiver(*p[a], *(v[a] * scale), color=colours[a], linewidth=1.5 + 2.5 * (1 - depth[a]),
                       arrow_length_ratio=0.3)
         ax.view_init(elev=22, azim=az)
-        ax.set_xlim(0, cells), ax.set_ylim(0, cells), ax.set_zlim(0, cells)
+        ax.set_xlim(lo, hi), ax.set_ylim(lo, hi), ax.set_zlim(lo, hi)
         ax.set_box_aspect((1, 1, 1)), ax.set_axis_off()
         ax.set_title("left: the right eye's view" if k == 0 else "right: the left eye's view", fontsize=12)
     length = [float(np.sum(np.linalg.norm(np.diff(line, axis=0), axis=1))) for line in lines]
@@ -632,9 +639,7 @@ def fig10(out, *, glyphs, cells, size, eye_deg, seed):
         uses=GEOM)
 def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
     from noiselab.lattice import LatticeNoise
-    from noiselab.geometry import colored_surface, render_mesh
-
-    from .._common import save_image
+    from noiselab.geometry import colored_surface
 
     ext = ((0.0, cells), (0.0, cells))
     # the colour components use their measured spread (2nd to 98th percentile), not the bound [-1, 1] that the
@@ -654,8 +659,10 @@ def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
         c[:, :3] = 0.67 * c[:, :3] + 0.33 * 190.0
         m.visual.vertex_colors = np.clip(np.rint(c), 0, 255).astype(np.uint8)
         shown.append(m)
-    imgs = [render_mesh(m, size=size, elevation=-5, azimuth=20, zoom=1.1) for m in shown]
-    pair = np.concatenate([imgs[0], np.full((imgs[0].shape[0], 12, 3), 255, np.uint8), imgs[1]], axis=1)
+    # the fit leaves a 4% margin around the farthest vertex; a zoom past 1 pushed both surfaces out of their frames,
+    # so each is drawn slightly smaller than the fit and in its own labelled panel
+    path = _render_tiles(shown, out / "fig11.png", ["hue (component 2)", "RGB (components 2-4)"], columns=2,
+                         cell=size, panel_in=size / 100, elevation=-5, azimuth=20, zoom=0.92)
     cols = np.asarray(rgb.visual.vertex_colors)[:, :3].astype(float)
     here = [float(np.corrcoef(cols[:, i], cols[:, j])[0, 1]) for i, j in ((0, 1), (0, 2), (1, 2))]
     from matplotlib.colors import rgb_to_hsv
@@ -670,7 +677,7 @@ def fig11(out, *, grid, cells, amplitude, size, seeds, seed):
         pooled += [np.corrcoef(c[:, i], c[:, j])[0, 1] for i, j in ((0, 1), (0, 2), (1, 2))]
     sentence, stats = _independence(pooled, f"the R-G, R-B, G-B correlations of 3 x 3-cell surfaces (3 pairs x {seeds} seeds)",
                                     unit="values")
-    return Result([save_image(out / "fig11.png", pair)],
+    return Result([path],
                   f"Left: 2-output noise, component 1 = height (z = {amplitude:g} noise, relief {np.ptp(z):.2f} over "
                   f"{cells:g} cells), component 2 = hue, its 2nd-98th percentile stretched over the whole hue circle "
                   f"({100 * covered:.0f}% of 10-degree hue bins used). Right: 4-output noise, component 1 = height, "

@@ -101,14 +101,14 @@ def episcotister(out, *, size_deg, a, b, t, alpha, revolutions_per_second, durat
 
 @figure("stimuli", "fig5_2", source="Zhang 2003, Fig. 5.2 (after Singh & Anderson 2002)",
         title="Transmittance matching: a target disc and a matching disc of another mean luminance, over a sinusoidal background",
-        params=dict(size_deg=8.0, mean=40.0, michelson_surround=0.6, alpha_target=0.4, match_mean=20.0, cycles=4.0,
+        params=dict(size_deg=8.0, mean=40.0, michelson_surround=0.8, alpha_target=0.6, match_mean=20.0, cycles=4.0,
                     seed=12),
         quick=dict(size_deg=2.0), uses=STIM,
         look="the two central discs look equally transparent: the same Michelson contrast, though their luminance ranges differ by half")
 def transmittance_matching(out, *, size_deg, mean, michelson_surround, alpha_target, match_mean, cycles, seed):
     from noiselab import analysis
 
-    from .._common import save_image
+    from .._common import label_band, save_image
 
     d = _display()
     n = d.pixels(size_deg)
@@ -126,7 +126,9 @@ def transmittance_matching(out, *, size_deg, mean, michelson_surround, alpha_tar
     L = _side_by_side(target, match, gap, field)
     values = _show(L, d, seed)
     shown = d.luminance_of(values)
-    path = save_image(out / "fig5_2.png", values)
+    path = save_image(out / "fig5_2.png", label_band(values, [f"target (mean {mean:g} cd/m²)",
+                                                               f"match (mean {match_mean:g} cd/m²)"],
+                                                      centres=[n / 2, n + gap + n / 2]))
     left, right = shown[:, :n], shown[:, n + gap:]
     m_s = analysis.michelson_contrast(left, outer & ~_disc_mask(n, 0.24))
     m_t, m_m = analysis.michelson_contrast(left, centre), analysis.michelson_contrast(right, centre)
@@ -157,7 +159,7 @@ def transmittance_matching(out, *, size_deg, mean, michelson_surround, alpha_tar
 def larger_range(out, *, size_deg, range_centre, range_surround, means, cycles, seed):
     from noiselab import analysis
 
-    from .._common import save_image
+    from .._common import label_band, save_image
 
     d = _display()
     n = d.pixels(size_deg)
@@ -171,7 +173,9 @@ def larger_range(out, *, size_deg, range_centre, range_surround, means, cycles, 
     L = _side_by_side(panels[0], panels[1], gap, fill)
     values = _show(L, d, seed)
     shown = d.luminance_of(values)
-    path = save_image(out / "fig5_3.png", values)
+    path = save_image(out / "fig5_3.png", label_band(values, [f"(a) means {means[0][0]:g} / {means[0][1]:g}",
+                                                               f"(b) means {means[1][0]:g} / {means[1][1]:g}"],
+                                                      centres=[n / 2, n + gap + n / 2]))
     measured = {}
     ring = ~_disc_mask(n, 0.26)
     for tag, (m_c, m_s), img in (("(a)", means[0], shown[:, :n]), ("(b)", means[1], shown[:, n + gap:])):
@@ -193,7 +197,7 @@ def larger_range(out, *, size_deg, range_centre, range_surround, means, cycles, 
 
 @figure("stimuli", "fig5_4", source="Zhang 2003, Fig. 5.4 (after Singh & Anderson 2002)",
         title="Texture background with two low-contrast regions: texture continuing (left) and not (right)",
-        params=dict(size_deg=8.0, mean=40.0, michelson_surround=0.6, transmittance=0.35, sf=3.0, seed=4),
+        params=dict(size_deg=12.0, mean=40.0, michelson_surround=0.9, transmittance=0.5, sf=2.0, seed=4),
         quick=dict(size_deg=3.0), uses=STIM,
         look="the left region reads as a transparent layer over the texture; the right one, whose texture breaks, reads as a patch")
 def singh_anderson(out, *, size_deg, mean, michelson_surround, transmittance, sf, seed):
@@ -204,10 +208,13 @@ def singh_anderson(out, *, size_deg, mean, michelson_surround, transmittance, sf
 
     d = _display()
     n = d.pixels(size_deg)
+    # the textures' deviations are clipped at 2 standard deviations before the Michelson contrast is set: otherwise a
+    # few extreme pixels take the whole range and the texture itself spans a third of it (too faint to read, above
+    # all under the layer)
     bg = luminance_for(_texture(d, n, sf, 45.0, 20.0, seed), mean=mean, contrast=michelson_surround,
-                       contrast_kind="michelson")
+                       contrast_kind="michelson", clip=2.0)
     other = luminance_for(_texture(d, n, 1.6 * sf, -30.0, 20.0, seed + 1), mean=mean, contrast=michelson_surround,
-                          contrast_kind="michelson")
+                          contrast_kind="michelson", clip=2.0)
     y, x = np.mgrid[0:n, 0:n]
     inside_y = (y > n * 0.3) & (y < n * 0.7)
     left = inside_y & (x > n * 0.08) & (x < n * 0.44)
@@ -224,7 +231,8 @@ def singh_anderson(out, *, size_deg, mean, michelson_surround, transmittance, sf
          (("surround", surround), ("left", left), ("right", right))}
     m_under = analysis.michelson_contrast(bg, left)   # the background's own contrast under the left layer
     return Result([path], f"A {size_deg:g} deg texture (log-Gabor band at {sf:g} cycles/deg, 45 deg +- 20 deg) at a "
-                          f"mean of {mean:g} cd/m² and Michelson contrast {michelson_surround:g}, with two regions "
+                          f"mean of {mean:g} cd/m² and Michelson contrast {michelson_surround:g} (deviations clipped at "
+                          f"2 sd), with two regions "
                           f"seen through a layer of transmittance {transmittance:g}: the left one continues the "
                           f"background's texture, the right one holds another texture ({1.6 * sf:.2g} cycles/deg, "
                           f"-30 deg) at the same low contrast. Singh & Anderson: transparency is seen on the left "
