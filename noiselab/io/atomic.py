@@ -196,6 +196,8 @@ def remove_and_block(path, tries=100) -> list:
 def scratch_folder(beside, suffix=".scratch.tmp"):
     """A temporary folder next to ``beside`` (hidden, named after it), removed afterwards, also when stopped.
 
+    ``beside=None`` puts it in the system's temporary folder.
+
     For intermediate data that must not outlive the run (a spilled transpose),
     recorded like :func:`atomic_output`'s temporaries so that a stopping
     signal removes it too.
@@ -210,9 +212,10 @@ def scratch_folder(beside, suffix=".scratch.tmp"):
     >>> os.listdir(d)
     []
     """
-    beside = Path(beside)
+    # beside=None: in the system's temporary folder (mkdtemp's own choice: an unguessable name)
+    prefix, where = (".noiselab.", None) if beside is None else (f".{Path(beside).name}.", Path(beside).parent)
     with hold_signals():
-        tmp = Path(tempfile.mkdtemp(prefix=f".{beside.name}.", suffix=suffix, dir=beside.parent))
+        tmp = Path(tempfile.mkdtemp(prefix=prefix, suffix=suffix, dir=where))
         _record(tmp, True)
     try:
         yield tmp

@@ -542,15 +542,14 @@ class _Scratch:
     """
 
     def __init__(self):
-        import tempfile
         import weakref
 
         import dask
 
         from ..io.atomic import scratch_folder
 
-        base = dask.config.get("temporary-directory", None) or tempfile.gettempdir()
-        cm = scratch_folder(os.path.join(os.fspath(base), "noiselab-spill"), suffix=".spill.tmp")
+        base = dask.config.get("temporary-directory", None)   # else the system's temporary folder
+        cm = scratch_folder(os.path.join(os.fspath(base), "noiselab-spill") if base else None, suffix=".spill.tmp")
         self.path = os.fspath(cm.__enter__())
         weakref.finalize(self, cm.__exit__, None, None, None)
 
