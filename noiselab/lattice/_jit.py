@@ -121,6 +121,15 @@ def _next_corner(cnt, taps):
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
+def _powers(t):
+    """``t**2 .. t**5`` as :func:`_weight` takes them: independent products instead of a serial Horner chain."""
+    t2 = t * t
+    t3 = t2 * t
+    t4 = t2 * t2
+    return t2, t3, t4, t4 * t
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
 def _weight(coef, k, t, t2, t3, t4, t5):
     """Tap ``k``'s weight at fraction ``t``: ``sum_p coef[k, p] t**p`` (``t2 .. t5`` its powers).
 
@@ -254,11 +263,7 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC):
                     per = period[a]
                     msk = pmask[a]
                     b = _reduce(fi, left, per, msk)
-                    # powers first: independent products instead of a serial Horner chain
-                    t2 = t * t
-                    t3 = t2 * t
-                    t4 = t2 * t2
-                    t5 = t4 * t
+                    t2, t3, t4, t5 = _powers(t)
                     for k in range(TAPS):
                         w[a, k] = _weight(coef, k, t, t2, t3, t4, t5)
                         if DERIV:
@@ -412,10 +417,7 @@ def _axis_setup(pts, p0, m, a, f, ph, shift, left, taps, coef, dcoef, per, msk, 
         u = pts[p0 + i, a] * f + ph + shift  # same rounding as the grid path
         fi = np.floor(u)
         t = u - fi
-        t2 = t * t
-        t3 = t2 * t
-        t4 = t2 * t2
-        t5 = t4 * t
+        t2, t3, t4, t5 = _powers(t)
         for k in range(taps):
             W[a, k, i] = _weight(coef, k, t, t2, t3, t4, t5)
             R[a, k, i] = t - shift + (left - k)
@@ -669,10 +671,7 @@ def _split(pts, p0, m, a, f, ph, shift, left, taps, coef, mult_a, W, R, M, U):
         u = U[i]
         fi = np.floor(u)
         t = u - fi
-        t2 = t * t
-        t3 = t2 * t
-        t4 = t2 * t2
-        t5 = t4 * t
+        t2, t3, t4, t5 = _powers(t)
         j = _U32(np.int64(fi) - left)
         for k in range(taps):
             W[a, k, i] = _weight(coef, k, t, t2, t3, t4, t5)
@@ -799,10 +798,7 @@ def _table_split(pts, p0, m, a, f, ph, shift, left, TAPS, coef, per, msk, W, R, 
         c5 = coef[k, 5]
         for i in range(m):
             t = T[i]
-            t2 = t * t
-            t3 = t2 * t
-            t4 = t2 * t2
-            t5 = t4 * t
+            t2, t3, t4, t5 = _powers(t)
             W[a, k, i] = (c0 + c1 * t) + (c2 * t2 + c3 * t3) + (c4 * t4 + c5 * t5)  # :func:`_weight`
             if GRAD:
                 R[a, k, i] = t - shift + (left - k)
@@ -967,10 +963,7 @@ def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
         t = u - fi
         fis[j] = fi
         base[j] = _reduce(fi, left, period, mask)
-        t2 = t * t
-        t3 = t2 * t
-        t4 = t2 * t2
-        t5 = t4 * t
+        t2, t3, t4, t5 = _powers(t)
         for k in range(taps):
             s = _weight(coef, k, t, t2, t3, t4, t5)
             w[j, k] = s
@@ -1250,10 +1243,7 @@ def axis_dweights(coords, freq, phase, shift, left, taps, coef, dcoef, grad):
         u = coords[j] * freq + phase + shift
         fi = np.floor(u)
         t = u - fi
-        t2 = t * t
-        t3 = t2 * t
-        t4 = t2 * t2
-        t5 = t4 * t
+        t2, t3, t4, t5 = _powers(t)
         for k in range(taps):
             s = _weight(coef, k, t, t2, t3, t4, t5)
             ds = _dweight(dcoef, k, t, t2, t3, t4)
