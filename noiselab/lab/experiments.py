@@ -422,17 +422,27 @@ def sweep_kernels(cfg):
     """
     n, f0 = cfg.texture_n2, cfg.texture_f0
     methods = {k: fn for k, (fam, fn) in texture_methods(n, 2, f0).items() if fam == "lattice"}
+    pts = _texture_visibility(methods, cfg, "octave_ripple_db")
+    return {"name": "lattice kernel (2-D 1/f texture)", "error": "max(|slope error| / 0.05, anisotropy / 0.1)",
+            "threshold": 1.0, "points": pts,
+            "note": "0.05: the analysers' slope resolution at 512 x 512; 0.1: anisotropy where the lattice axes show"}
+
+
+def _texture_visibility(methods, cfg, extra):
+    """Time (rendering ``fn(0)``, against the write floor) and the visibility score of ``fn(1)`` per method.
+
+    The score is ``max(|slope error| / 0.05, anisotropy / 0.1)`` of the 2-D 1/f
+    texture; ``extra`` names one more figure of :func:`texture_quality` to keep.
+    """
+    n, f0 = cfg.texture_n2, cfg.texture_f0
     timing = _timed({k: (lambda fn=fn: fn(0)) for k, fn in methods.items()}, write_floor((n, n)), cfg.repeats)
     pts = []
     for k, fn in methods.items():
         q = texture_quality(fn(1), f0, 2)
         pts.append({"setting": k, "time_s": timing[k]["median_s"], "x_floor": timing[k]["ratio"],
                     "error": max(abs(q["slope_error"]) / 0.05, q["anisotropy"] / 0.1),
-                    "slope_error": q["slope_error"], "anisotropy": q["anisotropy"],
-                    "octave_ripple_db": q["octave_ripple_db"]})
-    return {"name": "lattice kernel (2-D 1/f texture)", "error": "max(|slope error| / 0.05, anisotropy / 0.1)",
-            "threshold": 1.0, "points": pts,
-            "note": "0.05: the analysers' slope resolution at 512 x 512; 0.1: anisotropy where the lattice axes show"}
+                    "slope_error": q["slope_error"], "anisotropy": q["anisotropy"], extra: q[extra]})
+    return pts
 
 
 def sweep_families(cfg):
@@ -446,14 +456,7 @@ def sweep_families(cfg):
     methods = {k: fn for k, (fam, fn) in texture_methods(n, 2, f0).items() if fam in ("spectral", "lattice")}
     for d in (1.0, 2.0, 4.0, 8.0):
         methods[f"sparse Gabor, {d:g} impulses/cell"] = lambda s, d=d: _gabor_texture(n, 2, f0, s, density=d)
-    timing = _timed({k: (lambda fn=fn: fn(0)) for k, fn in methods.items()}, write_floor((n, n)), cfg.repeats)
-    pts = []
-    for k, fn in methods.items():
-        q = texture_quality(fn(1), f0, 2)
-        pts.append({"setting": k, "time_s": timing[k]["median_s"], "x_floor": timing[k]["ratio"],
-                    "error": max(abs(q["slope_error"]) / 0.05, q["anisotropy"] / 0.1),
-                    "slope_error": q["slope_error"], "anisotropy": q["anisotropy"],
-                    "band_leakage": q["band_leakage"]})
+    pts = _texture_visibility(methods, cfg, "band_leakage")
     return {"name": "three families (2-D 1/f texture)", "error": "max(|slope error| / 0.05, anisotropy / 0.1)",
             "threshold": 1.0, "points": pts,
             "note": "the same score as the lattice kernel sweep; floor: writing the output array"}
