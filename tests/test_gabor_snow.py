@@ -119,3 +119,16 @@ def test_chunked_gabor_grid_is_the_in_memory_grid():
     noise = GaborNoise([[0.05, 0.02], [0.0, 0.1]], bandwidth=0.02, rng=2)
     whole = noise.grid((40, 30), origin=(5, -3))
     assert np.array_equal(noise.grid((40, 30), origin=(5, -3), chunks=(16, (10, 20))).compute(), whole)
+
+
+@pytest.mark.parametrize("field, beta, error, word", [
+    (np.zeros(4), float("nan"), ValueError, "beta"),
+    (np.zeros(4), 0.0, ValueError, "beta"),
+    (np.zeros(4, dtype=np.float32), 1.5, TypeError, "field"),
+    ([0.0, 1.0], 1.5, TypeError, "field"),
+])
+def test_snow_opacity_refuses_bad_input_naming_it(field, beta, error, word):
+    from noiselab.gabor import snow_opacity
+
+    with pytest.raises(error, match=word):
+        snow_opacity(field, beta=beta)

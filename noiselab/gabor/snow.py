@@ -205,7 +205,11 @@ def snow_opacity(field, *, beta=1.5, dtype=np.float32):
     >>> snow_opacity(np.array([-100.0, 0.0, 100.0]), beta=1.0).tolist()
     [0.0, 0.5, 1.0]
     """
+    beta = check_real("beta", beta, lo=0.0, lo_open=True)
     x = field
+    if not (isinstance(x, np.ndarray) and x.dtype == np.float64):
+        raise TypeError(f"field must be a float64 numpy array (it is overwritten), got "
+                        f"{type(x).__name__}{'' if not isinstance(x, np.ndarray) else ' of ' + str(x.dtype)}")
     np.multiply(x, 0.5 / OPACITY_SIGMAS, out=x)
     np.add(x, 0.5, out=x)
     np.clip(x, 0.0, 1.0, out=x)
