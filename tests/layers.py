@@ -55,9 +55,8 @@ LEAVES = {"io"}                       # any layer may import these
 ANALYSERS = {"analysis", "testing"}   # ... but no generator imports these
 GENERATORS = {"spectral", "lattice", "io", "snowfall", "fractal", "gabor", "fields", "geometry", "stimuli"}
 DASK_MODULES = {"dask", "distributed"}
-# the package root (lazy re-exports) and the deprecated alias module ``noiselab.snow`` of ``noiselab.snowfall``
-# (for one release): above every layer
-TOP = {"__init__", "__main__", "snow"}
+# the package root (lazy re-exports) and ``python -m noiselab``: above every layer
+TOP = {"__init__", "__main__"}
 
 
 @dataclass

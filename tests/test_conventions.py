@@ -6,9 +6,9 @@ keyword-only. ``test_every_public_signature_follows_the_table`` walks every
 public callable (the root's ``_API``, each subpackage's ``__all__``, the
 public methods of the public classes) and holds its signature to the table,
 so a new function cannot bring a new word, another default or another
-calling form without an entry here. Renamed parameters keep their old
-spelling for one release: it warns, names the new spelling and gives the
-same bits.
+calling form without an entry here. Renamed parameters kept their old
+spelling, with a warning, until 0.4; since then the old spelling is a
+TypeError that names the new one.
 """
 import dataclasses
 import importlib
@@ -72,17 +72,13 @@ def test_random_state_is_rng_with_the_documented_default(name, fn, kw, default):
 
 
 @pytest.mark.parametrize("name, fn, kw, default", RENAMED, ids=RENAMED_IDS)
-def test_seed_still_works_for_one_release_with_the_same_bits(name, fn, kw, default):
-    new = fn(**kw, rng=3)
-    with pytest.warns(DeprecationWarning, match=r"seed= is deprecated .* pass rng= instead"):
-        old = fn(**kw, seed=3)
-    assert _bits(old) == _bits(new)
-
-
-@pytest.mark.parametrize("name, fn, kw, default", RENAMED, ids=RENAMED_IDS)
-def test_seed_and_rng_together_is_a_type_error(name, fn, kw, default):
-    with pytest.raises(TypeError, match="both seed= .* and rng="):
-        fn(**kw, seed=1, rng=1)
+def test_seed_is_refused_naming_rng(name, fn, kw, default):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DeprecationWarning)
+        fn(**kw, rng=3)   # the new spelling never warns
+    for old in (dict(seed=3), dict(seed=3, rng=3)):
+        with pytest.raises(TypeError, match=r"seed= was removed in noiselab 0\.4; pass rng= instead"):
+            fn(**kw, **old)
 
 
 @pytest.mark.parametrize("name, fn, kw, default", [r for r in RANDOM if r[0] != "to_display"],
@@ -113,10 +109,9 @@ def test_write_zarr_records_the_int_rng(tmp_path):
 
     out = write_zarr(tmp_path / "a.zarr", np.zeros((2, 3), np.float32), rng=4)
     assert read_zarr(out, as_xarray=True).attrs["seed"] == 4
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", DeprecationWarning)
-        with pytest.raises(DeprecationWarning, match="pass rng= instead"):
-            write_zarr(tmp_path / "b.zarr", np.zeros((2, 3), np.float32), seed=4)
+    with pytest.raises(TypeError, match="seed= was removed .* pass rng= instead"):
+        write_zarr(tmp_path / "b.zarr", np.zeros((2, 3), np.float32), seed=4)
+    assert not (tmp_path / "b.zarr").exists()
     with pytest.raises(TypeError, match="rng must be the int"):
         write_zarr(tmp_path / "c.zarr", np.zeros((2, 3), np.float32), rng=np.random.default_rng(0))
 
@@ -206,27 +201,27 @@ def _lattice2_3d():
 
 
 @pytest.mark.parametrize("what, old, new, word", OLD_AND_NEW, ids=[c[0] for c in OLD_AND_NEW])
-def test_an_old_spelling_warns_naming_the_new_one_and_gives_the_same_result(what, old, new, word):
+def test_an_old_spelling_is_refused_naming_the_new_one(what, old, new, word):
     with warnings.catch_warnings():
         warnings.simplefilter("error", DeprecationWarning)
-        want = new()   # the new spelling never warns
-    with pytest.warns(DeprecationWarning, match=word) as caught:
-        got = old()
+        new()   # the new spelling never warns
     from noiselab._core.renamed import REMOVED_IN
 
-    assert any(REMOVED_IN in str(w.message) for w in caught), "the warning says when the old spelling goes"
-    assert Version(REMOVED_IN) > Version(noiselab.__version__), "the old spellings are past their removal"
-    assert _bits(got) == _bits(want)
+    with pytest.raises(TypeError, match=word) as caught:
+        old()
+    assert f"removed in noiselab {REMOVED_IN}" in str(caught.value), "the error says since when"
+    assert Version(REMOVED_IN) <= Version(noiselab.__version__), "the message names a release not yet made"
 
 
 @pytest.mark.parametrize("call, match", [
-    (lambda: SNOW.snow((2, 8, 8), show_progress=False, progress=False), "both show_progress= .* and progress="),
-    (lambda: SP.spectral_noise((8, 8), amplitude="fixed", amplitude_distribution="fixed"), "both amplitude="),
-    (lambda: noiselab.LatticeNoise(2, seed=1, rng=1), "both seed= .* and rng="),
-    (lambda: noiselab.geometry.height_map(_sine, (8, 8), on_aliasing="ignore", on_alias="ignore"), "both on_aliasing="),
-    (lambda: noiselab.testing.assert_power_law(_pink(), 1.0, tolerance=1.0, tol=1.0), "both tolerance="),
-    (lambda: noiselab.analysis.detect_period(_pink(), 0, axis=0), "multiple values for argument 'axis'"),
-    (lambda: noiselab.analysis.octave_energy(_pink(), 2.0, band=(2.0, 8.0)), "both lo=/hi= .* and band="),
+    (lambda: SNOW.snow((2, 8, 8), show_progress=False, progress=False), "show_progress= was removed"),
+    (lambda: SP.spectral_noise((8, 8), amplitude="fixed", amplitude_distribution="fixed"), "amplitude= was removed"),
+    (lambda: noiselab.LatticeNoise(2, seed=1, rng=1), "seed= was removed .* pass rng="),
+    (lambda: noiselab.geometry.height_map(_sine, (8, 8), on_aliasing="ignore", on_alias="ignore"),
+     "on_aliasing= was removed"),
+    (lambda: noiselab.testing.assert_power_law(_pink(), 1.0, tolerance=1.0, tol=1.0), "tolerance= was removed"),
+    (lambda: noiselab.analysis.detect_period(_pink(), 0, axis=0), "pass axis= as a keyword"),
+    (lambda: noiselab.analysis.octave_energy(_pink(), 2.0, band=(2.0, 8.0)), "lo and hi were removed"),
 ])
 def test_both_spellings_at_once_is_a_type_error(call, match):
     with pytest.raises(TypeError, match=match):
@@ -238,9 +233,9 @@ def test_a_gallery_figure_names_its_source_not_a_seed(monkeypatch):
 
     monkeypatch.setattr(registry, "REGISTRY", {})
     registry.figure("zz", "new", source="Phillips 2004, Fig. 1", title="t")(_sine)
-    with pytest.warns(DeprecationWarning, match="seed= is deprecated .* pass source= instead"):
-        registry.figure("zz", "old", seed="Phillips 2004, Fig. 1", title="t")(_sine)
-    assert registry.REGISTRY["zz/new"].source == registry.REGISTRY["zz/old"].source == "Phillips 2004, Fig. 1"
+    with pytest.raises(TypeError, match="seed= was removed .* pass source= instead"):
+        registry.figure("zz", "old", seed="Phillips 2004, Fig. 1", title="t")
+    assert registry.REGISTRY["zz/new"].source == "Phillips 2004, Fig. 1" and "zz/old" not in registry.REGISTRY
 
 
 def test_a_bad_amplitude_distribution_is_named():
@@ -328,15 +323,14 @@ XY_OLD_AND_NEW = [
 
 
 @pytest.mark.parametrize("what, old, new", XY_OLD_AND_NEW, ids=[c[0] for c in XY_OLD_AND_NEW])
-def test_an_x_y_pair_still_works_swapped_into_array_order(what, old, new):
-    """The old ``(x, y)`` keyword (or position) keeps its meaning for one release: same bits, a warning naming the
-    array-order keyword; never silently read as ``(y, x)``."""
+def test_an_x_y_pair_is_refused_naming_the_array_order_keyword(what, old, new):
+    """The old ``(x, y)`` keyword (or position), removed in 0.4: a TypeError naming the array-order keyword, never
+    silently read as ``(y, x)``."""
     with warnings.catch_warnings():
         warnings.simplefilter("error", DeprecationWarning)
-        want = new()
-    with pytest.warns(DeprecationWarning, match=r"_yx=\(y, x\) instead \(array order"):
-        got = old()
-    assert _bits(got) == _bits(want)
+        new()
+    with pytest.raises(TypeError, match=r"_yx=\(y, x\).*array order"):
+        old()
 
 
 def test_array_order_means_y_first():
@@ -358,7 +352,7 @@ def test_array_order_means_y_first():
     lambda: noiselab.analysis.motion_energy(_moving_video(), (2, 1), (1, 2)),
 ])
 def test_both_orders_at_once_is_a_type_error(call):
-    with pytest.raises(TypeError, match="both .* and .*_yx=|multiple values|positional arguments"):
+    with pytest.raises(TypeError, match=r"=\(x, y\) was removed .*_yx=\(y, x\)|positional arguments"):
         call()
 
 

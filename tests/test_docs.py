@@ -262,8 +262,7 @@ def _public_modules():
     names = set()
     for info in pkgutil.walk_packages([str(ROOT / "noiselab")], prefix="noiselab."):
         parts = info.name.split(".")
-        # (``noiselab.snow`` is the deprecated alias module of ``noiselab.snowfall``: importing it rebinds the name)
-        if parts[1] in ("cli", "gallery", "snow") or any(p.startswith("_") for p in parts[1:]):
+        if parts[1] in ("cli", "gallery") or any(p.startswith("_") for p in parts[1:]):
             continue
         names.add(info.name)
     for package in [n for n in names if n.count(".") == 1]:

@@ -21,8 +21,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 LINT_IMPORTS = Path(sys.executable).with_name("lint-imports")
 
-# highest first, as in [tool.importlinter]; the package root and the deprecated alias ``noiselab.snow``
-# sit above every layer
+# highest first, as in [tool.importlinter]; the package root sits above every layer
 LAYERS = [["cli"], ["gallery"], ["scale"], ["lab"], ["fields", "geometry", "stimuli"],
           ["snowfall", "fractal", "testing", "gabor"], ["spectral", "lattice", "analysis"], ["io"], ["_core"]]
 LEVEL = {name: len(LAYERS) - i for i, names in enumerate(LAYERS) for name in names}
@@ -172,7 +171,7 @@ def test_no_module_reaches_a_layer_above_it_dynamically():
     for path in sorted((ROOT / "noiselab").rglob("*.py")):
         rel = path.relative_to(ROOT).with_suffix("")
         parts = rel.parts[:-1] if rel.name == "__init__" else rel.parts
-        if len(parts) < 2 or parts[1] not in LEVEL:   # the root and the deprecated alias sit above every layer
+        if len(parts) < 2 or parts[1] not in LEVEL:   # the root sits above every layer
             continue
         module = ".".join(parts)
         offenders += [f"{module}:{line} -> {t}" for line, t in _upward(module, dynamic_reaches(path, module))]

@@ -31,25 +31,25 @@ def test_output_is_float32_opacity_in_unit_range():
 
 
 _LAYOUT = """
-import sys, types, warnings
+import types
 import noiselab
 import noiselab.snowfall.background                  # the subpackage, imported before the function is asked for
 assert noiselab.snow is noiselab.snowfall.snow, noiselab.snow
 assert type(noiselab.snowfall) is types.ModuleType   # a plain module: no class swapped
-with warnings.catch_warnings(record=True) as caught:
-    warnings.simplefilter("always")
-    from noiselab.snow import composite               # the old path, for one release
-    import noiselab.snow.tent
-assert composite is noiselab.snowfall.composite
-assert sys.modules["noiselab.snow.tent"] is sys.modules["noiselab.snowfall.tent"]
-assert [w.category for w in caught] == [DeprecationWarning], [str(w.message) for w in caught]
-assert "noiselab.snowfall" in str(caught[0].message)
+for old in ("from noiselab.snow import composite", "import noiselab.snow.tent"):
+    try:
+        exec(old)
+    except ModuleNotFoundError as e:
+        assert "noiselab.snow" in str(e), e
+    else:
+        raise AssertionError(old + " still imports: the old subpackage path was removed in 0.4")
+assert noiselab.snow is noiselab.snowfall.snow, noiselab.snow   # and a failed old import rebinds nothing
 print("ok")
 """
 
 
 def test_noiselab_snow_is_the_function_and_the_subpackage_is_snowfall():
-    """``noiselab.snow`` is the function whatever was imported first; the old subpackage path warns and works."""
+    """``noiselab.snow`` is the function whatever was imported first; the old subpackage path (until 0.3) is gone."""
     import subprocess
     import sys
 

@@ -476,19 +476,15 @@ def test_one_band_validator_gives_one_message_everywhere():
         A.spectral_slope(img, (0, 8))
 
 
-def test_annulus_band_says_its_unit_and_the_old_keywords_still_work():
+def test_annulus_band_says_its_unit_and_the_old_keywords_name_it():
     w = 2 * np.pi * np.array([0.0, 0.1, 0.2, 0.3, 0.45])
     new = E.annulus(w, band_cycles_per_sample=(0.1, 0.3))
     np.testing.assert_array_equal(new, [0, 1, 1, 1, 0])
-    with pytest.warns(DeprecationWarning, match="band_cycles_per_sample"):
-        old = E.annulus(w, lo=0.1, hi=0.3)
-    np.testing.assert_array_equal(old, new)
     with pytest.raises(TypeError, match="band_cycles_per_sample"):
         E.annulus(w)
-    with pytest.raises(TypeError, match="band_cycles_per_sample"):
-        E.annulus(w, lo=0.1)
-    with pytest.raises(TypeError, match="not together"):
-        E.annulus(w, band_cycles_per_sample=(0.1, 0.3), lo=0.1, hi=0.3)
+    for old in (dict(lo=0.1, hi=0.3), dict(lo=0.1), dict(band_cycles_per_sample=(0.1, 0.3), lo=0.1, hi=0.3)):
+        with pytest.raises(TypeError, match=r"lo= and hi= were removed in noiselab 0\.4; pass band_cycles_per_sample"):
+            E.annulus(w, **old)
     with pytest.raises(TypeError, match="unexpected keyword argument 'band'"):
         E.annulus(w, band=(0.1, 0.3))
     # spectral_noise's band in cycles/frame is annulus's in cycles/sample times the width

@@ -1,16 +1,19 @@
-"""Renamed parameters: the old spelling keeps working for one release, with a DeprecationWarning naming the new one.
+"""Renamed parameters: the old spelling is refused with a TypeError that names the new one.
 
 noiselab renames a parameter only to make one word mean one thing across the
-API (the conventions page lists every word). A user's script that still
-passes the old keyword runs unchanged for one release and is told, once per
-call site (Python's default warning filter), which spelling to use instead.
+API (the conventions page lists every word). 0.2.0 renamed them and kept the
+old spellings working, with a DeprecationWarning, through 0.3; since
+:data:`REMOVED_IN` an old spelling is an error, but one that says which
+spelling to use instead (``snow(seed=1)`` fails with "seed= was removed in
+noiselab 0.4; pass rng= instead"), never Python's bare "unexpected keyword
+argument" and never a silent reinterpretation (an old ``(x, y)`` pair is not
+read as ``(y, x)``).
 """
 from __future__ import annotations
 
 import functools
 import inspect
 import operator
-import warnings
 
 # pytest leaves out of a failure's report the frames whose ``__tracebackhide__`` says so (a callable is asked
 # with the exception): an assertion helper's own source says nothing about the caller's failing test, so its
@@ -19,27 +22,26 @@ HIDE_ASSERTION_FRAMES = operator.methodcaller("errisinstance", AssertionError)
 
 __all__ = ["renamed_parameters", "keyword_only", "array_order", "swap_pair"]
 
-# the release that removes the old spellings (0.2.0 deprecated them; 0.3.0 followed within days, so they
-# stay one release longer)
+# the release that removed the old spellings (0.2.0 deprecated them, 0.3 kept them with a warning)
 REMOVED_IN = "0.4"
 
 
 def renamed_parameters(**old_to_new):
-    """Decorator: accept each ``old=`` keyword as ``new=`` with a ``DeprecationWarning``.
+    """Decorator: refuse each removed ``old=`` keyword with a ``TypeError`` naming ``new=``.
 
-    Passing both spellings is a ``TypeError`` (as Python does for a keyword
-    given twice). The wrapped function's signature shows the new names only.
+    The wrapped function's signature shows the new names only.
 
     Examples
     --------
-    >>> import warnings
     >>> @renamed_parameters(seed="rng")
     ... def draw(*, rng=None):
     ...     return rng
-    >>> with warnings.catch_warnings(record=True) as caught:
-    ...     warnings.simplefilter("always")
-    ...     draw(seed=3), caught[0].category.__name__
-    (3, 'DeprecationWarning')
+    >>> draw(rng=3)
+    3
+    >>> draw(seed=3)
+    Traceback (most recent call last):
+    ...
+    TypeError: draw(): seed= was removed in noiselab 0.4; pass rng= instead
     """
     def decorate(function):
         parameters = inspect.signature(function).parameters
@@ -52,12 +54,8 @@ def renamed_parameters(**old_to_new):
             __tracebackhide__ = HIDE_ASSERTION_FRAMES
             for old, new in old_to_new.items():
                 if old in kwargs:
-                    if new in kwargs:
-                        raise TypeError(f"{function.__qualname__}() got both {old}= (deprecated) and {new}=; "
-                                        f"pass {new}= only")
-                    warnings.warn(f"{function.__qualname__}(): {old}= is deprecated and will be removed in "
-                                  f"noiselab {REMOVED_IN}; pass {new}= instead", DeprecationWarning, stacklevel=2)
-                    kwargs[new] = kwargs.pop(old)
+                    raise TypeError(f"{function.__qualname__}(): {old}= was removed in noiselab {REMOVED_IN}; "
+                                    f"pass {new}= instead")
             return function(*args, **kwargs)
 
         wrapper.__renamed_parameters__ = dict(old_to_new)
@@ -66,44 +64,31 @@ def renamed_parameters(**old_to_new):
     return decorate
 
 
-def _fold_extra_positionals(function, n_positional, names, args, kwargs):
-    """Move the positional ``args`` past ``n_positional`` into ``kwargs`` under ``names``, in order.
-
-    Returns the remaining positional args and the names moved. Too many
-    positional arguments, or one also given by keyword, is the ``TypeError``
-    Python itself raises.
-    """
-    if len(args) <= n_positional:
-        return args, ()
-    extra = args[n_positional:]
-    if len(extra) > len(names):
-        raise TypeError(f"{function.__qualname__}() takes {n_positional} positional arguments but "
-                        f"{len(args)} were given")
-    moved = names[:len(extra)]
-    for name, value in zip(moved, extra):
-        if name in kwargs:
-            raise TypeError(f"{function.__qualname__}() got multiple values for argument {name!r}")
-        kwargs[name] = value
-    return args[:n_positional], moved
+def _too_many_positionals(function, n_positional, args, hint):
+    """A ``TypeError`` if ``args`` go past the ``n_positional`` positional parameters, ending with ``hint``."""
+    if len(args) > n_positional:
+        raise TypeError(f"{function.__qualname__}() takes {n_positional} positional arguments but {len(args)} "
+                        f"were given; {hint}")
 
 
 def keyword_only(*names):
-    """Decorator: ``names``, now keyword-only, still taken by position for one release with a DeprecationWarning.
+    """Decorator: ``names``, keyword-only, passed by position is a ``TypeError`` that names them.
 
-    The old positional order of ``names`` follows the last positional
-    parameter of the new signature. The wrapped function's signature shows
+    noiselab 0.2.0 made them keyword-only and took them by position with a
+    warning until :data:`REMOVED_IN`. The wrapped function's signature shows
     them keyword-only.
 
     Examples
     --------
-    >>> import warnings
     >>> @keyword_only("axis")
     ... def period(x, *, axis=-1):
     ...     return axis
-    >>> with warnings.catch_warnings(record=True) as caught:
-    ...     warnings.simplefilter("always")
-    ...     period([1], 0), period([1], axis=0), caught[0].category.__name__
-    (0, 0, 'DeprecationWarning')
+    >>> period([1], axis=0)
+    0
+    >>> period([1], 0)
+    Traceback (most recent call last):
+    ...
+    TypeError: period() takes 1 positional arguments but 2 were given; pass axis= as a keyword (by position it was removed in noiselab 0.4)
     """
     def decorate(function):
         parameters = inspect.signature(function).parameters
@@ -111,15 +96,13 @@ def keyword_only(*names):
             if name not in parameters or parameters[name].kind is not inspect.Parameter.KEYWORD_ONLY:
                 raise TypeError(f"{function.__qualname__} has no keyword-only parameter {name!r}")
         n_positional = sum(p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) for p in parameters.values())
+        hint = (", ".join(f"{name}=" for name in names) + f" as a keyword (by position it was removed in noiselab "
+                f"{REMOVED_IN})")
 
         @functools.wraps(function)
         def wrapper(*args, **kwargs):
             __tracebackhide__ = HIDE_ASSERTION_FRAMES
-            args, moved = _fold_extra_positionals(function, n_positional, names, args, kwargs)
-            for name in moved:
-                warnings.warn(f"{function.__qualname__}(): passing {name} by position is deprecated and will "
-                              f"stop working in noiselab {REMOVED_IN}; pass {name}= as a keyword",
-                              DeprecationWarning, stacklevel=2)
+            _too_many_positionals(function, n_positional, args, "pass " + hint)
             return function(*args, **kwargs)
 
         wrapper.__keyword_only__ = tuple(names)
@@ -144,25 +127,25 @@ def swap_pair(name, value):
 
 
 def array_order(*pairs, positional=()):
-    """Decorator: ``old=(x, y)`` keywords replaced by ``new=(y, x)`` ones in array order, the old kept for one release.
+    """Decorator: removed ``old=(x, y)`` keywords refused with a ``TypeError`` naming ``new=(y, x)``, in array order.
 
-    ``pairs`` are ``(old, new)`` names. An old keyword still works with a
-    ``DeprecationWarning`` that names the new one: its pair is swapped into
-    array order, never reinterpreted. ``positional`` names the old keywords
-    that an old call could pass by position, in that order, after the new
-    signature's positional parameters (they are warned about and swapped the
-    same way). Passing an old and its new spelling together is a ``TypeError``.
+    ``pairs`` are ``(old, new)`` names. ``positional`` names the old keywords
+    that an old call could pass by position (after the new signature's
+    positional parameters): such a call is refused the same way. Until
+    :data:`REMOVED_IN` the old spellings were swapped into array order with a
+    ``DeprecationWarning``; an old pair is never read as a new one.
 
     Examples
     --------
-    >>> import warnings
     >>> @array_order(("velocity", "velocity_yx"))
     ... def speed(*, velocity_yx=(0.0, 0.0)):
     ...     return velocity_yx
-    >>> with warnings.catch_warnings(record=True) as caught:
-    ...     warnings.simplefilter("always")
-    ...     speed(velocity=(2.0, 1.0)), speed(velocity_yx=(1.0, 2.0)), caught[0].category.__name__
-    ((1.0, 2.0), (1.0, 2.0), 'DeprecationWarning')
+    >>> speed(velocity_yx=(1.0, 2.0))
+    (1.0, 2.0)
+    >>> speed(velocity=(2.0, 1.0))
+    Traceback (most recent call last):
+    ...
+    TypeError: speed(): velocity=(x, y) was removed in noiselab 0.4; pass velocity_yx=(y, x) instead (array order, like shapes)
     """
     old_to_new = dict(pairs)
 
@@ -172,20 +155,20 @@ def array_order(*pairs, positional=()):
             if new not in parameters or old in parameters:
                 raise TypeError(f"{function.__qualname__} has no parameter {new!r} to replace {old!r} with")
         n_positional = sum(p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD) for p in parameters.values())
+        hint = ("pass " + ", ".join(f"{old_to_new[name]}=(y, x)" if name in old_to_new else f"{name}="
+                                    for name in positional)
+                + f" as keywords, pairs in array order (by position, in (x, y) order, they were removed in noiselab "
+                  f"{REMOVED_IN})")
 
         @functools.wraps(function)
         def wrapper(*args, **kwargs):
             __tracebackhide__ = HIDE_ASSERTION_FRAMES
-            args, _ = _fold_extra_positionals(function, n_positional, positional, args, kwargs)
+            if positional:
+                _too_many_positionals(function, n_positional, args, hint)
             for old, new in old_to_new.items():
                 if old in kwargs:
-                    if new in kwargs:
-                        raise TypeError(f"{function.__qualname__}() got both {old}= (deprecated, (x, y) order) and "
-                                        f"{new}=; pass {new}= only")
-                    warnings.warn(f"{function.__qualname__}(): {old}=(x, y) is deprecated and will be removed in "
-                                  f"noiselab {REMOVED_IN}; pass {new}=(y, x) instead (array order, like shapes)",
-                                  DeprecationWarning, stacklevel=2)
-                    kwargs[new] = swap_pair(old, kwargs.pop(old))
+                    raise TypeError(f"{function.__qualname__}(): {old}=(x, y) was removed in noiselab {REMOVED_IN}; "
+                                    f"pass {new}=(y, x) instead (array order, like shapes)")
             return function(*args, **kwargs)
 
         wrapper.__array_order__ = dict(old_to_new)

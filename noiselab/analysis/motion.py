@@ -182,7 +182,7 @@ def motion_energy(video, *, velocity_yx=(0.0, 0.0), tol=1.0, band=None, window=N
         ``(frames, height, width)``; or its :func:`video_spectrum`.
     velocity_yx : (vy, vx)
         Pixels/frame in array order (+y down the rows, +x right).
-        ``velocity=(vx, vy)`` (also by position) is the old spelling, until 0.4.
+        ``velocity=(vx, vy)`` (also by position) is the old spelling, refused since 0.4.
     tol : float
         Accepted distance from the plane along ``w_t``, in temporal-frequency
         cells (cycles/video), modulo the temporal period.
@@ -246,10 +246,10 @@ def tent_energy(video, c, band, *, direction_yx=(1.0, 0.0), pan_yx=(0.0, 0.0), t
         Spatial band in cycles/frame; only cells with ``lo <= f <= hi`` count.
     direction_yx : (dy, dx)
         Fall direction in array order (+y down, +x right), any length.
-        ``direction=(dx, dy)`` (also by position) is the old spelling, until 0.4.
+        ``direction=(dx, dy)`` (also by position) is the old spelling, refused since 0.4.
     pan_yx : (uy, ux)
         Camera pan as an image velocity in px/frame, array order (sheared
-        tent). ``pan=(ux, uy)`` is the old spelling, until 0.4.
+        tent). ``pan=(ux, uy)`` is the old spelling, refused since 0.4.
     thickness : float
         Relative thickness of the tent (thesis 3.2.1), in [0, 1]: ``c`` spread over
         ``c (1 +- thickness)``, i.e. a half-width of ``thickness c |d . w| / |w|``

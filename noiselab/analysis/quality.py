@@ -822,7 +822,7 @@ def tent_energy_per_band(video, c, band, *, direction_yx=(1.0, 0.0), per_octave=
         Spatial band in cycles/frame, split into ``per_octave`` bands per octave.
     direction_yx : (dy, dx), default (1, 0)
         Fall direction in array order (y down, x right); ``direction=(dx, dy)``
-        (also by position) is the old spelling, until 0.4.
+        (also by position) is the old spelling, refused since 0.4.
     per_octave : int, default 1
         Bands per octave.
     thickness, tol, window

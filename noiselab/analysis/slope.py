@@ -3,12 +3,11 @@ from __future__ import annotations
 
 import functools
 import numbers
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
-from .._core import check_int, check_real
+from .._core import REMOVED_IN, check_int, check_real
 from ._common import check_band, noise_floor
 from .spectrum import as_spectrum, radial_spectrum
 
@@ -176,7 +175,7 @@ class OctaveEnergy:
 
 
 def _octave_band(function):
-    """``octave_energy``'s old split band (``lo, hi`` by position or keyword), kept for one release as ``band=``."""
+    """``octave_energy``'s old split band (``lo, hi`` by position or keyword): a ``TypeError`` naming ``band=``."""
     @functools.wraps(function)
     def wrapper(field, *args, **kwargs):
         old = dict(zip(("lo", "hi"), args)) if args and isinstance(args[0], numbers.Real) else {}
@@ -188,11 +187,8 @@ def _octave_band(function):
                     raise TypeError(f"octave_energy() got multiple values for {name}")
                 old[name] = kwargs.pop(name)
         if old:
-            if "band" in kwargs:
-                raise TypeError("octave_energy() got both lo=/hi= (deprecated) and band=; pass band= only")
-            warnings.warn("octave_energy(): lo and hi are deprecated and will be removed in noiselab 0.4; pass "
-                          "band=(lo, hi) instead (hi=None: the Nyquist frequency)", DeprecationWarning, stacklevel=2)
-            return function(field, band=(old.get("lo", 1.0), old.get("hi")), **kwargs)
+            raise TypeError(f"octave_energy(): lo and hi were removed in noiselab {REMOVED_IN}; pass band=(lo, hi) "
+                            "instead (hi=None: the Nyquist frequency)")
         return function(field, *args, **kwargs)
     return wrapper
 

@@ -19,7 +19,7 @@ import warnings
 
 import numpy as np
 
-from .._core import check_finite_array, check_int, check_memory, check_real, check_real_vector, renamed_parameters
+from .._core import REMOVED_IN, check_finite_array, check_int, check_memory, check_real, check_real_vector, renamed_parameters
 from ._kernels import face_pass, unit_rows
 from ._mesh import AliasingWarning, as_trimesh  # noqa: F401  (defined in the leaf module _mesh; re-exported here)
 from .fields import evaluate_field, field_max_frequency, octave_field
@@ -586,12 +586,8 @@ def displace_frames(mesh, field, times, amplitude=1.0, frequency=1.0, phase=0.0,
         v, f = _arrays(mesh)
         unit, volume, _, _, welded = _normals(v, f, 0, kwargs.get("weld", True))
         normals = _outward(unit, volume, welded)
-    if "on_aliasing" in kwargs:   # the old spelling, kept for one release like displace's own
-        if "on_alias" in kwargs:
-            raise TypeError("displace_frames() got both on_aliasing= (deprecated) and on_alias=; pass on_alias= only")
-        warnings.warn("displace_frames(): on_aliasing= is deprecated and will be removed in noiselab 0.4; pass "
-                      "on_alias= instead", DeprecationWarning, stacklevel=2)
-        kwargs["on_alias"] = kwargs.pop("on_aliasing")
+    if "on_aliasing" in kwargs:   # the old spelling, refused like displace's own
+        raise TypeError(f"displace_frames(): on_aliasing= was removed in noiselab {REMOVED_IN}; pass on_alias= instead")
     on_alias = kwargs.pop("on_alias", "warn")
     for i, t in enumerate(times):
         yield displace(mesh, field, amplitude, frequency, phase, float(t), normals=normals,

@@ -113,7 +113,7 @@ def streamlines(field, seeds, *, step=0.01, n_steps=200, amplitude=1.0, frequenc
         Fixed-step Runge-Kutta for all seeds at once, or scipy's adaptive RK45 per seed.
     unit_speed : bool, default False
         Follow the direction only (unit speed). (``normalize=`` is the old
-        spelling, until 0.4: ``normalize`` elsewhere scales a field's values.)
+        spelling, refused since 0.4: ``normalize`` elsewhere scales a field's values.)
 
     Returns
     -------

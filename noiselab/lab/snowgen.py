@@ -153,7 +153,7 @@ def layered_lattice_snow(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, la
         Depth layers, 1..256 (more layers: a closer approximation, linear cost).
     direction_yx : (dy, dx)
         Fall direction in array order (y down, x right), as :func:`noiselab.snowfall.snow`;
-        ``direction=(dx, dy)`` is the old spelling (until 0.4).
+        ``direction=(dx, dy)`` is the old spelling (refused since 0.4).
     kernel : str
         Lattice kernel (see :mod:`noiselab.lattice.kernels`); Catmull-Rom gives
         the narrowest layer spectrum.
@@ -287,7 +287,7 @@ def particle_snow(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, flakes=No
         with the default band (about 0.35; see ``benchmarks/RESULTS.md``).
     direction_yx : (dy, dx)
         Fall direction in array order (y down, x right), as :func:`noiselab.snowfall.snow`;
-        ``direction=(dx, dy)`` is the old spelling (until 0.4).
+        ``direction=(dx, dy)`` is the old spelling (refused since 0.4).
     opacity : float
         Opacity of a flake's core, in (0, 1].
     motion_blur : bool

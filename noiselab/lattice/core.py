@@ -52,7 +52,7 @@ class LatticeNoise:
         A noise is a fixed function, as Perlin's reference noise and the
         SIMD peers' default seed are, so the default is the int 0 rather
         than ``None``: ``LatticeNoise(3)`` is the same function in every
-        process. ``seed=`` is the old spelling (until 0.4).
+        process. ``seed=`` is the old spelling (refused since 0.4).
     kernel : str, optional
         ``"box"``, ``"linear"``, ``"quadratic"``, ``"cubic"`` (B-splines of
         order 1-4, i.e. 1-4 box filters), ``"catmull-rom"`` (interpolating

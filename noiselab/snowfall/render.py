@@ -160,12 +160,12 @@ def snow(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, thickness=0.1, dir
     direction_yx : (dy, dx)
         Fall direction in array order (y down the rows, x right along the
         columns), any angle and length; default ``(1, 0)``, straight down.
-        (``direction=(dx, dy)``, the old (x, y) spelling, works until 0.3
-        with a ``DeprecationWarning``.)
+        (``direction=(dx, dy)``, the old (x, y) spelling, is refused since
+        0.4.)
     pan_yx : (uy, ux)
         Image velocity in px/frame, array order, that a panning camera adds
         to every flake (the sheared tent, Eq. 4.2); ``(0, 0)`` for a still
-        camera. (``pan=(ux, uy)``: the old spelling, until 0.4.)
+        camera. (``pan=(ux, uy)``: the old spelling, refused since 0.4.)
     beta : float
         Opacity exponent, ``alpha ** beta`` after rescaling (thesis: 1.5).
     exponent : float

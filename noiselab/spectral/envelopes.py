@@ -10,7 +10,7 @@ take bands in cycles/frame, ``W`` times that), ``c`` and ``tol`` in
 rad/frame, velocities in px/frame. Pairs of per-axis components are in array
 order, like the frequency vectors: ``direction_yx = (dy, dx)``,
 ``pan_yx = (uy, ux)``, ``velocity_yx = (vy, vx)`` (the old ``(x, y)``
-keywords and positions still work until 0.4, with a ``DeprecationWarning``).
+keywords and positions were removed in 0.4: they are a ``TypeError`` naming the new keyword).
 Masks are float arrays of 0 and 1, so that
 ``annulus(...) * power_law(...) * tent(...)`` is the snow envelope.
 
@@ -37,11 +37,10 @@ Examples
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
 
-from .._core import array_order, check_finite_array, check_real, check_real_sequence, renamed_parameters
+from .._core import REMOVED_IN, array_order, check_finite_array, check_real, check_real_sequence, renamed_parameters
 
 __all__ = [
     "radial_frequency",
@@ -201,7 +200,7 @@ def annulus(*w, band_cycles_per_sample=None, **deprecated):
         radius ``|w| / (2*pi)``. A band of ``(lo, hi)`` cycles/frame, as
         ``spectral_noise`` and ``snow`` take it, on frames ``W`` samples wide
         is ``(lo / W, hi / W)`` here. (The earlier keywords ``lo=`` and
-        ``hi=``, same unit, still work with a ``DeprecationWarning``.)
+        ``hi=`` were removed in 0.4: they are a ``TypeError`` naming this one.)
 
     Examples
     --------
@@ -223,19 +222,11 @@ def _annulus_band(band, deprecated):
         raise TypeError(f"annulus() got an unexpected keyword argument {unknown[0]!r}; the band is "
                         "band_cycles_per_sample=(lo, hi)")
     if deprecated:
-        if band is not None:
-            raise TypeError("annulus takes its band as band_cycles_per_sample=(lo, hi), not together with lo=/hi=")
-        if set(deprecated) != {"lo", "hi"}:
-            raise TypeError("annulus needs band_cycles_per_sample=(lo, hi) (cycles/sample); lo= and hi= "
-                            "(deprecated) go together")
-        warnings.warn("annulus(lo=, hi=) is deprecated: pass band_cycles_per_sample=(lo, hi), the same unit "
-                      "(cycles/sample)", DeprecationWarning, stacklevel=3)
-        lo = check_real("lo (cycles/sample)", deprecated["lo"], lo=0.0, hi=_BOUND)
-        hi = check_real("hi (cycles/sample)", deprecated["hi"], lo=0.0, hi=_BOUND)
-    else:
-        if band is None:
-            raise TypeError("annulus needs band_cycles_per_sample=(lo, hi), the band in cycles/sample")
-        lo, hi = check_real_sequence("band_cycles_per_sample", band, length=2, lo=0.0, hi=_BOUND)
+        raise TypeError(f"annulus(): lo= and hi= were removed in noiselab {REMOVED_IN}; pass "
+                        "band_cycles_per_sample=(lo, hi), the same unit (cycles/sample)")
+    if band is None:
+        raise TypeError("annulus needs band_cycles_per_sample=(lo, hi), the band in cycles/sample")
+    lo, hi = check_real_sequence("band_cycles_per_sample", band, length=2, lo=0.0, hi=_BOUND)
     if lo > hi:
         raise ValueError(f"annulus needs lo <= hi (cycles/sample), got band_cycles_per_sample=({lo:g}, {hi:g})")
     return lo, hi

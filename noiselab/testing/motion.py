@@ -83,7 +83,7 @@ def assert_motion(video, *, velocity_yx, min_energy=None, tol=1.0, band=None, wi
         ``(frames, height, width)``, looping in time (or pass ``window="hann"`` and ``tol >= 1.5``).
     velocity_yx : (vy, vx)
         Pixels/frame in array order, y down, x right. ``velocity=(vx, vy)``
-        (also by position) is the old spelling, until 0.4.
+        (also by position) is the old spelling, refused since 0.4.
     min_energy : float, optional
         Fraction of the power required on the plane (0 to 1); default 0.9.
     tol : float
@@ -150,7 +150,7 @@ def assert_tent(video, c, band, *, direction_yx=(1.0, 0.0), pan_yx=(0.0, 0.0), t
         Spatial band, cycles/frame.
     direction_yx, pan_yx : (y, x)
         Fall direction (unit or not) and camera pan (px/frame), array order.
-        ``direction=``/``pan=`` in (x, y) order are the old spellings, until 0.4.
+        ``direction=``/``pan=`` in (x, y) order are the old spellings, refused since 0.4.
     thickness, tol : float
         See :func:`noiselab.analysis.tent_energy`.
     min_energy : float, optional
