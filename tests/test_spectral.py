@@ -224,17 +224,68 @@ def test_spectrum_side_normalisation_gives_zero_mean_unit_variance_exactly(shape
     np.testing.assert_allclose(y, x, rtol=0, atol=1e-5)
 
 
-def test_pruned_inverse_fft_equals_irfftn_of_the_full_spectrum():
-    from noiselab.spectral.synthesis import _noise_spectrum, _pruned_irfftn
+def _plan_spectrum(shape, band, seed, dtype, **kw):
+    """The whole half spectrum of ``spectral_noise`` built from the plan's slabs (the chunked path's pieces), scaled."""
+    from noiselab.spectral import plan
 
-    for shape, band in [((64, 96), (2, 9)), ((20, 24, 30), (1, 4)), ((50,), (1, 6))]:
-        block, index = _noise_spectrum(shape, 1.0, band, 5, "rayleigh", np.dtype(np.float64))
-        assert block.shape[-1] < shape[-1] // 2 + 1  # something was pruned
-        full = np.zeros(shape[:-1] + (shape[-1] // 2 + 1,), dtype=block.dtype)
-        full[np.ix_(*index, np.arange(block.shape[-1]))] = block
-        ref = scipy.fft.irfftn(full, s=shape)
-        np.testing.assert_allclose(_pruned_irfftn(block.copy(), index, shape), ref, rtol=0,
-                                   atol=1e-14 * np.abs(ref).max())
+    p = plan.noise_plan(shape, 1.0, band, seed, "rayleigh", dtype, **kw)
+    parts = [plan.fill_slab(p, i0, min(p.bshape[0], i0 + 3)) for i0 in range(0, p.bshape[0], 3)] \
+        if len(shape) > 1 else [_fill_one_row(p)]
+    slabs = np.concatenate([s for s, _ in parts])
+    cols = [j for j in plan.self_conjugate_columns(p.n) if j < p.K]
+    planes = [np.ascontiguousarray(slabs[..., j]) for j in cols]
+    g = plan.hermitian_gain(p, np.concatenate([r for _, r in parts]), planes)
+    for k, j in enumerate(cols):
+        slabs[..., j] = planes[k]
+    full = np.zeros(shape[:-1] + (shape[-1] // 2 + 1,), dtype=slabs.dtype)
+    full[np.ix_(*p.index, np.arange(p.K))] = slabs.reshape(tuple(ix.size for ix in p.index) + (p.K,))
+    return full * g, p
+
+
+def _fill_one_row(p):
+    from noiselab.spectral import _kernels
+
+    row = np.empty(p.K, dtype=p.cdt)
+    rowpow = np.zeros(1)
+    _kernels.fill_power_law(row.view(p.dt), p.Kr, p.q0, p.q1, p.wxsq, p.kbeg, p.kend, 0, 1, p.key, 0, p.mode,
+                            p.exponent, p.qfloor, p.inv_qref, p.weight, p.sample, rowpow, np.empty(p.Kr, p.dt))
+    return row, rowpow
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_in_place_synthesis_equals_irfftn_of_the_plans_whole_spectrum(dtype):
+    # the spectrum is filled into the output's own storage and transformed there (pruned leading passes, the last
+    # pass written back row block by row block): the field irfftn makes of the whole spectrum, to rounding
+    tol = 1e-14 if dtype == np.float64 else 2e-6
+    cases = [((64, 96), (2, 9)), ((20, 24, 30), (1, 4)), ((50,), (1, 6)), ((40, 33), None), ((12, 10, 9), None),
+             ((30, 16, 20), (0, 10)), ((257, 130), (3, 40))]
+    for shape, band in cases:
+        for kw in ({}, {"normalize": "sample"}, {"dc": True, "band": None if band is None else (0, band[1])}):
+            kw = dict({"band": band}, **kw)
+            S, p = _plan_spectrum(shape, kw.pop("band"), 5, np.dtype(dtype), **kw)
+            ref = scipy.fft.irfftn(S.astype(np.complex128), s=shape)
+            got = spectral_noise(shape, band=p.band, rng=5, dtype=dtype, **kw)
+            assert got.shape == shape and got.dtype == dtype and got.flags.c_contiguous
+            np.testing.assert_allclose(got, ref, rtol=0, atol=tol * np.abs(ref).max())
+
+
+def test_peak_memory_is_at_most_1_1x_the_field():
+    # one array of the field's size (its storage holds the spectrum, then the samples) and the last pass's
+    # scratch: at most 1.1x the output for 2-D and 3-D fields from 4 MiB up (irfftn of a ready spectrum alone
+    # holds both, 2x; so did spectral_noise before it synthesised in place)
+    import tracemalloc
+
+    for shape, kw in [((1024, 1024), {}), ((1024, 1024), {"dtype": np.float64, "band": (4, 100)}),
+                      ((128, 128, 128), {}), ((100, 96, 110), {"band": (2, 20), "normalize": "sample"})]:
+        warm = {k: v for k, v in kw.items() if k != "band"}
+        spectral_noise((16,) * len(shape), rng=0, **warm)  # compiled before the count
+        tracemalloc.start()
+        try:
+            x = spectral_noise(shape, rng=0, workers=2, **kw)
+            _, peak = tracemalloc.get_traced_memory()
+        finally:
+            tracemalloc.stop()
+        assert x.nbytes >= 4 << 20 and peak <= 1.1 * x.nbytes, (shape, kw, peak / x.nbytes)
 
 
 def test_spectral_noise_same_seed_same_bits_and_band_edges():
@@ -506,21 +557,28 @@ def test_chunked_spectral_noise_and_snow_are_chosen_by_the_dispatch_registry():
 
 def test_the_plan_fills_the_same_block_slab_by_slab():
     # the dask path fills the block in slabs of its first axis (plan.fill_slab); the in-memory path in row
-    # groups: the same unscaled values, so the same gain and the same field
+    # groups, into the rows of the field's storage: the same unscaled values and the same gain, so the same field
     from noiselab.spectral import plan
-    from noiselab.spectral.synthesis import _noise_spectrum
+    from noiselab.spectral import synthesis as SY
 
-    for shape, band in [((40, 36), (2, 12)), ((12, 16, 20), (1, 6))]:
-        p = plan.noise_plan(shape, 1.0, band, 7, "rayleigh", np.float64)
-        block, _ = _noise_spectrum(shape, 1.0, band, 7, "rayleigh", np.float64)
-        n0 = p.bshape[0]
-        parts = [plan.fill_slab(p, i0, min(n0, i0 + 3)) for i0 in range(0, n0, 3)]
-        slabs = np.concatenate([s for s, _ in parts])
-        planes = [np.ascontiguousarray(slabs[..., j]) for j in plan.self_conjugate_columns(p.n) if j < p.K]
-        g = plan.hermitian_gain(p, np.concatenate([r for _, r in parts]), planes)
-        for k, j in enumerate(j for j in plan.self_conjugate_columns(p.n) if j < p.K):
-            slabs[..., j] = planes[k]
-        np.testing.assert_array_equal(slabs * g, block)
+    for shape, band in [((40, 36), (2, 12)), ((12, 16, 20), (1, 6)), ((10, 12, 14), None), ((30, 32), None)]:
+        for workers in (1, 2):
+            p = plan.noise_plan(shape, 1.0, band, 7, "rayleigh", np.float64)
+            buf, rows = SY._storage(p.shape, p.dt)
+            g_mem = SY._fill_in_place(p, buf, rows, workers)
+            n0 = p.bshape[0]
+            parts = [plan.fill_slab(p, i0, min(n0, i0 + 3)) for i0 in range(0, n0, 3)]
+            slabs = np.concatenate([s for s, _ in parts])
+            planes = [np.ascontiguousarray(slabs[..., j]) for j in plan.self_conjugate_columns(p.n) if j < p.K]
+            g = plan.hermitian_gain(p, np.concatenate([r for _, r in parts]), planes)
+            for k, j in enumerate(j for j in plan.self_conjugate_columns(p.n) if j < p.K):
+                slabs[..., j] = planes[k]
+            assert g_mem == g
+            kept = rows[SY._kept_rows(p), :p.K]
+            np.testing.assert_array_equal(kept, slabs.reshape(kept.shape))
+            others = np.ones(rows.shape[0], dtype=bool)
+            others[SY._kept_rows(p)] = False
+            assert not np.any(rows[others, :p.K])  # the rows the band cannot reach are 0 where the passes read
 
 
 _NOJIT_CASES = """

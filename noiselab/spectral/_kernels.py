@@ -276,7 +276,7 @@ def _make_fill_power_law(mode, exponent_one, sample, quarter, unit):
 
     @njit(cache=True, nogil=True, error_model="numpy")
     def fill(specf, K, q0, q1, wn, kbeg, kend, r0, r1, key, start, exponent, qfloor, inv_qref, weight, rowpow,
-             scratch, words):
+             scratch, words, rowoff):
         """Rows ``r0..r1-1`` of a ``(m0*m1, K)`` block: ``e * a * exp(i*th)`` inside each row's band, 0 outside.
 
         The coefficients are words ``start, start+1, ...`` of the stream ``key``
@@ -302,8 +302,11 @@ def _make_fill_power_law(mode, exponent_one, sample, quarter, unit):
         the cells are :func:`fill_envelope`'s to float64 rounding; float32
         uses ``(c, s)`` as they are (on the unit circle to ``2**-22``).
 
-        ``specf`` is the block's flat float view (real and imaginary parts
-        interleaved, ``2*K`` per row). ``rowpow[r]`` receives the row's power
+        ``specf`` is a flat float view (real and imaginary parts
+        interleaved); row ``r`` is its ``2*K`` floats from ``rowoff[r]``: one
+        after the other in a block (``rowoff[r] = 2*K*r``), or each at its own
+        place in a larger spectrum (the in-place synthesis writes the rows of
+        the output's storage). ``rowpow[r]`` receives the row's power
         weighted by ``weight[kx]``: expected (``e**2``) or, with ``sample``, drawn
         (``|S|**2 = m**2 (c**2 + s**2)``); ``scratch`` (at least ``K`` floats) holds a row's terms,
         summed in float64 in a fixed order.
@@ -326,7 +329,7 @@ def _make_fill_power_law(mode, exponent_one, sample, quarter, unit):
             qs = T((q0[r // m1] + q1[r % m1]) * inv_qref)
             b0 = kbeg[r]
             b1 = kend[r]
-            base = np.uint64(r * 2 * K)
+            base = np.uint64(rowoff[r])
             for k in range(2 * b0):
                 specf[base + np.uint64(k)] = zero
             n = b1 - b0
@@ -397,8 +400,12 @@ _FILLS = {}
 
 
 def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, mode, exponent, qfloor, inv_qref,
-                   weight, sample, rowpow, scratch):
-    """See :func:`_make_fill_power_law`'s kernel; dispatches to the variant for ``mode``, ``exponent == 1``, ``sample``."""
+                   weight, sample, rowpow, scratch, rowoff=None):
+    """See :func:`_make_fill_power_law`'s kernel; dispatches to the variant for ``mode``, ``exponent == 1``, ``sample``.
+
+    ``rowoff`` (int64, one per row, in floats of ``specf``): where each row
+    starts; default: rows one after the other, ``2*K`` floats each.
+    """
     two = 2.0 * float(exponent)
     quarter = int(two) if two == int(two) and exponent != 1.0 else None
     # unit follows the dtype, which numba specialises on anyway: no extra compiled variant
@@ -408,8 +415,10 @@ def fill_power_law(specf, K, q0, q1, wxsq, kbeg, kend, r0, r1, key, start, mode,
         f = _FILLS[flags] = _make_fill_power_law(*flags)
     wn = (wxsq * float(inv_qref)).astype(specf.dtype)  # the kx part of |w|**2 / qref, in the block's precision
     words = np.empty((2, max(1, int(K))), dtype=np.uint32)
+    if rowoff is None:
+        rowoff = np.arange(r1, dtype=np.int64) * (2 * int(K))
     f(specf, K, q0, q1, wn, kbeg, kend, r0, r1, key, start, exponent, qfloor, inv_qref, weight, rowpow, scratch,
-      words)
+      words, rowoff)
 
 
 @njit(cache=True, nogil=True, error_model="numpy")

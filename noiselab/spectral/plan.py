@@ -121,7 +121,9 @@ def noise_plan(shape, exponent, band, rng, amplitude, dtype, *, normalize="expec
     lead = [np.zeros(1)] * (2 - len(lead)) + lead
     q0, q1 = lead
     bshape = tuple(ix.size for ix in index) + (K,)
-    peak = int(np.prod(shape)) * dt.itemsize + 2 * int(np.prod(bshape)) * cdt.itemsize + 20 * CHUNK
+    # the in-memory path: the field's storage (its rows hold the half spectrum first), the last pass's scratch
+    # (1 MiB at most) and the fill's per-row scratch
+    peak = int(np.prod(shape[:-1])) * 2 * (n // 2 + 1) * dt.itemsize + (1 << 20) + 20 * CHUNK
     if check and peak >= CHECK_FROM:  # the in-memory path (the chunked one holds a chunk at a time)
         check_memory(peak, f"spectral_noise{shape}")
     wxsq = np.ascontiguousarray(wsq[-1][:K])

@@ -43,7 +43,7 @@ from .._core import (as_array, as_generator, check_int, check_memory, check_real
                      float_dtype, map_blocks, renamed_parameters, resolve_workers)
 from . import _kernels
 from .frequencies import frequency_vectors, half_spectrum_shape
-from .plan import (AMPLITUDE_MODES, CHUNK, complex_dtype, hermitian_gain, leading_ifft, noise_plan,
+from .plan import (AMPLITUDE_MODES, CHUNK, complex_dtype, hermitian_gain, noise_plan,
                    self_conjugate_columns, stream_key)
 
 __all__ = ["synthesize", "spectral_noise", "NORMALIZATIONS", "draw_coefficients", "hermitian_plane", "AMPLITUDES"]
@@ -411,70 +411,141 @@ def _envelope_array(envelope, shape, hshape):
 
 # fewer cells than this are filled on the calling thread (measured: threads cost more)
 _MIN_PARALLEL = 1 << 16
+# bytes of samples the last pass (kx to x) makes per call: 1/32 of the field, within 64 KiB .. 1 MiB. The peak
+# is the field's storage (1 + 2/n times the field) plus this scratch; fewer, bigger calls cost
+# less (about 8 us a call at 1 worker; 1024 x 1024 float32: 1.68 ms in 16 calls of 64 rows, 2.09 ms in 64,
+# 1.61 ms in 4, benchmarks/bench_spectral.md 2026-11-27)
+LAST_PASS_BYTES = (1 << 16, 1 << 20)
 
 
-def _noise_spectrum(shape, exponent, band, rng, amplitude, dtype, *, normalize="expected", dc=False, workers=1):
-    """The half spectrum of :func:`spectral_noise`, normalised, on the block of cells the band can reach.
+def _storage(shape, dt):
+    """The field's storage: a flat float array of ``prod(shape[:-1])`` rows of ``2*(n//2 + 1)`` floats.
 
-    Returns ``(block, index)``: ``block`` has shape ``(len(index[0]), ..., K)``
-    with ``index[i]`` the kept indices (increasing) of leading axis ``i`` and
-    ``K`` the kept kx columns ``0..K-1``; every cell outside the block is 0.
-    Before the scaling, the coefficients are the ones :func:`synthesize` draws
-    for the envelope ``annulus((lo, hi) / n) * power_law(exponent)`` with the same
-    ``rng`` (the same cells, the same order, the same words), divided by the
-    power law's value at the band's loudest end. The block is then scaled so
-    that the field has unit variance: expected over the ensemble
-    (``normalize="expected"``: ``sum`` of the envelope squared, which needs no
-    random number) or of this realisation (``"sample"``: ``sum |S|**2``).
-    Row groups are filled on ``workers`` threads; each group's coefficients
-    are fixed by its position in the stream, so the bits do not depend on it.
+    Each row holds the row's half spectrum (``n//2 + 1`` complex cells) until
+    the last pass, which writes the row's ``n`` samples to the front of the
+    storage (``n`` floats per row, one after the other), where ``irfftn``
+    would have made a second array. Returns ``(buf, rows)``: ``rows`` is the
+    ``(prod(shape[:-1]), n//2 + 1)`` complex view of ``buf``.
     """
-    p = noise_plan(shape, exponent, band, rng, amplitude, dtype, normalize=normalize, dc=dc)
-    dt, cdt, n, index, K, bshape = p.dt, p.cdt, p.n, p.index, p.K, p.bshape
-    q0, q1, wxsq, kbeg, kend, counts, R, Kr, weight, sample = (p.q0, p.q1, p.wxsq, p.kbeg, p.kend, p.counts, p.R,
-                                                               p.Kr, p.weight, p.sample)
-    qfloor, inv_qref = p.qfloor, p.inv_qref
-    block = np.empty(bshape, dtype=cdt)
-    mode, key = p.mode, p.key
-    bf = block.reshape(-1).view(dt)  # real and imaginary parts, 2 Kr per row
-    total = int(counts.sum())
-    nw = resolve_workers(workers) if total >= _MIN_PARALLEL else 1
-    # the draws are made in the fill (no per-group scratch to keep in cache): about four groups per thread,
-    # few calls; the grouping changes no bit (each row's cells and power depend on the row alone)
-    groups = _row_groups(counts, max(CHUNK, -(-total // (4 * nw))))
+    nrows = int(np.prod(shape[:-1], dtype=np.int64))
+    h = shape[-1] // 2 + 1
+    buf = np.empty(nrows * 2 * h, dtype=dt)
+    return buf, buf.view(complex_dtype(dt)).reshape(nrows, h)
+
+
+def _kept_rows(p):
+    """The storage rows (indices into ``_storage``'s rows) of the block's rows, in the block's C order."""
+    shape, index = p.shape, p.index
+    if len(shape) == 1:
+        return np.zeros(1, dtype=np.int64)
+    if len(shape) == 2:
+        return index[0].astype(np.int64)
+    return (index[0][:, None] * shape[1] + index[1][None, :]).astype(np.int64).reshape(-1)
+
+
+def _fill_in_place(p, buf, rows, nw):
+    """Fill the plan's block into the storage rows it stands for; zero the other rows' first ``K`` cells and every row's cells from ``K``.
+
+    The same coefficients, the same row powers and the same Hermitian planes
+    as :func:`noiselab.spectral.plan.fill_slab` and
+    :func:`~noiselab.spectral.plan.hermitian_gain` give the chunked path:
+    only where each row is written differs. Returns the gain ``g`` (the
+    field's unit variance, see :func:`~noiselab.spectral.plan.hermitian_gain`).
+    """
+    K, L = p.K, 2 * rows.shape[1]
+    kept = _kept_rows(p)
+    if K < rows.shape[1]:  # kx past the band: 0 for the last pass (which then needs no padded copy of its rows)
+        rows[:, K:] = 0
+    if kept.size < rows.shape[0]:  # rows the band cannot reach: read by the leading passes, so zero
+        out = np.ones(rows.shape[0], dtype=bool)
+        out[kept] = False
+        rows[out, :K] = 0
+    # where each fill row starts in buf: a storage row, or (3-D, every frequency) a whole (ky, kx) plane
+    rowoff = (kept if p.R == kept.size else kept[::p.Kr // K]) * L
+    total = int(p.counts.sum())
+    nw = nw if total >= _MIN_PARALLEL else 1
+    # about four groups per thread, few calls; the grouping changes no bit (each row's cells depend on the row alone)
+    groups = _row_groups(p.counts, max(CHUNK, -(-total // (4 * nw))))
     starts = np.concatenate([[0], np.cumsum([g[2] for g in groups])[:-1]]).astype(np.int64)
-    rowpow = np.zeros(R)
+    rowpow = np.zeros(p.R)
 
     def fill(i):
         r0, r1, _ = groups[i]
-        scratch = np.empty(Kr, dtype=dt)
-        _kernels.fill_power_law(bf, Kr, q0, q1, wxsq, kbeg, kend, r0, r1, key, int(starts[i]), mode,
-                                float(exponent), float(qfloor), float(inv_qref), weight, sample, rowpow, scratch)
+        scratch = np.empty(p.Kr, dtype=p.dt)
+        _kernels.fill_power_law(buf, p.Kr, p.q0, p.q1, p.wxsq, p.kbeg, p.kend, r0, r1, p.key, int(starts[i]),
+                                p.mode, p.exponent, p.qfloor, p.inv_qref, p.weight, p.sample, rowpow, scratch,
+                                rowoff)
 
     map_blocks(fill, range(len(groups)), nw)
-    g = hermitian_gain(p, rowpow, [block[..., j] for j in self_conjugate_columns(n) if j < K])
-    rows = block.reshape(R, -1)
-
-    def scale(i):
-        rows[groups[i][0]:groups[i][1]] *= g
-
-    map_blocks(scale, range(len(groups)), nw)
-    return block, index
+    cols = [j for j in self_conjugate_columns(p.n) if j < K]
+    planes = [rows[kept, j] for j in cols]  # gathered (the kept rows), made Hermitian, put back
+    g = hermitian_gain(p, rowpow, planes)
+    for j, plane in zip(cols, planes):
+        rows[kept, j] = plane
+    return g
 
 
+def _runs(ix):
+    """Consecutive runs of the increasing indices ``ix`` as slices."""
+    cut = np.flatnonzero(np.diff(ix) != 1) + 1
+    return [slice(int(a[0]), int(a[-1]) + 1) for a in np.split(ix, cut)]
 
-def _pruned_irfftn(block, index, shape, workers=None):
-    """``irfftn`` of a half spectrum that is 0 outside ``block`` (see :func:`_noise_spectrum`), ``block`` overwritten.
 
-    Along each leading axis only the kept kx columns are transformed (after
-    putting the kept rows back at their indices); the last pass ``irfft``
-    zero-pads kx to ``W//2 + 1``. With nothing pruned it is ``irfftn`` itself.
-    Every pass gets scipy's ``workers``.
+def _ifft_in_place(view, axis, workers):
+    """Unnormalised inverse FFT of the complex ``view`` along ``axis``, written into ``view``."""
+    out = scipy.fft.ifft(view, axis=axis, overwrite_x=True, norm="forward", workers=workers)
+    if not np.may_share_memory(out, view):  # scipy's in-place transform of a complex input, kept if it copies
+        view[...] = out
+
+
+def _inverse_in_place(buf, rows, p, scale, workers=None):
+    """The field from the spectrum in its storage (see :func:`_storage`): ``irfftn`` times ``scale``, in ``buf``.
+
+    The leading axes are transformed in place, on the first ``K`` cells of
+    every row (beyond them the spectrum is 0); along the first axis only
+    the rows of the second axis the band reaches (3-D). The last pass turns
+    blocks of rows into samples (``irfft``) and writes them, times
+    ``scale``, to the front of the
+    storage: row ``i``'s samples go to floats ``i*n .. (i+1)*n - 1``, which
+    hold no row after the block's last, so nothing is overwritten before it is
+    read. Returns the field, a C-contiguous view of ``buf``. Unnormalised
+    transforms (``norm="forward"`` on the inverse): ``scale`` is the whole
+    factor.
     """
-    if all(ix.size == n for ix, n in zip(index, shape[:-1])) and block.shape[-1] == shape[-1] // 2 + 1:
-        return scipy.fft.irfftn(block, s=shape, workers=workers)
-    B = leading_ifft(block, index, shape, workers=workers)
-    return scipy.fft.irfft(B, n=shape[-1], axis=-1, overwrite_x=True, workers=workers)
+    shape, K, n = p.shape, p.K, p.n
+    cv = rows.reshape(tuple(shape[:-1]) + (rows.shape[1],))
+    if len(shape) == 3:
+        for sl in _runs(p.index[1]):
+            _ifft_in_place(cv[:, sl, :K], 0, workers)
+        _ifft_in_place(cv[:, :, :K], 1, workers)
+    elif len(shape) == 2:
+        _ifft_in_place(cv[:, :K], 0, workers)
+    nrows = rows.shape[0]
+    field = buf[:nrows * n].reshape(nrows, n)
+    rowbytes = n * p.dt.itemsize
+    lo, hi = LAST_PASS_BYTES
+    step = max(1, min(hi, max(lo, nrows * rowbytes // 32)) // rowbytes)
+    scale = p.dt.type(scale)
+    for r0 in range(0, nrows, step):
+        r1 = min(nrows, r0 + step)
+        x = scipy.fft.irfft(rows[r0:r1], n=n, axis=-1, norm="forward", workers=workers)
+        np.multiply(x, scale, out=field[r0:r1])
+        del x  # before the next block's scratch is made
+    return field.reshape(shape)
+
+
+def _spectral_field(shape, exponent, band, rng, amplitude, dt, *, normalize, dc, workers, nw):
+    """:func:`spectral_noise`'s field, synthesised in its own storage (no second array of its size).
+
+    The spectrum is filled into the rows of the output's storage
+    (:func:`_fill_in_place`), transformed there (:func:`_inverse_in_place`)
+    and scaled in the last pass by ``g / N`` (the gain of
+    :func:`~noiselab.spectral.plan.hermitian_gain` and ``irfftn``'s ``1/N``).
+    """
+    p = noise_plan(shape, exponent, band, rng, amplitude, dt, normalize=normalize, dc=dc)
+    buf, rows = _storage(p.shape, p.dt)
+    g = _fill_in_place(p, buf, rows, nw)
+    return _inverse_in_place(buf, rows, p, float(g) / float(np.prod(shape, dtype=np.float64)), workers=workers)
 
 
 NORMALIZATIONS = ("expected", "sample")
@@ -605,9 +676,5 @@ def spectral_noise(shape, *, exponent=1.0, band=None, rng=None, amplitude_distri
         return dispatch.chunked("spectral_noise")(shape, chunks, exponent=exponent, band=band, rng=rng,
                                                   amplitude=amplitude, dtype=dt, normalize=normalize, dc=bool(dc),
                                                   spill=spill)
-    block, index = _noise_spectrum(shape, exponent, band, rng, amplitude, dt, normalize=normalize, dc=bool(dc),
-                                   workers=nw)
-    field = _pruned_irfftn(block, index, shape, workers=workers)
-    if field.dtype != dt:
-        field = field.astype(dt)
-    return field
+    return _spectral_field(shape, exponent, band, rng, amplitude, dt, normalize=normalize, dc=bool(dc),
+                           workers=workers, nw=nw)
