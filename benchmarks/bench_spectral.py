@@ -175,22 +175,23 @@ def run(rounds, quick, before_rev, workers):
 def serial_share(shape, band, dt, rounds):
     """Shares of one single-worker ``spectral_noise`` call: (outside the threaded stages, spectrum fill + scaling, FFT).
 
-    The stages are timed by wrapping ``map_blocks`` (fill, then scaling) and ``_pruned_irfftn`` of the
-    module; medians of ``rounds`` calls. Robust to the load (one call's own parts)."""
+    The stages are timed by wrapping ``map_blocks`` (fill, then scaling) and the inverse FFT
+    (``_inverse_in_place``, whose last pass scales) of the module; medians of ``rounds`` calls. Robust to the
+    load (one call's own parts)."""
     import noiselab.spectral.synthesis as SY
 
-    orig = (SY.map_blocks, SY._pruned_irfftn)
+    orig = (SY.map_blocks, SY._inverse_in_place)
 
     def wrap(f, key, sw):
         return lambda *a, **k: sw(key, lambda: f(*a, **k))
 
     def one(r):
         sw = Stopwatch()
-        SY.map_blocks, SY._pruned_irfftn = wrap(orig[0], "fill", sw), wrap(orig[1], "fft", sw)
+        SY.map_blocks, SY._inverse_in_place = wrap(orig[0], "fill", sw), wrap(orig[1], "fft", sw)
         try:
             SY.spectral_noise(shape, band=band, rng=max(r, 0), dtype=dt, workers=1)
         finally:
-            SY.map_blocks, SY._pruned_irfftn = orig
+            SY.map_blocks, SY._inverse_in_place = orig
         return Laps(fill=sw.laps.get("fill", 0.0), fft=sw.laps.get("fft", 0.0))
 
     t = interleaved({"call": one}, repeats=rounds, round_arg=True)

@@ -64,13 +64,17 @@ def _both_clocks(cands, rounds):
 def stages(shape, rounds, SY=None):
     """Medians (ms, one worker) of one ``spectral_noise`` call's stages: plan, fill, gain + scaling, FFT.
 
+    Since the synthesis in place, the scaling is part of the FFT's last pass and "gain" is the Hermitian planes.
+
     ``SY``: the synthesis module to split (default: the current one).
     """
     import noiselab.spectral.plan as PL
     if SY is None:
         import noiselab.spectral.synthesis as SY
 
-    orig = (SY.noise_plan, SY.map_blocks, SY.hermitian_gain, SY._pruned_irfftn)
+    # the inverse FFT: the in-place passes (with the scaling folded into the last), or a revision's pruned irfftn
+    fft_name = "_inverse_in_place" if hasattr(SY, "_inverse_in_place") else "_pruned_irfftn"
+    orig = (SY.noise_plan, SY.map_blocks, SY.hermitian_gain, getattr(SY, fft_name))
 
     def one(r):
         sw = Stopwatch(time.process_time)
@@ -83,11 +87,12 @@ def stages(shape, rounds, SY=None):
         SY.noise_plan = lambda *a, **k: sw("plan", lambda: orig[0](*a, **k))
         SY.map_blocks = blocks
         SY.hermitian_gain = lambda *a, **k: sw("gain", lambda: orig[2](*a, **k))
-        SY._pruned_irfftn = lambda *a, **k: sw("fft", lambda: orig[3](*a, **k))
+        setattr(SY, fft_name, lambda *a, **k: sw("fft", lambda: orig[3](*a, **k)))
         try:
             sw("call", lambda: SY.spectral_noise(shape, rng=max(r, 0), workers=1))
         finally:
-            SY.noise_plan, SY.map_blocks, SY.hermitian_gain, SY._pruned_irfftn = orig
+            SY.noise_plan, SY.map_blocks, SY.hermitian_gain = orig[:3]
+            setattr(SY, fft_name, orig[3])
         return sw.laps
 
     assert PL  # the plan module is where noise_plan lives; synthesis imports it by name

@@ -611,3 +611,18 @@ def test_spectral_kernels_give_the_same_bits_without_the_jit(tmp_path):
     want = np.concatenate([o.ravel().astype(np.float64) for o in ns["out"]])
     got = np.load(path)
     assert got.shape == want.shape and got.tobytes() == want.tobytes()
+
+
+def test_the_plans_cache_changes_no_bit_and_keeps_no_failure():
+    # the plan's geometry (rows, band intervals, law reference) is kept for repeated arguments; the key is not
+    from noiselab.spectral import plan
+
+    plan._geometry.cache_clear()
+    a = spectral_noise((40, 36), band=(2, 12), rng=3, exponent=1.5)
+    b = spectral_noise((40, 36), band=(2, 12), rng=3, exponent=1.5)
+    c = spectral_noise((40, 36), band=(2, 12), rng=4, exponent=1.5)
+    assert plan._geometry.cache_info().hits >= 2
+    assert a.tobytes() == b.tobytes() and not np.array_equal(a, c)
+    for _ in range(2):
+        with pytest.raises(ValueError, match="holds no frequency"):
+            spectral_noise((8, 8), band=(0.1, 0.2), rng=0)

@@ -31,6 +31,7 @@ Internal: noiselab's subpackages use these names; users call
 """
 from __future__ import annotations
 
+import functools
 from types import SimpleNamespace
 
 import numpy as np
@@ -86,7 +87,9 @@ def noise_plan(shape, exponent, band, rng, amplitude, dtype, *, normalize="expec
     ``kbeg:kend``, the power law's reference and the stream key drawn from
     ``seed``. With ``check`` the in-memory path's peak is checked against the
     free memory (the chunked path holds one slab at a time). Returns the plan
-    (a namespace; see the module notes).
+    (a namespace; see the module notes). All but the key depends on the
+    arguments alone and is kept for the last few argument sets (the same
+    arrays for repeated calls: callers read them and never write).
 
     Examples
     --------
@@ -95,20 +98,37 @@ def noise_plan(shape, exponent, band, rng, amplitude, dtype, *, normalize="expec
     ((33, 17), 17)
     """
     dt = float_dtype(dtype)
-    cdt = complex_dtype(dt)
-    d = len(shape)
+    shape = tuple(int(m) for m in shape)
     n = shape[-1]
     if all(m == 1 for m in shape):
         raise ValueError(f"shape {shape} holds no nonzero frequency (a single sample); spectral noise needs "
                          f"an axis of at least 2 samples")
-    if band is None:
-        lo, hi = 0.0, 0.5 * np.sqrt(d) + 1.0  # everything, corners included
-    else:
+    if band is not None:
         lo, hi = check_band("band", band, n / 2, width=n)
         if dc and lo > 0:
             raise ValueError(f"dc=True keeps the DC term, which a band must then start at: got band[0] = {lo:g} "
                              f"cycles/frame; pass band=(0, hi)")
-        lo, hi = lo / n, hi / n
+        band_key = (lo, hi)
+    else:
+        band_key = None
+    geo = _geometry(shape, float(exponent), band_key, dt.str, normalize == "sample", bool(dc))
+    if check and geo["peak"] >= CHECK_FROM:  # the in-memory path (the chunked one holds a chunk at a time)
+        check_memory(geo["peak"], f"spectral_noise{shape}")
+    rng = as_generator(rng)
+    return SimpleNamespace(**geo, band=band, key=stream_key(rng), mode=AMPLITUDE_MODES[amplitude])
+
+
+@functools.lru_cache(maxsize=8)
+def _geometry(shape, exponent, band, dtype, sample, dc):
+    """:func:`noise_plan`'s fields that do not depend on the random state (``band``: the checked pair or None)."""
+    dt = np.dtype(dtype)
+    cdt = complex_dtype(dt)
+    d = len(shape)
+    n = shape[-1]
+    if band is None:
+        lo, hi = 0.0, 0.5 * np.sqrt(d) + 1.0  # everything, corners included
+    else:
+        lo, hi = band[0] / n, band[1] / n
     eps = 1e-12  # the tolerance of envelopes.annulus
     lo_e, hi_e = lo * (1 - eps), hi * (1 + eps)
     w = frequency_vectors(shape)
@@ -124,12 +144,9 @@ def noise_plan(shape, exponent, band, rng, amplitude, dtype, *, normalize="expec
     # the in-memory path: the field's storage (its rows hold the half spectrum first), the last pass's scratch
     # (1 MiB at most) and the fill's per-row scratch
     peak = int(np.prod(shape[:-1])) * 2 * (n // 2 + 1) * dt.itemsize + (1 << 20) + 20 * CHUNK
-    if check and peak >= CHECK_FROM:  # the in-memory path (the chunked one holds a chunk at a time)
-        check_memory(peak, f"spectral_noise{shape}")
     wxsq = np.ascontiguousarray(wsq[-1][:K])
     # weight of a half-spectrum cell in the full spectrum's power, halved: 1 where it stands for two cells, 1/2
     # on the self-conjugate planes (sample power: 0 there, their power is added once they are Hermitian)
-    sample = normalize == "sample"
     weight = np.ones(K, dtype=dt)
     for j in self_conjugate_columns(n):
         if j < K:
@@ -166,11 +183,13 @@ def noise_plan(shape, exponent, band, rng, amplitude, dtype, *, normalize="expec
         raise ValueError(f"band ({lo * n:g}, {hi * n:g}) cycles/frame holds no frequency of a "
                          f"{' x '.join(map(str, shape))} grid (frequency steps are 1 cycle/frame along the last "
                          f"axis, {n}/length along the others); widen the band")
-    rng = as_generator(rng)
-    return SimpleNamespace(shape=tuple(shape), dt=dt, cdt=cdt, n=n, index=index, K=K, bshape=bshape, q0=q0, q1=q1,
-                           wxsq=wxsq, kbeg=kbeg, kend=kend, counts=counts, R=R, Kr=Kr, weight=weight, sample=sample,
-                           exponent=float(exponent), qfloor=float(qfloor), inv_qref=float(inv_qref),
-                           key=stream_key(rng), mode=AMPLITUDE_MODES[amplitude], dc=bool(dc), band=band, lo=lo)
+    # each self-conjugate plane's mirror rows: -k along the kept indices of each leading axis
+    maps = [np.searchsorted(ix, (-ix) % m) for ix, m in zip(index, shape[:-1])]
+    maps = [np.zeros(1, dtype=np.int64)] * (2 - len(maps)) + maps
+    return dict(shape=shape, dt=dt, cdt=cdt, n=n, index=index, K=K, bshape=bshape, q0=q0, q1=q1, wxsq=wxsq,
+                kbeg=kbeg, kend=kend, counts=counts, R=R, Kr=Kr, weight=weight, sample=sample,
+                exponent=float(exponent), qfloor=float(qfloor), inv_qref=float(inv_qref), dc=bool(dc), lo=lo,
+                maps=maps, peak=peak)
 
 
 def fill_slab(p, i0, i1):
@@ -215,8 +234,7 @@ def hermitian_gain(p, rowpow, planes):
     symmetric under k -> -k, and so is the kept block.
     """
     power = 2.0 * float(np.sum(rowpow))  # the same float for any worker count or chunking: one fixed order
-    maps = [np.searchsorted(ix, (-ix) % m) for ix, m in zip(p.index, p.shape[:-1])]
-    maps = [np.zeros(1, dtype=np.int64)] * (2 - len(maps)) + maps
+    maps = p.maps
     for plane in planes:
         pw = _kernels.hermitian_symmetric_plane(plane.reshape(maps[0].size, maps[1].size), maps[0], maps[1])
         if p.sample:
