@@ -257,9 +257,8 @@ def write_md(rows, names, rounds, argv, path, before_rev=None):
         "",
     ]
     if before_rev:
-        lines[-1:-1] = ["", f"`spectral_noise before` = `noiselab/spectral/synthesis.py` at `{before_rev}` (float64 "
-                        "envelope over the whole half spectrum, float64 uniforms + log/cos/sin per cell, flatnonzero "
-                        "scatter, mean/std passes on the field), timed in the same rounds."]
+        lines[-1:-1] = ["", f"`spectral_noise before` = `noiselab/spectral/synthesis.py` and `_kernels.py` at "
+                        f"`{before_rev}` (with the current plan module), timed in the same rounds."]
     head = "| case | workers | floor ms | " + " | ".join(f"{n} (x floor, ms)" for n in names) + \
         " | peak MiB (floor; output) |" + (" before peak MiB |" if "spectral_noise before" in names else "")
     lines.append(head)

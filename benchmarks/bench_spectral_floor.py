@@ -45,10 +45,10 @@ SPECTRAL = [(1024, 1024), (128, 128, 128), (4096, 4096)]
 SNOW = (64, 512, 512)
 
 
-def _half(shape):
+def _half(shape, dtype=np.float32):
     rng = np.random.default_rng(0)
     h = shape[:-1] + (shape[-1] // 2 + 1,)
-    S = np.empty(h, np.complex64)
+    S = np.empty(h, np.complex64 if np.dtype(dtype) == np.float32 else np.complex128)
     S.real = rng.standard_normal(h, dtype=np.float32)
     S.imag = rng.standard_normal(h, dtype=np.float32)
     return S
@@ -61,7 +61,7 @@ def _both_clocks(cands, rounds):
     return wall, cpu
 
 
-def stages(shape, rounds, SY=None):
+def stages(shape, rounds, SY=None, dtype=np.float32):
     """Medians (ms, one worker) of one ``spectral_noise`` call's stages: plan, fill, gain + scaling, FFT.
 
     Since the synthesis in place, the scaling is part of the FFT's last pass and "gain" is the Hermitian planes.
@@ -89,7 +89,7 @@ def stages(shape, rounds, SY=None):
         SY.hermitian_gain = lambda *a, **k: sw("gain", lambda: orig[2](*a, **k))
         setattr(SY, fft_name, lambda *a, **k: sw("fft", lambda: orig[3](*a, **k)))
         try:
-            sw("call", lambda: SY.spectral_noise(shape, rng=max(r, 0), workers=1))
+            sw("call", lambda: SY.spectral_noise(shape, rng=max(r, 0), workers=1, dtype=dtype))
         finally:
             SY.noise_plan, SY.map_blocks, SY.hermitian_gain = orig[:3]
             setattr(SY, fft_name, orig[3])
@@ -100,29 +100,44 @@ def stages(shape, rounds, SY=None):
     return {k: 1e3 * t[k] for k in ("plan", "fill", "gain", "fft", "call")}
 
 
-def spectral(workers, rounds, before=None):
-    spectral_noise((8, 8), rng=0)
-    if before is not None:
-        before.spectral_noise((8, 8), rng=0)
+def _peak_x_output(f):
+    """The ``tracemalloc`` peak of one call of ``f`` over the size of what it returns."""
+    from noiselab.lab.measure import peak_memory
+
+    nbytes = []
+    peak = peak_memory(lambda: nbytes.append(f().nbytes))
+    return peak / nbytes[0]
+
+
+def spectral(workers, rounds, before=None, dtypes=("float32",)):
+    for dt in dtypes:
+        spectral_noise((8, 8), rng=0, dtype=dt)
+        if before is not None:
+            before.spectral_noise((8, 8), rng=0, dtype=dt)
     out = []
-    for shape in SPECTRAL:
-        S = _half(shape)
+    for shape, dt in [(s, d) for d in dtypes for s in SPECTRAL]:
+        S = _half(shape, dt)
         cands = {}
         for w in workers:
             cands[("floor", w)] = lambda r, w=w, S=S, shape=shape: scipy.fft.irfftn(S, s=shape, workers=w)
-            cands[("spectral_noise", w)] = lambda r, w=w, shape=shape: spectral_noise(shape, rng=max(r, 0), workers=w)
+            cands[("spectral_noise", w)] = lambda r, w=w, shape=shape, dt=dt: spectral_noise(
+                shape, rng=max(r, 0), workers=w, dtype=dt)
             if before is not None:
-                cands[("before", w)] = lambda r, w=w, shape=shape: before.spectral_noise(shape, rng=max(r, 0),
-                                                                                          workers=w)
+                cands[("before", w)] = lambda r, w=w, shape=shape, dt=dt: before.spectral_noise(
+                    shape, rng=max(r, 0), workers=w, dtype=dt)
         wall, cpu = _both_clocks(cands, rounds)
-        st = stages(shape, rounds)
-        st_before = stages(shape, rounds, before) if before is not None else None
+        st = stages(shape, rounds, dtype=dt)
+        st_before = stages(shape, rounds, before, dtype=dt) if before is not None else None
+        peak = _peak_x_output(lambda: spectral_noise(shape, rng=0, workers=workers[-1], dtype=dt))
+        peak_before = (_peak_x_output(lambda: before.spectral_noise(shape, rng=0, workers=workers[-1], dtype=dt))
+                       if before is not None else None)
         for w in workers:
             extra = {} if before is None else {
                 "before_cpu": cpu.ratio(("before", w), ("floor", w)),
                 "before_wall": wall.ratio(("before", w), ("floor", w)),
-                "before_fill": st_before["fill"]}
-            out.append({**extra, "shape": shape, "workers": w, "floor_wall_ms": 1e3 * wall[("floor", w)],
+                "before_fill": st_before["fill"], "before_peak": peak_before}
+            out.append({**extra, "shape": shape, "dtype": np.dtype(dt).name, "peak": peak, "workers": w,
+                        "floor_wall_ms": 1e3 * wall[("floor", w)],
                         "floor_cpu_ms": 1e3 * cpu[("floor", w)],
                         "wall": wall.ratio(("spectral_noise", w), ("floor", w)),
                         "cpu": cpu.ratio(("spectral_noise", w), ("floor", w)),
@@ -182,13 +197,15 @@ def main(argv=None):
     ap.add_argument("--no-write", action="store_true")
     ap.add_argument("--only", choices=["spectral", "snow"], default=None)
     ap.add_argument("--before", default=None, help="git revision whose spectral synthesis and kernels to time beside")
+    ap.add_argument("--dtypes", nargs="+", default=["float32"], choices=["float32", "float64"])
     a = ap.parse_args(argv)
     if a.rounds < 5:
         ap.error("--rounds must be at least 5")
     cmd = "python3 benchmarks/bench_spectral_floor.py" + (
         f" --workers {' '.join(map(str, a.workers))}" if a.workers != [1, 2] else "") + (
         f" --rounds {a.rounds}" if a.rounds != 7 else "") + (f" --only {a.only}" if a.only else "") + (
-        f" --before {a.before}" if a.before else "")
+        f" --before {a.before}" if a.before else "") + (
+        f" --dtypes {' '.join(a.dtypes)}" if a.dtypes != ["float32"] else "")
     if a.only != "snow":
         load0 = load_average()
         before = None
@@ -196,23 +213,27 @@ def main(argv=None):
             sys.path.insert(0, str(ROOT / "benchmarks"))
             from bench_spectral import _before_module
             before = _before_module(a.before)
-        rows = spectral(a.workers, a.rounds, before)
+        rows = spectral(a.workers, a.rounds, before, a.dtypes)
         lines = _section(
             "## At the floor, CPU time and wall time (`bench_spectral_floor.py`)", cmd, load0,
-            f"float32, full band, `exponent=1`; ratio = median over {a.rounds} interleaved rounds of "
-            "spectral_noise / floor in the same round (floor = `scipy.fft.irfftn` of a complex64 half spectrum "
-            "to the same output, same `workers`); CPU = `time.process_time` (all threads of the process), "
-            "which the other jobs on a shared machine do not inflate; cores = CPU / wall of the call.",
-            "| shape | workers | floor wall / CPU ms | **ratio, CPU** | ratio, wall | cores used: floor, "
-            "spectral_noise | 1-worker call, ms CPU: plan / fill / gain+scale / FFT (call) |"
-            + (f" `{a.before}`: ratio CPU, wall; 1-worker fill ms CPU |" if before is not None else ""))
+            f"{', '.join(a.dtypes)}, full band, `exponent=1`; ratio = median over {a.rounds} interleaved rounds of "
+            "spectral_noise / floor in the same round (floor = `scipy.fft.irfftn` of a complex half spectrum "
+            "of the dtype to the same output, same `workers`); CPU = `time.process_time` (all threads of the "
+            "process), which the other jobs on a shared machine do not inflate; cores = CPU / wall of the call; "
+            "peak = `tracemalloc` peak of one call at the last worker count / the output's bytes.",
+            "| shape | dtype | workers | floor wall / CPU ms | **ratio, CPU** | ratio, wall | cores used: floor, "
+            "spectral_noise | 1-worker call, ms CPU: plan / fill / gain+scale / FFT (call) | peak x output |"
+            + (f" `{a.before}`: ratio CPU, wall; 1-worker fill ms CPU; peak x output |" if before is not None
+               else ""))
         for r in rows:
             st = r["stages"]
-            lines.append(f"| {'x'.join(map(str, r['shape']))} | {r['workers']} | {r['floor_wall_ms']:.1f} / "
+            lines.append(f"| {'x'.join(map(str, r['shape']))} | {r['dtype']} | {r['workers']} | "
+                         f"{r['floor_wall_ms']:.1f} / "
                          f"{r['floor_cpu_ms']:.1f} | **{r['cpu']:.2f}** | {r['wall']:.2f} | {r['cores_floor']:.2f}, "
                          f"{r['cores_sn']:.2f} | {st['plan']:.2f} / {st['fill']:.2f} / {st['gain']:.2f} / "
-                         f"{st['fft']:.2f} ({st['call']:.2f}) |"
-                         + (f" {r['before_cpu']:.2f}, {r['before_wall']:.2f}; {r['before_fill']:.2f} |"
+                         f"{st['fft']:.2f} ({st['call']:.2f}) | {r['peak']:.3f} |"
+                         + (f" {r['before_cpu']:.2f}, {r['before_wall']:.2f}; {r['before_fill']:.2f}; "
+                            f"{r['before_peak']:.3f} |"
                             if before is not None else ""))
         _append("bench_spectral.md", lines, not a.no_write)
     if a.only != "spectral":

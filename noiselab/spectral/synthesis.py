@@ -641,12 +641,18 @@ def spectral_noise(shape, *, exponent=1.0, band=None, rng=None, amplitude_distri
     The same field as ``synthesize(shape, annulus * power_law, ...)`` rescaled,
     built without the float64 envelope: the band and the power law are
     evaluated cell by cell while the coefficients are written, each row's band
-    is one kx interval, and only the block of rows and columns the band can
-    reach is stored and transformed (a pruned inverse FFT, as in
-    :mod:`noiselab.snowfall`). Mean and variance are set on the spectrum (DC is 0
-    unless ``dc``; Parseval gives the variance), so the field needs no pass
-    after the FFT. Timings (ratio to a bare ``irfftn`` of the output at equal
-    workers, and peak memory): ``benchmarks/bench_spectral.md``.
+    is one kx interval, and only the rows and columns the band can reach are
+    transformed along the leading axes (a pruned inverse FFT, as in
+    :mod:`noiselab.snowfall`). The synthesis runs in the output's own storage:
+    the half spectrum is written into its rows (``n//2 + 1`` complex cells
+    hold a row's ``n`` samples), transformed there, and the last pass writes
+    each block of rows' samples back to the front, so the peak memory is the
+    field and a small scratch (at most 1.1x the output for 2-D and 3-D
+    fields from 4 MiB up; ``irfftn`` of a ready spectrum holds 2x). Mean and
+    variance are set on the spectrum (DC is 0 unless ``dc``; Parseval gives
+    the variance) and the scale is applied in the last pass, so the field
+    needs no pass of its own. Timings (ratio to a bare ``irfftn`` of the
+    output at equal workers, and peak memory): ``benchmarks/bench_spectral.md``.
 
     Examples
     --------
