@@ -146,6 +146,28 @@ def spectral(workers, rounds, before=None, dtypes=("float32",)):
     return out
 
 
+def last_pass_sweep(workers, rounds):
+    """CPU ms of the in-place synthesis's last pass (``irfft`` of blocks of rows, scaled into the front) per block size.
+
+    1024 x 1024 float32, full band: the ``(1024, 513)`` complex rows turned into samples ``rows`` at a time,
+    each block's samples multiplied into a float32 output (as ``synthesis._inverse_in_place`` does).
+    """
+    n = 1024
+    S = _half((n, n))
+    out = np.empty((n, n), np.float32)
+    blocks = (1024, 256, 64, 32, 16, 8)
+
+    def run(rows, w):
+        for r0 in range(0, n, rows):
+            x = scipy.fft.irfft(S[r0:r0 + rows], n=n, axis=-1, norm="forward", workers=w)
+            np.multiply(x, np.float32(0.5), out=out[r0:r0 + rows])
+            del x
+
+    cands = {(b, w): (lambda b=b, w=w: run(b, w)) for b in blocks for w in workers}
+    t = interleaved(cands, repeats=rounds, timer=time.process_time)
+    return [(b, [1e3 * t[(b, w)] for w in workers]) for b in blocks]
+
+
 def snow_timing(workers, rounds):
     snow((4, 32, 32), rng=0)
     S = _half(SNOW)
@@ -198,6 +220,7 @@ def main(argv=None):
     ap.add_argument("--only", choices=["spectral", "snow"], default=None)
     ap.add_argument("--before", default=None, help="git revision whose spectral synthesis and kernels to time beside")
     ap.add_argument("--dtypes", nargs="+", default=["float32"], choices=["float32", "float64"])
+    ap.add_argument("--last-pass", action="store_true", help="only the last pass's cost per block of rows")
     a = ap.parse_args(argv)
     if a.rounds < 5:
         ap.error("--rounds must be at least 5")
@@ -206,6 +229,19 @@ def main(argv=None):
         f" --rounds {a.rounds}" if a.rounds != 7 else "") + (f" --only {a.only}" if a.only else "") + (
         f" --before {a.before}" if a.before else "") + (
         f" --dtypes {' '.join(a.dtypes)}" if a.dtypes != ["float32"] else "")
+    if a.last_pass:
+        load0 = load_average()
+        sweep = last_pass_sweep(a.workers, a.rounds)
+        lines = _section(
+            "## The in-place synthesis's last pass per block of rows (`bench_spectral_floor.py --last-pass`)",
+            cmd + " --last-pass", load0,
+            f"1024 x 1024 float32: `irfft` of the `(1024, 513)` complex64 rows, a block of rows per call, each "
+            f"block's samples multiplied into the float32 output; CPU ms, median of {a.rounds} interleaved rounds.",
+            "| rows per call (calls) | " + " | ".join(f"CPU ms, {w} worker(s)" for w in a.workers) + " |")
+        for b, ms in sweep:
+            lines.append(f"| {b} ({1024 // b}) | " + " | ".join(f"{m:.2f}" for m in ms) + " |")
+        _append("bench_spectral.md", lines, not a.no_write)
+        return
     if a.only != "snow":
         load0 = load_average()
         before = None

@@ -412,9 +412,9 @@ def _envelope_array(envelope, shape, hshape):
 # fewer cells than this are filled on the calling thread (measured: threads cost more)
 _MIN_PARALLEL = 1 << 16
 # bytes of samples the last pass (kx to x) makes per call: 1/32 of the field, within 64 KiB .. 1 MiB. The peak
-# is the field's storage (1 + 2/n times the field) plus this scratch; fewer, bigger calls cost
-# less (about 8 us a call at 1 worker; 1024 x 1024 float32: 1.68 ms in 16 calls of 64 rows, 2.09 ms in 64,
-# 1.61 ms in 4, benchmarks/bench_spectral.md 2026-11-27)
+# is the field's storage (1 + 2/n times the field) plus this scratch; fewer, bigger calls cost a little less
+# (1024 x 1024 float32, 1 worker, CPU: 1.98 ms in one call, 2.03 in 16, 2.21 in 32, 2.40 in 64;
+# `python3 benchmarks/bench_spectral_floor.py --last-pass`, benchmarks/bench_spectral.md 2026-11-27)
 LAST_PASS_BYTES = (1 << 16, 1 << 20)
 
 
