@@ -228,6 +228,29 @@ def exponent_sweep(rounds, before_rev, path, argv):
     print("\n".join(lines))
 
 
+BITS_CASES = [((1024, 1024), {}), ((2048, 2048), {}), ((512, 512), {"band": (4, 64)}),
+              ((256, 256), {"exponent": 2.0, "normalize": "sample"}),
+              ((300, 301), {"amplitude_distribution": "uniform", "exponent": 0.5}), ((64, 64, 64), {}),
+              ((128, 96, 80), {"band": (2, 16)}), ((4096,), {"dc": True})]
+
+
+def bits_against(rev, seeds=3):
+    """The largest absolute difference between ``spectral_noise`` now and at ``rev``, per dtype, over :data:`BITS_CASES`."""
+    before = _before_module(rev)
+    worst = {}
+    for shape, kw in BITS_CASES:
+        for dt in (np.float32, np.float64):
+            for seed in range(seeds):
+                a = spectral_noise(shape, rng=seed, dtype=dt, **kw)
+                b = before.spectral_noise(shape, rng=seed, dtype=dt, **kw)
+                d = float(np.max(np.abs(a.astype(np.float64) - b)))
+                name = np.dtype(dt).name
+                if d >= worst.get(name, (-1.0,))[0]:
+                    worst[name] = (d, shape, kw, seed)
+    for name, (d, shape, kw, seed) in worst.items():
+        print(f"{name}: largest difference {d:.2g} ({shape}, {kw}, rng={seed})")
+
+
 def _parallel_fraction(speedup, n_from, n_to):
     """Amdahl's parallel fraction implied by ``speedup`` going from ``n_from`` to ``n_to`` workers."""
     r = n_to / n_from
@@ -306,6 +329,8 @@ def build_parser():
     p.add_argument("--output", default=None, help="default benchmarks/bench_spectral.md "
                    "(bench_spectral_exponents.md with --exponents)")
     p.add_argument("--exponents", action="store_true", help="only the exponent sweep (1024^2 float32, 1 worker)")
+    p.add_argument("--bits-against", default=None, metavar="REV",
+                   help="only print the largest difference of spectral_noise's fields from those at REV")
     return p
 
 
@@ -315,6 +340,9 @@ def main(argv=None):
     a = p.parse_args(argv)
     if a.rounds < 5:
         p.error("--rounds must be at least 5 (medians of fewer are not reported)")
+    if a.bits_against:
+        bits_against(a.bits_against)
+        return
     if a.exponents:
         exponent_sweep(a.rounds, a.before, Path(a.output or ROOT / "benchmarks" / "bench_spectral_exponents.md"),
                        argv)
