@@ -269,6 +269,23 @@ def test_in_place_synthesis_equals_irfftn_of_the_plans_whole_spectrum(dtype):
             np.testing.assert_allclose(got, ref, rtol=0, atol=tol * np.abs(ref).max())
 
 
+def test_in_memory_and_chunked_fields_have_the_same_bits():
+    # the in-place passes are the chunked path's (one axis at a time, the same scaled cells): equal bit for bit,
+    # pruned or not, for any chunking and worker count
+    pytest.importorskip("dask")
+    cases = [((30, 32), dict(dc=True, band=(0, 16), exponent=2.0), (7, 9)),
+             ((48, 40), dict(band=(4, 20), normalize="sample"), (13, 40)),
+             ((17, 19, 15), dict(exponent=1.5), (5, 19, 15)),
+             ((16, 20, 24), dict(band=(2, 12), amplitude_distribution="uniform"), (6, 7, 24)),
+             ((12, 14, 18), dict(band=(1, 6), normalize="sample", dtype=np.float64), (12, 5, 9)),
+             ((64, 66), dict(), (20, 66))]
+    for shape, kw, chunks in cases:
+        for seed in (11, 12):
+            ref = spectral_noise(shape, rng=seed, workers=2, **kw)
+            got = spectral_noise(shape, rng=seed, chunks=chunks, **kw).compute(scheduler="synchronous")
+            assert got.dtype == ref.dtype and got.tobytes() == ref.tobytes(), (shape, kw, seed)
+
+
 def test_peak_memory_is_at_most_1_1x_the_field():
     # one array of the field's size (its storage holds the spectrum, then the samples) and the last pass's
     # scratch: at most 1.1x the output for 2-D and 3-D fields from 4 MiB up (irfftn of a ready spectrum alone
@@ -557,7 +574,7 @@ def test_chunked_spectral_noise_and_snow_are_chosen_by_the_dispatch_registry():
 
 def test_the_plan_fills_the_same_block_slab_by_slab():
     # the dask path fills the block in slabs of its first axis (plan.fill_slab); the in-memory path in row
-    # groups, into the rows of the field's storage: the same unscaled values and the same gain, so the same field
+    # groups, into the rows of the field's storage: the same values, the same gain, the same scaled cells
     from noiselab.spectral import plan
     from noiselab.spectral import synthesis as SY
 
@@ -575,7 +592,7 @@ def test_the_plan_fills_the_same_block_slab_by_slab():
                 slabs[..., j] = planes[k]
             assert g_mem == g
             kept = rows[SY._kept_rows(p), :p.K]
-            np.testing.assert_array_equal(kept, slabs.reshape(kept.shape))
+            np.testing.assert_array_equal(kept, (slabs * g).reshape(kept.shape))
             others = np.ones(rows.shape[0], dtype=bool)
             others[SY._kept_rows(p)] = False
             assert not np.any(rows[others, :p.K])  # the rows the band cannot reach are 0 where the passes read

@@ -444,13 +444,15 @@ def _kept_rows(p):
 
 
 def _fill_in_place(p, buf, rows, nw):
-    """Fill the plan's block into the storage rows it stands for; zero the other rows' first ``K`` cells and every row's cells from ``K``.
+    """Fill the plan's block, scaled, into the storage rows it stands for; zero the rest the transforms read.
 
-    The same coefficients, the same row powers and the same Hermitian planes
-    as :func:`noiselab.spectral.plan.fill_slab` and
-    :func:`~noiselab.spectral.plan.hermitian_gain` give the chunked path:
-    only where each row is written differs. Returns the gain ``g`` (the
-    field's unit variance, see :func:`~noiselab.spectral.plan.hermitian_gain`).
+    The same coefficients, the same row powers, the same Hermitian planes
+    and the same gain ``g`` (the field's unit variance) as
+    :func:`noiselab.spectral.plan.fill_slab` and
+    :func:`~noiselab.spectral.plan.hermitian_gain` give the chunked path,
+    and the same scaling (the cells times ``g``): only where each row is
+    written differs. The other rows' first ``K`` cells and every row's cells
+    from ``K`` are set to 0. Returns ``g``.
     """
     K, L = p.K, 2 * rows.shape[1]
     kept = _kept_rows(p)
@@ -482,6 +484,8 @@ def _fill_in_place(p, buf, rows, nw):
     g = hermitian_gain(p, rowpow, planes)
     for j, plane in zip(cols, planes):
         rows[kept, j] = plane
+    for sl in _runs(kept):  # scaled as the chunked path scales its slabs (the same cells times the same g)
+        rows[sl, :K] *= g
     return g
 
 
@@ -492,25 +496,24 @@ def _runs(ix):
 
 
 def _ifft_in_place(view, axis, workers):
-    """Unnormalised inverse FFT of the complex ``view`` along ``axis``, written into ``view``."""
-    out = scipy.fft.ifft(view, axis=axis, overwrite_x=True, norm="forward", workers=workers)
+    """Inverse FFT of the complex ``view`` along ``axis``, written into ``view``."""
+    out = scipy.fft.ifft(view, axis=axis, overwrite_x=True, workers=workers)
     if not np.may_share_memory(out, view):  # scipy's in-place transform of a complex input, kept if it copies
         view[...] = out
 
 
-def _inverse_in_place(buf, rows, p, scale, workers=None):
-    """The field from the spectrum in its storage (see :func:`_storage`): ``irfftn`` times ``scale``, in ``buf``.
+def _inverse_in_place(buf, rows, p, workers=None):
+    """The field from the spectrum in its storage (see :func:`_storage`): its ``irfftn``, in ``buf``.
 
     The leading axes are transformed in place, on the first ``K`` cells of
     every row (beyond them the spectrum is 0); along the first axis only
     the rows of the second axis the band reaches (3-D). The last pass turns
-    blocks of rows into samples (``irfft``) and writes them, times
-    ``scale``, to the front of the
-    storage: row ``i``'s samples go to floats ``i*n .. (i+1)*n - 1``, which
-    hold no row after the block's last, so nothing is overwritten before it is
-    read. Returns the field, a C-contiguous view of ``buf``. Unnormalised
-    transforms (``norm="forward"`` on the inverse): ``scale`` is the whole
-    factor.
+    blocks of rows into samples (``irfft``) and writes them to the front of
+    the storage: row ``i``'s samples go to floats ``i*n .. (i+1)*n - 1``,
+    which hold no row after the block's last, so nothing is overwritten
+    before it is read. One axis per pass, as the chunked path transforms
+    (the same one-axis transforms of the same values: the same bits).
+    Returns the field, a C-contiguous view of ``buf``.
     """
     shape, K, n = p.shape, p.K, p.n
     cv = rows.reshape(tuple(shape[:-1]) + (rows.shape[1],))
@@ -525,11 +528,10 @@ def _inverse_in_place(buf, rows, p, scale, workers=None):
     rowbytes = n * p.dt.itemsize
     lo, hi = LAST_PASS_BYTES
     step = max(1, min(hi, max(lo, nrows * rowbytes // 32)) // rowbytes)
-    scale = p.dt.type(scale)
     for r0 in range(0, nrows, step):
         r1 = min(nrows, r0 + step)
-        x = scipy.fft.irfft(rows[r0:r1], n=n, axis=-1, norm="forward", workers=workers)
-        np.multiply(x, scale, out=field[r0:r1])
+        x = scipy.fft.irfft(rows[r0:r1], n=n, axis=-1, workers=workers)
+        field[r0:r1] = x
         del x  # before the next block's scratch is made
     return field.reshape(shape)
 
@@ -537,15 +539,13 @@ def _inverse_in_place(buf, rows, p, scale, workers=None):
 def _spectral_field(shape, exponent, band, rng, amplitude, dt, *, normalize, dc, workers, nw):
     """:func:`spectral_noise`'s field, synthesised in its own storage (no second array of its size).
 
-    The spectrum is filled into the rows of the output's storage
-    (:func:`_fill_in_place`), transformed there (:func:`_inverse_in_place`)
-    and scaled in the last pass by ``g / N`` (the gain of
-    :func:`~noiselab.spectral.plan.hermitian_gain` and ``irfftn``'s ``1/N``).
+    The spectrum is filled and scaled into the rows of the output's storage
+    (:func:`_fill_in_place`), then transformed there (:func:`_inverse_in_place`).
     """
     p = noise_plan(shape, exponent, band, rng, amplitude, dt, normalize=normalize, dc=dc)
     buf, rows = _storage(p.shape, p.dt)
-    g = _fill_in_place(p, buf, rows, nw)
-    return _inverse_in_place(buf, rows, p, float(g) / float(np.prod(shape, dtype=np.float64)), workers=workers)
+    _fill_in_place(p, buf, rows, nw)
+    return _inverse_in_place(buf, rows, p, workers=workers)
 
 
 NORMALIZATIONS = ("expected", "sample")
@@ -650,8 +650,9 @@ def spectral_noise(shape, *, exponent=1.0, band=None, rng=None, amplitude_distri
     field and a small scratch (at most 1.1x the output for 2-D and 3-D
     fields from 4 MiB up; ``irfftn`` of a ready spectrum holds 2x). Mean and
     variance are set on the spectrum (DC is 0 unless ``dc``; Parseval gives
-    the variance) and the scale is applied in the last pass, so the field
-    needs no pass of its own. Timings (ratio to a bare ``irfftn`` of the
+    the variance), so the field needs no pass after the FFT. The passes are
+    those of the chunked path (one axis at a time): the two give the same
+    bits. Timings (ratio to a bare ``irfftn`` of the
     output at equal workers, and peak memory): ``benchmarks/bench_spectral.md``.
 
     Examples
