@@ -484,6 +484,7 @@ def _fill_in_place(p, buf, rows, nw):
     g = hermitian_gain(p, rowpow, planes)
     for j, plane in zip(cols, planes):
         rows[kept, j] = plane
+    planes = plane = None  # freed before the scaling's buffers (a strided view is scaled through numpy's)
     for sl in _runs(kept):  # scaled as the chunked path scales its slabs (the same cells times the same g)
         rows[sl, :K] *= g
     return g
