@@ -413,7 +413,7 @@ def _envelope_array(envelope, shape, hshape):
 _MIN_PARALLEL = 1 << 16
 # bytes of samples the last pass (kx to x) makes per call: 1/32 of the field, within 64 KiB .. 1 MiB. The peak
 # is the field's storage (1 + 2/n times the field) plus this scratch; fewer, bigger calls cost a little less
-# (1024 x 1024 float32, 1 worker, CPU: 1.98 ms in one call, 2.03 in 16, 2.21 in 32, 2.40 in 64;
+# (1024 x 1024 float32, 1 worker, CPU: 2.33 ms in one call, 2.48 in 16, 2.51 in 32, 2.70 in 64;
 # `python3 benchmarks/bench_spectral_floor.py --last-pass`, benchmarks/bench_spectral.md 2026-11-27)
 LAST_PASS_BYTES = (1 << 16, 1 << 20)
 
@@ -610,7 +610,7 @@ def spectral_noise(shape, *, exponent=1.0, band=None, rng=None, amplitude_distri
         Return a lazy ``dask.array.Array`` in these chunks (dask's syntax, one
         entry per axis), computed by a pencil-decomposed inverse FFT that never
         holds the whole field (:mod:`noiselab.scale.spectral`; needs
-        ``noiselab[dask]``). Equal to the in-memory field to float rounding.
+        ``noiselab[dask]``). The same bits as the in-memory field.
     spill : path, optional
         With ``chunks``: a directory (on storage every worker sees) for the
         two transposes as zarr arrays, so no worker ever holds more than its
