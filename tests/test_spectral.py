@@ -278,7 +278,8 @@ def test_in_memory_and_chunked_fields_have_the_same_bits():
              ((17, 19, 15), dict(exponent=1.5), (5, 19, 15)),
              ((16, 20, 24), dict(band=(2, 12), amplitude_distribution="uniform"), (6, 7, 24)),
              ((12, 14, 18), dict(band=(1, 6), normalize="sample", dtype=np.float64), (12, 5, 9)),
-             ((64, 66), dict(), (20, 66))]
+             ((64, 66), dict(), (20, 66)), ((257,), dict(exponent=1.0, dc=True, amplitude_distribution="uniform"),
+                                            (100,))]
     for shape, kw, chunks in cases:
         for seed in (11, 12):
             ref = spectral_noise(shape, rng=seed, workers=2, **kw)

@@ -327,7 +327,8 @@ def chunked_spectral_noise(shape, chunks, *, exponent, band, rng, amplitude, dty
     dt = float_dtype(dtype)
     out_chunks = _out_chunks(chunks, shape, dt)
     if len(shape) == 1:  # one FFT axis: one task
-        kw = dict(exponent=exponent, band=band, rng=rng, amplitude=amplitude, dtype=dt, normalize=normalize, dc=dc)
+        kw = dict(exponent=exponent, band=band, rng=rng, amplitude_distribution=amplitude, dtype=dt,
+                  normalize=normalize, dc=dc)
         x = da.from_delayed(delayed(_one_piece, pure=True)(shape, kw), shape, dtype=dt)
         return x.rechunk(out_chunks)
     p = plan.noise_plan(shape, exponent, band, rng, amplitude, dt, normalize=normalize, dc=dc, check=False)
