@@ -24,7 +24,10 @@ dtypes), ``n`` (last axis), ``index`` (kept indices of each leading axis),
 ``kbeg``/``kend``/``counts`` (each row's kx interval and its cell count),
 ``R``/``Kr`` (rows and row length of the fill), ``weight`` (each kx column's
 share of the power), ``sample``, ``exponent``, ``qfloor``, ``inv_qref``,
-``key``, ``mode``, ``dc``, ``band``, ``lo``.
+``key``, ``mode``, ``dc``, ``band``, ``lo``, ``maps`` (each self-conjugate plane's
+mirror rows), ``peak`` (the in-memory path's bytes) and ``memo`` (a dict in
+which a path keeps what it derives from the geometry, shared by the calls
+that share the geometry).
 
 Internal: noiselab's subpackages use these names; users call
 :func:`~noiselab.spectral.spectral_noise`.
@@ -189,7 +192,7 @@ def _geometry(shape, exponent, band, dtype, sample, dc):
     return dict(shape=shape, dt=dt, cdt=cdt, n=n, index=index, K=K, bshape=bshape, q0=q0, q1=q1, wxsq=wxsq,
                 kbeg=kbeg, kend=kend, counts=counts, R=R, Kr=Kr, weight=weight, sample=sample,
                 exponent=float(exponent), qfloor=float(qfloor), inv_qref=float(inv_qref), dc=bool(dc), lo=lo,
-                maps=maps, peak=peak)
+                maps=maps, peak=peak, memo={})
 
 
 def fill_slab(p, i0, i1):

@@ -411,7 +411,8 @@ def _envelope_array(envelope, shape, hshape):
 
 # fewer cells than this are filled on the calling thread (measured: threads cost more)
 _MIN_PARALLEL = 1 << 16
-# bytes of samples the last pass (kx to x) makes per call: 1/32 of the field, within 64 KiB .. 1 MiB. The peak
+# bytes of samples the last pass (kx to x) makes per call: 1/32 of the field, within 64 KiB .. 1 MiB (a field of
+# 1 MiB or less: the whole field). The peak
 # is the field's storage (1 + 2/n times the field) plus this scratch; fewer, bigger calls cost a little less
 # (1024 x 1024 float32, 1 worker, CPU: 2.33 ms in one call, 2.48 in 16, 2.51 in 32, 2.70 in 64;
 # `python3 benchmarks/bench_spectral_floor.py --last-pass`, benchmarks/bench_spectral.md 2026-11-27)
@@ -443,6 +444,36 @@ def _kept_rows(p):
     return (index[0][:, None] * shape[1] + index[1][None, :]).astype(np.int64).reshape(-1)
 
 
+def _layout(p, nrows, nw):
+    """What the in-place synthesis derives from the plan's geometry alone, kept in the plan's ``memo``.
+
+    ``kept`` (storage rows of the block's rows), its runs, the rows the band
+    cannot reach (a mask, or None), each fill row's offset in the storage,
+    the runs of the second axis's kept indices (3-D), and the fill's row
+    groups for ``nw`` threads with their first coefficients.
+    """
+    got = p.memo.get(("in place", nw))
+    if got is not None:
+        return got
+    kept = _kept_rows(p)
+    others = None
+    if kept.size < nrows:
+        others = np.ones(nrows, dtype=bool)
+        others[kept] = False
+    L = 2 * (p.n // 2 + 1)
+    # where each fill row starts in the storage: a storage row, or (3-D, every frequency) a whole (ky, kx) plane
+    rowoff = (kept if p.R == kept.size else kept[::p.Kr // p.K]) * L
+    total = int(p.counts.sum())
+    nw = nw if total >= _MIN_PARALLEL else 1
+    # about four groups per thread, few calls; the grouping changes no bit (each row's cells depend on the row alone)
+    groups = _row_groups(p.counts, max(CHUNK, -(-total // (4 * nw))))
+    starts = [int(x) for x in np.concatenate([[0], np.cumsum([g[2] for g in groups])[:-1]])]
+    got = dict(kept=kept, kept_runs=_runs(kept), others=others, rowoff=rowoff, nw=nw, groups=groups,
+               starts=starts, lead_runs=_runs(p.index[1]) if len(p.shape) == 3 else None)
+    p.memo[("in place", nw)] = got
+    return got
+
+
 def _fill_in_place(p, buf, rows, nw):
     """Fill the plan's block, scaled, into the storage rows it stands for; zero the rest the transforms read.
 
@@ -454,38 +485,30 @@ def _fill_in_place(p, buf, rows, nw):
     written differs. The other rows' first ``K`` cells and every row's cells
     from ``K`` are set to 0. Returns ``g``.
     """
-    K, L = p.K, 2 * rows.shape[1]
-    kept = _kept_rows(p)
+    K = p.K
+    lay = _layout(p, rows.shape[0], nw)
+    kept, groups, starts = lay["kept"], lay["groups"], lay["starts"]
     if K < rows.shape[1]:  # kx past the band: 0 for the last pass (which then needs no padded copy of its rows)
         rows[:, K:] = 0
-    if kept.size < rows.shape[0]:  # rows the band cannot reach: read by the leading passes, so zero
-        out = np.ones(rows.shape[0], dtype=bool)
-        out[kept] = False
-        rows[out, :K] = 0
-    # where each fill row starts in buf: a storage row, or (3-D, every frequency) a whole (ky, kx) plane
-    rowoff = (kept if p.R == kept.size else kept[::p.Kr // K]) * L
-    total = int(p.counts.sum())
-    nw = nw if total >= _MIN_PARALLEL else 1
-    # about four groups per thread, few calls; the grouping changes no bit (each row's cells depend on the row alone)
-    groups = _row_groups(p.counts, max(CHUNK, -(-total // (4 * nw))))
-    starts = np.concatenate([[0], np.cumsum([g[2] for g in groups])[:-1]]).astype(np.int64)
+    if lay["others"] is not None:  # rows the band cannot reach: read by the leading passes, so zero
+        rows[lay["others"], :K] = 0
     rowpow = np.zeros(p.R)
 
     def fill(i):
         r0, r1, _ = groups[i]
         scratch = np.empty(p.Kr, dtype=p.dt)
-        _kernels.fill_power_law(buf, p.Kr, p.q0, p.q1, p.wxsq, p.kbeg, p.kend, r0, r1, p.key, int(starts[i]),
+        _kernels.fill_power_law(buf, p.Kr, p.q0, p.q1, p.wxsq, p.kbeg, p.kend, r0, r1, p.key, starts[i],
                                 p.mode, p.exponent, p.qfloor, p.inv_qref, p.weight, p.sample, rowpow, scratch,
-                                rowoff)
+                                lay["rowoff"])
 
-    map_blocks(fill, range(len(groups)), nw)
+    map_blocks(fill, range(len(groups)), lay["nw"])
     cols = [j for j in self_conjugate_columns(p.n) if j < K]
     planes = [rows[kept, j] for j in cols]  # gathered (the kept rows), made Hermitian, put back
     g = hermitian_gain(p, rowpow, planes)
     for j, plane in zip(cols, planes):
         rows[kept, j] = plane
     planes = plane = None  # freed before the scaling's buffers (a strided view is scaled through numpy's)
-    for sl in _runs(kept):  # scaled as the chunked path scales its slabs (the same cells times the same g)
+    for sl in lay["kept_runs"]:  # scaled as the chunked path scales its slabs (the same cells times the same g)
         rows[sl, :K] *= g
     return g
 
@@ -503,7 +526,7 @@ def _ifft_in_place(view, axis, workers):
         view[...] = out
 
 
-def _inverse_in_place(buf, rows, p, workers=None):
+def _inverse_in_place(buf, rows, p, workers=None, lead_runs=None):
     """The field from the spectrum in its storage (see :func:`_storage`): its ``irfftn``, in ``buf``.
 
     The leading axes are transformed in place, on the first ``K`` cells of
@@ -519,7 +542,7 @@ def _inverse_in_place(buf, rows, p, workers=None):
     shape, K, n = p.shape, p.K, p.n
     cv = rows.reshape(tuple(shape[:-1]) + (rows.shape[1],))
     if len(shape) == 3:
-        for sl in _runs(p.index[1]):
+        for sl in lead_runs if lead_runs is not None else _runs(p.index[1]):
             _ifft_in_place(cv[:, sl, :K], 0, workers)
         _ifft_in_place(cv[:, :, :K], 1, workers)
     elif len(shape) == 2:
@@ -528,7 +551,8 @@ def _inverse_in_place(buf, rows, p, workers=None):
     field = buf[:nrows * n].reshape(nrows, n)
     rowbytes = n * p.dt.itemsize
     lo, hi = LAST_PASS_BYTES
-    step = max(1, min(hi, max(lo, nrows * rowbytes // 32)) // rowbytes)
+    # a field of 1 MiB or less in one call (its scratch is small in bytes, and calls cost more than at scale)
+    step = nrows if nrows * rowbytes <= hi else max(1, min(hi, max(lo, nrows * rowbytes // 32)) // rowbytes)
     for r0 in range(0, nrows, step):
         r1 = min(nrows, r0 + step)
         x = scipy.fft.irfft(rows[r0:r1], n=n, axis=-1, workers=workers)
@@ -546,7 +570,7 @@ def _spectral_field(shape, exponent, band, rng, amplitude, dt, *, normalize, dc,
     p = noise_plan(shape, exponent, band, rng, amplitude, dt, normalize=normalize, dc=dc)
     buf, rows = _storage(p.shape, p.dt)
     _fill_in_place(p, buf, rows, nw)
-    return _inverse_in_place(buf, rows, p, workers=workers)
+    return _inverse_in_place(buf, rows, p, workers=workers, lead_runs=_layout(p, rows.shape[0], nw)["lead_runs"])
 
 
 NORMALIZATIONS = ("expected", "sample")
