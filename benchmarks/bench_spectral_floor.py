@@ -42,6 +42,7 @@ from noiselab.snowfall import snow  # noqa: E402
 from noiselab.spectral import spectral_noise  # noqa: E402
 
 SPECTRAL = [(1024, 1024), (128, 128, 128), (4096, 4096)]
+SMALL = [(64, 64), (256, 256), (32, 32, 32)]  # --small: where the Python bookkeeping shows
 SNOW = (64, 512, 512)
 
 
@@ -109,13 +110,13 @@ def _peak_x_output(f):
     return peak / nbytes[0]
 
 
-def spectral(workers, rounds, before=None, dtypes=("float32",)):
+def spectral(workers, rounds, before=None, dtypes=("float32",), shapes=SPECTRAL):
     for dt in dtypes:
         spectral_noise((8, 8), rng=0, dtype=dt)
         if before is not None:
             before.spectral_noise((8, 8), rng=0, dtype=dt)
     out = []
-    for shape, dt in [(s, d) for d in dtypes for s in SPECTRAL]:
+    for shape, dt in [(s, d) for d in dtypes for s in shapes]:
         S = _half(shape, dt)
         cands = {}
         for w in workers:
@@ -221,6 +222,7 @@ def main(argv=None):
     ap.add_argument("--before", default=None, help="git revision whose spectral synthesis and kernels to time beside")
     ap.add_argument("--dtypes", nargs="+", default=["float32"], choices=["float32", "float64"])
     ap.add_argument("--last-pass", action="store_true", help="only the last pass's cost per block of rows")
+    ap.add_argument("--small", action="store_true", help=f"the shapes {SMALL} instead of {SPECTRAL}")
     a = ap.parse_args(argv)
     if a.rounds < 5:
         ap.error("--rounds must be at least 5")
@@ -228,7 +230,7 @@ def main(argv=None):
         f" --workers {' '.join(map(str, a.workers))}" if a.workers != [1, 2] else "") + (
         f" --rounds {a.rounds}" if a.rounds != 7 else "") + (f" --only {a.only}" if a.only else "") + (
         f" --before {a.before}" if a.before else "") + (
-        f" --dtypes {' '.join(a.dtypes)}" if a.dtypes != ["float32"] else "")
+        f" --dtypes {' '.join(a.dtypes)}" if a.dtypes != ["float32"] else "") + (" --small" if a.small else "")
     if a.last_pass:
         load0 = load_average()
         sweep = last_pass_sweep(a.workers, a.rounds)
@@ -249,7 +251,7 @@ def main(argv=None):
             sys.path.insert(0, str(ROOT / "benchmarks"))
             from bench_spectral import _before_module
             before = _before_module(a.before)
-        rows = spectral(a.workers, a.rounds, before, a.dtypes)
+        rows = spectral(a.workers, a.rounds, before, a.dtypes, SMALL if a.small else SPECTRAL)
         lines = _section(
             "## At the floor, CPU time and wall time (`bench_spectral_floor.py`)", cmd, load0,
             f"{', '.join(a.dtypes)}, full band, `exponent=1`; ratio = median over {a.rounds} interleaved rounds of "
