@@ -1,4 +1,4 @@
-"""Hot loops of the snow renderer (numba, cached): the in-place opacity map, the sparse t-pass, the x-pass copy."""
+"""Hot loops of the snow renderer (numba, cached): the in-place opacity map and the sparse t-pass."""
 from __future__ import annotations
 
 import numpy as np
@@ -28,23 +28,30 @@ def rescale_power(flat, lo, scale, beta):
 
 
 @njit(cache=True, nogil=True)
-def t_pass_scatter(dest, bins, vals, tw, t0, B):
-    """``B[t] = 0``, then ``B[t].flat[dest[e]] += vals[e] * tw[(bins[e] * (t0 + t)) % T]`` over every entry ``e``.
+def t_pass_scatter(dest, bins, vals, tw, t0, B, k):
+    """``B[t, :, :k] = 0``, then ``B[t].flat[dest[e]] += vals[e] * tw[(bins[e] * (t0 + t)) % T]`` over every entry ``e``.
 
     The t-pass of the sparse columns (an inverse DFT along t, ``tw`` its
     twiddles with the ``1/T``, in ``B``'s precision) for each frame ``t`` of
     the block ``B``, scattered straight into the y-pass input (``dest``: each
-    entry's cell ``ky * K + kx``): a column has a few bins, so the direct sum
-    costs less than an FFT of the dense ``(T, columns)`` array, without that
-    array. Each cell sums its entries in their order: the same bits whichever
-    block a frame is in and however the columns are split.
+    entry's cell ``ky * B.shape[2] + kx``): a column has a few bins, so the
+    direct sum costs less than an FFT of the dense ``(T, columns)`` array,
+    without that array. Only the first ``k`` columns of each row are zeroed
+    (the cells that can carry energy: a wider ``B`` is the x-pass's padded
+    input, whose columns past ``k`` stay zero). Each cell sums its entries in
+    their order: the same bits whichever block a frame is in and however the
+    columns are split.
     """
     nt = B.shape[0]
     T = tw.size
     rot = np.empty(T, dtype=B.dtype)
+    zero = B.dtype.type(0)
     for t in range(nt):
-        Bf = B[t].reshape(-1)
-        Bf[:] = 0
+        Bt = B[t]
+        for y in range(Bt.shape[0]):
+            for x in range(k):
+                Bt[y, x] = zero
+        Bf = Bt.reshape(-1)
         step = (t0 + t) % T
         m = 0
         for b in range(T):  # rot[b] = tw[(b * (t0 + t)) % T], without a division per entry

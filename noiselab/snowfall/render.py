@@ -251,11 +251,11 @@ def snow(shape=(64, 512, 512), *, rng=None, c=1.0, band=None, thickness=0.1, dir
                                         spill=spill)
     cols = tent_columns((T, H, W), c=c, band=band, thickness=thickness, direction=direction, pan=pan,
                         exponent=exponent, on_alias=on_alias)
-    K = int(cols.kx.max()) + 1
     item = dt.itemsize
-    # the output, the sparse spectrum (a bin, a value and a sort key per cell) and one block's scratch per thread
-    check_memory(T * H * W * item + 4 * cols.n_cells * (16 + 2 * item) + nw * (2 * H * K * 2 * item + (1 << 18)),
-                 f"snow{(T, H, W)}")
+    # the output, the sparse spectrum (a bin, a value and a sort key per cell) and one padded block per thread
+    # (pruned_irfftn: about 256 KiB of frames of W//2 + 1 complex columns, one frame at the least)
+    check_memory(T * H * W * item + 4 * cols.n_cells * (16 + 2 * item)
+                 + nw * max(1 << 18, H * (W // 2 + 1) * 2 * item), f"snow{(T, H, W)}")
     rng = as_generator(rng)
     spec = assemble(cols, rng, amplitude_distribution, dt)
     out = np.empty((T, H, W), dtype=dt)

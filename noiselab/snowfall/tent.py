@@ -51,8 +51,14 @@ from ..spectral.envelopes import tent_surface_terms, unit_direction
 from ..spectral.plan import complex_dtype, self_conjugate_columns
 from . import _kernels
 
+try:  # scipy.fft's own pocketfft binding: its c2c and c2r write into a given array (scipy.fft's functions allocate)
+    from scipy.fft._pocketfft import pypocketfft as _pocketfft
+except ImportError:  # another scipy layout: the public functions and a copy, the same transforms and bits
+    _pocketfft = None
+
 __all__ = ["TentColumns", "ColumnSpectra", "tent_columns", "largest_c", "tent_coefficients", "self_conjugate_planes",
-           "column_spectra", "assemble", "to_half_spectrum", "y_pass", "pruned_irfftn", "flake_speeds"]
+           "column_spectra", "assemble", "to_half_spectrum", "ifft_columns", "irfft_rows", "y_pass", "pruned_irfftn",
+           "flake_speeds"]
 
 @dataclass
 class TentColumns:
@@ -300,13 +306,45 @@ def to_half_spectrum(spec: ColumnSpectra, cols: TentColumns):
     return S
 
 
-def y_pass(spec: ColumnSpectra, t0, ky, kx, B, prep=None):
-    """The t- and y-passes of a block of frames: ``B`` (``(frames, H, K)``) for frames ``t0 ..`` of ``spec``.
+def ifft_columns(B, k):
+    """``B[:, :, :k] = ifft(B[:, :, :k], axis=1)`` in place (one thread): the y-pass on the first ``k`` columns.
+
+    ``B``: a C-contiguous complex ``(frames, H, width)`` block. Through
+    pocketfft's own binding (the transform that ``scipy.fft.ifft`` runs)
+    straight on the strided columns, so a padded block needs no copy.
+    """
+    view = B[:, :, :k]
+    if _pocketfft is not None:
+        _pocketfft.c2c(view, (1,), False, 2, view, 1)
+    else:
+        view[...] = scipy.fft.ifft(view, axis=1, workers=1)
+    return B
+
+
+def irfft_rows(P, n, out):
+    """``out[...] = irfft(P, n, axis=-1)`` (one thread): ``P`` complex ``(rows, n//2 + 1)``, ``out`` real ``(rows, n)``.
+
+    pocketfft's complex-to-real transform (what ``scipy.fft.irfft`` runs,
+    the same bits) written straight into ``out``: no zero-padded copy of the
+    input and no output array to copy from.
+    """
+    if _pocketfft is not None:
+        _pocketfft.c2r(P, (P.ndim - 1,), n, False, 2, out, 1)
+    else:
+        out[...] = scipy.fft.irfft(P, n=n, axis=-1, workers=1)
+    return out
+
+
+def y_pass(spec: ColumnSpectra, t0, ky, kx, B, prep=None, k=None):
+    """The t- and y-passes of a block of frames: ``B`` (``(frames, H, width)``) for frames ``t0 ..`` of ``spec``.
 
     Evaluates every column's inverse DFT along t at the block's frames (a
     sum over its few bins, in ``B``'s precision), scatters the values to
-    their ``(ky[j], kx[j])`` cells of ``B``, zeros elsewhere, then
-    inverse-transforms ``B`` along y, in place (one thread); returns ``B``.
+    their ``(ky[j], kx[j])`` cells of ``B``, zeros elsewhere in the first
+    ``k`` columns (default: all of them), then inverse-transforms those ``k``
+    columns along y, in place (one thread); returns ``B``. Columns past ``k``
+    (no tent column there) are left as they are: a block of width
+    ``W//2 + 1`` zeroed once is the x-pass's input as it stands.
     ``prep``: ``spec.prepare(ky, kx, B.shape[2])``, computed if not given
     (pass it when calling block after block). The in-memory renderer (:func:`pruned_irfftn`) and the chunked one
     (:mod:`noiselab.scale.spectral`) compute every block with it, so their
@@ -320,12 +358,10 @@ def y_pass(spec: ColumnSpectra, t0, ky, kx, B, prep=None):
     >>> B[0, :, 1].real                                      # 2 / T along t, then ky = 0 along y: 1/H
     array([0.25, 0.25, 0.25, 0.25])
     """
+    k = B.shape[2] if k is None else int(k)
     dest, tw = spec.prepare(ky, kx, B.shape[2]) if prep is None else prep
-    _kernels.t_pass_scatter(dest, spec.bins, spec.vals, tw, t0, B)
-    out = scipy.fft.ifft(B, axis=1, overwrite_x=True, workers=1)
-    if out is not B:  # pocketfft writes a contiguous complex block in place; copy if it did not
-        B[...] = out
-    return B
+    _kernels.t_pass_scatter(dest, spec.bins, spec.vals, tw, t0, B, k)
+    return ifft_columns(B, k)
 
 
 def pruned_irfftn(spec: ColumnSpectra, cols: TentColumns, out, *, chunk_bytes=1 << 18, bar=None, workers=None):
@@ -335,43 +371,52 @@ def pruned_irfftn(spec: ColumnSpectra, cols: TentColumns, out, *, chunk_bytes=1 
     to float precision (tested). Returns the output's minimum and maximum,
     taken block by block while the block is in cache.
 
-    Each block of frames (about ``chunk_bytes`` of y-pass input) gets its
+    Each block of frames (about ``chunk_bytes``, one frame at the least) gets its
     t-pass (a direct sum over each column's few bins) and is scattered to its
     ``(ky, kx)`` cells, transformed along y on the band's kx columns and
-    along x (complex-to-real) into ``out``, the blocks shared among
-    ``workers`` threads. A block is computed the same way whichever thread
-    takes it, so the bits do not depend on ``workers``; the only full-size
-    array is ``out`` (plus one block's scratch per thread).
+    along x (complex-to-real) straight into ``out``, the blocks shared among
+    ``workers`` threads. Each thread keeps one block of width ``W//2 + 1``,
+    zeroed once: the t- and y-passes fill its first ``K`` columns, the rest
+    stays zero, so the x-pass reads it as it is. A block is computed the same
+    way whichever thread takes it, so the bits do not depend on ``workers``;
+    the only full-size array is ``out`` (plus one block per thread).
     """
+    import queue
+
     nw = resolve_workers(workers)
     T, H, W = cols.shape
     K = int(cols.kx.max()) + 1
+    Wh = W // 2 + 1
     ky = cols.ky.astype(np.int64)
     kx = cols.kx.astype(np.int64)
-    prep = spec.prepare(ky, kx, K)
+    prep = spec.prepare(ky, kx, Wh)
     item = spec.vals.itemsize
-    tc = int(max(1, min(T, chunk_bytes // max(1, H * K * item))))
+    tc = int(max(1, min(T, chunk_bytes // max(1, H * Wh * item))))
     blocks = [(t0, min(T, t0 + tc)) for t0 in range(0, T, tc)]
     rows = int(max(1, min(H, chunk_bytes // max(1, W * out.itemsize))))
+    threaded = not (nw <= 1 or len(blocks) <= 1 or T * H * W < (1 << 16))
+    n_buf = min(nw, len(blocks)) if threaded else 1
+    scratch = queue.SimpleQueue()
+    for _ in range(n_buf):  # one padded block per thread, zeroed once (columns K.. stay zero)
+        scratch.put(np.zeros((tc, H, Wh), dtype=spec.vals.dtype))
 
     def render(blk):
         t0, t1 = blk
-        B = y_pass(spec, t0, ky, kx, np.empty((t1 - t0, H, K), dtype=spec.vals.dtype), prep)
-        # x-pass: scipy's irfft into a small scratch (a slab of rows) then a copy, faster than numpy's irfft
-        # straight into out (scipy vectorises across rows); min and max while the slab is in cache
-        blo, bhi = np.inf, -np.inf
-        for t in range(t1 - t0):
-            for y0 in range(0, H, rows):
-                slab = scipy.fft.irfft(B[t, y0:y0 + rows], n=W, axis=1, workers=1)
-                out[t0 + t, y0:y0 + rows] = slab
-                blo, bhi = min(blo, float(slab.min())), max(bhi, float(slab.max()))
+        P = scratch.get()
+        try:
+            B = y_pass(spec, t0, ky, kx, P[:t1 - t0], prep, K)
+            # x-pass a slab of rows at a time, straight into out; min and max while the slab is in cache
+            blo, bhi = np.inf, -np.inf
+            for t in range(t1 - t0):
+                for y0 in range(0, H, rows):
+                    slab = irfft_rows(B[t, y0:y0 + rows], W, out[t0 + t, y0:y0 + rows])
+                    blo, bhi = min(blo, float(slab.min())), max(bhi, float(slab.max()))
+        finally:
+            scratch.put(P)
         return blo, bhi, t1 - t0
 
     lo, hi = np.inf, -np.inf
-    if nw <= 1 or len(blocks) <= 1 or T * H * W < (1 << 16):
-        results = map(render, blocks)
-    else:
-        results = thread_pool(min(nw, len(blocks))).map(render, blocks)
+    results = thread_pool(n_buf).map(render, blocks) if threaded else map(render, blocks)
     for blo, bhi, n in results:  # in block order, whichever thread finished first
         lo, hi = min(lo, blo), max(hi, bhi)
         if bar is not None:
