@@ -70,8 +70,8 @@ import numpy as np
 import scipy.fft
 
 from .._core import as_generator, available_memory, dispatch, float_dtype, require_dask
-from ..snowfall.render import rescale_opacity
-from ..snowfall.tent import assemble, tent_columns, y_pass
+from ..snowfall.render import opacity_copy, rescale_opacity
+from ..snowfall.tent import assemble, irfft_rows, tent_columns, y_pass
 from ..spectral import plan, spectral_noise
 from .run import _active_client
 
@@ -415,9 +415,43 @@ def _snow_slab(piece, T, H, cdt, *after):
     return B
 
 
-def _snow_extremes(B, W, dt):
-    x = _last_pass(B, W, dt)
-    return np.array([[[x.min(), x.max()]]], dtype=dt)
+def _snow_xpass(parts, k0s, W, dt, mode=None):
+    """The x-pass of one ``(t, y)`` chunk straight from its pieces of the kx slabs: no concatenated rows.
+
+    ``parts``: the chunk's ``(ct, cy, k)`` piece of each kx slab, the slabs
+    starting at the columns ``k0s``. A slab of rows at a time (cache-sized,
+    as in memory) is gathered into a zero-padded block of ``W//2 + 1``
+    complex columns and transformed along x straight into the chunk
+    (:func:`noiselab.snowfall.tent.irfft_rows`, what the in-memory renderer
+    runs on the same values: the same bits), its extremes taken while it is
+    in cache. ``mode``: None, the raw chunk; ``"both"``, ``(raw, extremes)``;
+    ``"extremes"``, the extremes only (no chunk kept: the rows go through one
+    slab of scratch); ``(beta, (lo, hi))``, the chunk rescaled.
+    """
+    ct, cy = parts[0].shape[:2]
+    cdt = parts[0].dtype
+    rows = int(max(1, min(cy, _CACHE // max(1, W * np.dtype(dt).itemsize))))
+    P = np.zeros((rows, W // 2 + 1), dtype=cdt)  # columns past the slabs' last stay zero
+    keep = mode != "extremes"
+    out = np.empty((ct, cy, W), dtype=dt) if keep else np.empty((rows, W), dtype=dt)
+    lo, hi = np.inf, -np.inf
+    for t in range(ct):
+        for y0 in range(0, cy, rows):
+            r = min(rows, cy - y0)
+            for k0, part in zip(k0s, parts):
+                P[:r, k0:k0 + part.shape[2]] = part[t, y0:y0 + r]
+            x = irfft_rows(P[:r], W, out[t, y0:y0 + r] if keep else out[:r])
+            if mode is not None:
+                lo, hi = min(lo, float(x.min())), max(hi, float(x.max()))
+    if mode is None:
+        return out
+    ext = np.array([[[lo, hi]]], dtype=dt)
+    if mode == "both":
+        return out, ext
+    if mode == "extremes":
+        return ext
+    beta, (glo, ghi) = mode
+    return rescale_opacity(out, beta, lo=glo, hi=ghi, workers=1)
 
 
 def _reduce_extremes(parts):
@@ -426,14 +460,10 @@ def _reduce_extremes(parts):
     return lo, hi
 
 
-def _chunk_extremes(x):
-    return np.array([[[x.min(), x.max()]]], dtype=x.dtype)
-
-
 def _rescale_raw(x, beta, lohi):
-    """A raw chunk rescaled with the global extremes (into a copy: dask may still hold the raw chunk)."""
+    """A raw chunk rescaled with the global extremes, into a new array (dask may still hold the raw chunk)."""
     lo, hi = lohi
-    return rescale_opacity(x.copy(), beta, lo=lo, hi=hi, workers=1)
+    return opacity_copy(x, beta, lo=lo, hi=hi)
 
 
 def _hold_raw(nbytes):
@@ -613,12 +643,6 @@ def _check_worker_memory(tasks, what):
                           f"{(need / frac + _IMPORTS) / 2**20:.0f} MiB")
 
 
-def _snow_rescale(B, W, dt, beta, lohi):
-    x = _last_pass(B, W, dt)
-    lo, hi = lohi
-    return rescale_opacity(x, beta, lo=lo, hi=hi, workers=1)
-
-
 @dispatch.register("snow")
 def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta, exponent, amplitude, dtype,
                  on_alias, rescale, spill=None):
@@ -676,15 +700,16 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
         return _array(dsk, name, ((T,), (H,), kx_blocks), cdt)
 
     import itertools
+    import operator
 
     name = f"snow-alpha-{tok}"
     lohi = f"snow-lohi-{tok}"
+    blocks = list(itertools.product(range(len(ty[0])), range(len(ty[1]))))
     if spill is not None:
         # the t- and y-passes once, spilled; the x-pass twice (extremes over whole rows, then each output chunk made
         # straight from the spilled rows a block at a time: no rechunk after it, a task holds its chunk and a block)
         dsk = {}
         path, done = _spill_write(stage1("s"), s2_chunks[:2] + ((K,),), spill, dsk)
-        blocks = list(itertools.product(range(len(ty[0])), range(len(ty[1]))))
 
         def read(i, j, *after):
             return (_read_block, path, _regions(ty + ((K,),), (i, j, 0)), done) + after
@@ -694,32 +719,41 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
             return _spilled_xpass(path, done, out_chunks, sub, W, dt, f"snow-raw-x-{tok}", dsk)
         mm = f"snow-extremes-{tok}"
         for i, j in blocks:
-            dsk[(mm, i, j, 0)] = (_snow_extremes, read(i, j), W, dt)
+            dsk[(mm, i, j, 0)] = (_snow_xpass, [read(i, j)], [0], W, dt, "extremes")
         dsk[lohi] = (_reduce_extremes, [(mm, i, j, 0) for i, j in blocks])
         return _spilled_xpass(path, done, out_chunks, sub, W, dt, name, dsk, post=(_post, float(beta), lohi))
+    kst = [int(k) for k in _starts(kx_blocks)[:-1]]
+    tst, yst = _starts(ty[0]), _starts(ty[1])
+
+    def xpass(s1, xname, mode, dsk):
+        """The x-pass tasks ``(xname, i, j, 0)``: each gathers its rows from the pieces of the slabs (no rechunk)."""
+        dsk.update(_graph(s1))
+        part = f"{s1.name}-part"
+        for i, j in blocks:
+            sl = (slice(int(tst[i]), int(tst[i + 1])), slice(int(yst[j]), int(yst[j + 1])))
+            for b in range(len(kx_blocks)):
+                dsk[(part, i, j, b)] = (operator.getitem, (s1.name, 0, 0, b), sl)
+            dsk[(xname, i, j, 0)] = (_snow_xpass, [(part, i, j, b) for b in range(len(kx_blocks))], kst, W, dt,
+                                     mode)
+        return dsk
+
     if not rescale:
-        s1 = stage1("raw").rechunk(ty + ((K,),))
-        out = s1.map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt, name=f"snow-raw-x-{tok}")
-        return out.rechunk(out_chunks)
+        dsk = xpass(stage1("raw"), name, None, {})
+        return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)
+    mm = f"snow-extremes-{tok}"
     if hold:
         # one pass: the raw chunks wait (held by dask) while their extremes are reduced, then each is rescaled
-        raw = stage1("raw").rechunk(ty + ((K,),)).map_blocks(_last_pass, W, dt, chunks=s2_chunks, dtype=dt,
-                                                              name=f"snow-raw-x-{tok}")
-        mm = raw.map_blocks(_chunk_extremes, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
-        dsk = _graph(mm)
-        dsk[lohi] = (_reduce_extremes, list(mm.__dask_keys__()))
-        for i, j in itertools.product(range(len(ty[0])), range(len(ty[1]))):
-            dsk[(name, i, j, 0)] = (_rescale_raw, (raw.name, i, j, 0), float(beta), lohi)
-        dsk.update(_graph(raw))
+        both, raw = f"snow-raw-x-{tok}", f"snow-raw-{tok}"
+        dsk = xpass(stage1("raw"), both, "both", {})
+        for i, j in blocks:
+            dsk[(raw, i, j, 0)] = (operator.getitem, (both, i, j, 0), 0)
+            dsk[(mm, i, j, 0)] = (operator.getitem, (both, i, j, 0), 1)
+        dsk[lohi] = (_reduce_extremes, [(mm, i, j, 0) for i, j in blocks])
+        for i, j in blocks:
+            dsk[(name, i, j, 0)] = (_rescale_raw, (raw, i, j, 0), float(beta), lohi)
         return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)
     # pass 1: each chunk's extremes only; pass 2 waits for them, recomputes, rescales chunk by chunk
-    a1 = stage1("a").rechunk(ty + ((K,),))
-    mm = a1.map_blocks(_snow_extremes, W, dt, chunks=mm_chunks, dtype=dt, name=f"snow-extremes-{tok}")
-    dsk = _graph(mm)
-    dsk[lohi] = (_reduce_extremes, list(mm.__dask_keys__()))
-    b1 = stage1("b", after=(lohi,)).rechunk(ty + ((K,),))
-    for i, j in itertools.product(range(len(ty[0])), range(len(ty[1]))):
-        dsk[(name, i, j, 0)] = (_snow_rescale, (b1.name, i, j, 0), W, dt, float(beta), lohi)
-    dsk.update(_graph(b1))
-    out = _array(dsk, name, s2_chunks, dt)
-    return out.rechunk(out_chunks)
+    dsk = xpass(stage1("a"), mm, "extremes", {})
+    dsk[lohi] = (_reduce_extremes, [(mm, i, j, 0) for i, j in blocks])
+    dsk = xpass(stage1("b", after=(lohi,)), name, (_post, float(beta), lohi), dsk)
+    return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)

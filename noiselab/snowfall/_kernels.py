@@ -6,8 +6,8 @@ from numba import njit
 
 
 @njit(cache=True, nogil=True)
-def rescale_power(flat, lo, scale, beta):
-    """``flat = clip((flat - lo) * scale, 0, 1) ** beta`` in place (beta 1 and 1.5 without ``pow``)."""
+def rescale_power(flat, dst, lo, scale, beta):
+    """``dst = clip((flat - lo) * scale, 0, 1) ** beta`` (beta 1 and 1.5 without ``pow``); ``dst`` may be ``flat``."""
     one = flat.dtype.type(1.0)
     zero = flat.dtype.type(0.0)
     lo = flat.dtype.type(lo)
@@ -16,15 +16,15 @@ def rescale_power(flat, lo, scale, beta):
     if beta == 1.0:
         for i in range(flat.size):
             v = (flat[i] - lo) * scale
-            flat[i] = min(max(v, zero), one)
+            dst[i] = min(max(v, zero), one)
     elif beta == 1.5:
         for i in range(flat.size):
             v = min(max((flat[i] - lo) * scale, zero), one)
-            flat[i] = v * np.sqrt(v)
+            dst[i] = v * np.sqrt(v)
     else:
         for i in range(flat.size):
             v = min(max((flat[i] - lo) * scale, zero), one)
-            flat[i] = v ** b
+            dst[i] = v ** b
 
 
 @njit(cache=True, nogil=True)

@@ -58,15 +58,61 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None, workers=None):
     >>> rescale_opacity(np.full(3, 7.0))
     array([0., 0., 0.])
     """
+    return _opacity(field, None, beta, lo, hi, workers)
+
+
+def opacity_copy(field, beta=1.5, *, lo=None, hi=None):
+    """:func:`rescale_opacity` into a new array, ``field`` left as it is (one pass, one thread; the same bits).
+
+    For a raw field that something else may still read (the chunked
+    renderer's raw chunks, :mod:`noiselab.scale.spectral`): one pass that
+    reads ``field`` and writes the opacity, instead of a copy and a pass
+    over the copy.
+
+    Parameters
+    ----------
+    field : ndarray of float32 or float64, C-contiguous
+        The raw field (unchanged).
+    beta : float, default 1.5
+        Exponent of the opacity curve (> 0).
+    lo, hi : float, optional
+        The field's minimum and maximum, if known (both or neither; ``lo <= hi``).
+
+    Returns
+    -------
+    ndarray
+        A new array of ``field``'s shape and dtype, in ``[0, 1]``.
+
+    Raises
+    ------
+    TypeError
+        For a field that is not float32 or float64.
+    ValueError
+        As :func:`rescale_opacity`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = np.array([-1.0, 0.0, 3.0])
+    >>> opacity_copy(x, beta=1.0), x
+    (array([0.  , 0.25, 1.  ]), array([-1.,  0.,  3.]))
+    """
+    return _opacity(field, True, beta, lo, hi, 1)
+
+
+def _opacity(field, copy, beta, lo, hi, workers):
+    """``rescale_opacity`` in place (``copy`` None) or into a new array (``copy`` True)."""
     beta = check_real("beta", beta, lo=0, lo_open=True)
     field = as_array("field", field)
     if field.dtype not in (np.float32, np.float64):
         raise TypeError(f"field must be float32 or float64, got {field.dtype}")
+    dest = np.empty_like(field) if copy else field
     if field.size == 0:
-        return field
+        return dest
     flat = field.reshape(-1)
     if not flat.flags.c_contiguous:
         raise ValueError("field must be C-contiguous to be rescaled in place")
+    dflat = dest.reshape(-1)
     if (lo is None) != (hi is None):
         raise ValueError("lo and hi must be given together (the field's known minimum and maximum) or not at all")
     if lo is None:
@@ -82,8 +128,8 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None, workers=None):
         raise ValueError(f"field spans [{float(lo):g}, {float(hi):g}]: the range overflows {field.dtype}; rescale it")
     span = ft(hi) - ft(lo)
     if not span > 0:
-        field[...] = 0
-        return field
+        dest[...] = 0
+        return dest
     if not math.isfinite(1.0 / span64):
         raise ValueError(f"field spans only {span64:.3g}: 1 / (max - min) overflows; rescale it")
     # round the scale up so that the maximum maps to exactly 1 (then clipped)
@@ -92,13 +138,13 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None, workers=None):
         scale = np.nextafter(scale, ft(np.inf))
     nw = resolve_workers(workers)
     step = 1 << 20  # fixed chunks (not per worker): each element is mapped alone, so any count gives the same bits
-    chunks = [flat[i:i + step] for i in range(0, flat.size, step)]
+    chunks = [(flat[i:i + step], dflat[i:i + step]) for i in range(0, flat.size, step)]
     if nw <= 1 or len(chunks) <= 1:
-        _kernels.rescale_power(flat, float(lo), float(scale), beta)
+        _kernels.rescale_power(flat, dflat, float(lo), float(scale), beta)
     else:
-        list(thread_pool(min(nw, len(chunks))).map(lambda c: _kernels.rescale_power(c, float(lo), float(scale), beta),
-                                             chunks))
-    return field
+        list(thread_pool(min(nw, len(chunks))).map(
+            lambda c: _kernels.rescale_power(c[0], c[1], float(lo), float(scale), beta), chunks))
+    return dest
 
 
 def _check_params(shape, c, band, thickness, direction_yx, pan_yx, beta, exponent, amplitude, on_alias):
