@@ -188,6 +188,34 @@ def test_chunks_no_worker_can_hold_are_a_clear_error_before_any_graph(client):
     assert snow((64, 2048, 2048), rng=0, chunks=(8, 256, 2048)).npartitions == 64
 
 
+def test_a_worker_past_its_pause_point_is_a_clear_error_before_any_graph():
+    # an in-process worker (no nanny: nothing restarts it) whose memory limit puts this process past the point
+    # where distributed pauses it: it would take no task, and the computation would wait for ever
+    import time
+
+    import psutil
+
+    rss = psutil.Process().memory_info().rss
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None,
+                                  memory_limit=int(rss / 0.9)) as cluster, \
+            distributed.Client(cluster, set_as_default=False) as c, c.as_current():
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline:  # the scheduler hears of the pause at the worker's next heartbeat
+            w, = c.scheduler_info()["workers"].values()
+            if w.get("status") == "paused":
+                break
+            time.sleep(0.1)
+        assert w.get("status") == "paused"
+        limit = f"{int(rss / 0.9) / 2**20:.0f} MiB"
+        with pytest.raises(MemoryError, match=rf"snow\(8, 64, 64\) .*needs at least [\d.]+ MiB per worker \(.*\), "
+                                              rf"and the cluster's workers have at most 0.0 MiB before distributed "
+                                              rf"pauses them \(worker .* of its {limit} memory limit, paused at "
+                                              rf"[\d.]+ MiB \(80%\), paused now\).*memory_limit of at least"):
+            snow((8, 64, 64), rng=0, chunks=(4, 32, 64))
+        with pytest.raises(MemoryError, match=r"spectral_noise\(64, 64\).* per worker .* paused now"):
+            spectral_noise((64, 64), rng=0, chunks=(32, 64))
+
+
 BIG = (48, 1024, 2048)  # 384 MiB of float32, more than a worker's 352 MiB limit
 
 

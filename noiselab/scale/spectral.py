@@ -486,16 +486,6 @@ def _hold_raw(nbytes):
     return int(nbytes) <= total // 4
 
 
-def _worker_memory():
-    """The smallest worker memory limit (bytes) under an active ``distributed`` client; None: no client or limit."""
-    client = _active_client()
-    if client is None:
-        return None
-    limits = [int(w.get("memory_limit") or 0) for w in client.scheduler_info().get("workers", {}).values()]
-    limits = [lim for lim in limits if lim > 0]
-    return min(limits) if limits else None
-
-
 # what a worker process holds before any task of ours: python, numpy, scipy, numba, distributed and noiselab
 # imported, the kernels compiled (240-266 MiB measured on the 2-core test machine, benchmarks/bench_dask.md)
 _IMPORTS = 240 << 20
@@ -614,33 +604,71 @@ def _route(spill, task, shared):
     return _Scratch()
 
 
+def _worker_rooms():
+    """Each worker of the active ``distributed`` client: ``(name, limit, used, pause, room)`` in bytes; [] without one.
+
+    ``limit``: its memory limit (none: this machine's available memory);
+    ``used``: its process memory as the scheduler last heard it; ``pause``:
+    where ``distributed`` pauses it (:func:`_pause_fraction` of the limit);
+    ``room``: what a task may still take before that (counting at least
+    ``_IMPORTS`` in use: a worker imports noiselab with its first task), 0
+    for a worker that is paused already.
+    """
+    client = _active_client()
+    if client is None:
+        return []
+    frac = _pause_fraction()
+    out = []
+    for addr, w in client.scheduler_info().get("workers", {}).items():
+        lim = int(w.get("memory_limit") or 0) or available_memory()
+        used = int((w.get("metrics") or {}).get("memory") or 0)
+        pause = int(frac * lim)
+        room = 0 if w.get("status") == "paused" else max(0, pause - max(used, _IMPORTS))
+        out.append((str(w.get("name", addr)), lim, used, pause, room))
+    return out
+
+
 def _check_worker_memory(tasks, what):
-    """A clear ``MemoryError`` when the largest task of a chunked transform cannot fit one worker's memory at all.
+    """A clear ``MemoryError`` when no worker has room for the largest task of a chunked transform.
 
     ``tasks``: ``(description, bytes)`` of each stage's largest task (its input
     and output arrays, a lower bound on what the worker holds while it runs).
-    Checked before the graph is built, against the smallest memory limit of
-    the active ``distributed`` cluster's workers, at the fraction where
-    ``distributed`` pauses a worker (``distributed.worker.memory.pause``, 80 %);
-    no client (dask's local schedulers) or no limit: nothing to check. A
+    Checked before the graph is built against every worker of the active
+    ``distributed`` cluster (:func:`_worker_rooms`): the room between what
+    the worker holds now and the point where ``distributed`` pauses it
+    (``distributed.worker.memory.pause``, 80 % of its memory limit), none
+    for a worker that is paused already. When the largest task fits no
+    worker, the error names the memory it needs per worker and what each
+    worker has; no client (dask's local schedulers): nothing to check. A
     worker given more would be paused for good, or restarted for memory again
-    and again.
+    and again; a paused worker takes no task, so a cluster whose every worker
+    is past its pause point would wait for ever.
 
     Examples
     --------
     >>> _check_worker_memory([("an x-pass chunk", 1 << 20)], "snow")  # no cluster here: nothing to check
     """
-    limit = _worker_memory()
-    if limit is None or not tasks:
+    rooms = _worker_rooms()
+    if not rooms or not tasks:
         return
     desc, need = max(tasks, key=lambda t: t[1])
+    best = max(r[4] for r in rooms)
+    if need <= best:
+        return
     frac = _pause_fraction()
-    if need > frac * limit:
-        raise MemoryError(f"{what} needs at least {need / 2**20:.0f} MiB per worker ({desc}), more than the "
-                          f"{frac * limit / 2**20:.0f} MiB at which distributed pauses the cluster's smallest worker "
-                          f"({frac:.0%} of its {limit / 2**20:.0f} MiB memory limit): pass smaller chunks= (fewer "
-                          f"frames or rows per chunk) or start the workers with memory_limit of at least "
-                          f"{(need / frac + _IMPORTS) / 2**20:.0f} MiB")
+
+    def mib(x):
+        return f"{x / 2**20:.1f} MiB" if x < 10 << 20 else f"{x / 2**20:.0f} MiB"
+
+    have = "; ".join(f"worker {n}: {mib(u)} in use of its {mib(lim)} memory limit, paused at {mib(p)} ({frac:.0%})"
+                     + (", paused now" if r == 0 else "")
+                     for n, lim, u, p, r in sorted(rooms, key=lambda r: -r[4])[:4])
+    more = f"; and {len(rooms) - 4} more" if len(rooms) > 4 else ""
+    least_used = min(max(r[2], _IMPORTS) for r in rooms)
+    raise MemoryError(f"{what} needs at least {mib(need)} per worker ({desc}), and the cluster's workers have at "
+                      f"most {mib(best)} before distributed pauses them ({have}{more}): pass smaller chunks= (fewer "
+                      f"frames or rows per chunk), free what the workers hold (client.restart()) or start them with "
+                      f"memory_limit of at least {mib((need + least_used) / frac)}")
 
 
 @dispatch.register("snow")
