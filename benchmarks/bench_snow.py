@@ -4,6 +4,8 @@ Run from the repository root::
 
     python3 benchmarks/bench_snow.py            # writes benchmarks/bench_snow.md
     python3 benchmarks/bench_snow.py --quick    # smaller, for a smoke test
+    python3 benchmarks/bench_snow.py --baseline /work/main --no-memory --no-peer --append
+        # also times snow from another checkout side by side (before/after), appends a dated section
 
 Everything is measured side by side in one process, interleaved round by
 round, and reported as ratios (median of the per-round ratios), because the
@@ -21,6 +23,7 @@ import json
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -48,7 +51,28 @@ def _random_half_spectrum(shape, dtype):
     return S
 
 
-def timing(shape, rounds, workers):
+def load_baseline(path):
+    """``snow`` of the noiselab tree under ``path`` (another checkout), imported beside this one as ``noiselab_base``.
+
+    The package is loaded from its own files under a module name of its own
+    (its modules import each other relatively; numba caches its kernels by
+    their files), so both trees are timed in one process.
+    """
+    import importlib
+    import importlib.util
+
+    pkg = Path(path).resolve() / "noiselab"
+    spec = importlib.util.spec_from_file_location("noiselab_base", pkg / "__init__.py",
+                                                  submodule_search_locations=[str(pkg)])
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["noiselab_base"] = mod
+    spec.loader.exec_module(mod)
+    base = importlib.import_module("noiselab_base.snowfall").snow
+    assert Path(sys.modules[base.__module__].__file__).resolve().is_relative_to(pkg)
+    return base
+
+
+def timing(shape, rounds, workers, base=None, timer=None):
     """Interleaved rounds: floor (irfftn) and snow, float32 and float64, at each worker count; ratios per round.
 
     One :func:`noiselab.lab.measure.interleaved` call over every (case, worker count), the order reversed every
@@ -81,7 +105,11 @@ def timing(shape, rounds, workers):
                       f"floor64@{w}": lambda r, w=w: floor(S64, w),
                       f"snow64@{w}": lambda r, w=w: snow(shape, rng=max(r, 0), dtype=np.float64, workers=w),
                       f"stages@{w}": lambda r, w=w: stages(max(r, 0), w)})
-    t = interleaved(cands, repeats=rounds, order="alternate", round_arg=True)
+        if base is not None:
+            cands[f"base32@{w}"] = lambda r, w=w: base(shape, rng=max(r, 0), workers=w)
+    if base is not None:
+        base((4, 32, 32), rng=0)  # numba warm-up of the baseline tree
+    t = interleaved(cands, repeats=rounds, order="alternate", round_arg=True, timer=timer)
     res = {"timings": t}
     w0 = workers[0]
     for w in workers:
@@ -101,6 +129,10 @@ def timing(shape, rounds, workers):
             "speedup_floor32": t.ratio(f"floor32@{w0}", f"floor32@{w}"),
             "speedup_snow32": t.ratio(f"snow32@{w0}", f"snow32@{w}"),
         }
+        if base is not None:
+            res[w].update({"base32_s": t[f"base32@{w}"], "base_ratio32": t.ratio(f"base32@{w}", f"floor32@{w}"),
+                           "snow_vs_base": t.ratio(f"snow32@{w}", f"base32@{w}"),
+                           "base_ratios32": [round(float(x), 3) for x in t.ratios(f"base32@{w}", f"floor32@{w}")]})
     cols = tent_columns(shape, c=1.0, band=band, thickness=0.1, direction=(0, 1), pan=(0, 0), exponent=1.0)
     res["cells"] = int(cols.n_cells)
     res["columns"] = int(cols.ky.size)
@@ -215,6 +247,13 @@ def build_parser():
     ap.add_argument("--no-peer", action="store_true")
     ap.add_argument("--workers", type=int, nargs="+", default=None,
                     help="worker counts, the same on both sides (default: 1 and every core)")
+    ap.add_argument("--baseline", default=None,
+                    help="another noiselab checkout (e.g. `git worktree add /tmp/base main`): its snow float32 is "
+                         "timed in the same rounds (before/after in one process)")
+    ap.add_argument("--cpu", action="store_true", help="time CPU (time.process_time) instead of the wall clock")
+    ap.add_argument("--no-memory", action="store_true", help="skip the memory subprocesses (and their table)")
+    ap.add_argument("--append", action="store_true",
+                    help="append the report to bench_snow.md as a dated section instead of replacing the file")
     return ap
 
 
@@ -227,15 +266,18 @@ def main(argv=None):
         return
     rounds = 5 if args.quick else max(5, args.rounds)
     load0 = load_average()
-    tm = timing(shape, rounds, workers)
+    base = load_baseline(args.baseline) if args.baseline else None
+    tm = timing(shape, rounds, workers, base, time.process_time if args.cpu else None)
     load1 = load_average()
-    mem = memory(shape, workers)
+    mem = None if args.no_memory else memory(shape, workers)
     acc = accuracy(shape)
     pr = None if args.no_peer else peer(shape, 5)
     cmd = "python3 benchmarks/bench_snow.py" + (" --quick" if args.quick else "") + (
         f" --rounds {args.rounds}" if args.rounds != 9 else "") + (
         " --workers " + " ".join(map(str, args.workers)) if args.workers else "") + (
-        " --shape " + " ".join(map(str, args.shape)) if args.shape else "") + (" --no-peer" if args.no_peer else "")
+        " --shape " + " ".join(map(str, args.shape)) if args.shape else "") + (" --no-peer" if args.no_peer else "") + (
+        f" --baseline {args.baseline}" if args.baseline else "") + (" --cpu" if args.cpu else "") + (
+        " --no-memory" if args.no_memory else "") + (" --append" if args.append else "")
     T, H, W = shape
     out_mib = T * H * W * 4 / 2**20
     lines = [
@@ -250,6 +292,8 @@ def main(argv=None):
         "",
         "## Speed (floor = bare `scipy.fft.irfftn` of a `(T, H, W//2+1)` spectrum to the same output, same workers)",
         "",
+        f"- clock: {'CPU time of this process (`time.process_time`)' if args.cpu else 'wall clock'}",
+        "",
         "| workers | case | median time (s) | ratio to its floor |",
         "| --- | --- | --- | --- |",
     ]
@@ -262,13 +306,17 @@ def main(argv=None):
             f"| {w} | `snow` float64 | {t['snow64_s']:.3f} | {t['ratio64']:.2f} "
             f"({t['ratio64_vs_floor32']:.2f} x the float32 floor) |",
         ]
-    lines += ["", "Target: `snow` float32 at most 0.7 x the floor at every worker count.", ""]
+        if base is not None:
+            lines.append(f"| {w} | `snow` float32 of the baseline tree ({args.baseline}) | {t['base32_s']:.3f} | "
+                         f"{t['base_ratio32']:.2f} (this tree: {t['snow_vs_base']:.2f} x the baseline's time) |")
+    lines += ["", "Target: `snow` float32 at most 0.6 x the floor at every worker count.", ""]
     for w in workers:
         t = tm[w]
         lines += [f"{w} worker(s): per-round float32 ratios {t['ratios32']}; stages of `snow` (float32) as fractions "
                   f"of the float32 floor: spectrum build (sparse tent cells + random draws, one thread) "
                   f"{t['build_frac']:.3f}, pruned inverse FFT {t['fft_frac']:.3f}, rescale + `alpha**1.5` "
-                  f"{t['rescale_frac']:.3f}.", ""]
+                  f"{t['rescale_frac']:.3f}." + (f" Baseline tree's per-round float32 ratios {t['base_ratios32']}."
+                                                 if base is not None else ""), ""]
     if len(workers) > 1:
         base = workers[0]
         lines += ["## Strong scaling (float32)", "",
@@ -291,25 +339,26 @@ def main(argv=None):
     lines += [
         f"What is exploited: {tm1['cells']:,} of the {tm1['half_spectrum']:,} half-spectrum cells carry energy "
         f"({100 * tm1['cells'] / tm1['half_spectrum']:.2f} %), in {tm1['columns']:,} spatial columns; the spectrum is "
-        "built on those cells only, the inverse FFT along t runs on those columns only (once, on the workers inside "
-        "scipy), then each block of frames is scattered back, transformed along y on the `kx <= band[1]` columns "
-        "only and along x (the only full-size pass, complex-to-real) into the output, the blocks shared among the "
-        "workers (the min/max for the rescale is taken while each block is in cache).",
+        "built on those cells only; for each block of frames the inverse DFT along t is a direct sum over each "
+        "column's few bins, scattered to the block's cells, transformed along y on the `kx <= band[1]` columns only "
+        "and along x (the only full-size pass, complex-to-real, from a zero-padded block kept per thread) straight "
+        "into the output, the blocks shared among the workers (the min/max for the rescale is taken while each slab "
+        "of rows is in cache).",
         "",
-        f"## Memory (output: {out_mib:.0f} MiB float32; measured in a fresh subprocess per case)",
-        "",
-        "| workers | case | peak RSS above baseline (MiB) | x float32 output | tracemalloc peak (MiB) | x output |",
-        "| --- | --- | --- | --- | --- | --- |",
     ]
-    for w in workers:
+    if mem is not None:
+        lines += [f"## Memory (output: {out_mib:.0f} MiB float32; measured in a fresh subprocess per case)", "",
+                  "| workers | case | peak RSS above baseline (MiB) | x float32 output | tracemalloc peak (MiB) | "
+                  "x output |", "| --- | --- | --- | --- | --- | --- |"]
+    for w in (workers if mem is not None else []):
         for case, name in (("floor32", "floor float32 (input spectrum not counted)"), ("snow32", "`snow` float32"),
                            ("floor64", "floor float64 (input spectrum not counted)"), ("snow64", "`snow` float64")):
             m = mem[(case, w)]
             lines.append(f"| {w} | {name} | {m['rss_peak_mib']:.0f} | {m['rss_peak_mib'] / out_mib:.2f} | "
                          f"{m['traced_peak_mib']:.0f} | {m['traced_peak_mib'] / out_mib:.2f} |")
+    if mem is not None:
+        lines += ["", "Target: `snow` float32 at most 1.27 x the float32 output (tracemalloc), at every worker count."]
     lines += [
-        "",
-        "Target: `snow` float32 at most 1.27 x the float32 output (tracemalloc), at every worker count.",
         "",
         "## float32 against float64 (same seed)",
         "",
@@ -327,9 +376,15 @@ def main(argv=None):
                 f"same shape, in `benchmarks/.venv-peers`): {pr['ratio']:.1f} x a bare `irfftn` in its own process; "
                 f"its process peaked at {pr['maxrss_mib']:.0f} MiB RSS (ru_maxrss, whole process).")
         lines.append("")
-    text = "\n".join(lines)
-    (ROOT / "benchmarks" / ("bench_snow.md" if not args.quick else "bench_snow_quick.md")).write_text(text)
-    print(text)
+    md = ROOT / "benchmarks" / ("bench_snow.md" if not args.quick else "bench_snow_quick.md")
+    if args.append:  # a dated section after the earlier records: its headings one level down
+        lines = [("#" + ln if ln.startswith("#") else ln) for ln in lines]
+        lines[0] = f"# bench_snow run of {time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC"
+        text = (md.read_text().rstrip("\n") + "\n\n" if md.exists() else "") + "\n".join(lines)
+    else:
+        text = "\n".join(lines)
+    md.write_text(text)
+    print("\n".join(lines))
 
 
 if __name__ == "__main__":

@@ -610,8 +610,9 @@ def _worker_rooms():
     ``limit``: its memory limit (none: this machine's available memory);
     ``used``: its process memory as the scheduler last heard it; ``pause``:
     where ``distributed`` pauses it (:func:`_pause_fraction` of the limit);
-    ``room``: what a task may still take before that (counting at least
-    ``_IMPORTS`` in use: a worker imports noiselab with its first task), 0
+    ``room``: what a task may still take before that, as measured (a worker
+    that has not imported noiselab yet will hold more: :func:`_budget` sizes
+    the tasks with at least ``_IMPORTS`` in use; this is the hard limit), 0
     for a worker that is paused already.
     """
     client = _active_client()
@@ -623,7 +624,7 @@ def _worker_rooms():
         lim = int(w.get("memory_limit") or 0) or available_memory()
         used = int((w.get("metrics") or {}).get("memory") or 0)
         pause = int(frac * lim)
-        room = 0 if w.get("status") == "paused" else max(0, pause - max(used, _IMPORTS))
+        room = 0 if w.get("status") == "paused" else max(0, pause - used)
         out.append((str(w.get("name", addr)), lim, used, pause, room))
     return out
 
