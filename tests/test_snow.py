@@ -377,3 +377,69 @@ def test_cli_workers_option_same_video_and_named_errors(tmp_path, capsys):
     assert main(["snow", "--width", "16", "--height", "16", "--frames", "2", "--workers", "0",
                  "--output", str(tmp_path / "x.npy"), "--quiet"]) == 2
     assert "workers must be" in capsys.readouterr().err
+
+
+_SNOW_CASES = """
+import numpy as np
+from noiselab.snowfall import snow
+out = [snow((6, 24, 32), rng=3), snow((5, 20, 18), rng=4, beta=1.0, dtype=np.float64, pan_yx=(0.2, -0.1)),
+       snow((4, 16, 20), rng=5, beta=2.0, thickness=0.5), snow((3, 17, 15), rng=6, rescale=False),
+       snow((40, 32, 16), rng=7, workers=2)]
+"""
+
+
+def test_snow_kernels_give_the_same_bits_without_the_jit(tmp_path):
+    # NUMBA_DISABLE_JIT=1 runs the kernels' Python source (the t-pass scatter, the opacity map for beta 1, 1.5
+    # and others, in place and into a new array): the same bits as the compiled kernels
+    import os
+    import subprocess
+    import sys
+
+    script = _SNOW_CASES + ("from noiselab.snowfall.render import opacity_copy\n"
+                            "out.append(opacity_copy(np.linspace(-2, 3, 11, dtype=np.float32), 2.5))\n"
+                            "np.save(__import__('sys').argv[1], np.concatenate([o.ravel().astype(np.float64) "
+                            "for o in out]))\n")
+    path = tmp_path / "nojit.npy"
+    subprocess.run([sys.executable, "-W", "ignore", "-c", script, str(path)],
+                   env=dict(os.environ, NUMBA_DISABLE_JIT="1"), check=True, timeout=300)
+    from noiselab.snowfall.render import opacity_copy
+
+    ns = {}
+    exec(_SNOW_CASES, ns)
+    ns["out"].append(opacity_copy(np.linspace(-2, 3, 11, dtype=np.float32), 2.5))
+    want = np.concatenate([o.ravel().astype(np.float64) for o in ns["out"]])
+    got = np.load(path)
+    assert got.shape == want.shape and got.tobytes() == want.tobytes()
+
+
+def test_snow_through_scipy_fft_functions_gives_the_same_bits(monkeypatch):
+    # the passes call pocketfft's binding (writing into a given array); scipy.fft's public functions, the
+    # fallback for a scipy without that module, run the same transforms: the same bits, in memory and chunked
+    from noiselab.snowfall import tent
+
+    if tent._pocketfft is None:
+        pytest.skip("this scipy has no pocketfft binding: the fallback is the only path")
+    ns = {}
+    exec(_SNOW_CASES, ns)
+    monkeypatch.setattr(tent, "_pocketfft", None)
+    ns2 = {}
+    exec(_SNOW_CASES, ns2)
+    for a, b in zip(ns["out"], ns2["out"]):
+        assert a.dtype == b.dtype and a.tobytes() == b.tobytes()
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+@pytest.mark.parametrize("beta", [1.0, 1.5, 2.0])
+def test_opacity_copy_equals_rescale_opacity_and_keeps_the_field(dtype, beta):
+    from noiselab.snowfall.render import opacity_copy
+
+    x = np.random.default_rng(3).standard_normal((5, 7, 9)).astype(dtype)
+    keep = x.copy()
+    got = opacity_copy(x, beta, lo=float(x.min()), hi=float(x.max()))
+    assert got is not x and np.array_equal(x, keep)   # the field is not touched
+    want = rescale_opacity(x.copy(), beta)
+    assert got.dtype == dtype and got.tobytes() == want.tobytes()
+    assert got.min() == 0 and got.max() == 1
+    assert np.all(opacity_copy(np.full(4, 2.0, dtype)) == 0)   # a constant field: transparent
+    with pytest.raises(ValueError, match="beta"):
+        opacity_copy(x, 0.0)
