@@ -5,6 +5,7 @@ Run from the repository root::
     python3 benchmarks/bench_dask.py            # writes benchmarks/bench_dask.md
     python3 benchmarks/bench_dask.py --quick    # smaller, for a smoke run
     python3 benchmarks/bench_dask.py --snow     # only the snow sections (S1-S3), replaced in bench_dask.md
+    python3 benchmarks/bench_dask.py --s1       # only S1 without its spilled row, appended as a dated section
 
 Measures, on a 3-D value-noise fractal sum (cubic B-spline, float32, 8 lattice
 cells per side, 6 octaves requested):
@@ -228,7 +229,7 @@ def _two_pass_snow(shape, chunks):
         S._hold_raw = keep
 
 
-def snow_overhead(shape, chunks, repeats, tmp):
+def snow_overhead(shape, chunks, repeats, tmp, spill=True):
     """CPU time of snow(chunks=) on one thread (synchronous scheduler) against snow() in memory (workers=1).
 
     The chunked variants compute their chunks (what a zarr write streams); one also assembles them into one array.
@@ -246,6 +247,8 @@ def snow_overhead(shape, chunks, repeats, tmp):
                                                                       spill=tmp / f"spill{r}"),
         "chunked raw (rescale=False), chunks": lambda r: snow(shape, rng=3, chunks=chunks, rescale=False),
     }
+    if not spill:
+        del variants["chunked, transposes spilled to zarr, chunks"]
     ref = snow(shape, rng=3, workers=1)
     raw = snow(shape, rng=3, workers=1, rescale=False)
 
@@ -419,6 +422,36 @@ def snow_main(args):
     md.write_text(text.rstrip("\n") + "\n\n" + "\n".join(L))
 
 
+def snow_s1_main(args):
+    """``--s1``: section S1 only (the chunked snow's overhead on one thread, no spill), appended as a dated section."""
+    repeats = 3 if args.quick else args.repeats
+    shape = (16, 256, 256) if args.quick else (64, 1024, 1024)
+    chunks = (8, 128, shape[2]) if args.quick else (16, 512, shape[2])
+    cmd = f"python3 benchmarks/bench_dask.py --s1{' --quick' if args.quick else ''} --repeats {args.repeats}"
+    info = run_info(cmd, ["dask", "noiselab"])
+    tmp = Path(tempfile.mkdtemp(prefix="bench_dask_s1."))
+    load0 = os.getloadavg()[0]
+    try:
+        t0 = time.perf_counter()
+        ov = snow_overhead(shape, chunks, repeats, tmp, spill=False)
+        elapsed = time.perf_counter() - t0
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    L = ["", f"## S1 again, {time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC: the chunked snow's overhead on one "
+         "thread", "", *header_lines(info, timing=f"{elapsed:.0f} s; load average (1 min) {load0:.1f} at the start, "
+                                     f"{os.getloadavg()[0]:.1f} at the end; CPU-time ratios side by side in one "
+                                     "process, interleaved rounds"), "",
+         f"`snow({shape}, rng=3)` in memory (`workers=1`) against `snow(..., chunks={chunks})` on dask's synchronous "
+         f"scheduler (one thread), median of {repeats} rounds; every result checked bit-identical to the in-memory "
+         "video (the rows as in S1 above, without the spilled one).", "",
+         "| path | CPU (s) | ratio to in memory (median) | min | max |", "| --- | --- | --- | --- | --- |"]
+    for k, c, r, lo, hi in ov:
+        L.append(f"| {k} | {c:.3f} | {r:.2f}x | {lo:.2f}x | {hi:.2f}x |")
+    md = Path(args.out)
+    md.write_text((md.read_text().rstrip("\n") if md.exists() else "") + "\n" + "\n".join(L) + "\n")
+    print("\n".join(L))
+
+
 def build_parser():
     """The command line (``--quick``, ``--repeats``, ``--out``, ``--snow``)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -426,11 +459,15 @@ def build_parser():
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--out", default=str(Path(__file__).with_suffix(".md")))
     parser.add_argument("--snow", action="store_true", help="only the snow sections S1-S3 (replaced in --out)")
+    parser.add_argument("--s1", action="store_true",
+                        help="only the snow section S1 without its spilled row, appended to --out as a dated section")
     return parser
 
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
+    if args.s1:
+        return snow_s1_main(args)
     if args.snow:
         return snow_main(args)
     repeats = 3 if args.quick else args.repeats

@@ -6,8 +6,36 @@ from numba import njit
 
 
 @njit(cache=True, nogil=True)
-def rescale_power(flat, dst, lo, scale, beta):
-    """``dst = clip((flat - lo) * scale, 0, 1) ** beta`` (beta 1 and 1.5 without ``pow``); ``dst`` may be ``flat``."""
+def rescale_power(flat, lo, scale, beta):
+    """``flat = clip((flat - lo) * scale, 0, 1) ** beta`` in place (beta 1 and 1.5 without ``pow``)."""
+    one = flat.dtype.type(1.0)
+    zero = flat.dtype.type(0.0)
+    lo = flat.dtype.type(lo)
+    scale = flat.dtype.type(scale)
+    b = flat.dtype.type(beta)
+    if beta == 1.0:
+        for i in range(flat.size):
+            v = (flat[i] - lo) * scale
+            flat[i] = min(max(v, zero), one)
+    elif beta == 1.5:
+        for i in range(flat.size):
+            v = min(max((flat[i] - lo) * scale, zero), one)
+            flat[i] = v * np.sqrt(v)
+    else:
+        for i in range(flat.size):
+            v = min(max((flat[i] - lo) * scale, zero), one)
+            flat[i] = v ** b
+
+
+@njit(cache=True, nogil=True)
+def rescale_power_into(flat, dst, lo, scale, beta):
+    """``dst = clip((flat - lo) * scale, 0, 1) ** beta`` for a ``dst`` apart from ``flat`` (the same arithmetic).
+
+    Not for ``dst is flat``: the two arrays may overlap for all numba knows,
+    so the loop is vectorised behind a runtime overlap check, and an
+    overlapping pair runs element by element (7x slower than
+    :func:`rescale_power` on 16 Mi float32, 2026-11-27).
+    """
     one = flat.dtype.type(1.0)
     zero = flat.dtype.type(0.0)
     lo = flat.dtype.type(lo)

@@ -139,11 +139,16 @@ def _opacity(field, copy, beta, lo, hi, workers):
     nw = resolve_workers(workers)
     step = 1 << 20  # fixed chunks (not per worker): each element is mapped alone, so any count gives the same bits
     chunks = [(flat[i:i + step], dflat[i:i + step]) for i in range(0, flat.size, step)]
+    def run(c):  # in place, or into the new array (a separate kernel: see rescale_power_into)
+        if copy:
+            _kernels.rescale_power_into(c[0], c[1], float(lo), float(scale), beta)
+        else:
+            _kernels.rescale_power(c[0], float(lo), float(scale), beta)
+
     if nw <= 1 or len(chunks) <= 1:
-        _kernels.rescale_power(flat, dflat, float(lo), float(scale), beta)
+        run((flat, dflat))
     else:
-        list(thread_pool(min(nw, len(chunks))).map(
-            lambda c: _kernels.rescale_power(c[0], c[1], float(lo), float(scale), beta), chunks))
+        list(thread_pool(min(nw, len(chunks))).map(run, chunks))
     return dest
 
 
