@@ -443,3 +443,10 @@ def test_opacity_copy_equals_rescale_opacity_and_keeps_the_field(dtype, beta):
     assert np.all(opacity_copy(np.full(4, 2.0, dtype)) == 0)   # a constant field: transparent
     with pytest.raises(ValueError, match="beta"):
         opacity_copy(x, 0.0)
+    big = np.full((7, 7, 9), -1, dtype)   # into a slab of a larger array, the rest untouched
+    assert opacity_copy(x, beta, out=big[1:6]) is not None and big[1:6].tobytes() == want.tobytes()
+    assert np.all(big[0] == -1) and np.all(big[6] == -1)
+    with pytest.raises(ValueError, match="out must not overlap field"):
+        opacity_copy(x, beta, out=x)
+    with pytest.raises(ValueError, match="out must be a C-contiguous"):
+        opacity_copy(x, beta, out=big[:, 1:6])

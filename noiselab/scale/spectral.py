@@ -460,6 +460,23 @@ def _reduce_extremes(parts):
     return lo, hi
 
 
+def _rescale_raws(parts, starts, shape, dt, beta, lohi):
+    """An output chunk made of the raw x-pass blocks inside it, each rescaled straight into its place.
+
+    One pass over each block (no concatenation, no copy): ``starts`` gives
+    each block's offset along t and y in the chunk of ``shape``.
+    """
+    lo, hi = lohi
+    out = np.empty(shape, dtype=dt)
+    for x, (a, b) in zip(parts, starts):
+        dst = out[a:a + x.shape[0], b:b + x.shape[1]]
+        if dst.flags.c_contiguous:
+            opacity_copy(x, beta, lo=lo, hi=hi, out=dst)
+        else:
+            dst[...] = opacity_copy(x, beta, lo=lo, hi=hi)
+    return out
+
+
 def _rescale_raw(x, beta, lohi):
     """A raw chunk rescaled with the global extremes, into a new array (dask may still hold the raw chunk)."""
     lo, hi = lohi
@@ -778,6 +795,16 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
             dsk[(raw, i, j, 0)] = (operator.getitem, (both, i, j, 0), 0)
             dsk[(mm, i, j, 0)] = (operator.getitem, (both, i, j, 0), 1)
         dsk[lohi] = (_reduce_extremes, [(mm, i, j, 0) for i, j in blocks])
+        ost = [_starts(c) for c in out_chunks[:2]]
+        if len(out_chunks[2]) == 1 and all(set(o.tolist()) <= set(q.tolist()) for o, q in zip(ost, (tst, yst))):
+            # each output chunk is whole x-pass blocks: rescaled straight into it, no rechunk after
+            for io, jo in itertools.product(range(len(out_chunks[0])), range(len(out_chunks[1]))):
+                (t0, t1), (y0, y1) = (ost[0][io], ost[0][io + 1]), (ost[1][jo], ost[1][jo + 1])
+                inside = [(i, j) for i, j in blocks if t0 <= tst[i] < t1 and y0 <= yst[j] < y1]
+                dsk[(name, io, jo, 0)] = (_rescale_raws, [(raw, i, j, 0) for i, j in inside],
+                                          [(int(tst[i] - t0), int(yst[j] - y0)) for i, j in inside],
+                                          (int(t1 - t0), int(y1 - y0), W), dt, float(beta), lohi)
+            return _array(dsk, name, out_chunks, dt)
         for i, j in blocks:
             dsk[(name, i, j, 0)] = (_rescale_raw, (raw, i, j, 0), float(beta), lohi)
         return _array(dsk, name, s2_chunks, dt).rechunk(out_chunks)

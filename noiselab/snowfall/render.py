@@ -61,7 +61,7 @@ def rescale_opacity(field, beta=1.5, *, lo=None, hi=None, workers=None):
     return _opacity(field, None, beta, lo, hi, workers)
 
 
-def opacity_copy(field, beta=1.5, *, lo=None, hi=None):
+def opacity_copy(field, beta=1.5, *, lo=None, hi=None, out=None):
     """:func:`rescale_opacity` into a new array, ``field`` left as it is (one pass, one thread; the same bits).
 
     For a raw field that something else may still read (the chunked
@@ -77,11 +77,14 @@ def opacity_copy(field, beta=1.5, *, lo=None, hi=None):
         Exponent of the opacity curve (> 0).
     lo, hi : float, optional
         The field's minimum and maximum, if known (both or neither; ``lo <= hi``).
+    out : ndarray, optional
+        Where to write: C-contiguous, ``field``'s shape and dtype, apart from
+        ``field`` (a slice of a larger chunk, say). Default: a new array.
 
     Returns
     -------
     ndarray
-        A new array of ``field``'s shape and dtype, in ``[0, 1]``.
+        ``out``, or a new array of ``field``'s shape and dtype, in ``[0, 1]``.
 
     Raises
     ------
@@ -97,16 +100,24 @@ def opacity_copy(field, beta=1.5, *, lo=None, hi=None):
     >>> opacity_copy(x, beta=1.0), x
     (array([0.  , 0.25, 1.  ]), array([-1.,  0.,  3.]))
     """
-    return _opacity(field, True, beta, lo, hi, 1)
+    return _opacity(field, True if out is None else out, beta, lo, hi, 1)
 
 
 def _opacity(field, copy, beta, lo, hi, workers):
-    """``rescale_opacity`` in place (``copy`` None) or into a new array (``copy`` True)."""
+    """``rescale_opacity`` in place (``copy`` None), into a new array (``copy`` True) or into the array ``copy``."""
     beta = check_real("beta", beta, lo=0, lo_open=True)
     field = as_array("field", field)
     if field.dtype not in (np.float32, np.float64):
         raise TypeError(f"field must be float32 or float64, got {field.dtype}")
-    dest = np.empty_like(field) if copy else field
+    if isinstance(copy, np.ndarray):
+        if copy.shape != field.shape or copy.dtype != field.dtype or not copy.flags.c_contiguous:
+            raise ValueError(f"out must be a C-contiguous {field.dtype} array of shape {field.shape}, got "
+                             f"{copy.dtype} {copy.shape}")
+        if np.shares_memory(copy, field):
+            raise ValueError("out must not overlap field (rescale_opacity maps a field in place)")
+        dest = copy
+    else:
+        dest = np.empty_like(field) if copy else field
     if field.size == 0:
         return dest
     flat = field.reshape(-1)
@@ -140,7 +151,7 @@ def _opacity(field, copy, beta, lo, hi, workers):
     step = 1 << 20  # fixed chunks (not per worker): each element is mapped alone, so any count gives the same bits
     chunks = [(flat[i:i + step], dflat[i:i + step]) for i in range(0, flat.size, step)]
     def run(c):  # in place, or into the new array (a separate kernel: see rescale_power_into)
-        if copy:
+        if copy is not None:
             _kernels.rescale_power_into(c[0], c[1], float(lo), float(scale), beta)
         else:
             _kernels.rescale_power(c[0], float(lo), float(scale), beta)
