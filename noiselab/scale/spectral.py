@@ -45,7 +45,11 @@ kept:
    ``ifft`` along y on the slab's kx columns only (the band's kx columns;
    nothing past the band's largest kx exists): :func:`noiselab.snowfall.tent.y_pass`,
    as in memory;
-3. transpose to ``(t, y)`` chunks with kx whole: ``irfft`` along x.
+3. per ``(t, y)`` chunk, the x-pass task takes its piece of every kx slab
+   (without ``spill=``, the transpose without a concatenation: no dask rechunk) and
+   gathers its rows a cache-sized slab at a time into a zero-padded block,
+   ``irfft`` along x straight into the chunk, the chunk's extremes taken on
+   the way (:func:`noiselab.snowfall.tent.irfft_rows`, as in memory).
 
 The rescale to [0, 1] and ``alpha ** beta`` need the raw field's global
 minimum and maximum. When the raw field fits in a quarter of the memory
