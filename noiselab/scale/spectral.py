@@ -458,6 +458,56 @@ def _snow_xpass(parts, k0s, W, dt, mode=None):
     return rescale_opacity(out, beta, lo=glo, hi=ghi, workers=1)
 
 
+def _snow_spilled_chunk(path, region, cols, W, dt, sub, post, *after):
+    """One output chunk of snow from its spilled complex rows (:func:`_xpass_chunk`'s plan, the snow's x-pass).
+
+    The chunk's rows are read ``sub`` rows at a time; a cache-sized slab of
+    them at a time is gathered into a zero-padded block and transformed along
+    x (:func:`noiselab.snowfall.tent.irfft_rows`, as in memory) straight into
+    the chunk when it spans the whole width, else into one slab of scratch
+    whose columns ``cols`` are kept (the x-pass of a row is recomputed for
+    each chunk of its columns, as in :func:`_xpass_chunk`). ``post``: None,
+    or ``(beta, (lo, hi))`` to rescale the chunk in place at the end.
+    """
+    import itertools
+
+    import zarr
+
+    z = zarr.open_array(path, mode="r")
+    x0, x1 = cols
+    whole = x1 - x0 == W
+    out = np.empty(tuple(b - a for a, b in region) + (x1 - x0,), dtype=dt)
+    rows = int(max(1, _CACHE // max(1, W * np.dtype(dt).itemsize)))
+    P = None
+    for st in itertools.product(*[range(a, b, s) for (a, b), s in zip(region, sub)]):
+        sl = tuple(slice(s0, min(s0 + s, b)) for s0, s, (_, b) in zip(st, sub, region))
+        blk = z[sl]
+        K = blk.shape[-1]
+        if P is None:
+            P = np.zeros((rows, W // 2 + 1), dtype=blk.dtype)  # columns past K stay zero
+            scratch = None if whole else np.empty((rows, W), dtype=dt)
+        src = blk.reshape(-1, K)
+        dst = out[tuple(slice(q.start - a, q.stop - a) for q, (a, _) in zip(sl, region))]
+        if not dst.flags.c_contiguous:  # a block of rows short of the chunk's: made apart, then copied in
+            part = np.empty(dst.shape, dtype=dt)
+        else:
+            part = dst
+        pf = part.reshape(-1, x1 - x0)
+        for r0 in range(0, src.shape[0], rows):
+            r = min(rows, src.shape[0] - r0)
+            P[:r, :K] = src[r0:r0 + r]
+            if whole:
+                irfft_rows(P[:r], W, pf[r0:r0 + r])
+            else:
+                pf[r0:r0 + r] = irfft_rows(P[:r], W, scratch[:r])[:, x0:x1]
+        if part is not dst:
+            dst[...] = part
+    if post is not None:
+        beta, (lo, hi) = post
+        rescale_opacity(out, beta, lo=lo, hi=hi, workers=1)
+    return out
+
+
 def _reduce_extremes(parts):
     lo = min(float(np.asarray(q)[..., 0].min()) for q in parts)
     hi = max(float(np.asarray(q)[..., 1].max()) for q in parts)
@@ -765,13 +815,21 @@ def chunked_snow(shape, chunks, *, rng, c, band, thickness, direction, pan, beta
             return (_read_block, path, _regions(ty + ((K,),), (i, j, 0)), done) + after
 
         sub = tuple(max(c) for c in ty)
+
+        def chunks_from_spill(xname, post):
+            st = [_starts(c) for c in out_chunks]
+            for idx in itertools.product(*[range(len(c)) for c in out_chunks]):
+                reg = [[int(st[a][i]), int(st[a][i + 1])] for a, i in enumerate(idx)]
+                dsk[(xname,) + idx] = (_snow_spilled_chunk, path, reg[:-1], reg[-1], W, dt, sub, post, done)
+            return _array(dsk, xname, out_chunks, dt)
+
         if not rescale:
-            return _spilled_xpass(path, done, out_chunks, sub, W, dt, f"snow-raw-x-{tok}", dsk)
+            return chunks_from_spill(f"snow-raw-x-{tok}", None)
         mm = f"snow-extremes-{tok}"
         for i, j in blocks:
             dsk[(mm, i, j, 0)] = (_snow_xpass, [read(i, j)], [0], W, dt, "extremes")
         dsk[lohi] = (_reduce_extremes, [(mm, i, j, 0) for i, j in blocks])
-        return _spilled_xpass(path, done, out_chunks, sub, W, dt, name, dsk, post=(_post, float(beta), lohi))
+        return chunks_from_spill(name, (_post, float(beta), lohi))
     kst = [int(k) for k in _starts(kx_blocks)[:-1]]
     tst, yst = _starts(ty[0]), _starts(ty[1])
 
