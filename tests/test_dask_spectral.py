@@ -203,9 +203,11 @@ def test_a_worker_past_its_pause_point_is_a_clear_error_before_any_graph():
 
     import psutil
 
+    ballast = np.ones(32 << 20, np.uint8)  # held (and touched): this process stays above the limit's 80 %
     rss = psutil.Process().memory_info().rss
+    lim = int(rss / 2)
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None,
-                                  memory_limit=int(rss / 0.9)) as cluster, \
+                                  memory_limit=lim) as cluster, \
             distributed.Client(cluster, set_as_default=False) as c, c.as_current():
         deadline = time.monotonic() + 30
         while time.monotonic() < deadline:  # the scheduler hears of the pause at the worker's next heartbeat
@@ -214,7 +216,7 @@ def test_a_worker_past_its_pause_point_is_a_clear_error_before_any_graph():
                 break
             time.sleep(0.1)
         assert w.get("status") == "paused"
-        limit = f"{int(rss / 0.9) / 2**20:.0f} MiB"
+        limit = f"{lim / 2**20:.0f} MiB"
         with pytest.raises(MemoryError, match=rf"snow\(8, 64, 64\) .*needs at least [\d.]+ MiB per worker \(.*\), "
                                               rf"and the cluster's workers have at most 0.0 MiB before distributed "
                                               rf"pauses them \(worker .* of its {limit} memory limit, paused at "
@@ -222,6 +224,7 @@ def test_a_worker_past_its_pause_point_is_a_clear_error_before_any_graph():
             snow((8, 64, 64), rng=0, chunks=(4, 32, 64))
         with pytest.raises(MemoryError, match=r"spectral_noise\(64, 64\).* per worker .* paused now"):
             spectral_noise((64, 64), rng=0, chunks=(32, 64))
+    assert ballast[-1] == 1
 
 
 @pytest.fixture

@@ -681,10 +681,10 @@ def _worker_rooms():
     ``limit``: its memory limit (none: this machine's available memory);
     ``used``: its process memory as the scheduler last heard it; ``pause``:
     where ``distributed`` pauses it (:func:`_pause_fraction` of the limit);
-    ``room``: what a task may still take before that, as measured (a worker
-    that has not imported noiselab yet will hold more: :func:`_budget` sizes
-    the tasks with at least ``_IMPORTS`` in use; this is the hard limit), 0
-    for a worker that is paused already.
+    ``room``: the most one task may take there, its pause point (what it
+    holds now may still be released: :func:`_budget` sizes the tasks from
+    what it holds), and 0 for a worker that is paused already or holds more
+    than its pause point: it takes no task until it is below it again.
     """
     client = _active_client()
     if client is None:
@@ -695,7 +695,7 @@ def _worker_rooms():
         lim = int(w.get("memory_limit") or 0) or available_memory()
         used = int((w.get("metrics") or {}).get("memory") or 0)
         pause = int(frac * lim)
-        room = 0 if w.get("status") == "paused" else max(0, pause - used)
+        room = 0 if w.get("status") == "paused" or used >= pause else pause
         out.append((str(w.get("name", addr)), lim, used, pause, room))
     return out
 
@@ -706,15 +706,15 @@ def _check_worker_memory(tasks, what):
     ``tasks``: ``(description, bytes)`` of each stage's largest task (its input
     and output arrays, a lower bound on what the worker holds while it runs).
     Checked before the graph is built against every worker of the active
-    ``distributed`` cluster (:func:`_worker_rooms`): the room between what
-    the worker holds now and the point where ``distributed`` pauses it
-    (``distributed.worker.memory.pause``, 80 % of its memory limit), none
-    for a worker that is paused already. When the largest task fits no
-    worker, the error names the memory it needs per worker and what each
-    worker has; no client (dask's local schedulers): nothing to check. A
-    worker given more would be paused for good, or restarted for memory again
-    and again; a paused worker takes no task, so a cluster whose every worker
-    is past its pause point would wait for ever.
+    ``distributed`` cluster (:func:`_worker_rooms`): the point where
+    ``distributed`` pauses it (``distributed.worker.memory.pause``, 80 % of
+    its memory limit), none for a worker that is paused already or holds
+    more than that. When the largest task fits no worker, the error names
+    the memory it needs per worker and what each worker has; no client
+    (dask's local schedulers): nothing to check. A worker given more would be
+    paused for good, or restarted for memory again and again; a paused worker
+    takes no task, so a cluster whose every worker is past its pause point
+    would wait for ever.
 
     Examples
     --------
