@@ -700,6 +700,9 @@ def _worker_rooms():
     return out
 
 
+_PAUSE_GRACE_S = 5.0  # how long a worker past its pause point may take to come back below it
+
+
 def _check_worker_memory(tasks, what):
     """A clear ``MemoryError`` when no worker has room for the largest task of a chunked transform.
 
@@ -714,16 +717,27 @@ def _check_worker_memory(tasks, what):
     (dask's local schedulers): nothing to check. A worker given more would be
     paused for good, or restarted for memory again and again; a paused worker
     takes no task, so a cluster whose every worker is past its pause point
-    would wait for ever.
+    would wait for ever. A worker past its pause point often comes back
+    below it in a moment (garbage collected, memory returned, data spilled):
+    the workers are looked at again for ``_PAUSE_GRACE_S`` (5 s) before the
+    error.
 
     Examples
     --------
     >>> _check_worker_memory([("an x-pass chunk", 1 << 20)], "snow")  # no cluster here: nothing to check
     """
+    import time
+
     rooms = _worker_rooms()
     if not rooms or not tasks:
         return
     desc, need = max(tasks, key=lambda t: t[1])
+    # a worker past its pause point often falls below it again in a moment (distributed collects garbage and
+    # returns memory, spills what it holds): look again for a few seconds before refusing
+    deadline = time.monotonic() + _PAUSE_GRACE_S
+    while need > max(r[4] for r in rooms) and max(r[3] for r in rooms) >= need and time.monotonic() < deadline:
+        time.sleep(0.25)
+        rooms = _worker_rooms()
     best = max(r[4] for r in rooms)
     if need <= best:
         return
