@@ -127,7 +127,7 @@ def test_the_integer_block_kernel_gives_the_other_kernels_bits(dim, monkeypatch)
     x[::17] = np.round(x[::17])   # exact lattice points
     x32 = RNG.uniform(-300, 300, (3000, dim)).astype(np.float32)
     x32[::19] *= np.float32(1e30)
-    cases = [({}, 3), ({"basis": "gradient", "kernel": "quintic"}, 2)]
+    cases = [({}, 3), ({"kernel": "quintic"}, 1), ({"basis": "gradient", "kernel": "quintic"}, 2)]
     results = []
     for block, fast in ((True, 3), (False, 3), (True, 0)):
         monkeypatch.setattr(points_path, "INT_BLOCK", block)
@@ -146,7 +146,7 @@ def test_the_integer_block_kernel_gives_the_other_kernels_bits(dim, monkeypatch)
     # the block kernel reads columns and strided rows (copied) to the same bits, on any number of threads
     monkeypatch.setattr(points_path, "INT_BLOCK", True)
     monkeypatch.setattr(points_path, "INT_FAST_DIM", 3)
-    for (kw, octaves), i in zip(cases, range(0, 8, 4)):
+    for (kw, octaves), i in zip(cases, range(0, 12, 4)):
         noise = LatticeNoise(dim, 2, rng=3, hash="integer", **kw)
         cols, cols32 = np.ascontiguousarray(x.T), np.ascontiguousarray(x32.T)
         np.testing.assert_array_equal(noise.evaluate(cols, octaves=octaves, axis=0, workers=2), results[0][i])
@@ -176,6 +176,9 @@ for h in ("table", "integer"):
         out += [nl.LatticeNoise(3, rng=3, hash=h).grid((5, 4, 3), [(0, 2), (0, 2), (0, 1)])]
         out += list(n2g.evaluate_grid_jacobian((6, 5), [(0, 2), (0, 2)], octaves=2))
     out += [nl.LatticeNoise(5, rng=3, hash=h, kernel="linear")(x[:, :1].repeat(5, axis=1))]
+for d in (1, 2, 3):   # the integer hash's 2-tap kernel
+    for b in ("value", "gradient"):
+        out += [nl.LatticeNoise(d, 2, rng=3, hash="integer", kernel="quintic", basis=b).evaluate(x[:, :d], octaves=2)]
 from noiselab.lattice import points_path
 for least in (0, 1 << 40):   # 3-D table-hash values over the folded tables, and without them
     points_path.PAIRS_MIN = least

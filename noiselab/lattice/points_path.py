@@ -9,9 +9,11 @@ hash, dimension, tap count, derivative flag, and whether any axis has a
 period of its own; 3-D table-hash noise without a period a kernel split per
 chunk of points, :data:`TABLE_SPLIT`, its values over folded tables from
 :data:`PAIRS_MIN` points on; integer-hash values in 1-3-D a kernel
-vectorised across points, :data:`INT_FAST_DIM`) over blocks of points on ``workers`` threads
-(:func:`noiselab._core.run_split`: every point's arithmetic is the same
-whatever the split, so any worker count gives the same bits). These
+vectorised across points, :data:`INT_FAST_DIM`, and without a period of
+their own one that reads rows or columns in place, :data:`INT_BLOCK`) over
+blocks of points on ``workers`` threads (:func:`noiselab._core.run_split`,
+or :func:`_run_block` for the in-place kernels: every point's arithmetic is
+the same whatever the split, so any worker count gives the same bits). These
 functions read a noise's tables and change nothing.
 """
 from __future__ import annotations
@@ -90,9 +92,10 @@ MAX_PAIR_ENTRIES = 1 << 20
 INT_FAST_DIM = 3
 
 
-# integer-hash values in 1-3-D without a period of their own take the block kernel (:func:`._jit.int_block_kernel`,
-# the same bits as the vectorised kernel: 1e6 3-D points, benchmarks/bench_lattice_paths.md), reading rows or
-# columns in place; False turns it off
+# integer-hash values in 1-3-D without a period of their own take the in-place kernels, the same bits as the
+# vectorised one: 2-tap kernels (quintic, linear) every point's taps in registers (:func:`._jit.int_two_taps_kernel`),
+# the others block by block (:func:`._jit.int_block_kernel`); rows or columns read in place (1e6 3-D points:
+# benchmarks/bench_lattice_paths.md); False turns them off
 INT_BLOCK = True
 
 
@@ -151,7 +154,11 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
     """
     src, cols = _in_place(flat)
     k = noise.kernel
-    kernel = jit.int_block_kernel(noise.dim_in, k.taps, noise.basis == "gradient")
+    gradient = noise.basis == "gradient"
+    if k.taps == 2:  # the same bits, every point's taps in registers
+        kernel = jit.int_two_taps_kernel(noise.dim_in, gradient)
+    else:
+        kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient)
     rest = (np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
             noise.phase, k.shift, k.left, k.coef, noise.keys, noise._mult, bool(absval))
     npts = flat.shape[0]
