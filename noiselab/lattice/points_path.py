@@ -132,7 +132,13 @@ def kernel_args(noise, freqs, amps, absval, pairs=False):
     return head + tail + (basis, bool(absval))
 
 
-def _in_place(flat):
+def _in_place(noise, deriv):
+    """Whether this call takes the integer hash's in-place kernels (:data:`INT_BLOCK`), which write any float dtype."""
+    return (noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv and INT_BLOCK
+            and not _periodic(noise))
+
+
+def _layout(flat):
     """``(src, cols)``: C-contiguous rows ``(N, d)`` (``cols`` False) or columns ``(d, N)`` holding ``flat``.
 
     Rows and the transposed view of columns are read in place; any other
@@ -152,7 +158,7 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
     arrays and its range ``[lo, hi)``: a slice of ``(d, N)`` columns is no
     longer C-contiguous, which the kernel needs to read them in place.
     """
-    src, cols = _in_place(flat)
+    src, cols = _layout(flat)
     k = noise.kernel
     gradient = noise.basis == "gradient"
     if k.taps == 2:  # the same bits, every point's taps in registers
@@ -171,8 +177,8 @@ def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     """The point kernel for this noise and call over ``flat`` into ``out``, on ``workers`` threads."""
     pairs = TABLE_SPLIT and _pairs(noise, flat.shape[0], deriv)  # values over folded tables: the split kernel
     gradient = noise.basis == "gradient"
-    if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv and INT_BLOCK and not _periodic(noise):
-        _run_block(noise, flat, out, freqs, amps, absval, workers)  # the same bits, block by block, in place
+    if _in_place(noise, deriv):
+        _run_block(noise, flat, out, freqs, amps, absval, workers)  # the same bits, rows or columns in place
         return
     if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv:  # the same bits, vectorised
         # float32 points read in place (each coordinate widened to float64 as it is read: the same values,
@@ -197,7 +203,9 @@ def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", work
     range normalisation (``noise.scale``). The computation is float64;
     float32 output is the float64 result rounded once.
     """
-    out = np.empty((flat.shape[0], noise.dim_out))
+    # the in-place kernels round each float64 result once as they store it, as astype would: float32 output
+    # without a float64 array first
+    out = np.empty((flat.shape[0], noise.dim_out), dtype if _in_place(noise, False) else np.float64)
     if flat.shape[0]:
         checks.check_reach(flat, freqs, noise.phase, name)  # NaN, inf and overflowing x * frequency
         _run(noise, flat, out, freqs, amps, absval, False, workers)
