@@ -272,8 +272,9 @@ def report(t, repeats, load, cmd):
                      f"noiselab's operations (`int-same64`, its bits) at {t.ratio('fns', 'int-same64'):.2f}x: "
                      "1.0x the peer is beyond float64 arithmetic on this CPU. noiselab's call takes "
                      f"{t.ratio('integer', 'int-same64'):.2f}x the time of `int-same64` "
-                     f"({t.ratio('integer-columns', 'int-same64'):.2f}x from `(3, N)` columns), the rest being its "
-                     "wrapper (input checks, the float64 output rounded to float32) and its blocks.")
+                     f"({t.ratio('integer-columns', 'int-same64'):.2f}x from `(3, N)` columns): the rest is its "
+                     "wrapper (the input checks, the output's allocation) and its blocks (the coordinates gathered "
+                     "into a block, each point's sum stored and copied out).")
     lines.append("")
     return lines
 

@@ -993,8 +993,8 @@ def _make_int_two_taps(DIM, GRAD):
     (:func:`_two_taps`) and its 2**DIM corners summed at once
     (:func:`_two_corners`, in :func:`_make_int_fast`'s order and products),
     in one loop over the block that LLVM vectorises across points.
-    1.7-1.8x the block kernel for 1e6 3-D quintic value points
-    (``benchmarks/bench_lattice_paths.md``).
+    1.63-1.74x :func:`_make_int_fast` for 1e6 3-D float32 quintic value
+    points (``benchmarks/bench_lattice_paths.md``).
     """
     B = 1 if DIM > 1 else 0  # the second and third axes' rows (the first's where there is none)
     C = 2 if DIM > 2 else 0
