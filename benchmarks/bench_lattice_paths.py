@@ -18,7 +18,11 @@ special (above 1: the special path pays). The paths:
   on the same points (the same bits);
 - 1-3-D integer-hash values by the kernel vectorised across points
   (``points_path.INT_FAST_DIM``) against the general integer-hash kernel
-  (the same bits).
+  (the same bits);
+- 3-D integer-hash values without a period by the in-place kernels
+  (``points_path.INT_BLOCK``: 2-tap kernels point by point, the others
+  block by block, rows or columns read in place) against the vectorised
+  kernel (the same bits).
 
 The fused 2-D grid kernel this script measured first (a run at commit
 c825318, kept in ``bench_lattice_paths.md``) ran at 0.72-0.79x the separable
@@ -127,6 +131,17 @@ def cases():
         n = nl.LatticeNoise(3, hash="integer", **kw)
         out.append((f"1e6 3-D float32 points, integer hash, {label}: read in place vs a float64 copy first",
                     (lambda n: lambda: n(p32))(n), (lambda n: lambda: n(p32.astype(np.float64), dtype=np.float32))(n)))
+    # the in-place kernels (INT_BLOCK: 2-tap kernels point by point, the others block by block) against the
+    # vectorised kernel they replace without a period, on float32 points as the speed targets
+    c32 = np.ascontiguousarray(p32.T)
+    for label, kw, layout in (("value quintic", {"kernel": "quintic"}, "rows"),
+                              ("value quintic", {"kernel": "quintic"}, "columns"),
+                              ("gradient quintic", {"basis": "gradient", "kernel": "quintic"}, "rows"),
+                              ("value catmull-rom", {"kernel": "catmull-rom"}, "rows"), ("value cubic", {}, "rows")):
+        n = nl.LatticeNoise(3, hash="integer", **kw)
+        call = ((lambda n: lambda: n(p32)) if layout == "rows" else (lambda n: lambda: n(c32, axis=0)))(n)
+        out.append((f"1e6 3-D float32 points as {layout}, integer hash, {label}: in-place kernel vs vectorised kernel",
+                    with_attrs({"INT_BLOCK": True}, call), with_attrs({"INT_BLOCK": False}, call)))
     for d, label, kw in ((2, "value cubic", {}), (2, "gradient quintic", {"basis": "gradient"}),
                          (1, "value cubic", {})):
         n = nl.LatticeNoise(d, hash="integer", **kw)

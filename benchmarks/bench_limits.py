@@ -20,6 +20,16 @@ implementation of the same construction can reach here:
   noiselab's formula (``mix32(key ^ i M0 ^ j M1 ^ k M2)``), trilinear blend; no
   period, no exact split, no chunking. What numba and LLVM make of the
   simplest loop with the same arithmetic.
+- ``int-minimal64``: ``int-minimal`` in float64 arithmetic (float32 in and
+  out, each coordinate widened as read): what the same loop costs at 8
+  float64 lanes instead of 16 float32 ones.
+- ``int-same64``: the float64 bound of noiselab's own integer hash: a plain
+  per-point numba loop with exactly noiselab's operations in noiselab's order
+  (``x f + phase + shift``, the index modulo 2**32 in float64, both taps'
+  weight polynomials from the kernel's coefficients, the eight corners as
+  ``((w0 w1) w2) v`` summed in odometer order, the scale, one rounding to
+  float32), no wrapper: no checks, no layouts, no octaves, no threads. Its
+  output is checked bit for bit against noiselab's before timing.
 - ``integer-columns``: noiselab's integer hash on the same points given as
   ``(3, N)`` columns (``axis=0``, structure of arrays as ``int-minimal``).
 - the write floor (``np.full``) as everywhere in the benchmarks.
@@ -42,6 +52,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from bench_lattice import _fns_points, _peer  # noqa: E402  (pyfastnoisesimd as bench_lattice runs it)
 from noiselab import LatticeNoise  # noqa: E402
+from noiselab.lattice.tables import axis_multipliers  # noqa: E402
 from noiselab.lab.measure import interleaved, run_info  # noqa: E402
 
 NPTS = 1_000_000
@@ -113,23 +124,104 @@ def int_minimal(x, y, z, key, out):
         out[p] = v0 + tx * (v1 - v0)
 
 
+@nb.njit(inline="always")
+def _mix_unit64(h):
+    """noiselab's lattice value of a hashed word, in float64: ``int32(mix32(h)) / 2**31``."""
+    h = _U32(h ^ (h >> _S16))
+    h = _U32(h * _C1)
+    h = _U32(h ^ (h >> _S13))
+    h = _U32(h * _C2)
+    return np.float64(np.int32(h)) * 4.656612873077393e-10
+
+
+@nb.njit(inline="always")
+def _corner64(key, a, b, c):
+    return _mix_unit64(_U32(key ^ _U32(a * _M0) ^ _U32(b * _M1) ^ _U32(c * _M2)))
+
+
+@nb.njit(inline="always")
+def _fade64(t):
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
+
+
+@nb.njit(nogil=True)
+def int_minimal64(x, y, z, key, out):
+    """``int_minimal`` in float64 arithmetic: float32 structure-of-arrays in, float32 out."""
+    for p in range(x.shape[0]):
+        X, Y, Z = np.float64(x[p]), np.float64(y[p]), np.float64(z[p])
+        fx, fy, fz = np.floor(X), np.floor(Y), np.floor(Z)
+        tx, ty, tz = _fade64(X - fx), _fade64(Y - fy), _fade64(Z - fz)
+        i, j, k = _U32(np.int64(fx)), _U32(np.int64(fy)), _U32(np.int64(fz))
+        i1, j1, k1 = _U32(i + _U32(1)), _U32(j + _U32(1)), _U32(k + _U32(1))
+        v00 = _corner64(key, i, j, k) + tz * (_corner64(key, i, j, k1) - _corner64(key, i, j, k))
+        v01 = _corner64(key, i, j1, k) + tz * (_corner64(key, i, j1, k1) - _corner64(key, i, j1, k))
+        v10 = _corner64(key, i1, j, k) + tz * (_corner64(key, i1, j, k1) - _corner64(key, i1, j, k))
+        v11 = _corner64(key, i1, j1, k) + tz * (_corner64(key, i1, j1, k1) - _corner64(key, i1, j1, k))
+        v0 = v00 + ty * (v01 - v00)
+        v1 = v10 + ty * (v11 - v10)
+        out[p] = np.float32(v0 + tx * (v1 - v0))
+
+
+@nb.njit(inline="always")
+def _taps64(x, ph, shift, left, mult, c):
+    """One axis as noiselab computes it for a 2-tap kernel: both weights and both hashed offsets."""
+    u = np.float64(x) + ph + shift
+    fi = np.floor(u)
+    t = u - fi
+    j = _U32(np.int64(fi - np.floor(fi * 2.3283064365386963e-10) * 4294967296.0) - left)
+    t2 = t * t
+    t3 = t2 * t
+    t4 = t2 * t2
+    t5 = t4 * t
+    w0 = (c[0, 0] + c[0, 1] * t) + (c[0, 2] * t2 + c[0, 3] * t3) + (c[0, 4] * t4 + c[0, 5] * t5)
+    w1 = (c[1, 0] + c[1, 1] * t) + (c[1, 2] * t2 + c[1, 3] * t3) + (c[1, 4] * t4 + c[1, 5] * t5)
+    return w0, w1, _U32(j * mult), _U32(_U32(j + _U32(1)) * mult)
+
+
+@nb.njit(nogil=True)
+def int_same64(x, y, z, ph, shift, left, mult, coef, key, scale, out):
+    """noiselab's float64 arithmetic for 3-D 2-tap value noise, point by point: its float32 output, bit for bit."""
+    for p in range(x.shape[0]):
+        a0, a1, ma0, ma1 = _taps64(x[p], ph[0], shift, left, mult[0], coef)
+        b0, b1, mb0, mb1 = _taps64(y[p], ph[1], shift, left, mult[1], coef)
+        c0, c1, mc0, mc1 = _taps64(z[p], ph[2], shift, left, mult[2], coef)
+        total = 0.0
+        for i in range(2):
+            wa = a0 if i == 0 else a1
+            ha = _U32(key ^ (ma0 if i == 0 else ma1))
+            for j in range(2):
+                w = wa * (b0 if j == 0 else b1)
+                h = _U32(ha ^ (mb0 if j == 0 else mb1))
+                total += (w * c0) * _mix_unit64(_U32(h ^ mc0))
+                total += (w * c1) * _mix_unit64(_U32(h ^ mc1))
+        out[p] = np.float32(scale * total)
+
+
 def measure(repeats):
     rng = np.random.default_rng(0)
     pts32 = rng.uniform(0.0, 100.0, (NPTS, 3)).astype(np.float32)
     pts = pts32.astype(np.float64)
     soa = [np.ascontiguousarray(pts32[:, a]) for a in range(3)]
     table = LatticeNoise(3, rng=1, kernel="quintic")
-    integer = LatticeNoise(3, rng=1, kernel="quintic", hash="integer")
+    integer = LatticeNoise(3, rng=1, kernel="quintic", hash="integer")  # 2 taps: int_same64 follows its arithmetic
     h2, vl = _pair_tables(table.perms[0], table.values)
     cols = np.ascontiguousarray(pts32.T)
     out64, out32 = np.empty(NPTS), np.empty(NPTS, np.float32)
     key = np.uint32(0x2545F491)
+    k = integer.kernel
+    same = (integer.phase, float(k.shift), int(k.left), axis_multipliers(3), k.coef,
+            integer.keys[0], float(integer.scale), np.empty(NPTS, np.float32))
+    int_same64(*soa, *same)
+    if not np.array_equal(same[-1], integer(pts32)):
+        raise AssertionError("int-same64 no longer computes noiselab's bits: update it beside the engine")
     cands = {
         "floor32": lambda: np.full(NPTS, 0.5, np.float32),
         "table": lambda: table(pts),
         "lookups": lambda: table_lookups(pts, h2, vl, out64),
         "integer": lambda: integer(pts32),
         "int-minimal": lambda: int_minimal(*soa, key, out32),
+        "int-minimal64": lambda: int_minimal64(*soa, key, out32),
+        "int-same64": lambda: int_same64(*soa, *same),
     }
     cands["integer-columns"] = lambda: integer(cols, axis=0)
     fns = _peer("fns")
@@ -141,7 +233,8 @@ def measure(repeats):
 def report(t, repeats, load, cmd):
     info = run_info(cmd, ["pyfastnoisesimd"], load=load)
     rate = {k: NPTS / t[k] for k in t}
-    names = [k for k in ("table", "lookups", "integer", "integer-columns", "int-minimal", "fns", "floor32")
+    names = [k for k in ("table", "lookups", "integer", "integer-columns", "int-same64", "int-minimal64", "int-minimal",
+                         "fns", "floor32")
              if k in rate]
     lines = ["# What limits lattice noise on scattered 3-D points\n",
              f"- date: {info['date']}",
@@ -174,6 +267,14 @@ def report(t, repeats, load, cmd):
                      f"{t.ratio('fns', 'int-minimal'):.2f}x pyfastnoisesimd; noiselab's (`integer`, float64 "
                      f"arithmetic, any period) takes {t.ratio('integer', 'int-minimal'):.2f}x its time, "
                      f"{t.ratio('integer-columns', 'int-minimal'):.2f}x with `(3, N)` columns.")
+        lines.append(f"- The float64 bound: the same loop in float64 arithmetic (`int-minimal64`) runs at "
+                     f"{t.ratio('fns', 'int-minimal64'):.2f}x pyfastnoisesimd, and a plain per-point loop with exactly "
+                     f"noiselab's operations (`int-same64`, its bits) at {t.ratio('fns', 'int-same64'):.2f}x: "
+                     "1.0x the peer is beyond float64 arithmetic on this CPU. noiselab's call takes "
+                     f"{t.ratio('integer', 'int-same64'):.2f}x the time of `int-same64` "
+                     f"({t.ratio('integer-columns', 'int-same64'):.2f}x from `(3, N)` columns): the rest is its "
+                     "wrapper (the input checks, the output's allocation) and its blocks (the coordinates gathered "
+                     "into a block, each point's sum stored and copied out).")
     lines.append("")
     return lines
 

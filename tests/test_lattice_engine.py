@@ -113,6 +113,49 @@ def test_the_integer_hash_never_takes_the_table_kernels(basis, monkeypatch):
         results.append(noise.evaluate(pts, octaves=2))
     np.testing.assert_array_equal(results[0], results[1])
 
+@pytest.mark.parametrize("dim", [1, 2, 3])
+def test_the_integer_block_kernel_gives_the_other_kernels_bits(dim, monkeypatch):
+    # 1-3-D integer-hash values without a period run block by block (_jit.int_block_kernel: rows or columns read
+    # in place, every lattice index reduced modulo 2**32 in float64, no exact fallback); the vectorised kernel
+    # (INT_BLOCK off) and the general one (INT_FAST_DIM 0) give the same bits, huge coordinates included
+    from noiselab.lattice import points_path
+
+    x = RNG.uniform(-300, 300, (3000, dim))
+    x[::7] += 1e13     # past 2**52: no fractional bits
+    x[::11] *= 1e18    # past 2**63: the exact reduction in the other kernels
+    x[::13] *= -1e250
+    x[::17] = np.round(x[::17])   # exact lattice points
+    x32 = RNG.uniform(-300, 300, (3000, dim)).astype(np.float32)
+    x32[::19] *= np.float32(1e30)
+    cases = [({}, 3), ({"kernel": "quintic"}, 1), ({"basis": "gradient", "kernel": "quintic"}, 2)]
+    results = []
+    for block, fast in ((True, 3), (False, 3), (True, 0)):
+        monkeypatch.setattr(points_path, "INT_BLOCK", block)
+        monkeypatch.setattr(points_path, "INT_FAST_DIM", fast)
+        got = []
+        for kw, octaves in cases:
+            noise = LatticeNoise(dim, 2, rng=3, hash="integer", **kw)
+            got += [noise.evaluate(x, octaves=octaves), noise.evaluate(x, octaves=2, absval=True),
+                    noise.evaluate(x32, octaves=octaves, dtype=np.float64), noise(x32)]
+        results.append(got)
+    for other in results[1:]:
+        for a, b in zip(results[0], other):
+            assert a.dtype == b.dtype
+            np.testing.assert_array_equal(a, b)
+            np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
+    # the block kernel reads columns and strided rows (copied) to the same bits, on any number of threads
+    monkeypatch.setattr(points_path, "INT_BLOCK", True)
+    monkeypatch.setattr(points_path, "INT_FAST_DIM", 3)
+    for (kw, octaves), i in zip(cases, range(0, 12, 4)):
+        noise = LatticeNoise(dim, 2, rng=3, hash="integer", **kw)
+        cols, cols32 = np.ascontiguousarray(x.T), np.ascontiguousarray(x32.T)
+        np.testing.assert_array_equal(noise.evaluate(cols, octaves=octaves, axis=0, workers=2), results[0][i])
+        np.testing.assert_array_equal(noise.evaluate(x, octaves=2, absval=True, workers=3), results[0][i + 1])
+        np.testing.assert_array_equal(noise(cols32, axis=0, workers=2), results[0][i + 3])
+        np.testing.assert_array_equal(noise(x[::2]), noise(np.ascontiguousarray(x[::2])))
+    assert np.ptp(results[0][0]) > 0.5   # not vacuous: the noise varies over these points
+
+
 # ----------------------------------------------------------------- plain Python
 _CASE = """
 import sys
@@ -124,7 +167,7 @@ out = []
 for h in ("table", "integer"):
     for kw in ({}, {"basis": "gradient", "kernel": "catmull-rom"}, {"period": (3, 4, 5), "kernel": "quintic"}):
         n3 = nl.LatticeNoise(3, 2, rng=3, hash=h, **kw)
-        out += [n3.evaluate(x, octaves=2), n3(x.T, axis=0)]
+        out += [n3.evaluate(x, octaves=2), n3(x.T, axis=0), n3(np.float32(1e13) * x.astype(np.float32).T, axis=0)]
         out += list(n3.evaluate_jacobian(x, octaves=2, absval=True))
         kw2 = dict(kw, period=(3, 4)) if "period" in kw else kw
         n2g = nl.LatticeNoise(2, rng=3, hash=h, **kw2)
@@ -133,6 +176,9 @@ for h in ("table", "integer"):
         out += [nl.LatticeNoise(3, rng=3, hash=h).grid((5, 4, 3), [(0, 2), (0, 2), (0, 1)])]
         out += list(n2g.evaluate_grid_jacobian((6, 5), [(0, 2), (0, 2)], octaves=2))
     out += [nl.LatticeNoise(5, rng=3, hash=h, kernel="linear")(x[:, :1].repeat(5, axis=1))]
+for d in (1, 2, 3):   # the integer hash's 2-tap kernel
+    for b in ("value", "gradient"):
+        out += [nl.LatticeNoise(d, 2, rng=3, hash="integer", kernel="quintic", basis=b).evaluate(x[:, :d], octaves=2)]
 from noiselab.lattice import points_path
 for least in (0, 1 << 40):   # 3-D table-hash values over the folded tables, and without them
     points_path.PAIRS_MIN = least

@@ -9,16 +9,18 @@ hash, dimension, tap count, derivative flag, and whether any axis has a
 period of its own; 3-D table-hash noise without a period a kernel split per
 chunk of points, :data:`TABLE_SPLIT`, its values over folded tables from
 :data:`PAIRS_MIN` points on; integer-hash values in 1-3-D a kernel
-vectorised across points, :data:`INT_FAST_DIM`) over blocks of points on ``workers`` threads
-(:func:`noiselab._core.run_split`: every point's arithmetic is the same
-whatever the split, so any worker count gives the same bits). These
+vectorised across points, :data:`INT_FAST_DIM`, and without a period of
+their own one that reads rows or columns in place, :data:`INT_BLOCK`) over
+blocks of points on ``workers`` threads (:func:`noiselab._core.run_split`,
+or :func:`_run_block` for the in-place kernels: every point's arithmetic is
+the same whatever the split, so any worker count gives the same bits). These
 functions read a noise's tables and change nothing.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .._core import as_array, check_finite_array, float_dtype, run_split
+from .._core import as_array, check_finite_array, float_dtype, map_blocks, run_split
 from . import _jit as jit
 from . import checks
 
@@ -90,6 +92,13 @@ MAX_PAIR_ENTRIES = 1 << 20
 INT_FAST_DIM = 3
 
 
+# integer-hash values in 1-3-D without a period of their own take the in-place kernels, the same bits as the
+# vectorised one: 2-tap kernels (quintic, linear) every point's taps in registers (:func:`._jit.int_two_taps_kernel`),
+# the others block by block (:func:`._jit.int_block_kernel`); rows or columns read in place (1e6 3-D points:
+# benchmarks/bench_lattice_paths.md); False turns them off
+INT_BLOCK = True
+
+
 # 3-D table-hash noise without a period or derivatives (values over the folded tables, gradients over the
 # permutation) runs the kernel split per chunk (:func:`._jit.table_fast_kernel`, the same bits); False turns it off
 TABLE_SPLIT = True
@@ -123,10 +132,54 @@ def kernel_args(noise, freqs, amps, absval, pairs=False):
     return head + tail + (basis, bool(absval))
 
 
+def _in_place(noise, deriv):
+    """Whether this call takes the integer hash's in-place kernels (:data:`INT_BLOCK`), which write any float dtype."""
+    return (noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv and INT_BLOCK
+            and not _periodic(noise))
+
+
+def _layout(flat):
+    """``(src, cols)``: C-contiguous rows ``(N, d)`` (``cols`` False) or columns ``(d, N)`` holding ``flat``.
+
+    Rows and the transposed view of columns are read in place; any other
+    layout is copied to rows.
+    """
+    if flat.flags.c_contiguous:
+        return flat, False
+    if flat.T.flags.c_contiguous:
+        return flat.T, True
+    return np.ascontiguousarray(flat), False
+
+
+def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
+    """The integer hash's block kernel over ``flat`` into ``out``, in ``workers`` contiguous ranges of points.
+
+    As :func:`noiselab._core.run_split`, but every thread gets the whole
+    arrays and its range ``[lo, hi)``: a slice of ``(d, N)`` columns is no
+    longer C-contiguous, which the kernel needs to read them in place.
+    """
+    src, cols = _layout(flat)
+    k = noise.kernel
+    gradient = noise.basis == "gradient"
+    if k.taps == 2:  # the same bits, every point's taps in registers
+        kernel = jit.int_two_taps_kernel(noise.dim_in, gradient)
+    else:
+        kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient)
+    rest = (np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
+            noise.phase, k.shift, k.left, k.coef, noise.keys, noise._mult, bool(absval))
+    npts = flat.shape[0]
+    n = min(workers, max(1, npts // min_block))
+    bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
+    map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n)
+
+
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     """The point kernel for this noise and call over ``flat`` into ``out``, on ``workers`` threads."""
     pairs = TABLE_SPLIT and _pairs(noise, flat.shape[0], deriv)  # values over folded tables: the split kernel
     gradient = noise.basis == "gradient"
+    if _in_place(noise, deriv):
+        _run_block(noise, flat, out, freqs, amps, absval, workers)  # the same bits, rows or columns in place
+        return
     if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv:  # the same bits, vectorised
         # float32 points read in place (each coordinate widened to float64 as it is read: the same values,
         # without a float64 copy of the points; 1e6 3-D points: benchmarks/bench_lattice_paths.md)
@@ -150,7 +203,9 @@ def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", work
     range normalisation (``noise.scale``). The computation is float64;
     float32 output is the float64 result rounded once.
     """
-    out = np.empty((flat.shape[0], noise.dim_out))
+    # the in-place kernels round each float64 result once as they store it, as astype would: float32 output
+    # without a float64 array first
+    out = np.empty((flat.shape[0], noise.dim_out), dtype if _in_place(noise, False) else np.float64)
     if flat.shape[0]:
         checks.check_reach(flat, freqs, noise.phase, name)  # NaN, inf and overflowing x * frequency
         _run(noise, flat, out, freqs, amps, absval, False, workers)
