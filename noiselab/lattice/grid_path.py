@@ -275,6 +275,13 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
     integer = noise.hash == "integer"
     nterm = d if grad else 1
     batches = _octave_batches(noise, full, octaves, nterm)
+    if d in (2, 3):
+        axes_per_octave = [[axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis, period=per[a])
+                            for a in range(d)] for batch in batches for freq, _, per in batch]
+        if all(_consecutive(ax[1]) for axes in axes_per_octave for ax in axes):
+            grid_rows(noise, [o for batch in batches for o in batch], [len(batch) for batch in batches],
+                      axes_per_octave, out, absval)
+            return
     post = int(np.prod([c.shape[0] for c in sub[1:]], dtype=np.int64))
     nj = sub[0].shape[0]
     for bi, batch in enumerate(batches):
@@ -324,6 +331,65 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
                 jit.final_pass(inter_all, poss, ws, scales, group_start, target, mode)
 
 
+def _consecutive(pos):
+    """Whether every sample's taps are consecutive lattice rows (``pos[j, k] = pos[j, 0] + k``), as the ring needs."""
+    return bool((pos == pos[:, :1] + np.arange(pos.shape[1])).all())
+
+
+def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
+    """The 2-D and 3-D separable path in one kernel (:func:`_jit._make_grid_rows`): every octave, row by row.
+
+    ``octaves``: the ``(freq, amp, period)`` of the separable octaves, in
+    order, in batches of ``batch_sizes`` (:func:`_octave_batches`: the
+    batches fix how the octaves are summed, so the bits are those of
+    :func:`grid_separable`'s passes); ``axes_per_octave``: their
+    :func:`axis_taps`, whose taps must be consecutive lattice rows.
+    """
+    d = noise.dim_in
+    grad = noise.basis == "gradient"
+    integer = noise.hash == "integer"
+    kernel = jit.grid_rows_kernel(integer, grad)
+    noct = len(octaves)
+    taps = noise.kernel.taps
+    mids = [axes[1] for axes in axes_per_octave] if d == 3 else \
+        [(None, np.zeros((1, taps), np.int64), np.ones((1, taps)), np.ones((1, taps)))] * noct
+
+    def stack(items, k, transpose=False):
+        return np.ascontiguousarray(np.stack([(it[k].T if transpose else it[k]) for it in items]))
+
+    first = [axes[0] for axes in axes_per_octave]
+    last = [axes[-1] for axes in axes_per_octave]
+    rk = 3 if grad else 2  # the ramp weights (gradient basis), else the weights again
+    P0, W0, RW0 = stack(first, 1), stack(first, 2), stack(first, rk)
+    P1, W1, RW1 = stack(mids, 1), stack(mids, 2), stack(mids, rk)
+    P2, W2, RW2 = stack(last, 1, True), stack(last, 2, True), stack(last, rk, True)
+    shapes = np.array([[len(axes[0][0]), len(axes[1][0]) if d == 3 else 1, len(axes[-1][0])]
+                       for axes in axes_per_octave], dtype=np.int64)
+    lat2 = np.concatenate([np.ascontiguousarray(ax[0], dtype=np.int64) for ax in last])
+    lat2_off = np.concatenate([[0], np.cumsum(shapes[:, 2])]).astype(np.int64)
+    pre_off = np.concatenate([[0], np.cumsum(shapes[:, 0] * shapes[:, 1])]).astype(np.int64)
+    scales = np.array([amp for _, amp, _ in octaves], dtype=np.float64)
+    batch_start = np.concatenate([[0], np.cumsum(batch_sizes)]).astype(np.int64)
+    nj = out.shape[1]
+    grads = noise._int_grads if integer else noise.gradients
+    if grads is None:
+        grads = np.zeros((1, d))
+    for c in range(noise.dim_out):
+        heads = [[ax[0] for ax in axes[:-1]] for axes in axes_per_octave]
+        if integer:
+            pre = np.concatenate([int_prefix(noise.keys[c:c + 1], noise._mult, lat) for lat in heads])
+            par = pre
+            perm, mult2 = np.zeros(1, np.int64), noise._mult[d - 1]
+        else:
+            hp = [block_hash(noise.perms[c], noise.table_size, lat) for lat in heads]
+            pre = np.concatenate([h for h, _ in hp])
+            par = np.concatenate([q for _, q in hp])
+            perm, mult2 = noise.perms[c], np.uint32(0)
+        kernel(d, shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2, scales,
+               batch_start, bool(absval), perm, int(noise.table_size), noise.values, grads, mult2,
+               out[c].reshape(nj, -1))
+
+
 def contract_rest(block, axes, use_r, target):
     """Contract axes d-1 .. 1 of a lattice block into ``target`` (rows of axis 0 x the other grid axes).
 
@@ -344,7 +410,8 @@ def contract_rest(block, axes, use_r, target):
         else:
             nxt = np.empty((pre, pos.shape[0], post))
         if post == 1:
-            jit.contract_last(cur.reshape(pre, cur.shape[a]), pos, weights, nxt.reshape(pre, pos.shape[0]))
+            jit.contract_last(cur.reshape(pre, cur.shape[a]), np.ascontiguousarray(pos.T), np.ascontiguousarray(weights.T),
+                              nxt.reshape(pre, pos.shape[0]))
         else:
             jit.contract_mid(cur.reshape(pre, cur.shape[a], post), pos, weights, nxt)
         cur = nxt.reshape(cur.shape[:a] + (pos.shape[0],) + cur.shape[a + 1:])
