@@ -1166,8 +1166,12 @@ def final_pass_direct(inter, pos, w, scales, out):
                             o[q] += wk * rk[q]
 
 
-def _make_grid_rows(INTEGER, GRAD):
-    """The fused 2-D and 3-D grid kernel for a hash (``INTEGER``) and basis (``GRAD``), as :func:`grid_rows_kernel`.
+def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
+    """The fused grid kernel for ``DIM`` (2 or 3) input axes, ``TAPS`` taps (2, 4, or 0: any), a hash and a basis.
+
+    ``INTEGER``: the integer hash (else the table hash); ``GRAD``: the
+    gradient basis. Made by :func:`grid_rows_kernel`; each constant prunes
+    the code the others need, so a first grid compiles one small kernel.
 
     One pass over the output's rows (axis 0) does what the separable passes
     do with whole-block arrays (:func:`hash_expand_values` or the gradient
@@ -1182,7 +1186,7 @@ def _make_grid_rows(INTEGER, GRAD):
     """
 
     @nb.njit(cache=True, nogil=True)
-    def grid_rows(dim, shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2,
+    def grid_rows(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2,
                   scales, batch_start, absval, perm, n, values, grads, mult2, out):
         """All octaves of one output component on a 2-D or 3-D grid window: ``out`` (N0, N1 * N2), written.
 
@@ -1198,8 +1202,9 @@ def _make_grid_rows(INTEGER, GRAD):
         as :func:`final_pass` sums a batch (``absval``: its mode 2), each
         scaled by ``scales[o]``.
         """
+        dim = DIM
         noct = shapes.shape[0]
-        taps = P0.shape[2]
+        taps = TAPS if TAPS > 0 else P0.shape[2]
         n0 = P0.shape[1]
         n1 = P1.shape[1]
         n2 = P2.shape[2]
@@ -1269,12 +1274,12 @@ def _make_grid_rows(INTEGER, GRAD):
                         dst = ring[o, b, s]
                         for i1 in range(l1):
                             src = plane[b, i1 * l2:(i1 + 1) * l2]
-                            t = tmp[i1 * n2:(i1 + 1) * n2] if dim == 3 else dst
-                            if taps == 2:
+                            t = tmp[i1 * n2:(i1 + 1) * n2] if DIM == 3 else dst
+                            if TAPS == 2:
                                 a0 = p2[0]; a1 = p2[1]; c0 = w2[0]; c1 = w2[1]
                                 for q in range(n2):
                                     t[q] = c0[q] * src[a0[q]] + c1[q] * src[a1[q]]
-                            elif taps == 4:
+                            elif TAPS == 4:
                                 a0 = p2[0]; a1 = p2[1]; a2 = p2[2]; a3 = p2[3]
                                 c0 = w2[0]; c1 = w2[1]; c2 = w2[2]; c3 = w2[3]
                                 for q in range(n2):
@@ -1286,7 +1291,7 @@ def _make_grid_rows(INTEGER, GRAD):
                                     for kk in range(1, taps):
                                         v += w2[kk, q] * src[p2[kk, q]]
                                     t[q] = v
-                        if dim == 3:
+                        if DIM == 3:
                             w1 = RW1[o] if (GRAD and b == 1) else W1[o]
                             for j1 in range(n1):
                                 d1 = dst[j1 * n2:(j1 + 1) * n2]
@@ -1310,11 +1315,11 @@ def _make_grid_rows(INTEGER, GRAD):
                         buf = gsum if (absval and o > batch_start[bi]) else acc
                         init = first or (absval and b == 0)
                         r0 = ring[o, b, P0[o, j, 0] % taps]
-                        if taps == 4 or taps == 2:
+                        if TAPS == 4 or TAPS == 2:
                             r1 = ring[o, b, P0[o, j, 1] % taps]
                             e0 = w0[0] * sc
                             e1 = w0[1] * sc
-                            if taps == 4:
+                            if TAPS == 4:
                                 r2 = ring[o, b, P0[o, j, 2] % taps]
                                 r3 = ring[o, b, P0[o, j, 3] % taps]
                                 e2 = w0[2] * sc
@@ -1361,9 +1366,13 @@ def _make_grid_rows(INTEGER, GRAD):
 _GRID_ROWS = {}
 
 
-def grid_rows_kernel(integer, grad):
-    """The fused 2-D and 3-D grid kernel (:func:`_make_grid_rows`) for a hash and basis; made on first request."""
-    key = (bool(integer), bool(grad))
+def grid_rows_kernel(dim, taps, integer, grad):
+    """The fused grid kernel (:func:`_make_grid_rows`) for a dimension (2 or 3), tap count, hash and basis.
+
+    Tap counts other than 2 and 4 share one kernel (``TAPS`` 0). Made on
+    first request; numba compiles it on its first call (or loads it from its cache).
+    """
+    key = (int(dim), int(taps) if taps in (2, 4) else 0, bool(integer), bool(grad))
     fn = _GRID_ROWS.get(key)
     if fn is None:
         fn = _GRID_ROWS[key] = _make_grid_rows(*key)

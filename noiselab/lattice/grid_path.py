@@ -336,6 +336,24 @@ def _consecutive(pos):
     return bool((pos == pos[:, :1] + np.arange(pos.shape[1])).all())
 
 
+def _block_hash_np(perm, n, lattices):
+    """:func:`block_hash` in numpy (the same integers): ``h_{a+1} = P[(h_a + j_a) mod n]`` and the parity, flat."""
+    h = np.zeros(1, np.int64)
+    par = np.zeros(1, np.int64)
+    for lat in lattices:
+        h = perm[(h[:, None] + lat[None, :]) % n].ravel()
+        par = ((par[:, None] + lat[None, :]) & 1).ravel()
+    return h, par
+
+
+def _int_prefix_np(key, mult, lattices):
+    """:func:`int_prefix` in numpy (the same words): ``key ^ (j_0 M_0 mod 2**32) ^ ...`` over the block, flat."""
+    h = np.full(1, key, dtype=np.uint32)
+    for a, lat in enumerate(lattices):
+        h = (h[:, None] ^ (lat.astype(np.uint32) * np.uint32(mult[a]))[None, :]).ravel()
+    return h
+
+
 def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
     """The 2-D and 3-D separable path in one kernel (:func:`_jit._make_grid_rows`): every octave, row by row.
 
@@ -348,7 +366,7 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
     d = noise.dim_in
     grad = noise.basis == "gradient"
     integer = noise.hash == "integer"
-    kernel = jit.grid_rows_kernel(integer, grad)
+    kernel = jit.grid_rows_kernel(d, noise.kernel.taps, integer, grad)
     noct = len(octaves)
     taps = noise.kernel.taps
     mids = [axes[1] for axes in axes_per_octave] if d == 3 else \
@@ -374,18 +392,18 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
     grads = noise._int_grads if integer else noise.gradients
     if grads is None:
         grads = np.zeros((1, d))
+    heads = [[np.asarray(ax[0], dtype=np.int64) for ax in axes[:-1]] for axes in axes_per_octave]
     for c in range(noise.dim_out):
-        heads = [[ax[0] for ax in axes[:-1]] for axes in axes_per_octave]
         if integer:
-            pre = np.concatenate([int_prefix(noise.keys[c:c + 1], noise._mult, lat) for lat in heads])
+            pre = np.concatenate([_int_prefix_np(noise.keys[c], noise._mult, lat) for lat in heads])
             par = pre
             perm, mult2 = np.zeros(1, np.int64), noise._mult[d - 1]
         else:
-            hp = [block_hash(noise.perms[c], noise.table_size, lat) for lat in heads]
+            hp = [_block_hash_np(noise.perms[c], noise.table_size, lat) for lat in heads]
             pre = np.concatenate([h for h, _ in hp])
             par = np.concatenate([q for _, q in hp])
             perm, mult2 = noise.perms[c], np.uint32(0)
-        kernel(d, shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2, scales,
+        kernel(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2, scales,
                batch_start, bool(absval), perm, int(noise.table_size), noise.values, grads, mult2,
                out[c].reshape(nj, -1))
 
