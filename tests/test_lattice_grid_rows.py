@@ -1,0 +1,76 @@
+"""The fused grid kernel (2-D and 3-D grids row by row, every octave in one pass) against the separable passes
+it stands in for: the same bits, sign bits included, for every tap count, hash, basis, dtype and octave batching."""
+import numpy as np
+import pytest
+
+from noiselab import LatticeNoise, fractal_sum, turbulence
+from noiselab.lattice import Grid, grid_path
+
+# (dim, kernel, basis, hash): each tap count of each dimension (2 and 4 have their own kernels, 1 and 3 the
+# shared one), both bases and both hashes
+CASES = [(2, "quintic", "value", "table"), (2, "cubic", "gradient", "integer"), (2, "quadratic", "value", "integer"),
+         (2, "box", "gradient", "table"), (3, "quintic", "gradient", "table"), (3, "quintic", "value", "integer"),
+         (3, "catmull-rom", "value", "table"), (3, "quadratic", "gradient", "integer")]
+SHAPES = {2: ((23, 17), [(-1.3, 2.9), (3.0, 0.5)]), 3: ((11, 9, 13), [(-1.3, 2.9), (3.0, 0.5), (0.0, 1.7)])}
+
+
+def _separable(monkeypatch, call):
+    """``call()`` by the separable passes (the fused kernel refused, as for taps that are not consecutive)."""
+    with monkeypatch.context() as m:
+        m.setattr(grid_path, "_consecutive", lambda pos: False)
+        return call()
+
+
+def _fused(monkeypatch, call):
+    """``call()``, checking that the fused kernel ran."""
+    runs = []
+    real = grid_path.grid_rows
+    with monkeypatch.context() as m:
+        m.setattr(grid_path, "grid_rows", lambda *a: runs.append(1) or real(*a))
+        out = call()
+    assert runs
+    return out
+
+
+def _same(a, b):
+    assert a.dtype == b.dtype and a.shape == b.shape
+    np.testing.assert_array_equal(a, b)
+    np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
+
+
+@pytest.mark.parametrize("dim,kernel,basis,hash_", CASES)
+def test_the_fused_grid_kernel_gives_the_separable_passes_bits(dim, kernel, basis, hash_, monkeypatch):
+    shape, ext = SHAPES[dim]
+    noise = LatticeNoise(dim, 2 if dim == 2 else 1, rng=4, kernel=kernel, basis=basis, hash=hash_)
+    calls = [lambda dt=dt: fractal_sum(noise, Grid(shape, ext), 5, dtype=dt) for dt in (np.float64, np.float32)]
+    calls += [lambda: turbulence(noise, Grid(shape, ext), 4),
+              lambda: noise.evaluate_grid(shape, ext, octaves=3, window=[(2, 9)] + [(1, 7)] * (dim - 1))]
+    for call in calls:
+        _same(_fused(monkeypatch, call), _separable(monkeypatch, call))
+
+
+@pytest.mark.parametrize("hash_", ["table", "integer"])
+def test_the_fused_kernel_sums_octave_batches_as_the_separable_passes(hash_, monkeypatch):
+    # the separable passes sum a batch of octaves in float64, then add it into the output (in its dtype): the
+    # fused kernel keeps the batches, so a sum split over several of them keeps its bits too
+    noise = LatticeNoise(3, rng=6, kernel="quintic", basis="gradient", hash=hash_, period=(4, 8, 16))
+    grid = Grid((10, 12, 8), [(0, 4), (0, 4), (0, 4)])
+    monkeypatch.setattr(grid_path, "_octave_batches", lambda noise, full, octaves, nterm: [[o] for o in octaves])
+    for dt in (np.float64, np.float32):
+        call = lambda dt=dt: fractal_sum(noise, grid, 4, dtype=dt)  # noqa: E731
+        _same(_fused(monkeypatch, call), _separable(monkeypatch, call))
+    call = lambda: turbulence(noise, grid, 3)  # noqa: E731
+    _same(_fused(monkeypatch, call), _separable(monkeypatch, call))
+
+
+def test_the_fused_kernel_gives_the_separable_gradient_grids(monkeypatch):
+    noise = LatticeNoise(3, rng=7, kernel="cubic", basis="gradient")
+    shape, ext = SHAPES[3]
+    call = lambda: noise.gradient_grid(shape, ext, return_value=True)  # noqa: E731
+    for new, old in zip(_fused(monkeypatch, call), _separable(monkeypatch, call)):
+        _same(new, old)
+
+
+def test_consecutive_taps_are_what_the_ring_of_rows_needs():
+    assert grid_path._consecutive(np.array([[0, 1, 2], [2, 3, 4], [2, 3, 4]]))
+    assert not grid_path._consecutive(np.array([[0, 1, 2], [2, 4, 5]]))
