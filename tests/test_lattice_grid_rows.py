@@ -15,9 +15,9 @@ SHAPES = {2: ((23, 17), [(-1.3, 2.9), (3.0, 0.5)]), 3: ((11, 9, 13), [(-1.3, 2.9
 
 
 def _separable(monkeypatch, call):
-    """``call()`` by the separable passes (the fused kernel refused, as for taps that are not consecutive)."""
+    """``call()`` by the separable passes (the fused kernel switched off)."""
     with monkeypatch.context() as m:
-        m.setattr(grid_path, "_consecutive", lambda pos: False)
+        m.setattr(grid_path, "FUSED_DIMS", ())
         return call()
 
 
@@ -71,6 +71,13 @@ def test_the_fused_kernel_gives_the_separable_gradient_grids(monkeypatch):
         _same(new, old)
 
 
-def test_consecutive_taps_are_what_the_ring_of_rows_needs():
-    assert grid_path._consecutive(np.array([[0, 1, 2], [2, 3, 4], [2, 3, 4]]))
-    assert not grid_path._consecutive(np.array([[0, 1, 2], [2, 4, 5]]))
+@pytest.mark.parametrize("coords", [np.linspace(-3, 5, 40), np.linspace(9, -2, 33), np.arange(6) * 97.3,
+                                    np.linspace(0, 1e6, 50)])
+@pytest.mark.parametrize("kernel", ["box", "quadratic", "cubic"])
+def test_a_samples_taps_are_consecutive_rows_as_the_ring_needs(coords, kernel):
+    # the fused kernel keeps lattice row r in slot r mod taps: one sample's taps must be consecutive rows, on
+    # the dense path (marked offsets) and on the spread one (np.unique) alike
+    noise = LatticeNoise(1, rng=0, kernel=kernel)
+    lattice, pos, _, _ = grid_path.axis_taps(noise, coords, 1.0, 0, False)
+    np.testing.assert_array_equal(pos, pos[:, :1] + np.arange(noise.kernel.taps))
+    assert pos.min() == 0 and pos.max() == len(lattice) - 1

@@ -167,6 +167,8 @@ def is_separable(taps, full_coords, freq):
     return block <= 4.0 * samples + 4096
 
 
+# the dimensions whose separable octaves take the fused kernel (:func:`grid_rows`); the others, the passes
+FUSED_DIMS = (2, 3)
 # the points of one call of the scattered path: a block of whole rows of axis 0 (one row at least)
 SCATTERED_BLOCK = 1 << 16
 
@@ -275,13 +277,12 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
     integer = noise.hash == "integer"
     nterm = d if grad else 1
     batches = _octave_batches(noise, full, octaves, nterm)
-    if d in (2, 3):
+    if d in FUSED_DIMS:
         axes_per_octave = [[axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis, period=per[a])
                             for a in range(d)] for batch in batches for freq, _, per in batch]
-        if all(_consecutive(ax[1]) for axes in axes_per_octave for ax in axes):
-            grid_rows(noise, [o for batch in batches for o in batch], [len(batch) for batch in batches],
-                      axes_per_octave, out, absval)
-            return
+        grid_rows(noise, [o for batch in batches for o in batch], [len(batch) for batch in batches],
+                  axes_per_octave, out, absval)
+        return
     post = int(np.prod([c.shape[0] for c in sub[1:]], dtype=np.int64))
     nj = sub[0].shape[0]
     for bi, batch in enumerate(batches):
@@ -331,11 +332,6 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
                 jit.final_pass(inter_all, poss, ws, scales, group_start, target, mode)
 
 
-def _consecutive(pos):
-    """Whether every sample's taps are consecutive lattice rows (``pos[j, k] = pos[j, 0] + k``), as the ring needs."""
-    return bool((pos == pos[:, :1] + np.arange(pos.shape[1])).all())
-
-
 def _block_hash_np(perm, n, lattices):
     """:func:`block_hash` in numpy (the same integers): ``h_{a+1} = P[(h_a + j_a) mod n]`` and the parity, flat."""
     h = np.zeros(1, np.int64)
@@ -361,7 +357,11 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
     order, in batches of ``batch_sizes`` (:func:`_octave_batches`: the
     batches fix how the octaves are summed, so the bits are those of
     :func:`grid_separable`'s passes); ``axes_per_octave``: their
-    :func:`axis_taps`, whose taps must be consecutive lattice rows.
+    :func:`axis_taps`. A sample's taps are consecutive lattice rows,
+    ``pos[j, k] = pos[j, 0] + k`` (the distinct taps are numbered in
+    increasing order, and the integers between two taps of one sample are
+    its taps too), so the ``taps`` rows one output row needs never share a
+    slot of the kernel's ring (row ``r`` in slot ``r mod taps``).
     """
     d = noise.dim_in
     grad = noise.basis == "gradient"
