@@ -278,8 +278,16 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
     nterm = d if grad else 1
     batches = _octave_batches(noise, full, octaves, nterm)
     if d in FUSED_DIMS:
-        axes_per_octave = [[axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis, period=per[a])
-                            for a in range(d)] for batch in batches for freq, _, per in batch]
+        # an axis like one already done (a square grid, equal phases) reuses its taps
+        done = {}
+
+        def taps_of(a, freq, per):
+            key = (sub[a].tobytes(), float(freq[a]), float(noise.phase[a]), int(per[a]), a == deriv_axis)
+            if key not in done:
+                done[key] = axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis, period=per[a])
+            return done[key]
+
+        axes_per_octave = [[taps_of(a, freq, per) for a in range(d)] for batch in batches for freq, _, per in batch]
         grid_rows(noise, [o for batch in batches for o in batch], [len(batch) for batch in batches],
                   axes_per_octave, out, absval)
         return
@@ -373,7 +381,12 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
         [(None, np.zeros((1, taps), np.int64), np.ones((1, taps)), np.ones((1, taps)))] * noct
 
     def stack(items, k, transpose=False):
-        return np.ascontiguousarray(np.stack([(it[k].T if transpose else it[k]) for it in items]))
+        first_item = items[0][k]
+        shape = first_item.shape[::-1] if transpose else first_item.shape
+        stacked = np.empty((len(items),) + shape, dtype=first_item.dtype)
+        for i, it in enumerate(items):
+            stacked[i] = it[k].T if transpose else it[k]
+        return stacked
 
     first = [axes[0] for axes in axes_per_octave]
     last = [axes[-1] for axes in axes_per_octave]
