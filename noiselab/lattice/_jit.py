@@ -29,6 +29,10 @@ unrolls.
   :func:`contract_mid` (one pass per axis) and :func:`final_pass` /
   :func:`final_pass_direct` (the last pass, fused over octaves), for any
   dimension and either hash.
+- 2-D and 3-D grids: :func:`grid_rows_kernel` (:func:`_make_grid_rows`), the
+  same sums in one pass over the output's rows, every octave at once, each
+  keeping a ring of its last ``taps`` contracted lattice rows; made per
+  dimension, tap count (2, 4, or any), hash and basis.
 
 Every tap weight is :func:`_weight` of the kernel's coefficients (data from
 :mod:`.kernels`), written once. All arithmetic is float64; only the final
@@ -997,9 +1001,9 @@ def contract_last(inp, pos, w, out):
 
     ``pos`` and ``w`` are ``(taps, N)``: one contiguous row per tap, so the
     loop over a row's samples reads them in order and LLVM vectorises it
-    with gathers from the row (5-6x the speed of taking rows eight at a
-    time with the samples outside, ``benchmarks/bench_lattice_paths.md``).
-    The taps are summed in order, ``((w_0 v_0 + w_1 v_1) + w_2 v_2) + ...``.
+    with gathers from the row (rows taken eight at a time, the samples
+    outside, ran scalar). The taps are summed in order,
+    ``((w_0 v_0 + w_1 v_1) + w_2 v_2) + ...``.
     """
     npre = inp.shape[0]
     taps, nj = w.shape
@@ -1179,10 +1183,11 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
     each octave keeps its last ``taps`` partially contracted lattice rows
     in a ring, and a lattice row is hashed, contracted along the last axis
     and then the middle one only when an output row first needs it. The
-    temporaries are a few rows, not blocks the size of the grid, whose
-    fresh pages cost about half of the separable passes' time on a 128³
-    fBm (``benchmarks/bench_lattice_paths.md``). Every sum is the separable
-    passes' own, term by term and tap by tap, so the bits are theirs.
+    temporaries are a few rows, not blocks the size of the grid (whose
+    fresh pages, zeroed by the system on first touch, cost the separable
+    passes much of their time on 3-D grids: ``benchmarks/bench_lattice_paths.md``).
+    Every sum is the separable passes' own, term by term and tap by tap, so
+    the bits are theirs.
     """
 
     @nb.njit(cache=True, nogil=True)

@@ -8,7 +8,10 @@ and chunk chooses alike:
   kernel applied one axis at a time to the block of lattice values the grid
   covers, axes ``d-1 .. 1`` contracted into rows (:func:`contract_rest`),
   then one fused pass along axis 0; octaves are batched within a memory
-  budget. Every dimension and both hashes take these passes;
+  budget. Every dimension and both hashes take these sums; 2-D and 3-D
+  grids (:data:`FUSED_DIMS`) take them in one kernel, row by row
+  (:func:`grid_rows`: a few rows of temporaries instead of blocks the size
+  of the grid, the same bits);
 - the **scattered** path (:func:`grid_scattered`), row by row through
   :func:`.points_path.evaluate_points`, for grids sparser than the octave's
   lattice (:func:`is_separable`) and past 2**52 lattice cells, where a
