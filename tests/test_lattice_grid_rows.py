@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from noiselab import LatticeNoise, fractal_sum, turbulence
-from noiselab.lattice import Grid, grid_path
+from noiselab.lattice import Grid, _jit, grid_path
 
 # (dim, kernel, basis, hash): each tap count of each dimension (2 and 4 have their own kernels, 1 and 3 the
 # shared one), both bases and both hashes
@@ -81,3 +81,38 @@ def test_a_samples_taps_are_consecutive_rows_as_the_ring_needs(coords, kernel):
     lattice, pos, _, _ = grid_path.axis_taps(noise, coords, 1.0, 0, False)
     np.testing.assert_array_equal(pos, pos[:, :1] + np.arange(noise.kernel.taps))
     assert pos.min() == 0 and pos.max() == len(lattice) - 1
+
+
+def _kernel_taps(noise, coords, freq, grad, period, deriv):
+    """One axis's taps by the engine's kernels (``_jit.axis_weights``, ``dense_taps``, ``axis_dweights``)."""
+    k = noise.kernel
+    fis, base, w, rw = _jit.axis_weights(coords, freq, noise.phase[0], k.shift, k.left, k.taps, k.coef, period, grad)
+    if deriv:
+        w, rw = _jit.axis_dweights(coords, freq, noise.phase[0], k.shift, k.left, k.taps, k.coef, k.dcoef, grad)
+    if fis.max() - fis.min() <= 4 * k.taps * fis.size + 64:
+        lattice, pos = _jit.dense_taps(fis, base, k.taps, period)
+    else:
+        rel = (fis - fis.min()).astype(np.int64)[:, None] + np.arange(k.taps)
+        uniq, inv = np.unique(rel, return_inverse=True)
+        lattice, pos = (base[np.argmin(fis)] + uniq) % period, inv.reshape(rel.shape)
+    return lattice, pos, w, rw
+
+
+@pytest.mark.parametrize("kernel", ["box", "linear", "quadratic", "cubic", "quintic", "catmull-rom"])
+@pytest.mark.parametrize("basis", ["value", "gradient"])
+def test_the_axes_taps_in_numpy_equal_the_engines_kernels(kernel, basis):
+    # every octave of an axis in one set of numpy operations: the kernels' weights, floors, distinct taps and
+    # their places, bit for bit, on dense and spread axes, near 2**52 cells and for any period
+    noise = LatticeNoise(1, rng=1, kernel=kernel, basis=basis, phase=0.3)
+    grad = basis == "gradient"
+    freqs = np.array([1.0, 0.37, 3.3, 2.0 ** 10])
+    for coords in (np.linspace(-3, 5, 40), np.linspace(9, -2, 33), np.arange(6) * 97.3, np.linspace(0, 16, 512),
+                   np.linspace(4.1e15, 4.1e15 + 60, 7), np.linspace(-4.3e15, -4.3e15 + 100, 9)):
+        for periods in (np.array([256, 20, 7, 3]), np.full(4, 1 << 32)):
+            for deriv in (False, True):
+                got = grid_path.octave_axis_taps(noise, coords, freqs, 0, grad, periods, deriv=deriv)
+                for o in range(4):
+                    want = _kernel_taps(noise, coords, freqs[o], grad, int(periods[o]), deriv)
+                    for x, y in zip(want[:3] + (want[3] if grad else want[2],), got[o]):
+                        assert x.dtype == y.dtype
+                        np.testing.assert_array_equal(x, y)

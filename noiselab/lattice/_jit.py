@@ -952,6 +952,9 @@ def pair_tables(perms, values):
 def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
     """Per-sample tap weights and reduced first-tap indices along one grid axis.
 
+    The reference that :func:`.grid_path.octave_axis_taps` (numpy, so that a
+    first grid compiles no kernel for it) is tested against, bit for bit.
+
     Returns ``fi`` (float floor index), ``base`` ((floor - left) mod period),
     ``w`` (N, taps) weights and, if ``grad``, ``rw`` (N, taps) = weight x signed distance.
     """
@@ -1387,6 +1390,8 @@ def grid_rows_kernel(dim, taps, integer, grad):
 @nb.njit(cache=True, nogil=True)
 def dense_taps(fis, base, taps, period):
     """Distinct lattice taps of one grid axis, by marking offsets from the smallest floor index.
+
+    The reference of :func:`.grid_path.octave_axis_taps`' dense taps (tested bit for bit).
 
     Returns ``lattice`` (reduced index of each distinct tap, in increasing
     raw order) and ``pos`` (N, taps): the position of each sample's taps in it.

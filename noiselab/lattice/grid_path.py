@@ -209,25 +209,76 @@ def axis_taps(noise, coords_a, freq_a, a, grad, deriv=False, period=None):
 
     ``deriv``: the weights' derivatives along this axis in input units
     instead (:func:`_jit.axis_dweights`), for the derivative grids.
-    ``period``: the octave's lattice period along this axis (default ``noise.period[a]``).
+    ``period``: the octave's lattice period along this axis (default
+    ``noise.period[a]``). One octave of :func:`octave_axis_taps`.
+    """
+    period = int(noise.period[a] if period is None else period)
+    return octave_axis_taps(noise, coords_a, np.array([freq_a], dtype=np.float64), a, grad,
+                            np.array([period], dtype=np.int64), deriv=deriv)[0]
+
+
+def octave_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
+    """:func:`axis_taps` for several octaves of one axis at once (``freqs``, ``periods``: one per octave), in numpy.
+
+    The same arithmetic, element by element, as the kernels
+    :func:`_jit.axis_weights` and :func:`_jit.dense_taps` (the same bits,
+    ``tests/test_lattice_grid_rows.py``), the distinct taps numbered in
+    increasing order (dense: marked offsets from the smallest floor index;
+    spread over many cells: ``np.unique``). numpy rather than those kernels:
+    a first grid compiles two kernels less (about 0.9 s CPU,
+    ``benchmarks/bench_coldstart.md``), for about 0.1 ms more a 2-D fBm.
+    Returns one ``(lattice, pos, w, rw)`` per octave (``rw``: the weights
+    times the signed distances with ``grad``, else ``w``).
     """
     k = noise.kernel
-    period = int(noise.period[a] if period is None else period)
-    fis, base, w, rw = jit.axis_weights(coords_a, freq_a, noise.phase[a], k.shift, k.left, k.taps, k.coef, period,
+    taps = k.taps
+    nn = coords_a.shape[0]
+    u = coords_a[None, :] * freqs[:, None] + noise.phase[a] + k.shift
+    fis = np.floor(u)
+    t = (u - fis)[None]  # taps first: numpy's inner loops then run along the samples
+    if max(-fis.min(), fis.max()) < jit._INT_SAFE:
+        i = fis.astype(np.int64) - k.left
+    else:  # past it, reduce the float exactly first (as _jit._reduce)
+        small = np.abs(fis) < jit._INT_SAFE
+        i = np.where(small, np.where(small, fis, 0.0).astype(np.int64),
+                     np.mod(np.where(small, 0.0, fis), periods[:, None].astype(np.float64)).astype(np.int64)) - k.left
+    base = np.mod(i, periods[:, None])  # a power-of-two period's mask gives the same (two's complement)
+    t2 = t * t
+    t3 = t2 * t
+    t4 = t2 * t2
+    t5 = t4 * t
+    c = k.coef[:taps].T[:, :, None, None]
+    w = (c[0] + c[1] * t) + (c[2] * t2 + c[3] * t3) + (c[4] * t4 + c[5] * t5)
+    rw = w * ((t - k.shift) + (k.left - np.arange(taps))[:, None, None]) if grad else w
+    w = np.ascontiguousarray(w.transpose(1, 2, 0))  # (octaves, samples, taps)
+    rw = np.ascontiguousarray(rw.transpose(1, 2, 0)) if grad else w
+    # the dense octaves' distinct taps: offsets from each octave's smallest floor marked in one array
+    j0 = np.argmin(fis, axis=1)
+    lo = fis[np.arange(len(freqs)), j0]
+    dense = (fis.max(axis=1) - lo) <= 4 * taps * nn + 64
+    rel = (fis - lo[:, None]).astype(np.int64)
+    size = np.where(dense, rel.max(axis=1) + taps, 0)
+    off = np.concatenate([[0], np.cumsum(size)])
+    marks = off[:-1, None, None] + rel[:, :, None] + np.arange(taps)
+    mark = np.zeros(int(off[-1]), dtype=bool)
+    mark[marks[dense].ravel()] = True
+    index = np.cumsum(mark) - 1
+    out = []
+    for o in range(len(freqs)):
+        wo, rwo = w[o], rw[o]
+        if deriv:
+            wo, rwo = jit.axis_dweights(coords_a, freqs[o], noise.phase[a], k.shift, k.left, taps, k.coef, k.dcoef,
                                         grad)
-    if deriv:
-        w, rw = jit.axis_dweights(coords_a, freq_a, noise.phase[a], k.shift, k.left, k.taps, k.coef, k.dcoef, grad)
-    # distinct lattice taps along this axis, relative to the smallest
-    span = fis.max() - fis.min() if fis.size else 0.0
-    if span <= 4 * k.taps * fis.size + 64:
-        lattice, pos = jit.dense_taps(fis, base, k.taps, period)
-        return lattice, pos, w, rw
-    j0 = int(np.argmin(fis))
-    rel = (fis - fis[j0]).astype(np.int64)[:, None] + np.arange(k.taps)
-    uniq, inv = np.unique(rel, return_inverse=True)
-    pos = inv.reshape(rel.shape).astype(np.int64)
-    lattice = (base[j0] + uniq) % period
-    return lattice, pos, w, rw
+            rwo = rwo if grad else wo
+        if dense[o]:
+            first = index[off[o] - 1] + 1 if off[o] else 0
+            lattice = np.mod(base[o, j0[o]] + np.flatnonzero(mark[off[o]:off[o + 1]]), periods[o])
+            out.append((lattice, index[marks[o]] - first, wo, rwo))
+        else:
+            r = rel[o][:, None] + np.arange(taps)
+            uniq, inv = np.unique(r, return_inverse=True)
+            out.append(((base[o, j0[o]] + uniq) % periods[o], inv.reshape(r.shape).astype(np.int64), wo, rwo))
+    return out
 
 
 def block_hash(perm, n, lattices):
@@ -281,16 +332,19 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
     nterm = d if grad else 1
     batches = _octave_batches(noise, full, octaves, nterm)
     if d in FUSED_DIMS:
-        # an axis like one already done (a square grid, equal phases) reuses its taps
+        flat = [o for batch in batches for o in batch]
+        # every octave's taps along one axis at once; an axis like one already done (a square grid, equal
+        # phases) reuses them
         done = {}
-
-        def taps_of(a, freq, per):
-            key = (sub[a].tobytes(), float(freq[a]), float(noise.phase[a]), int(per[a]), a == deriv_axis)
+        per_axis = []
+        for a in range(d):
+            freqs = np.array([freq[a] for freq, _, _ in flat], dtype=np.float64)
+            pers = np.array([per[a] for _, _, per in flat], dtype=np.int64)
+            key = (sub[a].tobytes(), freqs.tobytes(), pers.tobytes(), float(noise.phase[a]), a == deriv_axis)
             if key not in done:
-                done[key] = axis_taps(noise, sub[a], freq[a], a, grad, deriv=a == deriv_axis, period=per[a])
-            return done[key]
-
-        axes_per_octave = [[taps_of(a, freq, per) for a in range(d)] for batch in batches for freq, _, per in batch]
+                done[key] = octave_axis_taps(noise, sub[a], freqs, a, grad, pers, deriv=a == deriv_axis)
+            per_axis.append(done[key])
+        axes_per_octave = [[per_axis[a][o] for a in range(d)] for o in range(len(flat))]
         grid_rows(noise, [o for batch in batches for o in batch], [len(batch) for batch in batches],
                   axes_per_octave, out, absval)
         return
