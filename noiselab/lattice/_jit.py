@@ -1195,7 +1195,7 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
 
     @nb.njit(cache=True, nogil=True)
     def grid_rows(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2,
-                  scales, batch_start, absval, perm, n, values, grads, mult2, out):
+                  scales, batch_start, absval, perm, n, values, grads, mult2, out, out64):
         """All octaves of one output component on a 2-D or 3-D grid window: ``out`` (N0, N1 * N2), written.
 
         Per octave ``o`` (``shapes[o]``: its lattice block ``(L0, L1, L2)``,
@@ -1208,7 +1208,9 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         ``W2``, ``RW2`` the last axis's, ``(octaves, taps, N2)``. The
         octaves ``batch_start[i] .. batch_start[i + 1]`` are summed together
         as :func:`final_pass` sums a batch (``absval``: its mode 2), each
-        scaled by ``scales[o]``.
+        scaled by ``scales[o]``. ``out64``: ``out`` itself when it is float64
+        (one batch without ``absval`` is then summed in place, as
+        :func:`final_pass_direct` does), else an empty ``(0, 0)`` array.
         """
         dim = DIM
         noct = shapes.shape[0]
@@ -1314,13 +1316,16 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                                             d1[q] += c * src[q]
             # axis 0: the octaves' terms, batch by batch, as final_pass sums them
             orow = out[j]
+            # one batch of plain sums into a float64 output: summed in place (final_pass_direct), no copy
+            direct = out64.shape[0] > 0 and batch_start.shape[0] == 2 and not absval
+            total = out64[j] if direct else acc
             for bi in range(batch_start.shape[0] - 1):
                 first = True
                 for o in range(batch_start[bi], batch_start[bi + 1]):
                     sc = scales[o]
                     for b in range(nterm):
                         w0 = RW0[o, j] if (GRAD and b == 0) else W0[o, j]
-                        buf = gsum if (absval and o > batch_start[bi]) else acc
+                        buf = gsum if (absval and o > batch_start[bi]) else total
                         init = first or (absval and b == 0)
                         r0 = ring[o, b, P0[o, j, 0] % taps]
                         if TAPS == 4 or TAPS == 2:
@@ -1362,7 +1367,9 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                         else:
                             for q in range(post):
                                 acc[q] += abs(gsum[q])
-                if bi == 0 and not absval:
+                if direct:
+                    pass
+                elif bi == 0 and not absval:
                     for q in range(post):
                         orow[q] = acc[q]
                 else:

@@ -475,7 +475,7 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
             perm, mult2 = noise.perms[c], np.uint32(0)
         kernel(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2, scales,
                batch_start, bool(absval), perm, int(noise.table_size), noise.values, grads, mult2,
-               out[c].reshape(nj, -1))
+               out[c].reshape(nj, -1), out[c].reshape(nj, -1) if out.dtype == np.float64 else np.empty((0, 0)))
 
 
 def contract_rest(block, axes, use_r, target):
