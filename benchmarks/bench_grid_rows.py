@@ -2,13 +2,14 @@
 
 Run from the repository root::
 
-    python benchmarks/bench_grid_rows.py --base /path/to/other/checkout [--repeats 7] [--kernel quintic]
+    python benchmarks/bench_grid_rows.py --base /path/to/other/checkout [--repeats 7] [--kernel quintic] \
+        [--octaves 6] [--dims 3 2]
 
 The other checkout's ``noiselab/lattice/grid_path.py`` and ``_jit.py`` are
 loaded beside this tree's (as ``noiselab.lattice.grid_path_base`` and
 ``_jit_base``: numba caches them by their own file) and
 ``LatticeNoise.evaluate_grid`` is pointed at one or the other in turn.
-Each row: a 6-octave ``fractal_sum`` on a 128³ grid (4 lattice cells a side)
+Each row: an ``--octaves`` ``fractal_sum`` (6 by default) on a 128³ grid (4 lattice cells a side)
 or a 512² grid (16 cells a side), both hashes and bases; the thread CPU time
 of each path (median of ``--repeats`` interleaved rounds), the median of the
 per-round ratios base / this, and whether both give the same bits (dtype,
@@ -48,6 +49,8 @@ def main():
     parser.add_argument("--base", required=True, help="the other checkout (its noiselab/lattice is loaded)")
     parser.add_argument("--repeats", type=int, default=7)
     parser.add_argument("--kernel", default="quintic")
+    parser.add_argument("--octaves", type=int, default=6)
+    parser.add_argument("--dims", type=int, nargs="+", default=[3, 2], choices=[2, 3])
     args = parser.parse_args()
     lattice = Path(args.base) / "noiselab" / "lattice"
     base_jit = _load("noiselab.lattice._jit_base", lattice / "_jit.py")
@@ -57,12 +60,12 @@ def main():
 
     def run(which, noise, grid, dtype):
         core.render_grid = paths[which]
-        return fractal_sum(noise, grid, 6, dtype=dtype)
+        return fractal_sum(noise, grid, args.octaves, dtype=dtype)
 
     print(f"load average (1 min) at start: {os.getloadavg()[0]:.1f}")
     print("| grid | noise | hash | dtype | base (ms) | this (ms) | base / this | same bits |")
     print("| --- | --- | --- | --- | ---: | ---: | ---: | --- |")
-    for dim, basis, hash_ in CASES:
+    for dim, basis, hash_ in [c for c in CASES if c[0] in args.dims]:
         n, cells = (128, 4) if dim == 3 else (512, 16)
         noise = LatticeNoise(dim, rng=1, kernel=args.kernel, basis=basis, hash=hash_)
         grid = Grid((n,) * dim, [(0.0, float(cells))] * dim)
@@ -78,7 +81,7 @@ def main():
                 run("this", noise, grid, dtype)
                 tt.append(time.thread_time() - t)
             tb, tt = np.array(tb), np.array(tt)
-            print(f"| {n}^{dim}, 6 octaves | {args.kernel} {basis} | {hash_} | {np.dtype(dtype).name} "
+            print(f"| {n}^{dim}, {args.octaves} octave(s) | {args.kernel} {basis} | {hash_} | {np.dtype(dtype).name} "
                   f"| {np.median(tb) * 1e3:.2f} | {np.median(tt) * 1e3:.2f} | {np.median(tb / tt):.2f} | {same} |",
                   flush=True)
     core.render_grid = paths["this"]
