@@ -176,6 +176,10 @@ for h in ("table", "integer"):
         out += [nl.LatticeNoise(3, rng=3, hash=h).grid((5, 4, 3), [(0, 2), (0, 2), (0, 1)])]
         out += list(n2g.evaluate_grid_jacobian((6, 5), [(0, 2), (0, 2)], octaves=2))
     out += [nl.LatticeNoise(5, rng=3, hash=h, kernel="linear")(x[:, :1].repeat(5, axis=1))]
+    # the fused grid kernel's shared variant (3 taps) with turbulence, and the separable passes of a 4-D grid
+    out += [nl.turbulence(nl.LatticeNoise(3, rng=3, hash=h, kernel="quadratic", basis="gradient"),
+                          Grid((4, 5, 3), ((0, 2), (0, 2), (0, 1))), 2)]
+    out += [nl.LatticeNoise(4, rng=3, hash=h).grid((3, 4, 3, 2), [(0, 2)] * 4)]
 for d in (1, 2, 3):   # the integer hash's 2-tap kernel
     for b in ("value", "gradient"):
         out += [nl.LatticeNoise(d, 2, rng=3, hash="integer", kernel="quintic", basis=b).evaluate(x[:, :d], octaves=2)]

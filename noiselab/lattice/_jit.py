@@ -33,6 +33,10 @@ unrolls.
   :func:`contract_mid` (one pass per axis) and :func:`final_pass` /
   :func:`final_pass_direct` (the last pass, fused over octaves), for any
   dimension and either hash.
+- 2-D and 3-D grids: :func:`grid_rows_kernel` (:func:`_make_grid_rows`), the
+  same sums in one pass over the output's rows, every octave at once, each
+  keeping a ring of its last ``taps`` contracted lattice rows; made per
+  dimension, tap count (2, 4, or any), hash and basis.
 
 Every tap weight is :func:`_weight` of the kernel's coefficients (data from
 :mod:`.kernels`), written once. All arithmetic is float64; only the final
@@ -1251,6 +1255,9 @@ def pair_tables(perms, values):
 def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
     """Per-sample tap weights and reduced first-tap indices along one grid axis.
 
+    The reference that :func:`.grid_path.octave_axis_taps` (numpy, so that a
+    first grid compiles no kernel for it) is tested against, bit for bit.
+
     Returns ``fi`` (float floor index), ``base`` ((floor - left) mod period),
     ``w`` (N, taps) weights and, if ``grad``, ``rw`` (N, taps) = weight x signed distance.
     """
@@ -1296,34 +1303,35 @@ def contract_mid(inp, pos, w, out):
 
 @nb.njit(cache=True, nogil=True)
 def contract_last(inp, pos, w, out):
-    """The separable pass on the last (contiguous) axis: ``out[p, j] = sum_k w[j, k] * inp[p, pos[j, k]]``.
+    """The separable pass on the last (contiguous) axis: ``out[p, j] = sum_k w[k, j] * inp[p, pos[k, j]]``.
 
-    Rows are taken eight at a time so that each sample's weights and tap
-    positions are loaded once per eight rows.
+    ``pos`` and ``w`` are ``(taps, N)``: one contiguous row per tap, so the
+    loop over a row's samples reads them in order and LLVM vectorises it
+    with gathers from the row (rows taken eight at a time, the samples
+    outside, ran scalar). The taps are summed in order,
+    ``((w_0 v_0 + w_1 v_1) + w_2 v_2) + ...``.
     """
     npre = inp.shape[0]
-    nj, taps = w.shape
-    p0 = 0
-    while p0 < npre:
-        p1 = min(p0 + 8, npre)
-        for j in range(nj):
-            if taps == 4:
-                a0 = pos[j, 0]; a1 = pos[j, 1]; a2 = pos[j, 2]; a3 = pos[j, 3]
-                w0 = w[j, 0]; w1 = w[j, 1]; w2 = w[j, 2]; w3 = w[j, 3]
-                for p in range(p0, p1):
-                    out[p, j] = w0 * inp[p, a0] + w1 * inp[p, a1] + w2 * inp[p, a2] + w3 * inp[p, a3]
-            elif taps == 2:
-                a0 = pos[j, 0]; a1 = pos[j, 1]
-                w0 = w[j, 0]; w1 = w[j, 1]
-                for p in range(p0, p1):
-                    out[p, j] = w0 * inp[p, a0] + w1 * inp[p, a1]
-            else:
-                for p in range(p0, p1):
-                    s = w[j, 0] * inp[p, pos[j, 0]]
-                    for k in range(1, taps):
-                        s += w[j, k] * inp[p, pos[j, k]]
-                    out[p, j] = s
-        p0 = p1
+    taps, nj = w.shape
+    for p in range(npre):
+        r = inp[p]
+        o = out[p]
+        if taps == 2:
+            a0 = pos[0]; a1 = pos[1]
+            w0 = w[0]; w1 = w[1]
+            for j in range(nj):
+                o[j] = w0[j] * r[a0[j]] + w1[j] * r[a1[j]]
+        elif taps == 4:
+            a0 = pos[0]; a1 = pos[1]; a2 = pos[2]; a3 = pos[3]
+            w0 = w[0]; w1 = w[1]; w2 = w[2]; w3 = w[3]
+            for j in range(nj):
+                o[j] = w0[j] * r[a0[j]] + w1[j] * r[a1[j]] + w2[j] * r[a2[j]] + w3[j] * r[a3[j]]
+        else:
+            for j in range(nj):
+                s = w[0, j] * r[pos[0, j]]
+                for k in range(1, taps):
+                    s += w[k, j] * r[pos[k, j]]
+                o[j] = s
 
 
 @nb.njit(cache=True, nogil=True)
@@ -1468,9 +1476,232 @@ def final_pass_direct(inter, pos, w, scales, out):
                             o[q] += wk * rk[q]
 
 
+def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
+    """The fused grid kernel for ``DIM`` (2 or 3) input axes, ``TAPS`` taps (2, 4, or 0: any), a hash and a basis.
+
+    ``INTEGER``: the integer hash (else the table hash); ``GRAD``: the
+    gradient basis. Made by :func:`grid_rows_kernel`; each constant prunes
+    the code the others need, so a first grid compiles one small kernel.
+
+    One pass over the output's rows (axis 0) does what the separable passes
+    do with whole-block arrays (:func:`hash_expand_values` or the gradient
+    gathers, :func:`contract_last`, :func:`contract_mid`, :func:`final_pass`):
+    each octave keeps its last ``taps`` partially contracted lattice rows
+    in a ring, and a lattice row is hashed, contracted along the last axis
+    and then the middle one only when an output row first needs it. The
+    temporaries are a few rows, not blocks the size of the grid (whose
+    fresh pages, zeroed by the system on first touch, cost the separable
+    passes much of their time on 3-D grids: ``benchmarks/bench_lattice_paths.md``).
+    Every sum is the separable passes' own, term by term and tap by tap, so
+    the bits are theirs.
+    """
+
+    @nb.njit(cache=True, nogil=True)
+    def grid_rows(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2,
+                  scales, batch_start, absval, perm, n, values, grads, mult2, out, out64):
+        """All octaves of one output component on a 2-D or 3-D grid window: ``out`` (N0, N1 * N2), written.
+
+        Per octave ``o`` (``shapes[o]``: its lattice block ``(L0, L1, L2)``,
+        ``L1 = 1`` in 2-D): ``pre`` / ``par`` the hash prefix of axes 0 and 1
+        (``L0 * L1`` from ``pre_off[o]``; table hash: the nested hash and the
+        parity, integer hash: the prefix words), ``lat2`` the last axis's
+        reduced lattice indices (from ``lat2_off[o]``). ``P0``, ``W0``, ``RW0``
+        (octaves, N0, taps) and ``P1``... (octaves, N1, taps) are the tap
+        positions, weights and gradient ramp weights of axes 0 and 1; ``P2``,
+        ``W2``, ``RW2`` the last axis's, ``(octaves, taps, N2)``. The
+        octaves ``batch_start[i] .. batch_start[i + 1]`` are summed together
+        as :func:`final_pass` sums a batch (``absval``: its mode 2), each
+        scaled by ``scales[o]``. ``out64``: ``out`` itself when it is float64
+        (one batch without ``absval`` is then summed in place, as
+        :func:`final_pass_direct` does), else an empty ``(0, 0)`` array.
+        """
+        dim = DIM
+        noct = shapes.shape[0]
+        taps = TAPS if TAPS > 0 else P0.shape[2]
+        n0 = P0.shape[1]
+        n1 = P1.shape[1]
+        n2 = P2.shape[2]
+        nterm = dim if GRAD else 1
+        post = n1 * n2
+        ng = grads.shape[0]
+        l1m = 1
+        l2m = 1
+        for o in range(noct):
+            if shapes[o, 1] > l1m:
+                l1m = shapes[o, 1]
+            if shapes[o, 2] > l2m:
+                l2m = shapes[o, 2]
+        ring = np.empty((noct, nterm, taps, post))
+        tag = np.empty((noct, taps), np.int64)
+        for o in range(noct):
+            for s in range(taps):
+                tag[o, s] = -1
+        plane = np.empty((nterm, l1m * l2m))
+        tmp = np.empty(l1m * n2)
+        acc = np.empty(post)
+        gsum = np.empty(post)
+        for j in range(n0):
+            for o in range(noct):
+                l1 = shapes[o, 1]
+                l2 = shapes[o, 2]
+                for k in range(taps):
+                    r = P0[o, j, k]
+                    s = r % taps
+                    if tag[o, s] == r:
+                        continue
+                    tag[o, s] = r
+                    # hash lattice row r of this octave: its plane of values (or gradient components)
+                    row = pre_off[o] + r * l1
+                    lat = lat2[lat2_off[o]:lat2_off[o] + l2]
+                    for i1 in range(l1):
+                        hb = pre[row + i1]
+                        pl = i1 * l2
+                        if INTEGER:
+                            hu = _U32(hb)
+                            for l in range(l2):
+                                word = _U32(hu ^ prime(lat[l], mult2))
+                                if GRAD:
+                                    g = hash_index(word, ng)
+                                    for b in range(nterm):
+                                        plane[b, pl + l] = grads[g, b]
+                                else:
+                                    plane[0, pl + l] = hash_value(word)
+                        else:
+                            pb = par[row + i1]
+                            for l in range(l2):
+                                sh = hb + lat[l]
+                                if sh >= n:
+                                    sh -= n
+                                    if sh >= n:
+                                        sh = sh % n
+                                h = perm[sh]
+                                if GRAD:
+                                    for b in range(nterm):
+                                        plane[b, pl + l] = grads[h, b]
+                                else:
+                                    plane[0, pl + l] = values[(pb + lat[l]) & 1, h]
+                    # contract the last axis (and the middle one in 3-D) into the ring
+                    for b in range(nterm):
+                        w2 = RW2[o] if (GRAD and b == dim - 1) else W2[o]
+                        p2 = P2[o]
+                        dst = ring[o, b, s]
+                        for i1 in range(l1):
+                            src = plane[b, i1 * l2:(i1 + 1) * l2]
+                            t = tmp[i1 * n2:(i1 + 1) * n2] if DIM == 3 else dst
+                            if TAPS == 2:
+                                a0 = p2[0]; a1 = p2[1]; c0 = w2[0]; c1 = w2[1]
+                                for q in range(n2):
+                                    t[q] = c0[q] * src[a0[q]] + c1[q] * src[a1[q]]
+                            elif TAPS == 4:
+                                a0 = p2[0]; a1 = p2[1]; a2 = p2[2]; a3 = p2[3]
+                                c0 = w2[0]; c1 = w2[1]; c2 = w2[2]; c3 = w2[3]
+                                for q in range(n2):
+                                    t[q] = c0[q] * src[a0[q]] + c1[q] * src[a1[q]] + c2[q] * src[a2[q]] \
+                                        + c3[q] * src[a3[q]]
+                            else:
+                                for q in range(n2):
+                                    v = w2[0, q] * src[p2[0, q]]
+                                    for kk in range(1, taps):
+                                        v += w2[kk, q] * src[p2[kk, q]]
+                                    t[q] = v
+                        if DIM == 3:
+                            w1 = RW1[o] if (GRAD and b == 1) else W1[o]
+                            for j1 in range(n1):
+                                d1 = dst[j1 * n2:(j1 + 1) * n2]
+                                for kk in range(taps):
+                                    c = w1[j1, kk]
+                                    src = tmp[P1[o, j1, kk] * n2:(P1[o, j1, kk] + 1) * n2]
+                                    if kk == 0:
+                                        for q in range(n2):
+                                            d1[q] = c * src[q]
+                                    else:
+                                        for q in range(n2):
+                                            d1[q] += c * src[q]
+            # axis 0: the octaves' terms, batch by batch, as final_pass sums them
+            orow = out[j]
+            # one batch of plain sums into a float64 output: summed in place (final_pass_direct), no copy
+            direct = out64.shape[0] > 0 and batch_start.shape[0] == 2 and not absval
+            total = out64[j] if direct else acc
+            for bi in range(batch_start.shape[0] - 1):
+                first = True
+                for o in range(batch_start[bi], batch_start[bi + 1]):
+                    sc = scales[o]
+                    for b in range(nterm):
+                        w0 = RW0[o, j] if (GRAD and b == 0) else W0[o, j]
+                        buf = gsum if (absval and o > batch_start[bi]) else total
+                        init = first or (absval and b == 0)
+                        r0 = ring[o, b, P0[o, j, 0] % taps]
+                        if TAPS == 4 or TAPS == 2:
+                            r1 = ring[o, b, P0[o, j, 1] % taps]
+                            e0 = w0[0] * sc
+                            e1 = w0[1] * sc
+                            if TAPS == 4:
+                                r2 = ring[o, b, P0[o, j, 2] % taps]
+                                r3 = ring[o, b, P0[o, j, 3] % taps]
+                                e2 = w0[2] * sc
+                                e3 = w0[3] * sc
+                                if init:
+                                    for q in range(post):
+                                        buf[q] = e0 * r0[q] + e1 * r1[q] + e2 * r2[q] + e3 * r3[q]
+                                else:
+                                    for q in range(post):
+                                        buf[q] += e0 * r0[q] + e1 * r1[q] + e2 * r2[q] + e3 * r3[q]
+                            elif init:
+                                for q in range(post):
+                                    buf[q] = e0 * r0[q] + e1 * r1[q]
+                            else:
+                                for q in range(post):
+                                    buf[q] += e0 * r0[q] + e1 * r1[q]
+                        else:
+                            for kk in range(taps):
+                                ek = w0[kk] * sc
+                                rk = ring[o, b, P0[o, j, kk] % taps]
+                                if init and kk == 0:
+                                    for q in range(post):
+                                        buf[q] = ek * rk[q]
+                                else:
+                                    for q in range(post):
+                                        buf[q] += ek * rk[q]
+                        first = False
+                    if absval:
+                        if o == batch_start[bi]:
+                            for q in range(post):
+                                acc[q] = abs(acc[q])
+                        else:
+                            for q in range(post):
+                                acc[q] += abs(gsum[q])
+                if direct:
+                    pass
+                elif bi == 0 and not absval:
+                    for q in range(post):
+                        orow[q] = acc[q]
+                else:
+                    for q in range(post):
+                        orow[q] += acc[q]
+
+    return grid_rows
+
+_GRID_ROWS = {}
+
+
+def grid_rows_kernel(dim, taps, integer, grad):
+    """The fused grid kernel (:func:`_make_grid_rows`) for a dimension (2 or 3), tap count, hash and basis.
+
+    Tap counts other than 2 and 4 share one kernel (``TAPS`` 0). Made on
+    first request; numba compiles it on its first call (or loads it from its cache).
+    """
+    key = (int(dim), int(taps) if taps in (2, 4) else 0, bool(integer), bool(grad))
+    fn = _GRID_ROWS.get(key)
+    if fn is None:
+        fn = _GRID_ROWS[key] = _make_grid_rows(*key)
+    return fn
+
+
 @nb.njit(cache=True, nogil=True)
 def dense_taps(fis, base, taps, period):
     """Distinct lattice taps of one grid axis, by marking offsets from the smallest floor index.
+
+    The reference of :func:`.grid_path.octave_axis_taps`' dense taps (tested bit for bit).
 
     Returns ``lattice`` (reduced index of each distinct tap, in increasing
     raw order) and ``pos`` (N, taps): the position of each sample's taps in it.

@@ -8,7 +8,10 @@ and chunk chooses alike:
   kernel applied one axis at a time to the block of lattice values the grid
   covers, axes ``d-1 .. 1`` contracted into rows (:func:`contract_rest`),
   then one fused pass along axis 0; octaves are batched within a memory
-  budget. Every dimension and both hashes take these passes;
+  budget. Every dimension and both hashes take these sums; 2-D and 3-D
+  grids (:data:`FUSED_DIMS`) take them in one kernel, row by row
+  (:func:`grid_rows`: a few rows of temporaries instead of blocks the size
+  of the grid, the same bits);
 - the **scattered** path (:func:`grid_scattered`), row by row through
   :func:`.points_path.evaluate_points`, for grids sparser than the octave's
   lattice (:func:`is_separable`) and past 2**52 lattice cells, where a
@@ -167,6 +170,8 @@ def is_separable(taps, full_coords, freq):
     return block <= 4.0 * samples + 4096
 
 
+# the dimensions whose separable octaves take the fused kernel (:func:`grid_rows`); the others, the passes
+FUSED_DIMS = (2, 3)
 # the points of one call of the scattered path: a block of whole rows of axis 0 (one row at least)
 SCATTERED_BLOCK = 1 << 16
 
@@ -204,25 +209,76 @@ def axis_taps(noise, coords_a, freq_a, a, grad, deriv=False, period=None):
 
     ``deriv``: the weights' derivatives along this axis in input units
     instead (:func:`_jit.axis_dweights`), for the derivative grids.
-    ``period``: the octave's lattice period along this axis (default ``noise.period[a]``).
+    ``period``: the octave's lattice period along this axis (default
+    ``noise.period[a]``). One octave of :func:`octave_axis_taps`.
+    """
+    period = int(noise.period[a] if period is None else period)
+    return octave_axis_taps(noise, coords_a, np.array([freq_a], dtype=np.float64), a, grad,
+                            np.array([period], dtype=np.int64), deriv=deriv)[0]
+
+
+def octave_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
+    """:func:`axis_taps` for several octaves of one axis at once (``freqs``, ``periods``: one per octave), in numpy.
+
+    The same arithmetic, element by element, as the kernels
+    :func:`_jit.axis_weights` and :func:`_jit.dense_taps` (the same bits,
+    ``tests/test_lattice_grid_rows.py``), the distinct taps numbered in
+    increasing order (dense: marked offsets from the smallest floor index;
+    spread over many cells: ``np.unique``). numpy rather than those kernels:
+    a first grid compiles two kernels less (about 0.9 s CPU,
+    ``benchmarks/bench_coldstart.md``), for about 0.1 ms more a 2-D fBm.
+    Returns one ``(lattice, pos, w, rw)`` per octave (``rw``: the weights
+    times the signed distances with ``grad``, else ``w``).
     """
     k = noise.kernel
-    period = int(noise.period[a] if period is None else period)
-    fis, base, w, rw = jit.axis_weights(coords_a, freq_a, noise.phase[a], k.shift, k.left, k.taps, k.coef, period,
+    taps = k.taps
+    nn = coords_a.shape[0]
+    u = coords_a[None, :] * freqs[:, None] + noise.phase[a] + k.shift
+    fis = np.floor(u)
+    t = (u - fis)[None]  # taps first: numpy's inner loops then run along the samples
+    if max(-fis.min(), fis.max()) < jit._INT_SAFE:
+        i = fis.astype(np.int64) - k.left
+    else:  # past it, reduce the float exactly first (as _jit._reduce)
+        small = np.abs(fis) < jit._INT_SAFE
+        i = np.where(small, np.where(small, fis, 0.0).astype(np.int64),
+                     np.mod(np.where(small, 0.0, fis), periods[:, None].astype(np.float64)).astype(np.int64)) - k.left
+    base = np.mod(i, periods[:, None])  # a power-of-two period's mask gives the same (two's complement)
+    t2 = t * t
+    t3 = t2 * t
+    t4 = t2 * t2
+    t5 = t4 * t
+    c = k.coef[:taps].T[:, :, None, None]
+    w = (c[0] + c[1] * t) + (c[2] * t2 + c[3] * t3) + (c[4] * t4 + c[5] * t5)
+    rw = w * ((t - k.shift) + (k.left - np.arange(taps))[:, None, None]) if grad else w
+    w = np.ascontiguousarray(w.transpose(1, 2, 0))  # (octaves, samples, taps)
+    rw = np.ascontiguousarray(rw.transpose(1, 2, 0)) if grad else w
+    # the dense octaves' distinct taps: offsets from each octave's smallest floor marked in one array
+    j0 = np.argmin(fis, axis=1)
+    lo = fis[np.arange(len(freqs)), j0]
+    dense = (fis.max(axis=1) - lo) <= 4 * taps * nn + 64
+    rel = (fis - lo[:, None]).astype(np.int64)
+    size = np.where(dense, rel.max(axis=1) + taps, 0)
+    off = np.concatenate([[0], np.cumsum(size)])
+    marks = off[:-1, None, None] + rel[:, :, None] + np.arange(taps)
+    mark = np.zeros(int(off[-1]), dtype=bool)
+    mark[marks[dense].ravel()] = True
+    index = np.cumsum(mark) - 1
+    out = []
+    for o in range(len(freqs)):
+        wo, rwo = w[o], rw[o]
+        if deriv:
+            wo, rwo = jit.axis_dweights(coords_a, freqs[o], noise.phase[a], k.shift, k.left, taps, k.coef, k.dcoef,
                                         grad)
-    if deriv:
-        w, rw = jit.axis_dweights(coords_a, freq_a, noise.phase[a], k.shift, k.left, k.taps, k.coef, k.dcoef, grad)
-    # distinct lattice taps along this axis, relative to the smallest
-    span = fis.max() - fis.min() if fis.size else 0.0
-    if span <= 4 * k.taps * fis.size + 64:
-        lattice, pos = jit.dense_taps(fis, base, k.taps, period)
-        return lattice, pos, w, rw
-    j0 = int(np.argmin(fis))
-    rel = (fis - fis[j0]).astype(np.int64)[:, None] + np.arange(k.taps)
-    uniq, inv = np.unique(rel, return_inverse=True)
-    pos = inv.reshape(rel.shape).astype(np.int64)
-    lattice = (base[j0] + uniq) % period
-    return lattice, pos, w, rw
+            rwo = rwo if grad else wo
+        if dense[o]:
+            first = index[off[o] - 1] + 1 if off[o] else 0
+            lattice = np.mod(base[o, j0[o]] + np.flatnonzero(mark[off[o]:off[o + 1]]), periods[o])
+            out.append((lattice, index[marks[o]] - first, wo, rwo))
+        else:
+            r = rel[o][:, None] + np.arange(taps)
+            uniq, inv = np.unique(r, return_inverse=True)
+            out.append(((base[o, j0[o]] + uniq) % periods[o], inv.reshape(r.shape).astype(np.int64), wo, rwo))
+    return out
 
 
 def block_hash(perm, n, lattices):
@@ -275,6 +331,23 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
     integer = noise.hash == "integer"
     nterm = d if grad else 1
     batches = _octave_batches(noise, full, octaves, nterm)
+    if d in FUSED_DIMS:
+        flat = [o for batch in batches for o in batch]
+        # every octave's taps along one axis at once; an axis like one already done (a square grid, equal
+        # phases) reuses them
+        done = {}
+        per_axis = []
+        for a in range(d):
+            freqs = np.array([freq[a] for freq, _, _ in flat], dtype=np.float64)
+            pers = np.array([per[a] for _, _, per in flat], dtype=np.int64)
+            key = (sub[a].tobytes(), freqs.tobytes(), pers.tobytes(), float(noise.phase[a]), a == deriv_axis)
+            if key not in done:
+                done[key] = octave_axis_taps(noise, sub[a], freqs, a, grad, pers, deriv=a == deriv_axis)
+            per_axis.append(done[key])
+        axes_per_octave = [[per_axis[a][o] for a in range(d)] for o in range(len(flat))]
+        grid_rows(noise, [o for batch in batches for o in batch], [len(batch) for batch in batches],
+                  axes_per_octave, out, absval)
+        return
     post = int(np.prod([c.shape[0] for c in sub[1:]], dtype=np.int64))
     nj = sub[0].shape[0]
     for bi, batch in enumerate(batches):
@@ -324,6 +397,87 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
                 jit.final_pass(inter_all, poss, ws, scales, group_start, target, mode)
 
 
+def _block_hash_np(perm, n, lattices):
+    """:func:`block_hash` in numpy (the same integers): ``h_{a+1} = P[(h_a + j_a) mod n]`` and the parity, flat."""
+    h = np.zeros(1, np.int64)
+    par = np.zeros(1, np.int64)
+    for lat in lattices:
+        h = perm[(h[:, None] + lat[None, :]) % n].ravel()
+        par = ((par[:, None] + lat[None, :]) & 1).ravel()
+    return h, par
+
+
+def _int_prefix_np(key, mult, lattices):
+    """:func:`int_prefix` in numpy (the same words): ``key ^ (j_0 M_0 mod 2**32) ^ ...`` over the block, flat."""
+    h = np.full(1, key, dtype=np.uint32)
+    for a, lat in enumerate(lattices):
+        h = (h[:, None] ^ (lat.astype(np.uint32) * np.uint32(mult[a]))[None, :]).ravel()
+    return h
+
+
+def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
+    """The 2-D and 3-D separable path in one kernel (:func:`_jit._make_grid_rows`): every octave, row by row.
+
+    ``octaves``: the ``(freq, amp, period)`` of the separable octaves, in
+    order, in batches of ``batch_sizes`` (:func:`_octave_batches`: the
+    batches fix how the octaves are summed, so the bits are those of
+    :func:`grid_separable`'s passes); ``axes_per_octave``: their
+    :func:`axis_taps`. A sample's taps are consecutive lattice rows,
+    ``pos[j, k] = pos[j, 0] + k`` (the distinct taps are numbered in
+    increasing order, and the integers between two taps of one sample are
+    its taps too), so the ``taps`` rows one output row needs never share a
+    slot of the kernel's ring (row ``r`` in slot ``r mod taps``).
+    """
+    d = noise.dim_in
+    grad = noise.basis == "gradient"
+    integer = noise.hash == "integer"
+    kernel = jit.grid_rows_kernel(d, noise.kernel.taps, integer, grad)
+    noct = len(octaves)
+    taps = noise.kernel.taps
+    mids = [axes[1] for axes in axes_per_octave] if d == 3 else \
+        [(None, np.zeros((1, taps), np.int64), np.ones((1, taps)), np.ones((1, taps)))] * noct
+
+    def stack(items, k, transpose=False):
+        first_item = items[0][k]
+        shape = first_item.shape[::-1] if transpose else first_item.shape
+        stacked = np.empty((len(items),) + shape, dtype=first_item.dtype)
+        for i, it in enumerate(items):
+            stacked[i] = it[k].T if transpose else it[k]
+        return stacked
+
+    first = [axes[0] for axes in axes_per_octave]
+    last = [axes[-1] for axes in axes_per_octave]
+    rk = 3 if grad else 2  # the ramp weights (gradient basis), else the weights again
+    P0, W0, RW0 = stack(first, 1), stack(first, 2), stack(first, rk)
+    P1, W1, RW1 = stack(mids, 1), stack(mids, 2), stack(mids, rk)
+    P2, W2, RW2 = stack(last, 1, True), stack(last, 2, True), stack(last, rk, True)
+    shapes = np.array([[len(axes[0][0]), len(axes[1][0]) if d == 3 else 1, len(axes[-1][0])]
+                       for axes in axes_per_octave], dtype=np.int64)
+    lat2 = np.concatenate([np.ascontiguousarray(ax[0], dtype=np.int64) for ax in last])
+    lat2_off = np.concatenate([[0], np.cumsum(shapes[:, 2])]).astype(np.int64)
+    pre_off = np.concatenate([[0], np.cumsum(shapes[:, 0] * shapes[:, 1])]).astype(np.int64)
+    scales = np.array([amp for _, amp, _ in octaves], dtype=np.float64)
+    batch_start = np.concatenate([[0], np.cumsum(batch_sizes)]).astype(np.int64)
+    nj = out.shape[1]
+    grads = noise._int_grads if integer else noise.gradients
+    if grads is None:
+        grads = np.zeros((1, d))
+    heads = [[np.asarray(ax[0], dtype=np.int64) for ax in axes[:-1]] for axes in axes_per_octave]
+    for c in range(noise.dim_out):
+        if integer:
+            pre = np.concatenate([_int_prefix_np(noise.keys[c], noise._mult, lat) for lat in heads])
+            par = pre
+            perm, mult2 = np.zeros(1, np.int64), noise._mult[d - 1]
+        else:
+            hp = [_block_hash_np(noise.perms[c], noise.table_size, lat) for lat in heads]
+            pre = np.concatenate([h for h, _ in hp])
+            par = np.concatenate([q for _, q in hp])
+            perm, mult2 = noise.perms[c], np.uint32(0)
+        kernel(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2, scales,
+               batch_start, bool(absval), perm, int(noise.table_size), noise.values, grads, mult2,
+               out[c].reshape(nj, -1), out[c].reshape(nj, -1) if out.dtype == np.float64 else np.empty((0, 0)))
+
+
 def contract_rest(block, axes, use_r, target):
     """Contract axes d-1 .. 1 of a lattice block into ``target`` (rows of axis 0 x the other grid axes).
 
@@ -344,7 +498,8 @@ def contract_rest(block, axes, use_r, target):
         else:
             nxt = np.empty((pre, pos.shape[0], post))
         if post == 1:
-            jit.contract_last(cur.reshape(pre, cur.shape[a]), pos, weights, nxt.reshape(pre, pos.shape[0]))
+            jit.contract_last(cur.reshape(pre, cur.shape[a]), np.ascontiguousarray(pos.T), np.ascontiguousarray(weights.T),
+                              nxt.reshape(pre, pos.shape[0]))
         else:
             jit.contract_mid(cur.reshape(pre, cur.shape[a], post), pos, weights, nxt)
         cur = nxt.reshape(cur.shape[:a] + (pos.shape[0],) + cur.shape[a + 1:])
