@@ -379,7 +379,7 @@ def main(argv=None):
     md = ROOT / "benchmarks" / ("bench_snow.md" if not args.quick else "bench_snow_quick.md")
     if args.append:  # a dated section after the earlier records: its headings one level down
         lines = [("#" + ln if ln.startswith("#") else ln) for ln in lines]
-        lines[0] = f"# bench_snow run of {time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC"
+        lines[0] = f"## bench_snow run of {time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC"
         text = (md.read_text().rstrip("\n") + "\n\n" if md.exists() else "") + "\n".join(lines)
     else:
         text = "\n".join(lines)
