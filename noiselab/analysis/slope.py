@@ -178,15 +178,7 @@ def _octave_band(function):
     """``octave_energy``'s old split band (``lo, hi`` by position or keyword): a ``TypeError`` naming ``band=``."""
     @functools.wraps(function)
     def wrapper(field, *args, **kwargs):
-        old = dict(zip(("lo", "hi"), args)) if args and isinstance(args[0], numbers.Real) else {}
-        if len(args) > 2 or (args and not old and len(args) > 1):
-            raise TypeError(f"octave_energy() takes 2 positional arguments (field, band), got {1 + len(args)}")
-        for name in ("lo", "hi"):
-            if name in kwargs:
-                if name in old:
-                    raise TypeError(f"octave_energy() got multiple values for {name}")
-                old[name] = kwargs.pop(name)
-        if old:
+        if (args and isinstance(args[0], numbers.Real)) or "lo" in kwargs or "hi" in kwargs:
             raise TypeError(f"octave_energy(): lo and hi were removed in noiselab {REMOVED_IN}; pass band=(lo, hi) "
                             "instead (hi=None: the Nyquist frequency)")
         return function(field, *args, **kwargs)
