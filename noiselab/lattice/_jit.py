@@ -169,9 +169,9 @@ def mix32(h):
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def hash_value(h):
-    """The lattice value of a prefix word: ``int32(mix32(h)) / 2**31`` in [-1, 1)."""
-    return np.float64(np.int32(mix32(h))) * _TO_UNIT
+def hash_value(h, ft=np.float64):
+    """The lattice value of a prefix word: ``int32(mix32(h)) / 2**31`` in [-1, 1) (in ``ft``: float32 rounds it)."""
+    return ft(np.int32(mix32(h))) * ft(_TO_UNIT)
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
@@ -628,7 +628,7 @@ _SQ = 0.7071067811865476  # 1/sqrt 2, _inthash.INV_SQRT2
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _grad_dot(h, r0, r1, r2, DIM):
+def _grad_dot(h, r0, r1, r2, DIM, ft=np.float64):
     """``g . r`` for the gradient :func:`hash_index` picks from the fixed 1-3-D set, by bit tests (no gather).
 
     The sets of :func:`._inthash.gradient_set`: 1-D ``{+1, -1}`` (bit 31 of
@@ -638,8 +638,10 @@ def _grad_dot(h, r0, r1, r2, DIM):
     terms: the same products (``+-s r``, ``+-r``) summed in a commutative
     pair, so the same value but possibly for the sign of a zero, which a sum
     of weighted corners started from +0 does not keep. The loop vectoriser
-    declines table gathers on some machines; selects it takes.
+    declines table gathers on some machines; selects it takes. ``ft``: the
+    arithmetic's type (the float32 kernels pass float32 distances).
     """
+    sq = ft(_SQ)
     x = mix32(h)
     if DIM == 1:
         return -r0 if (x >> _S31) != 0 else r0
@@ -648,14 +650,14 @@ def _grad_dot(h, r0, r1, r2, DIM):
         if i < 4:
             a = r0 if i < 2 else r1
             return -a if (i & 1) != 0 else a
-        sx = -_SQ if (i & 1) != 0 else _SQ
-        sy = -_SQ if (i & 2) != 0 else _SQ
+        sx = -sq if (i & 1) != 0 else sq
+        sy = -sq if (i & 2) != 0 else sq
         return sx * r0 + sy * r1
     i = x >> _S28
     ru = r0 if i < 8 else r1
     rv = r1 if i < 4 else (r0 if (i == 12 or i == 14) else r2)
-    su = -_SQ if (i & 1) != 0 else _SQ
-    sv = -_SQ if (i & 2) != 0 else _SQ
+    su = -sq if (i & 1) != 0 else sq
+    sv = -sq if (i & 2) != 0 else sq
     return su * ru + sv * rv
 
 
@@ -814,7 +816,7 @@ def _block_load(src, flat, cols, p0, m, X, DIM):
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GRAD):
+def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GRAD, ft):
     """One axis of a block without a period: weights, hashed tap offsets and (``GRAD``) signed distances.
 
     The values of :func:`_split` for every finite coordinate, in one branch-free
@@ -823,14 +825,15 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GR
     (exact: every step is an integer or a power-of-two scaling, and the
     difference, an integer in [0, 2**32), is representable), and converted
     once, whatever the coordinate's size; no int64 overflow past 2**63 and no
-    fallback to the exact per-point reduction.
+    fallback to the exact per-point reduction. The index stays float64; only
+    the fraction ``t`` and what follows from it are in ``ft`` (a no-op cast for float64).
     """
     Xa = X[a]
     Ta = TF[a]
     for i in range(m):
         u = Xa[i] * f + ph + shift  # same rounding as the grid path
         fi = np.floor(u)
-        t = u - fi
+        t = ft(u - fi)
         Ta[i] = t
         q = fi - np.floor(fi * _INV_TWO32) * _TWO32
         j = _U32(np.int64(q) - left)
@@ -842,10 +845,10 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GR
         for k in range(TAPS):
             Rk = R[a, k]
             for i in range(m):
-                Rk[i] = Ta[i] - shift + (left - k)
+                Rk[i] = Ta[i] - ft(shift) + ft(left - k)
 
 
-def _make_int_block(DIM, TAPS, GRAD):
+def _make_int_block(DIM, TAPS, GRAD, F32=False):
     """The integer hash's 1-3-D value kernel without a period, block by block, reading either layout in place.
 
     The bits of :func:`_make_int_fast` (the same operations in the same order
@@ -857,8 +860,10 @@ def _make_int_block(DIM, TAPS, GRAD):
     block of :data:`BLOCK` points: the coordinates (:func:`_block_load`),
     each axis's set-up (:func:`_block_axis`), then :func:`_make_int_fast`'s
     corner loops; every loop runs over the block from index 0, which LLVM
-    vectorises across points (8 float64 lanes with AVX-512).
+    vectorises across points (8 float64 lanes with AVX-512). ``F32``: float32
+    arithmetic from each fraction on (``coef`` float32; the index as above).
     """
+    FT = np.float32 if F32 else np.float64
 
     @nb.njit(cache=True, nogil=True)
     def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval):
@@ -867,19 +872,20 @@ def _make_int_block(DIM, TAPS, GRAD):
         noct = freqs.shape[0]
         flat = src.reshape(-1)
         X = np.empty((DIM, BLOCK))
-        TF = np.empty((DIM, BLOCK))
-        W = np.empty((DIM, TAPS, BLOCK))
-        R = np.empty((DIM, TAPS, BLOCK) if GRAD else (1, 1, 1))
+        TF = np.empty((DIM, BLOCK), FT)
+        W = np.empty((DIM, TAPS, BLOCK), FT)
+        R = np.empty((DIM, TAPS, BLOCK) if GRAD else (1, 1, 1), FT)
         M = np.empty((DIM, TAPS, BLOCK), np.uint32)
-        T = np.empty(BLOCK)
-        ACC = np.empty((ncomp, BLOCK))
+        T = np.empty(BLOCK, FT)
+        ACC = np.empty((ncomp, BLOCK), FT)
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
             for o in range(noct):
                 for a in range(DIM):
-                    _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS, GRAD)
-                amp = amps[o]
+                    _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS, GRAD,
+                                FT)
+                amp = FT(amps[o])
                 first = o == 0
                 for c in range(ncomp):
                     key = keys[c]
@@ -908,21 +914,21 @@ def _make_int_block(DIM, TAPS, GRAD):
                                         h = _U32(h1 ^ M[L, k, i])
                                         w = w1 * W[L, k, i]
                                         if not GRAD:
-                                            v = hash_value(h)
+                                            v = hash_value(h, FT)
                                         elif DIM == 3:
-                                            v = _grad_dot(h, R0[i], R1[i], R[2, k, i], 3)
+                                            v = _grad_dot(h, R0[i], R1[i], R[2, k, i], 3, FT)
                                         else:
-                                            v = _grad_dot(h, R0[i], R[1, k, i], 0.0, 2)
+                                            v = _grad_dot(h, R0[i], R[1, k, i], FT(0.0), 2, FT)
                                         total += w * v
                                     T[i] = total
                     for i in range(m):
                         if DIM > 1:
                             total = T[i]
                         else:
-                            total = 0.0
+                            total = FT(0.0)
                             for k in range(TAPS):
                                 h = _U32(key ^ M[0, k, i])
-                                v = _grad_dot(h, R[0, k, i], 0.0, 0.0, 1) if GRAD else hash_value(h)
+                                v = _grad_dot(h, R[0, k, i], FT(0.0), FT(0.0), 1, FT) if GRAD else hash_value(h, FT)
                                 total += W[0, k, i] * v
                         tv = abs(total) if absval else total
                         if first:
@@ -939,17 +945,17 @@ def _make_int_block(DIM, TAPS, GRAD):
 
 
 @nb.njit(cache=True, nogil=True)
-def _two_taps(x, f, ph, shift, left, coef, mult_a, grad):
+def _two_taps(x, f, ph, shift, left, coef, mult_a, grad, ft):
     """One axis of one point for a 2-tap kernel: ``(w0, w1, m0, m1, r0, r1)`` as :func:`_block_axis` makes them.
 
     A plain compiled function, not inlined by numba: LLVM inlines it into the
     kernel with ``grad`` known, and numba compiles its body once instead of
     once per call site (inlined at numba's level, :func:`_make_int_two_taps`
-    took 6.6 s to compile instead of 2.0 s).
+    took 6.6 s to compile instead of 2.0 s). ``ft``: the arithmetic's type from the fraction on.
     """
     u = x * f + ph + shift  # same rounding as the grid path
     fi = np.floor(u)
-    t = u - fi
+    t = ft(u - fi)
     q = fi - np.floor(fi * _INV_TWO32) * _TWO32  # fi mod 2**32, exactly (:func:`_block_axis`)
     j = _U32(np.int64(q) - left)
     t2, t3, t4, t5 = _powers(t)
@@ -958,16 +964,16 @@ def _two_taps(x, f, ph, shift, left, coef, mult_a, grad):
     m0 = _U32(_U32(j + _U32(0)) * mult_a)
     m1 = _U32(_U32(j + _U32(1)) * mult_a)
     if grad:
-        r0 = t - shift + (left - 0)
-        r1 = t - shift + (left - 1)
+        r0 = t - ft(shift) + ft(left - 0)
+        r1 = t - ft(shift) + ft(left - 1)
     else:
-        r0 = 0.0
-        r1 = 0.0
+        r0 = ft(0.0)
+        r1 = ft(0.0)
     return w0, w1, m0, m1, r0, r1
 
 
 @nb.njit(cache=True, nogil=True)
-def _two_corners(total, h1, w1, c0, c1, n0, n1, ra, rb, s0, s1, dim, grad):
+def _two_corners(total, h1, w1, c0, c1, n0, n1, ra, rb, s0, s1, dim, grad, ft):
     """``total`` plus the last axis's two corners: ``(w1 c_k) v(h1 ^ n_k)`` for k = 0, 1, in that order.
 
     ``v`` is :func:`hash_value` or (``grad``) :func:`_grad_dot` of the
@@ -978,18 +984,18 @@ def _two_corners(total, h1, w1, c0, c1, n0, n1, ra, rb, s0, s1, dim, grad):
         h = _U32(h1 ^ (n0 if k == 0 else n1))
         s = s0 if k == 0 else s1
         if not grad:
-            v = hash_value(h)
+            v = hash_value(h, ft)
         elif dim == 3:
-            v = _grad_dot(h, ra, rb, s, 3)
+            v = _grad_dot(h, ra, rb, s, 3, ft)
         elif dim == 2:
-            v = _grad_dot(h, ra, s, 0.0, 2)
+            v = _grad_dot(h, ra, s, ft(0.0), 2, ft)
         else:
-            v = _grad_dot(h, s, 0.0, 0.0, 1)
+            v = _grad_dot(h, s, ft(0.0), ft(0.0), 1, ft)
         total += (w1 * (c0 if k == 0 else c1)) * v
     return total
 
 
-def _make_int_two_taps(DIM, GRAD):
+def _make_int_two_taps(DIM, GRAD, F32=False):
     """The integer hash's 1-3-D values without a period for 2-tap kernels (quintic, linear), point by point.
 
     The arguments and bits of :func:`_make_int_block`; instead of each axis's
@@ -998,8 +1004,11 @@ def _make_int_two_taps(DIM, GRAD):
     (:func:`_two_corners`, in :func:`_make_int_fast`'s order and products),
     in one loop over the block that LLVM vectorises across points.
     1.63-1.74x :func:`_make_int_fast` for 1e6 3-D float32 quintic value
-    points (``benchmarks/bench_lattice_paths.md``).
+    points (``benchmarks/bench_lattice_paths.md``). ``F32``: float32 arithmetic
+    from each fraction on, as :func:`_make_int_block`.
     """
+    FT = np.float32 if F32 else np.float64
+    Z = FT(0.0)
     B = 1 if DIM > 1 else 0  # the second and third axes' rows (the first's where there is none)
     C = 2 if DIM > 2 else 0
 
@@ -1010,7 +1019,7 @@ def _make_int_two_taps(DIM, GRAD):
         noct = freqs.shape[0]
         flat = src.reshape(-1)
         X = np.empty((DIM, BLOCK))
-        ACC = np.empty((ncomp, BLOCK))
+        ACC = np.empty((ncomp, BLOCK), FT)
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
@@ -1018,7 +1027,7 @@ def _make_int_two_taps(DIM, GRAD):
             x1 = X[B]
             x2 = X[C]
             for o in range(noct):
-                amp = amps[o]
+                amp = FT(amps[o])
                 first = o == 0
                 fa = freqs[o, 0]
                 fb = freqs[o, B]
@@ -1027,30 +1036,31 @@ def _make_int_two_taps(DIM, GRAD):
                     key = keys[c]
                     acc = ACC[c]
                     for i in range(m):
-                        a0, a1, am0, am1, ar0, ar1 = _two_taps(x0[i], fa, phase[0], shift, left, coef, mult[0], GRAD)
+                        a0, a1, am0, am1, ar0, ar1 = _two_taps(x0[i], fa, phase[0], shift, left, coef, mult[0], GRAD,
+                                                               FT)
                         if DIM == 1:  # (1.0 * w) v is w v exactly
-                            total = _two_corners(0.0, key, 1.0, a0, a1, am0, am1, 0.0, 0.0, ar0, ar1, DIM, GRAD)
+                            total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD, FT)
                         else:
                             b0, b1, bm0, bm1, br0, br1 = _two_taps(x1[i], fb, phase[B], shift, left, coef, mult[B],
-                                                                   GRAD)
+                                                                   GRAD, FT)
                             if DIM == 2:
-                                total = _two_corners(0.0, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, 0.0, br0, br1,
-                                                     DIM, GRAD)
-                                total = _two_corners(total, _U32(key ^ am1), a1, b0, b1, bm0, bm1, ar1, 0.0, br0, br1,
-                                                     DIM, GRAD)
+                                total = _two_corners(Z, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, Z, br0, br1,
+                                                     DIM, GRAD, FT)
+                                total = _two_corners(total, _U32(key ^ am1), a1, b0, b1, bm0, bm1, ar1, Z, br0, br1,
+                                                     DIM, GRAD, FT)
                             else:
                                 c0, c1, cm0, cm1, cr0, cr1 = _two_taps(x2[i], fc, phase[C], shift, left, coef, mult[C],
-                                                                       GRAD)
+                                                                       GRAD, FT)
                                 ha0 = _U32(key ^ am0)
                                 ha1 = _U32(key ^ am1)
-                                total = _two_corners(0.0, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
-                                                     cr1, DIM, GRAD)
+                                total = _two_corners(Z, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
+                                                     cr1, DIM, GRAD, FT)
                                 total = _two_corners(total, _U32(ha0 ^ bm1), a0 * b1, c0, c1, cm0, cm1, ar0, br1, cr0,
-                                                     cr1, DIM, GRAD)
+                                                     cr1, DIM, GRAD, FT)
                                 total = _two_corners(total, _U32(ha1 ^ bm0), a1 * b0, c0, c1, cm0, cm1, ar1, br0, cr0,
-                                                     cr1, DIM, GRAD)
+                                                     cr1, DIM, GRAD, FT)
                                 total = _two_corners(total, _U32(ha1 ^ bm1), a1 * b1, c0, c1, cm0, cm1, ar1, br1, cr0,
-                                                     cr1, DIM, GRAD)
+                                                     cr1, DIM, GRAD, FT)
                         tv = abs(total) if absval else total
                         if first:
                             acc[i] = amp * tv
@@ -1208,18 +1218,18 @@ def table_fast_kernel(taps, gradient):
     return fn
 
 
-def int_block_kernel(dim, taps, gradient):
+def int_block_kernel(dim, taps, gradient, f32=False):
     """The integer hash's block kernel (:func:`_make_int_block`) for 1-3-D values without a period."""
-    key = ("block", int(dim), int(taps), bool(gradient))
+    key = ("block", int(dim), int(taps), bool(gradient), bool(f32))
     fn = _POINTS.get(key)
     if fn is None:
         fn = _POINTS[key] = _make_int_block(*key[1:])
     return fn
 
 
-def int_two_taps_kernel(dim, gradient):
+def int_two_taps_kernel(dim, gradient, f32=False):
     """The integer hash's 2-tap kernel (:func:`_make_int_two_taps`) for 1-3-D values without a period."""
-    key = ("two", int(dim), bool(gradient))
+    key = ("two", int(dim), bool(gradient), bool(f32))
     fn = _POINTS.get(key)
     if fn is None:
         fn = _POINTS[key] = _make_int_two_taps(*key[1:])

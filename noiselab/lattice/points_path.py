@@ -151,22 +151,24 @@ def _layout(flat):
     return np.ascontiguousarray(flat), False
 
 
-def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
+def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f32=False):
     """The integer hash's block kernel over ``flat`` into ``out``, in ``workers`` contiguous ranges of points.
 
     As :func:`noiselab._core.run_split`, but every thread gets the whole
     arrays and its range ``[lo, hi)``: a slice of ``(d, N)`` columns is no
     longer C-contiguous, which the kernel needs to read them in place.
+    ``f32``: the float32-arithmetic variants (float32 ``out``).
     """
     src, cols = _layout(flat)
     k = noise.kernel
     gradient = noise.basis == "gradient"
     if k.taps == 2:  # the same bits, every point's taps in registers
-        kernel = jit.int_two_taps_kernel(noise.dim_in, gradient)
+        kernel = jit.int_two_taps_kernel(noise.dim_in, gradient, f32)
     else:
-        kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient)
+        kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient, f32)
     rest = (np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
-            noise.phase, k.shift, k.left, k.coef, noise.keys, noise._mult, bool(absval))
+            noise.phase, k.shift, k.left, k.coef.astype(np.float32) if f32 else k.coef, noise.keys, noise._mult,
+            bool(absval))
     npts = flat.shape[0]
     n = min(workers, max(1, npts // min_block))
     bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
@@ -196,19 +198,24 @@ def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval, pairs), workers)
 
 
-def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", workers=1):
+def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", workers=1, f32=False):
     """``sum_o amps[o] * b(noise(flat * freqs[o] + phase))`` at ``flat`` (N, dim_in): ``(N, dim_out)`` in ``dtype``.
 
     ``b`` is the identity or ``abs`` (``absval``); ``amps`` already holds the
     range normalisation (``noise.scale``). The computation is float64;
-    float32 output is the float64 result rounded once.
+    float32 output is the float64 result rounded once. With ``f32`` (checked:
+    :func:`.checks.check_arithmetic`) the in-place kernels compute in float32
+    from each point's fractions on, into float32 ``dtype``.
     """
     # the in-place kernels round each float64 result once as they store it, as astype would: float32 output
     # without a float64 array first
-    out = np.empty((flat.shape[0], noise.dim_out), dtype if _in_place(noise, False) else np.float64)
+    out = np.empty((flat.shape[0], noise.dim_out), dtype if f32 or _in_place(noise, False) else np.float64)
     if flat.shape[0]:
         checks.check_reach(flat, freqs, noise.phase, name)  # NaN, inf and overflowing x * frequency
-        _run(noise, flat, out, freqs, amps, absval, False, workers)
+        if f32:
+            _run_block(noise, flat, out, freqs, amps, absval, workers, f32=True)
+        else:
+            _run(noise, flat, out, freqs, amps, absval, False, workers)
     return out if out.dtype == dtype else out.astype(dtype)
 
 
