@@ -34,8 +34,16 @@ implementation of the same construction can reach here:
   ``(3, N)`` columns (``axis=0``, structure of arrays as ``int-minimal``).
 - the write floor (``np.full``) as everywhere in the benchmarks.
 
+A second table times noiselab's opt-in float32 arithmetic
+(``evaluate(pts32, arithmetic="float32")``, integer hash) beside
+pyfastnoisesimd for quintic value (``Value``), quintic gradient (``Perlin``)
+and Catmull-Rom value (``Cubic``), from ``(N, 3)`` rows and ``(3, N)``
+columns, with the float64 arithmetic's rows for reference; ``--f32-error``
+instead measures the float32 arithmetic's largest difference from the
+float64 result (1e6 points, 1-3-D, at 1e3 and at 1e12).
+
 Run: ``benchmarks/.venv-peers/bin/python benchmarks/bench_limits.py [--repeats 7]``;
-writes ``benchmarks/bench_limits.md``.
+writes ``benchmarks/bench_limits.md`` (``--f32-error``: prints the error table).
 """
 from __future__ import annotations
 
@@ -230,6 +238,60 @@ def measure(repeats):
     return interleaved(cands, repeats=repeats, timer=time.thread_time)  # its warm-up round compiles
 
 
+F32_ROWS = (("quintic", "value", "Value"), ("quintic", "gradient", "Perlin"), ("catmull-rom", "value", "Cubic"))
+
+
+def measure_f32(repeats):
+    """noiselab's float32 arithmetic against pyfastnoisesimd, both layouts: ``{row: Timings}``."""
+    pts32 = np.random.default_rng(0).uniform(0.0, 100.0, (NPTS, 3)).astype(np.float32)
+    cols = np.ascontiguousarray(pts32.T)
+    fns = _peer("fns")
+    out = {}
+    for kname, basis, peer in F32_ROWS:
+        noise = LatticeNoise(3, rng=1, kernel=kname, basis=basis, hash="integer")
+        cands = {"f32a": lambda n=noise: n.evaluate(pts32, arithmetic="float32"),
+                 "f32aT": lambda n=noise: n.evaluate(cols, axis=0, arithmetic="float32"),
+                 "f64a": lambda n=noise: n(pts32), "f64aT": lambda n=noise: n(cols, axis=0)}
+        if fns is not None:
+            cands["fns"] = _fns_points(fns, getattr(fns.NoiseType, peer), pts32)
+        out[(kname, basis, peer)] = interleaved(cands, repeats=repeats, timer=time.thread_time)
+    return out
+
+
+def report_f32(tf):
+    lines = ["## The float32 arithmetic against pyfastnoisesimd\n",
+             "1,000,000 random 3-D float32 points in [0, 100)^3, integer hash, one thread, the same clock and "
+             "rounds as above (interleaved per row). `f32 arith`: `noise.evaluate(pts32, arithmetic=\"float32\")` "
+             "from `(N, 3)` rows, `(3, N)`: the same from columns (`axis=0`); `f64 arith`: `noise(pts32)`, "
+             "today's default. `x FNS` = pyfastnoisesimd's time / noiselab's (median of the per-round ratios).\n",
+             "| noise | FNS | FNS pts/s | f32 arith (N, 3) x FNS | f32 arith (3, N) x FNS | f64 arith (N, 3) x FNS "
+             "| f64 arith (3, N) x FNS | f32 / f64 speed-up (N, 3) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for (kname, basis, peer), t in tf.items():
+        xf = [f"{t.ratio('fns', k):.2f}" if "fns" in t else "n/a" for k in ("f32a", "f32aT", "f64a", "f64aT")]
+        rate = f"{NPTS / t['fns']:.3g}" if "fns" in t else "n/a"
+        lines.append(f"| {kname} {basis} | {peer} | {rate} | {' | '.join(xf)} | {t.ratio('f64a', 'f32a'):.2f} |")
+    return lines + [""]
+
+
+def f32_error(npts=NPTS):
+    """The float32 arithmetic's largest |difference| from the float64 result, and the largest |value| (amplitude 1)."""
+    rng = np.random.default_rng(5)
+    lines = ["| dim | noise | offset | max abs diff | max abs value |", "|---|---|---|---|---|"]
+    worst = 0.0
+    for dim in (1, 2, 3):
+        for offset in (0.0, 1e12):
+            x = rng.uniform(-1000.0, 1000.0, (npts, dim)) + offset
+            for kname, basis, _ in F32_ROWS + (("catmull-rom", "gradient", ""),):
+                noise = LatticeNoise(dim, rng=1, kernel=kname, basis=basis, hash="integer")
+                fast, ref = noise.evaluate(x, arithmetic="float32"), noise(x)
+                diff = float(np.abs(fast.astype(np.float64) - ref).max())
+                worst = max(worst, diff)
+                lines.append(f"| {dim} | {kname} {basis} | {offset:.0e} | {diff:.2e} "
+                             f"| {float(np.abs(fast).max()):.4f} |")
+    return lines + ["", f"largest: {worst:.2e}"]
+
+
 def report(t, repeats, load, cmd):
     info = run_info(cmd, ["pyfastnoisesimd"], load=load)
     rate = {k: NPTS / t[k] for k in t}
@@ -283,12 +345,21 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=7)
     ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
+    ap.add_argument("--f32-error", action="store_true",
+                    help="print the float32 arithmetic's largest difference from float64 instead of timing")
+    ap.add_argument("--f32-only", action="store_true", help="time only the float32-arithmetic rows (print them)")
     args = ap.parse_args(argv)
+    if args.f32_error:
+        print("\n".join(f32_error()))
+        return
+    if args.f32_only:
+        print("\n".join(report_f32(measure_f32(args.repeats))))
+        return
     cmd = "benchmarks/.venv-peers/bin/python benchmarks/bench_limits.py" + (
         f" --repeats {args.repeats}" if args.repeats != 7 else "")
     load = os.getloadavg()[0]
     t = measure(args.repeats)
-    lines = report(t, args.repeats, load, cmd)
+    lines = report(t, args.repeats, load, cmd) + report_f32(measure_f32(args.repeats))
     Path(args.output).write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 

@@ -944,20 +944,25 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
     return int_block
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _fraction(x, f, ph, shift, left, ft):
+    """One axis of one point: its fraction ``t`` (in ``ft``) and its first tap's index ``j`` (exact, mod 2**32)."""
+    u = x * f + ph + shift  # same rounding as the grid path
+    fi = np.floor(u)
+    q = fi - np.floor(fi * _INV_TWO32) * _TWO32  # fi mod 2**32, exactly (:func:`_block_axis`)
+    return ft(u - fi), _U32(np.int64(q) - left)
+
+
 @nb.njit(cache=True, nogil=True)
-def _two_taps(x, f, ph, shift, left, coef, mult_a, grad, ft):
-    """One axis of one point for a 2-tap kernel: ``(w0, w1, m0, m1, r0, r1)`` as :func:`_block_axis` makes them.
+def _two_taps(t, j, shift, left, coef, mult_a, grad, ft):
+    """One axis of one point for a 2-tap kernel (``t, j``: :func:`_fraction`): ``(w0, w1, m0, m1, r0, r1)``
+    as :func:`_block_axis` makes them.
 
     A plain compiled function, not inlined by numba: LLVM inlines it into the
     kernel with ``grad`` known, and numba compiles its body once instead of
     once per call site (inlined at numba's level, :func:`_make_int_two_taps`
-    took 6.6 s to compile instead of 2.0 s). ``ft``: the arithmetic's type from the fraction on.
+    took 6.6 s to compile instead of 2.0 s). ``ft``: the arithmetic's type.
     """
-    u = x * f + ph + shift  # same rounding as the grid path
-    fi = np.floor(u)
-    t = ft(u - fi)
-    q = fi - np.floor(fi * _INV_TWO32) * _TWO32  # fi mod 2**32, exactly (:func:`_block_axis`)
-    j = _U32(np.int64(q) - left)
     t2, t3, t4, t5 = _powers(t)
     w0 = _weight(coef, 0, t, t2, t3, t4, t5)
     w1 = _weight(coef, 1, t, t2, t3, t4, t5)
@@ -1019,38 +1024,43 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
         noct = freqs.shape[0]
         flat = src.reshape(-1)
         X = np.empty((DIM, BLOCK))
+        TT = np.empty((DIM, BLOCK), FT)
+        JJ = np.empty((DIM, BLOCK), np.uint32)
         ACC = np.empty((ncomp, BLOCK), FT)
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
-            x0 = X[0]
-            x1 = X[B]
-            x2 = X[C]
             for o in range(noct):
                 amp = FT(amps[o])
                 first = o == 0
-                fa = freqs[o, 0]
-                fb = freqs[o, B]
-                fc = freqs[o, C]
+                for a in range(DIM):  # the exact float64 index in its own loop: the corner loop is all FT
+                    Xa = X[a]
+                    for i in range(m):
+                        TT[a, i], JJ[a, i] = _fraction(Xa[i], freqs[o, a], phase[a], shift, left, FT)
+                t0 = TT[0]
+                t1 = TT[B]
+                t2 = TT[C]
+                j0 = JJ[0]
+                j1 = JJ[B]
+                j2 = JJ[C]
                 for c in range(ncomp):
                     key = keys[c]
                     acc = ACC[c]
                     for i in range(m):
-                        a0, a1, am0, am1, ar0, ar1 = _two_taps(x0[i], fa, phase[0], shift, left, coef, mult[0], GRAD,
-                                                               FT)
+                        a0, a1, am0, am1, ar0, ar1 = _two_taps(t0[i], j0[i], shift, left, coef, mult[0], GRAD, FT)
                         if DIM == 1:  # (1.0 * w) v is w v exactly
                             total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD, FT)
                         else:
-                            b0, b1, bm0, bm1, br0, br1 = _two_taps(x1[i], fb, phase[B], shift, left, coef, mult[B],
-                                                                   GRAD, FT)
+                            b0, b1, bm0, bm1, br0, br1 = _two_taps(t1[i], j1[i], shift, left, coef, mult[B], GRAD,
+                                                                   FT)
                             if DIM == 2:
                                 total = _two_corners(Z, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, Z, br0, br1,
                                                      DIM, GRAD, FT)
                                 total = _two_corners(total, _U32(key ^ am1), a1, b0, b1, bm0, bm1, ar1, Z, br0, br1,
                                                      DIM, GRAD, FT)
                             else:
-                                c0, c1, cm0, cm1, cr0, cr1 = _two_taps(x2[i], fc, phase[C], shift, left, coef, mult[C],
-                                                                       GRAD, FT)
+                                c0, c1, cm0, cm1, cr0, cr1 = _two_taps(t2[i], j2[i], shift, left, coef, mult[C], GRAD,
+                                                                       FT)
                                 ha0 = _U32(key ^ am0)
                                 ha1 = _U32(key ^ am1)
                                 total = _two_corners(Z, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
