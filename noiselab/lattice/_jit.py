@@ -816,16 +816,7 @@ def _block_load(src, flat, cols, p0, m, X, DIM):
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _fraction(x, f, ph, shift, left, ft):
-    """One axis of one point: its fraction ``t`` (in ``ft``) and its first tap's index ``j`` (exact, mod 2**32)."""
-    u = x * f + ph + shift  # same rounding as the grid path
-    fi = np.floor(u)
-    q = fi - np.floor(fi * _INV_TWO32) * _TWO32  # fi mod 2**32, exactly (:func:`_block_axis`)
-    return ft(u - fi), _U32(np.int64(q) - left)
-
-
-@nb.njit(cache=True, nogil=True, inline="always")
-def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, J, TAPS, GRAD, ft):
+def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GRAD, ft):
     """One axis of a block without a period: weights, hashed tap offsets and (``GRAD``) signed distances.
 
     The values of :func:`_split` for every finite coordinate, in one branch-free
@@ -834,23 +825,22 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, J, TAPS,
     (exact: every step is an integer or a power-of-two scaling, and the
     difference, an integer in [0, 2**32), is representable), and converted
     once, whatever the coordinate's size; no int64 overflow past 2**63 and no
-    fallback to the exact per-point reduction (:func:`_fraction`). The index
-    stays float64; only the fraction ``t`` and what follows from it are in
-    ``ft`` (a no-op cast for float64). One loop per tap (``J``: the indices),
-    which LLVM vectorises; writing every tap from one loop it did not.
+    fallback to the exact per-point reduction. The index stays float64; only
+    the fraction ``t`` and what follows from it are in ``ft`` (a no-op cast for float64).
     """
     Xa = X[a]
     Ta = TF[a]
     for i in range(m):
-        Ta[i], J[i] = _fraction(Xa[i], f, ph, shift, left, ft)
-    for k in range(TAPS):
-        Wk = W[a, k]
-        Mk = M[a, k]
-        for i in range(m):
-            t = Ta[i]
-            t2, t3, t4, t5 = _powers(t)
-            Wk[i] = _weight(coef, k, t, t2, t3, t4, t5)
-            Mk[i] = _U32(_U32(J[i] + _U32(k)) * mult_a)
+        u = Xa[i] * f + ph + shift  # same rounding as the grid path
+        fi = np.floor(u)
+        t = ft(u - fi)
+        Ta[i] = t
+        q = fi - np.floor(fi * _INV_TWO32) * _TWO32
+        j = _U32(np.int64(q) - left)
+        t2, t3, t4, t5 = _powers(t)
+        for k in range(TAPS):
+            W[a, k, i] = _weight(coef, k, t, t2, t3, t4, t5)
+            M[a, k, i] = _U32(_U32(j + _U32(k)) * mult_a)
     if GRAD:
         for k in range(TAPS):
             Rk = R[a, k]
@@ -886,7 +876,6 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
         W = np.empty((DIM, TAPS, BLOCK), FT)
         R = np.empty((DIM, TAPS, BLOCK) if GRAD else (1, 1, 1), FT)
         M = np.empty((DIM, TAPS, BLOCK), np.uint32)
-        J = np.empty(BLOCK, np.uint32)
         T = np.empty(BLOCK, FT)
         ACC = np.empty((ncomp, BLOCK), FT)
         for p0 in range(lo, hi, BLOCK):
@@ -894,8 +883,8 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
             _block_load(src, flat, cols, p0, m, X, DIM)
             for o in range(noct):
                 for a in range(DIM):
-                    _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, J, TAPS,
-                                GRAD, FT)
+                    _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS, GRAD,
+                                FT)
                 amp = FT(amps[o])
                 first = o == 0
                 for c in range(ncomp):
@@ -953,6 +942,15 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                     ob[i, c] = Ac[i]
 
     return int_block
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _fraction(x, f, ph, shift, left, ft):
+    """One axis of one point: its fraction ``t`` (in ``ft``) and its first tap's index ``j`` (exact, mod 2**32)."""
+    u = x * f + ph + shift  # same rounding as the grid path
+    fi = np.floor(u)
+    q = fi - np.floor(fi * _INV_TWO32) * _TWO32  # fi mod 2**32, exactly (:func:`_block_axis`)
+    return ft(u - fi), _U32(np.int64(q) - left)
 
 
 @nb.njit(cache=True, nogil=True)
