@@ -953,6 +953,14 @@ def _fraction(x, f, ph, shift, left, ft):
     return ft(u - fi), _U32(np.int64(q) - left)
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _index(pre, TT, JJ, X, a, i, f, ph, shift, left, ft):
+    """Point ``i``'s ``(t, j)`` on axis ``a``: from :func:`_fraction`'s loop (``pre``) or computed here."""
+    if pre:
+        return TT[a, i], JJ[a, i]
+    return _fraction(X[a, i], f, ph, shift, left, ft)
+
+
 @nb.njit(cache=True, nogil=True)
 def _two_taps(t, j, shift, left, coef, mult_a, grad, ft):
     """One axis of one point for a 2-tap kernel (``t, j``: :func:`_fraction`): ``(w0, w1, m0, m1, r0, r1)``
@@ -1024,8 +1032,8 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
         noct = freqs.shape[0]
         flat = src.reshape(-1)
         X = np.empty((DIM, BLOCK))
-        TT = np.empty((DIM, BLOCK), FT)
-        JJ = np.empty((DIM, BLOCK), np.uint32)
+        TT = np.empty((DIM, BLOCK) if F32 else (1, 1), FT)
+        JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
         ACC = np.empty((ncomp, BLOCK), FT)
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
@@ -1033,34 +1041,33 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
             for o in range(noct):
                 amp = FT(amps[o])
                 first = o == 0
-                for a in range(DIM):  # the exact float64 index in its own loop: the corner loop is all FT
-                    Xa = X[a]
-                    for i in range(m):
-                        TT[a, i], JJ[a, i] = _fraction(Xa[i], freqs[o, a], phase[a], shift, left, FT)
-                t0 = TT[0]
-                t1 = TT[B]
-                t2 = TT[C]
-                j0 = JJ[0]
-                j1 = JJ[B]
-                j2 = JJ[C]
+                if F32:  # the exact float64 index in its own loop: the corner loop is then all float32 (16 lanes)
+                    for a in range(DIM):
+                        Xa = X[a]
+                        for i in range(m):
+                            TT[a, i], JJ[a, i] = _fraction(Xa[i], freqs[o, a], phase[a], shift, left, FT)
+                fa = freqs[o, 0]
+                fb = freqs[o, B]
+                fc = freqs[o, C]
                 for c in range(ncomp):
                     key = keys[c]
                     acc = ACC[c]
                     for i in range(m):
-                        a0, a1, am0, am1, ar0, ar1 = _two_taps(t0[i], j0[i], shift, left, coef, mult[0], GRAD, FT)
+                        ta, ja = _index(F32, TT, JJ, X, 0, i, fa, phase[0], shift, left, FT)
+                        a0, a1, am0, am1, ar0, ar1 = _two_taps(ta, ja, shift, left, coef, mult[0], GRAD, FT)
                         if DIM == 1:  # (1.0 * w) v is w v exactly
                             total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD, FT)
                         else:
-                            b0, b1, bm0, bm1, br0, br1 = _two_taps(t1[i], j1[i], shift, left, coef, mult[B], GRAD,
-                                                                   FT)
+                            tb, jb = _index(F32, TT, JJ, X, B, i, fb, phase[B], shift, left, FT)
+                            b0, b1, bm0, bm1, br0, br1 = _two_taps(tb, jb, shift, left, coef, mult[B], GRAD, FT)
                             if DIM == 2:
                                 total = _two_corners(Z, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, Z, br0, br1,
                                                      DIM, GRAD, FT)
                                 total = _two_corners(total, _U32(key ^ am1), a1, b0, b1, bm0, bm1, ar1, Z, br0, br1,
                                                      DIM, GRAD, FT)
                             else:
-                                c0, c1, cm0, cm1, cr0, cr1 = _two_taps(t2[i], j2[i], shift, left, coef, mult[C], GRAD,
-                                                                       FT)
+                                tc, jc = _index(F32, TT, JJ, X, C, i, fc, phase[C], shift, left, FT)
+                                c0, c1, cm0, cm1, cr0, cr1 = _two_taps(tc, jc, shift, left, coef, mult[C], GRAD, FT)
                                 ha0 = _U32(key ^ am0)
                                 ha1 = _U32(key ^ am1)
                                 total = _two_corners(Z, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
