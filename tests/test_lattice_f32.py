@@ -94,9 +94,17 @@ def test_float32_arithmetic_refuses_what_it_does_not_do():
     for bad in ("float16", "Float32", 32, None, np.float32):
         with pytest.raises(ValueError, match="arithmetic must be one of"):
             noise.evaluate(x3, arithmetic=bad)
-    x3[4, 1] = np.nan
-    with pytest.raises(ValueError, match="points"):
-        noise.evaluate(x3, arithmetic="float32")
+    # the float32 kernels check the points as they go (a NaN fraction), with the float64 arithmetic's errors
+    for kernel in ("quintic", "catmull-rom"):
+        noise = LatticeNoise(3, rng=1, hash="integer", kernel=kernel)
+        for bad, octaves, match in ((np.nan, 1, "finite"), (-np.inf, 1, "finite"), (1e308, 3, "overflows")):
+            pts = RNG.uniform(0.0, 9.0, (9000, 3))
+            pts[6789, 1] = bad
+            for arithmetic in ("float32", "float64"):
+                with pytest.raises(ValueError, match=match):
+                    noise.evaluate(pts, octaves=octaves, arithmetic=arithmetic, workers=2)
+        pts[6789, 1] = 1e307   # large but finite at every octave: the index is reduced exactly, no error
+        assert np.isfinite(noise.evaluate(pts, octaves=3, arithmetic="float32")).all()
 
 
 _CASE = """

@@ -878,6 +878,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
         M = np.empty((DIM, TAPS, BLOCK), np.uint32)
         T = np.empty(BLOCK, FT)
         ACC = np.empty((ncomp, BLOCK), FT)
+        bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
@@ -885,6 +886,9 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                 for a in range(DIM):
                     _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS, GRAD,
                                 FT)
+                    if F32:  # as :func:`_make_int_two_taps`: the points are checked after the call
+                        for i in range(m):
+                            bad += TF[a, i] != TF[a, i]
                 amp = FT(amps[o])
                 first = o == 0
                 for c in range(ncomp):
@@ -940,6 +944,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                 Ac = ACC[c]
                 for i in range(m):
                     ob[i, c] = Ac[i]
+        return bad
 
     return int_block
 
@@ -1035,6 +1040,7 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
         TT = np.empty((DIM, BLOCK) if F32 else (1, 1), FT)
         JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
         ACC = np.empty((ncomp, BLOCK), FT)
+        bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
@@ -1045,7 +1051,9 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
                     for a in range(DIM):
                         Xa = X[a]
                         for i in range(m):
-                            TT[a, i], JJ[a, i] = _fraction(Xa[i], freqs[o, a], phase[a], shift, left, FT)
+                            t, j = _fraction(Xa[i], freqs[o, a], phase[a], shift, left, FT)
+                            TT[a, i], JJ[a, i] = t, j
+                            bad += t != t  # a NaN fraction: x f + phase NaN or infinite (_run_block refuses it)
                 fa = freqs[o, 0]
                 fb = freqs[o, B]
                 fc = freqs[o, C]
@@ -1088,6 +1096,7 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
                 Ac = ACC[c]
                 for i in range(m):
                     ob[i, c] = Ac[i]
+        return bad
 
     return int_two_taps
 

@@ -157,7 +157,9 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f
     As :func:`noiselab._core.run_split`, but every thread gets the whole
     arrays and its range ``[lo, hi)``: a slice of ``(d, N)`` columns is no
     longer C-contiguous, which the kernel needs to read them in place.
-    ``f32``: the float32-arithmetic variants (float32 ``out``).
+    ``f32``: the float32-arithmetic variants (float32 ``out``), which check the
+    points as they go: the count of NaN fractions (a NaN point or an
+    overflowing ``x * frequency``), refused by :func:`evaluate_points`.
     """
     src, cols = _layout(flat)
     k = noise.kernel
@@ -172,7 +174,7 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f
     npts = flat.shape[0]
     n = min(workers, max(1, npts // min_block))
     bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
-    map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n)
+    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n))
 
 
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
@@ -210,12 +212,12 @@ def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", work
     # the in-place kernels round each float64 result once as they store it, as astype would: float32 output
     # without a float64 array first
     out = np.empty((flat.shape[0], noise.dim_out), dtype if f32 or _in_place(noise, False) else np.float64)
-    if flat.shape[0]:
+    if f32 and flat.shape[0]:  # the kernels count NaN or overflowing points in one pass with the work
+        if _run_block(noise, flat, out, freqs, amps, absval, workers, f32=True):
+            checks.check_reach(flat, freqs, noise.phase, name)  # raises: the error of the float64 arithmetic
+    elif flat.shape[0]:
         checks.check_reach(flat, freqs, noise.phase, name)  # NaN, inf and overflowing x * frequency
-        if f32:
-            _run_block(noise, flat, out, freqs, amps, absval, workers, f32=True)
-        else:
-            _run(noise, flat, out, freqs, amps, absval, False, workers)
+        _run(noise, flat, out, freqs, amps, absval, False, workers)
     return out if out.dtype == dtype else out.astype(dtype)
 
 
