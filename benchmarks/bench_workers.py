@@ -21,7 +21,8 @@ block a thread computes is timed with that thread's CPU clock
   memory, shows that cost where it is visible);
 - ``cpu sum`` = ``(caller + helper) / T1``: the work the split adds (1.0: none).
 
-Each figure is the median over ``--repeats`` calls. CPU time does not count
+Each figure is the median over ``--repeats`` calls. A second table times the
+set-up of a 512^2 fBm (everything but its kernel), which bounds small grids. CPU time does not count
 the time a thread waits for a core, so ``split`` holds on a loaded machine
 where the wall clock does not; it is a bound from the code's side, not a
 wall-clock measurement.
@@ -30,6 +31,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import subprocess
 import sys
 import threading
 import time
@@ -117,6 +119,61 @@ def cases():
                lambda w, noise=noise, x=x: noise(x, workers=w))
 
 
+def setup_rows(repeats, lines):
+    """The set-up of a 512^2 6-octave fBm (all but its kernel) with its axis taps shared or made, beside the kernel."""
+    lines += ["", "### The set-up of a grid", "",
+              "512^2 6-octave fBm (16 cells), float32, one thread: `set-up` = the call with the fused kernel "
+              "replaced by a no-op (checks, octaves, axis taps, hash prefixes, the kernel's arguments), with the "
+              "axis taps shared by the calls (`shared`, the default) or made by each (`made`, "
+              "`grid_path.AXIS_TAPS_KEPT = 0`); `kernel` = the fused kernel alone. CPU time of the calling thread, "
+              "10th percentile of 10 x `--repeats` calls (the set-up is a few hundred microseconds: the low "
+              "percentile keeps the other jobs' interruptions out).", "",
+              "| noise | hash | set-up, shared (ms) | set-up, made (ms) | kernel (ms) |", "|---|---|---|---|---|"]
+    grid = Grid((512, 512), [(0.0, 16.0)] * 2)
+    real = grid_path.jit.grid_rows_kernel
+    for basis, hname in (("value", "table"), ("gradient", "table"), ("value", "integer"), ("gradient", "integer")):
+        noise = LatticeNoise(2, rng=1, kernel="quintic", basis=basis, **({} if hname == "table" else {"hash": hname}))
+        kernel = real(2, 2, hname == "integer", basis == "gradient")
+        kernel_times = []
+
+        def timed_kernel(*args):
+            c0 = time.thread_time()
+            kernel(*args)
+            kernel_times.append(time.thread_time() - c0)
+
+        def p10(call, n=10 * repeats):
+            call()
+            times = []
+            for _ in range(n):
+                c0 = time.thread_time()
+                call()
+                times.append(time.thread_time() - c0)
+            return 1e3 * float(np.percentile(times, 10))
+
+        def call():
+            return fractal_sum(noise, grid, 6, dtype=np.float32)
+        kept = getattr(grid_path, "AXIS_TAPS_KEPT", None)  # None: a version that makes them every call
+        try:
+            grid_path.jit.grid_rows_kernel = lambda *key: (lambda *args: None)
+            shared = p10(call)
+            if kept is not None:
+                grid_path.AXIS_TAPS_KEPT = 0
+                grid_path._AXIS_TAPS.clear()
+                made = p10(call)
+                grid_path.AXIS_TAPS_KEPT = kept
+            else:
+                shared, made = float("nan"), shared
+            grid_path.jit.grid_rows_kernel = lambda *key: timed_kernel
+            p10(call)
+        finally:
+            grid_path.jit.grid_rows_kernel = real
+            if kept is not None:
+                grid_path.AXIS_TAPS_KEPT = kept
+        ker = 1e3 * float(np.percentile(kernel_times, 10))
+        lines.append(f"| 512^2 fBm, quintic {basis} | {hname} | {shared:.3f} | {made:.3f} | {ker:.3f} |")
+        print(lines[-1], flush=True)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=7)
@@ -125,13 +182,16 @@ def main(argv=None):
     if args.repeats < 5:
         ap.error("--repeats must be >= 5 (medians)")
     info = run_info(f"python benchmarks/bench_workers.py --repeats {args.repeats}")
-    lines = ["", f"## {info['date']}", ""] + header_lines(
+    rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
+                         text=True).stdout.strip() or "unknown"
+    lines = ["", f"## {info['date']}: noiselab at {rev}", ""] + header_lines(
         info, timing="wall: perf_counter; CPU: each thread's own clock; medians of the calls") + [""]
     lines += ["| call | size | wall x (cores) | split x | cpu sum | blocks |", "|---|---|---|---|---|---|"]
     for name, size, call in cases():
         wall, cores, split, cpu_sum, nblocks = measure(call, args.repeats)
         lines.append(f"| {name} | {size} | {wall:.2f} ({cores:.1f}) | {split:.2f} | {cpu_sum:.2f} | {nblocks} |")
         print(lines[-1], flush=True)
+    setup_rows(args.repeats, lines)
     lines += ["", f"Load average (1 min) at the end: {os.getloadavg()[0]:.1f}."]
     text = "\n".join(lines) + "\n"
     if args.append:

@@ -568,6 +568,8 @@ def test_grid_bands_share_one_set_up(monkeypatch, dim):
 
     monkeypatch.setattr(grid_path, "MIN_BAND", 1)
     monkeypatch.setattr(grid_path, "octave_axis_taps", counting)
+    monkeypatch.setattr(grid_path, "AXIS_TAPS_KEPT", 0)  # none kept: each call makes its own
+    monkeypatch.setattr(grid_path, "_AXIS_TAPS", {})
     noise = LatticeNoise(dim, rng=3, kernel="quintic")
     g = Grid((40, 24, 9)[:dim], [(0, 3), (0, 2), (0, 1)][:dim])
     one = fractal_sum(noise, g, 4, dtype=np.float32)
@@ -575,3 +577,41 @@ def test_grid_bands_share_one_set_up(monkeypatch, dim):
     two = fractal_sum(noise, g, 4, dtype=np.float32, workers=2)
     assert np.array_equal(one, two)
     assert len(made) - n_one == n_one and made[n_one:] == made[:n_one]  # the whole axes, once each
+
+
+def test_a_grid_s_axis_taps_are_shared_read_only_and_keyed_on_all_they_depend_on(monkeypatch):
+    # the fused path keeps the axis taps of the last grids: the same bits whether made or reused, and never
+    # reused for another phase, frequency, kernel or period
+    from noiselab import fractal_sum
+    from noiselab.lattice import grid_path
+
+    made = []
+    real = grid_path.octave_axis_taps
+
+    def counting(*args, **kwargs):
+        made.append(1)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(grid_path, "_AXIS_TAPS", {})
+    monkeypatch.setattr(grid_path, "octave_axis_taps", counting)
+    g = Grid((33, 20), [(0, 3), (0.5, 2)])
+    first = fractal_sum(LatticeNoise(2, rng=1, kernel="quintic"), g, 4)
+    n_made = len(made)
+    assert n_made == 2  # two different axes
+    # another seed on the same grid: the taps are reused, the values are the seed's own
+    other = fractal_sum(LatticeNoise(2, rng=2, kernel="quintic"), g, 4)
+    assert len(made) == n_made and not np.array_equal(other, first)
+    monkeypatch.setattr(grid_path, "_AXIS_TAPS", {})
+    assert np.array_equal(fractal_sum(LatticeNoise(2, rng=2, kernel="quintic"), g, 4), other)  # made afresh: same
+    made.clear()
+    for noise in (LatticeNoise(2, rng=1, kernel="quintic", phase=0.25), LatticeNoise(2, rng=1, kernel="cubic"),
+                  LatticeNoise(2, rng=1, kernel="quintic", frequency=1.5),
+                  LatticeNoise(2, rng=1, kernel="quintic", basis="gradient"),
+                  LatticeNoise(2, rng=1, kernel="quintic", period=8)):
+        before = len(made)
+        fractal_sum(noise, g, 4)
+        assert len(made) > before, noise
+    cached = next(iter(grid_path._AXIS_TAPS.values()))
+    with pytest.raises(ValueError, match="read-only"):
+        cached[0][2][...] = 0.0
+    assert len(grid_path._AXIS_TAPS) <= grid_path.AXIS_TAPS_KEPT

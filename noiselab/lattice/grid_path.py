@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import copy
 import math
+import threading
 
 import numpy as np
 
@@ -178,6 +179,10 @@ def is_separable(taps, full_coords, freq):
 
 # the dimensions whose separable octaves take the fused kernel (:func:`grid_rows`); the others, the passes
 FUSED_DIMS = (2, 3)
+# the fused path's axis taps of the last few grids (:func:`shared_axis_taps`): a 512^2 fBm's set-up is 0.2 ms of 2
+AXIS_TAPS_KEPT = 8
+_AXIS_TAPS = {}
+_AXIS_TAPS_LOCK = threading.Lock()
 # the points of one call of the scattered path: a block of whole rows of axis 0 (one row at least)
 SCATTERED_BLOCK = 1 << 16
 
@@ -221,6 +226,36 @@ def axis_taps(noise, coords_a, freq_a, a, grad, deriv=False, period=None):
     period = int(noise.period[a] if period is None else period)
     return octave_axis_taps(noise, coords_a, np.array([freq_a], dtype=np.float64), a, grad,
                             np.array([period], dtype=np.int64), deriv=deriv)[0]
+
+
+def shared_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
+    """:func:`octave_axis_taps`, kept for the last :data:`AXIS_TAPS_KEPT` argument sets, its arrays read-only.
+
+    They depend on the grid's coordinates, the octaves' frequencies and
+    periods, the phase and the kernel, not on the hash tables: many noises
+    (seeds) on one grid, or one grid rendered again, reuse them, as an FFT
+    reuses its plan. About 0.2 ms of a 2 ms 512^2 6-octave fBm
+    (``benchmarks/bench_workers.md``, "The set-up of a grid"). Read-only
+    because every caller shares them: the fused path only stacks and reads
+    them.
+    """
+    k = noise.kernel
+    key = (k.name, k.taps, k.shift, k.left, k.coef.tobytes(), k.dcoef.tobytes() if deriv else b"",
+           coords_a.tobytes(), freqs.tobytes(), periods.tobytes(), float(noise.phase[a]), bool(grad), bool(deriv))
+    with _AXIS_TAPS_LOCK:
+        taps = _AXIS_TAPS.pop(key, None)
+        if taps is not None:
+            _AXIS_TAPS[key] = taps  # the most recently used last
+            return taps
+    taps = octave_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=deriv)
+    for arrays in taps:
+        for arr in arrays:
+            arr.flags.writeable = False
+    with _AXIS_TAPS_LOCK:
+        _AXIS_TAPS[key] = taps
+        while len(_AXIS_TAPS) > AXIS_TAPS_KEPT:
+            del _AXIS_TAPS[next(iter(_AXIS_TAPS))]
+    return taps
 
 
 def octave_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
@@ -349,7 +384,7 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None, band
             pers = np.array([per[a] for _, _, per in flat], dtype=np.int64)
             key = (sub[a].tobytes(), freqs.tobytes(), pers.tobytes(), float(noise.phase[a]), a == deriv_axis)
             if key not in done:
-                done[key] = octave_axis_taps(noise, sub[a], freqs, a, grad, pers, deriv=a == deriv_axis)
+                done[key] = shared_axis_taps(noise, sub[a], freqs, a, grad, pers, deriv=a == deriv_axis)
             per_axis.append(done[key])
         axes_per_octave = [[per_axis[a][o] for a in range(d)] for o in range(len(flat))]
         grid_rows(noise, [o for batch in batches for o in batch], [len(batch) for batch in batches],
