@@ -611,7 +611,15 @@ def test_a_grid_s_axis_taps_are_shared_read_only_and_keyed_on_all_they_depend_on
         before = len(made)
         fractal_sum(noise, g, 4)
         assert len(made) > before, noise
-    cached = next(iter(grid_path._AXIS_TAPS.values()))
+    cached, _ = next(iter(grid_path._AXIS_TAPS.values()))
     with pytest.raises(ValueError, match="read-only"):
         cached[0][2][...] = 0.0
     assert len(grid_path._AXIS_TAPS) <= grid_path.AXIS_TAPS_KEPT
+    # a memory bound: taps bigger than a quarter of it are not kept, and what is kept stays within it
+    monkeypatch.setattr(grid_path, "AXIS_TAPS_BYTES", 40_000)
+    monkeypatch.setattr(grid_path, "_AXIS_TAPS", {})
+    fractal_sum(LatticeNoise(2, rng=1, kernel="quintic"), Grid((2000, 8), [(0, 30), (0, 1)]), 4)
+    assert [n for _, n in grid_path._AXIS_TAPS.values()] and max(n for _, n in grid_path._AXIS_TAPS.values()) <= 10_000
+    for width in (40, 41, 42, 43, 44, 45):
+        fractal_sum(LatticeNoise(2, rng=1, kernel="quintic"), Grid((width, 300), [(0, 3), (0, 20)]), 4)
+    assert sum(n for _, n in grid_path._AXIS_TAPS.values()) <= 40_000

@@ -181,6 +181,7 @@ def is_separable(taps, full_coords, freq):
 FUSED_DIMS = (2, 3)
 # the fused path's axis taps of the last few grids (:func:`shared_axis_taps`): a 512^2 fBm's set-up is 0.2 ms of 2
 AXIS_TAPS_KEPT = 8
+AXIS_TAPS_BYTES = 32 << 20  # and at most this much memory (a 4096-sample axis, 6 octaves, 4 taps: 1.5 MiB)
 _AXIS_TAPS = {}
 _AXIS_TAPS_LOCK = threading.Lock()
 # the points of one call of the scattered path: a block of whole rows of axis 0 (one row at least)
@@ -229,7 +230,8 @@ def axis_taps(noise, coords_a, freq_a, a, grad, deriv=False, period=None):
 
 
 def shared_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
-    """:func:`octave_axis_taps`, kept for the last :data:`AXIS_TAPS_KEPT` argument sets, its arrays read-only.
+    """:func:`octave_axis_taps`, kept for the last :data:`AXIS_TAPS_KEPT` argument sets (at most
+    :data:`AXIS_TAPS_BYTES` in all; larger sets are not kept), its arrays read-only.
 
     They depend on the grid's coordinates, the octaves' frequencies and
     periods, the phase and the kernel, not on the hash tables: many noises
@@ -243,17 +245,20 @@ def shared_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
     key = (k.name, k.taps, k.shift, k.left, k.coef.tobytes(), k.dcoef.tobytes() if deriv else b"",
            coords_a.tobytes(), freqs.tobytes(), periods.tobytes(), float(noise.phase[a]), bool(grad), bool(deriv))
     with _AXIS_TAPS_LOCK:
-        taps = _AXIS_TAPS.pop(key, None)
-        if taps is not None:
-            _AXIS_TAPS[key] = taps  # the most recently used last
-            return taps
+        kept = _AXIS_TAPS.pop(key, None)
+        if kept is not None:
+            _AXIS_TAPS[key] = kept  # the most recently used last
+            return kept[0]
     taps = octave_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=deriv)
+    size = sum(arr.nbytes for arrays in taps for arr in {id(x): x for x in arrays}.values())
+    if size > AXIS_TAPS_BYTES // 4:
+        return taps  # too big to keep
     for arrays in taps:
         for arr in arrays:
             arr.flags.writeable = False
     with _AXIS_TAPS_LOCK:
-        _AXIS_TAPS[key] = taps
-        while len(_AXIS_TAPS) > AXIS_TAPS_KEPT:
+        _AXIS_TAPS[key] = (taps, size)
+        while len(_AXIS_TAPS) > AXIS_TAPS_KEPT or sum(n for _, n in _AXIS_TAPS.values()) > AXIS_TAPS_BYTES:
             del _AXIS_TAPS[next(iter(_AXIS_TAPS))]
     return taps
 
