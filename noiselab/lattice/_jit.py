@@ -1116,6 +1116,7 @@ def _make_table_block(TAPS, GRAD):
         noct = freqs.shape[0]
         n = (TL.shape[1] // 2 - 4) // 2  # the table size n, from the folded tables' run 2 (2n + 4)
         nmask = n - 1 if (n & (n - 1)) == 0 else -1
+        un = _U64(n)
         flat = src.reshape(-1)
         X = np.empty((3, BLOCK))
         W = np.empty((3, TAPS, BLOCK))
@@ -1136,21 +1137,21 @@ def _make_table_block(TAPS, GRAD):
                     H = H2[c]
                     V = TL[c]
                     acc = ACC[c]
-                    for i in range(m):
-                        b2 = J[2, 0, i]
+                    for i in range(m):  # unsigned indices: no check for a negative one (:func:`_block_load`)
+                        b2 = _U64(J[2, 0, i])
                         total = 0.0
                         for k0 in range(TAPS):
-                            row = J[0, k0, i] * n
+                            row = _U64(J[0, k0, i]) * un
                             s1 = 0.0
                             for k1 in range(TAPS):
-                                hb = np.int64(H[row + J[1, k1, i]]) + b2
+                                hb = _U64(H[row + _U64(J[1, k1, i])]) + b2
                                 s2 = 0.0
                                 for k2 in range(TAPS):
+                                    x = hb + _U64(k2)
                                     if GRAD:
-                                        v = V[hb + k2, 0] * R[0, k0, i] + V[hb + k2, 1] * R[1, k1, i] + \
-                                            V[hb + k2, 2] * R[2, k2, i]
+                                        v = V[x, 0] * R[0, k0, i] + V[x, 1] * R[1, k1, i] + V[x, 2] * R[2, k2, i]
                                     else:
-                                        v = V[hb + k2]
+                                        v = V[x]
                                     s2 += W[2, k2, i] * v
                                 s1 += W[1, k1, i] * s2
                             total += W[0, k0, i] * s1
