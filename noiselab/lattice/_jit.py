@@ -1067,32 +1067,23 @@ def _make_int_two_taps(DIM, GRAD):
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _table_axis(x, m, f, ph, shift, left, coef, n, nmask, W, R, J, TAPS, GRAD):
-    """One axis of a block for the table hash without a period: weights, (GRAD) signed distances, wrapped taps.
+def _table_axis(x, m, f, ph, shift, left, coef, n, W, R, J, TAPS, GRAD):
+    """One axis of a block for the table hash without a period (n a power of two): weights, (GRAD) signed
+    distances, taps.
 
     The values of :func:`_make_points`' per-point set-up (the same operations in the same order), every
-    loop from index 0 (:func:`_block_load`). For a power-of-two n the first tap is reduced in float64,
-    ``fi - floor(fi / n) n`` (exact, as in :func:`_block_axis`), without a branch; else by :func:`_reduce`.
-    ``J[0]`` is the first tap in [0, n), ``J[k]`` tap ``k`` modulo n.
+    loop from index 0 (:func:`_block_load`): the first tap reduced in float64, ``fi - floor(fi / n) n``
+    (exact, as in :func:`_block_axis`; no branch for huge coordinates), then ``J[k]`` tap ``k`` modulo n.
     """
-    J0 = J[0]
-    if nmask >= 0:
-        inv = 1.0 / n
-        for i in range(m):
-            fi = np.floor(x[i] * f + ph + shift)  # same rounding as the grid path
-            J0[i] = (np.int64(fi - np.floor(fi * inv) * n) - left) & nmask
-    else:
-        for i in range(m):
-            J0[i] = _reduce(np.floor(x[i] * f + ph + shift), left, n, -1)
-    for k in range(1, TAPS):
-        Jk = J[k]
-        for i in range(m):
-            Jk[i] = _hash(J0[i], k, n, nmask)
+    inv = 1.0 / n
     for i in range(m):
-        u = x[i] * f + ph + shift
-        t = u - np.floor(u)
+        u = x[i] * f + ph + shift  # same rounding as the grid path
+        fi = np.floor(u)
+        t = u - fi
+        j = (np.int64(fi - np.floor(fi * inv) * n) - left) & (n - 1)
         t2, t3, t4, t5 = _powers(t)
         for k in range(TAPS):
+            J[k, i] = (j + k) & (n - 1)
             W[k, i] = _weight(coef, k, t, t2, t3, t4, t5)
             if GRAD:
                 R[k, i] = t - shift + (left - k)
@@ -1115,23 +1106,22 @@ def _make_table_block(TAPS, GRAD):
         ncomp = H2.shape[0]
         noct = freqs.shape[0]
         n = (TL.shape[1] // 2 - 4) // 2  # the table size n, from the folded tables' run 2 (2n + 4)
-        nmask = n - 1 if (n & (n - 1)) == 0 else -1
         un = _U64(n)
         flat = src.reshape(-1)
         X = np.empty((3, BLOCK))
         W = np.empty((3, TAPS, BLOCK))
         R = np.empty((3, TAPS, BLOCK) if GRAD else (3, 1, 1))
         J = np.empty((3, TAPS, BLOCK), np.int64)
-        ACC = np.zeros((ncomp, BLOCK))
+        ACC = np.empty((ncomp, BLOCK))
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, 3)
             for c in range(ncomp):
-                ACC[c, :m] = 0.0
+                for i in range(m):
+                    ACC[c, i] = 0.0
             for o in range(noct):
                 for a in range(3):
-                    _table_axis(X[a], m, freqs[o, a], phase[a], shift, left, coef, n, nmask, W[a], R[a], J[a],
-                                TAPS, GRAD)
+                    _table_axis(X[a], m, freqs[o, a], phase[a], shift, left, coef, n, W[a], R[a], J[a], TAPS, GRAD)
                 amp = amps[o]
                 for c in range(ncomp):
                     H = H2[c]

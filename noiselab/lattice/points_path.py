@@ -79,9 +79,9 @@ def shape_out(out, lead, dim_out):
 
 
 # 3-D table-hash noise without a period or derivatives runs the block kernel over folded tables
-# (:func:`._jit.pair_tables`, the same bits) from this many points on (building them takes about 0.3 ms for
-# n = 256), and up to this many entries (n * n per component: 2 MiB for n = 1024); fewer points, or larger
-# tables, take the per-point kernel
+# (:func:`._jit.pair_tables`, the same bits) from this many points on (building them takes about 0.6 ms for
+# n = 256, once per set of tables: :func:`_folded`), and up to this many entries (n * n per component: 2 MiB for
+# n = 1024); fewer points, or larger tables, take the per-point kernel
 PAIRS_MIN = 1 << 15
 MAX_PAIR_ENTRIES = 1 << 20
 
@@ -113,7 +113,7 @@ def _periodic(noise):
 def _pairs(noise, npts, deriv):
     """Whether this call takes the 3-D table-hash block kernel over folded tables (:data:`TABLE_SPLIT`)."""
     return (TABLE_SPLIT and noise.hash == "table" and noise.dim_in == 3 and not deriv
-            and npts >= PAIRS_MIN and not _periodic(noise)
+            and npts >= PAIRS_MIN and not _periodic(noise) and noise.table_size & (noise.table_size - 1) == 0
             and noise.table_size ** 2 * noise.dim_out <= MAX_PAIR_ENTRIES)
 
 
@@ -171,6 +171,20 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
     map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n)
 
 
+_FOLDED = {}  # the last few folded tables, keyed by the tables' bytes (building them: 0.6 ms for n = 256)
+
+
+def _folded(noise, gradient):
+    """:func:`._jit.pair_tables` of the noise's live tables (the values', or the gradients'), reused while unchanged."""
+    grads = noise.gradients if gradient else None
+    key = (noise.perms.shape, noise.perms.tobytes(), noise.values.tobytes(), None if grads is None else grads.tobytes())
+    if key not in _FOLDED:
+        if len(_FOLDED) >= 4:
+            _FOLDED.clear()
+        _FOLDED[key] = jit.pair_tables(noise.perms, noise.values, grads)
+    return _FOLDED[key]
+
+
 def _run_table(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
     """The table hash's 3-D block kernel over ``flat`` into ``out``, as :func:`_run_block` (rows or columns in place)."""
     src, cols = _layout(flat)
@@ -178,8 +192,7 @@ def _run_table(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
     gradient = noise.basis == "gradient"
     kernel = jit.table_block_kernel(k.taps, gradient)
     rest = ((np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
-             noise.phase, k.shift, k.left, k.coef)
-            + jit.pair_tables(noise.perms, noise.values, noise.gradients if gradient else None) + (bool(absval),))
+             noise.phase, k.shift, k.left, k.coef) + _folded(noise, gradient) + (bool(absval),))
     n = min(workers, max(1, flat.shape[0] // min_block))
     bounds = np.linspace(0, flat.shape[0], n + 1).astype(np.int64).tolist()
     map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n)
