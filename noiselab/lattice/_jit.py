@@ -25,7 +25,10 @@ unrolls.
   (:func:`_make_int_two_taps`: 2-tap kernels, every point's taps in
   registers) and :func:`int_block_kernel` (:func:`_make_int_block`: the
   others, block by block), both reading ``(N, d)`` rows or ``(d, N)``
-  columns in place. Octaves are fused into one pass over the points.
+  columns in place; :func:`table_block_kernel` (:func:`_make_table_block`:
+  the table hash's 3-D values without a period over :func:`pair_tables`,
+  block by block, either layout in place). Octaves are fused into one pass
+  over the points.
 - the separable grid passes: :func:`axis_weights` / :func:`axis_dweights`
   and :func:`dense_taps` (per-axis weights and distinct taps),
   :func:`hash_expand` / :func:`hash_expand_values` / :func:`block_prefix`

@@ -6,13 +6,13 @@ read in place, without a copy) as ``(N, dim_in)`` rows;
 :func:`evaluate_points` and :func:`evaluate_points_jac` run the one point
 kernel of :mod:`._jit` that fits the noise (:func:`._jit.points_kernel`:
 hash, dimension, tap count, derivative flag, and whether any axis has a
-period of its own; 3-D table-hash noise without a period a kernel split per
-chunk of points, :data:`TABLE_SPLIT`, its values over folded tables from
-:data:`PAIRS_MIN` points on; integer-hash values in 1-3-D a kernel
+period of its own; 3-D table-hash noise without a period, from
+:data:`PAIRS_MIN` points on, a block kernel over folded tables that reads
+rows or columns in place, :data:`TABLE_SPLIT`; integer-hash values in 1-3-D a kernel
 vectorised across points, :data:`INT_FAST_DIM`, and without a period of
 their own one that reads rows or columns in place, :data:`INT_BLOCK`) over
 blocks of points on ``workers`` threads (:func:`noiselab._core.run_split`,
-or :func:`_run_block` for the in-place kernels: every point's arithmetic is
+or :func:`_run_block` / :func:`_run_table` for the in-place kernels: every point's arithmetic is
 the same whatever the split, so any worker count gives the same bits). These
 functions read a noise's tables and change nothing.
 """
