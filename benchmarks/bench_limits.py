@@ -319,7 +319,8 @@ def report(t, repeats, load, cmd):
     info = run_info(cmd, ["pyfastnoisesimd"], load=load)
     rate = {k: NPTS / t[k] for k in t}
     names = [k for k in ("table", "table-kernel", "table-setup", "lookups", "table-gradient", "lookups-gradient",
-                         "table-catmull-rom", "lookups-4taps", "integer", "integer-columns", "int-same64", "int-minimal64", "int-minimal",
+                         "table-catmull-rom", "lookups-4taps",
+                         "integer", "integer-columns", "int-same64", "int-minimal64", "int-minimal",
                          "fns", "floor32")
              if k in rate]
     lines = ["# What limits lattice noise on scattered 3-D points\n",
@@ -356,7 +357,8 @@ def report(t, repeats, load, cmd):
                      "max and min over the points, the output's allocation). Within the kernel, the per-axis "
                      f"float64 arithmetic that the bits need (`table-setup`: weights and taps, no read) takes "
                      f"{ms['table-setup']:.1f} ms, {t.ratio('table-setup', 'lookups'):.2f}x the reads' "
-                     f"{ms['lookups']:.1f} ms (both read the points and write the output): the kernel runs it vectorised "
+                     f"{ms['lookups']:.1f} ms (both read the points and write the output): the kernel runs it "
+                     "vectorised "
                      "block by block and then the reads point by point, so its time is about their sum "
                      f"({ms['table-setup'] + ms['lookups']:.1f} ms). 0.8x "
                      "the read bound would need the arithmetic, the input check and the reads to overlap almost "

@@ -1071,12 +1071,12 @@ def _make_int_two_taps(DIM, GRAD):
 
 @nb.njit(cache=True, nogil=True, inline="always")
 def _table_axis(x, m, f, ph, shift, left, coef, n, W, R, J, TAPS, GRAD):
-    """One axis of a block for the table hash without a period (n a power of two): weights, (GRAD) signed
-    distances, taps.
+    """One axis of a block for the table hash without a period: weights, (GRAD) signed distances, taps.
 
-    The values of :func:`_make_points`' per-point set-up (the same operations in the same order), every
-    loop from index 0 (:func:`_block_load`): the first tap reduced in float64, ``fi - floor(fi / n) n``
-    (exact, as in :func:`_block_axis`; no branch for huge coordinates), then ``J[k]`` tap ``k`` modulo n.
+    For a table size n that is a power of two. The values of :func:`_make_points`' per-point set-up (the
+    same operations in the same order), in one loop from index 0 (:func:`_block_load`) that LLVM vectorises:
+    the first tap reduced in float64, ``fi - floor(fi / n) n`` (exact, as in :func:`_block_axis`; no branch
+    for huge coordinates), then ``J[k]`` tap ``k`` modulo n.
     """
     inv = 1.0 / n
     for i in range(m):

@@ -177,7 +177,8 @@ _FOLDED = {}  # the last few folded tables, keyed by the tables' bytes (building
 def _folded(noise, gradient):
     """:func:`._jit.pair_tables` of the noise's live tables (the values', or the gradients'), reused while unchanged."""
     grads = noise.gradients if gradient else None
-    key = (noise.perms.shape, noise.perms.tobytes(), noise.values.tobytes(), None if grads is None else grads.tobytes())
+    key = (noise.perms.shape, noise.perms.tobytes(), noise.values.tobytes(),
+           None if grads is None else grads.tobytes())
     if key not in _FOLDED:
         if len(_FOLDED) >= 4:
             _FOLDED.clear()
@@ -186,7 +187,7 @@ def _folded(noise, gradient):
 
 
 def _run_table(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
-    """The table hash's 3-D block kernel over ``flat`` into ``out``, as :func:`_run_block` (rows or columns in place)."""
+    """The table hash's 3-D block kernel over ``flat`` into ``out``, rows or columns in place, as :func:`_run_block`."""
     src, cols = _layout(flat)
     k = noise.kernel
     gradient = noise.basis == "gradient"
