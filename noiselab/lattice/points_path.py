@@ -179,11 +179,13 @@ def _folded(noise, gradient):
     grads = noise.gradients if gradient else None
     key = (noise.perms.shape, noise.perms.tobytes(), noise.values.tobytes(),
            None if grads is None else grads.tobytes())
-    if key not in _FOLDED:
+    tables = _FOLDED.get(key)
+    if tables is None:  # (another thread may clear the dict meanwhile: this call keeps its own reference)
+        tables = jit.pair_tables(noise.perms, noise.values, grads)
         if len(_FOLDED) >= 4:
             _FOLDED.clear()
-        _FOLDED[key] = jit.pair_tables(noise.perms, noise.values, grads)
-    return _FOLDED[key]
+        _FOLDED[key] = tables
+    return tables
 
 
 def _run_table(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
