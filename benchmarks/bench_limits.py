@@ -15,6 +15,19 @@ implementation of the same construction can reach here:
   value addresses depending on the pair reads. The kernel does exactly
   these reads, on tables built from noiselab's, and sums the eight values:
   no weights, no fractional parts.
+  ``lookups-gradient`` does the same reads for gradient noise (8 gradient
+  rows of 3 instead of 8 values) and ``lookups-4taps`` for a 4-tap kernel
+  (Catmull-Rom: 16 pair-table reads, 64 values). noiselab's block kernel
+  (:func:`noiselab.lattice._jit.table_block_kernel`) makes exactly these
+  reads, from the same folded tables (:func:`noiselab.lattice._jit.pair_tables`),
+  so each stays a lower bound for it, and for any kernel making the table
+  hash's reads.
+- ``table-kernel``: noiselab's table-hash block kernel called directly on the
+  points (no wrapper: no input checks, no allocation of the output, no
+  folded tables to look up); ``table-setup``: only its per-axis arithmetic
+  (:func:`noiselab.lattice._jit._table_axis`: weights and taps of the three
+  axes, block by block, no table read), summed into the output: what the
+  bits' float64 arithmetic costs before the first read.
 - ``int-minimal``: the shortest integer-hash value noise numba compiles:
   float32 in and out, floor, quintic fade, the eight corners hashed with
   noiselab's formula (``mix32(key ^ i M0 ^ j M1 ^ k M2)``), trilinear blend; no
@@ -60,7 +73,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from bench_lattice import _fns_points, _peer  # noqa: E402  (pyfastnoisesimd as bench_lattice runs it)
 from noiselab import LatticeNoise  # noqa: E402
-from noiselab.lattice import _jit  # noqa: E402  (the float32 kernel timed without its wrapper)
+from noiselab.lattice import _jit, points_path  # noqa: E402
+from noiselab.lattice._jit import BLOCK, _table_axis, pair_tables, table_block_kernel  # noqa: E402
 from noiselab.lattice.tables import axis_multipliers  # noqa: E402
 from noiselab.lab.measure import interleaved, run_info  # noqa: E402
 
@@ -99,6 +113,57 @@ def table_lookups(pts, h2, vl, out):
                 h = np.int64(h2[row + ((i1 + b) & 255)]) + k
                 s += vl[h] + vl[h + 1]
         out[p] = s
+
+
+@nb.njit(nogil=True)
+def table_lookups_gradient(pts, h2, gl, out):
+    """``table_lookups`` for gradient noise: 4 pair-table reads, 8 gradient rows (3 components each)."""
+    for p in range(pts.shape[0]):
+        i0 = np.int64(np.floor(pts[p, 0])) & 255
+        i1 = np.int64(np.floor(pts[p, 1])) & 255
+        k = np.int64(np.floor(pts[p, 2])) & 255
+        s = 0.0
+        for a in range(2):
+            row = ((i0 + a) & 255) * 256
+            for b in range(2):
+                h = np.int64(h2[row + ((i1 + b) & 255)]) + k
+                s += (gl[h, 0] + gl[h, 1] + gl[h, 2]) + (gl[h + 1, 0] + gl[h + 1, 1] + gl[h + 1, 2])
+        out[p] = s
+
+
+@nb.njit(nogil=True)
+def table_lookups4(pts, h2, vl, out):
+    """``table_lookups`` for a 4-tap kernel: 16 pair-table reads, 64 value reads."""
+    for p in range(pts.shape[0]):
+        i0 = np.int64(np.floor(pts[p, 0])) & 255
+        i1 = np.int64(np.floor(pts[p, 1])) & 255
+        k = np.int64(np.floor(pts[p, 2])) & 255
+        s = 0.0
+        for a in range(4):
+            row = ((i0 + a) & 255) * 256
+            for b in range(4):
+                h = np.int64(h2[row + ((i1 + b) & 255)]) + k
+                s += (vl[h] + vl[h + 1]) + (vl[h + 2] + vl[h + 3])
+        out[p] = s
+
+
+@nb.njit(nogil=True)
+def table_setup(pts, f, ph, shift, left, coef, n, out):
+    """The per-axis arithmetic of noiselab's 2-tap table block kernel alone (no reads), summed per point."""
+    X = np.empty((3, BLOCK))
+    W = np.empty((3, 2, BLOCK))
+    R = np.empty((3, 1, 1))
+    J = np.empty((3, 2, BLOCK), np.int64)
+    for p0 in range(0, pts.shape[0], BLOCK):
+        m = min(BLOCK, pts.shape[0] - p0)
+        for i in range(m):
+            for a in range(3):
+                X[a, i] = pts[p0 + i, a]
+        for a in range(3):
+            _table_axis(X[a], m, f[a], ph[a], shift, left, coef, n, W[a], R[a], J[a], 2, False)
+        o = out[p0:p0 + m]
+        for i in range(m):
+            o[i] = (W[0, 0, i] + W[1, 1, i]) + (W[2, 0, i] + np.float64(J[0, 1, i] + J[1, 0, i] + J[2, 1, i]))
 
 
 @nb.njit(inline="always")
@@ -214,6 +279,18 @@ def measure(repeats):
     table = LatticeNoise(3, rng=1, kernel="quintic")
     integer = LatticeNoise(3, rng=1, kernel="quintic", hash="integer")  # 2 taps: int_same64 follows its arithmetic
     h2, vl = _pair_tables(table.perms[0], table.values)
+    gradient = LatticeNoise(3, rng=1, kernel="quintic", basis="gradient")
+    catmull = LatticeNoise(3, rng=1, kernel="catmull-rom")
+    gh2, gl = (t[0] for t in pair_tables(gradient.perms, gradient.values, gradient.gradients))
+    ch2, cvl = _pair_tables(catmull.perms[0], catmull.values)
+    kt = table.kernel
+    kernel = table_block_kernel(2, False)
+    direct = (np.ones((1, 3)), np.array([table.scale]), table.phase, kt.shift, kt.left, kt.coef,
+              *pair_tables(table.perms, table.values), False)
+    out2 = np.empty((NPTS, 1))
+    kernel(pts, False, 0, NPTS, out2, *direct)
+    if not (np.array_equal(out2[:, 0], table(pts)) and points_path._pairs(table, NPTS, False)):
+        raise AssertionError("table-kernel is no longer the kernel noiselab runs: update it beside the engine")
     cols = np.ascontiguousarray(pts32.T)
     out64, out32 = np.empty(NPTS), np.empty(NPTS, np.float32)
     key = np.uint32(0x2545F491)
@@ -227,6 +304,13 @@ def measure(repeats):
         "floor32": lambda: np.full(NPTS, 0.5, np.float32),
         "table": lambda: table(pts),
         "lookups": lambda: table_lookups(pts, h2, vl, out64),
+        "table-kernel": lambda: kernel(pts, False, 0, NPTS, out2, *direct),
+        "table-setup": lambda: table_setup(pts, np.ones(3), table.phase, kt.shift, kt.left, kt.coef,
+                                           table.table_size, out64),
+        "table-gradient": lambda: gradient(pts),
+        "lookups-gradient": lambda: table_lookups_gradient(pts, gh2, gl, out64),
+        "table-catmull-rom": lambda: catmull(pts),
+        "lookups-4taps": lambda: table_lookups4(pts, ch2, cvl, out64),
         "integer": lambda: integer(pts32),
         "int-minimal": lambda: int_minimal(*soa, key, out32),
         "int-minimal64": lambda: int_minimal64(*soa, key, out32),
@@ -355,7 +439,9 @@ def f32_error(npts=NPTS):
 def report(t, repeats, load, cmd):
     info = run_info(cmd, ["pyfastnoisesimd"], load=load)
     rate = {k: NPTS / t[k] for k in t}
-    names = [k for k in ("table", "lookups", "integer", "integer-columns", "int-same64", "int-minimal64", "int-minimal",
+    names = [k for k in ("table", "table-kernel", "table-setup", "lookups", "table-gradient", "lookups-gradient",
+                         "table-catmull-rom", "lookups-4taps",
+                         "integer", "integer-columns", "int-same64", "int-minimal64", "int-minimal",
                          "fns", "floor32")
              if k in rate]
     lines = ["# What limits lattice noise on scattered 3-D points\n",
@@ -378,13 +464,26 @@ def report(t, repeats, load, cmd):
         lines.append(f"| {k} | {rate[k]:.3g} | {xf} | {t.ratio('floor32', k):.3f} | {t.ratio(k, 'lookups'):.2f} |")
     lines += ["", "Reading (the figures of this run):", ""]
     if "fns" in rate:
-        share = 100.0 / t.ratio('table', 'lookups')
+        ms = {k: 1e3 * t[k] for k in t}
         lines.append(f"- The table hash's reads alone run at {t.ratio('fns', 'lookups'):.2f}x pyfastnoisesimd: no "
                      "kernel that makes these reads reaches 1x on these points, whatever its arithmetic (the plain "
-                     "nested permutation would read 22 entries a point, not 12). noiselab's table kernel takes "
-                     f"{t.ratio('table', 'lookups'):.2f}x the time of its reads, so they are about {share:.0f} % of "
-                     "its time; the rest is its float64 arithmetic. With no arithmetic at all it would still run at "
-                     f"the reads' {t.ratio('fns', 'lookups'):.2f}x.")
+                     "nested permutation would read 22 entries a point, not 12).")
+        lines.append(f"- noiselab's table hash against its own read bound (time of the reads / time of noiselab): "
+                     f"quintic value {1 / t.ratio('table', 'lookups'):.2f}x, quintic gradient "
+                     f"{1 / t.ratio('table-gradient', 'lookups-gradient'):.2f}x, Catmull-Rom value "
+                     f"{1 / t.ratio('table-catmull-rom', 'lookups-4taps'):.2f}x.")
+        lines.append(f"- What limits it (quintic value, {ms['table']:.1f} ms): the kernel alone (`table-kernel`) "
+                     f"takes {ms['table-kernel']:.1f} ms ({t.ratio('table-kernel', 'lookups'):.2f}x the reads); the "
+                     f"rest, {ms['table'] - ms['table-kernel']:.1f} ms, is the call's wrapper (the input check's "
+                     "max and min over the points, the output's allocation). Within the kernel, the per-axis "
+                     f"float64 arithmetic that the bits need (`table-setup`: weights and taps, no read) takes "
+                     f"{ms['table-setup']:.1f} ms, {t.ratio('table-setup', 'lookups'):.2f}x the reads' "
+                     f"{ms['lookups']:.1f} ms (both read the points and write the output): the kernel runs it "
+                     "vectorised "
+                     "block by block and then the reads point by point, so its time is about their sum "
+                     f"({ms['table-setup'] + ms['lookups']:.1f} ms). 0.8x "
+                     "the read bound would need the arithmetic, the input check and the reads to overlap almost "
+                     "entirely.")
         lines.append(f"- The integer hash has no reads. The simplest numba kernel with its arithmetic runs at "
                      f"{t.ratio('fns', 'int-minimal'):.2f}x pyfastnoisesimd; noiselab's (`integer`, float64 "
                      f"arithmetic, any period) takes {t.ratio('integer', 'int-minimal'):.2f}x its time, "

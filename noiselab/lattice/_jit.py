@@ -25,7 +25,10 @@ unrolls.
   (:func:`_make_int_two_taps`: 2-tap kernels, every point's taps in
   registers) and :func:`int_block_kernel` (:func:`_make_int_block`: the
   others, block by block), both reading ``(N, d)`` rows or ``(d, N)``
-  columns in place. Octaves are fused into one pass over the points.
+  columns in place; :func:`table_block_kernel` (:func:`_make_table_block`:
+  the table hash's 3-D values without a period over :func:`pair_tables`,
+  block by block, either layout in place). Octaves are fused into one pass
+  over the points.
 - the separable grid passes: :func:`axis_weights` / :func:`axis_dweights`
   and :func:`dense_taps` (per-axis weights and distinct taps),
   :func:`hash_expand` / :func:`hash_expand_values` / :func:`block_prefix`
@@ -1103,108 +1106,92 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _table_split(pts, p0, m, a, f, ph, shift, left, TAPS, coef, per, msk, W, R, B, U, T, GRAD):
-    """One axis of a chunk for the table hash without a period: weights, (GRAD) signed distances, first taps.
+def _table_axis(x, m, f, ph, shift, left, coef, n, W, R, J, TAPS, GRAD):
+    """One axis of a block for the table hash without a period: weights, (GRAD) signed distances, taps.
 
-    The values of :func:`_make_points`' per-point set-up (the same operations in the same order): the
-    weights in one loop that LLVM vectorises, then the reduced first tap ``B[a, i]`` (:func:`_reduce`).
+    For a table size n that is a power of two. The values of :func:`_make_points`' per-point set-up (the
+    same operations in the same order), in one loop from index 0 (:func:`_block_load`) that LLVM vectorises:
+    the first tap reduced in float64, ``fi - floor(fi / n) n`` (exact, as in :func:`_block_axis`; no branch
+    for huge coordinates), then ``J[k]`` tap ``k`` modulo n.
     """
+    inv = 1.0 / n
     for i in range(m):
-        u = pts[p0 + i, a] * f + ph + shift  # same rounding as the grid path
+        u = x[i] * f + ph + shift  # same rounding as the grid path
         fi = np.floor(u)
-        U[i] = fi
-        T[i] = u - fi
-    for k in range(TAPS):  # one tap at a time, its coefficients held in registers
-        c0 = coef[k, 0]
-        c1 = coef[k, 1]
-        c2 = coef[k, 2]
-        c3 = coef[k, 3]
-        c4 = coef[k, 4]
-        c5 = coef[k, 5]
-        for i in range(m):
-            t = T[i]
-            t2, t3, t4, t5 = _powers(t)
-            W[a, k, i] = (c0 + c1 * t) + (c2 * t2 + c3 * t3) + (c4 * t4 + c5 * t5)  # :func:`_weight`
+        t = u - fi
+        j = (np.int64(fi - np.floor(fi * inv) * n) - left) & (n - 1)
+        t2, t3, t4, t5 = _powers(t)
+        for k in range(TAPS):
+            J[k, i] = (j + k) & (n - 1)
+            W[k, i] = _weight(coef, k, t, t2, t3, t4, t5)
             if GRAD:
-                R[a, k, i] = t - shift + (left - k)
-    for i in range(m):
-        B[a, i] = _reduce(U[i], left, per, msk)
+                R[k, i] = t - shift + (left - k)
 
 
-def _make_table_fast(TAPS, GRAD):
-    """The table hash's 3-D value kernel without a period or derivatives, split per chunk, then summed.
+def _make_table_block(TAPS, GRAD):
+    """The table hash's 3-D values without a period or derivatives, block by block, reading either layout in place.
 
-    The same arguments and the same bits as :func:`_make_points` for ``DIM`` 3 (values over
-    :func:`pair_tables`, ``GRAD`` gradients over the permutation; ``basis`` is ignored): per chunk of
-    :data:`CHUNK` points and octave each axis's weights and first taps (:func:`_table_split`, vectorised
-    across points), then per point the corner sum in the general kernel's nested order from the split's
-    arrays. The weights, computed once per axis and point in a vectorised loop, were the general kernel's
-    per-point set-up (``benchmarks/bench_lattice_paths.md``).
+    The bits of :func:`_make_points` for ``DIM`` 3 (its corner sums in its nested order) with the arguments of
+    :func:`_make_int_block` less the hash's: ``(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef,
+    H2, TL, absval)``, ``H2`` and ``TL`` the folded tables of :func:`pair_tables` (values, or ``GRAD``
+    gradients). Per block of :data:`BLOCK` points: the coordinates (:func:`_block_load`), each axis's set-up
+    (:func:`_table_axis`, vectorised across points), then per point the corner sum from 4 (2 taps) or 16
+    (4 taps) pair-table reads.
     """
 
     @nb.njit(cache=True, nogil=True)
-    def table_fast(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
-                   perms, values, grads, basis, absval):
+    def table_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, H2, TL, absval):
         """Lattice noise with the table hash at scattered 3-D points, values (as :func:`_make_points`)."""
-        npts = pts.shape[0]
-        ncomp = perms.shape[0]
+        ncomp = H2.shape[0]
         noct = freqs.shape[0]
-        if GRAD:
-            n = perms.shape[1]
-        else:  # the table size n, from the folded values' run 2 (2n + 4)
-            n = (values.shape[1] // 2 - 4) // 2
-        nmask = n - 1 if (n & (n - 1)) == 0 else -1
-        W = np.empty((3, TAPS, CHUNK))
-        R = np.empty((3, TAPS, CHUNK) if GRAD else (1, 1, 1))
-        B = np.empty((3, CHUNK), np.int64)
-        U = np.empty(CHUNK)
-        T = np.empty(CHUNK)
-        ACC = np.empty((ncomp, CHUNK))
-        for p0 in range(0, npts, CHUNK):
-            m = min(CHUNK, npts - p0)
+        n = (TL.shape[1] // 2 - 4) // 2  # the table size n, from the folded tables' run 2 (2n + 4)
+        un = _U64(n)
+        flat = src.reshape(-1)
+        X = np.empty((3, BLOCK))
+        W = np.empty((3, TAPS, BLOCK))
+        R = np.empty((3, TAPS, BLOCK) if GRAD else (3, 1, 1))
+        J = np.empty((3, TAPS, BLOCK), np.int64)
+        ACC = np.empty((ncomp, BLOCK))
+        for p0 in range(lo, hi, BLOCK):
+            m = min(BLOCK, hi - p0)
+            _block_load(src, flat, cols, p0, m, X, 3)
             for c in range(ncomp):
                 for i in range(m):
                     ACC[c, i] = 0.0
             for o in range(noct):
                 for a in range(3):
-                    _table_split(pts, p0, m, a, freqs[o, a], phase[a], shift, left, TAPS, coef, period[a], pmask[a],
-                                 W, R, B, U, T, GRAD)
+                    _table_axis(X[a], m, freqs[o, a], phase[a], shift, left, coef, n, W[a], R[a], J[a], TAPS, GRAD)
                 amp = amps[o]
                 for c in range(ncomp):
-                    perm = perms[c]
+                    H = H2[c]
+                    V = TL[c]
                     acc = ACC[c]
-                    for i in range(m):
-                        b0 = B[0, i]
-                        b1 = B[1, i]
-                        b2 = B[2, i]
+                    for i in range(m):  # unsigned indices: no check for a negative one (:func:`_block_load`)
+                        b2 = _U64(J[2, 0, i])
                         total = 0.0
                         for k0 in range(TAPS):
+                            row = _U64(J[0, k0, i]) * un
                             s1 = 0.0
-                            if GRAD:
-                                h1 = perm[_hash(0, b0 + k0, n, nmask)]
-                                for k1 in range(TAPS):
-                                    h2 = perm[_hash(h1, b1 + k1, n, nmask)]
-                                    s2 = 0.0
-                                    for k2 in range(TAPS):
-                                        h = perm[_hash(h2, b2 + k2, n, nmask)]
-                                        v = grads[h, 0] * R[0, k0, i] + grads[h, 1] * R[1, k1, i] + grads[h, 2] * R[2, k2, i]
-                                        s2 += W[2, k2, i] * v
-                                    s1 += W[1, k1, i] * s2
-                            else:  # perms holds H2, values VL (pair_tables)
-                                row = _hash(0, b0 + k0, n, nmask) * n
-                                for k1 in range(TAPS):
-                                    hb = np.int64(perm[row + _hash(0, b1 + k1, n, nmask)]) + b2
-                                    s2 = 0.0
-                                    for k2 in range(TAPS):
-                                        s2 += W[2, k2, i] * values[c, hb + k2]
-                                    s1 += W[1, k1, i] * s2
+                            for k1 in range(TAPS):
+                                hb = _U64(H[row + _U64(J[1, k1, i])]) + b2
+                                s2 = 0.0
+                                for k2 in range(TAPS):
+                                    x = hb + _U64(k2)
+                                    if GRAD:
+                                        v = V[x, 0] * R[0, k0, i] + V[x, 1] * R[1, k1, i] + V[x, 2] * R[2, k2, i]
+                                    else:
+                                        v = V[x]
+                                    s2 += W[2, k2, i] * v
+                                s1 += W[1, k1, i] * s2
                             total += W[0, k0, i] * s1
                         acc[i] += amp * (abs(total) if absval else total)
-            for i in range(m):
-                for c in range(ncomp):
-                    out[p0 + i, c] = ACC[c, i]
+            ob = out[p0:p0 + m]
+            for c in range(ncomp):
+                Ac = ACC[c]
+                for i in range(m):
+                    ob[i, c] = Ac[i]
 
-    return table_fast
+    return table_block
 
 
 _POINTS = {}
@@ -1235,12 +1222,12 @@ def int_fast_kernel(dim, taps, gradient, periodic):
     return fn
 
 
-def table_fast_kernel(taps, gradient):
-    """The table hash's split 3-D kernel without a period (:func:`_make_table_fast`), as :func:`points_kernel`."""
+def table_block_kernel(taps, gradient):
+    """The table hash's 3-D block kernel without a period (:func:`_make_table_block`), as :func:`points_kernel`."""
     key = ("table", int(taps), bool(gradient))
     fn = _POINTS.get(key)
     if fn is None:
-        fn = _POINTS[key] = _make_table_fast(*key[1:])
+        fn = _POINTS[key] = _make_table_block(*key[1:])
     return fn
 
 
@@ -1262,28 +1249,29 @@ def int_two_taps_kernel(dim, gradient, f32=False):
     return fn
 
 
-def pair_tables(perms, values):
-    """The 3-D table-hash value kernel's folded tables ``(H2, VL)``, built from the live tables at each call.
+def pair_tables(perms, values, grads=None):
+    """The 3-D table-hash block kernel's folded tables ``(H2, TL)``, built from the live tables at each call.
 
     ``H2[c, q0 * n + q1] = P_c[(P_c[q0] + q1) mod n] + S ((q0 + q1 + h) & 1)``
     (two hash levels in one read, plus the parity row's offset);
-    ``VL[c, r S + x] = values[(r + x) & 1, P_c[x mod n]]`` for ``x < S = 2n + 4``
+    ``TL[c, r S + x] = values[(r + x) & 1, P_c[x mod n]]`` for ``x < S = 2n + 4``
     (the last level folded into the values, run on past 2n so that ``h + j``
-    needs no reduction).
+    needs no reduction), or with ``grads`` the gradients ``grads[P_c[x mod n]]``
+    (the same for both parities).
     """
     dim_out, n = perms.shape
     S = 2 * n + 4
     q = np.arange(n)
     x = np.arange(S)
     H2 = np.empty((dim_out, n * n), dtype=np.uint16)
-    VL = np.empty((dim_out, 2 * S))
+    TL = np.empty((dim_out, 2 * S) if grads is None else (dim_out, 2 * S, grads.shape[1]))
     for c in range(dim_out):
         P = perms[c]
         h = P[(P[q][:, None] + q[None, :]) % n]
         H2[c] = (h + S * ((q[:, None] + q[None, :] + h) & 1)).ravel()
         for r in range(2):
-            VL[c, r * S:(r + 1) * S] = values[(r + x) & 1, P[x % n]]
-    return H2, VL
+            TL[c, r * S:(r + 1) * S] = values[(r + x) & 1, P[x % n]] if grads is None else grads[P[x % n]]
+    return H2, TL
 
 
 # ---------------------------------------------------------------- grids
