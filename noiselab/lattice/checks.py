@@ -150,7 +150,8 @@ def check_arithmetic(arithmetic, noise, dtype):
     if arithmetic == "float64":
         return False
     asked = [what for what, bad in ((f"hash={noise.hash!r}", noise.hash != "integer"),
-                                    (f"dim_in={noise.dim_in}", noise.dim_in > 3), ("a period", bool((noise.period != PERIOD_MAX).any())),
+                                    (f"dim_in={noise.dim_in}", noise.dim_in > 3),
+                                    ("a period", bool((noise.period != PERIOD_MAX).any())),
                                     (f"dtype={dtype!r}", dtype is not None and np.dtype(dtype) != np.float32))
              if bad]
     if asked:
