@@ -94,6 +94,8 @@ def test_float32_arithmetic_refuses_what_it_does_not_do():
     for bad in ("float16", "Float32", 32, None, np.float32):
         with pytest.raises(ValueError, match="arithmetic must be one of"):
             noise.evaluate(x3, arithmetic=bad)
+    with pytest.raises(ValueError, match="dtype must be float32 or float64"):
+        noise.evaluate(x3, arithmetic="float32", dtype=np.int16)
     # the float32 kernels check the points as they go (a NaN fraction), with the float64 arithmetic's errors
     for kernel in ("quintic", "catmull-rom"):
         noise = LatticeNoise(3, rng=1, hash="integer", kernel=kernel)

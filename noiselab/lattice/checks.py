@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from .._core import check_finite_array, check_int, check_memory, check_real
+from .._core import check_finite_array, check_int, check_memory, check_real, float_dtype
 from ._jit import PERIOD_MAX
 from .kernels import KERNELS
 
@@ -152,7 +152,7 @@ def check_arithmetic(arithmetic, noise, dtype):
     asked = [what for what, bad in ((f"hash={noise.hash!r}", noise.hash != "integer"),
                                     (f"dim_in={noise.dim_in}", noise.dim_in > 3),
                                     ("a period", bool((noise.period != PERIOD_MAX).any())),
-                                    (f"dtype={dtype!r}", dtype is not None and np.dtype(dtype) != np.float32))
+                                    (f"dtype={dtype!r}", dtype is not None and float_dtype(dtype) != np.float32))
              if bad]
     if asked:
         raise ValueError(f"arithmetic='float32' supports integer-hash values in 1-3-D without a period, output "
