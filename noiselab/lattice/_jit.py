@@ -889,9 +889,8 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                 for a in range(DIM):
                     _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS, GRAD,
                                 FT)
-                    if F32:  # as :func:`_make_int_two_taps`: the points are checked after the call
-                        for i in range(m):
-                            bad += TF[a, i] != TF[a, i]
+                    for i in range(m):  # NaN fractions, counted: the points are checked after the call
+                        bad += TF[a, i] != TF[a, i]
                 amp = FT(amps[o])
                 first = o == 0
                 for c in range(ncomp):
@@ -1065,11 +1064,15 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
                     acc = ACC[c]
                     for i in range(m):
                         ta, ja = _index(F32, TT, JJ, X, 0, i, fa, phase[0], shift, left, FT)
+                        if not F32:  # (float32: counted in the index loop above)
+                            bad += ta != ta
                         a0, a1, am0, am1, ar0, ar1 = _two_taps(ta, ja, shift, left, coef, mult[0], GRAD, FT)
                         if DIM == 1:  # (1.0 * w) v is w v exactly
                             total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD, FT)
                         else:
                             tb, jb = _index(F32, TT, JJ, X, B, i, fb, phase[B], shift, left, FT)
+                            if not F32:
+                                bad += tb != tb
                             b0, b1, bm0, bm1, br0, br1 = _two_taps(tb, jb, shift, left, coef, mult[B], GRAD, FT)
                             if DIM == 2:
                                 total = _two_corners(Z, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, Z, br0, br1,
@@ -1078,6 +1081,8 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
                                                      DIM, GRAD, FT)
                             else:
                                 tc, jc = _index(F32, TT, JJ, X, C, i, fc, phase[C], shift, left, FT)
+                                if not F32:
+                                    bad += tc != tc
                                 c0, c1, cm0, cm1, cr0, cr1 = _two_taps(tc, jc, shift, left, coef, mult[C], GRAD, FT)
                                 ha0 = _U32(key ^ am0)
                                 ha1 = _U32(key ^ am1)
@@ -1115,17 +1120,20 @@ def _table_axis(x, m, f, ph, shift, left, coef, n, W, R, J, TAPS, GRAD):
     for huge coordinates), then ``J[k]`` tap ``k`` modulo n.
     """
     inv = 1.0 / n
+    bad = 0
     for i in range(m):
         u = x[i] * f + ph + shift  # same rounding as the grid path
         fi = np.floor(u)
         t = u - fi
-        j = (np.int64(fi - np.floor(fi * inv) * n) - left) & (n - 1)
+        bad += t != t  # a NaN fraction (x f + phase NaN or infinite): counted, the points checked after the call
+        j = (np.int64(fi - np.floor(fi * inv) * n) - left) & (n - 1)  # (any int64 of a NaN: masked in range)
         t2, t3, t4, t5 = _powers(t)
         for k in range(TAPS):
             J[k, i] = (j + k) & (n - 1)
             W[k, i] = _weight(coef, k, t, t2, t3, t4, t5)
             if GRAD:
                 R[k, i] = t - shift + (left - k)
+    return bad
 
 
 def _make_table_block(TAPS, GRAD):
@@ -1152,6 +1160,7 @@ def _make_table_block(TAPS, GRAD):
         R = np.empty((3, TAPS, BLOCK) if GRAD else (3, 1, 1))
         J = np.empty((3, TAPS, BLOCK), np.int64)
         ACC = np.empty((ncomp, BLOCK))
+        bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, 3)
@@ -1160,7 +1169,8 @@ def _make_table_block(TAPS, GRAD):
                     ACC[c, i] = 0.0
             for o in range(noct):
                 for a in range(3):
-                    _table_axis(X[a], m, freqs[o, a], phase[a], shift, left, coef, n, W[a], R[a], J[a], TAPS, GRAD)
+                    bad += _table_axis(X[a], m, freqs[o, a], phase[a], shift, left, coef, n, W[a], R[a], J[a], TAPS,
+                                       GRAD)
                 amp = amps[o]
                 for c in range(ncomp):
                     H = H2[c]
@@ -1190,6 +1200,7 @@ def _make_table_block(TAPS, GRAD):
                 Ac = ACC[c]
                 for i in range(m):
                     ob[i, c] = Ac[i]
+        return bad
 
     return table_block
 

@@ -155,9 +155,9 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f
     As :func:`noiselab._core.run_split`, but every thread gets the whole
     arrays and its range ``[lo, hi)``: a slice of ``(d, N)`` columns is no
     longer C-contiguous, which the kernel needs to read them in place.
-    ``f32``: the float32-arithmetic variants (float32 ``out``), which check the
-    points as they go: the count of NaN fractions (a NaN point or an
-    overflowing ``x * frequency``), refused by :func:`evaluate_points`.
+    ``f32``: the float32-arithmetic variants (float32 ``out``). Returns the
+    count of NaN fractions (a NaN point or an overflowing ``x * frequency``),
+    which :func:`evaluate_points` refuses.
     """
     src, cols = _layout(flat)
     k = noise.kernel
@@ -202,18 +202,15 @@ def _run_table(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
              noise.phase, k.shift, k.left, k.coef) + _folded(noise, gradient) + (bool(absval),))
     n = min(workers, max(1, flat.shape[0] // min_block))
     bounds = np.linspace(0, flat.shape[0], n + 1).astype(np.int64).tolist()
-    map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n)
+    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n))
 
 
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
-    """The point kernel for this noise and call over ``flat`` into ``out``, on ``workers`` threads."""
-    if _pairs(noise, flat.shape[0], deriv):
-        _run_table(noise, flat, out, freqs, amps, absval, workers)  # the same bits, rows or columns in place
-        return
+    """The point kernel for this noise and call over ``flat`` into ``out``, on ``workers`` threads.
+
+    For the calls the in-place kernels do not take (:func:`evaluate_points` runs those itself).
+    """
     gradient = noise.basis == "gradient"
-    if _in_place(noise, deriv):
-        _run_block(noise, flat, out, freqs, amps, absval, workers)  # the same bits, rows or columns in place
-        return
     if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv:  # the same bits, vectorised
         # float32 points read in place (each coordinate widened to float64 as it is read: the same values,
         # without a float64 copy of the points; 1e6 3-D points: benchmarks/bench_lattice_paths.md)
@@ -236,11 +233,19 @@ def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", work
     """
     # the in-place kernels round each float64 result once as they store it, as astype would: float32 output
     # without a float64 array first
-    direct = f32 or _in_place(noise, False) or _pairs(noise, flat.shape[0], False)
-    out = np.empty((flat.shape[0], noise.dim_out), dtype if direct else np.float64)
-    if f32 and flat.shape[0]:  # the kernels count NaN or overflowing points in one pass with the work
-        if _run_block(noise, flat, out, freqs, amps, absval, workers, f32=True):
-            checks.check_reach(flat, freqs, noise.phase, name)  # raises: the error of the float64 arithmetic
+    block, table = f32 or _in_place(noise, False), _pairs(noise, flat.shape[0], False)
+    out = np.empty((flat.shape[0], noise.dim_out), dtype if block or table else np.float64)
+    if (block or table) and flat.shape[0]:
+        # the in-place kernels count the NaN fractions (a NaN or infinite point, an overflowing x * frequency) as
+        # they go, instead of a pass over the points before (its max and min: 1-2 ms of 1e6 3-D points'
+        # 7-13 ms, benchmarks/bench_limits.md); a count refuses the call with the same error
+        if block:
+            bad = _run_block(noise, flat, out, freqs, amps, absval, workers, f32=f32)
+        else:
+            bad = _run_table(noise, flat, out, freqs, amps, absval, workers)
+        if bad:
+            checks.check_reach(flat, freqs, noise.phase, name)  # raises
+            raise ValueError(f"{name} times the frequency plus the phase is not finite at {bad} point(s)")
     elif flat.shape[0]:
         checks.check_reach(flat, freqs, noise.phase, name)  # NaN, inf and overflowing x * frequency
         _run(noise, flat, out, freqs, amps, absval, False, workers)
