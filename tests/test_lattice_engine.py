@@ -183,6 +183,12 @@ for h in ("table", "integer"):
 for d in (1, 2, 3):   # the integer hash's 2-tap kernel
     for b in ("value", "gradient"):
         out += [nl.LatticeNoise(d, 2, rng=3, hash="integer", kernel="quintic", basis=b).evaluate(x[:, :d], octaves=2)]
+far = x + 1e12 * (np.arange(40) % 5 == 0)[:, None]
+for d in (1, 2, 3):   # the float32 arithmetic's kernels (2-tap and block), rows and columns, near 0 and at 1e12
+    for k, b in (("quintic", "value"), ("quintic", "gradient"), ("catmull-rom", "value"), ("catmull-rom", "gradient")):
+        n = nl.LatticeNoise(d, 2, rng=3, hash="integer", kernel=k, basis=b)
+        out += [n.evaluate(far[:, :d], octaves=2, arithmetic="float32"),
+                n.evaluate(np.ascontiguousarray(far[:, :d].T), axis=0, octaves=2, absval=True, arithmetic="float32")]
 from noiselab.lattice import points_path
 for least in (0, 1 << 40):   # 3-D table-hash values over the folded tables, and without them
     points_path.PAIRS_MIN = least

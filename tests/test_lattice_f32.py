@@ -1,11 +1,6 @@
 """The lattice points' opt-in float32 arithmetic (``evaluate(..., arithmetic="float32")``): its distance from the
-float64 result and the slow reference, its bits across layouts, workers and chunkings, its refusals, and its kernels
-as plain Python."""
-import os
-import subprocess
-import sys
-from pathlib import Path
-
+float64 result and the slow reference, its bits across layouts, workers and chunkings, its refusals (its kernels as plain
+Python: tests/test_lattice_engine.py)."""
 import numpy as np
 import pytest
 
@@ -13,7 +8,6 @@ import naive
 from noiselab import LatticeNoise
 
 RNG = np.random.default_rng(32)
-HERE = Path(__file__).resolve().parent.parent
 # the largest |float32 arithmetic - float64 arithmetic| over 1e6 random points, 1-3-D, quintic and Catmull-Rom value
 # and gradient noise, near 0 and at 1e12, amplitude 1 (benchmarks/bench_limits.md:
 # `python benchmarks/bench_limits.py --f32-error`); the tests allow 4 times it
@@ -107,37 +101,3 @@ def test_float32_arithmetic_refuses_what_it_does_not_do():
                     noise.evaluate(pts, octaves=octaves, arithmetic=arithmetic, workers=2)
         pts[6789, 1] = 1e307   # large but finite at every octave: the index is reduced exactly, no error
         assert np.isfinite(noise.evaluate(pts, octaves=3, arithmetic="float32")).all()
-
-
-_CASE = """
-import sys
-import numpy as np
-import noiselab as nl
-x = np.random.default_rng(1).uniform(-9, 9, (300, 3))
-x[::5] += 1e12
-out = []
-for d in (1, 2, 3):
-    for k, b in (("quintic", "value"), ("quintic", "gradient"), ("catmull-rom", "value"), ("catmull-rom", "gradient")):
-        n = nl.LatticeNoise(d, 2, rng=3, hash="integer", kernel=k, basis=b)
-        out += [n.evaluate(x[:, :d], octaves=2, arithmetic="float32"),
-                n.evaluate(np.ascontiguousarray(x[:, :d].T), axis=0, octaves=2, absval=True, arithmetic="float32")]
-np.savez(sys.argv[1], *out)
-"""
-
-
-def test_float32_kernels_run_as_plain_python_with_the_same_bits(tmp_path):
-    # NUMBA_DISABLE_JIT=1 runs the float32 kernels' Python source (numpy float32 scalars): the same bits, in another
-    # process each time
-    results = []
-    for flag in ("0", "1"):
-        env = dict(os.environ, NUMBA_DISABLE_JIT=flag, PYTHONPATH=str(HERE))
-        subprocess.run([sys.executable, "-c", _CASE, str(tmp_path / f"jit{flag}.npz")], env=env, check=True,
-                       cwd=tmp_path, timeout=900)
-        data = np.load(tmp_path / f"jit{flag}.npz")
-        results.append([data[k] for k in sorted(data.files, key=lambda s: int(s.split("_")[1]))])
-    assert len(results[0]) == len(results[1]) == 24
-    for compiled, plain in zip(*results):
-        assert compiled.dtype == plain.dtype == np.float32
-        np.testing.assert_array_equal(compiled, plain)
-        np.testing.assert_array_equal(np.signbit(compiled), np.signbit(plain))
-        assert np.ptp(compiled) > 0.1

@@ -851,6 +851,20 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GR
                 Rk[i] = Ta[i] - ft(shift) + ft(left - k)
 
 
+@nb.njit(cache=True, nogil=True)
+def _store_block(out, p0, m, ACC):
+    """A block's sums ``ACC[c, :m]`` into rows ``p0 .. p0 + m`` of ``out`` (rounded once if ``out`` is float32).
+
+    A plain compiled function that LLVM inlines into each block kernel
+    (as :func:`_two_taps`); every index from 0 (:func:`_block_load`).
+    """
+    ob = out[p0:p0 + m]
+    for c in range(ACC.shape[0]):
+        Ac = ACC[c]
+        for i in range(m):
+            ob[i, c] = Ac[i]
+
+
 def _make_int_block(DIM, TAPS, GRAD, F32=False):
     """The integer hash's 1-3-D value kernel without a period, block by block, reading either layout in place.
 
@@ -941,11 +955,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                             acc[i] = amp * tv
                         else:
                             acc[i] += amp * tv
-            ob = out[p0:p0 + m]
-            for c in range(ncomp):
-                Ac = ACC[c]
-                for i in range(m):
-                    ob[i, c] = Ac[i]
+            _store_block(out, p0, m, ACC)
         return bad
 
     return int_block
@@ -1099,11 +1109,7 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
                             acc[i] = amp * tv
                         else:
                             acc[i] += amp * tv
-            ob = out[p0:p0 + m]
-            for c in range(ncomp):
-                Ac = ACC[c]
-                for i in range(m):
-                    ob[i, c] = Ac[i]
+            _store_block(out, p0, m, ACC)
         return bad
 
     return int_two_taps
@@ -1195,11 +1201,7 @@ def _make_table_block(TAPS, GRAD):
                                 s1 += W[1, k1, i] * s2
                             total += W[0, k0, i] * s1
                         acc[i] += amp * (abs(total) if absval else total)
-            ob = out[p0:p0 + m]
-            for c in range(ncomp):
-                Ac = ACC[c]
-                for i in range(m):
-                    ob[i, c] = Ac[i]
+            _store_block(out, p0, m, ACC)
         return bad
 
     return table_block
