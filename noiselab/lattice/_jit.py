@@ -1536,8 +1536,8 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         for o in range(noct):
             for s in range(taps):
                 tag[o, s] = -1
-        plane = np.empty((nterm, l1m * l2m))
-        tmp = np.empty(l1m * n2)
+        plane = np.empty(l1m * l2m * nterm)  # a lattice row's values, or its gradients' components side by side
+        tmp = np.empty((nterm, l1m * n2))
         acc = np.empty(post)
         gsum = np.empty(post)
         for j in range(n0):
@@ -1563,9 +1563,9 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                                 if GRAD:
                                     g = hash_index(word, ng)
                                     for b in range(nterm):
-                                        plane[b, pl + l] = grads[g, b]
+                                        plane[(pl + l) * nterm + b] = grads[g, b]
                                 else:
-                                    plane[0, pl + l] = hash_value(word)
+                                    plane[pl + l] = hash_value(word)
                         else:
                             pb = par[row + i1]
                             for l in range(l2):
@@ -1577,40 +1577,56 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                                 h = perm[sh]
                                 if GRAD:
                                     for b in range(nterm):
-                                        plane[b, pl + l] = grads[h, b]
+                                        plane[(pl + l) * nterm + b] = grads[h, b]
                                 else:
-                                    plane[0, pl + l] = values[(pb + lat[l]) & 1, h]
-                    # contract the last axis (and the middle one in 3-D) into the ring
-                    for b in range(nterm):
-                        w2 = RW2[o] if (GRAD and b == dim - 1) else W2[o]
-                        p2 = P2[o]
-                        dst = ring[o, b, s]
-                        for i1 in range(l1):
-                            src = plane[b, i1 * l2:(i1 + 1) * l2]
-                            t = tmp[i1 * n2:(i1 + 1) * n2] if DIM == 3 else dst
-                            if TAPS == 2:
-                                a0 = p2[0]; a1 = p2[1]; c0 = w2[0]; c1 = w2[1]
-                                for q in range(n2):
-                                    t[q] = c0[q] * src[a0[q]] + c1[q] * src[a1[q]]
-                            elif TAPS == 4:
-                                a0 = p2[0]; a1 = p2[1]; a2 = p2[2]; a3 = p2[3]
-                                c0 = w2[0]; c1 = w2[1]; c2 = w2[2]; c3 = w2[3]
-                                for q in range(n2):
-                                    t[q] = c0[q] * src[a0[q]] + c1[q] * src[a1[q]] + c2[q] * src[a2[q]] \
-                                        + c3[q] * src[a3[q]]
+                                    plane[pl + l] = values[(pb + lat[l]) & 1, h]
+                    # contract the last axis into tmp (3-D) or the ring (2-D), every term in one pass (the gradient
+                    # basis: the last term takes the ramp weights)
+                    w2 = W2[o]
+                    rw2 = RW2[o]
+                    p2 = P2[o]
+                    last = nterm - 1 if GRAD else 1
+                    for i1 in range(l1):
+                        src = plane[i1 * l2 * nterm:(i1 + 1) * l2 * nterm]
+                        t = tmp[:, i1 * n2:(i1 + 1) * n2] if DIM == 3 else ring[o, :, s]
+                        for q in range(n2):
+                            x0 = p2[0, q] * nterm
+                            if TAPS == 2 or TAPS == 4:
+                                x1 = p2[1, q] * nterm
+                                c0 = w2[0, q]
+                                c1 = w2[1, q]
+                                if TAPS == 4:
+                                    x2 = p2[2, q] * nterm
+                                    x3 = p2[3, q] * nterm
+                                    c2 = w2[2, q]
+                                    c3 = w2[3, q]
+                                    for b in range(last):
+                                        t[b, q] = c0 * src[x0 + b] + c1 * src[x1 + b] + c2 * src[x2 + b] \
+                                            + c3 * src[x3 + b]
+                                    if GRAD:
+                                        t[dim - 1, q] = rw2[0, q] * src[x0 + dim - 1] + rw2[1, q] * src[x1 + dim - 1] \
+                                            + rw2[2, q] * src[x2 + dim - 1] + rw2[3, q] * src[x3 + dim - 1]
+                                else:
+                                    for b in range(last):
+                                        t[b, q] = c0 * src[x0 + b] + c1 * src[x1 + b]
+                                    if GRAD:
+                                        t[dim - 1, q] = rw2[0, q] * src[x0 + dim - 1] + rw2[1, q] * src[x1 + dim - 1]
                             else:
-                                for q in range(n2):
-                                    v = w2[0, q] * src[p2[0, q]]
+                                for b in range(nterm):
+                                    wb = rw2 if (GRAD and b == dim - 1) else w2
+                                    v = wb[0, q] * src[x0 + b]
                                     for kk in range(1, taps):
-                                        v += w2[kk, q] * src[p2[kk, q]]
-                                    t[q] = v
+                                        v += wb[kk, q] * src[p2[kk, q] * nterm + b]
+                                    t[b, q] = v
+                    for b in range(nterm):
+                        dst = ring[o, b, s]
                         if DIM == 3:
                             w1 = RW1[o] if (GRAD and b == 1) else W1[o]
                             for j1 in range(n1):
                                 d1 = dst[j1 * n2:(j1 + 1) * n2]
                                 for kk in range(taps):
                                     c = w1[j1, kk]
-                                    src = tmp[P1[o, j1, kk] * n2:(P1[o, j1, kk] + 1) * n2]
+                                    src = tmp[b, P1[o, j1, kk] * n2:(P1[o, j1, kk] + 1) * n2]
                                     if kk == 0:
                                         for q in range(n2):
                                             d1[q] = c * src[q]
