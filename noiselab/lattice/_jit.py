@@ -1511,7 +1511,9 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         ``W2``, ``RW2`` the last axis's, ``(octaves, taps, N2)``. The
         octaves ``batch_start[i] .. batch_start[i + 1]`` are summed together
         as :func:`final_pass` sums a batch (``absval``: its mode 2), each
-        scaled by ``scales[o]``. ``out64``: ``out`` itself when it is float64
+        scaled by ``scales[o]``. Table hash: ``values`` and ``grads`` are folded over the
+        permutation (:func:`.grid_path.folded_tables`: the last hash level and the look-up in one read).
+        ``out64``: ``out`` itself when it is float64
         (one batch without ``absval`` is then summed in place, as
         :func:`final_pass_direct` does), else an empty ``(0, 0)`` array.
         """
@@ -1570,16 +1572,13 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                             pb = par[row + i1]
                             for l in range(l2):
                                 sh = hb + lat[l]
-                                if sh >= n:
-                                    sh -= n
-                                    if sh >= n:
-                                        sh = sh % n
-                                h = perm[sh]
+                                if sh >= 2 * n:
+                                    sh = sh % n
                                 if GRAD:
                                     for b in range(nterm):
-                                        plane[(pl + l) * nterm + b] = grads[h, b]
+                                        plane[(pl + l) * nterm + b] = grads[sh, b]
                                 else:
-                                    plane[pl + l] = values[(pb + lat[l]) & 1, h]
+                                    plane[pl + l] = values[(pb + lat[l] - sh) & 1, sh]
                     # contract the last axis into tmp (3-D) or the ring (2-D), every term in one pass (the gradient
                     # basis: the last term takes the ramp weights)
                     w2 = W2[o]
