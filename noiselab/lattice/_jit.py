@@ -1591,12 +1591,12 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                         for q in range(n2):
                             x0 = p2[0, q] * nterm
                             if TAPS == 2 or TAPS == 4:
-                                x1 = p2[1, q] * nterm
+                                x1 = x0 + nterm  # a sample's taps are consecutive lattice points
                                 c0 = w2[0, q]
                                 c1 = w2[1, q]
                                 if TAPS == 4:
-                                    x2 = p2[2, q] * nterm
-                                    x3 = p2[3, q] * nterm
+                                    x2 = x1 + nterm
+                                    x3 = x2 + nterm
                                     c2 = w2[2, q]
                                     c3 = w2[3, q]
                                     for b in range(last):
@@ -1615,7 +1615,7 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                                     wb = rw2 if (GRAD and b == dim - 1) else w2
                                     v = wb[0, q] * src[x0 + b]
                                     for kk in range(1, taps):
-                                        v += wb[kk, q] * src[p2[kk, q] * nterm + b]
+                                        v += wb[kk, q] * src[x0 + kk * nterm + b]
                                     t[b, q] = v
                     for b in range(nterm):
                         dst = ring[o, b, s]
