@@ -1623,6 +1623,14 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                             w1 = RW1[o] if (GRAD and b == 1) else W1[o]
                             for j1 in range(n1):
                                 d1 = dst[j1 * n2:(j1 + 1) * n2]
+                                if TAPS == 2:  # the taps' products summed in one pass (the same sums)
+                                    c0 = w1[j1, 0]
+                                    c1 = w1[j1, 1]
+                                    s0 = tmp[b, P1[o, j1, 0] * n2:(P1[o, j1, 0] + 1) * n2]
+                                    s1 = tmp[b, (P1[o, j1, 0] + 1) * n2:(P1[o, j1, 0] + 2) * n2]
+                                    for q in range(n2):
+                                        d1[q] = c0 * s0[q] + c1 * s1[q]
+                                    continue
                                 for kk in range(taps):
                                     c = w1[j1, kk]
                                     src = tmp[b, P1[o, j1, kk] * n2:(P1[o, j1, kk] + 1) * n2]
@@ -1641,6 +1649,23 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                 first = True
                 for o in range(batch_start[bi], batch_start[bi + 1]):
                     sc = scales[o]
+                    if TAPS == 2 and not absval:  # every term in one pass (the same sums, in the same order)
+                        rg = ring[o]
+                        s0 = P0[o, j, 0] % taps
+                        s1 = 1 - s0
+                        ea0 = (RW0[o, j, 0] if GRAD else W0[o, j, 0]) * sc
+                        ea1 = (RW0[o, j, 1] if GRAD else W0[o, j, 1]) * sc
+                        eb0 = W0[o, j, 0] * sc
+                        eb1 = W0[o, j, 1] * sc
+                        for q in range(post):
+                            v = ea0 * rg[0, s0, q] + ea1 * rg[0, s1, q]
+                            if not first:
+                                v = total[q] + v
+                            for b in range(1, nterm):
+                                v = v + (eb0 * rg[b, s0, q] + eb1 * rg[b, s1, q])
+                            total[q] = v
+                        first = False
+                        continue
                     for b in range(nterm):
                         w0 = RW0[o, j] if (GRAD and b == 0) else W0[o, j]
                         buf = gsum if (absval and o > batch_start[bi]) else total
