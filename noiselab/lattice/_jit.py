@@ -1649,7 +1649,7 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                 first = True
                 for o in range(batch_start[bi], batch_start[bi + 1]):
                     sc = scales[o]
-                    if TAPS == 2 and not absval:  # every term in one pass (the same sums, in the same order)
+                    if TAPS == 2:  # every term in one pass (the same sums, in the same order)
                         rg = ring[o]
                         s0 = P0[o, j, 0] % taps
                         s1 = 1 - s0
@@ -1659,11 +1659,16 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                         eb1 = W0[o, j, 1] * sc
                         for q in range(post):
                             v = ea0 * rg[0, s0, q] + ea1 * rg[0, s1, q]
-                            if not first:
+                            if not (first or absval):
                                 v = total[q] + v
                             for b in range(1, nterm):
                                 v = v + (eb0 * rg[b, s0, q] + eb1 * rg[b, s1, q])
-                            total[q] = v
+                            if not absval:
+                                total[q] = v
+                            elif o == batch_start[bi]:
+                                acc[q] = abs(v)
+                            else:
+                                acc[q] += abs(v)
                         first = False
                         continue
                     for b in range(nterm):
@@ -1671,27 +1676,20 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                         buf = gsum if (absval and o > batch_start[bi]) else total
                         init = first or (absval and b == 0)
                         r0 = ring[o, b, P0[o, j, 0] % taps]
-                        if TAPS == 4 or TAPS == 2:
+                        if TAPS == 4:
                             r1 = ring[o, b, P0[o, j, 1] % taps]
+                            r2 = ring[o, b, P0[o, j, 2] % taps]
+                            r3 = ring[o, b, P0[o, j, 3] % taps]
                             e0 = w0[0] * sc
                             e1 = w0[1] * sc
-                            if TAPS == 4:
-                                r2 = ring[o, b, P0[o, j, 2] % taps]
-                                r3 = ring[o, b, P0[o, j, 3] % taps]
-                                e2 = w0[2] * sc
-                                e3 = w0[3] * sc
-                                if init:
-                                    for q in range(post):
-                                        buf[q] = e0 * r0[q] + e1 * r1[q] + e2 * r2[q] + e3 * r3[q]
-                                else:
-                                    for q in range(post):
-                                        buf[q] += e0 * r0[q] + e1 * r1[q] + e2 * r2[q] + e3 * r3[q]
-                            elif init:
+                            e2 = w0[2] * sc
+                            e3 = w0[3] * sc
+                            if init:
                                 for q in range(post):
-                                    buf[q] = e0 * r0[q] + e1 * r1[q]
+                                    buf[q] = e0 * r0[q] + e1 * r1[q] + e2 * r2[q] + e3 * r3[q]
                             else:
                                 for q in range(post):
-                                    buf[q] += e0 * r0[q] + e1 * r1[q]
+                                    buf[q] += e0 * r0[q] + e1 * r1[q] + e2 * r2[q] + e3 * r3[q]
                         else:
                             for kk in range(taps):
                                 ek = w0[kk] * sc
