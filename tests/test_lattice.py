@@ -495,14 +495,15 @@ def test_grid_workers_split_into_bands_and_keep_the_bits(monkeypatch, dim, dim_o
     from noiselab.lattice import grid_path
 
     bands = []
-    real = grid_path.render_bands
+    real = grid_path.map_blocks
 
-    def counting(render, window, out, n):  # the split must really happen, else equality proves nothing
-        bands.append(n)
-        return real(render, window, out, n)
+    def counting(fn, blocks, n):  # the split must really happen, else equality proves nothing
+        blocks = list(blocks)
+        bands.append(len(blocks))
+        return real(fn, blocks, n)
 
     monkeypatch.setattr(grid_path, "MIN_BAND", 1)
-    monkeypatch.setattr(grid_path, "render_bands", counting)
+    monkeypatch.setattr(grid_path, "map_blocks", counting)
     noise = LatticeNoise(dim, dim_out, rng=5, kernel="quintic", hash=hash_)
     shape = (37, 29, 11)[:dim]
     ext = [(0, 3), (1, 4.5), (-2, 0)][:dim]
@@ -513,15 +514,18 @@ def test_grid_workers_split_into_bands_and_keep_the_bits(monkeypatch, dim, dim_o
     win = [(5, 30)] + [(0, s) for s in shape[1:]]  # a window is split alike
     assert np.array_equal(noise.grid(shape, ext, window=win, workers=-1), one[5:30])
     g = Grid(shape, ext)
-    assert np.array_equal(fractal_sum(noise, g, 5, workers=2), fractal_sum(noise, g, 5))
-    assert np.array_equal(turbulence(noise, g, 4, workers=4), turbulence(noise, g, 4))
+    one_fbm, one_turb = fractal_sum(noise, g, 5), turbulence(noise, g, 4)
+    assert np.array_equal(fractal_sum(noise, g, 5, workers=2), one_fbm)
+    assert bands[-1] == 2
+    assert np.array_equal(turbulence(noise, g, 4, workers=4), one_turb)
     assert bands[-1] == 4
     if dim_out == 1:
         h, grad = noise.gradient_grid(shape, ext, return_value=True)
         h2, grad2 = noise.gradient_grid(shape, ext, return_value=True, workers=2)
         assert np.array_equal(h, h2) and np.array_equal(grad, grad2)
     # more threads than rows: one band a row
-    assert np.array_equal(noise.grid((3,) + shape[1:], ext, workers=8), noise.grid((3,) + shape[1:], ext))
+    three_rows = noise.grid((3,) + shape[1:], ext)
+    assert np.array_equal(noise.grid((3,) + shape[1:], ext, workers=8), three_rows)
     assert bands[-1] == 3
 
 
@@ -529,14 +533,93 @@ def test_grid_workers_is_validated_and_small_grids_stay_on_one_thread(monkeypatc
     from noiselab.lattice import grid_path
 
     calls = []
-    monkeypatch.setattr(grid_path, "render_bands", lambda *a: calls.append(a))
+    real = grid_path.map_blocks
+
+    def counting(fn, blocks, n):
+        blocks = list(blocks)
+        calls.append(len(blocks))
+        return real(fn, blocks, n)
+
+    monkeypatch.setattr(grid_path, "map_blocks", counting)
     noise = LatticeNoise(2, rng=1)
     small = noise.grid((512, 512), [(0, 4), (0, 4)], workers=2)  # 262,144 samples x 1 octave: below one band
-    assert calls == [] and small.shape == (512, 512)
+    assert calls == [1] and small.shape == (512, 512)
     noise.grid((1024, 1024), [(0, 4), (0, 4)], workers=2)  # 1 Mi samples x 1 octave: still one band
-    assert calls == []
+    assert calls == [1, 1]
     noise.evaluate_grid((1024, 1024), [(0, 4), (0, 4)], octaves=4, workers=2)  # 4 Mi sample-octaves: two bands
-    assert len(calls) == 1 and calls[0][-1] == 2
+    assert calls == [1, 1, 2]
     for bad in (0, -1000, 1.5, True):
         with pytest.raises((ValueError, TypeError), match="workers"):
             noise.grid((8, 8), [(0, 1), (0, 1)], workers=bad)
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_grid_bands_share_one_set_up(monkeypatch, dim):
+    # two threads split the fused kernel's rows, not the window: every axis's taps are made once, as for one
+    from noiselab import fractal_sum
+    from noiselab.lattice import grid_path
+
+    made = []
+    real = grid_path.octave_axis_taps
+
+    def counting(noise, coords_a, *args, **kwargs):
+        made.append(coords_a.shape[0])
+        return real(noise, coords_a, *args, **kwargs)
+
+    monkeypatch.setattr(grid_path, "MIN_BAND", 1)
+    monkeypatch.setattr(grid_path, "octave_axis_taps", counting)
+    monkeypatch.setattr(grid_path, "AXIS_TAPS_KEPT", 0)  # none kept: each call makes its own
+    monkeypatch.setattr(grid_path, "_AXIS_TAPS", {})
+    noise = LatticeNoise(dim, rng=3, kernel="quintic")
+    g = Grid((40, 24, 9)[:dim], [(0, 3), (0, 2), (0, 1)][:dim])
+    one = fractal_sum(noise, g, 4, dtype=np.float32)
+    n_one = len(made)
+    two = fractal_sum(noise, g, 4, dtype=np.float32, workers=2)
+    assert np.array_equal(one, two)
+    assert len(made) - n_one == n_one and made[n_one:] == made[:n_one]  # the whole axes, once each
+
+
+def test_a_grid_s_axis_taps_are_shared_read_only_and_keyed_on_all_they_depend_on(monkeypatch):
+    # the fused path keeps the axis taps of the last grids: the same bits whether made or reused, and never
+    # reused for another phase, frequency, kernel or period
+    from noiselab import fractal_sum
+    from noiselab.lattice import grid_path
+
+    made = []
+    real = grid_path.octave_axis_taps
+
+    def counting(*args, **kwargs):
+        made.append(1)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(grid_path, "_AXIS_TAPS", {})
+    monkeypatch.setattr(grid_path, "octave_axis_taps", counting)
+    g = Grid((33, 20), [(0, 3), (0.5, 2)])
+    first = fractal_sum(LatticeNoise(2, rng=1, kernel="quintic"), g, 4)
+    n_made = len(made)
+    assert n_made == 2  # two different axes
+    # another seed on the same grid: the taps are reused, the values are the seed's own
+    other = fractal_sum(LatticeNoise(2, rng=2, kernel="quintic"), g, 4)
+    assert len(made) == n_made and not np.array_equal(other, first)
+    monkeypatch.setattr(grid_path, "_AXIS_TAPS", {})
+    assert np.array_equal(fractal_sum(LatticeNoise(2, rng=2, kernel="quintic"), g, 4), other)  # made afresh: same
+    made.clear()
+    for noise in (LatticeNoise(2, rng=1, kernel="quintic", phase=0.25), LatticeNoise(2, rng=1, kernel="cubic"),
+                  LatticeNoise(2, rng=1, kernel="quintic", frequency=1.5),
+                  LatticeNoise(2, rng=1, kernel="quintic", basis="gradient"),
+                  LatticeNoise(2, rng=1, kernel="quintic", period=8)):
+        before = len(made)
+        fractal_sum(noise, g, 4)
+        assert len(made) > before, noise
+    cached, _ = next(iter(grid_path._AXIS_TAPS.values()))
+    with pytest.raises(ValueError, match="read-only"):
+        cached[0][2][...] = 0.0
+    assert len(grid_path._AXIS_TAPS) <= grid_path.AXIS_TAPS_KEPT
+    # a memory bound: taps bigger than a quarter of it are not kept, and what is kept stays within it
+    monkeypatch.setattr(grid_path, "AXIS_TAPS_BYTES", 40_000)
+    monkeypatch.setattr(grid_path, "_AXIS_TAPS", {})
+    fractal_sum(LatticeNoise(2, rng=1, kernel="quintic"), Grid((2000, 8), [(0, 30), (0, 1)]), 4)
+    assert [n for _, n in grid_path._AXIS_TAPS.values()] and max(n for _, n in grid_path._AXIS_TAPS.values()) <= 10_000
+    for width in (40, 41, 42, 43, 44, 45):
+        fractal_sum(LatticeNoise(2, rng=1, kernel="quintic"), Grid((width, 300), [(0, 3), (0, 20)]), 4)
+    assert sum(n for _, n in grid_path._AXIS_TAPS.values()) <= 40_000

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import copy
 import math
+import threading
 
 import numpy as np
 
@@ -80,7 +81,10 @@ def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0,
     if size == 0:
         return finish_grid(np.zeros((noise.dim_out,) + out_shape, dtype=dtype))
     bands = min(workers, out_shape[0], size * (octaves - octave_start) // MIN_BAND)
-    if bands > 1:
+    full = list(coords)
+    sub = [coords[a][lo:hi] for a, (lo, hi) in enumerate(sl)]
+    separable, sparse = classify_octaves(noise, full, octave_start, octaves, lacunarity, gain, periods)
+    if bands > 1 and (sparse or noise.dim_in not in FUSED_DIMS):  # the fused kernel splits its rows itself
         if out is None:
             out = np.empty((noise.dim_out,) + out_shape, dtype=dtype)
         render_bands(lambda win, part: render_grid(noise, shape, ext, dtype=dtype, window=win, octaves=octaves,
@@ -89,8 +93,24 @@ def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0,
                                                    periods=periods),
                      sl, out, bands)
         return finish_grid(out)
-    full = list(coords)
-    sub = [coords[a][lo:hi] for a, (lo, hi) in enumerate(sl)]
+    # the separable pass writes every sample unless it accumulates |.| (turbulence)
+    writes_all = bool(separable) and not absval
+    if out is None:
+        out = (np.empty if writes_all else np.zeros)((noise.dim_out,) + out_shape, dtype=dtype)
+    else:  # the caller's contiguous (dim_out, *out_shape) float64 buffer (the derivative grids)
+        assert out.shape == (noise.dim_out,) + out_shape and out.flags.c_contiguous and out.dtype == dtype
+        if not writes_all:
+            out[...] = 0.0
+    if separable:
+        grid_separable(noise, sub, full, separable, out, absval, deriv_axis, max(bands, 1))
+    for freq, amp, period in sparse:
+        # grids sparser than this octave's lattice: per-point path, added
+        grid_scattered(with_period(noise, period), sub, freq, amp, out, absval, deriv_axis)
+    return finish_grid(out)
+
+
+def classify_octaves(noise, full, octave_start, octaves, lacunarity, gain, periods):
+    """The octaves' ``(freq, amp, period)``: those the separable passes take, and those sparser than the grid."""
     separable, sparse = [], []
     for o in range(octave_start, octaves):
         freq = noise.frequency * lacunarity ** o
@@ -104,20 +124,7 @@ def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0,
         exact = reach < SEPARABLE_LIMIT
         period = noise.period if periods is None else periods[o]
         (separable if exact and is_separable(noise.kernel.taps, full, freq) else sparse).append((freq, amp, period))
-    # the separable pass writes every sample unless it accumulates |.| (turbulence)
-    writes_all = bool(separable) and not absval
-    if out is None:
-        out = (np.empty if writes_all else np.zeros)((noise.dim_out,) + out_shape, dtype=dtype)
-    else:  # the caller's contiguous (dim_out, *out_shape) float64 buffer (the derivative grids)
-        assert out.shape == (noise.dim_out,) + out_shape and out.flags.c_contiguous and out.dtype == dtype
-        if not writes_all:
-            out[...] = 0.0
-    if separable:
-        grid_separable(noise, sub, full, separable, out, absval, deriv_axis)
-    for freq, amp, period in sparse:
-        # grids sparser than this octave's lattice: per-point path, added
-        grid_scattered(with_period(noise, period), sub, freq, amp, out, absval, deriv_axis)
-    return finish_grid(out)
+    return separable, sparse
 
 
 def render_bands(render, window, out, bands):
@@ -172,6 +179,11 @@ def is_separable(taps, full_coords, freq):
 
 # the dimensions whose separable octaves take the fused kernel (:func:`grid_rows`); the others, the passes
 FUSED_DIMS = (2, 3)
+# the fused path's axis taps of the last few grids (:func:`shared_axis_taps`): a 512^2 fBm's set-up is 0.2 ms of 2
+AXIS_TAPS_KEPT = 8
+AXIS_TAPS_BYTES = 32 << 20  # and at most this much memory (a 4096-sample axis, 6 octaves, 4 taps: 1.5 MiB)
+_AXIS_TAPS = {}
+_AXIS_TAPS_LOCK = threading.Lock()
 # the points of one call of the scattered path: a block of whole rows of axis 0 (one row at least)
 SCATTERED_BLOCK = 1 << 16
 
@@ -215,6 +227,40 @@ def axis_taps(noise, coords_a, freq_a, a, grad, deriv=False, period=None):
     period = int(noise.period[a] if period is None else period)
     return octave_axis_taps(noise, coords_a, np.array([freq_a], dtype=np.float64), a, grad,
                             np.array([period], dtype=np.int64), deriv=deriv)[0]
+
+
+def shared_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
+    """:func:`octave_axis_taps`, kept for the last :data:`AXIS_TAPS_KEPT` argument sets (at most
+    :data:`AXIS_TAPS_BYTES` in all; larger sets are not kept), its arrays read-only.
+
+    They depend on the grid's coordinates, the octaves' frequencies and
+    periods, the phase and the kernel, not on the hash tables: many noises
+    (seeds) on one grid, or one grid rendered again, reuse them, as an FFT
+    reuses its plan. About 0.2 ms of a 2 ms 512^2 6-octave fBm
+    (``benchmarks/bench_workers.md``, "The set-up of a grid"). Read-only
+    because every caller shares them: the fused path only stacks and reads
+    them.
+    """
+    k = noise.kernel
+    key = (k.name, k.taps, k.shift, k.left, k.coef.tobytes(), k.dcoef.tobytes() if deriv else b"",
+           coords_a.tobytes(), freqs.tobytes(), periods.tobytes(), float(noise.phase[a]), bool(grad), bool(deriv))
+    with _AXIS_TAPS_LOCK:
+        kept = _AXIS_TAPS.pop(key, None)
+        if kept is not None:
+            _AXIS_TAPS[key] = kept  # the most recently used last
+            return kept[0]
+    taps = octave_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=deriv)
+    size = sum(arr.nbytes for arrays in taps for arr in {id(x): x for x in arrays}.values())
+    if size > AXIS_TAPS_BYTES // 4:
+        return taps  # too big to keep
+    for arrays in taps:
+        for arr in arrays:
+            arr.flags.writeable = False
+    with _AXIS_TAPS_LOCK:
+        _AXIS_TAPS[key] = (taps, size)
+        while len(_AXIS_TAPS) > AXIS_TAPS_KEPT or sum(n for _, n in _AXIS_TAPS.values()) > AXIS_TAPS_BYTES:
+            del _AXIS_TAPS[next(iter(_AXIS_TAPS))]
+    return taps
 
 
 def octave_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
@@ -320,11 +366,12 @@ def _octave_batches(noise, full, octaves, nterm):
     return batches
 
 
-def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
+def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None, bands=1):
     """Separable grid path: per octave and term, contract axes d-1..1; then one fused pass on axis 0.
 
     ``deriv_axis``: the derivative along that input axis instead (the
-    same passes, with the kernel's derivative on that axis).
+    same passes, with the kernel's derivative on that axis). ``bands``: the
+    threads the fused kernel's rows are split over (2-D and 3-D only).
     """
     d = noise.dim_in
     grad = noise.basis == "gradient"
@@ -342,11 +389,11 @@ def grid_separable(noise, sub, full, octaves, out, absval, deriv_axis=None):
             pers = np.array([per[a] for _, _, per in flat], dtype=np.int64)
             key = (sub[a].tobytes(), freqs.tobytes(), pers.tobytes(), float(noise.phase[a]), a == deriv_axis)
             if key not in done:
-                done[key] = octave_axis_taps(noise, sub[a], freqs, a, grad, pers, deriv=a == deriv_axis)
+                done[key] = shared_axis_taps(noise, sub[a], freqs, a, grad, pers, deriv=a == deriv_axis)
             per_axis.append(done[key])
         axes_per_octave = [[per_axis[a][o] for a in range(d)] for o in range(len(flat))]
         grid_rows(noise, [o for batch in batches for o in batch], [len(batch) for batch in batches],
-                  axes_per_octave, out, absval)
+                  axes_per_octave, out, absval, bands)
         return
     post = int(np.prod([c.shape[0] for c in sub[1:]], dtype=np.int64))
     nj = sub[0].shape[0]
@@ -415,7 +462,7 @@ def _int_prefix_np(key, mult, lattices):
     return h
 
 
-def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
+def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval, bands=1):
     """The 2-D and 3-D separable path in one kernel (:func:`_jit._make_grid_rows`): every octave, row by row.
 
     ``octaves``: the ``(freq, amp, period)`` of the separable octaves, in
@@ -427,6 +474,14 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
     increasing order, and the integers between two taps of one sample are
     its taps too), so the ``taps`` rows one output row needs never share a
     slot of the kernel's ring (row ``r`` in slot ``r mod taps``).
+
+    ``bands`` > 1 splits the output's rows into that many bands, one kernel
+    call each on pooled threads, after the set-up (every axis's taps, the
+    hash prefixes) is made once for the whole window. A band's ring fills
+    from its own first row, and a row's sum does not depend on the rows
+    before it: the bits of one call. (Rendering each band as its own window
+    repeated the set-up: 17 % more CPU time in all on a 1024^2 fBm,
+    ``benchmarks/bench_workers.md``.)
     """
     d = noise.dim_in
     grad = noise.basis == "gradient"
@@ -475,9 +530,17 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval):
             par = np.concatenate([q for _, q in hp])
             perm, mult2 = noise.perms[c], np.uint32(0)
             values, folded = folded_tables(perm, noise.values, noise.gradients if grad else None)
-        kernel(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2, scales,
-               batch_start, bool(absval), perm, int(noise.table_size), values, folded, mult2,
-               out[c].reshape(nj, -1), out[c].reshape(nj, -1) if out.dtype == np.float64 else np.empty((0, 0)))
+        rows = out[c].reshape(nj, -1)
+
+        def band(lo_hi, pre=pre, par=par, perm=perm, mult2=mult2, rows=rows, values=values, folded=folded):
+            lo, hi = lo_hi  # a row slice of P0 / W0 / RW0, made contiguous (the kernel's one specialisation)
+            p0, w0, rw0 = (np.ascontiguousarray(x[:, lo:hi]) for x in (P0, W0, RW0))
+            kernel(shapes, pre, par, pre_off, lat2, lat2_off, p0, w0, rw0, P1, W1, RW1, P2, W2, RW2, scales,
+                   batch_start, bool(absval), perm, int(noise.table_size), values, folded, mult2,
+                   rows[lo:hi], rows[lo:hi] if out.dtype == np.float64 else np.empty((0, 0)))
+
+        cuts = np.linspace(0, nj, bands + 1).astype(np.int64).tolist()
+        map_blocks(band, list(zip(cuts[:-1], cuts[1:])), bands)
 
 
 def folded_tables(perm, values, grads):
