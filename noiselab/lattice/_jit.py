@@ -1570,15 +1570,17 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                                     plane[pl + l] = hash_value(word)
                         else:
                             pb = par[row + i1]
+                            vr = values[(pb - hb) & 1]  # parity (pb + j) & 1 at h + j
                             for l in range(l2):
                                 sh = hb + lat[l]
-                                if sh >= 2 * n:
-                                    sh = sh % n
                                 if GRAD:
+                                    x = sh if sh < 2 * n else sh % n
                                     for b in range(nterm):
-                                        plane[(pl + l) * nterm + b] = grads[sh, b]
-                                else:
-                                    plane[pl + l] = values[(pb + lat[l] - sh) & 1, sh]
+                                        plane[(pl + l) * nterm + b] = grads[x, b]
+                                elif sh < 2 * n:
+                                    plane[pl + l] = vr[sh]
+                                else:  # past the folded tables: reduced, the parity row again
+                                    plane[pl + l] = values[(pb + lat[l] - sh % n) & 1, sh % n]
                     # contract the last axis into tmp (3-D) or the ring (2-D), every term in one pass (the gradient
                     # basis: the last term takes the ramp weights)
                     w2 = W2[o]
