@@ -12,10 +12,14 @@ special (above 1: the special path pays). The paths:
 - the separable grid passes against the points path on the grid's points
   (``noise.evaluate(noise.grid_points(...))``), 2-D and 3-D: what a grid
   would cost without a grid path;
-- 3-D table-hash points without a period split per chunk
-  (``points_path.TABLE_SPLIT``: the weights vectorised across points, then
-  the corner sum; values over folded tables) against the per-point kernel
-  on the same points (the same bits);
+- 3-D table-hash points without a period by the block kernel
+  (``points_path.TABLE_SPLIT``: per block of points the weights and taps
+  vectorised, then the corner sum over folded tables; rows or columns read
+  in place) against the per-point kernel on the same points (the same
+  bits), and with ``--base <checkout>`` against that checkout's kernel split
+  per chunk (0.4.0's, loaded beside this tree's and called directly: without
+  the input checks this tree's call includes, so the ratio understates the
+  gain; the same bits);
 - 1-3-D integer-hash values by the kernel vectorised across points
   (``points_path.INT_FAST_DIM``) against the general integer-hash kernel
   (the same bits);
@@ -45,6 +49,36 @@ import numpy as np  # noqa: E402
 
 import noiselab as nl  # noqa: E402
 from noiselab.lab.measure import header_lines, interleaved, markdown_table, run_info  # noqa: E402
+
+
+BASE = None  # ``--base``: another checkout's lattice engine, loaded beside this one
+
+
+def _base_call(noise, pts):
+    """The base's split kernel for 3-D table-hash points without a period (its ``table_fast_kernel``), checked
+    against this tree's bits."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("noiselab.lattice._jit_base", BASE / "noiselab/lattice/_jit.py")
+    jit = sys.modules.get(spec.name)
+    if jit is None:
+        jit = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = jit
+        spec.loader.exec_module(jit)
+    k, grad = noise.kernel, noise.basis == "gradient"
+    kernel = jit.table_fast_kernel(k.taps, grad)
+    tail = (noise.perms, noise.values, noise.gradients) if grad else \
+        jit.pair_tables(noise.perms, noise.values) + (noise.gradients,)
+
+    def call():
+        out = np.empty((pts.shape[0], 1))
+        kernel(pts, out, np.ones((1, 3)), np.array([noise.scale]), noise.phase, k.shift, k.left, k.taps, k.coef,
+               k.dcoef, noise.period, noise._pmask, *tail, int(grad), False)
+        return out[:, 0]
+
+    if not np.array_equal(call(), noise(pts)):
+        raise AssertionError("the base's kernel gives other bits than this tree's")
+    return call
 
 
 def cases():
@@ -101,18 +135,25 @@ def cases():
                     setattr(points_path, k, v)
         return run
 
-    for label, kw in (("value cubic", {}), ("value catmull-rom", {"kernel": "catmull-rom"}),
-                      ("gradient quintic", {"basis": "gradient"})):
+    table_cases = (("value cubic", {}), ("value quintic", {"kernel": "quintic"}),
+                   ("value catmull-rom", {"kernel": "catmull-rom"}),
+                   ("gradient quintic", {"basis": "gradient", "kernel": "quintic"}))
+    for label, kw in table_cases:
         n = nl.LatticeNoise(3, **kw)
         call = (lambda n: lambda: n(pts))(n)
-        out.append((f"1e6 3-D points, table hash, {label}: split per chunk vs per-point kernel",
+        out.append((f"1e6 3-D points, table hash, {label}: block kernel vs per-point kernel",
                     with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": True}, call),
                     with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": False}, call)))
     n = nl.LatticeNoise(3)
     call = (lambda n: lambda: n(pts.T, axis=0))(n)
-    out.append(("1e6 3-D points as (3, N) columns, table hash, value cubic: split per chunk vs per-point kernel",
+    out.append(("1e6 3-D points as (3, N) columns, table hash, value cubic: block kernel vs per-point kernel",
                 with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": True}, call),
                 with_attrs({"PAIRS_MIN": 0, "TABLE_SPLIT": False}, call)))
+    if BASE is not None:   # the kernel split per chunk that the block kernel replaced (``--base``: main cc234ff)
+        for label, kw in table_cases:
+            n = nl.LatticeNoise(3, **kw)
+            out.append((f"1e6 3-D points, table hash, {label}: block kernel vs the base's split kernel",
+                        (lambda n: lambda: n(pts))(n), _base_call(n, pts)))
 
     def with_fast(dims, fn):
         return with_attrs({"INT_FAST_DIM": dims}, fn)
@@ -156,7 +197,10 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=7)
     ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
     ap.add_argument("--only", default="", help="run only the rows whose description contains this text")
+    ap.add_argument("--base", default=None, help="a checkout whose table-hash split kernel to measure beside")
     args = ap.parse_args(argv)
+    global BASE
+    BASE = Path(args.base) if args.base else None
     command = "python benchmarks/bench_lattice_paths.py " + shlex.join(argv if argv is not None else sys.argv[1:])
     info = run_info(command.strip())
     rows = []

@@ -15,6 +15,19 @@ implementation of the same construction can reach here:
   value addresses depending on the pair reads. The kernel does exactly
   these reads, on tables built from noiselab's, and sums the eight values:
   no weights, no fractional parts.
+  ``lookups-gradient`` does the same reads for gradient noise (8 gradient
+  rows of 3 instead of 8 values) and ``lookups-4taps`` for a 4-tap kernel
+  (Catmull-Rom: 16 pair-table reads, 64 values). noiselab's block kernel
+  (:func:`noiselab.lattice._jit.table_block_kernel`) makes exactly these
+  reads, from the same folded tables (:func:`noiselab.lattice._jit.pair_tables`),
+  so each stays a lower bound for it, and for any kernel making the table
+  hash's reads.
+- ``table-kernel``: noiselab's table-hash block kernel called directly on the
+  points (no wrapper: no input checks, no allocation of the output, no
+  folded tables to look up); ``table-setup``: only its per-axis arithmetic
+  (:func:`noiselab.lattice._jit._table_axis`: weights and taps of the three
+  axes, block by block, no table read), summed into the output: what the
+  bits' float64 arithmetic costs before the first read.
 - ``int-minimal``: the shortest integer-hash value noise numba compiles:
   float32 in and out, floor, quintic fade, the eight corners hashed with
   noiselab's formula (``mix32(key ^ i M0 ^ j M1 ^ k M2)``), trilinear blend; no
@@ -34,8 +47,16 @@ implementation of the same construction can reach here:
   ``(3, N)`` columns (``axis=0``, structure of arrays as ``int-minimal``).
 - the write floor (``np.full``) as everywhere in the benchmarks.
 
+A second table times noiselab's opt-in float32 arithmetic
+(``evaluate(pts32, arithmetic="float32")``, integer hash) beside
+pyfastnoisesimd for quintic value (``Value``), quintic gradient (``Perlin``)
+and Catmull-Rom value (``Cubic``), from ``(N, 3)`` rows and ``(3, N)``
+columns, with the float64 arithmetic's rows for reference; ``--f32-error``
+instead measures the float32 arithmetic's largest difference from the
+float64 result (1e6 points, 1-3-D, at 1e3 and at 1e12).
+
 Run: ``benchmarks/.venv-peers/bin/python benchmarks/bench_limits.py [--repeats 7]``;
-writes ``benchmarks/bench_limits.md``.
+writes ``benchmarks/bench_limits.md``, the error table included (``--f32-error``: prints only it).
 """
 from __future__ import annotations
 
@@ -52,6 +73,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from bench_lattice import _fns_points, _peer  # noqa: E402  (pyfastnoisesimd as bench_lattice runs it)
 from noiselab import LatticeNoise  # noqa: E402
+from noiselab.lattice import _jit, points_path  # noqa: E402
+from noiselab.lattice._jit import BLOCK, _table_axis, pair_tables, table_block_kernel  # noqa: E402
 from noiselab.lattice.tables import axis_multipliers  # noqa: E402
 from noiselab.lab.measure import interleaved, run_info  # noqa: E402
 
@@ -90,6 +113,57 @@ def table_lookups(pts, h2, vl, out):
                 h = np.int64(h2[row + ((i1 + b) & 255)]) + k
                 s += vl[h] + vl[h + 1]
         out[p] = s
+
+
+@nb.njit(nogil=True)
+def table_lookups_gradient(pts, h2, gl, out):
+    """``table_lookups`` for gradient noise: 4 pair-table reads, 8 gradient rows (3 components each)."""
+    for p in range(pts.shape[0]):
+        i0 = np.int64(np.floor(pts[p, 0])) & 255
+        i1 = np.int64(np.floor(pts[p, 1])) & 255
+        k = np.int64(np.floor(pts[p, 2])) & 255
+        s = 0.0
+        for a in range(2):
+            row = ((i0 + a) & 255) * 256
+            for b in range(2):
+                h = np.int64(h2[row + ((i1 + b) & 255)]) + k
+                s += (gl[h, 0] + gl[h, 1] + gl[h, 2]) + (gl[h + 1, 0] + gl[h + 1, 1] + gl[h + 1, 2])
+        out[p] = s
+
+
+@nb.njit(nogil=True)
+def table_lookups4(pts, h2, vl, out):
+    """``table_lookups`` for a 4-tap kernel: 16 pair-table reads, 64 value reads."""
+    for p in range(pts.shape[0]):
+        i0 = np.int64(np.floor(pts[p, 0])) & 255
+        i1 = np.int64(np.floor(pts[p, 1])) & 255
+        k = np.int64(np.floor(pts[p, 2])) & 255
+        s = 0.0
+        for a in range(4):
+            row = ((i0 + a) & 255) * 256
+            for b in range(4):
+                h = np.int64(h2[row + ((i1 + b) & 255)]) + k
+                s += (vl[h] + vl[h + 1]) + (vl[h + 2] + vl[h + 3])
+        out[p] = s
+
+
+@nb.njit(nogil=True)
+def table_setup(pts, f, ph, shift, left, coef, n, out):
+    """The per-axis arithmetic of noiselab's 2-tap table block kernel alone (no reads), summed per point."""
+    X = np.empty((3, BLOCK))
+    W = np.empty((3, 2, BLOCK))
+    R = np.empty((3, 1, 1))
+    J = np.empty((3, 2, BLOCK), np.int64)
+    for p0 in range(0, pts.shape[0], BLOCK):
+        m = min(BLOCK, pts.shape[0] - p0)
+        for i in range(m):
+            for a in range(3):
+                X[a, i] = pts[p0 + i, a]
+        for a in range(3):
+            _table_axis(X[a], m, f[a], ph[a], shift, left, coef, n, W[a], R[a], J[a], 2, False)
+        o = out[p0:p0 + m]
+        for i in range(m):
+            o[i] = (W[0, 0, i] + W[1, 1, i]) + (W[2, 0, i] + np.float64(J[0, 1, i] + J[1, 0, i] + J[2, 1, i]))
 
 
 @nb.njit(inline="always")
@@ -205,6 +279,18 @@ def measure(repeats):
     table = LatticeNoise(3, rng=1, kernel="quintic")
     integer = LatticeNoise(3, rng=1, kernel="quintic", hash="integer")  # 2 taps: int_same64 follows its arithmetic
     h2, vl = _pair_tables(table.perms[0], table.values)
+    gradient = LatticeNoise(3, rng=1, kernel="quintic", basis="gradient")
+    catmull = LatticeNoise(3, rng=1, kernel="catmull-rom")
+    gh2, gl = (t[0] for t in pair_tables(gradient.perms, gradient.values, gradient.gradients))
+    ch2, cvl = _pair_tables(catmull.perms[0], catmull.values)
+    kt = table.kernel
+    kernel = table_block_kernel(2, False)
+    direct = (np.ones((1, 3)), np.array([table.scale]), table.phase, kt.shift, kt.left, kt.coef,
+              *pair_tables(table.perms, table.values), False)
+    out2 = np.empty((NPTS, 1))
+    kernel(pts, False, 0, NPTS, out2, *direct)
+    if not (np.array_equal(out2[:, 0], table(pts)) and points_path._pairs(table, NPTS, False)):
+        raise AssertionError("table-kernel is no longer the kernel noiselab runs: update it beside the engine")
     cols = np.ascontiguousarray(pts32.T)
     out64, out32 = np.empty(NPTS), np.empty(NPTS, np.float32)
     key = np.uint32(0x2545F491)
@@ -218,6 +304,13 @@ def measure(repeats):
         "floor32": lambda: np.full(NPTS, 0.5, np.float32),
         "table": lambda: table(pts),
         "lookups": lambda: table_lookups(pts, h2, vl, out64),
+        "table-kernel": lambda: kernel(pts, False, 0, NPTS, out2, *direct),
+        "table-setup": lambda: table_setup(pts, np.ones(3), table.phase, kt.shift, kt.left, kt.coef,
+                                           table.table_size, out64),
+        "table-gradient": lambda: gradient(pts),
+        "lookups-gradient": lambda: table_lookups_gradient(pts, gh2, gl, out64),
+        "table-catmull-rom": lambda: catmull(pts),
+        "lookups-4taps": lambda: table_lookups4(pts, ch2, cvl, out64),
         "integer": lambda: integer(pts32),
         "int-minimal": lambda: int_minimal(*soa, key, out32),
         "int-minimal64": lambda: int_minimal64(*soa, key, out32),
@@ -230,10 +323,125 @@ def measure(repeats):
     return interleaved(cands, repeats=repeats, timer=time.thread_time)  # its warm-up round compiles
 
 
+@nb.njit(nogil=True)
+def index64(pts, ph, shift, left, tt, jj):
+    """The float64 part that noiselab's float32 arithmetic keeps: each coordinate of ``(N, 3)`` float32 rows widened,
+    ``u = x + phase + shift``, its floor reduced modulo 2**32 (exact), the fraction rounded to float32 and the index
+    as a uint32, stored per axis in blocks of 256 as the kernel stores them (a lower bound of its index pass)."""
+    xs = np.empty((3, 256))
+    flat = pts.reshape(-1)
+    for p0 in range(0, pts.shape[0], 256):
+        m = min(256, pts.shape[0] - p0)
+        blk = flat[p0 * 3:(p0 + m) * 3]
+        for i in range(m):
+            for a in range(3):
+                xs[a, i] = np.float64(blk[i * 3 + a])
+        for a in range(3):
+            xa, ta, ja = xs[a], tt[a], jj[a]
+            for i in range(m):
+                u = xa[i] + ph[a] + shift
+                fi = np.floor(u)
+                q = fi - np.floor(fi * 2.3283064365386963e-10) * 4294967296.0
+                ta[i], ja[i] = np.float32(u - fi), _U32(np.int64(q) - left)
+
+
+F32_ROWS = (("quintic", "value", "Value"), ("quintic", "gradient", "Perlin"), ("catmull-rom", "value", "Cubic"))
+
+
+def measure_f32(repeats):
+    """noiselab's float32 arithmetic against pyfastnoisesimd, both layouts: ``{row: Timings}``."""
+    pts32 = np.random.default_rng(0).uniform(0.0, 100.0, (NPTS, 3)).astype(np.float32)
+    cols = np.ascontiguousarray(pts32.T)
+    fns = _peer("fns")
+    out = {}
+    for kname, basis, peer in F32_ROWS:
+        noise = LatticeNoise(3, rng=1, kernel=kname, basis=basis, hash="integer")
+        cands = {"f32a": lambda n=noise: n.evaluate(pts32, arithmetic="float32"),
+                 "f32aT": lambda n=noise: n.evaluate(cols, axis=0, arithmetic="float32"),
+                 "f64a": lambda n=noise: n(pts32), "f64aT": lambda n=noise: n(cols, axis=0)}
+        if fns is not None:
+            cands["fns"] = _fns_points(fns, getattr(fns.NoiseType, peer), pts32)
+        if kname == "quintic" and basis == "value":  # where the time goes: the kernel alone, its float64 index pass
+            k, res = noise.kernel, np.empty((NPTS, 1), np.float32)
+            kern = _jit.int_two_taps_kernel(3, False, True)
+            rest = (np.ones((1, 3)), np.array([noise.scale]), noise.phase, k.shift, k.left,
+                    k.coef.astype(np.float32), noise.keys, noise._mult, False)
+            tt, jj = np.empty((3, 256), np.float32), np.empty((3, 256), np.uint32)
+            cands["kernel"] = lambda: kern(pts32, False, 0, NPTS, res, *rest)
+            cands["index64"] = lambda: index64(pts32, noise.phase, float(k.shift), int(k.left), tt, jj)
+            cands["floor32"] = lambda: np.full(NPTS, 0.5, np.float32)
+            cands["reach"] = lambda: (pts32.max(), pts32.min())
+        out[(kname, basis, peer)] = interleaved(cands, repeats=repeats, timer=time.thread_time)
+    return out
+
+
+def report_f32(tf):
+    lines = ["## The float32 arithmetic against pyfastnoisesimd\n",
+             "1,000,000 random 3-D float32 points in [0, 100)^3, integer hash, one thread, the same clock and "
+             "rounds as above (interleaved per row). `f32 arith`: `noise.evaluate(pts32, arithmetic=\"float32\")` "
+             "from `(N, 3)` rows, `(3, N)`: the same from columns (`axis=0`); `f64 arith`: `noise(pts32)`, "
+             "today's default. `x FNS` = pyfastnoisesimd's time / noiselab's (median of the per-round ratios).\n",
+             "| noise | FNS | FNS pts/s | f32 arith (N, 3) x FNS | f32 arith (3, N) x FNS | f64 arith (N, 3) x FNS "
+             "| f64 arith (3, N) x FNS | f32 / f64 speed-up (N, 3) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for (kname, basis, peer), t in tf.items():
+        xf = [f"{t.ratio('fns', k):.2f}" if "fns" in t else "n/a" for k in ("f32a", "f32aT", "f64a", "f64aT")]
+        rate = f"{NPTS / t['fns']:.3g}" if "fns" in t else "n/a"
+        lines.append(f"| {kname} {basis} | {peer} | {rate} | {' | '.join(xf)} | {t.ratio('f64a', 'f32a'):.2f} |")
+    t = tf[F32_ROWS[0]]
+    if "fns" in t:
+        ms = {k: 1e3 * t[k] for k in ("f32a", "kernel", "index64", "reach", "floor32", "fns")}
+        lines += ["", "Where the float32 arithmetic's time goes (quintic value, `(N, 3)` rows, ms per 1e6 points, "
+                  "medians of the same rounds): "
+                  f"the call {ms['f32a']:.2f}; its compiled kernel alone (`_jit.int_two_taps_kernel(3, False, "
+                  f"True)`, no wrapper) {ms['kernel']:.2f}, so the wrapper (the argument checks, the output, the "
+                  f"threads' split) {ms['f32a'] - ms['kernel']:.2f} (the kernel counts NaN fractions as it goes, "
+                  f"instead of the float64 arithmetic's separate NaN/reach check over the points, "
+                  f"{ms['reach']:.2f}); "
+                  f"the float64 index pass the kernel keeps (`index64`: the block gather and the exact index "
+                  f"modulo 2**32, nothing else) {ms['index64']:.2f}; pyfastnoisesimd's whole call {ms['fns']:.2f}; "
+                  f"writing the output {ms['floor32']:.2f}. The exact float64 index alone takes "
+                  f"{ms['index64'] / ms['fns']:.2f}x pyfastnoisesimd's whole time: with the index exact "
+                  "in float64 (noise smooth and in range at 1e12), 1.0x is out of reach here; the float32 corner "
+                  f"sum itself takes about {ms['kernel'] - ms['index64']:.2f}."]
+    return lines + [""]
+
+
+F32_ERROR_HEAD = [
+    "## The float32 arithmetic's error\n",
+    "Largest |`evaluate(x, arithmetic=\"float32\")` - `evaluate(x)`| over 1,000,000 random points (computed once, "
+    "not timed), amplitude 1, integer hash, `LatticeNoise(dim, rng=1, kernel=..., basis=...)`, x uniform in "
+    "[-1000, 1000)^dim plus the offset; and the largest |value| of the float32 result (the amplitude bound is 1). "
+    "The quintic rows are the largest: its weights are evaluated from the power basis (`1 - 10 t^3 + 15 t^4 - "
+    "6 t^5`, the one weight polynomial every path shares), whose terms up to 15 cancel in float32. "
+    "`tests/test_lattice_f32.py` allows 4x the largest (4.46e-6 when the test was written) and |value| <= "
+    "amplitude.\n"]
+
+
+def f32_error(npts=NPTS):
+    """The float32 arithmetic's largest |difference| from the float64 result, and the largest |value| (amplitude 1)."""
+    rng = np.random.default_rng(5)
+    lines = ["| dim | noise | offset | max abs diff | max abs value |", "|---|---|---|---|---|"]
+    worst = 0.0
+    for dim in (1, 2, 3):
+        for offset in (0.0, 1e12):
+            x = rng.uniform(-1000.0, 1000.0, (npts, dim)) + offset
+            for kname, basis, _ in F32_ROWS + (("catmull-rom", "gradient", ""),):
+                noise = LatticeNoise(dim, rng=1, kernel=kname, basis=basis, hash="integer")
+                fast, ref = noise.evaluate(x, arithmetic="float32"), noise(x)
+                diff = float(np.abs(fast.astype(np.float64) - ref).max())
+                worst = max(worst, diff)
+                lines.append(f"| {dim} | {kname} {basis} | {offset:.0e} | {diff:.2e} "
+                             f"| {float(np.abs(fast).max()):.4f} |")
+    return lines + ["", f"largest: {worst:.2e}"]
+
+
 def report(t, repeats, load, cmd):
     info = run_info(cmd, ["pyfastnoisesimd"], load=load)
     rate = {k: NPTS / t[k] for k in t}
-    names = [k for k in ("table", "lookups", "integer", "integer-columns", "int-same64", "int-minimal64", "int-minimal",
+    names = [k for k in ("table", "table-kernel", "table-setup", "lookups", "table-gradient", "lookups-gradient",
+                         "table-catmull-rom", "lookups-4taps",
+                         "integer", "integer-columns", "int-same64", "int-minimal64", "int-minimal",
                          "fns", "floor32")
              if k in rate]
     lines = ["# What limits lattice noise on scattered 3-D points\n",
@@ -256,13 +464,26 @@ def report(t, repeats, load, cmd):
         lines.append(f"| {k} | {rate[k]:.3g} | {xf} | {t.ratio('floor32', k):.3f} | {t.ratio(k, 'lookups'):.2f} |")
     lines += ["", "Reading (the figures of this run):", ""]
     if "fns" in rate:
-        share = 100.0 / t.ratio('table', 'lookups')
+        ms = {k: 1e3 * t[k] for k in t}
         lines.append(f"- The table hash's reads alone run at {t.ratio('fns', 'lookups'):.2f}x pyfastnoisesimd: no "
                      "kernel that makes these reads reaches 1x on these points, whatever its arithmetic (the plain "
-                     "nested permutation would read 22 entries a point, not 12). noiselab's table kernel takes "
-                     f"{t.ratio('table', 'lookups'):.2f}x the time of its reads, so they are about {share:.0f} % of "
-                     "its time; the rest is its float64 arithmetic. With no arithmetic at all it would still run at "
-                     f"the reads' {t.ratio('fns', 'lookups'):.2f}x.")
+                     "nested permutation would read 22 entries a point, not 12).")
+        lines.append(f"- noiselab's table hash against its own read bound (time of the reads / time of noiselab): "
+                     f"quintic value {1 / t.ratio('table', 'lookups'):.2f}x, quintic gradient "
+                     f"{1 / t.ratio('table-gradient', 'lookups-gradient'):.2f}x, Catmull-Rom value "
+                     f"{1 / t.ratio('table-catmull-rom', 'lookups-4taps'):.2f}x.")
+        lines.append(f"- What limits it (quintic value, {ms['table']:.1f} ms): the kernel alone (`table-kernel`) "
+                     f"takes {ms['table-kernel']:.1f} ms ({t.ratio('table-kernel', 'lookups'):.2f}x the reads); the "
+                     f"rest, {ms['table'] - ms['table-kernel']:.1f} ms, is the call's wrapper (the input check's "
+                     "max and min over the points, the output's allocation). Within the kernel, the per-axis "
+                     f"float64 arithmetic that the bits need (`table-setup`: weights and taps, no read) takes "
+                     f"{ms['table-setup']:.1f} ms, {t.ratio('table-setup', 'lookups'):.2f}x the reads' "
+                     f"{ms['lookups']:.1f} ms (both read the points and write the output): the kernel runs it "
+                     "vectorised "
+                     "block by block and then the reads point by point, so its time is about their sum "
+                     f"({ms['table-setup'] + ms['lookups']:.1f} ms). 0.8x "
+                     "the read bound would need the arithmetic, the input check and the reads to overlap almost "
+                     "entirely.")
         lines.append(f"- The integer hash has no reads. The simplest numba kernel with its arithmetic runs at "
                      f"{t.ratio('fns', 'int-minimal'):.2f}x pyfastnoisesimd; noiselab's (`integer`, float64 "
                      f"arithmetic, any period) takes {t.ratio('integer', 'int-minimal'):.2f}x its time, "
@@ -283,12 +504,21 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=7)
     ap.add_argument("--output", default=str(Path(__file__).with_suffix(".md")))
+    ap.add_argument("--f32-error", action="store_true",
+                    help="print the float32 arithmetic's largest difference from float64 instead of timing")
+    ap.add_argument("--f32-only", action="store_true", help="time only the float32-arithmetic rows (print them)")
     args = ap.parse_args(argv)
+    if args.f32_error:
+        print("\n".join(f32_error()))
+        return
+    if args.f32_only:
+        print("\n".join(report_f32(measure_f32(args.repeats))))
+        return
     cmd = "benchmarks/.venv-peers/bin/python benchmarks/bench_limits.py" + (
         f" --repeats {args.repeats}" if args.repeats != 7 else "")
     load = os.getloadavg()[0]
     t = measure(args.repeats)
-    lines = report(t, args.repeats, load, cmd)
+    lines = report(t, args.repeats, load, cmd) + report_f32(measure_f32(args.repeats)) + F32_ERROR_HEAD + f32_error()
     Path(args.output).write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 

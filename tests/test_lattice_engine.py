@@ -75,7 +75,7 @@ def test_points_in_rows_or_columns_give_the_same_bits(hash_):
                                 {"basis": "gradient", "table_size": 30}])
 def test_folded_tables_give_the_per_point_kernels_bits(kw, monkeypatch):
     # many 3-D points read the folded tables (pair_tables), few the permutation itself, and either through the
-    # kernel split per chunk (_jit.table_fast_kernel) or the per-point kernel: the same bits
+    # block kernel (_jit.table_block_kernel) or the per-point kernel: the same bits
     from noiselab.lattice import points_path
 
     noise = LatticeNoise(3, rng=2, **kw)

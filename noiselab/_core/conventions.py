@@ -117,6 +117,15 @@ WORDS = {
         type='array_like or None',
         default=None,
         keyword_only=True),
+    'arithmetic': Word(
+        ('The floating type a sum is computed in: "float64" (the result rounded once to the output dtype) or '
+         '"float32" (faster, float32 rounding, float32 output; only where a float32 kernel exists, a ValueError '
+         'elsewhere).'),
+        unit='',
+        type='{"float64", "float32"}',
+        default='float64',
+        keyword_only=True,
+        note='a separate word from ``dtype``: dtype says what is returned, arithmetic what it is computed in'),
     'array': Word(
         'Integers in [0, 255], or floats.',
         unit='',

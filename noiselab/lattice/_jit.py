@@ -25,7 +25,10 @@ unrolls.
   (:func:`_make_int_two_taps`: 2-tap kernels, every point's taps in
   registers) and :func:`int_block_kernel` (:func:`_make_int_block`: the
   others, block by block), both reading ``(N, d)`` rows or ``(d, N)``
-  columns in place. Octaves are fused into one pass over the points.
+  columns in place; :func:`table_block_kernel` (:func:`_make_table_block`:
+  the table hash's 3-D values without a period over :func:`pair_tables`,
+  block by block, either layout in place). Octaves are fused into one pass
+  over the points.
 - the separable grid passes: :func:`axis_weights` / :func:`axis_dweights`
   and :func:`dense_taps` (per-axis weights and distinct taps),
   :func:`hash_expand` / :func:`hash_expand_values` / :func:`block_prefix`
@@ -169,9 +172,9 @@ def mix32(h):
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def hash_value(h):
-    """The lattice value of a prefix word: ``int32(mix32(h)) / 2**31`` in [-1, 1)."""
-    return np.float64(np.int32(mix32(h))) * _TO_UNIT
+def hash_value(h, ft=np.float64):
+    """The lattice value of a prefix word: ``int32(mix32(h)) / 2**31`` in [-1, 1) (in ``ft``: float32 rounds it)."""
+    return ft(np.int32(mix32(h))) * ft(_TO_UNIT)
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
@@ -628,7 +631,7 @@ _SQ = 0.7071067811865476  # 1/sqrt 2, _inthash.INV_SQRT2
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _grad_dot(h, r0, r1, r2, DIM):
+def _grad_dot(h, r0, r1, r2, DIM, ft=np.float64):
     """``g . r`` for the gradient :func:`hash_index` picks from the fixed 1-3-D set, by bit tests (no gather).
 
     The sets of :func:`._inthash.gradient_set`: 1-D ``{+1, -1}`` (bit 31 of
@@ -638,8 +641,10 @@ def _grad_dot(h, r0, r1, r2, DIM):
     terms: the same products (``+-s r``, ``+-r``) summed in a commutative
     pair, so the same value but possibly for the sign of a zero, which a sum
     of weighted corners started from +0 does not keep. The loop vectoriser
-    declines table gathers on some machines; selects it takes.
+    declines table gathers on some machines; selects it takes. ``ft``: the
+    arithmetic's type (the float32 kernels pass float32 distances).
     """
+    sq = ft(_SQ)
     x = mix32(h)
     if DIM == 1:
         return -r0 if (x >> _S31) != 0 else r0
@@ -648,14 +653,14 @@ def _grad_dot(h, r0, r1, r2, DIM):
         if i < 4:
             a = r0 if i < 2 else r1
             return -a if (i & 1) != 0 else a
-        sx = -_SQ if (i & 1) != 0 else _SQ
-        sy = -_SQ if (i & 2) != 0 else _SQ
+        sx = -sq if (i & 1) != 0 else sq
+        sy = -sq if (i & 2) != 0 else sq
         return sx * r0 + sy * r1
     i = x >> _S28
     ru = r0 if i < 8 else r1
     rv = r1 if i < 4 else (r0 if (i == 12 or i == 14) else r2)
-    su = -_SQ if (i & 1) != 0 else _SQ
-    sv = -_SQ if (i & 2) != 0 else _SQ
+    su = -sq if (i & 1) != 0 else sq
+    sv = -sq if (i & 2) != 0 else sq
     return su * ru + sv * rv
 
 
@@ -814,7 +819,7 @@ def _block_load(src, flat, cols, p0, m, X, DIM):
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GRAD):
+def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GRAD, ft):
     """One axis of a block without a period: weights, hashed tap offsets and (``GRAD``) signed distances.
 
     The values of :func:`_split` for every finite coordinate, in one branch-free
@@ -823,14 +828,15 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GR
     (exact: every step is an integer or a power-of-two scaling, and the
     difference, an integer in [0, 2**32), is representable), and converted
     once, whatever the coordinate's size; no int64 overflow past 2**63 and no
-    fallback to the exact per-point reduction.
+    fallback to the exact per-point reduction. The index stays float64; only
+    the fraction ``t`` and what follows from it are in ``ft`` (a no-op cast for float64).
     """
     Xa = X[a]
     Ta = TF[a]
     for i in range(m):
         u = Xa[i] * f + ph + shift  # same rounding as the grid path
         fi = np.floor(u)
-        t = u - fi
+        t = ft(u - fi)
         Ta[i] = t
         q = fi - np.floor(fi * _INV_TWO32) * _TWO32
         j = _U32(np.int64(q) - left)
@@ -842,10 +848,10 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GR
         for k in range(TAPS):
             Rk = R[a, k]
             for i in range(m):
-                Rk[i] = Ta[i] - shift + (left - k)
+                Rk[i] = Ta[i] - ft(shift) + ft(left - k)
 
 
-def _make_int_block(DIM, TAPS, GRAD):
+def _make_int_block(DIM, TAPS, GRAD, F32=False):
     """The integer hash's 1-3-D value kernel without a period, block by block, reading either layout in place.
 
     The bits of :func:`_make_int_fast` (the same operations in the same order
@@ -857,8 +863,10 @@ def _make_int_block(DIM, TAPS, GRAD):
     block of :data:`BLOCK` points: the coordinates (:func:`_block_load`),
     each axis's set-up (:func:`_block_axis`), then :func:`_make_int_fast`'s
     corner loops; every loop runs over the block from index 0, which LLVM
-    vectorises across points (8 float64 lanes with AVX-512).
+    vectorises across points (8 float64 lanes with AVX-512). ``F32``: float32
+    arithmetic from each fraction on (``coef`` float32; the index as above).
     """
+    FT = np.float32 if F32 else np.float64
 
     @nb.njit(cache=True, nogil=True)
     def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval):
@@ -867,19 +875,24 @@ def _make_int_block(DIM, TAPS, GRAD):
         noct = freqs.shape[0]
         flat = src.reshape(-1)
         X = np.empty((DIM, BLOCK))
-        TF = np.empty((DIM, BLOCK))
-        W = np.empty((DIM, TAPS, BLOCK))
-        R = np.empty((DIM, TAPS, BLOCK) if GRAD else (1, 1, 1))
+        TF = np.empty((DIM, BLOCK), FT)
+        W = np.empty((DIM, TAPS, BLOCK), FT)
+        R = np.empty((DIM, TAPS, BLOCK) if GRAD else (1, 1, 1), FT)
         M = np.empty((DIM, TAPS, BLOCK), np.uint32)
-        T = np.empty(BLOCK)
-        ACC = np.empty((ncomp, BLOCK))
+        T = np.empty(BLOCK, FT)
+        ACC = np.empty((ncomp, BLOCK), FT)
+        bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
             for o in range(noct):
                 for a in range(DIM):
-                    _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS, GRAD)
-                amp = amps[o]
+                    _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS, GRAD,
+                                FT)
+                    if F32:  # as :func:`_make_int_two_taps`: the points are checked after the call
+                        for i in range(m):
+                            bad += TF[a, i] != TF[a, i]
+                amp = FT(amps[o])
                 first = o == 0
                 for c in range(ncomp):
                     key = keys[c]
@@ -908,21 +921,21 @@ def _make_int_block(DIM, TAPS, GRAD):
                                         h = _U32(h1 ^ M[L, k, i])
                                         w = w1 * W[L, k, i]
                                         if not GRAD:
-                                            v = hash_value(h)
+                                            v = hash_value(h, FT)
                                         elif DIM == 3:
-                                            v = _grad_dot(h, R0[i], R1[i], R[2, k, i], 3)
+                                            v = _grad_dot(h, R0[i], R1[i], R[2, k, i], 3, FT)
                                         else:
-                                            v = _grad_dot(h, R0[i], R[1, k, i], 0.0, 2)
+                                            v = _grad_dot(h, R0[i], R[1, k, i], FT(0.0), 2, FT)
                                         total += w * v
                                     T[i] = total
                     for i in range(m):
                         if DIM > 1:
                             total = T[i]
                         else:
-                            total = 0.0
+                            total = FT(0.0)
                             for k in range(TAPS):
                                 h = _U32(key ^ M[0, k, i])
-                                v = _grad_dot(h, R[0, k, i], 0.0, 0.0, 1) if GRAD else hash_value(h)
+                                v = _grad_dot(h, R[0, k, i], FT(0.0), FT(0.0), 1, FT) if GRAD else hash_value(h, FT)
                                 total += W[0, k, i] * v
                         tv = abs(total) if absval else total
                         if first:
@@ -934,40 +947,54 @@ def _make_int_block(DIM, TAPS, GRAD):
                 Ac = ACC[c]
                 for i in range(m):
                     ob[i, c] = Ac[i]
+        return bad
 
     return int_block
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _fraction(x, f, ph, shift, left, ft):
+    """One axis of one point: its fraction ``t`` (in ``ft``) and its first tap's index ``j`` (exact, mod 2**32)."""
+    u = x * f + ph + shift  # same rounding as the grid path
+    fi = np.floor(u)
+    q = fi - np.floor(fi * _INV_TWO32) * _TWO32  # fi mod 2**32, exactly (:func:`_block_axis`)
+    return ft(u - fi), _U32(np.int64(q) - left)
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _index(pre, TT, JJ, X, a, i, f, ph, shift, left, ft):
+    """Point ``i``'s ``(t, j)`` on axis ``a``: from :func:`_fraction`'s loop (``pre``) or computed here."""
+    if pre:
+        return TT[a, i], JJ[a, i]
+    return _fraction(X[a, i], f, ph, shift, left, ft)
+
+
 @nb.njit(cache=True, nogil=True)
-def _two_taps(x, f, ph, shift, left, coef, mult_a, grad):
-    """One axis of one point for a 2-tap kernel: ``(w0, w1, m0, m1, r0, r1)`` as :func:`_block_axis` makes them.
+def _two_taps(t, j, shift, left, coef, mult_a, grad, ft):
+    """One axis of one point for a 2-tap kernel (``t, j``: :func:`_fraction`): ``(w0, w1, m0, m1, r0, r1)``
+    as :func:`_block_axis` makes them.
 
     A plain compiled function, not inlined by numba: LLVM inlines it into the
     kernel with ``grad`` known, and numba compiles its body once instead of
     once per call site (inlined at numba's level, :func:`_make_int_two_taps`
-    took 6.6 s to compile instead of 2.0 s).
+    took 6.6 s to compile instead of 2.0 s). ``ft``: the arithmetic's type.
     """
-    u = x * f + ph + shift  # same rounding as the grid path
-    fi = np.floor(u)
-    t = u - fi
-    q = fi - np.floor(fi * _INV_TWO32) * _TWO32  # fi mod 2**32, exactly (:func:`_block_axis`)
-    j = _U32(np.int64(q) - left)
     t2, t3, t4, t5 = _powers(t)
     w0 = _weight(coef, 0, t, t2, t3, t4, t5)
     w1 = _weight(coef, 1, t, t2, t3, t4, t5)
     m0 = _U32(_U32(j + _U32(0)) * mult_a)
     m1 = _U32(_U32(j + _U32(1)) * mult_a)
     if grad:
-        r0 = t - shift + (left - 0)
-        r1 = t - shift + (left - 1)
+        r0 = t - ft(shift) + ft(left - 0)
+        r1 = t - ft(shift) + ft(left - 1)
     else:
-        r0 = 0.0
-        r1 = 0.0
+        r0 = ft(0.0)
+        r1 = ft(0.0)
     return w0, w1, m0, m1, r0, r1
 
 
 @nb.njit(cache=True, nogil=True)
-def _two_corners(total, h1, w1, c0, c1, n0, n1, ra, rb, s0, s1, dim, grad):
+def _two_corners(total, h1, w1, c0, c1, n0, n1, ra, rb, s0, s1, dim, grad, ft):
     """``total`` plus the last axis's two corners: ``(w1 c_k) v(h1 ^ n_k)`` for k = 0, 1, in that order.
 
     ``v`` is :func:`hash_value` or (``grad``) :func:`_grad_dot` of the
@@ -978,18 +1005,18 @@ def _two_corners(total, h1, w1, c0, c1, n0, n1, ra, rb, s0, s1, dim, grad):
         h = _U32(h1 ^ (n0 if k == 0 else n1))
         s = s0 if k == 0 else s1
         if not grad:
-            v = hash_value(h)
+            v = hash_value(h, ft)
         elif dim == 3:
-            v = _grad_dot(h, ra, rb, s, 3)
+            v = _grad_dot(h, ra, rb, s, 3, ft)
         elif dim == 2:
-            v = _grad_dot(h, ra, s, 0.0, 2)
+            v = _grad_dot(h, ra, s, ft(0.0), 2, ft)
         else:
-            v = _grad_dot(h, s, 0.0, 0.0, 1)
+            v = _grad_dot(h, s, ft(0.0), ft(0.0), 1, ft)
         total += (w1 * (c0 if k == 0 else c1)) * v
     return total
 
 
-def _make_int_two_taps(DIM, GRAD):
+def _make_int_two_taps(DIM, GRAD, F32=False):
     """The integer hash's 1-3-D values without a period for 2-tap kernels (quintic, linear), point by point.
 
     The arguments and bits of :func:`_make_int_block`; instead of each axis's
@@ -998,8 +1025,11 @@ def _make_int_two_taps(DIM, GRAD):
     (:func:`_two_corners`, in :func:`_make_int_fast`'s order and products),
     in one loop over the block that LLVM vectorises across points.
     1.63-1.74x :func:`_make_int_fast` for 1e6 3-D float32 quintic value
-    points (``benchmarks/bench_lattice_paths.md``).
+    points (``benchmarks/bench_lattice_paths.md``). ``F32``: float32 arithmetic
+    from each fraction on, as :func:`_make_int_block`.
     """
+    FT = np.float32 if F32 else np.float64
+    Z = FT(0.0)
     B = 1 if DIM > 1 else 0  # the second and third axes' rows (the first's where there is none)
     C = 2 if DIM > 2 else 0
 
@@ -1010,16 +1040,23 @@ def _make_int_two_taps(DIM, GRAD):
         noct = freqs.shape[0]
         flat = src.reshape(-1)
         X = np.empty((DIM, BLOCK))
-        ACC = np.empty((ncomp, BLOCK))
+        TT = np.empty((DIM, BLOCK) if F32 else (1, 1), FT)
+        JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
+        ACC = np.empty((ncomp, BLOCK), FT)
+        bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
-            x0 = X[0]
-            x1 = X[B]
-            x2 = X[C]
             for o in range(noct):
-                amp = amps[o]
+                amp = FT(amps[o])
                 first = o == 0
+                if F32:  # the exact float64 index in its own loop: the corner loop is then all float32 (16 lanes)
+                    for a in range(DIM):
+                        Xa = X[a]
+                        for i in range(m):
+                            t, j = _fraction(Xa[i], freqs[o, a], phase[a], shift, left, FT)
+                            TT[a, i], JJ[a, i] = t, j
+                            bad += t != t  # a NaN fraction: x f + phase NaN or infinite (_run_block refuses it)
                 fa = freqs[o, 0]
                 fb = freqs[o, B]
                 fc = freqs[o, C]
@@ -1027,30 +1064,31 @@ def _make_int_two_taps(DIM, GRAD):
                     key = keys[c]
                     acc = ACC[c]
                     for i in range(m):
-                        a0, a1, am0, am1, ar0, ar1 = _two_taps(x0[i], fa, phase[0], shift, left, coef, mult[0], GRAD)
+                        ta, ja = _index(F32, TT, JJ, X, 0, i, fa, phase[0], shift, left, FT)
+                        a0, a1, am0, am1, ar0, ar1 = _two_taps(ta, ja, shift, left, coef, mult[0], GRAD, FT)
                         if DIM == 1:  # (1.0 * w) v is w v exactly
-                            total = _two_corners(0.0, key, 1.0, a0, a1, am0, am1, 0.0, 0.0, ar0, ar1, DIM, GRAD)
+                            total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD, FT)
                         else:
-                            b0, b1, bm0, bm1, br0, br1 = _two_taps(x1[i], fb, phase[B], shift, left, coef, mult[B],
-                                                                   GRAD)
+                            tb, jb = _index(F32, TT, JJ, X, B, i, fb, phase[B], shift, left, FT)
+                            b0, b1, bm0, bm1, br0, br1 = _two_taps(tb, jb, shift, left, coef, mult[B], GRAD, FT)
                             if DIM == 2:
-                                total = _two_corners(0.0, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, 0.0, br0, br1,
-                                                     DIM, GRAD)
-                                total = _two_corners(total, _U32(key ^ am1), a1, b0, b1, bm0, bm1, ar1, 0.0, br0, br1,
-                                                     DIM, GRAD)
+                                total = _two_corners(Z, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, Z, br0, br1,
+                                                     DIM, GRAD, FT)
+                                total = _two_corners(total, _U32(key ^ am1), a1, b0, b1, bm0, bm1, ar1, Z, br0, br1,
+                                                     DIM, GRAD, FT)
                             else:
-                                c0, c1, cm0, cm1, cr0, cr1 = _two_taps(x2[i], fc, phase[C], shift, left, coef, mult[C],
-                                                                       GRAD)
+                                tc, jc = _index(F32, TT, JJ, X, C, i, fc, phase[C], shift, left, FT)
+                                c0, c1, cm0, cm1, cr0, cr1 = _two_taps(tc, jc, shift, left, coef, mult[C], GRAD, FT)
                                 ha0 = _U32(key ^ am0)
                                 ha1 = _U32(key ^ am1)
-                                total = _two_corners(0.0, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
-                                                     cr1, DIM, GRAD)
+                                total = _two_corners(Z, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
+                                                     cr1, DIM, GRAD, FT)
                                 total = _two_corners(total, _U32(ha0 ^ bm1), a0 * b1, c0, c1, cm0, cm1, ar0, br1, cr0,
-                                                     cr1, DIM, GRAD)
+                                                     cr1, DIM, GRAD, FT)
                                 total = _two_corners(total, _U32(ha1 ^ bm0), a1 * b0, c0, c1, cm0, cm1, ar1, br0, cr0,
-                                                     cr1, DIM, GRAD)
+                                                     cr1, DIM, GRAD, FT)
                                 total = _two_corners(total, _U32(ha1 ^ bm1), a1 * b1, c0, c1, cm0, cm1, ar1, br1, cr0,
-                                                     cr1, DIM, GRAD)
+                                                     cr1, DIM, GRAD, FT)
                         tv = abs(total) if absval else total
                         if first:
                             acc[i] = amp * tv
@@ -1061,114 +1099,99 @@ def _make_int_two_taps(DIM, GRAD):
                 Ac = ACC[c]
                 for i in range(m):
                     ob[i, c] = Ac[i]
+        return bad
 
     return int_two_taps
 
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _table_split(pts, p0, m, a, f, ph, shift, left, TAPS, coef, per, msk, W, R, B, U, T, GRAD):
-    """One axis of a chunk for the table hash without a period: weights, (GRAD) signed distances, first taps.
+def _table_axis(x, m, f, ph, shift, left, coef, n, W, R, J, TAPS, GRAD):
+    """One axis of a block for the table hash without a period: weights, (GRAD) signed distances, taps.
 
-    The values of :func:`_make_points`' per-point set-up (the same operations in the same order): the
-    weights in one loop that LLVM vectorises, then the reduced first tap ``B[a, i]`` (:func:`_reduce`).
+    For a table size n that is a power of two. The values of :func:`_make_points`' per-point set-up (the
+    same operations in the same order), in one loop from index 0 (:func:`_block_load`) that LLVM vectorises:
+    the first tap reduced in float64, ``fi - floor(fi / n) n`` (exact, as in :func:`_block_axis`; no branch
+    for huge coordinates), then ``J[k]`` tap ``k`` modulo n.
     """
+    inv = 1.0 / n
     for i in range(m):
-        u = pts[p0 + i, a] * f + ph + shift  # same rounding as the grid path
+        u = x[i] * f + ph + shift  # same rounding as the grid path
         fi = np.floor(u)
-        U[i] = fi
-        T[i] = u - fi
-    for k in range(TAPS):  # one tap at a time, its coefficients held in registers
-        c0 = coef[k, 0]
-        c1 = coef[k, 1]
-        c2 = coef[k, 2]
-        c3 = coef[k, 3]
-        c4 = coef[k, 4]
-        c5 = coef[k, 5]
-        for i in range(m):
-            t = T[i]
-            t2, t3, t4, t5 = _powers(t)
-            W[a, k, i] = (c0 + c1 * t) + (c2 * t2 + c3 * t3) + (c4 * t4 + c5 * t5)  # :func:`_weight`
+        t = u - fi
+        j = (np.int64(fi - np.floor(fi * inv) * n) - left) & (n - 1)
+        t2, t3, t4, t5 = _powers(t)
+        for k in range(TAPS):
+            J[k, i] = (j + k) & (n - 1)
+            W[k, i] = _weight(coef, k, t, t2, t3, t4, t5)
             if GRAD:
-                R[a, k, i] = t - shift + (left - k)
-    for i in range(m):
-        B[a, i] = _reduce(U[i], left, per, msk)
+                R[k, i] = t - shift + (left - k)
 
 
-def _make_table_fast(TAPS, GRAD):
-    """The table hash's 3-D value kernel without a period or derivatives, split per chunk, then summed.
+def _make_table_block(TAPS, GRAD):
+    """The table hash's 3-D values without a period or derivatives, block by block, reading either layout in place.
 
-    The same arguments and the same bits as :func:`_make_points` for ``DIM`` 3 (values over
-    :func:`pair_tables`, ``GRAD`` gradients over the permutation; ``basis`` is ignored): per chunk of
-    :data:`CHUNK` points and octave each axis's weights and first taps (:func:`_table_split`, vectorised
-    across points), then per point the corner sum in the general kernel's nested order from the split's
-    arrays. The weights, computed once per axis and point in a vectorised loop, were the general kernel's
-    per-point set-up (``benchmarks/bench_lattice_paths.md``).
+    The bits of :func:`_make_points` for ``DIM`` 3 (its corner sums in its nested order) with the arguments of
+    :func:`_make_int_block` less the hash's: ``(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef,
+    H2, TL, absval)``, ``H2`` and ``TL`` the folded tables of :func:`pair_tables` (values, or ``GRAD``
+    gradients). Per block of :data:`BLOCK` points: the coordinates (:func:`_block_load`), each axis's set-up
+    (:func:`_table_axis`, vectorised across points), then per point the corner sum from 4 (2 taps) or 16
+    (4 taps) pair-table reads.
     """
 
     @nb.njit(cache=True, nogil=True)
-    def table_fast(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
-                   perms, values, grads, basis, absval):
+    def table_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, H2, TL, absval):
         """Lattice noise with the table hash at scattered 3-D points, values (as :func:`_make_points`)."""
-        npts = pts.shape[0]
-        ncomp = perms.shape[0]
+        ncomp = H2.shape[0]
         noct = freqs.shape[0]
-        if GRAD:
-            n = perms.shape[1]
-        else:  # the table size n, from the folded values' run 2 (2n + 4)
-            n = (values.shape[1] // 2 - 4) // 2
-        nmask = n - 1 if (n & (n - 1)) == 0 else -1
-        W = np.empty((3, TAPS, CHUNK))
-        R = np.empty((3, TAPS, CHUNK) if GRAD else (1, 1, 1))
-        B = np.empty((3, CHUNK), np.int64)
-        U = np.empty(CHUNK)
-        T = np.empty(CHUNK)
-        ACC = np.empty((ncomp, CHUNK))
-        for p0 in range(0, npts, CHUNK):
-            m = min(CHUNK, npts - p0)
+        n = (TL.shape[1] // 2 - 4) // 2  # the table size n, from the folded tables' run 2 (2n + 4)
+        un = _U64(n)
+        flat = src.reshape(-1)
+        X = np.empty((3, BLOCK))
+        W = np.empty((3, TAPS, BLOCK))
+        R = np.empty((3, TAPS, BLOCK) if GRAD else (3, 1, 1))
+        J = np.empty((3, TAPS, BLOCK), np.int64)
+        ACC = np.empty((ncomp, BLOCK))
+        for p0 in range(lo, hi, BLOCK):
+            m = min(BLOCK, hi - p0)
+            _block_load(src, flat, cols, p0, m, X, 3)
             for c in range(ncomp):
                 for i in range(m):
                     ACC[c, i] = 0.0
             for o in range(noct):
                 for a in range(3):
-                    _table_split(pts, p0, m, a, freqs[o, a], phase[a], shift, left, TAPS, coef, period[a], pmask[a],
-                                 W, R, B, U, T, GRAD)
+                    _table_axis(X[a], m, freqs[o, a], phase[a], shift, left, coef, n, W[a], R[a], J[a], TAPS, GRAD)
                 amp = amps[o]
                 for c in range(ncomp):
-                    perm = perms[c]
+                    H = H2[c]
+                    V = TL[c]
                     acc = ACC[c]
-                    for i in range(m):
-                        b0 = B[0, i]
-                        b1 = B[1, i]
-                        b2 = B[2, i]
+                    for i in range(m):  # unsigned indices: no check for a negative one (:func:`_block_load`)
+                        b2 = _U64(J[2, 0, i])
                         total = 0.0
                         for k0 in range(TAPS):
+                            row = _U64(J[0, k0, i]) * un
                             s1 = 0.0
-                            if GRAD:
-                                h1 = perm[_hash(0, b0 + k0, n, nmask)]
-                                for k1 in range(TAPS):
-                                    h2 = perm[_hash(h1, b1 + k1, n, nmask)]
-                                    s2 = 0.0
-                                    for k2 in range(TAPS):
-                                        h = perm[_hash(h2, b2 + k2, n, nmask)]
-                                        v = grads[h, 0] * R[0, k0, i] + grads[h, 1] * R[1, k1, i] + grads[h, 2] * R[2, k2, i]
-                                        s2 += W[2, k2, i] * v
-                                    s1 += W[1, k1, i] * s2
-                            else:  # perms holds H2, values VL (pair_tables)
-                                row = _hash(0, b0 + k0, n, nmask) * n
-                                for k1 in range(TAPS):
-                                    hb = np.int64(perm[row + _hash(0, b1 + k1, n, nmask)]) + b2
-                                    s2 = 0.0
-                                    for k2 in range(TAPS):
-                                        s2 += W[2, k2, i] * values[c, hb + k2]
-                                    s1 += W[1, k1, i] * s2
+                            for k1 in range(TAPS):
+                                hb = _U64(H[row + _U64(J[1, k1, i])]) + b2
+                                s2 = 0.0
+                                for k2 in range(TAPS):
+                                    x = hb + _U64(k2)
+                                    if GRAD:
+                                        v = V[x, 0] * R[0, k0, i] + V[x, 1] * R[1, k1, i] + V[x, 2] * R[2, k2, i]
+                                    else:
+                                        v = V[x]
+                                    s2 += W[2, k2, i] * v
+                                s1 += W[1, k1, i] * s2
                             total += W[0, k0, i] * s1
                         acc[i] += amp * (abs(total) if absval else total)
-            for i in range(m):
-                for c in range(ncomp):
-                    out[p0 + i, c] = ACC[c, i]
+            ob = out[p0:p0 + m]
+            for c in range(ncomp):
+                Ac = ACC[c]
+                for i in range(m):
+                    ob[i, c] = Ac[i]
 
-    return table_fast
+    return table_block
 
 
 _POINTS = {}
@@ -1199,55 +1222,56 @@ def int_fast_kernel(dim, taps, gradient, periodic):
     return fn
 
 
-def table_fast_kernel(taps, gradient):
-    """The table hash's split 3-D kernel without a period (:func:`_make_table_fast`), as :func:`points_kernel`."""
+def table_block_kernel(taps, gradient):
+    """The table hash's 3-D block kernel without a period (:func:`_make_table_block`), as :func:`points_kernel`."""
     key = ("table", int(taps), bool(gradient))
     fn = _POINTS.get(key)
     if fn is None:
-        fn = _POINTS[key] = _make_table_fast(*key[1:])
+        fn = _POINTS[key] = _make_table_block(*key[1:])
     return fn
 
 
-def int_block_kernel(dim, taps, gradient):
+def int_block_kernel(dim, taps, gradient, f32=False):
     """The integer hash's block kernel (:func:`_make_int_block`) for 1-3-D values without a period."""
-    key = ("block", int(dim), int(taps), bool(gradient))
+    key = ("block", int(dim), int(taps), bool(gradient), bool(f32))
     fn = _POINTS.get(key)
     if fn is None:
         fn = _POINTS[key] = _make_int_block(*key[1:])
     return fn
 
 
-def int_two_taps_kernel(dim, gradient):
+def int_two_taps_kernel(dim, gradient, f32=False):
     """The integer hash's 2-tap kernel (:func:`_make_int_two_taps`) for 1-3-D values without a period."""
-    key = ("two", int(dim), bool(gradient))
+    key = ("two", int(dim), bool(gradient), bool(f32))
     fn = _POINTS.get(key)
     if fn is None:
         fn = _POINTS[key] = _make_int_two_taps(*key[1:])
     return fn
 
 
-def pair_tables(perms, values):
-    """The 3-D table-hash value kernel's folded tables ``(H2, VL)``, built from the live tables at each call.
+def pair_tables(perms, values, grads=None):
+    """The 3-D table-hash block kernel's folded tables ``(H2, TL)``, built from the live tables at each call.
 
     ``H2[c, q0 * n + q1] = P_c[(P_c[q0] + q1) mod n] + S ((q0 + q1 + h) & 1)``
     (two hash levels in one read, plus the parity row's offset);
-    ``VL[c, r S + x] = values[(r + x) & 1, P_c[x mod n]]`` for ``x < S = 2n + 4``
+    ``TL[c, r S + x] = values[(r + x) & 1, P_c[x mod n]]`` for ``x < S = 2n + 4``
     (the last level folded into the values, run on past 2n so that ``h + j``
-    needs no reduction).
+    needs no reduction), or with ``grads`` the gradients ``grads[P_c[x mod n]]``
+    (the same for both parities).
     """
     dim_out, n = perms.shape
     S = 2 * n + 4
     q = np.arange(n)
     x = np.arange(S)
     H2 = np.empty((dim_out, n * n), dtype=np.uint16)
-    VL = np.empty((dim_out, 2 * S))
+    TL = np.empty((dim_out, 2 * S) if grads is None else (dim_out, 2 * S, grads.shape[1]))
     for c in range(dim_out):
         P = perms[c]
         h = P[(P[q][:, None] + q[None, :]) % n]
         H2[c] = (h + S * ((q[:, None] + q[None, :] + h) & 1)).ravel()
         for r in range(2):
-            VL[c, r * S:(r + 1) * S] = values[(r + x) & 1, P[x % n]]
-    return H2, VL
+            TL[c, r * S:(r + 1) * S] = values[(r + x) & 1, P[x % n]] if grads is None else grads[P[x % n]]
+    return H2, TL
 
 
 # ---------------------------------------------------------------- grids

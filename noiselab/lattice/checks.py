@@ -14,17 +14,18 @@ import math
 
 import numpy as np
 
-from .._core import check_finite_array, check_int, check_memory, check_real
+from .._core import check_finite_array, check_int, check_memory, check_real, float_dtype
 from ._jit import PERIOD_MAX
 from .kernels import KERNELS
 
 __all__ = ["BASES", "ALTERNATIONS", "HASHES", "DEFAULT_KERNELS", "default_kernel", "check_choices", "check_table_size", "per_axis", "check_period", "check_large",
            "check_octaves", "octave_periods", "total_gain", "check_amplitude", "check_reach", "check_window", "check_differentiable",
-           "check_scalar", "jac_bound", "check_jac_finite"]
+           "check_scalar", "jac_bound", "check_jac_finite", "ARITHMETICS", "check_arithmetic"]
 
 BASES = ("value", "gradient")
 ALTERNATIONS = ("table", "lattice")
 HASHES = ("table", "integer")
+ARITHMETICS = ("float64", "float32")
 
 
 # the kernel a basis gets when none is named (see LatticeNoise's ``kernel``): Phillips' cubic B-spline for
@@ -140,6 +141,23 @@ def check_amplitude(amplitude, dtype, what="amplitude"):
     if not amplitude <= top:
         raise ValueError(f"{what} {amplitude:.3g} exceeds the range of {np.dtype(dtype).name} ({top:.3g}): "
                          "the output would overflow; use dtype=float64 or a smaller amplitude")
+
+
+def check_arithmetic(arithmetic, noise, dtype):
+    """Whether ``arithmetic`` asks for the float32 kernels, refusing what they do not do (never a fallback)."""
+    if not isinstance(arithmetic, str) or arithmetic not in ARITHMETICS:
+        raise ValueError(f"arithmetic must be one of {ARITHMETICS}, got {arithmetic!r}")
+    if arithmetic == "float64":
+        return False
+    asked = [what for what, bad in ((f"hash={noise.hash!r}", noise.hash != "integer"),
+                                    (f"dim_in={noise.dim_in}", noise.dim_in > 3),
+                                    ("a period", bool((noise.period != PERIOD_MAX).any())),
+                                    (f"dtype={dtype!r}", dtype is not None and float_dtype(dtype) != np.float32))
+             if bad]
+    if asked:
+        raise ValueError(f"arithmetic='float32' supports integer-hash values in 1-3-D without a period, output "
+                         f"float32 (dtype None or float32); got {', '.join(asked)}: use arithmetic='float64'")
+    return True
 
 
 def check_reach(flat, freqs, phase, name):

@@ -6,13 +6,13 @@ read in place, without a copy) as ``(N, dim_in)`` rows;
 :func:`evaluate_points` and :func:`evaluate_points_jac` run the one point
 kernel of :mod:`._jit` that fits the noise (:func:`._jit.points_kernel`:
 hash, dimension, tap count, derivative flag, and whether any axis has a
-period of its own; 3-D table-hash noise without a period a kernel split per
-chunk of points, :data:`TABLE_SPLIT`, its values over folded tables from
-:data:`PAIRS_MIN` points on; integer-hash values in 1-3-D a kernel
+period of its own; 3-D table-hash noise without a period, from
+:data:`PAIRS_MIN` points on, a block kernel over folded tables that reads
+rows or columns in place, :data:`TABLE_SPLIT`; integer-hash values in 1-3-D a kernel
 vectorised across points, :data:`INT_FAST_DIM`, and without a period of
 their own one that reads rows or columns in place, :data:`INT_BLOCK`) over
 blocks of points on ``workers`` threads (:func:`noiselab._core.run_split`,
-or :func:`_run_block` for the in-place kernels: every point's arithmetic is
+or :func:`_run_block` / :func:`_run_table` for the in-place kernels: every point's arithmetic is
 the same whatever the split, so any worker count gives the same bits). These
 functions read a noise's tables and change nothing.
 """
@@ -78,10 +78,10 @@ def shape_out(out, lead, dim_out):
     return out.reshape(tuple(lead) + (dim_out,))
 
 
-# 3-D table-hash value noise without a period runs the split kernel over folded tables (:func:`._jit.pair_tables`,
-# the same bits; with the split 1.55x the per-point kernel, benchmarks/bench_lattice_paths.md) from this many
-# points on (building them takes about 0.3 ms for n = 256), and up to this many entries (n * n per component:
-# 2 MiB for n = 1024); fewer points, or larger tables, take the per-point kernel
+# 3-D table-hash noise without a period or derivatives runs the block kernel over folded tables
+# (:func:`._jit.pair_tables`, the same bits) from this many points on (building them takes about 0.6 ms for
+# n = 256, once per set of tables: :func:`_folded`), and up to this many entries (n * n per component: 2 MiB for
+# n = 1024); fewer points, or larger tables, take the per-point kernel
 PAIRS_MIN = 1 << 15
 MAX_PAIR_ENTRIES = 1 << 20
 
@@ -99,8 +99,8 @@ INT_FAST_DIM = 3
 INT_BLOCK = True
 
 
-# 3-D table-hash noise without a period or derivatives (values over the folded tables, gradients over the
-# permutation) runs the kernel split per chunk (:func:`._jit.table_fast_kernel`, the same bits); False turns it off
+# 3-D table-hash noise without a period or derivatives runs block by block over the folded tables, rows or columns
+# read in place (:func:`._jit.table_block_kernel`, the same bits); False turns it off
 TABLE_SPLIT = True
 
 
@@ -111,13 +111,13 @@ def _periodic(noise):
 
 
 def _pairs(noise, npts, deriv):
-    """Whether the 3-D table-hash value kernel reads folded tables for this call."""
-    return (noise.hash == "table" and noise.basis == "value" and noise.dim_in == 3 and not deriv
-            and npts >= PAIRS_MIN and not _periodic(noise)
+    """Whether this call takes the 3-D table-hash block kernel over folded tables (:data:`TABLE_SPLIT`)."""
+    return (TABLE_SPLIT and noise.hash == "table" and noise.dim_in == 3 and not deriv
+            and npts >= PAIRS_MIN and not _periodic(noise) and noise.table_size & (noise.table_size - 1) == 0
             and noise.table_size ** 2 * noise.dim_out <= MAX_PAIR_ENTRIES)
 
 
-def kernel_args(noise, freqs, amps, absval, pairs=False):
+def kernel_args(noise, freqs, amps, absval):
     """The point kernel's arguments after ``(points, out)`` (:func:`._jit.points_kernel`)."""
     k = noise.kernel
     basis = int(noise.basis == "gradient")
@@ -125,8 +125,6 @@ def kernel_args(noise, freqs, amps, absval, pairs=False):
             noise.phase, k.shift, k.left, k.taps, k.coef, k.dcoef, noise.period, noise._pmask)
     if noise.hash == "integer":
         tail = (noise.keys, noise._mult, noise._int_grads)
-    elif pairs:
-        tail = jit.pair_tables(noise.perms, noise.values) + (noise.gradients,)
     else:
         tail = (noise.perms, noise.values, noise.gradients)
     return head + tail + (basis, bool(absval))
@@ -151,31 +149,67 @@ def _layout(flat):
     return np.ascontiguousarray(flat), False
 
 
-def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
+def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f32=False):
     """The integer hash's block kernel over ``flat`` into ``out``, in ``workers`` contiguous ranges of points.
 
     As :func:`noiselab._core.run_split`, but every thread gets the whole
     arrays and its range ``[lo, hi)``: a slice of ``(d, N)`` columns is no
     longer C-contiguous, which the kernel needs to read them in place.
+    ``f32``: the float32-arithmetic variants (float32 ``out``), which check the
+    points as they go: the count of NaN fractions (a NaN point or an
+    overflowing ``x * frequency``), refused by :func:`evaluate_points`.
     """
     src, cols = _layout(flat)
     k = noise.kernel
     gradient = noise.basis == "gradient"
     if k.taps == 2:  # the same bits, every point's taps in registers
-        kernel = jit.int_two_taps_kernel(noise.dim_in, gradient)
+        kernel = jit.int_two_taps_kernel(noise.dim_in, gradient, f32)
     else:
-        kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient)
+        kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient, f32)
     rest = (np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
-            noise.phase, k.shift, k.left, k.coef, noise.keys, noise._mult, bool(absval))
+            noise.phase, k.shift, k.left, k.coef.astype(np.float32) if f32 else k.coef, noise.keys, noise._mult,
+            bool(absval))
     npts = flat.shape[0]
     n = min(workers, max(1, npts // min_block))
     bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
+    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n))
+
+
+_FOLDED = {}  # the last few folded tables, keyed by the tables' bytes (building them: 0.6 ms for n = 256)
+
+
+def _folded(noise, gradient):
+    """:func:`._jit.pair_tables` of the noise's live tables (the values', or the gradients'), reused while unchanged."""
+    grads = noise.gradients if gradient else None
+    key = (noise.perms.shape, noise.perms.tobytes(), noise.values.tobytes(),
+           None if grads is None else grads.tobytes())
+    tables = _FOLDED.get(key)
+    if tables is None:  # (another thread may clear the dict meanwhile: this call keeps its own reference)
+        tables = jit.pair_tables(noise.perms, noise.values, grads)
+        if len(_FOLDED) >= 4:
+            _FOLDED.clear()
+        _FOLDED[key] = tables
+    return tables
+
+
+def _run_table(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
+    """The table hash's 3-D block kernel over ``flat`` into ``out``, rows or columns in place, as :func:`_run_block`."""
+    src, cols = _layout(flat)
+    k = noise.kernel
+    gradient = noise.basis == "gradient"
+    kernel = jit.table_block_kernel(k.taps, gradient)
+    rest = ((np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
+             noise.phase, k.shift, k.left, k.coef) + _folded(noise, gradient) + (bool(absval),))
+    n = min(workers, max(1, flat.shape[0] // min_block))
+    bounds = np.linspace(0, flat.shape[0], n + 1).astype(np.int64).tolist()
     map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n)
 
 
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     """The point kernel for this noise and call over ``flat`` into ``out``, on ``workers`` threads."""
-    pairs = TABLE_SPLIT and _pairs(noise, flat.shape[0], deriv)  # values over folded tables: the split kernel
+    if _pairs(noise, flat.shape[0], deriv):
+        _run_table(noise, flat, out, freqs, amps, absval, workers)  # the same bits, rows or columns in place
+        return
     gradient = noise.basis == "gradient"
     if _in_place(noise, deriv):
         _run_block(noise, flat, out, freqs, amps, absval, workers)  # the same bits, rows or columns in place
@@ -187,26 +221,27 @@ def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
         run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval), workers)
         return
     flat = flat.astype(np.float64, copy=False)  # the other kernels are compiled for float64 points only
-    if pairs or (TABLE_SPLIT and noise.hash == "table" and gradient and noise.dim_in == 3 and not deriv
-                   and not _periodic(noise)):
-        kernel = jit.table_fast_kernel(noise.kernel.taps, gradient)  # the same bits, split per chunk
-    else:
-        kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv,
-                                   _periodic(noise))
-    run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval, pairs), workers)
+    kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv, _periodic(noise))
+    run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval), workers)
 
 
-def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", workers=1):
+def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", workers=1, f32=False):
     """``sum_o amps[o] * b(noise(flat * freqs[o] + phase))`` at ``flat`` (N, dim_in): ``(N, dim_out)`` in ``dtype``.
 
     ``b`` is the identity or ``abs`` (``absval``); ``amps`` already holds the
     range normalisation (``noise.scale``). The computation is float64;
-    float32 output is the float64 result rounded once.
+    float32 output is the float64 result rounded once. With ``f32`` (checked:
+    :func:`.checks.check_arithmetic`) the in-place kernels compute in float32
+    from each point's fractions on, into float32 ``dtype``.
     """
     # the in-place kernels round each float64 result once as they store it, as astype would: float32 output
     # without a float64 array first
-    out = np.empty((flat.shape[0], noise.dim_out), dtype if _in_place(noise, False) else np.float64)
-    if flat.shape[0]:
+    direct = f32 or _in_place(noise, False) or _pairs(noise, flat.shape[0], False)
+    out = np.empty((flat.shape[0], noise.dim_out), dtype if direct else np.float64)
+    if f32 and flat.shape[0]:  # the kernels count NaN or overflowing points in one pass with the work
+        if _run_block(noise, flat, out, freqs, amps, absval, workers, f32=True):
+            checks.check_reach(flat, freqs, noise.phase, name)  # raises: the error of the float64 arithmetic
+    elif flat.shape[0]:
         checks.check_reach(flat, freqs, noise.phase, name)  # NaN, inf and overflowing x * frequency
         _run(noise, flat, out, freqs, amps, absval, False, workers)
     return out if out.dtype == dtype else out.astype(dtype)
