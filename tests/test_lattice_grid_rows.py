@@ -116,3 +116,19 @@ def test_the_axes_taps_in_numpy_equal_the_engines_kernels(kernel, basis):
                     for x, y in zip(want[:3] + (want[3] if grad else want[2],), got[o]):
                         assert x.dtype == y.dtype
                         np.testing.assert_array_equal(x, y)
+
+
+@pytest.mark.parametrize("basis", ["value", "gradient"])
+def test_the_folded_tables_read_what_the_two_hash_levels_read(basis):
+    # the fused kernel reads the last hash level and the look-up in one: VL[(p - h) & 1, h + j] is the value of
+    # parity (p + j) & 1 at P[(h + j) mod n], GP[h + j] the gradient there, for every prefix h and index j < n
+    noise = LatticeNoise(3, rng=9, basis=basis, table_size=64)
+    perm, n = noise.perms[0], noise.table_size
+    vl, gp = grid_path.folded_tables(perm, noise.values, noise.gradients if basis == "gradient" else None)
+    h, j, p = np.meshgrid(np.arange(n), np.arange(n), np.arange(2), indexing="ij")
+    x = h + j
+    np.testing.assert_array_equal(vl[(p - h) & 1, x], noise.values[(p + j) & 1, perm[x % n]])
+    if basis == "gradient":
+        np.testing.assert_array_equal(gp[x], noise.gradients[perm[x % n]])
+    else:
+        assert gp.shape == (1, 1)

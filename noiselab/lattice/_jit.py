@@ -1548,7 +1548,9 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         ``W2``, ``RW2`` the last axis's, ``(octaves, taps, N2)``. The
         octaves ``batch_start[i] .. batch_start[i + 1]`` are summed together
         as :func:`final_pass` sums a batch (``absval``: its mode 2), each
-        scaled by ``scales[o]``. ``out64``: ``out`` itself when it is float64
+        scaled by ``scales[o]``. Table hash: ``values`` and ``grads`` are folded over the
+        permutation (:func:`.grid_path.folded_tables`: the last hash level and the look-up in one read).
+        ``out64``: ``out`` itself when it is float64
         (one batch without ``absval`` is then summed in place, as
         :func:`final_pass_direct` does), else an empty ``(0, 0)`` array.
         """
@@ -1573,8 +1575,8 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         for o in range(noct):
             for s in range(taps):
                 tag[o, s] = -1
-        plane = np.empty((nterm, l1m * l2m))
-        tmp = np.empty(l1m * n2)
+        plane = np.empty(l1m * l2m * nterm)  # a lattice row's values, or its gradients' components side by side
+        tmp = np.empty((nterm, l1m * n2))
         acc = np.empty(post)
         gsum = np.empty(post)
         for j in range(n0):
@@ -1600,54 +1602,77 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                                 if GRAD:
                                     g = hash_index(word, ng)
                                     for b in range(nterm):
-                                        plane[b, pl + l] = grads[g, b]
+                                        plane[(pl + l) * nterm + b] = grads[g, b]
                                 else:
-                                    plane[0, pl + l] = hash_value(word)
+                                    plane[pl + l] = hash_value(word)
                         else:
                             pb = par[row + i1]
+                            vr = values[(pb - hb) & 1]  # parity (pb + j) & 1 at h + j
                             for l in range(l2):
                                 sh = hb + lat[l]
-                                if sh >= n:
-                                    sh -= n
-                                    if sh >= n:
-                                        sh = sh % n
-                                h = perm[sh]
                                 if GRAD:
+                                    x = sh if sh < 2 * n else sh % n
                                     for b in range(nterm):
-                                        plane[b, pl + l] = grads[h, b]
+                                        plane[(pl + l) * nterm + b] = grads[x, b]
+                                elif sh < 2 * n:
+                                    plane[pl + l] = vr[sh]
+                                else:  # past the folded tables: reduced, the parity row again
+                                    plane[pl + l] = values[(pb + lat[l] - sh % n) & 1, sh % n]
+                    # contract the last axis into tmp (3-D) or the ring (2-D), every term in one pass (the gradient
+                    # basis: the last term takes the ramp weights)
+                    w2 = W2[o]
+                    rw2 = RW2[o]
+                    p2 = P2[o]
+                    last = nterm - 1 if GRAD else 1
+                    for i1 in range(l1):
+                        src = plane[i1 * l2 * nterm:(i1 + 1) * l2 * nterm]
+                        t = tmp[:, i1 * n2:(i1 + 1) * n2] if DIM == 3 else ring[o, :, s]
+                        for q in range(n2):
+                            x0 = p2[0, q] * nterm
+                            if TAPS == 2 or TAPS == 4:
+                                x1 = x0 + nterm  # a sample's taps are consecutive lattice points
+                                c0 = w2[0, q]
+                                c1 = w2[1, q]
+                                if TAPS == 4:
+                                    x2 = x1 + nterm
+                                    x3 = x2 + nterm
+                                    c2 = w2[2, q]
+                                    c3 = w2[3, q]
+                                    for b in range(last):
+                                        t[b, q] = c0 * src[x0 + b] + c1 * src[x1 + b] + c2 * src[x2 + b] \
+                                            + c3 * src[x3 + b]
+                                    if GRAD:
+                                        t[dim - 1, q] = rw2[0, q] * src[x0 + dim - 1] + rw2[1, q] * src[x1 + dim - 1] \
+                                            + rw2[2, q] * src[x2 + dim - 1] + rw2[3, q] * src[x3 + dim - 1]
                                 else:
-                                    plane[0, pl + l] = values[(pb + lat[l]) & 1, h]
-                    # contract the last axis (and the middle one in 3-D) into the ring
-                    for b in range(nterm):
-                        w2 = RW2[o] if (GRAD and b == dim - 1) else W2[o]
-                        p2 = P2[o]
-                        dst = ring[o, b, s]
-                        for i1 in range(l1):
-                            src = plane[b, i1 * l2:(i1 + 1) * l2]
-                            t = tmp[i1 * n2:(i1 + 1) * n2] if DIM == 3 else dst
-                            if TAPS == 2:
-                                a0 = p2[0]; a1 = p2[1]; c0 = w2[0]; c1 = w2[1]
-                                for q in range(n2):
-                                    t[q] = c0[q] * src[a0[q]] + c1[q] * src[a1[q]]
-                            elif TAPS == 4:
-                                a0 = p2[0]; a1 = p2[1]; a2 = p2[2]; a3 = p2[3]
-                                c0 = w2[0]; c1 = w2[1]; c2 = w2[2]; c3 = w2[3]
-                                for q in range(n2):
-                                    t[q] = c0[q] * src[a0[q]] + c1[q] * src[a1[q]] + c2[q] * src[a2[q]] \
-                                        + c3[q] * src[a3[q]]
+                                    for b in range(last):
+                                        t[b, q] = c0 * src[x0 + b] + c1 * src[x1 + b]
+                                    if GRAD:
+                                        t[dim - 1, q] = rw2[0, q] * src[x0 + dim - 1] + rw2[1, q] * src[x1 + dim - 1]
                             else:
-                                for q in range(n2):
-                                    v = w2[0, q] * src[p2[0, q]]
+                                for b in range(nterm):
+                                    wb = rw2 if (GRAD and b == dim - 1) else w2
+                                    v = wb[0, q] * src[x0 + b]
                                     for kk in range(1, taps):
-                                        v += w2[kk, q] * src[p2[kk, q]]
-                                    t[q] = v
+                                        v += wb[kk, q] * src[x0 + kk * nterm + b]
+                                    t[b, q] = v
+                    for b in range(nterm):
+                        dst = ring[o, b, s]
                         if DIM == 3:
                             w1 = RW1[o] if (GRAD and b == 1) else W1[o]
                             for j1 in range(n1):
                                 d1 = dst[j1 * n2:(j1 + 1) * n2]
+                                if TAPS == 2:  # the taps' products summed in one pass (the same sums)
+                                    c0 = w1[j1, 0]
+                                    c1 = w1[j1, 1]
+                                    s0 = tmp[b, P1[o, j1, 0] * n2:(P1[o, j1, 0] + 1) * n2]
+                                    s1 = tmp[b, (P1[o, j1, 0] + 1) * n2:(P1[o, j1, 0] + 2) * n2]
+                                    for q in range(n2):
+                                        d1[q] = c0 * s0[q] + c1 * s1[q]
+                                    continue
                                 for kk in range(taps):
                                     c = w1[j1, kk]
-                                    src = tmp[P1[o, j1, kk] * n2:(P1[o, j1, kk] + 1) * n2]
+                                    src = tmp[b, P1[o, j1, kk] * n2:(P1[o, j1, kk] + 1) * n2]
                                     if kk == 0:
                                         for q in range(n2):
                                             d1[q] = c * src[q]
@@ -1663,32 +1688,47 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                 first = True
                 for o in range(batch_start[bi], batch_start[bi + 1]):
                     sc = scales[o]
+                    if TAPS == 2:  # every term in one pass (the same sums, in the same order)
+                        rg = ring[o]
+                        s0 = P0[o, j, 0] % taps
+                        s1 = 1 - s0
+                        ea0 = (RW0[o, j, 0] if GRAD else W0[o, j, 0]) * sc
+                        ea1 = (RW0[o, j, 1] if GRAD else W0[o, j, 1]) * sc
+                        eb0 = W0[o, j, 0] * sc
+                        eb1 = W0[o, j, 1] * sc
+                        for q in range(post):
+                            v = ea0 * rg[0, s0, q] + ea1 * rg[0, s1, q]
+                            if not (first or absval):
+                                v = total[q] + v
+                            for b in range(1, nterm):
+                                v = v + (eb0 * rg[b, s0, q] + eb1 * rg[b, s1, q])
+                            if not absval:
+                                total[q] = v
+                            elif o == batch_start[bi]:
+                                acc[q] = abs(v)
+                            else:
+                                acc[q] += abs(v)
+                        first = False
+                        continue
                     for b in range(nterm):
                         w0 = RW0[o, j] if (GRAD and b == 0) else W0[o, j]
                         buf = gsum if (absval and o > batch_start[bi]) else total
                         init = first or (absval and b == 0)
                         r0 = ring[o, b, P0[o, j, 0] % taps]
-                        if TAPS == 4 or TAPS == 2:
+                        if TAPS == 4:
                             r1 = ring[o, b, P0[o, j, 1] % taps]
+                            r2 = ring[o, b, P0[o, j, 2] % taps]
+                            r3 = ring[o, b, P0[o, j, 3] % taps]
                             e0 = w0[0] * sc
                             e1 = w0[1] * sc
-                            if TAPS == 4:
-                                r2 = ring[o, b, P0[o, j, 2] % taps]
-                                r3 = ring[o, b, P0[o, j, 3] % taps]
-                                e2 = w0[2] * sc
-                                e3 = w0[3] * sc
-                                if init:
-                                    for q in range(post):
-                                        buf[q] = e0 * r0[q] + e1 * r1[q] + e2 * r2[q] + e3 * r3[q]
-                                else:
-                                    for q in range(post):
-                                        buf[q] += e0 * r0[q] + e1 * r1[q] + e2 * r2[q] + e3 * r3[q]
-                            elif init:
+                            e2 = w0[2] * sc
+                            e3 = w0[3] * sc
+                            if init:
                                 for q in range(post):
-                                    buf[q] = e0 * r0[q] + e1 * r1[q]
+                                    buf[q] = e0 * r0[q] + e1 * r1[q] + e2 * r2[q] + e3 * r3[q]
                             else:
                                 for q in range(post):
-                                    buf[q] += e0 * r0[q] + e1 * r1[q]
+                                    buf[q] += e0 * r0[q] + e1 * r1[q] + e2 * r2[q] + e3 * r3[q]
                         else:
                             for kk in range(taps):
                                 ek = w0[kk] * sc

@@ -523,22 +523,40 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval, bands=1
             pre = np.concatenate([_int_prefix_np(noise.keys[c], noise._mult, lat) for lat in heads])
             par = pre
             perm, mult2 = np.zeros(1, np.int64), noise._mult[d - 1]
+            values, folded = noise.values, grads
         else:
             hp = [_block_hash_np(noise.perms[c], noise.table_size, lat) for lat in heads]
             pre = np.concatenate([h for h, _ in hp])
             par = np.concatenate([q for _, q in hp])
             perm, mult2 = noise.perms[c], np.uint32(0)
+            values, folded = folded_tables(perm, noise.values, noise.gradients if grad else None)
         rows = out[c].reshape(nj, -1)
 
-        def band(lo_hi, pre=pre, par=par, perm=perm, mult2=mult2, rows=rows):
+        def band(lo_hi, pre=pre, par=par, perm=perm, mult2=mult2, rows=rows, values=values, folded=folded):
             lo, hi = lo_hi  # a row slice of P0 / W0 / RW0, made contiguous (the kernel's one specialisation)
             p0, w0, rw0 = (np.ascontiguousarray(x[:, lo:hi]) for x in (P0, W0, RW0))
             kernel(shapes, pre, par, pre_off, lat2, lat2_off, p0, w0, rw0, P1, W1, RW1, P2, W2, RW2, scales,
-                   batch_start, bool(absval), perm, int(noise.table_size), noise.values, grads, mult2,
+                   batch_start, bool(absval), perm, int(noise.table_size), values, folded, mult2,
                    rows[lo:hi], rows[lo:hi] if out.dtype == np.float64 else np.empty((0, 0)))
 
         cuts = np.linspace(0, nj, bands + 1).astype(np.int64).tolist()
         map_blocks(band, list(zip(cuts[:-1], cuts[1:])), bands)
+
+
+def folded_tables(perm, values, grads):
+    """The table hash's last level folded into the look-ups, for the fused grid kernel: one read a lattice point.
+
+    ``VL[r, x] = values[(r + x) & 1, P[x mod n]]`` and ``GP[x] = grads[P[x mod n]]``
+    for ``x < 2n`` (``grads`` ``None``, the value basis: a ``(1, 1)`` placeholder).
+    A prefix ``h < n`` plus a reduced lattice index ``j < n`` (a table-hash
+    period is at most the table size; the kernel reduces past ``2n``) reads
+    ``GP[h + j]``, or ``VL[(p - h) & 1, h + j]`` for the value of parity
+    ``(p + j) & 1``: the same numbers as ``P[(h + j) mod n]`` looked up.
+    """
+    x = np.arange(2 * perm.shape[0])
+    px = perm[x % perm.shape[0]]
+    folded = np.zeros((1, 1)) if grads is None else np.ascontiguousarray(grads[px])
+    return values[(np.arange(2)[:, None] + x) & 1, px], folded
 
 
 def contract_rest(block, axes, use_r, target):
