@@ -99,7 +99,7 @@ def _pair_tables(perm, values):
 
 
 def _make_lookups(TAPS, GRAD):
-    """The reads of noiselab's 3-D table-hash kernel and nothing else, ``TAPS`` (compile-time) taps a side.
+    """The reads of noiselab's 3-D table-hash kernel and nothing else, ``TAPS`` (2 or 4, compile-time) taps a side.
 
     Per point ``TAPS**2`` pair-table reads and ``TAPS**3`` value reads (``GRAD``: gradient rows, 3 components
     each, summed): for quintic value noise 4 and 8. The loops' trip counts are constants, as in the kernel,
@@ -116,17 +116,19 @@ def _make_lookups(TAPS, GRAD):
                 row = ((i0 + a) & 255) * 256
                 for b in range(TAPS):
                     h = np.int64(h2[row + ((i1 + b) & 255)]) + k
-                    for c in range(TAPS):
-                        if GRAD:
-                            s += tl[h + c, 0] + tl[h + c, 1] + tl[h + c, 2]
-                        else:
-                            s += tl[h + c]
+                    # the row's reads summed as a tree (a serial chain of adds would bound the loop, not the reads)
+                    if GRAD:
+                        s += (tl[h, 0] + tl[h, 1] + tl[h, 2]) + (tl[h + 1, 0] + tl[h + 1, 1] + tl[h + 1, 2])
+                    elif TAPS == 2:
+                        s += tl[h] + tl[h + 1]
+                    else:
+                        s += (tl[h] + tl[h + 1]) + (tl[h + 2] + tl[h + 3])
             out[p] = s
     return lookups
 
 
 table_lookups = _make_lookups(2, False)
-table_lookups_gradient = _make_lookups(2, True)
+table_lookups_gradient = _make_lookups(2, True)  # (2 taps)
 table_lookups4 = _make_lookups(4, False)
 
 
@@ -379,7 +381,7 @@ def report_f32(tf):
                   f"the call {ms['f32a']:.2f}; its compiled kernel alone (`_jit.int_two_taps_kernel(3, False, "
                   f"True)`, no wrapper) {ms['kernel']:.2f}, so the wrapper (the argument checks, the output, the "
                   f"threads' split) {ms['f32a'] - ms['kernel']:.2f} (the kernel counts NaN fractions as it goes, "
-                  f"instead of the float64 arithmetic's separate NaN/reach check over the points, "
+                  f"instead of a separate NaN/reach check over the points, which takes "
                   f"{ms['reach']:.2f}); "
                   f"the float64 index pass the kernel keeps (`index64`: the block gather and the exact index "
                   f"modulo 2**32, nothing else) {ms['index64']:.2f}; pyfastnoisesimd's whole call {ms['fns']:.2f}; "
@@ -457,16 +459,16 @@ def report(t, repeats, load, cmd):
                      f"{1 / t.ratio('table-catmull-rom', 'lookups-4taps'):.2f}x.")
         lines.append(f"- What limits it (quintic value, {ms['table']:.1f} ms): the kernel alone (`table-kernel`) "
                      f"takes {ms['table-kernel']:.1f} ms ({t.ratio('table-kernel', 'lookups'):.2f}x the reads); the "
-                     f"rest, {ms['table'] - ms['table-kernel']:.1f} ms, is the call's wrapper (the input check's "
-                     "max and min over the points, the output's allocation). Within the kernel, the per-axis "
+                     f"rest, {ms['table'] - ms['table-kernel']:.1f} ms, is the call's wrapper (the argument "
+                     "checks, the output's allocation, the folded tables' look-up; the kernel counts bad points as it "
+                     "goes, no pass over the points before it). Within the kernel, the per-axis "
                      f"float64 arithmetic that the bits need (`table-setup`: weights and taps, no read) takes "
                      f"{ms['table-setup']:.1f} ms, {t.ratio('table-setup', 'lookups'):.2f}x the reads' "
                      f"{ms['lookups']:.1f} ms (both read the points and write the output): the kernel runs it "
                      "vectorised "
                      "block by block and then the reads point by point, so its time is about their sum "
                      f"({ms['table-setup'] + ms['lookups']:.1f} ms). 0.8x "
-                     "the read bound would need the arithmetic, the input check and the reads to overlap almost "
-                     "entirely.")
+                     "the read bound would need the arithmetic and the reads to overlap almost entirely.")
         lines.append(f"- The integer hash has no reads. The simplest numba kernel with its arithmetic runs at "
                      f"{t.ratio('fns', 'int-minimal'):.2f}x pyfastnoisesimd; noiselab's (`integer`, float64 "
                      f"arithmetic, any period) takes {t.ratio('integer', 'int-minimal'):.2f}x its time, "
@@ -477,7 +479,7 @@ def report(t, repeats, load, cmd):
                      "1.0x the peer is beyond float64 arithmetic on this CPU. noiselab's call takes "
                      f"{t.ratio('integer', 'int-same64'):.2f}x the time of `int-same64` "
                      f"({t.ratio('integer-columns', 'int-same64'):.2f}x from `(3, N)` columns): the rest is its "
-                     "wrapper (the input checks, the output's allocation) and its blocks (the coordinates gathered "
+                     "wrapper (the argument checks, the output's allocation) and its blocks (the coordinates gathered "
                      "into a block, each point's sum stored and copied out).")
     lines.append("")
     return lines
