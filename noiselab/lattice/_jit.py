@@ -833,11 +833,13 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GR
     """
     Xa = X[a]
     Ta = TF[a]
+    bad = 0
     for i in range(m):
         u = Xa[i] * f + ph + shift  # same rounding as the grid path
         fi = np.floor(u)
         t = ft(u - fi)
         Ta[i] = t
+        bad += t != t  # a NaN fraction (x f + phase NaN or infinite): counted, the points checked after the call
         q = fi - np.floor(fi * _INV_TWO32) * _TWO32
         j = _U32(np.int64(q) - left)
         t2, t3, t4, t5 = _powers(t)
@@ -849,14 +851,16 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GR
             Rk = R[a, k]
             for i in range(m):
                 Rk[i] = Ta[i] - ft(shift) + ft(left - k)
+    return bad
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
 def _store_block(out, p0, m, ACC):
     """A block's sums ``ACC[c, :m]`` into rows ``p0 .. p0 + m`` of ``out`` (rounded once if ``out`` is float32).
 
-    A plain compiled function that LLVM inlines into each block kernel
-    (as :func:`_two_taps`); every index from 0 (:func:`_block_load`).
+    Inlined by numba: a separate compiled function would be one more
+    specialisation to compile on a first call (about 0.3 s CPU cold,
+    ``benchmarks/bench_coldstart.md``). Every index from 0 (:func:`_block_load`).
     """
     ob = out[p0:p0 + m]
     for c in range(ACC.shape[0]):
@@ -901,10 +905,8 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
             _block_load(src, flat, cols, p0, m, X, DIM)
             for o in range(noct):
                 for a in range(DIM):
-                    _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS, GRAD,
-                                FT)
-                    for i in range(m):  # NaN fractions, counted: the points are checked after the call
-                        bad += TF[a, i] != TF[a, i]
+                    bad += _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS,
+                                       GRAD, FT)
                 amp = FT(amps[o])
                 first = o == 0
                 for c in range(ncomp):
