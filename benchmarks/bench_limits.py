@@ -10,7 +10,7 @@ implementation of the same construction can reach here:
   hashes a corner ``(i, j, k)`` as ``perm[perm[perm[i] + j] + k]`` and reads
   its value from a table. The fewest reads it can take: the first two
   levels from one precombined ``n x n`` table and the last level folded
-  into the values (:func:`_pair_tables`): for quintic value noise (2 taps an
+  into the values (:func:`noiselab.lattice._jit.pair_tables`): for quintic value noise (2 taps an
   axis) 4 reads of the 128 KiB pair table and 8 value reads a point, the
   value addresses depending on the pair reads. The kernel does exactly
   these reads, on tables built from noiselab's, and sums the eight values:
@@ -83,19 +83,6 @@ _M0, _M1, _M2 = np.uint32(0x9E3779B9), np.uint32(0x3C6EF373), np.uint32(0xDAA66D
 _C1, _C2 = np.uint32(0x85EBCA6B), np.uint32(0xC2B2AE35)
 _S16, _S13 = np.uint32(16), np.uint32(13)
 _U32 = np.uint32
-
-
-def _pair_tables(perm, values):
-    """``H2[q0 * n + q1] = P[(P[q0] + q1) mod n]`` plus the parity row offset, and ``VL`` (the last level folded
-    into the values, run on past 2n so that the last axis's taps are contiguous): the fewest reads of the table
-    hash."""
-    n = perm.shape[0]
-    S = 2 * n + 4
-    q, x = np.arange(n), np.arange(S)
-    h = perm[(perm[q][:, None] + q[None, :]) % n]
-    h = h + S * ((q[:, None] + q[None, :] + h) & 1)
-    vl = np.concatenate([values[(r + x) & 1, perm[x % n]] for r in range(2)])
-    return np.ascontiguousarray(h.ravel().astype(np.uint16)), vl
 
 
 def _make_lookups(TAPS, GRAD):
@@ -263,11 +250,11 @@ def measure(repeats):
     soa = [np.ascontiguousarray(pts32[:, a]) for a in range(3)]
     table = LatticeNoise(3, rng=1, kernel="quintic")
     integer = LatticeNoise(3, rng=1, kernel="quintic", hash="integer")  # 2 taps: int_same64 follows its arithmetic
-    h2, vl = _pair_tables(table.perms[0], table.values)
+    h2, vl = (t[0] for t in pair_tables(table.perms, table.values))
     gradient = LatticeNoise(3, rng=1, kernel="quintic", basis="gradient")
     catmull = LatticeNoise(3, rng=1, kernel="catmull-rom")
     gh2, gl = (t[0] for t in pair_tables(gradient.perms, gradient.values, gradient.gradients))
-    ch2, cvl = _pair_tables(catmull.perms[0], catmull.values)
+    ch2, cvl = (t[0] for t in pair_tables(catmull.perms, catmull.values))
     kt = table.kernel
     kernel = table_block_kernel(2, False)
     direct = (np.ones((1, 3)), np.array([table.scale]), table.phase, kt.shift, kt.left, kt.coef,

@@ -1264,6 +1264,21 @@ def int_two_taps_kernel(dim, gradient, f32=False):
     return fn
 
 
+def fold_last_level(perm, values, grads, length):
+    """The table hash's last level folded into its look-up, for ``x < length``: one read a lattice point.
+
+    ``values[(r + x) & 1, P[x mod n]]`` for each parity ``r``, ``(2, length)``;
+    with ``grads``, ``grads[P[x mod n]]``, ``(length, d)``. The fused grid
+    kernel (:func:`.grid_path.folded_tables`) and the point block kernel
+    (:func:`pair_tables`) read these.
+    """
+    x = np.arange(length)
+    px = perm[x % perm.shape[0]]
+    if grads is not None:
+        return grads[px]
+    return values[(np.arange(2)[:, None] + x) & 1, px]
+
+
 def pair_tables(perms, values, grads=None):
     """The 3-D table-hash block kernel's folded tables ``(H2, TL)``, built from the live tables at each call.
 
@@ -1277,15 +1292,14 @@ def pair_tables(perms, values, grads=None):
     dim_out, n = perms.shape
     S = 2 * n + 4
     q = np.arange(n)
-    x = np.arange(S)
     H2 = np.empty((dim_out, n * n), dtype=np.uint16)
     TL = np.empty((dim_out, 2 * S) if grads is None else (dim_out, 2 * S, grads.shape[1]))
     for c in range(dim_out):
         P = perms[c]
         h = P[(P[q][:, None] + q[None, :]) % n]
         H2[c] = (h + S * ((q[:, None] + q[None, :] + h) & 1)).ravel()
-        for r in range(2):
-            TL[c, r * S:(r + 1) * S] = values[(r + x) & 1, P[x % n]] if grads is None else grads[P[x % n]]
+        folded = fold_last_level(P, values, grads, S)
+        TL[c] = folded.ravel() if grads is None else np.concatenate([folded, folded])  # (both parities alike)
     return H2, TL
 
 

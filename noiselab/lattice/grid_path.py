@@ -553,10 +553,10 @@ def folded_tables(perm, values, grads):
     ``GP[h + j]``, or ``VL[(p - h) & 1, h + j]`` for the value of parity
     ``(p + j) & 1``: the same numbers as ``P[(h + j) mod n]`` looked up.
     """
-    x = np.arange(2 * perm.shape[0])
-    px = perm[x % perm.shape[0]]
-    folded = np.zeros((1, 1)) if grads is None else np.ascontiguousarray(grads[px])
-    return values[(np.arange(2)[:, None] + x) & 1, px], folded
+    length = 2 * perm.shape[0]
+    folded = np.zeros((1, 1)) if grads is None else np.ascontiguousarray(jit.fold_last_level(perm, values, grads,
+                                                                                             length))
+    return jit.fold_last_level(perm, values, None, length), folded
 
 
 def contract_rest(block, axes, use_r, target):
