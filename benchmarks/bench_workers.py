@@ -120,15 +120,18 @@ def cases():
 
 
 def setup_rows(repeats, lines):
-    """The set-up of a 512^2 6-octave fBm (all but its kernel) with its axis taps shared or made, beside the kernel."""
+    """The set-up of a 512^2 6-octave fBm (all but its kernel), what it keeps from call to call kept or made, beside
+    the kernel."""
     lines += ["", "### The set-up of a grid", "",
               "512^2 6-octave fBm (16 cells), float32, one thread: `set-up` = the call with the fused kernel "
               "replaced by a no-op (checks, octaves, axis taps, hash prefixes, the kernel's arguments), with the "
-              "axis taps shared by the calls (`shared`, the default) or made by each (`made`, "
-              "`grid_path.AXIS_TAPS_KEPT = 0`); `kernel` = the fused kernel alone. CPU time of the calling thread, "
+              "axis taps and the kernel's arguments kept from call to call (`kept`, the default), the axis taps "
+              "kept and the arguments made by each call (`taps kept`, `grid_path.rows_plan` bypassed), or "
+              "both made by each (`made`, `grid_path.AXIS_TAPS_KEPT = 0`); `kernel` = the fused kernel alone. CPU time of the calling thread, "
               "10th percentile of 10 x `--repeats` calls (the set-up is a few hundred microseconds: the low "
               "percentile keeps the other jobs' interruptions out).", "",
-              "| noise | hash | set-up, shared (ms) | set-up, made (ms) | kernel (ms) |", "|---|---|---|---|---|"]
+              "| noise | hash | set-up, kept (ms) | set-up, taps kept (ms) | set-up, made (ms) | kernel (ms) |",
+              "|---|---|---|---|---|---|"]
     grid = Grid((512, 512), [(0.0, 16.0)] * 2)
     real = grid_path.jit.grid_rows_kernel
     for basis, hname in (("value", "table"), ("gradient", "table"), ("value", "integer"), ("gradient", "integer")):
@@ -153,9 +156,15 @@ def setup_rows(repeats, lines):
         def call():
             return fractal_sum(noise, grid, 6, dtype=np.float32)
         kept = getattr(grid_path, "AXIS_TAPS_KEPT", None)  # None: a version that makes them every call
+        plan = getattr(grid_path, "rows_plan", None)  # None: a version that makes the arguments every call
         try:
             grid_path.jit.grid_rows_kernel = lambda *key: (lambda *args: None)
             shared = p10(call)
+            taps_kept = float("nan")
+            if plan is not None:
+                grid_path.rows_plan = lambda noise, axes: grid_path._make_rows_plan(noise, axes)[0]
+                taps_kept = p10(call)
+                grid_path.rows_plan = plan
             if kept is not None:
                 grid_path.AXIS_TAPS_KEPT = 0
                 grid_path._AXIS_TAPS.clear()
@@ -167,10 +176,13 @@ def setup_rows(repeats, lines):
             p10(call)
         finally:
             grid_path.jit.grid_rows_kernel = real
+            if plan is not None:
+                grid_path.rows_plan = plan
             if kept is not None:
                 grid_path.AXIS_TAPS_KEPT = kept
         ker = 1e3 * float(np.percentile(kernel_times, 10))
-        lines.append(f"| 512^2 fBm, quintic {basis} | {hname} | {shared:.3f} | {made:.3f} | {ker:.3f} |")
+        lines.append(f"| 512^2 fBm, quintic {basis} | {hname} | {shared:.3f} | {taps_kept:.3f} | {made:.3f} | "
+                     f"{ker:.3f} |")
         print(lines[-1], flush=True)
 
 

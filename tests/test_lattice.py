@@ -623,3 +623,51 @@ def test_a_grid_s_axis_taps_are_shared_read_only_and_keyed_on_all_they_depend_on
     for width in (40, 41, 42, 43, 44, 45):
         fractal_sum(LatticeNoise(2, rng=1, kernel="quintic"), Grid((width, 300), [(0, 3), (0, 20)]), 4)
     assert sum(n for _, n in grid_path._AXIS_TAPS.values()) <= 40_000
+
+
+@pytest.mark.parametrize("hash_", ["table", "integer"])
+def test_a_grid_s_kernel_arguments_are_kept_per_tables_and_made_again_when_they_change(monkeypatch, hash_):
+    # the fused kernel's arguments (stacked taps, hash prefixes, folded tables) are kept with the axis taps:
+    # reused only for the same taps and the same tables' contents, made again (same bits as made afresh)
+    # for another seed, a table edited in place or another basis
+    from noiselab import fractal_sum
+    from noiselab.lattice import grid_path
+
+    made = []
+    real = grid_path._make_rows_plan
+
+    def counting(*args):
+        made.append(1)
+        return real(*args)
+
+    monkeypatch.setattr(grid_path, "_ROW_PLANS", {})
+    monkeypatch.setattr(grid_path, "_make_rows_plan", counting)
+    g = Grid((40, 24, 9), [(0, 3), (0.5, 2), (0, 1)])
+    noise = LatticeNoise(3, rng=1, kernel="quintic", hash=hash_)
+    first = fractal_sum(noise, g, 3)
+    assert np.array_equal(fractal_sum(noise, g, 3), first) and len(made) == 1  # kept: not made again
+    np.testing.assert_allclose(fractal_sum(noise, noise.grid_points(*g), 3), first, rtol=0, atol=1e-12)  # the points'
+    other = fractal_sum(LatticeNoise(3, rng=2, kernel="quintic", hash=hash_), g, 3)
+    assert len(made) == 2 and not np.array_equal(other, first)
+    if hash_ == "table":  # the value table is not frozen: an edit in place is seen by the next grid
+        noise.values[...] *= -1.0
+        assert np.array_equal(fractal_sum(noise, g, 3), -first) and len(made) == 3
+    grad = LatticeNoise(3, rng=1, kernel="quintic", hash=hash_, basis="gradient")
+    plain = fractal_sum(grad, g, 3)
+    monkeypatch.setattr(grid_path, "_ROW_PLANS", {})
+    assert np.array_equal(fractal_sum(grad, g, 3), plain)  # made afresh: the same bits
+    assert len(grid_path._ROW_PLANS) == 1
+    # made from taps that are not kept, the arguments are not kept either; the count and memory bounds hold
+    monkeypatch.setattr(grid_path, "AXIS_TAPS_KEPT", 0)
+    monkeypatch.setattr(grid_path, "_ROW_PLANS", {})
+    fractal_sum(grad, g, 3)
+    assert not grid_path._ROW_PLANS
+    monkeypatch.setattr(grid_path, "AXIS_TAPS_KEPT", 2)
+    for rng in range(4):
+        fractal_sum(LatticeNoise(3, rng=rng, kernel="quintic", hash=hash_), g, 3)
+    assert len(grid_path._ROW_PLANS) == 2
+    monkeypatch.setattr(grid_path, "AXIS_TAPS_BYTES", 1000)
+    monkeypatch.setattr(grid_path, "_ROW_PLANS", {})
+    monkeypatch.setattr(grid_path, "_AXIS_TAPS", {})
+    fractal_sum(noise, g, 3)
+    assert not grid_path._ROW_PLANS

@@ -100,6 +100,12 @@ def octaves_used(octaves, *, lacunarity=2.0, gain=0.5, spacing=None, frequency=1
         raise ValueError(f"gain={gain:g} over octaves={octaves} overflows: the sum of gain**o passes 1e300; "
                          f"use at most {most} octaves with this gain (or gain <= 1)")
     total = sum(gain ** k for k in range(octaves)) if gain != 1 else float(octaves)
+    finest = None  # the fewest lattice cells a sample spans at the base frequency (None: no Nyquist limit)
+    if spacing is not None:
+        with np.errstate(over="ignore"):
+            cells = np.atleast_1d(np.asarray(spacing, dtype=np.float64) * np.asarray(frequency, dtype=np.float64))
+        cells = cells[~np.isnan(cells)]  # NaN: an axis with one sample (no spacing)
+        finest = float(cells.min()) if cells.size else None
     used = 0
     partial = 0.0
     for o in range(octaves):
@@ -107,13 +113,11 @@ def octaves_used(octaves, *, lacunarity=2.0, gain=0.5, spacing=None, frequency=1
         remaining = total - partial
         if o > 0 and remaining <= eps * partial:
             break
-        if spacing is not None:
+        if o > 0 and finest is not None:
             step = lacunarity ** o if o * math.log(lacunarity) < _LOG_LIMIT else math.inf
-            with np.errstate(over="ignore", invalid="ignore"):
-                cells = np.asarray(spacing, dtype=np.float64) * np.asarray(frequency, dtype=np.float64) * step
-            cells = np.atleast_1d(cells)
-            cells = cells[~np.isnan(cells)]  # NaN: an axis with one sample (no spacing)
-            if o > 0 and cells.size and (cells > 1.0).all():
+            # every axis's cells times step > 1 (a product is monotone in each factor; times inf, an axis of
+            # 0 cells (an underflow) gives NaN and no longer counts)
+            if finest * step > 1.0 if step < math.inf else bool((cells > 0).any()):
                 break
         partial += gain ** o
         used += 1

@@ -112,13 +112,13 @@ def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0,
 def classify_octaves(noise, full, octave_start, octaves, lacunarity, gain, periods):
     """The octaves' ``(freq, amp, period)``: those the separable passes take, and those sparser than the grid."""
     separable, sparse = [], []
+    ends = [float(max(abs(c[0]), abs(c[-1]))) if c.size else None for c in full]  # (Python floats: inf, no warning)
     for o in range(octave_start, octaves):
         freq = noise.frequency * lacunarity ** o
         amp = noise.scale * gain ** o
-        with np.errstate(over="ignore"):
-            reach = max((max(abs(c[0]), abs(c[-1])) * freq[a] if c.size else 0.0) + abs(noise.phase[a])
-                        for a, c in enumerate(full))
-        if not np.isfinite(reach):
+        reach = max((0.0 if end is None else end * float(freq[a])) + abs(float(noise.phase[a]))
+                    for a, end in enumerate(ends))
+        if not math.isfinite(reach):
             raise ValueError(f"extent times the frequency (and lacunarity**octave) overflows float64 "
                              f"({freq.max():.3g} lattice cells per unit); keep |x * frequency| below 1.7e308")
         exact = reach < SEPARABLE_LIMIT
@@ -484,10 +484,75 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval, bands=1
     ``benchmarks/bench_workers.md``.)
     """
     d = noise.dim_in
+    kernel = jit.grid_rows_kernel(d, noise.kernel.taps, noise.hash == "integer", noise.basis == "gradient")
+    geometry, components, band_taps = rows_plan(noise, axes_per_octave)
+    scales = np.array([amp for _, amp, _ in octaves], dtype=np.float64)
+    batch_start = np.concatenate([[0], np.cumsum(batch_sizes)]).astype(np.int64)
+    shapes, pre_off, lat2, lat2_off, P1, W1, RW1, P2, W2, RW2 = geometry
+    nj = out.shape[1]
+    for c in range(noise.dim_out):
+        pre, par, perm, mult2, values, folded = components[c]
+        rows = out[c].reshape(nj, -1)
+
+        def band(lo_hi, pre=pre, par=par, perm=perm, mult2=mult2, rows=rows, values=values, folded=folded):
+            lo, hi = lo_hi
+            p0, w0, rw0 = band_taps(lo, hi)
+            kernel(shapes, pre, par, pre_off, lat2, lat2_off, p0, w0, rw0, P1, W1, RW1, P2, W2, RW2, scales,
+                   batch_start, bool(absval), perm, int(noise.table_size), values, folded, mult2,
+                   rows[lo:hi], rows[lo:hi] if out.dtype == np.float64 else np.empty((0, 0)))
+
+        cuts = np.linspace(0, nj, bands + 1).astype(np.int64).tolist()
+        map_blocks(band, list(zip(cuts[:-1], cuts[1:])), bands)
+
+
+# the fused kernel's arguments of the last few grids (:func:`rows_plan`), kept with the axis taps
+# they were made from, under the same bounds
+_ROW_PLANS = {}
+_ROW_PLANS_LOCK = threading.Lock()
+
+
+def rows_plan(noise, axes_per_octave):
+    """The fused kernel's arguments made from the axis taps and the hash tables: ``(geometry, components, band_taps)``.
+
+    ``geometry``: the stacked taps and offsets; ``components``: per output
+    component the hash prefixes (and parities), the table and the folded
+    look-ups; ``band_taps(lo, hi)``: axis 0's taps for the rows ``lo:hi``,
+    contiguous (the kernel's one specialisation). Made from kept axis taps
+    (:func:`shared_axis_taps`), a plan is kept as they are, for the last
+    :data:`AXIS_TAPS_KEPT` grids within :data:`AXIS_TAPS_BYTES`, keyed on
+    those very taps (held here, so that their ids stay theirs) and on the
+    tables' bytes: a repeated grid skips its serial set-up (0.18 ms of a
+    1024^2 fBm's 0.45, the part ``workers`` cannot split,
+    ``benchmarks/bench_workers.md``). The arrays stay writeable (a read-only
+    array is another numba type, another compilation); nothing writes them.
+    """
+    pieces = [ax for axes in axes_per_octave for ax in axes]
+    kept = all(not arr.flags.writeable for ax in pieces for arr in ax)
+    if kept:
+        grad = noise.basis == "gradient"
+        tables = (noise.keys, noise._mult) if noise.hash == "integer" else (noise.perms, noise.values)
+        key = (tuple(map(id, pieces)), noise.dim_in, noise.kernel.taps, noise.hash, grad, noise.table_size,
+               noise.gradients.tobytes() if grad else b"") + tuple(t.tobytes() for t in tables)
+        with _ROW_PLANS_LOCK:
+            plan = _ROW_PLANS.pop(key, None)
+            if plan is not None:
+                _ROW_PLANS[key] = plan  # the most recently used last
+                return plan[1]
+    plan, size = _make_rows_plan(noise, axes_per_octave)
+    if kept and size <= AXIS_TAPS_BYTES // 4:
+        with _ROW_PLANS_LOCK:
+            _ROW_PLANS[key] = (axes_per_octave, plan, size)
+            while len(_ROW_PLANS) > AXIS_TAPS_KEPT or sum(n for *_, n in _ROW_PLANS.values()) > AXIS_TAPS_BYTES:
+                del _ROW_PLANS[next(iter(_ROW_PLANS))]
+    return plan
+
+
+def _make_rows_plan(noise, axes_per_octave):
+    """:func:`rows_plan`'s arguments, made, and their size in bytes."""
+    d = noise.dim_in
     grad = noise.basis == "gradient"
     integer = noise.hash == "integer"
-    kernel = jit.grid_rows_kernel(d, noise.kernel.taps, integer, grad)
-    noct = len(octaves)
+    noct = len(axes_per_octave)
     taps = noise.kernel.taps
     mids = [axes[1] for axes in axes_per_octave] if d == 3 else \
         [(None, np.zeros((1, taps), np.int64), np.ones((1, taps)), np.ones((1, taps)))] * noct
@@ -511,36 +576,32 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval, bands=1
     lat2 = np.concatenate([np.ascontiguousarray(ax[0], dtype=np.int64) for ax in last])
     lat2_off = np.concatenate([[0], np.cumsum(shapes[:, 2])]).astype(np.int64)
     pre_off = np.concatenate([[0], np.cumsum(shapes[:, 0] * shapes[:, 1])]).astype(np.int64)
-    scales = np.array([amp for _, amp, _ in octaves], dtype=np.float64)
-    batch_start = np.concatenate([[0], np.cumsum(batch_sizes)]).astype(np.int64)
-    nj = out.shape[1]
     grads = noise._int_grads if integer else noise.gradients
     if grads is None:
         grads = np.zeros((1, d))
     heads = [[np.asarray(ax[0], dtype=np.int64) for ax in axes[:-1]] for axes in axes_per_octave]
+    components = []
     for c in range(noise.dim_out):
         if integer:
             pre = np.concatenate([_int_prefix_np(noise.keys[c], noise._mult, lat) for lat in heads])
-            par = pre
-            perm, mult2 = np.zeros(1, np.int64), noise._mult[d - 1]
-            values, folded = noise.values, grads
+            components.append((pre, pre, np.zeros(1, np.int64), noise._mult[d - 1], noise.values, grads))
         else:
             hp = [_block_hash_np(noise.perms[c], noise.table_size, lat) for lat in heads]
-            pre = np.concatenate([h for h, _ in hp])
-            par = np.concatenate([q for _, q in hp])
-            perm, mult2 = noise.perms[c], np.uint32(0)
-            values, folded = folded_tables(perm, noise.values, noise.gradients if grad else None)
-        rows = out[c].reshape(nj, -1)
+            perm = noise.perms[c]
+            components.append((np.concatenate([h for h, _ in hp]), np.concatenate([q for _, q in hp]), perm,
+                               np.uint32(0)) + folded_tables(perm, noise.values, noise.gradients if grad else None))
+    geometry = (shapes, pre_off, lat2, lat2_off, P1, W1, RW1, P2, W2, RW2)
+    bands = {}
 
-        def band(lo_hi, pre=pre, par=par, perm=perm, mult2=mult2, rows=rows, values=values, folded=folded):
-            lo, hi = lo_hi  # a row slice of P0 / W0 / RW0, made contiguous (the kernel's one specialisation)
-            p0, w0, rw0 = (np.ascontiguousarray(x[:, lo:hi]) for x in (P0, W0, RW0))
-            kernel(shapes, pre, par, pre_off, lat2, lat2_off, p0, w0, rw0, P1, W1, RW1, P2, W2, RW2, scales,
-                   batch_start, bool(absval), perm, int(noise.table_size), values, folded, mult2,
-                   rows[lo:hi], rows[lo:hi] if out.dtype == np.float64 else np.empty((0, 0)))
+    def band_taps(lo, hi):
+        cut = bands.get((lo, hi))
+        if cut is None:  # (two threads may make the same cut: the same arrays)
+            cut = bands[(lo, hi)] = tuple(np.ascontiguousarray(x[:, lo:hi]) for x in (P0, W0, RW0))
+        return cut
 
-        cuts = np.linspace(0, nj, bands + 1).astype(np.int64).tolist()
-        map_blocks(band, list(zip(cuts[:-1], cuts[1:])), bands)
+    size = sum(x.nbytes for x in (P0, W0, RW0, *geometry)) * 2  # (the band cuts copy axis 0's taps once more)
+    size += sum(x.nbytes for comp in components for x in comp[:2])
+    return (geometry, components, band_taps), size
 
 
 def folded_tables(perm, values, grads):
