@@ -1529,6 +1529,17 @@ def final_pass_direct(inter, pos, w, scales, out):
                             o[q] += wk * rk[q]
 
 
+@nb.njit(cache=True, nogil=True)
+def _store_row(orow, acc, first):
+    """A batch's sums ``acc`` written (``first``) or added into an output row, rounded to its dtype."""
+    if first:
+        for q in range(acc.shape[0]):
+            orow[q] = acc[q]
+    else:
+        for q in range(acc.shape[0]):
+            orow[q] += acc[q]
+
+
 def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
     """The fused grid kernel for ``DIM`` (2 or 3) input axes, ``TAPS`` taps (2, 4, or 0: any), a hash and a basis.
 
@@ -1551,8 +1562,9 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
 
     @nb.njit(cache=True, nogil=True)
     def grid_rows(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2,
-                  scales, batch_start, absval, perm, n, values, grads, mult2, out, out64):
-        """All octaves of one output component on a 2-D or 3-D grid window: ``out`` (N0, N1 * N2), written.
+                  scales, batch_start, absval, perm, n, values, grads, mult2, out32, out64):
+        """All octaves of one output component on a 2-D or 3-D grid window: ``out32`` or ``out64`` (N0, N1 * N2),
+        written.
 
         Per octave ``o`` (``shapes[o]``: its lattice block ``(L0, L1, L2)``,
         ``L1 = 1`` in 2-D): ``pre`` / ``par`` the hash prefix of axes 0 and 1
@@ -1566,9 +1578,11 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         as :func:`final_pass` sums a batch (``absval``: its mode 2), each
         scaled by ``scales[o]``. Table hash: ``values`` and ``grads`` are folded over the
         permutation (:func:`.grid_path.folded_tables`: the last hash level and the look-up in one read).
-        ``out64``: ``out`` itself when it is float64
-        (one batch without ``absval`` is then summed in place, as
-        :func:`final_pass_direct` does), else an empty ``(0, 0)`` array.
+        The output is ``out64`` when it is float64 (one batch without
+        ``absval`` is then summed in place, as :func:`final_pass_direct`
+        does), else ``out32``; the other is an empty ``(0, 0)`` array: one
+        specialisation serves both dtypes (a second dtype used to compile the
+        kernel again, 1.5-2 s).
         """
         dim = DIM
         noct = shapes.shape[0]
@@ -1696,9 +1710,9 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                                         for q in range(n2):
                                             d1[q] += c * src[q]
             # axis 0: the octaves' terms, batch by batch, as final_pass sums them
-            orow = out[j]
+            f64 = out64.shape[0] > 0
             # one batch of plain sums into a float64 output: summed in place (final_pass_direct), no copy
-            direct = out64.shape[0] > 0 and batch_start.shape[0] == 2 and not absval
+            direct = f64 and batch_start.shape[0] == 2 and not absval
             total = out64[j] if direct else acc
             for bi in range(batch_start.shape[0] - 1):
                 first = True
@@ -1763,14 +1777,10 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                         else:
                             for q in range(post):
                                 acc[q] += abs(gsum[q])
-                if direct:
-                    pass
-                elif bi == 0 and not absval:
-                    for q in range(post):
-                        orow[q] = acc[q]
-                else:
-                    for q in range(post):
-                        orow[q] += acc[q]
+                if f64 and not direct:
+                    _store_row(out64[j], acc, bi == 0 and not absval)
+                elif not f64:
+                    _store_row(out32[j], acc, bi == 0 and not absval)
 
     return grid_rows
 

@@ -499,7 +499,8 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval, bands=1
             p0, w0, rw0 = band_taps(lo, hi)
             kernel(shapes, pre, par, pre_off, lat2, lat2_off, p0, w0, rw0, P1, W1, RW1, P2, W2, RW2, scales,
                    batch_start, bool(absval), perm, int(noise.table_size), values, folded, mult2,
-                   rows[lo:hi], rows[lo:hi] if out.dtype == np.float64 else np.empty((0, 0)))
+                   *((np.empty((0, 0), np.float32), rows[lo:hi]) if out.dtype == np.float64 else
+                     (rows[lo:hi], np.empty((0, 0)))))
 
         cuts = np.linspace(0, nj, bands + 1).astype(np.int64).tolist()
         map_blocks(band, list(zip(cuts[:-1], cuts[1:])), bands)
