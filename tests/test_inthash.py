@@ -238,10 +238,11 @@ def test_bad_hash_parameters_name_them():
 
 @pytest.mark.parametrize("dim", [1, 2, 3])
 def test_vectorised_point_kernel_gives_the_general_kernels_bits(dim):
-    # points_path runs _jit._make_int_fast for 1-3-D values: the same bits as the general kernel, for every
-    # stock kernel, both bases, with and without a period, turbulence, and coordinates past the fast split.
-    # The general kernel runs as Python (its body; its helpers compiled): the same bits as compiled
-    # (tests/test_lattice_engine.py), without compiling 24 value variants that no call takes (about 55 s cold)
+    # points_path runs 1-3-D values through _jit._make_int_fast with a period, through the in-place kernels
+    # without one: the same bits as the general kernel, for every stock kernel, both bases, turbulence, and
+    # coordinates past the fast split. The general kernel runs as Python (its body; its helpers compiled): the
+    # same bits as compiled (tests/test_lattice_engine.py), without compiling 24 value variants that no call
+    # takes (about 55 s cold)
     from noiselab.lattice import _jit, points_path
 
     rng = np.random.default_rng(7)
@@ -260,5 +261,9 @@ def test_vectorised_point_kernel_gives_the_general_kernels_bits(dim):
                 want = np.empty((len(x), 2))
                 got = np.empty((len(x), 2))
                 _jit.points_kernel(True, dim, n.kernel.taps, False, periodic).py_func(x, want, *args)
-                _jit.int_fast_kernel(dim, n.kernel.taps, basis == "gradient", periodic)(x, got, *args)
+                if periodic:
+                    _jit.int_fast_kernel(dim, n.kernel.taps, basis == "gradient", True)(x, got, *args)
+                else:
+                    assert points_path._in_place(n, False)
+                    assert points_path._run_block(n, x, got, freqs, amps, absval, 1) == 0
                 np.testing.assert_array_equal(got.view(np.int64), want.view(np.int64))
