@@ -66,10 +66,11 @@ def read_results(path):
     Examples
     --------
     >>> import json, os, tempfile
-    >>> p = os.path.join(tempfile.mkdtemp(), "results.json")
-    >>> with open(p, "w") as f:
-    ...     _ = f.write(json.dumps({"sweeps": []}))
-    >>> read_results(p)
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = os.path.join(d, "results.json")
+    ...     with open(p, "w") as f:
+    ...         _ = f.write(json.dumps({"sweeps": []}))
+    ...     read_results(p)
     {'sweeps': []}
     """
     path = Path(path)
@@ -548,8 +549,10 @@ def write_figures(results, folder):
     Examples
     --------
     >>> import tempfile
-    >>> [p.name for p in write_figures({"sweeps": [{"name": "demo", "threshold": 0.1, "knee": None,
-    ...     "points": [{"setting": "a", "time_s": 1e-3, "error": 0.5}]}]}, tempfile.mkdtemp())]
+    >>> run = {"sweeps": [{"name": "demo", "threshold": 0.1, "knee": None,
+    ...                    "points": [{"setting": "a", "time_s": 1e-3, "error": 0.5}]}]}
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     [p.name for p in write_figures(run, d)]
     ['pareto.png']
     """
     from ..io import atomic_output
