@@ -253,10 +253,10 @@ def _freeze(fig):
 
 def _finish(fig, renderer):
     """Drop touching tick labels on every log axis of ``fig`` and draw it again."""
+    fig.canvas.draw()
     for ax in fig.get_axes():
         if not ax.axison:
             continue
-        fig.canvas.draw()
         for axis in (ax.xaxis, ax.yaxis):
             if axis.get_scale() == "log":
                 _declutter(axis, renderer)
