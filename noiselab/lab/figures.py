@@ -92,11 +92,11 @@ def _si(v, unit):
     return f"{text} {p}{unit}".rstrip() if (p or unit) else text
 
 
-def _plain(v):
-    """A compact number: plain between 1e-3 and 1e4, else mathtext powers of ten."""
+def _plain(v, sci=False):
+    """A compact number: plain between 1e-3 and 1e4 (unless ``sci``), else mathtext powers of ten."""
     if v == 0 or not math.isfinite(v):
         return f"{v:g}"
-    if 1e-3 <= abs(v) < 1e4:
+    if 1e-3 <= abs(v) < 1e4 and not sci:
         return f"{v:g}"
     e = math.floor(math.log10(abs(v)) + 1e-9)
     m = v / 10.0 ** e
@@ -127,7 +127,8 @@ def _log_ticks(axis, unit=None, max_labels=6):
         stride = math.ceil(len(ticks) / max_labels)
         ticks = ticks[::stride]
     axis.set_major_locator(FixedLocator(ticks))
-    fmt = (lambda v: _si(v, unit)) if unit is not None else _plain
+    sci = any(not 1e-3 <= t < 1e4 for t in ticks)        # one style per axis: all plain or all powers of ten
+    fmt = (lambda v: _si(v, unit)) if unit is not None else (lambda v: _plain(v, sci))
     axis.set_major_formatter(FuncFormatter(lambda v, pos: fmt(v)))
     axis.set_minor_locator(LogLocator(base=10, subs="auto", numticks=12))
     axis.set_minor_formatter(NullFormatter())
@@ -305,7 +306,8 @@ def plot_texture(rows):
         ax.set_ylabel("power per cell")
         _log_ticks(ax.xaxis)
         _log_ticks(ax.yaxis)
-    fig.legend(list(handles.values()), list(handles.keys()), loc="outside lower center", ncols=3)
+    fig.legend(list(handles.values()), [h.get_label() for h in handles.values()], loc="outside lower center",
+               ncols=3)
     return _finish(fig, _freeze(fig))
 
 
