@@ -9,6 +9,8 @@ benchmarks/setup_peers.sh`` makes it)::
     python3 benchmarks/lab_run.py            # full run (2.5-5 min on 2 cores), writes out/bench/RESULTS.md
     python3 benchmarks/lab_run.py --publish  # ... into benchmarks/RESULTS.md and benchmarks/results/
     python3 benchmarks/lab_run.py --quick --output /tmp/lab
+    python3 benchmarks/lab_run.py --replot   # redraw benchmarks/results/*.png from results.json, no measuring
+    python3 benchmarks/lab_run.py --replot --output /tmp/lab   # ... /tmp/lab/results/*.png
 
 ``--publish`` refuses a quick run, an ``--output`` folder, and a run without
 the peers (their environment missing, or ``--no-peers``) unless
@@ -51,8 +53,30 @@ def publish_argv(argv, *, published=HERE, peers_python=PEERS_PYTHON):
     return peers + rest + ["--output", str(published)]
 
 
+def replot(argv, *, published=HERE):
+    """Redraw the figures of a finished run from its ``results/results.json``; returns the files written."""
+    parser = argparse.ArgumentParser(prog="lab_run.py --replot")
+    parser.add_argument("--replot", action="store_true")
+    parser.add_argument("--output", default=str(published), metavar="DIR",
+                        help="the run's folder (its results/results.json is read); default benchmarks/")
+    args = parser.parse_args(argv)
+    from noiselab.lab.figures import read_results, write_figures
+
+    res_dir = Path(args.output) / "results"
+    return write_figures(read_results(res_dir / "results.json"), res_dir)
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else list(argv)
+    if "--replot" in argv:
+        try:
+            written = replot(argv)
+        except FileNotFoundError as exc:
+            print(f"lab_run: error: {exc}", file=sys.stderr)
+            return 2
+        for path in written:
+            print(f"lab_run: wrote {path}")
+        return 0
     try:
         bench_argv = publish_argv(argv)
     except ValueError as exc:

@@ -11,6 +11,8 @@
 - :mod:`noiselab.lab.run`: runs them all and writes ``RESULTS.md`` and its
   plots where ``--output`` says (``noiselab bench``); the package writes into no git checkout
   (the published ``benchmarks/RESULTS.md`` is written by the checkout's ``benchmarks/lab_run.py --publish``).
+- :mod:`noiselab.lab.figures`: the report's figures, drawn from a run's tables
+  (or its ``results.json``: ``benchmarks/lab_run.py --replot`` redraws them without measuring).
 """
 from .snowgen import layer_plan, lattice_peak, layered_lattice_snow, particle_snow
 

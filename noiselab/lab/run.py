@@ -26,6 +26,7 @@ import numpy as np
 
 from .experiments import (CAPABILITIES, Config, flake_scaling, pareto_sweeps, scaling_fits, snow_experiment,
                           snow_scaling, texture_experiment, texture_scaling)
+from .figures import write_figures
 from .measure import fit_exponent, machine_info
 from .hashes import hash_experiment, hash_section
 from .quality import quality_experiment, quality_section
@@ -90,141 +91,6 @@ def md_table(rows, cols):
     for r in rows:
         lines.append("| " + " | ".join(_fmt(r.get(k)) for k, _ in cols) + " |")
     return "\n".join(lines)
-
-
-# ----------------------------------------------------------------------------- plots
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def _save(fig, path):
-    from ..io import atomic_output
-
-    with atomic_output(path) as tmp:
-        fig.savefig(tmp, dpi=72, format="png")
-    _plt().close(fig)
-
-
-def plot_texture(rows, path):
-    plt = _plt()
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for ax, dim in zip(axes, (2, 3)):
-        for r in rows:
-            if r["dim"] != dim or not ("spectral" in r["method"] or "cubic" in r["method"] or "catmull" in r["method"]
-                                       or "quintic" in r["method"]):
-                continue
-            sp = r["_spectrum"]
-            ax.loglog(sp["f"], sp["power"], label=r["method"], lw=2 if r["family"] == "spectral" else 1)
-            if r["family"] == "spectral":
-                f = np.asarray(sp["f"])
-                p = np.asarray(sp["power"])
-                inband = p > p.max() * 1e-9
-                f_in, p_in = f[inband], p[inband]
-                ref = np.exp(np.mean(np.log(p_in * f_in ** dim)))
-                ax.loglog(f_in, ref * f_in ** -dim, "k--", lw=1, label=f"target: power ~ f^-{dim}")
-                ax.set_ylim(bottom=p_in.min() * 1e-2)
-        ax.set_title(f"1/f texture {dim}-D: radial power spectrum")
-        ax.set_xlabel("cycles/frame")
-        ax.set_ylabel("power per cell")
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    _save(fig, path)
-
-
-def plot_snow(rows, path):
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(6, 4))
-    law_done = False
-    for r in rows:
-        c = r["_curve"]
-        ax.loglog(c["f"], c["speed"], "o-", label=r["method"])
-        if not law_done:
-            f = np.array(c["f"])
-            ax.loglog(f, np.array(c["law"]), "k--", label="parallax law c N / (2 pi f)")
-            law_done = True
-    ax.set_xlabel("band centre (cycles/frame)")
-    ax.set_ylabel("measured fall speed (px/frame)")
-    ax.set_title("Falling snow: speed per band")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    _save(fig, path)
-
-
-def plot_scaling(srows, frows, path, texture_rows=None):
-    plt = _plt()
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
-    for m in dict.fromkeys(r["method"] for r in texture_rows or []):
-        rs = [r for r in texture_rows if r["method"] == m]
-        axes[2].loglog([r["voxels"] for r in rs], [r["time_s"] for r in rs], "o-", label=m)
-    axes[2].set_xlabel("pixels (N x N)")
-    axes[2].set_ylabel("median time (s)")
-    axes[2].set_title("2-D 1/f texture: time against size")
-    axes[2].legend(fontsize=7)
-    for m in dict.fromkeys(r["method"] for r in srows):
-        rs = [r for r in srows if r["method"] == m]
-        axes[0].loglog([r["voxels"] for r in rs], [r["time_s"] for r in rs], "o-", label=m)
-    axes[0].set_xlabel("output voxels (frames x W x W)")
-    axes[0].set_ylabel("median time (s)")
-    axes[0].set_title("Snow: time against output size")
-    axes[0].legend(fontsize=7)
-    axes[1].loglog([r["flakes"] for r in frows], [r["time_s"] for r in frows], "o-", label="particles")
-    axes[1].set_xlabel("flakes")
-    axes[1].set_ylabel("median time (s)")
-    axes[1].set_title("Particle snow: time against flakes")
-    fig.tight_layout()
-    _save(fig, path)
-
-
-def plot_pareto(sweeps, path):
-    plt = _plt()
-    n = len(sweeps)
-    cols = 3
-    rows = (n + cols - 1) // cols
-    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.4 * rows))
-    for ax, s in zip(np.ravel(axes), sweeps):
-        pts = s["points"]
-        t = [p["time_s"] for p in pts]
-        # an exact result (error 0) is drawn at 1e-9 so that the axis stays readable
-        e = [max(p["error"], 1e-9) if p["error"] is not None and np.isfinite(p["error"]) else np.nan for p in pts]
-        ax.loglog(t, e, "o")
-        for p, ti, ei in zip(pts, t, e):
-            ax.annotate(p["setting"], (ti, ei), fontsize=6)
-        ax.axhline(s["threshold"], color="k", ls=":", lw=1)
-        k = next((p for p in pts if p["setting"] == s["knee"]), None)
-        if k is not None:
-            ax.loglog([k["time_s"]], [max(k["error"], 1e-9)], "r*", ms=12)
-        ax.set_title(s["name"], fontsize=8)
-        ax.set_xlabel("time (s)", fontsize=7)
-        ax.set_ylabel("error (exact drawn at 1e-9)", fontsize=7)
-        ax.tick_params(labelsize=6)
-    for ax in np.ravel(axes)[n:]:
-        ax.axis("off")
-    fig.tight_layout()
-    _save(fig, path)
-
-
-def plot_peers(prows, path):
-    plt = _plt()
-    ok = [r for r in prows if r["status"] == "ok"]
-    groups = list(dict.fromkeys(r["group"] for r in ok))
-    fig, axes = plt.subplots(1, len(groups), figsize=(4 * len(groups), 4))
-    for ax, g in zip(np.atleast_1d(axes), groups):
-        rs = [r for r in ok if r["group"] == g]
-        ax.barh(range(len(rs)), [r["points_per_s"] for r in rs],
-                color=["C3" if r["case"].startswith("noiselab") else "C0" for r in rs])
-        ax.set_yticks(range(len(rs)))
-        ax.set_yticklabels([r["case"] for r in rs], fontsize=6)
-        ax.set_xscale("log")
-        ax.set_title(g, fontsize=8)
-        ax.set_xlabel("points/s", fontsize=7)
-    fig.tight_layout()
-    _save(fig, path)
 
 
 # ----------------------------------------------------------------------------- peers
@@ -319,13 +185,7 @@ def run_all(*, quick=False, output=None, peers=True, peers_python=None, log=prin
         log(f"lab: SKIPPED section {section}: {why}")
     results["skipped"] = skipped
     results["elapsed_s"] = time.perf_counter() - t_start
-    plot_texture(results["texture"], res_dir / "texture_spectra.png")
-    plot_snow(results["snow"], res_dir / "snow_parallax.png")
-    plot_scaling(results["scaling"], results["flakes"], res_dir / "snow_scaling.png",
-                 texture_rows=results["texture_scaling"])
-    plot_pareto(results["sweeps"], res_dir / "pareto.png")
-    if isinstance(results["peers"], list):
-        plot_peers(results["peers"], res_dir / "peers.png")
+    write_figures(results, res_dir)     # redrawn from results.json alone by `benchmarks/lab_run.py --replot`
     from ..io import atomic_output
 
     with atomic_output(res_dir / "results.json") as tmp:
