@@ -1529,17 +1529,6 @@ def final_pass_direct(inter, pos, w, scales, out):
                             o[q] += wk * rk[q]
 
 
-@nb.njit(cache=True, nogil=True)
-def _store_row(orow, acc, first):
-    """A batch's sums ``acc`` written (``first``) or added into an output row, rounded to its dtype."""
-    if first:
-        for q in range(acc.shape[0]):
-            orow[q] = acc[q]
-    else:
-        for q in range(acc.shape[0]):
-            orow[q] += acc[q]
-
-
 def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
     """The fused grid kernel for ``DIM`` (2 or 3) input axes, ``TAPS`` taps (2, 4, or 0: any), a hash and a basis.
 
@@ -1777,10 +1766,20 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                         else:
                             for q in range(post):
                                 acc[q] += abs(gsum[q])
-                if f64 and not direct:
-                    _store_row(out64[j], acc, bi == 0 and not absval)
-                elif not f64:
-                    _store_row(out32[j], acc, bi == 0 and not absval)
+                if direct:
+                    pass
+                elif bi == 0 and not absval:
+                    for q in range(post):
+                        if f64:
+                            out64[j, q] = acc[q]
+                        else:
+                            out32[j, q] = acc[q]
+                else:
+                    for q in range(post):
+                        if f64:
+                            out64[j, q] += acc[q]
+                        else:
+                            out32[j, q] += acc[q]
 
     return grid_rows
 
