@@ -183,7 +183,7 @@ FUSED_DIMS = (2, 3)
 AXIS_TAPS_KEPT = 8
 AXIS_TAPS_BYTES = 32 << 20  # and at most this much memory (a 4096-sample axis, 6 octaves, 4 taps: 1.5 MiB)
 _AXIS_TAPS = {}
-_AXIS_TAPS_LOCK = threading.Lock()
+_KEPT_LOCK = threading.Lock()
 # the points of one call of the scattered path: a block of whole rows of axis 0 (one row at least)
 SCATTERED_BLOCK = 1 << 16
 
@@ -244,11 +244,9 @@ def shared_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
     k = noise.kernel
     key = (k.name, k.taps, k.shift, k.left, k.coef.tobytes(), k.dcoef.tobytes() if deriv else b"",
            coords_a.tobytes(), freqs.tobytes(), periods.tobytes(), float(noise.phase[a]), bool(grad), bool(deriv))
-    with _AXIS_TAPS_LOCK:
-        kept = _AXIS_TAPS.pop(key, None)
-        if kept is not None:
-            _AXIS_TAPS[key] = kept  # the most recently used last
-            return kept[0]
+    taps = kept(_AXIS_TAPS, key)
+    if taps is not None:
+        return taps
     taps = octave_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=deriv)
     size = sum(arr.nbytes for arrays in taps for arr in {id(x): x for x in arrays}.values())
     if size > AXIS_TAPS_BYTES // 4:
@@ -256,11 +254,25 @@ def shared_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
     for arrays in taps:
         for arr in arrays:
             arr.flags.writeable = False
-    with _AXIS_TAPS_LOCK:
-        _AXIS_TAPS[key] = (taps, size)
-        while len(_AXIS_TAPS) > AXIS_TAPS_KEPT or sum(n for _, n in _AXIS_TAPS.values()) > AXIS_TAPS_BYTES:
-            del _AXIS_TAPS[next(iter(_AXIS_TAPS))]
+    keep(_AXIS_TAPS, key, taps, size)
     return taps
+
+
+def kept(store, key):
+    """What :func:`keep` put in ``store`` under ``key`` (now the most recently used), or None."""
+    with _KEPT_LOCK:
+        entry = store.pop(key, None)
+        if entry is not None:
+            store[key] = entry
+    return None if entry is None else entry[0]
+
+
+def keep(store, key, value, size):
+    """Keep ``value`` (``size`` bytes) in ``store``: the last :data:`AXIS_TAPS_KEPT`, at most :data:`AXIS_TAPS_BYTES`."""
+    with _KEPT_LOCK:
+        store[key] = (value, size)
+        while len(store) > AXIS_TAPS_KEPT or sum(n for _, n in store.values()) > AXIS_TAPS_BYTES:
+            del store[next(iter(store))]
 
 
 def octave_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
@@ -485,18 +497,18 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval, bands=1
     """
     d = noise.dim_in
     kernel = jit.grid_rows_kernel(d, noise.kernel.taps, noise.hash == "integer", noise.basis == "gradient")
-    geometry, components, band_taps = rows_plan(noise, axes_per_octave)
+    geometry, components = rows_plan(noise, axes_per_octave)
     scales = np.array([amp for _, amp, _ in octaves], dtype=np.float64)
     batch_start = np.concatenate([[0], np.cumsum(batch_sizes)]).astype(np.int64)
-    shapes, pre_off, lat2, lat2_off, P1, W1, RW1, P2, W2, RW2 = geometry
+    P0, W0, RW0, shapes, pre_off, lat2, lat2_off, P1, W1, RW1, P2, W2, RW2 = geometry
     nj = out.shape[1]
     for c in range(noise.dim_out):
         pre, par, perm, mult2, values, folded = components[c]
         rows = out[c].reshape(nj, -1)
 
         def band(lo_hi, pre=pre, par=par, perm=perm, mult2=mult2, rows=rows, values=values, folded=folded):
-            lo, hi = lo_hi
-            p0, w0, rw0 = band_taps(lo, hi)
+            lo, hi = lo_hi  # a row slice of P0 / W0 / RW0, made contiguous (the kernel's one specialisation)
+            p0, w0, rw0 = (np.ascontiguousarray(x[:, lo:hi]) for x in (P0, W0, RW0))
             kernel(shapes, pre, par, pre_off, lat2, lat2_off, p0, w0, rw0, P1, W1, RW1, P2, W2, RW2, scales,
                    batch_start, bool(absval), perm, int(noise.table_size), values, folded, mult2,
                    *((np.empty((0, 0), np.float32), rows[lo:hi]) if out.dtype == np.float64 else
@@ -509,16 +521,14 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval, bands=1
 # the fused kernel's arguments of the last few grids (:func:`rows_plan`), kept with the axis taps
 # they were made from, under the same bounds
 _ROW_PLANS = {}
-_ROW_PLANS_LOCK = threading.Lock()
 
 
 def rows_plan(noise, axes_per_octave):
-    """The fused kernel's arguments made from the axis taps and the hash tables: ``(geometry, components, band_taps)``.
+    """The fused kernel's arguments made from the axis taps and the hash tables: ``(geometry, components)``.
 
     ``geometry``: the stacked taps and offsets; ``components``: per output
     component the hash prefixes (and parities), the table and the folded
-    look-ups; ``band_taps(lo, hi)``: axis 0's taps for the rows ``lo:hi``,
-    contiguous (the kernel's one specialisation). Made from kept axis taps
+    look-ups. Made from kept axis taps
     (:func:`shared_axis_taps`), a plan is kept as they are, for the last
     :data:`AXIS_TAPS_KEPT` grids within :data:`AXIS_TAPS_BYTES`, keyed on
     those very taps (held here, so that their ids stay theirs) and on the
@@ -528,23 +538,18 @@ def rows_plan(noise, axes_per_octave):
     array is another numba type, another compilation); nothing writes them.
     """
     pieces = [ax for axes in axes_per_octave for ax in axes]
-    kept = all(not arr.flags.writeable for ax in pieces for arr in ax)
-    if kept:
+    taps_kept = all(not arr.flags.writeable for ax in pieces for arr in ax)
+    if taps_kept:
         grad = noise.basis == "gradient"
         tables = (noise.keys, noise._mult) if noise.hash == "integer" else (noise.perms, noise.values)
         key = (tuple(map(id, pieces)), noise.dim_in, noise.kernel.taps, noise.hash, grad, noise.table_size,
                noise.gradients.tobytes() if grad else b"") + tuple(t.tobytes() for t in tables)
-        with _ROW_PLANS_LOCK:
-            plan = _ROW_PLANS.pop(key, None)
-            if plan is not None:
-                _ROW_PLANS[key] = plan  # the most recently used last
-                return plan[1]
+        entry = kept(_ROW_PLANS, key)
+        if entry is not None:
+            return entry[1]
     plan, size = _make_rows_plan(noise, axes_per_octave)
-    if kept and size <= AXIS_TAPS_BYTES // 4:
-        with _ROW_PLANS_LOCK:
-            _ROW_PLANS[key] = (axes_per_octave, plan, size)
-            while len(_ROW_PLANS) > AXIS_TAPS_KEPT or sum(n for *_, n in _ROW_PLANS.values()) > AXIS_TAPS_BYTES:
-                del _ROW_PLANS[next(iter(_ROW_PLANS))]
+    if taps_kept and size <= AXIS_TAPS_BYTES // 4:
+        keep(_ROW_PLANS, key, (axes_per_octave, plan), size)
     return plan
 
 
@@ -559,12 +564,7 @@ def _make_rows_plan(noise, axes_per_octave):
         [(None, np.zeros((1, taps), np.int64), np.ones((1, taps)), np.ones((1, taps)))] * noct
 
     def stack(items, k, transpose=False):
-        first_item = items[0][k]
-        shape = first_item.shape[::-1] if transpose else first_item.shape
-        stacked = np.empty((len(items),) + shape, dtype=first_item.dtype)
-        for i, it in enumerate(items):
-            stacked[i] = it[k].T if transpose else it[k]
-        return stacked
+        return np.stack([it[k].T if transpose else it[k] for it in items])
 
     first = [axes[0] for axes in axes_per_octave]
     last = [axes[-1] for axes in axes_per_octave]
@@ -591,18 +591,9 @@ def _make_rows_plan(noise, axes_per_octave):
             perm = noise.perms[c]
             components.append((np.concatenate([h for h, _ in hp]), np.concatenate([q for _, q in hp]), perm,
                                np.uint32(0)) + folded_tables(perm, noise.values, noise.gradients if grad else None))
-    geometry = (shapes, pre_off, lat2, lat2_off, P1, W1, RW1, P2, W2, RW2)
-    bands = {}
-
-    def band_taps(lo, hi):
-        cut = bands.get((lo, hi))
-        if cut is None:  # (two threads may make the same cut: the same arrays)
-            cut = bands[(lo, hi)] = tuple(np.ascontiguousarray(x[:, lo:hi]) for x in (P0, W0, RW0))
-        return cut
-
-    size = sum(x.nbytes for x in (P0, W0, RW0, *geometry)) * 2  # (the band cuts copy axis 0's taps once more)
-    size += sum(x.nbytes for comp in components for x in comp[:2])
-    return (geometry, components, band_taps), size
+    geometry = (P0, W0, RW0, shapes, pre_off, lat2, lat2_off, P1, W1, RW1, P2, W2, RW2)
+    size = sum(x.nbytes for x in geometry) + sum(x.nbytes for comp in components for x in comp[:2])
+    return (geometry, components), size
 
 
 def folded_tables(perm, values, grads):
