@@ -601,6 +601,43 @@ def kernel_sums(kernel):
     return _sup_on_unit(abs_sum), _sup_on_unit(moment)
 
 
+def grid_axis_taps(coords, freq, phase, shift, left, coef, period, grad):
+    """One grid axis's taps sample by sample: ``(lattice, pos, w, rw)`` as the grid path makes them.
+
+    ``u = x freq + phase + shift``, ``fi = floor(u)``, ``t = u - fi``; tap
+    ``k`` of a sample sits on lattice point ``fi - left + k`` with weight
+    ``sum_p coef[k, p] t**p``, summed from the powers in pairs as the engine's
+    one weight polynomial is (``(c0 + c1 t) + (c2 t2 + c3 t3) + (c4 t4 + c5 t5)``,
+    ``t4 = t2 t2``: float64 rounds a different order differently).
+    ``lattice``: the distinct taps' indices modulo ``period`` (exact Python
+    integers), in increasing order of the unreduced index; ``pos``: each
+    sample's taps' places in it; ``rw``: the weights times the signed
+    distances ``t - shift + left - k`` (``grad``), else the weights.
+    """
+    taps = coef.shape[0]
+    w = np.empty((len(coords), taps))
+    rw = np.empty((len(coords), taps))
+    floors = []
+    for j, x in enumerate(coords):
+        u = x * freq + phase + shift
+        fi = np.floor(u)
+        t = u - fi
+        floors.append(int(fi))
+        t2 = t * t
+        t3 = t2 * t
+        t4 = t2 * t2
+        t5 = t4 * t
+        for k in range(taps):
+            c = coef[k]
+            w[j, k] = (c[0] + c[1] * t) + (c[2] * t2 + c[3] * t3) + (c[4] * t4 + c[5] * t5)
+            rw[j, k] = w[j, k] * (t - shift + (left - k)) if grad else w[j, k]
+    lo = min(floors)
+    raw = np.array([[f - lo + k for k in range(taps)] for f in floors], dtype=np.int64)
+    offsets, pos = np.unique(raw, return_inverse=True)
+    lattice = np.array([(lo - left + int(r)) % period for r in offsets], dtype=np.int64)
+    return lattice, pos.reshape(raw.shape).astype(np.int64), w, rw
+
+
 def mix32(h):
     """MurmurHash3's 32-bit finaliser less its last xor-shift, on uint32 words (Python ints inside)."""
     out = np.empty(len(h), dtype=np.uint32)

@@ -29,8 +29,9 @@ unrolls.
   the table hash's 3-D values without a period over :func:`pair_tables`,
   block by block, either layout in place). Octaves are fused into one pass
   over the points.
-- the separable grid passes: :func:`axis_weights` / :func:`axis_dweights`
-  and :func:`dense_taps` (per-axis weights and distinct taps),
+- the separable grid passes: :func:`axis_dweights` (per-axis weight
+  derivatives; the weights and distinct taps are numpy,
+  :func:`.grid_path.octave_axis_taps`),
   :func:`hash_expand` / :func:`hash_expand_values` / :func:`block_prefix`
   (the hashed block of lattice values), :func:`contract_last` /
   :func:`contract_mid` (one pass per axis) and :func:`final_pass` /
@@ -1305,37 +1306,6 @@ def pair_tables(perms, values, grads=None):
 
 # ---------------------------------------------------------------- grids
 @nb.njit(cache=True, nogil=True)
-def axis_weights(coords, freq, phase, shift, left, taps, coef, period, grad):
-    """Per-sample tap weights and reduced first-tap indices along one grid axis.
-
-    The reference that :func:`.grid_path.octave_axis_taps` (numpy, so that a
-    first grid compiles no kernel for it) is tested against, bit for bit.
-
-    Returns ``fi`` (float floor index), ``base`` ((floor - left) mod period),
-    ``w`` (N, taps) weights and, if ``grad``, ``rw`` (N, taps) = weight x signed distance.
-    """
-    mask = period - 1 if (period & (period - 1)) == 0 else -1
-    nn = coords.shape[0]
-    fis = np.empty(nn)
-    base = np.empty(nn, np.int64)
-    w = np.empty((nn, taps))
-    rw = np.empty((nn, taps))
-    for j in range(nn):
-        u = coords[j] * freq + phase + shift
-        fi = np.floor(u)
-        t = u - fi
-        fis[j] = fi
-        base[j] = _reduce(fi, left, period, mask)
-        t2, t3, t4, t5 = _powers(t)
-        for k in range(taps):
-            s = _weight(coef, k, t, t2, t3, t4, t5)
-            w[j, k] = s
-            if grad:
-                rw[j, k] = s * (t - shift + (left - k))
-    return fis, base, w, rw
-
-
-@nb.njit(cache=True, nogil=True)
 def contract_mid(inp, pos, w, out):
     """One separable pass on a middle axis: ``out[p, j, q] = sum_k w[j, k] * inp[p, pos[j, k], q]``."""
     npre, _, npost = inp.shape
@@ -1800,52 +1770,6 @@ def grid_rows_kernel(dim, taps, integer, grad):
 
 
 @nb.njit(cache=True, nogil=True)
-def dense_taps(fis, base, taps, period):
-    """Distinct lattice taps of one grid axis, by marking offsets from the smallest floor index.
-
-    The reference of :func:`.grid_path.octave_axis_taps`' dense taps (tested bit for bit).
-
-    Returns ``lattice`` (reduced index of each distinct tap, in increasing
-    raw order) and ``pos`` (N, taps): the position of each sample's taps in it.
-    Used when the taps span few cells (dense grids); equivalent to ``np.unique``.
-    """
-    nn = fis.shape[0]
-    j0 = 0
-    for j in range(nn):
-        if fis[j] < fis[j0]:
-            j0 = j
-    lo = fis[j0]
-    span = 0
-    for j in range(nn):
-        r = np.int64(fis[j] - lo)
-        if r > span:
-            span = r
-    span += taps
-    index = np.empty(span, np.int64)  # (np.full: one more overload to compile)
-    for r in range(span):
-        index[r] = -1
-    for j in range(nn):
-        r = np.int64(fis[j] - lo)
-        for k in range(taps):
-            index[r + k] = 0
-    count = 0
-    for r in range(span):
-        if index[r] == 0:
-            index[r] = count
-            count += 1
-    lattice = np.empty(count, np.int64)
-    for r in range(span):
-        if index[r] >= 0:
-            lattice[index[r]] = (base[j0] + r) % period
-    pos = np.empty((nn, taps), np.int64)
-    for j in range(nn):
-        r = np.int64(fis[j] - lo)
-        for k in range(taps):
-            pos[j, k] = index[r + k]
-    return lattice, pos
-
-
-@nb.njit(cache=True, nogil=True)
 def hash_expand_values(h, par, lat, perm, n, first, values, out):
     """The last level of :func:`hash_expand` fused with the value lookup: ``out[m, l] = values[parity, h']``."""
     nl = lat.shape[0]
@@ -1867,7 +1791,8 @@ def hash_expand_values(h, par, lat, perm, n, first, values, out):
 # ---------------------------------------------------------------- derivatives
 @nb.njit(cache=True, nogil=True)
 def axis_dweights(coords, freq, phase, shift, left, taps, coef, dcoef, grad):
-    """Derivatives along one grid axis of :func:`axis_weights`' ``w`` and ``rw``, in input units.
+    """Derivatives along one grid axis of its weights ``w`` and ``rw`` (:func:`.grid_path.octave_axis_taps`),
+    in input units.
 
     Returns ``dw`` (N, taps) ``= F w'(t)`` and, if ``grad``, ``drw`` (N, taps)
     ``= F (w'(t) r + w(t))`` (the product rule on ``w r``, ``dr/dt = 1``).

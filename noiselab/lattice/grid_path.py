@@ -278,12 +278,12 @@ def keep(store, key, value, size):
 def octave_axis_taps(noise, coords_a, freqs, a, grad, periods, deriv=False):
     """:func:`axis_taps` for several octaves of one axis at once (``freqs``, ``periods``: one per octave), in numpy.
 
-    The same arithmetic, element by element, as the kernels
-    :func:`_jit.axis_weights` and :func:`_jit.dense_taps` (the same bits,
+    The point kernels' arithmetic, element by element (the same bits as the
+    sample-by-sample reference ``tests/naive.py`` ``grid_axis_taps``,
     ``tests/test_lattice_grid_rows.py``), the distinct taps numbered in
     increasing order (dense: marked offsets from the smallest floor index;
-    spread over many cells: ``np.unique``). numpy rather than those kernels:
-    a first grid compiles two kernels less (about 0.9 s CPU,
+    spread over many cells: ``np.unique``). numpy rather than kernels: a
+    first grid compiles two kernels less (about 0.9 s CPU,
     ``benchmarks/bench_coldstart.md``), for about 0.1 ms more a 2-D fBm.
     Returns one ``(lattice, pos, w, rw)`` per octave (``rw``: the weights
     times the signed distances with ``grad``, else ``w``).
