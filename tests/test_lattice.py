@@ -529,7 +529,8 @@ def test_grid_workers_split_into_bands_and_keep_the_bits(monkeypatch, dim, dim_o
     assert bands[-1] == 3
 
 
-def test_grid_workers_is_validated_and_small_grids_stay_on_one_thread(monkeypatch):
+def _count_bands(monkeypatch):
+    """The number of bands of every grid kernel call from now on (a list that fills)."""
     from noiselab.lattice import grid_path
 
     calls = []
@@ -541,6 +542,11 @@ def test_grid_workers_is_validated_and_small_grids_stay_on_one_thread(monkeypatc
         return real(fn, blocks, n)
 
     monkeypatch.setattr(grid_path, "map_blocks", counting)
+    return calls
+
+
+def test_grid_workers_is_validated_and_small_grids_stay_on_one_thread(monkeypatch):
+    calls = _count_bands(monkeypatch)
     noise = LatticeNoise(2, rng=1)
     small = noise.grid((512, 512), [(0, 4), (0, 4)], workers=2)  # 262,144 samples x 1 octave: below one band
     assert calls == [1] and small.shape == (512, 512)
@@ -562,17 +568,7 @@ def test_workers_none_follows_scipy_fft_and_a_first_call_does_not_import_it(monk
 
     import scipy.fft
 
-    from noiselab.lattice import grid_path
-
-    calls = []
-    real = grid_path.map_blocks
-
-    def counting(fn, blocks, n):
-        blocks = list(blocks)
-        calls.append(len(blocks))
-        return real(fn, blocks, n)
-
-    monkeypatch.setattr(grid_path, "map_blocks", counting)
+    calls = _count_bands(monkeypatch)
     noise = LatticeNoise(2, rng=1)
     one = noise.evaluate_grid((1024, 1024), [(0, 4), (0, 4)], octaves=4)
     with scipy.fft.set_workers(2):
