@@ -793,11 +793,13 @@ def _make_int_fast(DIM, TAPS, GRAD, PERIODIC):
 BLOCK = 256  # points per block of :func:`_make_int_block` (its buffers, about 26 KiB for 3-D, stay in L1)
 _TWO32 = 4294967296.0  # 2**32: lattice indices are hashed modulo 2**32
 _INV_TWO32 = 1.0 / 4294967296.0
+_TWO31 = np.float32(2147483648.0)  # 2**31: float32 lattice indices below it convert to int32 exactly
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
 def _block_load(src, flat, cols, p0, m, X, DIM):
-    """The block's coordinates as float64 rows ``X[a, :m]``, from ``(N, DIM)`` rows or ``(DIM, N)`` columns.
+    """The block's coordinates as rows ``X[a, :m]`` (float64, or the points' own dtype), from ``(N, DIM)`` rows or
+    ``(DIM, N)`` columns.
 
     Every index here is a loop counter from 0 over a slice of the block: an
     index computed as ``p0 + i`` (which numba must check for a negative
@@ -810,16 +812,48 @@ def _block_load(src, flat, cols, p0, m, X, DIM):
             xs = src[a, p0:p0 + m]
             Xa = X[a]
             for i in range(m):
-                Xa[i] = np.float64(xs[i])
+                Xa[i] = xs[i]
     else:
         xs = flat[p0 * DIM:(p0 + m) * DIM]
         for i in range(m):
             for a in range(DIM):
-                X[a, i] = np.float64(xs[i * DIM + a])
+                X[a, i] = xs[i * DIM + a]
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GRAD, ft):
+def _index32(X, a, m, f, ph, shift, left, fast, TT, JJ):
+    """Axis ``a`` of a block for the float32 arithmetic: fractions ``TT[a]`` (float32) and first taps ``JJ[a]``
+    (mod 2**32), the values of :func:`_fraction`; returns the count of NaN fractions.
+
+    ``fast`` (float32 points ``X``, no phase, no shift, a power-of-two frequency ``f``): ``u = x f`` in float32,
+    exact unless it overflows or underflows, which ``u / f == x`` tells apart; then ``u - floor(u)`` rounds as
+    :func:`_fraction`'s float64 difference rounded to float32 (both the one rounding of the same exact value),
+    and for ``|u| < 2**31`` the int32 index is the index mod 2**32. A block where any point fails this (or without
+    ``fast``) takes :func:`_fraction` in float64, the same bits for every point it shares with the fast pass.
+    """
+    Xa, Ta, Ja = X[a], TT[a], JJ[a]
+    ok = fast
+    if fast:
+        f32, inv = np.float32(f), np.float32(1.0 / f)
+        for i in range(m):
+            x = Xa[i]
+            u = x * f32
+            fi = np.floor(u)
+            Ta[i] = u - fi
+            inr = abs(u) < _TWO31
+            Ja[i] = _U32(np.int64(np.int32(fi if inr else np.float32(0.0))) - left)
+            ok &= inr & (u * inv == x)
+    bad = 0
+    if not ok:
+        for i in range(m):
+            t, j = _fraction(np.float64(Xa[i]), f, ph, shift, left, np.float32)
+            Ta[i], Ja[i] = t, j
+            bad += t != t  # a NaN fraction: x f + phase NaN or infinite (_run_block refuses it)
+    return bad
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, JJ, TAPS, GRAD, F32, ft):
     """One axis of a block without a period: weights, hashed tap offsets and (``GRAD``) signed distances.
 
     The values of :func:`_split` for every finite coordinate, in one branch-free
@@ -828,20 +862,22 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GR
     (exact: every step is an integer or a power-of-two scaling, and the
     difference, an integer in [0, 2**32), is representable), and converted
     once, whatever the coordinate's size; no int64 overflow past 2**63 and no
-    fallback to the exact per-point reduction. The index stays float64; only
-    the fraction ``t`` and what follows from it are in ``ft`` (a no-op cast for float64).
+    fallback to the exact per-point reduction. The float32 arithmetic (``F32``,
+    ``ft`` float32) takes ``t`` and ``j`` from :func:`_index32` (``TF``, ``JJ``) instead.
     """
     Xa = X[a]
     Ta = TF[a]
     bad = 0
     for i in range(m):
-        u = Xa[i] * f + ph + shift  # same rounding as the grid path
-        fi = np.floor(u)
-        t = ft(u - fi)
-        Ta[i] = t
-        bad += t != t  # a NaN fraction (x f + phase NaN or infinite): counted, the points checked after the call
-        q = fi - np.floor(fi * _INV_TWO32) * _TWO32
-        j = _U32(np.int64(q) - left)
+        if F32:
+            t, j = Ta[i], JJ[a, i]
+        else:
+            u = Xa[i] * f + ph + shift  # same rounding as the grid path
+            fi = np.floor(u)
+            t = u - fi
+            Ta[i] = t
+            bad += t != t  # a NaN fraction (x f + phase NaN or infinite): counted, the points checked after the call
+            j = _U32(np.int64(fi - np.floor(fi * _INV_TWO32) * _TWO32) - left)
         t2, t3, t4, t5 = _powers(t)
         for k in range(TAPS):
             W[a, k, i] = _weight(coef, k, t, t2, t3, t4, t5)
@@ -874,7 +910,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
 
     The bits of :func:`_make_int_fast` (the same operations in the same order
     for every point) with its own arguments: ``(src, cols, lo, hi, out, freqs,
-    amps, phase, shift, left, coef, keys, mult, absval)``, where ``src`` is
+    amps, phase, shift, left, coef, keys, mult, absval, fast)``, where ``src`` is
     C-contiguous ``(N, DIM)`` rows or, with ``cols``, ``(DIM, N)`` columns
     (float32 or float64, widened as read), and the kernel fills ``out[lo:hi]``
     (so threads share one call's arrays without slicing the columns). Per
@@ -882,18 +918,21 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
     each axis's set-up (:func:`_block_axis`), then :func:`_make_int_fast`'s
     corner loops; every loop runs over the block from index 0, which LLVM
     vectorises across points (8 float64 lanes with AVX-512). ``F32``: float32
-    arithmetic from each fraction on (``coef`` float32; the index as above).
+    arithmetic from each fraction on (``coef`` float32), the block kept in the
+    points' dtype, each axis's index from :func:`_index32` (``fast`` its
+    float32 pass; ignored without ``F32``).
     """
     FT = np.float32 if F32 else np.float64
 
     @nb.njit(cache=True, nogil=True)
-    def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval):
+    def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, fast):
         """Lattice noise with the integer hash at scattered points, 1-3-D values without a period."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
         flat = src.reshape(-1)
-        X = np.empty((DIM, BLOCK))
+        X = np.empty((DIM, BLOCK), src.dtype if F32 else np.float64)
         TF = np.empty((DIM, BLOCK), FT)
+        JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
         W = np.empty((DIM, TAPS, BLOCK), FT)
         R = np.empty((DIM, TAPS, BLOCK) if GRAD else (1, 1, 1), FT)
         M = np.empty((DIM, TAPS, BLOCK), np.uint32)
@@ -905,8 +944,10 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
             _block_load(src, flat, cols, p0, m, X, DIM)
             for o in range(noct):
                 for a in range(DIM):
-                    bad += _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS,
-                                       GRAD, FT)
+                    if F32:
+                        bad += _index32(X, a, m, freqs[o, a], phase[a], shift, left, fast, TF, JJ)
+                    bad += _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, JJ,
+                                       TAPS, GRAD, F32, FT)
                 amp = FT(amps[o])
                 first = o == 0
                 for c in range(ncomp):
@@ -972,14 +1013,6 @@ def _fraction(x, f, ph, shift, left, ft):
     return ft(u - fi), _U32(np.int64(q) - left)
 
 
-@nb.njit(cache=True, nogil=True, inline="always")
-def _index(pre, TT, JJ, X, a, i, f, ph, shift, left, ft):
-    """Point ``i``'s ``(t, j)`` on axis ``a``: from :func:`_fraction`'s loop (``pre``) or computed here."""
-    if pre:
-        return TT[a, i], JJ[a, i]
-    return _fraction(X[a, i], f, ph, shift, left, ft)
-
-
 @nb.njit(cache=True, nogil=True)
 def _two_taps(t, j, shift, left, coef, mult_a, grad, ft):
     """One axis of one point for a 2-tap kernel (``t, j``: :func:`_fraction`): ``(w0, w1, m0, m1, r0, r1)``
@@ -1013,18 +1046,41 @@ def _two_corners(total, h1, w1, c0, c1, n0, n1, ra, rb, s0, s1, dim, grad, ft):
     (the last axis's), as :func:`_make_int_fast` forms them for ``dim``.
     """
     for k in range(2):
-        h = _U32(h1 ^ (n0 if k == 0 else n1))
-        s = s0 if k == 0 else s1
-        if not grad:
-            v = hash_value(h, ft)
-        elif dim == 3:
-            v = _grad_dot(h, ra, rb, s, 3, ft)
-        elif dim == 2:
-            v = _grad_dot(h, ra, s, ft(0.0), 2, ft)
-        else:
-            v = _grad_dot(h, s, ft(0.0), ft(0.0), 1, ft)
+        v = _corner(_U32(h1 ^ (n0 if k == 0 else n1)), ra, rb, s0 if k == 0 else s1, dim, grad, ft)
         total += (w1 * (c0 if k == 0 else c1)) * v
     return total
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _corner(h, ra, rb, s, dim, grad, ft):
+    """A corner's value: :func:`hash_value` of ``h`` or (``grad``) :func:`_grad_dot` of ``ra, rb, s`` for ``dim``."""
+    if not grad:
+        return hash_value(h, ft)
+    if dim == 3:
+        return _grad_dot(h, ra, rb, s, 3, ft)
+    if dim == 2:
+        return _grad_dot(h, ra, s, ft(0.0), 2, ft)
+    return _grad_dot(h, s, ft(0.0), ft(0.0), 1, ft)
+
+
+@nb.njit(cache=True, nogil=True)
+def _lerp_taps(t, j, shift, left, hc, mult_a, grad):
+    """:func:`_two_taps` for the float32 arithmetic: ``(w1, m0, m1, r0, r1)``, ``w1`` the second tap's weight by
+    Horner's rule from its power-basis coefficients ``hc`` (``Kernel.coef[1]``, float32), its partner ``1 - w1``
+    left to :func:`_lerp_corners`."""
+    w = hc[5]
+    for p in range(4, -1, -1):
+        w = w * t + hc[p]
+    r0 = t - np.float32(shift) + np.float32(left) if grad else np.float32(0.0)
+    r1 = t - np.float32(shift) + np.float32(left - 1) if grad else np.float32(0.0)
+    return w, _U32(j * mult_a), _U32(_U32(j + _U32(1)) * mult_a), r0, r1
+
+
+@nb.njit(cache=True, nogil=True)
+def _lerp_corners(h1, w, n0, n1, ra, rb, s0, s1, dim, grad):
+    """The last axis's two corners (as :func:`_two_corners`) blended in float32: ``v0 + w (v1 - v0)``."""
+    v0 = _corner(_U32(h1 ^ n0), ra, rb, s0, dim, grad, np.float32)
+    return v0 + w * (_corner(_U32(h1 ^ n1), ra, rb, s1, dim, grad, np.float32) - v0)
 
 
 def _make_int_two_taps(DIM, GRAD, F32=False):
@@ -1037,7 +1093,10 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
     in one loop over the block that LLVM vectorises across points.
     1.63-1.74x :func:`_make_int_fast` for 1e6 3-D float32 quintic value
     points (``benchmarks/bench_lattice_paths.md``). ``F32``: float32 arithmetic
-    from each fraction on, as :func:`_make_int_block`.
+    from each fraction on, the index as :func:`_make_int_block`'s, for kernels
+    that are a partition of unity (``w0 = 1 - w1``): ``coef`` is the second
+    tap's coefficients alone (:func:`_lerp_taps`) and the corners are blended
+    as nested lerps, the last axis first (:func:`_lerp_corners`).
     """
     FT = np.float32 if F32 else np.float64
     Z = FT(0.0)
@@ -1045,12 +1104,12 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
     C = 2 if DIM > 2 else 0
 
     @nb.njit(cache=True, nogil=True)
-    def int_two_taps(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval):
+    def int_two_taps(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, fast):
         """Lattice noise with the integer hash at scattered points, 1-3-D values of a 2-tap kernel."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
         flat = src.reshape(-1)
-        X = np.empty((DIM, BLOCK))
+        X = np.empty((DIM, BLOCK), src.dtype if F32 else np.float64)
         TT = np.empty((DIM, BLOCK) if F32 else (1, 1), FT)
         JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
         ACC = np.empty((ncomp, BLOCK), FT)
@@ -1061,51 +1120,66 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
             for o in range(noct):
                 amp = FT(amps[o])
                 first = o == 0
-                if F32:  # the exact float64 index in its own loop: the corner loop is then all float32 (16 lanes)
+                if F32:  # each axis's index in its own loop: the corner loop is then all float32 (16 lanes)
                     for a in range(DIM):
-                        Xa = X[a]
-                        for i in range(m):
-                            t, j = _fraction(Xa[i], freqs[o, a], phase[a], shift, left, FT)
-                            TT[a, i], JJ[a, i] = t, j
-                            bad += t != t  # a NaN fraction: x f + phase NaN or infinite (_run_block refuses it)
-                fa = freqs[o, 0]
-                fb = freqs[o, B]
-                fc = freqs[o, C]
+                        bad += _index32(X, a, m, freqs[o, a], phase[a], shift, left, fast, TT, JJ)
+                fa, fb, fc = freqs[o, 0], freqs[o, B], freqs[o, C]
                 for c in range(ncomp):
                     key = keys[c]
                     acc = ACC[c]
                     for i in range(m):
-                        ta, ja = _index(F32, TT, JJ, X, 0, i, fa, phase[0], shift, left, FT)
-                        if not F32:  # (float32: counted in the index loop above)
-                            bad += ta != ta
-                        a0, a1, am0, am1, ar0, ar1 = _two_taps(ta, ja, shift, left, coef, mult[0], GRAD, FT)
-                        if DIM == 1:  # (1.0 * w) v is w v exactly
-                            total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD, FT)
-                        else:
-                            tb, jb = _index(F32, TT, JJ, X, B, i, fb, phase[B], shift, left, FT)
-                            if not F32:
-                                bad += tb != tb
-                            b0, b1, bm0, bm1, br0, br1 = _two_taps(tb, jb, shift, left, coef, mult[B], GRAD, FT)
-                            if DIM == 2:
-                                total = _two_corners(Z, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, Z, br0, br1,
-                                                     DIM, GRAD, FT)
-                                total = _two_corners(total, _U32(key ^ am1), a1, b0, b1, bm0, bm1, ar1, Z, br0, br1,
-                                                     DIM, GRAD, FT)
+                        if F32:  # nested lerps, the last axis first
+                            a1, am0, am1, ar0, ar1 = _lerp_taps(TT[0, i], JJ[0, i], shift, left, coef, mult[0], GRAD)
+                            if DIM == 1:
+                                total = _lerp_corners(key, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD)
                             else:
-                                tc, jc = _index(F32, TT, JJ, X, C, i, fc, phase[C], shift, left, FT)
-                                if not F32:
+                                b1, bm0, bm1, br0, br1 = _lerp_taps(TT[B, i], JJ[B, i], shift, left, coef, mult[B],
+                                                                    GRAD)
+                                if DIM == 2:
+                                    x0 = _lerp_corners(_U32(key ^ am0), b1, bm0, bm1, ar0, Z, br0, br1, DIM, GRAD)
+                                    x1 = _lerp_corners(_U32(key ^ am1), b1, bm0, bm1, ar1, Z, br0, br1, DIM, GRAD)
+                                else:
+                                    c1, cm0, cm1, cr0, cr1 = _lerp_taps(TT[C, i], JJ[C, i], shift, left, coef,
+                                                                        mult[C], GRAD)
+                                    ha0, ha1 = _U32(key ^ am0), _U32(key ^ am1)
+                                    y00 = _lerp_corners(_U32(ha0 ^ bm0), c1, cm0, cm1, ar0, br0, cr0, cr1, 3, GRAD)
+                                    y01 = _lerp_corners(_U32(ha0 ^ bm1), c1, cm0, cm1, ar0, br1, cr0, cr1, 3, GRAD)
+                                    y10 = _lerp_corners(_U32(ha1 ^ bm0), c1, cm0, cm1, ar1, br0, cr0, cr1, 3, GRAD)
+                                    y11 = _lerp_corners(_U32(ha1 ^ bm1), c1, cm0, cm1, ar1, br1, cr0, cr1, 3, GRAD)
+                                    x0 = y00 + b1 * (y01 - y00)
+                                    x1 = y10 + b1 * (y11 - y10)
+                                total = x0 + a1 * (x1 - x0)
+                        else:
+                            ta, ja = _fraction(X[0, i], fa, phase[0], shift, left, FT)
+                            bad += ta != ta
+                            a0, a1, am0, am1, ar0, ar1 = _two_taps(ta, ja, shift, left, coef, mult[0], GRAD, FT)
+                            if DIM == 1:  # (1.0 * w) v is w v exactly
+                                total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD,
+                                                     FT)
+                            else:
+                                tb, jb = _fraction(X[B, i], fb, phase[B], shift, left, FT)
+                                bad += tb != tb
+                                b0, b1, bm0, bm1, br0, br1 = _two_taps(tb, jb, shift, left, coef, mult[B], GRAD, FT)
+                                if DIM == 2:
+                                    total = _two_corners(Z, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, Z, br0, br1,
+                                                         DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(key ^ am1), a1, b0, b1, bm0, bm1, ar1, Z, br0,
+                                                         br1, DIM, GRAD, FT)
+                                else:
+                                    tc, jc = _fraction(X[C, i], fc, phase[C], shift, left, FT)
                                     bad += tc != tc
-                                c0, c1, cm0, cm1, cr0, cr1 = _two_taps(tc, jc, shift, left, coef, mult[C], GRAD, FT)
-                                ha0 = _U32(key ^ am0)
-                                ha1 = _U32(key ^ am1)
-                                total = _two_corners(Z, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
-                                                     cr1, DIM, GRAD, FT)
-                                total = _two_corners(total, _U32(ha0 ^ bm1), a0 * b1, c0, c1, cm0, cm1, ar0, br1, cr0,
-                                                     cr1, DIM, GRAD, FT)
-                                total = _two_corners(total, _U32(ha1 ^ bm0), a1 * b0, c0, c1, cm0, cm1, ar1, br0, cr0,
-                                                     cr1, DIM, GRAD, FT)
-                                total = _two_corners(total, _U32(ha1 ^ bm1), a1 * b1, c0, c1, cm0, cm1, ar1, br1, cr0,
-                                                     cr1, DIM, GRAD, FT)
+                                    c0, c1, cm0, cm1, cr0, cr1 = _two_taps(tc, jc, shift, left, coef, mult[C], GRAD,
+                                                                           FT)
+                                    ha0 = _U32(key ^ am0)
+                                    ha1 = _U32(key ^ am1)
+                                    total = _two_corners(Z, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
+                                                         cr1, DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(ha0 ^ bm1), a0 * b1, c0, c1, cm0, cm1, ar0, br1,
+                                                         cr0, cr1, DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(ha1 ^ bm0), a1 * b0, c0, c1, cm0, cm1, ar1, br0,
+                                                         cr0, cr1, DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(ha1 ^ bm1), a1 * b1, c0, c1, cm0, cm1, ar1, br1,
+                                                         cr0, cr1, DIM, GRAD, FT)
                         tv = abs(total) if absval else total
                         if first:
                             acc[i] = amp * tv
@@ -1113,6 +1187,7 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
                             acc[i] += amp * tv
             _store_block(out, p0, m, ACC)
         return bad
+
 
     return int_two_taps
 

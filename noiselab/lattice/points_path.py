@@ -162,13 +162,20 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f
     src, cols = _layout(flat)
     k = noise.kernel
     gradient = noise.basis == "gradient"
-    if k.taps == 2:  # the same bits, every point's taps in registers
-        kernel = jit.int_two_taps_kernel(noise.dim_in, gradient, f32)
+    freqs = np.ascontiguousarray(freqs, dtype=np.float64)
+    coef = k.coef.astype(np.float32) if f32 else k.coef
+    # the float32 arithmetic's lerps need w0 = 1 - w1; its float32 index needs float32 points, no phase or shift and
+    # power-of-two frequencies (x f exact in float32 unless it overflows or underflows: checked per block)
+    lerp = f32 and k.taps == 2 and np.array_equal(k.coef[0] + k.coef[1], np.eye(1, k.coef.shape[1])[0])
+    mant, expo = np.frexp(freqs)
+    fast = (f32 and src.dtype == np.float32 and k.shift == 0 and not noise.phase.any()
+            and bool((mant == 0.5).all() and (np.abs(expo) < 100).all()))
+    if k.taps == 2 and (lerp or not f32):  # the same bits, every point's taps in registers
+        kernel, coef = jit.int_two_taps_kernel(noise.dim_in, gradient, f32), coef[1] if f32 else coef
     else:
         kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient, f32)
-    rest = (np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
-            noise.phase, k.shift, k.left, k.coef.astype(np.float32) if f32 else k.coef, noise.keys, noise._mult,
-            bool(absval))
+    rest = (freqs, np.ascontiguousarray(amps, dtype=np.float64), noise.phase, k.shift, k.left, coef, noise.keys,
+            noise._mult, bool(absval), fast)
     npts = flat.shape[0]
     n = min(workers, max(1, npts // min_block))
     bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
