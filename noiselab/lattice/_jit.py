@@ -821,39 +821,56 @@ def _block_load(src, flat, cols, p0, m, X, DIM):
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _index32(X, a, m, f, ph, shift, left, fast, TT, JJ):
-    """Axis ``a`` of a block for the float32 arithmetic: fractions ``TT[a]`` (float32) and first taps ``JJ[a]``
-    (mod 2**32), the values of :func:`_fraction`; returns the count of NaN fractions.
+def _reach32(X, m, reach, DIM):
+    """Whether every coordinate of a block of float32 points ``X`` has ``lo <= |x| < hi`` or is 0: then
+    :func:`_tj` computes its fractions and indices in float32.
 
-    ``fast`` (float32 points ``X``, no phase, no shift, a power-of-two frequency ``f``): ``u = x f`` in float32,
-    exact unless it overflows or underflows, which ``u / f == x`` tells apart; then ``u - floor(u)`` rounds as
-    :func:`_fraction`'s float64 difference rounded to float32 (both the one rounding of the same exact value),
-    and for ``|u| < 2**31`` the int32 index is the index mod 2**32. A block where any point fails this (or without
-    ``fast``) takes :func:`_fraction` in float64, the same bits for every point it shares with the fast pass.
+    ``reach`` holds the bits of ``lo`` and ``hi`` (uint32), compared with the
+    bits of ``|x|`` (monotone in ``|x|``; NaN's above inf's), in two reductions
+    that vectorise. For a call without phase or shift whose frequencies ``f``
+    are powers of two (:func:`.points_path._run_block` sets ``hi = 2**31 / max
+    f`` and ``lo = 2**-126 / min(f, 1)``; ``hi = 0`` for any other call): ``u
+    = x f`` is then exact in float32 (no overflow, no underflow), so ``u -
+    floor(u)`` rounds as :func:`_fraction`'s float64 difference rounded to
+    float32 (the one rounding of the same exact value), and ``|u| < 2**31``:
+    the int32 index is the index mod 2**32. Any other block takes :func:`_index32`.
     """
-    Xa, Ta, Ja = X[a], TT[a], JJ[a]
-    ok = fast
-    if fast:
-        f32, inv = np.float32(f), np.float32(1.0 / f)
+    hi = _U32(0)
+    lo = _U32(0x7FFFFFFF)
+    for a in range(DIM):
+        Xa = X[a].view(np.uint32)
         for i in range(m):
-            x = Xa[i]
-            u = x * f32
-            fi = np.floor(u)
-            Ta[i] = u - fi
-            inr = abs(u) < _TWO31
-            Ja[i] = _U32(np.int64(np.int32(fi if inr else np.float32(0.0))) - left)
-            ok &= inr & (u * inv == x)
+            b = _U32(Xa[i] & _U32(0x7FFFFFFF))
+            hi = max(hi, b)
+            lo = min(lo, b if b != 0 else _U32(0x7FFFFFFF))
+    return hi < reach[1] and lo >= reach[0]
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _index32(X, a, m, f, ph, shift, left, TT, JJ):
+    """Axis ``a`` of a block that :func:`_reach32` refuses: :func:`_fraction` in float64 for every point, into
+    ``TT[a]`` (float32) and ``JJ[a]``; returns the count of NaN fractions."""
     bad = 0
-    if not ok:
-        for i in range(m):
-            t, j = _fraction(np.float64(Xa[i]), f, ph, shift, left, np.float32)
-            Ta[i], Ja[i] = t, j
-            bad += t != t  # a NaN fraction: x f + phase NaN or infinite (_run_block refuses it)
+    for i in range(m):
+        t, j = _fraction(np.float64(X[a, i]), f, ph, shift, left, np.float32)
+        TT[a, i], JJ[a, i] = t, j
+        bad += t != t  # a NaN fraction: x f + phase NaN or infinite (_run_block refuses it)
     return bad
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, JJ, TAPS, GRAD, F32, ft):
+def _tj(fast, X, TT, JJ, a, i, f, left):
+    """Point ``i``'s ``(t, j)`` on axis ``a`` in the float32 arithmetic: in float32 from ``X`` where the block
+    passed :func:`_reach32` (``fast``), else from :func:`_index32`'s ``TT``, ``JJ``. The same values either way."""
+    if fast:
+        u = X[a, i] * np.float32(f)
+        fi = np.floor(u)
+        return np.float32(u - fi), _U32(np.int64(np.int32(fi)) - left)
+    return TT[a, i], JJ[a, i]
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, JJ, TAPS, GRAD, F32, fast, ft):
     """One axis of a block without a period: weights, hashed tap offsets and (``GRAD``) signed distances.
 
     The values of :func:`_split` for every finite coordinate, in one branch-free
@@ -863,14 +880,15 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, JJ, TAPS
     difference, an integer in [0, 2**32), is representable), and converted
     once, whatever the coordinate's size; no int64 overflow past 2**63 and no
     fallback to the exact per-point reduction. The float32 arithmetic (``F32``,
-    ``ft`` float32) takes ``t`` and ``j`` from :func:`_index32` (``TF``, ``JJ``) instead.
+    ``ft`` float32) takes ``t`` and ``j`` from :func:`_tj` instead.
     """
     Xa = X[a]
     Ta = TF[a]
     bad = 0
     for i in range(m):
         if F32:
-            t, j = Ta[i], JJ[a, i]
+            t, j = _tj(fast, X, TF, JJ, a, i, f, left)
+            Ta[i] = t
         else:
             u = Xa[i] * f + ph + shift  # same rounding as the grid path
             fi = np.floor(u)
@@ -910,7 +928,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
 
     The bits of :func:`_make_int_fast` (the same operations in the same order
     for every point) with its own arguments: ``(src, cols, lo, hi, out, freqs,
-    amps, phase, shift, left, coef, keys, mult, absval, fast)``, where ``src`` is
+    amps, phase, shift, left, coef, keys, mult, absval, reach)``, where ``src`` is
     C-contiguous ``(N, DIM)`` rows or, with ``cols``, ``(DIM, N)`` columns
     (float32 or float64, widened as read), and the kernel fills ``out[lo:hi]``
     (so threads share one call's arrays without slicing the columns). Per
@@ -919,13 +937,13 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
     corner loops; every loop runs over the block from index 0, which LLVM
     vectorises across points (8 float64 lanes with AVX-512). ``F32``: float32
     arithmetic from each fraction on (``coef`` float32), the block kept in the
-    points' dtype, each axis's index from :func:`_index32` (``fast`` its
-    float32 pass; ignored without ``F32``).
+    points' dtype, each point's index from :func:`_tj` (``reach``: the
+    bits of :func:`_reach32`'s ``(lo, hi)``; ignored without ``F32``).
     """
     FT = np.float32 if F32 else np.float64
 
     @nb.njit(cache=True, nogil=True)
-    def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, fast):
+    def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach):
         """Lattice noise with the integer hash at scattered points, 1-3-D values without a period."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
@@ -942,12 +960,15 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
+            fast = False
+            if F32:
+                fast = _reach32(X, m, reach, DIM)
             for o in range(noct):
                 for a in range(DIM):
-                    if F32:
-                        bad += _index32(X, a, m, freqs[o, a], phase[a], shift, left, fast, TF, JJ)
+                    if F32 and not fast:
+                        bad += _index32(X, a, m, freqs[o, a], phase[a], shift, left, TF, JJ)
                     bad += _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, JJ,
-                                       TAPS, GRAD, F32, FT)
+                                       TAPS, GRAD, F32, fast, FT)
                 amp = FT(amps[o])
                 first = o == 0
                 for c in range(ncomp):
@@ -1078,9 +1099,17 @@ def _lerp_taps(t, j, shift, left, hc, mult_a, grad):
 
 @nb.njit(cache=True, nogil=True)
 def _lerp_corners(h1, w, n0, n1, ra, rb, s0, s1, dim, grad):
-    """The last axis's two corners (as :func:`_two_corners`) blended in float32: ``v0 + w (v1 - v0)``."""
-    v0 = _corner(_U32(h1 ^ n0), ra, rb, s0, dim, grad, np.float32)
-    return v0 + w * (_corner(_U32(h1 ^ n1), ra, rb, s1, dim, grad, np.float32) - v0)
+    """The last axis's two corners (as :func:`_two_corners`) blended in float32: ``v0 + w (v1 - v0)``.
+
+    Value noise blends ``int32(mix32(h))`` unscaled: its ``2**-31`` (:func:`hash_value`) joins the amplitude,
+    once a point (exact, as a power of two) instead of once a corner."""
+    if grad:
+        v0 = _corner(_U32(h1 ^ n0), ra, rb, s0, dim, grad, np.float32)
+        v1 = _corner(_U32(h1 ^ n1), ra, rb, s1, dim, grad, np.float32)
+    else:
+        v0 = np.float32(np.int32(mix32(_U32(h1 ^ n0))))
+        v1 = np.float32(np.int32(mix32(_U32(h1 ^ n1))))
+    return v0 + w * (v1 - v0)
 
 
 def _make_int_two_taps(DIM, GRAD, F32=False):
@@ -1104,7 +1133,7 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
     C = 2 if DIM > 2 else 0
 
     @nb.njit(cache=True, nogil=True)
-    def int_two_taps(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, fast):
+    def int_two_taps(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach):
         """Lattice noise with the integer hash at scattered points, 1-3-D values of a 2-tap kernel."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
@@ -1117,30 +1146,34 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
+            fast = False
+            if F32:
+                fast = _reach32(X, m, reach, DIM)
             for o in range(noct):
-                amp = FT(amps[o])
+                amp = FT(amps[o]) * FT(_TO_UNIT if F32 and not GRAD else 1.0)  # (:func:`_lerp_corners`)
                 first = o == 0
-                if F32:  # each axis's index in its own loop: the corner loop is then all float32 (16 lanes)
+                if F32 and not fast:  # the exact float64 index in its own loop: the corner loop stays float32
                     for a in range(DIM):
-                        bad += _index32(X, a, m, freqs[o, a], phase[a], shift, left, fast, TT, JJ)
+                        bad += _index32(X, a, m, freqs[o, a], phase[a], shift, left, TT, JJ)
                 fa, fb, fc = freqs[o, 0], freqs[o, B], freqs[o, C]
                 for c in range(ncomp):
                     key = keys[c]
                     acc = ACC[c]
                     for i in range(m):
                         if F32:  # nested lerps, the last axis first
-                            a1, am0, am1, ar0, ar1 = _lerp_taps(TT[0, i], JJ[0, i], shift, left, coef, mult[0], GRAD)
+                            ta, ja = _tj(fast, X, TT, JJ, 0, i, fa, left)
+                            a1, am0, am1, ar0, ar1 = _lerp_taps(ta, ja, shift, left, coef, mult[0], GRAD)
                             if DIM == 1:
                                 total = _lerp_corners(key, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD)
                             else:
-                                b1, bm0, bm1, br0, br1 = _lerp_taps(TT[B, i], JJ[B, i], shift, left, coef, mult[B],
-                                                                    GRAD)
+                                tb, jb = _tj(fast, X, TT, JJ, B, i, fb, left)
+                                b1, bm0, bm1, br0, br1 = _lerp_taps(tb, jb, shift, left, coef, mult[B], GRAD)
                                 if DIM == 2:
                                     x0 = _lerp_corners(_U32(key ^ am0), b1, bm0, bm1, ar0, Z, br0, br1, DIM, GRAD)
                                     x1 = _lerp_corners(_U32(key ^ am1), b1, bm0, bm1, ar1, Z, br0, br1, DIM, GRAD)
                                 else:
-                                    c1, cm0, cm1, cr0, cr1 = _lerp_taps(TT[C, i], JJ[C, i], shift, left, coef,
-                                                                        mult[C], GRAD)
+                                    tc, jc = _tj(fast, X, TT, JJ, C, i, fc, left)
+                                    c1, cm0, cm1, cr0, cr1 = _lerp_taps(tc, jc, shift, left, coef, mult[C], GRAD)
                                     ha0, ha1 = _U32(key ^ am0), _U32(key ^ am1)
                                     y00 = _lerp_corners(_U32(ha0 ^ bm0), c1, cm0, cm1, ar0, br0, cr0, cr1, 3, GRAD)
                                     y01 = _lerp_corners(_U32(ha0 ^ bm1), c1, cm0, cm1, ar0, br1, cr0, cr1, 3, GRAD)
