@@ -809,10 +809,7 @@ def _block_load(src, flat, cols, p0, m, X, DIM):
     """
     if cols:
         for a in range(DIM):
-            xs = src[a, p0:p0 + m]
-            Xa = X[a]
-            for i in range(m):
-                Xa[i] = xs[i]
+            X[a, :m] = src[a, p0:p0 + m]
     else:
         xs = flat[p0 * DIM:(p0 + m) * DIM]
         for i in range(m):
@@ -835,14 +832,12 @@ def _reach32(X, m, reach, DIM):
     float32 (the one rounding of the same exact value), and ``|u| < 2**31``:
     the int32 index is the index mod 2**32. Any other block takes :func:`_index32`.
     """
-    hi = _U32(0)
-    lo = _U32(0x7FFFFFFF)
+    hi, lo, top = _U32(0), _U32(0x7FFFFFFF), _U32(0x7FFFFFFF)
     for a in range(DIM):
         Xa = X[a].view(np.uint32)
         for i in range(m):
-            b = _U32(Xa[i] & _U32(0x7FFFFFFF))
-            hi = max(hi, b)
-            lo = min(lo, b if b != 0 else _U32(0x7FFFFFFF))
+            b = _U32(Xa[i] & top)
+            hi, lo = max(hi, b), min(lo, b if b != 0 else top)
     return hi < reach[1] and lo >= reach[0]
 
 
@@ -850,12 +845,9 @@ def _reach32(X, m, reach, DIM):
 def _index32(X, a, m, f, ph, shift, left, TT, JJ):
     """Axis ``a`` of a block that :func:`_reach32` refuses: :func:`_fraction` in float64 for every point, into
     ``TT[a]`` (float32) and ``JJ[a]``; returns the count of NaN fractions."""
-    bad = 0
     for i in range(m):
-        t, j = _fraction(np.float64(X[a, i]), f, ph, shift, left, np.float32)
-        TT[a, i], JJ[a, i] = t, j
-        bad += t != t  # a NaN fraction: x f + phase NaN or infinite (_run_block refuses it)
-    return bad
+        TT[a, i], JJ[a, i] = _fraction(np.float64(X[a, i]), f, ph, shift, left, np.float32)
+    return np.sum(TT[a, :m] != TT[a, :m])  # NaN fractions: x f + phase NaN or infinite (_run_block refuses them)
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
@@ -941,6 +933,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
     bits of :func:`_reach32`'s ``(lo, hi)``; ignored without ``F32``).
     """
     FT = np.float32 if F32 else np.float64
+    UNIT = FT(1.0 if F32 else _TO_UNIT)  # the float32 arithmetic's 2**-31 joins the amplitude (:func:`_lerp_corners`)
 
     @nb.njit(cache=True, nogil=True)
     def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach):
@@ -952,7 +945,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
         TF = np.empty((DIM, BLOCK), FT)
         JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
         W = np.empty((DIM, TAPS, BLOCK), FT)
-        R = np.empty((DIM, TAPS, BLOCK) if GRAD else (1, 1, 1), FT)
+        R = np.empty((DIM, TAPS, BLOCK), FT)  # (read by value noise too, unused: plain Python's indices stay in range)
         M = np.empty((DIM, TAPS, BLOCK), np.uint32)
         T = np.empty(BLOCK, FT)
         ACC = np.empty((ncomp, BLOCK), FT)
@@ -960,16 +953,14 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
-            fast = False
-            if F32:
-                fast = _reach32(X, m, reach, DIM)
+            fast = F32 and _reach32(X, m, reach, DIM)
             for o in range(noct):
                 for a in range(DIM):
                     if F32 and not fast:
                         bad += _index32(X, a, m, freqs[o, a], phase[a], shift, left, TF, JJ)
                     bad += _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, JJ,
                                        TAPS, GRAD, F32, fast, FT)
-                amp = FT(amps[o])
+                amp = FT(amps[o]) * FT(_TO_UNIT if F32 and not GRAD else 1.0)
                 first = o == 0
                 for c in range(ncomp):
                     key = keys[c]
@@ -980,30 +971,16 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                         for k0 in range(TAPS):
                             for k1 in range(TAPS if DIM == 3 else 1):
                                 L = DIM - 1
-                                M0 = M[0, k0]
-                                W0 = W[0, k0]
-                                R0 = R[0, k0] if GRAD else R[0, 0]
-                                M1 = M[1, k1]  # (3-D only)
-                                W1 = W[1, k1]
-                                R1 = R[1, k1] if GRAD else R[0, 0]
+                                M0, W0, R0 = M[0, k0], W[0, k0], R[0, k0]
+                                M1, W1, R1 = M[1, k1], W[1, k1], R[1, k1]  # (3-D only)
                                 for i in range(m):
-                                    if DIM == 3:
-                                        h1 = _U32(_U32(key ^ M0[i]) ^ M1[i])
-                                        w1 = W0[i] * W1[i]
-                                    else:
-                                        h1 = _U32(key ^ M0[i])
-                                        w1 = W0[i]
+                                    h1 = _U32(_U32(key ^ M0[i]) ^ M1[i]) if DIM == 3 else _U32(key ^ M0[i])
+                                    w1 = W0[i] * W1[i] if DIM == 3 else W0[i]
                                     total = T[i]
                                     for k in range(TAPS):
                                         h = _U32(h1 ^ M[L, k, i])
                                         w = w1 * W[L, k, i]
-                                        if not GRAD:
-                                            v = hash_value(h, FT)
-                                        elif DIM == 3:
-                                            v = _grad_dot(h, R0[i], R1[i], R[2, k, i], 3, FT)
-                                        else:
-                                            v = _grad_dot(h, R0[i], R[1, k, i], FT(0.0), 2, FT)
-                                        total += w * v
+                                        total += w * _corner(h, R0[i], R1[i], R[L, k, i], DIM, GRAD, FT, UNIT)
                                     T[i] = total
                     for i in range(m):
                         if DIM > 1:
@@ -1012,13 +989,10 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                             total = FT(0.0)
                             for k in range(TAPS):
                                 h = _U32(key ^ M[0, k, i])
-                                v = _grad_dot(h, R[0, k, i], FT(0.0), FT(0.0), 1, FT) if GRAD else hash_value(h, FT)
+                                v = _corner(h, FT(0.0), FT(0.0), R[0, k, i], 1, GRAD, FT, UNIT)
                                 total += W[0, k, i] * v
                         tv = abs(total) if absval else total
-                        if first:
-                            acc[i] = amp * tv
-                        else:
-                            acc[i] += amp * tv
+                        acc[i] = amp * tv if first else acc[i] + amp * tv
             _store_block(out, p0, m, ACC)
         return bad
 
@@ -1049,12 +1023,7 @@ def _two_taps(t, j, shift, left, coef, mult_a, grad, ft):
     w1 = _weight(coef, 1, t, t2, t3, t4, t5)
     m0 = _U32(_U32(j + _U32(0)) * mult_a)
     m1 = _U32(_U32(j + _U32(1)) * mult_a)
-    if grad:
-        r0 = t - ft(shift) + ft(left - 0)
-        r1 = t - ft(shift) + ft(left - 1)
-    else:
-        r0 = ft(0.0)
-        r1 = ft(0.0)
+    r0, r1 = (t - ft(shift) + ft(left - 0), t - ft(shift) + ft(left - 1)) if grad else (ft(0.0), ft(0.0))
     return w0, w1, m0, m1, r0, r1
 
 
@@ -1067,16 +1036,17 @@ def _two_corners(total, h1, w1, c0, c1, n0, n1, ra, rb, s0, s1, dim, grad, ft):
     (the last axis's), as :func:`_make_int_fast` forms them for ``dim``.
     """
     for k in range(2):
-        v = _corner(_U32(h1 ^ (n0 if k == 0 else n1)), ra, rb, s0 if k == 0 else s1, dim, grad, ft)
+        v = _corner(_U32(h1 ^ (n0 if k == 0 else n1)), ra, rb, s0 if k == 0 else s1, dim, grad, ft, ft(_TO_UNIT))
         total += (w1 * (c0 if k == 0 else c1)) * v
     return total
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _corner(h, ra, rb, s, dim, grad, ft):
-    """A corner's value: :func:`hash_value` of ``h`` or (``grad``) :func:`_grad_dot` of ``ra, rb, s`` for ``dim``."""
+def _corner(h, ra, rb, s, dim, grad, ft, unit):
+    """A corner's value: :func:`hash_value` of ``h`` (its ``2**-31`` replaced by ``unit``) or (``grad``)
+    :func:`_grad_dot` of ``ra, rb, s`` for ``dim``."""
     if not grad:
-        return hash_value(h, ft)
+        return ft(np.int32(mix32(h))) * unit
     if dim == 3:
         return _grad_dot(h, ra, rb, s, 3, ft)
     if dim == 2:
@@ -1085,13 +1055,13 @@ def _corner(h, ra, rb, s, dim, grad, ft):
 
 
 @nb.njit(cache=True, nogil=True)
-def _lerp_taps(t, j, shift, left, hc, mult_a, grad):
+def _lerp_taps(t, j, shift, left, coef, mult_a, grad):
     """:func:`_two_taps` for the float32 arithmetic: ``(w1, m0, m1, r0, r1)``, ``w1`` the second tap's weight by
-    Horner's rule from its power-basis coefficients ``hc`` (``Kernel.coef[1]``, float32), its partner ``1 - w1``
-    left to :func:`_lerp_corners`."""
-    w = hc[5]
+    Horner's rule from its power-basis coefficients ``coef[1]`` (float32), its partner ``1 - w1`` left to
+    :func:`_lerp_corners` (LLVM drops the power-basis weights :func:`_two_taps` computes, unused)."""
+    w = coef[1, 5]
     for p in range(4, -1, -1):
-        w = w * t + hc[p]
+        w = w * t + coef[1, p]
     r0 = t - np.float32(shift) + np.float32(left) if grad else np.float32(0.0)
     r1 = t - np.float32(shift) + np.float32(left - 1) if grad else np.float32(0.0)
     return w, _U32(j * mult_a), _U32(_U32(j + _U32(1)) * mult_a), r0, r1
@@ -1103,13 +1073,8 @@ def _lerp_corners(h1, w, n0, n1, ra, rb, s0, s1, dim, grad):
 
     Value noise blends ``int32(mix32(h))`` unscaled: its ``2**-31`` (:func:`hash_value`) joins the amplitude,
     once a point (exact, as a power of two) instead of once a corner."""
-    if grad:
-        v0 = _corner(_U32(h1 ^ n0), ra, rb, s0, dim, grad, np.float32)
-        v1 = _corner(_U32(h1 ^ n1), ra, rb, s1, dim, grad, np.float32)
-    else:
-        v0 = np.float32(np.int32(mix32(_U32(h1 ^ n0))))
-        v1 = np.float32(np.int32(mix32(_U32(h1 ^ n1))))
-    return v0 + w * (v1 - v0)
+    v0 = _corner(_U32(h1 ^ n0), ra, rb, s0, dim, grad, np.float32, np.float32(1.0))
+    return v0 + w * (_corner(_U32(h1 ^ n1), ra, rb, s1, dim, grad, np.float32, np.float32(1.0)) - v0)
 
 
 def _make_int_two_taps(DIM, GRAD, F32=False):
@@ -1146,9 +1111,7 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
-            fast = False
-            if F32:
-                fast = _reach32(X, m, reach, DIM)
+            fast = F32 and _reach32(X, m, reach, DIM)
             for o in range(noct):
                 amp = FT(amps[o]) * FT(_TO_UNIT if F32 and not GRAD else 1.0)  # (:func:`_lerp_corners`)
                 first = o == 0
@@ -1187,8 +1150,7 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
                             bad += ta != ta
                             a0, a1, am0, am1, ar0, ar1 = _two_taps(ta, ja, shift, left, coef, mult[0], GRAD, FT)
                             if DIM == 1:  # (1.0 * w) v is w v exactly
-                                total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD,
-                                                     FT)
+                                total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD, FT)
                             else:
                                 tb, jb = _fraction(X[B, i], fb, phase[B], shift, left, FT)
                                 bad += tb != tb
@@ -1203,24 +1165,16 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
                                     bad += tc != tc
                                     c0, c1, cm0, cm1, cr0, cr1 = _two_taps(tc, jc, shift, left, coef, mult[C], GRAD,
                                                                            FT)
-                                    ha0 = _U32(key ^ am0)
-                                    ha1 = _U32(key ^ am1)
-                                    total = _two_corners(Z, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
-                                                         cr1, DIM, GRAD, FT)
-                                    total = _two_corners(total, _U32(ha0 ^ bm1), a0 * b1, c0, c1, cm0, cm1, ar0, br1,
-                                                         cr0, cr1, DIM, GRAD, FT)
-                                    total = _two_corners(total, _U32(ha1 ^ bm0), a1 * b0, c0, c1, cm0, cm1, ar1, br0,
-                                                         cr0, cr1, DIM, GRAD, FT)
-                                    total = _two_corners(total, _U32(ha1 ^ bm1), a1 * b1, c0, c1, cm0, cm1, ar1, br1,
-                                                         cr0, cr1, DIM, GRAD, FT)
+                                    total = Z
+                                    for q in range(4):  # the first two axes' taps (0, 0), (0, 1), (1, 0), (1, 1)
+                                        hq, wq, rq = (am0, a0, ar0) if q < 2 else (am1, a1, ar1)
+                                        hr, wr, rr = (bm0, b0, br0) if q % 2 == 0 else (bm1, b1, br1)
+                                        total = _two_corners(total, _U32(_U32(key ^ hq) ^ hr), wq * wr, c0, c1, cm0,
+                                                             cm1, rq, rr, cr0, cr1, DIM, GRAD, FT)
                         tv = abs(total) if absval else total
-                        if first:
-                            acc[i] = amp * tv
-                        else:
-                            acc[i] += amp * tv
+                        acc[i] = amp * tv if first else acc[i] + amp * tv
             _store_block(out, p0, m, ACC)
         return bad
-
 
     return int_two_taps
 

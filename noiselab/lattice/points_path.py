@@ -168,13 +168,11 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f
     # power-of-two frequencies, and per block every |x| in reach: x f exact and below 2**31 (:func:`._jit._reach32`)
     lerp = f32 and k.taps == 2 and np.array_equal(k.coef[0] + k.coef[1], np.eye(1, k.coef.shape[1])[0])
     mant, expo = np.frexp(freqs)
-    reach = np.zeros(2, np.float32)
-    if (f32 and src.dtype == np.float32 and k.shift == 0 and not noise.phase.any() and (mant == 0.5).all()
-            and (np.abs(expo) < 100).all()):
-        reach[:] = 2.0 ** -126 / min(freqs.min(), 1.0), min(2.0 ** 31 / freqs.max(), 2.0 ** 127)
-    reach = reach.view(np.uint32)
+    fast = f32 and src.dtype == np.float32 and k.shift == 0 and not noise.phase.any() and (mant == 0.5).all()
+    reach = np.float32([2.0 ** -126 / min(freqs.min(), 1.0), min(2.0 ** 31 / freqs.max(), 2.0 ** 127)]
+                       if fast and (np.abs(expo) < 100).all() else [0, 0]).view(np.uint32)
     if k.taps == 2 and (lerp or not f32):  # the same bits, every point's taps in registers
-        kernel, coef = jit.int_two_taps_kernel(noise.dim_in, gradient, f32), coef[1] if f32 else coef
+        kernel = jit.int_two_taps_kernel(noise.dim_in, gradient, f32)
     else:
         kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient, f32)
     rest = (freqs, np.ascontiguousarray(amps, dtype=np.float64), noise.phase, k.shift, k.left, coef, noise.keys,
