@@ -809,7 +809,10 @@ def _block_load(src, flat, cols, p0, m, X, DIM):
     """
     if cols:
         for a in range(DIM):
-            X[a, :m] = src[a, p0:p0 + m]
+            xs = src[a, p0:p0 + m]
+            Xa = X[a]
+            for i in range(m):
+                Xa[i] = xs[i]
     else:
         xs = flat[p0 * DIM:(p0 + m) * DIM]
         for i in range(m):
