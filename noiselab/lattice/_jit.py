@@ -881,16 +881,12 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, JJ, TAPS
     Ta = TF[a]
     bad = 0
     for i in range(m):
-        if F32:
+        if F32:  # (a NaN fraction: counted by :func:`_index32`)
             t, j = _tj(fast, X, TF, JJ, a, i, f, left)
-            Ta[i] = t
-        else:
-            u = Xa[i] * f + ph + shift  # same rounding as the grid path
-            fi = np.floor(u)
-            t = u - fi
-            Ta[i] = t
+        else:  # (the same rounding as the grid path)
+            t, j = _fraction(Xa[i], f, ph, shift, left, ft)
             bad += t != t  # a NaN fraction (x f + phase NaN or infinite): counted, the points checked after the call
-            j = _U32(np.int64(fi - np.floor(fi * _INV_TWO32) * _TWO32) - left)
+        Ta[i] = t
         t2, t3, t4, t5 = _powers(t)
         for k in range(TAPS):
             W[a, k, i] = _weight(coef, k, t, t2, t3, t4, t5)
@@ -969,11 +965,9 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                     key = keys[c]
                     acc = ACC[c]
                     if DIM > 1:  # as :func:`_make_int_fast`: the last axis's taps inside the loop over points
-                        for i in range(m):
-                            T[i] = 0.0
+                        T[:m] = 0.0
                         for k0 in range(TAPS):
                             for k1 in range(TAPS if DIM == 3 else 1):
-                                L = DIM - 1
                                 M0, W0, R0 = M[0, k0], W[0, k0], R[0, k0]
                                 M1, W1, R1 = M[1, k1], W[1, k1], R[1, k1]  # (3-D only)
                                 for i in range(m):
@@ -981,9 +975,13 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                                     w1 = W0[i] * W1[i] if DIM == 3 else W0[i]
                                     total = T[i]
                                     for k in range(TAPS):
-                                        h = _U32(h1 ^ M[L, k, i])
-                                        w = w1 * W[L, k, i]
-                                        total += w * _corner(h, R0[i], R1[i], R[L, k, i], DIM, GRAD, FT, UNIT)
+                                        h = _U32(h1 ^ M[DIM - 1, k, i])
+                                        w = w1 * W[DIM - 1, k, i]
+                                        # (branches on GRAD and DIM themselves: numba compiles only the one taken)
+                                        v = (_grad_dot(h, R0[i], R1[i] if DIM == 3 else R[1, k, i],
+                                                       R[2, k, i] if DIM == 3 else FT(0.0), DIM, FT) if GRAD
+                                             else FT(np.int32(mix32(h))) * UNIT)
+                                        total += w * v
                                     T[i] = total
                     for i in range(m):
                         if DIM > 1:
@@ -992,7 +990,8 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                             total = FT(0.0)
                             for k in range(TAPS):
                                 h = _U32(key ^ M[0, k, i])
-                                v = _corner(h, FT(0.0), FT(0.0), R[0, k, i], 1, GRAD, FT, UNIT)
+                                v = (_grad_dot(h, R[0, k, i], FT(0.0), FT(0.0), 1, FT) if GRAD
+                                     else FT(np.int32(mix32(h))) * UNIT)
                                 total += W[0, k, i] * v
                         tv = abs(total) if absval else total
                         acc[i] = amp * tv if first else acc[i] + amp * tv
@@ -1145,8 +1144,7 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
                                     y01 = _lerp_corners(_U32(ha0 ^ bm1), c1, cm0, cm1, ar0, br1, cr0, cr1, 3, GRAD)
                                     y10 = _lerp_corners(_U32(ha1 ^ bm0), c1, cm0, cm1, ar1, br0, cr0, cr1, 3, GRAD)
                                     y11 = _lerp_corners(_U32(ha1 ^ bm1), c1, cm0, cm1, ar1, br1, cr0, cr1, 3, GRAD)
-                                    x0 = y00 + b1 * (y01 - y00)
-                                    x1 = y10 + b1 * (y11 - y10)
+                                    x0, x1 = y00 + b1 * (y01 - y00), y10 + b1 * (y11 - y10)
                                 total = x0 + a1 * (x1 - x0)
                         else:
                             ta, ja = _fraction(X[0, i], fa, phase[0], shift, left, FT)
@@ -1168,12 +1166,16 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
                                     bad += tc != tc
                                     c0, c1, cm0, cm1, cr0, cr1 = _two_taps(tc, jc, shift, left, coef, mult[C], GRAD,
                                                                            FT)
-                                    total = Z
-                                    for q in range(4):  # the first two axes' taps (0, 0), (0, 1), (1, 0), (1, 1)
-                                        hq, wq, rq = (am0, a0, ar0) if q < 2 else (am1, a1, ar1)
-                                        hr, wr, rr = (bm0, b0, br0) if q % 2 == 0 else (bm1, b1, br1)
-                                        total = _two_corners(total, _U32(_U32(key ^ hq) ^ hr), wq * wr, c0, c1, cm0,
-                                                             cm1, rq, rr, cr0, cr1, DIM, GRAD, FT)
+                                    ha0 = _U32(key ^ am0)
+                                    ha1 = _U32(key ^ am1)
+                                    total = _two_corners(Z, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
+                                                         cr1, DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(ha0 ^ bm1), a0 * b1, c0, c1, cm0, cm1, ar0, br1,
+                                                         cr0, cr1, DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(ha1 ^ bm0), a1 * b0, c0, c1, cm0, cm1, ar1, br0,
+                                                         cr0, cr1, DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(ha1 ^ bm1), a1 * b1, c0, c1, cm0, cm1, ar1, br1,
+                                                         cr0, cr1, DIM, GRAD, FT)
                         tv = abs(total) if absval else total
                         acc[i] = amp * tv if first else acc[i] + amp * tv
             _store_block(out, p0, m, ACC)
