@@ -848,9 +848,11 @@ def _reach32(X, m, reach, DIM):
 def _index32(X, a, m, f, ph, shift, left, TT, JJ):
     """Axis ``a`` of a block that :func:`_reach32` refuses: :func:`_fraction` in float64 for every point, into
     ``TT[a]`` (float32) and ``JJ[a]``; returns the count of NaN fractions."""
+    bad = 0
     for i in range(m):
         TT[a, i], JJ[a, i] = _fraction(np.float64(X[a, i]), f, ph, shift, left, np.float32)
-    return np.sum(TT[a, :m] != TT[a, :m])  # NaN fractions: x f + phase NaN or infinite (_run_block refuses them)
+        bad += TT[a, i] != TT[a, i]  # a NaN fraction: x f + phase NaN or infinite (_run_block refuses it)
+    return bad
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
@@ -941,8 +943,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
         noct = freqs.shape[0]
         flat = src.reshape(-1)
         X = np.empty((DIM, BLOCK), src.dtype if F32 else np.float64)
-        TF = np.empty((DIM, BLOCK), FT)
-        JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
+        TF, JJ = np.empty((DIM, BLOCK), FT), np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
         W = np.empty((DIM, TAPS, BLOCK), FT)
         R = np.empty((DIM, TAPS, BLOCK), FT)  # (read by value noise too, unused: plain Python's indices stay in range)
         M = np.empty((DIM, TAPS, BLOCK), np.uint32)
@@ -1106,8 +1107,7 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
         noct = freqs.shape[0]
         flat = src.reshape(-1)
         X = np.empty((DIM, BLOCK), src.dtype if F32 else np.float64)
-        TT = np.empty((DIM, BLOCK) if F32 else (1, 1), FT)
-        JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
+        TT, JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), FT), np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
         ACC = np.empty((ncomp, BLOCK), FT)
         bad = 0
         for p0 in range(lo, hi, BLOCK):
