@@ -281,8 +281,8 @@ class LatticeNoise:
             (integer-hash values in 1-3-D without a period only, float32 output; anything else is a
             ValueError): each point's lattice index stays exact (the float64 index's bits; computed in
             float32 where that is exact: float32 points, no phase, power-of-two frequencies), its weights,
-            hashed values, gradient dots and sums are float32; 1.8-2.2x the speed of "float64" on 1e6 3-D
-            float32 points (0.42-0.64x pyfastnoisesimd). Largest difference from "float64" over 1e6 points
+            hashed values, gradient dots and sums are float32; 1.8-2.3x the speed of "float64" on 1e6 3-D
+            float32 points (0.41-0.66x pyfastnoisesimd). Largest difference from "float64" over 1e6 points
             within 1e3 of 0 and of 1e12, 1-3-D, quintic and Catmull-Rom value and gradient noise: 2.8e-6 at
             amplitude 1 (``python benchmarks/bench_limits.py --f32-error``; speed:
             ``benchmarks/bench_limits.md``).
