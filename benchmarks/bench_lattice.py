@@ -453,10 +453,12 @@ def targets_section(repeats, lines, npts=1_000_000):
                  "jobs held the second core, so the speed-up measures the load, not the code.\n")
     lines.append(f"### {npts:,} random 3-D points in [0, 100)^3\n")
     lines.append("`(d, N)`: the same points as `(3, N)` columns (`noise(pts.T, axis=0)`, read in place: structure of "
-                 "arrays, as pyfastnoisesimd takes them), `x FNS` of the f64 and f32 calls.\n")
+                 "arrays, as pyfastnoisesimd takes them), `x FNS` of the f64 and f32 calls. `a32`: the float32 "
+                 "arithmetic on the float32 points (`noise.evaluate(pts32, arithmetic=\"float32\")`, integer hash "
+                 "only), `x FNS` from `(N, 3)` rows and `(3, N)` columns.\n")
     lines.append("| noise | hash | FNS | f64 pts/s | x FNS | x floor | f32 pts/s | x FNS | x floor | err32 "
-                 "| FNS pts/s | w2 wall (cores) | (d, N) f64 x FNS | (d, N) f32 x FNS |")
-    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+                 "| FNS pts/s | w2 wall (cores) | (d, N) f64 x FNS | (d, N) f32 x FNS | a32 x FNS | (d, N) a32 x FNS |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     cols, cols32 = np.ascontiguousarray(pts.T), np.ascontiguousarray(pts32.T)
     summary = {}
     for kname, basis, peer in TARGET_POINTS:
@@ -465,17 +467,21 @@ def targets_section(repeats, lines, npts=1_000_000):
             cands = {"floor64": lambda: np.full(npts, 0.5), "floor32": lambda: np.full(npts, 0.5, np.float32),
                      "f64": lambda noise=noise: noise(pts), "f32": lambda noise=noise: noise(pts32),
                      "f64T": lambda noise=noise: noise(cols, axis=0), "f32T": lambda noise=noise: noise(cols32, axis=0)}
+            if hname == "integer":
+                cands["a32"] = lambda noise=noise: noise.evaluate(pts32, arithmetic="float32")
+                cands["a32T"] = lambda noise=noise: noise.evaluate(cols32, axis=0, arithmetic="float32")
             if fns is not None:
                 cands["fns"] = _fns_points(fns, getattr(fns.NoiseType, peer), pts32)
             t = bench(cands, repeats, clock=time.thread_time)
             err32 = _max_err(noise(pts32), noise(pts))
+            a32 = [_target_cell(t, k, npts, "fns")[1] if k in t else "n/a" for k in ("a32", "a32T")]
             w2 = _scaling({"one": lambda noise=noise: noise(pts32),
                            "two": lambda noise=noise: noise(pts32, workers=2)}, repeats)
             c64, c32 = _target_cell(t, "f64", npts, "fns"), _target_cell(t, "f32", npts, "fns")
             fns_rate = f"{npts / t['fns']:.3g}" if "fns" in t else "n/a"
             lines.append(f"| 3-D points, {kname} {basis} | {hname} | {peer} | {' | '.join(c64)} | {' | '.join(c32)} "
                          f"| {err32:.1e} | {fns_rate} | {w2} | {_target_cell(t, 'f64T', npts, 'fns')[1]} "
-                         f"| {_target_cell(t, 'f32T', npts, 'fns')[1]} |")
+                         f"| {_target_cell(t, 'f32T', npts, 'fns')[1]} | {' | '.join(a32)} |")
             summary[("points", kname, basis, hname)] = (t, err32, w2)
     n, cells = TARGET_GRID
     shape = (n, n)

@@ -51,7 +51,10 @@ A second table times noiselab's opt-in float32 arithmetic
 (``evaluate(pts32, arithmetic="float32")``, integer hash) beside
 pyfastnoisesimd for quintic value (``Value``), quintic gradient (``Perlin``)
 and Catmull-Rom value (``Cubic``), from ``(N, 3)`` rows and ``(3, N)``
-columns, with the float64 arithmetic's rows for reference; ``--f32-error``
+columns, with the float64 arithmetic's rows for reference, and where its
+time goes: its kernel alone, the same kernel made to take its float64 index
+pass (the fallback for points out of float32 reach) in every block, and
+``int-minimal`` in the same rounds; ``--f32-error``
 instead measures the float32 arithmetic's largest difference from the
 float64 result (1e6 points, 1-3-D, at 1e3 and at 1e12).
 
@@ -295,28 +298,6 @@ def measure(repeats):
     return interleaved(cands, repeats=repeats, timer=time.thread_time)  # its warm-up round compiles
 
 
-@nb.njit(nogil=True)
-def index64(pts, ph, shift, left, tt, jj):
-    """The float64 part that noiselab's float32 arithmetic keeps: each coordinate of ``(N, 3)`` float32 rows widened,
-    ``u = x + phase + shift``, its floor reduced modulo 2**32 (exact), the fraction rounded to float32 and the index
-    as a uint32, stored per axis in blocks of 256 as the kernel stores them (a lower bound of its index pass)."""
-    xs = np.empty((3, 256))
-    flat = pts.reshape(-1)
-    for p0 in range(0, pts.shape[0], 256):
-        m = min(256, pts.shape[0] - p0)
-        blk = flat[p0 * 3:(p0 + m) * 3]
-        for i in range(m):
-            for a in range(3):
-                xs[a, i] = np.float64(blk[i * 3 + a])
-        for a in range(3):
-            xa, ta, ja = xs[a], tt[a], jj[a]
-            for i in range(m):
-                u = xa[i] + ph[a] + shift
-                fi = np.floor(u)
-                q = fi - np.floor(fi * 2.3283064365386963e-10) * 4294967296.0
-                ta[i], ja[i] = np.float32(u - fi), _U32(np.int64(q) - left)
-
-
 F32_ROWS = (("quintic", "value", "Value"), ("quintic", "gradient", "Perlin"), ("catmull-rom", "value", "Cubic"))
 
 
@@ -333,16 +314,16 @@ def measure_f32(repeats):
                  "f64a": lambda n=noise: n(pts32), "f64aT": lambda n=noise: n(cols, axis=0)}
         if fns is not None:
             cands["fns"] = _fns_points(fns, getattr(fns.NoiseType, peer), pts32)
-        if kname == "quintic" and basis == "value":  # where the time goes: the kernel alone, its float64 index pass
-            k, res = noise.kernel, np.empty((NPTS, 1), np.float32)
+        if kname == "quintic" and basis == "value":  # where the time goes: the kernel alone, with either index
+            k, res, o1 = noise.kernel, np.empty((NPTS, 1), np.float32), np.empty(NPTS, np.float32)
             kern = _jit.int_two_taps_kernel(3, False, True)
             rest = (np.ones((1, 3)), np.array([noise.scale]), noise.phase, k.shift, k.left,
                     k.coef.astype(np.float32), noise.keys, noise._mult, False)
-            tt, jj = np.empty((3, 256), np.float32), np.empty((3, 256), np.uint32)
-            cands["kernel"] = lambda: kern(pts32, False, 0, NPTS, res, *rest)
-            cands["index64"] = lambda: index64(pts32, noise.phase, float(k.shift), int(k.left), tt, jj)
+            reach = np.float32([2.0 ** -126, 2.0 ** 31]).view(np.uint32)   # as points_path._run_block sets it
+            cands["kernel"] = lambda: kern(pts32, False, 0, NPTS, res, *rest, reach)
+            cands["kernel64"] = lambda: kern(pts32, False, 0, NPTS, res, *rest, np.zeros(2, np.uint32))
+            cands["minimal"] = lambda: int_minimal(cols[0], cols[1], cols[2], np.uint32(noise.keys[0]), o1)
             cands["floor32"] = lambda: np.full(NPTS, 0.5, np.float32)
-            cands["reach"] = lambda: (pts32.max(), pts32.min())
         out[(kname, basis, peer)] = interleaved(cands, repeats=repeats, timer=time.thread_time)
     return out
 
@@ -362,20 +343,26 @@ def report_f32(tf):
         lines.append(f"| {kname} {basis} | {peer} | {rate} | {' | '.join(xf)} | {t.ratio('f64a', 'f32a'):.2f} |")
     t = tf[F32_ROWS[0]]
     if "fns" in t:
-        ms = {k: 1e3 * t[k] for k in ("f32a", "kernel", "index64", "reach", "floor32", "fns")}
+        ms = {k: 1e3 * t[k] for k in ("f32a", "kernel", "kernel64", "minimal", "floor32", "fns")}
         lines += ["", "Where the float32 arithmetic's time goes (quintic value, `(N, 3)` rows, ms per 1e6 points, "
                   "medians of the same rounds): "
                   f"the call {ms['f32a']:.2f}; its compiled kernel alone (`_jit.int_two_taps_kernel(3, False, "
                   f"True)`, no wrapper) {ms['kernel']:.2f}, so the wrapper (the argument checks, the output, the "
-                  f"threads' split) {ms['f32a'] - ms['kernel']:.2f} (the kernel counts NaN fractions as it goes, "
-                  f"instead of a separate NaN/reach check over the points, which takes "
-                  f"{ms['reach']:.2f}); "
-                  f"the float64 index pass the kernel keeps (`index64`: the block gather and the exact index "
-                  f"modulo 2**32, nothing else) {ms['index64']:.2f}; pyfastnoisesimd's whole call {ms['fns']:.2f}; "
-                  f"writing the output {ms['floor32']:.2f}. The exact float64 index alone takes "
-                  f"{ms['index64'] / ms['fns']:.2f}x pyfastnoisesimd's whole time: with the index exact "
-                  "in float64 (noise smooth and in range at 1e12), 1.0x is out of reach here; the float32 corner "
-                  f"sum itself takes about {ms['kernel'] - ms['index64']:.2f}."]
+                  f"threads' split) {ms['f32a'] - ms['kernel']:.2f}; the same kernel made to take the float64 "
+                  f"index pass in every block (`kernel64`: the fallback for blocks out of float32 reach) "
+                  f"{ms['kernel64']:.2f}; `int-minimal` on the same points as `(3, N)` columns (the shortest "
+                  f"float32 loop with this hash, no blocks, no checks, no octaves) {ms['minimal']:.2f}, "
+                  f"{t.ratio('fns', 'minimal'):.2f}x pyfastnoisesimd; pyfastnoisesimd's whole call {ms['fns']:.2f}; "
+                  f"writing the output {ms['floor32']:.2f}.",
+                  "",
+                  f"What limits it: the kernel takes {t.ratio('kernel', 'minimal'):.2f}x `int-minimal`'s time, "
+                  "which itself stays under 1.0x pyfastnoisesimd. The difference is the work that the kernel's "
+                  "guarantees add to `int-minimal`'s loop: each block of 256 points gathered from either layout "
+                  "and checked (every |x f| below 2**31 and exact in float32, NaN and inf refused, so that the "
+                  "index is the float64 index's bits), the corner loop compiled with its float64 fallback "
+                  "beside it, the weights from the kernel's own coefficients by Horner's rule (`int-minimal` "
+                  "writes its fade by hand), octaves, components and turbulence, and each block's sums stored "
+                  "and copied out."]
     return lines + [""]
 
 
@@ -384,9 +371,10 @@ F32_ERROR_HEAD = [
     "Largest |`evaluate(x, arithmetic=\"float32\")` - `evaluate(x)`| over 1,000,000 random points (computed once, "
     "not timed), amplitude 1, integer hash, `LatticeNoise(dim, rng=1, kernel=..., basis=...)`, x uniform in "
     "[-1000, 1000)^dim plus the offset; and the largest |value| of the float32 result (the amplitude bound is 1). "
-    "The quintic rows are the largest: its weights are evaluated from the power basis (`1 - 10 t^3 + 15 t^4 - "
-    "6 t^5`, the one weight polynomial every path shares), whose terms up to 15 cancel in float32. "
-    "`tests/test_lattice_f32.py` allows 4x the largest (4.46e-6 when the test was written) and |value| <= "
+    "The quintic rows are the largest: a 2-tap kernel's corners are blended as nested float32 lerps "
+    "`v0 + w (v1 - v0)`, `w` its second tap's polynomial (`10 t^3 - 15 t^4 + 6 t^5`) by Horner's rule; until "
+    "0.6.0 the power-basis weights, whose terms up to 15 cancel in float32, gave up to 4.46e-6. "
+    "`tests/test_lattice_f32.py` allows 4x the largest (2.78e-6 when the test was written) and |value| <= "
     "amplitude.\n"]
 
 

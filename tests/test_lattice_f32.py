@@ -1,17 +1,26 @@
 """The lattice points' opt-in float32 arithmetic (``evaluate(..., arithmetic="float32")``): its distance from the
 float64 result and the slow reference, its bits across layouts, workers and chunkings, its refusals (its kernels as plain
 Python: tests/test_lattice_engine.py)."""
+import dataclasses
+import os
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 import naive
 from noiselab import LatticeNoise
+from noiselab.lattice.kernels import get_kernel
+
+HERE = Path(__file__).resolve().parents[1]
 
 RNG = np.random.default_rng(32)
 # the largest |float32 arithmetic - float64 arithmetic| over 1e6 random points, 1-3-D, quintic and Catmull-Rom value
 # and gradient noise, near 0 and at 1e12, amplitude 1 (benchmarks/bench_limits.md:
 # `python benchmarks/bench_limits.py --f32-error`); the tests allow 4 times it
-MEASURED = 4.46e-6
+MEASURED = 2.78e-6
 CASES = [("quintic", "value"), ("quintic", "gradient"), ("catmull-rom", "value"), ("catmull-rom", "gradient")]
 
 
@@ -101,3 +110,101 @@ def test_float32_arithmetic_refuses_what_it_does_not_do():
                     noise.evaluate(pts, octaves=octaves, arithmetic=arithmetic, workers=2)
         pts[6789, 1] = 1e307   # large but finite at every octave: the index is reduced exactly, no error
         assert np.isfinite(noise.evaluate(pts, octaves=3, arithmetic="float32")).all()
+
+
+# ----------------------------------------------------------------- the float32 index
+def _f32(noise, pts, **kw):
+    return noise.evaluate(pts, arithmetic="float32", **kw)
+
+
+@pytest.mark.parametrize("dim", [1, 2, 3])
+@pytest.mark.parametrize("kernel, basis", CASES + [("linear", "value")])
+def test_the_float32_index_gives_the_float64_index_s_bits(dim, kernel, basis):
+    # float32 points take the index in float32 block by block where every |x f| stays below 2**31 (and x f is exact),
+    # float64 points the index in float64: the same bits, points straddling the thresholds and far out included
+    x = RNG.uniform(-300.0, 300.0, (3000, dim)).astype(np.float32)
+    edge = np.float32([2.0 ** 24, 2.0 ** 29, 2.0 ** 31, 2.0 ** 31 - 128, 1e12, 3e38, 1e-40, -1e-40, -0.0, 0.5])
+    x[1000:1000 + edge.size, 0] = edge   # one block with them (with octaves=3 the largest frequency is 4)
+    x[1000 + edge.size:1000 + 2 * edge.size, -1] = -edge
+    x[2600:2610, 0] = np.float32(2.0 ** 29 - 64)   # in reach at frequency 4 (x 4 < 2**31): the float32 pass
+    for freq, kw in ((1.0, {}), (1.0, {"octaves": 3}), (1.0, {"octaves": 2, "absval": True}),
+                     (0.25, {"octaves": 2}), (2.0 ** -60, {}), (1.0, {"octaves": 2, "lacunarity": 3.0})):
+        noise = LatticeNoise(dim, 2, rng=9, kernel=kernel, basis=basis, hash="integer", frequency=freq)
+        want = _f32(noise, x.astype(np.float64), **kw)
+        got = _f32(noise, x, **kw)
+        np.testing.assert_array_equal(got, want)
+        np.testing.assert_array_equal(np.signbit(got), np.signbit(want))
+        cols = np.ascontiguousarray(x.T)
+        for other in (_f32(noise, cols, axis=0, **kw), _f32(noise, x, workers=2, **kw),
+                      np.concatenate([_f32(noise, x[:777], **kw), _f32(noise, x[777:], **kw)], axis=0)):
+            np.testing.assert_array_equal(other, want)
+        assert np.isfinite(want).all() and (freq < 0.1 or np.ptp(want) > 0.3)   # not vacuous: the noise varies
+
+
+def test_the_reach_check_picks_the_float32_index_only_where_it_is_exact():
+    from noiselab.lattice import _jit
+    reach = np.float32([2.0 ** -126, 2.0 ** 29]).view(np.uint32)   # lo, hi for frequencies 1 .. 4
+    X = RNG.uniform(-1e3, 1e3, (3, 256)).astype(np.float32)
+    assert _jit._reach32(X, 256, reach, 3)
+    for bad in (2.0 ** 29, -(2.0 ** 29), np.inf, -np.inf, np.nan, 1e-40):   # x f >= 2**31; not finite; subnormal
+        Y = X.copy()
+        Y[2, 100] = bad
+        assert not _jit._reach32(Y, 256, reach, 3)
+        assert _jit._reach32(Y, 100, reach, 3)   # only the block's first m points count
+    Y = X.copy()
+    Y[1, 7] = -0.0
+    Y[0, 8] = np.float32(2.0 ** 29 - 32)
+    assert _jit._reach32(Y, 256, reach, 3)
+    assert not _jit._reach32(X, 256, np.zeros(2, np.uint32), 3)   # hi = 0: a call the float32 index does not take
+
+
+def test_float32_points_refused_as_float64_ones():
+    noise = LatticeNoise(3, rng=1, hash="integer")
+    for bad in (np.nan, np.inf):
+        pts = RNG.uniform(0.0, 9.0, (9000, 3)).astype(np.float32)
+        pts[6789, 2] = bad
+        with pytest.raises(ValueError, match="finite"):
+            _f32(noise, pts, workers=2)
+        with pytest.raises(ValueError, match="finite"):
+            _f32(noise, np.ascontiguousarray(pts.T), axis=0)
+
+
+def test_a_two_tap_kernel_that_is_no_partition_of_unity_keeps_its_own_weights():
+    # the lerps need w0 = 1 - w1; another 2-tap kernel takes the block kernel, which sums every tap's own weight
+    quintic = get_kernel("quintic")
+    soft = dataclasses.replace(quintic, name="soft", coef=0.75 * quintic.coef, abs_sum_max=0.75)
+    x = RNG.uniform(-50.0, 50.0, (5000, 3)).astype(np.float32)
+    for basis in ("value", "gradient"):
+        noise = LatticeNoise(3, rng=2, kernel=soft, basis=basis, hash="integer")
+        fast, exact = _f32(noise, x), noise(x)
+        assert np.abs(fast - exact).max() <= 4 * MEASURED and np.ptp(exact) > 0.3
+
+
+_PLAIN = """
+import sys
+import numpy as np
+import noiselab as nl
+x = np.random.default_rng(2).uniform(-40, 40, (600, 3)).astype(np.float32)
+x[300, 1] = np.float32(3e9)   # the second block takes the float64 index
+out = []
+for d in (1, 2, 3):
+    for k, b in (("quintic", "value"), ("quintic", "gradient"), ("catmull-rom", "value"), ("linear", "gradient")):
+        n = nl.LatticeNoise(d, 2, rng=3, hash="integer", kernel=k, basis=b)
+        out += [n.evaluate(x[:, :d], octaves=2, arithmetic="float32"),
+                n.evaluate(np.ascontiguousarray(x[:, :d].T), axis=0, absval=True, arithmetic="float32")]
+np.savez(sys.argv[1], *out)
+"""
+
+
+def test_the_float32_index_runs_as_plain_python_with_the_same_bits(tmp_path):
+    results = []
+    for flag in ("0", "1"):
+        env = dict(os.environ, NUMBA_DISABLE_JIT=flag, PYTHONPATH=str(HERE))
+        subprocess.run([sys.executable, "-c", _PLAIN, str(tmp_path / f"jit{flag}.npz")], env=env, check=True,
+                       cwd=tmp_path, timeout=900)
+        data = np.load(tmp_path / f"jit{flag}.npz")
+        results.append([data[k] for k in sorted(data.files, key=lambda s: int(s.split("_")[1]))])
+    assert len(results[0]) == len(results[1]) == 24
+    for compiled, plain in zip(*results):
+        np.testing.assert_array_equal(compiled, plain)
+        np.testing.assert_array_equal(np.signbit(compiled), np.signbit(plain))

@@ -794,11 +794,13 @@ def _make_int_fast(DIM, TAPS, GRAD, PERIODIC):
 BLOCK = 256  # points per block of :func:`_make_int_block` (its buffers, about 26 KiB for 3-D, stay in L1)
 _TWO32 = 4294967296.0  # 2**32: lattice indices are hashed modulo 2**32
 _INV_TWO32 = 1.0 / 4294967296.0
+_TWO31 = np.float32(2147483648.0)  # 2**31: float32 lattice indices below it convert to int32 exactly
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
 def _block_load(src, flat, cols, p0, m, X, DIM):
-    """The block's coordinates as float64 rows ``X[a, :m]``, from ``(N, DIM)`` rows or ``(DIM, N)`` columns.
+    """The block's coordinates as rows ``X[a, :m]`` (float64, or the points' own dtype), from ``(N, DIM)`` rows or
+    ``(DIM, N)`` columns.
 
     Every index here is a loop counter from 0 over a slice of the block: an
     index computed as ``p0 + i`` (which numba must check for a negative
@@ -811,16 +813,62 @@ def _block_load(src, flat, cols, p0, m, X, DIM):
             xs = src[a, p0:p0 + m]
             Xa = X[a]
             for i in range(m):
-                Xa[i] = np.float64(xs[i])
+                Xa[i] = xs[i]
     else:
         xs = flat[p0 * DIM:(p0 + m) * DIM]
         for i in range(m):
             for a in range(DIM):
-                X[a, i] = np.float64(xs[i * DIM + a])
+                X[a, i] = xs[i * DIM + a]
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GRAD, ft):
+def _reach32(X, m, reach, DIM):
+    """Whether every coordinate of a block of float32 points ``X`` has ``lo <= |x| < hi`` or is 0: then
+    :func:`_tj` computes its fractions and indices in float32.
+
+    ``reach`` holds the bits of ``lo`` and ``hi`` (uint32), compared with the
+    bits of ``|x|`` (monotone in ``|x|``; NaN's above inf's), in two reductions
+    that vectorise. For a call without phase or shift whose frequencies ``f``
+    are powers of two (:func:`.points_path._run_block` sets ``hi = 2**31 / max
+    f`` and ``lo = 2**-126 / min(f, 1)``; ``hi = 0`` for any other call): ``u
+    = x f`` is then exact in float32 (no overflow, no underflow), so ``u -
+    floor(u)`` rounds as :func:`_fraction`'s float64 difference rounded to
+    float32 (the one rounding of the same exact value), and ``|u| < 2**31``:
+    the int32 index is the index mod 2**32. Any other block takes :func:`_index32`.
+    """
+    hi, lo, top = _U32(0), _U32(0x7FFFFFFF), _U32(0x7FFFFFFF)
+    for a in range(DIM):
+        Xa = X[a].view(np.uint32)
+        for i in range(m):
+            b = _U32(Xa[i] & top)
+            hi, lo = max(hi, b), min(lo, b if b != 0 else top)
+    return hi < reach[1] and lo >= reach[0]
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _index32(X, a, m, f, ph, shift, left, TT, JJ):
+    """Axis ``a`` of a block that :func:`_reach32` refuses: :func:`_fraction` in float64 for every point, into
+    ``TT[a]`` (float32) and ``JJ[a]``; returns the count of NaN fractions."""
+    bad = 0
+    for i in range(m):
+        TT[a, i], JJ[a, i] = _fraction(np.float64(X[a, i]), f, ph, shift, left, np.float32)
+        bad += TT[a, i] != TT[a, i]  # a NaN fraction: x f + phase NaN or infinite (_run_block refuses it)
+    return bad
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _tj(fast, X, TT, JJ, a, i, f, left):
+    """Point ``i``'s ``(t, j)`` on axis ``a`` in the float32 arithmetic: in float32 from ``X`` where the block
+    passed :func:`_reach32` (``fast``), else from :func:`_index32`'s ``TT``, ``JJ``. The same values either way."""
+    if fast:
+        u = X[a, i] * np.float32(f)
+        fi = np.floor(u)
+        return np.float32(u - fi), _U32(np.int64(np.int32(fi)) - left)
+    return TT[a, i], JJ[a, i]
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, JJ, TAPS, GRAD, F32, fast, ft):
     """One axis of a block without a period: weights, hashed tap offsets and (``GRAD``) signed distances.
 
     The values of :func:`_split` for every finite coordinate, in one branch-free
@@ -829,20 +877,19 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, TAPS, GR
     (exact: every step is an integer or a power-of-two scaling, and the
     difference, an integer in [0, 2**32), is representable), and converted
     once, whatever the coordinate's size; no int64 overflow past 2**63 and no
-    fallback to the exact per-point reduction. The index stays float64; only
-    the fraction ``t`` and what follows from it are in ``ft`` (a no-op cast for float64).
+    fallback to the exact per-point reduction. The float32 arithmetic (``F32``,
+    ``ft`` float32) takes ``t`` and ``j`` from :func:`_tj` instead.
     """
     Xa = X[a]
     Ta = TF[a]
     bad = 0
     for i in range(m):
-        u = Xa[i] * f + ph + shift  # same rounding as the grid path
-        fi = np.floor(u)
-        t = ft(u - fi)
+        if F32:  # (a NaN fraction: counted by :func:`_index32`)
+            t, j = _tj(fast, X, TF, JJ, a, i, f, left)
+        else:  # (the same rounding as the grid path)
+            t, j = _fraction(Xa[i], f, ph, shift, left, ft)
+            bad += t != t  # a NaN fraction (x f + phase NaN or infinite): counted, the points checked after the call
         Ta[i] = t
-        bad += t != t  # a NaN fraction (x f + phase NaN or infinite): counted, the points checked after the call
-        q = fi - np.floor(fi * _INV_TWO32) * _TWO32
-        j = _U32(np.int64(q) - left)
         t2, t3, t4, t5 = _powers(t)
         for k in range(TAPS):
             W[a, k, i] = _weight(coef, k, t, t2, t3, t4, t5)
@@ -875,7 +922,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
 
     The bits of :func:`_make_int_fast` (the same operations in the same order
     for every point) with its own arguments: ``(src, cols, lo, hi, out, freqs,
-    amps, phase, shift, left, coef, keys, mult, absval)``, where ``src`` is
+    amps, phase, shift, left, coef, keys, mult, absval, reach)``, where ``src`` is
     C-contiguous ``(N, DIM)`` rows or, with ``cols``, ``(DIM, N)`` columns
     (float32 or float64, widened as read), and the kernel fills ``out[lo:hi]``
     (so threads share one call's arrays without slicing the columns). Per
@@ -883,20 +930,23 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
     each axis's set-up (:func:`_block_axis`), then :func:`_make_int_fast`'s
     corner loops; every loop runs over the block from index 0, which LLVM
     vectorises across points (8 float64 lanes with AVX-512). ``F32``: float32
-    arithmetic from each fraction on (``coef`` float32; the index as above).
+    arithmetic from each fraction on (``coef`` float32), the block kept in the
+    points' dtype, each point's index from :func:`_tj` (``reach``: the
+    bits of :func:`_reach32`'s ``(lo, hi)``; ignored without ``F32``).
     """
     FT = np.float32 if F32 else np.float64
+    UNIT = FT(1.0 if F32 else _TO_UNIT)  # the float32 arithmetic's 2**-31 joins the amplitude (:func:`_lerp_corners`)
 
     @nb.njit(cache=True, nogil=True)
-    def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval):
+    def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach):
         """Lattice noise with the integer hash at scattered points, 1-3-D values without a period."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
         flat = src.reshape(-1)
-        X = np.empty((DIM, BLOCK))
-        TF = np.empty((DIM, BLOCK), FT)
+        X = np.empty((DIM, BLOCK), src.dtype if F32 else np.float64)
+        TF, JJ = np.empty((DIM, BLOCK), FT), np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
         W = np.empty((DIM, TAPS, BLOCK), FT)
-        R = np.empty((DIM, TAPS, BLOCK) if GRAD else (1, 1, 1), FT)
+        R = np.empty((DIM, TAPS, BLOCK), FT)  # (read by value noise too, unused: plain Python's indices stay in range)
         M = np.empty((DIM, TAPS, BLOCK), np.uint32)
         T = np.empty(BLOCK, FT)
         ACC = np.empty((ncomp, BLOCK), FT)
@@ -904,44 +954,35 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
+            fast = F32 and _reach32(X, m, reach, DIM)
             for o in range(noct):
                 for a in range(DIM):
-                    bad += _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, TAPS,
-                                       GRAD, FT)
-                amp = FT(amps[o])
+                    if F32 and not fast:
+                        bad += _index32(X, a, m, freqs[o, a], phase[a], shift, left, TF, JJ)
+                    bad += _block_axis(X, a, m, freqs[o, a], phase[a], shift, left, coef, mult[a], W, R, M, TF, JJ,
+                                       TAPS, GRAD, F32, fast, FT)
+                amp = FT(amps[o]) * FT(_TO_UNIT if F32 and not GRAD else 1.0)
                 first = o == 0
                 for c in range(ncomp):
                     key = keys[c]
                     acc = ACC[c]
                     if DIM > 1:  # as :func:`_make_int_fast`: the last axis's taps inside the loop over points
-                        for i in range(m):
-                            T[i] = 0.0
+                        T[:m] = 0.0
                         for k0 in range(TAPS):
                             for k1 in range(TAPS if DIM == 3 else 1):
-                                L = DIM - 1
-                                M0 = M[0, k0]
-                                W0 = W[0, k0]
-                                R0 = R[0, k0] if GRAD else R[0, 0]
-                                M1 = M[1, k1]  # (3-D only)
-                                W1 = W[1, k1]
-                                R1 = R[1, k1] if GRAD else R[0, 0]
+                                M0, W0, R0 = M[0, k0], W[0, k0], R[0, k0]
+                                M1, W1, R1 = M[1, k1], W[1, k1], R[1, k1]  # (3-D only)
                                 for i in range(m):
-                                    if DIM == 3:
-                                        h1 = _U32(_U32(key ^ M0[i]) ^ M1[i])
-                                        w1 = W0[i] * W1[i]
-                                    else:
-                                        h1 = _U32(key ^ M0[i])
-                                        w1 = W0[i]
+                                    h1 = _U32(_U32(key ^ M0[i]) ^ M1[i]) if DIM == 3 else _U32(key ^ M0[i])
+                                    w1 = W0[i] * W1[i] if DIM == 3 else W0[i]
                                     total = T[i]
                                     for k in range(TAPS):
-                                        h = _U32(h1 ^ M[L, k, i])
-                                        w = w1 * W[L, k, i]
-                                        if not GRAD:
-                                            v = hash_value(h, FT)
-                                        elif DIM == 3:
-                                            v = _grad_dot(h, R0[i], R1[i], R[2, k, i], 3, FT)
-                                        else:
-                                            v = _grad_dot(h, R0[i], R[1, k, i], FT(0.0), 2, FT)
+                                        h = _U32(h1 ^ M[DIM - 1, k, i])
+                                        w = w1 * W[DIM - 1, k, i]
+                                        # (branches on GRAD and DIM themselves: numba compiles only the one taken)
+                                        v = (_grad_dot(h, R0[i], R1[i] if DIM == 3 else R[1, k, i],
+                                                       R[2, k, i] if DIM == 3 else FT(0.0), DIM, FT) if GRAD
+                                             else FT(np.int32(mix32(h))) * UNIT)
                                         total += w * v
                                     T[i] = total
                     for i in range(m):
@@ -951,13 +992,11 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
                             total = FT(0.0)
                             for k in range(TAPS):
                                 h = _U32(key ^ M[0, k, i])
-                                v = _grad_dot(h, R[0, k, i], FT(0.0), FT(0.0), 1, FT) if GRAD else hash_value(h, FT)
+                                v = (_grad_dot(h, R[0, k, i], FT(0.0), FT(0.0), 1, FT) if GRAD
+                                     else FT(np.int32(mix32(h))) * UNIT)
                                 total += W[0, k, i] * v
                         tv = abs(total) if absval else total
-                        if first:
-                            acc[i] = amp * tv
-                        else:
-                            acc[i] += amp * tv
+                        acc[i] = amp * tv if first else acc[i] + amp * tv
             _store_block(out, p0, m, ACC)
         return bad
 
@@ -971,14 +1010,6 @@ def _fraction(x, f, ph, shift, left, ft):
     fi = np.floor(u)
     q = fi - np.floor(fi * _INV_TWO32) * _TWO32  # fi mod 2**32, exactly (:func:`_block_axis`)
     return ft(u - fi), _U32(np.int64(q) - left)
-
-
-@nb.njit(cache=True, nogil=True, inline="always")
-def _index(pre, TT, JJ, X, a, i, f, ph, shift, left, ft):
-    """Point ``i``'s ``(t, j)`` on axis ``a``: from :func:`_fraction`'s loop (``pre``) or computed here."""
-    if pre:
-        return TT[a, i], JJ[a, i]
-    return _fraction(X[a, i], f, ph, shift, left, ft)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -996,12 +1027,7 @@ def _two_taps(t, j, shift, left, coef, mult_a, grad, ft):
     w1 = _weight(coef, 1, t, t2, t3, t4, t5)
     m0 = _U32(_U32(j + _U32(0)) * mult_a)
     m1 = _U32(_U32(j + _U32(1)) * mult_a)
-    if grad:
-        r0 = t - ft(shift) + ft(left - 0)
-        r1 = t - ft(shift) + ft(left - 1)
-    else:
-        r0 = ft(0.0)
-        r1 = ft(0.0)
+    r0, r1 = (t - ft(shift) + ft(left - 0), t - ft(shift) + ft(left - 1)) if grad else (ft(0.0), ft(0.0))
     return w0, w1, m0, m1, r0, r1
 
 
@@ -1014,18 +1040,45 @@ def _two_corners(total, h1, w1, c0, c1, n0, n1, ra, rb, s0, s1, dim, grad, ft):
     (the last axis's), as :func:`_make_int_fast` forms them for ``dim``.
     """
     for k in range(2):
-        h = _U32(h1 ^ (n0 if k == 0 else n1))
-        s = s0 if k == 0 else s1
-        if not grad:
-            v = hash_value(h, ft)
-        elif dim == 3:
-            v = _grad_dot(h, ra, rb, s, 3, ft)
-        elif dim == 2:
-            v = _grad_dot(h, ra, s, ft(0.0), 2, ft)
-        else:
-            v = _grad_dot(h, s, ft(0.0), ft(0.0), 1, ft)
+        v = _corner(_U32(h1 ^ (n0 if k == 0 else n1)), ra, rb, s0 if k == 0 else s1, dim, grad, ft, ft(_TO_UNIT))
         total += (w1 * (c0 if k == 0 else c1)) * v
     return total
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _corner(h, ra, rb, s, dim, grad, ft, unit):
+    """A corner's value: :func:`hash_value` of ``h`` (its ``2**-31`` replaced by ``unit``) or (``grad``)
+    :func:`_grad_dot` of ``ra, rb, s`` for ``dim``."""
+    if not grad:
+        return ft(np.int32(mix32(h))) * unit
+    if dim == 3:
+        return _grad_dot(h, ra, rb, s, 3, ft)
+    if dim == 2:
+        return _grad_dot(h, ra, s, ft(0.0), 2, ft)
+    return _grad_dot(h, s, ft(0.0), ft(0.0), 1, ft)
+
+
+@nb.njit(cache=True, nogil=True)
+def _lerp_taps(t, j, shift, left, coef, mult_a, grad):
+    """:func:`_two_taps` for the float32 arithmetic: ``(w1, m0, m1, r0, r1)``, ``w1`` the second tap's weight by
+    Horner's rule from its power-basis coefficients ``coef[1]`` (float32), its partner ``1 - w1`` left to
+    :func:`_lerp_corners` (LLVM drops the power-basis weights :func:`_two_taps` computes, unused)."""
+    w = coef[1, 5]
+    for p in range(4, -1, -1):
+        w = w * t + coef[1, p]
+    r0 = t - np.float32(shift) + np.float32(left) if grad else np.float32(0.0)
+    r1 = t - np.float32(shift) + np.float32(left - 1) if grad else np.float32(0.0)
+    return w, _U32(j * mult_a), _U32(_U32(j + _U32(1)) * mult_a), r0, r1
+
+
+@nb.njit(cache=True, nogil=True)
+def _lerp_corners(h1, w, n0, n1, ra, rb, s0, s1, dim, grad):
+    """The last axis's two corners (as :func:`_two_corners`) blended in float32: ``v0 + w (v1 - v0)``.
+
+    Value noise blends ``int32(mix32(h))`` unscaled: its ``2**-31`` (:func:`hash_value`) joins the amplitude,
+    once a point (exact, as a power of two) instead of once a corner."""
+    v0 = _corner(_U32(h1 ^ n0), ra, rb, s0, dim, grad, np.float32, np.float32(1.0))
+    return v0 + w * (_corner(_U32(h1 ^ n1), ra, rb, s1, dim, grad, np.float32, np.float32(1.0)) - v0)
 
 
 def _make_int_two_taps(DIM, GRAD, F32=False):
@@ -1038,7 +1091,10 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
     in one loop over the block that LLVM vectorises across points.
     1.63-1.74x :func:`_make_int_fast` for 1e6 3-D float32 quintic value
     points (``benchmarks/bench_lattice_paths.md``). ``F32``: float32 arithmetic
-    from each fraction on, as :func:`_make_int_block`.
+    from each fraction on, the index as :func:`_make_int_block`'s, for kernels
+    that are a partition of unity (``w0 = 1 - w1``): ``coef`` is the second
+    tap's coefficients alone (:func:`_lerp_taps`) and the corners are blended
+    as nested lerps, the last axis first (:func:`_lerp_corners`).
     """
     FT = np.float32 if F32 else np.float64
     Z = FT(0.0)
@@ -1046,72 +1102,83 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
     C = 2 if DIM > 2 else 0
 
     @nb.njit(cache=True, nogil=True)
-    def int_two_taps(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval):
+    def int_two_taps(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach):
         """Lattice noise with the integer hash at scattered points, 1-3-D values of a 2-tap kernel."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
         flat = src.reshape(-1)
-        X = np.empty((DIM, BLOCK))
-        TT = np.empty((DIM, BLOCK) if F32 else (1, 1), FT)
-        JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
+        X = np.empty((DIM, BLOCK), src.dtype if F32 else np.float64)
+        TT, JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), FT), np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
         ACC = np.empty((ncomp, BLOCK), FT)
         bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = min(BLOCK, hi - p0)
             _block_load(src, flat, cols, p0, m, X, DIM)
+            fast = F32 and _reach32(X, m, reach, DIM)
             for o in range(noct):
-                amp = FT(amps[o])
+                amp = FT(amps[o]) * FT(_TO_UNIT if F32 and not GRAD else 1.0)  # (:func:`_lerp_corners`)
                 first = o == 0
-                if F32:  # the exact float64 index in its own loop: the corner loop is then all float32 (16 lanes)
+                if F32 and not fast:  # the exact float64 index in its own loop: the corner loop stays float32
                     for a in range(DIM):
-                        Xa = X[a]
-                        for i in range(m):
-                            t, j = _fraction(Xa[i], freqs[o, a], phase[a], shift, left, FT)
-                            TT[a, i], JJ[a, i] = t, j
-                            bad += t != t  # a NaN fraction: x f + phase NaN or infinite (_run_block refuses it)
-                fa = freqs[o, 0]
-                fb = freqs[o, B]
-                fc = freqs[o, C]
+                        bad += _index32(X, a, m, freqs[o, a], phase[a], shift, left, TT, JJ)
+                fa, fb, fc = freqs[o, 0], freqs[o, B], freqs[o, C]
                 for c in range(ncomp):
                     key = keys[c]
                     acc = ACC[c]
                     for i in range(m):
-                        ta, ja = _index(F32, TT, JJ, X, 0, i, fa, phase[0], shift, left, FT)
-                        if not F32:  # (float32: counted in the index loop above)
-                            bad += ta != ta
-                        a0, a1, am0, am1, ar0, ar1 = _two_taps(ta, ja, shift, left, coef, mult[0], GRAD, FT)
-                        if DIM == 1:  # (1.0 * w) v is w v exactly
-                            total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD, FT)
-                        else:
-                            tb, jb = _index(F32, TT, JJ, X, B, i, fb, phase[B], shift, left, FT)
-                            if not F32:
-                                bad += tb != tb
-                            b0, b1, bm0, bm1, br0, br1 = _two_taps(tb, jb, shift, left, coef, mult[B], GRAD, FT)
-                            if DIM == 2:
-                                total = _two_corners(Z, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, Z, br0, br1,
-                                                     DIM, GRAD, FT)
-                                total = _two_corners(total, _U32(key ^ am1), a1, b0, b1, bm0, bm1, ar1, Z, br0, br1,
-                                                     DIM, GRAD, FT)
+                        if F32:  # nested lerps, the last axis first
+                            ta, ja = _tj(fast, X, TT, JJ, 0, i, fa, left)
+                            a1, am0, am1, ar0, ar1 = _lerp_taps(ta, ja, shift, left, coef, mult[0], GRAD)
+                            if DIM == 1:
+                                total = _lerp_corners(key, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD)
                             else:
-                                tc, jc = _index(F32, TT, JJ, X, C, i, fc, phase[C], shift, left, FT)
-                                if not F32:
-                                    bad += tc != tc
-                                c0, c1, cm0, cm1, cr0, cr1 = _two_taps(tc, jc, shift, left, coef, mult[C], GRAD, FT)
-                                ha0 = _U32(key ^ am0)
-                                ha1 = _U32(key ^ am1)
-                                total = _two_corners(Z, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
-                                                     cr1, DIM, GRAD, FT)
-                                total = _two_corners(total, _U32(ha0 ^ bm1), a0 * b1, c0, c1, cm0, cm1, ar0, br1, cr0,
-                                                     cr1, DIM, GRAD, FT)
-                                total = _two_corners(total, _U32(ha1 ^ bm0), a1 * b0, c0, c1, cm0, cm1, ar1, br0, cr0,
-                                                     cr1, DIM, GRAD, FT)
-                                total = _two_corners(total, _U32(ha1 ^ bm1), a1 * b1, c0, c1, cm0, cm1, ar1, br1, cr0,
-                                                     cr1, DIM, GRAD, FT)
-                        tv = abs(total) if absval else total
-                        if first:
-                            acc[i] = amp * tv
+                                tb, jb = _tj(fast, X, TT, JJ, B, i, fb, left)
+                                b1, bm0, bm1, br0, br1 = _lerp_taps(tb, jb, shift, left, coef, mult[B], GRAD)
+                                if DIM == 2:
+                                    x0 = _lerp_corners(_U32(key ^ am0), b1, bm0, bm1, ar0, Z, br0, br1, DIM, GRAD)
+                                    x1 = _lerp_corners(_U32(key ^ am1), b1, bm0, bm1, ar1, Z, br0, br1, DIM, GRAD)
+                                else:
+                                    tc, jc = _tj(fast, X, TT, JJ, C, i, fc, left)
+                                    c1, cm0, cm1, cr0, cr1 = _lerp_taps(tc, jc, shift, left, coef, mult[C], GRAD)
+                                    ha0, ha1 = _U32(key ^ am0), _U32(key ^ am1)
+                                    y00 = _lerp_corners(_U32(ha0 ^ bm0), c1, cm0, cm1, ar0, br0, cr0, cr1, 3, GRAD)
+                                    y01 = _lerp_corners(_U32(ha0 ^ bm1), c1, cm0, cm1, ar0, br1, cr0, cr1, 3, GRAD)
+                                    y10 = _lerp_corners(_U32(ha1 ^ bm0), c1, cm0, cm1, ar1, br0, cr0, cr1, 3, GRAD)
+                                    y11 = _lerp_corners(_U32(ha1 ^ bm1), c1, cm0, cm1, ar1, br1, cr0, cr1, 3, GRAD)
+                                    x0, x1 = y00 + b1 * (y01 - y00), y10 + b1 * (y11 - y10)
+                                total = x0 + a1 * (x1 - x0)
                         else:
-                            acc[i] += amp * tv
+                            ta, ja = _fraction(X[0, i], fa, phase[0], shift, left, FT)
+                            bad += ta != ta
+                            a0, a1, am0, am1, ar0, ar1 = _two_taps(ta, ja, shift, left, coef, mult[0], GRAD, FT)
+                            if DIM == 1:  # (1.0 * w) v is w v exactly
+                                total = _two_corners(Z, key, FT(1.0), a0, a1, am0, am1, Z, Z, ar0, ar1, DIM, GRAD, FT)
+                            else:
+                                tb, jb = _fraction(X[B, i], fb, phase[B], shift, left, FT)
+                                bad += tb != tb
+                                b0, b1, bm0, bm1, br0, br1 = _two_taps(tb, jb, shift, left, coef, mult[B], GRAD, FT)
+                                if DIM == 2:
+                                    total = _two_corners(Z, _U32(key ^ am0), a0, b0, b1, bm0, bm1, ar0, Z, br0, br1,
+                                                         DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(key ^ am1), a1, b0, b1, bm0, bm1, ar1, Z, br0,
+                                                         br1, DIM, GRAD, FT)
+                                else:
+                                    tc, jc = _fraction(X[C, i], fc, phase[C], shift, left, FT)
+                                    bad += tc != tc
+                                    c0, c1, cm0, cm1, cr0, cr1 = _two_taps(tc, jc, shift, left, coef, mult[C], GRAD,
+                                                                           FT)
+                                    ha0 = _U32(key ^ am0)
+                                    ha1 = _U32(key ^ am1)
+                                    total = _two_corners(Z, _U32(ha0 ^ bm0), a0 * b0, c0, c1, cm0, cm1, ar0, br0, cr0,
+                                                         cr1, DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(ha0 ^ bm1), a0 * b1, c0, c1, cm0, cm1, ar0, br1,
+                                                         cr0, cr1, DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(ha1 ^ bm0), a1 * b0, c0, c1, cm0, cm1, ar1, br0,
+                                                         cr0, cr1, DIM, GRAD, FT)
+                                    total = _two_corners(total, _U32(ha1 ^ bm1), a1 * b1, c0, c1, cm0, cm1, ar1, br1,
+                                                         cr0, cr1, DIM, GRAD, FT)
+                        tv = abs(total) if absval else total
+                        acc[i] = amp * tv if first else acc[i] + amp * tv
             _store_block(out, p0, m, ACC)
         return bad
 

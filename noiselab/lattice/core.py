@@ -279,11 +279,13 @@ class LatticeNoise:
         arithmetic : {"float64", "float32"}, default "float64"
             The arithmetic of the sum: "float64" (the result, rounded once to ``dtype``) or "float32"
             (integer-hash values in 1-3-D without a period only, float32 output; anything else is a
-            ValueError): each point's lattice index stays exact in float64, its weights, hashed values,
-            gradient dots and sums are float32; 1.5-1.6x the speed of "float64" on 1e6 3-D points.
-            Largest difference from "float64" over 1e6 points within 1e3 of 0 and of 1e12, 1-3-D, quintic
-            and Catmull-Rom value and gradient noise: 4.5e-6 at amplitude 1
-            (``python benchmarks/bench_limits.py --f32-error``; speed: ``benchmarks/bench_limits.md``).
+            ValueError): each point's lattice index stays exact (the float64 index's bits; computed in
+            float32 where that is exact: float32 points, no phase, power-of-two frequencies), its weights,
+            hashed values, gradient dots and sums are float32; 1.8-2.3x the speed of "float64" on 1e6 3-D
+            float32 points (0.41-0.66x pyfastnoisesimd). Largest difference from "float64" over 1e6 points
+            within 1e3 of 0 and of 1e12, 1-3-D, quintic and Catmull-Rom value and gradient noise: 2.8e-6 at
+            amplitude 1 (``python benchmarks/bench_limits.py --f32-error``; speed:
+            ``benchmarks/bench_limits.md``).
 
         Returns
         -------

@@ -162,13 +162,20 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f
     src, cols = _layout(flat)
     k = noise.kernel
     gradient = noise.basis == "gradient"
-    if k.taps == 2:  # the same bits, every point's taps in registers
+    freqs = np.ascontiguousarray(freqs, dtype=np.float64)
+    coef = k.coef.astype(np.float32) if f32 else k.coef
+    # the float32 arithmetic's index is computed in float32 for float32 points without phase or shift at power-of-two
+    # frequencies, block by block where every |x| is in reach: x f exact and below 2**31 (:func:`._jit._reach32`)
+    fast = f32 and src.itemsize == 4 and k.shift == 0 and not noise.phase.any() and (np.frexp(freqs)[0] == 0.5).all()
+    reach = np.float32([min(2.0 ** -126 / min(freqs.min(), 1.0), 2.0 ** 127), min(2.0 ** 31 / freqs.max(), 2.0 ** 127)]
+                       if fast else [0, 0]).view(np.uint32)
+    # 2-tap kernels: every point's taps in registers (the float32 arithmetic's lerps: those whose weights sum to 1)
+    if k.taps == 2 and (not f32 or np.array_equal(k.coef[0] + k.coef[1], np.eye(1, k.coef.shape[1])[0])):
         kernel = jit.int_two_taps_kernel(noise.dim_in, gradient, f32)
     else:
         kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient, f32)
-    rest = (np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
-            noise.phase, k.shift, k.left, k.coef.astype(np.float32) if f32 else k.coef, noise.keys, noise._mult,
-            bool(absval))
+    rest = (freqs, np.ascontiguousarray(amps, dtype=np.float64), noise.phase, k.shift, k.left, coef, noise.keys,
+            noise._mult, bool(absval), reach)
     npts = flat.shape[0]
     n = min(workers, max(1, npts // min_block))
     bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
