@@ -263,7 +263,7 @@ def measure(repeats):
     direct = (np.ones((1, 3)), np.array([table.scale]), table.phase, kt.shift, kt.left, kt.coef,
               *pair_tables(table.perms, table.values), False)
     out2 = np.empty((NPTS, 1))
-    kernel(pts, False, 0, NPTS, out2, *direct)
+    kernel(pts, False, 0, NPTS, _jit.out_pair(out2), *direct)
     if not (np.array_equal(out2[:, 0], table(pts)) and points_path._pairs(table, NPTS, False)):
         raise AssertionError("table-kernel is no longer the kernel noiselab runs: update it beside the engine")
     cols = np.ascontiguousarray(pts32.T)
@@ -320,6 +320,7 @@ def measure_f32(repeats):
             rest = (np.ones((1, 3)), np.array([noise.scale]), noise.phase, k.shift, k.left,
                     k.coef.astype(np.float32), noise.keys, noise._mult, False)
             reach = np.float32([2.0 ** -126, 2.0 ** 31]).view(np.uint32)   # as points_path._run_block sets it
+            res = _jit.out_pair(res)
             cands["kernel"] = lambda: kern(pts32, False, 0, NPTS, res, *rest, reach)
             cands["kernel64"] = lambda: kern(pts32, False, 0, NPTS, res, *rest, np.zeros(2, np.uint32))
             cands["minimal"] = lambda: int_minimal(cols[0], cols[1], cols[2], np.uint32(noise.keys[0]), o1)

@@ -904,17 +904,34 @@ def _block_axis(X, a, m, f, ph, shift, left, coef, mult_a, W, R, M, TF, JJ, TAPS
 
 @nb.njit(cache=True, nogil=True, inline="always")
 def _store_block(out, p0, m, ACC):
-    """A block's sums ``ACC[c, :m]`` into rows ``p0 .. p0 + m`` of ``out`` (rounded once if ``out`` is float32).
+    """A block's sums ``ACC[c, :m]`` into rows ``p0 .. p0 + m`` of the output (rounded once if it is float32).
 
-    Inlined by numba: a separate compiled function would be one more
+    ``out``: :func:`out_pair`'s ``(float64 rows, float32 rows)``, one of them
+    empty. Inlined by numba: a separate compiled function would be one more
     specialisation to compile on a first call (about 0.3 s CPU cold,
     ``benchmarks/bench_coldstart.md``). Every index from 0 (:func:`_block_load`).
     """
-    ob = out[p0:p0 + m]
+    out64, out32 = out
+    ob, ob32 = out64[p0:p0 + m], out32[p0:p0 + m]
     for c in range(ACC.shape[0]):
         Ac = ACC[c]
-        for i in range(m):
-            ob[i, c] = Ac[i]
+        if out64.shape[0] > 0:
+            for i in range(m):
+                ob[i, c] = Ac[i]
+        else:
+            for i in range(m):
+                ob32[i, c] = Ac[i]
+
+
+def out_pair(out):
+    """An output array as the block kernels take it: ``(float64 rows, float32 rows)``, the other dtype's empty.
+
+    One compiled specialisation then writes either dtype (a float32 call
+    after a float64 one used to compile the kernel again, 1.5-2 s).
+    """
+    if out.dtype == np.float64:
+        return out, np.empty((0, out.shape[1]), np.float32)
+    return np.empty((0, out.shape[1])), out
 
 
 def _make_int_block(DIM, TAPS, GRAD, F32=False):

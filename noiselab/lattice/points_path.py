@@ -179,7 +179,8 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f
     npts = flat.shape[0]
     n = min(workers, max(1, npts // min_block))
     bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
-    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n))
+    outs = jit.out_pair(out)
+    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], outs, *rest), zip(bounds[:-1], bounds[1:]), n))
 
 
 _FOLDED = {}  # the last few folded tables, keyed by the tables' bytes (building them: 0.6 ms for n = 256)
@@ -209,7 +210,8 @@ def _run_table(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
              noise.phase, k.shift, k.left, k.coef) + _folded(noise, gradient) + (bool(absval),))
     n = min(workers, max(1, flat.shape[0] // min_block))
     bounds = np.linspace(0, flat.shape[0], n + 1).astype(np.int64).tolist()
-    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], out, *rest), zip(bounds[:-1], bounds[1:]), n))
+    outs = jit.out_pair(out)
+    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], outs, *rest), zip(bounds[:-1], bounds[1:]), n))
 
 
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
