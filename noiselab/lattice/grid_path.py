@@ -563,8 +563,8 @@ def _make_rows_plan(noise, axes_per_octave):
     mids = [axes[1] for axes in axes_per_octave] if d == 3 else \
         [(None, np.zeros((1, taps), np.int64), np.ones((1, taps)), np.ones((1, taps)))] * noct
 
-    def stack(items, k, transpose=False):
-        return np.stack([it[k].T if transpose else it[k] for it in items])
+    def stack(items, k, transpose=False):  # (C order: np.stack keeps transposed inputs' order, another numba type)
+        return np.ascontiguousarray(np.stack([it[k].T if transpose else it[k] for it in items]))
 
     first = [axes[0] for axes in axes_per_octave]
     last = [axes[-1] for axes in axes_per_octave]
