@@ -189,6 +189,13 @@ for d in (1, 2, 3):   # the float32 arithmetic's kernels (2-tap and block), rows
         n = nl.LatticeNoise(d, 2, rng=3, hash="integer", kernel=k, basis=b)
         out += [n.evaluate(far[:, :d], octaves=2, arithmetic="float32"),
                 n.evaluate(np.ascontiguousarray(far[:, :d].T), axis=0, octaves=2, absval=True, arithmetic="float32")]
+x32 = np.random.default_rng(2).uniform(-40, 40, (600, 3)).astype(np.float32)
+x32[300, 1] = np.float32(3e9)   # float32 points: the float32 index, but for the second block (the float64 index)
+for d in (1, 2, 3):
+    for k, b in (("quintic", "value"), ("quintic", "gradient"), ("catmull-rom", "value"), ("linear", "gradient")):
+        n = nl.LatticeNoise(d, 2, rng=3, hash="integer", kernel=k, basis=b)
+        out += [n.evaluate(x32[:, :d], octaves=2, arithmetic="float32"),
+                n.evaluate(np.ascontiguousarray(x32[:, :d].T), axis=0, absval=True, arithmetic="float32")]
 from noiselab.lattice import points_path
 for least in (0, 1 << 40):   # 3-D table-hash values over the folded tables, and without them
     points_path.PAIRS_MIN = least
@@ -200,7 +207,8 @@ np.savez(sys.argv[1], *out)
 
 def test_every_kernel_runs_as_plain_python_with_the_same_bits(tmp_path):
     # NUMBA_DISABLE_JIT=1 runs every kernel's Python source: points (both hashes, with and without a period,
-    # Jacobians, both layouts, the folded 3-D tables), 2-D and 3-D grids by the separable passes and the grid Jacobians
+    # Jacobians, both layouts, the folded 3-D tables, the float32 arithmetic with either index), 2-D and 3-D
+    # grids by the separable passes and the grid Jacobians
     results = []
     for flag in ("0", "1"):
         env = dict(os.environ, NUMBA_DISABLE_JIT=flag, PYTHONPATH=str(HERE))

@@ -2,10 +2,6 @@
 float64 result and the slow reference, its bits across layouts, workers and chunkings, its refusals (its kernels as plain
 Python: tests/test_lattice_engine.py)."""
 import dataclasses
-import os
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,8 +9,6 @@ import pytest
 import naive
 from noiselab import LatticeNoise
 from noiselab.lattice.kernels import get_kernel
-
-HERE = Path(__file__).resolve().parents[1]
 
 RNG = np.random.default_rng(32)
 # the largest |float32 arithmetic - float64 arithmetic| over 1e6 random points, 1-3-D, quintic and Catmull-Rom value
@@ -178,33 +172,3 @@ def test_a_two_tap_kernel_that_is_no_partition_of_unity_keeps_its_own_weights():
         noise = LatticeNoise(3, rng=2, kernel=soft, basis=basis, hash="integer")
         fast, exact = _f32(noise, x), noise(x)
         assert np.abs(fast - exact).max() <= 4 * MEASURED and np.ptp(exact) > 0.3
-
-
-_PLAIN = """
-import sys
-import numpy as np
-import noiselab as nl
-x = np.random.default_rng(2).uniform(-40, 40, (600, 3)).astype(np.float32)
-x[300, 1] = np.float32(3e9)   # the second block takes the float64 index
-out = []
-for d in (1, 2, 3):
-    for k, b in (("quintic", "value"), ("quintic", "gradient"), ("catmull-rom", "value"), ("linear", "gradient")):
-        n = nl.LatticeNoise(d, 2, rng=3, hash="integer", kernel=k, basis=b)
-        out += [n.evaluate(x[:, :d], octaves=2, arithmetic="float32"),
-                n.evaluate(np.ascontiguousarray(x[:, :d].T), axis=0, absval=True, arithmetic="float32")]
-np.savez(sys.argv[1], *out)
-"""
-
-
-def test_the_float32_index_runs_as_plain_python_with_the_same_bits(tmp_path):
-    results = []
-    for flag in ("0", "1"):
-        env = dict(os.environ, NUMBA_DISABLE_JIT=flag, PYTHONPATH=str(HERE))
-        subprocess.run([sys.executable, "-c", _PLAIN, str(tmp_path / f"jit{flag}.npz")], env=env, check=True,
-                       cwd=tmp_path, timeout=900)
-        data = np.load(tmp_path / f"jit{flag}.npz")
-        results.append([data[k] for k in sorted(data.files, key=lambda s: int(s.split("_")[1]))])
-    assert len(results[0]) == len(results[1]) == 24
-    for compiled, plain in zip(*results):
-        np.testing.assert_array_equal(compiled, plain)
-        np.testing.assert_array_equal(np.signbit(compiled), np.signbit(plain))
