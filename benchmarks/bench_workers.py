@@ -127,9 +127,9 @@ def setup_rows(repeats, lines):
               "replaced by a no-op (checks, octaves, axis taps, hash prefixes, the kernel's arguments), with the "
               "axis taps and the kernel's arguments kept from call to call (`kept`, the default), the axis taps "
               "kept and the arguments made by each call (`taps kept`, `grid_path.rows_plan` bypassed), or "
-              "both made by each (`made`, `grid_path.AXIS_TAPS_KEPT = 0`); `kernel` = the fused kernel alone. CPU time of the calling thread, "
-              "10th percentile of 10 x `--repeats` calls (the set-up is a few hundred microseconds: the low "
-              "percentile keeps the other jobs' interruptions out).", "",
+              "both made by each (`made`, `grid_path.AXIS_TAPS_KEPT = 0`); `kernel` = the fused kernel alone. "
+              "CPU time of the calling thread, 10th percentile of 10 x `--repeats` calls (the set-up is a few "
+              "hundred microseconds: the low percentile keeps the other jobs' interruptions out).", "",
               "| noise | hash | set-up, kept (ms) | set-up, taps kept (ms) | set-up, made (ms) | kernel (ms) |",
               "|---|---|---|---|---|---|"]
     grid = Grid((512, 512), [(0.0, 16.0)] * 2)

@@ -1605,8 +1605,8 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
 
     @nb.njit(cache=True, nogil=True)
     def grid_rows(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2,
-                  scales, batch_start, absval, perm, n, values, grads, mult2, out32, out64):
-        """All octaves of one output component on a 2-D or 3-D grid window: ``out32`` or ``out64`` (N0, N1 * N2),
+                  scales, batch_start, absval, perm, n, values, grads, mult2, out64, out32):
+        """All octaves of one output component on a 2-D or 3-D grid window: ``out64`` or ``out32`` (N0, N1 * N2),
         written.
 
         Per octave ``o`` (``shapes[o]``: its lattice block ``(L0, L1, L2)``,
@@ -1623,7 +1623,7 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         permutation (:func:`.grid_path.folded_tables`: the last hash level and the look-up in one read).
         The output is ``out64`` when it is float64 (one batch without
         ``absval`` is then summed in place, as :func:`final_pass_direct`
-        does), else ``out32``; the other is an empty ``(0, 0)`` array: one
+        does), else ``out32``; the other is empty (:func:`out_pair`): one
         specialisation serves both dtypes (a second dtype used to compile the
         kernel again, 1.5-2 s).
         """

@@ -268,7 +268,8 @@ def kept(store, key):
 
 
 def keep(store, key, value, size):
-    """Keep ``value`` (``size`` bytes) in ``store``: the last :data:`AXIS_TAPS_KEPT`, at most :data:`AXIS_TAPS_BYTES`."""
+    """Keep ``value`` (``size`` bytes) in ``store``: the last :data:`AXIS_TAPS_KEPT` entries, within
+    :data:`AXIS_TAPS_BYTES`."""
     with _KEPT_LOCK:
         store[key] = (value, size)
         while len(store) > AXIS_TAPS_KEPT or sum(n for _, n in store.values()) > AXIS_TAPS_BYTES:
@@ -511,8 +512,7 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval, bands=1
             p0, w0, rw0 = (np.ascontiguousarray(x[:, lo:hi]) for x in (P0, W0, RW0))
             kernel(shapes, pre, par, pre_off, lat2, lat2_off, p0, w0, rw0, P1, W1, RW1, P2, W2, RW2, scales,
                    batch_start, bool(absval), perm, int(noise.table_size), values, folded, mult2,
-                   *((np.empty((0, 0), np.float32), rows[lo:hi]) if out.dtype == np.float64 else
-                     (rows[lo:hi], np.empty((0, 0)))))
+                   *jit.out_pair(rows[lo:hi]))
 
         cuts = np.linspace(0, nj, bands + 1).astype(np.int64).tolist()
         map_blocks(band, list(zip(cuts[:-1], cuts[1:])), bands)
@@ -532,9 +532,9 @@ def rows_plan(noise, axes_per_octave):
     (:func:`shared_axis_taps`), a plan is kept as they are, for the last
     :data:`AXIS_TAPS_KEPT` grids within :data:`AXIS_TAPS_BYTES`, keyed on
     those very taps (held here, so that their ids stay theirs) and on the
-    tables' bytes: a repeated grid skips its serial set-up (0.18 ms of a
-    1024^2 fBm's 0.45, the part ``workers`` cannot split,
-    ``benchmarks/bench_workers.md``). The arrays stay writeable (a read-only
+    tables' bytes: the serial set-up of a repeated 512^2 fBm, the part
+    ``workers`` cannot split, 0.31-0.35 -> 0.18-0.19 ms
+    (``benchmarks/bench_workers.md``). The arrays stay writeable (a read-only
     array is another numba type, another compilation); nothing writes them.
     """
     pieces = [ax for axes in axes_per_octave for ax in axes]

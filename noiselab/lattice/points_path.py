@@ -176,7 +176,13 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f
         kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient, f32)
     rest = (freqs, np.ascontiguousarray(amps, dtype=np.float64), noise.phase, k.shift, k.left, coef, noise.keys,
             noise._mult, bool(absval), reach)
-    npts = flat.shape[0]
+    return _in_ranges(kernel, src, cols, out, rest, workers, min_block)
+
+
+def _in_ranges(kernel, src, cols, out, rest, workers, min_block):
+    """A block kernel ``kernel(src, cols, lo, hi, outputs, *rest)`` over ``workers`` contiguous ranges of the
+    points (at least ``min_block`` each), on pooled threads; the sum of their counts of NaN fractions."""
+    npts = out.shape[0]
     n = min(workers, max(1, npts // min_block))
     bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
     outs = jit.out_pair(out)
@@ -208,10 +214,7 @@ def _run_table(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
     kernel = jit.table_block_kernel(k.taps, gradient)
     rest = ((np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
              noise.phase, k.shift, k.left, k.coef) + _folded(noise, gradient) + (bool(absval),))
-    n = min(workers, max(1, flat.shape[0] // min_block))
-    bounds = np.linspace(0, flat.shape[0], n + 1).astype(np.int64).tolist()
-    outs = jit.out_pair(out)
-    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], outs, *rest), zip(bounds[:-1], bounds[1:]), n))
+    return _in_ranges(kernel, src, cols, out, rest, workers, min_block)
 
 
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
