@@ -71,7 +71,7 @@ def main(argv=None):
     if "--replot" in argv:
         try:
             written = replot(argv)
-        except FileNotFoundError as exc:
+        except (OSError, ValueError) as exc:  # missing, corrupt or unwritable: one line, no traceback
             print(f"lab_run: error: {exc}", file=sys.stderr)
             return 2
         for path in written:

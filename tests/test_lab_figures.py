@@ -201,6 +201,23 @@ def test_replot_writes_every_figure_from_results_json(tmp_path):
     assert lab_run.main(["--replot", "--output", str(tmp_path / "nowhere")]) == 2
 
 
+def test_replot_refuses_a_corrupt_results_file_in_one_line(tmp_path, capsys):
+    # not JSON, or JSON that is not an object: one line on stderr naming the file, status 2, no traceback, and
+    # the figures already there untouched
+    spec = importlib.util.spec_from_file_location("lab_run", ROOT / "benchmarks" / "lab_run.py")
+    lab_run = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(lab_run)
+    res_dir = tmp_path / "results"
+    res_dir.mkdir()
+    (res_dir / "pareto.png").write_bytes(b"earlier")
+    for text, why in (("{bad", "not JSON"), ("[1, 2]", "a JSON list"), (b"\xff\xfe", "not JSON")):
+        (res_dir / "results.json").write_bytes(text if isinstance(text, bytes) else text.encode())
+        assert lab_run.main(["--replot", "--output", str(tmp_path)]) == 2
+        err = capsys.readouterr().err.strip()
+        assert err.count("\n") == 0 and why in err and "results.json" in err, err
+        assert (res_dir / "pareto.png").read_bytes() == b"earlier"
+
+
 def test_docstring_examples_run():
     result = doctest.testmod(F, optionflags=doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0

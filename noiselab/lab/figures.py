@@ -76,7 +76,15 @@ def read_results(path):
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"no laboratory results at {path} (run `noiselab bench` first)")
-    return json.loads(path.read_text())
+    try:
+        results = json.loads(path.read_text())
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise ValueError(f"{path} is not a laboratory results file (not JSON: {exc}); run `noiselab bench` "
+                         "again") from None
+    if not isinstance(results, dict):
+        raise ValueError(f"{path} is not a laboratory results file (a JSON {type(results).__name__}, not an "
+                         "object); run `noiselab bench` again")
+    return results
 
 
 # ----------------------------------------------------------------------------- tick labels
