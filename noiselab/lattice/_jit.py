@@ -934,6 +934,33 @@ def out_pair(out):
     return np.empty((0, out.shape[1])), out
 
 
+def block_buffers(kind, dim, taps, ncomp, gradient=False, f32=False, x_dtype=np.float64):
+    """The working arrays of one call of a block kernel, its last argument: a block of :data:`BLOCK` points.
+
+    ``kind``: ``"int"`` (:func:`_make_int_block`: the coordinates, the
+    fractions and float32 indices, each axis's weights, ramps and hashed
+    taps, the partial sums, the octave sums), ``"two"``
+    (:func:`_make_int_two_taps`: the coordinates, fractions and indices,
+    the sums) or ``"table"`` (:func:`_make_table_block`: the coordinates,
+    weights, ramps and taps, the sums). ``f32``: the float32 arithmetic
+    (``x_dtype``: the points' dtype). Allocated by the caller (numpy) rather
+    than in the kernel, whose ``np.empty`` calls compiled numba
+    specialisations of their own: 0.15-0.3 s of a first call
+    (``benchmarks/bench_coldstart.md``).
+    """
+    ft = np.float32 if f32 else np.float64
+    x = np.empty((dim, BLOCK), x_dtype if f32 else np.float64)
+    acc = np.empty((ncomp, BLOCK), ft)
+    jj = np.empty((dim, BLOCK) if f32 else (1, 1), np.uint32)  # float32 lattice indices (:func:`_index32`)
+    if kind == "two":
+        return x, np.empty((dim, BLOCK) if f32 else (1, 1), ft), jj, acc
+    per_tap = (dim, taps, BLOCK)
+    if kind == "table":
+        return x, np.empty(per_tap), np.empty(per_tap if gradient else (dim, 1, 1)), np.empty(per_tap, np.int64), acc
+    return (x, np.empty((dim, BLOCK), ft), jj, np.empty(per_tap, ft), np.empty(per_tap, ft),
+            np.empty(per_tap, np.uint32), np.empty(BLOCK, ft), acc)
+
+
 def _make_int_block(DIM, TAPS, GRAD, F32=False):
     """The integer hash's 1-3-D value kernel without a period, block by block, reading either layout in place.
 
@@ -942,7 +969,8 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
     amps, phase, shift, left, coef, keys, mult, absval, reach)``, where ``src`` is
     C-contiguous ``(N, DIM)`` rows or, with ``cols``, ``(DIM, N)`` columns
     (float32 or float64, widened as read), and the kernel fills ``out[lo:hi]``
-    (so threads share one call's arrays without slicing the columns). Per
+    (so threads share one call's arrays without slicing the columns), and
+    ``buffers`` its working arrays (:func:`block_buffers`). Per
     block of :data:`BLOCK` points: the coordinates (:func:`_block_load`),
     each axis's set-up (:func:`_block_axis`), then :func:`_make_int_fast`'s
     corner loops; every loop runs over the block from index 0, which LLVM
@@ -955,21 +983,15 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
     UNIT = FT(1.0 if F32 else _TO_UNIT)  # the float32 arithmetic's 2**-31 joins the amplitude (:func:`_lerp_corners`)
 
     @nb.njit(cache=True, nogil=True)
-    def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach):
+    def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach, buffers):
         """Lattice noise with the integer hash at scattered points, 1-3-D values without a period."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
         flat = src.reshape(-1)
-        X = np.empty((DIM, BLOCK), src.dtype if F32 else np.float64)
-        TF, JJ = np.empty((DIM, BLOCK), FT), np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
-        W = np.empty((DIM, TAPS, BLOCK), FT)
-        R = np.empty((DIM, TAPS, BLOCK), FT)  # (read by value noise too, unused: plain Python's indices stay in range)
-        M = np.empty((DIM, TAPS, BLOCK), np.uint32)
-        T = np.empty(BLOCK, FT)
-        ACC = np.empty((ncomp, BLOCK), FT)
+        X, TF, JJ, W, R, M, T, ACC = buffers  # (R is read by value noise too, unused)
         bad = 0
         for p0 in range(lo, hi, BLOCK):
-            m = min(BLOCK, hi - p0)
+            m = hi - p0 if hi - p0 < BLOCK else BLOCK
             _block_load(src, flat, cols, p0, m, X, DIM)
             fast = F32 and _reach32(X, m, reach, DIM)
             for o in range(noct):
@@ -1119,17 +1141,16 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
     C = 2 if DIM > 2 else 0
 
     @nb.njit(cache=True, nogil=True)
-    def int_two_taps(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach):
+    def int_two_taps(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach,
+                     buffers):
         """Lattice noise with the integer hash at scattered points, 1-3-D values of a 2-tap kernel."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
         flat = src.reshape(-1)
-        X = np.empty((DIM, BLOCK), src.dtype if F32 else np.float64)
-        TT, JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), FT), np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
-        ACC = np.empty((ncomp, BLOCK), FT)
+        X, TT, JJ, ACC = buffers
         bad = 0
         for p0 in range(lo, hi, BLOCK):
-            m = min(BLOCK, hi - p0)
+            m = hi - p0 if hi - p0 < BLOCK else BLOCK
             _block_load(src, flat, cols, p0, m, X, DIM)
             fast = F32 and _reach32(X, m, reach, DIM)
             for o in range(noct):
@@ -1234,28 +1255,24 @@ def _make_table_block(TAPS, GRAD):
 
     The bits of :func:`_make_points` for ``DIM`` 3 (its corner sums in its nested order) with the arguments of
     :func:`_make_int_block` less the hash's: ``(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef,
-    H2, TL, absval)``, ``H2`` and ``TL`` the folded tables of :func:`pair_tables` (values, or ``GRAD``
+    H2, TL, absval, buffers)``, ``H2`` and ``TL`` the folded tables of :func:`pair_tables` (values, or ``GRAD``
     gradients). Per block of :data:`BLOCK` points: the coordinates (:func:`_block_load`), each axis's set-up
     (:func:`_table_axis`, vectorised across points), then per point the corner sum from 4 (2 taps) or 16
     (4 taps) pair-table reads.
     """
 
     @nb.njit(cache=True, nogil=True)
-    def table_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, H2, TL, absval):
+    def table_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, H2, TL, absval, buffers):
         """Lattice noise with the table hash at scattered 3-D points, values (as :func:`_make_points`)."""
         ncomp = H2.shape[0]
         noct = freqs.shape[0]
         n = (TL.shape[1] // 2 - 4) // 2  # the table size n, from the folded tables' run 2 (2n + 4)
         un = _U64(n)
         flat = src.reshape(-1)
-        X = np.empty((3, BLOCK))
-        W = np.empty((3, TAPS, BLOCK))
-        R = np.empty((3, TAPS, BLOCK) if GRAD else (3, 1, 1))
-        J = np.empty((3, TAPS, BLOCK), np.int64)
-        ACC = np.empty((ncomp, BLOCK))
+        X, W, R, J, ACC = buffers
         bad = 0
         for p0 in range(lo, hi, BLOCK):
-            m = min(BLOCK, hi - p0)
+            m = hi - p0 if hi - p0 < BLOCK else BLOCK
             _block_load(src, flat, cols, p0, m, X, 3)
             for c in range(ncomp):
                 for i in range(m):
@@ -1605,7 +1622,8 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
 
     @nb.njit(cache=True, nogil=True)
     def grid_rows(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2,
-                  scales, batch_start, absval, perm, n, values, grads, mult2, out64, out32):
+                  scales, batch_start, absval, perm, n, values, grads, mult2, out64, out32, ring, tag, plane, tmp, acc,
+                  gsum):
         """All octaves of one output component on a 2-D or 3-D grid window: ``out64`` or ``out32`` (N0, N1 * N2),
         written.
 
@@ -1625,7 +1643,8 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         ``absval`` is then summed in place, as :func:`final_pass_direct`
         does), else ``out32``; the other is empty (:func:`out_pair`): one
         specialisation serves both dtypes (a second dtype used to compile the
-        kernel again, 1.5-2 s).
+        kernel again, 1.5-2 s). ``ring`` ... ``gsum``: the call's working
+        rows (:func:`grid_rows_buffers`).
         """
         dim = DIM
         noct = shapes.shape[0]
@@ -1636,22 +1655,9 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         nterm = dim if GRAD else 1
         post = n1 * n2
         ng = grads.shape[0]
-        l1m = 1
-        l2m = 1
-        for o in range(noct):
-            if shapes[o, 1] > l1m:
-                l1m = shapes[o, 1]
-            if shapes[o, 2] > l2m:
-                l2m = shapes[o, 2]
-        ring = np.empty((noct, nterm, taps, post))
-        tag = np.empty((noct, taps), np.int64)
         for o in range(noct):
             for s in range(taps):
                 tag[o, s] = -1
-        plane = np.empty(l1m * l2m * nterm)  # a lattice row's values, or its gradients' components side by side
-        tmp = np.empty((nterm, l1m * n2))
-        acc = np.empty(post)
-        gsum = np.empty(post)
         for j in range(n0):
             for o in range(noct):
                 l1 = shapes[o, 1]
@@ -1836,6 +1842,24 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                             out32[j, q] += acc[q]
 
     return grid_rows
+
+def grid_rows_buffers(shapes, taps, nterm, n1, n2):
+    """The working rows of one call of the fused grid kernel (:func:`_make_grid_rows`), its last six arguments.
+
+    Per octave a ring of ``taps`` lattice rows contracted over axes 1 and 2
+    (``nterm`` terms: 1, or the gradient basis's d) and their row tags; one
+    lattice row's hashed plane and its contraction along the last axis; the
+    output row's sums. Allocated by the caller (numpy) rather than in the
+    kernel: its ``np.empty`` calls compiled four numba specialisations of
+    their own, 0.2-0.3 s of a first grid's 2.3-2.8 s (``bench_coldstart.md``).
+    """
+    noct = shapes.shape[0]
+    l1m, l2m = int(shapes[:, 1].max()), int(shapes[:, 2].max())
+    post = n1 * n2
+    tag = np.empty((noct, taps), np.int64)  # the lattice row in each ring slot, set by the kernel
+    return (np.empty((noct, nterm, taps, post)), tag, np.empty(l1m * l2m * nterm), np.empty((nterm, l1m * n2)),
+            np.empty(post), np.empty(post))
+
 
 _GRID_ROWS = {}
 

@@ -171,22 +171,25 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f
                        if fast else [0, 0]).view(np.uint32)
     # 2-tap kernels: every point's taps in registers (the float32 arithmetic's lerps: those whose weights sum to 1)
     if k.taps == 2 and (not f32 or np.array_equal(k.coef[0] + k.coef[1], np.eye(1, k.coef.shape[1])[0])):
-        kernel = jit.int_two_taps_kernel(noise.dim_in, gradient, f32)
+        kernel, kind = jit.int_two_taps_kernel(noise.dim_in, gradient, f32), "two"
     else:
-        kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient, f32)
+        kernel, kind = jit.int_block_kernel(noise.dim_in, k.taps, gradient, f32), "int"
     rest = (freqs, np.ascontiguousarray(amps, dtype=np.float64), noise.phase, k.shift, k.left, coef, noise.keys,
             noise._mult, bool(absval), reach)
-    return _in_ranges(kernel, src, cols, out, rest, workers, min_block)
+    buffers = (kind, noise.dim_in, k.taps, noise.dim_out, gradient, f32, src.dtype)
+    return _in_ranges(kernel, src, cols, out, rest, buffers, workers, min_block)
 
 
-def _in_ranges(kernel, src, cols, out, rest, workers, min_block):
-    """A block kernel ``kernel(src, cols, lo, hi, outputs, *rest)`` over ``workers`` contiguous ranges of the
-    points (at least ``min_block`` each), on pooled threads; the sum of their counts of NaN fractions."""
+def _in_ranges(kernel, src, cols, out, rest, buffers, workers, min_block):
+    """A block kernel ``kernel(src, cols, lo, hi, outputs, *rest, working arrays)`` over ``workers`` contiguous
+    ranges of the points (at least ``min_block`` each), on pooled threads, each range with working arrays of its
+    own (``buffers``: the arguments of :func:`._jit.block_buffers`); the sum of their counts of NaN fractions."""
     npts = out.shape[0]
     n = min(workers, max(1, npts // min_block))
     bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
     outs = jit.out_pair(out)
-    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], outs, *rest), zip(bounds[:-1], bounds[1:]), n))
+    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], outs, *rest, jit.block_buffers(*buffers)),
+                          zip(bounds[:-1], bounds[1:]), n))
 
 
 _FOLDED = {}  # the last few folded tables, keyed by the tables' bytes (building them: 0.6 ms for n = 256)
@@ -214,7 +217,8 @@ def _run_table(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
     kernel = jit.table_block_kernel(k.taps, gradient)
     rest = ((np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
              noise.phase, k.shift, k.left, k.coef) + _folded(noise, gradient) + (bool(absval),))
-    return _in_ranges(kernel, src, cols, out, rest, workers, min_block)
+    buffers = ("table", 3, k.taps, noise.dim_out, gradient)
+    return _in_ranges(kernel, src, cols, out, rest, buffers, workers, min_block)
 
 
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
