@@ -93,7 +93,7 @@ def test_the_block_kernel_runs_as_plain_python_with_the_same_bits(gradient):
            jit.block_buffers("table", 3, 2, 2, gradient))
         outs.append(out)
     ref = np.empty((300, 2))   # the per-point kernel on the same arguments
-    jit.points_kernel(False, 3, 2, False, False, gradient)(x, ref, freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef,
+    jit.points_kernel(False, 3, 2, False, False)(x, ref, freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef,
                                                  k.dcoef, noise.period, noise._pmask, noise.perms, noise.values,
                                                  noise.gradients, int(gradient), False)
     for out in outs:
