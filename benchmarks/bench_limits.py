@@ -263,8 +263,8 @@ def measure(repeats):
     direct = (np.ones((1, 3)), np.array([table.scale]), table.phase, kt.shift, kt.left, kt.coef,
               *pair_tables(table.perms, table.values), False)
     out2 = np.empty((NPTS, 1))
-    outs2, bufs2 = _jit.out_pair(out2), _jit.block_buffers("table", 3, 2, 1)
-    kernel(pts, False, 0, NPTS, outs2, *direct, bufs2)
+    pair, outs2, bufs2 = _jit.points_pair(pts), _jit.out_pair(out2), _jit.block_buffers("table", 3, 2, 1)
+    kernel(pair, False, 0, NPTS, outs2, *direct, bufs2)
     if not (np.array_equal(out2[:, 0], table(pts)) and points_path._pairs(table, NPTS, False)):
         raise AssertionError("table-kernel is no longer the kernel noiselab runs: update it beside the engine")
     cols = np.ascontiguousarray(pts32.T)
@@ -280,7 +280,7 @@ def measure(repeats):
         "floor32": lambda: np.full(NPTS, 0.5, np.float32),
         "table": lambda: table(pts),
         "lookups": lambda: table_lookups(pts, h2, vl, out64),
-        "table-kernel": lambda: kernel(pts, False, 0, NPTS, outs2, *direct, bufs2),
+        "table-kernel": lambda: kernel(pair, False, 0, NPTS, outs2, *direct, bufs2),
         "table-setup": lambda: table_setup(pts, np.ones(3), table.phase, kt.shift, kt.left, kt.coef,
                                            table.table_size, out64),
         "table-gradient": lambda: gradient(pts),
@@ -323,8 +323,9 @@ def measure_f32(repeats):
             reach = np.float32([2.0 ** -126, 2.0 ** 31]).view(np.uint32)   # as points_path._run_block sets it
             res = _jit.out_pair(res)
             bufs = _jit.block_buffers("two", 3, 2, 1, False, True, np.float32)
-            cands["kernel"] = lambda: kern(pts32, False, 0, NPTS, res, *rest, reach, bufs)
-            cands["kernel64"] = lambda: kern(pts32, False, 0, NPTS, res, *rest, np.zeros(2, np.uint32), bufs)
+            src32 = _jit.points_pair(pts32)
+            cands["kernel"] = lambda: kern(src32, False, 0, NPTS, res, *rest, reach, bufs)
+            cands["kernel64"] = lambda: kern(src32, False, 0, NPTS, res, *rest, np.zeros(2, np.uint32), bufs)
             cands["minimal"] = lambda: int_minimal(cols[0], cols[1], cols[2], np.uint32(noise.keys[0]), o1)
             cands["floor32"] = lambda: np.full(NPTS, 0.5, np.float32)
         out[(kname, basis, peer)] = interleaved(cands, repeats=repeats, timer=time.thread_time)

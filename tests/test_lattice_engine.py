@@ -296,3 +296,9 @@ def test_float32_points_read_in_place_give_the_bits_of_their_float64_copy(dim):
         np.testing.assert_array_equal(np.signbit(got), np.signbit(want))
         np.testing.assert_array_equal(noise(np.ascontiguousarray(x.T), axis=0, workers=2), noise(x))
         assert noise(x).dtype == np.float32
+    # one compiled specialisation of each block kernel reads both dtypes (a float32 call after a float64 one
+    # compiled it again: 1.3-2.2 s)
+    from noiselab.lattice import _jit
+
+    assert len(_jit.int_block_kernel(dim, 4, False).signatures) == 1
+    assert len(_jit.int_two_taps_kernel(dim, True).signatures) == 1

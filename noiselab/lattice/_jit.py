@@ -798,19 +798,31 @@ _TWO31 = np.float32(2147483648.0)  # 2**31: float32 lattice indices below it con
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _block_load(src, flat, cols, p0, m, X, DIM):
-    """The block's coordinates as rows ``X[a, :m]`` (float64, or the points' own dtype), from ``(N, DIM)`` rows or
-    ``(DIM, N)`` columns.
+def _block_load(src, cols, p0, m, X, DIM):
+    """The block's coordinates as rows ``X[a, :m]`` (float64, or the points' own dtype), from the ``(float64,
+    float32)`` pair of :func:`points_pair`: ``N`` points as rows ``(N, DIM)`` or, with ``cols``, columns
+    ``(DIM, N)``, raveled.
 
-    Every index here is a loop counter from 0 over a slice of the block: an
-    index computed as ``p0 + i`` (which numba must check for a negative
-    value) kept LLVM from vectorising these loops (about 2.5 ms more on 1e6
-    3-D points). Rows are read through ``flat`` (``src`` raveled) at the
-    compile-time stride ``DIM``.
+    Both dtypes' loads are compiled, one read: a float32 call after a float64
+    one no longer compiles the kernel again (1.3-2.2 s each). Every index here
+    is a loop counter from 0 over a slice of the block: an index computed as
+    ``p0 + i`` (which numba must check for a negative value) kept LLVM from
+    vectorising these loops (about 2.5 ms more on 1e6 3-D points). Rows are
+    read at the compile-time stride ``DIM``.
     """
+    src64, src32 = src
+    if src32.shape[0] > 0:
+        _load_rows(src32, src32.shape[0] // DIM, cols, p0, m, X, DIM)
+    else:
+        _load_rows(src64, src64.shape[0] // DIM, cols, p0, m, X, DIM)
+
+
+@nb.njit(cache=True, nogil=True, inline="always")
+def _load_rows(flat, n, cols, p0, m, X, DIM):
+    """:func:`_block_load` from one raveled array of ``n`` points."""
     if cols:
         for a in range(DIM):
-            xs = src[a, p0:p0 + m]
+            xs = flat[a * n + p0:a * n + p0 + m]
             Xa = X[a]
             for i in range(m):
                 Xa[i] = xs[i]
@@ -819,6 +831,15 @@ def _block_load(src, flat, cols, p0, m, X, DIM):
         for i in range(m):
             for a in range(DIM):
                 X[a, i] = xs[i * DIM + a]
+
+
+def points_pair(src):
+    """C-contiguous points (rows or columns) as the block kernels take them: ``(float64 raveled, float32 raveled)``,
+    the other dtype's empty (:func:`_block_load`)."""
+    flat = src.reshape(-1)
+    if flat.dtype == np.float64:
+        return flat, np.empty(0, np.float32)
+    return np.empty(0), flat
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
@@ -966,9 +987,9 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
 
     The bits of :func:`_make_int_fast` (the same operations in the same order
     for every point) with its own arguments: ``(src, cols, lo, hi, out, freqs,
-    amps, phase, shift, left, coef, keys, mult, absval, reach)``, where ``src`` is
-    C-contiguous ``(N, DIM)`` rows or, with ``cols``, ``(DIM, N)`` columns
-    (float32 or float64, widened as read), and the kernel fills ``out[lo:hi]``
+    amps, phase, shift, left, coef, keys, mult, absval, reach, buffers)``, where
+    ``src`` holds C-contiguous ``(N, DIM)`` rows or, with ``cols``, ``(DIM, N)``
+    columns (float32 or float64, widened as read: :func:`points_pair`), and the kernel fills ``out[lo:hi]``
     (so threads share one call's arrays without slicing the columns), and
     ``buffers`` its working arrays (:func:`block_buffers`). Per
     block of :data:`BLOCK` points: the coordinates (:func:`_block_load`),
@@ -987,12 +1008,11 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
         """Lattice noise with the integer hash at scattered points, 1-3-D values without a period."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
-        flat = src.reshape(-1)
         X, TF, JJ, W, R, M, T, ACC = buffers  # (R is read by value noise too, unused)
         bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = hi - p0 if hi - p0 < BLOCK else BLOCK
-            _block_load(src, flat, cols, p0, m, X, DIM)
+            _block_load(src, cols, p0, m, X, DIM)
             fast = F32 and _reach32(X, m, reach, DIM)
             for o in range(noct):
                 for a in range(DIM):
@@ -1146,12 +1166,11 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
         """Lattice noise with the integer hash at scattered points, 1-3-D values of a 2-tap kernel."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
-        flat = src.reshape(-1)
         X, TT, JJ, ACC = buffers
         bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = hi - p0 if hi - p0 < BLOCK else BLOCK
-            _block_load(src, flat, cols, p0, m, X, DIM)
+            _block_load(src, cols, p0, m, X, DIM)
             fast = F32 and _reach32(X, m, reach, DIM)
             for o in range(noct):
                 amp = FT(amps[o]) * FT(_TO_UNIT if F32 and not GRAD else 1.0)  # (:func:`_lerp_corners`)
@@ -1268,12 +1287,11 @@ def _make_table_block(TAPS, GRAD):
         noct = freqs.shape[0]
         n = (TL.shape[1] // 2 - 4) // 2  # the table size n, from the folded tables' run 2 (2n + 4)
         un = _U64(n)
-        flat = src.reshape(-1)
         X, W, R, J, ACC = buffers
         bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = hi - p0 if hi - p0 < BLOCK else BLOCK
-            _block_load(src, flat, cols, p0, m, X, 3)
+            _block_load(src, cols, p0, m, X, 3)
             for c in range(ncomp):
                 for i in range(m):
                     ACC[c, i] = 0.0

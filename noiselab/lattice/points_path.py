@@ -188,7 +188,8 @@ def _in_ranges(kernel, src, cols, out, rest, buffers, workers, min_block):
     n = min(workers, max(1, npts // min_block))
     bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
     outs = jit.out_pair(out)
-    return sum(map_blocks(lambda ab: kernel(src, cols, ab[0], ab[1], outs, *rest, jit.block_buffers(*buffers)),
+    pair = jit.points_pair(src)
+    return sum(map_blocks(lambda ab: kernel(pair, cols, ab[0], ab[1], outs, *rest, jit.block_buffers(*buffers)),
                           zip(bounds[:-1], bounds[1:]), n))
 
 
