@@ -3,6 +3,12 @@
 Run from the repository root::
 
     python benchmarks/bench_coldstart.py [--paths points3 grid2 fbm2 int32] [--runs 1] [--kernels] [--speed 7]
+    python benchmarks/bench_coldstart.py --against <checkout of the last release> --runs 7
+
+``--against``: each cold first call is timed with this tree and with
+another checkout, interleaved run by run (the order alternating), so that
+both columns see the same machine: on a shared machine the spread of one
+path's cold time is 0.5-1.5 s, more than most changes to it.
 
 Writes ``benchmarks/bench_coldstart.md`` beside this script. Each case runs
 in a fresh Python process (``import noiselab`` included) and is measured as
@@ -24,6 +30,7 @@ import os
 import resource
 import shlex
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -150,19 +157,50 @@ def compile_times(code, cache_dir):
     return [(float(line.split()[1]), line.split()[2]) for line in proc.stdout.splitlines() if line.startswith("COMPILE")]
 
 
-def run_child(code, cache_dir):
-    """CPU seconds (user + system) of one fresh process running ``code``, and its specialisation count."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(SOURCE), NUMBA_NUM_THREADS="1",
+def run_child(code, cache_dir, root=None):
+    """CPU seconds (user + system) of one fresh process running ``code`` with the noiselab of ``root`` (default
+    :data:`SOURCE`), and its specialisation count."""
+    root = SOURCE if root is None else root
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir), PYTHONPATH=str(root), NUMBA_NUM_THREADS="1",
                OMP_NUM_THREADS="1")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     proc = subprocess.run([sys.executable, "-c", "import numpy as np\nimport noiselab as nl\n" + code + COUNT],
-                          env=env, cwd=SOURCE, capture_output=True, text=True)
+                          env=env, cwd=root, capture_output=True, text=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode:
         raise RuntimeError(f"child failed:\n{proc.stderr}")
     spec = int(proc.stdout.split("SPECIALISATIONS")[-1])
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     return cpu, spec
+
+
+def cold_cpu(code, root):
+    """CPU seconds of one cold process (a new empty numba cache) running ``code`` with ``root``'s noiselab."""
+    cache = Path(tempfile.mkdtemp(prefix="nl-cold-"))
+    try:
+        return run_child(code, cache, root)[0]
+    finally:
+        shutil.rmtree(cache, ignore_errors=True)
+
+
+def side_by_side(args, info, other):
+    """``--against``: the cold first calls of this tree and of ``other``, interleaved run by run; Markdown lines."""
+    roots = [SOURCE, other]
+    rows = []
+    for key in args.paths:
+        times = {root: [] for root in roots}
+        for i in range(args.runs):
+            for root in (roots if i % 2 == 0 else roots[::-1]):
+                times[root].append(cold_cpu(PATHS[key][1], root))
+        cells = [f"{statistics.median(t):.2f} ({min(t):.2f}-{max(t):.2f})" for t in times.values()]
+        rows.append([PATHS[key][0]] + cells)
+        print(key, *cells, flush=True)
+    lines = [f"# Time to a first result, side by side{(' (' + args.label + ')') if args.label else ''}", ""]
+    lines += header_lines(info)
+    lines += ["", f"CPU seconds (user + system) of a fresh process with an empty numba cache: `import noiselab`, "
+              f"then the call; the median (and range) of {args.runs} runs of each tree, interleaved run by run.", ""]
+    lines += markdown_table(["first call", "this tree", f"`{other.name}`"], rows, "lrr")
+    return lines
 
 
 def main(argv=None):
@@ -176,12 +214,18 @@ def main(argv=None):
     parser.add_argument("--label", default="", help="a note for the table's title (e.g. before/after)")
     parser.add_argument("--root", default=str(ROOT),
                         help="the checkout whose noiselab the children import (default: this one)")
+    parser.add_argument("--against", metavar="ROOT",
+                        help="another checkout: time each cold call with both trees, interleaved run by run")
     parser.add_argument("--output", default=str(Path(__file__).with_suffix(".md")), help="Markdown file to write")
     args = parser.parse_args(argv)
     global SOURCE
     SOURCE = Path(args.root).resolve()
     command = "python benchmarks/bench_coldstart.py " + shlex.join(argv if argv is not None else sys.argv[1:])
     info = run_info(command.strip())
+    if args.against:
+        Path(args.output).write_text("\n".join(side_by_side(args, info, Path(args.against).resolve())) + "\n")
+        print(f"wrote {args.output}")
+        return
     base = run_child("", Path(tempfile.mkdtemp(prefix="nl-cold-")))[0]  # `import noiselab` alone
     rows = []
     for key in args.paths:
