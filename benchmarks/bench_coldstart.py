@@ -48,6 +48,12 @@ PATHS = {
     "points3": ("`LatticeNoise(3)(pts)`, 1e5 random 3-D points",
                 "pts = np.random.default_rng(0).random((100_000, 3)) * 32\n"
                 "nl.LatticeNoise(3)(pts)"),
+    "points2": ("`LatticeNoise(2)(pts)`, 1e5 random 2-D points",
+                "pts = np.random.default_rng(0).random((100_000, 2)) * 32\n"
+                "nl.LatticeNoise(2)(pts)"),
+    "jacobian3": ("`LatticeNoise(3).jacobian(pts)`, 1e3 random 3-D points",
+                  "pts = np.random.default_rng(0).random((1000, 3)) * 32\n"
+                  "nl.LatticeNoise(3).jacobian(pts)"),
     "grid2": ("`LatticeNoise(2).grid((512, 512), [(0, 32), (0, 32)])`",
               "nl.LatticeNoise(2).grid((512, 512), [(0, 32), (0, 32)])"),
     "fbm2": ("`fractal_sum(LatticeNoise(2), Grid((512, 512), ((0, 32), (0, 32))), octaves=6)`",

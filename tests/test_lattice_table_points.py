@@ -95,7 +95,8 @@ def test_the_block_kernel_runs_as_plain_python_with_the_same_bits(gradient):
     ref = np.empty((300, 2))   # the per-point kernel on the same arguments
     jit.points_kernel(False, 3, 2, False, False)(x, ref, freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef,
                                                  k.dcoef, noise.period, noise._pmask, noise.perms, noise.values,
-                                                 noise.gradients, int(gradient), False)
+                                                 noise.gradients, int(gradient), False,
+                                                 jit.point_buffers("table", 3, 2, 2))
     for out in outs:
         np.testing.assert_array_equal(out, ref)
     assert np.ptp(ref) > 0.3

@@ -203,7 +203,7 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC):
 
     @nb.njit(cache=True, nogil=True)
     def eval_points(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
-                    perms, values, grads, basis, absval):
+                    perms, values, grads, basis, absval, buffers):
         """Evaluate (fractal sums of) lattice noise, and with ``DERIV`` its Jacobian, at scattered points.
 
         Parameters
@@ -227,6 +227,7 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC):
         grads : (n, d) float64 unit gradients (gradient basis only)
         basis : 0 value noise, 1 gradient noise
         absval : sum |octave| (turbulence) instead of octave
+        buffers : the working arrays, :func:`point_buffers` ``("table", ...)``
 
         ``taps`` is ignored (``TAPS`` is compiled in). Dimensions 1 to 3 have
         nested neighbour loops of constant trip count (LLVM unrolls them);
@@ -249,18 +250,7 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC):
         nmask = n - 1 if (n & (n - 1)) == 0 else -1
         noct = freqs.shape[0]
         nq = d + 1 if DERIV else 1  # the value, then (DERIV) one derivative per axis
-        w = np.empty((d, 4))
-        r = np.empty((d, 4))
-        jj = np.empty((d, 4), np.int64)
-        cnt = np.zeros(d, np.int64)
-        hs = np.zeros(d + 1, np.int64)
-        par = np.zeros(d + 1, np.int64)
-        prod = np.ones(d + 1)
-        if DERIV:  # (the value kernel allocates, and compiles, none of these)
-            dw = np.empty((d, 4))
-            dprod = np.zeros((d + 1, d))
-            D = np.zeros(d)
-        acc = np.empty((ncomp, nq))  # zeroed per point
+        w, r, jj, cnt, hs, par, prod, dw, dprod, D, acc = buffers  # (acc zeroed per point)
         vals0 = values[0]
         vals1 = values[1]
         for p in range(npts):
@@ -458,7 +448,7 @@ def _make_int_points(DIM, TAPS, DERIV, PERIODIC):
 
     @nb.njit(cache=True, nogil=True)
     def int_points(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
-                   keys, mult, grads, basis, absval):
+                   keys, mult, grads, basis, absval, buffers):
         """Lattice noise with the integer hash (and with ``DERIV`` its Jacobian) at scattered points.
 
         Any dimension; octaves fused. ``pts`` (N, d) float64; ``out`` written:
@@ -467,7 +457,8 @@ def _make_int_points(DIM, TAPS, DERIV, PERIODIC):
         input axis); ``keys`` (C,) uint32 per component; ``mult`` (d,) uint32
         odd multipliers; ``grads`` (L, d) the gradient set
         (:func:`._inthash.gradient_set`). The other arguments are those of
-        the table hash's kernel (:func:`_make_points`; ``dcoef`` is read only with ``DERIV``).
+        the table hash's kernel (:func:`_make_points`; ``dcoef`` is read only with ``DERIV``;
+        ``buffers``: :func:`point_buffers` ``("int", ...)``).
 
         Per chunk and octave: each axis's weights and hashed tap offsets
         ``M[a, k] = ((j + k) mod period) * M_a`` (uint32); then the corners in
@@ -484,22 +475,9 @@ def _make_int_points(DIM, TAPS, DERIV, PERIODIC):
         n = grads.shape[0]
         noct = freqs.shape[0]
         nq = d + 1 if DERIV else 1  # the value, then (DERIV) one derivative per axis
-        W = np.empty((d, TAPS, CHUNK))
-        if DERIV:
-            DW = np.empty((d, TAPS, CHUNK))
-            V = np.empty(CHUNK)  # the corner's values (value basis)
-        else:
-            DW = np.empty((1, 1, 1))  # not read
-        R = np.empty((d, TAPS, CHUNK))
-        M = np.empty((d, TAPS, CHUNK), np.uint32)
-        HP = np.empty((d + 1, CHUNK), np.uint32)
-        WP = np.empty((d + 1, CHUNK))
-        DP = np.empty((d, CHUNK))
-        T = np.empty((nq, CHUNK))
-        ACC = np.empty((ncomp, nq, CHUNK))
-        cnt = np.zeros(d, np.int64)
+        W, DW, V, R, M, HP, WP, DP, T, ACC, cnt = buffers  # (DW, V: derivatives only; V the corner's values)
         for p0 in range(0, npts, CHUNK):
-            m = min(CHUNK, npts - p0)
+            m = npts - p0 if npts - p0 < CHUNK else CHUNK
             for o in range(noct):
                 for a in range(d):
                     _axis_setup(pts, p0, m, a, freqs[o, a], phase[a], shift, left, TAPS, coef, dcoef, period[a],
@@ -714,20 +692,14 @@ def _make_int_fast(DIM, TAPS, GRAD, PERIODIC):
 
     @nb.njit(cache=True, nogil=True)
     def int_fast(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
-                 keys, mult, grads, basis, absval):
+                 keys, mult, grads, basis, absval, buffers):
         """Lattice noise with the integer hash at scattered points, 1-3-D values (as :func:`_make_int_points`)."""
         npts = pts.shape[0]
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
-        W = np.empty((DIM, TAPS, CHUNK))
-        DW = np.empty((1, 1, 1))  # not read
-        R = np.empty((DIM, TAPS, CHUNK))
-        M = np.empty((DIM, TAPS, CHUNK), np.uint32)
-        U = np.empty(CHUNK)
-        T = np.empty(CHUNK)
-        ACC = np.empty((ncomp, CHUNK))
+        W, DW, R, M, U, T, ACC = buffers  # :func:`point_buffers` ``("fast", ...)`` (DW not read)
         for p0 in range(0, npts, CHUNK):
-            m = min(CHUNK, npts - p0)
+            m = npts - p0 if npts - p0 < CHUNK else CHUNK
             for o in range(noct):
                 for a in range(DIM):
                     if PERIODIC or not _split(pts, p0, m, a, freqs[o, a], phase[a], shift, left, TAPS, coef, mult[a],
@@ -1327,6 +1299,39 @@ def _make_table_block(TAPS, GRAD):
         return bad
 
     return table_block
+
+
+def point_buffers(kind, dim, taps, ncomp, deriv=False):
+    """The working arrays of one call of a per-point kernel, its last argument.
+
+    ``kind``: ``"table"`` (:func:`_make_points`: each axis's weights, ramps
+    and taps, the corner odometer, each level's hash, parity and weight
+    product, with ``deriv`` the derivatives' products, a point's sums),
+    ``"int"`` (:func:`_make_int_points`, per chunk of :data:`CHUNK`
+    points: each axis's weights (and derivatives), the corner's values, the
+    ramps and hashed taps, each level's prefix word and weight product, the
+    derivative products, the sums, the odometer) or ``"fast"``
+    (:func:`_make_int_fast`). Allocated by the caller (numpy), with the zeros
+    and ones the kernels start from: allocating them in the kernel compiled
+    numba's ``np.empty`` / ``np.zeros`` / ``np.ones`` for each shape and
+    dtype on a first call, 0.5 s CPU of a first 2-D call and 1.1 s of a first
+    Jacobian (``benchmarks/bench_coldstart.md``).
+    """
+    d, nq = dim, dim + 1 if deriv else 1
+    if kind == "table":
+        extra = (np.empty((d, 4)), np.zeros((d + 1, d)), np.zeros(d)) if deriv else \
+            (np.empty((0, 4)), np.zeros((0, d)), np.zeros(0))
+        return (np.empty((d, 4)), np.empty((d, 4)), np.empty((d, 4), np.int64), np.zeros(d, np.int64),
+                np.zeros(d + 1, np.int64), np.zeros(d + 1, np.int64), np.ones(d + 1)) + extra + \
+            (np.empty((ncomp, nq)),)
+    per_tap = (d, taps, CHUNK)
+    if kind == "fast":
+        return (np.empty(per_tap), np.empty((1, 1, 1)), np.empty(per_tap), np.empty(per_tap, np.uint32),
+                np.empty(CHUNK), np.empty(CHUNK), np.empty((ncomp, CHUNK)))
+    return (np.empty(per_tap), np.empty(per_tap if deriv else (1, 1, 1)), np.empty(CHUNK if deriv else 1),
+            np.empty(per_tap), np.empty(per_tap, np.uint32), np.empty((d + 1, CHUNK), np.uint32),
+            np.empty((d + 1, CHUNK)), np.empty((d, CHUNK)), np.empty((nq, CHUNK)), np.empty((ncomp, nq, CHUNK)),
+            np.zeros(d, np.int64))
 
 
 _POINTS = {}

@@ -231,12 +231,17 @@ def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv:  # the same bits, vectorised
         # float32 points read in place (each coordinate widened to float64 as it is read: the same values,
         # without a float64 copy of the points; 1e6 3-D points: benchmarks/bench_lattice_paths.md)
-        kernel = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, gradient, _periodic(noise))
-        run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval), workers)
-        return
-    flat = flat.astype(np.float64, copy=False)  # the other kernels are compiled for float64 points only
-    kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv, _periodic(noise))
-    run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval), workers)
+        kernel, kind = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, gradient, _periodic(noise)), "fast"
+    else:
+        flat = flat.astype(np.float64, copy=False)  # the other kernels are compiled for float64 points only
+        kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv, _periodic(noise))
+        kind = "int" if noise.hash == "integer" else "table"
+    shape = (kind, noise.dim_in, noise.kernel.taps, noise.dim_out, deriv)
+
+    def block(points, part, *rest):  # each block (thread) with working arrays of its own
+        return kernel(points, part, *rest, jit.point_buffers(*shape))
+
+    run_split(block, flat, out, kernel_args(noise, freqs, amps, absval), workers)
 
 
 def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", workers=1, f32=False):
