@@ -775,8 +775,8 @@ def _block_load(src, cols, p0, m, X, DIM):
     float32)`` pair of :func:`points_pair`: ``N`` points as rows ``(N, DIM)`` or, with ``cols``, columns
     ``(DIM, N)``, raveled.
 
-    Both dtypes' loads are compiled, one read: a float32 call after a float64
-    one no longer compiles the kernel again (1.3-2.2 s each). Every index here
+    Both dtypes' loads are compiled and one of them runs: a float32 call after
+    a float64 one no longer compiles the kernel again (1.3-2.2 s each). Every index here
     is a loop counter from 0 over a slice of the block: an index computed as
     ``p0 + i`` (which numba must check for a negative value) kept LLVM from
     vectorising these loops (about 2.5 ms more on 1e6 3-D points). Rows are
@@ -980,7 +980,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False):
         """Lattice noise with the integer hash at scattered points, 1-3-D values without a period."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
-        X, TF, JJ, W, R, M, T, ACC = buffers  # (R is read by value noise too, unused)
+        X, TF, JJ, W, R, M, T, ACC = buffers  # (R full size: value noise reads it too, unused, in plain Python)
         bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = hi - p0 if hi - p0 < BLOCK else BLOCK
