@@ -263,8 +263,8 @@ def measure(repeats):
     direct = (np.ones((1, 3)), np.array([table.scale]), table.phase, kt.shift, kt.left, kt.coef,
               *pair_tables(table.perms, table.values), False)
     out2 = np.empty((NPTS, 1))
-    pair, outs2, bufs2 = _jit.points_pair(pts), _jit.out_pair(out2), _jit.block_buffers("table", 3, 2, 1)
-    kernel(pair, False, 0, NPTS, outs2, *direct, bufs2)
+    pair, outs2 = _jit.points_pair(pts), _jit.out_pair(out2)
+    kernel(pair, False, 0, NPTS, outs2, *direct)
     if not (np.array_equal(out2[:, 0], table(pts)) and points_path._pairs(table, NPTS, False)):
         raise AssertionError("table-kernel is no longer the kernel noiselab runs: update it beside the engine")
     cols = np.ascontiguousarray(pts32.T)
@@ -280,7 +280,7 @@ def measure(repeats):
         "floor32": lambda: np.full(NPTS, 0.5, np.float32),
         "table": lambda: table(pts),
         "lookups": lambda: table_lookups(pts, h2, vl, out64),
-        "table-kernel": lambda: kernel(pair, False, 0, NPTS, outs2, *direct, bufs2),
+        "table-kernel": lambda: kernel(pair, False, 0, NPTS, outs2, *direct),
         "table-setup": lambda: table_setup(pts, np.ones(3), table.phase, kt.shift, kt.left, kt.coef,
                                            table.table_size, out64),
         "table-gradient": lambda: gradient(pts),
@@ -317,15 +317,14 @@ def measure_f32(repeats):
             cands["fns"] = _fns_points(fns, getattr(fns.NoiseType, peer), pts32)
         if kname == "quintic" and basis == "value":  # where the time goes: the kernel alone, with either index
             k, res, o1 = noise.kernel, np.empty((NPTS, 1), np.float32), np.empty(NPTS, np.float32)
-            kern = _jit.int_two_taps_kernel(3, False, True)
+            kern = _jit.int_two_taps_kernel(3, False, True, True)
             rest = (np.ones((1, 3)), np.array([noise.scale]), noise.phase, k.shift, k.left,
                     k.coef.astype(np.float32), noise.keys, noise._mult, False)
             reach = np.float32([2.0 ** -126, 2.0 ** 31]).view(np.uint32)   # as points_path._run_block sets it
             res = _jit.out_pair(res)
-            bufs = _jit.block_buffers("two", 3, 2, 1, False, True, np.float32)
             src32 = _jit.points_pair(pts32)
-            cands["kernel"] = lambda: kern(src32, False, 0, NPTS, res, *rest, reach, bufs)
-            cands["kernel64"] = lambda: kern(src32, False, 0, NPTS, res, *rest, np.zeros(2, np.uint32), bufs)
+            cands["kernel"] = lambda: kern(src32, False, 0, NPTS, res, *rest, reach)
+            cands["kernel64"] = lambda: kern(src32, False, 0, NPTS, res, *rest, np.zeros(2, np.uint32))
             cands["minimal"] = lambda: int_minimal(cols[0], cols[1], cols[2], np.uint32(noise.keys[0]), o1)
             cands["floor32"] = lambda: np.full(NPTS, 0.5, np.float32)
         out[(kname, basis, peer)] = interleaved(cands, repeats=repeats, timer=time.thread_time)

@@ -260,11 +260,9 @@ def test_vectorised_point_kernel_gives_the_general_kernels_bits(dim):
                 args = points_path.kernel_args(n, freqs, amps, absval)
                 want = np.empty((len(x), 2))
                 got = np.empty((len(x), 2))
-                _jit.points_kernel(True, dim, n.kernel.taps, False, periodic).py_func(
-                    x, want, *args, _jit.point_buffers("int", dim, n.kernel.taps, 2))
+                _jit.points_kernel(True, dim, n.kernel.taps, False, periodic).py_func(x, want, *args)
                 if periodic:
-                    _jit.int_fast_kernel(dim, n.kernel.taps, basis == "gradient", True)(
-                        x, got, *args, _jit.point_buffers("fast", dim, n.kernel.taps, 2))
+                    _jit.int_fast_kernel(dim, n.kernel.taps, basis == "gradient", True)(x, got, *args)
                 else:
                     assert points_path._in_place(n, False)
                     assert points_path._run_block(n, x, got, freqs, amps, absval, 1) == 0

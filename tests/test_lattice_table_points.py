@@ -90,13 +90,13 @@ def test_the_block_kernel_runs_as_plain_python_with_the_same_bits(gradient):
     for fn, src, cols in ((kernel, x, False), (kernel.py_func, x, False), (kernel.py_func, x.T.copy(), True)):
         out = np.empty((300, 2))
         fn(jit.points_pair(src), cols, 0, 300, jit.out_pair(out), freqs, amps, noise.phase, k.shift, k.left, k.coef,
-           *tables, False, jit.block_buffers("table", 3, 2, 2, gradient))
+           *tables, False)
         outs.append(out)
     ref = np.empty((300, 2))   # the per-point kernel on the same arguments
     jit.points_kernel(False, 3, 2, False, False)(x, ref, freqs, amps, noise.phase, k.shift, k.left, k.taps, k.coef,
                                                  k.dcoef, noise.period, noise._pmask, noise.perms, noise.values,
                                                  noise.gradients, int(gradient), False,
-                                                 jit.point_buffers("table", 3, 2, 2))
+                                                 jit.point_buffers(3, 2))
     for out in outs:
         np.testing.assert_array_equal(out, ref)
     assert np.ptp(ref) > 0.3

@@ -227,7 +227,7 @@ def _make_points(DIM, TAPS, DERIV, PERIODIC):
         grads : (n, d) float64 unit gradients (gradient basis only)
         basis : 0 value noise, 1 gradient noise
         absval : sum |octave| (turbulence) instead of octave
-        buffers : the working arrays, :func:`point_buffers` ``("table", ...)``
+        buffers : the working arrays, :func:`point_buffers`
 
         ``taps`` is ignored (``TAPS`` is compiled in). Dimensions 1 to 3 have
         nested neighbour loops of constant trip count (LLVM unrolls them);
@@ -448,7 +448,7 @@ def _make_int_points(DIM, TAPS, DERIV, PERIODIC):
 
     @nb.njit(cache=True, nogil=True)
     def int_points(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
-                   keys, mult, grads, basis, absval, buffers):
+                   keys, mult, grads, basis, absval):
         """Lattice noise with the integer hash (and with ``DERIV`` its Jacobian) at scattered points.
 
         Any dimension; octaves fused. ``pts`` (N, d) float64; ``out`` written:
@@ -457,8 +457,7 @@ def _make_int_points(DIM, TAPS, DERIV, PERIODIC):
         input axis); ``keys`` (C,) uint32 per component; ``mult`` (d,) uint32
         odd multipliers; ``grads`` (L, d) the gradient set
         (:func:`._inthash.gradient_set`). The other arguments are those of
-        the table hash's kernel (:func:`_make_points`; ``dcoef`` is read only with ``DERIV``;
-        ``buffers``: :func:`point_buffers` ``("int", ...)``).
+        the table hash's kernel (:func:`_make_points`; ``dcoef`` is read only with ``DERIV``).
 
         Per chunk and octave: each axis's weights and hashed tap offsets
         ``M[a, k] = ((j + k) mod period) * M_a`` (uint32); then the corners in
@@ -475,7 +474,21 @@ def _make_int_points(DIM, TAPS, DERIV, PERIODIC):
         n = grads.shape[0]
         noct = freqs.shape[0]
         nq = d + 1 if DERIV else 1  # the value, then (DERIV) one derivative per axis
-        W, DW, V, R, M, HP, WP, DP, T, ACC, cnt = buffers  # (DW, V: derivatives only; V the corner's values)
+        # its own arrays, of compile-time shapes: passed in, their strides unknown, 4-D values ran 0.83x
+        W = np.empty((d, TAPS, CHUNK))
+        if DERIV:
+            DW = np.empty((d, TAPS, CHUNK))
+            V = np.empty(CHUNK)  # the corner's values (value basis)
+        else:
+            DW = np.empty((1, 1, 1))  # not read
+        R = np.empty((d, TAPS, CHUNK))
+        M = np.empty((d, TAPS, CHUNK), np.uint32)
+        HP = np.empty((d + 1, CHUNK), np.uint32)
+        WP = np.empty((d + 1, CHUNK))
+        DP = np.empty((d, CHUNK))
+        T = np.empty((nq, CHUNK))
+        ACC = np.empty((ncomp, nq, CHUNK))
+        cnt = np.zeros(d, np.int64)
         for p0 in range(0, npts, CHUNK):
             m = npts - p0 if npts - p0 < CHUNK else CHUNK
             for o in range(noct):
@@ -692,12 +705,18 @@ def _make_int_fast(DIM, TAPS, GRAD, PERIODIC):
 
     @nb.njit(cache=True, nogil=True)
     def int_fast(pts, out, freqs, amps, phase, shift, left, taps, coef, dcoef, period, pmask,
-                 keys, mult, grads, basis, absval, buffers):
+                 keys, mult, grads, basis, absval):
         """Lattice noise with the integer hash at scattered points, 1-3-D values (as :func:`_make_int_points`)."""
         npts = pts.shape[0]
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
-        W, DW, R, M, U, T, ACC = buffers  # :func:`point_buffers` ``("fast", ...)`` (DW not read)
+        W = np.empty((DIM, TAPS, CHUNK))  # (compile-time shapes: constant strides)
+        DW = np.empty((1, 1, 1))  # not read
+        R = np.empty((DIM, TAPS, CHUNK))
+        M = np.empty((DIM, TAPS, CHUNK), np.uint32)
+        U = np.empty(CHUNK)
+        T = np.empty(CHUNK)
+        ACC = np.empty((ncomp, CHUNK))
         for p0 in range(0, npts, CHUNK):
             m = npts - p0 if npts - p0 < CHUNK else CHUNK
             for o in range(noct):
@@ -927,60 +946,40 @@ def out_pair(out):
     return np.empty((0, out.shape[1])), out
 
 
-def block_buffers(kind, dim, taps, ncomp, gradient=False, f32=False, x_dtype=np.float64):
-    """The working arrays of one call of a block kernel, its last argument: a block of :data:`BLOCK` points.
-
-    ``kind``: ``"int"`` (:func:`_make_int_block`: the coordinates, the
-    fractions and float32 indices, each axis's weights, ramps and hashed
-    taps, the partial sums, the octave sums), ``"two"``
-    (:func:`_make_int_two_taps`: the coordinates, fractions and indices,
-    the sums) or ``"table"`` (:func:`_make_table_block`: the coordinates,
-    weights, ramps and taps, the sums). ``f32``: the float32 arithmetic
-    (``x_dtype``: the points' dtype). Allocated by the caller (numpy) rather
-    than in the kernel, whose ``np.empty`` calls compiled numba
-    specialisations of their own: 0.15-0.3 s of a first call
-    (``benchmarks/bench_coldstart.md``).
-    """
-    ft = np.float32 if f32 else np.float64
-    x = np.empty((dim, BLOCK), x_dtype if f32 else np.float64)
-    acc = np.empty((ncomp, BLOCK), ft)
-    jj = np.empty((dim, BLOCK) if f32 else (1, 1), np.uint32)  # float32 lattice indices (:func:`_index32`)
-    if kind == "two":
-        return x, np.empty((dim, BLOCK) if f32 else (1, 1), ft), jj, acc
-    per_tap = (dim, taps, BLOCK)
-    if kind == "table":
-        return x, np.empty(per_tap), np.empty(per_tap if gradient else (dim, 1, 1)), np.empty(per_tap, np.int64), acc
-    return (x, np.empty((dim, BLOCK), ft), jj, np.empty(per_tap, ft), np.empty(per_tap, ft),
-            np.empty(per_tap, np.uint32), np.empty(BLOCK, ft), acc)
-
-
-def _make_int_block(DIM, TAPS, GRAD, F32=False):
+def _make_int_block(DIM, TAPS, GRAD, F32=False, X32=False):
     """The integer hash's 1-3-D value kernel without a period, block by block, reading either layout in place.
 
     The bits of :func:`_make_int_fast` (the same operations in the same order
     for every point) with its own arguments: ``(src, cols, lo, hi, out, freqs,
-    amps, phase, shift, left, coef, keys, mult, absval, reach, buffers)``, where
+    amps, phase, shift, left, coef, keys, mult, absval, reach)``, where
     ``src`` holds C-contiguous ``(N, DIM)`` rows or, with ``cols``, ``(DIM, N)``
     columns (float32 or float64, widened as read: :func:`points_pair`), and the kernel fills ``out[lo:hi]``
-    (so threads share one call's arrays without slicing the columns), and
-    ``buffers`` its working arrays (:func:`block_buffers`). Per
+    (so threads share one call's arrays without slicing the columns). Per
     block of :data:`BLOCK` points: the coordinates (:func:`_block_load`),
     each axis's set-up (:func:`_block_axis`), then :func:`_make_int_fast`'s
     corner loops; every loop runs over the block from index 0, which LLVM
     vectorises across points (8 float64 lanes with AVX-512). ``F32``: float32
     arithmetic from each fraction on (``coef`` float32), the block kept in the
-    points' dtype, each point's index from :func:`_tj` (``reach``: the
+    points' dtype (``X32``: float32 points), each point's index from :func:`_tj` (``reach``: the
     bits of :func:`_reach32`'s ``(lo, hi)``; ignored without ``F32``).
     """
     FT = np.float32 if F32 else np.float64
     UNIT = FT(1.0 if F32 else _TO_UNIT)  # the float32 arithmetic's 2**-31 joins the amplitude (:func:`_lerp_corners`)
 
     @nb.njit(cache=True, nogil=True)
-    def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach, buffers):
+    def int_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach):
         """Lattice noise with the integer hash at scattered points, 1-3-D values without a period."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
-        X, TF, JJ, W, R, M, T, ACC = buffers  # (R full size: value noise reads it too, unused, in plain Python)
+        # arrays of compile-time shapes (passed in, their strides unknown, the cubic kernel ran 0.60x on 1e6 3-D
+        # points); the block kept in the points' dtype with F32 (X32: float32 points)
+        X = np.empty((DIM, BLOCK), np.float32 if F32 and X32 else np.float64)
+        TF, JJ = np.empty((DIM, BLOCK), FT), np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
+        W = np.empty((DIM, TAPS, BLOCK), FT)
+        R = np.empty((DIM, TAPS, BLOCK), FT)  # (read by value noise too, unused: plain Python's indices stay in range)
+        M = np.empty((DIM, TAPS, BLOCK), np.uint32)
+        T = np.empty(BLOCK, FT)
+        ACC = np.empty((ncomp, BLOCK), FT)
         bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = hi - p0 if hi - p0 < BLOCK else BLOCK
@@ -1112,7 +1111,7 @@ def _lerp_corners(h1, w, n0, n1, ra, rb, s0, s1, dim, grad):
     return v0 + w * (_corner(_U32(h1 ^ n1), ra, rb, s1, dim, grad, np.float32, np.float32(1.0)) - v0)
 
 
-def _make_int_two_taps(DIM, GRAD, F32=False):
+def _make_int_two_taps(DIM, GRAD, F32=False, X32=False):
     """The integer hash's 1-3-D values without a period for 2-tap kernels (quintic, linear), point by point.
 
     The arguments and bits of :func:`_make_int_block`; instead of each axis's
@@ -1133,12 +1132,13 @@ def _make_int_two_taps(DIM, GRAD, F32=False):
     C = 2 if DIM > 2 else 0
 
     @nb.njit(cache=True, nogil=True)
-    def int_two_taps(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach,
-                     buffers):
+    def int_two_taps(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, keys, mult, absval, reach):
         """Lattice noise with the integer hash at scattered points, 1-3-D values of a 2-tap kernel."""
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
-        X, TT, JJ, ACC = buffers
+        X = np.empty((DIM, BLOCK), np.float32 if F32 and X32 else np.float64)  # (as :func:`_make_int_block`)
+        TT, JJ = np.empty((DIM, BLOCK) if F32 else (1, 1), FT), np.empty((DIM, BLOCK) if F32 else (1, 1), np.uint32)
+        ACC = np.empty((ncomp, BLOCK), FT)
         bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = hi - p0 if hi - p0 < BLOCK else BLOCK
@@ -1246,20 +1246,24 @@ def _make_table_block(TAPS, GRAD):
 
     The bits of :func:`_make_points` for ``DIM`` 3 (its corner sums in its nested order) with the arguments of
     :func:`_make_int_block` less the hash's: ``(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef,
-    H2, TL, absval, buffers)``, ``H2`` and ``TL`` the folded tables of :func:`pair_tables` (values, or ``GRAD``
+    H2, TL, absval)``, ``H2`` and ``TL`` the folded tables of :func:`pair_tables` (values, or ``GRAD``
     gradients). Per block of :data:`BLOCK` points: the coordinates (:func:`_block_load`), each axis's set-up
     (:func:`_table_axis`, vectorised across points), then per point the corner sum from 4 (2 taps) or 16
     (4 taps) pair-table reads.
     """
 
     @nb.njit(cache=True, nogil=True)
-    def table_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, H2, TL, absval, buffers):
+    def table_block(src, cols, lo, hi, out, freqs, amps, phase, shift, left, coef, H2, TL, absval):
         """Lattice noise with the table hash at scattered 3-D points, values (as :func:`_make_points`)."""
         ncomp = H2.shape[0]
         noct = freqs.shape[0]
         n = (TL.shape[1] // 2 - 4) // 2  # the table size n, from the folded tables' run 2 (2n + 4)
         un = _U64(n)
-        X, W, R, J, ACC = buffers
+        X = np.empty((3, BLOCK))
+        W = np.empty((3, TAPS, BLOCK))
+        R = np.empty((3, TAPS, BLOCK) if GRAD else (3, 1, 1))
+        J = np.empty((3, TAPS, BLOCK), np.int64)
+        ACC = np.empty((ncomp, BLOCK))
         bad = 0
         for p0 in range(lo, hi, BLOCK):
             m = hi - p0 if hi - p0 < BLOCK else BLOCK
@@ -1301,37 +1305,24 @@ def _make_table_block(TAPS, GRAD):
     return table_block
 
 
-def point_buffers(kind, dim, taps, ncomp, deriv=False):
-    """The working arrays of one call of a per-point kernel, its last argument.
+def point_buffers(dim, ncomp, deriv=False):
+    """The working arrays of one call of the table hash's per-point kernel (:func:`_make_points`), its last argument.
 
-    ``kind``: ``"table"`` (:func:`_make_points`: each axis's weights, ramps
-    and taps, the corner odometer, each level's hash, parity and weight
-    product, with ``deriv`` the derivatives' products, a point's sums),
-    ``"int"`` (:func:`_make_int_points`, per chunk of :data:`CHUNK`
-    points: each axis's weights (and derivatives), the corner's values, the
-    ramps and hashed taps, each level's prefix word and weight product, the
-    derivative products, the sums, the odometer) or ``"fast"``
-    (:func:`_make_int_fast`). Allocated by the caller (numpy), with the zeros
-    and ones the kernels start from: allocating them in the kernel compiled
-    numba's ``np.empty`` / ``np.zeros`` / ``np.ones`` for each shape and
-    dtype on a first call, 0.5 s CPU of a first 2-D call and 1.1 s of a first
-    Jacobian (``benchmarks/bench_coldstart.md``).
+    Each axis's weights, ramps and taps, the corner odometer, each level's
+    hash, parity and weight product (with ``deriv`` the derivatives'
+    products), a point's sums, with the zeros and ones the kernel starts
+    from. Allocated by the caller: in the kernel, numba compiled its
+    ``np.empty`` / ``np.zeros`` / ``np.ones`` for each shape and dtype on a
+    first call, 0.5 s CPU of a first 2-D call and 1.2 s of a first Jacobian
+    (``benchmarks/bench_coldstart.md``); these tiny arrays gain nothing from
+    compile-time shapes (the same speed, ``benchmarks/bench_lattice.md``).
     """
     d, nq = dim, dim + 1 if deriv else 1
-    if kind == "table":
-        extra = (np.empty((d, 4)), np.zeros((d + 1, d)), np.zeros(d)) if deriv else \
-            (np.empty((0, 4)), np.zeros((0, d)), np.zeros(0))
-        return (np.empty((d, 4)), np.empty((d, 4)), np.empty((d, 4), np.int64), np.zeros(d, np.int64),
-                np.zeros(d + 1, np.int64), np.zeros(d + 1, np.int64), np.ones(d + 1)) + extra + \
-            (np.empty((ncomp, nq)),)
-    per_tap = (d, taps, CHUNK)
-    if kind == "fast":
-        return (np.empty(per_tap), np.empty((1, 1, 1)), np.empty(per_tap), np.empty(per_tap, np.uint32),
-                np.empty(CHUNK), np.empty(CHUNK), np.empty((ncomp, CHUNK)))
-    return (np.empty(per_tap), np.empty(per_tap if deriv else (1, 1, 1)), np.empty(CHUNK if deriv else 1),
-            np.empty(per_tap), np.empty(per_tap, np.uint32), np.empty((d + 1, CHUNK), np.uint32),
-            np.empty((d + 1, CHUNK)), np.empty((d, CHUNK)), np.empty((nq, CHUNK)), np.empty((ncomp, nq, CHUNK)),
-            np.zeros(d, np.int64))
+    extra = (np.empty((d, 4)), np.zeros((d + 1, d)), np.zeros(d)) if deriv else \
+        (np.empty((0, 4)), np.zeros((0, d)), np.zeros(0))
+    return (np.empty((d, 4)), np.empty((d, 4)), np.empty((d, 4), np.int64), np.zeros(d, np.int64),
+            np.zeros(d + 1, np.int64), np.zeros(d + 1, np.int64), np.ones(d + 1)) + extra + \
+        (np.empty((ncomp, nq)),)
 
 
 _POINTS = {}
@@ -1371,18 +1362,22 @@ def table_block_kernel(taps, gradient):
     return fn
 
 
-def int_block_kernel(dim, taps, gradient, f32=False):
-    """The integer hash's block kernel (:func:`_make_int_block`) for 1-3-D values without a period."""
-    key = ("block", int(dim), int(taps), bool(gradient), bool(f32))
+def int_block_kernel(dim, taps, gradient, f32=False, x32=False):
+    """The integer hash's block kernel (:func:`_make_int_block`) for 1-3-D values without a period.
+
+    ``x32``: float32 points, which the float32 arithmetic keeps in float32 (one kernel for both dtypes without it).
+    """
+    key = ("block", int(dim), int(taps), bool(gradient), bool(f32), bool(f32 and x32))
     fn = _POINTS.get(key)
     if fn is None:
         fn = _POINTS[key] = _make_int_block(*key[1:])
     return fn
 
 
-def int_two_taps_kernel(dim, gradient, f32=False):
-    """The integer hash's 2-tap kernel (:func:`_make_int_two_taps`) for 1-3-D values without a period."""
-    key = ("two", int(dim), bool(gradient), bool(f32))
+def int_two_taps_kernel(dim, gradient, f32=False, x32=False):
+    """The integer hash's 2-tap kernel (:func:`_make_int_two_taps`) for 1-3-D values without a period (``x32``:
+    as :func:`int_block_kernel`)."""
+    key = ("two", int(dim), bool(gradient), bool(f32), bool(f32 and x32))
     fn = _POINTS.get(key)
     if fn is None:
         fn = _POINTS[key] = _make_int_two_taps(*key[1:])
@@ -1645,8 +1640,7 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
 
     @nb.njit(cache=True, nogil=True)
     def grid_rows(shapes, pre, par, pre_off, lat2, lat2_off, P0, W0, RW0, P1, W1, RW1, P2, W2, RW2,
-                  scales, batch_start, absval, perm, n, values, grads, mult2, out64, out32, ring, tag, plane, tmp, acc,
-                  gsum):
+                  scales, batch_start, absval, perm, n, values, grads, mult2, out64, out32):
         """All octaves of one output component on a 2-D or 3-D grid window: ``out64`` or ``out32`` (N0, N1 * N2),
         written.
 
@@ -1666,8 +1660,7 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         ``absval`` is then summed in place, as :func:`final_pass_direct`
         does), else ``out32``; the other is empty (:func:`out_pair`): one
         specialisation serves both dtypes (a second dtype used to compile the
-        kernel again, 1.5-2 s). ``ring`` ... ``gsum``: the call's working
-        rows (:func:`grid_rows_buffers`).
+        kernel again, 1.5-2 s).
         """
         dim = DIM
         noct = shapes.shape[0]
@@ -1678,9 +1671,22 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
         nterm = dim if GRAD else 1
         post = n1 * n2
         ng = grads.shape[0]
+        l1m = 1
+        l2m = 1
+        for o in range(noct):
+            if shapes[o, 1] > l1m:
+                l1m = shapes[o, 1]
+            if shapes[o, 2] > l2m:
+                l2m = shapes[o, 2]
+        ring = np.empty((noct, nterm, taps, post))
+        tag = np.empty((noct, taps), np.int64)
         for o in range(noct):
             for s in range(taps):
                 tag[o, s] = -1
+        plane = np.empty(l1m * l2m * nterm)  # a lattice row's values, or its gradients' components side by side
+        tmp = np.empty((nterm, l1m * n2))
+        acc = np.empty(post)
+        gsum = np.empty(post)
         for j in range(n0):
             for o in range(noct):
                 l1 = shapes[o, 1]
@@ -1865,24 +1871,6 @@ def _make_grid_rows(DIM, TAPS, INTEGER, GRAD):
                             out32[j, q] += acc[q]
 
     return grid_rows
-
-def grid_rows_buffers(shapes, taps, nterm, n1, n2):
-    """The working rows of one call of the fused grid kernel (:func:`_make_grid_rows`), its last six arguments.
-
-    Per octave a ring of ``taps`` lattice rows contracted over axes 1 and 2
-    (``nterm`` terms: 1, or the gradient basis's d) and their row tags; one
-    lattice row's hashed plane and its contraction along the last axis; the
-    output row's sums. Allocated by the caller (numpy) rather than in the
-    kernel: its ``np.empty`` calls compiled four numba specialisations of
-    their own, 0.2-0.3 s of a first grid's 2.3-2.8 s (``bench_coldstart.md``).
-    """
-    noct = shapes.shape[0]
-    l1m, l2m = int(shapes[:, 1].max()), int(shapes[:, 2].max())
-    post = n1 * n2
-    tag = np.empty((noct, taps), np.int64)  # the lattice row in each ring slot, set by the kernel
-    return (np.empty((noct, nterm, taps, post)), tag, np.empty(l1m * l2m * nterm), np.empty((nterm, l1m * n2)),
-            np.empty(post), np.empty(post))
-
 
 _GRID_ROWS = {}
 

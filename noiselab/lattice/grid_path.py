@@ -503,7 +503,6 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval, bands=1
     batch_start = np.concatenate([[0], np.cumsum(batch_sizes)]).astype(np.int64)
     P0, W0, RW0, shapes, pre_off, lat2, lat2_off, P1, W1, RW1, P2, W2, RW2 = geometry
     nj = out.shape[1]
-    nterm = d if noise.basis == "gradient" else 1
     for c in range(noise.dim_out):
         pre, par, perm, mult2, values, folded = components[c]
         rows = out[c].reshape(nj, -1)
@@ -513,8 +512,7 @@ def grid_rows(noise, octaves, batch_sizes, axes_per_octave, out, absval, bands=1
             p0, w0, rw0 = (np.ascontiguousarray(x[:, lo:hi]) for x in (P0, W0, RW0))
             kernel(shapes, pre, par, pre_off, lat2, lat2_off, p0, w0, rw0, P1, W1, RW1, P2, W2, RW2, scales,
                    batch_start, bool(absval), perm, int(noise.table_size), values, folded, mult2,
-                   *jit.out_pair(rows[lo:hi]),
-                   *jit.grid_rows_buffers(shapes, P0.shape[2], nterm, P1.shape[1], P2.shape[2]))
+                   *jit.out_pair(rows[lo:hi]))
 
         cuts = np.linspace(0, nj, bands + 1).astype(np.int64).tolist()
         map_blocks(band, list(zip(cuts[:-1], cuts[1:])), bands)

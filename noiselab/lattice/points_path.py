@@ -171,26 +171,23 @@ def _run_block(noise, flat, out, freqs, amps, absval, workers, min_block=4096, f
                        if fast else [0, 0]).view(np.uint32)
     # 2-tap kernels: every point's taps in registers (the float32 arithmetic's lerps: those whose weights sum to 1)
     if k.taps == 2 and (not f32 or np.array_equal(k.coef[0] + k.coef[1], np.eye(1, k.coef.shape[1])[0])):
-        kernel, kind = jit.int_two_taps_kernel(noise.dim_in, gradient, f32), "two"
+        kernel = jit.int_two_taps_kernel(noise.dim_in, gradient, f32, src.itemsize == 4)
     else:
-        kernel, kind = jit.int_block_kernel(noise.dim_in, k.taps, gradient, f32), "int"
+        kernel = jit.int_block_kernel(noise.dim_in, k.taps, gradient, f32, src.itemsize == 4)
     rest = (freqs, np.ascontiguousarray(amps, dtype=np.float64), noise.phase, k.shift, k.left, coef, noise.keys,
             noise._mult, bool(absval), reach)
-    buffers = (kind, noise.dim_in, k.taps, noise.dim_out, gradient, f32, src.dtype)
-    return _in_ranges(kernel, src, cols, out, rest, buffers, workers, min_block)
+    return _in_ranges(kernel, src, cols, out, rest, workers, min_block)
 
 
-def _in_ranges(kernel, src, cols, out, rest, buffers, workers, min_block):
-    """A block kernel ``kernel(src, cols, lo, hi, outputs, *rest, working arrays)`` over ``workers`` contiguous
-    ranges of the points (at least ``min_block`` each), on pooled threads, each range with working arrays of its
-    own (``buffers``: the arguments of :func:`._jit.block_buffers`); the sum of their counts of NaN fractions."""
+def _in_ranges(kernel, src, cols, out, rest, workers, min_block):
+    """A block kernel ``kernel(points, cols, lo, hi, outputs, *rest)`` over ``workers`` contiguous ranges of the
+    points (at least ``min_block`` each), on pooled threads; the sum of their counts of NaN fractions. The points
+    go as :func:`._jit.points_pair` makes them (one specialisation reads either dtype)."""
     npts = out.shape[0]
     n = min(workers, max(1, npts // min_block))
     bounds = np.linspace(0, npts, n + 1).astype(np.int64).tolist()
-    outs = jit.out_pair(out)
-    pair = jit.points_pair(src)
-    return sum(map_blocks(lambda ab: kernel(pair, cols, ab[0], ab[1], outs, *rest, jit.block_buffers(*buffers)),
-                          zip(bounds[:-1], bounds[1:]), n))
+    outs, pair = jit.out_pair(out), jit.points_pair(src)
+    return sum(map_blocks(lambda ab: kernel(pair, cols, ab[0], ab[1], outs, *rest), zip(bounds[:-1], bounds[1:]), n))
 
 
 _FOLDED = {}  # the last few folded tables, keyed by the tables' bytes (building them: 0.6 ms for n = 256)
@@ -218,8 +215,7 @@ def _run_table(noise, flat, out, freqs, amps, absval, workers, min_block=4096):
     kernel = jit.table_block_kernel(k.taps, gradient)
     rest = ((np.ascontiguousarray(freqs, dtype=np.float64), np.ascontiguousarray(amps, dtype=np.float64),
              noise.phase, k.shift, k.left, k.coef) + _folded(noise, gradient) + (bool(absval),))
-    buffers = ("table", 3, k.taps, noise.dim_out, gradient)
-    return _in_ranges(kernel, src, cols, out, rest, buffers, workers, min_block)
+    return _in_ranges(kernel, src, cols, out, rest, workers, min_block)
 
 
 def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
@@ -231,15 +227,17 @@ def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
     if noise.hash == "integer" and noise.dim_in <= INT_FAST_DIM and not deriv:  # the same bits, vectorised
         # float32 points read in place (each coordinate widened to float64 as it is read: the same values,
         # without a float64 copy of the points; 1e6 3-D points: benchmarks/bench_lattice_paths.md)
-        kernel, kind = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, gradient, _periodic(noise)), "fast"
-    else:
-        flat = flat.astype(np.float64, copy=False)  # the other kernels are compiled for float64 points only
-        kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv, _periodic(noise))
-        kind = "int" if noise.hash == "integer" else "table"
-    shape = (kind, noise.dim_in, noise.kernel.taps, noise.dim_out, deriv)
+        kernel = jit.int_fast_kernel(noise.dim_in, noise.kernel.taps, gradient, _periodic(noise))
+        run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval), workers)
+        return
+    flat = flat.astype(np.float64, copy=False)  # the other kernels are compiled for float64 points only
+    kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv, _periodic(noise))
+    if noise.hash == "integer":
+        run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval), workers)
+        return
 
-    def block(points, part, *rest):  # each block (thread) with working arrays of its own
-        return kernel(points, part, *rest, jit.point_buffers(*shape))
+    def block(points, part, *rest):  # the table hash's kernel: each block (thread) with working arrays of its own
+        return kernel(points, part, *rest, jit.point_buffers(noise.dim_in, noise.dim_out, deriv))
 
     run_split(block, flat, out, kernel_args(noise, freqs, amps, absval), workers)
 
