@@ -490,7 +490,7 @@ def _make_int_points(DIM, TAPS, DERIV, PERIODIC):
         ACC = np.empty((ncomp, nq, CHUNK))
         cnt = np.zeros(d, np.int64)
         for p0 in range(0, npts, CHUNK):
-            m = npts - p0 if npts - p0 < CHUNK else CHUNK
+            m = min(CHUNK, npts - p0)
             for o in range(noct):
                 for a in range(d):
                     _axis_setup(pts, p0, m, a, freqs[o, a], phase[a], shift, left, TAPS, coef, dcoef, period[a],
@@ -710,7 +710,7 @@ def _make_int_fast(DIM, TAPS, GRAD, PERIODIC):
         npts = pts.shape[0]
         ncomp = keys.shape[0]
         noct = freqs.shape[0]
-        W = np.empty((DIM, TAPS, CHUNK))  # (compile-time shapes: constant strides)
+        W = np.empty((DIM, TAPS, CHUNK))
         DW = np.empty((1, 1, 1))  # not read
         R = np.empty((DIM, TAPS, CHUNK))
         M = np.empty((DIM, TAPS, CHUNK), np.uint32)
@@ -718,7 +718,7 @@ def _make_int_fast(DIM, TAPS, GRAD, PERIODIC):
         T = np.empty(CHUNK)
         ACC = np.empty((ncomp, CHUNK))
         for p0 in range(0, npts, CHUNK):
-            m = npts - p0 if npts - p0 < CHUNK else CHUNK
+            m = min(CHUNK, npts - p0)
             for o in range(noct):
                 for a in range(DIM):
                     if PERIODIC or not _split(pts, p0, m, a, freqs[o, a], phase[a], shift, left, TAPS, coef, mult[a],
@@ -982,7 +982,7 @@ def _make_int_block(DIM, TAPS, GRAD, F32=False, X32=False):
         ACC = np.empty((ncomp, BLOCK), FT)
         bad = 0
         for p0 in range(lo, hi, BLOCK):
-            m = hi - p0 if hi - p0 < BLOCK else BLOCK
+            m = min(BLOCK, hi - p0)
             _block_load(src, cols, p0, m, X, DIM)
             fast = F32 and _reach32(X, m, reach, DIM)
             for o in range(noct):
@@ -1141,7 +1141,7 @@ def _make_int_two_taps(DIM, GRAD, F32=False, X32=False):
         ACC = np.empty((ncomp, BLOCK), FT)
         bad = 0
         for p0 in range(lo, hi, BLOCK):
-            m = hi - p0 if hi - p0 < BLOCK else BLOCK
+            m = min(BLOCK, hi - p0)
             _block_load(src, cols, p0, m, X, DIM)
             fast = F32 and _reach32(X, m, reach, DIM)
             for o in range(noct):
@@ -1266,7 +1266,7 @@ def _make_table_block(TAPS, GRAD):
         ACC = np.empty((ncomp, BLOCK))
         bad = 0
         for p0 in range(lo, hi, BLOCK):
-            m = hi - p0 if hi - p0 < BLOCK else BLOCK
+            m = min(BLOCK, hi - p0)
             _block_load(src, cols, p0, m, X, 3)
             for c in range(ncomp):
                 for i in range(m):
@@ -1315,7 +1315,7 @@ def point_buffers(dim, ncomp, deriv=False):
     ``np.empty`` / ``np.zeros`` / ``np.ones`` for each shape and dtype on a
     first call, 0.5 s CPU of a first 2-D call and 1.2 s of a first Jacobian
     (``benchmarks/bench_coldstart.md``); these tiny arrays gain nothing from
-    compile-time shapes (the same speed, ``benchmarks/bench_lattice.md``).
+    compile-time shapes (the same warm speed, ``benchmarks/bench_coldstart.md``).
     """
     d, nq = dim, dim + 1 if deriv else 1
     extra = (np.empty((d, 4)), np.zeros((d + 1, d)), np.zeros(d)) if deriv else \

@@ -18,6 +18,8 @@ functions read a noise's tables and change nothing.
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from .._core import as_array, check_finite_array, float_dtype, map_blocks, run_split
@@ -232,14 +234,14 @@ def _run(noise, flat, out, freqs, amps, absval, deriv, workers):
         return
     flat = flat.astype(np.float64, copy=False)  # the other kernels are compiled for float64 points only
     kernel = jit.points_kernel(noise.hash == "integer", noise.dim_in, noise.kernel.taps, deriv, _periodic(noise))
-    if noise.hash == "integer":
-        run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval), workers)
-        return
+    if noise.hash == "table":  # its working arrays from here: each block (thread) its own (:func:`._jit.point_buffers`)
+        kernel = functools.partial(_with_buffers, kernel, (noise.dim_in, noise.dim_out, deriv))
+    run_split(kernel, flat, out, kernel_args(noise, freqs, amps, absval), workers)
 
-    def block(points, part, *rest):  # the table hash's kernel: each block (thread) with working arrays of its own
-        return kernel(points, part, *rest, jit.point_buffers(noise.dim_in, noise.dim_out, deriv))
 
-    run_split(block, flat, out, kernel_args(noise, freqs, amps, absval), workers)
+def _with_buffers(kernel, shape, points, part, *rest):
+    """``kernel`` on one block of points with working arrays of its own (:func:`._jit.point_buffers` ``(*shape)``)."""
+    return kernel(points, part, *rest, jit.point_buffers(*shape))
 
 
 def evaluate_points(noise, flat, freqs, amps, absval, dtype, name="points", workers=1, f32=False):
