@@ -2,8 +2,14 @@
 
 Run from the repository root::
 
-    python benchmarks/bench_coldstart.py [--paths points3 grid2 fbm2 int32] [--runs 1] [--kernels] [--speed 7]
+    python benchmarks/bench_coldstart.py [--paths floor points3 grid2 fbm2 int32] [--runs 1] [--kernels] [--speed 7]
     python benchmarks/bench_coldstart.py --against <checkout of the last release> --runs 7
+
+``floor``: what a first call costs before any kernel of noiselab's: import
+numba and compile a one-line kernel, numba's first compilation in the
+process (its registries; ``numba.np.arraymath`` imports scipy.linalg to look
+for BLAS). Timed with the other paths, it adds a column: each path less the
+floor of the same run, the part that noiselab's kernels and Python decide.
 
 ``--against``: each cold first call is timed with this tree and with
 another checkout, interleaved run by run (the order alternating), so that
@@ -45,6 +51,11 @@ from noiselab.lab.measure import header_lines, markdown_table, run_info  # noqa:
 
 # the first call of each common path, as a user writes it (after `import numpy as np`, `import noiselab as nl`)
 PATHS = {
+    # what no kernel of noiselab's can remove: importing numba and its first compilation in a process (its type
+    # and lowering registries; numba.np.arraymath imports scipy.linalg to look for BLAS), here of a one-line kernel
+    "floor": ("numba's fixed cost: `numba.njit(lambda x: x + 1)(1)`, numba's first compilation in a process",
+              "import numba\n"
+              "numba.njit(lambda x: x + 1)(1)"),
     "points3": ("`LatticeNoise(3)(pts)`, 1e5 random 3-D points",
                 "pts = np.random.default_rng(0).random((100_000, 3)) * 32\n"
                 "nl.LatticeNoise(3)(pts)"),
@@ -192,21 +203,33 @@ def cold_cpu(code, root):
 def side_by_side(args, info, other):
     """``--against``: the cold first calls of this tree and of ``other``, interleaved run by run; Markdown lines."""
     roots = [SOURCE, other]
-    rows = []
+    rows, medians = [], {}
     for key in args.paths:
         times = {root: [] for root in roots}
         for i in range(args.runs):
             for root in (roots if i % 2 == 0 else roots[::-1]):
                 times[root].append(cold_cpu(PATHS[key][1], root))
         cells = [f"{statistics.median(t):.2f} ({min(t):.2f}-{max(t):.2f})" for t in times.values()]
+        medians[key] = statistics.median(times[SOURCE])
         rows.append([PATHS[key][0]] + cells)
         print(key, *cells, flush=True)
     lines = [f"# Time to a first result, side by side{(' (' + args.label + ')') if args.label else ''}", ""]
     lines += header_lines(info)
     lines += ["", f"CPU seconds (user + system) of a fresh process with an empty numba cache: `import noiselab`, "
               f"then the call; the median (and range) of {args.runs} runs of each tree, interleaved run by run.", ""]
-    lines += markdown_table(["first call", "this tree", f"`{other.name}`"], rows, "lrr")
+    lines += markdown_table(["first call", "this tree", f"`{other.name}`"] + ["this tree less the floor"] * ("floor" in medians),
+                            over_floor(rows, medians), "lrr" + "r" * ("floor" in medians))
     return lines
+
+
+def over_floor(rows, medians):
+    """``rows`` (one per key of ``medians``, in order) with one more column when ``floor`` was timed: each
+    path's median less the floor's, measured in the same run: the part of the first call that is
+    noiselab's own (its kernels' compilation, its Python) rather than numba's fixed cost."""
+    if "floor" not in medians:
+        return rows
+    return [row + ["" if key == "floor" else f"{medians[key] - medians['floor']:.2f}"]
+            for row, key in zip(rows, medians)]
 
 
 def main(argv=None):
@@ -233,7 +256,7 @@ def main(argv=None):
         print(f"wrote {args.output}")
         return
     base = run_child("", Path(tempfile.mkdtemp(prefix="nl-cold-")))[0]  # `import noiselab` alone
-    rows = []
+    rows, medians = [], {}
     for key in args.paths:
         what, code = PATHS[key]
         colds, warms, specs = [], [], 0
@@ -249,6 +272,7 @@ def main(argv=None):
             print(f"{key}: cold {cold:.2f} s, warm {warm:.2f} s CPU, {specs} specialisations", flush=True)
         colds.sort()
         warms.sort()
+        medians[key] = statistics.median(colds)
         rows.append([what, f"{colds[len(colds) // 2]:.1f}", f"{warms[len(warms) // 2]:.1f}", str(specs)])
     lines = [f"# Time to a first result{(' (' + args.label + ')') if args.label else ''}", ""]
     lines += header_lines(info)
@@ -256,7 +280,9 @@ def main(argv=None):
               "Cold: an empty numba cache; warm: a second process on the same cache. "
               f"`import noiselab` alone: {base:.1f} s. Specialisations: numba signatures compiled "
               "(cold) or loaded (warm) by `noiselab.lattice`'s kernels.", ""]
-    lines += markdown_table(["first call", "cold (s CPU)", "warm (s CPU)", "specialisations"], rows, "lrrr")
+    lines += markdown_table(["first call", "cold (s CPU)", "warm (s CPU)", "specialisations"]
+                            + ["cold less the floor"] * ("floor" in medians), over_floor(rows, medians),
+                            "lrrr" + "r" * ("floor" in medians))
     if args.kernels:
         lines += ["", "Where the cold time goes: the slowest numba compilations of one more cold run, CPU seconds "
                   "(numba's `numba:compile` events; a kernel's time includes its callees' compilation).", ""]

@@ -36,6 +36,7 @@ from noiselab import LatticeNoise, fractal_sum  # noqa: E402
 from noiselab._core import run_split  # noqa: E402
 from noiselab.lattice import Grid, kernel_names  # noqa: E402
 from noiselab.lab.measure import Timings as Times, header_lines, interleaved, run_info  # noqa: E402
+from noiselab.lattice._jit import pair_tables  # noqa: E402  (the table hash's folded tables, for its read bound)
 
 
 def _peer(name):
@@ -434,6 +435,28 @@ def _scaling(cands, repeats):
     return f"{t.ratio('one', 'two'):.2f} ({np.median(cores):.1f})"
 
 
+def _points_limit(noise, kname, basis, hname, pts, cols32):
+    """``(name, call)``: a lower bound of the points row's time (``benchmarks/bench_limits.py``), or None.
+
+    The table hash: its block kernel's reads alone, for the row's taps and
+    basis, on ``noise``'s own folded tables. The integer hash: ``int-minimal``,
+    which exists for quintic value noise only.
+    """
+    from bench_limits import _make_lookups, int_minimal  # (kernels of the limits' script, beside this one)
+
+    if hname == "table":
+        taps, grad = noise.kernel.taps, basis == "gradient"
+        tables = pair_tables(noise.perms, noise.values, noise.gradients if grad else None)
+        h2, tl = (t[0] for t in tables)
+        reads, out = _make_lookups(taps, grad), np.empty(pts.shape[0])
+        name = "`lookups" + ("-gradient" if grad else "-4taps" if taps == 4 else "") + "`"
+        return name, lambda: reads(pts, h2, tl, out)
+    if (kname, basis) == ("quintic", "value"):
+        out32, key = np.empty(cols32.shape[1], np.float32), np.uint32(noise.keys[0])
+        return "`int-minimal`", lambda: int_minimal(cols32[0], cols32[1], cols32[2], key, out32)
+    return None
+
+
 def targets_section(repeats, lines, npts=1_000_000):
     """The speed targets, both hashes: 3-D points and 512^2 6-octave fBm grids against pyfastnoisesimd."""
     fns = _peer("fns")
@@ -460,7 +483,7 @@ def targets_section(repeats, lines, npts=1_000_000):
                  "| FNS pts/s | w2 wall (cores) | (d, N) f64 x FNS | (d, N) f32 x FNS | a32 x FNS | (d, N) a32 x FNS |")
     lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     cols, cols32 = np.ascontiguousarray(pts.T), np.ascontiguousarray(pts32.T)
-    summary = {}
+    summary, limit_rows = {}, []
     for kname, basis, peer in TARGET_POINTS:
         for hname in ("table", "integer"):
             noise = _hashed(3, kname, basis, hname)
@@ -470,6 +493,9 @@ def targets_section(repeats, lines, npts=1_000_000):
             if hname == "integer":
                 cands["a32"] = lambda noise=noise: noise.evaluate(pts32, arithmetic="float32")
                 cands["a32T"] = lambda noise=noise: noise.evaluate(cols32, axis=0, arithmetic="float32")
+            limit = _points_limit(noise, kname, basis, hname, pts, cols32)
+            if limit is not None:
+                cands["limit"] = limit[1]
             if fns is not None:
                 cands["fns"] = _fns_points(fns, getattr(fns.NoiseType, peer), pts32)
             t = bench(cands, repeats, clock=time.thread_time)
@@ -483,6 +509,21 @@ def targets_section(repeats, lines, npts=1_000_000):
                          f"| {err32:.1e} | {fns_rate} | {w2} | {_target_cell(t, 'f64T', npts, 'fns')[1]} "
                          f"| {_target_cell(t, 'f32T', npts, 'fns')[1]} | {' | '.join(a32)} |")
             summary[("points", kname, basis, hname)] = (t, err32, w2)
+            if limit is not None:
+                call = "f64" if hname == "table" else "a32T"
+                xf = f"{t.ratio('fns', 'limit'):.2f}" if "fns" in t else "n/a"
+                limit_rows.append(f"| 3-D points, {kname} {basis} | {hname} | {limit[0]} | {xf} | "
+                                  f"{_target_cell(t, call, npts, 'fns')[1]} | {t.ratio('limit', call):.2f} |")
+    lines.append("\nWhat limits the points, timed in the same rounds as the rows above: the table hash's reads alone "
+                 "(`lookups`: the pair-table and value reads of noiselab's block kernel and nothing else, on the same "
+                 "folded tables, float64 points; `benchmarks/bench_limits.py`) against the float64 call; for the "
+                 "integer hash, the shortest numba loop with its arithmetic (`int-minimal`: float32 columns in and "
+                 "out, floor, quintic fade, eight hashed corners, trilinear blend; no checks, blocks, octaves or "
+                 "fallback) against the float32 arithmetic from `(3, N)` columns. `x limit` = the limit's time / "
+                 "the call's (1.0: the call as fast as its limit).\n")
+    lines.append("| noise | hash | limit | limit x FNS | call x FNS | x limit |")
+    lines.append("|---|---|---|---|---|---|")
+    lines += limit_rows
     n, cells = TARGET_GRID
     shape = (n, n)
     grid = Grid(shape, [(0.0, float(cells)), (0.0, float(cells))])

@@ -9,9 +9,12 @@ thread CPU time, one thread, median of ``--repeats`` interleaved rounds
 (``noiselab.lab.measure.interleaved``), and the per-round ratio general /
 special (above 1: the special path pays). The paths:
 
-- the separable grid passes against the points path on the grid's points
-  (``noise.evaluate(noise.grid_points(...))``), 2-D and 3-D: what a grid
-  would cost without a grid path;
+- the grid path (2-D and 3-D grids: the fused grid kernel,
+  ``_jit._make_grid_rows``; 4-D grids: the separable passes; 1-D grids: the
+  points path, the grid's points in blocks, one call per group of octaves)
+  against the points path on the grid's points
+  (``noise.evaluate(noise.grid_points(...))``): what a grid would cost
+  without a grid path;
 - 3-D table-hash points without a period by the block kernel
   (``points_path.TABLE_SPLIT``: per block of points the weights and taps
   vectorised, then the corner sum over folded tables; rows or columns read
@@ -20,9 +23,10 @@ special (above 1: the special path pays). The paths:
   per chunk (0.4.0's, loaded beside this tree's and called directly: without
   the input checks this tree's call includes, so the ratio understates the
   gain; the same bits);
-- 1-3-D integer-hash values by the kernel vectorised across points
-  (``points_path.INT_FAST_DIM``) against the general integer-hash kernel
-  (the same bits);
+- 1-3-D integer-hash values by the kernels for 1-3-D
+  (``points_path.INT_FAST_DIM``: the in-place kernels without a period of
+  their own, the kernel vectorised across points with one) against the
+  general integer-hash kernel (the same bits);
 - 3-D integer-hash values without a period by the in-place kernels
   (``points_path.INT_BLOCK``: 2-tap kernels point by point, the others
   block by block, rows or columns read in place) against the vectorised
@@ -85,14 +89,17 @@ def cases():
     from noiselab.lattice import points_path
 
     out = []
-    for d, shape, cells in ((2, (512, 512), 32), (3, (64, 64, 64), 8)):
+    # 2-D and 3-D grids take the fused kernel (grid_path.FUSED_DIMS), 4-D ones the separable passes, 1-D ones the
+    # points path by octaves (grid_path.is_separable): the 1-D rows measure what the grid's blocks add to it
+    for d, shape, cells in ((1, (1 << 18,), 4096), (2, (512, 512), 32), (3, (64, 64, 64), 8), (4, (24,) * 4, 4)):
         ext = [(0, cells)] * d
         for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"})):
             for h in ("table", "integer"):
                 n = nl.LatticeNoise(d, hash=h, **kw)
                 pts = n.grid_points(shape, ext)
-                octaves = 6 if d == 2 else 1
-                out.append((f"{shape} grid, {octaves} octave(s), {h} hash, {label}: separable passes vs points path",
+                octaves = 6 if d <= 2 else 1
+                path = "fused grid kernel" if d in (2, 3) else "separable passes" if d > 3 else "grid path"
+                out.append((f"{shape} grid, {octaves} octave(s), {h} hash, {label}: {path} vs points path",
                             (lambda n, o, s, e: lambda: n.evaluate_grid(s, e, octaves=o))(n, octaves, shape, ext),
                             (lambda n, p, o: lambda: n.evaluate(p, octaves=o))(n, pts, octaves)))
     from noiselab.lattice import grid_path
@@ -163,10 +170,11 @@ def cases():
                       ("value catmull-rom", {"kernel": "catmull-rom"}), ("value cubic, period 7", {"period": 7})):
         n = nl.LatticeNoise(3, hash="integer", **kw)
         call = (lambda n: lambda: n(pts))(n)
-        out.append((f"1e6 3-D points, integer hash, {label}: vectorised vs general kernel",
+        special = "vectorised kernel" if "period" in kw else "in-place kernel"  # (the 1-3-D kernel this call takes)
+        out.append((f"1e6 3-D points, integer hash, {label}: {special} vs general kernel",
                     with_fast(3, call), with_fast(0, call)))
     call = (lambda n: lambda: n(p32))(nl.LatticeNoise(3, hash="integer"))
-    out.append(("1e6 3-D float32 points, integer hash, value cubic: vectorised vs general kernel",
+    out.append(("1e6 3-D float32 points, integer hash, value cubic: in-place kernel vs general kernel",
                 with_fast(3, call), with_fast(0, call)))
     for label, kw in (("value cubic", {}), ("gradient quintic", {"basis": "gradient"})):
         n = nl.LatticeNoise(3, hash="integer", **kw)
@@ -187,7 +195,7 @@ def cases():
                          (1, "value cubic", {})):
         n = nl.LatticeNoise(d, hash="integer", **kw)
         call = (lambda n, p: lambda: n(p))(n, np.ascontiguousarray(pts[:, :d]))
-        out.append((f"1e6 {d}-D points, integer hash, {label}: vectorised vs general kernel",
+        out.append((f"1e6 {d}-D points, integer hash, {label}: in-place kernel vs general kernel",
                     with_fast(3, call), with_fast(0, call)))
     return out
 

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import importlib
 
-__version__ = "0.6.1"
+__version__ = "0.6.2"
 
 # public name -> module that defines it
 _API = {

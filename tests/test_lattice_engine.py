@@ -282,6 +282,41 @@ def test_the_scattered_grid_octaves_give_the_same_bits_in_blocks_of_rows(hash_, 
             np.testing.assert_array_equal(np.signbit(a), np.signbit(b))
 
 
+@pytest.mark.parametrize("hash_", ["table", "integer"])
+def test_one_dimensional_grids_are_the_points_path_bit_for_bit(hash_):
+    # a 1-D grid takes the points path (the separable passes' rows would be one sample each): the values,
+    # octave sums, tiled sums and derivatives of the grid's own points, to the last bit
+    from noiselab.fractal import turbulence
+
+    shape, ext = (701,), [(-3.3, 57.1)]
+    for kw in ({}, {"kernel": "quintic", "basis": "gradient"}):
+        noise = LatticeNoise(1, 2, rng=5, hash=hash_, **kw)
+        pts = noise.grid_points(shape, ext)
+        for octaves in (1, 7):
+            np.testing.assert_array_equal(noise.evaluate_grid(shape, ext, octaves=octaves),
+                                          noise.evaluate(pts, octaves=octaves))
+        # (3 octaves: every one is seen by the grid's 11.6 samples a unit, which a grid's sum would otherwise drop)
+        np.testing.assert_array_equal(turbulence(noise, Grid(shape, ext), 3), turbulence(noise, pts, 3))
+        np.testing.assert_array_equal(noise.jacobian_grid(shape, ext), noise.jacobian(pts))
+        np.testing.assert_array_equal(noise.grid(shape, ext, dtype=np.float32), noise(pts).astype(np.float32))
+    tiled = LatticeNoise(1, rng=5, hash=hash_, period=8)   # each octave its own period: one points call each
+    grid = Grid((400,), [(0.0, 8.0)])
+    sums = fractal_sum(tiled, grid, 5), fractal_sum(tiled, tiled.grid_points(grid.shape, grid.extent), 5)
+    np.testing.assert_array_equal(*sums)
+    np.testing.assert_allclose(fractal_sum(tiled, Grid((400,), [(8.0, 16.0)]), 5), sums[0], atol=1e-12)  # one tile on
+
+
+@pytest.mark.parametrize("hash_", ["table", "integer"])
+def test_float32_grids_with_sparse_octaves_are_the_float64_sum_rounded_once(hash_):
+    # octaves sparser than the grid are added one group at a time; their sum is kept in float64 and rounded
+    # once, as the other paths round theirs (summed in float32 it was 1 ulp off at a third of the samples)
+    noise = LatticeNoise(2, rng=6, hash=hash_)
+    shape, ext = (96, 80), [(0.0, 64.0), (3.0, 70.0)]
+    for octaves in (3, 6):
+        want = noise.evaluate_grid(shape, ext, octaves=octaves).astype(np.float32)
+        np.testing.assert_array_equal(noise.evaluate_grid(shape, ext, octaves=octaves, dtype=np.float32), want)
+
+
 @pytest.mark.parametrize("dim", [1, 2, 3])
 def test_float32_points_read_in_place_give_the_bits_of_their_float64_copy(dim):
     # the integer hash's vectorised kernel reads float32 points without a float64 copy; widening is exact,
@@ -302,3 +337,16 @@ def test_float32_points_read_in_place_give_the_bits_of_their_float64_copy(dim):
 
     assert len(_jit.int_block_kernel(dim, 4, False).signatures) == 1
     assert len(_jit.int_two_taps_kernel(dim, True).signatures) == 1
+
+
+def test_integer_hash_prefix_compiles_once():
+    # a separable grid's integer-hash prefix starts from the component's key (read-only) and goes on from each
+    # axis's result (writable); a read-only array is another numba type, so the key is passed as a writable
+    # copy: one compiled specialisation, not two
+    from noiselab.lattice import _jit
+
+    noise = LatticeNoise(4, rng=2, hash="integer")
+    grid = noise.grid((3, 4, 2, 2), [(0, 2)] * 4)
+    np.testing.assert_allclose(grid.ravel(), noise(noise.grid_points((3, 4, 2, 2), [(0, 2)] * 4)).ravel(),
+                               atol=1e-12)
+    assert len(_jit.block_prefix.signatures) == 1

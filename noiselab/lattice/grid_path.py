@@ -14,8 +14,10 @@ and chunk chooses alike:
   of the grid, the same bits);
 - the **scattered** path (:func:`grid_scattered`), row by row through
   :func:`.points_path.evaluate_points`, for grids sparser than the octave's
-  lattice (:func:`is_separable`) and past 2**52 lattice cells, where a
-  float64 coordinate has no fractional bits left.
+  lattice (:func:`is_separable`), for 1-D grids (whose separable rows are
+  one sample each) and past 2**52 lattice cells, where a float64 coordinate
+  has no fractional bits left. Its octaves are summed in float64, so that
+  float32 output is the float64 sum rounded once.
 
 Along one axis the taps are either a dense run of lattice points or, when
 they spread over many cells, the distinct ones (:func:`axis_taps`).
@@ -23,6 +25,7 @@ they spread over many cells, the distinct ones (:func:`axis_taps`).
 from __future__ import annotations
 
 import copy
+import itertools
 import math
 import threading
 
@@ -75,7 +78,8 @@ def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0,
     sl = checks.check_window(window, shape, noise.dim_in)
     out_shape = tuple(hi - lo for lo, hi in sl)
     size = math.prod(out_shape)
-    checks.check_large(size * noise.dim_out * dtype.itemsize * 2 + size * 8, f"lattice noise grid {shape}")
+    # the output, its copy or (float32) a float64 sum of the scattered octaves, a float64 row of coordinates
+    checks.check_large(size * noise.dim_out * (dtype.itemsize + 8) + size * 8, f"lattice noise grid {shape}")
     checks.check_amplitude(noise.amplitude * checks.total_gain(octaves, gain), dtype,
                            "amplitude (times the sum of the octaves' gains)")
     if size == 0:
@@ -93,19 +97,26 @@ def render_grid(noise, shape, extent, *, dtype, window, octaves, lacunarity=2.0,
                                                    periods=periods),
                      sl, out, bands)
         return finish_grid(out)
-    # the separable pass writes every sample unless it accumulates |.| (turbulence)
+    # the separable pass writes every sample unless it accumulates |.| (turbulence); octaves added one by one
+    # (the scattered path) are summed in float64 and the sum rounded once, as every other path rounds its own
     writes_all = bool(separable) and not absval
+    in64 = bool(sparse) and dtype != np.float64
     if out is None:
-        out = (np.empty if writes_all else np.zeros)((noise.dim_out,) + out_shape, dtype=dtype)
+        out = (np.empty if writes_all or in64 else np.zeros)((noise.dim_out,) + out_shape, dtype=dtype)
     else:  # the caller's contiguous (dim_out, *out_shape) float64 buffer (the derivative grids)
         assert out.shape == (noise.dim_out,) + out_shape and out.flags.c_contiguous and out.dtype == dtype
         if not writes_all:
             out[...] = 0.0
+    total = np.zeros(out.shape) if in64 else out
     if separable:
-        grid_separable(noise, sub, full, separable, out, absval, deriv_axis, max(bands, 1))
-    for freq, amp, period in sparse:
-        # grids sparser than this octave's lattice: per-point path, added
-        grid_scattered(with_period(noise, period), sub, freq, amp, out, absval, deriv_axis)
+        grid_separable(noise, sub, full, separable, total, absval, deriv_axis, max(bands, 1))
+    # grids sparser than an octave's lattice, and 1-D grids: the per-point path, consecutive octaves of one
+    # period in one call (its kernels add the octaves in the same order, in float64: the same sums)
+    for _, group in itertools.groupby(sparse, key=lambda octave: tuple(octave[2])):
+        freqs, amps, periods = zip(*group)
+        grid_scattered(with_period(noise, periods[0]), sub, np.array(freqs), np.array(amps), total, absval, deriv_axis)
+    if in64:
+        out[...] = total
     return finish_grid(out)
 
 
@@ -166,7 +177,16 @@ def finish_grid(out):
 
 
 def is_separable(taps, full_coords, freq):
-    """Separable if the lattice block is not much larger than the grid (decided on the full grid)."""
+    """Separable if the lattice block is not much larger than the grid (decided on the full grid), in 2-D and up.
+
+    A 1-D grid's separable rows are one sample each, so the per-row work of
+    the passes outweighs the sums: the points path ran the same grid
+    4.3-33x faster than 0.6.1's passes (262,144 samples, 6 octaves, both
+    hashes and bases, ``python benchmarks/bench_lattice_paths.py --only
+    "(262144,)"``, ``benchmarks/bench_lattice_paths.md``).
+    """
+    if len(full_coords) == 1:
+        return False
     block = 1.0
     samples = 1.0
     for a, c in enumerate(full_coords):
@@ -188,8 +208,9 @@ _KEPT_LOCK = threading.Lock()
 SCATTERED_BLOCK = 1 << 16
 
 
-def grid_scattered(noise, sub, freq, amp, out, absval, deriv_axis=None):
-    """One octave added into ``out`` by the points path, a block of rows of axis 0 at a time.
+def grid_scattered(noise, sub, freqs, amps, out, absval, deriv_axis=None):
+    """Octaves (``freqs`` ``(k, d)``, ``amps`` ``(k,)``) added into ``out`` by the points path, a block of rows
+    of axis 0 at a time.
 
     Blocks of about :data:`SCATTERED_BLOCK` points keep the temporary small
     and the calls few (one per row cost 1.5-2x the time on 512² grids,
@@ -209,9 +230,9 @@ def grid_scattered(noise, sub, freq, amp, out, absval, deriv_axis=None):
         pts[:, :, 1:] = rest
         pts = pts.reshape(-1, d)
         if deriv_axis is None:
-            vals = evaluate_points(noise, pts, freq[None], np.array([amp]), absval, np.dtype(np.float64))
+            vals = evaluate_points(noise, pts, freqs, amps, absval, np.dtype(np.float64))
         else:
-            vals = evaluate_points_jac(noise, pts, freq[None], np.array([amp]), absval)[:, :, 1 + deriv_axis]
+            vals = evaluate_points_jac(noise, pts, freqs, amps, absval)[:, :, 1 + deriv_axis]
         for c in range(noise.dim_out):
             flat_out[c, j0:j1] += vals[:, c].reshape(j1 - j0, -1).astype(out.dtype)
 
@@ -353,7 +374,7 @@ def int_prefix(key, mult, lattices):
 
     ``key`` is the component's ``(1,)`` uint32 key, ``mult`` the axis multipliers.
     """
-    h = key
+    h = key.copy()  # writable, as every axis's result: one compiled specialisation (the keys are read-only)
     for a, lat in enumerate(lattices):
         h = jit.block_prefix(h, np.ascontiguousarray(lat, dtype=np.int64), mult[a], a == 0, key[0])
     return h
