@@ -27,7 +27,11 @@ machine code from its cache. The child also reports how many numba
 specialisations it compiled or loaded (``len(fn.signatures)`` summed over
 every dispatcher in ``noiselab.lattice``'s modules and in their dicts of
 compiled variants; callees compiled only as part of another kernel are not
-counted), which says where the cold time goes.
+counted), which says where the cold time goes. ``--kernels`` times each
+numba compilation of one more cold run (numba's ``numba:compile`` events)
+and prints numba's own timing of its slowest passes over each of
+noiselab's kernels (``pipeline_times``: lowering with LLVM's optimisation,
+type inference, inlining).
 """
 from __future__ import annotations
 
@@ -122,6 +126,19 @@ _event.register("numba:compile", _compiles)
 REPORT = """
 for _t, _name in sorted(_compiles.done, reverse=True)[:6]:
     print("COMPILE", round(_t, 2), _name)
+# numba's own timing of each pass of noiselab's kernels' compilations (init + run + finalize, CPU seconds)
+import sys as _sys
+for _name, _mod in list(_sys.modules.items()):
+    if _name.startswith("noiselab.lattice"):
+        for _v in list(vars(_mod).values()):
+            for _f in (list(_v.values()) if isinstance(_v, dict) else [_v]):
+                for _cres in (list(_f.overloads.values()) if hasattr(_f, "overloads") and hasattr(_f, "py_func")
+                              else []):
+                    for _passes in _cres.metadata.get("pipeline_times", {}).values():
+                        _top = sorted(((t.init + t.run + t.finalize, k.split("_", 1)[1]) for k, t in _passes.items()),
+                                      reverse=True)[:4]
+                        print("PASSES", _f.py_func.__qualname__.split(".")[-1],
+                              "; ".join(f"{k} {t:.2f}" for t, k in _top))
 """
 
 
@@ -171,7 +188,8 @@ def compile_times(code, cache_dir):
                           env=env, cwd=SOURCE, capture_output=True, text=True)
     if proc.returncode:
         raise RuntimeError(f"child failed:\n{proc.stderr}")
-    return [(float(line.split()[1]), line.split()[2]) for line in proc.stdout.splitlines() if line.startswith("COMPILE")]
+    return ([(float(line.split()[1]), line.split()[2]) for line in proc.stdout.splitlines() if line.startswith("COMPILE")],
+            [line[7:] for line in proc.stdout.splitlines() if line.startswith("PASSES")])
 
 
 def run_child(code, cache_dir, root=None):
@@ -237,7 +255,8 @@ def main(argv=None):
     parser.add_argument("--paths", nargs="+", choices=list(PATHS), default=list(PATHS), help="paths to time")
     parser.add_argument("--runs", type=int, default=1, help="cold/warm pairs per path (the median is reported)")
     parser.add_argument("--kernels", action="store_true",
-                        help="also time each numba compilation of a cold run (where the cold time goes)")
+                        help="also time each numba compilation of a cold run (where the cold time goes), and "
+                             "numba's slowest passes over each kernel of noiselab's")
     parser.add_argument("--speed", type=int, default=0, metavar="REPEATS",
                         help="also time the warm calls in one process (REPEATS interleaved rounds, >= 5)")
     parser.add_argument("--label", default="", help="a note for the table's title (e.g. before/after)")
@@ -290,12 +309,13 @@ def main(argv=None):
         for key in args.paths:
             cache = Path(tempfile.mkdtemp(prefix="nl-cold-"))
             try:
-                top = compile_times(PATHS[key][1], cache)
+                top, passes = compile_times(PATHS[key][1], cache)
             finally:
                 shutil.rmtree(cache, ignore_errors=True)
-            krows.append([key, "; ".join(f"`{name}` {t:.1f}" for t, name in top[:4])])
-            print(key, krows[-1][1], flush=True)
-        lines += markdown_table(["path", "compilations (s CPU)"], krows, "ll")
+            krows.append([key, "; ".join(f"`{name}` {t:.1f}" for t, name in top[:4]), "<br>".join(passes)])
+            print(key, krows[-1][1], "|", krows[-1][2], flush=True)
+        lines += markdown_table(["path", "compilations (s CPU)", "numba's slowest passes of the kernel (s CPU)"], krows,
+                                "lll")
     if args.speed:
         cache = Path(tempfile.mkdtemp(prefix="nl-warm-"))
         try:

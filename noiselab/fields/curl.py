@@ -47,7 +47,7 @@ def curl_noise(noise, points, *, octaves=1, lacunarity=2.0, gain=0.5):
         (``dim_in=3, dim_out=3``), giving ``v = curl A``. The kernel needs a
         continuous first derivative (not ``box`` or ``linear``).
     points : array (..., 2 or 3), or Grid
-        Where to evaluate (a ``noiselab.lattice.Grid`` uses the separable grid passes).
+        Where to evaluate (a ``noiselab.lattice.Grid`` uses the grid path).
     octaves, lacunarity, gain : optional
         Use the fractal sum of ``noise`` as the potential (:func:`noiselab.fractal.fractal_gradient`).
 

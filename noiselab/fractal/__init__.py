@@ -350,7 +350,7 @@ def fractal_gradient(noise, x, octaves=6, *, lacunarity=2.0, gain=0.5, normalize
         The basis noise (a C1 kernel: see :meth:`LatticeNoise.jacobian`), or
         e.g. a :func:`noiselab.warp` of one.
     x : array (..., dim_in) or Grid
-        Points, or a ``Grid`` (then the separable grid passes are used).
+        Points, or a ``Grid`` (then the grid path is used).
     octaves, lacunarity, gain, normalize, spacing, workers
         As for :func:`fractal_sum`; the same octaves are used, so this is the
         derivative of the function :func:`fractal_sum` returns.

@@ -14,8 +14,9 @@ delegates the work to one module per part, each readable on its own:
 - :mod:`.tables`: the random tables (values, gradients, permutations,
   integer-hash keys);
 - :mod:`.points_path`: scattered points in either layout, the kernel and the threads;
-- :mod:`.grid_path`: regular grids (separable passes, the fused 2-D kernel,
-  the scattered fallback, windows);
+- :mod:`.grid_path`: regular grids (the fused kernel in 2-D and 3-D, the
+  separable passes in 4-D and up, the points path for 1-D grids and for
+  octaves sparser than the grid, windows);
 - :mod:`.derivatives`: Jacobians on grids and the shapes of the results;
 - :mod:`.checks`: argument and overflow checks; :mod:`.grid`: ``Grid``
   and its coordinates; :mod:`._jit`: every compiled kernel (the engine).
@@ -371,7 +372,7 @@ class LatticeNoise:
 
     def evaluate_grid(self, shape, extent, *, window=None, octaves=1, lacunarity=2.0, gain=0.5, absval=False,
                       dtype=np.float64, workers=None):
-        """:meth:`evaluate` on a regular grid (as :meth:`grid`), by the separable passes.
+        """:meth:`evaluate` on a regular grid (as :meth:`grid`), by the grid path (:mod:`.grid_path`).
 
         ``shape``, ``extent``, ``window``, ``dtype`` and ``workers`` as for
         :meth:`grid`; ``octaves``, ``lacunarity``, ``gain`` and ``absval`` as
