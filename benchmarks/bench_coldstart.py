@@ -89,18 +89,25 @@ PATHS = {
                 "Grid((512, 512), ((0, 16), (0, 16))), 6, dtype=np.float32)"),
 }
 
-# printed by the child after the call: the number of compiled (or cache-loaded) specialisations
-COUNT = """
+# the child's view of noiselab's kernels: every dispatcher of noiselab.lattice's modules, module-level or kept in a
+# dict of compiled variants (e.g. _jit._POINTS), each once
+DISPATCHERS = """
 import sys as _sys
-_seen = {}
-for _name, _mod in list(_sys.modules.items()):
-    if _name.startswith("noiselab.lattice"):
-        for _v in list(vars(_mod).values()):
-            # module-level kernels, and the per-variant kernels kept in dicts (e.g. _jit._GRID2D)
-            for _f in (list(_v.values()) if isinstance(_v, dict) else [_v]):
-                if hasattr(_f, "signatures") and hasattr(_f, "py_func"):
-                    _seen[id(_f)] = len(_f.signatures)
-print("SPECIALISATIONS", sum(_seen.values()))
+
+def _dispatchers():
+    _seen = {}
+    for _name, _mod in list(_sys.modules.items()):
+        if _name.startswith("noiselab.lattice"):
+            for _v in list(vars(_mod).values()):
+                for _f in (list(_v.values()) if isinstance(_v, dict) else [_v]):
+                    if hasattr(_f, "signatures") and hasattr(_f, "py_func"):
+                        _seen[id(_f)] = _f
+    return list(_seen.values())
+"""
+
+# printed by the child after the call: the number of compiled (or cache-loaded) specialisations
+COUNT = DISPATCHERS + """
+print("SPECIALISATIONS", sum(len(_f.signatures) for _f in _dispatchers()))
 """
 
 
@@ -123,22 +130,16 @@ class _Compiles(_event.Listener):
 _compiles = _Compiles()
 _event.register("numba:compile", _compiles)
 """
-REPORT = """
+REPORT = DISPATCHERS + """
 for _t, _name in sorted(_compiles.done, reverse=True)[:6]:
     print("COMPILE", round(_t, 2), _name)
 # numba's own timing of each pass of noiselab's kernels' compilations (init + run + finalize, CPU seconds)
-import sys as _sys
-for _name, _mod in list(_sys.modules.items()):
-    if _name.startswith("noiselab.lattice"):
-        for _v in list(vars(_mod).values()):
-            for _f in (list(_v.values()) if isinstance(_v, dict) else [_v]):
-                for _cres in (list(_f.overloads.values()) if hasattr(_f, "overloads") and hasattr(_f, "py_func")
-                              else []):
-                    for _passes in _cres.metadata.get("pipeline_times", {}).values():
-                        _top = sorted(((t.init + t.run + t.finalize, k.split("_", 1)[1]) for k, t in _passes.items()),
-                                      reverse=True)[:4]
-                        print("PASSES", _f.py_func.__qualname__.split(".")[-1],
-                              "; ".join(f"{k} {t:.2f}" for t, k in _top))
+for _f in _dispatchers():
+    for _cres in list(_f.overloads.values()):
+        for _passes in _cres.metadata.get("pipeline_times", {}).values():
+            _top = sorted(((t.init + t.run + t.finalize, k.split("_", 1)[1]) for k, t in _passes.items()),
+                          reverse=True)[:4]
+            print("PASSES", _f.py_func.__qualname__.split(".")[-1], "; ".join(f"{k} {t:.2f}" for t, k in _top))
 """
 
 

@@ -1328,6 +1328,15 @@ def point_buffers(dim, ncomp, deriv=False):
 _POINTS = {}
 
 
+def _variant(store, key, make, args):
+    """The kernel ``make(*args)``, kept in ``store`` under ``key``: made on first request; numba compiles it on its
+    first call (or loads it from its cache)."""
+    fn = store.get(key)
+    if fn is None:
+        fn = store[key] = make(*args)
+    return fn
+
+
 def points_kernel(integer, dim, taps, deriv, periodic):
     """The compiled point kernel for this hash, dimension, tap count, derivative flag and period flag.
 
@@ -1338,28 +1347,19 @@ def points_kernel(integer, dim, taps, deriv, periodic):
     request; numba compiles it on its first call (or loads it from its cache).
     """
     key = (bool(integer), int(dim), int(taps), bool(deriv), bool(periodic))
-    fn = _POINTS.get(key)
-    if fn is None:
-        fn = _POINTS[key] = (_make_int_points if integer else _make_points)(*key[1:])
-    return fn
+    return _variant(_POINTS, key, _make_int_points if integer else _make_points, key[1:])
 
 
 def int_fast_kernel(dim, taps, gradient, periodic):
     """The integer hash's vectorised value kernel (:func:`_make_int_fast`) for 1-3-D, as :func:`points_kernel`."""
     key = ("fast", int(dim), int(taps), bool(gradient), bool(periodic))
-    fn = _POINTS.get(key)
-    if fn is None:
-        fn = _POINTS[key] = _make_int_fast(*key[1:])
-    return fn
+    return _variant(_POINTS, key, _make_int_fast, key[1:])
 
 
 def table_block_kernel(taps, gradient):
     """The table hash's 3-D block kernel without a period (:func:`_make_table_block`), as :func:`points_kernel`."""
     key = ("table", int(taps), bool(gradient))
-    fn = _POINTS.get(key)
-    if fn is None:
-        fn = _POINTS[key] = _make_table_block(*key[1:])
-    return fn
+    return _variant(_POINTS, key, _make_table_block, key[1:])
 
 
 def int_block_kernel(dim, taps, gradient, f32=False, x32=False):
@@ -1368,20 +1368,14 @@ def int_block_kernel(dim, taps, gradient, f32=False, x32=False):
     ``x32``: float32 points, which the float32 arithmetic keeps in float32 (one kernel for both dtypes without it).
     """
     key = ("block", int(dim), int(taps), bool(gradient), bool(f32), bool(f32 and x32))
-    fn = _POINTS.get(key)
-    if fn is None:
-        fn = _POINTS[key] = _make_int_block(*key[1:])
-    return fn
+    return _variant(_POINTS, key, _make_int_block, key[1:])
 
 
 def int_two_taps_kernel(dim, gradient, f32=False, x32=False):
     """The integer hash's 2-tap kernel (:func:`_make_int_two_taps`) for 1-3-D values without a period (``x32``:
     as :func:`int_block_kernel`)."""
     key = ("two", int(dim), bool(gradient), bool(f32), bool(f32 and x32))
-    fn = _POINTS.get(key)
-    if fn is None:
-        fn = _POINTS[key] = _make_int_two_taps(*key[1:])
-    return fn
+    return _variant(_POINTS, key, _make_int_two_taps, key[1:])
 
 
 def fold_last_level(perm, values, grads, length):
@@ -1882,10 +1876,7 @@ def grid_rows_kernel(dim, taps, integer, grad):
     first request; numba compiles it on its first call (or loads it from its cache).
     """
     key = (int(dim), int(taps) if taps in (2, 4) else 0, bool(integer), bool(grad))
-    fn = _GRID_ROWS.get(key)
-    if fn is None:
-        fn = _GRID_ROWS[key] = _make_grid_rows(*key)
-    return fn
+    return _variant(_GRID_ROWS, key, _make_grid_rows, key)
 
 
 @nb.njit(cache=True, nogil=True)
