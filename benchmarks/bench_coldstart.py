@@ -74,6 +74,9 @@ PATHS = {
     "fbm2": ("`fractal_sum(LatticeNoise(2), Grid((512, 512), ((0, 32), (0, 32))), octaves=6)`",
              "from noiselab.lattice import Grid\n"
              "nl.fractal_sum(nl.LatticeNoise(2), Grid((512, 512), ((0, 32), (0, 32))), octaves=6)"),
+    "fbm1": ("`fractal_sum(LatticeNoise(1), Grid((4096,), ((0, 64),)), 6)`",
+             "from noiselab.lattice import Grid\n"
+             "nl.fractal_sum(nl.LatticeNoise(1), Grid((4096,), ((0, 64),)), 6)"),
     "grid2-all": ("every fused 2-D grid kernel: 64² grids, tap counts 1-4 x both bases x float32/float64 (16 calls)",
                   "for k in ['box', 'linear', 'quadratic', 'cubic']:\n"
                   "    for b in ('value', 'gradient'):\n"
